@@ -1,0 +1,94 @@
+/* binning.h - cell index, counting sort into cells, and the canonical order inside each cell.
+ *
+ * The binning domain [lo, lo + ncell*cell] is cut into cubes no smaller than the largest interaction range
+ * (2 r_max + skin), so every neighbour of a particle lies in its own or one of the 26 adjacent cells.
+ * Steps (each a kernel, each with its reference loop):
+ *   bin_index:  cell of each particle; counts per cell (integer atomics); a particle outside the domain or with a
+ *               non-finite position is reported through FLAG_OUT_OF_DOMAIN (smallest such id) and clamped into
+ *               the grid so that no memory outside the arrays is touched; the host then stops with an error.
+ *   scan:       exclusive prefix sum of the counts -> cell_start (integer, so any order gives the same result).
+ *   bin_scatter: each particle takes a slot in its cell (the order of slots depends on thread timing) ...
+ *   bin_sort:   ... which this step makes canonical: each cell's particles sorted by ascending id.
+ */
+#ifndef DEM_BINNING_H
+#define DEM_BINNING_H
+#include "vec3.h"
+#include "dem_layout.h"
+
+DEM_INLINE int bin_axis(real xc, real lo, real inv_cell, int nc, int *outside)
+{
+    real s = (xc - lo) * inv_cell;
+    if (!(s >= (real)0 && s < (real)nc)) { /* also true for NaN */
+        *outside = 1;
+        return s >= (real)nc ? nc - 1 : 0;
+    }
+    return (int)s;
+}
+
+DEM_INLINE void bin_index_item(int i, vec3 lo, real inv_cell, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
+                               DEM_GLOBAL int *cell_of, DEM_GLOBAL int *cell_count, DEM_GLOBAL int *flags)
+{
+    vec3 xi = v3_load(x, i);
+    int outside = 0;
+    int cx = bin_axis(xi.x, lo.x, inv_cell, ncx, &outside);
+    int cy = bin_axis(xi.y, lo.y, inv_cell, ncy, &outside);
+    int cz = bin_axis(xi.z, lo.z, inv_cell, ncz, &outside);
+    if (outside)
+        DEM_ATOMIC_MIN(&flags[FLAG_OUT_OF_DOMAIN], i);
+    int c = (cz * ncy + cy) * ncx + cx;
+    cell_of[i] = c;
+    DEM_ATOMIC_INC(&cell_count[c]);
+}
+
+/* Exclusive scan in fixed blocks of DEM_SCAN_BLOCK cells: block sums, a scan of the block sums, then each block. */
+#define DEM_SCAN_BLOCK 1024
+DEM_INLINE void scan_block_sum_item(int b, int ncells, DEM_CONST_GLOBAL int *count, DEM_GLOBAL int *block_sum)
+{
+    int s = 0, end = (b + 1) * DEM_SCAN_BLOCK < ncells ? (b + 1) * DEM_SCAN_BLOCK : ncells;
+    for (int c = b * DEM_SCAN_BLOCK; c < end; c++)
+        s += count[c];
+    block_sum[b] = s;
+}
+
+DEM_INLINE void scan_block_sums_item(int nblocks, DEM_GLOBAL int *block_sum)
+{
+    int s = 0;
+    for (int b = 0; b < nblocks; b++) {
+        int t = block_sum[b];
+        block_sum[b] = s;
+        s += t;
+    }
+}
+
+DEM_INLINE void scan_apply_item(int b, int ncells, DEM_CONST_GLOBAL int *count, DEM_CONST_GLOBAL int *block_sum,
+                                DEM_GLOBAL int *start)
+{
+    int s = block_sum[b], end = (b + 1) * DEM_SCAN_BLOCK < ncells ? (b + 1) * DEM_SCAN_BLOCK : ncells;
+    for (int c = b * DEM_SCAN_BLOCK; c < end; c++) {
+        start[c] = s;
+        s += count[c];
+    }
+    if (end == ncells)
+        start[ncells] = s;
+}
+
+DEM_INLINE void bin_scatter_item(int i, DEM_CONST_GLOBAL int *cell_of, DEM_CONST_GLOBAL int *start,
+                                 DEM_GLOBAL int *fill, DEM_GLOBAL int *cell_particles)
+{
+    int c = cell_of[i];
+    cell_particles[start[c] + DEM_ATOMIC_INC(&fill[c])] = i;
+}
+
+DEM_INLINE void bin_sort_item(int c, DEM_CONST_GLOBAL int *start, DEM_GLOBAL int *cell_particles)
+{
+    int s = start[c], e = start[c + 1];
+    for (int k = s + 1; k < e; k++) { /* insertion sort: cells hold a handful of particles */
+        int id = cell_particles[k], m = k - 1;
+        while (m >= s && cell_particles[m] > id) {
+            cell_particles[m + 1] = cell_particles[m];
+            m--;
+        }
+        cell_particles[m + 1] = id;
+    }
+}
+#endif /* DEM_BINNING_H */

@@ -1,0 +1,86 @@
+/* contact_forces.h - particle-particle contact forces and their per-particle accumulation (one work item = one particle).
+ *
+ * Determinism: particle i walks its neighbour row, which is sorted by ascending partner id, so every particle sums its
+ * contact forces in one canonical order. Each pair is evaluated in canonical orientation (a = min id, b = max id) by
+ * both of its particles, with bit-identical inputs (the two copies of the pair's history are equal by construction),
+ * so particle b adds exactly the negation of what particle a adds: f_ji = -f_ij bitwise, and no scatter or atomics.
+ * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
+ *
+ * Torque: the contact point lies a distance (r - d/2) from each centre along the line of centres, so the torque on
+ * either particle g is -(r_g - d/2) (n x f_t) with n from b to a (seed 000, Eq. 1 branch vector).
+ */
+#ifndef DEM_CONTACT_FORCES_H
+#define DEM_CONTACT_FORCES_H
+#include "hertz_mindlin.h"
+
+typedef struct {
+    int active;  /* 1 when the spheres overlap */
+    real delta;  /* overlap [m] */
+    vec3 force;  /* force on a (the smaller id) [N] */
+    vec3 c;      /* n x f_t [N] */
+    vec3 hist;   /* new tangential history */
+} pair_contact;
+
+DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+                                          DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
+                                          DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
+                                          DEM_CONST_GLOBAL real *pairmat, int nmat, real dt, vec3 hist)
+{
+    pair_contact pc;
+    vec3 d = v3_sub(v3_load(x, a), v3_load(x, b));
+    real ra = radius[a], rb = radius[b];
+    real rsum = ra + rb;
+    real dist2 = v3_dot(d, d);
+    pc.active = 0;
+    pc.delta = (real)0;
+    pc.force = v3_zero();
+    pc.c = v3_zero();
+    pc.hist = v3_zero();
+    if (!(dist2 < rsum * rsum))
+        return pc;
+    pc.active = 1;
+    real dist = dem_sqrt(dist2);
+    /* Coincident centres: the direction is undefined; the defined policy is to push a along +z. */
+    vec3 n = dist > (real)0 ? v3_scale(d, (real)1 / dist) : v3((real)0, (real)0, (real)1);
+    real delta = rsum - dist;
+    real rstar = ra * rb / rsum;
+    real mstar = hm_effective_mass(invmass[a], invmass[b]);
+    real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
+    /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n */
+    vec3 vca = v3_add(v3_load(v, a), v3_cross(v3_load(w, a), v3_scale(n, -arm_a)));
+    vec3 vcb = v3_add(v3_load(v, b), v3_cross(v3_load(w, b), v3_scale(n, arm_b)));
+    hm_result r = hm_contact(n, delta, rstar, mstar, v3_sub(vca, vcb), pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]),
+                             dt, hist);
+    pc.delta = delta;
+    pc.force = r.force;
+    pc.c = v3_cross(n, r.ft);
+    pc.hist = r.hist;
+    return pc;
+}
+
+DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+                                    DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
+                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
+                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
+                                    DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist, real dt,
+                                    DEM_GLOBAL real *force, DEM_GLOBAL real *torque)
+{
+    vec3 fi = v3_zero(), ti = v3_zero();
+    real ri = radius[i];
+    int cnt = nbr_count[i];
+    for (int k = 0; k < cnt; k++) {
+        int slot = i * maxn + k;
+        int j = nbr_list[slot];
+        int a = i < j ? i : j, b = i < j ? j : i;
+        pair_contact pc = pair_contact_eval(a, b, x, v, w, radius, invmass, mat, pairmat, nmat, dt,
+                                            v3_load(hist, slot));
+        v3_store(hist, slot, pc.hist);
+        if (!pc.active)
+            continue;
+        fi = i == a ? v3_add(fi, pc.force) : v3_sub(fi, pc.force);
+        ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
+    }
+    v3_store(force, i, fi);
+    v3_store(torque, i, ti);
+}
+#endif /* DEM_CONTACT_FORCES_H */

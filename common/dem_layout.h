@@ -1,0 +1,46 @@
+/* dem_layout.h - buffer layouts shared by the host, the kernels and the reference (declared once).
+ *
+ * Per-particle vectors are interleaved xyz: x[3*i+0..2]. Tables are flat `real` arrays with a fixed
+ * stride and the named offsets below, so no struct layout has to agree between host and device compilers.
+ * Units are SI throughout: m, kg, s, Pa, N, N m, rad/s.
+ */
+#ifndef DEM_LAYOUT_H
+#define DEM_LAYOUT_H
+
+/* Per material pair (table index mi*nmat+mj, symmetric), computed on the host once. */
+enum {
+    PM_ESTAR = 0, /* effective Young's modulus E*  [Pa]   (seed 000 Eq. 3) */
+    PM_GSTAR = 1, /* effective shear modulus G*    [Pa]   (seed 000 Eq. 5) */
+    PM_MU = 2,    /* Coulomb friction coefficient  [-] */
+    PM_DAMP = 3,  /* damping factor c in f_d = -c sqrt(S m*) v, calibrated from restitution [-] */
+    PM_STRIDE = 4
+};
+
+/* Wall geometry and motion, real part (index w*W_STRIDE + ...). */
+enum {
+    W_PX = 0, W_PY, W_PZ, /* plane: a point on it; cylinder: a point on its axis [m] */
+    W_NX, W_NY, W_NZ,     /* plane: unit normal pointing into the particle side; cylinder: unit axis */
+    W_RADIUS,             /* cylinder radius [m] (particles live inside) */
+    W_VX, W_VY, W_VZ,     /* wall velocity during the current step [m/s] */
+    W_STRIDE
+};
+/* Wall integer part (index w*WI_STRIDE + ...). */
+enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
+enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1 };
+
+/* Integer status flags written by kernels (integer atomics only), read by the host. */
+enum {
+    FLAG_REBUILD = 0,       /* set to 1 when some particle moved more than skin/2 since the last build */
+    FLAG_OUT_OF_DOMAIN = 1, /* smallest id of a particle outside the binning domain (or non-finite); INT_MAX if none */
+    FLAG_NBR_NEEDED = 2,    /* largest neighbour count found; > capacity means the build overflowed */
+    FLAG_CELL_NEEDED = 3,   /* unused slot kept for layout stability */
+    FLAG_COUNT = 4
+};
+#define DEM_NO_PARTICLE 2147483647
+
+/* Fixed block length of the canonical wall-force reduction: partial sums over blocks of this many
+ * particles, in ascending id, then the partials in ascending block order. It is a constant, not the
+ * work-group size, so the sum has the same bits on every device and launch configuration. */
+#define DEM_REDUCE_BLOCK 256
+
+#endif /* DEM_LAYOUT_H */

@@ -1,0 +1,81 @@
+/* hertz_mindlin.h - the Hertz-Mindlin contact law of seed 000 section 2 (Eq. 2-6), written once.
+ *
+ * Normal (Eq. 3):   f_n = 4/3 E* sqrt(r*) d^(3/2) - c sqrt(S_n m*) v_n,   S_n = 2 E* sqrt(r* d)
+ *                   d^(3/2) sqrt(r*) is evaluated as sqrt(r* d) * d (only + - * / sqrt, see dem_real.h).
+ *                   The total normal force is clamped at zero: a contact never pulls.
+ * Tangential (Eq. 4-6, Tsuji): the elastic tangential force is kept as history and grows incrementally,
+ *                   f_t,el(t+dt) = R[f_t,el(t)] - k_t v_t dt,   k_t = 8 G* sqrt(r* d),
+ *                   where R rotates the stored force into the current tangent plane keeping its length;
+ *                   damping -c sqrt(k_t m*) v_t; Coulomb limit |f_t| <= mu f_n. When sliding, the force is
+ *                   scaled onto the cone and the stored spring force is set to it (spring rescaled).
+ * Damping: the form is LIGGGHTS' (c = 2 sqrt(5/6) beta). The coefficient c is NOT beta = ln e/sqrt(ln^2 e + pi^2)
+ *          (that is exact only for a linear spring); the host solves the dimensionless Hertz collision for the c
+ *          that gives the requested restitution e (host/restitution.c). c depends on e alone, so e is velocity
+ *          independent. c is a table entry: no transcendental function is evaluated on the device.
+ *
+ * Conventions: body a and body b; n is the unit vector from b to a; d > 0 the overlap; vrel the velocity of a's
+ * contact point relative to b's. Returned forces act on a (b receives the negative).
+ */
+#ifndef DEM_HERTZ_MINDLIN_H
+#define DEM_HERTZ_MINDLIN_H
+#include "vec3.h"
+#include "dem_layout.h"
+
+typedef struct {
+    vec3 force; /* total contact force on a [N] */
+    vec3 ft;    /* its tangential part [N] (torques) */
+    vec3 hist;  /* new elastic tangential force to store [N] */
+} hm_result;
+
+/* Rotate the stored tangential force into the plane normal to n, keeping its magnitude. */
+DEM_INLINE vec3 hm_rotate_history(vec3 h, vec3 n)
+{
+    real hn = v3_dot(h, n);
+    vec3 hp = v3_sub(h, v3_scale(n, hn));
+    real h2 = v3_dot(h, h);
+    real hp2 = v3_dot(hp, hp);
+    if (hp2 > (real)0 && hp2 != h2)
+        hp = v3_scale(hp, dem_sqrt(h2 / hp2));
+    return hp;
+}
+
+DEM_INLINE hm_result hm_contact(vec3 n, real delta, real rstar, real mstar, vec3 vrel,
+                                DEM_CONST_GLOBAL real *pm, real dt, vec3 hist)
+{
+    const real estar = pm[PM_ESTAR], gstar = pm[PM_GSTAR], mu = pm[PM_MU], damp = pm[PM_DAMP];
+    const real four_thirds = (real)4 / (real)3;
+    hm_result r;
+    real srd = dem_sqrt(rstar * delta); /* sqrt(r* d) */
+    real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
+    vec3 vt = v3_sub(vrel, v3_scale(n, vn));
+
+    /* normal */
+    real sn = (real)2 * estar * srd;
+    real fn = four_thirds * estar * srd * delta - damp * dem_sqrt(sn * mstar) * vn;
+    if (fn < (real)0)
+        fn = (real)0;
+
+    /* tangential */
+    real kt = (real)8 * gstar * srd;
+    vec3 ft_el = v3_sub(hm_rotate_history(hist, n), v3_scale(vt, kt * dt));
+    vec3 ft = v3_sub(ft_el, v3_scale(vt, damp * dem_sqrt(kt * mstar)));
+    real fmax = mu * fn;
+    real ft2 = v3_dot(ft, ft);
+    if (ft2 > fmax * fmax) {
+        ft = v3_scale(ft, fmax / dem_sqrt(ft2));
+        r.hist = ft;
+    } else {
+        r.hist = ft_el;
+    }
+    r.ft = ft;
+    r.force = v3_add(v3_scale(n, fn), ft);
+    return r;
+}
+
+/* Effective mass of two bodies given inverse masses; 0 when both are immovable (no damping then). */
+DEM_INLINE real hm_effective_mass(real invm_a, real invm_b)
+{
+    real s = invm_a + invm_b;
+    return s > (real)0 ? (real)1 / s : (real)0;
+}
+#endif /* DEM_HERTZ_MINDLIN_H */

@@ -1,0 +1,49 @@
+/* integrate.h - velocity Verlet (kick-drift-kick), a second-order symplectic scheme for the conservative part.
+ *
+ *   kick_drift:  v += dt/2 a(t);  w += dt/2 alpha(t);  x += dt v          (then forces are evaluated at t+dt
+ *   kick:        v += dt/2 a(t+dt); w += dt/2 alpha(t+dt)                   with the half-step velocities)
+ *
+ * a = f/m + g for free particles; inverse mass 0 marks a particle moving at constant velocity (no gravity),
+ * inverse inertia 0 a particle that does not rotate. Spheres: I = 2/5 m r^2, so no gyroscopic term.
+ * kick_drift also raises the rebuild flag once a particle has moved more than skin/2 since the last neighbour
+ * build (a non-finite position raises it too, so that binning reports it).
+ */
+#ifndef DEM_INTEGRATE_H
+#define DEM_INTEGRATE_H
+#include "vec3.h"
+#include "dem_layout.h"
+
+DEM_INLINE void integrate_kick_velocity(int i, real half_dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
+                                        DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
+                                        DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia)
+{
+    real im = invmass[i], ii = invinertia[i];
+    if (im > (real)0) {
+        vec3 a = v3_add(v3_scale(v3_load(force, i), im), g);
+        v3_store(v, i, v3_add(v3_load(v, i), v3_scale(a, half_dt)));
+    }
+    if (ii > (real)0)
+        v3_store(w, i, v3_add(v3_load(w, i), v3_scale(v3_scale(v3_load(torque, i), ii), half_dt)));
+}
+
+DEM_INLINE void integrate_kick_drift_item(int i, real dt, vec3 g, real half_skin2, DEM_GLOBAL real *x,
+                                          DEM_GLOBAL real *v, DEM_GLOBAL real *w, DEM_CONST_GLOBAL real *force,
+                                          DEM_CONST_GLOBAL real *torque, DEM_CONST_GLOBAL real *invmass,
+                                          DEM_CONST_GLOBAL real *invinertia, DEM_CONST_GLOBAL real *x_build,
+                                          DEM_GLOBAL int *flags)
+{
+    integrate_kick_velocity(i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
+    vec3 xi = v3_add(v3_load(x, i), v3_scale(v3_load(v, i), dt));
+    v3_store(x, i, xi);
+    vec3 d = v3_sub(xi, v3_load(x_build, i));
+    if (!(v3_dot(d, d) <= half_skin2))
+        DEM_ATOMIC_MAX(&flags[FLAG_REBUILD], 1);
+}
+
+DEM_INLINE void integrate_kick_item(int i, real dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
+                                    DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
+                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia)
+{
+    integrate_kick_velocity(i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
+}
+#endif /* DEM_INTEGRATE_H */

@@ -1,0 +1,82 @@
+/* neighbor.h - Verlet neighbour rows from the cell grid, and contact history carried across rebuilds.
+ *
+ * Row i lists every j != i with |x_i - x_j| < r_i + r_j + skin, sorted by ascending j (the canonical summation
+ * order of contact_forces.h), at nbr_list[i*maxn ...]. The test is symmetric in i and j bit for bit (IEEE + and *
+ * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
+ * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
+ * A new row takes the tangential history of the same partner from the old row (binary search), or zero.
+ */
+#ifndef DEM_NEIGHBOR_H
+#define DEM_NEIGHBOR_H
+#include "vec3.h"
+#include "dem_layout.h"
+
+DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
+                               DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *cell_of,
+                               DEM_CONST_GLOBAL int *cell_start, DEM_CONST_GLOBAL int *cell_particles,
+                               DEM_GLOBAL int *nbr_count, DEM_GLOBAL int *nbr_list, DEM_GLOBAL int *flags)
+{
+    vec3 xi = v3_load(x, i);
+    real ri = radius[i];
+    int c = cell_of[i];
+    int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
+    int cnt = 0;
+    DEM_GLOBAL int *row = nbr_list + i * maxn;
+    for (int z = cz > 0 ? cz - 1 : 0; z <= (cz + 1 < ncz ? cz + 1 : cz); z++)
+        for (int y = cy > 0 ? cy - 1 : 0; y <= (cy + 1 < ncy ? cy + 1 : cy); y++)
+            for (int xx = cx > 0 ? cx - 1 : 0; xx <= (cx + 1 < ncx ? cx + 1 : cx); xx++) {
+                int cc = (z * ncy + y) * ncx + xx;
+                for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
+                    int j = cell_particles[s];
+                    if (j == i)
+                        continue;
+                    vec3 d = v3_sub(xi, v3_load(x, j));
+                    real cut = ri + radius[j] + skin;
+                    if (!(v3_dot(d, d) < cut * cut))
+                        continue;
+                    /* insert j keeping the stored part of the row sorted */
+                    int m = (cnt < maxn ? cnt : maxn) - 1;
+                    if (cnt >= maxn && row[m] < j) {
+                        cnt++; /* beyond capacity and larger than all stored: only counted */
+                        continue;
+                    }
+                    if (cnt >= maxn)
+                        m--; /* drop the largest stored partner to make room */
+                    while (m >= 0 && row[m] > j) {
+                        row[m + 1] = row[m];
+                        m--;
+                    }
+                    row[m + 1] = j;
+                    cnt++;
+                }
+            }
+    nbr_count[i] = cnt < maxn ? cnt : maxn;
+    DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
+}
+
+DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL int *nbr_count,
+                               DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
+                               DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
+                               DEM_GLOBAL real *hist)
+{
+    int on = old_count[i];
+    DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
+    for (int k = 0; k < nbr_count[i]; k++) {
+        int j = nbr_list[i * maxn + k];
+        int lo = 0, hi = on - 1, found = -1;
+        while (lo <= hi) {
+            int mid = (lo + hi) / 2;
+            if (orow[mid] < j)
+                lo = mid + 1;
+            else if (orow[mid] > j)
+                hi = mid - 1;
+            else {
+                found = mid;
+                break;
+            }
+        }
+        vec3 h = found >= 0 ? v3_load(old_hist, i * old_maxn + found) : v3_zero();
+        v3_store(hist, i * maxn + k, h);
+    }
+}
+#endif /* DEM_NEIGHBOR_H */

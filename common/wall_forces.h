@@ -1,0 +1,102 @@
+/* wall_forces.h - particle-wall contacts (planes of any orientation, the inside of a cylinder) and the canonical
+ * reduction of the force each wall receives.
+ *
+ * A wall is a rigid body of infinite mass and radius: r* = r_i, m* = m_i, the contact point lies on the wall
+ * surface (lever arm r_i - d). The same Hertz-Mindlin law as between particles (hertz_mindlin.h) is used with the
+ * wall's own material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
+ * the summation order of every particle's force.
+ */
+#ifndef DEM_WALL_FORCES_H
+#define DEM_WALL_FORCES_H
+#include "hertz_mindlin.h"
+
+typedef struct {
+    int active;
+    real delta; /* overlap [m] */
+    vec3 n;     /* unit normal from the wall towards the particle centre */
+} wall_geom;
+
+DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri)
+{
+    wall_geom g;
+    vec3 p = v3(wr[W_PX], wr[W_PY], wr[W_PZ]);
+    vec3 nw = v3(wr[W_NX], wr[W_NY], wr[W_NZ]);
+    vec3 d = v3_sub(xi, p);
+    g.active = 0;
+    g.delta = (real)0;
+    g.n = nw;
+    if (type == WALL_PLANE) {
+        /* A centre behind the plane still gets pushed back out (d > r), rather than tunnelling silently. */
+        g.delta = ri - v3_dot(d, nw);
+        g.active = g.delta > (real)0;
+    } else { /* WALL_CYLINDER_INSIDE */
+        vec3 radial = v3_sub(d, v3_scale(nw, v3_dot(d, nw)));
+        real rho2 = v3_dot(radial, radial);
+        if (rho2 > (real)0) {
+            real rho = dem_sqrt(rho2);
+            g.delta = ri + rho - wr[W_RADIUS];
+            g.active = g.delta > (real)0;
+            g.n = v3_scale(radial, (real)-1 / rho);
+        }
+        /* a centre exactly on the axis cannot touch: the host rejects particles wider than the cylinder */
+    }
+    return g;
+}
+
+/* One particle against every wall. Adds to force/torque (already holding the particle contacts), keeps each
+ * wall's tangential history and stores the force on the particle from each wall for the reduction. */
+DEM_INLINE void wall_forces_item(int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+                                 DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *x,
+                                 DEM_CONST_GLOBAL real *v, DEM_CONST_GLOBAL real *w,
+                                 DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invmass,
+                                 DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
+                                 DEM_GLOBAL real *wall_hist, real dt, DEM_GLOBAL real *force,
+                                 DEM_GLOBAL real *torque, DEM_GLOBAL real *wall_pf)
+{
+    vec3 xi = v3_load(x, i);
+    real ri = radius[i];
+    vec3 fi = v3_load(force, i), ti = v3_load(torque, i);
+    for (int k = 0; k < nwalls; k++) {
+        DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
+        int slot = i * nwalls + k;
+        wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wr, xi, ri);
+        vec3 fk = v3_zero();
+        if (g.active) {
+            real arm = ri - g.delta;
+            real mstar = hm_effective_mass(invmass[i], (real)0);
+            vec3 vc = v3_add(v3_load(v, i), v3_cross(v3_load(w, i), v3_scale(g.n, -arm)));
+            vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
+            DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
+            hm_result r = hm_contact(g.n, g.delta, ri, mstar, vrel, pm, dt, v3_load(wall_hist, slot));
+            v3_store(wall_hist, slot, r.hist);
+            fk = r.force;
+            fi = v3_add(fi, fk);
+            ti = v3_sub(ti, v3_scale(v3_cross(g.n, r.ft), arm));
+        } else {
+            v3_store(wall_hist, slot, v3_zero());
+        }
+        v3_store(wall_pf, k * n + i, fk);
+    }
+    v3_store(force, i, fi);
+    v3_store(torque, i, ti);
+}
+
+/* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK). */
+DEM_INLINE void wall_reduce_block_item(int b, int k, int n, int nblocks, DEM_CONST_GLOBAL real *wall_pf,
+                                       DEM_GLOBAL real *partial)
+{
+    vec3 s = v3_zero();
+    int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
+    for (int i = b * DEM_REDUCE_BLOCK; i < end; i++)
+        s = v3_sub(s, v3_load(wall_pf, k * n + i)); /* the wall receives minus the force on the particle */
+    v3_store(partial, k * nblocks + b, s);
+}
+
+DEM_INLINE void wall_reduce_final_item(int k, int nblocks, DEM_CONST_GLOBAL real *partial, DEM_GLOBAL real *wall_force)
+{
+    vec3 s = v3_zero();
+    for (int b = 0; b < nblocks; b++)
+        s = v3_add(s, v3_load(partial, k * nblocks + b));
+    v3_store(wall_force, k, s);
+}
+#endif /* DEM_WALL_FORCES_H */

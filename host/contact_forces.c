@@ -1,0 +1,14 @@
+/* contact_forces.c - host driver of kernels/contact_forces.cl (particle contacts, per-particle sums). */
+#include "cl_backend.h"
+
+int clb_contact_forces(dem_backend *b)
+{
+    int s = b->cur;
+    cl_kernel k = b->k[K_CONTACT_FORCES];
+    return clb_arg_int(b, k, 0, b->n) || clb_arg_int(b, k, 1, b->maxn[s]) || clb_arg_int(b, k, 2, b->nmat) ||
+           clb_arg_real(b, k, 3, b->dt) || clb_arg_mem(b, k, 4, b->x) || clb_arg_mem(b, k, 5, b->v) ||
+           clb_arg_mem(b, k, 6, b->w) || clb_arg_mem(b, k, 7, b->radius) || clb_arg_mem(b, k, 8, b->invm) ||
+           clb_arg_mem(b, k, 9, b->mat) || clb_arg_mem(b, k, 10, b->pairmat) || clb_arg_mem(b, k, 11, b->count[s]) ||
+           clb_arg_mem(b, k, 12, b->list[s]) || clb_arg_mem(b, k, 13, b->hist[s]) || clb_arg_mem(b, k, 14, b->f) ||
+           clb_arg_mem(b, k, 15, b->t) || clb_launch(b, K_CONTACT_FORCES, (size_t)b->n);
+}

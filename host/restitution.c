@@ -1,0 +1,59 @@
+/* restitution.c - the damping factor c of hertz_mindlin.h for a requested coefficient of restitution e.
+ *
+ * With f_n = k d^(3/2) + c sqrt(1.5 k m*) d^(1/4) d' (clamped at zero; k = 4/3 E* sqrt(r*)), scaling
+ * d = d0 x, t = t0 s with t0^2 = m* / (k d0^(1/2)) and d0 = v t0 turns the collision into
+ *        x'' = -max(0, x^(3/2) + kappa x^(1/4) x'),   x(0) = 0, x'(0) = 1,   kappa = c sqrt(1.5),
+ * whose rebound speed -x'(end) is e. It depends on c alone: the restitution is the same at every impact speed,
+ * size and stiffness. We integrate it with RK4 and bisect on c. (LIGGGHTS' beta = ln e / sqrt(ln^2 e + pi^2) is
+ * the linear-spring answer; for Hertz it misses the requested e by several per cent.)
+ * Runs on the host in double precision once per material pair; the device only sees c.
+ */
+#include "dem.h"
+#include <math.h>
+
+static void rhs(double kappa, double x, double u, double *dx, double *du)
+{
+    double xp = x > 0 ? x : 0;
+    double f = xp * sqrt(xp) + kappa * sqrt(sqrt(xp)) * u;
+    *dx = u;
+    *du = f > 0 ? -f : 0;
+}
+
+double dem_restitution_for_damping(double c)
+{
+    const double h = 2e-4, kappa = c * sqrt(1.5);
+    double x = 0, u = 1;
+    for (long step = 0; step < 10000000; step++) {
+        double k1x, k1u, k2x, k2u, k3x, k3u, k4x, k4u;
+        rhs(kappa, x, u, &k1x, &k1u);
+        rhs(kappa, x + 0.5 * h * k1x, u + 0.5 * h * k1u, &k2x, &k2u);
+        rhs(kappa, x + 0.5 * h * k2x, u + 0.5 * h * k2u, &k3x, &k3u);
+        rhs(kappa, x + h * k3x, u + h * k3u, &k4x, &k4u);
+        double xn = x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+        double un = u + h / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
+        if (step > 0 && xn <= 0) {
+            double a = x / (x - xn); /* linear interpolation of the crossing */
+            return -(u + a * (un - u));
+        }
+        x = xn;
+        u = un;
+    }
+    return 0; /* never separated: fully damped */
+}
+
+double dem_damping_for_restitution(double e)
+{
+    if (!(e > 0 && e < 1))
+        return 0; /* e = 1: no damping; invalid e is rejected by dem_add_material */
+    double lo = 0, hi = 1;
+    while (dem_restitution_for_damping(hi) > e && hi < 1e6)
+        hi *= 2;
+    for (int it = 0; it < 60; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (dem_restitution_for_damping(mid) > e)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}

@@ -1,0 +1,406 @@
+/* sim.c - the driver: builds a simulation, starts a backend and steps it. Every decision (when to rebuild the
+ * neighbour rows, how large they are, where the walls are) is taken here, the same way for every backend. */
+#include "sim.h"
+#include "dem_layout.h"
+#include "cl_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+dem_sim *dem_create(void) { return calloc(1, sizeof(dem_sim)); }
+
+void dem_destroy(dem_sim *s)
+{
+    if (!s)
+        return;
+    if (s->be)
+        s->ops->destroy(s->be);
+    for (int k = 0; k < 8; k++)
+        free(s->packed[k]);
+    free(s->wall_real);
+    free(s->x);
+    free(s->v);
+    free(s->w);
+    free(s->radius);
+    free(s->mat);
+    free(s->pflags);
+    free(s);
+}
+
+const char *dem_error(const dem_sim *s) { return s ? s->err : "no simulation (out of memory?)"; }
+
+void dem_config_default(dem_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->backend = DEM_BACKEND_OPENCL;
+    c->precision = DEM_FP64;
+}
+
+static int not_started(dem_sim *s)
+{
+    return s->started ? sim_fail(s, DEM_ERR_STATE, "the simulation has started: the set-up is fixed") : 0;
+}
+
+int dem_add_material(dem_sim *s, const dem_material *m)
+{
+    if (not_started(s))
+        return -1;
+    if (s->nmat >= (int)(sizeof s->mats / sizeof s->mats[0]))
+        return sim_fail(s, DEM_ERR_ARG, "too many materials (at most 64)"), -1;
+    if (!(m->density > 0) || !isfinite(m->density))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: density must be > 0 kg/m^3 (got %g)", s->nmat, m->density), -1;
+    if (!(m->young > 0) || !isfinite(m->young))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: Young's modulus must be > 0 Pa (got %g)", s->nmat, m->young), -1;
+    if (!(m->poisson > -1 && m->poisson <= 0.5))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: Poisson's ratio must be in (-1, 0.5] (got %g)", s->nmat,
+                        m->poisson), -1;
+    if (!(m->restitution > 0 && m->restitution <= 1))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: restitution must be in (0, 1] (got %g)", s->nmat,
+                        m->restitution), -1;
+    if (!(m->friction >= 0) || !isfinite(m->friction))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: friction must be >= 0 (got %g)", s->nmat, m->friction), -1;
+    s->mats[s->nmat] = *m;
+    return s->nmat++;
+}
+
+static int finite3(const double *a) { return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]); }
+
+int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double radius, int material)
+{
+    if (not_started(s))
+        return -1;
+    if (!(radius > 0) || !isfinite(radius))
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: radius must be > 0 m (got %g)", s->n, radius), -1;
+    if (material < 0 || material >= s->nmat)
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: unknown material %d", s->n, material), -1;
+    if (!finite3(x) || (v && !finite3(v)))
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: position and velocity must be finite", s->n), -1;
+    if (s->n == s->cap) {
+        int cap = s->cap ? 2 * s->cap : 1024;
+        double *nx = realloc(s->x, sizeof(double) * 3 * cap);
+        if (nx) s->x = nx;
+        double *nv = realloc(s->v, sizeof(double) * 3 * cap);
+        if (nv) s->v = nv;
+        double *nw = realloc(s->w, sizeof(double) * 3 * cap);
+        if (nw) s->w = nw;
+        double *nr = realloc(s->radius, sizeof(double) * cap);
+        if (nr) s->radius = nr;
+        int *nm = realloc(s->mat, sizeof(int) * cap);
+        if (nm) s->mat = nm;
+        unsigned *nf = realloc(s->pflags, sizeof(unsigned) * cap);
+        if (nf) s->pflags = nf;
+        if (!nx || !nv || !nw || !nr || !nm || !nf)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d particles", s->n), -1;
+        s->cap = cap;
+    }
+    int i = s->n++;
+    for (int d = 0; d < 3; d++) {
+        s->x[3 * i + d] = x[d];
+        s->v[3 * i + d] = v ? v[d] : 0;
+        s->w[3 * i + d] = 0;
+    }
+    s->radius[i] = radius;
+    s->mat[i] = material;
+    s->pflags[i] = 0;
+    return i;
+}
+
+int dem_set_particle_flags(dem_sim *s, int id, unsigned flags)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (id < 0 || id >= s->n)
+        return sim_fail(s, DEM_ERR_ARG, "no particle %d", id);
+    s->pflags[id] = flags;
+    return 0;
+}
+
+int dem_set_particle_omega(dem_sim *s, int id, const double w[3])
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (id < 0 || id >= s->n || !finite3(w))
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: no such particle or non-finite angular velocity", id);
+    memcpy(s->w + 3 * id, w, sizeof(double) * 3);
+    return 0;
+}
+
+int dem_add_wall(dem_sim *s, const dem_wall *w)
+{
+    if (not_started(s))
+        return -1;
+    int k = s->nwalls;
+    if (k >= 32)
+        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most 32)"), -1;
+    if (w->kind != DEM_WALL_PLANE && w->kind != DEM_WALL_CYLINDER)
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown kind %d", k, (int)w->kind), -1;
+    if (w->material < 0 || w->material >= s->nmat)
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown material %d", k, w->material), -1;
+    double len = sqrt(w->normal[0] * w->normal[0] + w->normal[1] * w->normal[1] + w->normal[2] * w->normal[2]);
+    if (!(len > 0) || !isfinite(len) || !finite3(w->point))
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k), -1;
+    if (w->kind == DEM_WALL_CYLINDER && !(w->radius > 0 && isfinite(w->radius)))
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius), -1;
+    if (w->nstages < 0 || w->nstages > DEM_MAX_STAGES)
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: 0..%d motion stages (got %d)", k, DEM_MAX_STAGES, w->nstages), -1;
+    for (int st = 0; st < w->nstages; st++)
+        if (!(w->stages[st].duration >= 0) || !finite3(w->stages[st].velocity))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: duration >= 0 s and finite velocity", k, st), -1;
+    s->walls[k] = *w;
+    for (int d = 0; d < 3; d++)
+        s->walls[k].normal[d] = w->normal[d] / len;
+    return s->nwalls++;
+}
+
+int dem_set_gravity(dem_sim *s, const double g[3])
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (!finite3(g))
+        return sim_fail(s, DEM_ERR_ARG, "gravity must be finite");
+    memcpy(s->gravity, g, sizeof s->gravity);
+    return 0;
+}
+
+int dem_set_domain(dem_sim *s, const double lo[3], const double hi[3])
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    for (int d = 0; d < 3; d++)
+        if (!(hi[d] > lo[d]) || !isfinite(lo[d]) || !isfinite(hi[d]))
+            return sim_fail(s, DEM_ERR_ARG, "domain: need finite lo < hi on every axis (axis %d: %g, %g)", d, lo[d],
+                            hi[d]);
+    memcpy(s->lo, lo, sizeof s->lo);
+    memcpy(s->hi, hi, sizeof s->hi);
+    s->have_domain = 1;
+    return 0;
+}
+
+int dem_set_dt(dem_sim *s, double dt)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (!(dt > 0) || !isfinite(dt))
+        return sim_fail(s, DEM_ERR_ARG, "time step must be > 0 s (got %g)", dt);
+    s->dt = dt;
+    return 0;
+}
+
+/* ---- stepping ---- */
+
+static int be_fail(dem_sim *s)
+{
+    return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, s->ops->error(s->be));
+}
+
+static int read_flags(dem_sim *s, int *flags)
+{
+    return s->ops->read(s->be, FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? be_fail(s) : 0;
+}
+
+static int report_out_of_domain(dem_sim *s, int id)
+{
+    int rs = s->setup.real_size;
+    double p[3] = {NAN, NAN, NAN};
+    unsigned char *buf = malloc((size_t)3 * s->n * rs);
+    if (buf && s->ops->read(s->be, FIELD_X, buf, (size_t)3 * s->n * rs) == 0)
+        for (int d = 0; d < 3; d++)
+            p[d] = rs == 8 ? ((double *)buf)[3 * id + d] : ((float *)buf)[3 * id + d];
+    free(buf);
+    return sim_fail(s, DEM_ERR_DOMAIN,
+                    "step %ld: particle %d at (%g, %g, %g) m is outside the binning domain [%g,%g]x[%g,%g]x[%g,%g] "
+                    "or not finite; enlarge the domain or check the set-up (time step, overlaps)",
+                    s->step, id, p[0], p[1], p[2], s->lo[0], s->hi[0], s->lo[1], s->hi[1], s->lo[2], s->hi[2]);
+}
+
+static int rebuild(dem_sim *s)
+{
+    int flags[FLAG_COUNT];
+    if (s->ops->bin(s->be) || read_flags(s, flags))
+        return s->err[0] ? DEM_ERR_DEVICE : be_fail(s);
+    if (flags[FLAG_OUT_OF_DOMAIN] != DEM_NO_PARTICLE)
+        return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
+    for (;;) {
+        if (s->ops->nbr_reserve(s->be, s->maxn) || s->ops->nbr_build(s->be) || read_flags(s, flags))
+            return be_fail(s);
+        if (flags[FLAG_NBR_NEEDED] <= s->maxn)
+            break;
+        while (s->maxn < flags[FLAG_NBR_NEEDED])
+            s->maxn *= 2;
+        flags[FLAG_NBR_NEEDED] = 0;
+        if (s->ops->write(s->be, FIELD_FLAGS, flags, sizeof flags))
+            return be_fail(s);
+    }
+    if (s->ops->nbr_commit(s->be))
+        return be_fail(s);
+    s->rebuilds++;
+    return 0;
+}
+
+static int forces(dem_sim *s)
+{
+    if (s->ops->contact_forces(s->be))
+        return be_fail(s);
+    if (s->nwalls && s->ops->wall_forces(s->be))
+        return be_fail(s);
+    return 0;
+}
+
+int dem_start(dem_sim *s, const dem_config *c)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    s->cfg = *c;
+    int e = sim_validate(s);
+    if (e || (e = sim_pack(s)))
+        return e;
+    if (c->backend == DEM_BACKEND_REFERENCE)
+        s->ops = c->precision == DEM_FP64 ? &dem_reference_ops_f64 : &dem_reference_ops_f32;
+    else if (c->backend == DEM_BACKEND_OPENCL)
+        s->ops = &dem_opencl_ops;
+    else
+        return sim_fail(s, DEM_ERR_ARG, "unknown backend %d", (int)c->backend);
+    char err[4096];
+    if (s->ops->create(&s->be, &s->setup, err, sizeof err)) {
+        s->be = NULL;
+        return sim_fail(s, DEM_ERR_DEVICE, "%s", err);
+    }
+    s->started = 1;
+    if (s->ops->reset_flags(s->be))
+        return be_fail(s);
+    if ((e = rebuild(s)) || (e = forces(s)))
+        return e;
+    return 0;
+}
+
+int dem_step(dem_sim *s, long nsteps)
+{
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int rs = s->setup.real_size;
+    for (long k = 0; k < nsteps; k++) {
+        int flags[FLAG_COUNT], e;
+        if (s->ops->reset_flags(s->be) || s->ops->kick_drift(s->be))
+            return be_fail(s);
+        /* walls move with the particles' drift: positions at t + dt, velocity of this step */
+        if (s->nwalls) {
+            for (int w = 0; w < s->nwalls; w++) {
+                double v[3];
+                sim_wall_velocity(s, w, s->step, v);
+                for (int d = 0; d < 3; d++)
+                    s->wall_pos[w][d] += v[d] * s->dt;
+            }
+            sim_pack_walls(s);
+            if (s->ops->write(s->be, FIELD_WALL_REAL, s->wall_real, (size_t)W_STRIDE * s->nwalls * rs))
+                return be_fail(s);
+        }
+        if (read_flags(s, flags))
+            return DEM_ERR_DEVICE;
+        if (flags[FLAG_REBUILD] && (e = rebuild(s)))
+            return e;
+        if ((e = forces(s)))
+            return e;
+        if (s->ops->kick(s->be))
+            return be_fail(s);
+        s->step++;
+    }
+    return 0;
+}
+
+/* ---- queries ---- */
+
+int dem_count(const dem_sim *s) { return s->n; }
+int dem_wall_count(const dem_sim *s) { return s->nwalls; }
+long dem_step_index(const dem_sim *s) { return s->step; }
+double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }
+double dem_dt(const dem_sim *s) { return s->dt; }
+int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
+long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
+int dem_cell_count(const dem_sim *s) { return s->setup.ncell[0] * s->setup.ncell[1] * s->setup.ncell[2]; }
+const char *dem_describe(const dem_sim *s) { return s->be ? s->ops->describe(s->be) : "not started"; }
+
+size_t dem_field_bytes(const dem_sim *s, dem_field f)
+{
+    size_t n = (size_t)s->n, r = (size_t)s->setup.real_size, m = (size_t)s->maxn, nw = (size_t)s->nwalls;
+    switch (f) {
+    case FIELD_X: case FIELD_V: case FIELD_W: case FIELD_FORCE: case FIELD_TORQUE: case FIELD_X_BUILD:
+        return 3 * n * r;
+    case FIELD_NBR_COUNT: case FIELD_CELL_PARTICLES: return n * sizeof(int);
+    case FIELD_NBR_LIST: return n * m * sizeof(int);
+    case FIELD_HIST: return 3 * n * m * r;
+    case FIELD_WALL_HIST: return 3 * n * nw * r;
+    case FIELD_WALL_FORCE: return 3 * nw * r;
+    case FIELD_CELL_START: return ((size_t)dem_cell_count(s) + 1) * sizeof(int);
+    case FIELD_FLAGS: return FLAG_COUNT * sizeof(int);
+    case FIELD_WALL_REAL: return W_STRIDE * nw * r;
+    default: return 0;
+    }
+}
+
+int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
+{
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    return s->ops->read(s->be, f, dst, bytes) ? be_fail(s) : 0;
+}
+
+int dem_get_field(dem_sim *s, dem_field f, double *dst)
+{
+    if (f == FIELD_NBR_COUNT || f == FIELD_NBR_LIST || f == FIELD_CELL_START || f == FIELD_CELL_PARTICLES ||
+        f == FIELD_FLAGS)
+        return sim_fail(s, DEM_ERR_ARG, "field %d holds integers: use dem_get_raw", (int)f);
+    size_t bytes = dem_field_bytes(s, f), cnt = bytes / (size_t)s->setup.real_size;
+    void *buf = malloc(bytes ? bytes : 1);
+    if (!buf)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    int e = dem_get_raw(s, f, buf, bytes);
+    for (size_t k = 0; !e && k < cnt; k++)
+        dst[k] = s->setup.real_size == 8 ? ((double *)buf)[k] : (double)((float *)buf)[k];
+    free(buf);
+    return e;
+}
+
+int dem_wall_force(dem_sim *s, int wall, double f[3])
+{
+    if (wall < 0 || wall >= s->nwalls)
+        return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
+    double all[3 * 32];
+    int e = dem_get_field(s, FIELD_WALL_FORCE, all);
+    if (!e)
+        memcpy(f, all + 3 * wall, sizeof(double) * 3);
+    return e;
+}
+
+int dem_wall_position(const dem_sim *s, int wall, double p[3])
+{
+    if (wall < 0 || wall >= s->nwalls)
+        return DEM_ERR_ARG;
+    memcpy(p, s->started ? s->wall_pos[wall] : s->walls[wall].point, sizeof(double) * 3);
+    return 0;
+}
+
+int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count)
+{
+    *count = 0;
+    if (!s->be || !s->ops->kernel_times)
+        return 0;
+    if (s->ops->finish(s->be))
+        return be_fail(s);
+    return s->ops->kernel_times(s->be, names, seconds, count);
+}
+
+int dem_device_count(void) { return cl_device_count(); }
+
+int dem_device_name(int k, char *buf, size_t len)
+{
+    cl_device_info_t info;
+    char err[256];
+    if (cl_device_get(k, &info, err, sizeof err)) {
+        snprintf(buf, len, "%s", err);
+        return DEM_ERR_DEVICE;
+    }
+    snprintf(buf, len, "%s / %s (%s)%s", info.platform_name, info.device_name, info.device_version,
+             info.fp64 ? ", fp64" : "");
+    return 0;
+}

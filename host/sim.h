@@ -1,0 +1,43 @@
+/* sim.h - internal state of a simulation (host/sim.c drives; host/sim_setup.c validates and packs). */
+#ifndef DEM_SIM_H
+#define DEM_SIM_H
+#include "dem.h"
+#include "backend.h"
+
+struct dem_sim {
+    /* description, double precision, as given */
+    int n, cap;
+    double *x, *v, *w, *radius;
+    int *mat;
+    unsigned *pflags;
+    int nmat;
+    dem_material mats[64];
+    int nwalls;
+    dem_wall walls[32];
+    double gravity[3];
+    double lo[3], hi[3];
+    int have_domain;
+    double dt;
+    /* run state */
+    int started;
+    dem_config cfg;
+    dem_setup setup;
+    void *packed[8];     /* packed setup arrays, freed at destroy */
+    const dem_backend_ops *ops;
+    dem_backend *be;
+    int maxn;
+    long step, rebuilds;
+    double wall_pos[32][3]; /* wall reference point now [m] */
+    long wall_stage_steps[32][DEM_MAX_STAGES];
+    void *wall_real;        /* packed wall table uploaded each step */
+    double rmin, rmax;
+    char err[4096];
+};
+
+/* sim_setup.c */
+int sim_validate(dem_sim *s);
+int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
+void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
+void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
+int sim_fail(dem_sim *s, int code, const char *fmt, ...);
+#endif

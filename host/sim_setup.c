@@ -1,0 +1,293 @@
+/* sim_setup.c - parameter validation, time scales, the material-pair table, and packing into the run precision. */
+#include "sim.h"
+#include "dem_layout.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int sim_fail(dem_sim *s, int code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->err, sizeof s->err, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+static double shear_modulus(const dem_material *m) { return m->young / (2 * (1 + m->poisson)); }
+
+/* seed 000 Eq. 3: 1/E* = (1-nu_i^2)/E_i + (1-nu_j^2)/E_j  (the paper's (1-nu)/2G form is the same) */
+static double estar(const dem_material *a, const dem_material *b)
+{
+    return 1 / ((1 - a->poisson * a->poisson) / a->young + (1 - b->poisson * b->poisson) / b->young);
+}
+/* seed 000 Eq. 5: 1/G* = (2-nu_i)/G_i + (2-nu_j)/G_j */
+static double gstar(const dem_material *a, const dem_material *b)
+{
+    return 1 / ((2 - a->poisson) / shear_modulus(a) + (2 - b->poisson) / shear_modulus(b));
+}
+
+double dem_hertz_contact_time(double mstar, double rstar, double es, double v)
+{
+    return 2.868 * pow(mstar * mstar / (rstar * es * es * v), 0.2);
+}
+
+double dem_hertz_max_overlap(double mstar, double rstar, double es, double v)
+{
+    return pow(15 * mstar * v * v / (16 * es * sqrt(rstar)), 0.4);
+}
+
+int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
+{
+    memset(ts, 0, sizeof *ts);
+    if (s->n == 0)
+        return sim_fail(s, DEM_ERR_ARG, "time scales need particles");
+    double tr = INFINITY, tc = INFINITY;
+    for (int i = 0; i < s->n; i++) {
+        const dem_material *m = &s->mats[s->mat[i]];
+        double r = s->radius[i], nu = m->poisson;
+        /* Rayleigh wave time across a particle: pi r sqrt(rho/G) / (0.1631 nu + 0.8766) */
+        double t = M_PI * r * sqrt(m->density / shear_modulus(m)) / (0.1631 * nu + 0.8766);
+        if (t < tr)
+            tr = t;
+        if (v > 0) {
+            double mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
+            double c = dem_hertz_contact_time(mass / 2, r / 2, estar(m, m), v);
+            if (c < tc)
+                tc = c;
+        }
+    }
+    ts->rayleigh_time = tr;
+    ts->recommended_dt = 0.2 * tr;
+    ts->max_dt = 0.5 * tr;
+    ts->hertz_time = v > 0 ? tc : 0;
+    return 0;
+}
+
+int sim_validate(dem_sim *s)
+{
+    if (s->n == 0)
+        return sim_fail(s, DEM_ERR_ARG, "no particles");
+    if (!(s->dt > 0) || !isfinite(s->dt))
+        return sim_fail(s, DEM_ERR_ARG, "time step not set (dem_set_dt)");
+    s->rmin = INFINITY;
+    s->rmax = 0;
+    for (int i = 0; i < s->n; i++) {
+        if (s->radius[i] < s->rmin)
+            s->rmin = s->radius[i];
+        if (s->radius[i] > s->rmax)
+            s->rmax = s->radius[i];
+    }
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    if (s->dt > ts.max_dt && !s->cfg.force_dt)
+        return sim_fail(s, DEM_ERR_DT,
+                        "time step %.6g s exceeds the stability bound %.6g s (0.5 x Rayleigh time %.6g s; "
+                        "recommended %.6g s); set force_dt to run anyway",
+                        s->dt, ts.max_dt, ts.rayleigh_time, ts.recommended_dt);
+    for (int k = 0; k < s->nwalls; k++) {
+        const dem_wall *w = &s->walls[k];
+        if (w->kind == DEM_WALL_CYLINDER)
+            for (int i = 0; i < s->n; i++)
+                if (s->radius[i] >= w->radius)
+                    return sim_fail(s, DEM_ERR_ARG, "particle %d (radius %g m) does not fit in cylinder wall %d "
+                                    "(radius %g m)", i, s->radius[i], k, w->radius);
+    }
+    if (s->cfg.skin < 0 || !isfinite(s->cfg.skin))
+        return sim_fail(s, DEM_ERR_ARG, "skin must be >= 0 (got %g)", s->cfg.skin);
+    if (s->cfg.precision != DEM_FP32 && s->cfg.precision != DEM_FP64)
+        return sim_fail(s, DEM_ERR_ARG, "precision must be DEM_FP32 or DEM_FP64");
+    return 0;
+}
+
+/* Converts n doubles into the run precision. */
+static void *pack_real(const double *src, size_t n, int rs)
+{
+    void *p = calloc(n ? n : 1, (size_t)rs);
+    if (!p)
+        return NULL;
+    for (size_t k = 0; k < n; k++) {
+        if (rs == 8)
+            ((double *)p)[k] = src[k];
+        else
+            ((float *)p)[k] = (float)src[k];
+    }
+    return p;
+}
+
+void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3])
+{
+    const dem_wall *w = &s->walls[k];
+    long start = 0;
+    v[0] = v[1] = v[2] = 0;
+    for (int st = 0; st < w->nstages; st++) {
+        long len = s->wall_stage_steps[k][st];
+        if (step >= start && step < start + len) {
+            memcpy(v, w->stages[st].velocity, sizeof(double) * 3);
+            return;
+        }
+        start += len;
+    }
+}
+
+void sim_pack_walls(dem_sim *s)
+{
+    double tab[W_STRIDE * 32];
+    for (int k = 0; k < s->nwalls; k++) {
+        const dem_wall *w = &s->walls[k];
+        double *t = tab + k * W_STRIDE, v[3];
+        /* velocity of the step being taken (step index s->step, moving the wall from t to t + dt) */
+        sim_wall_velocity(s, k, s->step, v);
+        for (int d = 0; d < 3; d++) {
+            t[W_PX + d] = s->wall_pos[k][d];
+            t[W_NX + d] = w->normal[d];
+            t[W_VX + d] = v[d];
+        }
+        t[W_RADIUS] = w->radius;
+    }
+    int rs = s->setup.real_size;
+    for (int k = 0; k < W_STRIDE * s->nwalls; k++) {
+        if (rs == 8)
+            ((double *)s->wall_real)[k] = tab[k];
+        else
+            ((float *)s->wall_real)[k] = (float)tab[k];
+    }
+}
+
+int sim_pack(dem_sim *s)
+{
+    dem_setup *u = &s->setup;
+    int n = s->n, rs = (int)s->cfg.precision;
+    memset(u, 0, sizeof *u);
+    u->real_size = rs;
+    u->n = n;
+    u->nmat = s->nmat;
+    u->nwalls = s->nwalls;
+
+    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n);
+    double *pm = malloc(sizeof(double) * PM_STRIDE * s->nmat * s->nmat);
+    if (!invm || !invi || !pm) {
+        free(invm);
+        free(invi);
+        free(pm);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    for (int i = 0; i < n; i++) {
+        const dem_material *m = &s->mats[s->mat[i]];
+        double r = s->radius[i], mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
+        invm[i] = (s->pflags[i] & DEM_PARTICLE_FIXED) ? 0 : 1 / mass;
+        invi[i] = (s->pflags[i] & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)) ? 0 : 1 / (0.4 * mass * r * r);
+    }
+    /* pair table: restitution and friction of a pair are the means of the two materials' values */
+    for (int a = 0; a < s->nmat; a++)
+        for (int b = 0; b < s->nmat; b++) {
+            const dem_material *ma = &s->mats[a], *mb = &s->mats[b];
+            double *row = pm + PM_STRIDE * (a * s->nmat + b);
+            row[PM_ESTAR] = estar(ma, mb);
+            row[PM_GSTAR] = gstar(ma, mb);
+            row[PM_MU] = 0.5 * (ma->friction + mb->friction);
+            double e = 0.5 * (ma->restitution + mb->restitution);
+            row[PM_DAMP] = (a <= b) ? dem_damping_for_restitution(e) : pm[PM_STRIDE * (b * s->nmat + a) + PM_DAMP];
+        }
+    s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
+    s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
+    s->packed[2] = pack_real(s->w, 3 * (size_t)n, rs);
+    s->packed[3] = pack_real(s->radius, (size_t)n, rs);
+    s->packed[4] = pack_real(invm, (size_t)n, rs);
+    s->packed[5] = pack_real(invi, (size_t)n, rs);
+    s->packed[6] = pack_real(pm, (size_t)PM_STRIDE * s->nmat * s->nmat, rs);
+    int *wint = calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int));
+    s->packed[7] = wint;
+    s->wall_real = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
+    free(invm);
+    free(invi);
+    free(pm);
+    for (int k = 0; k < 8; k++)
+        if (!s->packed[k])
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if (!s->wall_real)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int k = 0; k < s->nwalls; k++) {
+        wint[k * WI_STRIDE + WI_TYPE] = s->walls[k].kind == DEM_WALL_PLANE ? WALL_PLANE : WALL_CYLINDER_INSIDE;
+        wint[k * WI_STRIDE + WI_MATERIAL] = s->walls[k].material;
+        memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
+        for (int st = 0; st < s->walls[k].nstages; st++)
+            s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
+    }
+    sim_pack_walls(s);
+    u->x = s->packed[0];
+    u->v = s->packed[1];
+    u->w = s->packed[2];
+    u->radius = s->packed[3];
+    u->invmass = s->packed[4];
+    u->invinertia = s->packed[5];
+    u->pairmat = s->packed[6];
+    u->wall_int = wint;
+    u->wall_real = s->wall_real;
+    u->mat = s->mat;
+
+    /* binning grid: cubic cells no smaller than 1.01 x the largest interaction range; the 1 % margin keeps a
+     * rounding of (x - lo)/cell in fp32 from ever placing a neighbour two cells away */
+    double skin = s->cfg.skin > 0 ? s->cfg.skin : 0.3 * s->rmin;
+    double cell = 1.01 * (2 * s->rmax + skin);
+    if (s->cfg.cell_size > cell)
+        cell = s->cfg.cell_size;
+    double lo[3], hi[3];
+    if (s->have_domain) {
+        memcpy(lo, s->lo, sizeof lo);
+        memcpy(hi, s->hi, sizeof hi);
+    } else { /* particle bounding box, padded by half its extent and 4 r_max on each side */
+        for (int d = 0; d < 3; d++) {
+            lo[d] = INFINITY;
+            hi[d] = -INFINITY;
+        }
+        for (int i = 0; i < n; i++)
+            for (int d = 0; d < 3; d++) {
+                lo[d] = fmin(lo[d], s->x[3 * i + d]);
+                hi[d] = fmax(hi[d], s->x[3 * i + d]);
+            }
+        for (int d = 0; d < 3; d++) {
+            double pad = 0.5 * (hi[d] - lo[d]) + 4 * s->rmax;
+            lo[d] -= pad;
+            hi[d] += pad;
+        }
+    }
+    for (;;) {
+        double total = 1;
+        for (int d = 0; d < 3; d++) {
+            u->ncell[d] = (int)ceil((hi[d] - lo[d]) / cell);
+            if (u->ncell[d] < 1)
+                u->ncell[d] = 1;
+            total *= u->ncell[d];
+        }
+        if (total <= (double)(1 << 24) && total <= 64.0 * n + 4096)
+            break;
+        cell *= 1.25; /* a sparse domain: fewer, larger cells */
+    }
+    for (int d = 0; d < 3; d++) {
+        u->lo[d] = lo[d];
+        s->lo[d] = lo[d];
+        s->hi[d] = hi[d];
+    }
+    u->inv_cell = 1 / cell;
+    u->dt = s->dt;
+    memcpy(u->gravity, s->gravity, sizeof u->gravity);
+    u->skin = skin;
+    u->half_skin2 = 0.25 * skin * skin;
+    u->maxn = 16;
+    u->device = s->cfg.device;
+    u->local_size = s->cfg.local_size;
+    u->source_dir = s->cfg.source_dir;
+    if (!u->source_dir)
+        u->source_dir = getenv("DEM_SOURCE_DIR");
+#ifdef DEM_DEFAULT_SOURCE_DIR
+    if (!u->source_dir)
+        u->source_dir = DEM_DEFAULT_SOURCE_DIR;
+#endif
+    if (!u->source_dir)
+        u->source_dir = ".";
+    s->maxn = u->maxn;
+    return 0;
+}

@@ -1,0 +1,156 @@
+/* dem.h - public interface of libdem: deterministic Hertz-Mindlin DEM on OpenCL devices with a bit-identical
+ * plain C reference.
+ *
+ * Units are SI: m, kg, s, Pa, N. Typical use:
+ *   dem_sim *s = dem_create();
+ *   int glass = dem_add_material(s, &(dem_material){2500, 65e9, 0.24, 0.98, 0.2});
+ *   dem_add_particle(s, x, v, 0.002, glass); ... dem_add_wall(s, &wall); dem_set_dt(s, 1e-7);
+ *   dem_config c; dem_config_default(&c); c.backend = DEM_BACKEND_OPENCL;
+ *   if (dem_start(s, &c) || dem_step(s, 1000)) fprintf(stderr, "%s\n", dem_error(s));
+ *   dem_destroy(s);
+ * Every function returning int returns 0 (DEM_OK) on success or a dem_status; dem_error() then says why.
+ * The library never exits and never prints.
+ */
+#ifndef DEM_H
+#define DEM_H
+#include <stddef.h>
+
+#define DEM_VERSION "0.1.0"
+
+typedef enum {
+    DEM_OK = 0,
+    DEM_ERR_ARG = 1,      /* invalid argument or parameter */
+    DEM_ERR_NOMEM = 2,    /* out of host memory */
+    DEM_ERR_DEVICE = 3,   /* OpenCL device, kernel build or launch failure */
+    DEM_ERR_DOMAIN = 4,   /* a particle left the binning domain or became non-finite */
+    DEM_ERR_DT = 5,       /* time step above the stability bound (see dem_time_scales) */
+    DEM_ERR_STATE = 6     /* call out of order (e.g. adding particles after dem_start) */
+} dem_status;
+
+typedef enum { DEM_FP32 = 4, DEM_FP64 = 8 } dem_precision;
+typedef enum { DEM_BACKEND_REFERENCE = 0, DEM_BACKEND_OPENCL = 1 } dem_backend_kind;
+
+typedef struct {
+    double density;     /* [kg/m^3] */
+    double young;       /* Young's modulus E [Pa] */
+    double poisson;     /* Poisson's ratio nu, in (-1, 0.5] */
+    double restitution; /* coefficient of restitution e, in (0, 1] */
+    double friction;    /* Coulomb friction coefficient mu >= 0 */
+} dem_material;
+
+#define DEM_MAX_STAGES 16
+typedef struct {
+    double duration;    /* [s] */
+    double velocity[3]; /* [m/s] */
+} dem_stage;
+
+typedef enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 } dem_wall_kind;
+typedef struct {
+    dem_wall_kind kind;
+    int material;
+    double point[3];  /* plane: a point on it; cylinder: a point on its axis [m] */
+    double normal[3]; /* plane: normal towards the particles; cylinder: axis direction (normalised for you) */
+    double radius;    /* cylinder: inner radius [m]; particles live inside */
+    int nstages;      /* motion: stages run one after the other; the wall rests after the last */
+    dem_stage stages[DEM_MAX_STAGES];
+} dem_wall;
+
+enum { DEM_PARTICLE_NO_ROTATION = 1, /* infinite moment of inertia */
+       DEM_PARTICLE_FIXED = 2 };     /* infinite mass and inertia: moves at its set velocity */
+
+typedef struct {
+    dem_backend_kind backend;
+    dem_precision precision;
+    int device;          /* OpenCL device index over all platforms (see dem_device_count) */
+    size_t local_size;   /* work-group size, 0 = the runtime's choice */
+    double skin;         /* neighbour-list skin [m]; 0 = 0.3 x smallest radius */
+    double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum */
+    int force_dt;        /* 1: accept a time step above the stability bound */
+    const char *source_dir; /* folder with kernels/ and common/; NULL = $DEM_SOURCE_DIR or the build's */
+} dem_config;
+
+/* Fields that can be read back (dem_get_raw, dem_get_field). */
+typedef enum {
+    FIELD_X, FIELD_V, FIELD_W,  /* position [m], velocity [m/s], angular velocity [rad/s]: real[3n] */
+    FIELD_FORCE, FIELD_TORQUE,  /* [N], [N m]: real[3n] */
+    FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
+    FIELD_NBR_COUNT,            /* int[n] */
+    FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id */
+    FIELD_HIST,                 /* real[3*n*maxn]: elastic tangential force per row slot [N] */
+    FIELD_WALL_HIST,            /* real[3*n*nwalls] */
+    FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
+    FIELD_CELL_START,           /* int[ncells+1] */
+    FIELD_CELL_PARTICLES,       /* int[n] */
+    FIELD_FLAGS,                /* int[4] */
+    FIELD_WALL_REAL,            /* real[10*nwalls] */
+    FIELD__COUNT
+} dem_field;
+
+typedef struct {
+    double rayleigh_time;  /* smallest Rayleigh time over the particles [s] */
+    double recommended_dt; /* 0.2 x rayleigh_time [s] */
+    double max_dt;         /* stability bound: 0.5 x rayleigh_time [s] */
+    double hertz_time;     /* Hertz contact time of the two smallest like particles at the given speed [s] */
+} dem_time_scales;
+
+typedef struct {
+    double kinetic;    /* translational + rotational [J] */
+    double elastic;    /* Hertz normal elastic energy of all contacts, walls included [J] */
+    double potential;  /* -m g.x [J] */
+    double total;
+} dem_energy_t;
+
+typedef struct dem_sim dem_sim;
+
+dem_sim *dem_create(void);
+void dem_destroy(dem_sim *s);
+const char *dem_error(const dem_sim *s);
+void dem_config_default(dem_config *c);
+
+int dem_add_material(dem_sim *s, const dem_material *m); /* returns the material id, or -1 (see dem_error) */
+int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double radius, int material); /* id or -1 */
+int dem_set_particle_flags(dem_sim *s, int id, unsigned flags);
+int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
+int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
+int dem_set_gravity(dem_sim *s, const double g[3]);
+int dem_set_domain(dem_sim *s, const double lo[3], const double hi[3]);
+int dem_set_dt(dem_sim *s, double dt);
+
+/* Time scales of the current particles and materials; hertz_velocity is the impact speed for hertz_time. */
+int dem_time_scales_get(dem_sim *s, double hertz_velocity, dem_time_scales *ts);
+/* Closed forms of the undamped Hertz collision (relative speed v): duration and largest overlap. */
+double dem_hertz_contact_time(double mstar, double rstar, double estar, double v);
+double dem_hertz_max_overlap(double mstar, double rstar, double estar, double v);
+/* The damping factor c of hertz_mindlin.h that makes a Hertz collision rebound with restitution e. */
+double dem_damping_for_restitution(double e);
+double dem_restitution_for_damping(double c);
+
+/* Validates everything, builds the backend and computes the initial forces. */
+int dem_start(dem_sim *s, const dem_config *c);
+int dem_step(dem_sim *s, long nsteps);
+
+int dem_count(const dem_sim *s);
+int dem_wall_count(const dem_sim *s);
+long dem_step_index(const dem_sim *s);
+double dem_time(const dem_sim *s);
+double dem_dt(const dem_sim *s);
+int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
+long dem_rebuild_count(const dem_sim *s);
+int dem_cell_count(const dem_sim *s);
+const char *dem_describe(const dem_sim *s);   /* backend and device */
+
+/* Raw bytes of a field in the run's precision (bit comparisons); bytes must not exceed the field's size. */
+int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes);
+size_t dem_field_bytes(const dem_sim *s, dem_field f);
+/* A real-valued field converted to double. */
+int dem_get_field(dem_sim *s, dem_field f, double *dst);
+int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall received in the last step [N] */
+int dem_wall_position(const dem_sim *s, int wall, double p[3]);
+int dem_energy(dem_sim *s, dem_energy_t *e);
+/* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
+int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
+
+/* OpenCL devices over all platforms; name of device k. */
+int dem_device_count(void);
+int dem_device_name(int k, char *buf, size_t len);
+#endif /* DEM_H */

@@ -1,0 +1,15 @@
+/* contact_forces.cl - Hertz-Mindlin particle contacts summed per particle (common/contact_forces.h).
+ * Twin: reference/contact_forces.c */
+#include "contact_forces.h"
+
+__kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const real *x, __global const real *v,
+                             __global const real *w, __global const real *radius, __global const real *invmass,
+                             __global const int *mat, __global const real *pairmat, __global const int *nbr_count,
+                             __global const int *nbr_list, __global real *hist, __global real *force,
+                             __global real *torque)
+{
+    int i = get_global_id(0);
+    if (i < n)
+        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, dt,
+                            force, torque);
+}

@@ -1,0 +1,286 @@
+/* backend_ref.c - the reference backend: host arrays in `real`, each step a serial loop (ref_kernels.h).
+ * Compiled once per precision; exports dem_reference_ops_f32 / dem_reference_ops_f64. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "ref_kernels.h"
+#include "dem_layout.h"
+#include "backend.h"
+
+struct dem_backend {
+    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red;
+    int ncx, ncy, ncz;
+    real dt, skin, half_skin2, inv_cell;
+    vec3 g, lo;
+    real *x, *v, *w, *f, *t, *radius, *invm, *invi, *x_build;
+    int *mat;
+    real *pairmat, *wall_real, *wall_hist, *wall_pf, *partial, *wall_force;
+    int *wall_int;
+    int *cell_of, *cell_count, *cell_start, *cell_fill, *cell_particles, *block_sum;
+    int maxn[2];    /* capacity of each row set */
+    int *count[2], *list[2];
+    real *hist[2];
+    int cur;        /* the row set in use; 1-cur is built into */
+    int flags[FLAG_COUNT];
+    char err[256];
+};
+
+static void *zalloc(size_t n, size_t size) { return calloc(n ? n : 1, size); }
+
+static void ref_destroy(dem_backend *b)
+{
+    if (!b)
+        return;
+    void *ptrs[] = {b->x, b->v, b->w, b->f, b->t, b->radius, b->invm, b->invi, b->x_build, b->mat, b->pairmat,
+                    b->wall_real, b->wall_hist, b->wall_pf, b->partial, b->wall_force, b->wall_int, b->cell_of,
+                    b->cell_count, b->cell_start, b->cell_fill, b->cell_particles, b->block_sum, b->count[0],
+                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1]};
+    for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++)
+        free(ptrs[k]);
+    free(b);
+}
+
+static real *dup_real(const void *src, size_t count)
+{
+    real *p = zalloc(count, sizeof(real));
+    if (p && src && count)
+        memcpy(p, src, count * sizeof(real));
+    return p;
+}
+
+static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t errlen)
+{
+    if (s->real_size != (int)sizeof(real)) {
+        snprintf(err, errlen, "reference backend built for %zu-byte reals, setup has %d", sizeof(real), s->real_size);
+        return 1;
+    }
+    dem_backend *b = calloc(1, sizeof *b);
+    if (!b)
+        goto nomem;
+    int n = s->n;
+    b->n = n;
+    b->nmat = s->nmat;
+    b->nwalls = s->nwalls;
+    b->ncx = s->ncell[0];
+    b->ncy = s->ncell[1];
+    b->ncz = s->ncell[2];
+    b->ncells = b->ncx * b->ncy * b->ncz;
+    b->nblocks_scan = (b->ncells + 1023) / 1024;
+    b->nblocks_red = (n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
+    b->dt = (real)s->dt;
+    b->skin = (real)s->skin;
+    b->half_skin2 = (real)s->half_skin2;
+    b->inv_cell = (real)s->inv_cell;
+    b->g = v3((real)s->gravity[0], (real)s->gravity[1], (real)s->gravity[2]);
+    b->lo = v3((real)s->lo[0], (real)s->lo[1], (real)s->lo[2]);
+    b->x = dup_real(s->x, 3 * (size_t)n);
+    b->v = dup_real(s->v, 3 * (size_t)n);
+    b->w = dup_real(s->w, 3 * (size_t)n);
+    b->f = zalloc(3 * (size_t)n, sizeof(real));
+    b->t = zalloc(3 * (size_t)n, sizeof(real));
+    b->radius = dup_real(s->radius, (size_t)n);
+    b->invm = dup_real(s->invmass, (size_t)n);
+    b->invi = dup_real(s->invinertia, (size_t)n);
+    b->x_build = dup_real(s->x, 3 * (size_t)n);
+    b->mat = zalloc((size_t)n, sizeof(int));
+    b->pairmat = dup_real(s->pairmat, (size_t)PM_STRIDE * s->nmat * s->nmat);
+    b->wall_real = dup_real(s->wall_real, (size_t)W_STRIDE * s->nwalls);
+    b->wall_int = zalloc((size_t)WI_STRIDE * s->nwalls, sizeof(int));
+    b->wall_hist = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
+    b->wall_pf = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
+    b->partial = zalloc(3 * (size_t)b->nblocks_red * s->nwalls, sizeof(real));
+    b->wall_force = zalloc(3 * (size_t)s->nwalls, sizeof(real));
+    b->cell_of = zalloc((size_t)n, sizeof(int));
+    b->cell_count = zalloc((size_t)b->ncells, sizeof(int));
+    b->cell_start = zalloc((size_t)b->ncells + 1, sizeof(int));
+    b->cell_fill = zalloc((size_t)b->ncells, sizeof(int));
+    b->cell_particles = zalloc((size_t)n, sizeof(int));
+    b->block_sum = zalloc((size_t)b->nblocks_scan, sizeof(int));
+    for (int k = 0; k < 2; k++) {
+        b->maxn[k] = s->maxn;
+        b->count[k] = zalloc((size_t)n, sizeof(int));
+        b->list[k] = zalloc((size_t)n * s->maxn, sizeof(int));
+        b->hist[k] = zalloc(3 * (size_t)n * s->maxn, sizeof(real));
+    }
+    if (!b->x || !b->v || !b->w || !b->f || !b->t || !b->radius || !b->invm || !b->invi || !b->x_build || !b->mat ||
+        !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->partial ||
+        !b->wall_force || !b->cell_of || !b->cell_count || !b->cell_start || !b->cell_fill || !b->cell_particles ||
+        !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1])
+        goto nomem;
+    memcpy(b->mat, s->mat, (size_t)n * sizeof(int));
+    if (s->nwalls)
+        memcpy(b->wall_int, s->wall_int, (size_t)WI_STRIDE * s->nwalls * sizeof(int));
+    *out = b;
+    return 0;
+nomem:
+    ref_destroy(b);
+    snprintf(err, errlen, "reference backend: out of host memory for %d particles", s->n);
+    return 1;
+}
+
+static const char *ref_error(dem_backend *b) { return b->err; }
+static const char *ref_describe(dem_backend *b)
+{
+    (void)b;
+    return sizeof(real) == 8 ? "reference (serial C, fp64)" : "reference (serial C, fp32)";
+}
+
+static int ref_reset_flags(dem_backend *b)
+{
+    b->flags[FLAG_REBUILD] = 0;
+    b->flags[FLAG_OUT_OF_DOMAIN] = DEM_NO_PARTICLE;
+    b->flags[FLAG_NBR_NEEDED] = 0;
+    b->flags[FLAG_CELL_NEEDED] = 0;
+    return 0;
+}
+
+static int ref_kick_drift(dem_backend *b)
+{
+    REF(ref_integrate_kick_drift)(b->n, b->dt, b->g, b->half_skin2, b->x, b->v, b->w, b->f, b->t, b->invm, b->invi,
+                                  b->x_build, b->flags);
+    return 0;
+}
+
+static int ref_bin(dem_backend *b)
+{
+    memset(b->cell_count, 0, (size_t)b->ncells * sizeof(int));
+    memset(b->cell_fill, 0, (size_t)b->ncells * sizeof(int));
+    REF(ref_bin_index)(b->n, b->lo, b->inv_cell, b->ncx, b->ncy, b->ncz, b->x, b->cell_of, b->cell_count, b->flags);
+    REF(ref_scan)(b->ncells, b->cell_count, b->block_sum, b->cell_start);
+    REF(ref_bin_scatter)(b->n, b->cell_of, b->cell_start, b->cell_fill, b->cell_particles);
+    REF(ref_bin_sort)(b->ncells, b->cell_start, b->cell_particles);
+    return 0;
+}
+
+static int ref_nbr_reserve(dem_backend *b, int maxn)
+{
+    int k = 1 - b->cur;
+    if (b->maxn[k] == maxn)
+        return 0;
+    int *list = zalloc((size_t)b->n * maxn, sizeof(int));
+    real *hist = zalloc(3 * (size_t)b->n * maxn, sizeof(real));
+    if (!list || !hist) {
+        free(list);
+        free(hist);
+        snprintf(b->err, sizeof b->err, "out of host memory for neighbour rows of %d", maxn);
+        return 1;
+    }
+    free(b->list[k]);
+    free(b->hist[k]);
+    b->list[k] = list;
+    b->hist[k] = hist;
+    b->maxn[k] = maxn;
+    return 0;
+}
+
+static int ref_nbr_build(dem_backend *b)
+{
+    int k = 1 - b->cur;
+    REF(ref_nbr_build)(b->n, b->maxn[k], b->skin, b->ncx, b->ncy, b->ncz, b->x, b->radius, b->cell_of, b->cell_start,
+                       b->cell_particles, b->count[k], b->list[k], b->flags);
+    return 0;
+}
+
+static int ref_nbr_commit(dem_backend *b)
+{
+    int k = 1 - b->cur, o = b->cur;
+    REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o], b->hist[o],
+                       b->hist[k]);
+    b->cur = k;
+    memcpy(b->x_build, b->x, 3 * (size_t)b->n * sizeof(real));
+    return 0;
+}
+
+static int ref_contact_forces(dem_backend *b)
+{
+    int k = b->cur;
+    REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
+                            b->pairmat, b->count[k], b->list[k], b->hist[k], b->f, b->t);
+    return 0;
+}
+
+static int ref_wall_forces(dem_backend *b)
+{
+    REF(ref_wall_forces)(b->n, b->nwalls, b->nmat, b->dt, b->wall_int, b->wall_real, b->x, b->v, b->w, b->radius,
+                         b->invm, b->mat, b->pairmat, b->wall_hist, b->f, b->t, b->wall_pf);
+    REF(ref_wall_reduce)(b->n, b->nwalls, b->nblocks_red, b->wall_pf, b->partial, b->wall_force);
+    return 0;
+}
+
+static int ref_kick(dem_backend *b)
+{
+    REF(ref_integrate_kick)(b->n, b->dt, b->g, b->v, b->w, b->f, b->t, b->invm, b->invi);
+    return 0;
+}
+
+/* Where each field lives and how large it is. */
+static void *field_ptr(dem_backend *b, dem_field f, size_t *bytes)
+{
+    size_t n = (size_t)b->n, r = sizeof(real);
+    int k = b->cur;
+    switch (f) {
+    case FIELD_X: *bytes = 3 * n * r; return b->x;
+    case FIELD_V: *bytes = 3 * n * r; return b->v;
+    case FIELD_W: *bytes = 3 * n * r; return b->w;
+    case FIELD_FORCE: *bytes = 3 * n * r; return b->f;
+    case FIELD_TORQUE: *bytes = 3 * n * r; return b->t;
+    case FIELD_X_BUILD: *bytes = 3 * n * r; return b->x_build;
+    case FIELD_NBR_COUNT: *bytes = n * sizeof(int); return b->count[k];
+    case FIELD_NBR_LIST: *bytes = n * b->maxn[k] * sizeof(int); return b->list[k];
+    case FIELD_HIST: *bytes = 3 * n * b->maxn[k] * r; return b->hist[k];
+    case FIELD_WALL_HIST: *bytes = 3 * n * b->nwalls * r; return b->wall_hist;
+    case FIELD_WALL_FORCE: *bytes = 3 * (size_t)b->nwalls * r; return b->wall_force;
+    case FIELD_CELL_START: *bytes = ((size_t)b->ncells + 1) * sizeof(int); return b->cell_start;
+    case FIELD_CELL_PARTICLES: *bytes = n * sizeof(int); return b->cell_particles;
+    case FIELD_FLAGS: *bytes = sizeof b->flags; return b->flags;
+    case FIELD_WALL_REAL: *bytes = (size_t)W_STRIDE * b->nwalls * r; return b->wall_real;
+    default: *bytes = 0; return NULL;
+    }
+}
+
+static int ref_read(dem_backend *b, dem_field f, void *dst, size_t bytes)
+{
+    size_t have;
+    void *p = field_ptr(b, f, &have);
+    if (!p || bytes > have) {
+        snprintf(b->err, sizeof b->err, "read of field %d: %zu bytes asked, %zu held", (int)f, bytes, have);
+        return 1;
+    }
+    memcpy(dst, p, bytes);
+    return 0;
+}
+
+static int ref_write(dem_backend *b, dem_field f, const void *src, size_t bytes)
+{
+    size_t have;
+    void *p = field_ptr(b, f, &have);
+    if (!p || bytes > have) {
+        snprintf(b->err, sizeof b->err, "write of field %d: %zu bytes given, %zu held", (int)f, bytes, have);
+        return 1;
+    }
+    memcpy(p, src, bytes);
+    return 0;
+}
+
+static int ref_finish(dem_backend *b) { (void)b; return 0; }
+
+const dem_backend_ops REF(dem_reference_ops) = {
+    .name = sizeof(real) == 8 ? "reference-fp64" : "reference-fp32",
+    .create = ref_create,
+    .destroy = ref_destroy,
+    .error = ref_error,
+    .describe = ref_describe,
+    .reset_flags = ref_reset_flags,
+    .kick_drift = ref_kick_drift,
+    .bin = ref_bin,
+    .nbr_reserve = ref_nbr_reserve,
+    .nbr_build = ref_nbr_build,
+    .nbr_commit = ref_nbr_commit,
+    .contact_forces = ref_contact_forces,
+    .wall_forces = ref_wall_forces,
+    .kick = ref_kick,
+    .read = ref_read,
+    .write = ref_write,
+    .finish = ref_finish,
+    .kernel_times = NULL,
+};

@@ -1,0 +1,12 @@
+/* contact_forces.c - reference twin of kernels/contact_forces.cl (serial loop over common/contact_forces.h). */
+#include "ref_kernels.h"
+#include "contact_forces.h"
+
+void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
+                             const int *nbr_count, const int *nbr_list, real *hist, real *force, real *torque)
+{
+    for (int i = 0; i < n; i++)
+        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, dt,
+                            force, torque);
+}

@@ -1,0 +1,43 @@
+/* ref_kernels.h - the plain serial C twins of the OpenCL kernels. Same arguments as the kernels in kernels/<name>.cl;
+ * each loops over the item function the kernel runs per work item. Compiled once per precision: REF(name) appends
+ * _f32 or _f64 so both precisions link into one program. */
+#ifndef DEM_REF_KERNELS_H
+#define DEM_REF_KERNELS_H
+#include "dem_real.h"
+#include "vec3.h"
+
+#if DEM_REAL_SIZE == 8
+#define REF(name) name##_f64
+#else
+#define REF(name) name##_f32
+#endif
+
+/* binning.c */
+void REF(ref_bin_index)(int n, vec3 lo, real inv_cell, int ncx, int ncy, int ncz, const real *x, int *cell_of,
+                        int *cell_count, int *flags);
+void REF(ref_scan)(int ncells, const int *count, int *block_sum, int *start);
+void REF(ref_bin_scatter)(int n, const int *cell_of, const int *start, int *fill, int *cell_particles);
+void REF(ref_bin_sort)(int ncells, const int *start, int *cell_particles);
+/* neighbor.c */
+void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, const real *x, const real *radius,
+                        const int *cell_of, const int *cell_start, const int *cell_particles, int *nbr_count,
+                        int *nbr_list, int *flags);
+void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
+                        const int *old_list, const real *old_hist, real *hist);
+/* contact_forces.c */
+void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
+                             const int *nbr_count, const int *nbr_list, real *hist, real *force, real *torque);
+/* wall_forces.c */
+void REF(ref_wall_forces)(int n, int nwalls, int nmat, real dt, const int *wall_int, const real *wall_real,
+                          const real *x, const real *v, const real *w, const real *radius, const real *invmass,
+                          const int *mat, const real *pairmat, real *wall_hist, real *force, real *torque,
+                          real *wall_pf);
+void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, real *partial, real *wall_force);
+/* integrate.c */
+void REF(ref_integrate_kick_drift)(int n, real dt, vec3 g, real half_skin2, real *x, real *v, real *w,
+                                   const real *force, const real *torque, const real *invmass,
+                                   const real *invinertia, const real *x_build, int *flags);
+void REF(ref_integrate_kick)(int n, real dt, vec3 g, real *v, real *w, const real *force, const real *torque,
+                             const real *invmass, const real *invinertia);
+#endif

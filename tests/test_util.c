@@ -1,0 +1,182 @@
+/* test_util.c - see test_util.h */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+double uniform01(unsigned *st)
+{
+    *st = *st * 1664525u + 1013904223u;
+    return (double)(*st >> 8) / 16777216.0;
+}
+
+void packing_defaults(packing_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->n = 2000;
+    o->rmax = 1e-3;
+    o->ratio = 2.0;
+    o->spacing = 0.95;
+    o->speed = 0.5;
+    o->lid_speed = 0.5;
+    o->friction = 0.4;
+    o->restitution = 0.6;
+    o->young = 1e7;
+    o->density = 2500;
+    o->poisson = 0.3;
+    o->gravity = 1;
+    o->seed = 12345;
+}
+
+dem_sim *packing_build(const packing_opts *o)
+{
+    dem_sim *s = dem_create();
+    dem_material m = {o->density, o->young, o->poisson, o->restitution, o->friction};
+    int mat = dem_add_material(s, &m);
+    dem_material wm = {7800, 2e8, 0.3, o->restitution, o->friction};
+    int wmat = dem_add_material(s, &wm);
+    int side = (int)ceil(cbrt((double)o->n));
+    double a = 2 * o->rmax * o->spacing, L = side * a;
+    unsigned st = o->seed;
+    for (int i = 0; i < o->n; i++) {
+        int ix = i % side, iy = (i / side) % side, iz = i / (side * side);
+        double x[3] = {(ix + 0.5) * a, (iy + 0.5) * a, (iz + 0.5) * a};
+        double v[3];
+        for (int d = 0; d < 3; d++)
+            v[d] = o->speed * (2 * uniform01(&st) - 1);
+        double r = o->rmax * (1 / o->ratio + (1 - 1 / o->ratio) * uniform01(&st));
+        dem_add_particle(s, x, v, r, mat);
+    }
+    /* box [0,L]^3: x-, x+, y-, y+, floor, lid */
+    double pts[6][3] = {{0, 0, 0}, {L, 0, 0}, {0, 0, 0}, {0, L, 0}, {0, 0, 0}, {0, 0, L}};
+    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int k = 0; k < 6; k++) {
+        dem_wall w;
+        memset(&w, 0, sizeof w);
+        w.kind = DEM_WALL_PLANE;
+        w.material = wmat;
+        memcpy(w.point, pts[k], sizeof w.point);
+        memcpy(w.normal, nrm[k], sizeof w.normal);
+        if (k == 5 && o->lid_speed > 0) {
+            w.nstages = 2;
+            w.stages[0] = (dem_stage){0.004, {0, 0, -o->lid_speed}};
+            w.stages[1] = (dem_stage){0.004, {0, 0, o->lid_speed}};
+        }
+        dem_add_wall(s, &w);
+    }
+    if (o->gravity)
+        dem_set_gravity(s, (double[3]){0, 0, -9.81});
+    double lo[3] = {-0.5 * L, -0.5 * L, -0.5 * L}, hi[3] = {1.5 * L, 1.5 * L, 1.5 * L};
+    dem_set_domain(s, lo, hi);
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    return s;
+}
+
+dem_config cfg_of(dem_backend_kind b, dem_precision p)
+{
+    dem_config c;
+    dem_config_default(&c);
+    c.backend = b;
+    c.precision = p;
+    return c;
+}
+
+void start_or_fail(dem_sim *s, const dem_config *c)
+{
+    if (dem_start(s, c) != DEM_OK)
+        fail_msg("dem_start: %s", dem_error(s));
+}
+
+void step_or_fail(dem_sim *s, long n)
+{
+    if (dem_step(s, n) != DEM_OK)
+        fail_msg("dem_step at step %ld: %s", dem_step_index(s), dem_error(s));
+}
+
+static void *get(dem_sim *s, dem_field f, size_t *bytes)
+{
+    *bytes = dem_field_bytes(s, f);
+    void *p = malloc(*bytes ? *bytes : 1);
+    if (!p || dem_get_raw(s, f, p, *bytes))
+        fail_msg("reading field %d: %s", (int)f, dem_error(s));
+    return p;
+}
+
+static int zero_bits(const unsigned char *p, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (p[k])
+            return 0;
+    return 1;
+}
+
+int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
+{
+    static const dem_field fields[] = {FIELD_X, FIELD_V, FIELD_W, FIELD_FORCE, FIELD_TORQUE, FIELD_WALL_FORCE,
+                                       FIELD_WALL_HIST};
+    static const char *names[] = {"position", "velocity", "angular velocity", "force", "torque", "wall force",
+                                  "wall history"};
+    size_t rs = dem_field_bytes(a, FIELD_X) / (3 * (size_t)dem_count(a));
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
+        size_t na, nb;
+        unsigned char *pa = get(a, fields[k], &na), *pb = get(b, fields[k], &nb);
+        int bad = na != nb || memcmp(pa, pb, na) != 0;
+        if (bad) {
+            size_t at = 0;
+            while (at < na && at < nb && pa[at] == pb[at])
+                at++;
+            size_t idx = at / rs;
+            double va = rs == 8 ? ((double *)pa)[idx] : ((float *)pa)[idx];
+            double vb = rs == 8 ? ((double *)pb)[idx] : ((float *)pb)[idx];
+            snprintf(msg, len, "%s differs at component %zu (item %zu): %.17g vs %.17g", names[k], idx, idx / 3, va, vb);
+        }
+        free(pa);
+        free(pb);
+        if (bad)
+            return 1;
+    }
+    /* contact history: merge the sorted rows; a partner in one row only must carry zero history */
+    size_t n1, n2, l1, l2, h1, h2;
+    int *c1 = get(a, FIELD_NBR_COUNT, &n1), *c2 = get(b, FIELD_NBR_COUNT, &n2);
+    int *r1 = get(a, FIELD_NBR_LIST, &l1), *r2 = get(b, FIELD_NBR_LIST, &l2);
+    unsigned char *g1 = get(a, FIELD_HIST, &h1), *g2 = get(b, FIELD_HIST, &h2);
+    int m1 = dem_neighbor_capacity(a), m2 = dem_neighbor_capacity(b), bad = 0;
+    for (int i = 0; i < dem_count(a) && !bad; i++) {
+        int p = 0, q = 0;
+        while ((p < c1[i] || q < c2[i]) && !bad) {
+            int j1 = p < c1[i] ? r1[i * m1 + p] : 1 << 30, j2 = q < c2[i] ? r2[i * m2 + q] : 1 << 30;
+            const unsigned char *ha = g1 + ((size_t)i * m1 + p) * 3 * rs, *hb = g2 + ((size_t)i * m2 + q) * 3 * rs;
+            if (j1 == j2) {
+                bad = memcmp(ha, hb, 3 * rs) != 0;
+                p++, q++;
+            } else if (j1 < j2) {
+                bad = !zero_bits(ha, 3 * rs);
+                p++;
+            } else {
+                bad = !zero_bits(hb, 3 * rs);
+                q++;
+            }
+            if (bad)
+                snprintf(msg, len, "tangential history of particle %d with partner %d differs", i, j1 < j2 ? j1 : j2);
+        }
+    }
+    free(c1), free(c2), free(r1), free(r2), free(g1), free(g2);
+    return bad;
+}
+
+uint64_t state_hash(dem_sim *s)
+{
+    static const dem_field fields[] = {FIELD_X, FIELD_V, FIELD_W, FIELD_FORCE, FIELD_TORQUE, FIELD_WALL_FORCE};
+    uint64_t h = 1469598103934665603ull;
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
+        size_t n;
+        unsigned char *p = get(s, fields[k], &n);
+        for (size_t i = 0; i < n; i++)
+            h = (h ^ p[i]) * 1099511628211ull;
+        free(p);
+    }
+    return h;
+}

@@ -1,0 +1,39 @@
+/* test_util.h - scene builders and bitwise comparison helpers shared by the tests. */
+#ifndef DEM_TEST_UTIL_H
+#define DEM_TEST_UTIL_H
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include "dem.h"
+
+typedef struct {
+    int n;              /* particles */
+    double rmax;        /* largest radius [m]; radii uniform in [rmax/ratio, rmax] */
+    double ratio;       /* size ratio >= 1 */
+    double spacing;     /* lattice spacing as a multiple of 2 rmax (< 1: initial overlaps) */
+    double speed;       /* random initial speed scale [m/s] */
+    double lid_speed;   /* downward lid speed [m/s] (0: no motion) */
+    double friction, restitution, young, density, poisson;
+    int gravity;
+    unsigned seed;
+} packing_opts;
+
+void packing_defaults(packing_opts *o);
+/* Builds the packing into a fresh simulation: a box of 6 plane walls, the top one (wall 5) a moving lid. */
+dem_sim *packing_build(const packing_opts *o);
+
+dem_config cfg_of(dem_backend_kind b, dem_precision p);
+/* dem_start, failing the test with the library's message. */
+void start_or_fail(dem_sim *s, const dem_config *c);
+void step_or_fail(dem_sim *s, long n);
+
+/* Bitwise comparison of the dynamic state of two simulations (x, v, w, force, torque, wall force and the
+ * tangential history of every pair in contact). Returns 0 when identical; else describes the first difference. */
+int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len);
+/* FNV-1a hash of the same state, for comparing runs in other processes. */
+uint64_t state_hash(dem_sim *s);
+
+double uniform01(unsigned *state);
+#endif
