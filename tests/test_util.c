@@ -14,12 +14,10 @@ double uniform01(unsigned *st)
 void packing_defaults(packing_opts *o)
 {
     memset(o, 0, sizeof *o);
-    o->n = 2000;
+    o->side = 11; /* 1331 + 1000 = 2331 particles */
     o->rmax = 1e-3;
-    o->ratio = 2.0;
-    o->spacing = 0.95;
     o->speed = 0.5;
-    o->lid_speed = 0.5;
+    o->lid_speed = 0.2;
     o->friction = 0.4;
     o->restitution = 0.6;
     o->young = 1e7;
@@ -29,6 +27,8 @@ void packing_defaults(packing_opts *o)
     o->seed = 12345;
 }
 
+int packing_count(const packing_opts *o) { return o->side * o->side * o->side + (o->side - 1) * (o->side - 1) * (o->side - 1); }
+
 dem_sim *packing_build(const packing_opts *o)
 {
     dem_sim *s = dem_create();
@@ -36,17 +36,21 @@ dem_sim *packing_build(const packing_opts *o)
     int mat = dem_add_material(s, &m);
     dem_material wm = {7800, 2e8, 0.3, o->restitution, o->friction};
     int wmat = dem_add_material(s, &wm);
-    int side = (int)ceil(cbrt((double)o->n));
-    double a = 2 * o->rmax * o->spacing, L = side * a;
+    int side = o->side;
+    double a = 2 * o->rmax, L = side * a;
     unsigned st = o->seed;
-    for (int i = 0; i < o->n; i++) {
-        int ix = i % side, iy = (i / side) % side, iz = i / (side * side);
-        double x[3] = {(ix + 0.5) * a, (iy + 0.5) * a, (iz + 0.5) * a};
-        double v[3];
-        for (int d = 0; d < 3; d++)
-            v[d] = o->speed * (2 * uniform01(&st) - 1);
-        double r = o->rmax * (1 / o->ratio + (1 - 1 / o->ratio) * uniform01(&st));
-        dem_add_particle(s, x, v, r, mat);
+    for (int layer = 0; layer < 2; layer++) {
+        int m = side - layer;
+        for (int i = 0; i < m * m * m; i++) {
+            int ix = i % m, iy = (i / m) % m, iz = i / (m * m);
+            double off = layer ? 1.0 : 0.5;
+            double x[3] = {(ix + off) * a, (iy + off) * a, (iz + off) * a};
+            double v[3];
+            for (int d = 0; d < 3; d++)
+                v[d] = o->speed * (2 * uniform01(&st) - 1);
+            double r = o->rmax * (layer ? 0.45 + 0.05 * uniform01(&st) : 0.9 + 0.1 * uniform01(&st));
+            dem_add_particle(s, x, v, r, mat);
+        }
     }
     /* box [0,L]^3: x-, x+, y-, y+, floor, lid */
     double pts[6][3] = {{0, 0, 0}, {L, 0, 0}, {0, 0, 0}, {0, L, 0}, {0, 0, 0}, {0, 0, L}};
@@ -60,8 +64,8 @@ dem_sim *packing_build(const packing_opts *o)
         memcpy(w.normal, nrm[k], sizeof w.normal);
         if (k == 5 && o->lid_speed > 0) {
             w.nstages = 2;
-            w.stages[0] = (dem_stage){0.004, {0, 0, -o->lid_speed}};
-            w.stages[1] = (dem_stage){0.004, {0, 0, o->lid_speed}};
+            w.stages[0] = (dem_stage){0.006, {0, 0, -o->lid_speed}};
+            w.stages[1] = (dem_stage){0.006, {0, 0, o->lid_speed}};
         }
         dem_add_wall(s, &w);
     }

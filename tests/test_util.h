@@ -9,10 +9,9 @@
 #include "dem.h"
 
 typedef struct {
-    int n;              /* particles */
-    double rmax;        /* largest radius [m]; radii uniform in [rmax/ratio, rmax] */
-    double ratio;       /* size ratio >= 1 */
-    double spacing;     /* lattice spacing as a multiple of 2 rmax (< 1: initial overlaps) */
+    int side;           /* large spheres on a side^3 cubic lattice of spacing 2 rmax, small ones in the
+                           (side-1)^3 body centres: n = side^3 + (side-1)^3, solid fraction about 0.58 */
+    double rmax;        /* largest radius [m]; large radii in [0.9, 1] rmax, small in [0.45, 0.5] rmax */
     double speed;       /* random initial speed scale [m/s] */
     double lid_speed;   /* downward lid speed [m/s] (0: no motion) */
     double friction, restitution, young, density, poisson;
@@ -21,6 +20,7 @@ typedef struct {
 } packing_opts;
 
 void packing_defaults(packing_opts *o);
+int packing_count(const packing_opts *o);
 /* Builds the packing into a fresh simulation: a box of 6 plane walls, the top one (wall 5) a moving lid. */
 dem_sim *packing_build(const packing_opts *o);
 
