@@ -184,3 +184,27 @@ uint64_t state_hash(dem_sim *s)
     }
     return h;
 }
+
+dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, double dt_frac)
+{
+    dem_sim *s = dem_create();
+    int id = dem_add_material(s, m);
+    dem_add_particle(s, (double[3]){-r1, 0, 0}, (double[3]){0.5 * v, 0, 0}, r1, id);
+    dem_add_particle(s, (double[3]){r2, 0, 0}, (double[3]){-0.5 * v, 0, 0}, r2, id);
+    double L = 4 * (r1 + r2);
+    dem_set_domain(s, (double[3]){-L, -L, -L}, (double[3]){L, L, L});
+    double es = 1 / (2 * (1 - m->poisson * m->poisson) / m->young);
+    double m1 = m->density * 4.0 / 3.0 * M_PI * r1 * r1 * r1, m2 = m->density * 4.0 / 3.0 * M_PI * r2 * r2 * r2;
+    double tc = dem_hertz_contact_time(m1 * m2 / (m1 + m2), r1 * r2 / (r1 + r2), es, v);
+    dem_set_dt(s, tc * dt_frac);
+    return s;
+}
+
+double pair_distance(dem_sim *s)
+{
+    double x[6];
+    if (dem_get_field(s, FIELD_X, x))
+        fail_msg("%s", dem_error(s));
+    double d = sqrt((x[0] - x[3]) * (x[0] - x[3]) + (x[1] - x[4]) * (x[1] - x[4]) + (x[2] - x[5]) * (x[2] - x[5]));
+    return d;
+}

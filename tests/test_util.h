@@ -36,4 +36,10 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len);
 uint64_t state_hash(dem_sim *s);
 
 double uniform01(unsigned *state);
+
+/* Two spheres (radius r, material m) approaching head-on along x at relative speed v, touching at t = 0.
+ * dt_frac: time step as a fraction of the closed-form Hertz contact time. */
+dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, double dt_frac);
+/* Distance between the centres of particles 0 and 1 [m]. */
+double pair_distance(dem_sim *s);
 #endif
