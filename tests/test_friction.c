@@ -1,0 +1,83 @@
+/* test_friction.c - Coulomb friction on an incline (gravity tilted by theta over a flat floor, mu = 0.4).
+ * A sphere that cannot rotate is a block: it sticks for tan(theta) < mu and slides above, with acceleration
+ * g (sin theta - mu cos theta). A free sphere rolls without slipping for tan(theta) < 7/2 mu (contact point at
+ * rest, acceleration 5/7 g sin theta) and slips above. Angles 10 % either side of each threshold. PoCL, fp64. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+
+#define MU 0.4
+#define G 9.81
+
+typedef struct {
+    double disp;      /* distance travelled down the slope [m] */
+    double accel;     /* from the velocities at t = 0.05 s and 0.1 s [m/s^2] */
+    double slip;      /* contact-point speed v - w r at the end [m/s] */
+} slope_result;
+
+static slope_result slide(double theta, int rotate)
+{
+    const double r = 0.005, rho = 2500, E = 1e7, nu = 0.3;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){rho, E, nu, 0.5, MU});
+    /* start at the static overlap under the normal load m g cos(theta) */
+    double mass = rho * 4.0 / 3.0 * M_PI * r * r * r, es = E / (2 * (1 - nu * nu)); /* sphere on a wall of the same */
+    double d = pow(mass * G * cos(theta) / (4.0 / 3.0 * es * sqrt(r)), 2.0 / 3.0);
+    int id = dem_add_particle(s, (double[3]){0, 0, r - d}, (double[3]){0, 0, 0}, r, m);
+    if (!rotate)
+        dem_set_particle_flags(s, id, DEM_PARTICLE_NO_ROTATION);
+    dem_wall floor = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1}};
+    dem_add_wall(s, &floor);
+    dem_set_gravity(s, (double[3]){G * sin(theta), 0, -G * cos(theta)});
+    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){1.0, 0.05, 0.05});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+    start_or_fail(s, &c);
+    long half = lround(0.05 / dem_dt(s));
+    double x[3], v1[3], v[3], w[3];
+    step_or_fail(s, half);
+    dem_get_field(s, FIELD_V, v1);
+    step_or_fail(s, half);
+    dem_get_field(s, FIELD_X, x);
+    dem_get_field(s, FIELD_V, v);
+    dem_get_field(s, FIELD_W, w);
+    slope_result res = {x[0], (v[0] - v1[0]) / (half * dem_dt(s)), v[0] - w[1] * r};
+    dem_destroy(s);
+    return res;
+}
+
+static void test_block(void **st)
+{
+    (void)st;
+    double crit = atan(MU);
+    slope_result below = slide(0.9 * crit, 0), above = slide(1.1 * crit, 0);
+    double a_expect = G * (sin(1.1 * crit) - MU * cos(1.1 * crit));
+    printf("  block: theta 0.9 atan(mu): moved %.3g m; 1.1 atan(mu): a %.4g m/s^2 (expected %.4g)\n", below.disp,
+           above.accel, a_expect);
+    assert_true(fabs(below.disp) < 1e-5); /* only the tangential spring's elastic creep */
+    assert_true(fabs(above.accel / a_expect - 1) < 0.05);
+}
+
+static void test_rolling_sphere(void **st)
+{
+    (void)st;
+    double crit = atan(3.5 * MU);
+    slope_result roll = slide(0.9 * crit, 1), slip = slide(1.1 * crit, 1);
+    double a_roll = 5.0 / 7.0 * G * sin(0.9 * crit);
+    printf("  sphere: theta 0.9 atan(3.5 mu): a %.4g (rolling %.4g), slip speed %.3g m/s; 1.1 atan(3.5 mu): slip "
+           "speed %.3g m/s\n", roll.accel, a_roll, roll.slip, slip.slip);
+    assert_true(fabs(roll.accel / a_roll - 1) < 0.02);
+    assert_true(fabs(roll.slip) < 1e-3);
+    assert_true(slip.slip > 0.02);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_block),
+        cmocka_unit_test(test_rolling_sphere),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
