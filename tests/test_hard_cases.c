@@ -1,0 +1,178 @@
+/* test_hard_cases.c - hard cases stay finite and clear, on the reference and on PoCL:
+ * coincident centres, a particle leaving the binning domain, glass (65 GPa, seed 000 Table 1) at the recommended
+ * time step, refusal of a time step above the stability bound, and rejection of invalid parameters. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int all_finite(dem_sim *s, dem_field f)
+{
+    int n = dem_count(s);
+    double *a = malloc(sizeof(double) * 3 * n);
+    int ok = dem_get_field(s, f, a) == 0;
+    for (int k = 0; ok && k < 3 * n; k++)
+        ok = isfinite(a[k]);
+    free(a);
+    return ok;
+}
+
+static void test_coincident_centres(void **st)
+{
+    (void)st;
+    for (int b = 0; b < 2; b++) {
+        dem_sim *s = dem_create();
+        int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
+        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.01, m);
+        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.01, m);
+        dem_set_domain(s, (double[3]){-1, -1, -1}, (double[3]){1, 1, 1});
+        dem_time_scales ts;
+        dem_time_scales_get(s, 0, &ts);
+        dem_set_dt(s, ts.recommended_dt);
+        dem_config c = cfg_of(b ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, DEM_FP64);
+        start_or_fail(s, &c);
+        double x[6] = {0};
+        for (int k = 0; k < 200 && x[2] - x[5] < 0.02; k++) { /* until they no longer touch */
+            step_or_fail(s, 10);
+            assert_true(all_finite(s, FIELD_X) && all_finite(s, FIELD_V) && all_finite(s, FIELD_FORCE));
+            dem_get_field(s, FIELD_X, x);
+        }
+        /* defined policy: the lower id is pushed along +z; they separate along z */
+        assert_true(x[2] > x[5]);
+        assert_true(x[2] - x[5] >= 0.02);
+        assert_true(x[0] == 0 && x[3] == 0);
+        dem_destroy(s);
+    }
+}
+
+static void test_leaves_domain(void **st)
+{
+    (void)st;
+    for (int b = 0; b < 2; b++) {
+        dem_sim *s = dem_create();
+        int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
+        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.001, m);
+        dem_add_particle(s, (double[3]){0.05, 0, 0}, (double[3]){5, 0, 0}, 0.001, m);
+        dem_set_domain(s, (double[3]){-0.1, -0.1, -0.1}, (double[3]){0.1, 0.1, 0.1});
+        dem_time_scales ts;
+        dem_time_scales_get(s, 0, &ts);
+        dem_set_dt(s, ts.recommended_dt);
+        dem_config c = cfg_of(b ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, DEM_FP32);
+        start_or_fail(s, &c);
+        long need = lround(0.06 / (5 * dem_dt(s))) + 100;
+        int e = dem_step(s, need);
+        assert_int_equal(e, DEM_ERR_DOMAIN);
+        const char *msg = dem_error(s);
+        printf("  %s: %s\n", b ? "PoCL" : "reference", msg);
+        assert_non_null(strstr(msg, "particle 1 "));
+        assert_non_null(strstr(msg, "outside the binning domain"));
+        /* it stopped right after leaving: within skin/2 + one step of the boundary */
+        assert_true(dem_step_index(s) < need);
+        dem_destroy(s);
+    }
+}
+
+static void test_nonfinite_rejected(void **st)
+{
+    (void)st;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
+    assert_int_equal(dem_add_particle(s, (double[3]){NAN, 0, 0}, NULL, 0.001, m), -1);
+    assert_non_null(strstr(dem_error(s), "finite"));
+    assert_int_equal(dem_add_particle(s, (double[3]){0, 0, 0}, NULL, -0.001, m), -1);
+    assert_non_null(strstr(dem_error(s), "radius"));
+    assert_int_equal(dem_add_material(s, &(dem_material){2500, 1e7, 0.6, 0.5, 0.3}), -1);
+    assert_non_null(strstr(dem_error(s), "Poisson"));
+    assert_int_equal(dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.0, 0.3}), -1);
+    assert_non_null(strstr(dem_error(s), "restitution"));
+    assert_int_equal(dem_add_material(s, &(dem_material){-1, 1e7, 0.3, 0.5, 0.3}), -1);
+    assert_non_null(strstr(dem_error(s), "density"));
+    dem_destroy(s);
+}
+
+/* 64 glass beads (seed 000 Table 1: 2500 kg/m^3, d 4 mm, 65 GPa, nu 0.24, e 0.98, mu 0.2) dropped at 1 m/s onto
+ * a floor and each other in a box, at the recommended time step: finite, bounded energy, overlaps small. */
+static dem_sim *glass_box(double dt_factor)
+{
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 65e9, 0.24, 0.98, 0.2});
+    unsigned seed = 11;
+    for (int k = 0; k < 64; k++) {
+        double x[3] = {0.003 + 0.0045 * (k % 4), 0.003 + 0.0045 * (k / 4 % 4), 0.003 + 0.0045 * (k / 16)};
+        double v[3] = {uniform01(&seed) - 0.5, uniform01(&seed) - 0.5, -1};
+        dem_add_particle(s, x, v, 0.002, m);
+    }
+    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int k = 0; k < 6; k++) {
+        dem_wall w = {.kind = DEM_WALL_PLANE, .material = m};
+        memcpy(w.normal, nrm[k], sizeof w.normal);
+        for (int d = 0; d < 3; d++)
+            w.point[d] = nrm[k][d] < 0 ? 0.02 : 0;
+        dem_add_wall(s, &w);
+    }
+    dem_set_gravity(s, (double[3]){0, 0, -9.81});
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.03, 0.03, 0.03});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 1.0, &ts);
+    dem_set_dt(s, dt_factor * ts.recommended_dt);
+    return s;
+}
+
+static void test_glass_recommended_dt(void **st)
+{
+    (void)st;
+    dem_sim *s = glass_box(1.0);
+    dem_time_scales ts;
+    dem_time_scales_get(s, 1.0, &ts);
+    printf("  glass: Rayleigh time %.4g s, Hertz time at 1 m/s %.4g s, recommended dt %.4g s\n", ts.rayleigh_time,
+           ts.hertz_time, ts.recommended_dt);
+    /* Rayleigh time by hand: pi r sqrt(rho/G)/(0.1631 nu + 0.8766), G = E/(2(1+nu)) */
+    double G = 65e9 / (2 * 1.24), tr = M_PI * 0.002 * sqrt(2500 / G) / (0.1631 * 0.24 + 0.8766);
+    assert_true(fabs(ts.rayleigh_time / tr - 1) < 1e-12);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+    start_or_fail(s, &c);
+    dem_energy_t e0, e;
+    dem_energy(s, &e0);
+    double worst = 0;
+    for (int k = 0; k < 40; k++) {
+        step_or_fail(s, 500);
+        dem_energy(s, &e);
+        assert_true(isfinite(e.total));
+        assert_true(e.total <= e0.total * 1.001); /* nothing creates energy */
+        double x[3 * 64];
+        dem_get_field(s, FIELD_X, x);
+        for (int i = 0; i < 64; i++)
+            worst = fmax(worst, 0.002 - x[3 * i + 2]); /* overlap with the floor */
+    }
+    printf("  glass: %ld steps, energy %.4g -> %.4g J, largest floor overlap %.3g %% of r\n", dem_step_index(s),
+           e0.total, e.total, 100 * worst / 0.002);
+    assert_true(all_finite(s, FIELD_V) && all_finite(s, FIELD_W));
+    assert_true(worst < 0.01 * 0.002);
+    dem_destroy(s);
+}
+
+static void test_dt_bound(void **st)
+{
+    (void)st;
+    dem_sim *s = glass_box(3.0); /* 0.6 x Rayleigh time: above the 0.5 bound */
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    assert_int_equal(dem_start(s, &c), DEM_ERR_DT);
+    printf("  %s\n", dem_error(s));
+    assert_non_null(strstr(dem_error(s), "stability bound"));
+    dem_destroy(s);
+    s = glass_box(3.0);
+    c.force_dt = 1;
+    start_or_fail(s, &c);
+    dem_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_coincident_centres), cmocka_unit_test(test_leaves_domain),
+        cmocka_unit_test(test_nonfinite_rejected), cmocka_unit_test(test_glass_recommended_dt),
+        cmocka_unit_test(test_dt_bound),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
