@@ -311,6 +311,7 @@ int dem_step(dem_sim *s, long nsteps)
 /* ---- queries ---- */
 
 int dem_count(const dem_sim *s) { return s->n; }
+double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[i] : NAN; }
 int dem_wall_count(const dem_sim *s) { return s->nwalls; }
 long dem_step_index(const dem_sim *s) { return s->step; }
 double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }

@@ -130,6 +130,7 @@ int dem_start(dem_sim *s, const dem_config *c);
 int dem_step(dem_sim *s, long nsteps);
 
 int dem_count(const dem_sim *s);
+double dem_particle_radius(const dem_sim *s, int i); /* [m], as given */
 int dem_wall_count(const dem_sim *s);
 long dem_step_index(const dem_sim *s);
 double dem_time(const dem_sim *s);

@@ -1,0 +1,63 @@
+/* test_binning.c - kernels/binning.cl against reference/binning.c, and both against the definition:
+ * cell_start is the exclusive scan of the cell counts, every particle sits in the cell of its position, and each
+ * cell lists its particles in ascending id. fp32 and fp64, work-group sizes auto, 1, 7 and 128. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void check(dem_precision prec, size_t local)
+{
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 9;
+    dem_sim *ref = packing_build(&o), *cl = packing_build(&o);
+    dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
+    c.local_size = local;
+    start_or_fail(ref, &rc);
+    start_or_fail(cl, &c);
+    step_or_fail(ref, 50); /* mix the particles so that cells hold ids out of order */
+    step_or_fail(cl, 50);
+    int n = dem_count(ref), nc = dem_cell_count(ref);
+    assert_int_equal(nc, dem_cell_count(cl));
+    int *s1 = malloc(sizeof(int) * (nc + 1)), *s2 = malloc(sizeof(int) * (nc + 1));
+    int *p1 = malloc(sizeof(int) * n), *p2 = malloc(sizeof(int) * n);
+    assert_int_equal(dem_get_raw(ref, FIELD_CELL_START, s1, sizeof(int) * (nc + 1)), 0);
+    assert_int_equal(dem_get_raw(cl, FIELD_CELL_START, s2, sizeof(int) * (nc + 1)), 0);
+    assert_int_equal(dem_get_raw(ref, FIELD_CELL_PARTICLES, p1, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(cl, FIELD_CELL_PARTICLES, p2, sizeof(int) * n), 0);
+    assert_memory_equal(s1, s2, sizeof(int) * (nc + 1));
+    assert_memory_equal(p1, p2, sizeof(int) * n);
+    /* definition: a permutation, sorted within cells, covering all particles */
+    assert_int_equal(s1[0], 0);
+    assert_int_equal(s1[nc], n);
+    char *seen = calloc(n, 1);
+    for (int c0 = 0; c0 < nc; c0++) {
+        assert_true(s1[c0] <= s1[c0 + 1]);
+        for (int k = s1[c0]; k < s1[c0 + 1]; k++) {
+            assert_true(p1[k] >= 0 && p1[k] < n && !seen[p1[k]]);
+            seen[p1[k]] = 1;
+            if (k > s1[c0])
+                assert_true(p1[k - 1] < p1[k]);
+        }
+    }
+    free(seen);
+    free(s1), free(s2), free(p1), free(p2);
+    dem_destroy(ref);
+    dem_destroy(cl);
+}
+
+static void test_fp64_auto(void **st) { (void)st; check(DEM_FP64, 0); }
+static void test_fp64_wg1(void **st) { (void)st; check(DEM_FP64, 1); }
+static void test_fp32_wg7(void **st) { (void)st; check(DEM_FP32, 7); }
+static void test_fp32_wg128(void **st) { (void)st; check(DEM_FP32, 128); }
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fp64_auto), cmocka_unit_test(test_fp64_wg1),
+        cmocka_unit_test(test_fp32_wg7), cmocka_unit_test(test_fp32_wg128),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,89 @@
+/* test_neighbor.c - kernels/neighbor.cl against reference/neighbor.c and against a brute-force O(n^2) search:
+ * row i holds exactly the j != i with |x_i - x_j| < r_i + r_j + skin at the last build (evaluated in the run
+ * precision with the kernel's operation order), sorted ascending and symmetric. The packing starts with rows of
+ * capacity 16, so the large skin also exercises the overflow-and-grow path. fp32 and fp64, two skins. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* brute-force membership in the run precision T */
+#define IN_RANGE(T, x, rad, skin, i, j)                                                                              \
+    ({                                                                                                               \
+        const T *X_ = (const T *)(x);                                                                                \
+        T d0 = X_[3 * (i)] - X_[3 * (j)], d1 = X_[3 * (i) + 1] - X_[3 * (j) + 1], d2 = X_[3 * (i) + 2] - X_[3 * (j) + 2]; \
+        T cut = (T)(rad)[i] + (T)(rad)[j] + (T)(skin);                                                               \
+        d0 * d0 + d1 * d1 + d2 * d2 < cut * cut;                                                                     \
+    })
+
+static void check(dem_precision prec, double skin)
+{
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 8;
+    dem_sim *ref = packing_build(&o), *cl = packing_build(&o);
+    dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
+    rc.skin = c.skin = skin;
+    start_or_fail(ref, &rc);
+    start_or_fail(cl, &c);
+    step_or_fail(ref, 100);
+    step_or_fail(cl, 100);
+    int n = dem_count(ref), m = dem_neighbor_capacity(ref);
+    assert_int_equal(m, dem_neighbor_capacity(cl));
+    int *c1 = malloc(sizeof(int) * n), *c2 = malloc(sizeof(int) * n);
+    int *l1 = malloc(sizeof(int) * n * m), *l2 = malloc(sizeof(int) * n * m);
+    double *rad = malloc(sizeof(double) * n);
+    size_t bytes = dem_field_bytes(ref, FIELD_X_BUILD);
+    void *xb = malloc(bytes);
+    assert_int_equal(dem_get_raw(ref, FIELD_NBR_COUNT, c1, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(cl, FIELD_NBR_COUNT, c2, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(ref, FIELD_NBR_LIST, l1, sizeof(int) * n * m), 0);
+    assert_int_equal(dem_get_raw(cl, FIELD_NBR_LIST, l2, sizeof(int) * n * m), 0);
+    assert_int_equal(dem_get_raw(ref, FIELD_X_BUILD, xb, bytes), 0);
+    assert_memory_equal(c1, c2, sizeof(int) * n);
+    for (int i = 0; i < n; i++) {
+        assert_memory_equal(l1 + i * m, l2 + i * m, sizeof(int) * c1[i]);
+        rad[i] = dem_particle_radius(ref, i);
+    }
+    long total = 0;
+    int widest = 0;
+    for (int i = 0; i < n; i++) {
+        int k = 0;
+        for (int j = 0; j < n; j++) {
+            if (j == i)
+                continue;
+            int in = prec == DEM_FP64 ? IN_RANGE(double, xb, rad, skin, i, j) : IN_RANGE(float, xb, rad, skin, i, j);
+            if (!in)
+                continue;
+            if (k >= c1[i] || l1[i * m + k] != j)
+                fail_msg("row %d: partner %d missing or out of order (slot %d)", i, j, k);
+            k++;
+        }
+        if (k != c1[i])
+            fail_msg("row %d: %d partners listed, %d in range", i, c1[i], k);
+        total += k;
+        widest = k > widest ? k : widest;
+    }
+    printf("  %s, skin %g m: %ld row entries, widest row %d, capacity %d\n", prec == DEM_FP64 ? "fp64" : "fp32", skin,
+           total, widest, m);
+    assert_true(total > 2 * n); /* a dense packing */
+    free(xb);
+    free(c1), free(c2), free(l1), free(l2), free(rad);
+    dem_destroy(ref);
+    dem_destroy(cl);
+}
+
+static void test_fp64_small_skin(void **st) { (void)st; check(DEM_FP64, 1e-4); }
+static void test_fp64_large_skin(void **st) { (void)st; check(DEM_FP64, 1.2e-3); }
+static void test_fp32_small_skin(void **st) { (void)st; check(DEM_FP32, 1e-4); }
+static void test_fp32_large_skin(void **st) { (void)st; check(DEM_FP32, 1.2e-3); }
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fp64_small_skin), cmocka_unit_test(test_fp64_large_skin),
+        cmocka_unit_test(test_fp32_small_skin), cmocka_unit_test(test_fp32_large_skin),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
