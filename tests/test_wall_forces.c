@@ -1,0 +1,94 @@
+/* test_wall_forces.c - walls: the inside of a cylinder (a die), planes, prescribed piecewise motion, and the force
+ * each wall receives. 17 beads (seed 000 section 4.3 geometry: die 12 mm wide) settle under gravity on a floor
+ * inside a cylinder: at rest, the floor and cylinder together carry the beads' weight; no bead leaves the die.
+ * Then a piston comes down in two stages and its position follows the stages exactly. PoCL bitwise = reference. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define R_DIE 0.006
+#define R_BEAD 0.002
+#define RHO 2500.0
+
+static dem_sim *die(void)
+{
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){RHO, 1e7, 0.24, 0.5, 0.2});
+    int steel = dem_add_material(s, &(dem_material){7800, 2e8, 0.3, 0.5, 0.2});
+    for (int k = 0; k < 17; k++) { /* a loose column, slightly off axis */
+        double a = 2.1 * k, x[3] = {0.0025 * cos(a), 0.0025 * sin(a), 0.0025 + 0.0042 * k};
+        dem_add_particle(s, x, NULL, R_BEAD, m);
+    }
+    dem_wall cyl = {.kind = DEM_WALL_CYLINDER, .material = steel, .point = {0, 0, 0}, .normal = {0, 0, 1},
+                    .radius = R_DIE};
+    dem_wall floor = {.kind = DEM_WALL_PLANE, .material = steel, .point = {0, 0, 0}, .normal = {0, 0, 1}};
+    dem_wall piston = {.kind = DEM_WALL_PLANE, .material = steel, .point = {0, 0, 0.08}, .normal = {0, 0, -1}};
+    piston.nstages = 3;
+    piston.stages[0] = (dem_stage){0.30, {0, 0, 0}};       /* wait while the beads settle */
+    piston.stages[1] = (dem_stage){0.32, {0, 0, -0.2}};    /* approach to z = 16 mm */
+    piston.stages[2] = (dem_stage){0.175, {0, 0, -0.02}};  /* press to 12.5 mm (column top near 13 mm) */
+    dem_add_wall(s, &cyl);
+    dem_add_wall(s, &floor);
+    dem_add_wall(s, &piston);
+    dem_set_gravity(s, (double[3]){0, 0, -9.81});
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.09});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    return s;
+}
+
+static void test_die(void **st)
+{
+    (void)st;
+    dem_sim *s = die(), *ref = die();
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64), rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(s, &c);
+    start_or_fail(ref, &rc);
+    double dt = dem_dt(s);
+    long settle = lround(0.29 / dt);
+    step_or_fail(s, settle);
+    step_or_fail(ref, settle);
+    char msg[256];
+    if (state_diff(s, ref, msg, sizeof msg))
+        fail_msg("after settling, PoCL vs reference: %s", msg);
+    double fc[3], ff[3], x[3 * 17];
+    dem_wall_force(s, 0, fc);
+    dem_wall_force(s, 1, ff);
+    double weight = 17 * RHO * 4.0 / 3.0 * M_PI * pow(R_BEAD, 3) * 9.81;
+    printf("  settled: floor %.5g N, cylinder %.5g N (z), weight %.5g N\n", -ff[2], -fc[2], weight);
+    /* the walls are pushed down by the weight (cylinder friction may carry part of it) */
+    assert_true(fabs((-ff[2] - fc[2]) / weight - 1) < 0.01);
+    assert_true(fabs(fc[0]) < weight && fabs(fc[1]) < weight);
+    dem_get_field(s, FIELD_X, x);
+    double top = 0;
+    for (int i = 0; i < 17; i++)
+        top = fmax(top, x[3 * i + 2] + R_BEAD);
+    printf("  column top at %.4g m\n", top);
+    for (int i = 0; i < 17; i++)
+        assert_true(sqrt(x[3 * i] * x[3 * i] + x[3 * i + 1] * x[3 * i + 1]) < R_DIE - R_BEAD + 1e-4);
+    /* the piston: rest, approach, press; its position follows the stages */
+    long rest = lround(0.30 / dt), s1 = lround(0.32 / dt), s2 = lround(0.175 / dt);
+    step_or_fail(s, rest + s1 - settle);
+    double p[3], fp[3], fpeak = 0;
+    for (long k = 0; k < s2 + 100; k += 100) { /* the press: largest force on the piston */
+        step_or_fail(s, 100);
+        dem_wall_force(s, 2, fp);
+        fpeak = fmax(fpeak, fp[2]);
+    }
+    dem_wall_position(s, 2, p);
+    double expect = 0.08 - 0.2 * s1 * dt - 0.02 * s2 * dt;
+    printf("  piston at %.9g m (expected %.9g), largest force while pressing %.4g N\n", p[2], expect, fpeak);
+    assert_true(fabs(p[2] - expect) < 1e-12);
+    assert_true(fpeak > weight); /* it pressed on the column */
+    dem_destroy(s);
+    dem_destroy(ref);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
