@@ -1,1 +1,167 @@
-int main(void) { return 0; }
+/* bench.c - `make bench`: particle-steps per second of a dense Hertz-Mindlin packing (frictional, damped, gravity,
+ * box of 6 walls), for the reference and every OpenCL device, fp32 and fp64, at N ~ 1e3, 1e4, 1e5, with the time
+ * spent in each kernel. Prints markdown tables. Not a test: nothing here passes or fails on speed.
+ *   DEM_BENCH_SIZES="8 17 37"   lattice sides (n = side^3 + (side-1)^3), default as shown
+ *   DEM_BENCH_QUICK=1           fewer steps */
+#include "dem.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+/* Large spheres (r 0.9-1 mm) on a cubic lattice touching, small ones (0.45-0.5 mm) in the body centres: solid
+ * fraction ~0.58, radius ratio > 2, ~6 contacts per large sphere. Glass-like density, E = 10 MPa, mu 0.4, e 0.6. */
+static dem_sim *packing(int side)
+{
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.6, 0.4});
+    double a = 2e-3, L = side * a;
+    unsigned st = 1;
+    for (int layer = 0; layer < 2; layer++) {
+        int q = side - layer;
+        for (int i = 0; i < q * q * q; i++) {
+            double off = layer ? 1.0 : 0.5;
+            double x[3] = {(i % q + off) * a, (i / q % q + off) * a, (i / (q * q) + off) * a}, v[3];
+            for (int d = 0; d < 3; d++) {
+                st = st * 1664525u + 1013904223u;
+                v[d] = 0.1 * ((st >> 8) / 8388608.0 - 1);
+            }
+            st = st * 1664525u + 1013904223u;
+            double u = (st >> 8) / 16777216.0;
+            dem_add_particle(s, x, v, layer ? 0.45e-3 + 0.05e-3 * u : 0.9e-3 + 0.1e-3 * u, m);
+        }
+    }
+    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int k = 0; k < 6; k++) {
+        dem_wall w = {.kind = DEM_WALL_PLANE, .material = m};
+        memcpy(w.normal, nrm[k], sizeof w.normal);
+        for (int d = 0; d < 3; d++)
+            w.point[d] = nrm[k][d] < 0 ? L : 0;
+        dem_add_wall(s, &w);
+    }
+    dem_set_gravity(s, (double[3]){0, 0, -9.81});
+    dem_set_domain(s, (double[3]){-0.1 * L, -0.1 * L, -0.1 * L}, (double[3]){1.1 * L, 1.1 * L, 1.1 * L});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    return s;
+}
+
+typedef struct {
+    double rate;
+    char desc[256];
+    char kernels[1024];
+} result;
+
+static int run(int side, dem_backend_kind kind, int device, dem_precision prec, long steps, int profile, result *r)
+{
+    if (profile)
+        setenv("DEM_PROFILE", "1", 1);
+    else
+        unsetenv("DEM_PROFILE");
+    dem_sim *s = packing(side);
+    dem_config c;
+    dem_config_default(&c);
+    c.backend = kind;
+    c.device = device;
+    c.precision = prec;
+    if (getenv("DEM_LOCAL_SIZE"))
+        c.local_size = (size_t)atol(getenv("DEM_LOCAL_SIZE"));
+    if (dem_start(s, &c) || dem_step(s, 20)) { /* warm-up: the first steps settle the lattice */
+        snprintf(r->desc, sizeof r->desc, "%s", dem_error(s));
+        dem_destroy(s);
+        return 1;
+    }
+    const char **names;
+    const double *secs0;
+    int cnt;
+    double before[32] = {0};
+    dem_kernel_times(s, &names, &secs0, &cnt);
+    for (int k = 0; k < cnt && k < 32; k++)
+        before[k] = secs0[k];
+    long rb = dem_rebuild_count(s);
+    double t0 = now();
+    int e = dem_step(s, steps);
+    double t = now() - t0;
+    if (e) {
+        snprintf(r->desc, sizeof r->desc, "%s", dem_error(s));
+        dem_destroy(s);
+        return 1;
+    }
+    r->rate = (double)dem_count(s) * steps / t;
+    snprintf(r->desc, sizeof r->desc, "%s", dem_describe(s));
+    r->kernels[0] = 0;
+    dem_kernel_times(s, &names, &secs0, &cnt);
+    size_t len = 0;
+    for (int k = 0; k < cnt && k < 32; k++) {
+        double us = 1e6 * (secs0[k] - before[k]) / steps;
+        if (us >= 0.05)
+            len += (size_t)snprintf(r->kernels + len, sizeof r->kernels - len, "%s%s %.1f", len ? ", " : "", names[k],
+                                    us);
+        if (len >= sizeof r->kernels)
+            break;
+    }
+    fprintf(stderr, "  n %d: %ld steps in %.2f s, %ld rebuilds\n", dem_count(s), steps, t, dem_rebuild_count(s) - rb);
+    dem_destroy(s);
+    return 0;
+}
+
+int main(void)
+{
+    int sides[8] = {8, 17, 37}, nsides = 3;
+    const char *env = getenv("DEM_BENCH_SIZES");
+    if (env) {
+        nsides = 0;
+        for (char *p = (char *)env; *p && nsides < 8;) {
+            char *end;
+            long v = strtol(p, &end, 10);
+            if (end == p)
+                break;
+            sides[nsides++] = (int)v;
+            p = end;
+        }
+    }
+    int quick = getenv("DEM_BENCH_QUICK") != NULL;
+    int ndev = dem_device_count();
+    printf("# libdem %s benchmark: dense Hertz-Mindlin packing (friction, damping, gravity, 6 walls)\n\n", DEM_VERSION);
+    for (int d = 0; d < ndev; d++) {
+        char name[256];
+        dem_device_name(d, name, sizeof name);
+        printf("OpenCL device %d: %s\n", d, name);
+    }
+    printf("\n| n | backend | precision | particle-steps/s | us per step by kernel |\n|---|---|---|---|---|\n");
+    for (int si = 0; si < nsides; si++) {
+        int side = sides[si], n = side * side * side + (side - 1) * (side - 1) * (side - 1);
+        long steps = (long)((quick ? 2e6 : 2e7) / n);
+        if (steps < 20)
+            steps = 20;
+        if (steps > 2000)
+            steps = 2000;
+        for (int b = -1; b < ndev; b++)
+            for (int p = 0; p < 2; p++) {
+                dem_precision prec = p ? DEM_FP64 : DEM_FP32;
+                result r, rp;
+                dem_backend_kind kind = b < 0 ? DEM_BACKEND_REFERENCE : DEM_BACKEND_OPENCL;
+                /* the rate from a run without profiling; the per-kernel split from a second, profiled run (an
+                 * OpenCL profiled run waits for every kernel, so it is slower overall) */
+                int e = run(side, kind, b < 0 ? 0 : b, prec, steps, 0, &r) ||
+                        run(side, kind, b < 0 ? 0 : b, prec, steps, kind == DEM_BACKEND_OPENCL, &rp);
+                memcpy(r.kernels, rp.kernels, sizeof r.kernels);
+                if (e)
+                    printf("| %d | %s | %s | failed: %s | |\n", n, b < 0 ? "reference" : "opencl", p ? "fp64" : "fp32",
+                           r.desc);
+                else
+                    printf("| %d | %s | %s | %.3g | %s |\n", n, r.desc, p ? "fp64" : "fp32", r.rate, r.kernels);
+                fflush(stdout);
+            }
+    }
+    return 0;
+}

@@ -72,11 +72,14 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
         int slot = i * maxn + k;
         int j = nbr_list[slot];
         int a = i < j ? i : j, b = i < j ? j : i;
-        pair_contact pc = pair_contact_eval(a, b, x, v, w, radius, invmass, mat, pairmat, nmat, dt,
-                                            v3_load(hist, slot));
-        v3_store(hist, slot, pc.hist);
-        if (!pc.active)
+        vec3 h = v3_load(hist, slot);
+        pair_contact pc = pair_contact_eval(a, b, x, v, w, radius, invmass, mat, pairmat, nmat, dt, h);
+        if (!pc.active) {
+            if (v3_nonzero_bits(h)) /* history ends with the contact; skip the store when it is already zero */
+                v3_store(hist, slot, v3_zero());
             continue;
+        }
+        v3_store(hist, slot, pc.hist);
         fi = i == a ? v3_add(fi, pc.force) : v3_sub(fi, pc.force);
         ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
     }

@@ -23,7 +23,7 @@ typedef double real;
 #else
 typedef float real;
 #endif
-#define DEM_INLINE inline
+#define DEM_INLINE static inline __attribute__((always_inline))
 #define DEM_GLOBAL __global
 #define DEM_CONST_GLOBAL __global const
 #define dem_sqrt(x) sqrt(x)

@@ -44,15 +44,18 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
 }
 
 /* One particle against every wall. Adds to force/torque (already holding the particle contacts), keeps each
- * wall's tangential history and stores the force on the particle from each wall for the reduction. */
+ * wall's tangential history and stores the force on the particle from each touching wall for the reduction.
+ * wall_mask[i] has bit k set when particle i touches wall k: only those entries of wall_pf are written and read,
+ * and the history of wall k is only touched when bit k is set now or was set in the previous step. */
 DEM_INLINE void wall_forces_item(int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                  DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *x,
                                  DEM_CONST_GLOBAL real *v, DEM_CONST_GLOBAL real *w,
                                  DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invmass,
                                  DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
                                  DEM_GLOBAL real *wall_hist, real dt, DEM_GLOBAL real *force,
-                                 DEM_GLOBAL real *torque, DEM_GLOBAL real *wall_pf)
+                                 DEM_GLOBAL real *torque, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask)
 {
+    unsigned old_mask = wall_mask[i], mask = 0;
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
     vec3 fi = v3_load(force, i), ti = v3_load(torque, i);
@@ -60,35 +63,37 @@ DEM_INLINE void wall_forces_item(int i, int n, int nwalls, DEM_CONST_GLOBAL int 
         DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
         int slot = i * nwalls + k;
         wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wr, xi, ri);
-        vec3 fk = v3_zero();
         if (g.active) {
             real arm = ri - g.delta;
             real mstar = hm_effective_mass(invmass[i], (real)0);
             vec3 vc = v3_add(v3_load(v, i), v3_cross(v3_load(w, i), v3_scale(g.n, -arm)));
             vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
             DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
-            hm_result r = hm_contact(g.n, g.delta, ri, mstar, vrel, pm, dt, v3_load(wall_hist, slot));
+            vec3 h = (old_mask >> k) & 1u ? v3_load(wall_hist, slot) : v3_zero();
+            hm_result r = hm_contact(g.n, g.delta, ri, mstar, vrel, pm, dt, h);
             v3_store(wall_hist, slot, r.hist);
-            fk = r.force;
-            fi = v3_add(fi, fk);
+            v3_store(wall_pf, k * n + i, r.force);
+            fi = v3_add(fi, r.force);
             ti = v3_sub(ti, v3_scale(v3_cross(g.n, r.ft), arm));
-        } else {
+            mask |= 1u << k;
+        } else if ((old_mask >> k) & 1u) {
             v3_store(wall_hist, slot, v3_zero());
         }
-        v3_store(wall_pf, k * n + i, fk);
     }
+    wall_mask[i] = mask;
     v3_store(force, i, fi);
     v3_store(torque, i, ti);
 }
 
 /* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK). */
 DEM_INLINE void wall_reduce_block_item(int b, int k, int n, int nblocks, DEM_CONST_GLOBAL real *wall_pf,
-                                       DEM_GLOBAL real *partial)
+                                       DEM_CONST_GLOBAL unsigned *wall_mask, DEM_GLOBAL real *partial)
 {
     vec3 s = v3_zero();
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     for (int i = b * DEM_REDUCE_BLOCK; i < end; i++)
-        s = v3_sub(s, v3_load(wall_pf, k * n + i)); /* the wall receives minus the force on the particle */
+        if ((wall_mask[i] >> k) & 1u) /* the wall receives minus the force on the particle */
+            s = v3_sub(s, v3_load(wall_pf, k * n + i));
     v3_store(partial, k * nblocks + b, s);
 }
 

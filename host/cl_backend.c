@@ -110,7 +110,7 @@ static void cl_destroy(dem_backend *b)
     if (b->q)
         clFinish(b->q);
     cl_mem *mems[] = {&b->x, &b->v, &b->w, &b->f, &b->t, &b->radius, &b->invm, &b->invi, &b->x_build, &b->mat,
-                      &b->pairmat, &b->wall_int, &b->wall_real, &b->wall_hist, &b->wall_pf, &b->partial,
+                      &b->pairmat, &b->wall_int, &b->wall_real, &b->wall_hist, &b->wall_pf, &b->wall_mask, &b->partial,
                       &b->wall_force, &b->cell_of, &b->cell_count, &b->cell_start, &b->cell_fill,
                       &b->cell_particles, &b->block_sum, &b->flags, &b->count[0], &b->count[1], &b->list[0],
                       &b->list[1], &b->hist[0], &b->hist[1]};
@@ -245,6 +245,7 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
     b->wall_real = mkbuf(b, (size_t)W_STRIDE * s->nwalls * r, s->nwalls ? s->wall_real : NULL, &fail);
     b->wall_hist = mkbuf(b, 3 * N * s->nwalls * r, NULL, &fail);
     b->wall_pf = mkbuf(b, 3 * N * s->nwalls * r, NULL, &fail);
+    b->wall_mask = mkbuf(b, N * sizeof(unsigned), NULL, &fail);
     b->partial = mkbuf(b, 3 * (size_t)b->nblocks_red * s->nwalls * r, NULL, &fail);
     b->wall_force = mkbuf(b, 3 * (size_t)s->nwalls * r, NULL, &fail);
     b->cell_of = mkbuf(b, N * sizeof(int), NULL, &fail);

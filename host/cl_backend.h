@@ -24,7 +24,7 @@ struct dem_backend {
     int rs;                 /* real size in bytes */
     int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, ncx, ncy, ncz;
     double dt, skin, half_skin2, inv_cell, lo[3], g[3];
-    cl_mem x, v, w, f, t, radius, invm, invi, x_build, mat, pairmat, wall_int, wall_real, wall_hist, wall_pf,
+    cl_mem x, v, w, f, t, radius, invm, invi, x_build, mat, pairmat, wall_int, wall_real, wall_hist, wall_pf, wall_mask,
         partial, wall_force, cell_of, cell_count, cell_start, cell_fill, cell_particles, block_sum, flags;
     int maxn[2];
     cl_mem count[2], list[2], hist[2];

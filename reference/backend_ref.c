@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include "ref_kernels.h"
 #include "dem_layout.h"
 #include "backend.h"
@@ -15,6 +16,7 @@ struct dem_backend {
     real *x, *v, *w, *f, *t, *radius, *invm, *invi, *x_build;
     int *mat;
     real *pairmat, *wall_real, *wall_hist, *wall_pf, *partial, *wall_force;
+    unsigned *wall_mask;
     int *wall_int;
     int *cell_of, *cell_count, *cell_start, *cell_fill, *cell_particles, *block_sum;
     int maxn[2];    /* capacity of each row set */
@@ -22,8 +24,26 @@ struct dem_backend {
     real *hist[2];
     int cur;        /* the row set in use; 1-cur is built into */
     int flags[FLAG_COUNT];
+    double ktime[7]; /* seconds per step kind, see step_names */
     char err[256];
 };
+
+/* Time per step kind, for `make bench` (the reference has no kernels; these are its loops). */
+enum { T_KICK_DRIFT, T_BIN, T_NBR_BUILD, T_NBR_CARRY, T_CONTACT, T_WALL, T_KICK, T__COUNT };
+static const char *const step_names[T__COUNT] = {"integrate_kick_drift", "binning", "nbr_build", "nbr_carry",
+                                                 "contact_forces", "wall_forces", "integrate_kick"};
+static double wall_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+#define TIMED(b, id, stmt)                                                                                           \
+    do {                                                                                                             \
+        double t0_ = wall_now();                                                                                     \
+        stmt;                                                                                                        \
+        (b)->ktime[id] += wall_now() - t0_;                                                                          \
+    } while (0)
 
 static void *zalloc(size_t n, size_t size) { return calloc(n ? n : 1, size); }
 
@@ -32,7 +52,7 @@ static void ref_destroy(dem_backend *b)
     if (!b)
         return;
     void *ptrs[] = {b->x, b->v, b->w, b->f, b->t, b->radius, b->invm, b->invi, b->x_build, b->mat, b->pairmat,
-                    b->wall_real, b->wall_hist, b->wall_pf, b->partial, b->wall_force, b->wall_int, b->cell_of,
+                    b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask, b->partial, b->wall_force, b->wall_int, b->cell_of,
                     b->cell_count, b->cell_start, b->cell_fill, b->cell_particles, b->block_sum, b->count[0],
                     b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1]};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++)
@@ -88,6 +108,7 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
     b->wall_int = zalloc((size_t)WI_STRIDE * s->nwalls, sizeof(int));
     b->wall_hist = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
     b->wall_pf = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
+    b->wall_mask = zalloc((size_t)n, sizeof(unsigned));
     b->partial = zalloc(3 * (size_t)b->nblocks_red * s->nwalls, sizeof(real));
     b->wall_force = zalloc(3 * (size_t)s->nwalls, sizeof(real));
     b->cell_of = zalloc((size_t)n, sizeof(int));
@@ -103,7 +124,7 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         b->hist[k] = zalloc(3 * (size_t)n * s->maxn, sizeof(real));
     }
     if (!b->x || !b->v || !b->w || !b->f || !b->t || !b->radius || !b->invm || !b->invi || !b->x_build || !b->mat ||
-        !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->partial ||
+        !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->wall_mask || !b->partial ||
         !b->wall_force || !b->cell_of || !b->cell_count || !b->cell_start || !b->cell_fill || !b->cell_particles ||
         !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1])
         goto nomem;
@@ -136,19 +157,22 @@ static int ref_reset_flags(dem_backend *b)
 
 static int ref_kick_drift(dem_backend *b)
 {
-    REF(ref_integrate_kick_drift)(b->n, b->dt, b->g, b->half_skin2, b->x, b->v, b->w, b->f, b->t, b->invm, b->invi,
-                                  b->x_build, b->flags);
+    TIMED(b, T_KICK_DRIFT,
+          REF(ref_integrate_kick_drift)(b->n, b->dt, b->g, b->half_skin2, b->x, b->v, b->w, b->f, b->t, b->invm,
+                                        b->invi, b->x_build, b->flags));
     return 0;
 }
 
 static int ref_bin(dem_backend *b)
 {
+    double t0 = wall_now();
     memset(b->cell_count, 0, (size_t)b->ncells * sizeof(int));
     memset(b->cell_fill, 0, (size_t)b->ncells * sizeof(int));
     REF(ref_bin_index)(b->n, b->lo, b->inv_cell, b->ncx, b->ncy, b->ncz, b->x, b->cell_of, b->cell_count, b->flags);
     REF(ref_scan)(b->ncells, b->cell_count, b->block_sum, b->cell_start);
     REF(ref_bin_scatter)(b->n, b->cell_of, b->cell_start, b->cell_fill, b->cell_particles);
     REF(ref_bin_sort)(b->ncells, b->cell_start, b->cell_particles);
+    b->ktime[T_BIN] += wall_now() - t0;
     return 0;
 }
 
@@ -176,16 +200,18 @@ static int ref_nbr_reserve(dem_backend *b, int maxn)
 static int ref_nbr_build(dem_backend *b)
 {
     int k = 1 - b->cur;
-    REF(ref_nbr_build)(b->n, b->maxn[k], b->skin, b->ncx, b->ncy, b->ncz, b->x, b->radius, b->cell_of, b->cell_start,
-                       b->cell_particles, b->count[k], b->list[k], b->flags);
+    TIMED(b, T_NBR_BUILD,
+          REF(ref_nbr_build)(b->n, b->maxn[k], b->skin, b->ncx, b->ncy, b->ncz, b->x, b->radius, b->cell_of,
+                             b->cell_start, b->cell_particles, b->count[k], b->list[k], b->flags));
     return 0;
 }
 
 static int ref_nbr_commit(dem_backend *b)
 {
     int k = 1 - b->cur, o = b->cur;
-    REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o], b->hist[o],
-                       b->hist[k]);
+    TIMED(b, T_NBR_CARRY,
+          REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
+                             b->hist[o], b->hist[k]));
     b->cur = k;
     memcpy(b->x_build, b->x, 3 * (size_t)b->n * sizeof(real));
     return 0;
@@ -194,22 +220,25 @@ static int ref_nbr_commit(dem_backend *b)
 static int ref_contact_forces(dem_backend *b)
 {
     int k = b->cur;
-    REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
-                            b->pairmat, b->count[k], b->list[k], b->hist[k], b->f, b->t);
+    TIMED(b, T_CONTACT,
+          REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
+                                  b->pairmat, b->count[k], b->list[k], b->hist[k], b->f, b->t));
     return 0;
 }
 
 static int ref_wall_forces(dem_backend *b)
 {
+    double t0 = wall_now();
     REF(ref_wall_forces)(b->n, b->nwalls, b->nmat, b->dt, b->wall_int, b->wall_real, b->x, b->v, b->w, b->radius,
-                         b->invm, b->mat, b->pairmat, b->wall_hist, b->f, b->t, b->wall_pf);
-    REF(ref_wall_reduce)(b->n, b->nwalls, b->nblocks_red, b->wall_pf, b->partial, b->wall_force);
+                         b->invm, b->mat, b->pairmat, b->wall_hist, b->f, b->t, b->wall_pf, b->wall_mask);
+    REF(ref_wall_reduce)(b->n, b->nwalls, b->nblocks_red, b->wall_pf, b->wall_mask, b->partial, b->wall_force);
+    b->ktime[T_WALL] += wall_now() - t0;
     return 0;
 }
 
 static int ref_kick(dem_backend *b)
 {
-    REF(ref_integrate_kick)(b->n, b->dt, b->g, b->v, b->w, b->f, b->t, b->invm, b->invi);
+    TIMED(b, T_KICK, REF(ref_integrate_kick)(b->n, b->dt, b->g, b->v, b->w, b->f, b->t, b->invm, b->invi));
     return 0;
 }
 
@@ -264,6 +293,14 @@ static int ref_write(dem_backend *b, dem_field f, const void *src, size_t bytes)
 
 static int ref_finish(dem_backend *b) { (void)b; return 0; }
 
+static int ref_kernel_times(dem_backend *b, const char ***names, const double **seconds, int *count)
+{
+    *names = (const char **)step_names;
+    *seconds = b->ktime;
+    *count = T__COUNT;
+    return 0;
+}
+
 const dem_backend_ops REF(dem_reference_ops) = {
     .name = sizeof(real) == 8 ? "reference-fp64" : "reference-fp32",
     .create = ref_create,
@@ -282,5 +319,5 @@ const dem_backend_ops REF(dem_reference_ops) = {
     .read = ref_read,
     .write = ref_write,
     .finish = ref_finish,
-    .kernel_times = NULL,
+    .kernel_times = ref_kernel_times,
 };

@@ -32,8 +32,9 @@ void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, 
 void REF(ref_wall_forces)(int n, int nwalls, int nmat, real dt, const int *wall_int, const real *wall_real,
                           const real *x, const real *v, const real *w, const real *radius, const real *invmass,
                           const int *mat, const real *pairmat, real *wall_hist, real *force, real *torque,
-                          real *wall_pf);
-void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, real *partial, real *wall_force);
+                          real *wall_pf, unsigned *wall_mask);
+void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, const unsigned *wall_mask,
+                          real *partial, real *wall_force);
 /* integrate.c */
 void REF(ref_integrate_kick_drift)(int n, real dt, vec3 g, real half_skin2, real *x, real *v, real *w,
                                    const real *force, const real *torque, const real *invmass,
