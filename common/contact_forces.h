@@ -6,12 +6,15 @@
  * so particle b adds exactly the negation of what particle a adds: f_ji = -f_ij bitwise, and no scatter or atomics.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
  *
+ * Walls (wall_forces.h) follow the particle contacts, in wall index order.
+ *
  * Torque: the contact point lies a distance (r - d/2) from each centre along the line of centres, so the torque on
  * either particle g is -(r_g - d/2) (n x f_t) with n from b to a (seed 000, Eq. 1 branch vector).
  */
 #ifndef DEM_CONTACT_FORCES_H
 #define DEM_CONTACT_FORCES_H
 #include "hertz_mindlin.h"
+#include "wall_forces.h"
 
 typedef struct {
     int active;  /* 1 when the spheres overlap */
@@ -63,7 +66,10 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                     DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                                     DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist, real dt,
-                                    DEM_GLOBAL real *force, DEM_GLOBAL real *torque)
+                                    DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
+                                    DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                    DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
+                                    DEM_GLOBAL unsigned *wall_mask)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i];
@@ -83,6 +89,9 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
         fi = i == a ? v3_add(fi, pc.force) : v3_sub(fi, pc.force);
         ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
     }
+    if (nwalls > 0)
+        wall_contacts_add(i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
+                          invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, &fi, &ti);
     v3_store(force, i, fi);
     v3_store(torque, i, ti);
 }

@@ -4,7 +4,8 @@
  * A wall is a rigid body of infinite mass and radius: r* = r_i, m* = m_i, the contact point lies on the wall
  * surface (lever arm r_i - d). The same Hertz-Mindlin law as between particles (hertz_mindlin.h) is used with the
  * wall's own material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
- * the summation order of every particle's force.
+ * the summation order of every particle's force. The force each wall receives is then summed over particles in
+ * fixed blocks (wall_reduce_*), the same way on every device.
  */
 #ifndef DEM_WALL_FORCES_H
 #define DEM_WALL_FORCES_H
@@ -43,46 +44,40 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
     return g;
 }
 
-/* One particle against every wall. Adds to force/torque (already holding the particle contacts), keeps each
- * wall's tangential history and stores the force on the particle from each touching wall for the reduction.
+/* One particle against every wall, added to its force and torque after all its particle contacts (called by
+ * contact_forces_item, so the particle's data are read and its sums written once per step). Keeps each wall's
+ * tangential history and stores the force on the particle from each touching wall for the reduction.
  * wall_mask[i] has bit k set when particle i touches wall k: only those entries of wall_pf are written and read,
  * and the history of wall k is only touched when bit k is set now or was set in the previous step. */
-DEM_INLINE void wall_forces_item(int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
-                                 DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *x,
-                                 DEM_CONST_GLOBAL real *v, DEM_CONST_GLOBAL real *w,
-                                 DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invmass,
-                                 DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
-                                 DEM_GLOBAL real *wall_hist, real dt, DEM_GLOBAL real *force,
-                                 DEM_GLOBAL real *torque, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask)
+DEM_INLINE void wall_contacts_add(int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+                                  DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri, real invm,
+                                  int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
+                                  real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask, vec3 *fi,
+                                  vec3 *ti)
 {
     unsigned old_mask = wall_mask[i], mask = 0;
-    vec3 xi = v3_load(x, i);
-    real ri = radius[i];
-    vec3 fi = v3_load(force, i), ti = v3_load(torque, i);
     for (int k = 0; k < nwalls; k++) {
         DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
         int slot = i * nwalls + k;
         wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wr, xi, ri);
         if (g.active) {
             real arm = ri - g.delta;
-            real mstar = hm_effective_mass(invmass[i], (real)0);
-            vec3 vc = v3_add(v3_load(v, i), v3_cross(v3_load(w, i), v3_scale(g.n, -arm)));
+            real mstar = hm_effective_mass(invm, (real)0);
+            vec3 vc = v3_add(vi, v3_cross(wi, v3_scale(g.n, -arm)));
             vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
-            DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
+            DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
             vec3 h = (old_mask >> k) & 1u ? v3_load(wall_hist, slot) : v3_zero();
             hm_result r = hm_contact(g.n, g.delta, ri, mstar, vrel, pm, dt, h);
             v3_store(wall_hist, slot, r.hist);
             v3_store(wall_pf, k * n + i, r.force);
-            fi = v3_add(fi, r.force);
-            ti = v3_sub(ti, v3_scale(v3_cross(g.n, r.ft), arm));
+            *fi = v3_add(*fi, r.force);
+            *ti = v3_sub(*ti, v3_scale(v3_cross(g.n, r.ft), arm));
             mask |= 1u << k;
         } else if ((old_mask >> k) & 1u) {
             v3_store(wall_hist, slot, v3_zero());
         }
     }
     wall_mask[i] = mask;
-    v3_store(force, i, fi);
-    v3_store(torque, i, ti);
 }
 
 /* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK). */

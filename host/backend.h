@@ -48,8 +48,8 @@ typedef struct {
     int (*nbr_reserve)(dem_backend *b, int maxn);  /* capacity of the rows being built */
     int (*nbr_build)(dem_backend *b);
     int (*nbr_commit)(dem_backend *b);             /* carry history, make the new rows current, save x_build */
-    int (*contact_forces)(dem_backend *b);
-    int (*wall_forces)(dem_backend *b);            /* also reduces the wall forces */
+    int (*contact_forces)(dem_backend *b);         /* particle and wall contacts */
+    int (*wall_reduce)(dem_backend *b);            /* the force each wall received (contacts: contact_forces) */
     int (*kick)(dem_backend *b);
     int (*read)(dem_backend *b, dem_field f, void *dst, size_t bytes);
     int (*write)(dem_backend *b, dem_field f, const void *src, size_t bytes);

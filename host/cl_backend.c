@@ -8,7 +8,7 @@
 
 static const char *const kernel_names[K__COUNT] = {
     "bin_index", "scan_block_sum", "scan_block_sums", "scan_apply", "bin_scatter", "bin_sort",
-    "nbr_build", "nbr_carry", "contact_forces", "wall_forces", "wall_reduce_block", "wall_reduce_final",
+    "nbr_build", "nbr_carry", "contact_forces", "wall_reduce_block", "wall_reduce_final",
     "integrate_kick_drift", "integrate_kick"};
 
 static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighbor.cl", "kernels/contact_forces.cl",
@@ -380,7 +380,7 @@ const dem_backend_ops dem_opencl_ops = {
     .nbr_build = clb_nbr_build,
     .nbr_commit = cl_nbr_commit,
     .contact_forces = clb_contact_forces,
-    .wall_forces = clb_wall_forces,
+    .wall_reduce = clb_wall_reduce,
     .kick = clb_integrate_kick,
     .read = cl_read,
     .write = cl_write,

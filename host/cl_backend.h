@@ -8,7 +8,7 @@
 
 typedef enum {
     K_BIN_INDEX, K_SCAN_BLOCK_SUM, K_SCAN_BLOCK_SUMS, K_SCAN_APPLY, K_BIN_SCATTER, K_BIN_SORT,
-    K_NBR_BUILD, K_NBR_CARRY, K_CONTACT_FORCES, K_WALL_FORCES, K_WALL_REDUCE_BLOCK, K_WALL_REDUCE_FINAL,
+    K_NBR_BUILD, K_NBR_CARRY, K_CONTACT_FORCES, K_WALL_REDUCE_BLOCK, K_WALL_REDUCE_FINAL,
     K_KICK_DRIFT, K_KICK, K__COUNT
 } kernel_id;
 
@@ -48,5 +48,5 @@ int clb_bin(dem_backend *b);
 int clb_nbr_build(dem_backend *b);
 int clb_nbr_carry(dem_backend *b);
 int clb_contact_forces(dem_backend *b);
-int clb_wall_forces(dem_backend *b);
+int clb_wall_reduce(dem_backend *b);
 #endif

@@ -1,4 +1,4 @@
-/* contact_forces.c - host driver of kernels/contact_forces.cl (particle contacts, per-particle sums). */
+/* contact_forces.c - host driver of kernels/contact_forces.cl (particle and wall contacts, per-particle sums). */
 #include "cl_backend.h"
 
 int clb_contact_forces(dem_backend *b)
@@ -10,5 +10,8 @@ int clb_contact_forces(dem_backend *b)
            clb_arg_mem(b, k, 6, b->w) || clb_arg_mem(b, k, 7, b->radius) || clb_arg_mem(b, k, 8, b->invm) ||
            clb_arg_mem(b, k, 9, b->mat) || clb_arg_mem(b, k, 10, b->pairmat) || clb_arg_mem(b, k, 11, b->count[s]) ||
            clb_arg_mem(b, k, 12, b->list[s]) || clb_arg_mem(b, k, 13, b->hist[s]) || clb_arg_mem(b, k, 14, b->f) ||
-           clb_arg_mem(b, k, 15, b->t) || clb_launch(b, K_CONTACT_FORCES, (size_t)b->n);
+           clb_arg_mem(b, k, 15, b->t) || clb_arg_int(b, k, 16, b->nwalls) || clb_arg_mem(b, k, 17, b->wall_int) ||
+           clb_arg_mem(b, k, 18, b->wall_real) || clb_arg_mem(b, k, 19, b->wall_hist) ||
+           clb_arg_mem(b, k, 20, b->wall_pf) || clb_arg_mem(b, k, 21, b->wall_mask) ||
+           clb_launch(b, K_CONTACT_FORCES, (size_t)b->n);
 }

@@ -242,7 +242,7 @@ static int forces(dem_sim *s)
 {
     if (s->ops->contact_forces(s->be))
         return be_fail(s);
-    if (s->nwalls && s->ops->wall_forces(s->be))
+    if (s->nwalls && s->ops->wall_reduce(s->be))
         return be_fail(s);
     return 0;
 }

@@ -1,4 +1,4 @@
-/* contact_forces.cl - Hertz-Mindlin particle contacts summed per particle (common/contact_forces.h).
+/* contact_forces.cl - Hertz-Mindlin particle and wall contacts summed per particle (common/contact_forces.h).
  * Twin: reference/contact_forces.c */
 #include "contact_forces.h"
 
@@ -6,10 +6,12 @@ __kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const 
                              __global const real *w, __global const real *radius, __global const real *invmass,
                              __global const int *mat, __global const real *pairmat, __global const int *nbr_count,
                              __global const int *nbr_list, __global real *hist, __global real *force,
-                             __global real *torque)
+                             __global real *torque, int nwalls, __global const int *wall_int,
+                             __global const real *wall_real, __global real *wall_hist, __global real *wall_pf,
+                             __global unsigned *wall_mask)
 {
     int i = get_global_id(0);
     if (i < n)
         contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, dt,
-                            force, torque);
+                            force, torque, n, nwalls, wall_int, wall_real, wall_hist, wall_pf, wall_mask);
 }

@@ -31,7 +31,7 @@ struct dem_backend {
 /* Time per step kind, for `make bench` (the reference has no kernels; these are its loops). */
 enum { T_KICK_DRIFT, T_BIN, T_NBR_BUILD, T_NBR_CARRY, T_CONTACT, T_WALL, T_KICK, T__COUNT };
 static const char *const step_names[T__COUNT] = {"integrate_kick_drift", "binning", "nbr_build", "nbr_carry",
-                                                 "contact_forces", "wall_forces", "integrate_kick"};
+                                                 "contact_forces", "wall_reduce", "integrate_kick"};
 static double wall_now(void)
 {
     struct timespec t;
@@ -222,15 +222,14 @@ static int ref_contact_forces(dem_backend *b)
     int k = b->cur;
     TIMED(b, T_CONTACT,
           REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
-                                  b->pairmat, b->count[k], b->list[k], b->hist[k], b->f, b->t));
+                                  b->pairmat, b->count[k], b->list[k], b->hist[k], b->f, b->t, b->nwalls,
+                                  b->wall_int, b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask));
     return 0;
 }
 
-static int ref_wall_forces(dem_backend *b)
+static int ref_wall_reduce(dem_backend *b)
 {
     double t0 = wall_now();
-    REF(ref_wall_forces)(b->n, b->nwalls, b->nmat, b->dt, b->wall_int, b->wall_real, b->x, b->v, b->w, b->radius,
-                         b->invm, b->mat, b->pairmat, b->wall_hist, b->f, b->t, b->wall_pf, b->wall_mask);
     REF(ref_wall_reduce)(b->n, b->nwalls, b->nblocks_red, b->wall_pf, b->wall_mask, b->partial, b->wall_force);
     b->ktime[T_WALL] += wall_now() - t0;
     return 0;
@@ -314,7 +313,7 @@ const dem_backend_ops REF(dem_reference_ops) = {
     .nbr_build = ref_nbr_build,
     .nbr_commit = ref_nbr_commit,
     .contact_forces = ref_contact_forces,
-    .wall_forces = ref_wall_forces,
+    .wall_reduce = ref_wall_reduce,
     .kick = ref_kick,
     .read = ref_read,
     .write = ref_write,

@@ -27,12 +27,10 @@ void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, con
 /* contact_forces.c */
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
-                             const int *nbr_count, const int *nbr_list, real *hist, real *force, real *torque);
+                             const int *nbr_count, const int *nbr_list, real *hist, real *force, real *torque,
+                             int nwalls, const int *wall_int, const real *wall_real, real *wall_hist, real *wall_pf,
+                             unsigned *wall_mask);
 /* wall_forces.c */
-void REF(ref_wall_forces)(int n, int nwalls, int nmat, real dt, const int *wall_int, const real *wall_real,
-                          const real *x, const real *v, const real *w, const real *radius, const real *invmass,
-                          const int *mat, const real *pairmat, real *wall_hist, real *force, real *torque,
-                          real *wall_pf, unsigned *wall_mask);
 void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, const unsigned *wall_mask,
                           real *partial, real *wall_force);
 /* integrate.c */
