@@ -51,6 +51,9 @@ typedef struct {
     int (*contact_forces)(dem_backend *b);         /* particle and wall contacts */
     int (*wall_reduce)(dem_backend *b);            /* the force each wall received (contacts: contact_forces) */
     int (*kick)(dem_backend *b);
+    /* New wall positions and velocities (real[W_STRIDE*nwalls]). May return before the copy is done: the caller
+     * keeps src unchanged until its next blocking call (the driver's flag read follows at once). */
+    int (*set_walls)(dem_backend *b, const void *src);
     int (*read)(dem_backend *b, dem_field f, void *dst, size_t bytes);
     int (*write)(dem_backend *b, dem_field f, const void *src, size_t bytes);
     int (*finish)(dem_backend *b);                 /* wait for queued work (timing) */

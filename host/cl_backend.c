@@ -275,12 +275,21 @@ fail:
 static const char *cl_error(dem_backend *b) { return b->err; }
 static const char *cl_describe(dem_backend *b) { return b->desc; }
 
+/* Non-blocking: the source is static, and the driver's next flag read waits for the queue anyway. */
 static int cl_reset_flags(dem_backend *b)
 {
-    int init[FLAG_COUNT] = {0};
-    init[FLAG_OUT_OF_DOMAIN] = DEM_NO_PARTICLE;
-    return cl_check(clEnqueueWriteBuffer(b->q, b->flags, CL_TRUE, 0, sizeof init, init, 0, NULL, NULL),
+    static const int init[FLAG_COUNT] = {0, DEM_NO_PARTICLE, 0, 0};
+    return cl_check(clEnqueueWriteBuffer(b->q, b->flags, CL_FALSE, 0, sizeof init, init, 0, NULL, NULL),
                     "write flags", b->err, sizeof b->err);
+}
+
+static int cl_set_walls(dem_backend *b, const void *src)
+{
+    size_t bytes = (size_t)W_STRIDE * b->nwalls * b->rs;
+    if (bytes == 0)
+        return 0;
+    return cl_check(clEnqueueWriteBuffer(b->q, b->wall_real, CL_FALSE, 0, bytes, src, 0, NULL, NULL),
+                    "write walls", b->err, sizeof b->err);
 }
 
 static int cl_nbr_reserve(dem_backend *b, int maxn)
@@ -382,6 +391,7 @@ const dem_backend_ops dem_opencl_ops = {
     .contact_forces = clb_contact_forces,
     .wall_reduce = clb_wall_reduce,
     .kick = clb_integrate_kick,
+    .set_walls = cl_set_walls,
     .read = cl_read,
     .write = cl_write,
     .finish = cl_finish,

@@ -278,7 +278,6 @@ int dem_step(dem_sim *s, long nsteps)
 {
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    int rs = s->setup.real_size;
     for (long k = 0; k < nsteps; k++) {
         int flags[FLAG_COUNT], e;
         if (s->ops->reset_flags(s->be) || s->ops->kick_drift(s->be))
@@ -292,7 +291,7 @@ int dem_step(dem_sim *s, long nsteps)
                     s->wall_pos[w][d] += v[d] * s->dt;
             }
             sim_pack_walls(s);
-            if (s->ops->write(s->be, FIELD_WALL_REAL, s->wall_real, (size_t)W_STRIDE * s->nwalls * rs))
+            if (s->ops->set_walls(s->be, s->wall_real))
                 return be_fail(s);
         }
         if (read_flags(s, flags))

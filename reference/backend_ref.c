@@ -292,6 +292,12 @@ static int ref_write(dem_backend *b, dem_field f, const void *src, size_t bytes)
 
 static int ref_finish(dem_backend *b) { (void)b; return 0; }
 
+static int ref_set_walls(dem_backend *b, const void *src)
+{
+    memcpy(b->wall_real, src, (size_t)W_STRIDE * b->nwalls * sizeof(real));
+    return 0;
+}
+
 static int ref_kernel_times(dem_backend *b, const char ***names, const double **seconds, int *count)
 {
     *names = (const char **)step_names;
@@ -315,6 +321,7 @@ const dem_backend_ops REF(dem_reference_ops) = {
     .contact_forces = ref_contact_forces,
     .wall_reduce = ref_wall_reduce,
     .kick = ref_kick,
+    .set_walls = ref_set_walls,
     .read = ref_read,
     .write = ref_write,
     .finish = ref_finish,
