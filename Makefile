@@ -7,7 +7,9 @@
 CC      ?= cc
 BUILD   := build
 # Bit equality rules: no FP contraction, no fast-math, no -march=native (see common/dem_real.h).
-CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -ffp-contract=off -fno-fast-math -D_GNU_SOURCE \
+# -fno-math-errno only drops the errno branch around sqrt; results are unchanged (IEEE sqrt either way).
+CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -ffp-contract=off -fno-fast-math -fno-math-errno \
+           -D_GNU_SOURCE \
            -DCL_TARGET_OPENCL_VERSION=120 -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' \
            -Iinclude -Icommon -Ihost -Ireference
 LDLIBS  := -lOpenCL -lm

@@ -5,6 +5,8 @@
  * both of its particles, with bit-identical inputs (the two copies of the pair's history are equal by construction),
  * so particle b adds exactly the negation of what particle a adds: f_ji = -f_ij bitwise, and no scatter or atomics.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
+ * touch[slot] says whether the pair touched in the previous step; the 24-byte history is read only then and is
+ * zero otherwise, so a step reads one byte, not one history, per listed pair that does not touch.
  *
  * Walls (wall_forces.h) follow the particle contacts, in wall index order.
  *
@@ -27,7 +29,8 @@ typedef struct {
 DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
-                                          DEM_CONST_GLOBAL real *pairmat, int nmat, real dt, vec3 hist)
+                                          DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
+                                          DEM_CONST_GLOBAL real *hist, int slot, int touching)
 {
     pair_contact pc;
     vec3 d = v3_sub(v3_load(x, a), v3_load(x, b));
@@ -52,8 +55,10 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n */
     vec3 vca = v3_add(v3_load(v, a), v3_cross(v3_load(w, a), v3_scale(n, -arm_a)));
     vec3 vcb = v3_add(v3_load(v, b), v3_cross(v3_load(w, b), v3_scale(n, arm_b)));
+    /* the stored history is read only for a pair that touched in the previous step (otherwise it is zero) */
+    vec3 h = touching ? v3_load(hist, slot) : v3_zero();
     hm_result r = hm_contact(n, delta, rstar, mstar, v3_sub(vca, vcb), pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]),
-                             dt, hist);
+                             dt, h);
     pc.delta = delta;
     pc.force = r.force;
     pc.c = v3_cross(n, r.ft);
@@ -65,7 +70,8 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
                                     DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                     DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                    DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist, real dt,
+                                    DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist,
+                                    DEM_GLOBAL unsigned char *touch, real dt,
                                     DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
                                     DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
                                     DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
@@ -78,14 +84,19 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
         int slot = i * maxn + k;
         int j = nbr_list[slot];
         int a = i < j ? i : j, b = i < j ? j : i;
-        vec3 h = v3_load(hist, slot);
-        pair_contact pc = pair_contact_eval(a, b, x, v, w, radius, invmass, mat, pairmat, nmat, dt, h);
+        int touching = touch[slot];
+        pair_contact pc = pair_contact_eval(a, b, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
+                                            touching);
         if (!pc.active) {
-            if (v3_nonzero_bits(h)) /* history ends with the contact; skip the store when it is already zero */
+            if (touching) { /* the contact ended: so does its history */
                 v3_store(hist, slot, v3_zero());
+                touch[slot] = 0;
+            }
             continue;
         }
         v3_store(hist, slot, pc.hist);
+        if (!touching)
+            touch[slot] = 1;
         fi = i == a ? v3_add(fi, pc.force) : v3_sub(fi, pc.force);
         ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
     }

@@ -12,8 +12,9 @@ enum {
     PM_ESTAR = 0, /* effective Young's modulus E*  [Pa]   (seed 000 Eq. 3) */
     PM_GSTAR = 1, /* effective shear modulus G*    [Pa]   (seed 000 Eq. 5) */
     PM_MU = 2,    /* Coulomb friction coefficient  [-] */
-    PM_DAMP = 3,  /* damping factor c in f_d = -c sqrt(S m*) v, calibrated from restitution [-] */
-    PM_STRIDE = 4
+    PM_DAMP_N = 3, /* c sqrt(2 E*): normal damping is -PM_DAMP_N sqrt(sqrt(r* d) m*) v_n   [sqrt(Pa)] */
+    PM_DAMP_T = 4, /* c sqrt(8 G*): tangential damping is -PM_DAMP_T sqrt(sqrt(r* d) m*) v_t [sqrt(Pa)] */
+    PM_STRIDE = 5  /* c: damping factor calibrated from restitution (host/restitution.c) */
 };
 
 /* Wall geometry and motion, real part (index w*W_STRIDE + ...). */

@@ -11,7 +11,9 @@
  * Damping: the form is LIGGGHTS' (c = 2 sqrt(5/6) beta). The coefficient c is NOT beta = ln e/sqrt(ln^2 e + pi^2)
  *          (that is exact only for a linear spring); the host solves the dimensionless Hertz collision for the c
  *          that gives the requested restitution e (host/restitution.c). c depends on e alone, so e is velocity
- *          independent. c is a table entry: no transcendental function is evaluated on the device.
+ *          independent. Since S_n = 2 E* sqrt(r* d) and k_t = 8 G* sqrt(r* d), both damping terms share
+ *          q = sqrt(sqrt(r* d) m*); the pair table holds c sqrt(2 E*) and c sqrt(8 G*) (host-computed), so one
+ *          square root serves both and no transcendental function is evaluated on the device.
  *
  * Conventions: body a and body b; n is the unit vector from b to a; d > 0 the overlap; vrel the velocity of a's
  * contact point relative to b's. Returned forces act on a (b receives the negative).
@@ -42,23 +44,23 @@ DEM_INLINE vec3 hm_rotate_history(vec3 h, vec3 n)
 DEM_INLINE hm_result hm_contact(vec3 n, real delta, real rstar, real mstar, vec3 vrel,
                                 DEM_CONST_GLOBAL real *pm, real dt, vec3 hist)
 {
-    const real estar = pm[PM_ESTAR], gstar = pm[PM_GSTAR], mu = pm[PM_MU], damp = pm[PM_DAMP];
+    const real estar = pm[PM_ESTAR], gstar = pm[PM_GSTAR], mu = pm[PM_MU];
     const real four_thirds = (real)4 / (real)3;
     hm_result r;
     real srd = dem_sqrt(rstar * delta); /* sqrt(r* d) */
+    real q = dem_sqrt(srd * mstar);      /* sqrt(sqrt(r* d) m*), shared by both damping terms */
     real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
     vec3 vt = v3_sub(vrel, v3_scale(n, vn));
 
     /* normal */
-    real sn = (real)2 * estar * srd;
-    real fn = four_thirds * estar * srd * delta - damp * dem_sqrt(sn * mstar) * vn;
+    real fn = four_thirds * estar * srd * delta - pm[PM_DAMP_N] * q * vn;
     if (fn < (real)0)
         fn = (real)0;
 
     /* tangential */
     real kt = (real)8 * gstar * srd;
     vec3 ft_el = v3_sub(hm_rotate_history(hist, n), v3_scale(vt, kt * dt));
-    vec3 ft = v3_sub(ft_el, v3_scale(vt, damp * dem_sqrt(kt * mstar)));
+    vec3 ft = v3_sub(ft_el, v3_scale(vt, pm[PM_DAMP_T] * q));
     real fmax = mu * fn;
     real ft2 = v3_dot(ft, ft);
     if (ft2 > fmax * fmax) {

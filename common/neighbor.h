@@ -4,7 +4,8 @@
  * order of contact_forces.h), at nbr_list[i*maxn ...]. The test is symmetric in i and j bit for bit (IEEE + and *
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
- * A new row takes the tangential history of the same partner from the old row (binary search), or zero.
+ * A new row takes the tangential history and touching flag of the same partner from the old row (binary
+ * search), or zero.
  */
 #ifndef DEM_NEIGHBOR_H
 #define DEM_NEIGHBOR_H
@@ -57,7 +58,8 @@ DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int
 DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL int *nbr_count,
                                DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
                                DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
-                               DEM_GLOBAL real *hist)
+                               DEM_CONST_GLOBAL unsigned char *old_touch, DEM_GLOBAL real *hist,
+                               DEM_GLOBAL unsigned char *touch)
 {
     int on = old_count[i];
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
@@ -75,8 +77,9 @@ DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL i
                 break;
             }
         }
-        vec3 h = found >= 0 ? v3_load(old_hist, i * old_maxn + found) : v3_zero();
-        v3_store(hist, i * maxn + k, h);
+        int t = found >= 0 ? old_touch[i * old_maxn + found] : 0;
+        v3_store(hist, i * maxn + k, t ? v3_load(old_hist, i * old_maxn + found) : v3_zero());
+        touch[i * maxn + k] = (unsigned char)t;
     }
 }
 #endif /* DEM_NEIGHBOR_H */

@@ -113,7 +113,7 @@ static void cl_destroy(dem_backend *b)
                       &b->pairmat, &b->wall_int, &b->wall_real, &b->wall_hist, &b->wall_pf, &b->wall_mask, &b->partial,
                       &b->wall_force, &b->cell_of, &b->cell_count, &b->cell_start, &b->cell_fill,
                       &b->cell_particles, &b->block_sum, &b->flags, &b->count[0], &b->count[1], &b->list[0],
-                      &b->list[1], &b->hist[0], &b->hist[1]};
+                      &b->list[1], &b->hist[0], &b->hist[1], &b->touch[0], &b->touch[1]};
     for (size_t k = 0; k < sizeof mems / sizeof mems[0]; k++)
         rel(mems[k]);
     for (int k = 0; k < K__COUNT; k++)
@@ -260,6 +260,7 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
         b->count[k] = mkbuf(b, N * sizeof(int), NULL, &fail);
         b->list[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
         b->hist[k] = mkbuf(b, 3 * N * s->maxn * r, NULL, &fail);
+        b->touch[k] = mkbuf(b, N * s->maxn, NULL, &fail);
     }
     if (fail || cl_check(clFinish(b->q), "clFinish after upload", b->err, sizeof b->err)) {
         snprintf(err, errlen, "%s", b->err);
@@ -299,8 +300,10 @@ static int cl_nbr_reserve(dem_backend *b, int maxn)
         return 0;
     rel(&b->list[s]);
     rel(&b->hist[s]);
+    rel(&b->touch[s]);
     b->list[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
     b->hist[s] = mkbuf(b, 3 * (size_t)b->n * maxn * b->rs, NULL, &fail);
+    b->touch[s] = mkbuf(b, (size_t)b->n * maxn, NULL, &fail);
     b->maxn[s] = maxn;
     return fail;
 }

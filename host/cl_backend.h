@@ -27,7 +27,7 @@ struct dem_backend {
     cl_mem x, v, w, f, t, radius, invm, invi, x_build, mat, pairmat, wall_int, wall_real, wall_hist, wall_pf, wall_mask,
         partial, wall_force, cell_of, cell_count, cell_start, cell_fill, cell_particles, block_sum, flags;
     int maxn[2];
-    cl_mem count[2], list[2], hist[2];
+    cl_mem count[2], list[2], hist[2], touch[2];
     int cur;
     char desc[512];
     char err[4096];

@@ -9,9 +9,10 @@ int clb_contact_forces(dem_backend *b)
            clb_arg_real(b, k, 3, b->dt) || clb_arg_mem(b, k, 4, b->x) || clb_arg_mem(b, k, 5, b->v) ||
            clb_arg_mem(b, k, 6, b->w) || clb_arg_mem(b, k, 7, b->radius) || clb_arg_mem(b, k, 8, b->invm) ||
            clb_arg_mem(b, k, 9, b->mat) || clb_arg_mem(b, k, 10, b->pairmat) || clb_arg_mem(b, k, 11, b->count[s]) ||
-           clb_arg_mem(b, k, 12, b->list[s]) || clb_arg_mem(b, k, 13, b->hist[s]) || clb_arg_mem(b, k, 14, b->f) ||
-           clb_arg_mem(b, k, 15, b->t) || clb_arg_int(b, k, 16, b->nwalls) || clb_arg_mem(b, k, 17, b->wall_int) ||
-           clb_arg_mem(b, k, 18, b->wall_real) || clb_arg_mem(b, k, 19, b->wall_hist) ||
-           clb_arg_mem(b, k, 20, b->wall_pf) || clb_arg_mem(b, k, 21, b->wall_mask) ||
+           clb_arg_mem(b, k, 12, b->list[s]) || clb_arg_mem(b, k, 13, b->hist[s]) ||
+           clb_arg_mem(b, k, 14, b->touch[s]) || clb_arg_mem(b, k, 15, b->f) || clb_arg_mem(b, k, 16, b->t) ||
+           clb_arg_int(b, k, 17, b->nwalls) || clb_arg_mem(b, k, 18, b->wall_int) ||
+           clb_arg_mem(b, k, 19, b->wall_real) || clb_arg_mem(b, k, 20, b->wall_hist) ||
+           clb_arg_mem(b, k, 21, b->wall_pf) || clb_arg_mem(b, k, 22, b->wall_mask) ||
            clb_launch(b, K_CONTACT_FORCES, (size_t)b->n);
 }

@@ -51,6 +51,7 @@ int dem_energy(dem_sim *s, dem_energy_t *en)
             if (delta > 0) {
                 double rs = r * s->radius[j] / (r + s->radius[j]);
                 en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], s->mat[j]) * sqrt(rs) * pow(delta, 2.5);
+                en->contacts++;
             }
         }
         for (int k = 0; k < s->nwalls; k++) {
@@ -64,8 +65,10 @@ int dem_energy(dem_sim *s, dem_energy_t *en)
                 double rad[3] = {d[0] - dn * nn[0], d[1] - dn * nn[1], d[2] - dn * nn[2]};
                 delta = r + sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]) - wl->radius;
             }
-            if (delta > 0)
+            if (delta > 0) {
                 en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], wl->material) * sqrt(r) * pow(delta, 2.5);
+                en->wall_contacts++;
+            }
         }
     }
     en->total = en->kinetic + en->elastic + en->potential;

@@ -20,6 +20,7 @@ int clb_nbr_carry(dem_backend *b)
     return clb_arg_int(b, k, 0, b->n) || clb_arg_int(b, k, 1, b->maxn[s]) || clb_arg_int(b, k, 2, b->maxn[o]) ||
            clb_arg_mem(b, k, 3, b->count[s]) || clb_arg_mem(b, k, 4, b->list[s]) ||
            clb_arg_mem(b, k, 5, b->count[o]) || clb_arg_mem(b, k, 6, b->list[o]) ||
-           clb_arg_mem(b, k, 7, b->hist[o]) || clb_arg_mem(b, k, 8, b->hist[s]) ||
+           clb_arg_mem(b, k, 7, b->hist[o]) || clb_arg_mem(b, k, 8, b->touch[o]) || clb_arg_mem(b, k, 9, b->hist[s]) ||
+           clb_arg_mem(b, k, 10, b->touch[s]) ||
            clb_launch(b, K_NBR_CARRY, (size_t)b->n);
 }

@@ -168,10 +168,12 @@ int sim_pack(dem_sim *s)
 
     double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n);
     double *pm = malloc(sizeof(double) * PM_STRIDE * s->nmat * s->nmat);
-    if (!invm || !invi || !pm) {
+    double *damp = malloc(sizeof(double) * s->nmat * s->nmat);
+    if (!invm || !invi || !pm || !damp) {
         free(invm);
         free(invi);
         free(pm);
+        free(damp);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (int i = 0; i < n; i++) {
@@ -189,7 +191,10 @@ int sim_pack(dem_sim *s)
             row[PM_GSTAR] = gstar(ma, mb);
             row[PM_MU] = 0.5 * (ma->friction + mb->friction);
             double e = 0.5 * (ma->restitution + mb->restitution);
-            row[PM_DAMP] = (a <= b) ? dem_damping_for_restitution(e) : pm[PM_STRIDE * (b * s->nmat + a) + PM_DAMP];
+            double c = (a <= b) ? dem_damping_for_restitution(e) : damp[b * s->nmat + a];
+            damp[a * s->nmat + b] = c;
+            row[PM_DAMP_N] = c * sqrt(2 * row[PM_ESTAR]);
+            row[PM_DAMP_T] = c * sqrt(8 * row[PM_GSTAR]);
         }
     s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
     s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
@@ -204,6 +209,7 @@ int sim_pack(dem_sim *s)
     free(invm);
     free(invi);
     free(pm);
+    free(damp);
     for (int k = 0; k < 8; k++)
         if (!s->packed[k])
             return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");

@@ -62,7 +62,7 @@ typedef struct {
     dem_backend_kind backend;
     dem_precision precision;
     int device;          /* OpenCL device index over all platforms (see dem_device_count) */
-    size_t local_size;   /* work-group size, 0 = the runtime's choice */
+    size_t local_size;   /* work-group size; default 128; 0 = the runtime's choice */
     double skin;         /* neighbour-list skin [m]; 0 = 0.3 x smallest radius */
     double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum */
     int force_dt;        /* 1: accept a time step above the stability bound */
@@ -98,6 +98,8 @@ typedef struct {
     double elastic;    /* Hertz normal elastic energy of all contacts, walls included [J] */
     double potential;  /* -m g.x [J] */
     double total;
+    long contacts;      /* touching particle pairs */
+    long wall_contacts; /* touching particle-wall pairs */
 } dem_energy_t;
 
 typedef struct dem_sim dem_sim;
@@ -147,7 +149,7 @@ size_t dem_field_bytes(const dem_sim *s, dem_field f);
 int dem_get_field(dem_sim *s, dem_field f, double *dst);
 int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall received in the last step [N] */
 int dem_wall_position(const dem_sim *s, int wall, double p[3]);
-int dem_energy(dem_sim *s, dem_energy_t *e);
+int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
 

@@ -5,13 +5,14 @@
 __kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const real *x, __global const real *v,
                              __global const real *w, __global const real *radius, __global const real *invmass,
                              __global const int *mat, __global const real *pairmat, __global const int *nbr_count,
-                             __global const int *nbr_list, __global real *hist, __global real *force,
+                             __global const int *nbr_list, __global real *hist, __global unsigned char *touch,
+                             __global real *force,
                              __global real *torque, int nwalls, __global const int *wall_int,
                              __global const real *wall_real, __global real *wall_hist, __global real *wall_pf,
                              __global unsigned *wall_mask)
 {
     int i = get_global_id(0);
     if (i < n)
-        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, dt,
+        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, touch, dt,
                             force, torque, n, nwalls, wall_int, wall_real, wall_hist, wall_pf, wall_mask);
 }

@@ -22,6 +22,7 @@ struct dem_backend {
     int maxn[2];    /* capacity of each row set */
     int *count[2], *list[2];
     real *hist[2];
+    unsigned char *touch[2];
     int cur;        /* the row set in use; 1-cur is built into */
     int flags[FLAG_COUNT];
     double ktime[7]; /* seconds per step kind, see step_names */
@@ -54,7 +55,7 @@ static void ref_destroy(dem_backend *b)
     void *ptrs[] = {b->x, b->v, b->w, b->f, b->t, b->radius, b->invm, b->invi, b->x_build, b->mat, b->pairmat,
                     b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask, b->partial, b->wall_force, b->wall_int, b->cell_of,
                     b->cell_count, b->cell_start, b->cell_fill, b->cell_particles, b->block_sum, b->count[0],
-                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1]};
+                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1], b->touch[0], b->touch[1]};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++)
         free(ptrs[k]);
     free(b);
@@ -122,11 +123,12 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         b->count[k] = zalloc((size_t)n, sizeof(int));
         b->list[k] = zalloc((size_t)n * s->maxn, sizeof(int));
         b->hist[k] = zalloc(3 * (size_t)n * s->maxn, sizeof(real));
+        b->touch[k] = zalloc((size_t)n * s->maxn, 1);
     }
     if (!b->x || !b->v || !b->w || !b->f || !b->t || !b->radius || !b->invm || !b->invi || !b->x_build || !b->mat ||
         !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->wall_mask || !b->partial ||
         !b->wall_force || !b->cell_of || !b->cell_count || !b->cell_start || !b->cell_fill || !b->cell_particles ||
-        !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1])
+        !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1] || !b->touch[0] || !b->touch[1])
         goto nomem;
     memcpy(b->mat, s->mat, (size_t)n * sizeof(int));
     if (s->nwalls)
@@ -183,16 +185,20 @@ static int ref_nbr_reserve(dem_backend *b, int maxn)
         return 0;
     int *list = zalloc((size_t)b->n * maxn, sizeof(int));
     real *hist = zalloc(3 * (size_t)b->n * maxn, sizeof(real));
-    if (!list || !hist) {
+    unsigned char *touch = zalloc((size_t)b->n * maxn, 1);
+    if (!list || !hist || !touch) {
         free(list);
         free(hist);
+        free(touch);
         snprintf(b->err, sizeof b->err, "out of host memory for neighbour rows of %d", maxn);
         return 1;
     }
     free(b->list[k]);
     free(b->hist[k]);
+    free(b->touch[k]);
     b->list[k] = list;
     b->hist[k] = hist;
+    b->touch[k] = touch;
     b->maxn[k] = maxn;
     return 0;
 }
@@ -211,7 +217,7 @@ static int ref_nbr_commit(dem_backend *b)
     int k = 1 - b->cur, o = b->cur;
     TIMED(b, T_NBR_CARRY,
           REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
-                             b->hist[o], b->hist[k]));
+                             b->hist[o], b->touch[o], b->hist[k], b->touch[k]));
     b->cur = k;
     memcpy(b->x_build, b->x, 3 * (size_t)b->n * sizeof(real));
     return 0;
@@ -222,7 +228,7 @@ static int ref_contact_forces(dem_backend *b)
     int k = b->cur;
     TIMED(b, T_CONTACT,
           REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
-                                  b->pairmat, b->count[k], b->list[k], b->hist[k], b->f, b->t, b->nwalls,
+                                  b->pairmat, b->count[k], b->list[k], b->hist[k], b->touch[k], b->f, b->t, b->nwalls,
                                   b->wall_int, b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask));
     return 0;
 }

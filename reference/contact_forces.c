@@ -4,11 +4,12 @@
 
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
-                             const int *nbr_count, const int *nbr_list, real *hist, real *force, real *torque,
+                             const int *nbr_count, const int *nbr_list, real *hist, unsigned char *touch, real *force,
+                             real *torque,
                              int nwalls, const int *wall_int, const real *wall_real, real *wall_hist, real *wall_pf,
                              unsigned *wall_mask)
 {
     for (int i = 0; i < n; i++)
-        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, dt,
+        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, touch, dt,
                             force, torque, n, nwalls, wall_int, wall_real, wall_hist, wall_pf, wall_mask);
 }

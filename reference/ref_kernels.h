@@ -23,11 +23,13 @@ void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, c
                         const int *cell_of, const int *cell_start, const int *cell_particles, int *nbr_count,
                         int *nbr_list, int *flags);
 void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
-                        const int *old_list, const real *old_hist, real *hist);
+                        const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
+                        unsigned char *touch);
 /* contact_forces.c */
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
-                             const int *nbr_count, const int *nbr_list, real *hist, real *force, real *torque,
+                             const int *nbr_count, const int *nbr_list, real *hist, unsigned char *touch, real *force,
+                             real *torque,
                              int nwalls, const int *wall_int, const real *wall_real, real *wall_hist, real *wall_pf,
                              unsigned *wall_mask);
 /* wall_forces.c */
