@@ -1,12 +1,12 @@
 /* contact_forces.h - particle-particle contact forces and their per-particle accumulation (one work item = one particle).
  *
- * Determinism: particle i walks its neighbour row, which is sorted by ascending partner id, so every particle sums its
- * contact forces in one canonical order. Each pair is evaluated in canonical orientation (a = min id, b = max id) by
- * both of its particles, with bit-identical inputs (the two copies of the pair's history are equal by construction),
- * so particle b adds exactly the negation of what particle a adds: f_ji = -f_ij bitwise, and no scatter or atomics.
+ * Two passes, no scatter, no atomics. Pass 1 evaluates each pair once, by its lower-id particle a, in canonical
+ * orientation (n from b to a) and leaves the result in a's row slot. Pass 2 has every particle walk its own row,
+ * sorted by ascending partner id, and add the pair force (a) or its exact negation (b): every particle sums its
+ * contacts in one canonical order and f_ji = -f_ij bit for bit.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
- * touch[slot] says whether the pair touched in the previous step; the 24-byte history is read only then and is
- * zero otherwise, so a step reads one byte, not one history, per listed pair that does not touch.
+ * touch[slot] (owner slots) says whether the pair touches; the 24-byte history is read only when it touched in the
+ * previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair that does not touch.
  *
  * Walls (wall_forces.h) follow the particle contacts, in wall index order.
  *
@@ -66,26 +66,23 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
     return pc;
 }
 
-DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
-                                    DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
-                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
-                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                    DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist,
-                                    DEM_GLOBAL unsigned char *touch, real dt,
-                                    DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
-                                    DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                                    DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
-                                    DEM_GLOBAL unsigned *wall_mask)
+/* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, keeps their history and
+ * touching flag, and leaves the force on i, n x f_t and the overlap in the slot for pass 2. */
+DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+                                   DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
+                                   DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
+                                   DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
+                                   DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist,
+                                   DEM_GLOBAL unsigned char *touch, real dt, DEM_GLOBAL real *pair)
 {
-    vec3 fi = v3_zero(), ti = v3_zero();
-    real ri = radius[i];
     int cnt = nbr_count[i];
     for (int k = 0; k < cnt; k++) {
         int slot = i * maxn + k;
         int j = nbr_list[slot];
-        int a = i < j ? i : j, b = i < j ? j : i;
+        if (j < i)
+            continue;
         int touching = touch[slot];
-        pair_contact pc = pair_contact_eval(a, b, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
+        pair_contact pc = pair_contact_eval(i, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
                                             touching);
         if (!pc.active) {
             if (touching) { /* the contact ended: so does its history */
@@ -97,8 +94,42 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
         v3_store(hist, slot, pc.hist);
         if (!touching)
             touch[slot] = 1;
-        fi = i == a ? v3_add(fi, pc.force) : v3_sub(fi, pc.force);
-        ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
+        DEM_GLOBAL real *pr = pair + slot * PR_STRIDE;
+        pr[PR_FX] = pc.force.x;
+        pr[PR_FY] = pc.force.y;
+        pr[PR_FZ] = pc.force.z;
+        pr[PR_CX] = pc.c.x;
+        pr[PR_CY] = pc.c.y;
+        pr[PR_CZ] = pc.c.z;
+        pr[PR_DELTA] = pc.delta;
+    }
+}
+
+/* Pass 2, contact_forces: particle i sums its touching pairs in ascending partner id, reading each pair where its
+ * owner left it (nbr_mirror: the slot itself when j > i, else the slot of i in row j), then its walls. */
+DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+                                    DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
+                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
+                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
+                                    DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
+                                    DEM_CONST_GLOBAL unsigned char *touch, DEM_CONST_GLOBAL real *pair, real dt,
+                                    DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
+                                    DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                    DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
+                                    DEM_GLOBAL unsigned *wall_mask)
+{
+    vec3 fi = v3_zero(), ti = v3_zero();
+    real ri = radius[i];
+    int cnt = nbr_count[i];
+    for (int k = 0; k < cnt; k++) {
+        int slot = i * maxn + k;
+        int s = nbr_mirror[slot];
+        if (s < 0 || !touch[s])
+            continue;
+        DEM_CONST_GLOBAL real *pr = pair + s * PR_STRIDE;
+        vec3 f = v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]);
+        fi = nbr_list[slot] > i ? v3_add(fi, f) : v3_sub(fi, f);
+        ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }
     if (nwalls > 0)
         wall_contacts_add(i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,

@@ -29,6 +29,15 @@ enum {
 enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
 enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1 };
 
+/* Result of a touching pair, left by contact_pairs in its owner's row slot for contact_forces (index slot*PR_STRIDE):
+ * one record per pair so that the gather reads one cache line (fp64) instead of three. */
+enum {
+    PR_FX = 0, PR_FY, PR_FZ, /* force on the lower id [N] */
+    PR_CX, PR_CY, PR_CZ,     /* n x f_t [N] */
+    PR_DELTA,                /* overlap [m] */
+    PR_STRIDE = 8            /* padded to 8 reals */
+};
+
 /* Integer status flags written by kernels (integer atomics only), read by the host. */
 enum {
     FLAG_REBUILD = 0,       /* set to 1 when some particle moved more than skin/2 since the last build */

@@ -5,7 +5,7 @@
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
  * A new row takes the tangential history and touching flag of the same partner from the old row (binary
- * search), or zero.
+ * search), or zero, and records for each slot where the pair's owner keeps it (mirror; see contact_forces.h).
  */
 #ifndef DEM_NEIGHBOR_H
 #define DEM_NEIGHBOR_H
@@ -59,12 +59,30 @@ DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL i
                                DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
                                DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
                                DEM_CONST_GLOBAL unsigned char *old_touch, DEM_GLOBAL real *hist,
-                               DEM_GLOBAL unsigned char *touch)
+                               DEM_GLOBAL unsigned char *touch, DEM_GLOBAL int *mirror)
 {
     int on = old_count[i];
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
     for (int k = 0; k < nbr_count[i]; k++) {
         int j = nbr_list[i * maxn + k];
+        /* mirror: where the pair's owner (the lower id) keeps it: this slot, or the slot of i in row j */
+        int m = i * maxn + k;
+        if (j < i) {
+            int a = 0, z = nbr_count[j] - 1;
+            m = -1;
+            while (a <= z) {
+                int mid = (a + z) / 2, p = nbr_list[j * maxn + mid];
+                if (p < i)
+                    a = mid + 1;
+                else if (p > i)
+                    z = mid - 1;
+                else {
+                    m = j * maxn + mid;
+                    break;
+                }
+            }
+        }
+        mirror[i * maxn + k] = m;
         int lo = 0, hi = on - 1, found = -1;
         while (lo <= hi) {
             int mid = (lo + hi) / 2;

@@ -8,7 +8,7 @@
 
 static const char *const kernel_names[K__COUNT] = {
     "bin_index", "scan_block_sum", "scan_block_sums", "scan_apply", "bin_scatter", "bin_sort",
-    "nbr_build", "nbr_carry", "contact_forces", "wall_reduce_block", "wall_reduce_final",
+    "nbr_build", "nbr_carry", "contact_pairs", "contact_forces", "wall_reduce_block", "wall_reduce_final",
     "integrate_kick_drift", "integrate_kick"};
 
 static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighbor.cl", "kernels/contact_forces.cl",
@@ -113,7 +113,8 @@ static void cl_destroy(dem_backend *b)
                       &b->pairmat, &b->wall_int, &b->wall_real, &b->wall_hist, &b->wall_pf, &b->wall_mask, &b->partial,
                       &b->wall_force, &b->cell_of, &b->cell_count, &b->cell_start, &b->cell_fill,
                       &b->cell_particles, &b->block_sum, &b->flags, &b->count[0], &b->count[1], &b->list[0],
-                      &b->list[1], &b->hist[0], &b->hist[1], &b->touch[0], &b->touch[1]};
+                      &b->list[1], &b->hist[0], &b->hist[1], &b->touch[0], &b->touch[1], &b->mirror[0], &b->mirror[1],
+                      &b->pair};
     for (size_t k = 0; k < sizeof mems / sizeof mems[0]; k++)
         rel(mems[k]);
     for (int k = 0; k < K__COUNT; k++)
@@ -261,7 +262,10 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
         b->list[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
         b->hist[k] = mkbuf(b, 3 * N * s->maxn * r, NULL, &fail);
         b->touch[k] = mkbuf(b, N * s->maxn, NULL, &fail);
+        b->mirror[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
     }
+    b->pair_maxn = s->maxn;
+    b->pair = mkbuf(b, (size_t)PR_STRIDE * N * s->maxn * r, NULL, &fail);
     if (fail || cl_check(clFinish(b->q), "clFinish after upload", b->err, sizeof b->err)) {
         snprintf(err, errlen, "%s", b->err);
         goto fail;
@@ -301,9 +305,11 @@ static int cl_nbr_reserve(dem_backend *b, int maxn)
     rel(&b->list[s]);
     rel(&b->hist[s]);
     rel(&b->touch[s]);
+    rel(&b->mirror[s]);
     b->list[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
     b->hist[s] = mkbuf(b, 3 * (size_t)b->n * maxn * b->rs, NULL, &fail);
     b->touch[s] = mkbuf(b, (size_t)b->n * maxn, NULL, &fail);
+    b->mirror[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
     b->maxn[s] = maxn;
     return fail;
 }
@@ -313,6 +319,15 @@ static int cl_nbr_commit(dem_backend *b)
     if (clb_nbr_carry(b))
         return 1;
     b->cur = 1 - b->cur;
+    if (b->pair_maxn != b->maxn[b->cur]) { /* pair results follow the current row capacity */
+        int fail = 0;
+        size_t slots = (size_t)b->n * b->maxn[b->cur];
+        rel(&b->pair);
+        b->pair = mkbuf(b, (size_t)PR_STRIDE * slots * b->rs, NULL, &fail);
+        if (fail)
+            return 1;
+        b->pair_maxn = b->maxn[b->cur];
+    }
     return cl_check(clEnqueueCopyBuffer(b->q, b->x, b->x_build, 0, 0, 3 * (size_t)b->n * b->rs, 0, NULL, NULL),
                     "copy x_build", b->err, sizeof b->err);
 }

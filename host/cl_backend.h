@@ -8,7 +8,7 @@
 
 typedef enum {
     K_BIN_INDEX, K_SCAN_BLOCK_SUM, K_SCAN_BLOCK_SUMS, K_SCAN_APPLY, K_BIN_SCATTER, K_BIN_SORT,
-    K_NBR_BUILD, K_NBR_CARRY, K_CONTACT_FORCES, K_WALL_REDUCE_BLOCK, K_WALL_REDUCE_FINAL,
+    K_NBR_BUILD, K_NBR_CARRY, K_CONTACT_PAIRS, K_CONTACT_FORCES, K_WALL_REDUCE_BLOCK, K_WALL_REDUCE_FINAL,
     K_KICK_DRIFT, K_KICK, K__COUNT
 } kernel_id;
 
@@ -27,7 +27,9 @@ struct dem_backend {
     cl_mem x, v, w, f, t, radius, invm, invi, x_build, mat, pairmat, wall_int, wall_real, wall_hist, wall_pf, wall_mask,
         partial, wall_force, cell_of, cell_count, cell_start, cell_fill, cell_particles, block_sum, flags;
     int maxn[2];
-    cl_mem count[2], list[2], hist[2], touch[2];
+    cl_mem count[2], list[2], hist[2], touch[2], mirror[2];
+    cl_mem pair; /* PR_STRIDE reals per slot of the current rows (contact_pairs -> contact_forces) */
+    int pair_maxn;
     int cur;
     char desc[512];
     char err[4096];

@@ -23,16 +23,20 @@ struct dem_backend {
     int *count[2], *list[2];
     real *hist[2];
     unsigned char *touch[2];
+    int *mirror[2];
+    real *pair;                     /* PR_STRIDE reals per slot of the current rows, from contact_pairs */
+    int pair_maxn;                  /* their capacity per particle */
     int cur;        /* the row set in use; 1-cur is built into */
     int flags[FLAG_COUNT];
-    double ktime[7]; /* seconds per step kind, see step_names */
+    double ktime[8]; /* seconds per step kind, see step_names */
     char err[256];
 };
 
 /* Time per step kind, for `make bench` (the reference has no kernels; these are its loops). */
-enum { T_KICK_DRIFT, T_BIN, T_NBR_BUILD, T_NBR_CARRY, T_CONTACT, T_WALL, T_KICK, T__COUNT };
+enum { T_KICK_DRIFT, T_BIN, T_NBR_BUILD, T_NBR_CARRY, T_PAIRS, T_CONTACT, T_WALL, T_KICK, T__COUNT };
 static const char *const step_names[T__COUNT] = {"integrate_kick_drift", "binning", "nbr_build", "nbr_carry",
-                                                 "contact_forces", "wall_reduce", "integrate_kick"};
+                                                 "contact_pairs", "contact_forces", "wall_reduce",
+                                                 "integrate_kick"};
 static double wall_now(void)
 {
     struct timespec t;
@@ -55,7 +59,7 @@ static void ref_destroy(dem_backend *b)
     void *ptrs[] = {b->x, b->v, b->w, b->f, b->t, b->radius, b->invm, b->invi, b->x_build, b->mat, b->pairmat,
                     b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask, b->partial, b->wall_force, b->wall_int, b->cell_of,
                     b->cell_count, b->cell_start, b->cell_fill, b->cell_particles, b->block_sum, b->count[0],
-                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1], b->touch[0], b->touch[1]};
+                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1], b->touch[0], b->touch[1], b->mirror[0], b->mirror[1], b->pair};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++)
         free(ptrs[k]);
     free(b);
@@ -124,11 +128,15 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         b->list[k] = zalloc((size_t)n * s->maxn, sizeof(int));
         b->hist[k] = zalloc(3 * (size_t)n * s->maxn, sizeof(real));
         b->touch[k] = zalloc((size_t)n * s->maxn, 1);
+        b->mirror[k] = zalloc((size_t)n * s->maxn, sizeof(int));
     }
+    b->pair_maxn = s->maxn;
+    b->pair = zalloc((size_t)PR_STRIDE * n * s->maxn, sizeof(real));
     if (!b->x || !b->v || !b->w || !b->f || !b->t || !b->radius || !b->invm || !b->invi || !b->x_build || !b->mat ||
         !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->wall_mask || !b->partial ||
         !b->wall_force || !b->cell_of || !b->cell_count || !b->cell_start || !b->cell_fill || !b->cell_particles ||
-        !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1] || !b->touch[0] || !b->touch[1])
+        !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1] || !b->touch[0] || !b->touch[1] ||
+        !b->mirror[0] || !b->mirror[1] || !b->pair)
         goto nomem;
     memcpy(b->mat, s->mat, (size_t)n * sizeof(int));
     if (s->nwalls)
@@ -186,19 +194,23 @@ static int ref_nbr_reserve(dem_backend *b, int maxn)
     int *list = zalloc((size_t)b->n * maxn, sizeof(int));
     real *hist = zalloc(3 * (size_t)b->n * maxn, sizeof(real));
     unsigned char *touch = zalloc((size_t)b->n * maxn, 1);
-    if (!list || !hist || !touch) {
+    int *mirror = zalloc((size_t)b->n * maxn, sizeof(int));
+    if (!list || !hist || !touch || !mirror) {
         free(list);
         free(hist);
         free(touch);
+        free(mirror);
         snprintf(b->err, sizeof b->err, "out of host memory for neighbour rows of %d", maxn);
         return 1;
     }
     free(b->list[k]);
     free(b->hist[k]);
     free(b->touch[k]);
+    free(b->mirror[k]);
     b->list[k] = list;
     b->hist[k] = hist;
     b->touch[k] = touch;
+    b->mirror[k] = mirror;
     b->maxn[k] = maxn;
     return 0;
 }
@@ -217,8 +229,18 @@ static int ref_nbr_commit(dem_backend *b)
     int k = 1 - b->cur, o = b->cur;
     TIMED(b, T_NBR_CARRY,
           REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
-                             b->hist[o], b->touch[o], b->hist[k], b->touch[k]));
+                             b->hist[o], b->touch[o], b->hist[k], b->touch[k], b->mirror[k]));
     b->cur = k;
+    if (b->pair_maxn != b->maxn[k]) { /* pair results follow the current row capacity */
+        real *pr = zalloc((size_t)PR_STRIDE * b->n * b->maxn[k], sizeof(real));
+        if (!pr) {
+            snprintf(b->err, sizeof b->err, "out of host memory for pair results");
+            return 1;
+        }
+        free(b->pair);
+        b->pair = pr;
+        b->pair_maxn = b->maxn[k];
+    }
     memcpy(b->x_build, b->x, 3 * (size_t)b->n * sizeof(real));
     return 0;
 }
@@ -226,10 +248,13 @@ static int ref_nbr_commit(dem_backend *b)
 static int ref_contact_forces(dem_backend *b)
 {
     int k = b->cur;
+    TIMED(b, T_PAIRS,
+          REF(ref_contact_pairs)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
+                                 b->pairmat, b->count[k], b->list[k], b->hist[k], b->touch[k], b->pair));
     TIMED(b, T_CONTACT,
           REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
-                                  b->pairmat, b->count[k], b->list[k], b->hist[k], b->touch[k], b->f, b->t, b->nwalls,
-                                  b->wall_int, b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask));
+                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->touch[k], b->pair, b->f, b->t, b->nwalls, b->wall_int, b->wall_real,
+                                  b->wall_hist, b->wall_pf, b->wall_mask));
     return 0;
 }
 

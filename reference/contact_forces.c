@@ -1,15 +1,25 @@
-/* contact_forces.c - reference twin of kernels/contact_forces.cl (serial loop over common/contact_forces.h). */
+/* contact_forces.c - reference twin of kernels/contact_forces.cl (serial loops over common/contact_forces.h). */
 #include "ref_kernels.h"
 #include "contact_forces.h"
 
-void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
-                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
-                             const int *nbr_count, const int *nbr_list, real *hist, unsigned char *touch, real *force,
-                             real *torque,
-                             int nwalls, const int *wall_int, const real *wall_real, real *wall_hist, real *wall_pf,
-                             unsigned *wall_mask)
+void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+                            const real *radius, const real *invmass, const int *mat, const real *pairmat,
+                            const int *nbr_count, const int *nbr_list, real *hist, unsigned char *touch, real *pair)
 {
     for (int i = 0; i < n; i++)
-        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, touch, dt,
-                            force, torque, n, nwalls, wall_int, wall_real, wall_hist, wall_pf, wall_mask);
+        contact_pairs_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, hist, touch, dt,
+                           pair);
+}
+
+void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
+                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
+                             const unsigned char *touch, const real *pair,
+                             real *force, real *torque, int nwalls, const int *wall_int, const real *wall_real,
+                             real *wall_hist, real *wall_pf, unsigned *wall_mask)
+{
+    for (int i = 0; i < n; i++)
+        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror,
+                            touch, pair, dt, force, torque, n, nwalls, wall_int, wall_real,
+                            wall_hist, wall_pf, wall_mask);
 }

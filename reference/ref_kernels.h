@@ -24,14 +24,17 @@ void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, c
                         int *nbr_list, int *flags);
 void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
                         const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
-                        unsigned char *touch);
+                        unsigned char *touch, int *mirror);
 /* contact_forces.c */
+void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+                            const real *radius, const real *invmass, const int *mat, const real *pairmat,
+                            const int *nbr_count, const int *nbr_list, real *hist, unsigned char *touch, real *pair);
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
-                             const int *nbr_count, const int *nbr_list, real *hist, unsigned char *touch, real *force,
-                             real *torque,
-                             int nwalls, const int *wall_int, const real *wall_real, real *wall_hist, real *wall_pf,
-                             unsigned *wall_mask);
+                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
+                             const unsigned char *touch, const real *pair,
+                             real *force, real *torque, int nwalls, const int *wall_int, const real *wall_real,
+                             real *wall_hist, real *wall_pf, unsigned *wall_mask);
 /* wall_forces.c */
 void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, const unsigned *wall_mask,
                           real *partial, real *wall_force);
