@@ -1,6 +1,7 @@
 /* test_hard_cases.c - hard cases stay finite and clear, on the reference and on PoCL:
  * coincident centres, a particle leaving the binning domain, glass (65 GPa, seed 000 Table 1) at the recommended
- * time step, refusal of a time step above the stability bound, and rejection of invalid parameters. */
+ * time step, refusal of a time step above the stability bound, rejection of invalid parameters, and a kernel that
+ * fails to build (the device's build log reaches the caller). */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -167,12 +168,40 @@ static void test_dt_bound(void **st)
     dem_destroy(s);
 }
 
+/* A kernel that does not compile: dem_start fails with DEM_ERR_DEVICE and the device's build log, naming the file.
+ * The project's kernels are copied to a temporary folder and one of them is broken there. */
+static void test_kernel_build_log(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/dem-kernels-XXXXXX", cmd[512];
+    assert_non_null(mkdtemp(dir));
+    snprintf(cmd, sizeof cmd, "cp -r '%s/kernels' '%s/common' '%s/' && echo 'this is not OpenCL C;' >> '%s/kernels/integrate.cl'",
+             DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir, dir);
+    assert_int_equal(system(cmd), 0);
+    dem_sim *s = glass_box(1.0);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+    c.source_dir = dir;
+    assert_int_equal(dem_start(s, &c), DEM_ERR_DEVICE);
+    printf("  %.300s...\n", dem_error(s));
+    assert_non_null(strstr(dem_error(s), "build log"));
+    assert_non_null(strstr(dem_error(s), "integrate.cl"));
+    dem_destroy(s);
+    /* and a folder without kernels says where it looked */
+    s = glass_box(1.0);
+    c.source_dir = "/nonexistent-dem-folder";
+    assert_int_equal(dem_start(s, &c), DEM_ERR_DEVICE);
+    assert_non_null(strstr(dem_error(s), "/nonexistent-dem-folder/kernels/"));
+    dem_destroy(s);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coincident_centres), cmocka_unit_test(test_leaves_domain),
         cmocka_unit_test(test_nonfinite_rejected), cmocka_unit_test(test_glass_recommended_dt),
-        cmocka_unit_test(test_dt_bound),
+        cmocka_unit_test(test_dt_bound), cmocka_unit_test(test_kernel_build_log),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
