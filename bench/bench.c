@@ -41,14 +41,7 @@ static dem_sim *packing(int side)
             dem_add_particle(s, x, v, layer ? 0.45e-3 + 0.05e-3 * u : 0.97e-3 + 0.03e-3 * u, m);
         }
     }
-    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    for (int k = 0; k < 6; k++) {
-        dem_wall w = {.kind = DEM_WALL_PLANE, .material = m};
-        memcpy(w.normal, nrm[k], sizeof w.normal);
-        for (int d = 0; d < 3; d++)
-            w.point[d] = nrm[k][d] < 0 ? L : 0;
-        dem_add_wall(s, &w);
-    }
+    dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){L, L, L}, m);
     dem_set_gravity(s, (double[3]){0, 0, -9.81});
     dem_set_domain(s, (double[3]){-0.1 * L, -0.1 * L, -0.1 * L}, (double[3]){1.1 * L, 1.1 * L, 1.1 * L});
     dem_time_scales ts;

@@ -33,6 +33,10 @@ typedef struct {
     const char *extra_build_options;
 } dem_setup;
 
+/* Size in bytes of a field for n particles, rows of capacity maxn, nwalls walls, ncells cells, rs-byte reals.
+ * The one place that knows every layout's size (host/sim.c, both backends). */
+size_t dem_field_size(dem_field f, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs);
+
 typedef struct dem_backend dem_backend;
 
 typedef struct {

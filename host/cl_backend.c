@@ -334,26 +334,11 @@ static int cl_nbr_commit(dem_backend *b)
 
 static cl_mem field_mem(dem_backend *b, dem_field f, size_t *bytes)
 {
-    size_t n = (size_t)b->n, r = (size_t)b->rs;
     int k = b->cur;
-    switch (f) {
-    case FIELD_X: *bytes = 3 * n * r; return b->x;
-    case FIELD_V: *bytes = 3 * n * r; return b->v;
-    case FIELD_W: *bytes = 3 * n * r; return b->w;
-    case FIELD_FORCE: *bytes = 3 * n * r; return b->f;
-    case FIELD_TORQUE: *bytes = 3 * n * r; return b->t;
-    case FIELD_X_BUILD: *bytes = 3 * n * r; return b->x_build;
-    case FIELD_NBR_COUNT: *bytes = n * sizeof(int); return b->count[k];
-    case FIELD_NBR_LIST: *bytes = n * b->maxn[k] * sizeof(int); return b->list[k];
-    case FIELD_HIST: *bytes = 3 * n * b->maxn[k] * r; return b->hist[k];
-    case FIELD_WALL_HIST: *bytes = 3 * n * b->nwalls * r; return b->wall_hist;
-    case FIELD_WALL_FORCE: *bytes = 3 * (size_t)b->nwalls * r; return b->wall_force;
-    case FIELD_CELL_START: *bytes = ((size_t)b->ncells + 1) * sizeof(int); return b->cell_start;
-    case FIELD_CELL_PARTICLES: *bytes = n * sizeof(int); return b->cell_particles;
-    case FIELD_FLAGS: *bytes = FLAG_COUNT * sizeof(int); return b->flags;
-    case FIELD_WALL_REAL: *bytes = (size_t)W_STRIDE * b->nwalls * r; return b->wall_real;
-    default: *bytes = 0; return NULL;
-    }
+    cl_mem m[FIELD__COUNT] = {b->x, b->v, b->w, b->f, b->t, b->x_build, b->count[k], b->list[k], b->hist[k],
+                              b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real};
+    *bytes = dem_field_size(f, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, (size_t)b->rs);
+    return (int)f >= 0 && f < FIELD__COUNT ? m[f] : NULL;
 }
 
 static int cl_read(dem_backend *b, dem_field f, void *dst, size_t bytes)

@@ -127,6 +127,16 @@ int dem_set_particle_omega(dem_sim *s, int id, const double w[3])
     return 0;
 }
 
+static int check_stages(dem_sim *s, int wall, int nstages, const dem_stage *stages)
+{
+    if (nstages < 0 || nstages > DEM_MAX_STAGES)
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: 0..%d motion stages (got %d)", wall, DEM_MAX_STAGES, nstages);
+    for (int st = 0; st < nstages; st++)
+        if (!(stages[st].duration >= 0) || !finite3(stages[st].velocity))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: duration >= 0 s and finite velocity", wall, st);
+    return 0;
+}
+
 int dem_add_wall(dem_sim *s, const dem_wall *w)
 {
     if (not_started(s))
@@ -143,15 +153,47 @@ int dem_add_wall(dem_sim *s, const dem_wall *w)
         return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k), -1;
     if (w->kind == DEM_WALL_CYLINDER && !(w->radius > 0 && isfinite(w->radius)))
         return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius), -1;
-    if (w->nstages < 0 || w->nstages > DEM_MAX_STAGES)
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: 0..%d motion stages (got %d)", k, DEM_MAX_STAGES, w->nstages), -1;
-    for (int st = 0; st < w->nstages; st++)
-        if (!(w->stages[st].duration >= 0) || !finite3(w->stages[st].velocity))
-            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: duration >= 0 s and finite velocity", k, st), -1;
+    if (check_stages(s, k, w->nstages, w->stages))
+        return -1;
     s->walls[k] = *w;
     for (int d = 0; d < 3; d++)
         s->walls[k].normal[d] = w->normal[d] / len;
     return s->nwalls++;
+}
+
+int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material)
+{
+    int first = -1;
+    for (int k = 0; k < 6; k++) {
+        int axis = k / 2, upper = k % 2;
+        dem_wall w;
+        memset(&w, 0, sizeof w);
+        w.kind = DEM_WALL_PLANE;
+        w.material = material;
+        memcpy(w.point, lo, sizeof w.point);
+        w.point[axis] = upper ? hi[axis] : lo[axis];
+        w.normal[axis] = upper ? -1 : 1;
+        int id = dem_add_wall(s, &w);
+        if (id < 0)
+            return -1;
+        if (k == 0)
+            first = id;
+    }
+    return first;
+}
+
+int dem_set_wall_motion(dem_sim *s, int wall, int nstages, const dem_stage *stages)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (wall < 0 || wall >= s->nwalls)
+        return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
+    int e = check_stages(s, wall, nstages, stages);
+    if (e)
+        return e;
+    s->walls[wall].nstages = nstages;
+    memcpy(s->walls[wall].stages, stages, sizeof(dem_stage) * (size_t)nstages);
+    return 0;
 }
 
 int dem_set_gravity(dem_sim *s, const double g[3])
@@ -323,20 +365,8 @@ const char *dem_describe(const dem_sim *s) { return s->be ? s->ops->describe(s->
 
 size_t dem_field_bytes(const dem_sim *s, dem_field f)
 {
-    size_t n = (size_t)s->n, r = (size_t)s->setup.real_size, m = (size_t)s->maxn, nw = (size_t)s->nwalls;
-    switch (f) {
-    case FIELD_X: case FIELD_V: case FIELD_W: case FIELD_FORCE: case FIELD_TORQUE: case FIELD_X_BUILD:
-        return 3 * n * r;
-    case FIELD_NBR_COUNT: case FIELD_CELL_PARTICLES: return n * sizeof(int);
-    case FIELD_NBR_LIST: return n * m * sizeof(int);
-    case FIELD_HIST: return 3 * n * m * r;
-    case FIELD_WALL_HIST: return 3 * n * nw * r;
-    case FIELD_WALL_FORCE: return 3 * nw * r;
-    case FIELD_CELL_START: return ((size_t)dem_cell_count(s) + 1) * sizeof(int);
-    case FIELD_FLAGS: return FLAG_COUNT * sizeof(int);
-    case FIELD_WALL_REAL: return W_STRIDE * nw * r;
-    default: return 0;
-    }
+    return dem_field_size(f, (size_t)s->n, (size_t)s->maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
+                          (size_t)s->setup.real_size);
 }
 
 int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)

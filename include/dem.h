@@ -114,6 +114,10 @@ int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double ra
 int dem_set_particle_flags(dem_sim *s, int id, unsigned flags);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
+/* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
+int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material);
+/* Replaces the motion stages of a wall (before dem_start). */
+int dem_set_wall_motion(dem_sim *s, int wall, int nstages, const dem_stage *stages);
 int dem_set_gravity(dem_sim *s, const double g[3]);
 int dem_set_domain(dem_sim *s, const double lo[3], const double hi[3]);
 int dem_set_dt(dem_sim *s, double dt);

@@ -19,14 +19,7 @@ static dem_sim *box_gas(void)
         double r = 0.003 + 0.002 * (k % 3);
         dem_add_particle(s, x, v, r, m);
     }
-    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    for (int k = 0; k < 6; k++) {
-        dem_wall w = {.kind = DEM_WALL_PLANE, .material = m};
-        memcpy(w.normal, nrm[k], sizeof w.normal);
-        for (int d = 0; d < 3; d++)
-            w.point[d] = nrm[k][d] < 0 ? L : 0;
-        dem_add_wall(s, &w);
-    }
+    dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){L, L, L}, m);
     dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.07, 0.07, 0.07});
     /* 1/200 of the Hertz contact time of the smallest like pair at 2 m/s */
     dem_time_scales ts;

@@ -104,14 +104,7 @@ static dem_sim *glass_box(double dt_factor)
         double v[3] = {uniform01(&seed) - 0.5, uniform01(&seed) - 0.5, -1};
         dem_add_particle(s, x, v, 0.002, m);
     }
-    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    for (int k = 0; k < 6; k++) {
-        dem_wall w = {.kind = DEM_WALL_PLANE, .material = m};
-        memcpy(w.normal, nrm[k], sizeof w.normal);
-        for (int d = 0; d < 3; d++)
-            w.point[d] = nrm[k][d] < 0 ? 0.02 : 0;
-        dem_add_wall(s, &w);
-    }
+    dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){0.02, 0.02, 0.02}, m);
     dem_set_gravity(s, (double[3]){0, 0, -9.81});
     dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.03, 0.03, 0.03});
     dem_time_scales ts;

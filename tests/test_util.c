@@ -52,22 +52,11 @@ dem_sim *packing_build(const packing_opts *o)
             dem_add_particle(s, x, v, r, mat);
         }
     }
-    /* box [0,L]^3: x-, x+, y-, y+, floor, lid */
-    double pts[6][3] = {{0, 0, 0}, {L, 0, 0}, {0, 0, 0}, {0, L, 0}, {0, 0, 0}, {0, 0, L}};
-    double nrm[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    for (int k = 0; k < 6; k++) {
-        dem_wall w;
-        memset(&w, 0, sizeof w);
-        w.kind = DEM_WALL_PLANE;
-        w.material = wmat;
-        memcpy(w.point, pts[k], sizeof w.point);
-        memcpy(w.normal, nrm[k], sizeof w.normal);
-        if (k == 5 && o->lid_speed > 0) {
-            w.nstages = 2;
-            w.stages[0] = (dem_stage){0.006, {0, 0, -o->lid_speed}};
-            w.stages[1] = (dem_stage){0.006, {0, 0, o->lid_speed}};
-        }
-        dem_add_wall(s, &w);
+    /* box [0,L]^3: x-, x+, y-, y+, floor, lid (wall 5) */
+    dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){L, L, L}, wmat);
+    if (o->lid_speed > 0) {
+        dem_stage lid[2] = {{0.006, {0, 0, -o->lid_speed}}, {0.006, {0, 0, o->lid_speed}}};
+        dem_set_wall_motion(s, 5, 2, lid);
     }
     if (o->gravity)
         dem_set_gravity(s, (double[3]){0, 0, -9.81});
