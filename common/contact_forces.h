@@ -5,8 +5,9 @@
  * sorted by ascending partner id, and add the pair force (a) or its exact negation (b): every particle sums its
  * contacts in one canonical order and f_ji = -f_ij bit for bit.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
- * touch[slot] (owner slots) says whether the pair touches; the 24-byte history is read only when it touched in the
- * previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair that does not touch.
+ * touch[slot] says whether the pair touches (both slots of a pair carry it); the 24-byte history is read only when
+ * it touched in the previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair
+ * that does not touch.
  *
  * Walls (wall_forces.h) follow the particle contacts, in wall index order.
  *
@@ -67,13 +68,16 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
 }
 
 /* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, keeps their history and
- * touching flag, and leaves the force on i, n x f_t and the overlap in the slot for pass 2. */
+ * touching flag, and leaves the force on i, n x f_t and the overlap in the slot for pass 2. The flag is copied
+ * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
+ * exactly one writer, the pair's owner. */
 DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                    DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                   DEM_CONST_GLOBAL int *nbr_list, DEM_GLOBAL real *hist,
-                                   DEM_GLOBAL unsigned char *touch, real dt, DEM_GLOBAL real *pair)
+                                   DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
+                                   DEM_GLOBAL real *hist, DEM_GLOBAL unsigned char *touch, real dt,
+                                   DEM_GLOBAL real *pair)
 {
     int cnt = nbr_count[i];
     for (int k = 0; k < cnt; k++) {
@@ -88,12 +92,15 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
             if (touching) { /* the contact ended: so does its history */
                 v3_store(hist, slot, v3_zero());
                 touch[slot] = 0;
+                touch[nbr_mirror[slot]] = 0;
             }
             continue;
         }
         v3_store(hist, slot, pc.hist);
-        if (!touching)
+        if (!touching) {
             touch[slot] = 1;
+            touch[nbr_mirror[slot]] = 1;
+        }
         DEM_GLOBAL real *pr = pair + slot * PR_STRIDE;
         pr[PR_FX] = pc.force.x;
         pr[PR_FY] = pc.force.y;
@@ -106,7 +113,7 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
 }
 
 /* Pass 2, contact_forces: particle i sums its touching pairs in ascending partner id, reading each pair where its
- * owner left it (nbr_mirror: the slot itself when j > i, else the slot of i in row j), then its walls. */
+ * owner left it (its own slot when j > i, else the slot of i in row j: nbr_mirror), then its walls. */
 DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                     DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
@@ -123,12 +130,12 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
     int cnt = nbr_count[i];
     for (int k = 0; k < cnt; k++) {
         int slot = i * maxn + k;
-        int s = nbr_mirror[slot];
-        if (s < 0 || !touch[s])
+        if (!touch[slot])
             continue;
-        DEM_CONST_GLOBAL real *pr = pair + s * PR_STRIDE;
+        int owner = nbr_list[slot] > i;
+        DEM_CONST_GLOBAL real *pr = pair + (owner ? slot : nbr_mirror[slot]) * PR_STRIDE;
         vec3 f = v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]);
-        fi = nbr_list[slot] > i ? v3_add(fi, f) : v3_sub(fi, f);
+        fi = owner ? v3_add(fi, f) : v3_sub(fi, f);
         ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }
     if (nwalls > 0)

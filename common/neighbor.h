@@ -5,7 +5,8 @@
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
  * A new row takes the tangential history and touching flag of the same partner from the old row (binary
- * search), or zero, and records for each slot where the pair's owner keeps it (mirror; see contact_forces.h).
+ * search), or zero, and records for each slot the slot of the same pair in the partner's row (mirror; see
+ * contact_forces.h).
  */
 #ifndef DEM_NEIGHBOR_H
 #define DEM_NEIGHBOR_H
@@ -65,11 +66,10 @@ DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL i
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
     for (int k = 0; k < nbr_count[i]; k++) {
         int j = nbr_list[i * maxn + k];
-        /* mirror: where the pair's owner (the lower id) keeps it: this slot, or the slot of i in row j */
-        int m = i * maxn + k;
-        if (j < i) {
+        /* mirror: the slot of the same pair in the partner's row (the slot of i in row j) */
+        int m = -1;
+        {
             int a = 0, z = nbr_count[j] - 1;
-            m = -1;
             while (a <= z) {
                 int mid = (a + z) / 2, p = nbr_list[j * maxn + mid];
                 if (p < i)

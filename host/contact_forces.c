@@ -17,8 +17,9 @@ int clb_contact_forces(dem_backend *b)
 {
     int s = b->cur;
     cl_kernel k = b->k[K_CONTACT_PAIRS];
-    if (common_args(b, k) || clb_arg_mem(b, k, 13, b->hist[s]) || clb_arg_mem(b, k, 14, b->touch[s]) ||
-        clb_arg_mem(b, k, 15, b->pair) || clb_launch(b, K_CONTACT_PAIRS, (size_t)b->n))
+    if (common_args(b, k) || clb_arg_mem(b, k, 13, b->mirror[s]) || clb_arg_mem(b, k, 14, b->hist[s]) ||
+        clb_arg_mem(b, k, 15, b->touch[s]) || clb_arg_mem(b, k, 16, b->pair) ||
+        clb_launch(b, K_CONTACT_PAIRS, (size_t)b->n))
         return 1;
     k = b->k[K_CONTACT_FORCES];
     return common_args(b, k) || clb_arg_mem(b, k, 13, b->mirror[s]) || clb_arg_mem(b, k, 14, b->touch[s]) ||
