@@ -6,7 +6,7 @@
 
 CC      ?= cc
 BUILD   := build
-# Bit equality rules: no FP contraction, no fast-math, no -march=native (see common/dem_real.h).
+# Bit equality rules: no FP contraction, no fast math, no tuning for the build machine (see common/dem_real.h).
 # -fno-math-errno only drops the errno branch around sqrt; results are unchanged (IEEE sqrt either way).
 CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -ffp-contract=off -fno-fast-math -fno-math-errno \
            -D_GNU_SOURCE \

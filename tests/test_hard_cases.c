@@ -19,20 +19,27 @@ static int all_finite(dem_sim *s, dem_field f)
     return ok;
 }
 
+/* Two spheres of radius r, the second at x1 with speed v1 along x, in the cube [-half, half]^3, started. */
+static dem_sim *two_spheres(double r, double x1, double v1, double half, int opencl, dem_precision prec)
+{
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
+    dem_add_particle(s, (double[3]){0, 0, 0}, NULL, r, m);
+    dem_add_particle(s, (double[3]){x1, 0, 0}, (double[3]){v1, 0, 0}, r, m);
+    dem_set_domain(s, (double[3]){-half, -half, -half}, (double[3]){half, half, half});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    dem_config c = cfg_of(opencl ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, prec);
+    start_or_fail(s, &c);
+    return s;
+}
+
 static void test_coincident_centres(void **st)
 {
     (void)st;
     for (int b = 0; b < 2; b++) {
-        dem_sim *s = dem_create();
-        int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
-        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.01, m);
-        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.01, m);
-        dem_set_domain(s, (double[3]){-1, -1, -1}, (double[3]){1, 1, 1});
-        dem_time_scales ts;
-        dem_time_scales_get(s, 0, &ts);
-        dem_set_dt(s, ts.recommended_dt);
-        dem_config c = cfg_of(b ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, DEM_FP64);
-        start_or_fail(s, &c);
+        dem_sim *s = two_spheres(0.01, 0, 0, 1, b, DEM_FP64);
         double x[6] = {0};
         for (int k = 0; k < 200 && x[2] - x[5] < 0.02; k++) { /* until they no longer touch */
             step_or_fail(s, 10);
@@ -51,16 +58,7 @@ static void test_leaves_domain(void **st)
 {
     (void)st;
     for (int b = 0; b < 2; b++) {
-        dem_sim *s = dem_create();
-        int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
-        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.001, m);
-        dem_add_particle(s, (double[3]){0.05, 0, 0}, (double[3]){5, 0, 0}, 0.001, m);
-        dem_set_domain(s, (double[3]){-0.1, -0.1, -0.1}, (double[3]){0.1, 0.1, 0.1});
-        dem_time_scales ts;
-        dem_time_scales_get(s, 0, &ts);
-        dem_set_dt(s, ts.recommended_dt);
-        dem_config c = cfg_of(b ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, DEM_FP32);
-        start_or_fail(s, &c);
+        dem_sim *s = two_spheres(0.001, 0.05, 5, 0.1, b, DEM_FP32);
         long need = lround(0.06 / (5 * dem_dt(s))) + 100;
         int e = dem_step(s, need);
         assert_int_equal(e, DEM_ERR_DOMAIN);
