@@ -260,13 +260,17 @@ static int report_out_of_domain(dem_sim *s, int id)
 static int rebuild(dem_sim *s)
 {
     int flags[FLAG_COUNT];
-    if (s->ops->bin(s->be) || read_flags(s, flags))
-        return s->err[0] ? DEM_ERR_DEVICE : be_fail(s);
+    if (s->ops->bin(s->be))
+        return be_fail(s);
+    if (read_flags(s, flags))
+        return DEM_ERR_DEVICE;
     if (flags[FLAG_OUT_OF_DOMAIN] != DEM_NO_PARTICLE)
         return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
     for (;;) {
-        if (s->ops->nbr_reserve(s->be, s->maxn) || s->ops->nbr_build(s->be) || read_flags(s, flags))
+        if (s->ops->nbr_reserve(s->be, s->maxn) || s->ops->nbr_build(s->be))
             return be_fail(s);
+        if (read_flags(s, flags))
+            return DEM_ERR_DEVICE;
         if (flags[FLAG_NBR_NEEDED] <= s->maxn)
             break;
         while (s->maxn < flags[FLAG_NBR_NEEDED])
