@@ -1,9 +1,10 @@
 /* contact_forces.h - particle-particle contact forces and their per-particle accumulation (one work item = one particle).
  *
  * Two passes, no scatter, no atomics. Pass 1 evaluates each pair once, by its lower-id particle a, in canonical
- * orientation (n from b to a) and leaves the result in a's row slot. Pass 2 has every particle walk its own row,
- * sorted by ascending partner id, and add the pair force (a) or its exact negation (b): every particle sums its
- * contacts in one canonical order and f_ji = -f_ij bit for bit.
+ * orientation (n from b to a), adds it to a's sum and leaves the result in a's row slot. Pass 2 has every particle
+ * add the pairs owned by lower ids (the exact negation of what they computed), then its walls. The canonical order
+ * of every particle's sum is therefore: partners j > i ascending, then partners j < i ascending, then walls by
+ * index; f_ji = -f_ij bit for bit.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
  * touch[slot] says whether the pair touches (both slots of a pair carry it); the 24-byte history is read only when
  * it touched in the previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair
@@ -67,8 +68,9 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
     return pc;
 }
 
-/* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, keeps their history and
- * touching flag, and leaves the force on i, n x f_t and the overlap in the slot for pass 2. The flag is copied
+/* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, sums them into its force and
+ * torque, keeps their history and touching flag, and leaves the force on i, n x f_t and the overlap in the slot
+ * for the partner's pass 2. The flag is copied
  * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
  * exactly one writer, the pair's owner. */
 DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
@@ -77,8 +79,10 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                                    DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
                                    DEM_GLOBAL real *hist, DEM_GLOBAL unsigned char *touch, real dt,
-                                   DEM_GLOBAL real *pair)
+                                   DEM_GLOBAL real *pair, DEM_GLOBAL real *force, DEM_GLOBAL real *torque)
 {
+    vec3 fi = v3_zero(), ti = v3_zero();
+    real ri = radius[i];
     int cnt = nbr_count[i];
     for (int k = 0; k < cnt; k++) {
         int slot = i * maxn + k;
@@ -109,11 +113,16 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
         pr[PR_CY] = pc.c.y;
         pr[PR_CZ] = pc.c.z;
         pr[PR_DELTA] = pc.delta;
+        fi = v3_add(fi, pc.force);
+        ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
     }
+    v3_store(force, i, fi);
+    v3_store(torque, i, ti);
 }
 
-/* Pass 2, contact_forces: particle i sums its touching pairs in ascending partner id, reading each pair where its
- * owner left it (its own slot when j > i, else the slot of i in row j: nbr_mirror), then its walls. */
+/* Pass 2, contact_forces: particle i adds its touching pairs with lower ids in ascending partner id, reading each
+ * where its owner left it (the slot of i in row j: nbr_mirror), then its walls. Rows are sorted, so the partners
+ * j < i are the front of the row. */
 DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                     DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
@@ -125,17 +134,17 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
                                     DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
                                     DEM_GLOBAL unsigned *wall_mask)
 {
-    vec3 fi = v3_zero(), ti = v3_zero();
+    vec3 fi = v3_load(force, i), ti = v3_load(torque, i);
     real ri = radius[i];
     int cnt = nbr_count[i];
     for (int k = 0; k < cnt; k++) {
         int slot = i * maxn + k;
+        if (nbr_list[slot] > i)
+            break;
         if (!touch[slot])
             continue;
-        int owner = nbr_list[slot] > i;
-        DEM_CONST_GLOBAL real *pr = pair + (owner ? slot : nbr_mirror[slot]) * PR_STRIDE;
-        vec3 f = v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]);
-        fi = owner ? v3_add(fi, f) : v3_sub(fi, f);
+        DEM_CONST_GLOBAL real *pr = pair + nbr_mirror[slot] * PR_STRIDE;
+        fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }
     if (nwalls > 0)

@@ -18,8 +18,8 @@ int clb_contact_forces(dem_backend *b)
     int s = b->cur;
     cl_kernel k = b->k[K_CONTACT_PAIRS];
     if (common_args(b, k) || clb_arg_mem(b, k, 13, b->mirror[s]) || clb_arg_mem(b, k, 14, b->hist[s]) ||
-        clb_arg_mem(b, k, 15, b->touch[s]) || clb_arg_mem(b, k, 16, b->pair) ||
-        clb_launch(b, K_CONTACT_PAIRS, (size_t)b->n))
+        clb_arg_mem(b, k, 15, b->touch[s]) || clb_arg_mem(b, k, 16, b->pair) || clb_arg_mem(b, k, 17, b->f) ||
+        clb_arg_mem(b, k, 18, b->t) || clb_launch(b, K_CONTACT_PAIRS, (size_t)b->n))
         return 1;
     k = b->k[K_CONTACT_FORCES];
     return common_args(b, k) || clb_arg_mem(b, k, 13, b->mirror[s]) || clb_arg_mem(b, k, 14, b->touch[s]) ||

@@ -7,12 +7,13 @@ __kernel void contact_pairs(int n, int maxn, int nmat, real dt, __global const r
                             __global const real *w, __global const real *radius, __global const real *invmass,
                             __global const int *mat, __global const real *pairmat, __global const int *nbr_count,
                             __global const int *nbr_list, __global const int *nbr_mirror, __global real *hist,
-                            __global unsigned char *touch, __global real *pair)
+                            __global unsigned char *touch, __global real *pair, __global real *force,
+                            __global real *torque)
 {
     int i = get_global_id(0);
     if (i < n)
         contact_pairs_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
-                           touch, dt, pair);
+                           touch, dt, pair, force, torque);
 }
 
 __kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const real *x, __global const real *v,

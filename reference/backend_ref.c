@@ -251,7 +251,7 @@ static int ref_contact_forces(dem_backend *b)
     TIMED(b, T_PAIRS,
           REF(ref_contact_pairs)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->hist[k], b->touch[k],
-                                 b->pair));
+                                 b->pair, b->f, b->t));
     TIMED(b, T_CONTACT,
           REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                   b->pairmat, b->count[k], b->list[k], b->mirror[k], b->touch[k], b->pair, b->f, b->t, b->nwalls, b->wall_int, b->wall_real,

@@ -5,11 +5,11 @@
 void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror, real *hist,
-                            unsigned char *touch, real *pair)
+                            unsigned char *touch, real *pair, real *force, real *torque)
 {
     for (int i = 0; i < n; i++)
         contact_pairs_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
-                           touch, dt, pair);
+                           touch, dt, pair, force, torque);
 }
 
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,

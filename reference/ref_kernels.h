@@ -29,7 +29,7 @@ void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, con
 void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror, real *hist,
-                            unsigned char *touch, real *pair);
+                            unsigned char *touch, real *pair, real *force, real *torque);
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
                              const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
