@@ -70,7 +70,7 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
 
 /* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, sums them into its force and
  * torque, keeps their history and touching flag, and leaves the force on i, n x f_t and the overlap in the slot
- * for the partner's pass 2. The flag is copied
+ * for the partner's pass 2 (in the partner's row). The flag is copied
  * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
  * exactly one writer, the pair's owner. */
 DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
@@ -105,7 +105,7 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
             touch[slot] = 1;
             touch[nbr_mirror[slot]] = 1;
         }
-        DEM_GLOBAL real *pr = pair + slot * PR_STRIDE;
+        DEM_GLOBAL real *pr = pair + nbr_mirror[slot] * PR_STRIDE; /* into the reader's row: see pass 2 */
         pr[PR_FX] = pc.force.x;
         pr[PR_FY] = pc.force.y;
         pr[PR_FZ] = pc.force.z;
@@ -120,9 +120,10 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
     v3_store(torque, i, ti);
 }
 
-/* Pass 2, contact_forces: particle i adds its touching pairs with lower ids in ascending partner id, reading each
- * where its owner left it (the slot of i in row j: nbr_mirror), then its walls. Rows are sorted, so the partners
- * j < i are the front of the row. */
+/* Pass 2, contact_forces: particle i adds its touching pairs with lower ids in ascending partner id, then its
+ * walls. Rows are sorted, so the partners j < i are the front of the row. Pass 1 wrote each pair's record into
+ * this particle's own slot (the owner's nbr_mirror), so the reads here walk one row in order: a scattered store in
+ * pass 1 costs far less than a scattered load here (measured: the load was half of this pass's time). */
 DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                     DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
@@ -143,7 +144,7 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
             break;
         if (!touch[slot])
             continue;
-        DEM_CONST_GLOBAL real *pr = pair + nbr_mirror[slot] * PR_STRIDE;
+        DEM_CONST_GLOBAL real *pr = pair + slot * PR_STRIDE;
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }

@@ -29,7 +29,7 @@ enum {
 enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
 enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1 };
 
-/* Result of a touching pair, left by contact_pairs in its owner's row slot for contact_forces (index slot*PR_STRIDE):
+/* Result of a touching pair, left by contact_pairs in the higher id's row slot for contact_forces (index slot*PR_STRIDE):
  * one record per pair so that the gather reads one cache line (fp64) instead of three. */
 enum {
     PR_FX = 0, PR_FY, PR_FZ, /* force on the lower id [N] */
