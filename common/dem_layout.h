@@ -43,7 +43,7 @@ enum {
     FLAG_REBUILD = 0,       /* set to 1 when some particle moved more than skin/2 since the last build */
     FLAG_OUT_OF_DOMAIN = 1, /* smallest id of a particle outside the binning domain (or non-finite); INT_MAX if none */
     FLAG_NBR_NEEDED = 2,    /* largest neighbour count found; > capacity means the build overflowed */
-    FLAG_CELL_NEEDED = 3,   /* unused slot kept for layout stability */
+    FLAG_ASYMMETRIC = 3,    /* 1 when some row lacks its partner's mirror slot (a bug: rows are symmetric) */
     FLAG_COUNT = 4
 };
 #define DEM_NO_PARTICLE 2147483647

@@ -60,7 +60,7 @@ DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL i
                                DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
                                DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
                                DEM_CONST_GLOBAL unsigned char *old_touch, DEM_GLOBAL real *hist,
-                               DEM_GLOBAL unsigned char *touch, DEM_GLOBAL int *mirror)
+                               DEM_GLOBAL unsigned char *touch, DEM_GLOBAL int *mirror, DEM_GLOBAL int *flags)
 {
     int on = old_count[i];
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
@@ -83,6 +83,8 @@ DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL i
             }
         }
         mirror[i * maxn + k] = m;
+        if (m < 0)
+            DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
         int lo = 0, hi = on - 1, found = -1;
         while (lo <= hi) {
             int mid = (lo + hi) / 2;

@@ -281,6 +281,11 @@ static int rebuild(dem_sim *s)
     }
     if (s->ops->nbr_commit(s->be))
         return be_fail(s);
+    if (read_flags(s, flags))
+        return DEM_ERR_DEVICE;
+    if (flags[FLAG_ASYMMETRIC])
+        return sim_fail(s, DEM_ERR_STATE, "step %ld: neighbour rows are not symmetric (a library bug; please report)",
+                        s->step);
     s->rebuilds++;
     return 0;
 }

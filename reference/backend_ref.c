@@ -161,7 +161,7 @@ static int ref_reset_flags(dem_backend *b)
     b->flags[FLAG_REBUILD] = 0;
     b->flags[FLAG_OUT_OF_DOMAIN] = DEM_NO_PARTICLE;
     b->flags[FLAG_NBR_NEEDED] = 0;
-    b->flags[FLAG_CELL_NEEDED] = 0;
+    b->flags[FLAG_ASYMMETRIC] = 0;
     return 0;
 }
 
@@ -229,7 +229,8 @@ static int ref_nbr_commit(dem_backend *b)
     int k = 1 - b->cur, o = b->cur;
     TIMED(b, T_NBR_CARRY,
           REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
-                             b->hist[o], b->touch[o], b->hist[k], b->touch[k], b->mirror[k]));
+                             b->hist[o], b->touch[o], b->hist[k], b->touch[k], b->mirror[k],
+                             b->flags));
     b->cur = k;
     if (b->pair_maxn != b->maxn[k]) { /* pair results follow the current row capacity */
         real *pr = zalloc((size_t)PR_STRIDE * b->n * b->maxn[k], sizeof(real));

@@ -24,7 +24,7 @@ void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, c
                         int *nbr_list, int *flags);
 void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
                         const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
-                        unsigned char *touch, int *mirror);
+                        unsigned char *touch, int *mirror, int *flags);
 /* contact_forces.c */
 void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
