@@ -40,8 +40,8 @@ DEM_INLINE void bin_index_item(int i, vec3 lo, real inv_cell, int ncx, int ncy, 
     DEM_ATOMIC_INC(&cell_count[c]);
 }
 
-/* Exclusive scan in fixed blocks of DEM_SCAN_BLOCK cells: block sums, a scan of the block sums, then each block. */
-#define DEM_SCAN_BLOCK 1024
+/* Exclusive scan in fixed blocks of DEM_SCAN_BLOCK items (dem_layout.h): block sums, a scan of the block sums,
+ * then each block. Also used for the per-particle pair-record offsets (neighbor.h, contact_forces.h). */
 DEM_INLINE void scan_block_sum_item(int b, int ncells, DEM_CONST_GLOBAL int *count, DEM_GLOBAL int *block_sum)
 {
     int s = 0, end = (b + 1) * DEM_SCAN_BLOCK < ncells ? (b + 1) * DEM_SCAN_BLOCK : ncells;

@@ -1,7 +1,7 @@
 /* contact_forces.h - particle-particle contact forces and their per-particle accumulation (one work item = one particle).
  *
  * Two passes, no scatter, no atomics. Pass 1 evaluates each pair once, by its lower-id particle a, in canonical
- * orientation (n from b to a), adds it to a's sum and leaves the result in b's row slot. Pass 2 has every particle
+ * orientation (n from b to a), adds it to a's sum and leaves the result in b's incoming records. Pass 2 has every particle
  * add the pairs owned by lower ids (the exact negation of what they computed), then its walls. The canonical order
  * of every particle's sum is therefore: partners j > i ascending, then partners j < i ascending, then walls by
  * index; f_ji = -f_ij bit for bit.
@@ -70,7 +70,7 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
 
 /* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, sums them into its force and
  * torque, keeps their history and touching flag, and leaves the force on i, n x f_t and the overlap in the slot
- * for the partner's pass 2 (in the partner's row). The flag is copied
+ * for the partner's pass 2 (in the partner's packed incoming records). The flag is copied
  * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
  * exactly one writer, the pair's owner. */
 DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
@@ -79,7 +79,8 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                                    DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
                                    DEM_GLOBAL real *hist, DEM_GLOBAL unsigned char *touch, real dt,
-                                   DEM_GLOBAL real *pair, DEM_GLOBAL real *force, DEM_GLOBAL real *torque)
+                                   DEM_CONST_GLOBAL int *in_start, DEM_GLOBAL real *pair, DEM_GLOBAL real *force,
+                                   DEM_GLOBAL real *torque)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i];
@@ -107,7 +108,8 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
             touch[slot] = 1;
             touch[m] = 1;
         }
-        DEM_GLOBAL real *pr = pair + m * PR_STRIDE; /* into the reader's row: see pass 2 */
+        /* the record goes to the partner's list of incoming pairs, at the position of this pair in its row */
+        DEM_GLOBAL real *pr = pair + (in_start[j] + (m - j * maxn)) * PR_STRIDE;
         pr[PR_FX] = pc.force.x;
         pr[PR_FY] = pc.force.y;
         pr[PR_FZ] = pc.force.z;
@@ -123,16 +125,16 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
 }
 
 /* Pass 2, contact_forces: particle i adds its touching pairs with lower ids in ascending partner id, then its
- * walls. Rows are sorted, so the partners j < i are the front of the row. Pass 1 wrote each pair's record into
- * this particle's own slot (the owner's nbr_mirror), so the reads here walk one row in order and pass 1 does the
- * scattered stores instead (measured about 3 % faster than scattered loads here; the record reads still miss the
- * cache at n = 1e5, see docs/design.md). */
+ * walls. Rows are sorted, so the partners j < i are the front of the row, and their records lie packed at
+ * pair[in_start[i] ...] (in_start: prefix sum of those counts, made at each rebuild): the whole pass reads the
+ * records in memory order, and pass 1 does the scattered stores instead. */
 DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                     DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                     DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                                     DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
-                                    DEM_CONST_GLOBAL unsigned char *touch, DEM_CONST_GLOBAL real *pair, real dt,
+                                    DEM_CONST_GLOBAL unsigned char *touch, DEM_CONST_GLOBAL int *in_start,
+                                    DEM_CONST_GLOBAL real *pair, real dt,
                                     DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
                                     DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
                                     DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
@@ -147,7 +149,7 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
             break;
         if (!touch[slot])
             continue;
-        DEM_CONST_GLOBAL real *pr = pair + slot * PR_STRIDE;
+        DEM_CONST_GLOBAL real *pr = pair + (in_start[i] + k) * PR_STRIDE;
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }

@@ -29,8 +29,8 @@ enum {
 enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
 enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1 };
 
-/* Result of a touching pair, left by contact_pairs in the higher id's row slot for contact_forces (index slot*PR_STRIDE):
- * one record per pair so that the gather reads one cache line (fp64) instead of three. */
+/* Result of a touching pair, left by contact_pairs for the higher id's contact_forces. Each particle's incoming
+ * pairs (partners with lower ids) have consecutive records from in_start[i]; one record per pair, 8 reals. */
 enum {
     PR_FX = 0, PR_FY, PR_FZ, /* force on the lower id [N] */
     PR_CX, PR_CY, PR_CZ,     /* n x f_t [N] */
@@ -52,5 +52,7 @@ enum {
  * particles, in ascending id, then the partials in ascending block order. It is a constant, not the
  * work-group size, so the sum has the same bits on every device and launch configuration. */
 #define DEM_REDUCE_BLOCK 256
+/* Items per block of the integer exclusive scan (binning.h). */
+#define DEM_SCAN_BLOCK 1024
 
 #endif /* DEM_LAYOUT_H */

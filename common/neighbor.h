@@ -16,7 +16,8 @@
 DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
                                DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *cell_of,
                                DEM_CONST_GLOBAL int *cell_start, DEM_CONST_GLOBAL int *cell_particles,
-                               DEM_GLOBAL int *nbr_count, DEM_GLOBAL int *nbr_list, DEM_GLOBAL int *flags)
+                               DEM_GLOBAL int *nbr_count, DEM_GLOBAL int *nbr_list, DEM_GLOBAL int *in_count,
+                               DEM_GLOBAL int *flags)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
@@ -53,6 +54,10 @@ DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int
                 }
             }
     nbr_count[i] = cnt < maxn ? cnt : maxn;
+    int lower = 0; /* partners j < i: the front of the sorted row, whose pair records this particle reads */
+    while (lower < nbr_count[i] && row[lower] < i)
+        lower++;
+    in_count[i] = lower;
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 

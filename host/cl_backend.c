@@ -114,7 +114,7 @@ static void cl_destroy(dem_backend *b)
                       &b->wall_force, &b->cell_of, &b->cell_count, &b->cell_start, &b->cell_fill,
                       &b->cell_particles, &b->block_sum, &b->flags, &b->count[0], &b->count[1], &b->list[0],
                       &b->list[1], &b->hist[0], &b->hist[1], &b->touch[0], &b->touch[1], &b->mirror[0], &b->mirror[1],
-                      &b->pair};
+                      &b->pair, &b->in_count, &b->in_start, &b->in_block_sum};
     for (size_t k = 0; k < sizeof mems / sizeof mems[0]; k++)
         rel(mems[k]);
     for (int k = 0; k < K__COUNT; k++)
@@ -221,7 +221,7 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
     b->ncy = s->ncell[1];
     b->ncz = s->ncell[2];
     b->ncells = b->ncx * b->ncy * b->ncz;
-    b->nblocks_scan = (b->ncells + 1023) / 1024;
+    b->nblocks_scan = (b->ncells + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK;
     b->nblocks_red = (n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
     b->dt = s->dt;
     b->skin = s->skin;
@@ -264,8 +264,11 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
         b->touch[k] = mkbuf(b, N * s->maxn, NULL, &fail);
         b->mirror[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
     }
-    b->pair_maxn = s->maxn;
-    b->pair = mkbuf(b, (size_t)PR_STRIDE * N * s->maxn * r, NULL, &fail);
+    b->in_count = mkbuf(b, N * sizeof(int), NULL, &fail);
+    b->in_start = mkbuf(b, (N + 1) * sizeof(int), NULL, &fail);
+    b->in_block_sum = mkbuf(b, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK * sizeof(int), NULL, &fail);
+    b->pair_cap = 0;
+    b->pair = NULL;
     if (fail || cl_check(clFinish(b->q), "clFinish after upload", b->err, sizeof b->err)) {
         snprintf(err, errlen, "%s", b->err);
         goto fail;
@@ -319,14 +322,20 @@ static int cl_nbr_commit(dem_backend *b)
     if (clb_nbr_carry(b))
         return 1;
     b->cur = 1 - b->cur;
-    if (b->pair_maxn != b->maxn[b->cur]) { /* pair results follow the current row capacity */
+    int total = 0;
+    if (clb_scan(b, b->in_count, b->in_start, b->n, b->in_block_sum) ||
+        cl_check(clEnqueueReadBuffer(b->q, b->in_start, CL_TRUE, (size_t)b->n * sizeof(int), sizeof total, &total, 0,
+                                     NULL, NULL),
+                 "read pair count", b->err, sizeof b->err))
+        return 1;
+    if ((size_t)total > b->pair_cap || !b->pair) { /* records are rewritten every step before they are read */
         int fail = 0;
-        size_t slots = (size_t)b->n * b->maxn[b->cur];
+        size_t cap = (size_t)total + (size_t)total / 4 + 16;
         rel(&b->pair);
-        b->pair = mkbuf(b, (size_t)PR_STRIDE * slots * b->rs, NULL, &fail);
+        b->pair = mkbuf(b, (size_t)PR_STRIDE * cap * b->rs, NULL, &fail);
         if (fail)
             return 1;
-        b->pair_maxn = b->maxn[b->cur];
+        b->pair_cap = cap;
     }
     return cl_check(clEnqueueCopyBuffer(b->q, b->x, b->x_build, 0, 0, 3 * (size_t)b->n * b->rs, 0, NULL, NULL),
                     "copy x_build", b->err, sizeof b->err);

@@ -28,8 +28,9 @@ struct dem_backend {
         partial, wall_force, cell_of, cell_count, cell_start, cell_fill, cell_particles, block_sum, flags;
     int maxn[2];
     cl_mem count[2], list[2], hist[2], touch[2], mirror[2];
-    cl_mem pair; /* PR_STRIDE reals per slot of the current rows (contact_pairs -> contact_forces) */
-    int pair_maxn;
+    cl_mem in_count, in_start, in_block_sum; /* incoming pairs per particle and their offsets (see contact_forces.h) */
+    cl_mem pair;     /* PR_STRIDE reals per incoming pair (contact_pairs -> contact_forces) */
+    size_t pair_cap; /* records allocated */
     int cur;
     char desc[512];
     char err[4096];
@@ -47,6 +48,8 @@ int clb_fill_int(dem_backend *b, cl_mem m, int value, size_t count);
 int clb_integrate_kick_drift(dem_backend *b);
 int clb_integrate_kick(dem_backend *b);
 int clb_bin(dem_backend *b);
+/* Exclusive prefix sum of count[0..items) into start[0..items] (fixed blocks of DEM_SCAN_BLOCK, integers). */
+int clb_scan(dem_backend *b, cl_mem count, cl_mem start, int items, cl_mem block_sum);
 int clb_nbr_build(dem_backend *b);
 int clb_nbr_carry(dem_backend *b);
 int clb_contact_forces(dem_backend *b);

@@ -10,7 +10,8 @@ int clb_nbr_build(dem_backend *b)
            clb_arg_mem(b, k, 6, b->x) || clb_arg_mem(b, k, 7, b->radius) || clb_arg_mem(b, k, 8, b->cell_of) ||
            clb_arg_mem(b, k, 9, b->cell_start) || clb_arg_mem(b, k, 10, b->cell_particles) ||
            clb_arg_mem(b, k, 11, b->count[s]) || clb_arg_mem(b, k, 12, b->list[s]) ||
-           clb_arg_mem(b, k, 13, b->flags) || clb_launch(b, K_NBR_BUILD, (size_t)b->n);
+           clb_arg_mem(b, k, 13, b->in_count) || clb_arg_mem(b, k, 14, b->flags) ||
+           clb_launch(b, K_NBR_BUILD, (size_t)b->n);
 }
 
 int clb_nbr_carry(dem_backend *b)

@@ -7,20 +7,21 @@ __kernel void contact_pairs(int n, int maxn, int nmat, real dt, __global const r
                             __global const real *w, __global const real *radius, __global const real *invmass,
                             __global const int *mat, __global const real *pairmat, __global const int *nbr_count,
                             __global const int *nbr_list, __global const int *nbr_mirror, __global real *hist,
-                            __global unsigned char *touch, __global real *pair, __global real *force,
-                            __global real *torque)
+                            __global unsigned char *touch, __global const int *in_start, __global real *pair,
+                            __global real *force, __global real *torque)
 {
     int i = get_global_id(0);
     if (i < n)
         contact_pairs_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
-                           touch, dt, pair, force, torque);
+                           touch, dt, in_start, pair, force, torque);
 }
 
 __kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const real *x, __global const real *v,
                              __global const real *w, __global const real *radius, __global const real *invmass,
                              __global const int *mat, __global const real *pairmat, __global const int *nbr_count,
                              __global const int *nbr_list, __global const int *nbr_mirror,
-                             __global const unsigned char *touch, __global const real *pair, __global real *force,
+                             __global const unsigned char *touch, __global const int *in_start,
+                             __global const real *pair, __global real *force,
                              __global real *torque, int nwalls, __global const int *wall_int,
                              __global const real *wall_real, __global real *wall_hist, __global real *wall_pf,
                              __global unsigned *wall_mask)
@@ -28,6 +29,6 @@ __kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const 
     int i = get_global_id(0);
     if (i < n)
         contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror,
-                            touch, pair, dt, force, torque, n, nwalls, wall_int, wall_real,
+                            touch, in_start, pair, dt, force, torque, n, nwalls, wall_int, wall_real,
                             wall_hist, wall_pf, wall_mask);
 }

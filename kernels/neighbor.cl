@@ -4,12 +4,12 @@
 __kernel void nbr_build(int n, int maxn, real skin, int ncx, int ncy, int ncz, __global const real *x,
                         __global const real *radius, __global const int *cell_of, __global const int *cell_start,
                         __global const int *cell_particles, __global int *nbr_count, __global int *nbr_list,
-                        __global int *flags)
+                        __global int *in_count, __global int *flags)
 {
     int i = get_global_id(0);
     if (i < n)
         nbr_build_item(i, maxn, skin, ncx, ncy, ncz, x, radius, cell_of, cell_start, cell_particles, nbr_count,
-                       nbr_list, flags);
+                       nbr_list, in_count, flags);
 }
 
 __kernel void nbr_carry(int n, int maxn, int old_maxn, __global const int *nbr_count, __global const int *nbr_list,

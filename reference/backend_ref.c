@@ -24,8 +24,9 @@ struct dem_backend {
     real *hist[2];
     unsigned char *touch[2];
     int *mirror[2];
-    real *pair;                     /* PR_STRIDE reals per slot of the current rows, from contact_pairs */
-    int pair_maxn;                  /* their capacity per particle */
+    int *in_count, *in_start, *in_block_sum; /* incoming pairs (lower-id partners) per particle, and their offsets */
+    real *pair;                     /* PR_STRIDE reals per incoming pair, written by contact_pairs */
+    size_t pair_cap;                /* records allocated */
     int cur;        /* the row set in use; 1-cur is built into */
     int flags[FLAG_COUNT];
     double ktime[8]; /* seconds per step kind, see step_names */
@@ -59,7 +60,8 @@ static void ref_destroy(dem_backend *b)
     void *ptrs[] = {b->x, b->v, b->w, b->f, b->t, b->radius, b->invm, b->invi, b->x_build, b->mat, b->pairmat,
                     b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask, b->partial, b->wall_force, b->wall_int, b->cell_of,
                     b->cell_count, b->cell_start, b->cell_fill, b->cell_particles, b->block_sum, b->count[0],
-                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1], b->touch[0], b->touch[1], b->mirror[0], b->mirror[1], b->pair};
+                    b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1], b->touch[0], b->touch[1], b->mirror[0], b->mirror[1], b->pair,
+                    b->in_count, b->in_start, b->in_block_sum};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++)
         free(ptrs[k]);
     free(b);
@@ -90,7 +92,7 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
     b->ncy = s->ncell[1];
     b->ncz = s->ncell[2];
     b->ncells = b->ncx * b->ncy * b->ncz;
-    b->nblocks_scan = (b->ncells + 1023) / 1024;
+    b->nblocks_scan = (b->ncells + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK;
     b->nblocks_red = (n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
     b->dt = (real)s->dt;
     b->skin = (real)s->skin;
@@ -130,13 +132,16 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         b->touch[k] = zalloc((size_t)n * s->maxn, 1);
         b->mirror[k] = zalloc((size_t)n * s->maxn, sizeof(int));
     }
-    b->pair_maxn = s->maxn;
-    b->pair = zalloc((size_t)PR_STRIDE * n * s->maxn, sizeof(real));
+    b->in_count = zalloc((size_t)n, sizeof(int));
+    b->in_start = zalloc((size_t)n + 1, sizeof(int));
+    b->in_block_sum = zalloc((size_t)(n + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, sizeof(int));
+    b->pair_cap = 0;
+    b->pair = NULL;
     if (!b->x || !b->v || !b->w || !b->f || !b->t || !b->radius || !b->invm || !b->invi || !b->x_build || !b->mat ||
         !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->wall_mask || !b->partial ||
         !b->wall_force || !b->cell_of || !b->cell_count || !b->cell_start || !b->cell_fill || !b->cell_particles ||
         !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1] || !b->touch[0] || !b->touch[1] ||
-        !b->mirror[0] || !b->mirror[1] || !b->pair)
+        !b->mirror[0] || !b->mirror[1] || !b->in_count || !b->in_start || !b->in_block_sum)
         goto nomem;
     memcpy(b->mat, s->mat, (size_t)n * sizeof(int));
     if (s->nwalls)
@@ -220,7 +225,7 @@ static int ref_nbr_build(dem_backend *b)
     int k = 1 - b->cur;
     TIMED(b, T_NBR_BUILD,
           REF(ref_nbr_build)(b->n, b->maxn[k], b->skin, b->ncx, b->ncy, b->ncz, b->x, b->radius, b->cell_of,
-                             b->cell_start, b->cell_particles, b->count[k], b->list[k], b->flags));
+                             b->cell_start, b->cell_particles, b->count[k], b->list[k], b->in_count, b->flags));
     return 0;
 }
 
@@ -232,15 +237,18 @@ static int ref_nbr_commit(dem_backend *b)
                              b->hist[o], b->touch[o], b->hist[k], b->touch[k], b->mirror[k],
                              b->flags));
     b->cur = k;
-    if (b->pair_maxn != b->maxn[k]) { /* pair results follow the current row capacity */
-        real *pr = zalloc((size_t)PR_STRIDE * b->n * b->maxn[k], sizeof(real));
+    REF(ref_scan)(b->n, b->in_count, b->in_block_sum, b->in_start);
+    size_t need = (size_t)b->in_start[b->n];
+    if (need > b->pair_cap || !b->pair) { /* records are rewritten every step before they are read: no copy */
+        size_t cap = need + need / 4 + 16;
+        real *pr = zalloc((size_t)PR_STRIDE * cap, sizeof(real));
         if (!pr) {
-            snprintf(b->err, sizeof b->err, "out of host memory for pair results");
+            snprintf(b->err, sizeof b->err, "out of host memory for %zu pair records", cap);
             return 1;
         }
         free(b->pair);
         b->pair = pr;
-        b->pair_maxn = b->maxn[k];
+        b->pair_cap = cap;
     }
     memcpy(b->x_build, b->x, 3 * (size_t)b->n * sizeof(real));
     return 0;
@@ -252,10 +260,10 @@ static int ref_contact_forces(dem_backend *b)
     TIMED(b, T_PAIRS,
           REF(ref_contact_pairs)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->hist[k], b->touch[k],
-                                 b->pair, b->f, b->t));
+                                 b->in_start, b->pair, b->f, b->t));
     TIMED(b, T_CONTACT,
           REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
-                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->touch[k], b->pair, b->f, b->t, b->nwalls, b->wall_int, b->wall_real,
+                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->touch[k], b->in_start, b->pair, b->f, b->t, b->nwalls, b->wall_int, b->wall_real,
                                   b->wall_hist, b->wall_pf, b->wall_mask));
     return 0;
 }

@@ -4,11 +4,11 @@
 
 void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, const real *x, const real *radius,
                         const int *cell_of, const int *cell_start, const int *cell_particles, int *nbr_count,
-                        int *nbr_list, int *flags)
+                        int *nbr_list, int *in_count, int *flags)
 {
     for (int i = 0; i < n; i++)
         nbr_build_item(i, maxn, skin, ncx, ncy, ncz, x, radius, cell_of, cell_start, cell_particles, nbr_count,
-                       nbr_list, flags);
+                       nbr_list, in_count, flags);
 }
 
 void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,

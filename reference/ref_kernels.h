@@ -21,7 +21,7 @@ void REF(ref_bin_sort)(int ncells, const int *start, int *cell_particles);
 /* neighbor.c */
 void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, const real *x, const real *radius,
                         const int *cell_of, const int *cell_start, const int *cell_particles, int *nbr_count,
-                        int *nbr_list, int *flags);
+                        int *nbr_list, int *in_count, int *flags);
 void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
                         const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
                         unsigned char *touch, int *mirror, int *flags);
@@ -29,11 +29,11 @@ void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, con
 void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror, real *hist,
-                            unsigned char *touch, real *pair, real *force, real *torque);
+                            unsigned char *touch, const int *in_start, real *pair, real *force, real *torque);
 void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
                              const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
-                             const unsigned char *touch, const real *pair,
+                             const unsigned char *touch, const int *in_start, const real *pair,
                              real *force, real *torque, int nwalls, const int *wall_int, const real *wall_real,
                              real *wall_hist, real *wall_pf, unsigned *wall_mask);
 /* wall_forces.c */
