@@ -89,7 +89,7 @@ int cl_device_get(int want, cl_device_info_t *info, char *err, size_t errlen)
     }
     free(p);
     if (!found) {
-        snprintf(err, errlen, "OpenCL device %d does not exist (%d found; see `dem devices`)", want, seen);
+        snprintf(err, errlen, "OpenCL device %d does not exist (%d found; `clinfo -l` lists them)", want, seen);
         return 1;
     }
     cl_device_id dv = info->device;

@@ -61,7 +61,7 @@ enum { DEM_PARTICLE_NO_ROTATION = 1, /* infinite moment of inertia */
 typedef struct {
     dem_backend_kind backend;
     dem_precision precision;
-    int device;          /* OpenCL device index over all platforms (see dem_device_count) */
+    int device;          /* OpenCL device index over all platforms (see dem_device_count); default $DEM_DEVICE or 0 */
     size_t local_size;   /* work-group size; default 128; 0 = the runtime's choice */
     double skin;         /* neighbour-list skin [m]; 0 = 0.3 x smallest radius */
     double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum */
