@@ -17,11 +17,6 @@ DEM_INLINE vec3 v3_cross(vec3 a, vec3 b)
 {
     return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
-/* 1 unless all three components are +0 bit for bit (a -0 counts as set: stored state must not depend on it) */
-DEM_INLINE int v3_nonzero_bits(vec3 a)
-{
-    return a.x != 0 || a.y != 0 || a.z != 0 || signbit(a.x) || signbit(a.y) || signbit(a.z);
-}
 DEM_INLINE vec3 v3_load(DEM_CONST_GLOBAL real *a, int i) { return v3(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
 DEM_INLINE void v3_store(DEM_GLOBAL real *a, int i, vec3 v)
 {

@@ -12,13 +12,10 @@ static void check(dem_precision prec, size_t local)
     packing_opts o;
     packing_defaults(&o);
     o.side = 9;
-    dem_sim *ref = packing_build(&o), *cl = packing_build(&o);
     dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
     c.local_size = local;
-    start_or_fail(ref, &rc);
-    start_or_fail(cl, &c);
-    step_or_fail(ref, 50); /* mix the particles so that cells hold ids out of order */
-    step_or_fail(cl, 50);
+    dem_sim *ref, *cl;
+    packing_pair(&o, &rc, &c, 50, &ref, &cl); /* 50 steps mix the particles: cells hold ids out of order */
     int n = dem_count(ref), nc = dem_cell_count(ref);
     assert_int_equal(nc, dem_cell_count(cl));
     int *s1 = malloc(sizeof(int) * (nc + 1)), *s2 = malloc(sizeof(int) * (nc + 1));

@@ -22,13 +22,10 @@ static void check(dem_precision prec, double skin)
     packing_opts o;
     packing_defaults(&o);
     o.side = 8;
-    dem_sim *ref = packing_build(&o), *cl = packing_build(&o);
     dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
     rc.skin = c.skin = skin;
-    start_or_fail(ref, &rc);
-    start_or_fail(cl, &c);
-    step_or_fail(ref, 100);
-    step_or_fail(cl, 100);
+    dem_sim *ref, *cl;
+    packing_pair(&o, &rc, &c, 100, &ref, &cl);
     int n = dem_count(ref), m = dem_neighbor_capacity(ref);
     assert_int_equal(m, dem_neighbor_capacity(cl));
     int *c1 = malloc(sizeof(int) * n), *c2 = malloc(sizeof(int) * n);

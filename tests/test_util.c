@@ -27,8 +27,6 @@ void packing_defaults(packing_opts *o)
     o->seed = 12345;
 }
 
-int packing_count(const packing_opts *o) { return o->side * o->side * o->side + (o->side - 1) * (o->side - 1) * (o->side - 1); }
-
 dem_sim *packing_build(const packing_opts *o)
 {
     dem_sim *s = dem_create();
@@ -75,6 +73,17 @@ dem_config cfg_of(dem_backend_kind b, dem_precision p)
     c.backend = b;
     c.precision = p;
     return c;
+}
+
+void packing_pair(const packing_opts *o, const dem_config *rc, const dem_config *c, long steps, dem_sim **ref,
+                  dem_sim **cl)
+{
+    *ref = packing_build(o);
+    *cl = packing_build(o);
+    start_or_fail(*ref, rc);
+    start_or_fail(*cl, c);
+    step_or_fail(*ref, steps);
+    step_or_fail(*cl, steps);
 }
 
 void start_or_fail(dem_sim *s, const dem_config *c)

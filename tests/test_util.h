@@ -20,11 +20,13 @@ typedef struct {
 } packing_opts;
 
 void packing_defaults(packing_opts *o);
-int packing_count(const packing_opts *o);
 /* Builds the packing into a fresh simulation: a box of 6 plane walls, the top one (wall 5) a moving lid. */
 dem_sim *packing_build(const packing_opts *o);
 
 dem_config cfg_of(dem_backend_kind b, dem_precision p);
+/* The same packing on the reference (rc) and on OpenCL (c), both started and advanced by `steps`. */
+void packing_pair(const packing_opts *o, const dem_config *rc, const dem_config *c, long steps, dem_sim **ref,
+                  dem_sim **cl);
 /* dem_start, failing the test with the library's message. */
 void start_or_fail(dem_sim *s, const dem_config *c);
 void step_or_fail(dem_sim *s, long n);
