@@ -12,6 +12,9 @@
  *
  * Walls (wall_forces.h) follow the particle contacts, in wall index order.
  *
+ * Effects: without friction no history, torque, n x f_t or lever arm is read or written (the torque array is left
+ * as it is: zero); walls are visited only with DEM_EFFECT_WALLS.
+ *
  * Torque: the contact point lies a distance (r - d/2) from each centre along the line of centres, so the torque on
  * either particle g is -(r_g - d/2) (n x f_t) with n from b to a (seed 000, Eq. 1 branch vector).
  */
@@ -28,7 +31,7 @@ typedef struct {
     vec3 hist;   /* new tangential history */
 } pair_contact;
 
-DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
@@ -54,17 +57,23 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
     real rstar = ra * rb / rsum;
     real mstar = hm_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
-    /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n */
-    vec3 vca = v3_add(v3_load(v, a), v3_cross(v3_load(w, a), v3_scale(n, -arm_a)));
-    vec3 vcb = v3_add(v3_load(v, b), v3_cross(v3_load(w, b), v3_scale(n, arm_b)));
-    /* the stored history is read only for a pair that touched in the previous step (otherwise it is zero) */
-    vec3 h = touching ? v3_load(hist, slot) : v3_zero();
-    hm_result r = hm_contact(n, delta, rstar, mstar, v3_sub(vca, vcb), pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]),
+    /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */
+    vec3 vca = v3_load(v, a), vcb = v3_load(v, b), h = v3_zero();
+    if (fx & DEM_EFFECT_FRICTION) {
+        vca = v3_add(vca, v3_cross(v3_load(w, a), v3_scale(n, -arm_a)));
+        vcb = v3_add(vcb, v3_cross(v3_load(w, b), v3_scale(n, arm_b)));
+        /* the stored history is read only for a pair that touched in the previous step (otherwise it is zero) */
+        if (touching)
+            h = v3_load(hist, slot);
+    }
+    hm_result r = hm_contact(fx, n, delta, rstar, mstar, v3_sub(vca, vcb), pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]),
                              dt, h);
     pc.delta = delta;
     pc.force = r.force;
-    pc.c = v3_cross(n, r.ft);
-    pc.hist = r.hist;
+    if (fx & DEM_EFFECT_FRICTION) {
+        pc.c = v3_cross(n, r.ft);
+        pc.hist = r.hist;
+    }
     return pc;
 }
 
@@ -73,7 +82,7 @@ DEM_INLINE pair_contact pair_contact_eval(int a, int b, DEM_CONST_GLOBAL real *x
  * for the partner's pass 2 (in the partner's packed incoming records). The flag is copied
  * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
  * exactly one writer, the pair's owner. */
-DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+DEM_INLINE void contact_pairs_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                    DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
@@ -93,17 +102,19 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
         int touching = touch[slot], m = nbr_mirror[slot];
         if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
             continue;
-        pair_contact pc = pair_contact_eval(i, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
+        pair_contact pc = pair_contact_eval(fx, i, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
                                             touching);
         if (!pc.active) {
             if (touching) { /* the contact ended: so does its history */
-                v3_store(hist, slot, v3_zero());
+                if (fx & DEM_EFFECT_FRICTION)
+                    v3_store(hist, slot, v3_zero());
                 touch[slot] = 0;
                 touch[m] = 0;
             }
             continue;
         }
-        v3_store(hist, slot, pc.hist);
+        if (fx & DEM_EFFECT_FRICTION)
+            v3_store(hist, slot, pc.hist);
         if (!touching) {
             touch[slot] = 1;
             touch[m] = 1;
@@ -113,22 +124,25 @@ DEM_INLINE void contact_pairs_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DE
         pr[PR_FX] = pc.force.x;
         pr[PR_FY] = pc.force.y;
         pr[PR_FZ] = pc.force.z;
-        pr[PR_CX] = pc.c.x;
-        pr[PR_CY] = pc.c.y;
-        pr[PR_CZ] = pc.c.z;
-        pr[PR_DELTA] = pc.delta;
         fi = v3_add(fi, pc.force);
-        ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
+        if (fx & DEM_EFFECT_FRICTION) {
+            pr[PR_CX] = pc.c.x;
+            pr[PR_CY] = pc.c.y;
+            pr[PR_CZ] = pc.c.z;
+            pr[PR_DELTA] = pc.delta;
+            ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
+        }
     }
     v3_store(force, i, fi);
-    v3_store(torque, i, ti);
+    if (fx & DEM_EFFECT_FRICTION)
+        v3_store(torque, i, ti);
 }
 
 /* Pass 2, contact_forces: particle i adds its touching pairs with lower ids in ascending partner id, then its
  * walls. Rows are sorted, so the partners j < i are the front of the row, and their records lie packed at
  * pair[in_start[i] ...] (in_start: prefix sum of those counts, made at each rebuild): the whole pass reads the
  * records in memory order, and pass 1 does the scattered stores instead. */
-DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
+DEM_INLINE void contact_forces_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                     DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                     DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
@@ -140,7 +154,9 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
                                     DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
                                     DEM_GLOBAL unsigned *wall_mask)
 {
-    vec3 fi = v3_load(force, i), ti = v3_load(torque, i);
+    vec3 fi = v3_load(force, i), ti = v3_zero();
+    if (fx & DEM_EFFECT_FRICTION)
+        ti = v3_load(torque, i);
     real ri = radius[i];
     int cnt = nbr_count[i];
     for (int k = 0; k < cnt; k++) {
@@ -151,12 +167,14 @@ DEM_INLINE void contact_forces_item(int i, int maxn, DEM_CONST_GLOBAL real *x, D
             continue;
         DEM_CONST_GLOBAL real *pr = pair + (in_start[i] + k) * PR_STRIDE;
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
-        ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
+        if (fx & DEM_EFFECT_FRICTION)
+            ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }
-    if (nwalls > 0)
-        wall_contacts_add(i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
+    if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
+        wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
                           invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, &fi, &ti);
     v3_store(force, i, fi);
-    v3_store(torque, i, ti);
+    if (fx & DEM_EFFECT_FRICTION)
+        v3_store(torque, i, ti);
 }
 #endif /* DEM_CONTACT_FORCES_H */

@@ -15,6 +15,9 @@
  *          q = sqrt(sqrt(r* d) m*); the pair table holds c sqrt(2 E*) and c sqrt(8 G*) (host-computed), so one
  *          square root serves both and no transcendental function is evaluated on the device.
  *
+ * Effects (dem_effects.h): without DEM_EFFECT_DAMPING the damping terms and their square root are left out; without
+ *          DEM_EFFECT_FRICTION the whole tangential part is (no history, no torque).
+ *
  * Conventions: body a and body b; n is the unit vector from b to a; d > 0 the overlap; vrel the velocity of a's
  * contact point relative to b's. Returned forces act on a (b receives the negative).
  */
@@ -22,6 +25,7 @@
 #define DEM_HERTZ_MINDLIN_H
 #include "vec3.h"
 #include "dem_layout.h"
+#include "dem_effects.h"
 
 typedef struct {
     vec3 force; /* total contact force on a [N] */
@@ -41,26 +45,39 @@ DEM_INLINE vec3 hm_rotate_history(vec3 h, vec3 n)
     return hp;
 }
 
-DEM_INLINE hm_result hm_contact(vec3 n, real delta, real rstar, real mstar, vec3 vrel,
+DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real rstar, real mstar, vec3 vrel,
                                 DEM_CONST_GLOBAL real *pm, real dt, vec3 hist)
 {
-    const real estar = pm[PM_ESTAR], gstar = pm[PM_GSTAR], mu = pm[PM_MU];
+    const real estar = pm[PM_ESTAR];
     const real four_thirds = (real)4 / (real)3;
     hm_result r;
     real srd = dem_sqrt(rstar * delta); /* sqrt(r* d) */
-    real q = dem_sqrt(srd * mstar);      /* sqrt(sqrt(r* d) m*), shared by both damping terms */
+    real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
     real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
-    vec3 vt = v3_sub(vrel, v3_scale(n, vn));
 
     /* normal */
-    real fn = four_thirds * estar * srd * delta - pm[PM_DAMP_N] * q * vn;
+    real fn = four_thirds * estar * srd * delta;
+    if (fx & DEM_EFFECT_DAMPING) {
+        q = dem_sqrt(srd * mstar);
+        fn = fn - pm[PM_DAMP_N] * q * vn;
+    }
     if (fn < (real)0)
         fn = (real)0;
 
     /* tangential */
+    if (!(fx & DEM_EFFECT_FRICTION)) {
+        r.ft = v3_zero();
+        r.hist = v3_zero();
+        r.force = v3_scale(n, fn);
+        return r;
+    }
+    const real gstar = pm[PM_GSTAR], mu = pm[PM_MU];
+    vec3 vt = v3_sub(vrel, v3_scale(n, vn));
     real kt = (real)8 * gstar * srd;
     vec3 ft_el = v3_sub(hm_rotate_history(hist, n), v3_scale(vt, kt * dt));
-    vec3 ft = v3_sub(ft_el, v3_scale(vt, pm[PM_DAMP_T] * q));
+    vec3 ft = ft_el;
+    if (fx & DEM_EFFECT_DAMPING)
+        ft = v3_sub(ft_el, v3_scale(vt, pm[PM_DAMP_T] * q));
     real fmax = mu * fn;
     real ft2 = v3_dot(ft, ft);
     if (ft2 > fmax * fmax) {

@@ -12,27 +12,30 @@
 #define DEM_INTEGRATE_H
 #include "vec3.h"
 #include "dem_layout.h"
+#include "dem_effects.h"
 
-DEM_INLINE void integrate_kick_velocity(int i, real half_dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
+DEM_INLINE void integrate_kick_velocity(unsigned fx, int i, real half_dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
                                         DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
                                         DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia)
 {
     real im = invmass[i], ii = invinertia[i];
     if (im > (real)0) {
-        vec3 a = v3_add(v3_scale(v3_load(force, i), im), g);
+        vec3 a = v3_scale(v3_load(force, i), im);
+        if (fx & DEM_EFFECT_GRAVITY)
+            a = v3_add(a, g);
         v3_store(v, i, v3_add(v3_load(v, i), v3_scale(a, half_dt)));
     }
-    if (ii > (real)0)
+    if ((fx & DEM_EFFECT_FRICTION) && ii > (real)0) /* torques come from friction only */
         v3_store(w, i, v3_add(v3_load(w, i), v3_scale(v3_scale(v3_load(torque, i), ii), half_dt)));
 }
 
-DEM_INLINE void integrate_kick_drift_item(int i, real dt, vec3 g, real half_skin2, DEM_GLOBAL real *x,
+DEM_INLINE void integrate_kick_drift_item(unsigned fx, int i, real dt, vec3 g, real half_skin2, DEM_GLOBAL real *x,
                                           DEM_GLOBAL real *v, DEM_GLOBAL real *w, DEM_CONST_GLOBAL real *force,
                                           DEM_CONST_GLOBAL real *torque, DEM_CONST_GLOBAL real *invmass,
                                           DEM_CONST_GLOBAL real *invinertia, DEM_CONST_GLOBAL real *x_build,
                                           DEM_GLOBAL int *flags)
 {
-    integrate_kick_velocity(i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
+    integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
     vec3 xi = v3_add(v3_load(x, i), v3_scale(v3_load(v, i), dt));
     v3_store(x, i, xi);
     vec3 d = v3_sub(xi, v3_load(x_build, i));
@@ -40,10 +43,10 @@ DEM_INLINE void integrate_kick_drift_item(int i, real dt, vec3 g, real half_skin
         DEM_ATOMIC_MAX(&flags[FLAG_REBUILD], 1);
 }
 
-DEM_INLINE void integrate_kick_item(int i, real dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
+DEM_INLINE void integrate_kick_item(unsigned fx, int i, real dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
                                     DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
                                     DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia)
 {
-    integrate_kick_velocity(i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
+    integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
 }
 #endif /* DEM_INTEGRATE_H */

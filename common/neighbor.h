@@ -12,6 +12,7 @@
 #define DEM_NEIGHBOR_H
 #include "vec3.h"
 #include "dem_layout.h"
+#include "dem_effects.h"
 
 DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
                                DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *cell_of,
@@ -61,7 +62,7 @@ DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 
-DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL int *nbr_count,
+DEM_INLINE void nbr_carry_item(unsigned fx, int i, int maxn, int old_maxn, DEM_CONST_GLOBAL int *nbr_count,
                                DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
                                DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
                                DEM_CONST_GLOBAL unsigned char *old_touch, DEM_GLOBAL real *hist,
@@ -103,7 +104,8 @@ DEM_INLINE void nbr_carry_item(int i, int maxn, int old_maxn, DEM_CONST_GLOBAL i
             }
         }
         int t = found >= 0 ? old_touch[i * old_maxn + found] : 0;
-        v3_store(hist, i * maxn + k, t ? v3_load(old_hist, i * old_maxn + found) : v3_zero());
+        if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
+            v3_store(hist, i * maxn + k, t ? v3_load(old_hist, i * old_maxn + found) : v3_zero());
         touch[i * maxn + k] = (unsigned char)t;
     }
 }

@@ -49,7 +49,7 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
  * tangential history and stores the force on the particle from each touching wall for the reduction.
  * wall_mask[i] has bit k set when particle i touches wall k: only those entries of wall_pf are written and read,
  * and the history of wall k is only touched when bit k is set now or was set in the previous step. */
-DEM_INLINE void wall_contacts_add(int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                   DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri, real invm,
                                   int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
                                   real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask, vec3 *fi,
@@ -63,17 +63,23 @@ DEM_INLINE void wall_contacts_add(int i, int n, int nwalls, DEM_CONST_GLOBAL int
         if (g.active) {
             real arm = ri - g.delta;
             real mstar = hm_effective_mass(invm, (real)0);
-            vec3 vc = v3_add(vi, v3_cross(wi, v3_scale(g.n, -arm)));
+            vec3 vc = vi, h = v3_zero();
+            if (fx & DEM_EFFECT_FRICTION) {
+                vc = v3_add(vi, v3_cross(wi, v3_scale(g.n, -arm)));
+                if ((old_mask >> k) & 1u)
+                    h = v3_load(wall_hist, slot);
+            }
             vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
             DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
-            vec3 h = (old_mask >> k) & 1u ? v3_load(wall_hist, slot) : v3_zero();
-            hm_result r = hm_contact(g.n, g.delta, ri, mstar, vrel, pm, dt, h);
-            v3_store(wall_hist, slot, r.hist);
+            hm_result r = hm_contact(fx, g.n, g.delta, ri, mstar, vrel, pm, dt, h);
             v3_store(wall_pf, k * n + i, r.force);
             *fi = v3_add(*fi, r.force);
-            *ti = v3_sub(*ti, v3_scale(v3_cross(g.n, r.ft), arm));
+            if (fx & DEM_EFFECT_FRICTION) {
+                v3_store(wall_hist, slot, r.hist);
+                *ti = v3_sub(*ti, v3_scale(v3_cross(g.n, r.ft), arm));
+            }
             mask |= 1u << k;
-        } else if ((old_mask >> k) & 1u) {
+        } else if ((fx & DEM_EFFECT_FRICTION) && ((old_mask >> k) & 1u)) {
             v3_store(wall_hist, slot, v3_zero());
         }
     }

@@ -14,6 +14,7 @@
 /* Everything a backend needs, already packed into its precision by the driver. */
 typedef struct {
     int real_size; /* 4 or 8 */
+    unsigned effects; /* DEM_EFFECT_* mask (common/dem_effects.h); OpenCL compiles it in as DEM_EFFECTS */
     int n, nmat, nwalls;
     const void *x, *v, *w, *radius, *invmass, *invinertia; /* real arrays */
     const int *mat;
@@ -33,9 +34,9 @@ typedef struct {
     const char *extra_build_options;
 } dem_setup;
 
-/* Size in bytes of a field for n particles, rows of capacity maxn, nwalls walls, ncells cells, rs-byte reals.
+/* Size in bytes of a field for the effect mask, n particles, rows of capacity maxn, nwalls walls, ncells cells, rs-byte reals.
  * The one place that knows every layout's size (host/sim.c, both backends). */
-size_t dem_field_size(dem_field f, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs);
+size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs);
 
 typedef struct dem_backend dem_backend;
 

@@ -195,8 +195,9 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
         goto fail;
     char options[8192];
     snprintf(options, sizeof options,
-             "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels -I%s/common %s %s",
-             b->rs, (unsigned long long)hash, s->source_dir, s->source_dir,
+             "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
+             "-I%s/common %s %s",
+             b->rs, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir,
              b->rs == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
              s->extra_build_options ? s->extra_build_options : "");
     const char *src = "#include \"binning.cl\"\n#include \"neighbor.cl\"\n#include \"contact_forces.cl\"\n"
@@ -244,7 +245,8 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
     b->pairmat = mkbuf(b, (size_t)PM_STRIDE * s->nmat * s->nmat * r, s->pairmat, &fail);
     b->wall_int = mkbuf(b, (size_t)WI_STRIDE * s->nwalls * sizeof(int), s->nwalls ? s->wall_int : NULL, &fail);
     b->wall_real = mkbuf(b, (size_t)W_STRIDE * s->nwalls * r, s->nwalls ? s->wall_real : NULL, &fail);
-    b->wall_hist = mkbuf(b, 3 * N * s->nwalls * r, NULL, &fail);
+    b->fx = s->effects;
+    b->wall_hist = mkbuf(b, dem_field_size(FIELD_WALL_HIST, b->fx, N, 0, (size_t)s->nwalls, 0, r), NULL, &fail);
     b->wall_pf = mkbuf(b, 3 * N * s->nwalls * r, NULL, &fail);
     b->wall_mask = mkbuf(b, N * sizeof(unsigned), NULL, &fail);
     b->partial = mkbuf(b, 3 * (size_t)b->nblocks_red * s->nwalls * r, NULL, &fail);
@@ -260,7 +262,7 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
         b->maxn[k] = s->maxn;
         b->count[k] = mkbuf(b, N * sizeof(int), NULL, &fail);
         b->list[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
-        b->hist[k] = mkbuf(b, 3 * N * s->maxn * r, NULL, &fail);
+        b->hist[k] = mkbuf(b, dem_field_size(FIELD_HIST, b->fx, N, (size_t)s->maxn, 0, 0, r), NULL, &fail);
         b->touch[k] = mkbuf(b, N * s->maxn, NULL, &fail);
         b->mirror[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
     }
@@ -310,7 +312,8 @@ static int cl_nbr_reserve(dem_backend *b, int maxn)
     rel(&b->touch[s]);
     rel(&b->mirror[s]);
     b->list[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
-    b->hist[s] = mkbuf(b, 3 * (size_t)b->n * maxn * b->rs, NULL, &fail);
+    b->hist[s] = mkbuf(b, dem_field_size(FIELD_HIST, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, (size_t)b->rs), NULL,
+                       &fail);
     b->touch[s] = mkbuf(b, (size_t)b->n * maxn, NULL, &fail);
     b->mirror[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
     b->maxn[s] = maxn;
@@ -345,8 +348,9 @@ static cl_mem field_mem(dem_backend *b, dem_field f, size_t *bytes)
 {
     int k = b->cur;
     cl_mem m[FIELD__COUNT] = {b->x, b->v, b->w, b->f, b->t, b->x_build, b->count[k], b->list[k], b->hist[k],
-                              b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real};
-    *bytes = dem_field_size(f, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, (size_t)b->rs);
+                              b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real,
+                              b->touch[k], b->wall_mask};
+    *bytes = dem_field_size(f, b->fx, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, (size_t)b->rs);
     return (int)f >= 0 && f < FIELD__COUNT ? m[f] : NULL;
 }
 

@@ -22,6 +22,7 @@ struct dem_backend {
     int profile;
     size_t local;           /* work-group size, 0 = runtime's choice */
     int rs;                 /* real size in bytes */
+    unsigned fx;            /* effect mask, compiled into the program as DEM_EFFECTS */
     int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, ncx, ncy, ncz;
     double dt, skin, half_skin2, inv_cell, lo[3], g[3];
     cl_mem x, v, w, f, t, radius, invm, invi, x_build, mat, pairmat, wall_int, wall_real, wall_hist, wall_pf, wall_mask,

@@ -38,7 +38,8 @@ int dem_energy(dem_sim *s, dem_energy_t *en)
         double w2 = w[3 * i] * w[3 * i] + w[3 * i + 1] * w[3 * i + 1] + w[3 * i + 2] * w[3 * i + 2];
         if (!(fl & DEM_PARTICLE_FIXED)) {
             en->kinetic += 0.5 * m * v2;
-            en->potential -= m * (s->gravity[0] * x[3 * i] + s->gravity[1] * x[3 * i + 1] + s->gravity[2] * x[3 * i + 2]);
+            if (s->effects & DEM_EFFECT_GRAVITY)
+                en->potential -= m * (s->gravity[0] * x[3 * i] + s->gravity[1] * x[3 * i + 1] + s->gravity[2] * x[3 * i + 2]);
         }
         if (!(fl & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)))
             en->kinetic += 0.5 * I * w2;

@@ -8,7 +8,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-dem_sim *dem_create(void) { return calloc(1, sizeof(dem_sim)); }
+dem_sim *dem_create(void)
+{
+    dem_sim *s = calloc(1, sizeof(dem_sim));
+    if (s)
+        s->effects = DEM_EFFECT_CLASSICAL;
+    return s;
+}
 
 void dem_destroy(dem_sim *s)
 {
@@ -233,6 +239,41 @@ int dem_set_dt(dem_sim *s, double dt)
     return 0;
 }
 
+int dem_set_effects(dem_sim *s, unsigned effects)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (effects & ~(unsigned)DEM_EFFECT_CLASSICAL)
+        return sim_fail(s, DEM_ERR_ARG, "effect mask 0x%x has bits of effects this version does not have", effects);
+    if (!(effects & DEM_EFFECT_HERTZ))
+        return sim_fail(s, DEM_ERR_ARG, "the effect mask must contain DEM_EFFECT_HERTZ (the contact law itself)");
+    s->effects = effects;
+    return 0;
+}
+
+unsigned dem_effects(const dem_sim *s) { return s->effects; }
+
+static const char *const effect_names[] = {"hertz", "damping", "friction", "gravity", "walls"};
+
+const char *dem_effect_name(int bit) { return bit >= 0 && bit < 5 ? effect_names[bit] : NULL; }
+
+void dem_effects_string(unsigned effects, char *buf, size_t len)
+{
+    size_t at = 0;
+    buf[0] = 0;
+    for (int k = 0; k < 5 && at < len; k++)
+        if (effects & (1u << k))
+            at += (size_t)snprintf(buf + at, len - at, "%s%s", at ? "+" : "", effect_names[k]);
+}
+
+int dem_effect_bit(const char *name)
+{
+    for (int k = 0; k < 5; k++)
+        if (!strcmp(name, effect_names[k]))
+            return k;
+    return -1;
+}
+
 /* ---- stepping ---- */
 
 static int be_fail(dem_sim *s)
@@ -297,7 +338,7 @@ static int forces(dem_sim *s)
 {
     if (s->ops->contact_forces(s->be))
         return be_fail(s);
-    if (s->nwalls && s->ops->wall_reduce(s->be))
+    if (s->nwalls && (s->effects & DEM_EFFECT_WALLS) && s->ops->wall_reduce(s->be))
         return be_fail(s);
     return 0;
 }
@@ -373,11 +414,19 @@ double dem_dt(const dem_sim *s) { return s->dt; }
 int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
 long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
 int dem_cell_count(const dem_sim *s) { return s->setup.ncell[0] * s->setup.ncell[1] * s->setup.ncell[2]; }
-const char *dem_describe(const dem_sim *s) { return s->be ? s->ops->describe(s->be) : "not started"; }
+const char *dem_describe(dem_sim *s)
+{
+    if (!s->be)
+        return "not started";
+    char fx[128];
+    dem_effects_string(s->effects, fx, sizeof fx);
+    snprintf(s->desc, sizeof s->desc, "%s, effects %s", s->ops->describe(s->be), fx);
+    return s->desc;
+}
 
 size_t dem_field_bytes(const dem_sim *s, dem_field f)
 {
-    return dem_field_size(f, (size_t)s->n, (size_t)s->maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
+    return dem_field_size(f, s->setup.effects, (size_t)s->n, (size_t)s->maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
                           (size_t)s->setup.real_size);
 }
 

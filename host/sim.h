@@ -18,6 +18,7 @@ struct dem_sim {
     double lo[3], hi[3];
     int have_domain;
     double dt;
+    unsigned effects; /* DEM_EFFECT_* mask; DEM_EFFECT_CLASSICAL unless set */
     /* run state */
     int started;
     dem_config cfg;
@@ -32,6 +33,7 @@ struct dem_sim {
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;
     char err[4096];
+    char desc[1024];
 };
 
 /* sim_setup.c */

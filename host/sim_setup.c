@@ -95,6 +95,8 @@ int sim_validate(dem_sim *s)
                     return sim_fail(s, DEM_ERR_ARG, "particle %d (radius %g m) does not fit in cylinder wall %d "
                                     "(radius %g m)", i, s->radius[i], k, w->radius);
     }
+    if (s->nwalls && !(s->effects & DEM_EFFECT_WALLS))
+        return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
     if (s->cfg.skin < 0 || !isfinite(s->cfg.skin))
         return sim_fail(s, DEM_ERR_ARG, "skin must be >= 0 (got %g)", s->cfg.skin);
     if (s->cfg.precision != DEM_FP32 && s->cfg.precision != DEM_FP64)
@@ -162,6 +164,7 @@ int sim_pack(dem_sim *s)
     int n = s->n, rs = (int)s->cfg.precision;
     memset(u, 0, sizeof *u);
     u->real_size = rs;
+    u->effects = s->effects;
     u->n = n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;

@@ -14,6 +14,7 @@
 #ifndef DEM_H
 #define DEM_H
 #include <stddef.h>
+#include "dem_effects.h" /* DEM_EFFECT_* bits */
 
 #define DEM_VERSION "0.1.0"
 
@@ -76,13 +77,15 @@ typedef enum {
     FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
     FIELD_NBR_COUNT,            /* int[n] */
     FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id */
-    FIELD_HIST,                 /* real[3*n*maxn]: elastic tangential force per row slot [N] */
-    FIELD_WALL_HIST,            /* real[3*n*nwalls] */
+    FIELD_HIST,                 /* real[3*n*maxn]: elastic tangential force per row slot [N]; empty without friction */
+    FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
     FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
     FIELD_CELL_START,           /* int[ncells+1] */
     FIELD_CELL_PARTICLES,       /* int[n] */
     FIELD_FLAGS,                /* int[4] */
     FIELD_WALL_REAL,            /* real[10*nwalls] */
+    FIELD_TOUCH,                /* unsigned char[n*maxn]: 1 where the row slot's pair touched in the last step */
+    FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
     FIELD__COUNT
 } dem_field;
 
@@ -121,6 +124,13 @@ int dem_set_wall_motion(dem_sim *s, int wall, int nstages, const dem_stage *stag
 int dem_set_gravity(dem_sim *s, const double g[3]);
 int dem_set_domain(dem_sim *s, const double lo[3], const double hi[3]);
 int dem_set_dt(dem_sim *s, double dt);
+/* Which physics to simulate: a mask of DEM_EFFECT_* (dem_effects.h), DEM_EFFECT_CLASSICAL by default. Code of an
+ * effect that is off is not compiled into the kernels, its buffers are not allocated and its stages not launched. */
+int dem_set_effects(dem_sim *s, unsigned effects);
+unsigned dem_effects(const dem_sim *s);
+const char *dem_effect_name(int bit); /* "hertz", "damping", ... for bit 0, 1, ...; NULL past the last */
+int dem_effect_bit(const char *name); /* inverse of dem_effect_name; -1 for an unknown name */
+void dem_effects_string(unsigned effects, char *buf, size_t len); /* "hertz+damping+..." */
 
 /* Time scales of the current particles and materials; hertz_velocity is the impact speed for hertz_time. */
 int dem_time_scales_get(dem_sim *s, double hertz_velocity, dem_time_scales *ts);
@@ -144,7 +154,7 @@ double dem_dt(const dem_sim *s);
 int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
 long dem_rebuild_count(const dem_sim *s);
 int dem_cell_count(const dem_sim *s);
-const char *dem_describe(const dem_sim *s);   /* backend and device */
+const char *dem_describe(dem_sim *s);   /* backend, device and active effects */
 
 /* Raw bytes of a field in the run's precision (bit comparisons); bytes must not exceed the field's size. */
 int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes);

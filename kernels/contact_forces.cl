@@ -12,7 +12,7 @@ __kernel void contact_pairs(int n, int maxn, int nmat, real dt, __global const r
 {
     int i = get_global_id(0);
     if (i < n)
-        contact_pairs_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
+        contact_pairs_item(DEM_EFFECTS, i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
                            touch, dt, in_start, pair, force, torque);
 }
 
@@ -28,7 +28,7 @@ __kernel void contact_forces(int n, int maxn, int nmat, real dt, __global const 
 {
     int i = get_global_id(0);
     if (i < n)
-        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror,
+        contact_forces_item(DEM_EFFECTS, i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror,
                             touch, in_start, pair, dt, force, torque, n, nwalls, wall_int, wall_real,
                             wall_hist, wall_pf, wall_mask);
 }

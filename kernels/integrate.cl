@@ -9,7 +9,7 @@ __kernel void integrate_kick_drift(int n, real dt, real gx, real gy, real gz, re
 {
     int i = get_global_id(0);
     if (i < n)
-        integrate_kick_drift_item(i, dt, v3(gx, gy, gz), half_skin2, x, v, w, force, torque, invmass, invinertia,
+        integrate_kick_drift_item(DEM_EFFECTS, i, dt, v3(gx, gy, gz), half_skin2, x, v, w, force, torque, invmass, invinertia,
                                   x_build, flags);
 }
 
@@ -19,5 +19,5 @@ __kernel void integrate_kick(int n, real dt, real gx, real gy, real gz, __global
 {
     int i = get_global_id(0);
     if (i < n)
-        integrate_kick_item(i, dt, v3(gx, gy, gz), v, w, force, torque, invmass, invinertia);
+        integrate_kick_item(DEM_EFFECTS, i, dt, v3(gx, gy, gz), v, w, force, torque, invmass, invinertia);
 }

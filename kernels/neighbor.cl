@@ -19,6 +19,6 @@ __kernel void nbr_carry(int n, int maxn, int old_maxn, __global const int *nbr_c
 {
     int i = get_global_id(0);
     if (i < n)
-        nbr_carry_item(i, maxn, old_maxn, nbr_count, nbr_list, old_count, old_list, old_hist, old_touch, hist, touch, mirror,
+        nbr_carry_item(DEM_EFFECTS, i, maxn, old_maxn, nbr_count, nbr_list, old_count, old_list, old_hist, old_touch, hist, touch, mirror,
                        flags);
 }

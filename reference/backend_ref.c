@@ -9,6 +9,7 @@
 #include "backend.h"
 
 struct dem_backend {
+    unsigned fx; /* effect mask (dem_effects.h), passed to every loop at run time */
     int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red;
     int ncx, ncy, ncz;
     real dt, skin, half_skin2, inv_cell;
@@ -113,7 +114,8 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
     b->pairmat = dup_real(s->pairmat, (size_t)PM_STRIDE * s->nmat * s->nmat);
     b->wall_real = dup_real(s->wall_real, (size_t)W_STRIDE * s->nwalls);
     b->wall_int = zalloc((size_t)WI_STRIDE * s->nwalls, sizeof(int));
-    b->wall_hist = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
+    b->fx = s->effects;
+    b->wall_hist = zalloc(dem_field_size(FIELD_WALL_HIST, b->fx, (size_t)n, 0, (size_t)s->nwalls, 0, 1), sizeof(real));
     b->wall_pf = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
     b->wall_mask = zalloc((size_t)n, sizeof(unsigned));
     b->partial = zalloc(3 * (size_t)b->nblocks_red * s->nwalls, sizeof(real));
@@ -128,7 +130,7 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         b->maxn[k] = s->maxn;
         b->count[k] = zalloc((size_t)n, sizeof(int));
         b->list[k] = zalloc((size_t)n * s->maxn, sizeof(int));
-        b->hist[k] = zalloc(3 * (size_t)n * s->maxn, sizeof(real));
+        b->hist[k] = zalloc(dem_field_size(FIELD_HIST, b->fx, (size_t)n, (size_t)s->maxn, 0, 0, 1), sizeof(real));
         b->touch[k] = zalloc((size_t)n * s->maxn, 1);
         b->mirror[k] = zalloc((size_t)n * s->maxn, sizeof(int));
     }
@@ -173,7 +175,7 @@ static int ref_reset_flags(dem_backend *b)
 static int ref_kick_drift(dem_backend *b)
 {
     TIMED(b, T_KICK_DRIFT,
-          REF(ref_integrate_kick_drift)(b->n, b->dt, b->g, b->half_skin2, b->x, b->v, b->w, b->f, b->t, b->invm,
+          REF(ref_integrate_kick_drift)(b->fx, b->n, b->dt, b->g, b->half_skin2, b->x, b->v, b->w, b->f, b->t, b->invm,
                                         b->invi, b->x_build, b->flags));
     return 0;
 }
@@ -197,7 +199,7 @@ static int ref_nbr_reserve(dem_backend *b, int maxn)
     if (b->maxn[k] == maxn)
         return 0;
     int *list = zalloc((size_t)b->n * maxn, sizeof(int));
-    real *hist = zalloc(3 * (size_t)b->n * maxn, sizeof(real));
+    real *hist = zalloc(dem_field_size(FIELD_HIST, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, 1), sizeof(real));
     unsigned char *touch = zalloc((size_t)b->n * maxn, 1);
     int *mirror = zalloc((size_t)b->n * maxn, sizeof(int));
     if (!list || !hist || !touch || !mirror) {
@@ -233,7 +235,7 @@ static int ref_nbr_commit(dem_backend *b)
 {
     int k = 1 - b->cur, o = b->cur;
     TIMED(b, T_NBR_CARRY,
-          REF(ref_nbr_carry)(b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
+          REF(ref_nbr_carry)(b->fx, b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
                              b->hist[o], b->touch[o], b->hist[k], b->touch[k], b->mirror[k],
                              b->flags));
     b->cur = k;
@@ -258,11 +260,11 @@ static int ref_contact_forces(dem_backend *b)
 {
     int k = b->cur;
     TIMED(b, T_PAIRS,
-          REF(ref_contact_pairs)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
+          REF(ref_contact_pairs)(b->fx, b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->hist[k], b->touch[k],
                                  b->in_start, b->pair, b->f, b->t));
     TIMED(b, T_CONTACT,
-          REF(ref_contact_forces)(b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
+          REF(ref_contact_forces)(b->fx, b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                   b->pairmat, b->count[k], b->list[k], b->mirror[k], b->touch[k], b->in_start, b->pair, b->f, b->t, b->nwalls, b->wall_int, b->wall_real,
                                   b->wall_hist, b->wall_pf, b->wall_mask));
     return 0;
@@ -278,7 +280,7 @@ static int ref_wall_reduce(dem_backend *b)
 
 static int ref_kick(dem_backend *b)
 {
-    TIMED(b, T_KICK, REF(ref_integrate_kick)(b->n, b->dt, b->g, b->v, b->w, b->f, b->t, b->invm, b->invi));
+    TIMED(b, T_KICK, REF(ref_integrate_kick)(b->fx, b->n, b->dt, b->g, b->v, b->w, b->f, b->t, b->invm, b->invi));
     return 0;
 }
 
@@ -287,8 +289,9 @@ static void *field_ptr(dem_backend *b, dem_field f, size_t *bytes)
 {
     int k = b->cur;
     void *p[FIELD__COUNT] = {b->x, b->v, b->w, b->f, b->t, b->x_build, b->count[k], b->list[k], b->hist[k],
-                             b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real};
-    *bytes = dem_field_size(f, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, sizeof(real));
+                             b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real,
+                             b->touch[k], b->wall_mask};
+    *bytes = dem_field_size(f, b->fx, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, sizeof(real));
     return (int)f >= 0 && f < FIELD__COUNT ? p[f] : NULL;
 }
 

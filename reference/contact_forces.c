@@ -2,17 +2,17 @@
 #include "ref_kernels.h"
 #include "contact_forces.h"
 
-void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+void REF(ref_contact_pairs)(unsigned fx, int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror, real *hist,
                             unsigned char *touch, const int *in_start, real *pair, real *force, real *torque)
 {
     for (int i = 0; i < n; i++)
-        contact_pairs_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
+        contact_pairs_item(fx, i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror, hist,
                            touch, dt, in_start, pair, force, torque);
 }
 
-void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+void REF(ref_contact_forces)(unsigned fx, int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
                              const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
                              const unsigned char *touch, const int *in_start, const real *pair,
@@ -20,7 +20,7 @@ void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, 
                              real *wall_hist, real *wall_pf, unsigned *wall_mask)
 {
     for (int i = 0; i < n; i++)
-        contact_forces_item(i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror,
+        contact_forces_item(fx, i, maxn, x, v, w, radius, invmass, mat, pairmat, nmat, nbr_count, nbr_list, nbr_mirror,
                             touch, in_start, pair, dt, force, torque, n, nwalls, wall_int, wall_real,
                             wall_hist, wall_pf, wall_mask);
 }

@@ -22,15 +22,15 @@ void REF(ref_bin_sort)(int ncells, const int *start, int *cell_particles);
 void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, const real *x, const real *radius,
                         const int *cell_of, const int *cell_start, const int *cell_particles, int *nbr_count,
                         int *nbr_list, int *in_count, int *flags);
-void REF(ref_nbr_carry)(int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
+void REF(ref_nbr_carry)(unsigned fx, int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
                         const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
                         unsigned char *touch, int *mirror, int *flags);
 /* contact_forces.c */
-void REF(ref_contact_pairs)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+void REF(ref_contact_pairs)(unsigned fx, int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror, real *hist,
                             unsigned char *touch, const int *in_start, real *pair, real *force, real *torque);
-void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
+void REF(ref_contact_forces)(unsigned fx, int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
                              const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
                              const unsigned char *touch, const int *in_start, const real *pair,
@@ -40,9 +40,9 @@ void REF(ref_contact_forces)(int n, int maxn, int nmat, real dt, const real *x, 
 void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, const unsigned *wall_mask,
                           real *partial, real *wall_force);
 /* integrate.c */
-void REF(ref_integrate_kick_drift)(int n, real dt, vec3 g, real half_skin2, real *x, real *v, real *w,
+void REF(ref_integrate_kick_drift)(unsigned fx, int n, real dt, vec3 g, real half_skin2, real *x, real *v, real *w,
                                    const real *force, const real *torque, const real *invmass,
                                    const real *invinertia, const real *x_build, int *flags);
-void REF(ref_integrate_kick)(int n, real dt, vec3 g, real *v, real *w, const real *force, const real *torque,
+void REF(ref_integrate_kick)(unsigned fx, int n, real dt, vec3 g, real *v, real *w, const real *force, const real *torque,
                              const real *invmass, const real *invinertia);
 #endif

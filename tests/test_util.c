@@ -63,6 +63,8 @@ dem_sim *packing_build(const packing_opts *o)
     dem_time_scales ts;
     dem_time_scales_get(s, 0, &ts);
     dem_set_dt(s, ts.recommended_dt);
+    if (o->effects)
+        dem_set_effects(s, o->effects);
     return s;
 }
 
@@ -145,8 +147,10 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
     int *c1 = get(a, FIELD_NBR_COUNT, &n1), *c2 = get(b, FIELD_NBR_COUNT, &n2);
     int *r1 = get(a, FIELD_NBR_LIST, &l1), *r2 = get(b, FIELD_NBR_LIST, &l2);
     unsigned char *g1 = get(a, FIELD_HIST, &h1), *g2 = get(b, FIELD_HIST, &h2);
-    int m1 = dem_neighbor_capacity(a), m2 = dem_neighbor_capacity(b), bad = 0;
-    for (int i = 0; i < dem_count(a) && !bad; i++) {
+    int m1 = dem_neighbor_capacity(a), m2 = dem_neighbor_capacity(b), bad = h1 != h2 && (h1 == 0 || h2 == 0);
+    if (bad)
+        snprintf(msg, len, "one run has tangential history and the other none");
+    for (int i = 0; i < dem_count(a) && !bad && h1 > 0; i++) {
         int p = 0, q = 0;
         while ((p < c1[i] || q < c2[i]) && !bad) {
             int j1 = p < c1[i] ? r1[i * m1 + p] : 1 << 30, j2 = q < c2[i] ? r2[i * m2 + q] : 1 << 30;

@@ -17,6 +17,7 @@ typedef struct {
     double friction, restitution, young, density, poisson;
     int gravity;
     unsigned seed;
+    unsigned effects;   /* DEM_EFFECT_* mask; 0 = the default (classical) */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);
