@@ -8,12 +8,13 @@ CC      ?= cc
 BUILD   := build
 # Bit equality rules: no FP contraction, no fast math, no tuning for the build machine (see common/dem_real.h).
 # -fno-math-errno only drops the errno branch around sqrt; results are unchanged (IEEE sqrt either way).
-CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -ffp-contract=off -fno-fast-math -fno-math-errno \
+CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -Wno-format-truncation -ffp-contract=off -fno-fast-math -fno-math-errno \
            -D_GNU_SOURCE \
            -DCL_TARGET_OPENCL_VERSION=120 -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' \
-           -Iinclude -Icommon -Ihost -Ireference
+           -Iinclude -Icommon -Ihost -Ireference -Iapp $(shell pkg-config --cflags hdf5 2>/dev/null)
 LDLIBS  := -lOpenCL -lm
-TEST_LDLIBS := $(LDLIBS) -lcmocka
+APP_LDLIBS := $(shell pkg-config --libs hdf5 libcyaml yaml-0.1 2>/dev/null) $(LDLIBS)
+TEST_LDLIBS := $(APP_LDLIBS) -lcmocka
 
 HOST_SRC := $(filter-out host/demo.c,$(wildcard host/*.c))
 REF_SRC  := $(wildcard reference/*.c)
@@ -21,14 +22,18 @@ HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/%.o)
 REF32_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref32/%.o)
 REF64_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref64/%.o)
 LIB      := $(BUILD)/libdem.a
-HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h)
+# app/: the dem command's parts (scenes, HDF5 output, checkpoints), in their own archive
+APP_SRC  := $(filter-out app/dem_main.c,$(wildcard app/*.c))
+APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
+APPLIB   := $(BUILD)/libdemapp.a
+HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h app/*.h)
 
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all deps demo test bench clean
-all: $(LIB) $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
+all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
 $(DEPS_STAMP): scripts/install-deps.sh
@@ -45,16 +50,25 @@ $(BUILD)/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DDEM_REAL_SIZE=8 -c $< -o $@
 
+$(BUILD)/app/%.o: app/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+
 $(LIB): $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
 	ar rcs $@ $^
+$(APPLIB): $(APP_OBJ)
+	ar rcs $@ $^
+
+$(BUILD)/dem: app/dem_main.c $(APPLIB) $(LIB) $(HEADERS)
+	$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
 
 $(BUILD)/dem-demo: host/demo.c $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-bench: bench/bench.c $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
-$(BUILD)/tests/%: tests/%.c tests/test_util.c $(LIB) $(HEADERS)
+$(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(LIB) $(TEST_LDLIBS) -o $@
+	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
 
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo

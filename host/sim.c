@@ -301,7 +301,7 @@ static int report_out_of_domain(dem_sim *s, int id)
                     s->step, id, p[0], p[1], p[2], s->lo[0], s->hi[0], s->lo[1], s->hi[1], s->lo[2], s->hi[2]);
 }
 
-static int rebuild(dem_sim *s)
+int sim_rebuild(dem_sim *s)
 {
     int flags[FLAG_COUNT];
     if (s->ops->bin(s->be))
@@ -365,7 +365,7 @@ int dem_start(dem_sim *s, const dem_config *c)
     s->started = 1;
     if (s->ops->reset_flags(s->be))
         return be_fail(s);
-    if ((e = rebuild(s)) || (e = forces(s)))
+    if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
     return 0;
 }
@@ -392,7 +392,7 @@ int dem_step(dem_sim *s, long nsteps)
         }
         if (read_flags(s, flags))
             return DEM_ERR_DEVICE;
-        if (flags[FLAG_REBUILD] && (e = rebuild(s)))
+        if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
             return e;
         if ((e = forces(s)))
             return e;
@@ -407,6 +407,7 @@ int dem_step(dem_sim *s, long nsteps)
 
 int dem_count(const dem_sim *s) { return s->n; }
 double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[i] : NAN; }
+int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[i] : -1; }
 int dem_wall_count(const dem_sim *s) { return s->nwalls; }
 long dem_step_index(const dem_sim *s) { return s->step; }
 double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }

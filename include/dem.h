@@ -147,6 +147,7 @@ int dem_step(dem_sim *s, long nsteps);
 
 int dem_count(const dem_sim *s);
 double dem_particle_radius(const dem_sim *s, int i); /* [m], as given */
+int dem_particle_material(const dem_sim *s, int i);   /* material id, -1 for no such particle */
 int dem_wall_count(const dem_sim *s);
 long dem_step_index(const dem_sim *s);
 double dem_time(const dem_sim *s);
@@ -166,6 +167,28 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3]);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
+
+/* The dynamic state of a run, enough to continue it bit for bit (a checkpoint). Real arrays are raw bytes in the
+ * run's precision (real_size 4 or 8). Contacts: the touching pairs (i < j) and, with friction, their tangential
+ * spring; walls: the touch mask per particle and the springs. Neighbour rows are rebuilt on restore. */
+typedef struct {
+    long step, rebuilds;
+    int n, nwalls, real_size;
+    void *x, *v, *w, *force, *torque; /* real[3n] */
+    void *wall_force;                 /* real[3 nwalls] */
+    double wall_pos[32][3];           /* [m] */
+    long npairs;
+    int *pair_i, *pair_j;
+    void *pair_hist;                  /* real[3 npairs] */
+    int has_hist;                     /* 1 when the run has friction */
+    void *wall_hist;                  /* real[3 n nwalls] with friction, else empty */
+    size_t wall_hist_bytes;
+    unsigned *wall_mask;              /* [n] */
+} dem_state;
+int dem_state_get(dem_sim *s, dem_state *st); /* allocates; free with dem_state_free */
+/* After dem_start of the same set-up: continue from st (replaces positions, velocities, contacts, step). */
+int dem_state_set(dem_sim *s, const dem_state *st);
+void dem_state_free(dem_state *st);
 
 /* OpenCL devices over all platforms; name of device k. */
 int dem_device_count(void);

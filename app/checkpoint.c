@@ -1,0 +1,168 @@
+/* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_pos,pair_i,pair_j,pair_hist,
+ * wall_hist,wall_mask,radius} with attributes step, n, nwalls, real_size (4 or 8: the arrays hold the run's own
+ * bits), and /scene/text, /scene/path. */
+#include "checkpoint.h"
+#include "h5util.h"
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static int sync_file(const char *path)
+{
+    int fd = open(path, O_RDONLY);
+    if (fd < 0)
+        return -1;
+    int rc = fsync(fd);
+    close(fd);
+    return rc;
+}
+
+int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, size_t errlen)
+{
+    dem_state st;
+    if (dem_state_get(s, &st)) {
+        snprintf(err, errlen, "checkpoint: %s", dem_error(s));
+        return 1;
+    }
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = f < 0;
+    hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+    hsize_t n3[2] = {(hsize_t)st.n, 3}, w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
+    hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs};
+    hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size};
+    double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
+    if (!rc) {
+        hid_t g = H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        for (int i = 0; radius && i < st.n; i++)
+            radius[i] = dem_particle_radius(s, i);
+        rc = g < 0 || !radius || h5_attr_long(g, "step", st.step) || h5_attr_long(g, "n", st.n) ||
+             h5_attr_long(g, "nwalls", st.nwalls) || h5_attr_long(g, "real_size", st.real_size) ||
+             h5_attr_long(g, "has_hist", st.has_hist) || h5_attr_long(g, "rebuilds", st.rebuilds) ||
+             h5_attr_double(g, "time", dem_time(s)) ||
+             h5_write(g, "x", real_t, 2, n3, st.x, "m") || h5_write(g, "v", real_t, 2, n3, st.v, "m/s") ||
+             h5_write(g, "w", real_t, 2, n3, st.w, "rad/s") || h5_write(g, "force", real_t, 2, n3, st.force, "N") ||
+             h5_write(g, "torque", real_t, 2, n3, st.torque, "N m") ||
+             h5_write(g, "wall_force", real_t, 2, w3, st.wall_force, "N") ||
+             h5_write(g, "wall_pos", H5T_NATIVE_DOUBLE, 2, w3, st.wall_pos, "m") ||
+             h5_write(g, "pair_i", H5T_NATIVE_INT, 1, p1, st.pair_i, NULL) ||
+             h5_write(g, "pair_j", H5T_NATIVE_INT, 1, p1, st.pair_j, NULL) ||
+             h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
+             h5_write(g, "wall_hist", real_t, 1, wh, st.wall_hist, "N") ||
+             h5_write(g, "wall_mask", H5T_NATIVE_UINT, 1, n1, st.wall_mask, NULL) ||
+             h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, n1, radius, "m");
+        if (g >= 0)
+            H5Gclose(g);
+        hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = rc || sg < 0 || h5_write_text(sg, "text", sc->text) || h5_write_text(sg, "path", sc->path) ||
+             h5_attr_string(f, "libdem_version", DEM_VERSION);
+        if (sg >= 0)
+            H5Gclose(sg);
+    }
+    free(radius);
+    dem_state_free(&st);
+    if (f >= 0 && H5Fclose(f) < 0)
+        rc = 1;
+    if (rc || sync_file(tmp) || rename(tmp, path)) {
+        unlink(tmp);
+        snprintf(err, errlen, "%s: cannot write the checkpoint (the previous one, if any, is kept)", path);
+        return 1;
+    }
+    return 0;
+}
+
+int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
+{
+    memset(ck, 0, sizeof *ck);
+    H5E_auto2_t old;
+    void *old_data;
+    H5Eget_auto2(H5E_DEFAULT, &old, &old_data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    H5Eset_auto2(H5E_DEFAULT, old, old_data);
+    if (f < 0) {
+        snprintf(err, errlen, "%s: not a readable HDF5 checkpoint", path);
+        return 1;
+    }
+    dem_state *st = &ck->st;
+    hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
+    long n = 0, nw = 0, rs = 0, hh = 0;
+    int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
+             h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
+             h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > 32;
+    if (!rc) {
+        h5_read_attr_long(g, "rebuilds", &st->rebuilds);
+        st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
+        hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+        size_t n3 = 3 * (size_t)n;
+        hid_t d = H5Dopen2(g, "pair_i", H5P_DEFAULT), sp = d >= 0 ? H5Dget_space(d) : -1;
+        hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+        if (sp >= 0)
+            H5Sclose(sp);
+        if (d >= 0)
+            H5Dclose(d);
+        hid_t ws = H5Dopen2(g, "wall_hist", H5P_DEFAULT), wsp = ws >= 0 ? H5Dget_space(ws) : -1;
+        hssize_t nwh = wsp >= 0 ? H5Sget_simple_extent_npoints(wsp) : -1;
+        if (wsp >= 0)
+            H5Sclose(wsp);
+        if (ws >= 0)
+            H5Dclose(ws);
+        size_t want_wh = hh ? n3 * (size_t)nw : 0;
+        if (np < 0 || nwh < 0)
+            rc = 1;
+        long npairs = np;
+        st->x = malloc(n3 * rs), st->v = malloc(n3 * rs), st->w = malloc(n3 * rs);
+        st->force = malloc(n3 * rs), st->torque = malloc(n3 * rs);
+        st->wall_force = malloc(3 * (size_t)(nw + 1) * rs);
+        st->pair_i = malloc(sizeof(int) * (size_t)(npairs + 1));
+        st->pair_j = malloc(sizeof(int) * (size_t)(npairs + 1));
+        st->pair_hist = malloc(3 * (size_t)(npairs + 1) * rs);
+        st->wall_hist = malloc((want_wh + 1) * rs);
+        st->wall_hist_bytes = want_wh * rs;
+        st->wall_mask = malloc(sizeof(unsigned) * (size_t)n);
+        ck->radius = malloc(sizeof(double) * (size_t)n);
+        rc = rc || !st->x || !st->v || !st->w || !st->force || !st->torque || !st->wall_force || !st->pair_i ||
+             !st->pair_j || !st->pair_hist || !st->wall_hist || !st->wall_mask || !ck->radius ||
+             h5_read(g, "x", real_t, st->x, n3) || h5_read(g, "v", real_t, st->v, n3) ||
+             h5_read(g, "w", real_t, st->w, n3) || h5_read(g, "force", real_t, st->force, n3) ||
+             h5_read(g, "torque", real_t, st->torque, n3) ||
+             h5_read(g, "wall_force", real_t, st->wall_force, 3 * (size_t)nw) ||
+             h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
+             h5_read(g, "wall_hist", real_t, st->wall_hist, want_wh) ||
+             h5_read(g, "wall_mask", H5T_NATIVE_UINT, st->wall_mask, (size_t)n) ||
+             h5_read(g, "radius", H5T_NATIVE_DOUBLE, ck->radius, (size_t)n);
+        st->npairs = npairs;
+        rc = rc || h5_read(g, "pair_i", H5T_NATIVE_INT, st->pair_i, (size_t)npairs) ||
+             h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
+             h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs);
+    }
+    if (g >= 0)
+        H5Gclose(g);
+    if (!rc) {
+        hid_t sg = H5Lexists(f, "scene", H5P_DEFAULT) > 0 ? H5Gopen2(f, "scene", H5P_DEFAULT) : -1;
+        ck->scene_text = sg >= 0 ? h5_read_text(sg, "text") : NULL;
+        ck->scene_path = sg >= 0 ? h5_read_text(sg, "path") : NULL;
+        if (sg >= 0)
+            H5Gclose(sg);
+        rc = !ck->scene_text || !ck->scene_path;
+    }
+    H5Fclose(f);
+    if (rc) {
+        snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
+        checkpoint_free(ck);
+        return 1;
+    }
+    return 0;
+}
+
+void checkpoint_free(checkpoint *ck)
+{
+    dem_state_free(&ck->st);
+    free(ck->scene_text);
+    free(ck->scene_path);
+    free(ck->radius);
+    memset(ck, 0, sizeof *ck);
+}

@@ -1,0 +1,18 @@
+/* checkpoint.h - checkpoints: everything needed to continue a run bit for bit, in one HDF5 file.
+ * A checkpoint is written to PATH.tmp, flushed to disk, and renamed over PATH, so that a kill at any moment leaves
+ * either the previous checkpoint or the new one, never a torn file. */
+#ifndef DEM_CHECKPOINT_H
+#define DEM_CHECKPOINT_H
+#include "scene.h"
+
+typedef struct {
+    dem_state st;
+    char *scene_text;  /* the scene the run was built from */
+    char *scene_path;  /* where it was (CSV paths are relative to its folder) */
+    double *radius;    /* [n], checked against the rebuilt scene */
+} checkpoint;
+
+int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, size_t errlen);
+int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
+void checkpoint_free(checkpoint *ck);
+#endif

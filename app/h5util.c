@@ -1,0 +1,190 @@
+/* h5util.c - see h5util.h. Every function returns 0 on success, -1 on an HDF5 failure. */
+#include "h5util.h"
+#include <stdlib.h>
+#include <string.h>
+
+int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int rank, hsize_t d1, hsize_t d2,
+                  const char *units)
+{
+    memset(r, 0, sizeof *r);
+    r->rank = rank;
+    r->mem_type = mem_type;
+    r->dims[0] = 0;
+    r->dims[1] = d1;
+    r->dims[2] = d2;
+    hsize_t maxd[3] = {H5S_UNLIMITED, d1, d2}, chunk[3] = {1, d1, d2};
+    if (rank == 1)
+        chunk[0] = 1024; /* time series: many short rows */
+    /* frames: one frame per chunk, split along particles so that a chunk stays below ~4 MiB */
+    while (rank > 1 && chunk[1] > 1 && chunk[1] * (rank > 2 ? d2 : 1) * 8 > ((hsize_t)4 << 20))
+        chunk[1] = (chunk[1] + 1) / 2;
+    hid_t space = H5Screate_simple(rank, r->dims, maxd), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    int ok = space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0 && H5Pset_shuffle(dcpl) >= 0 &&
+             H5Pset_deflate(dcpl, 4) >= 0;
+    hid_t file_type = mem_type == H5T_NATIVE_DOUBLE ? H5T_IEEE_F64LE : H5T_STD_I32LE;
+    r->id = ok ? H5Dcreate2(parent, name, file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT) : -1;
+    if (space >= 0)
+        H5Sclose(space);
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
+    if (r->id < 0)
+        return -1;
+    if (units && h5_attr_string(r->id, "units", units))
+        return -1;
+    return 0;
+}
+
+int h5rows_append(h5rows *r, const void *row)
+{
+    hsize_t start[3] = {r->dims[0], 0, 0}, count[3] = {1, r->dims[1], r->dims[2]};
+    r->dims[0]++;
+    if (H5Dset_extent(r->id, r->dims) < 0)
+        return -1;
+    hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, count, NULL);
+    int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+                     H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, row) >= 0
+                 ? 0
+                 : -1;
+    if (fs >= 0)
+        H5Sclose(fs);
+    if (ms >= 0)
+        H5Sclose(ms);
+    return rc;
+}
+
+void h5rows_close(h5rows *r)
+{
+    if (r->id > 0)
+        H5Dclose(r->id);
+    r->id = 0;
+}
+
+static int attr_write(hid_t obj, const char *name, hid_t type, const void *v)
+{
+    hid_t sp = H5Screate(H5S_SCALAR);
+    hid_t a = sp >= 0 ? H5Acreate2(obj, name, type, sp, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    int rc = a >= 0 && H5Awrite(a, type, v) >= 0 ? 0 : -1;
+    if (a >= 0)
+        H5Aclose(a);
+    if (sp >= 0)
+        H5Sclose(sp);
+    return rc;
+}
+
+int h5_attr_string(hid_t obj, const char *name, const char *value)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    if (t < 0 || H5Tset_size(t, strlen(value) + 1) < 0 || H5Tset_cset(t, H5T_CSET_UTF8) < 0)
+        return -1;
+    int rc = attr_write(obj, name, t, value);
+    H5Tclose(t);
+    return rc;
+}
+
+int h5_attr_double(hid_t obj, const char *name, double value) { return attr_write(obj, name, H5T_NATIVE_DOUBLE, &value); }
+int h5_attr_long(hid_t obj, const char *name, long value) { return attr_write(obj, name, H5T_NATIVE_LONG, &value); }
+
+int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const void *data,
+             const char *units)
+{
+    hsize_t total = 1;
+    for (int k = 0; k < rank; k++)
+        total *= dims[k];
+    hid_t sp = H5Screate_simple(rank, dims, NULL); /* zero-sized dimensions are allowed (HDF5 >= 1.8.7) */
+    hid_t ftype = H5Tget_native_type(mem_type, H5T_DIR_DEFAULT);
+    hid_t d = sp >= 0 ? H5Dcreate2(parent, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    int rc = d >= 0 && (total == 0 || H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0) ? 0 : -1;
+    if (!rc && units)
+        rc = h5_attr_string(d, "units", units);
+    if (d >= 0)
+        H5Dclose(d);
+    if (sp >= 0)
+        H5Sclose(sp);
+    if (ftype >= 0)
+        H5Tclose(ftype);
+    return rc;
+}
+
+int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t count)
+{
+    if (H5Lexists(parent, name, H5P_DEFAULT) <= 0)
+        return -1;
+    hid_t d = H5Dopen2(parent, name, H5P_DEFAULT);
+    if (d < 0)
+        return -1;
+    hid_t sp = H5Dget_space(d);
+    hssize_t npts = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+    int rc = -1;
+    if (npts >= 0 && (size_t)npts == count)
+        rc = count == 0 || H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0 ? 0 : -1;
+    if (sp >= 0)
+        H5Sclose(sp);
+    H5Dclose(d);
+    return rc;
+}
+
+char *h5_read_attr_string(hid_t obj, const char *name)
+{
+    if (H5Aexists(obj, name) <= 0)
+        return NULL;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t = a >= 0 ? H5Aget_type(a) : -1;
+    size_t n = t >= 0 ? H5Tget_size(t) : 0;
+    char *buf = n ? calloc(n + 1, 1) : NULL;
+    if (buf && H5Aread(a, t, buf) < 0) {
+        free(buf);
+        buf = NULL;
+    }
+    if (t >= 0)
+        H5Tclose(t);
+    if (a >= 0)
+        H5Aclose(a);
+    return buf;
+}
+
+static int attr_read(hid_t obj, const char *name, hid_t type, void *v)
+{
+    if (H5Aexists(obj, name) <= 0)
+        return -1;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    int rc = a >= 0 && H5Aread(a, type, v) >= 0 ? 0 : -1;
+    if (a >= 0)
+        H5Aclose(a);
+    return rc;
+}
+int h5_read_attr_double(hid_t obj, const char *name, double *v) { return attr_read(obj, name, H5T_NATIVE_DOUBLE, v); }
+int h5_read_attr_long(hid_t obj, const char *name, long *v) { return attr_read(obj, name, H5T_NATIVE_LONG, v); }
+
+int h5_write_text(hid_t parent, const char *name, const char *text)
+{
+    hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
+    int rc = -1;
+    if (t >= 0 && sp >= 0 && H5Tset_size(t, strlen(text) + 1) >= 0 && H5Tset_cset(t, H5T_CSET_UTF8) >= 0) {
+        hid_t d = H5Dcreate2(parent, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = d >= 0 && H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, text) >= 0 ? 0 : -1;
+        if (d >= 0)
+            H5Dclose(d);
+    }
+    if (t >= 0)
+        H5Tclose(t);
+    if (sp >= 0)
+        H5Sclose(sp);
+    return rc;
+}
+
+char *h5_read_text(hid_t parent, const char *name)
+{
+    if (H5Lexists(parent, name, H5P_DEFAULT) <= 0)
+        return NULL;
+    hid_t d = H5Dopen2(parent, name, H5P_DEFAULT), t = d >= 0 ? H5Dget_type(d) : -1;
+    size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING ? H5Tget_size(t) : 0;
+    char *buf = n ? calloc(n + 1, 1) : NULL;
+    if (buf && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+        free(buf);
+        buf = NULL;
+    }
+    if (t >= 0)
+        H5Tclose(t);
+    if (d >= 0)
+        H5Dclose(d);
+    return buf;
+}

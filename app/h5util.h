@@ -1,0 +1,35 @@
+/* h5util.h - small helpers over the HDF5 C API: extendible, chunked, compressed datasets that grow by rows. */
+#ifndef DEM_H5UTIL_H
+#define DEM_H5UTIL_H
+#include <hdf5.h>
+#include <stddef.h>
+
+/* A dataset of shape [rows, d1, d2] (rank 1..3) whose first dimension grows; double or int elements. */
+typedef struct {
+    hid_t id;
+    int rank;
+    hsize_t dims[3];
+    hid_t mem_type;
+} h5rows;
+
+int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int rank, hsize_t d1, hsize_t d2,
+                  const char *units);
+int h5rows_append(h5rows *r, const void *row);
+void h5rows_close(h5rows *r);
+
+int h5_attr_string(hid_t obj, const char *name, const char *value);
+int h5_attr_double(hid_t obj, const char *name, double value);
+int h5_attr_long(hid_t obj, const char *name, long value);
+/* Whole dataset of a native type; units as an attribute when given. */
+int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const void *data,
+             const char *units);
+/* Reads a whole dataset (or fails when its element count is not count). */
+int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t count);
+char *h5_read_attr_string(hid_t obj, const char *name); /* malloc'd, NULL if absent */
+int h5_read_attr_double(hid_t obj, const char *name, double *v);
+int h5_read_attr_long(hid_t obj, const char *name, long *v);
+
+/* A text of any length as a scalar string dataset (attributes are limited to 64 KiB). */
+int h5_write_text(hid_t parent, const char *name, const char *text);
+char *h5_read_text(hid_t parent, const char *name); /* malloc'd, NULL if absent */
+#endif

@@ -1,0 +1,237 @@
+/* output.c - see output.h. */
+#include "output.h"
+#include "h5util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const struct {
+    unsigned bit;
+    dem_field field;
+    const char *name, *units;
+} frame_fields[] = {{OUT_POSITION, FIELD_X, "position", "m"},
+                    {OUT_VELOCITY, FIELD_V, "velocity", "m/s"},
+                    {OUT_ANGULAR_VELOCITY, FIELD_W, "angular_velocity", "rad/s"},
+                    {OUT_FORCE, FIELD_FORCE, "force", "N"},
+                    {OUT_TORQUE, FIELD_TORQUE, "torque", "N m"}};
+#define NFF (sizeof frame_fields / sizeof frame_fields[0])
+
+enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S__N };
+static const char *series_names[S__N] = {"time", "step", "kinetic", "elastic", "potential", "total",
+                                         "contacts", "wall_contacts", "strain", "stress"};
+static const char *series_units[S__N] = {"s", NULL, "J", "J", "J", "J", NULL, NULL, "1", "Pa"};
+
+struct output {
+    char path[4096], part[4200];
+    hid_t file, frames, series;
+    int n, nwalls, sample;
+    unsigned fields;
+    h5rows ftime, fstep, fdata[NFF];
+    h5rows s[S__N], wall_pos, wall_force;
+    long nframes;
+    double *buf;
+};
+
+output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen)
+{
+    output *o = calloc(1, sizeof *o);
+    int n = dem_count(s), nw = dem_wall_count(s);
+    if (!o || strlen(path) > 4000) {
+        free(o);
+        snprintf(err, errlen, "%s: output path too long or out of memory", path);
+        return NULL;
+    }
+    snprintf(o->path, sizeof o->path, "%s", path);
+    snprintf(o->part, sizeof o->part, "%s.part", path);
+    o->n = n;
+    o->nwalls = nw;
+    o->fields = run->fields;
+    o->sample = run->piston >= 0;
+    o->buf = malloc(sizeof(double) * 3 * (size_t)(n > 32 ? n : 32));
+    o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = !o->buf || o->file < 0;
+    char fx[128];
+    dem_effects_string(run->effects, fx, sizeof fx);
+    if (!rc)
+        rc = h5_attr_string(o->file, "libdem_version", DEM_VERSION) ||
+             h5_attr_string(o->file, "device", dem_describe(s)) ||
+             h5_attr_string(o->file, "precision", run->cfg.precision == DEM_FP64 ? "fp64" : "fp32") ||
+             h5_attr_string(o->file, "effects", fx) || h5_attr_double(o->file, "dt", run->dt) ||
+             h5_attr_long(o->file, "steps", run->steps) || h5_attr_string(o->file, "scene_path", sc->path) ||
+             h5_attr_string(o->file, "units", "SI: m, kg, s, N, Pa, J") ||
+             h5_write_text(o->file, "scene_text", sc->text);
+    if (!rc) {
+        hid_t g = H5Gcreate2(o->file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        int *mat = malloc(sizeof(int) * (size_t)n);
+        for (int i = 0; i < n; i++)
+            o->buf[i] = dem_particle_radius(s, i);
+        for (int i = 0; mat && i < n; i++)
+            mat[i] = dem_particle_material(s, i);
+        hsize_t dn[1] = {(hsize_t)n};
+        rc = g < 0 || !mat || h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, dn, o->buf, "m") ||
+             h5_write(g, "material", H5T_NATIVE_INT, 1, dn, mat, NULL);
+        free(mat);
+        if (g >= 0)
+            H5Gclose(g);
+    }
+    if (!rc) {
+        o->frames = H5Gcreate2(o->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = o->frames < 0 || h5rows_create(&o->ftime, o->frames, "time", H5T_NATIVE_DOUBLE, 1, 0, 0, "s") ||
+             h5rows_create(&o->fstep, o->frames, "step", H5T_NATIVE_DOUBLE, 1, 0, 0, NULL);
+        for (size_t k = 0; !rc && k < NFF; k++)
+            if (o->fields & frame_fields[k].bit)
+                rc = h5rows_create(&o->fdata[k], o->frames, frame_fields[k].name, H5T_NATIVE_DOUBLE, 3, (hsize_t)n, 3,
+                                   frame_fields[k].units);
+    }
+    if (!rc) {
+        o->series = H5Gcreate2(o->file, "series", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = o->series < 0;
+        for (int k = 0; !rc && k < S__N; k++)
+            if (k < S_STRAIN || o->sample)
+                rc = h5rows_create(&o->s[k], o->series, series_names[k], H5T_NATIVE_DOUBLE, 1, 0, 0, series_units[k]);
+        if (!rc && nw)
+            rc = h5rows_create(&o->wall_pos, o->series, "wall_position", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "m") ||
+                 h5rows_create(&o->wall_force, o->series, "wall_force", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "N");
+        if (!rc && o->sample)
+            rc = h5_attr_long(o->series, "piston_wall", run->piston) ||
+                 h5_attr_double(o->series, "sample_height", run->sample_height) ||
+                 h5_attr_double(o->series, "sample_area", run->sample_area) ||
+                 h5_attr_string(o->series, "convention", "strain = piston travel / initial height; stress = "
+                                                         "force the piston receives against its normal / area "
+                                                         "(compression positive)");
+    }
+    if (rc) {
+        snprintf(err, errlen, "%s: cannot create the output file", o->part);
+        output_abort(o);
+        unlink(o->part);
+        return NULL;
+    }
+    return o;
+}
+
+int output_frame(output *o, dem_sim *s)
+{
+    double t = dem_time(s), st = (double)dem_step_index(s);
+    if (h5rows_append(&o->ftime, &t) || h5rows_append(&o->fstep, &st))
+        return -1;
+    for (size_t k = 0; k < NFF; k++)
+        if (o->fields & frame_fields[k].bit)
+            if (dem_get_field(s, frame_fields[k].field, o->buf) || h5rows_append(&o->fdata[k], o->buf))
+                return -1;
+    o->nframes++;
+    return 0;
+}
+
+int output_series(output *o, dem_sim *s, double strain, double stress)
+{
+    dem_energy_t e;
+    if (dem_energy(s, &e))
+        return -1;
+    double row[S__N] = {dem_time(s), (double)dem_step_index(s), e.kinetic, e.elastic, e.potential, e.total,
+                        (double)e.contacts, (double)e.wall_contacts, strain, stress};
+    for (int k = 0; k < S__N; k++)
+        if ((k < S_STRAIN || o->sample) && h5rows_append(&o->s[k], &row[k]))
+            return -1;
+    if (o->nwalls) {
+        double pos[3 * 32], f[3 * 32];
+        for (int w = 0; w < o->nwalls; w++)
+            if (dem_wall_position(s, w, pos + 3 * w) || dem_wall_force(s, w, f + 3 * w))
+                return -1;
+        if (h5rows_append(&o->wall_pos, pos) || h5rows_append(&o->wall_force, f))
+            return -1;
+    }
+    return 0;
+}
+
+static void close_all(output *o)
+{
+    h5rows_close(&o->ftime);
+    h5rows_close(&o->fstep);
+    for (size_t k = 0; k < NFF; k++)
+        h5rows_close(&o->fdata[k]);
+    for (int k = 0; k < S__N; k++)
+        h5rows_close(&o->s[k]);
+    h5rows_close(&o->wall_pos);
+    h5rows_close(&o->wall_force);
+    if (o->frames > 0)
+        H5Gclose(o->frames);
+    if (o->series > 0)
+        H5Gclose(o->series);
+}
+
+/* XDMF 2: a temporal collection of point sets; every attribute is a hyperslab of the frame arrays. */
+static int write_xdmf(const output *o, const char *xmf_path, const double *times)
+{
+    FILE *fp = fopen(xmf_path, "w");
+    if (!fp)
+        return -1;
+    const char *h5name = strrchr(o->path, '/') ? strrchr(o->path, '/') + 1 : o->path;
+    long F = o->nframes;
+    fprintf(fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n<Domain>\n"
+                "<Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+    for (long f = 0; f < F; f++) {
+        fprintf(fp, "<Grid Name=\"frame %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
+        fprintf(fp, "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\"/>\n", o->n);
+        fprintf(fp, "<Geometry GeometryType=\"XYZ\">\n");
+        for (size_t k = 0; k < NFF; k++) {
+            if (!(o->fields & frame_fields[k].bit))
+                continue;
+            if (k > 0)
+                fprintf(fp, "<Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n",
+                        frame_fields[k].name);
+            fprintf(fp,
+                    "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                    "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
+                    "<DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                    "%s:/frames/%s</DataItem>\n</DataItem>\n",
+                    o->n, f, o->n, F, o->n, h5name, frame_fields[k].name);
+            fprintf(fp, k > 0 ? "</Attribute>\n" : "</Geometry>\n");
+        }
+        fprintf(fp, "<Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                    "<DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                    "%s:/particles/radius</DataItem>\n</Attribute>\n", o->n, h5name);
+        fprintf(fp, "<Attribute Name=\"material\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                    "<DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                    "%s:/particles/material</DataItem>\n</Attribute>\n</Grid>\n", o->n, h5name);
+    }
+    fprintf(fp, "</Grid>\n</Domain>\n</Xdmf>\n");
+    return fclose(fp) ? -1 : 0;
+}
+
+int output_finish(output *o, char *err, size_t errlen)
+{
+    double *times = malloc(sizeof(double) * (size_t)(o->nframes + 1));
+    int rc = !times || (o->nframes && H5Dread(o->ftime.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                               times) < 0);
+    close_all(o);
+    if (H5Fclose(o->file) < 0)
+        rc = 1;
+    o->file = -1;
+    char xmf[4200], xmf_part[4300];
+    snprintf(xmf, sizeof xmf, "%.*s.xmf",
+             (int)(strlen(o->path) > 3 && !strcmp(o->path + strlen(o->path) - 3, ".h5") ? strlen(o->path) - 3
+                                                                                          : strlen(o->path)),
+             o->path);
+    snprintf(xmf_part, sizeof xmf_part, "%s.part", xmf);
+    if (!rc && (write_xdmf(o, xmf_part, times) || rename(o->part, o->path) || rename(xmf_part, xmf)))
+        rc = 1;
+    free(times);
+    if (rc)
+        snprintf(err, errlen, "%s: cannot finish the output file (what was written is in %s)", o->path, o->part);
+    free(o->buf);
+    free(o);
+    return rc;
+}
+
+void output_abort(output *o)
+{
+    if (!o)
+        return;
+    close_all(o);
+    if (o->file > 0)
+        H5Fclose(o->file);
+    free(o->buf);
+    free(o);
+}

@@ -1,0 +1,211 @@
+/* run.c - see run.h. */
+#include "run.h"
+#include "checkpoint.h"
+#include "output.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *stress)
+{
+    *strain = *stress = NAN;
+    if (run->piston < 0)
+        return;
+    double p[3], f[3];
+    const double *n = run->piston_normal, *p0 = run->piston_point;
+    if (dem_wall_position(s, run->piston, p) || dem_wall_force(s, run->piston, f))
+        return;
+    *strain = ((p0[0] - p[0]) * n[0] + (p0[1] - p[1]) * n[1] + (p0[2] - p[2]) * n[2]) / run->sample_height;
+    *stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
+}
+
+static void default_out(const scene *sc, char *buf, size_t len)
+{
+    const char *base = strrchr(sc->path, '/') ? strrchr(sc->path, '/') + 1 : sc->path;
+    const char *dot = strrchr(base, '.');
+    snprintf(buf, len, "%.*s.h5", (int)(dot ? (size_t)(dot - base) : strlen(base)), base);
+}
+
+static void progress_line(int tty, long step, long steps, double t, double rate_ps, double eta)
+{
+    fprintf(stderr, "%sstep %ld/%ld (%5.1f %%)  t = %.6g s  %.3g particle-steps/s  ETA %.0f s%s",
+            tty ? "\r" : "", step, steps, 100.0 * (double)step / (double)steps, t, rate_ps, eta, tty ? "   " : "\n");
+    fflush(stderr);
+}
+
+static int fail_with(int code, const char *msg)
+{
+    fprintf(stderr, "dem: %s\n", msg);
+    return code;
+}
+
+int run_scene(const run_opts *o)
+{
+    char err[8192];
+    checkpoint ck;
+    int have_ck = 0;
+    scene *sc;
+    if (o->restart) {
+        if (checkpoint_read(o->restart, &ck, err, sizeof err))
+            return fail_with(EXIT_NO_INPUT, err);
+        have_ck = 1;
+        sc = scene_load_text(o->scene_path ? o->scene_path : ck.scene_path, ck.scene_text, strlen(ck.scene_text), err,
+                             sizeof err);
+    } else {
+        sc = scene_load(o->scene_path, err, sizeof err);
+    }
+    if (!sc) {
+        if (have_ck)
+            checkpoint_free(&ck);
+        return fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
+    }
+    scene_run run;
+    dem_sim *s = scene_build(sc, &run, err, sizeof err);
+    int code = 0;
+    output *out = NULL;
+    char outp[4096], ckp[4200];
+    if (!s) {
+        code = fail_with(EXIT_BAD_INPUT, err);
+        goto done;
+    }
+    if (o->device >= 0)
+        run.cfg.device = o->device;
+    if (o->precision)
+        run.cfg.precision = (dem_precision)o->precision;
+    if (o->out)
+        snprintf(outp, sizeof outp, "%s", o->out);
+    else
+        default_out(sc, outp, sizeof outp);
+    if (o->checkpoint)
+        snprintf(ckp, sizeof ckp, "%s", o->checkpoint);
+    else {
+        size_t l = strlen(outp);
+        snprintf(ckp, sizeof ckp, "%.*s.ckpt.h5", (int)(l > 3 && !strcmp(outp + l - 3, ".h5") ? l - 3 : l), outp);
+    }
+    if (have_ck) {
+        if (ck.st.n != dem_count(s) || ck.st.real_size != (int)run.cfg.precision) {
+            snprintf(err, sizeof err, "%s: the checkpoint has %d particles in %s; the scene gives %d in %s", o->restart,
+                     ck.st.n, ck.st.real_size == 8 ? "fp64" : "fp32", dem_count(s),
+                     run.cfg.precision == DEM_FP64 ? "fp64" : "fp32");
+            code = fail_with(EXIT_BAD_INPUT, err);
+            goto done;
+        }
+        for (int i = 0; i < ck.st.n; i++)
+            if (ck.radius[i] != dem_particle_radius(s, i)) {
+                snprintf(err, sizeof err, "%s: particle %d has radius %g m in the checkpoint and %g m in the scene "
+                         "(did a CSV file change?)", o->restart, i, ck.radius[i], dem_particle_radius(s, i));
+                code = fail_with(EXIT_BAD_INPUT, err);
+                goto done;
+            }
+    }
+    int se = dem_start(s, &run.cfg);
+    if (se) {
+        snprintf(err, sizeof err, "%s: %s", sc->path, dem_error(s));
+        code = fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, err);
+        goto done;
+    }
+    if (have_ck && dem_state_set(s, &ck.st)) {
+        snprintf(err, sizeof err, "%s: %s", o->restart, dem_error(s));
+        code = fail_with(EXIT_BAD_INPUT, err);
+        goto done;
+    }
+    char fx[128];
+    dem_effects_string(run.effects, fx, sizeof fx);
+    int show = o->progress < 0 ? isatty(2) : o->progress;
+    if (show || o->progress != 0)
+        fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n"
+                        "dem: kernels per step: integrate_kick_drift, contact_pairs, contact_forces%s, integrate_kick "
+                        "(+ binning and neighbour kernels at each rebuild)\n",
+                sc->path, dem_count(s), dem_wall_count(s), run.dt, run.steps, dem_describe(s),
+                (run.effects & DEM_EFFECT_WALLS) && dem_wall_count(s) ? ", wall_reduce_block, wall_reduce_final" : "");
+    out = output_open(outp, sc, &run, s, err, sizeof err);
+    if (!out) {
+        code = fail_with(EXIT_IO, err);
+        goto done;
+    }
+    double strain, stress, t0 = now(), last = t0;
+    long step0 = dem_step_index(s), end = run.steps;
+    if (o->stop_after > 0 && step0 + o->stop_after < end)
+        end = step0 + o->stop_after;
+    int tty = isatty(2);
+    run_sample_state(s, &run, &strain, &stress);
+    if (output_frame(out, s) || output_series(out, s, strain, stress)) {
+        code = fail_with(EXIT_IO, "cannot write to the output file");
+        goto done;
+    }
+    long last_frame = step0;
+    while (dem_step_index(s) < end) {
+        long st = dem_step_index(s), next = end;
+        long evs[3] = {run.frame_every, run.series_every, run.checkpoint_every};
+        for (int k = 0; k < 3; k++)
+            if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
+                next = (st / evs[k] + 1) * evs[k];
+        if (show) { /* at most ~1 s between progress lines */
+            double rate = (double)(st - step0 + 1) / (now() - t0 + 1e-9);
+            long cap = st + (long)(rate > 1 ? rate : 1) + 1;
+            if (cap < next)
+                next = cap;
+        }
+        if (dem_step(s, next - st)) {
+            snprintf(err, sizeof err, "%s: run stopped at step %ld: %s (output so far: %s.part; last checkpoint: %s)",
+                     sc->path, dem_step_index(s), dem_error(s), outp, ckp);
+            code = fail_with(EXIT_RUN_FAILED, err);
+            goto done;
+        }
+        st = dem_step_index(s);
+        int io = 0;
+        if (st % run.frame_every == 0 || st == end) {
+            io |= output_frame(out, s);
+            last_frame = st;
+        }
+        if (st % run.series_every == 0 || st == end) {
+            run_sample_state(s, &run, &strain, &stress);
+            io |= output_series(out, s, strain, stress);
+        }
+        if (io) {
+            code = fail_with(EXIT_IO, "cannot write to the output file");
+            goto done;
+        }
+        if ((run.checkpoint_every > 0 && st % run.checkpoint_every == 0) || st == end)
+            if (checkpoint_write(ckp, s, sc, err, sizeof err)) {
+                code = fail_with(EXIT_IO, err);
+                goto done;
+            }
+        double tn = now();
+        if (show && (tn - last > 1 || st == end)) {
+            double rate = (double)(st - step0) / (tn - t0 + 1e-12);
+            progress_line(tty, st, run.steps, dem_time(s), rate * dem_count(s), (double)(end - st) / (rate + 1e-12));
+            last = tn;
+        }
+    }
+    (void)last_frame;
+    if (show && tty)
+        fputc('\n', stderr);
+    if (output_finish(out, err, sizeof err)) {
+        out = NULL;
+        code = fail_with(EXIT_IO, err);
+        goto done;
+    }
+    out = NULL;
+    if (o->progress != 0 || show)
+        fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", outp, ckp,
+                dem_step_index(s), now() - t0);
+done:
+    if (out)
+        output_abort(out);
+    dem_destroy(s);
+    scene_free(sc);
+    if (have_ck)
+        checkpoint_free(&ck);
+    return code;
+}

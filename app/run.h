@@ -1,0 +1,24 @@
+/* run.h - `dem run`: a scene from start (or from a checkpoint) to its end, with output, checkpoints and progress. */
+#ifndef DEM_RUN_H
+#define DEM_RUN_H
+#include "scene.h"
+
+/* Exit statuses of the dem command (sysexits.h where one fits). */
+enum { EXIT_RUN_FAILED = 1, EXIT_USAGE = 2, EXIT_BAD_INPUT = 65, EXIT_NO_INPUT = 66, EXIT_DEVICE = 69,
+       EXIT_IO = 74 };
+
+typedef struct {
+    const char *scene_path;  /* NULL with restart: the checkpoint holds the scene */
+    const char *out;         /* output file (.h5); NULL = scene name next to the scene file */
+    const char *checkpoint;  /* checkpoint file; NULL = OUT without .h5 + ".ckpt.h5" */
+    const char *restart;     /* continue from this checkpoint */
+    int device;              /* -1: the scene's */
+    int precision;           /* 0: the scene's, else DEM_FP32 / DEM_FP64 */
+    int progress;            /* 1 always, 0 never, -1 when stderr is a terminal */
+    long stop_after;         /* > 0: stop after this many steps (a checkpoint is written; for tests and staging) */
+} run_opts;
+
+int run_scene(const run_opts *o);
+/* Strain and engineering stress of the sample (NAN without one). */
+void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *stress);
+#endif

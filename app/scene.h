@@ -1,0 +1,153 @@
+/* scene.h - a scene file (YAML) as C data, and what the `dem` command builds from it.
+ *
+ * scene_schema.c maps the YAML onto these structs with libcyaml (the schema is the one description of the file
+ * format; docs/scenes.md explains every key). scene_locate.c remembers where every key sits in the file, so any
+ * error can name file, line and field. scene_build.c checks the values and builds a dem_sim.
+ * Units are SI throughout (m, kg, s, Pa, N).
+ */
+#ifndef DEM_SCENE_H
+#define DEM_SCENE_H
+#include "dem.h"
+#include <stddef.h>
+
+typedef struct {
+    char *name;
+    double density, young, poisson, restitution, friction;
+} scene_material;
+
+typedef struct {
+    double x[3], v[3], w[3];
+    double radius;
+} scene_sphere;
+
+typedef struct {
+    double lo[3], hi[3];          /* box */
+    double base[3], axis[3];      /* cylinder: centre of the base disc, axis direction */
+    double radius, height;        /* cylinder */
+} scene_region;
+
+typedef struct {
+    char *kind;                   /* "random" (random sequential addition, no overlaps) or "lattice" (cubic) */
+    char *shape;                  /* "box" or "cylinder" */
+    scene_region region;
+    unsigned count;               /* number of spheres (random; lattice: at most this many, 0 = fill) */
+    double radius;                /* every sphere, or: */
+    double radius_min, radius_max; /* radii uniform in [min, max] */
+    double spacing;               /* lattice: centre distance (default 2 radius_max) */
+    double speed;                 /* random initial velocity, each component uniform in [-speed, speed] */
+    unsigned seed;
+} scene_generate;
+
+typedef struct {
+    char *material;
+    scene_sphere *spheres;        /* explicit list, or */
+    unsigned spheres_count;
+    char *csv;                    /* a CSV file (path relative to the scene file), or */
+    scene_generate *generate;     /* generated */
+} scene_particles;
+
+typedef struct {
+    double velocity[3];           /* [m/s] */
+    double duration;              /* [s], or */
+    double distance;              /* [m] travelled at |velocity|, or */
+    double strain, length;        /* distance = strain x length */
+} scene_stage;
+
+typedef struct {
+    char *name;
+    char *material;
+    double point[3], normal[3];   /* plane (normal towards the particles) */
+    double axis[3], radius;       /* cylinder: point on its axis, axis direction, inner radius */
+    double lo[3], hi[3];          /* box: six planes from inside */
+    char *type;                   /* "plane", "cylinder" or "box" */
+    scene_stage *motion;
+    unsigned motion_count;
+} scene_wall;
+
+typedef struct {
+    double dt;                    /* [s], or */
+    double dt_rayleigh;           /* fraction of the Rayleigh time */
+    double duration;              /* [s] */
+    double settle;                /* [s] at the start during which walls hold still (their stages start after) */
+} scene_time;
+
+typedef struct {
+    double frame_every;           /* [s] between particle frames */
+    double series_every;          /* [s] between time-series rows */
+    double checkpoint_every;      /* [s] between checkpoints (0: only at the end) */
+    char **fields;
+    unsigned fields_count;
+} scene_output;
+
+typedef struct {
+    char *piston;                 /* name of the wall that compresses the sample */
+    double height;                /* initial sample height [m] (0: piston to the lowest particle bottom) */
+    double area;                  /* cross-section [m^2] (0: from a box or cylinder wall around the sample) */
+} scene_sample;
+
+typedef struct {
+    char *name;
+    char *description;
+    char *precision;              /* "fp32" or "fp64" */
+    int device;
+    char *backend;                /* "opencl" (default) or "reference" */
+    char **effects;
+    unsigned effects_count;
+    scene_material *materials;
+    unsigned materials_count;
+    scene_particles *particles;
+    unsigned particles_count;
+    scene_wall *walls;
+    unsigned walls_count;
+    double gravity[3];
+    double domain_lo[3], domain_hi[3];
+    double overlap_tolerance;     /* largest initial overlap accepted, fraction of the smaller radius */
+    scene_time time;
+    scene_output output;
+    scene_sample *sample;         /* optional: report engineering strain and stress of a compressed sample */
+} scene_file;
+
+typedef struct scene_locator scene_locator; /* scene_locate.c */
+
+/* A loaded scene: the data, the file text, and where each key is. */
+typedef struct {
+    char *path;      /* as given */
+    char *dir;       /* its folder, for relative paths in it */
+    char *text;      /* the file's bytes (stored in the output) */
+    size_t text_len;
+    scene_file *f;
+    scene_locator *loc;
+} scene;
+
+/* Output fields a scene may ask for. */
+enum { OUT_POSITION = 1, OUT_VELOCITY = 2, OUT_ANGULAR_VELOCITY = 4, OUT_RADIUS = 8, OUT_FORCE = 16,
+       OUT_TORQUE = 32, OUT_MATERIAL = 64 };
+
+/* What scene_build derives. */
+typedef struct {
+    unsigned effects;
+    dem_config cfg;
+    double dt;
+    long steps, frame_every, series_every, checkpoint_every; /* in steps */
+    unsigned fields;        /* OUT_* */
+    int piston;             /* wall whose position and force define the sample's strain and stress, -1 none */
+    double sample_height;   /* initial piston-to-opposite-wall distance [m] (strain reference) */
+    double sample_area;     /* cross-section the piston force acts on [m^2] */
+    double piston_point[3], piston_normal[3]; /* initial point and unit normal (towards the particles) */
+    dem_time_scales ts;
+    char note[1024];        /* remarks for `dem check` (ignored parameters ...) */
+} scene_run;
+
+/* Loads and parses; on failure returns NULL and writes "file:line: field: reason" into err. */
+scene *scene_load(const char *path, char *err, size_t errlen);
+scene *scene_load_text(const char *path, const char *text, size_t len, char *err, size_t errlen);
+void scene_free(scene *sc);
+/* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */
+dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
+
+/* scene_locate.c: line of a field path such as "walls[1].motion[0].velocity" (0 if absent). */
+scene_locator *scene_locate(const char *text, size_t len);
+void scene_locator_free(scene_locator *l);
+int scene_line(const scene_locator *l, const char *path);
+int scene_has(const scene_locator *l, const char *path);
+#endif

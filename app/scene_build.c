@@ -1,0 +1,433 @@
+/* scene_build.c - checks a loaded scene and builds the simulation it describes.
+ * Every rejection names file, line and field (scene_locate.c) and says why; nothing is half-built. */
+#include "scene.h"
+#include "scene_particles.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* "file:line: path: reason" */
+int scene_fail(const scene *sc, char *err, size_t errlen, const char *path, const char *fmt, ...)
+{
+    char why[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    int line = scene_line(sc->loc, path);
+    char parent[512];
+    snprintf(parent, sizeof parent, "%s", path);
+    while (!line && parent[0]) { /* an absent key: point at the innermost part that exists */
+        char *cut = strrchr(parent, '.'), *br = strrchr(parent, '[');
+        if (br > cut)
+            cut = br;
+        if (!cut)
+            break;
+        *cut = 0;
+        line = scene_line(sc->loc, parent);
+    }
+    snprintf(err, errlen, "%s:%d: %s: %s", sc->path, line, path, why);
+    return 1;
+}
+
+static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errlen)
+{
+    const scene_file *f = sc->f;
+    run->effects = 0;
+    for (unsigned k = 0; k < f->effects_count; k++) {
+        char path[64];
+        snprintf(path, sizeof path, "effects[%u]", k);
+        const char *e = f->effects[k];
+        int bit = dem_effect_bit(e);
+        if (bit < 0) {
+            if (!strcmp(e, "mc_stress") || !strcmp(e, "mc_strain") || !strcmp(e, "membrane"))
+                return scene_fail(sc, err, errlen, path, "effect '%s' is not available in libdem %s yet", e,
+                                  DEM_VERSION);
+            return scene_fail(sc, err, errlen, path,
+                              "unknown effect '%s' (known: hertz, damping, friction, gravity, walls)", e);
+        }
+        if (run->effects & (1u << bit))
+            return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
+        run->effects |= 1u << bit;
+    }
+    if (!(run->effects & DEM_EFFECT_HERTZ))
+        return scene_fail(sc, err, errlen, "effects", "'hertz' (the contact law) must be listed");
+    return 0;
+}
+
+static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen)
+{
+    const scene_file *f = sc->f;
+    for (unsigned k = 0; k < f->materials_count; k++) {
+        const scene_material *m = &f->materials[k];
+        char p[128];
+#define MCHECK(field, cond, why)                                                                                     \
+    do {                                                                                                             \
+        if (!(cond)) {                                                                                               \
+            snprintf(p, sizeof p, "materials[%u].%s", k, field);                                                    \
+            return scene_fail(sc, err, errlen, p, why);                                                              \
+        }                                                                                                            \
+    } while (0)
+        MCHECK("density", m->density > 0 && isfinite(m->density), "density must be > 0 kg/m^3");
+        MCHECK("young", m->young > 0 && isfinite(m->young), "Young's modulus must be > 0 Pa");
+        MCHECK("poisson", m->poisson > -1 && m->poisson <= 0.5, "Poisson's ratio must be in (-1, 0.5]");
+        MCHECK("restitution", m->restitution > 0 && m->restitution <= 1, "restitution must be in (0, 1]");
+        MCHECK("friction", m->friction >= 0 && isfinite(m->friction), "friction must be >= 0");
+#undef MCHECK
+        for (unsigned j = 0; j < k; j++)
+            if (!strcmp(f->materials[j].name, m->name)) {
+                snprintf(p, sizeof p, "materials[%u].name", k);
+                return scene_fail(sc, err, errlen, p, "material '%s' is defined twice", m->name);
+            }
+        dem_material dm = {m->density, m->young, m->poisson, m->restitution, m->friction};
+        if (dem_add_material(s, &dm) < 0) {
+            snprintf(p, sizeof p, "materials[%u]", k);
+            return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+        }
+    }
+    return 0;
+}
+
+int scene_material_id(const scene *sc, const char *name)
+{
+    for (unsigned j = 0; j < sc->f->materials_count; j++)
+        if (!strcmp(sc->f->materials[j].name, name))
+            return (int)j;
+    return -1;
+}
+
+static int lookup_material(const scene *sc, const char *name, const char *path, int *id, char *err, size_t errlen)
+{
+    *id = scene_material_id(sc, name);
+    if (*id < 0)
+        return scene_fail(sc, err, errlen, path, "unknown material '%s'", name);
+    return 0;
+}
+
+/* Motion stages of wall k, after an optional settling pause. */
+static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, int *nst, char *err, size_t errlen)
+{
+    const scene_wall *w = &sc->f->walls[k];
+    int n = 0;
+    if (settle > 0)
+        st[n++] = (dem_stage){settle, {0, 0, 0}};
+    for (unsigned j = 0; j < w->motion_count; j++) {
+        const scene_stage *g = &w->motion[j];
+        char base[96], p[128];
+        snprintf(base, sizeof base, "walls[%d].motion[%u]", k, j);
+        int has_d = 0, cnt = 0;
+        const char *keys[] = {"duration", "distance", "strain"};
+        for (int q = 0; q < 3; q++) {
+            snprintf(p, sizeof p, "%s.%s", base, keys[q]);
+            if (scene_has(sc->loc, p)) {
+                cnt++;
+                has_d = q;
+            }
+        }
+        if (cnt != 1)
+            return scene_fail(sc, err, errlen, base, "give exactly one of duration, distance or strain (got %d)", cnt);
+        snprintf(p, sizeof p, "%s.velocity", base);
+        int has_v = scene_has(sc->loc, p);
+        if (has_v && !finite3(g->velocity))
+            return scene_fail(sc, err, errlen, p, "velocity must be finite");
+        double speed = has_v ? norm3(g->velocity) : 0, dur = g->duration;
+        if (has_d == 0) {
+            snprintf(p, sizeof p, "%s.duration", base);
+            if (!(g->duration >= 0) || !isfinite(g->duration))
+                return scene_fail(sc, err, errlen, p, "duration must be >= 0 s");
+        } else {
+            double dist = g->distance;
+            snprintf(p, sizeof p, "%s.%s", base, keys[has_d]);
+            if (has_d == 2) {
+                char lp[160];
+                snprintf(lp, sizeof lp, "%s.length", base);
+                if (!scene_has(sc->loc, lp) || !(g->length > 0))
+                    return scene_fail(sc, err, errlen, lp, "a strain stage needs the sample length > 0 m");
+                dist = g->strain * g->length;
+            }
+            if (!(dist >= 0) || !isfinite(dist))
+                return scene_fail(sc, err, errlen, p, "must be >= 0");
+            if (!(speed > 0))
+                return scene_fail(sc, err, errlen, base, "a stage given by distance or strain needs a non-zero velocity");
+            dur = dist / speed;
+        }
+        if (n >= DEM_MAX_STAGES)
+            return scene_fail(sc, err, errlen, base, "at most %d motion stages", DEM_MAX_STAGES - 1);
+        st[n].duration = dur;
+        for (int d = 0; d < 3; d++)
+            st[n].velocity[d] = has_v ? g->velocity[d] : 0;
+        n++;
+    }
+    *nst = n;
+    return 0;
+}
+
+static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *first_wall, char *err, size_t errlen)
+{
+    const scene_file *f = sc->f;
+    if (f->walls_count && !(run->effects & DEM_EFFECT_WALLS))
+        return scene_fail(sc, err, errlen, "walls", "walls are defined but the effect 'walls' is not listed");
+    for (unsigned k = 0; k < f->walls_count; k++) {
+        const scene_wall *w = &f->walls[k];
+        char base[64], p[128];
+        snprintf(base, sizeof base, "walls[%u]", k);
+        int mat;
+        snprintf(p, sizeof p, "%s.material", base);
+        if (lookup_material(sc, w->material, p, &mat, err, errlen))
+            return 1;
+        dem_stage st[DEM_MAX_STAGES];
+        int nst = 0;
+        if (parse_motion(sc, (int)k, f->time.settle, st, &nst, err, errlen))
+            return 1;
+        const char *need[4] = {0};
+        dem_wall dw;
+        memset(&dw, 0, sizeof dw);
+        dw.material = mat;
+        if (!strcmp(w->type, "plane")) {
+            need[0] = "point", need[1] = "normal";
+            dw.kind = DEM_WALL_PLANE;
+        } else if (!strcmp(w->type, "cylinder")) {
+            need[0] = "point", need[1] = "axis", need[2] = "radius";
+            dw.kind = DEM_WALL_CYLINDER;
+        } else if (!strcmp(w->type, "box")) {
+            need[0] = "lo", need[1] = "hi";
+        } else {
+            snprintf(p, sizeof p, "%s.type", base);
+            return scene_fail(sc, err, errlen, p, "unknown wall type '%s' (plane, cylinder or box)", w->type);
+        }
+        for (int q = 0; need[q]; q++) {
+            snprintf(p, sizeof p, "%s.%s", base, need[q]);
+            if (!scene_has(sc->loc, p))
+                return scene_fail(sc, err, errlen, p, "a %s wall needs '%s'", w->type, need[q]);
+        }
+        if (!strcmp(w->type, "box")) {
+            for (int d = 0; d < 3; d++)
+                if (!(w->hi[d] > w->lo[d]) || !isfinite(w->lo[d]) || !isfinite(w->hi[d])) {
+                    snprintf(p, sizeof p, "%s.hi", base);
+                    return scene_fail(sc, err, errlen, p, "box needs finite lo < hi on every axis");
+                }
+            int id = dem_add_box(s, w->lo, w->hi, mat);
+            if (id < 0)
+                return scene_fail(sc, err, errlen, base, "%s", dem_error(s));
+            first_wall[k] = id;
+            if (nst) /* a moving box moves as a whole */
+                for (int q = 0; q < 6; q++)
+                    dem_set_wall_motion(s, id + q, nst, st);
+            continue;
+        }
+        memcpy(dw.point, w->point, sizeof dw.point);
+        memcpy(dw.normal, dw.kind == DEM_WALL_PLANE ? w->normal : w->axis, sizeof dw.normal);
+        dw.radius = w->radius;
+        if (!finite3(dw.point)) {
+            snprintf(p, sizeof p, "%s.point", base);
+            return scene_fail(sc, err, errlen, p, "must be finite");
+        }
+        if (!(norm3(dw.normal) > 0) || !finite3(dw.normal)) {
+            snprintf(p, sizeof p, "%s.%s", base, dw.kind == DEM_WALL_PLANE ? "normal" : "axis");
+            return scene_fail(sc, err, errlen, p, "must be a finite non-zero vector");
+        }
+        if (dw.kind == DEM_WALL_CYLINDER && !(dw.radius > 0 && isfinite(dw.radius))) {
+            snprintf(p, sizeof p, "%s.radius", base);
+            return scene_fail(sc, err, errlen, p, "cylinder radius must be > 0 m");
+        }
+        dw.nstages = nst;
+        memcpy(dw.stages, st, sizeof(dem_stage) * (size_t)nst);
+        int id = dem_add_wall(s, &dw);
+        if (id < 0)
+            return scene_fail(sc, err, errlen, base, "%s", dem_error(s));
+        first_wall[k] = id;
+    }
+    return 0;
+}
+
+static int parse_output(const scene *sc, scene_run *run, char *err, size_t errlen)
+{
+    const scene_output *o = &sc->f->output;
+    static const char *names[] = {"position", "velocity", "angular_velocity", "radius", "force", "torque", "material"};
+    run->fields = 0;
+    if (!o->fields_count)
+        run->fields = OUT_POSITION | OUT_VELOCITY | OUT_RADIUS;
+    for (unsigned k = 0; k < o->fields_count; k++) {
+        unsigned bit = 0;
+        for (int q = 0; q < 7; q++)
+            if (!strcmp(o->fields[k], names[q]))
+                bit = 1u << q;
+        char p[64];
+        snprintf(p, sizeof p, "output.fields[%u]", k);
+        if (!bit)
+            return scene_fail(sc, err, errlen, p,
+                              "unknown field '%s' (position, velocity, angular_velocity, radius, force, torque, "
+                              "material)", o->fields[k]);
+        run->fields |= bit;
+    }
+    const double dt = run->dt, T = sc->f->time.duration;
+    struct {
+        const char *key;
+        double value, dflt;
+        long *steps;
+    } iv[3] = {{"output.frame_every", o->frame_every, T / 50, &run->frame_every},
+               {"output.series_every", o->series_every, T / 500, &run->series_every},
+               {"output.checkpoint_every", o->checkpoint_every, 0, &run->checkpoint_every}};
+    for (int q = 0; q < 3; q++) {
+        double v = scene_has(sc->loc, iv[q].key) ? iv[q].value : iv[q].dflt;
+        if (!(v >= 0) || !isfinite(v))
+            return scene_fail(sc, err, errlen, iv[q].key, "must be >= 0 s");
+        long st = (long)llround(v / dt);
+        *iv[q].steps = st < 1 ? (q == 2 && v == 0 ? 0 : 1) : st;
+    }
+    return 0;
+}
+
+static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, size_t errlen)
+{
+    const scene_time *t = &sc->f->time;
+    int has_dt = scene_has(sc->loc, "time.dt"), has_fr = scene_has(sc->loc, "time.dt_rayleigh");
+    if (has_dt == has_fr)
+        return scene_fail(sc, err, errlen, "time", "give exactly one of dt [s] or dt_rayleigh (fraction of the "
+                                                   "Rayleigh time)");
+    dem_time_scales_get(s, 0, &run->ts);
+    if (has_fr) {
+        if (!(t->dt_rayleigh > 0) || !isfinite(t->dt_rayleigh))
+            return scene_fail(sc, err, errlen, "time.dt_rayleigh", "must be > 0");
+        run->dt = t->dt_rayleigh * run->ts.rayleigh_time;
+    } else {
+        if (!(t->dt > 0) || !isfinite(t->dt))
+            return scene_fail(sc, err, errlen, "time.dt", "time step must be > 0 s");
+        run->dt = t->dt;
+    }
+    if (run->dt > run->ts.max_dt)
+        return scene_fail(sc, err, errlen, has_dt ? "time.dt" : "time.dt_rayleigh",
+                          "time step %.6g s exceeds the stability bound %.6g s (0.5 x Rayleigh time %.6g s; "
+                          "recommended %.6g s)", run->dt, run->ts.max_dt, run->ts.rayleigh_time,
+                          run->ts.recommended_dt);
+    if (!(t->duration > 0) || !isfinite(t->duration))
+        return scene_fail(sc, err, errlen, "time.duration", "duration must be > 0 s");
+    if (!(t->settle >= 0) || !(t->settle < t->duration))
+        return scene_fail(sc, err, errlen, "time.settle", "settling time must be in [0, duration)");
+    run->steps = (long)llround(t->duration / run->dt);
+    if (run->steps < 1)
+        run->steps = 1;
+    dem_set_dt(s, run->dt);
+    return 0;
+}
+
+static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *err, size_t errlen)
+{
+    const scene_file *f = sc->f;
+    dem_config_default(&run->cfg);
+    if (f->precision) {
+        if (!strcmp(f->precision, "fp32"))
+            run->cfg.precision = DEM_FP32;
+        else if (strcmp(f->precision, "fp64"))
+            return scene_fail(sc, err, errlen, "precision", "precision must be fp32 or fp64 (got '%s')", f->precision);
+    }
+    if (f->backend) {
+        if (!strcmp(f->backend, "reference"))
+            run->cfg.backend = DEM_BACKEND_REFERENCE;
+        else if (strcmp(f->backend, "opencl"))
+            return scene_fail(sc, err, errlen, "backend", "backend must be opencl or reference (got '%s')",
+                              f->backend);
+    }
+    if (scene_has(sc->loc, "device")) {
+        if (f->device < 0)
+            return scene_fail(sc, err, errlen, "device", "device index must be >= 0");
+        run->cfg.device = f->device;
+    }
+    if (!finite3(f->gravity))
+        return scene_fail(sc, err, errlen, "gravity", "must be finite");
+    if (norm3(f->gravity) > 0 && !(run->effects & DEM_EFFECT_GRAVITY))
+        return scene_fail(sc, err, errlen, "gravity", "gravity is set but the effect 'gravity' is not listed");
+    dem_set_gravity(s, f->gravity);
+    if (scene_has(sc->loc, "domain") && dem_set_domain(s, f->domain_lo, f->domain_hi))
+        return scene_fail(sc, err, errlen, "domain", "%s", dem_error(s));
+    if (dem_set_effects(s, run->effects))
+        return scene_fail(sc, err, errlen, "effects", "%s", dem_error(s));
+    return 0;
+}
+
+/* The sample a piston compresses: its height and cross-section, for strain and stress. */
+static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *first_wall,
+                        const scene_origin *origin, char *err, size_t errlen)
+{
+    const scene_file *f = sc->f;
+    run->piston = -1;
+    if (!f->sample)
+        return 0;
+    int k = -1;
+    for (unsigned q = 0; q < f->walls_count; q++)
+        if (f->walls[q].name && !strcmp(f->walls[q].name, f->sample->piston) && !strcmp(f->walls[q].type, "plane"))
+            k = (int)q;
+    if (k < 0)
+        return scene_fail(sc, err, errlen, "sample.piston", "no plane wall named '%s'", f->sample->piston);
+    run->piston = first_wall[k];
+    const double *p = f->walls[k].point, *nr = f->walls[k].normal;
+    double nn = norm3(nr), n[3] = {nr[0] / nn, nr[1] / nn, nr[2] / nn};
+    memcpy(run->piston_point, p, sizeof run->piston_point);
+    memcpy(run->piston_normal, n, sizeof run->piston_normal);
+    run->sample_height = f->sample->height;
+    if (!(run->sample_height > 0)) { /* piston to the lowest particle bottom along the normal */
+        double far = 0;
+        for (int i = 0; i < dem_count(s); i++) {
+            const double *x = origin[i].x;
+            double dd = (x[0] - p[0]) * n[0] + (x[1] - p[1]) * n[1] + (x[2] - p[2]) * n[2] + origin[i].r;
+            if (dd > far)
+                far = dd;
+        }
+        run->sample_height = far;
+    }
+    run->sample_area = f->sample->area;
+    for (unsigned q = 0; q < f->walls_count && !(run->sample_area > 0); q++) {
+        const scene_wall *w = &f->walls[q];
+        if (!strcmp(w->type, "cylinder")) {
+            double an = norm3(w->axis), c = fabs(w->axis[0] * n[0] + w->axis[1] * n[1] + w->axis[2] * n[2]) / an;
+            if (c > 0.999)
+                run->sample_area = M_PI * w->radius * w->radius;
+        } else if (!strcmp(w->type, "box")) {
+            int ax = fabs(n[0]) > 0.999 ? 0 : fabs(n[1]) > 0.999 ? 1 : fabs(n[2]) > 0.999 ? 2 : -1;
+            if (ax >= 0)
+                run->sample_area = (w->hi[(ax + 1) % 3] - w->lo[(ax + 1) % 3]) * (w->hi[(ax + 2) % 3] - w->lo[(ax + 2) % 3]);
+        }
+    }
+    if (!(run->sample_area > 0) || !isfinite(run->sample_area))
+        return scene_fail(sc, err, errlen, "sample.area", "give the cross-section (no box or cylinder along the "
+                                                           "piston normal to take it from)");
+    if (!(run->sample_height > 0) || !isfinite(run->sample_height))
+        return scene_fail(sc, err, errlen, "sample.height", "sample height must be > 0 m");
+    return 0;
+}
+
+dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
+{
+    memset(run, 0, sizeof *run);
+    dem_sim *s = dem_create();
+    int first_wall[32];
+    scene_origin *origin = NULL;
+    if (!s) {
+        snprintf(err, errlen, "%s: out of memory", sc->path);
+        return NULL;
+    }
+    if (parse_effects(sc, run, err, errlen) || parse_materials(sc, s, err, errlen) ||
+        scene_add_particles(sc, s, &origin, err, errlen) || parse_walls(sc, s, run, first_wall, err, errlen) ||
+        parse_run_options(sc, s, run, err, errlen) || parse_time(sc, s, run, err, errlen) ||
+        parse_output(sc, run, err, errlen) ||
+        scene_check_overlaps(sc, s, origin, first_wall, err, errlen) ||
+        parse_sample(sc, s, run, first_wall, origin, err, errlen)) {
+        free(origin);
+        dem_destroy(s);
+        return NULL;
+    }
+    free(origin);
+    if (!(run->effects & DEM_EFFECT_FRICTION))
+        for (unsigned k = 0; k < sc->f->materials_count; k++)
+            if (sc->f->materials[k].friction > 0) {
+                snprintf(run->note, sizeof run->note,
+                         "friction coefficients are given but the effect 'friction' is off: they are not used");
+                break;
+            }
+    return s;
+}

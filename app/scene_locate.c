@@ -1,0 +1,150 @@
+/* scene_locate.c - where each key of a YAML document sits: field path -> line, from libyaml's event stream.
+ * Paths look like "walls[1].motion[0].velocity"; a sequence entry is "particles[2]". A syntax error is recorded
+ * under the path "#error" at the line where libyaml stopped. */
+#include "scene.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <yaml.h>
+
+typedef struct {
+    char *path;
+    int line;
+} loc_entry;
+
+struct scene_locator {
+    loc_entry *e;
+    size_t n, cap;
+};
+
+static void add(scene_locator *l, const char *path, int line)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 256;
+        loc_entry *ne = realloc(l->e, cap * sizeof *ne);
+        if (!ne)
+            return;
+        l->e = ne;
+        l->cap = cap;
+    }
+    char *p = strdup(path);
+    if (p)
+        l->e[l->n++] = (loc_entry){p, line};
+}
+
+typedef struct {
+    int is_map, want_key, index;
+    char prefix[512];
+    char key[256];
+} frame;
+
+#define MAX_DEPTH 32
+
+/* Path of the node that starts now under frame f (and advance f past it). */
+static void child_path(frame *f, char *out, size_t len)
+{
+    if (f->is_map) {
+        snprintf(out, len, "%s%s%s", f->prefix, f->prefix[0] ? "." : "", f->key);
+        f->want_key = 1;
+    } else {
+        snprintf(out, len, "%s[%d]", f->prefix, f->index++);
+    }
+}
+
+scene_locator *scene_locate(const char *text, size_t len)
+{
+    scene_locator *l = calloc(1, sizeof *l);
+    yaml_parser_t p;
+    if (!l || !yaml_parser_initialize(&p)) {
+        free(l);
+        return NULL;
+    }
+    yaml_parser_set_input_string(&p, (const unsigned char *)text, len);
+    frame st[MAX_DEPTH];
+    int depth = 0, done = 0;
+    char path[512];
+    while (!done) {
+        yaml_event_t ev;
+        if (!yaml_parser_parse(&p, &ev)) {
+            add(l, "#error", (int)p.problem_mark.line + 1);
+            break;
+        }
+        int line = (int)ev.start_mark.line + 1;
+        switch (ev.type) {
+        case YAML_SCALAR_EVENT:
+            if (depth > 0) {
+                frame *f = &st[depth - 1];
+                if (f->is_map && f->want_key) {
+                    snprintf(f->key, sizeof f->key, "%s", (const char *)ev.data.scalar.value);
+                    f->want_key = 0;
+                    snprintf(path, sizeof path, "%s%s%s", f->prefix, f->prefix[0] ? "." : "", f->key);
+                    add(l, path, line);
+                } else {
+                    int is_map = f->is_map;
+                    child_path(f, path, sizeof path);
+                    if (!is_map)
+                        add(l, path, line);
+                }
+            }
+            break;
+        case YAML_MAPPING_START_EVENT:
+        case YAML_SEQUENCE_START_EVENT:
+            path[0] = 0;
+            if (depth > 0) {
+                frame *f = &st[depth - 1];
+                int is_map = f->is_map;
+                child_path(f, path, sizeof path);
+                if (!is_map)
+                    add(l, path, line);
+            }
+            if (depth == MAX_DEPTH) { /* deeper than any scene: stop locating */
+                yaml_event_delete(&ev);
+                done = 1;
+                continue;
+            }
+            st[depth] = (frame){ev.type == YAML_MAPPING_START_EVENT, 1, 0, {0}, {0}};
+            snprintf(st[depth].prefix, sizeof st[depth].prefix, "%s", path);
+            depth++;
+            break;
+        case YAML_MAPPING_END_EVENT:
+        case YAML_SEQUENCE_END_EVENT:
+            if (depth > 0)
+                depth--;
+            break;
+        case YAML_ALIAS_EVENT:
+            if (depth > 0)
+                child_path(&st[depth - 1], path, sizeof path);
+            break;
+        case YAML_STREAM_END_EVENT:
+            done = 1;
+            break;
+        default:
+            break;
+        }
+        yaml_event_delete(&ev);
+    }
+    yaml_parser_delete(&p);
+    return l;
+}
+
+void scene_locator_free(scene_locator *l)
+{
+    if (!l)
+        return;
+    for (size_t k = 0; k < l->n; k++)
+        free(l->e[k].path);
+    free(l->e);
+    free(l);
+}
+
+int scene_line(const scene_locator *l, const char *path)
+{
+    if (!l)
+        return 0;
+    for (size_t k = 0; k < l->n; k++)
+        if (!strcmp(l->e[k].path, path))
+            return l->e[k].line;
+    return 0;
+}
+
+int scene_has(const scene_locator *l, const char *path) { return scene_line(l, path) > 0; }

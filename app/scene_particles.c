@@ -1,0 +1,377 @@
+/* scene_particles.c - particle groups of a scene: an explicit list, a CSV file, or a generated packing. */
+#include "scene_particles.h"
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    scene_origin *o;
+    int n, cap;
+} origin_list;
+
+static int add_one(dem_sim *s, origin_list *ol, const double x[3], const double v[3], const double *w, double r,
+                   int mat, int group, int index, int csv_line)
+{
+    int id = dem_add_particle(s, x, v, r, mat);
+    if (id < 0)
+        return -1;
+    if (w && dem_set_particle_omega(s, id, w))
+        return -1;
+    if (ol->n == ol->cap) {
+        int cap = ol->cap ? 2 * ol->cap : 1024;
+        scene_origin *no = realloc(ol->o, sizeof *no * (size_t)cap);
+        if (!no)
+            return -1;
+        ol->o = no;
+        ol->cap = cap;
+    }
+    ol->o[ol->n++] = (scene_origin){group, index, csv_line, {x[0], x[1], x[2]}, r};
+    return id;
+}
+
+/* ---- CSV: '#' comment lines, then a header naming the columns, then one sphere per line ---- */
+
+static int csv_fail(const scene *sc, char *err, size_t errlen, int g, const char *file, int line, const char *col,
+                    const char *why)
+{
+    char p[64], inner[1024];
+    snprintf(p, sizeof p, "particles[%d].csv", g);
+    snprintf(inner, sizeof inner, "%s:%d: %s%s%s", file, line, col ? col : "", col ? ": " : "", why);
+    return scene_fail(sc, err, errlen, p, "%s", inner);
+}
+
+static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat, char *err, size_t errlen)
+{
+    const scene_particles *pg = &sc->f->particles[g];
+    char file[4096];
+    if (pg->csv[0] == '/')
+        snprintf(file, sizeof file, "%s", pg->csv);
+    else
+        snprintf(file, sizeof file, "%s/%s", sc->dir, pg->csv);
+    FILE *fp = fopen(file, "r");
+    if (!fp) {
+        char p[64];
+        snprintf(p, sizeof p, "particles[%d].csv", g);
+        return scene_fail(sc, err, errlen, p, "cannot open '%s': %s", file, strerror(errno));
+    }
+    enum { C_X, C_Y, C_Z, C_R, C_D, C_VX, C_VY, C_VZ, C_RHO, C__N };
+    static const char *names[C__N] = {"x", "y", "z", "radius", "diameter", "vx", "vy", "vz", "density"};
+    int col[C__N], ncol = 0, line = 0, count = 0, rc = 0, have_header = 0;
+    for (int k = 0; k < C__N; k++)
+        col[k] = -1;
+    char buf[4096];
+    double rho = sc->f->materials[mat].density;
+    while (!rc && fgets(buf, sizeof buf, fp)) {
+        line++;
+        size_t len = strlen(buf);
+        if (len == sizeof buf - 1 && buf[len - 1] != '\n') {
+            rc = csv_fail(sc, err, errlen, g, file, line, NULL, "line longer than 4095 characters");
+            break;
+        }
+        while (len && (buf[len - 1] == '\n' || buf[len - 1] == '\r'))
+            buf[--len] = 0;
+        char *t = buf;
+        while (*t == ' ' || *t == '\t')
+            t++;
+        if (!*t || *t == '#')
+            continue;
+        char *field[64];
+        int nf = 0;
+        for (char *cur = t; cur && nf < 64;) {
+            char *f = strsep(&cur, ",");
+            while (*f == ' ')
+                f++;
+            field[nf++] = f;
+        }
+        if (!have_header) {
+            have_header = 1;
+            ncol = nf;
+            for (int k = 0; k < nf; k++) {
+                char *e = field[k] + strlen(field[k]);
+                while (e > field[k] && e[-1] == ' ')
+                    *--e = 0;
+                for (int q = 0; q < C__N; q++)
+                    if (!strcmp(field[k], names[q]))
+                        col[q] = k;
+            }
+            if (col[C_X] < 0 || col[C_Y] < 0 || col[C_Z] < 0 || (col[C_R] < 0 && col[C_D] < 0))
+                rc = csv_fail(sc, err, errlen, g, file, line, NULL,
+                              "header must name columns x, y, z and radius or diameter");
+            continue;
+        }
+        if (nf != ncol) {
+            char why[128];
+            snprintf(why, sizeof why, "%d fields, the header has %d", nf, ncol);
+            rc = csv_fail(sc, err, errlen, g, file, line, NULL, why);
+            break;
+        }
+        double val[C__N] = {0};
+        for (int q = 0; q < C__N && !rc; q++) {
+            if (col[q] < 0)
+                continue;
+            char *end;
+            errno = 0;
+            val[q] = strtod(field[col[q]], &end);
+            while (*end == ' ')
+                end++;
+            if (end == field[col[q]] || *end || errno || !isfinite(val[q]))
+                rc = csv_fail(sc, err, errlen, g, file, line, names[q], "not a finite number");
+        }
+        if (rc)
+            break;
+        double r = col[C_R] >= 0 ? val[C_R] : 0.5 * val[C_D];
+        if (!(r > 0)) {
+            rc = csv_fail(sc, err, errlen, g, file, line, col[C_R] >= 0 ? "radius" : "diameter", "must be > 0 m");
+            break;
+        }
+        if (col[C_RHO] >= 0 && fabs(val[C_RHO] - rho) > 1e-9 * rho) {
+            char why[256];
+            snprintf(why, sizeof why, "%g kg/m^3 differs from material '%s' (%g kg/m^3)", val[C_RHO],
+                     sc->f->materials[mat].name, rho);
+            rc = csv_fail(sc, err, errlen, g, file, line, "density", why);
+            break;
+        }
+        double x[3] = {val[C_X], val[C_Y], val[C_Z]}, v[3] = {val[C_VX], val[C_VY], val[C_VZ]};
+        if (add_one(s, ol, x, v, NULL, r, mat, g, count, line) < 0) {
+            rc = csv_fail(sc, err, errlen, g, file, line, NULL, dem_error(s));
+            break;
+        }
+        count++;
+    }
+    if (!rc && ferror(fp))
+        rc = csv_fail(sc, err, errlen, g, file, line, NULL, "read error");
+    fclose(fp);
+    if (!rc && count == 0)
+        rc = csv_fail(sc, err, errlen, g, file, line, NULL, "no particles in the file");
+    return rc;
+}
+
+/* ---- generated packings ---- */
+
+static uint64_t rng_next(uint64_t *st) /* splitmix64: reproducible on every platform */
+{
+    uint64_t z = (*st += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+static double rng_unit(uint64_t *st) { return (double)(rng_next(st) >> 11) * (1.0 / 9007199254740992.0); }
+
+typedef struct {
+    int cyl;
+    double lo[3], hi[3];           /* box, or the cylinder's bounding box */
+    double base[3], axis[3], R, H; /* cylinder */
+} region;
+
+/* Is a sphere of radius r at x wholly inside the region? */
+static int inside(const region *rg, const double *x, double r)
+{
+    if (!rg->cyl) {
+        for (int d = 0; d < 3; d++)
+            if (x[d] - r < rg->lo[d] || x[d] + r > rg->hi[d])
+                return 0;
+        return 1;
+    }
+    double d[3] = {x[0] - rg->base[0], x[1] - rg->base[1], x[2] - rg->base[2]};
+    double h = d[0] * rg->axis[0] + d[1] * rg->axis[1] + d[2] * rg->axis[2];
+    double rad[3] = {d[0] - h * rg->axis[0], d[1] - h * rg->axis[1], d[2] - h * rg->axis[2]};
+    double rho = sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]);
+    return h - r >= 0 && h + r <= rg->H && rho + r <= rg->R;
+}
+
+static int make_region(const scene *sc, int g, const scene_generate *gen, region *rg, char *err, size_t errlen)
+{
+    char p[96];
+    memset(rg, 0, sizeof *rg);
+    if (!strcmp(gen->shape, "box")) {
+        for (int d = 0; d < 3; d++)
+            if (!(gen->region.hi[d] > gen->region.lo[d])) {
+                snprintf(p, sizeof p, "particles[%d].generate.region", g);
+                return scene_fail(sc, err, errlen, p, "a box region needs lo < hi on every axis");
+            }
+        memcpy(rg->lo, gen->region.lo, sizeof rg->lo);
+        memcpy(rg->hi, gen->region.hi, sizeof rg->hi);
+        return 0;
+    }
+    if (strcmp(gen->shape, "cylinder")) {
+        snprintf(p, sizeof p, "particles[%d].generate.shape", g);
+        return scene_fail(sc, err, errlen, p, "shape must be box or cylinder (got '%s')", gen->shape);
+    }
+    const double *a = gen->region.axis;
+    double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (!(an > 0) || !(gen->region.radius > 0) || !(gen->region.height > 0)) {
+        snprintf(p, sizeof p, "particles[%d].generate.region", g);
+        return scene_fail(sc, err, errlen, p, "a cylinder region needs base, axis (non-zero), radius > 0, height > 0");
+    }
+    rg->cyl = 1;
+    rg->R = gen->region.radius;
+    rg->H = gen->region.height;
+    for (int d = 0; d < 3; d++) {
+        rg->axis[d] = a[d] / an;
+        rg->base[d] = gen->region.base[d];
+    }
+    for (int d = 0; d < 3; d++) { /* bounding box of the two end discs */
+        double top = rg->base[d] + rg->H * rg->axis[d], ext = rg->R * sqrt(fmax(0, 1 - rg->axis[d] * rg->axis[d]));
+        rg->lo[d] = fmin(rg->base[d], top) - ext;
+        rg->hi[d] = fmax(rg->base[d], top) + ext;
+    }
+    return 0;
+}
+
+static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat, char *err, size_t errlen)
+{
+    const scene_generate *gen = sc->f->particles[g].generate;
+    char p[96];
+    region rg;
+    if (make_region(sc, g, gen, &rg, err, errlen))
+        return 1;
+    double rmin = gen->radius, rmax = gen->radius;
+    snprintf(p, sizeof p, "particles[%d].generate.radius", g);
+    int has_r = scene_has(sc->loc, p);
+    if (!has_r) {
+        rmin = gen->radius_min;
+        rmax = gen->radius_max;
+        if (!(rmin > 0) || !(rmax >= rmin) || !isfinite(rmax)) {
+            snprintf(p, sizeof p, "particles[%d].generate.radius_min", g);
+            return scene_fail(sc, err, errlen, p, "give radius, or 0 < radius_min <= radius_max [m]");
+        }
+    } else if (!(rmin > 0) || !isfinite(rmin)) {
+        return scene_fail(sc, err, errlen, p, "radius must be > 0 m");
+    }
+    if (!(gen->speed >= 0) || !isfinite(gen->speed)) {
+        snprintf(p, sizeof p, "particles[%d].generate.speed", g);
+        return scene_fail(sc, err, errlen, p, "speed must be >= 0 m/s");
+    }
+    uint64_t st = 0x5eed0000ull + gen->seed;
+    int random = !strcmp(gen->kind, "random");
+    if (!random && strcmp(gen->kind, "lattice")) {
+        snprintf(p, sizeof p, "particles[%d].generate.kind", g);
+        return scene_fail(sc, err, errlen, p, "kind must be random or lattice (got '%s')", gen->kind);
+    }
+    int first = ol->n, placed = 0;
+    if (random) {
+        snprintf(p, sizeof p, "particles[%d].generate.count", g);
+        if (gen->count < 1 || gen->count > 200000)
+            return scene_fail(sc, err, errlen, p, "a random packing needs 1 <= count <= 200000");
+        /* random sequential addition, largest first; candidates are checked against a coarse grid */
+        int n = (int)gen->count;
+        double *r = malloc(sizeof(double) * n);
+        if (!r)
+            return scene_fail(sc, err, errlen, p, "out of memory");
+        for (int i = 0; i < n; i++)
+            r[i] = rmin + (rmax - rmin) * rng_unit(&st);
+        for (int i = 1; i < n; i++) /* descending radii (insertion sort keeps it reproducible) */
+            for (int j = i; j > 0 && r[j] > r[j - 1]; j--) {
+                double t = r[j];
+                r[j] = r[j - 1];
+                r[j - 1] = t;
+            }
+        long attempts = 0, max_attempts = 2000L * n;
+        for (int i = 0; i < n && attempts < max_attempts; attempts++) {
+            double x[3];
+            for (int d = 0; d < 3; d++)
+                x[d] = rg.lo[d] + (rg.hi[d] - rg.lo[d]) * rng_unit(&st);
+            if (!inside(&rg, x, r[i]))
+                continue;
+            int ok = 1;
+            for (int j = first; j < ol->n && ok; j++) {
+                const double *y = ol->o[j].x;
+                double dx = x[0] - y[0], dy = x[1] - y[1], dz = x[2] - y[2], rs = r[i] + ol->o[j].r;
+                ok = dx * dx + dy * dy + dz * dz >= rs * rs;
+            }
+            if (!ok)
+                continue;
+            double v[3];
+            for (int d = 0; d < 3; d++)
+                v[d] = gen->speed * (2 * rng_unit(&st) - 1);
+            if (add_one(s, ol, x, v, NULL, r[i], mat, g, i, 0) < 0) {
+                free(r);
+                return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+            }
+            i++;
+            placed = i;
+        }
+        free(r);
+        if (placed < n)
+            return scene_fail(sc, err, errlen, p,
+                              "could place only %d of %d spheres without overlap in %ld attempts: the region is too "
+                              "small for a random loose packing (try kind: lattice)", placed, n, max_attempts);
+        return 0;
+    }
+    double a = gen->spacing > 0 ? gen->spacing : 2 * rmax;
+    snprintf(p, sizeof p, "particles[%d].generate.spacing", g);
+    if (a < 2 * rmax)
+        return scene_fail(sc, err, errlen, p, "lattice spacing %g m is below the largest diameter %g m", a, 2 * rmax);
+    int nx[3];
+    for (int d = 0; d < 3; d++)
+        nx[d] = (int)floor((rg.hi[d] - rg.lo[d] - 2 * rmax) / a) + 1;
+    for (int k = 0; k < nx[2]; k++)
+        for (int j = 0; j < nx[1]; j++)
+            for (int i = 0; i < nx[0]; i++) {
+                if (gen->count && placed >= (int)gen->count)
+                    break;
+                double x[3] = {rg.lo[0] + rmax + i * a, rg.lo[1] + rmax + j * a, rg.lo[2] + rmax + k * a};
+                double r = rmin + (rmax - rmin) * rng_unit(&st);
+                if (!inside(&rg, x, rmax))
+                    continue;
+                double v[3];
+                for (int d = 0; d < 3; d++)
+                    v[d] = gen->speed * (2 * rng_unit(&st) - 1);
+                if (add_one(s, ol, x, v, NULL, r, mat, g, placed, 0) < 0)
+                    return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+                placed++;
+            }
+    if (placed == 0 || (gen->count && placed < (int)gen->count)) {
+        snprintf(p, sizeof p, "particles[%d].generate", g);
+        return scene_fail(sc, err, errlen, p, "the lattice holds only %d spheres%s", placed,
+                          gen->count ? " (fewer than count)" : "");
+    }
+    return 0;
+}
+
+int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *err, size_t errlen)
+{
+    origin_list ol = {NULL, 0, 0};
+    int rc = 0;
+    for (unsigned g = 0; g < sc->f->particles_count && !rc; g++) {
+        const scene_particles *pg = &sc->f->particles[g];
+        char p[96];
+        snprintf(p, sizeof p, "particles[%u].material", g);
+        int mat = scene_material_id(sc, pg->material);
+        if (mat < 0) {
+            rc = scene_fail(sc, err, errlen, p, "unknown material '%s'", pg->material);
+            break;
+        }
+        int kinds = (pg->spheres_count > 0) + (pg->csv != NULL) + (pg->generate != NULL);
+        if (kinds != 1) {
+            snprintf(p, sizeof p, "particles[%u]", g);
+            rc = scene_fail(sc, err, errlen, p, "give exactly one of spheres, csv or generate");
+            break;
+        }
+        if (pg->csv) {
+            rc = load_csv(sc, s, &ol, (int)g, mat, err, errlen);
+        } else if (pg->generate) {
+            rc = generate(sc, s, &ol, (int)g, mat, err, errlen);
+        } else {
+            for (unsigned i = 0; i < pg->spheres_count && !rc; i++) {
+                const scene_sphere *q = &pg->spheres[i];
+                snprintf(p, sizeof p, "particles[%u].spheres[%u].radius", g, i);
+                if (!(q->radius > 0) || !isfinite(q->radius))
+                    rc = scene_fail(sc, err, errlen, p, "radius must be > 0 m (got %g)", q->radius);
+                else if (add_one(s, &ol, q->x, q->v, q->w, q->radius, mat, (int)g, (int)i, 0) < 0) {
+                    snprintf(p, sizeof p, "particles[%u].spheres[%u]", g, i);
+                    rc = scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+                }
+            }
+        }
+    }
+    if (rc) {
+        free(ol.o);
+        return rc;
+    }
+    *origin = ol.o;
+    return 0;
+}

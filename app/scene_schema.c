@@ -1,0 +1,299 @@
+/* scene_schema.c - the scene file format as a libcyaml schema, and loading with located errors.
+ * Every key is listed here once; docs/scenes.md describes them for users. libcyaml (1.3) logs an error with a
+ * backtrace of keys and lines; the backtrace is turned into a field path ("walls[1].motion[0].velocity"), and the
+ * line is the key's own line from scene_locate.c (libyaml events), else the backtrace's innermost line. */
+#include "scene.h"
+#include <cyaml/cyaml.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const cyaml_schema_value_t real_entry = {CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, double)};
+static const cyaml_schema_value_t string_entry = {CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 0, CYAML_UNLIMITED)};
+#define VEC3(key, st, member) CYAML_FIELD_SEQUENCE_FIXED(key, CYAML_FLAG_OPTIONAL, st, member, &real_entry, 3)
+#define REAL(key, st, member) CYAML_FIELD_FLOAT(key, CYAML_FLAG_OPTIONAL, st, member)
+#define TEXT(key, st, member) CYAML_FIELD_STRING_PTR(key, CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, st, member, 0, \
+                                                     CYAML_UNLIMITED)
+
+static const cyaml_schema_field_t material_fields[] = {
+    CYAML_FIELD_STRING_PTR("name", CYAML_FLAG_POINTER, scene_material, name, 1, 64),
+    CYAML_FIELD_FLOAT("density", CYAML_FLAG_DEFAULT, scene_material, density),
+    CYAML_FIELD_FLOAT("young", CYAML_FLAG_DEFAULT, scene_material, young),
+    CYAML_FIELD_FLOAT("poisson", CYAML_FLAG_DEFAULT, scene_material, poisson),
+    CYAML_FIELD_FLOAT("restitution", CYAML_FLAG_DEFAULT, scene_material, restitution),
+    REAL("friction", scene_material, friction),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t material_entry = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material, material_fields)};
+
+static const cyaml_schema_field_t sphere_fields[] = {
+    CYAML_FIELD_SEQUENCE_FIXED("x", CYAML_FLAG_DEFAULT, scene_sphere, x, &real_entry, 3),
+    VEC3("v", scene_sphere, v), VEC3("w", scene_sphere, w),
+    CYAML_FIELD_FLOAT("radius", CYAML_FLAG_DEFAULT, scene_sphere, radius),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t sphere_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_sphere, sphere_fields)};
+
+static const cyaml_schema_field_t region_fields[] = {
+    VEC3("lo", scene_region, lo), VEC3("hi", scene_region, hi), VEC3("base", scene_region, base),
+    VEC3("axis", scene_region, axis), REAL("radius", scene_region, radius), REAL("height", scene_region, height),
+    CYAML_FIELD_END};
+
+static const cyaml_schema_field_t generate_fields[] = {
+    CYAML_FIELD_STRING_PTR("kind", CYAML_FLAG_POINTER, scene_generate, kind, 1, 16),
+    CYAML_FIELD_STRING_PTR("shape", CYAML_FLAG_POINTER, scene_generate, shape, 1, 16),
+    CYAML_FIELD_MAPPING("region", CYAML_FLAG_DEFAULT, scene_generate, region, region_fields),
+    CYAML_FIELD_UINT("count", CYAML_FLAG_OPTIONAL, scene_generate, count),
+    REAL("radius", scene_generate, radius), REAL("radius_min", scene_generate, radius_min),
+    REAL("radius_max", scene_generate, radius_max), REAL("spacing", scene_generate, spacing),
+    REAL("speed", scene_generate, speed),
+    CYAML_FIELD_UINT("seed", CYAML_FLAG_OPTIONAL, scene_generate, seed),
+    CYAML_FIELD_END};
+
+static const cyaml_schema_field_t particles_fields[] = {
+    CYAML_FIELD_STRING_PTR("material", CYAML_FLAG_POINTER, scene_particles, material, 1, 64),
+    CYAML_FIELD_SEQUENCE("spheres", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_particles, spheres, &sphere_entry,
+                         1, CYAML_UNLIMITED),
+    TEXT("csv", scene_particles, csv),
+    CYAML_FIELD_MAPPING_PTR("generate", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_particles, generate,
+                            generate_fields),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t particles_entry = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_particles, particles_fields)};
+
+static const cyaml_schema_field_t stage_fields[] = {
+    VEC3("velocity", scene_stage, velocity), REAL("duration", scene_stage, duration),
+    REAL("distance", scene_stage, distance), REAL("strain", scene_stage, strain), REAL("length", scene_stage, length),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_stage, stage_fields)};
+
+static const cyaml_schema_field_t wall_fields[] = {
+    CYAML_FIELD_STRING_PTR("type", CYAML_FLAG_POINTER, scene_wall, type, 1, 16),
+    TEXT("name", scene_wall, name),
+    CYAML_FIELD_STRING_PTR("material", CYAML_FLAG_POINTER, scene_wall, material, 1, 64),
+    VEC3("point", scene_wall, point), VEC3("normal", scene_wall, normal), VEC3("axis", scene_wall, axis),
+    REAL("radius", scene_wall, radius), VEC3("lo", scene_wall, lo), VEC3("hi", scene_wall, hi),
+    CYAML_FIELD_SEQUENCE("motion", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_wall, motion, &stage_entry, 0,
+                         DEM_MAX_STAGES - 1),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t wall_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_wall, wall_fields)};
+
+static const cyaml_schema_field_t time_fields[] = {
+    REAL("dt", scene_time, dt), REAL("dt_rayleigh", scene_time, dt_rayleigh),
+    CYAML_FIELD_FLOAT("duration", CYAML_FLAG_DEFAULT, scene_time, duration), REAL("settle", scene_time, settle),
+    CYAML_FIELD_END};
+
+static const cyaml_schema_field_t output_fields[] = {
+    REAL("frame_every", scene_output, frame_every), REAL("series_every", scene_output, series_every),
+    REAL("checkpoint_every", scene_output, checkpoint_every),
+    CYAML_FIELD_SEQUENCE("fields", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_output, fields, &string_entry, 0,
+                         16),
+    CYAML_FIELD_END};
+
+static const cyaml_schema_field_t sample_fields[] = {
+    CYAML_FIELD_STRING_PTR("piston", CYAML_FLAG_POINTER, scene_sample, piston, 1, 64),
+    REAL("height", scene_sample, height), REAL("area", scene_sample, area), CYAML_FIELD_END};
+
+static const cyaml_schema_field_t domain_fields[] = {
+    CYAML_FIELD_SEQUENCE_FIXED("lo", CYAML_FLAG_DEFAULT, scene_file, domain_lo, &real_entry, 3),
+    CYAML_FIELD_SEQUENCE_FIXED("hi", CYAML_FLAG_DEFAULT, scene_file, domain_hi, &real_entry, 3), CYAML_FIELD_END};
+
+/* "domain" maps onto two members of scene_file itself: a mapping field at offset 0 whose fields carry their own
+ * offsets into scene_file. */
+static const cyaml_schema_field_t scene_fields[] = {
+    TEXT("name", scene_file, name),
+    TEXT("description", scene_file, description),
+    TEXT("precision", scene_file, precision),
+    CYAML_FIELD_INT("device", CYAML_FLAG_OPTIONAL, scene_file, device),
+    TEXT("backend", scene_file, backend),
+    CYAML_FIELD_SEQUENCE("effects", CYAML_FLAG_POINTER, scene_file, effects, &string_entry, 1, 16),
+    CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_file, materials, &material_entry, 1, 64),
+    CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 1, 64),
+    CYAML_FIELD_SEQUENCE("walls", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, walls, &wall_entry, 0, 32),
+    VEC3("gravity", scene_file, gravity),
+    {.key = "domain", .data_offset = 0,
+     .value = {.type = CYAML_MAPPING, .flags = CYAML_FLAG_OPTIONAL, .data_size = sizeof(scene_file),
+               .mapping = {.fields = domain_fields}}},
+    REAL("overlap_tolerance", scene_file, overlap_tolerance),
+    CYAML_FIELD_MAPPING("time", CYAML_FLAG_DEFAULT, scene_file, time, time_fields),
+    CYAML_FIELD_MAPPING("output", CYAML_FLAG_OPTIONAL, scene_file, output, output_fields),
+    CYAML_FIELD_MAPPING_PTR("sample", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, sample, sample_fields),
+    CYAML_FIELD_END};
+
+static const cyaml_schema_value_t scene_schema = {CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, scene_file, scene_fields)};
+
+/* libcyaml's messages, collected: the first error line and the backtrace of keys under it. */
+typedef struct {
+    char msg[512];
+    char path[512];
+    int in_backtrace;
+    int line;      /* line of the innermost backtrace entry */
+    int last_seq;  /* the path so far starts with a sequence entry */
+} cyaml_log_capture;
+
+static void trim_newline(char *s)
+{
+    size_t n = strlen(s);
+    while (n && (s[n - 1] == '\n' || s[n - 1] == ' '))
+        s[--n] = 0;
+}
+
+/* Backtrace lines come innermost first: "  in mapping field 'x' (line: 11, column: 13)", "  in sequence entry '2'
+ * (line: ...)" (entries counted from 1), "  in mapping (line: ...)". They are prepended to the path being built. */
+static void capture_log(cyaml_log_t level, void *ctx, const char *fmt, va_list args)
+{
+    cyaml_log_capture *c = ctx;
+    char line[512];
+    vsnprintf(line, sizeof line, fmt, args);
+    trim_newline(line);
+    if (getenv("DEM_DEBUG_CYAML"))
+        fprintf(stderr, "[libcyaml] %s\n", line);
+    if (level < CYAML_LOG_ERROR)
+        return;
+    const char *body = strncmp(line, "Load: ", 6) == 0 ? line + 6 : line;
+    if (strstr(body, "Backtrace:")) {
+        c->in_backtrace = 1;
+        return;
+    }
+    if (c->in_backtrace) {
+        const char *ln = strstr(body, "(line: ");
+        if (ln && !c->line)
+            c->line = atoi(ln + 7);
+        const char *f = strstr(body, "in mapping field '"), *e = strstr(body, "in sequence entry '");
+        if (!f && !e)
+            return;
+        const char *start = f ? f + 18 : e + 19, *q = strchr(start, '\'');
+        if (!q)
+            return;
+        char part[256], tmp[800];
+        if (f)
+            snprintf(part, sizeof part, "%.*s", (int)(q - start), start);
+        else
+            snprintf(part, sizeof part, "[%d]", atoi(start) - 1);
+        snprintf(tmp, sizeof tmp, "%s%s%s", part, (c->path[0] && c->path[0] != '[') ? "." : "", c->path);
+        snprintf(c->path, sizeof c->path, "%s", tmp);
+        return;
+    }
+    if (!c->msg[0])
+        snprintf(c->msg, sizeof c->msg, "%s", body);
+}
+
+static char *dup_str(const char *s, size_t n)
+{
+    char *d = malloc(n + 1);
+    if (d) {
+        memcpy(d, s, n);
+        d[n] = 0;
+    }
+    return d;
+}
+
+scene *scene_load_text(const char *path, const char *text, size_t len, char *err, size_t errlen)
+{
+    scene *sc = calloc(1, sizeof *sc);
+    if (!sc) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        return NULL;
+    }
+    sc->path = dup_str(path, strlen(path));
+    const char *slash = strrchr(path, '/');
+    sc->dir = slash ? dup_str(path, (size_t)(slash - path)) : dup_str(".", 1);
+    sc->text = dup_str(text, len);
+    sc->text_len = len;
+    if (!sc->path || !sc->dir || !sc->text) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        scene_free(sc);
+        return NULL;
+    }
+    sc->loc = scene_locate(text, len);
+    cyaml_log_capture cap = {{0}, {0}, 0, 0, 0};
+    cyaml_config_t cfg = {.log_fn = capture_log, .log_ctx = &cap, .mem_fn = cyaml_mem, .log_level = CYAML_LOG_ERROR,
+                          .flags = CYAML_CFG_NO_ALIAS};
+    cyaml_err_t e = cyaml_load_data((const uint8_t *)text, len, &cfg, &scene_schema, (cyaml_data_t **)&sc->f, NULL);
+    if (e != CYAML_OK) {
+        char full[800];
+        snprintf(full, sizeof full, "%s", cap.path);
+        /* a sequence with too few or too many entries: the error is the sequence's, not its last entry's */
+        if (strstr(cap.msg, "entries") && full[0] && full[strlen(full) - 1] == ']')
+            *strrchr(full, '[') = 0;
+        /* a missing key: the backtrace ends at the mapping's last key read; the error belongs to the mapping */
+        const char *mk = strstr(cap.msg, "Missing required mapping field: ");
+        if (mk && full[0] && full[strlen(full) - 1] != ']') {
+            char *cut = strrchr(full, '.');
+            if (cut)
+                *cut = 0;
+            else
+                full[0] = 0;
+        }
+        /* an unknown key is reported as "Unexpected key: k" inside its mapping */
+        const char *uk = strstr(cap.msg, "Unexpected key: ");
+        if (uk) {
+            size_t l = strlen(full);
+            snprintf(full + l, sizeof full - l, "%s%s", l ? "." : "", uk + 16);
+        }
+        int line = scene_line(sc->loc, full);
+        if (mk) { /* name the missing key in the path; the line is its mapping's */
+            size_t l = strlen(full);
+            snprintf(full + l, sizeof full - l, "%s%s", l ? "." : "", mk + 32);
+            if (!line)
+                line = 1;
+            cap.line = 0;
+        }
+        if (!line)
+            line = cap.line;
+        if (!line)
+            line = scene_line(sc->loc, "#error"); /* a YAML syntax error: where libyaml stopped */
+        snprintf(err, errlen, "%s:%d: %s%s%s (%s)", path, line, full[0] ? full : "", full[0] ? ": " : "",
+                 cap.msg[0] ? cap.msg : "invalid scene", cyaml_strerror(e));
+        sc->f = NULL;
+        scene_free(sc);
+        return NULL;
+    }
+    return sc;
+}
+
+scene *scene_load(const char *path, char *err, size_t errlen)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        snprintf(err, errlen, "%s:0: cannot open the scene file: %s", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    for (size_t got; buf && (got = fread(buf + len, 1, cap - len, fp)) > 0;) {
+        len += got;
+        if (len == cap) {
+            char *nb = len < ((size_t)1 << 30) ? realloc(buf, cap *= 2) : NULL;
+            if (!nb)
+                free(buf);
+            buf = nb;
+        }
+    }
+    int bad = ferror(fp);
+    fclose(fp);
+    if (!buf || bad) {
+        free(buf);
+        snprintf(err, errlen, "%s:0: cannot read the scene file%s", path, buf ? "" : " (too large or out of memory)");
+        return NULL;
+    }
+    scene *sc = scene_load_text(path, buf, len, err, errlen);
+    free(buf);
+    return sc;
+}
+
+void scene_free(scene *sc)
+{
+    if (!sc)
+        return;
+    if (sc->f) {
+        cyaml_config_t cfg = {.log_fn = cyaml_log, .mem_fn = cyaml_mem, .log_level = CYAML_LOG_ERROR};
+        cyaml_free(&cfg, &scene_schema, sc->f, 0);
+    }
+    scene_locator_free(sc->loc);
+    free(sc->path);
+    free(sc->dir);
+    free(sc->text);
+    free(sc);
+}

@@ -1,0 +1,162 @@
+/* state.c - the dynamic state of a run, read out and written back, so that a run can be checkpointed and
+ * continued bit for bit (dem_state_get / dem_state_set).
+ *
+ * What continues a run exactly: positions, velocities, angular velocities, the forces and torques of the last step
+ * (velocity Verlet's first half kick uses them), the force on each wall, the wall positions, the step index, and the
+ * contact memory: which pairs and walls touch and their tangential springs. Neighbour rows are not part of it:
+ * results do not depend on the rows (any skin or cell size gives the same bits), so restoring rebuilds them from the
+ * positions and puts each touching pair's history back into the new rows.
+ */
+#include "sim.h"
+#include "dem_layout.h"
+#include <stdlib.h>
+#include <string.h>
+
+void dem_state_free(dem_state *st)
+{
+    if (!st)
+        return;
+    free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force);
+    free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->wall_hist), free(st->wall_mask);
+    memset(st, 0, sizeof *st);
+}
+
+static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
+{
+    *bytes = dem_field_bytes(s, f);
+    void *p = malloc(*bytes ? *bytes : 1);
+    if (!p) {
+        *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        return NULL;
+    }
+    if (!*e)
+        *e = dem_get_raw(s, f, p, *bytes);
+    return p;
+}
+
+int dem_state_get(dem_sim *s, dem_state *st)
+{
+    memset(st, 0, sizeof *st);
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int e = 0, n = s->n, maxn = s->maxn, rs = s->setup.real_size;
+    size_t b;
+    st->step = s->step;
+    st->n = n;
+    st->nwalls = s->nwalls;
+    st->real_size = rs;
+    st->rebuilds = s->rebuilds;
+    for (int k = 0; k < s->nwalls; k++)
+        memcpy(st->wall_pos[k], s->wall_pos[k], sizeof st->wall_pos[k]);
+    st->x = get_all(s, FIELD_X, &b, &e);
+    st->v = get_all(s, FIELD_V, &b, &e);
+    st->w = get_all(s, FIELD_W, &b, &e);
+    st->force = get_all(s, FIELD_FORCE, &b, &e);
+    st->torque = get_all(s, FIELD_TORQUE, &b, &e);
+    st->wall_force = get_all(s, FIELD_WALL_FORCE, &b, &e);
+    st->wall_hist = get_all(s, FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
+    st->wall_mask = get_all(s, FIELD_WALL_MASK, &b, &e);
+    size_t hb;
+    int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
+    unsigned char *touch = get_all(s, FIELD_TOUCH, &b, &e), *hist = get_all(s, FIELD_HIST, &hb, &e);
+    /* touching pairs, once each (owner i < j), in row order: ascending i, then j */
+    long np = 0;
+    for (int i = 0; !e && i < n; i++)
+        for (int k = 0; k < cnt[i]; k++)
+            np += list[i * maxn + k] > i && touch[i * maxn + k];
+    if (!e) {
+        st->pair_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
+        st->pair_j = malloc(sizeof(int) * (size_t)(np ? np : 1));
+        st->pair_hist = calloc((size_t)(np ? np : 1), 3 * (size_t)rs);
+        if (!st->pair_i || !st->pair_j || !st->pair_hist)
+            e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    np = 0;
+    for (int i = 0; !e && i < n; i++)
+        for (int k = 0; k < cnt[i]; k++) {
+            int slot = i * maxn + k, j = list[slot];
+            if (j <= i || !touch[slot])
+                continue;
+            st->pair_i[np] = i;
+            st->pair_j[np] = j;
+            if (hb) /* no tangential history without friction */
+                memcpy((char *)st->pair_hist + (size_t)np * 3 * rs, hist + (size_t)slot * 3 * rs, 3 * (size_t)rs);
+            np++;
+        }
+    st->npairs = np;
+    st->has_hist = hb > 0;
+    free(cnt), free(list), free(touch), free(hist);
+    if (e)
+        dem_state_free(st);
+    return e;
+}
+
+/* slot of partner j in row i, or -1 */
+static int find_slot(const int *cnt, const int *list, int maxn, int i, int j)
+{
+    int a = 0, z = cnt[i] - 1;
+    while (a <= z) {
+        int m = (a + z) / 2, p = list[i * maxn + m];
+        if (p < j)
+            a = m + 1;
+        else if (p > j)
+            z = m - 1;
+        else
+            return i * maxn + m;
+    }
+    return -1;
+}
+
+int sim_rebuild(dem_sim *s); /* sim.c */
+
+int dem_state_set(dem_sim *s, const dem_state *st)
+{
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int n = s->n, rs = s->setup.real_size;
+    if (st->n != n || st->nwalls != s->nwalls || st->real_size != rs)
+        return sim_fail(s, DEM_ERR_ARG, "the saved state has %d particles, %d walls, %d-byte reals; this run has %d, "
+                        "%d, %d", st->n, st->nwalls, st->real_size, n, s->nwalls, rs);
+    size_t v3b = 3 * (size_t)n * rs;
+    int e = 0;
+    if (s->ops->write(s->be, FIELD_X, st->x, v3b) || s->ops->write(s->be, FIELD_V, st->v, v3b) ||
+        s->ops->write(s->be, FIELD_W, st->w, v3b))
+        return sim_fail(s, DEM_ERR_DEVICE, "%s", s->ops->error(s->be));
+    if ((e = sim_rebuild(s)))
+        return e;
+    int maxn = s->maxn;
+    size_t b, hb = dem_field_bytes(s, FIELD_HIST);
+    int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
+    unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1);
+    if (!e && (!touch || !hist))
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (long p = 0; !e && p < st->npairs; p++) {
+        int i = st->pair_i[p], j = st->pair_j[p];
+        int a = i >= 0 && i < n && j >= 0 && j < n ? find_slot(cnt, list, maxn, i, j) : -1;
+        int m = a >= 0 ? find_slot(cnt, list, maxn, j, i) : -1;
+        if (a < 0 || m < 0) {
+            e = sim_fail(s, DEM_ERR_ARG, "saved contact %d-%d is not a neighbour pair of the saved positions", i, j);
+            break;
+        }
+        touch[a] = touch[m] = 1;
+        if (hb && st->has_hist)
+            memcpy(hist + (size_t)a * 3 * rs, (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
+    }
+    if (!e && (s->ops->write(s->be, FIELD_TOUCH, touch, (size_t)n * maxn) ||
+               s->ops->write(s->be, FIELD_HIST, hist, hb) ||
+               s->ops->write(s->be, FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, FIELD_WALL_HIST)) ||
+               s->ops->write(s->be, FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
+               s->ops->write(s->be, FIELD_FORCE, st->force, v3b) || s->ops->write(s->be, FIELD_TORQUE, st->torque, v3b) ||
+               s->ops->write(s->be, FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
+        e = sim_fail(s, DEM_ERR_DEVICE, "%s", s->ops->error(s->be));
+    free(cnt), free(list), free(touch), free(hist);
+    if (e)
+        return e;
+    if (!!st->has_hist != (hb > 0))
+        return sim_fail(s, DEM_ERR_ARG, "the saved state %s tangential history but this run %s friction",
+                        st->has_hist ? "has" : "has no", hb ? "has" : "has no");
+    s->step = st->step;
+    for (int k = 0; k < s->nwalls; k++)
+        memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);
+    return 0;
+}
