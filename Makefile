@@ -32,7 +32,7 @@ TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps demo test bench clean
+.PHONY: all deps run demo test test-paraview fuzz bench clean
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -69,6 +69,29 @@ $(BUILD)/dem-bench: bench/bench.c $(LIB) $(HEADERS)
 $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
+
+# The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
+SCENE ?= scenes/hydrogel_514.yaml
+run: $(BUILD)/dem
+	@mkdir -p out
+	./$(BUILD)/dem run $(SCENE) -o out/$(basename $(notdir $(SCENE))).h5 --progress
+	/usr/bin/python3 tools/plot_series.py out/$(basename $(notdir $(SCENE))).h5
+
+# ParaView's own reader on our XDMF output (Debian's paraview is ~440 MB: not part of every CI run).
+test-paraview: $(BUILD)/dem
+	@bash scripts/install-deps.sh --paraview
+	bash tests/paraview_check.sh
+
+# libFuzzer on the scene loader (FUZZ_RUNS executions; the corpus starts from scenes/).
+FUZZ_RUNS ?= 1000000
+# The loader is instrumented; the library it calls (libdem.a) is linked as built.
+fuzz: $(LIB)
+	@mkdir -p $(BUILD)/fuzz/corpus
+	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
+	  -Icommon -Iapp tests/fuzz_scene.c app/scene_schema.c app/scene_locate.c app/scene_build.c \
+	  app/scene_particles.c app/scene_overlaps.c $(LIB) -o $(BUILD)/fuzz/fuzz_scene -lcyaml -lyaml -lOpenCL -lm
+	cp scenes/*.yaml $(BUILD)/fuzz/corpus/
+	./$(BUILD)/fuzz/fuzz_scene -runs=$(FUZZ_RUNS) -max_len=4096 -dict=tests/fuzz_scene.dict $(BUILD)/fuzz/corpus
 
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo

@@ -61,6 +61,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
              h5_attr_string(o->file, "effects", fx) || h5_attr_double(o->file, "dt", run->dt) ||
              h5_attr_long(o->file, "steps", run->steps) || h5_attr_string(o->file, "scene_path", sc->path) ||
              h5_attr_string(o->file, "units", "SI: m, kg, s, N, Pa, J") ||
+             h5_attr_string(o->file, "scene_name", sc->f->name ? sc->f->name : sc->path) ||
              h5_write_text(o->file, "scene_text", sc->text);
     if (!rc) {
         hid_t g = H5Gcreate2(o->file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -98,7 +99,8 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
             rc = h5_attr_long(o->series, "piston_wall", run->piston) ||
                  h5_attr_double(o->series, "sample_height", run->sample_height) ||
                  h5_attr_double(o->series, "sample_area", run->sample_area) ||
-                 h5_attr_string(o->series, "convention", "strain = piston travel / initial height; stress = "
+                 h5_attr_double(o->series, "contact_travel", run->contact_travel) ||
+                 h5_attr_string(o->series, "convention", "strain = (piston travel - contact_travel) / height; stress = "
                                                          "force the piston receives against its normal / area "
                                                          "(compression positive)");
     }

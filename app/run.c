@@ -25,7 +25,9 @@ void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *
     const double *n = run->piston_normal, *p0 = run->piston_point;
     if (dem_wall_position(s, run->piston, p) || dem_wall_force(s, run->piston, f))
         return;
-    *strain = ((p0[0] - p[0]) * n[0] + (p0[1] - p[1]) * n[1] + (p0[2] - p[2]) * n[2]) / run->sample_height;
+    /* n points from the piston into the sample: travel into it is (p - p0).n */
+    double travel = (p[0] - p0[0]) * n[0] + (p[1] - p0[1]) * n[1] + (p[2] - p0[2]) * n[2];
+    *strain = (travel - run->contact_travel) / run->sample_height;
     *stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
 }
 
@@ -80,6 +82,8 @@ int run_scene(const run_opts *o)
     }
     if (o->device >= 0)
         run.cfg.device = o->device;
+    if (have_ck) /* a restart continues in the checkpoint's precision */
+        run.cfg.precision = (dem_precision)ck.st.real_size;
     if (o->precision)
         run.cfg.precision = (dem_precision)o->precision;
     if (o->out)

@@ -83,6 +83,7 @@ typedef struct {
     char *piston;                 /* name of the wall that compresses the sample */
     double height;                /* initial sample height [m] (0: piston to the lowest particle bottom) */
     double area;                  /* cross-section [m^2] (0: from a box or cylinder wall around the sample) */
+    double contact_travel;        /* piston travel [m] at which the sample starts being strained (default 0) */
 } scene_sample;
 
 typedef struct {
@@ -134,6 +135,7 @@ typedef struct {
     double sample_height;   /* initial piston-to-opposite-wall distance [m] (strain reference) */
     double sample_area;     /* cross-section the piston force acts on [m^2] */
     double piston_point[3], piston_normal[3]; /* initial point and unit normal (towards the particles) */
+    double contact_travel;  /* [m] */
     dem_time_scales ts;
     char note[1024];        /* remarks for `dem check` (ignored parameters ...) */
 } scene_run;

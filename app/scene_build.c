@@ -370,6 +370,9 @@ static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *
     memcpy(run->piston_point, p, sizeof run->piston_point);
     memcpy(run->piston_normal, n, sizeof run->piston_normal);
     run->sample_height = f->sample->height;
+    run->contact_travel = f->sample->contact_travel;
+    if (!(run->contact_travel >= 0) || !isfinite(run->contact_travel))
+        return scene_fail(sc, err, errlen, "sample.contact_travel", "must be >= 0 m");
     if (!(run->sample_height > 0)) { /* piston to the lowest particle bottom along the normal */
         double far = 0;
         for (int i = 0; i < dem_count(s); i++) {

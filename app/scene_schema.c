@@ -93,7 +93,8 @@ static const cyaml_schema_field_t output_fields[] = {
 
 static const cyaml_schema_field_t sample_fields[] = {
     CYAML_FIELD_STRING_PTR("piston", CYAML_FLAG_POINTER, scene_sample, piston, 1, 64),
-    REAL("height", scene_sample, height), REAL("area", scene_sample, area), CYAML_FIELD_END};
+    REAL("height", scene_sample, height), REAL("area", scene_sample, area),
+    REAL("contact_travel", scene_sample, contact_travel), CYAML_FIELD_END};
 
 static const cyaml_schema_field_t domain_fields[] = {
     CYAML_FIELD_SEQUENCE_FIXED("lo", CYAML_FLAG_DEFAULT, scene_file, domain_lo, &real_entry, 3),
@@ -247,6 +248,11 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         snprintf(err, errlen, "%s:%d: %s%s%s (%s)", path, line, full[0] ? full : "", full[0] ? ": " : "",
                  cap.msg[0] ? cap.msg : "invalid scene", cyaml_strerror(e));
         sc->f = NULL;
+        scene_free(sc);
+        return NULL;
+    }
+    if (!sc->f) { /* an empty document loads as nothing */
+        snprintf(err, errlen, "%s:1: the scene is empty (it needs effects, materials, particles and time)", path);
         scene_free(sc);
         return NULL;
     }

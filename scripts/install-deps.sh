@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages this project builds and tests with, if any are missing.
 # Called by the Makefile (target `deps`); safe to run again: it does nothing when all are present.
+# With --paraview it also installs ParaView and pvpython (make test-paraview).
 set -euo pipefail
 
 PKGS=(
@@ -9,7 +10,13 @@ PKGS=(
   libhdf5-dev hdf5-tools                                      # HDF5 output
   libcmocka-dev                                               # test framework
   libcyaml-dev libyaml-dev                                    # scene files (YAML -> C structs)
+  python3-h5py python3-matplotlib                             # tools/plot_series.py, tests/xdmf_check.py
+  clang libclang-rt-14-dev                                    # make fuzz (libFuzzer, sanitizers)
 )
+# ParaView (about 440 MB) only for `make test-paraview`
+if [ "${1:-}" = "--paraview" ]; then
+  PKGS+=(paraview python3-paraview)
+fi
 
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1,0 +1,263 @@
+/* test_scene.c - the dem command end to end: scene errors (file, line, field, exit status, no output), HDF5 and
+ * XDMF output, progress/effects report, and bit-exact restart (2N steps = N steps + restart + N steps). */
+#include "test_util.h"
+#include "h5util.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define DEM DEM_DEFAULT_SOURCE_DIR "/build/dem"
+#define SRC DEM_DEFAULT_SOURCE_DIR
+static char tmp[256];
+
+/* Runs a shell command; returns its exit status and its stderr (into err). */
+static int sh(char *err, size_t len, const char *fmt, ...)
+{
+    char cmd[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    char full[4400];
+    snprintf(full, sizeof full, "%s 2>%s/stderr.txt", cmd, tmp);
+    int st = system(full);
+    char p[300];
+    snprintf(p, sizeof p, "%s/stderr.txt", tmp);
+    FILE *fp = fopen(p, "r");
+    size_t n = fp ? fread(err, 1, len - 1, fp) : 0;
+    err[n] = 0;
+    if (fp)
+        fclose(fp);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static int exists(const char *fmt, const char *a)
+{
+    char p[512];
+    snprintf(p, sizeof p, fmt, a);
+    struct stat sb;
+    return stat(p, &sb) == 0;
+}
+
+/* A scene derived from two_spheres.yaml by a sed expression must fail with status 65, a message naming the file,
+ * line and field, and leave no output (and an older output file untouched). */
+static void bad(const char *sed, const char *expect)
+{
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "sed '%s' %s/scenes/two_spheres.yaml > %s/bad.yaml", sed, SRC, tmp), 0);
+    FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/out.h5"), "w");
+    fputs("older result", fp);
+    fclose(fp);
+    int rc = sh(err, sizeof err, "%s run %s/bad.yaml -o %s/out.h5", DEM, tmp, tmp);
+    if (rc != 65 || !strstr(err, expect))
+        fail_msg("sed '%s': status %d, message: %s (expected status 65 and '%s')", sed, rc, err, expect);
+    assert_false(exists("%s/out.h5.part", tmp));
+    assert_false(exists("%s/out.xmf", tmp));
+    assert_false(exists("%s/out.ckpt.h5", tmp));
+    char buf[64] = {0};
+    fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/out.h5"), "r");
+    assert_non_null(fgets(buf, sizeof buf, fp));
+    fclose(fp);
+    assert_string_equal(buf, "older result");
+}
+
+static void test_errors(void **st)
+{
+    (void)st;
+    bad("s/poisson: 0.46/poisson: 0.7/", "bad.yaml:7: materials[0].poisson: Poisson's ratio must be in (-1, 0.5]");
+    bad("s/restitution: 0.7/restitution: 1.5/", "bad.yaml:7: materials[0].restitution: restitution must be in (0, 1]");
+    bad("0,/radius: 0.01}/s//radius: -0.01}/", "bad.yaml:11: particles[0].spheres[0].radius: radius must be > 0");
+    bad("s/^time:/timme:/", "bad.yaml:14: timme: Unexpected key");
+    bad("s/  dt: 1.0e-6/  dt: 1.0e-2/", "bad.yaml:15: time.dt: time step 0.01 s exceeds the stability bound");
+    bad("s/hertz, damping/hertz, dampng/", "bad.yaml:5: effects[1]: unknown effect 'dampng'");
+    bad("s/hertz, damping/hertz, mc_stress/", "effects[1]: effect 'mc_stress' is not available");
+    bad("s/duration: 0.003 /duration: abc /", "bad.yaml:16: time.duration: Invalid FLOAT value");
+    bad("s/x: \\[-0.0101, 0, 0\\]/x: [-0.0101, 0]/", "bad.yaml:11: particles[0].spheres[0].x: Insufficient entries");
+    bad("s/-0.0101, 0, 0/-0.005, 0, 0/", "particles[0].spheres[1]: particles[0].spheres[0] and particles[0].spheres[1] "
+                                         "overlap by 49");
+    bad("/young/s/young: 1.85e6, //", "bad.yaml:7: materials[0].young: Missing required mapping field");
+    bad("s/material: rubber/material: steel/", "bad.yaml:9: particles[0].material: unknown material 'steel'");
+    bad("s/effects: \\[hertz, damping\\]/effects: [hertz, damping]\\ngravity: [0, 0, -9.81]/",
+        "gravity: gravity is set but the effect 'gravity' is not listed");
+    bad("s/^particles:/walls: [{type: plane, material: rubber, point: [0, 0, -0.0105], normal: [0, 0, 1]}]\\nparticles:/",
+        "walls: walls are defined but the effect 'walls' is not listed");
+    bad("s/hertz, damping/hertz, damping, walls/; s/^particles:/walls: [{type: plane, material: rubber, point: [0, 0, "
+        "-0.005], normal: [0, 0, 1]}]\\nparticles:/", "walls[0]: particles[0].spheres[0] (radius 0.01 m");
+    bad("s/name: two-sphere collision/name: [unclosed/", "bad.yaml:");
+    char err[4096];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/missing.yaml -o %s/out.h5", DEM, tmp, tmp), 66);
+    assert_non_null(strstr(err, "missing.yaml:0: cannot open the scene file"));
+    assert_int_equal(sh(err, sizeof err, "%s run --bogus", DEM), 2);
+    assert_int_equal(sh(err, sizeof err, "%s frobnicate", DEM), 2);
+    /* a CSV error names the CSV file and line and the scene line that refers to it */
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/data && sed '6s/0.0215912/-1/' %s/scenes/data/hydrogel_514.csv "
+                                         "> %s/data/hydrogel_514.csv && cp %s/scenes/hydrogel_514.yaml %s/hg.yaml",
+                        tmp, SRC, tmp, SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s check %s/hg.yaml", DEM, tmp), 65);
+    assert_non_null(strstr(err, "hg.yaml:15: particles[0].csv: "));
+    assert_non_null(strstr(err, "data/hydrogel_514.csv:6: diameter: must be > 0 m"));
+}
+
+static void read_state(const char *path, const char *name, void *buf, size_t count, hid_t type)
+{
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    hid_t g = H5Gopen2(f, "state", H5P_DEFAULT);
+    if (h5_read(g, name, type, buf, count))
+        fail_msg("%s: cannot read state/%s (%zu elements)", path, name, count);
+    H5Gclose(g);
+    H5Fclose(f);
+}
+
+static long n_pairs(const char *path)
+{
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT), d = H5Dopen2(f, "state/pair_i", H5P_DEFAULT);
+    hid_t sp = H5Dget_space(d);
+    long n = (long)H5Sget_simple_extent_npoints(sp);
+    H5Sclose(sp), H5Dclose(d), H5Fclose(f);
+    return n;
+}
+
+static void restart_case(const char *precision)
+{
+    char err[8192];
+    const char *sc = SRC "/tests/scenes/restart_box.yaml";
+    /* 660 steps straight; 330 + restart + 330 */
+    assert_int_equal(sh(err, sizeof err, "%s run %s --precision %s -o %s/straight.h5 --quiet", DEM, sc, precision, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s --precision %s -o %s/half.h5 --stop-after 330 --quiet", DEM, sc,
+                        precision, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run --restart %s/half.ckpt.h5 -o %s/rest.h5 --quiet", DEM, tmp, tmp), 0);
+    char a[300], b[300], h[300];
+    snprintf(a, sizeof a, "%s/straight.ckpt.h5", tmp);
+    snprintf(b, sizeof b, "%s/rest.ckpt.h5", tmp);
+    snprintf(h, sizeof h, "%s/half.ckpt.h5", tmp);
+    int rs = strcmp(precision, "fp64") ? 4 : 8, n = 64;
+    hid_t rt = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+    long step;
+    hid_t f = H5Fopen(h, H5F_ACC_RDONLY, H5P_DEFAULT), g = H5Gopen2(f, "state", H5P_DEFAULT);
+    assert_int_equal(h5_read_attr_long(g, "step", &step), 0);
+    H5Gclose(g), H5Fclose(f);
+    assert_int_equal(step, 330);
+    static const char *fields[] = {"x", "v", "w", "force", "torque"};
+    for (int k = 0; k < 5; k++) {
+        unsigned char pa[64 * 3 * 8], pb[64 * 3 * 8];
+        read_state(a, fields[k], pa, 3 * (size_t)n, rt);
+        read_state(b, fields[k], pb, 3 * (size_t)n, rt);
+        if (memcmp(pa, pb, 3 * (size_t)n * rs))
+            fail_msg("%s: state/%s differs between the straight and the restarted run", precision, fields[k]);
+    }
+    long np = n_pairs(a);
+    assert_true(np > 10); /* the restart really carried contacts */
+    assert_int_equal(np, n_pairs(b));
+    unsigned char ha[4096 * 24], hb[4096 * 24];
+    int ia[4096], ib[4096];
+    assert_true(np < 4096);
+    read_state(a, "pair_hist", ha, 3 * (size_t)np, rt);
+    read_state(b, "pair_hist", hb, 3 * (size_t)np, rt);
+    read_state(a, "pair_i", ia, (size_t)np, H5T_NATIVE_INT);
+    read_state(b, "pair_i", ib, (size_t)np, H5T_NATIVE_INT);
+    assert_memory_equal(ia, ib, sizeof(int) * np);
+    assert_memory_equal(ha, hb, 3 * (size_t)np * rs);
+    unsigned char wa[7 * 3 * 8], wb[7 * 3 * 8];
+    read_state(a, "wall_force", wa, 21, rt);
+    read_state(b, "wall_force", wb, 21, rt);
+    assert_memory_equal(wa, wb, 21 * (size_t)rs);
+    /* and the history is not trivially zero: friction was at work */
+    int nonzero = 0;
+    for (long k = 0; k < 3 * np * rs; k++)
+        nonzero |= ha[k];
+    assert_true(nonzero);
+}
+
+static void test_restart_bitwise(void **st)
+{
+    (void)st;
+    restart_case("fp64");
+    restart_case("fp32");
+}
+
+static void test_output_and_xdmf(void **st)
+{
+    (void)st;
+    char err[8192], p[300];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/o.h5 --progress", DEM, SRC, tmp),
+                     0);
+    /* the run reports its effects and its kernels, and shows progress */
+    assert_non_null(strstr(err, "effects hertz+damping+friction+gravity+walls"));
+    assert_non_null(strstr(err, "kernels per step: integrate_kick_drift, contact_pairs, contact_forces"));
+    assert_non_null(strstr(err, "step 660/660 (100.0 %)"));
+    assert_false(exists("%s/o.h5.part", tmp));
+    snprintf(p, sizeof p, "%s/o.h5", tmp);
+    hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    char *eff = h5_read_attr_string(f, "effects"), *text = h5_read_text(f, "scene_text");
+    assert_string_equal(eff, "hertz+damping+friction+gravity+walls");
+    assert_non_null(strstr(text, "restart test box"));
+    free(eff), free(text);
+    hid_t d = H5Dopen2(f, "frames/position", H5P_DEFAULT), sp = H5Dget_space(d);
+    hsize_t dims[3];
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    H5Sclose(sp), H5Dclose(d);
+    assert_int_equal(dims[0], 10); /* steps 0, 82, ..., 656 (every 0.005 s = 82 steps) and the last, 660 */
+    assert_int_equal(dims[1], 64);
+    assert_int_equal(dims[2], 3);
+    double strain[128], stress[128];
+    d = H5Dopen2(f, "series/strain", H5P_DEFAULT), sp = H5Dget_space(d);
+    hssize_t rows = H5Sget_simple_extent_npoints(sp);
+    H5Sclose(sp), H5Dclose(d);
+    assert_true(rows >= 40 && rows <= 128); /* every 0.001 s over 0.04 s, and the last step */
+    assert_int_equal(h5_read(f, "series/strain", H5T_NATIVE_DOUBLE, strain, (size_t)rows), 0);
+    assert_int_equal(h5_read(f, "series/stress", H5T_NATIVE_DOUBLE, stress, (size_t)rows), 0);
+    assert_true(strain[0] == 0);
+    assert_true(strain[rows - 1] > 0.15); /* the lid went 9 mm down into a 45 mm sample */
+    double peak = 0;
+    for (hssize_t k = 0; k < rows; k++)
+        peak = stress[k] > peak ? stress[k] : peak;
+    assert_true(peak > 0); /* and pushed on the grains */
+    H5Fclose(f);
+    /* the XDMF sidecar: one grid per frame, pointing at this file's datasets */
+    snprintf(p, sizeof p, "%s/o.xmf", tmp);
+    FILE *fp = fopen(p, "r");
+    assert_non_null(fp);
+    static char xml[1 << 20];
+    size_t n = fread(xml, 1, sizeof xml - 1, fp);
+    xml[n] = 0;
+    fclose(fp);
+    int grids = 0;
+    for (char *q = xml; (q = strstr(q, "<Grid Name=\"frame ")); q++)
+        grids++;
+    assert_int_equal(grids, 10);
+    assert_non_null(strstr(xml, "o.h5:/frames/position"));
+    assert_non_null(strstr(xml, "o.h5:/frames/torque"));
+    assert_non_null(strstr(xml, "NumberOfElements=\"64\""));
+    /* an independent reader: h5py resolves every dataset path named in the XDMF with the stated shape */
+    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/o.xmf", SRC, tmp), 0);
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    snprintf(tmp, sizeof tmp, "/tmp/dem-test-scene-XXXXXX");
+    return mkdtemp(tmp) ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmp);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_restart_bitwise),
+        cmocka_unit_test(test_output_and_xdmf),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
