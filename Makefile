@@ -88,6 +88,7 @@ FUZZ_RUNS ?= 1000000
 fuzz: $(LIB)
 	@mkdir -p $(BUILD)/fuzz/corpus
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
+	  -DDEM_SCENE_MAX_GENERATED=20000 -DDEM_SCENE_MAX_RANDOM=2000 \
 	  -Icommon -Iapp tests/fuzz_scene.c app/scene_schema.c app/scene_locate.c app/scene_build.c \
 	  app/scene_particles.c app/scene_overlaps.c $(LIB) -o $(BUILD)/fuzz/fuzz_scene -lcyaml -lyaml -lOpenCL -lm
 	cp scenes/*.yaml $(BUILD)/fuzz/corpus/

@@ -151,6 +151,14 @@ static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
 
 /* ---- generated packings ---- */
 
+/* Largest generated group (the fuzz build lowers it so that one input cannot exhaust memory). */
+#ifndef DEM_SCENE_MAX_GENERATED
+#define DEM_SCENE_MAX_GENERATED 5000000
+#endif
+#ifndef DEM_SCENE_MAX_RANDOM
+#define DEM_SCENE_MAX_RANDOM 200000 /* random sequential addition costs O(n^2) */
+#endif
+
 static uint64_t rng_next(uint64_t *st) /* splitmix64: reproducible on every platform */
 {
     uint64_t z = (*st += 0x9E3779B97F4A7C15ull);
@@ -254,8 +262,8 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
     int first = ol->n, placed = 0;
     if (random) {
         snprintf(p, sizeof p, "particles[%d].generate.count", g);
-        if (gen->count < 1 || gen->count > 200000)
-            return scene_fail(sc, err, errlen, p, "a random packing needs 1 <= count <= 200000");
+        if (gen->count < 1 || gen->count > DEM_SCENE_MAX_RANDOM)
+            return scene_fail(sc, err, errlen, p, "a random packing needs 1 <= count <= %d", DEM_SCENE_MAX_RANDOM);
         /* random sequential addition, largest first; candidates are checked against a coarse grid */
         int n = (int)gen->count;
         double *r = malloc(sizeof(double) * n);
@@ -306,13 +314,25 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
     if (a < 2 * rmax)
         return scene_fail(sc, err, errlen, p, "lattice spacing %g m is below the largest diameter %g m", a, 2 * rmax);
     int nx[3];
-    for (int d = 0; d < 3; d++)
-        nx[d] = (int)floor((rg.hi[d] - rg.lo[d] - 2 * rmax) / a) + 1;
-    for (int k = 0; k < nx[2]; k++)
-        for (int j = 0; j < nx[1]; j++)
-            for (int i = 0; i < nx[0]; i++) {
-                if (gen->count && placed >= (int)gen->count)
+    double sites = 1;
+    for (int d = 0; d < 3; d++) {
+        double c = floor((rg.hi[d] - rg.lo[d] - 2 * rmax) / a) + 1;
+        nx[d] = c > 0 && c < 1e7 ? (int)c : 0;
+        sites *= c > 0 ? c : 0;
+    }
+    if (!(sites <= DEM_SCENE_MAX_GENERATED) && !(gen->count && gen->count <= DEM_SCENE_MAX_GENERATED)) {
+        snprintf(p, sizeof p, "particles[%d].generate.region", g);
+        return scene_fail(sc, err, errlen, p, "the lattice has %.3g sites, more than %d: give count or a smaller "
+                          "region", sites, DEM_SCENE_MAX_GENERATED);
+    }
+    int full = 0; /* count reached */
+    for (int k = 0; k < nx[2] && !full; k++)
+        for (int j = 0; j < nx[1] && !full; j++)
+            for (int i = 0; i < nx[0] && !full; i++) {
+                if (gen->count && placed >= (int)gen->count) {
+                    full = 1;
                     break;
+                }
                 double x[3] = {rg.lo[0] + rmax + i * a, rg.lo[1] + rmax + j * a, rg.lo[2] + rmax + k * a};
                 double r = rmin + (rmax - rmin) * rng_unit(&st);
                 if (!inside(&rg, x, rmax))
