@@ -98,22 +98,10 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
         hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
         size_t n3 = 3 * (size_t)n;
-        hid_t d = H5Dopen2(g, "pair_i", H5P_DEFAULT), sp = d >= 0 ? H5Dget_space(d) : -1;
-        hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-        if (sp >= 0)
-            H5Sclose(sp);
-        if (d >= 0)
-            H5Dclose(d);
-        hid_t ws = H5Dopen2(g, "wall_hist", H5P_DEFAULT), wsp = ws >= 0 ? H5Dget_space(ws) : -1;
-        hssize_t nwh = wsp >= 0 ? H5Sget_simple_extent_npoints(wsp) : -1;
-        if (wsp >= 0)
-            H5Sclose(wsp);
-        if (ws >= 0)
-            H5Dclose(ws);
+        long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist */
         size_t want_wh = hh ? n3 * (size_t)nw : 0;
-        if (np < 0 || nwh < 0)
-            rc = 1;
-        long npairs = np;
+        if (npairs < 0)
+            rc = 1, npairs = 0;
         st->x = malloc(n3 * rs), st->v = malloc(n3 * rs), st->w = malloc(n3 * rs);
         st->force = malloc(n3 * rs), st->torque = malloc(n3 * rs);
         st->wall_force = malloc(3 * (size_t)(nw + 1) * rs);

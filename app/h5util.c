@@ -105,21 +105,30 @@ int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsi
     return rc;
 }
 
-int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t count)
+long h5_count(hid_t parent, const char *name)
 {
     if (H5Lexists(parent, name, H5P_DEFAULT) <= 0)
         return -1;
-    hid_t d = H5Dopen2(parent, name, H5P_DEFAULT);
-    if (d < 0)
-        return -1;
-    hid_t sp = H5Dget_space(d);
-    hssize_t npts = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-    int rc = -1;
-    if (npts >= 0 && (size_t)npts == count)
-        rc = count == 0 || H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0 ? 0 : -1;
+    hid_t d = H5Dopen2(parent, name, H5P_DEFAULT), sp = d >= 0 ? H5Dget_space(d) : -1;
+    long n = sp >= 0 ? (long)H5Sget_simple_extent_npoints(sp) : -1;
     if (sp >= 0)
         H5Sclose(sp);
-    H5Dclose(d);
+    if (d >= 0)
+        H5Dclose(d);
+    return n;
+}
+
+int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t count)
+{
+    long npts = h5_count(parent, name);
+    if (npts < 0 || (size_t)npts != count)
+        return -1;
+    if (count == 0)
+        return 0;
+    hid_t d = H5Dopen2(parent, name, H5P_DEFAULT);
+    int rc = d >= 0 && H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0 ? 0 : -1;
+    if (d >= 0)
+        H5Dclose(d);
     return rc;
 }
 

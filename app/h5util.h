@@ -25,6 +25,7 @@ int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsi
              const char *units);
 /* Reads a whole dataset (or fails when its element count is not count). */
 int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t count);
+long h5_count(hid_t parent, const char *name); /* elements of a dataset, -1 if absent */
 char *h5_read_attr_string(hid_t obj, const char *name); /* malloc'd, NULL if absent */
 int h5_read_attr_double(hid_t obj, const char *name, double *v);
 int h5_read_attr_long(hid_t obj, const char *name, long *v);

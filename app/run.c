@@ -147,7 +147,6 @@ int run_scene(const run_opts *o)
         code = fail_with(EXIT_IO, "cannot write to the output file");
         goto done;
     }
-    long last_frame = step0;
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next = end;
         long evs[3] = {run.frame_every, run.series_every, run.checkpoint_every};
@@ -168,10 +167,8 @@ int run_scene(const run_opts *o)
         }
         st = dem_step_index(s);
         int io = 0;
-        if (st % run.frame_every == 0 || st == end) {
+        if (st % run.frame_every == 0 || st == end)
             io |= output_frame(out, s);
-            last_frame = st;
-        }
         if (st % run.series_every == 0 || st == end) {
             run_sample_state(s, &run, &strain, &stress);
             io |= output_series(out, s, strain, stress);
@@ -192,7 +189,6 @@ int run_scene(const run_opts *o)
             last = tn;
         }
     }
-    (void)last_frame;
     if (show && tty)
         fputc('\n', stderr);
     if (output_finish(out, err, sizeof err)) {

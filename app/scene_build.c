@@ -418,7 +418,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
         scene_add_particles(sc, s, &origin, err, errlen) || parse_walls(sc, s, run, first_wall, err, errlen) ||
         parse_run_options(sc, s, run, err, errlen) || parse_time(sc, s, run, err, errlen) ||
         parse_output(sc, run, err, errlen) ||
-        scene_check_overlaps(sc, s, origin, first_wall, err, errlen) ||
+        scene_check_overlaps(sc, s, origin, err, errlen) ||
         parse_sample(sc, s, run, first_wall, origin, err, errlen)) {
         free(origin);
         dem_destroy(s);

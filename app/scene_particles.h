@@ -18,6 +18,5 @@ int scene_material_id(const scene *sc, const char *name);
 /* Adds every particle group to s; *origin (malloc'd) gets one entry per particle. */
 int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *err, size_t errlen);
 /* Rejects initial particle-particle and particle-wall overlaps above the scene's tolerance. */
-int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *origin, const int *first_wall, char *err,
-                         size_t errlen);
+int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *origin, char *err, size_t errlen);
 #endif
