@@ -92,7 +92,7 @@ fuzz: $(LIB)
 	  -Icommon -Iapp tests/fuzz_scene.c app/scene_schema.c app/scene_locate.c app/scene_build.c \
 	  app/scene_particles.c app/scene_overlaps.c $(LIB) -o $(BUILD)/fuzz/fuzz_scene -lcyaml -lyaml -lOpenCL -lm
 	cp scenes/*.yaml $(BUILD)/fuzz/corpus/
-	./$(BUILD)/fuzz/fuzz_scene -runs=$(FUZZ_RUNS) -max_len=4096 -dict=tests/fuzz_scene.dict $(BUILD)/fuzz/corpus
+	./$(BUILD)/fuzz/fuzz_scene -runs=$(FUZZ_RUNS) -max_len=4096 -timeout=20 -dict=tests/fuzz_scene.dict $(BUILD)/fuzz/corpus
 
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo

@@ -82,8 +82,10 @@ int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *o, cha
         return scene_fail(sc, err, errlen, "particles", "out of memory");
     for (int i = 0; i < n; i++) {
         long long q[3];
-        for (int d = 0; d < 3; d++)
-            q[d] = (long long)floor((o[i].x[d] - lo[d]) / h) + 1;
+        for (int d = 0; d < 3; d++) { /* cells beyond the key range share the last one (exact, just slower) */
+            double t = floor((o[i].x[d] - lo[d]) / h);
+            q[d] = !(t >= 0) ? 1 : t > (double)(M - 3) ? M - 2 : (long long)t + 1;
+        }
         c[i] = (cell_entry){(q[2] * M + q[1]) * M + q[0], i};
     }
     qsort(c, (size_t)n, sizeof *c, cmp_cell);

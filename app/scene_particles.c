@@ -325,11 +325,12 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
         return scene_fail(sc, err, errlen, p, "the lattice has %.3g sites, more than %d: give count or a smaller "
                           "region", sites, DEM_SCENE_MAX_GENERATED);
     }
-    int full = 0; /* count reached */
+    int full = 0;      /* count reached, or the cap on visited sites */
+    long visited = 0;  /* sites looked at: a huge region whose shape rejects most sites must still end (make fuzz) */
     for (int k = 0; k < nx[2] && !full; k++)
         for (int j = 0; j < nx[1] && !full; j++)
             for (int i = 0; i < nx[0] && !full; i++) {
-                if (gen->count && placed >= (int)gen->count) {
+                if ((gen->count && placed >= (int)gen->count) || visited++ >= DEM_SCENE_MAX_GENERATED) {
                     full = 1;
                     break;
                 }
@@ -346,8 +347,8 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
             }
     if (placed == 0 || (gen->count && placed < (int)gen->count)) {
         snprintf(p, sizeof p, "particles[%d].generate", g);
-        return scene_fail(sc, err, errlen, p, "the lattice holds only %d spheres%s", placed,
-                          gen->count ? " (fewer than count)" : "");
+        return scene_fail(sc, err, errlen, p, "the lattice holds only %d spheres%s in the %ld sites looked at", placed,
+                          gen->count ? " (fewer than count)" : "", visited);
     }
     return 0;
 }
