@@ -1,6 +1,6 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_pos,pair_i,pair_j,pair_hist,
- * wall_hist,wall_mask,radius} with attributes step, n, nwalls, real_size (4 or 8: the arrays hold the run's own
- * bits), and /scene/text, /scene/path. */
+ * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn} with attributes step, n, nwalls, real_size (4 or 8: the arrays
+ * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 #include "h5util.h"
 #include <fcntl.h>
@@ -33,7 +33,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, s
     hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
     hsize_t n3[2] = {(hsize_t)st.n, 3}, w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
     hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs};
-    hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size};
+    hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size}, wm[1] = {st.wall_mc_fn_bytes / (size_t)st.real_size};
+    hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0};
     double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
     if (!rc) {
         hid_t g = H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -53,7 +54,12 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, s
              h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
              h5_write(g, "wall_hist", real_t, 1, wh, st.wall_hist, "N") ||
              h5_write(g, "wall_mask", H5T_NATIVE_UINT, 1, n1, st.wall_mask, NULL) ||
-             h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, n1, radius, "m");
+             h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, n1, radius, "m") ||
+             h5_attr_long(g, "has_mc", st.has_mc) || h5_attr_long(g, "mc_last", st.mc.last) ||
+             h5_attr_long(g, "mc_max", st.mc.max) || h5_attr_long(g, "mc_total", st.mc.total) ||
+             h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
+             h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
+             h5_write(g, "wall_mc_fn", real_t, 1, wm, st.wall_mc_fn, "N");
         if (g >= 0)
             H5Gclose(g);
         hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -89,12 +95,18 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
     }
     dem_state *st = &ck->st;
     hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
-    long n = 0, nw = 0, rs = 0, hh = 0;
+    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0;
     int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
              h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
              h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > 32;
     if (!rc) {
         h5_read_attr_long(g, "rebuilds", &st->rebuilds);
+        h5_read_attr_long(g, "has_mc", &hm);
+        h5_read_attr_long(g, "mc_last", &st->mc.last);
+        h5_read_attr_long(g, "mc_max", &st->mc.max);
+        h5_read_attr_long(g, "mc_total", &st->mc.total);
+        h5_read_attr_long(g, "mc_unconverged", &st->mc.unconverged);
+        st->has_mc = (int)hm;
         st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
         hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
         size_t n3 = 3 * (size_t)n;
@@ -111,6 +123,10 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         st->wall_hist = malloc((want_wh + 1) * rs);
         st->wall_hist_bytes = want_wh * rs;
         st->wall_mask = malloc(sizeof(unsigned) * (size_t)n);
+        size_t want_wm = hm ? (size_t)n * (size_t)nw : 0, want_pm = hm ? (size_t)npairs : 0;
+        st->pair_mc_fn = malloc((want_pm + 1) * rs);
+        st->wall_mc_fn = malloc((want_wm + 1) * rs);
+        st->wall_mc_fn_bytes = want_wm * rs;
         ck->radius = malloc(sizeof(double) * (size_t)n);
         rc = rc || !st->x || !st->v || !st->w || !st->force || !st->torque || !st->wall_force || !st->pair_i ||
              !st->pair_j || !st->pair_hist || !st->wall_hist || !st->wall_mask || !ck->radius ||
@@ -125,7 +141,9 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         st->npairs = npairs;
         rc = rc || h5_read(g, "pair_i", H5T_NATIVE_INT, st->pair_i, (size_t)npairs) ||
              h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
-             h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs);
+             h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
+             !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
+                                        h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
     }
     if (g >= 0)
         H5Gclose(g);

@@ -11,22 +11,26 @@ static const struct {
     unsigned bit;
     dem_field field;
     const char *name, *units;
-} frame_fields[] = {{OUT_POSITION, FIELD_X, "position", "m"},
-                    {OUT_VELOCITY, FIELD_V, "velocity", "m/s"},
-                    {OUT_ANGULAR_VELOCITY, FIELD_W, "angular_velocity", "rad/s"},
-                    {OUT_FORCE, FIELD_FORCE, "force", "N"},
-                    {OUT_TORQUE, FIELD_TORQUE, "torque", "N m"}};
+    int ncomp;          /* components per particle */
+    const char *xdmf;   /* XDMF attribute type */
+} frame_fields[] = {{OUT_POSITION, FIELD_X, "position", "m", 3, "Vector"},
+                    {OUT_VELOCITY, FIELD_V, "velocity", "m/s", 3, "Vector"},
+                    {OUT_ANGULAR_VELOCITY, FIELD_W, "angular_velocity", "rad/s", 3, "Vector"},
+                    {OUT_FORCE, FIELD_FORCE, "force", "N", 3, "Vector"},
+                    {OUT_TORQUE, FIELD_TORQUE, "torque", "N m", 3, "Vector"},
+                    /* xx, yy, zz, xy, xz, yz (dem_layout.h ST_*), seed 000 Eq. 9, negative in compression */
+                    {OUT_STRESS, FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
 #define NFF (sizeof frame_fields / sizeof frame_fields[0])
 
-enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S__N };
+enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S__N };
 static const char *series_names[S__N] = {"time", "step", "kinetic", "elastic", "potential", "total",
-                                         "contacts", "wall_contacts", "strain", "stress"};
-static const char *series_units[S__N] = {"s", NULL, "J", "J", "J", "J", NULL, NULL, "1", "Pa"};
+                                         "contacts", "wall_contacts", "strain", "stress", "mc_iterations"};
+static const char *series_units[S__N] = {"s", NULL, "J", "J", "J", "J", NULL, NULL, "1", "Pa", NULL};
 
 struct output {
     char path[4096], part[4200];
     hid_t file, frames, series;
-    int n, nwalls, sample;
+    int n, nwalls, sample, mc; /* mc: MC-strain iterations are recorded */
     unsigned fields;
     h5rows ftime, fstep, fdata[NFF];
     h5rows s[S__N], wall_pos, wall_force;
@@ -49,7 +53,8 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     o->nwalls = nw;
     o->fields = run->fields;
     o->sample = run->piston >= 0;
-    o->buf = malloc(sizeof(double) * 3 * (size_t)(n > 32 ? n : 32));
+    o->mc = (run->effects & DEM_EFFECT_MC_STRAIN) != 0;
+    o->buf = malloc(sizeof(double) * 6 * (size_t)(n > 32 ? n : 32));
     o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     int rc = !o->buf || o->file < 0;
     char fx[128];
@@ -83,14 +88,14 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
              h5rows_create(&o->fstep, o->frames, "step", H5T_NATIVE_DOUBLE, 1, 0, 0, NULL);
         for (size_t k = 0; !rc && k < NFF; k++)
             if (o->fields & frame_fields[k].bit)
-                rc = h5rows_create(&o->fdata[k], o->frames, frame_fields[k].name, H5T_NATIVE_DOUBLE, 3, (hsize_t)n, 3,
-                                   frame_fields[k].units);
+                rc = h5rows_create(&o->fdata[k], o->frames, frame_fields[k].name, H5T_NATIVE_DOUBLE, 3, (hsize_t)n,
+                                   (hsize_t)frame_fields[k].ncomp, frame_fields[k].units);
     }
     if (!rc) {
         o->series = H5Gcreate2(o->file, "series", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         rc = o->series < 0;
         for (int k = 0; !rc && k < S__N; k++)
-            if (k < S_STRAIN || o->sample)
+            if (k < S_STRAIN || (k < S_MCIT && o->sample) || (k == S_MCIT && o->mc))
                 rc = h5rows_create(&o->s[k], o->series, series_names[k], H5T_NATIVE_DOUBLE, 1, 0, 0, series_units[k]);
         if (!rc && nw)
             rc = h5rows_create(&o->wall_pos, o->series, "wall_position", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "m") ||
@@ -131,10 +136,12 @@ int output_series(output *o, dem_sim *s, double strain, double stress)
     dem_energy_t e;
     if (dem_energy(s, &e))
         return -1;
+    dem_mc_stats mc;
+    dem_mc_stats_get(s, &mc);
     double row[S__N] = {dem_time(s), (double)dem_step_index(s), e.kinetic, e.elastic, e.potential, e.total,
-                        (double)e.contacts, (double)e.wall_contacts, strain, stress};
+                        (double)e.contacts, (double)e.wall_contacts, strain, stress, (double)mc.last};
     for (int k = 0; k < S__N; k++)
-        if ((k < S_STRAIN || o->sample) && h5rows_append(&o->s[k], &row[k]))
+        if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k == S_MCIT && o->mc)) && h5rows_append(&o->s[k], &row[k]))
             return -1;
     if (o->nwalls) {
         double pos[3 * 32], f[3 * 32];
@@ -180,15 +187,16 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
         for (size_t k = 0; k < NFF; k++) {
             if (!(o->fields & frame_fields[k].bit))
                 continue;
+            int c = frame_fields[k].ncomp;
             if (k > 0)
-                fprintf(fp, "<Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n",
-                        frame_fields[k].name);
+                fprintf(fp, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n",
+                        frame_fields[k].name, frame_fields[k].xdmf);
             fprintf(fp,
-                    "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
-                    "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
-                    "<DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                    "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n"
+                    "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d %d</DataItem>\n"
+                    "<DataItem Dimensions=\"%ld %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
                     "%s:/frames/%s</DataItem>\n</DataItem>\n",
-                    o->n, f, o->n, F, o->n, h5name, frame_fields[k].name);
+                    o->n, c, f, o->n, c, F, o->n, c, h5name, frame_fields[k].name);
             fprintf(fp, k > 0 ? "</Attribute>\n" : "</Geometry>\n");
         }
         fprintf(fp, "<Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"

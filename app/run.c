@@ -128,9 +128,13 @@ int run_scene(const run_opts *o)
     int show = o->progress < 0 ? isatty(2) : o->progress;
     if (show || o->progress != 0)
         fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n"
-                        "dem: kernels per step: integrate_kick_drift, contact_pairs, contact_forces%s, integrate_kick "
+                        "dem: kernels per step: integrate_kick_drift, %scontact_pairs, contact_forces%s, integrate_kick "
                         "(+ binning and neighbour kernels at each rebuild)\n",
                 sc->path, dem_count(s), dem_wall_count(s), run.dt, run.steps, dem_describe(s),
+                (run.effects & DEM_EFFECT_MC_STRESS)   ? "stress_trace, "
+                : !(run.effects & DEM_EFFECT_MC_STRAIN) ? ""
+                : sc->f->mc_iterations                  ? "mc_strain_disp + (mc_strain_update, mc_strain_disp) x iterations, "
+                                                        : "mc_strain_disp, ",
                 (run.effects & DEM_EFFECT_WALLS) && dem_wall_count(s) ? ", wall_reduce_block, wall_reduce_final" : "");
     out = output_open(outp, sc, &run, s, err, sizeof err);
     if (!out) {
@@ -198,8 +202,16 @@ int run_scene(const run_opts *o)
     }
     out = NULL;
     if (o->progress != 0 || show)
+    {
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", outp, ckp,
                 dem_step_index(s), now() - t0);
+        dem_mc_stats mc;
+        dem_mc_stats_get(s, &mc);
+        if ((run.effects & DEM_EFFECT_MC_STRAIN) && sc->f->mc_iterations)
+            fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
+                            "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
+                    mc.max, mc.unconverged, sc->f->mc_iterations);
+    }
 done:
     if (out)
         output_abort(out);

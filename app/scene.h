@@ -13,6 +13,7 @@
 typedef struct {
     char *name;
     double density, young, poisson, restitution, friction;
+    double beta, gamma;           /* multi-contact prefactors (mc_stress, mc_strain) */
 } scene_material;
 
 typedef struct {
@@ -106,6 +107,8 @@ typedef struct {
     scene_time time;
     scene_output output;
     scene_sample *sample;         /* optional: report engineering strain and stress of a compressed sample */
+    int mc_iterations;            /* MC-strain: 0 lagged (published scheme), N > 0 iterate up to N times */
+    double mc_tolerance;          /* MC-strain iteration: relative force change accepted (default 1e-6) */
 } scene_file;
 
 typedef struct scene_locator scene_locator; /* scene_locate.c */
@@ -122,7 +125,7 @@ typedef struct {
 
 /* Output fields a scene may ask for. */
 enum { OUT_POSITION = 1, OUT_VELOCITY = 2, OUT_ANGULAR_VELOCITY = 4, OUT_RADIUS = 8, OUT_FORCE = 16,
-       OUT_TORQUE = 32, OUT_MATERIAL = 64 };
+       OUT_TORQUE = 32, OUT_MATERIAL = 64, OUT_STRESS = 128 };
 
 /* What scene_build derives. */
 typedef struct {

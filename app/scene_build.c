@@ -45,11 +45,12 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         const char *e = f->effects[k];
         int bit = dem_effect_bit(e);
         if (bit < 0) {
-            if (!strcmp(e, "mc_stress") || !strcmp(e, "mc_strain") || !strcmp(e, "membrane"))
+            if (!strcmp(e, "membrane"))
                 return scene_fail(sc, err, errlen, path, "effect '%s' is not available in libdem %s yet", e,
                                   DEM_VERSION);
             return scene_fail(sc, err, errlen, path,
-                              "unknown effect '%s' (known: hertz, damping, friction, gravity, walls)", e);
+                              "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
+                              "mc_strain)", e);
         }
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
@@ -57,6 +58,15 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
     }
     if (!(run->effects & DEM_EFFECT_HERTZ))
         return scene_fail(sc, err, errlen, "effects", "'hertz' (the contact law) must be listed");
+    if ((run->effects & DEM_EFFECT_MC_STRESS) && (run->effects & DEM_EFFECT_MC_STRAIN))
+        return scene_fail(sc, err, errlen, "effects", "mc_stress and mc_strain are alternative normal laws: list one");
+    if (f->mc_iterations < 0 || f->mc_iterations > 10000)
+        return scene_fail(sc, err, errlen, "mc_iterations", "must be in 0..10000 (0: the lagged scheme)");
+    if (scene_has(sc->loc, "mc_tolerance") && !(f->mc_tolerance > 0 && isfinite(f->mc_tolerance)))
+        return scene_fail(sc, err, errlen, "mc_tolerance", "must be > 0");
+    if ((scene_has(sc->loc, "mc_iterations") || scene_has(sc->loc, "mc_tolerance")) && !(run->effects & DEM_EFFECT_MC_STRAIN))
+        return scene_fail(sc, err, errlen, scene_has(sc->loc, "mc_iterations") ? "mc_iterations" : "mc_tolerance",
+                          "MC-strain settings are given but the effect 'mc_strain' is off");
     return 0;
 }
 
@@ -78,13 +88,15 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
         MCHECK("poisson", m->poisson > -1 && m->poisson <= 0.5, "Poisson's ratio must be in (-1, 0.5]");
         MCHECK("restitution", m->restitution > 0 && m->restitution <= 1, "restitution must be in (0, 1]");
         MCHECK("friction", m->friction >= 0 && isfinite(m->friction), "friction must be >= 0");
+        MCHECK("beta", m->beta >= 0 && isfinite(m->beta), "the MC-stress prefactor beta must be >= 0");
+        MCHECK("gamma", m->gamma >= 0 && isfinite(m->gamma), "the MC-strain prefactor gamma must be >= 0");
 #undef MCHECK
         for (unsigned j = 0; j < k; j++)
             if (!strcmp(f->materials[j].name, m->name)) {
                 snprintf(p, sizeof p, "materials[%u].name", k);
                 return scene_fail(sc, err, errlen, p, "material '%s' is defined twice", m->name);
             }
-        dem_material dm = {m->density, m->young, m->poisson, m->restitution, m->friction};
+        dem_material dm = {m->density, m->young, m->poisson, m->restitution, m->friction, m->beta, m->gamma};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
@@ -248,13 +260,14 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
 static int parse_output(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
     const scene_output *o = &sc->f->output;
-    static const char *names[] = {"position", "velocity", "angular_velocity", "radius", "force", "torque", "material"};
+    static const char *names[] = {"position", "velocity", "angular_velocity", "radius", "force", "torque", "material",
+                                  "stress"};
     run->fields = 0;
     if (!o->fields_count)
         run->fields = OUT_POSITION | OUT_VELOCITY | OUT_RADIUS;
     for (unsigned k = 0; k < o->fields_count; k++) {
         unsigned bit = 0;
-        for (int q = 0; q < 7; q++)
+        for (int q = 0; q < 8; q++)
             if (!strcmp(o->fields[k], names[q]))
                 bit = 1u << q;
         char p[64];
@@ -262,7 +275,7 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
         if (!bit)
             return scene_fail(sc, err, errlen, p,
                               "unknown field '%s' (position, velocity, angular_velocity, radius, force, torque, "
-                              "material)", o->fields[k]);
+                              "material, stress)", o->fields[k]);
         run->fields |= bit;
     }
     const double dt = run->dt, T = sc->f->time.duration;
@@ -347,6 +360,9 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
         return scene_fail(sc, err, errlen, "domain", "%s", dem_error(s));
     if (dem_set_effects(s, run->effects))
         return scene_fail(sc, err, errlen, "effects", "%s", dem_error(s));
+    if (f->mc_iterations > 0 &&
+        dem_set_mc_strain(s, f->mc_iterations, scene_has(sc->loc, "mc_tolerance") ? f->mc_tolerance : 1e-6))
+        return scene_fail(sc, err, errlen, "mc_iterations", "%s", dem_error(s));
     return 0;
 }
 

@@ -24,6 +24,7 @@ static const cyaml_schema_field_t material_fields[] = {
     CYAML_FIELD_FLOAT("poisson", CYAML_FLAG_DEFAULT, scene_material, poisson),
     CYAML_FIELD_FLOAT("restitution", CYAML_FLAG_DEFAULT, scene_material, restitution),
     REAL("friction", scene_material, friction),
+    REAL("beta", scene_material, beta), REAL("gamma", scene_material, gamma),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t material_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material, material_fields)};
@@ -120,6 +121,8 @@ static const cyaml_schema_field_t scene_fields[] = {
     CYAML_FIELD_MAPPING("time", CYAML_FLAG_DEFAULT, scene_file, time, time_fields),
     CYAML_FIELD_MAPPING("output", CYAML_FLAG_OPTIONAL, scene_file, output, output_fields),
     CYAML_FIELD_MAPPING_PTR("sample", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, sample, sample_fields),
+    CYAML_FIELD_INT("mc_iterations", CYAML_FLAG_OPTIONAL, scene_file, mc_iterations),
+    REAL("mc_tolerance", scene_file, mc_tolerance),
     CYAML_FIELD_END};
 
 static const cyaml_schema_value_t scene_schema = {CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, scene_file, scene_fields)};

@@ -22,39 +22,42 @@
 #define DEM_CONTACT_FORCES_H
 #include "hertz_mindlin.h"
 #include "wall_forces.h"
+#include "particle_stress.h"
+#include "mc_strain.h"
 
 typedef struct {
     int active;  /* 1 when the spheres overlap */
     real delta;  /* overlap [m] */
+    real fel;    /* elastic normal force (MC-strain keeps it for the next evaluation) [N] */
     vec3 force;  /* force on a (the smaller id) [N] */
     vec3 c;      /* n x f_t [N] */
     vec3 hist;   /* new tangential history */
 } pair_contact;
 
+/* The multi-contact inputs of a pair (unused arrays may be any valid buffer: the effect test folds them away):
+ * MC-stress reads trace and invvol per particle, MC-strain the induced displacements of the pair's two slots. */
 DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
-                                          DEM_CONST_GLOBAL real *hist, int slot, int touching)
+                                          DEM_CONST_GLOBAL real *hist, int slot, int touching,
+                                          DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol, real disp_a,
+                                          real disp_b)
 {
     pair_contact pc;
-    vec3 d = v3_sub(v3_load(x, a), v3_load(x, b));
     real ra = radius[a], rb = radius[b];
-    real rsum = ra + rb;
-    real dist2 = v3_dot(d, d);
-    pc.active = 0;
+    pair_geom g = pair_geometry(v3_load(x, a), ra, v3_load(x, b), rb);
+    pc.active = g.active;
     pc.delta = (real)0;
+    pc.fel = (real)0;
     pc.force = v3_zero();
     pc.c = v3_zero();
     pc.hist = v3_zero();
-    if (!(dist2 < rsum * rsum))
+    if (!g.active)
         return pc;
-    pc.active = 1;
-    real dist = dem_sqrt(dist2);
-    /* Coincident centres: the direction is undefined; the defined policy is to push a along +z. */
-    vec3 n = dist > (real)0 ? v3_scale(d, (real)1 / dist) : v3((real)0, (real)0, (real)1);
-    real delta = rsum - dist;
-    real rstar = ra * rb / rsum;
+    vec3 n = g.n;
+    real delta = g.delta, rstar = g.rstar;
+    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     real mstar = hm_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */
@@ -66,9 +69,14 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         if (touching)
             h = v3_load(hist, slot);
     }
-    hm_result r = hm_contact(fx, n, delta, rstar, mstar, v3_sub(vca, vcb), pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]),
-                             dt, h);
+    real extra = (real)0, law_delta = delta;
+    if (fx & DEM_EFFECT_MC_STRESS)
+        extra = mc_stress_pair(pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic(pm[PM_ESTAR], rstar, delta));
+    if (fx & DEM_EFFECT_MC_STRAIN)
+        law_delta = mc_strain_overlap(delta, disp_a, disp_b);
+    hm_result r = hm_contact(fx, n, law_delta, rstar, mstar, v3_sub(vca, vcb), pm, dt, h, extra);
     pc.delta = delta;
+    pc.fel = r.fel;
     pc.force = r.force;
     if (fx & DEM_EFFECT_FRICTION) {
         pc.c = v3_cross(n, r.ft);
@@ -89,7 +97,9 @@ DEM_INLINE void contact_pairs_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBA
                                    DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
                                    DEM_GLOBAL real *hist, DEM_GLOBAL unsigned char *touch, real dt,
                                    DEM_CONST_GLOBAL int *in_start, DEM_GLOBAL real *pair, DEM_GLOBAL real *force,
-                                   DEM_GLOBAL real *torque)
+                                   DEM_GLOBAL real *torque, DEM_CONST_GLOBAL real *trace,
+                                   DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_disp,
+                                   DEM_GLOBAL real *mc_fn)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i];
@@ -102,8 +112,17 @@ DEM_INLINE void contact_pairs_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBA
         int touching = touch[slot], m = nbr_mirror[slot];
         if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
             continue;
+        real da = (real)0, db = (real)0;
+        if (fx & DEM_EFFECT_MC_STRAIN) {
+            da = mc_disp[slot];
+            db = mc_disp[m];
+        }
         pair_contact pc = pair_contact_eval(fx, i, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
-                                            touching);
+                                            touching, trace, invvol, da, db);
+        if (fx & DEM_EFFECT_MC_STRAIN) { /* both slots: the partner's mc_strain_disp reads its own row */
+            mc_fn[slot] = pc.fel;
+            mc_fn[m] = pc.fel;
+        }
         if (!pc.active) {
             if (touching) { /* the contact ended: so does its history */
                 if (fx & DEM_EFFECT_FRICTION)
@@ -152,7 +171,9 @@ DEM_INLINE void contact_forces_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
                                     DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
                                     DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
                                     DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
-                                    DEM_GLOBAL unsigned *wall_mask)
+                                    DEM_GLOBAL unsigned *wall_mask, DEM_CONST_GLOBAL real *trace,
+                                    DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_wall_disp,
+                                    DEM_GLOBAL real *mc_wall_fn)
 {
     vec3 fi = v3_load(force, i), ti = v3_zero();
     if (fx & DEM_EFFECT_FRICTION)
@@ -172,7 +193,8 @@ DEM_INLINE void contact_forces_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
     }
     if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
-                          invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, &fi, &ti);
+                          invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, trace, invvol,
+                          mc_wall_disp, mc_wall_fn, &fi, &ti);
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(torque, i, ti);

@@ -16,8 +16,13 @@ enum {
                                 history is allocated and angular velocities stay as set */
     DEM_EFFECT_GRAVITY = 8,  /* uniform body force */
     DEM_EFFECT_WALLS = 16,   /* planes and cylinders */
-    DEM_EFFECT_CLASSICAL = 31
+    DEM_EFFECT_CLASSICAL = 31,
+    DEM_EFFECT_MC_STRESS = 32, /* stress-based multi-contact normal law (seed 000 Eq. 9-10): common/particle_stress.h */
+    DEM_EFFECT_MC_STRAIN = 64, /* strain-based multi-contact normal law (Brodu et al., seed 000 Eq. 7-8):
+                                  common/mc_strain.h; excludes mc_stress */
+    DEM_EFFECT_ALL = 127
 };
+#define DEM_EFFECT_COUNT 7 /* number of effect bits */
 
 #ifndef DEM_EFFECTS
 #define DEM_EFFECTS DEM_EFFECT_CLASSICAL

@@ -14,7 +14,14 @@ enum {
     PM_MU = 2,    /* Coulomb friction coefficient  [-] */
     PM_DAMP_N = 3, /* c sqrt(2 E*): normal damping is -PM_DAMP_N sqrt(sqrt(r* d) m*) v_n   [sqrt(Pa)] */
     PM_DAMP_T = 4, /* c sqrt(8 G*): tangential damping is -PM_DAMP_T sqrt(sqrt(r* d) m*) v_t [sqrt(Pa)] */
-    PM_STRIDE = 5  /* c: damping factor calibrated from restitution (host/restitution.c) */
+                   /* c: damping factor calibrated from restitution (host/restitution.c) */
+    PM_MC_STRESS = 5, /* pi beta nu, mean of the two materials' beta nu (seed 000 Eq. 10: A = pi r* d) [-] */
+    /* MC-strain constants of ONE material (Eq. 7); meaningful on the diagonal entry m*nmat+m of material m, which
+     * is where a particle of material m looks them up (the deformation field is that of its own material). */
+    PM_MCS_K = 6,  /* gamma (1 + nu) / (2 pi E) [1/Pa] */
+    PM_MCS_C1 = 7, /* 3 - 4 nu */
+    PM_MCS_C2 = 8, /* 1 - 2 nu */
+    PM_STRIDE = 9
 };
 
 /* Wall geometry and motion, real part (index w*W_STRIDE + ...). */
@@ -44,9 +51,12 @@ enum {
     FLAG_OUT_OF_DOMAIN = 1, /* smallest id of a particle outside the binning domain (or non-finite); INT_MAX if none */
     FLAG_NBR_NEEDED = 2,    /* largest neighbour count found; > capacity means the build overflowed */
     FLAG_ASYMMETRIC = 3,    /* 1 when some row lacks its partner's mirror slot (a bug: rows are symmetric) */
-    FLAG_COUNT = 4
+    FLAG_MC_PENDING = 4,    /* MC-strain iteration: 1 when some contact force changed by more than the tolerance */
+    FLAG_COUNT = 5
 };
 #define DEM_NO_PARTICLE 2147483647
+/* Per-particle symmetric stress tensor (FIELD_STRESS): 6 reals per particle in this order [Pa]. */
+enum { ST_XX = 0, ST_YY, ST_ZZ, ST_XY, ST_XZ, ST_YZ, ST_STRIDE };
 
 /* Fixed block length of the canonical wall-force reduction: partial sums over blocks of this many
  * particles, in ascending id, then the partials in ascending block order. It is a constant, not the

@@ -15,6 +15,11 @@
  *          q = sqrt(sqrt(r* d) m*); the pair table holds c sqrt(2 E*) and c sqrt(8 G*) (host-computed), so one
  *          square root serves both and no transcendental function is evaluated on the device.
  *
+ * Multi-contact models enter through two arguments and leave the law itself alone: `delta` is the overlap the law
+ *          sees (MC-strain passes the geometric overlap plus the displacements induced by the other contacts, Eq. 8)
+ *          and `fn_extra` is added to the elastic normal force before damping and the clamp (MC-stress, Eq. 10;
+ *          0 otherwise, and x + 0 == x bit for bit, so classical runs are unchanged).
+ *
  * Effects (dem_effects.h): without DEM_EFFECT_DAMPING the damping terms and their square root are left out; without
  *          DEM_EFFECT_FRICTION the whole tangential part is (no history, no torque).
  *
@@ -28,6 +33,7 @@
 #include "dem_effects.h"
 
 typedef struct {
+    real fel;   /* elastic Hertz normal force 4/3 E* sqrt(r*) d^(3/2) of the overlap given [N] */
     vec3 force; /* total contact force on a [N] */
     vec3 ft;    /* its tangential part [N] (torques) */
     vec3 hist;  /* new elastic tangential force to store [N] */
@@ -45,18 +51,32 @@ DEM_INLINE vec3 hm_rotate_history(vec3 h, vec3 n)
     return hp;
 }
 
+/* Elastic Hertz normal force (Eq. 3) given sqrt(r* d): the one expression every caller shares, so the stress
+ * trace (particle_stress.h) sees the very bits the force law computes. */
+DEM_INLINE real hm_elastic_srd(real estar, real srd, real delta)
+{
+    const real four_thirds = (real)4 / (real)3;
+    return four_thirds * estar * srd * delta;
+}
+DEM_INLINE real hm_elastic(real estar, real rstar, real delta)
+{
+    return hm_elastic_srd(estar, dem_sqrt(rstar * delta), delta);
+}
+
 DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real rstar, real mstar, vec3 vrel,
-                                DEM_CONST_GLOBAL real *pm, real dt, vec3 hist)
+                                DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
 {
     const real estar = pm[PM_ESTAR];
-    const real four_thirds = (real)4 / (real)3;
     hm_result r;
     real srd = dem_sqrt(rstar * delta); /* sqrt(r* d) */
     real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
     real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
 
     /* normal */
-    real fn = four_thirds * estar * srd * delta;
+    r.fel = hm_elastic_srd(estar, srd, delta);
+    real fn = r.fel;
+    if (fx & (DEM_EFFECT_MC_STRESS))
+        fn = fn + fn_extra;
     if (fx & DEM_EFFECT_DAMPING) {
         q = dem_sqrt(srd * mstar);
         fn = fn - pm[PM_DAMP_N] * q * vn;

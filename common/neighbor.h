@@ -4,8 +4,8 @@
  * order of contact_forces.h), at nbr_list[i*maxn ...]. The test is symmetric in i and j bit for bit (IEEE + and *
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
- * A new row takes the tangential history and touching flag of the same partner from the old row (binary
- * search), or zero, and records for each slot the slot of the same pair in the partner's row (mirror; see
+ * A new row takes the tangential history, touching flag and MC-strain force of the same partner from the old row
+ * (binary search), or zero, and records for each slot the slot of the same pair in the partner's row (mirror; see
  * contact_forces.h).
  */
 #ifndef DEM_NEIGHBOR_H
@@ -66,7 +66,8 @@ DEM_INLINE void nbr_carry_item(unsigned fx, int i, int maxn, int old_maxn, DEM_C
                                DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
                                DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
                                DEM_CONST_GLOBAL unsigned char *old_touch, DEM_GLOBAL real *hist,
-                               DEM_GLOBAL unsigned char *touch, DEM_GLOBAL int *mirror, DEM_GLOBAL int *flags)
+                               DEM_GLOBAL unsigned char *touch, DEM_GLOBAL int *mirror, DEM_GLOBAL int *flags,
+                               DEM_CONST_GLOBAL real *old_mc_fn, DEM_GLOBAL real *mc_fn)
 {
     int on = old_count[i];
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
@@ -107,6 +108,8 @@ DEM_INLINE void nbr_carry_item(unsigned fx, int i, int maxn, int old_maxn, DEM_C
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
             v3_store(hist, i * maxn + k, t ? v3_load(old_hist, i * old_maxn + found) : v3_zero());
         touch[i * maxn + k] = (unsigned char)t;
+        if (fx & DEM_EFFECT_MC_STRAIN) /* the lagged MC-strain force of the same contact (mc_strain.h) */
+            mc_fn[i * maxn + k] = t ? old_mc_fn[i * old_maxn + found] : (real)0;
     }
 }
 #endif /* DEM_NEIGHBOR_H */

@@ -10,39 +10,9 @@
 #ifndef DEM_WALL_FORCES_H
 #define DEM_WALL_FORCES_H
 #include "hertz_mindlin.h"
-
-typedef struct {
-    int active;
-    real delta; /* overlap [m] */
-    vec3 n;     /* unit normal from the wall towards the particle centre */
-} wall_geom;
-
-DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri)
-{
-    wall_geom g;
-    vec3 p = v3(wr[W_PX], wr[W_PY], wr[W_PZ]);
-    vec3 nw = v3(wr[W_NX], wr[W_NY], wr[W_NZ]);
-    vec3 d = v3_sub(xi, p);
-    g.active = 0;
-    g.delta = (real)0;
-    g.n = nw;
-    if (type == WALL_PLANE) {
-        /* A centre behind the plane still gets pushed back out (d > r), rather than tunnelling silently. */
-        g.delta = ri - v3_dot(d, nw);
-        g.active = g.delta > (real)0;
-    } else { /* WALL_CYLINDER_INSIDE */
-        vec3 radial = v3_sub(d, v3_scale(nw, v3_dot(d, nw)));
-        real rho2 = v3_dot(radial, radial);
-        if (rho2 > (real)0) {
-            real rho = dem_sqrt(rho2);
-            g.delta = ri + rho - wr[W_RADIUS];
-            g.active = g.delta > (real)0;
-            g.n = v3_scale(radial, (real)-1 / rho);
-        }
-        /* a centre exactly on the axis cannot touch: the host rejects particles wider than the cylinder */
-    }
-    return g;
-}
+#include "contact_geometry.h"
+#include "particle_stress.h"
+#include "mc_strain.h"
 
 /* One particle against every wall, added to its force and torque after all its particle contacts (called by
  * contact_forces_item, so the particle's data are read and its sums written once per step). Keeps each wall's
@@ -52,7 +22,9 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
 DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                   DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri, real invm,
                                   int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
-                                  real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask, vec3 *fi,
+                                  real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask,
+                                  DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
+                                  DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn, vec3 *fi,
                                   vec3 *ti)
 {
     unsigned old_mask = wall_mask[i], mask = 0;
@@ -71,7 +43,15 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
             }
             vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
             DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
-            hm_result r = hm_contact(fx, g.n, g.delta, ri, mstar, vrel, pm, dt, h);
+            real extra = (real)0, law_delta = g.delta;
+            if (fx & DEM_EFFECT_MC_STRESS)
+                extra = mc_stress_wall(pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
+                                       hm_elastic(pm[PM_ESTAR], ri, g.delta));
+            if (fx & DEM_EFFECT_MC_STRAIN)
+                law_delta = mc_strain_overlap(g.delta, mc_wall_disp[slot], (real)0);
+            hm_result r = hm_contact(fx, g.n, law_delta, ri, mstar, vrel, pm, dt, h, extra);
+            if (fx & DEM_EFFECT_MC_STRAIN)
+                mc_wall_fn[slot] = r.fel;
             v3_store(wall_pf, k * n + i, r.force);
             *fi = v3_add(*fi, r.force);
             if (fx & DEM_EFFECT_FRICTION) {
@@ -79,8 +59,11 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 *ti = v3_sub(*ti, v3_scale(v3_cross(g.n, r.ft), arm));
             }
             mask |= 1u << k;
-        } else if ((fx & DEM_EFFECT_FRICTION) && ((old_mask >> k) & 1u)) {
-            v3_store(wall_hist, slot, v3_zero());
+        } else {
+            if ((fx & DEM_EFFECT_FRICTION) && ((old_mask >> k) & 1u))
+                v3_store(wall_hist, slot, v3_zero());
+            if (fx & DEM_EFFECT_MC_STRAIN)
+                mc_wall_fn[slot] = (real)0;
         }
     }
     wall_mask[i] = mask;

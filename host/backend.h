@@ -17,6 +17,7 @@ typedef struct {
     unsigned effects; /* DEM_EFFECT_* mask (common/dem_effects.h); OpenCL compiles it in as DEM_EFFECTS */
     int n, nmat, nwalls;
     const void *x, *v, *w, *radius, *invmass, *invinertia; /* real arrays */
+    const void *invvol;     /* real[n]: 1 / particle volume [1/m^3] (stress, particle_stress.h) */
     const int *mat;
     const void *pairmat;    /* real[PM_STRIDE*nmat*nmat] */
     const int *wall_int;    /* int[WI_STRIDE*nwalls] */
@@ -56,6 +57,10 @@ typedef struct {
     int (*contact_forces)(dem_backend *b);         /* particle and wall contacts */
     int (*wall_reduce)(dem_backend *b);            /* the force each wall received (contacts: contact_forces) */
     int (*kick)(dem_backend *b);
+    int (*stress_trace)(dem_backend *b);           /* MC-stress pass 1: FIELD_STRESS_TRACE from the positions */
+    int (*stress_tensor)(dem_backend *b);          /* FIELD_STRESS from the positions (output) */
+    int (*mc_strain_disp)(dem_backend *b);         /* induced displacements from the stored MC-strain forces */
+    int (*mc_strain_update)(dem_backend *b, double tol); /* one fixed-point iteration; sets FLAG_MC_PENDING */
     /* New wall positions and velocities (real[W_STRIDE*nwalls]). May return before the copy is done: the caller
      * keeps src unchanged until its next blocking call (the driver's flag read follows at once). */
     int (*set_walls)(dem_backend *b, const void *src);

@@ -9,14 +9,17 @@
 static const char *const kernel_names[K__COUNT] = {
     "bin_index", "scan_block_sum", "scan_block_sums", "scan_apply", "bin_scatter", "bin_sort",
     "nbr_build", "nbr_carry", "contact_pairs", "contact_forces", "wall_reduce_block", "wall_reduce_final",
-    "integrate_kick_drift", "integrate_kick"};
+    "integrate_kick_drift", "integrate_kick", "stress_trace", "stress_tensor", "mc_strain_disp", "mc_strain_update"};
 
 static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighbor.cl", "kernels/contact_forces.cl",
-                                           "kernels/wall_forces.cl", "kernels/integrate.cl"};
+                                           "kernels/wall_forces.cl", "kernels/integrate.cl",
+                                           "kernels/particle_stress.cl", "kernels/mc_strain.cl"};
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
                                            "common/hertz_mindlin.h", "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
-                                           "common/neighbor.h"};
+                                           "common/neighbor.h", "common/dem_effects.h",
+                                           "common/contact_geometry.h", "common/particle_stress.h",
+                                           "common/mc_strain.h"};
 
 int clb_arg_int(dem_backend *b, cl_kernel k, cl_uint idx, int v)
 {
@@ -75,7 +78,7 @@ int clb_fill_int(dem_backend *b, cl_mem m, int value, size_t count)
                     "clEnqueueFillBuffer", b->err, sizeof b->err);
 }
 
-static cl_mem mkbuf(dem_backend *b, size_t bytes, const void *init, int *fail)
+cl_mem clb_buffer(dem_backend *b, size_t bytes, const void *init, int *fail)
 {
     cl_int e;
     if (*fail)
@@ -114,7 +117,8 @@ static void cl_destroy(dem_backend *b)
                       &b->wall_force, &b->cell_of, &b->cell_count, &b->cell_start, &b->cell_fill,
                       &b->cell_particles, &b->block_sum, &b->flags, &b->count[0], &b->count[1], &b->list[0],
                       &b->list[1], &b->hist[0], &b->hist[1], &b->touch[0], &b->touch[1], &b->mirror[0], &b->mirror[1],
-                      &b->pair, &b->in_count, &b->in_start, &b->in_block_sum};
+                      &b->pair, &b->in_count, &b->in_start, &b->in_block_sum, &b->invvol, &b->trace, &b->stress,
+                      &b->mc_fn[0], &b->mc_fn[1], &b->mc_disp[0], &b->mc_disp[1], &b->mc_wall_fn, &b->mc_wall_disp};
     for (size_t k = 0; k < sizeof mems / sizeof mems[0]; k++)
         rel(mems[k]);
     for (int k = 0; k < K__COUNT; k++)
@@ -201,7 +205,8 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
              b->rs == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
              s->extra_build_options ? s->extra_build_options : "");
     const char *src = "#include \"binning.cl\"\n#include \"neighbor.cl\"\n#include \"contact_forces.cl\"\n"
-                      "#include \"wall_forces.cl\"\n#include \"integrate.cl\"\n";
+                      "#include \"wall_forces.cl\"\n#include \"integrate.cl\"\n#include \"particle_stress.cl\"\n"
+                      "#include \"mc_strain.cl\"\n";
     if (cl_build(b->ctx, b->dev.device, src, options, &b->prog, err, errlen))
         goto fail;
     for (int k = 0; k < K__COUNT; k++) {
@@ -232,43 +237,49 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
         b->lo[d] = s->lo[d];
         b->g[d] = s->gravity[d];
     }
-    b->x = mkbuf(b, 3 * N * r, s->x, &fail);
-    b->v = mkbuf(b, 3 * N * r, s->v, &fail);
-    b->w = mkbuf(b, 3 * N * r, s->w, &fail);
-    b->f = mkbuf(b, 3 * N * r, NULL, &fail);
-    b->t = mkbuf(b, 3 * N * r, NULL, &fail);
-    b->radius = mkbuf(b, N * r, s->radius, &fail);
-    b->invm = mkbuf(b, N * r, s->invmass, &fail);
-    b->invi = mkbuf(b, N * r, s->invinertia, &fail);
-    b->x_build = mkbuf(b, 3 * N * r, s->x, &fail);
-    b->mat = mkbuf(b, N * sizeof(int), s->mat, &fail);
-    b->pairmat = mkbuf(b, (size_t)PM_STRIDE * s->nmat * s->nmat * r, s->pairmat, &fail);
-    b->wall_int = mkbuf(b, (size_t)WI_STRIDE * s->nwalls * sizeof(int), s->nwalls ? s->wall_int : NULL, &fail);
-    b->wall_real = mkbuf(b, (size_t)W_STRIDE * s->nwalls * r, s->nwalls ? s->wall_real : NULL, &fail);
+    b->x = clb_buffer(b, 3 * N * r, s->x, &fail);
+    b->v = clb_buffer(b, 3 * N * r, s->v, &fail);
+    b->w = clb_buffer(b, 3 * N * r, s->w, &fail);
+    b->f = clb_buffer(b, 3 * N * r, NULL, &fail);
+    b->t = clb_buffer(b, 3 * N * r, NULL, &fail);
+    b->radius = clb_buffer(b, N * r, s->radius, &fail);
+    b->invm = clb_buffer(b, N * r, s->invmass, &fail);
+    b->invi = clb_buffer(b, N * r, s->invinertia, &fail);
+    b->x_build = clb_buffer(b, 3 * N * r, s->x, &fail);
+    b->mat = clb_buffer(b, N * sizeof(int), s->mat, &fail);
+    b->pairmat = clb_buffer(b, (size_t)PM_STRIDE * s->nmat * s->nmat * r, s->pairmat, &fail);
+    b->wall_int = clb_buffer(b, (size_t)WI_STRIDE * s->nwalls * sizeof(int), s->nwalls ? s->wall_int : NULL, &fail);
+    b->wall_real = clb_buffer(b, (size_t)W_STRIDE * s->nwalls * r, s->nwalls ? s->wall_real : NULL, &fail);
     b->fx = s->effects;
-    b->wall_hist = mkbuf(b, dem_field_size(FIELD_WALL_HIST, b->fx, N, 0, (size_t)s->nwalls, 0, r), NULL, &fail);
-    b->wall_pf = mkbuf(b, 3 * N * s->nwalls * r, NULL, &fail);
-    b->wall_mask = mkbuf(b, N * sizeof(unsigned), NULL, &fail);
-    b->partial = mkbuf(b, 3 * (size_t)b->nblocks_red * s->nwalls * r, NULL, &fail);
-    b->wall_force = mkbuf(b, 3 * (size_t)s->nwalls * r, NULL, &fail);
-    b->cell_of = mkbuf(b, N * sizeof(int), NULL, &fail);
-    b->cell_count = mkbuf(b, (size_t)b->ncells * sizeof(int), NULL, &fail);
-    b->cell_start = mkbuf(b, ((size_t)b->ncells + 1) * sizeof(int), NULL, &fail);
-    b->cell_fill = mkbuf(b, (size_t)b->ncells * sizeof(int), NULL, &fail);
-    b->cell_particles = mkbuf(b, N * sizeof(int), NULL, &fail);
-    b->block_sum = mkbuf(b, (size_t)b->nblocks_scan * sizeof(int), NULL, &fail);
-    b->flags = mkbuf(b, FLAG_COUNT * sizeof(int), NULL, &fail);
+    b->invvol = clb_buffer(b, N * r, s->invvol, &fail);
+    b->trace = clb_buffer(b, dem_field_size(FIELD_STRESS_TRACE, b->fx, N, 0, 0, 0, r), NULL, &fail);
+    b->mc_wall_fn = clb_buffer(b, dem_field_size(FIELD_MC_WALL_FORCE, b->fx, N, 0, (size_t)s->nwalls, 0, r), NULL, &fail);
+    b->mc_wall_disp = clb_buffer(b, dem_field_size(FIELD_MC_WALL_DISP, b->fx, N, 0, (size_t)s->nwalls, 0, r), NULL, &fail);
+    b->wall_hist = clb_buffer(b, dem_field_size(FIELD_WALL_HIST, b->fx, N, 0, (size_t)s->nwalls, 0, r), NULL, &fail);
+    b->wall_pf = clb_buffer(b, 3 * N * s->nwalls * r, NULL, &fail);
+    b->wall_mask = clb_buffer(b, N * sizeof(unsigned), NULL, &fail);
+    b->partial = clb_buffer(b, 3 * (size_t)b->nblocks_red * s->nwalls * r, NULL, &fail);
+    b->wall_force = clb_buffer(b, 3 * (size_t)s->nwalls * r, NULL, &fail);
+    b->cell_of = clb_buffer(b, N * sizeof(int), NULL, &fail);
+    b->cell_count = clb_buffer(b, (size_t)b->ncells * sizeof(int), NULL, &fail);
+    b->cell_start = clb_buffer(b, ((size_t)b->ncells + 1) * sizeof(int), NULL, &fail);
+    b->cell_fill = clb_buffer(b, (size_t)b->ncells * sizeof(int), NULL, &fail);
+    b->cell_particles = clb_buffer(b, N * sizeof(int), NULL, &fail);
+    b->block_sum = clb_buffer(b, (size_t)b->nblocks_scan * sizeof(int), NULL, &fail);
+    b->flags = clb_buffer(b, FLAG_COUNT * sizeof(int), NULL, &fail);
     for (int k = 0; k < 2; k++) {
         b->maxn[k] = s->maxn;
-        b->count[k] = mkbuf(b, N * sizeof(int), NULL, &fail);
-        b->list[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
-        b->hist[k] = mkbuf(b, dem_field_size(FIELD_HIST, b->fx, N, (size_t)s->maxn, 0, 0, r), NULL, &fail);
-        b->touch[k] = mkbuf(b, N * s->maxn, NULL, &fail);
-        b->mirror[k] = mkbuf(b, N * s->maxn * sizeof(int), NULL, &fail);
+        b->count[k] = clb_buffer(b, N * sizeof(int), NULL, &fail);
+        b->list[k] = clb_buffer(b, N * s->maxn * sizeof(int), NULL, &fail);
+        b->hist[k] = clb_buffer(b, dem_field_size(FIELD_HIST, b->fx, N, (size_t)s->maxn, 0, 0, r), NULL, &fail);
+        b->touch[k] = clb_buffer(b, N * s->maxn, NULL, &fail);
+        b->mirror[k] = clb_buffer(b, N * s->maxn * sizeof(int), NULL, &fail);
+        b->mc_fn[k] = clb_buffer(b, dem_field_size(FIELD_MC_FORCE, b->fx, N, (size_t)s->maxn, 0, 0, r), NULL, &fail);
+        b->mc_disp[k] = clb_buffer(b, dem_field_size(FIELD_MC_DISP, b->fx, N, (size_t)s->maxn, 0, 0, r), NULL, &fail);
     }
-    b->in_count = mkbuf(b, N * sizeof(int), NULL, &fail);
-    b->in_start = mkbuf(b, (N + 1) * sizeof(int), NULL, &fail);
-    b->in_block_sum = mkbuf(b, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK * sizeof(int), NULL, &fail);
+    b->in_count = clb_buffer(b, N * sizeof(int), NULL, &fail);
+    b->in_start = clb_buffer(b, (N + 1) * sizeof(int), NULL, &fail);
+    b->in_block_sum = clb_buffer(b, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK * sizeof(int), NULL, &fail);
     b->pair_cap = 0;
     b->pair = NULL;
     if (fail || cl_check(clFinish(b->q), "clFinish after upload", b->err, sizeof b->err)) {
@@ -288,7 +299,7 @@ static const char *cl_describe(dem_backend *b) { return b->desc; }
 /* Non-blocking: the source is static, and the driver's next flag read waits for the queue anyway. */
 static int cl_reset_flags(dem_backend *b)
 {
-    static const int init[FLAG_COUNT] = {0, DEM_NO_PARTICLE, 0, 0};
+    static const int init[FLAG_COUNT] = {0, DEM_NO_PARTICLE, 0, 0, 0};
     return cl_check(clEnqueueWriteBuffer(b->q, b->flags, CL_FALSE, 0, sizeof init, init, 0, NULL, NULL),
                     "write flags", b->err, sizeof b->err);
 }
@@ -311,11 +322,17 @@ static int cl_nbr_reserve(dem_backend *b, int maxn)
     rel(&b->hist[s]);
     rel(&b->touch[s]);
     rel(&b->mirror[s]);
-    b->list[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
-    b->hist[s] = mkbuf(b, dem_field_size(FIELD_HIST, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, (size_t)b->rs), NULL,
+    rel(&b->mc_fn[s]);
+    rel(&b->mc_disp[s]);
+    b->mc_fn[s] = clb_buffer(b, dem_field_size(FIELD_MC_FORCE, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, (size_t)b->rs),
+                             NULL, &fail);
+    b->mc_disp[s] = clb_buffer(b, dem_field_size(FIELD_MC_DISP, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, (size_t)b->rs),
+                               NULL, &fail);
+    b->list[s] = clb_buffer(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
+    b->hist[s] = clb_buffer(b, dem_field_size(FIELD_HIST, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, (size_t)b->rs), NULL,
                        &fail);
-    b->touch[s] = mkbuf(b, (size_t)b->n * maxn, NULL, &fail);
-    b->mirror[s] = mkbuf(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
+    b->touch[s] = clb_buffer(b, (size_t)b->n * maxn, NULL, &fail);
+    b->mirror[s] = clb_buffer(b, (size_t)b->n * maxn * sizeof(int), NULL, &fail);
     b->maxn[s] = maxn;
     return fail;
 }
@@ -335,7 +352,7 @@ static int cl_nbr_commit(dem_backend *b)
         int fail = 0;
         size_t cap = (size_t)total + (size_t)total / 4 + 16;
         rel(&b->pair);
-        b->pair = mkbuf(b, (size_t)PR_STRIDE * cap * b->rs, NULL, &fail);
+        b->pair = clb_buffer(b, (size_t)PR_STRIDE * cap * b->rs, NULL, &fail);
         if (fail)
             return 1;
         b->pair_cap = cap;
@@ -349,7 +366,8 @@ static cl_mem field_mem(dem_backend *b, dem_field f, size_t *bytes)
     int k = b->cur;
     cl_mem m[FIELD__COUNT] = {b->x, b->v, b->w, b->f, b->t, b->x_build, b->count[k], b->list[k], b->hist[k],
                               b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real,
-                              b->touch[k], b->wall_mask};
+                              b->touch[k], b->wall_mask, b->stress, b->trace, b->mc_fn[k], b->mc_wall_fn,
+                              b->mc_disp[k], b->mc_wall_disp};
     *bytes = dem_field_size(f, b->fx, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, (size_t)b->rs);
     return (int)f >= 0 && f < FIELD__COUNT ? m[f] : NULL;
 }
@@ -407,6 +425,10 @@ const dem_backend_ops dem_opencl_ops = {
     .contact_forces = clb_contact_forces,
     .wall_reduce = clb_wall_reduce,
     .kick = clb_integrate_kick,
+    .stress_trace = clb_stress_trace,
+    .stress_tensor = clb_stress_tensor,
+    .mc_strain_disp = clb_mc_strain_disp,
+    .mc_strain_update = clb_mc_strain_update,
     .set_walls = cl_set_walls,
     .read = cl_read,
     .write = cl_write,

@@ -9,7 +9,7 @@
 typedef enum {
     K_BIN_INDEX, K_SCAN_BLOCK_SUM, K_SCAN_BLOCK_SUMS, K_SCAN_APPLY, K_BIN_SCATTER, K_BIN_SORT,
     K_NBR_BUILD, K_NBR_CARRY, K_CONTACT_PAIRS, K_CONTACT_FORCES, K_WALL_REDUCE_BLOCK, K_WALL_REDUCE_FINAL,
-    K_KICK_DRIFT, K_KICK, K__COUNT
+    K_KICK_DRIFT, K_KICK, K_STRESS_TRACE, K_STRESS_TENSOR, K_MC_STRAIN_DISP, K_MC_STRAIN_UPDATE, K__COUNT
 } kernel_id;
 
 struct dem_backend {
@@ -31,6 +31,9 @@ struct dem_backend {
     cl_mem count[2], list[2], hist[2], touch[2], mirror[2];
     cl_mem in_count, in_start, in_block_sum; /* incoming pairs per particle and their offsets (see contact_forces.h) */
     cl_mem pair;     /* PR_STRIDE reals per incoming pair (contact_pairs -> contact_forces) */
+    cl_mem invvol, trace, stress;        /* 1/V, MC-stress trace, output tensor (allocated when first asked) */
+    cl_mem mc_fn[2], mc_disp[2];         /* MC-strain per row slot, one per row set */
+    cl_mem mc_wall_fn, mc_wall_disp;
     size_t pair_cap; /* records allocated */
     int cur;
     char desc[512];
@@ -55,4 +58,10 @@ int clb_nbr_build(dem_backend *b);
 int clb_nbr_carry(dem_backend *b);
 int clb_contact_forces(dem_backend *b);
 int clb_wall_reduce(dem_backend *b);
+int clb_stress_trace(dem_backend *b);
+int clb_stress_tensor(dem_backend *b);
+int clb_mc_strain_disp(dem_backend *b);
+int clb_mc_strain_update(dem_backend *b, double tol);
+/* Buffer of n bytes (zero-filled when init is NULL); on failure sets *fail and b->err. */
+cl_mem clb_buffer(dem_backend *b, size_t bytes, const void *init, int *fail);
 #endif

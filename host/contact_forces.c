@@ -19,7 +19,9 @@ int clb_contact_forces(dem_backend *b)
     cl_kernel k = b->k[K_CONTACT_PAIRS];
     if (common_args(b, k) || clb_arg_mem(b, k, 13, b->mirror[s]) || clb_arg_mem(b, k, 14, b->hist[s]) ||
         clb_arg_mem(b, k, 15, b->touch[s]) || clb_arg_mem(b, k, 16, b->in_start) || clb_arg_mem(b, k, 17, b->pair) ||
-        clb_arg_mem(b, k, 18, b->f) || clb_arg_mem(b, k, 19, b->t) || clb_launch(b, K_CONTACT_PAIRS, (size_t)b->n))
+        clb_arg_mem(b, k, 18, b->f) || clb_arg_mem(b, k, 19, b->t) || clb_arg_mem(b, k, 20, b->trace) ||
+        clb_arg_mem(b, k, 21, b->invvol) || clb_arg_mem(b, k, 22, b->mc_disp[s]) || clb_arg_mem(b, k, 23, b->mc_fn[s]) ||
+        clb_launch(b, K_CONTACT_PAIRS, (size_t)b->n))
         return 1;
     k = b->k[K_CONTACT_FORCES];
     return common_args(b, k) || clb_arg_mem(b, k, 13, b->mirror[s]) || clb_arg_mem(b, k, 14, b->touch[s]) ||
@@ -27,5 +29,7 @@ int clb_contact_forces(dem_backend *b)
            clb_arg_mem(b, k, 18, b->t) || clb_arg_int(b, k, 19, b->nwalls) || clb_arg_mem(b, k, 20, b->wall_int) ||
            clb_arg_mem(b, k, 21, b->wall_real) || clb_arg_mem(b, k, 22, b->wall_hist) ||
            clb_arg_mem(b, k, 23, b->wall_pf) || clb_arg_mem(b, k, 24, b->wall_mask) ||
+           clb_arg_mem(b, k, 25, b->trace) || clb_arg_mem(b, k, 26, b->invvol) ||
+           clb_arg_mem(b, k, 27, b->mc_wall_disp) || clb_arg_mem(b, k, 28, b->mc_wall_fn) ||
            clb_launch(b, K_CONTACT_FORCES, (size_t)b->n);
 }

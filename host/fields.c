@@ -5,6 +5,7 @@
 size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs)
 {
     int friction = (effects & DEM_EFFECT_FRICTION) != 0; /* tangential history exists only with friction */
+    int mcs = (effects & DEM_EFFECT_MC_STRESS) != 0, mce = (effects & DEM_EFFECT_MC_STRAIN) != 0;
     switch (f) {
     case FIELD_X: case FIELD_V: case FIELD_W: case FIELD_FORCE: case FIELD_TORQUE: case FIELD_X_BUILD:
         return 3 * n * rs;
@@ -18,6 +19,10 @@ size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size
     case FIELD_CELL_START: return (ncells + 1) * sizeof(int);
     case FIELD_FLAGS: return FLAG_COUNT * sizeof(int);
     case FIELD_WALL_REAL: return W_STRIDE * nwalls * rs;
+    case FIELD_STRESS: return ST_STRIDE * n * rs;
+    case FIELD_STRESS_TRACE: return mcs ? n * rs : 0;
+    case FIELD_MC_FORCE: case FIELD_MC_DISP: return mce ? n * maxn * rs : 0;
+    case FIELD_MC_WALL_FORCE: case FIELD_MC_WALL_DISP: return mce ? n * nwalls * rs : 0;
     default: return 0;
     }
 }

@@ -23,5 +23,6 @@ int clb_nbr_carry(dem_backend *b)
            clb_arg_mem(b, k, 5, b->count[o]) || clb_arg_mem(b, k, 6, b->list[o]) ||
            clb_arg_mem(b, k, 7, b->hist[o]) || clb_arg_mem(b, k, 8, b->touch[o]) || clb_arg_mem(b, k, 9, b->hist[s]) ||
            clb_arg_mem(b, k, 10, b->touch[s]) || clb_arg_mem(b, k, 11, b->mirror[s]) || clb_arg_mem(b, k, 12, b->flags) ||
+           clb_arg_mem(b, k, 13, b->mc_fn[o]) || clb_arg_mem(b, k, 14, b->mc_fn[s]) ||
            clb_launch(b, K_NBR_CARRY, (size_t)b->n);
 }

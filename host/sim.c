@@ -11,8 +11,10 @@
 dem_sim *dem_create(void)
 {
     dem_sim *s = calloc(1, sizeof(dem_sim));
-    if (s)
+    if (s) {
         s->effects = DEM_EFFECT_CLASSICAL;
+        s->mc_tol = 1e-6;
+    }
     return s;
 }
 
@@ -22,7 +24,7 @@ void dem_destroy(dem_sim *s)
         return;
     if (s->be)
         s->ops->destroy(s->be);
-    for (int k = 0; k < 8; k++)
+    for (int k = 0; k < 9; k++)
         free(s->packed[k]);
     free(s->wall_real);
     free(s->x);
@@ -70,6 +72,9 @@ int dem_add_material(dem_sim *s, const dem_material *m)
                         m->restitution), -1;
     if (!(m->friction >= 0) || !isfinite(m->friction))
         return sim_fail(s, DEM_ERR_ARG, "material %d: friction must be >= 0 (got %g)", s->nmat, m->friction), -1;
+    if (!(m->mc_beta >= 0) || !isfinite(m->mc_beta) || !(m->mc_gamma >= 0) || !isfinite(m->mc_gamma))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: multi-contact prefactors beta and gamma must be >= 0 (got %g, %g)",
+                        s->nmat, m->mc_beta, m->mc_gamma), -1;
     s->mats[s->nmat] = *m;
     return s->nmat++;
 }
@@ -243,8 +248,10 @@ int dem_set_effects(dem_sim *s, unsigned effects)
 {
     if (not_started(s))
         return DEM_ERR_STATE;
-    if (effects & ~(unsigned)DEM_EFFECT_CLASSICAL)
+    if (effects & ~(unsigned)DEM_EFFECT_ALL)
         return sim_fail(s, DEM_ERR_ARG, "effect mask 0x%x has bits of effects this version does not have", effects);
+    if ((effects & DEM_EFFECT_MC_STRESS) && (effects & DEM_EFFECT_MC_STRAIN))
+        return sim_fail(s, DEM_ERR_ARG, "mc_stress and mc_strain are two alternative normal laws: choose one");
     if (!(effects & DEM_EFFECT_HERTZ))
         return sim_fail(s, DEM_ERR_ARG, "the effect mask must contain DEM_EFFECT_HERTZ (the contact law itself)");
     s->effects = effects;
@@ -253,22 +260,37 @@ int dem_set_effects(dem_sim *s, unsigned effects)
 
 unsigned dem_effects(const dem_sim *s) { return s->effects; }
 
-static const char *const effect_names[] = {"hertz", "damping", "friction", "gravity", "walls"};
+int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (max_iterations < 0 || max_iterations > 10000 || !(tolerance > 0) || !isfinite(tolerance))
+        return sim_fail(s, DEM_ERR_ARG, "MC-strain: iterations in 0..10000 (0 = lagged) and tolerance > 0 (got %d, %g)",
+                        max_iterations, tolerance);
+    s->mc_max_iter = max_iterations;
+    s->mc_tol = tolerance;
+    return 0;
+}
 
-const char *dem_effect_name(int bit) { return bit >= 0 && bit < 5 ? effect_names[bit] : NULL; }
+void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
+
+static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
+                                                           "mc_stress", "mc_strain"};
+
+const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 
 void dem_effects_string(unsigned effects, char *buf, size_t len)
 {
     size_t at = 0;
     buf[0] = 0;
-    for (int k = 0; k < 5 && at < len; k++)
+    for (int k = 0; k < DEM_EFFECT_COUNT && at < len; k++)
         if (effects & (1u << k))
             at += (size_t)snprintf(buf + at, len - at, "%s%s", at ? "+" : "", effect_names[k]);
 }
 
 int dem_effect_bit(const char *name)
 {
-    for (int k = 0; k < 5; k++)
+    for (int k = 0; k < DEM_EFFECT_COUNT; k++)
         if (!strcmp(name, effect_names[k]))
             return k;
     return -1;
@@ -334,8 +356,47 @@ int sim_rebuild(dem_sim *s)
     return 0;
 }
 
+/* MC-strain before the contact pass: displacements from the stored forces (lagged), or iterated to the tolerance. */
+static int mc_strain(dem_sim *s)
+{
+    long it = 0;
+    int converged = 0;
+    if (s->ops->mc_strain_disp(s->be))
+        return be_fail(s);
+    while (it < s->mc_max_iter) {
+        int flags[FLAG_COUNT];
+        if (read_flags(s, flags))
+            return DEM_ERR_DEVICE;
+        flags[FLAG_MC_PENDING] = 0;
+        if (s->ops->write(s->be, FIELD_FLAGS, flags, sizeof flags) || s->ops->mc_strain_update(s->be, s->mc_tol) ||
+            s->ops->mc_strain_disp(s->be))
+            return be_fail(s);
+        it++;
+        if (read_flags(s, flags))
+            return DEM_ERR_DEVICE;
+        if (!flags[FLAG_MC_PENDING]) {
+            converged = 1;
+            break;
+        }
+    }
+    if (s->mc_max_iter && !converged)
+        s->mc.unconverged++;
+    s->mc.last = it;
+    s->mc.total += it;
+    if (it > s->mc.max)
+        s->mc.max = it;
+    return 0;
+}
+
 static int forces(dem_sim *s)
 {
+    if ((s->effects & DEM_EFFECT_MC_STRESS) && s->ops->stress_trace(s->be))
+        return be_fail(s);
+    if (s->effects & DEM_EFFECT_MC_STRAIN) {
+        int e = mc_strain(s);
+        if (e)
+            return e;
+    }
     if (s->ops->contact_forces(s->be))
         return be_fail(s);
     if (s->nwalls && (s->effects & DEM_EFFECT_WALLS) && s->ops->wall_reduce(s->be))
@@ -435,6 +496,8 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 {
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    if (f == FIELD_STRESS && s->ops->stress_tensor(s->be)) /* computed from the current positions when asked */
+        return be_fail(s);
     return s->ops->read(s->be, f, dst, bytes) ? be_fail(s) : 0;
 }
 

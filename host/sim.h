@@ -23,7 +23,10 @@ struct dem_sim {
     int started;
     dem_config cfg;
     dem_setup setup;
-    void *packed[8];     /* packed setup arrays, freed at destroy */
+    void *packed[9];     /* packed setup arrays, freed at destroy */
+    int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
+    double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
+    dem_mc_stats mc;
     const dem_backend_ops *ops;
     dem_backend *be;
     int maxn;

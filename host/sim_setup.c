@@ -169,10 +169,11 @@ int sim_pack(dem_sim *s)
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;
 
-    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n);
+    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n), *invv = malloc(sizeof(double) * n);
     double *pm = malloc(sizeof(double) * PM_STRIDE * s->nmat * s->nmat);
     double *damp = malloc(sizeof(double) * s->nmat * s->nmat);
-    if (!invm || !invi || !pm || !damp) {
+    if (!invm || !invi || !invv || !pm || !damp) {
+        free(invv);
         free(invm);
         free(invi);
         free(pm);
@@ -184,6 +185,7 @@ int sim_pack(dem_sim *s)
         double r = s->radius[i], mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
         invm[i] = (s->pflags[i] & DEM_PARTICLE_FIXED) ? 0 : 1 / mass;
         invi[i] = (s->pflags[i] & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)) ? 0 : 1 / (0.4 * mass * r * r);
+        invv[i] = 1 / (4.0 / 3.0 * M_PI * r * r * r);
     }
     /* pair table: restitution and friction of a pair are the means of the two materials' values */
     for (int a = 0; a < s->nmat; a++)
@@ -198,6 +200,12 @@ int sim_pack(dem_sim *s)
             damp[a * s->nmat + b] = c;
             row[PM_DAMP_N] = c * sqrt(2 * row[PM_ESTAR]);
             row[PM_DAMP_T] = c * sqrt(8 * row[PM_GSTAR]);
+            /* multi-contact (seed 000 Eq. 7, 10): the pair's pi beta nu is the mean of the two materials'; the
+             * MC-strain constants are those of material a (read on the diagonal only, see dem_layout.h) */
+            row[PM_MC_STRESS] = M_PI * 0.5 * (ma->mc_beta * ma->poisson + mb->mc_beta * mb->poisson);
+            row[PM_MCS_K] = ma->mc_gamma * (1 + ma->poisson) / (2 * M_PI * ma->young);
+            row[PM_MCS_C1] = 3 - 4 * ma->poisson;
+            row[PM_MCS_C2] = 1 - 2 * ma->poisson;
         }
     s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
     s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
@@ -208,12 +216,14 @@ int sim_pack(dem_sim *s)
     s->packed[6] = pack_real(pm, (size_t)PM_STRIDE * s->nmat * s->nmat, rs);
     int *wint = calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int));
     s->packed[7] = wint;
+    s->packed[8] = pack_real(invv, (size_t)n, rs);
     s->wall_real = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
     free(invm);
     free(invi);
+    free(invv);
     free(pm);
     free(damp);
-    for (int k = 0; k < 8; k++)
+    for (int k = 0; k < 9; k++)
         if (!s->packed[k])
             return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     if (!s->wall_real)
@@ -233,6 +243,7 @@ int sim_pack(dem_sim *s)
     u->invmass = s->packed[4];
     u->invinertia = s->packed[5];
     u->pairmat = s->packed[6];
+    u->invvol = s->packed[8];
     u->wall_int = wint;
     u->wall_real = s->wall_real;
     u->mat = s->mat;

@@ -3,7 +3,7 @@
  *
  * What continues a run exactly: positions, velocities, angular velocities, the forces and torques of the last step
  * (velocity Verlet's first half kick uses them), the force on each wall, the wall positions, the step index, and the
- * contact memory: which pairs and walls touch and their tangential springs. Neighbour rows are not part of it:
+ * contact memory: which pairs and walls touch, their tangential springs and (MC-strain) their stored normal forces. Neighbour rows are not part of it:
  * results do not depend on the rows (any skin or cell size gives the same bits), so restoring rebuilds them from the
  * positions and puts each touching pair's history back into the new rows.
  */
@@ -18,6 +18,7 @@ void dem_state_free(dem_state *st)
         return;
     free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force);
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->wall_hist), free(st->wall_mask);
+    free(st->pair_mc_fn), free(st->wall_mc_fn);
     memset(st, 0, sizeof *st);
 }
 
@@ -56,7 +57,10 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->wall_force = get_all(s, FIELD_WALL_FORCE, &b, &e);
     st->wall_hist = get_all(s, FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
     st->wall_mask = get_all(s, FIELD_WALL_MASK, &b, &e);
-    size_t hb;
+    st->wall_mc_fn = get_all(s, FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
+    st->mc = s->mc;
+    size_t hb, fb;
+    unsigned char *mcf = get_all(s, FIELD_MC_FORCE, &fb, &e);
     int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = get_all(s, FIELD_TOUCH, &b, &e), *hist = get_all(s, FIELD_HIST, &hb, &e);
     /* touching pairs, once each (owner i < j), in row order: ascending i, then j */
@@ -68,7 +72,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
         st->pair_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->pair_j = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->pair_hist = calloc((size_t)(np ? np : 1), 3 * (size_t)rs);
-        if (!st->pair_i || !st->pair_j || !st->pair_hist)
+        st->pair_mc_fn = calloc((size_t)(np ? np : 1), (size_t)rs);
+        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
@@ -81,11 +86,14 @@ int dem_state_get(dem_sim *s, dem_state *st)
             st->pair_j[np] = j;
             if (hb) /* no tangential history without friction */
                 memcpy((char *)st->pair_hist + (size_t)np * 3 * rs, hist + (size_t)slot * 3 * rs, 3 * (size_t)rs);
+            if (fb) /* MC-strain: the force the next step's induced displacements start from */
+                memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)slot * rs, (size_t)rs);
             np++;
         }
     st->npairs = np;
     st->has_hist = hb > 0;
-    free(cnt), free(list), free(touch), free(hist);
+    st->has_mc = fb > 0;
+    free(cnt), free(list), free(touch), free(hist), free(mcf);
     if (e)
         dem_state_free(st);
     return e;
@@ -125,10 +133,13 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     if ((e = sim_rebuild(s)))
         return e;
     int maxn = s->maxn;
-    size_t b, hb = dem_field_bytes(s, FIELD_HIST);
+    size_t b, hb = dem_field_bytes(s, FIELD_HIST), fb = dem_field_bytes(s, FIELD_MC_FORCE);
+    if (!!st->has_mc != (fb > 0))
+        return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
+                        st->has_mc ? "has" : "has no", fb ? "has" : "has no");
     int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
-    unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1);
-    if (!e && (!touch || !hist))
+    unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
+    if (!e && (!touch || !hist || !mcf))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int i = st->pair_i[p], j = st->pair_j[p];
@@ -141,21 +152,27 @@ int dem_state_set(dem_sim *s, const dem_state *st)
         touch[a] = touch[m] = 1;
         if (hb && st->has_hist)
             memcpy(hist + (size_t)a * 3 * rs, (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
+        if (fb) { /* both slots of the pair hold the force (mc_strain.h) */
+            memcpy(mcf + (size_t)a * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
+            memcpy(mcf + (size_t)m * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
+        }
     }
     if (!e && (s->ops->write(s->be, FIELD_TOUCH, touch, (size_t)n * maxn) ||
-               s->ops->write(s->be, FIELD_HIST, hist, hb) ||
+               s->ops->write(s->be, FIELD_HIST, hist, hb) || s->ops->write(s->be, FIELD_MC_FORCE, mcf, fb) ||
+               s->ops->write(s->be, FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, FIELD_MC_WALL_FORCE)) ||
                s->ops->write(s->be, FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, FIELD_WALL_HIST)) ||
                s->ops->write(s->be, FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
                s->ops->write(s->be, FIELD_FORCE, st->force, v3b) || s->ops->write(s->be, FIELD_TORQUE, st->torque, v3b) ||
                s->ops->write(s->be, FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", s->ops->error(s->be));
-    free(cnt), free(list), free(touch), free(hist);
+    free(cnt), free(list), free(touch), free(hist), free(mcf);
     if (e)
         return e;
     if (!!st->has_hist != (hb > 0))
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s tangential history but this run %s friction",
                         st->has_hist ? "has" : "has no", hb ? "has" : "has no");
     s->step = st->step;
+    s->mc = st->mc;
     for (int k = 0; k < s->nwalls; k++)
         memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);
     return 0;

@@ -37,6 +37,8 @@ typedef struct {
     double poisson;     /* Poisson's ratio nu, in (-1, 0.5] */
     double restitution; /* coefficient of restitution e, in (0, 1] */
     double friction;    /* Coulomb friction coefficient mu >= 0 */
+    double mc_beta;     /* MC-stress prefactor beta >= 0 (seed 000 Eq. 10; used with DEM_EFFECT_MC_STRESS) */
+    double mc_gamma;    /* MC-strain prefactor gamma >= 0 (seed 000 Eq. 7; used with DEM_EFFECT_MC_STRAIN) */
 } dem_material;
 
 #define DEM_MAX_STAGES 16
@@ -82,10 +84,17 @@ typedef enum {
     FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
     FIELD_CELL_START,           /* int[ncells+1] */
     FIELD_CELL_PARTICLES,       /* int[n] */
-    FIELD_FLAGS,                /* int[4] */
+    FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
     FIELD_WALL_REAL,            /* real[10*nwalls] */
     FIELD_TOUCH,                /* unsigned char[n*maxn]: 1 where the row slot's pair touched in the last step */
     FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
+    FIELD_STRESS,               /* real[6n]: stress tensor xx,yy,zz,xy,xz,yz of each particle [Pa] (seed 000 Eq. 9,
+                                   elastic normal forces; negative in compression), computed when read */
+    FIELD_STRESS_TRACE,         /* real[n]: the trace MC-stress used in the last step [Pa]; empty without mc_stress */
+    FIELD_MC_FORCE,             /* real[n*maxn]: MC-strain elastic normal force per row slot [N]; mc_strain only */
+    FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
+    FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
+    FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
     FIELD__COUNT
 } dem_field;
 
@@ -131,6 +140,18 @@ unsigned dem_effects(const dem_sim *s);
 const char *dem_effect_name(int bit); /* "hertz", "damping", ... for bit 0, 1, ...; NULL past the last */
 int dem_effect_bit(const char *name); /* inverse of dem_effect_name; -1 for an unknown name */
 void dem_effects_string(unsigned effects, char *buf, size_t len); /* "hertz+damping+..." */
+
+/* MC-strain scheme: max_iterations 0 (default) is the published lagged scheme (the induced displacements use the
+ * forces of the previous step, one pass); N > 0 iterates displacements and forces within each step until no contact
+ * force changes by more than tolerance (relative) or N iterations have run. */
+int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance);
+typedef struct {
+    long last;        /* iterations in the last step */
+    long max;         /* most iterations of any step */
+    long total;       /* all iterations so far */
+    long unconverged; /* steps that hit the iteration cap */
+} dem_mc_stats;
+void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st);
 
 /* Time scales of the current particles and materials; hertz_velocity is the impact speed for hertz_time. */
 int dem_time_scales_get(dem_sim *s, double hertz_velocity, dem_time_scales *ts);
@@ -184,6 +205,11 @@ typedef struct {
     void *wall_hist;                  /* real[3 n nwalls] with friction, else empty */
     size_t wall_hist_bytes;
     unsigned *wall_mask;              /* [n] */
+    int has_mc;                       /* 1 when the run has MC-strain: its stored forces follow */
+    void *pair_mc_fn;                 /* real[npairs]: MC-strain force of each touching pair */
+    void *wall_mc_fn;                 /* real[n nwalls] with MC-strain, else empty */
+    size_t wall_mc_fn_bytes;
+    dem_mc_stats mc;                  /* iteration counts so far */
 } dem_state;
 int dem_state_get(dem_sim *s, dem_state *st); /* allocates; free with dem_state_free */
 /* After dem_start of the same set-up: continue from st (replaces positions, velocities, contacts, step). */

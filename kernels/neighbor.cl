@@ -15,10 +15,11 @@ __kernel void nbr_build(int n, int maxn, real skin, int ncx, int ncy, int ncz, _
 __kernel void nbr_carry(int n, int maxn, int old_maxn, __global const int *nbr_count, __global const int *nbr_list,
                         __global const int *old_count, __global const int *old_list, __global const real *old_hist,
                         __global const unsigned char *old_touch, __global real *hist, __global unsigned char *touch,
-                        __global int *mirror, __global int *flags)
+                        __global int *mirror, __global int *flags, __global const real *old_mc_fn,
+                        __global real *mc_fn)
 {
     int i = get_global_id(0);
     if (i < n)
         nbr_carry_item(DEM_EFFECTS, i, maxn, old_maxn, nbr_count, nbr_list, old_count, old_list, old_hist, old_touch, hist, touch, mirror,
-                       flags);
+                       flags, old_mc_fn, mc_fn);
 }

@@ -27,18 +27,23 @@ struct dem_backend {
     int *mirror[2];
     int *in_count, *in_start, *in_block_sum; /* incoming pairs (lower-id partners) per particle, and their offsets */
     real *pair;                     /* PR_STRIDE reals per incoming pair, written by contact_pairs */
+    real *invvol, *trace, *stress;  /* 1/V, MC-stress trace, output tensor */
+    real *mc_fn[2], *mc_disp[2];    /* MC-strain per row slot, one per row set */
+    real *mc_wall_fn, *mc_wall_disp;
     size_t pair_cap;                /* records allocated */
     int cur;        /* the row set in use; 1-cur is built into */
     int flags[FLAG_COUNT];
-    double ktime[8]; /* seconds per step kind, see step_names */
+    double ktime[16]; /* seconds per step kind, see step_names */
     char err[256];
 };
 
 /* Time per step kind, for `make bench` (the reference has no kernels; these are its loops). */
-enum { T_KICK_DRIFT, T_BIN, T_NBR_BUILD, T_NBR_CARRY, T_PAIRS, T_CONTACT, T_WALL, T_KICK, T__COUNT };
+enum { T_KICK_DRIFT, T_BIN, T_NBR_BUILD, T_NBR_CARRY, T_PAIRS, T_CONTACT, T_WALL, T_KICK, T_TRACE, T_TENSOR,
+       T_MC_DISP, T_MC_UPDATE, T__COUNT };
 static const char *const step_names[T__COUNT] = {"integrate_kick_drift", "binning", "nbr_build", "nbr_carry",
                                                  "contact_pairs", "contact_forces", "wall_reduce",
-                                                 "integrate_kick"};
+                                                 "integrate_kick", "stress_trace", "stress_tensor",
+                                                 "mc_strain_disp", "mc_strain_update"};
 static double wall_now(void)
 {
     struct timespec t;
@@ -62,7 +67,8 @@ static void ref_destroy(dem_backend *b)
                     b->wall_real, b->wall_hist, b->wall_pf, b->wall_mask, b->partial, b->wall_force, b->wall_int, b->cell_of,
                     b->cell_count, b->cell_start, b->cell_fill, b->cell_particles, b->block_sum, b->count[0],
                     b->count[1], b->list[0], b->list[1], b->hist[0], b->hist[1], b->touch[0], b->touch[1], b->mirror[0], b->mirror[1], b->pair,
-                    b->in_count, b->in_start, b->in_block_sum};
+                    b->in_count, b->in_start, b->in_block_sum, b->invvol, b->trace, b->stress, b->mc_fn[0],
+                    b->mc_fn[1], b->mc_disp[0], b->mc_disp[1], b->mc_wall_fn, b->mc_wall_disp};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++)
         free(ptrs[k]);
     free(b);
@@ -115,6 +121,12 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
     b->wall_real = dup_real(s->wall_real, (size_t)W_STRIDE * s->nwalls);
     b->wall_int = zalloc((size_t)WI_STRIDE * s->nwalls, sizeof(int));
     b->fx = s->effects;
+    b->invvol = dup_real(s->invvol, (size_t)n);
+    b->trace = zalloc(dem_field_size(FIELD_STRESS_TRACE, b->fx, (size_t)n, 0, 0, 0, 1), sizeof(real));
+    b->mc_wall_fn = zalloc(dem_field_size(FIELD_MC_WALL_FORCE, b->fx, (size_t)n, 0, (size_t)s->nwalls, 0, 1),
+                           sizeof(real));
+    b->mc_wall_disp = zalloc(dem_field_size(FIELD_MC_WALL_DISP, b->fx, (size_t)n, 0, (size_t)s->nwalls, 0, 1),
+                             sizeof(real));
     b->wall_hist = zalloc(dem_field_size(FIELD_WALL_HIST, b->fx, (size_t)n, 0, (size_t)s->nwalls, 0, 1), sizeof(real));
     b->wall_pf = zalloc(3 * (size_t)n * s->nwalls, sizeof(real));
     b->wall_mask = zalloc((size_t)n, sizeof(unsigned));
@@ -133,6 +145,8 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         b->hist[k] = zalloc(dem_field_size(FIELD_HIST, b->fx, (size_t)n, (size_t)s->maxn, 0, 0, 1), sizeof(real));
         b->touch[k] = zalloc((size_t)n * s->maxn, 1);
         b->mirror[k] = zalloc((size_t)n * s->maxn, sizeof(int));
+        b->mc_fn[k] = zalloc(dem_field_size(FIELD_MC_FORCE, b->fx, (size_t)n, (size_t)s->maxn, 0, 0, 1), sizeof(real));
+        b->mc_disp[k] = zalloc(dem_field_size(FIELD_MC_DISP, b->fx, (size_t)n, (size_t)s->maxn, 0, 0, 1), sizeof(real));
     }
     b->in_count = zalloc((size_t)n, sizeof(int));
     b->in_start = zalloc((size_t)n + 1, sizeof(int));
@@ -143,7 +157,9 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
         !b->pairmat || !b->wall_real || !b->wall_int || !b->wall_hist || !b->wall_pf || !b->wall_mask || !b->partial ||
         !b->wall_force || !b->cell_of || !b->cell_count || !b->cell_start || !b->cell_fill || !b->cell_particles ||
         !b->block_sum || !b->count[0] || !b->count[1] || !b->list[0] || !b->list[1] || !b->hist[0] || !b->hist[1] || !b->touch[0] || !b->touch[1] ||
-        !b->mirror[0] || !b->mirror[1] || !b->in_count || !b->in_start || !b->in_block_sum)
+        !b->mirror[0] || !b->mirror[1] || !b->in_count || !b->in_start || !b->in_block_sum || !b->invvol ||
+        !b->trace || !b->mc_wall_fn || !b->mc_wall_disp || !b->mc_fn[0] || !b->mc_fn[1] || !b->mc_disp[0] ||
+        !b->mc_disp[1])
         goto nomem;
     memcpy(b->mat, s->mat, (size_t)n * sizeof(int));
     if (s->nwalls)
@@ -169,6 +185,7 @@ static int ref_reset_flags(dem_backend *b)
     b->flags[FLAG_OUT_OF_DOMAIN] = DEM_NO_PARTICLE;
     b->flags[FLAG_NBR_NEEDED] = 0;
     b->flags[FLAG_ASYMMETRIC] = 0;
+    b->flags[FLAG_MC_PENDING] = 0;
     return 0;
 }
 
@@ -202,11 +219,15 @@ static int ref_nbr_reserve(dem_backend *b, int maxn)
     real *hist = zalloc(dem_field_size(FIELD_HIST, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, 1), sizeof(real));
     unsigned char *touch = zalloc((size_t)b->n * maxn, 1);
     int *mirror = zalloc((size_t)b->n * maxn, sizeof(int));
-    if (!list || !hist || !touch || !mirror) {
+    real *mc_fn = zalloc(dem_field_size(FIELD_MC_FORCE, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, 1), sizeof(real));
+    real *mc_disp = zalloc(dem_field_size(FIELD_MC_DISP, b->fx, (size_t)b->n, (size_t)maxn, 0, 0, 1), sizeof(real));
+    if (!list || !hist || !touch || !mirror || !mc_fn || !mc_disp) {
         free(list);
         free(hist);
         free(touch);
         free(mirror);
+        free(mc_fn);
+        free(mc_disp);
         snprintf(b->err, sizeof b->err, "out of host memory for neighbour rows of %d", maxn);
         return 1;
     }
@@ -214,6 +235,10 @@ static int ref_nbr_reserve(dem_backend *b, int maxn)
     free(b->hist[k]);
     free(b->touch[k]);
     free(b->mirror[k]);
+    free(b->mc_fn[k]);
+    free(b->mc_disp[k]);
+    b->mc_fn[k] = mc_fn;
+    b->mc_disp[k] = mc_disp;
     b->list[k] = list;
     b->hist[k] = hist;
     b->touch[k] = touch;
@@ -237,7 +262,7 @@ static int ref_nbr_commit(dem_backend *b)
     TIMED(b, T_NBR_CARRY,
           REF(ref_nbr_carry)(b->fx, b->n, b->maxn[k], b->maxn[o], b->count[k], b->list[k], b->count[o], b->list[o],
                              b->hist[o], b->touch[o], b->hist[k], b->touch[k], b->mirror[k],
-                             b->flags));
+                             b->flags, b->mc_fn[o], b->mc_fn[k]));
     b->cur = k;
     REF(ref_scan)(b->n, b->in_count, b->in_block_sum, b->in_start);
     size_t need = (size_t)b->in_start[b->n];
@@ -262,11 +287,54 @@ static int ref_contact_forces(dem_backend *b)
     TIMED(b, T_PAIRS,
           REF(ref_contact_pairs)(b->fx, b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                  b->pairmat, b->count[k], b->list[k], b->mirror[k], b->hist[k], b->touch[k],
-                                 b->in_start, b->pair, b->f, b->t));
+                                 b->in_start, b->pair, b->f, b->t, b->trace, b->invvol, b->mc_disp[k], b->mc_fn[k]));
     TIMED(b, T_CONTACT,
           REF(ref_contact_forces)(b->fx, b->n, b->maxn[k], b->nmat, b->dt, b->x, b->v, b->w, b->radius, b->invm, b->mat,
                                   b->pairmat, b->count[k], b->list[k], b->mirror[k], b->touch[k], b->in_start, b->pair, b->f, b->t, b->nwalls, b->wall_int, b->wall_real,
-                                  b->wall_hist, b->wall_pf, b->wall_mask));
+                                  b->wall_hist, b->wall_pf, b->wall_mask, b->trace, b->invvol, b->mc_wall_disp,
+                                  b->mc_wall_fn));
+    return 0;
+}
+
+static int ref_stress_trace(dem_backend *b)
+{
+    int k = b->cur;
+    TIMED(b, T_TRACE,
+          REF(ref_stress_trace)(b->fx, b->n, b->maxn[k], b->nmat, b->x, b->radius, b->invvol, b->mat, b->pairmat,
+                                b->count[k], b->list[k], b->nwalls, b->wall_int, b->wall_real, b->trace));
+    return 0;
+}
+
+static int ref_stress_tensor(dem_backend *b)
+{
+    int k = b->cur;
+    if (!b->stress && !(b->stress = zalloc((size_t)ST_STRIDE * b->n, sizeof(real)))) {
+        snprintf(b->err, sizeof b->err, "out of host memory for the stress tensors");
+        return 1;
+    }
+    TIMED(b, T_TENSOR,
+          REF(ref_stress_tensor)(b->fx, b->n, b->maxn[k], b->nmat, b->x, b->radius, b->invvol, b->mat, b->pairmat,
+                                 b->count[k], b->list[k], b->nwalls, b->wall_int, b->wall_real, b->stress));
+    return 0;
+}
+
+static int ref_mc_strain_disp(dem_backend *b)
+{
+    int k = b->cur;
+    TIMED(b, T_MC_DISP,
+          REF(ref_mc_strain_disp)(b->fx, b->n, b->maxn[k], b->nmat, b->x, b->radius, b->mat, b->pairmat, b->count[k],
+                                  b->list[k], b->nwalls, b->wall_int, b->wall_real, b->mc_fn[k], b->mc_wall_fn,
+                                  b->mc_disp[k], b->mc_wall_disp));
+    return 0;
+}
+
+static int ref_mc_strain_update(dem_backend *b, double tol)
+{
+    int k = b->cur;
+    TIMED(b, T_MC_UPDATE,
+          REF(ref_mc_strain_update)(b->fx, b->n, b->maxn[k], b->nmat, (real)tol, b->x, b->radius, b->mat, b->pairmat,
+                                    b->count[k], b->list[k], b->mirror[k], b->nwalls, b->wall_int, b->wall_real,
+                                    b->mc_disp[k], b->mc_wall_disp, b->mc_fn[k], b->mc_wall_fn, b->flags));
     return 0;
 }
 
@@ -290,7 +358,8 @@ static void *field_ptr(dem_backend *b, dem_field f, size_t *bytes)
     int k = b->cur;
     void *p[FIELD__COUNT] = {b->x, b->v, b->w, b->f, b->t, b->x_build, b->count[k], b->list[k], b->hist[k],
                              b->wall_hist, b->wall_force, b->cell_start, b->cell_particles, b->flags, b->wall_real,
-                             b->touch[k], b->wall_mask};
+                             b->touch[k], b->wall_mask, b->stress, b->trace, b->mc_fn[k], b->mc_wall_fn,
+                             b->mc_disp[k], b->mc_wall_disp};
     *bytes = dem_field_size(f, b->fx, (size_t)b->n, (size_t)b->maxn[k], (size_t)b->nwalls, (size_t)b->ncells, sizeof(real));
     return (int)f >= 0 && f < FIELD__COUNT ? p[f] : NULL;
 }
@@ -350,6 +419,10 @@ const dem_backend_ops REF(dem_reference_ops) = {
     .contact_forces = ref_contact_forces,
     .wall_reduce = ref_wall_reduce,
     .kick = ref_kick,
+    .stress_trace = ref_stress_trace,
+    .stress_tensor = ref_stress_tensor,
+    .mc_strain_disp = ref_mc_strain_disp,
+    .mc_strain_update = ref_mc_strain_update,
     .set_walls = ref_set_walls,
     .read = ref_read,
     .write = ref_write,

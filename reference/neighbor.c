@@ -13,9 +13,9 @@ void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, c
 
 void REF(ref_nbr_carry)(unsigned fx, int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
                         const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
-                        unsigned char *touch, int *mirror, int *flags)
+                        unsigned char *touch, int *mirror, int *flags, const real *old_mc_fn, real *mc_fn)
 {
     for (int i = 0; i < n; i++)
         nbr_carry_item(fx, i, maxn, old_maxn, nbr_count, nbr_list, old_count, old_list, old_hist, old_touch, hist, touch, mirror,
-                       flags);
+                       flags, old_mc_fn, mc_fn);
 }

@@ -24,18 +24,37 @@ void REF(ref_nbr_build)(int n, int maxn, real skin, int ncx, int ncy, int ncz, c
                         int *nbr_list, int *in_count, int *flags);
 void REF(ref_nbr_carry)(unsigned fx, int n, int maxn, int old_maxn, const int *nbr_count, const int *nbr_list, const int *old_count,
                         const int *old_list, const real *old_hist, const unsigned char *old_touch, real *hist,
-                        unsigned char *touch, int *mirror, int *flags);
+                        unsigned char *touch, int *mirror, int *flags, const real *old_mc_fn, real *mc_fn);
 /* contact_forces.c */
 void REF(ref_contact_pairs)(unsigned fx, int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                             const real *radius, const real *invmass, const int *mat, const real *pairmat,
                             const int *nbr_count, const int *nbr_list, const int *nbr_mirror, real *hist,
-                            unsigned char *touch, const int *in_start, real *pair, real *force, real *torque);
+                            unsigned char *touch, const int *in_start, real *pair, real *force, real *torque,
+                            const real *trace, const real *invvol, const real *mc_disp, real *mc_fn);
 void REF(ref_contact_forces)(unsigned fx, int n, int maxn, int nmat, real dt, const real *x, const real *v, const real *w,
                              const real *radius, const real *invmass, const int *mat, const real *pairmat,
                              const int *nbr_count, const int *nbr_list, const int *nbr_mirror,
                              const unsigned char *touch, const int *in_start, const real *pair,
                              real *force, real *torque, int nwalls, const int *wall_int, const real *wall_real,
-                             real *wall_hist, real *wall_pf, unsigned *wall_mask);
+                             real *wall_hist, real *wall_pf, unsigned *wall_mask, const real *trace,
+                             const real *invvol, const real *mc_wall_disp, real *mc_wall_fn);
+/* particle_stress.c */
+void REF(ref_stress_trace)(unsigned fx, int n, int maxn, int nmat, const real *x, const real *radius,
+                           const real *invvol, const int *mat, const real *pairmat, const int *nbr_count,
+                           const int *nbr_list, int nwalls, const int *wall_int, const real *wall_real, real *trace);
+void REF(ref_stress_tensor)(unsigned fx, int n, int maxn, int nmat, const real *x, const real *radius,
+                            const real *invvol, const int *mat, const real *pairmat, const int *nbr_count,
+                            const int *nbr_list, int nwalls, const int *wall_int, const real *wall_real,
+                            real *stress);
+/* mc_strain.c */
+void REF(ref_mc_strain_disp)(unsigned fx, int n, int maxn, int nmat, const real *x, const real *radius, const int *mat,
+                             const real *pairmat, const int *nbr_count, const int *nbr_list, int nwalls,
+                             const int *wall_int, const real *wall_real, const real *fn, const real *wall_fn,
+                             real *disp, real *wall_disp);
+void REF(ref_mc_strain_update)(unsigned fx, int n, int maxn, int nmat, real tol, const real *x, const real *radius,
+                               const int *mat, const real *pairmat, const int *nbr_count, const int *nbr_list,
+                               const int *nbr_mirror, int nwalls, const int *wall_int, const real *wall_real,
+                               const real *disp, const real *wall_disp, real *fn, real *wall_fn, int *flags);
 /* wall_forces.c */
 void REF(ref_wall_reduce)(int n, int nwalls, int nblocks, const real *wall_pf, const unsigned *wall_mask,
                           real *partial, real *wall_force);

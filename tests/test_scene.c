@@ -73,7 +73,9 @@ static void test_errors(void **st)
     bad("s/^time:/timme:/", "bad.yaml:14: timme: Unexpected key");
     bad("s/  dt: 1.0e-6/  dt: 1.0e-2/", "bad.yaml:15: time.dt: time step 0.01 s exceeds the stability bound");
     bad("s/hertz, damping/hertz, dampng/", "bad.yaml:5: effects[1]: unknown effect 'dampng'");
-    bad("s/hertz, damping/hertz, mc_stress/", "effects[1]: effect 'mc_stress' is not available");
+    bad("s/friction: 0.5}/friction: 0.5, beta: -1}/", "bad.yaml:7: materials[0].beta: the MC-stress prefactor beta");
+    bad("s/hertz, damping/hertz, membrane/", "effects[1]: effect 'membrane' is not available");
+    bad("s/hertz, damping/hertz, mc_stress, mc_strain/", "effects: mc_stress and mc_strain are alternative");
     bad("s/duration: 0.003 /duration: abc /", "bad.yaml:16: time.duration: Invalid FLOAT value");
     bad("s/x: \\[-0.0101, 0, 0\\]/x: [-0.0101, 0]/", "bad.yaml:11: particles[0].spheres[0].x: Insufficient entries");
     bad("s/-0.0101, 0, 0/-0.005, 0, 0/", "particles[0].spheres[1]: particles[0].spheres[0] and particles[0].spheres[1] "
@@ -120,10 +122,9 @@ static long n_pairs(const char *path)
     return n;
 }
 
-static void restart_case(const char *precision)
+static void restart_case(const char *sc, const char *precision, int mc)
 {
     char err[8192];
-    const char *sc = SRC "/tests/scenes/restart_box.yaml";
     /* 660 steps straight; 330 + restart + 330 */
     assert_int_equal(sh(err, sizeof err, "%s run %s --precision %s -o %s/straight.h5 --quiet", DEM, sc, precision, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s run %s --precision %s -o %s/half.h5 --stop-after 330 --quiet", DEM, sc,
@@ -169,13 +170,23 @@ static void restart_case(const char *precision)
     for (long k = 0; k < 3 * np * rs; k++)
         nonzero |= ha[k];
     assert_true(nonzero);
+    if (mc) { /* MC-strain: the stored contact forces the next step starts from */
+        read_state(a, "pair_mc_fn", ha, (size_t)np, rt);
+        read_state(b, "pair_mc_fn", hb, (size_t)np, rt);
+        assert_memory_equal(ha, hb, (size_t)np * rs);
+        nonzero = 0;
+        for (long k = 0; k < np * rs; k++)
+            nonzero |= ha[k];
+        assert_true(nonzero);
+    }
 }
 
 static void test_restart_bitwise(void **st)
 {
     (void)st;
-    restart_case("fp64");
-    restart_case("fp32");
+    restart_case(SRC "/tests/scenes/restart_box.yaml", "fp64", 0);
+    restart_case(SRC "/tests/scenes/restart_box.yaml", "fp32", 0);
+    restart_case(SRC "/tests/scenes/restart_box_mc.yaml", "fp64", 1);
 }
 
 static void test_output_and_xdmf(void **st)

@@ -18,6 +18,8 @@ typedef struct {
     int gravity;
     unsigned seed;
     unsigned effects;   /* DEM_EFFECT_* mask; 0 = the default (classical) */
+    double mc_beta, mc_gamma; /* multi-contact prefactors of the particle material */
+    int mc_iterations;  /* MC-strain: 0 lagged, else iterated with tolerance 1e-6 */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);
@@ -43,6 +45,6 @@ double uniform01(unsigned *state);
 /* Two spheres (radius r, material m) approaching head-on along x at relative speed v, touching at t = 0.
  * dt_frac: time step as a fraction of the closed-form Hertz contact time. */
 dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, double dt_frac);
-/* Distance between the centres of particles 0 and 1 [m]. */
+/* Distance between the centres of particles 0 and 1 [m] (a two-particle simulation). */
 double pair_distance(dem_sim *s);
 #endif

@@ -1,0 +1,76 @@
+/* contact_geometry.h - where two spheres touch: overlap, normal and effective radius, computed the same way by every
+ * caller (the force law, the stress trace, MC-strain), so all of them see the same bits for the same pair.
+ *
+ * pair_geometry(xa, ra, xb, rb): n is the unit vector from b to a (seed 000 Eq. 2). Swapping a and b negates d
+ * exactly, so dist2, delta and rstar have the same bits either way (IEEE + and * commute): particle j's view of a
+ * contact equals particle i's.
+ * wall_geometry(type, wall, x, r): a plane of any orientation or the inside of a cylinder (dem_layout.h W_*); n points
+ * from the wall towards the particle centre.
+ */
+#ifndef DEM_CONTACT_GEOMETRY_H
+#define DEM_CONTACT_GEOMETRY_H
+#include "vec3.h"
+#include "dem_layout.h"
+
+typedef struct {
+    int active;  /* 1 when the spheres overlap */
+    real delta;  /* overlap r_a + r_b - |x_a - x_b| [m] */
+    real rstar;  /* r_a r_b / (r_a + r_b) [m] */
+    vec3 n;      /* unit vector from b to a */
+} pair_geom;
+
+DEM_INLINE pair_geom pair_geometry(vec3 xa, real ra, vec3 xb, real rb)
+{
+    pair_geom g;
+    vec3 d = v3_sub(xa, xb);
+    real rsum = ra + rb;
+    real dist2 = v3_dot(d, d);
+    g.active = 0;
+    g.delta = (real)0;
+    g.rstar = (real)0;
+    g.n = v3((real)0, (real)0, (real)1);
+    if (!(dist2 < rsum * rsum))
+        return g;
+    g.active = 1;
+    real dist = dem_sqrt(dist2);
+    /* Coincident centres: the direction is undefined; the defined policy is to push a along +z. */
+    if (dist > (real)0)
+        g.n = v3_scale(d, (real)1 / dist);
+    g.delta = rsum - dist;
+    g.rstar = ra * rb / rsum;
+    return g;
+}
+typedef struct {
+    int active;
+    real delta; /* overlap [m] */
+    vec3 n;     /* unit normal from the wall towards the particle centre */
+} wall_geom;
+
+DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri)
+{
+    wall_geom g;
+    vec3 p = v3(wr[W_PX], wr[W_PY], wr[W_PZ]);
+    vec3 nw = v3(wr[W_NX], wr[W_NY], wr[W_NZ]);
+    vec3 d = v3_sub(xi, p);
+    g.active = 0;
+    g.delta = (real)0;
+    g.n = nw;
+    if (type == WALL_PLANE) {
+        /* A centre behind the plane still gets pushed back out (d > r), rather than tunnelling silently. */
+        g.delta = ri - v3_dot(d, nw);
+        g.active = g.delta > (real)0;
+    } else { /* WALL_CYLINDER_INSIDE */
+        vec3 radial = v3_sub(d, v3_scale(nw, v3_dot(d, nw)));
+        real rho2 = v3_dot(radial, radial);
+        if (rho2 > (real)0) {
+            real rho = dem_sqrt(rho2);
+            g.delta = ri + rho - wr[W_RADIUS];
+            g.active = g.delta > (real)0;
+            g.n = v3_scale(radial, (real)-1 / rho);
+        }
+        /* a centre exactly on the axis cannot touch: the host rejects particles wider than the cylinder */
+    }
+    return g;
+}
+
+#endif /* DEM_CONTACT_GEOMETRY_H */

@@ -1,0 +1,177 @@
+/* mc_strain.h - the strain-based multi-contact model of Brodu et al. (seed 000 section 3.1, Eq. 7-8).
+ *
+ * Contact c of particle i sees, besides its own overlap d_c, the normal displacement that every other contact k of
+ * the same particle induces at c (Eq. 7):
+ *   d_k->c = -K f_k / d_kc [ (n_k.u_kc)(n_c.u_kc) + C1 n_k.n_c - C2 (n_k + u_kc).n_c / (1 + n_k.u_kc) ]
+ * with K = gamma (1 + nu) / (2 pi E), C1 = 3 - 4 nu, C2 = 1 - 2 nu of particle i's material (PM_MCS_*, on the
+ * diagonal of the pair table), f_k the elastic normal force of contact k, n the unit normal pointing INTO the
+ * particle at a contact, u_kc the unit vector from contact point k to contact point c and d_kc their distance.
+ * Contact points are those of the torques: x_i - (r_i - d/2) n for a particle pair, x_i - (r_i - d) n for a wall.
+ * With inward normals two points on a sphere have n_k.u_kc >= 0, and two opposite contacts give
+ * d_k->c = gamma (1 + nu)(3 - 2 nu) f_k / (2 pi E d_kc) > 0: squeezing a sphere at one pole deepens the other pole's
+ * overlap, and (Poisson) the equator bulges out.
+ * A pair contact feeds both particles' fields into the Hertz law (Eq. 8):
+ *   f = 4/3 E* sqrt(r*) d_eff^(3/2),  d_eff = max(0, d_c + D_i,c + D_j,c),  D_i,c = sum_{k != c} d_k->c over i's
+ * contacts (walls included), so f_ij = -f_ji still holds; a wall contact uses D_i,c alone. Damping and the
+ * tangential stiffness follow d_eff; lever arms keep the geometric overlap. Only geometric overlaps are contacts.
+ *
+ * f_k comes from the previous evaluation: the previous time step in the lagged scheme (published, one pass), or
+ * the previous iteration when iterating (host/sim.c repeats mc_strain_disp + mc_strain_update until no force changes
+ * by more than the relative tolerance, or the iteration cap). It is stored per row slot (both slots of a pair hold
+ * the same value, written by the pair's owner, like the touch flags) and per particle-wall slot, carried across
+ * neighbour rebuilds and saved in checkpoints.
+ *
+ * Guards (the singular cases stay finite): d_kc is raised to the Hertz contact radius a_k = sqrt(r*_k d_k) of the
+ * loading contact (the point-load field is meaningless inside the contact patch, and f_k / a_k ~ E* d_k stays
+ * bounded as d_k -> 0); u_kc = 0 when the points coincide; 1 + n_k.u_kc is raised to MC_DENOM_MIN (it is >= 1 for
+ * points on a sphere and can only fall below with overlaps beyond any physical range; since
+ * |(n_k + u).n_c| <= sqrt(2 (1 + n_k.u)), the ratio stays <= sqrt(2 / MC_DENOM_MIN)).
+ * Canonical order: D_i,c sums k over i's row in ascending partner id, then walls by index.
+ */
+#ifndef DEM_MC_STRAIN_H
+#define DEM_MC_STRAIN_H
+#include "contact_geometry.h"
+#include "hertz_mindlin.h"
+
+#define MC_DENOM_MIN ((real)0.1)
+
+typedef struct {
+    int active;
+    vec3 p;     /* contact point [m] */
+    vec3 n;     /* unit normal into the particle */
+    real delta; /* geometric overlap [m] */
+    real rstar; /* effective radius [m] */
+} mc_contact;
+
+/* Contact number c of particle i: c < cnt is row slot c, c >= cnt is wall c - cnt. */
+DEM_INLINE mc_contact mc_contact_get(unsigned fx, int i, int c, int cnt, int maxn, vec3 xi, real ri,
+                                     DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *radius,
+                                     DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *wall_int,
+                                     DEM_CONST_GLOBAL real *wall_real)
+{
+    mc_contact m;
+    if (c < cnt) {
+        int j = nbr_list[i * maxn + c];
+        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
+        m.active = g.active;
+        m.n = g.n;
+        m.delta = g.delta;
+        m.rstar = g.rstar;
+        m.p = v3_sub(xi, v3_scale(g.n, ri - (real)0.5 * g.delta));
+    } else {
+        int k = c - cnt;
+        wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+        m.active = (fx & DEM_EFFECT_WALLS) ? g.active : 0;
+        m.n = g.n;
+        m.delta = g.delta;
+        m.rstar = ri;
+        m.p = v3_sub(xi, v3_scale(g.n, ri - g.delta));
+    }
+    return m;
+}
+
+/* Eq. 7: displacement at contact c induced by contact k carrying the elastic normal force fk (pmi: i's material). */
+DEM_INLINE real mc_strain_induced(DEM_CONST_GLOBAL real *pmi, mc_contact k, real fk, mc_contact c)
+{
+    vec3 dp = v3_sub(c.p, k.p);
+    real d = dem_sqrt(v3_dot(dp, dp));
+    vec3 u = d > (real)0 ? v3_scale(dp, (real)1 / d) : v3_zero();
+    real a = dem_sqrt(k.rstar * k.delta);
+    real deff = d > a ? d : a;
+    if (!(deff > (real)0))
+        return (real)0;
+    real nku = v3_dot(k.n, u), ncu = v3_dot(c.n, u), nkc = v3_dot(k.n, c.n);
+    real den = (real)1 + nku;
+    if (den < MC_DENOM_MIN)
+        den = MC_DENOM_MIN;
+    real br = nku * ncu + pmi[PM_MCS_C1] * nkc - pmi[PM_MCS_C2] * (v3_dot(v3_add(k.n, u), c.n) / den);
+    return -(pmi[PM_MCS_K] * fk / deff) * br;
+}
+
+/* D_i,c for every contact c of particle i: row slots into disp[i*maxn + c], walls into wall_disp[i*nwalls + k];
+ * zero where c does not touch. f_k is read from force (row slots) and wall_fn (walls). */
+DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
+                                    DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *mat,
+                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
+                                    DEM_CONST_GLOBAL int *nbr_list, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+                                    DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *fn,
+                                    DEM_CONST_GLOBAL real *wall_fn, DEM_GLOBAL real *disp, DEM_GLOBAL real *wall_disp)
+{
+    vec3 xi = v3_load(x, i);
+    real ri = radius[i];
+    int cnt = nbr_count[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0, total = cnt + nw;
+    DEM_CONST_GLOBAL real *pmi = pairmat + PM_STRIDE * (mat[i] * nmat + mat[i]);
+    for (int c = 0; c < total; c++) {
+        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
+        real s = (real)0;
+        if (cc.active)
+            for (int k = 0; k < total; k++) {
+                real fk = k < cnt ? fn[i * maxn + k] : wall_fn[i * nwalls + (k - cnt)];
+                if (k == c || !(fk > (real)0))
+                    continue;
+                mc_contact kk = mc_contact_get(fx, i, k, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
+                if (kk.active)
+                    s = s + mc_strain_induced(pmi, kk, fk, cc);
+            }
+        if (c < cnt)
+            disp[i * maxn + c] = s;
+        else
+            wall_disp[i * nwalls + (c - cnt)] = s;
+    }
+}
+
+/* The overlap the Hertz law sees (Eq. 8), never negative. */
+DEM_INLINE real mc_strain_overlap(real delta, real da, real db)
+{
+    real d = delta + da + db;
+    return d > (real)0 ? d : (real)0;
+}
+
+/* One iteration: the elastic normal force of every contact of particle i from the current displacements, into
+ * fn (owned pairs, both slots) and wall_fn; raises FLAG_MC_PENDING if one moved by more than tol (relative). */
+DEM_INLINE int mc_changed(real fnew, real fold, real tol)
+{
+    real d = fnew > fold ? fnew - fold : fold - fnew;
+    real m = fnew > fold ? fnew : fold;
+    return d > tol * m;
+}
+
+DEM_INLINE void mc_strain_update_item(unsigned fx, int i, int maxn, real tol, DEM_CONST_GLOBAL real *x,
+                                      DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *mat,
+                                      DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
+                                      DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror, int nwalls,
+                                      DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                      DEM_CONST_GLOBAL real *disp, DEM_CONST_GLOBAL real *wall_disp,
+                                      DEM_GLOBAL real *fn, DEM_GLOBAL real *wall_fn, DEM_GLOBAL int *flags)
+{
+    vec3 xi = v3_load(x, i);
+    real ri = radius[i];
+    int mi = mat[i], cnt = nbr_count[i], changed = 0;
+    for (int k = 0; k < cnt; k++) {
+        int slot = i * maxn + k, j = nbr_list[slot], m = nbr_mirror[slot];
+        if (j < i || m < 0)
+            continue;
+        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
+        real f = (real)0;
+        if (g.active)
+            f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,
+                           mc_strain_overlap(g.delta, disp[slot], disp[m]));
+        changed |= mc_changed(f, fn[slot], tol);
+        fn[slot] = f;
+        fn[m] = f;
+    }
+    if (fx & DEM_EFFECT_WALLS)
+        for (int k = 0; k < nwalls; k++) {
+            int slot = i * nwalls + k;
+            wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+            real f = (real)0;
+            if (g.active)
+                f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR], ri,
+                               mc_strain_overlap(g.delta, wall_disp[slot], (real)0));
+            changed |= mc_changed(f, wall_fn[slot], tol);
+            wall_fn[slot] = f;
+        }
+    if (changed)
+        DEM_ATOMIC_MAX(&flags[FLAG_MC_PENDING], 1);
+}
+#endif /* DEM_MC_STRAIN_H */

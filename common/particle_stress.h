@@ -1,0 +1,133 @@
+/* particle_stress.h - per-particle stress tensor and its trace (seed 000 Eq. 9), and the MC-stress correction
+ * (Eq. 10) that uses the trace.
+ *
+ *   sigma_p = (1/V_p) sum_c l_c (x) f_c,   l_c = -(r_p - a_c) n_c,  f_c = f_H,c n_c
+ * n_c is the unit normal pointing into particle p at contact c (from the partner, or from the wall), l_c the branch
+ * vector from the centre to the contact point (a_c = d/2 for a particle pair, d for a wall: the same contact points
+ * as the torques of contact_forces.h), and f_H the elastic Hertz force of the overlap (hm_elastic, Eq. 3: the
+ * appendix's "ForcesLocal = Forces(Overlap)"). Damping is left out: the stress is that of the elastic state, and
+ * tangential forces have no trace (l_c is parallel to n_c). The tensor is therefore symmetric,
+ *   sigma_p = -(1/V_p) sum_c (r_p - a_c) f_H,c n_c (x) n_c,
+ * negative (compressive) under load; its trace is -(1/V_p) sum_c (r_p - a_c) f_H,c.
+ *
+ * Canonical order: partners in ascending id (the whole sorted neighbour row), then walls in index order. Each term
+ * is rounded as t_c = -((r_p - a_c) f_H,c) * (1/V_p) and added in that order, so every device gets the same bits.
+ *
+ * MC-stress (Eq. 10 with the appendix's two passes): pass 1 (stress_trace) sums the traces; pass 2 (the contact
+ * kernels) adds to the elastic normal force of a pair
+ *   f_extra = beta nu A_ij P_ij,  A_ij = pi r* d,  P_ij = -((tr_i - t_i,c) + (tr_j - t_j,c)) / 6
+ * and to a particle-wall contact f_extra = beta_i nu_i pi r_i d (-(tr_i - t_i,c) / 3). Decisions, tested in
+ * tests/test_multicontact.c and written up in docs/multicontact.md:
+ *  (a) /6, the appendix's "1/6 (StressTrace[i] + StressTrace[j])": the mean of the two particles' pressures
+ *      tr/3 (Eq. 10's text, 1/3 of the sum of traces, would be twice that, i.e. a rescaled beta);
+ *  (b) sign: the trace is negative in compression while the correction must stiffen, so P = -tr/3 (pressure
+ *      positive in compression);
+ *  (c) contact c's own term is taken out of both traces: the correction carries the influence of the OTHER
+ *      contacts, so a two-sphere collision is exactly classical (seed 000 section 3.4: "multi-contact models do not
+ *      show any difference with the classical DEM in case of two sphere interactions"). With one contact,
+ *      tr - t = t - t = 0 exactly, so the two-sphere result is bit-identical to classical DEM.
+ * beta nu = 0 makes f_extra an exact zero, so nu = 0 or beta = 0 reproduces classical DEM bit for bit.
+ */
+#ifndef DEM_PARTICLE_STRESS_H
+#define DEM_PARTICLE_STRESS_H
+#include "contact_geometry.h"
+#include "hertz_mindlin.h"
+
+/* One contact's trace term: arm = r_p - a_c, fh the elastic force, invvol = 1/V_p. */
+DEM_INLINE real stress_term(real arm, real fh, real invvol) { return -(arm * fh) * invvol; }
+
+/* Trace of particle i's stress (pass 1 of MC-stress); one work item per particle. */
+DEM_INLINE void stress_trace_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
+                                  DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol,
+                                  DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
+                                  DEM_CONST_GLOBAL int *nbr_count, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
+                                  DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                  DEM_GLOBAL real *trace)
+{
+    vec3 xi = v3_load(x, i);
+    real ri = radius[i], iv = invvol[i], s = (real)0;
+    int mi = mat[i], cnt = nbr_count[i];
+    for (int k = 0; k < cnt; k++) {
+        int j = nbr_list[i * maxn + k];
+        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
+        if (!g.active)
+            continue;
+        real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar, g.delta);
+        s = s + stress_term(ri - (real)0.5 * g.delta, fh, iv);
+    }
+    if (fx & DEM_EFFECT_WALLS)
+        for (int k = 0; k < nwalls; k++) {
+            wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+            if (!g.active)
+                continue;
+            real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR],
+                                 ri, g.delta);
+            s = s + stress_term(ri - g.delta, fh, iv);
+        }
+    trace[i] = s;
+}
+
+/* Adds one contact to a tensor sum: c * n (x) n with c = stress_term(...). */
+DEM_INLINE void stress_add(real *st, real c, vec3 n)
+{
+    st[ST_XX] = st[ST_XX] + c * n.x * n.x;
+    st[ST_YY] = st[ST_YY] + c * n.y * n.y;
+    st[ST_ZZ] = st[ST_ZZ] + c * n.z * n.z;
+    st[ST_XY] = st[ST_XY] + c * n.x * n.y;
+    st[ST_XZ] = st[ST_XZ] + c * n.x * n.z;
+    st[ST_YZ] = st[ST_YZ] + c * n.y * n.z;
+}
+
+/* Full symmetric tensor of particle i (output only, computed when FIELD_STRESS is read); same order and terms. */
+DEM_INLINE void stress_tensor_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
+                                   DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol,
+                                   DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
+                                   DEM_CONST_GLOBAL int *nbr_count, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
+                                   DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                   DEM_GLOBAL real *stress)
+{
+    vec3 xi = v3_load(x, i);
+    real ri = radius[i], iv = invvol[i];
+    real st[ST_STRIDE];
+    for (int c = 0; c < ST_STRIDE; c++)
+        st[c] = (real)0;
+    int mi = mat[i], cnt = nbr_count[i];
+    for (int k = 0; k < cnt; k++) {
+        int j = nbr_list[i * maxn + k];
+        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
+        if (!g.active)
+            continue;
+        real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar, g.delta);
+        stress_add(st, stress_term(ri - (real)0.5 * g.delta, fh, iv), g.n);
+    }
+    if (fx & DEM_EFFECT_WALLS)
+        for (int k = 0; k < nwalls; k++) {
+            wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+            if (!g.active)
+                continue;
+            real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR],
+                                 ri, g.delta);
+            stress_add(st, stress_term(ri - g.delta, fh, iv), g.n);
+        }
+    for (int c = 0; c < ST_STRIDE; c++)
+        stress[ST_STRIDE * i + c] = st[c];
+}
+
+/* MC-stress extra normal force of a pair (a, b) with overlap delta, effective radius rstar, elastic force fh. */
+DEM_INLINE real mc_stress_pair(DEM_CONST_GLOBAL real *pm, DEM_CONST_GLOBAL real *trace,
+                               DEM_CONST_GLOBAL real *invvol, int a, int b, real ra, real rb, real delta, real rstar,
+                               real fh)
+{
+    real ta = trace[a] - stress_term(ra - (real)0.5 * delta, fh, invvol[a]);
+    real tb = trace[b] - stress_term(rb - (real)0.5 * delta, fh, invvol[b]);
+    return -(pm[PM_MC_STRESS] * rstar * delta) * ((ta + tb) / (real)6);
+}
+
+/* MC-stress extra normal force of particle i on a wall (pmi: the pair-table row of i's own material). */
+DEM_INLINE real mc_stress_wall(DEM_CONST_GLOBAL real *pmi, DEM_CONST_GLOBAL real *trace,
+                               DEM_CONST_GLOBAL real *invvol, int i, real ri, real delta, real fh)
+{
+    real ti = trace[i] - stress_term(ri - delta, fh, invvol[i]);
+    return -(pmi[PM_MC_STRESS] * ri * delta) * (ti / (real)3);
+}
+#endif /* DEM_PARTICLE_STRESS_H */

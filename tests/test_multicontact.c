@@ -1,0 +1,227 @@
+/* test_multicontact.c - stress trace, MC-stress and MC-strain kernels (issue: multi-contact DEM ...).
+ * Reference and PoCL bitwise identical for every model in fp32 and fp64 (stress tensor, traces and stored MC-strain
+ * forces included); zero prefactors reproduce classical DEM bit for bit; two spheres are exactly classical under
+ * both models; the stress tensor agrees with its closed form; the iterated MC-strain scheme converges and reports its
+ * iterations. The physics checks against seed 000 live in test_mc_validation.c. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define STEPS 200
+static const unsigned CLASSIC = DEM_EFFECT_CLASSICAL;
+
+static packing_opts dense(unsigned mc, double beta, double gamma, int iters)
+{
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 6;          /* 216 + 125 = 341 spheres */
+    o.lid_speed = 2.0;   /* a fast lid: many multi-contact particles within STEPS */
+    o.speed = 0.3;
+    o.effects = CLASSIC | mc;
+    o.mc_beta = beta;
+    o.mc_gamma = gamma;
+    o.mc_iterations = iters;
+    return o;
+}
+
+static void lockstep(const packing_opts *o, dem_precision prec, long steps)
+{
+    dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
+    dem_sim *ref, *cl;
+    packing_pair(o, &rc, &c, 0, &ref, &cl);
+    char msg[512];
+    for (long step = 0; step < steps; step++) {
+        step_or_fail(ref, 1);
+        step_or_fail(cl, 1);
+        if (step % 10 == 9 || step == steps - 1) /* every 10th step: the stress tensor is computed when read */
+            if (state_diff(ref, cl, msg, sizeof msg))
+                fail_msg("effects 0x%x, %s, step %ld: %s", o->effects, prec == DEM_FP64 ? "fp64" : "fp32", step + 1,
+                         msg);
+    }
+    dem_mc_stats a, b;
+    dem_mc_stats_get(ref, &a);
+    dem_mc_stats_get(cl, &b);
+    assert_int_equal(a.total, b.total); /* the same iterations on both */
+    if (o->mc_iterations)
+        assert_true(a.max >= 2); /* the fixed point is really iterated */
+    dem_destroy(ref);
+    dem_destroy(cl);
+}
+
+static void test_models_bitwise(void **st)
+{
+    (void)st;
+    packing_opts models[] = {dense(DEM_EFFECT_MC_STRESS, 1.65, 0, 0), dense(DEM_EFFECT_MC_STRAIN, 0, 1.12, 0),
+                             dense(DEM_EFFECT_MC_STRAIN, 0, 1.12, 8)};
+    for (size_t k = 0; k < sizeof models / sizeof models[0]; k++) {
+        lockstep(&models[k], DEM_FP64, STEPS);
+        lockstep(&models[k], DEM_FP32, STEPS);
+    }
+}
+
+/* A run of `steps` on the reference, fp64. */
+static dem_sim *run_ref(const packing_opts *o, long steps)
+{
+    dem_sim *s = packing_build(o);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(s, &c);
+    step_or_fail(s, steps);
+    return s;
+}
+
+static void test_zero_prefactor_is_classical(void **st)
+{
+    (void)st;
+    packing_opts cl = dense(0, 0, 0, 0);
+    dem_sim *base = run_ref(&cl, STEPS);
+    char msg[512];
+    packing_opts zero[] = {dense(DEM_EFFECT_MC_STRESS, 0, 0, 0), dense(DEM_EFFECT_MC_STRAIN, 0, 0, 0),
+                           dense(DEM_EFFECT_MC_STRAIN, 0, 0, 5), dense(DEM_EFFECT_MC_STRESS, 1.65, 0, 0)};
+    zero[3].poisson = 0; /* nu = 0 switches MC-stress off (seed 000: "nu = 0 de-activates the model") */
+    for (size_t k = 0; k < sizeof zero / sizeof zero[0]; k++) {
+        dem_sim *s = run_ref(&zero[k], STEPS);
+        dem_sim *b = base;
+        if (k == 3) { /* nu = 0 changes E* itself: compare with classical at nu = 0 */
+            packing_opts c0 = cl;
+            c0.poisson = 0;
+            b = run_ref(&c0, STEPS);
+        }
+        if (state_diff(b, s, msg, sizeof msg))
+            fail_msg("case %zu (effects 0x%x, beta %g, gamma %g, nu %g): %s", k, zero[k].effects, zero[k].mc_beta,
+                     zero[k].mc_gamma, zero[k].poisson, msg);
+        if (b != base)
+            dem_destroy(b);
+        dem_destroy(s);
+    }
+    /* and non-zero prefactors do change the physics */
+    packing_opts on[] = {dense(DEM_EFFECT_MC_STRESS, 1.65, 0, 0), dense(DEM_EFFECT_MC_STRAIN, 0, 1.12, 0)};
+    for (size_t k = 0; k < 2; k++) {
+        dem_sim *s = run_ref(&on[k], STEPS);
+        assert_true(state_diff(base, s, msg, sizeof msg) != 0);
+        dem_destroy(s);
+    }
+    dem_destroy(base);
+}
+
+/* Two hydrogel spheres at 10 m/s (seed 000 section 3.4): both models are exactly classical (one contact each). */
+static void test_two_spheres_identical(void **st)
+{
+    (void)st;
+    dem_material gel = {11.5, 23.3e3, 0.5, 0.95, 0.03, 1.65, 1.12};
+    unsigned fx[] = {CLASSIC & ~(unsigned)DEM_EFFECT_WALLS, (CLASSIC & ~(unsigned)DEM_EFFECT_WALLS) | DEM_EFFECT_MC_STRESS,
+                     (CLASSIC & ~(unsigned)DEM_EFFECT_WALLS) | DEM_EFFECT_MC_STRAIN};
+    dem_sim *s[4];
+    for (int k = 0; k < 4; k++) {
+        s[k] = pair_build(&gel, 0.01, 0.01, 20, 0.002);
+        assert_int_equal(dem_set_effects(s[k], fx[k < 3 ? k : 2]), 0);
+        if (k == 3)
+            assert_int_equal(dem_set_mc_strain(s[k], 10, 1e-9), 0);
+        dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+        start_or_fail(s[k], &c);
+    }
+    char msg[512];
+    double dmin = 1;
+    for (int step = 0; step < 800; step++) {
+        for (int k = 0; k < 4; k++)
+            step_or_fail(s[k], 1);
+        for (int k = 1; k < 4; k++)
+            if (state_diff(s[0], s[k], msg, sizeof msg))
+                fail_msg("model %d differs from classical at step %d: %s", k, step + 1, msg);
+        dmin = fmin(dmin, pair_distance(s[0]));
+    }
+    assert_true(dmin < 0.02 - 1e-3); /* they really collided (overlap above 1 mm) */
+    for (int k = 0; k < 4; k++)
+        dem_destroy(s[k]);
+}
+
+/* One sphere squeezed between two plates: sigma = -(1/V) sum (r - d) f_H n n, so sigma_zz = -2 (r - d) f_H / V,
+ * the other components zero, and the online trace equals the tensor's trace. */
+static void test_stress_tensor_closed_form(void **st)
+{
+    (void)st;
+    dem_sim *s = dem_create();
+    dem_material rub = {2000, 1.85e6, 0.46, 0.7, 0.5, 1.71, 0.55};
+    int m = dem_add_material(s, &rub);
+    double r = 0.01, d = 0.001;
+    dem_add_particle(s, (double[3]){0, 0, 0}, NULL, r, m);
+    dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, -(r - d)}, {0, 0, 1}, 0, 0, {{0}}});
+    dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, r - d}, {0, 0, -1}, 0, 0, {{0}}});
+    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
+    dem_set_dt(s, 1e-6);
+    dem_set_effects(s, CLASSIC | DEM_EFFECT_MC_STRESS);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+    start_or_fail(s, &c);
+    double sig[6], tr[1];
+    assert_int_equal(dem_get_field(s, FIELD_STRESS, sig), 0);
+    assert_int_equal(dem_get_field(s, FIELD_STRESS_TRACE, tr), 0);
+    double es = 1 / (2 * (1 - 0.46 * 0.46) / 1.85e6), fh = 4.0 / 3.0 * es * sqrt(r * d) * d;
+    double V = 4.0 / 3.0 * M_PI * r * r * r, want = -2 * (r - d) * fh / V;
+    assert_true(fabs(sig[2] - want) <= 1e-12 * fabs(want));
+    for (int k = 0; k < 6; k++)
+        if (k != 2)
+            assert_true(fabs(sig[k]) <= 1e-12 * fabs(want));
+    assert_true(fabs(tr[0] - want) <= 1e-12 * fabs(want));
+    /* MC-stress: each plate contact sees the other's trace only: extra = beta nu pi r d (2(r-d) f_H/V / 3 ... /2) */
+    double f[3];
+    assert_int_equal(dem_wall_force(s, 0, f), 0);
+    double other = (r - d) * fh / V; /* -trace without this contact: the other plate's term */
+    double extra = 1.71 * 0.46 * M_PI * r * d * (other / 3);
+    assert_true(fabs(-f[2] - (fh + extra)) <= 1e-9 * fh);
+    dem_destroy(s);
+}
+
+/* The iterated scheme stops at the tolerance; a tight cap is reported as unconverged steps. */
+static void test_iteration_reporting(void **st)
+{
+    (void)st;
+    packing_opts o = dense(DEM_EFFECT_MC_STRAIN, 0, 1.12, 50);
+    dem_sim *s = run_ref(&o, STEPS);
+    dem_mc_stats a;
+    dem_mc_stats_get(s, &a);
+    assert_true(a.total >= STEPS); /* at least one iteration per step */
+    assert_true(a.max >= 2 && a.max < 50);
+    assert_int_equal(a.unconverged, 0);
+    dem_destroy(s);
+    o.mc_iterations = 1;
+    s = run_ref(&o, STEPS);
+    dem_mc_stats_get(s, &a);
+    assert_int_equal(a.max, 1);
+    assert_true(a.unconverged > 0);
+    dem_destroy(s);
+    o.mc_iterations = 0; /* lagged: no iteration at all */
+    s = run_ref(&o, STEPS);
+    dem_mc_stats_get(s, &a);
+    assert_int_equal(a.total, 0);
+    dem_destroy(s);
+}
+
+static void test_mask_validation(void **st)
+{
+    (void)st;
+    dem_sim *s = dem_create();
+    assert_int_equal(dem_set_effects(s, CLASSIC | DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "choose one"));
+    assert_int_equal(dem_set_mc_strain(s, -1, 1e-6), DEM_ERR_ARG);
+    assert_int_equal(dem_set_mc_strain(s, 5, 0), DEM_ERR_ARG);
+    dem_material bad = {1000, 1e6, 0.3, 0.5, 0.1, -1, 0};
+    assert_int_equal(dem_add_material(s, &bad), -1);
+    assert_non_null(strstr(dem_error(s), "beta and gamma"));
+    assert_int_equal(dem_effect_bit("mc_stress"), 5);
+    assert_int_equal(dem_effect_bit("mc_strain"), 6);
+    dem_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mask_validation),
+        cmocka_unit_test(test_stress_tensor_closed_form),
+        cmocka_unit_test(test_two_spheres_identical),
+        cmocka_unit_test(test_zero_prefactor_is_classical),
+        cmocka_unit_test(test_iteration_reporting),
+        cmocka_unit_test(test_models_bitwise),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
