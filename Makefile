@@ -32,7 +32,7 @@ TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps run demo test test-paraview fuzz bench clean
+.PHONY: all deps run demo test test-paraview fuzz bench clean validate
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -76,6 +76,22 @@ run: $(BUILD)/dem
 	@mkdir -p out
 	./$(BUILD)/dem run $(SCENE) -o out/$(basename $(notdir $(SCENE))).h5 --progress
 	/usr/bin/python3 tools/plot_series.py out/$(basename $(notdir $(SCENE))).h5
+
+# Seed 000's validation scenes under each contact model, and one comparison plot per scene, in out/validation/.
+VALIDATION ?= three_hydrogel five_hydrogel three_rubber five_rubber five_box rubber_plates
+COMPRESSION ?= hydrogel_514 rubber_514 glass_die
+MODELS ?= classical mc_stress mc_strain mc_strain_iterated
+validate: $(BUILD)/dem
+	@mkdir -p out/validation
+	@for s in $(VALIDATION) $(COMPRESSION); do \
+	  f=scenes/validation/$$s.yaml; [ -f $$f ] || f=scenes/$$s.yaml; runs=""; \
+	  for m in $(MODELS); do \
+	    echo "validate: $$s --model $$m"; \
+	    ./$(BUILD)/dem run $$f --model $$m -o out/validation/$$s-$$m.h5 --quiet || exit 1; \
+	    runs="$$runs out/validation/$$s-$$m.h5"; \
+	  done; \
+	  /usr/bin/python3 tools/plot_models.py -o out/validation/$$s.png $$runs || exit 1; \
+	done
 
 # ParaView's own reader on our XDMF output (Debian's paraview is ~440 MB: not part of every CI run).
 test-paraview: $(BUILD)/dem

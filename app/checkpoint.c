@@ -19,7 +19,7 @@ static int sync_file(const char *path)
     return rc;
 }
 
-int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, size_t errlen)
+int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_run *run, char *err, size_t errlen)
 {
     dem_state st;
     if (dem_state_get(s, &st)) {
@@ -64,6 +64,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, s
             H5Gclose(g);
         hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         rc = rc || sg < 0 || h5_write_text(sg, "text", sc->text) || h5_write_text(sg, "path", sc->path) ||
+             h5_attr_string(sg, "model", run->model) ||
              h5_attr_string(f, "libdem_version", DEM_VERSION);
         if (sg >= 0)
             H5Gclose(sg);
@@ -151,6 +152,9 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         hid_t sg = H5Lexists(f, "scene", H5P_DEFAULT) > 0 ? H5Gopen2(f, "scene", H5P_DEFAULT) : -1;
         ck->scene_text = sg >= 0 ? h5_read_text(sg, "text") : NULL;
         ck->scene_path = sg >= 0 ? h5_read_text(sg, "path") : NULL;
+        char *model = sg >= 0 && H5Aexists(sg, "model") > 0 ? h5_read_attr_string(sg, "model") : NULL;
+        snprintf(ck->model, sizeof ck->model, "%s", model ? model : "");
+        free(model);
         if (sg >= 0)
             H5Gclose(sg);
         rc = !ck->scene_text || !ck->scene_path;

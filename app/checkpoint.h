@@ -9,10 +9,11 @@ typedef struct {
     dem_state st;
     char *scene_text;  /* the scene the run was built from */
     char *scene_path;  /* where it was (CSV paths are relative to its folder) */
+    char model[32];    /* dem run --model of the run ("" = the scene's own law) */
     double *radius;    /* [n], checked against the rebuilt scene */
 } checkpoint;
 
-int checkpoint_write(const char *path, dem_sim *s, const scene *sc, char *err, size_t errlen);
+int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_run *run, char *err, size_t errlen);
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
 void checkpoint_free(checkpoint *ck);
 #endif

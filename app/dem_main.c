@@ -9,6 +9,7 @@
 static const char usage[] =
     "usage: dem run SCENE.yaml [-o OUT.h5] [--device N] [--precision fp32|fp64] [--checkpoint FILE]\n"
     "                          [--progress | --quiet] [--stop-after STEPS]\n"
+    "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated]\n"
     "       dem run --restart CHECKPOINT.h5 [-o OUT.h5] [options as above]\n"
     "       dem check SCENE.yaml     validate a scene and print what it implies (time scales, memory, effects)\n"
     "       dem devices              list OpenCL devices (index for --device)\n"
@@ -16,7 +17,8 @@ static const char usage[] =
     "\n"
     "run writes OUT.h5 (frames and time series; OUT.h5.part until it completes), OUT.xmf for ParaView, and\n"
     "checkpoints to OUT.ckpt.h5 (the scene's output.checkpoint_every, and at the end). A progress line goes to\n"
-    "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI.\n"
+    "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI. --model replaces the\n"
+    "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart).\n"
     "\n"
     "exit status: 0 done; 1 the simulation failed while running; 2 bad command line; 65 invalid scene or\n"
     "checkpoint; 66 a file could not be opened; 69 no usable OpenCL device; 74 output could not be written.\n";
@@ -143,7 +145,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "dem: unknown command '%s'\n%s", cmd, usage);
         return EXIT_USAGE;
     }
-    run_opts o = {NULL, NULL, NULL, NULL, -1, 0, -1, 0};
+    run_opts o = {NULL, NULL, NULL, NULL, -1, 0, -1, 0, NULL};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         long v;
@@ -187,6 +189,10 @@ int main(int argc, char **argv)
                 return EXIT_USAGE;
             }
             o.stop_after = v;
+        } else if (!strcmp(a, "--model")) {
+            if (!need_value(argc, argv, k))
+                return EXIT_USAGE;
+            o.model = argv[++k];
         } else if (!strcmp(a, "--progress")) {
             o.progress = 1;
         } else if (!strcmp(a, "--quiet")) {

@@ -80,6 +80,16 @@ int run_scene(const run_opts *o)
         code = fail_with(EXIT_BAD_INPUT, err);
         goto done;
     }
+    const char *model = o->model ? o->model : have_ck && ck.model[0] ? ck.model : NULL;
+    if (have_ck && o->model && strcmp(o->model, ck.model[0] ? ck.model : o->model)) {
+        snprintf(err, sizeof err, "%s: the checkpoint was run with --model %s, not %s", o->restart, ck.model, o->model);
+        code = fail_with(EXIT_USAGE, err);
+        goto done;
+    }
+    if (model && scene_apply_model(sc, s, &run, model, err, sizeof err)) {
+        code = fail_with(o->model ? EXIT_USAGE : EXIT_BAD_INPUT, err);
+        goto done;
+    }
     if (o->device >= 0)
         run.cfg.device = o->device;
     if (have_ck) /* a restart continues in the checkpoint's precision */
@@ -182,7 +192,7 @@ int run_scene(const run_opts *o)
             goto done;
         }
         if ((run.checkpoint_every > 0 && st % run.checkpoint_every == 0) || st == end)
-            if (checkpoint_write(ckp, s, sc, err, sizeof err)) {
+            if (checkpoint_write(ckp, s, sc, &run, err, sizeof err)) {
                 code = fail_with(EXIT_IO, err);
                 goto done;
             }

@@ -16,6 +16,7 @@ typedef struct {
     int precision;           /* 0: the scene's, else DEM_FP32 / DEM_FP64 */
     int progress;            /* 1 always, 0 never, -1 when stderr is a terminal */
     long stop_after;         /* > 0: stop after this many steps (a checkpoint is written; for tests and staging) */
+    const char *model;       /* NULL: the scene's normal law; else see scene_apply_model */
 } run_opts;
 
 int run_scene(const run_opts *o);

@@ -44,6 +44,7 @@ typedef struct {
     scene_sphere *spheres;        /* explicit list, or */
     unsigned spheres_count;
     char *csv;                    /* a CSV file (path relative to the scene file), or */
+    char *csv_density;            /* "check" (default: a density column must match the material) or "ignore" */
     scene_generate *generate;     /* generated */
 } scene_particles;
 
@@ -141,6 +142,7 @@ typedef struct {
     double contact_travel;  /* [m] */
     dem_time_scales ts;
     char note[1024];        /* remarks for `dem check` (ignored parameters ...) */
+    char model[32];         /* normal law chosen on the command line (dem run --model), "" = the scene's */
 } scene_run;
 
 /* Loads and parses; on failure returns NULL and writes "file:line: field: reason" into err. */
@@ -149,6 +151,9 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
 void scene_free(scene *sc);
 /* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
+/* Replaces the scene's normal law (after scene_build, before dem_start): "classical", "mc_stress", "mc_strain"
+ * (lagged) or "mc_strain_iterated" (the scene's mc_iterations, or 20). Records it in run->model. */
+int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *model, char *err, size_t errlen);
 
 /* scene_locate.c: line of a field path such as "walls[1].motion[0].velocity" (0 if absent). */
 scene_locator *scene_locate(const char *text, size_t len);

@@ -105,6 +105,36 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
     return 0;
 }
 
+int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *model, char *err, size_t errlen)
+{
+    static const char *const names[] = {"classical", "mc_stress", "mc_strain", "mc_strain_iterated"};
+    int k = 0;
+    while (k < 4 && strcmp(model, names[k]))
+        k++;
+    if (k == 4) {
+        snprintf(err, errlen, "unknown model '%s' (classical, mc_stress, mc_strain, mc_strain_iterated)", model);
+        return 1;
+    }
+    unsigned fx = run->effects & ~(unsigned)(DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN);
+    fx |= k == 1 ? DEM_EFFECT_MC_STRESS : k >= 2 ? DEM_EFFECT_MC_STRAIN : 0;
+    int have = k == 0; /* a multi-contact model needs a non-zero prefactor, or it is classical DEM in disguise */
+    for (unsigned q = 0; q < sc->f->materials_count; q++)
+        have |= k == 1 ? sc->f->materials[q].beta > 0 : sc->f->materials[q].gamma > 0;
+    if (!have) {
+        snprintf(err, errlen, "model %s: no material of the scene has %s > 0", model, k == 1 ? "beta" : "gamma");
+        return 1;
+    }
+    int iters = k == 3 ? (sc->f->mc_iterations > 0 ? sc->f->mc_iterations : 20) : 0;
+    double tol = scene_has(sc->loc, "mc_tolerance") ? sc->f->mc_tolerance : 1e-6;
+    if (dem_set_effects(s, fx) || dem_set_mc_strain(s, iters, tol)) {
+        snprintf(err, errlen, "model %s: %s", model, dem_error(s));
+        return 1;
+    }
+    run->effects = fx;
+    snprintf(run->model, sizeof run->model, "%s", model);
+    return 0;
+}
+
 int scene_material_id(const scene *sc, const char *name)
 {
     for (unsigned j = 0; j < sc->f->materials_count; j++)

@@ -64,6 +64,14 @@ static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
         col[k] = -1;
     char buf[4096];
     double rho = sc->f->materials[mat].density;
+    const char *dens = sc->f->particles[g].csv_density;
+    if (dens && strcmp(dens, "check") && strcmp(dens, "ignore")) {
+        fclose(fp);
+        char p[64];
+        snprintf(p, sizeof p, "particles[%d].csv_density", g);
+        return scene_fail(sc, err, errlen, p, "must be 'check' or 'ignore' (got '%s')", dens);
+    }
+    int check_density = !dens || !strcmp(dens, "check");
     while (!rc && fgets(buf, sizeof buf, fp)) {
         line++;
         size_t len = strlen(buf);
@@ -127,7 +135,7 @@ static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
             rc = csv_fail(sc, err, errlen, g, file, line, col[C_R] >= 0 ? "radius" : "diameter", "must be > 0 m");
             break;
         }
-        if (col[C_RHO] >= 0 && fabs(val[C_RHO] - rho) > 1e-9 * rho) {
+        if (check_density && col[C_RHO] >= 0 && fabs(val[C_RHO] - rho) > 1e-9 * rho) {
             char why[256];
             snprintf(why, sizeof why, "%g kg/m^3 differs from material '%s' (%g kg/m^3)", val[C_RHO],
                      sc->f->materials[mat].name, rho);

@@ -57,6 +57,7 @@ static const cyaml_schema_field_t particles_fields[] = {
     CYAML_FIELD_SEQUENCE("spheres", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_particles, spheres, &sphere_entry,
                          1, CYAML_UNLIMITED),
     TEXT("csv", scene_particles, csv),
+    TEXT("csv_density", scene_particles, csv_density),
     CYAML_FIELD_MAPPING_PTR("generate", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_particles, generate,
                             generate_fields),
     CYAML_FIELD_END};

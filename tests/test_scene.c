@@ -13,26 +13,7 @@
 #define SRC DEM_DEFAULT_SOURCE_DIR
 static char tmp[256];
 
-/* Runs a shell command; returns its exit status and its stderr (into err). */
-static int sh(char *err, size_t len, const char *fmt, ...)
-{
-    char cmd[4096];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(cmd, sizeof cmd, fmt, ap);
-    va_end(ap);
-    char full[4400];
-    snprintf(full, sizeof full, "%s 2>%s/stderr.txt", cmd, tmp);
-    int st = system(full);
-    char p[300];
-    snprintf(p, sizeof p, "%s/stderr.txt", tmp);
-    FILE *fp = fopen(p, "r");
-    size_t n = fp ? fread(err, 1, len - 1, fp) : 0;
-    err[n] = 0;
-    if (fp)
-        fclose(fp);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+#define sh(err, len, ...) test_sh(tmp, err, len, __VA_ARGS__)
 
 static int exists(const char *fmt, const char *a)
 {

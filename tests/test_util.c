@@ -4,6 +4,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+
+int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...)
+{
+    char cmd[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    char full[4600];
+    snprintf(full, sizeof full, "%s 2>%s/stderr.txt", cmd, dir);
+    int st = system(full);
+    char p[600];
+    snprintf(p, sizeof p, "%s/stderr.txt", dir);
+    FILE *fp = fopen(p, "r");
+    size_t n = fp ? fread(err, 1, len - 1, fp) : 0;
+    err[n] = 0;
+    if (fp)
+        fclose(fp);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
 
 double uniform01(unsigned *st)
 {

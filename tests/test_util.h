@@ -42,6 +42,9 @@ uint64_t state_hash(dem_sim *s);
 
 double uniform01(unsigned *state);
 
+/* Runs a shell command (printf-style), its stderr captured into err via dir/stderr.txt; returns its exit status. */
+int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...);
+
 /* Two spheres (radius r, material m) approaching head-on along x at relative speed v, touching at t = 0.
  * dt_frac: time step as a fraction of the closed-form Hertz contact time. */
 dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, double dt_frac);

@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Compares runs of one scene under different contact models (dem run --model ...) in one PNG.
+
+usage: tools/plot_models.py -o OUT.png RUN.h5 [RUN.h5 ...]
+
+Scenes with a sample (a piston): engineering stress against strain, one curve per run (compression and return).
+Scenes without one (the 3- and 5-sphere collisions of seed 000 section 3.4): kinetic energy against time and the
+overlap of particles 0 and 1 (2 r - |x0 - x1|, geometric) against time. Each curve is labelled with the run's
+model attribute. Uses Debian's python3-h5py and python3-matplotlib; run it with /usr/bin/python3.
+"""
+import argparse
+import sys
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def attr(f, name, default=""):
+    v = f.attrs.get(name, default)
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("runs", nargs="+", help="HDF5 files written by dem run")
+    ap.add_argument("-o", "--output", required=True, help="PNG file")
+    a = ap.parse_args()
+    files = []
+    for path in a.runs:
+        try:
+            files.append(h5py.File(path, "r"))
+        except OSError as e:
+            sys.exit(f"plot_models: cannot open {path}: {e}")
+    title = attr(files[0], "scene_name")
+    sample = "strain" in files[0]["series"]
+    if sample:
+        fig, ax = plt.subplots(figsize=(6.5, 4.5))
+        for f in files:
+            s = f["series"]
+            ax.plot(100 * s["strain"][:], s["stress"][:], label=attr(f, "model"))
+        ax.set_xlabel("engineering strain [%]")
+        ax.set_ylabel("stress [Pa]")
+        ax.set_xlim(left=0)
+        ax.legend()
+    else:
+        fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+        for f in files:
+            s, fr = f["series"], f["frames"]
+            label = attr(f, "model")
+            ax1.plot(1e3 * s["time"][:], s["kinetic"][:], label=label)
+            x = fr["position"][:]
+            r = f["particles/radius"][:]
+            d = r[0] + r[1] - np.linalg.norm(x[:, 0, :] - x[:, 1, :], axis=1)
+            ax2.plot(1e3 * fr["time"][:], 1e3 * np.maximum(d, 0), label=label)
+        ax1.set_xlabel("time [ms]")
+        ax1.set_ylabel("kinetic energy [J]")
+        ax2.set_xlabel("time [ms]")
+        ax2.set_ylabel("overlap of the central particle [mm]")
+        ax1.legend()
+        ax2.legend()
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=120)
+    for f in files:
+        f.close()
+    print(f"plot_models: wrote {a.output}")
+
+
+if __name__ == "__main__":
+    main()
