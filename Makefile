@@ -116,7 +116,7 @@ demo: $(BUILD)/dem-demo
 test: $(TEST_BIN)
 	@bash scripts/run-tests.sh $(TEST_BIN)
 
-bench: $(BUILD)/dem-bench
+bench: $(BUILD)/dem-bench $(BUILD)/dem
 	./$(BUILD)/dem-bench
 
 clean:

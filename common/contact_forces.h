@@ -119,7 +119,9 @@ DEM_INLINE void contact_pairs_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBA
         }
         pair_contact pc = pair_contact_eval(fx, i, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
                                             touching, trace, invvol, da, db);
-        if (fx & DEM_EFFECT_MC_STRAIN) { /* both slots: the partner's mc_strain_disp reads its own row */
+        /* both slots: the partner's mc_strain_disp reads its own row. A pair that neither touched nor touches holds
+         * 0 already (mc_strain_update zeroes what it set for a pair that does not touch now) */
+        if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching)) {
             mc_fn[slot] = pc.fel;
             mc_fn[m] = pc.fel;
         }

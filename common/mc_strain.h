@@ -34,6 +34,12 @@
 #include "hertz_mindlin.h"
 
 #define MC_DENOM_MIN ((real)0.1)
+/* Contacts of one particle whose geometry mc_strain_disp keeps in private memory (computed once, not once per pair);
+ * a particle with more takes the slower path that recomputes them. Both paths evaluate the same expressions on the
+ * same inputs, so the result does not depend on which one ran. */
+#ifndef MC_CACHE
+#define MC_CACHE 16
+#endif
 
 typedef struct {
     int active;
@@ -70,26 +76,40 @@ DEM_INLINE mc_contact mc_contact_get(unsigned fx, int i, int c, int cnt, int max
     return m;
 }
 
-/* Eq. 7: displacement at contact c induced by contact k carrying the elastic normal force fk (pmi: i's material). */
-DEM_INLINE real mc_strain_induced(DEM_CONST_GLOBAL real *pmi, mc_contact k, real fk, mc_contact c)
+/* Eq. 7: displacement at contact c induced by contact k carrying the elastic normal force fk (pmi: i's material),
+ * from nku = n_k.u_kc, ncu = n_c.u_kc, nkc = n_k.n_c, the distance d of the two points, inv_d = 1/d (0 when d = 0)
+ * and ak = sqrt(r*_k d_k); (n_k + u).n_c is evaluated as nkc + ncu. The pairs (k, c) and (c, k) share d, nkc and
+ * the two dot products (u_ck = -u_kc, so their n.u change sign exactly): the geometry is computed once per pair.
+ * With nu = 1/2, C2 = 0 and its term is skipped (x - 0 * y == x bit for bit, y being finite). */
+DEM_INLINE real mc_strain_term(DEM_CONST_GLOBAL real *pmi, real nku, real ncu, real nkc, real ak, real fk, real d,
+                               real inv_d)
 {
-    vec3 dp = v3_sub(c.p, k.p);
-    real d = dem_sqrt(v3_dot(dp, dp));
-    vec3 u = d > (real)0 ? v3_scale(dp, (real)1 / d) : v3_zero();
-    real a = dem_sqrt(k.rstar * k.delta);
-    real deff = d > a ? d : a;
-    if (!(deff > (real)0))
+    if (!(d > ak) && !(ak > (real)0))
         return (real)0;
-    real nku = v3_dot(k.n, u), ncu = v3_dot(c.n, u), nkc = v3_dot(k.n, c.n);
-    real den = (real)1 + nku;
-    if (den < MC_DENOM_MIN)
-        den = MC_DENOM_MIN;
-    real br = nku * ncu + pmi[PM_MCS_C1] * nkc - pmi[PM_MCS_C2] * (v3_dot(v3_add(k.n, u), c.n) / den);
-    return -(pmi[PM_MCS_K] * fk / deff) * br;
+    real inv = d > ak ? inv_d : (real)1 / ak; /* 1 / max(d_kc, a_k) */
+    real br = nku * ncu + pmi[PM_MCS_C1] * nkc;
+    real c2 = pmi[PM_MCS_C2];
+    if (c2 != (real)0) {
+        real den = (real)1 + nku;
+        if (den < MC_DENOM_MIN)
+            den = MC_DENOM_MIN;
+        br = br - c2 * ((nkc + ncu) / den);
+    }
+    return -(pmi[PM_MCS_K] * fk * inv) * br;
+}
+
+/* Distance from contact point pk to pc, its inverse and the unit vector (zero when the points coincide). */
+DEM_INLINE vec3 mc_direction(vec3 pk, vec3 pc, real *d, real *inv_d)
+{
+    vec3 dp = v3_sub(pc, pk);
+    *d = dem_sqrt(v3_dot(dp, dp));
+    *inv_d = *d > (real)0 ? (real)1 / *d : (real)0;
+    return v3_scale(dp, *inv_d);
 }
 
 /* D_i,c for every contact c of particle i: row slots into disp[i*maxn + c], walls into wall_disp[i*nwalls + k];
- * zero where c does not touch. f_k is read from force (row slots) and wall_fn (walls). */
+ * zero where c does not touch. f_k is read from fn (row slots) and wall_fn (walls). Each D_i,c sums k in canonical
+ * order (ascending contact number), whichever path computes it. */
 DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
                                     DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *mat,
                                     DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
@@ -101,7 +121,54 @@ DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
     real ri = radius[i];
     int cnt = nbr_count[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0, total = cnt + nw;
     DEM_CONST_GLOBAL real *pmi = pairmat + PM_STRIDE * (mat[i] * nmat + mat[i]);
-    for (int c = 0; c < total; c++) {
+    /* fast path: the touching contacts, gathered once (in canonical order), then each unordered pair once */
+    vec3 cp[MC_CACHE], cn[MC_CACHE];
+    real fc[MC_CACHE], ac[MC_CACHE], sum[MC_CACHE];
+    int where[MC_CACHE], nc = 0;
+    for (int c = 0; c < total && nc <= MC_CACHE; c++) {
+        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
+        if (c < cnt)
+            disp[i * maxn + c] = (real)0;
+        else
+            wall_disp[i * nwalls + (c - cnt)] = (real)0;
+        if (!cc.active)
+            continue;
+        if (nc == MC_CACHE) {
+            nc++; /* too many: the slow path below */
+            break;
+        }
+        cp[nc] = cc.p;
+        cn[nc] = cc.n;
+        fc[nc] = c < cnt ? fn[i * maxn + c] : wall_fn[i * nwalls + (c - cnt)];
+        ac[nc] = dem_sqrt(cc.rstar * cc.delta);
+        sum[nc] = (real)0;
+        where[nc++] = c;
+    }
+    if (nc <= MC_CACHE) {
+        /* a < b: b receives from a (k = a < c = b), then a from b; for a fixed contact the terms arrive in
+         * ascending k, as in the canonical sum */
+        for (int a = 0; a < nc; a++)
+            for (int b = a + 1; b < nc; b++) {
+                if (!(fc[a] > (real)0) && !(fc[b] > (real)0))
+                    continue;
+                real d, inv_d;
+                vec3 u = mc_direction(cp[a], cp[b], &d, &inv_d); /* from a's point to b's */
+                real nau = v3_dot(cn[a], u), nbu = v3_dot(cn[b], u), nab = v3_dot(cn[a], cn[b]);
+                if (fc[a] > (real)0)
+                    sum[b] = sum[b] + mc_strain_term(pmi, nau, nbu, nab, ac[a], fc[a], d, inv_d);
+                if (fc[b] > (real)0)
+                    sum[a] = sum[a] + mc_strain_term(pmi, -nbu, -nau, nab, ac[b], fc[b], d, inv_d);
+            }
+        for (int a = 0; a < nc; a++) {
+            int c = where[a];
+            if (c < cnt)
+                disp[i * maxn + c] = sum[a];
+            else
+                wall_disp[i * nwalls + (c - cnt)] = sum[a];
+        }
+        return;
+    }
+    for (int c = 0; c < total; c++) { /* slow path: recompute each contact's geometry where needed */
         mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
         real s = (real)0;
         if (cc.active)
@@ -110,8 +177,12 @@ DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
                 if (k == c || !(fk > (real)0))
                     continue;
                 mc_contact kk = mc_contact_get(fx, i, k, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
-                if (kk.active)
-                    s = s + mc_strain_induced(pmi, kk, fk, cc);
+                if (!kk.active)
+                    continue;
+                real d, inv_d;
+                vec3 u = mc_direction(kk.p, cc.p, &d, &inv_d);
+                s = s + mc_strain_term(pmi, v3_dot(kk.n, u), v3_dot(cc.n, u), v3_dot(kk.n, cc.n),
+                                       dem_sqrt(kk.rstar * kk.delta), fk, d, inv_d);
             }
         if (c < cnt)
             disp[i * maxn + c] = s;

@@ -36,37 +36,6 @@
 /* One contact's trace term: arm = r_p - a_c, fh the elastic force, invvol = 1/V_p. */
 DEM_INLINE real stress_term(real arm, real fh, real invvol) { return -(arm * fh) * invvol; }
 
-/* Trace of particle i's stress (pass 1 of MC-stress); one work item per particle. */
-DEM_INLINE void stress_trace_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
-                                  DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol,
-                                  DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
-                                  DEM_CONST_GLOBAL int *nbr_count, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
-                                  DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                                  DEM_GLOBAL real *trace)
-{
-    vec3 xi = v3_load(x, i);
-    real ri = radius[i], iv = invvol[i], s = (real)0;
-    int mi = mat[i], cnt = nbr_count[i];
-    for (int k = 0; k < cnt; k++) {
-        int j = nbr_list[i * maxn + k];
-        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
-        if (!g.active)
-            continue;
-        real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar, g.delta);
-        s = s + stress_term(ri - (real)0.5 * g.delta, fh, iv);
-    }
-    if (fx & DEM_EFFECT_WALLS)
-        for (int k = 0; k < nwalls; k++) {
-            wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
-            if (!g.active)
-                continue;
-            real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR],
-                                 ri, g.delta);
-            s = s + stress_term(ri - g.delta, fh, iv);
-        }
-    trace[i] = s;
-}
-
 /* Adds one contact to a tensor sum: c * n (x) n with c = stress_term(...). */
 DEM_INLINE void stress_add(real *st, real c, vec3 n)
 {
@@ -78,39 +47,49 @@ DEM_INLINE void stress_add(real *st, real c, vec3 n)
     st[ST_YZ] = st[ST_YZ] + c * n.y * n.z;
 }
 
-/* Full symmetric tensor of particle i (output only, computed when FIELD_STRESS is read); same order and terms. */
-DEM_INLINE void stress_tensor_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
-                                   DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol,
-                                   DEM_CONST_GLOBAL int *mat, DEM_CONST_GLOBAL real *pairmat, int nmat,
-                                   DEM_CONST_GLOBAL int *nbr_count, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
-                                   DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                                   DEM_GLOBAL real *stress)
+/* Particle i's stress, one work item per particle: tensor = 0 writes the trace into out[i] (MC-stress pass 1, every
+ * step), tensor = 1 the six components into out[6i...] (output, when FIELD_STRESS is read). The kernels pass a
+ * constant, so each compiles only its own sums. Same terms, same order either way. */
+DEM_INLINE void stress_item(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GLOBAL real *x,
+                            DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL int *mat,
+                            DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
+                            DEM_CONST_GLOBAL int *nbr_list, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+                            DEM_CONST_GLOBAL real *wall_real, DEM_GLOBAL real *out)
 {
     vec3 xi = v3_load(x, i);
-    real ri = radius[i], iv = invvol[i];
+    real ri = radius[i], iv = invvol[i], tr = (real)0;
     real st[ST_STRIDE];
     for (int c = 0; c < ST_STRIDE; c++)
         st[c] = (real)0;
-    int mi = mat[i], cnt = nbr_count[i];
-    for (int k = 0; k < cnt; k++) {
-        int j = nbr_list[i * maxn + k];
-        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
-        if (!g.active)
-            continue;
-        real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar, g.delta);
-        stress_add(st, stress_term(ri - (real)0.5 * g.delta, fh, iv), g.n);
-    }
-    if (fx & DEM_EFFECT_WALLS)
-        for (int k = 0; k < nwalls; k++) {
-            wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+    int mi = mat[i], cnt = nbr_count[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
+    for (int k = 0; k < cnt + nw; k++) { /* the sorted row, then the walls */
+        real delta, rstar, arm;
+        vec3 n;
+        int other;
+        if (k < cnt) {
+            int j = nbr_list[i * maxn + k];
+            pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
             if (!g.active)
                 continue;
-            real fh = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR],
-                                 ri, g.delta);
-            stress_add(st, stress_term(ri - g.delta, fh, iv), g.n);
+            delta = g.delta, rstar = g.rstar, n = g.n, arm = ri - (real)0.5 * g.delta, other = mat[j];
+        } else {
+            int w = k - cnt;
+            wall_geom g = wall_geometry(wall_int[w * WI_STRIDE + WI_TYPE], wall_real + w * W_STRIDE, xi, ri);
+            if (!g.active)
+                continue;
+            delta = g.delta, rstar = ri, n = g.n, arm = ri - g.delta, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
         }
-    for (int c = 0; c < ST_STRIDE; c++)
-        stress[ST_STRIDE * i + c] = st[c];
+        real c = stress_term(arm, hm_elastic(pairmat[PM_STRIDE * (mi * nmat + other) + PM_ESTAR], rstar, delta), iv);
+        if (tensor)
+            stress_add(st, c, n);
+        else
+            tr = tr + c;
+    }
+    if (tensor)
+        for (int c = 0; c < ST_STRIDE; c++)
+            out[ST_STRIDE * i + c] = st[c];
+    else
+        out[i] = tr;
 }
 
 /* MC-stress extra normal force of a pair (a, b) with overlap delta, effective radius rstar, elastic force fh. */

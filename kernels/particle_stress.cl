@@ -9,8 +9,8 @@ __kernel void stress_trace(int n, int maxn, int nmat, __global const real *x, __
 {
     int i = get_global_id(0);
     if (i < n)
-        stress_trace_item(DEM_EFFECTS, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls,
-                          wall_int, wall_real, trace);
+        stress_item(DEM_EFFECTS, 0, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int,
+                    wall_real, trace);
 }
 
 __kernel void stress_tensor(int n, int maxn, int nmat, __global const real *x, __global const real *radius,
@@ -20,6 +20,6 @@ __kernel void stress_tensor(int n, int maxn, int nmat, __global const real *x, _
 {
     int i = get_global_id(0);
     if (i < n)
-        stress_tensor_item(DEM_EFFECTS, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls,
-                           wall_int, wall_real, stress);
+        stress_item(DEM_EFFECTS, 1, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int,
+                    wall_real, stress);
 }

@@ -7,8 +7,8 @@ void REF(ref_stress_trace)(unsigned fx, int n, int maxn, int nmat, const real *x
                            const int *nbr_list, int nwalls, const int *wall_int, const real *wall_real, real *trace)
 {
     for (int i = 0; i < n; i++)
-        stress_trace_item(fx, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int,
-                          wall_real, trace);
+        stress_item(fx, 0, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int,
+                    wall_real, trace);
 }
 
 void REF(ref_stress_tensor)(unsigned fx, int n, int maxn, int nmat, const real *x, const real *radius,
@@ -17,6 +17,6 @@ void REF(ref_stress_tensor)(unsigned fx, int n, int maxn, int nmat, const real *
                             real *stress)
 {
     for (int i = 0; i < n; i++)
-        stress_tensor_item(fx, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int,
-                           wall_real, stress);
+        stress_item(fx, 1, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int,
+                    wall_real, stress);
 }

@@ -143,20 +143,8 @@ static void test_hard_cases(void **st)
     stable(run_loop(SRC "/scenes/glass_die.yaml", NULL, "mc_strain_iterated"));
 }
 
-static int setup(void **st)
-{
-    (void)st;
-    snprintf(tmp, sizeof tmp, "/tmp/dem-test-mc-XXXXXX");
-    return mkdtemp(tmp) ? 0 : -1;
-}
-
-static int teardown(void **st)
-{
-    (void)st;
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmp);
-    return system(cmd) == 0 ? 0 : -1;
-}
+static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-mc"); }
+static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
 int main(void)
 {

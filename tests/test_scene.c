@@ -80,7 +80,7 @@ static void test_errors(void **st)
                                          "> %s/data/hydrogel_514.csv && cp %s/scenes/hydrogel_514.yaml %s/hg.yaml",
                         tmp, SRC, tmp, SRC, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s check %s/hg.yaml", DEM, tmp), 65);
-    assert_non_null(strstr(err, "hg.yaml:15: particles[0].csv: "));
+    assert_non_null(strstr(err, "hg.yaml:17: particles[0].csv: "));
     assert_non_null(strstr(err, "data/hydrogel_514.csv:6: diameter: must be > 0 m"));
 }
 
@@ -226,20 +226,8 @@ static void test_output_and_xdmf(void **st)
     assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/o.xmf", SRC, tmp), 0);
 }
 
-static int setup(void **st)
-{
-    (void)st;
-    snprintf(tmp, sizeof tmp, "/tmp/dem-test-scene-XXXXXX");
-    return mkdtemp(tmp) ? 0 : -1;
-}
-
-static int teardown(void **st)
-{
-    (void)st;
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmp);
-    return system(cmd) == 0 ? 0 : -1;
-}
+static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
+static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
 int main(void)
 {

@@ -6,6 +6,19 @@
 #include <string.h>
 #include <sys/wait.h>
 
+int test_tmpdir_make(char *dir, size_t len, const char *prefix)
+{
+    snprintf(dir, len, "/tmp/%s-XXXXXX", prefix);
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+int test_tmpdir_remove(const char *dir)
+{
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
 int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...)
 {
     char cmd[4096];

@@ -42,6 +42,9 @@ uint64_t state_hash(dem_sim *s);
 
 double uniform01(unsigned *state);
 
+/* A fresh folder /tmp/PREFIX-XXXXXX into dir (0 on success), and its removal with everything in it. */
+int test_tmpdir_make(char *dir, size_t len, const char *prefix);
+int test_tmpdir_remove(const char *dir);
 /* Runs a shell command (printf-style), its stderr captured into err via dir/stderr.txt; returns its exit status. */
 int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...);
 
