@@ -79,7 +79,7 @@ run: $(BUILD)/dem
 
 # Seed 000's validation scenes under each contact model, and one comparison plot per scene, in out/validation/.
 VALIDATION ?= three_hydrogel five_hydrogel three_rubber five_rubber five_box rubber_plates
-COMPRESSION ?= hydrogel_514 rubber_514 glass_die
+COMPRESSION ?= hydrogel_514 rubber_514 glass_die hydrogel_1921
 MODELS ?= classical mc_stress mc_strain mc_strain_iterated
 validate: $(BUILD)/dem
 	@mkdir -p out/validation

@@ -267,12 +267,12 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
         snprintf(p, sizeof p, "particles[%d].generate.kind", g);
         return scene_fail(sc, err, errlen, p, "kind must be random or lattice (got '%s')", gen->kind);
     }
-    int first = ol->n, placed = 0;
+    int placed = 0;
     if (random) {
         snprintf(p, sizeof p, "particles[%d].generate.count", g);
         if (gen->count < 1 || gen->count > DEM_SCENE_MAX_RANDOM)
             return scene_fail(sc, err, errlen, p, "a random packing needs 1 <= count <= %d", DEM_SCENE_MAX_RANDOM);
-        /* random sequential addition, largest first; candidates are checked against a coarse grid */
+        /* random sequential addition, largest first, clear of every sphere placed before (all groups) */
         int n = (int)gen->count;
         double *r = malloc(sizeof(double) * n);
         if (!r)
@@ -293,7 +293,7 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
             if (!inside(&rg, x, r[i]))
                 continue;
             int ok = 1;
-            for (int j = first; j < ol->n && ok; j++) {
+            for (int j = 0; j < ol->n && ok; j++) { /* every sphere placed so far, earlier groups too */
                 const double *y = ol->o[j].x;
                 double dx = x[0] - y[0], dy = x[1] - y[1], dz = x[2] - y[2], rs = r[i] + ol->o[j].r;
                 ok = dx * dx + dy * dy + dz * dz >= rs * rs;

@@ -3,6 +3,7 @@
  * spent in each kernel. Prints markdown tables. Not a test: nothing here passes or fails on speed.
  *   DEM_BENCH_SIZES="8 17 37"   lattice sides (n = side^3 + (side-1)^3), default as shown
  *   DEM_BENCH_QUICK=1           fewer steps
+ *   DEM_BENCH_ONLY=models       only the contact model cost table (or: effects)
  * Then two more tables: what an effect that is off costs (effects_table), and what each contact model costs on seed
  * 000's compression scenes (model_cost_table, the paper's Table 2). */
 #include "dem.h"
@@ -205,6 +206,15 @@ int main(void)
         }
     }
     int quick = getenv("DEM_BENCH_QUICK") != NULL;
+    const char *only = getenv("DEM_BENCH_ONLY");
+    if (only && !strcmp(only, "models")) {
+        model_cost_table(quick);
+        return 0;
+    }
+    if (only && !strcmp(only, "effects")) {
+        effects_table(quick);
+        return 0;
+    }
     int ndev = dem_device_count();
     printf("# libdem %s benchmark: dense Hertz-Mindlin packing (friction, damping, gravity, 6 walls)\n\n", DEM_VERSION);
     for (int d = 0; d < ndev; d++) {

@@ -18,7 +18,7 @@
  * Multi-contact models enter through two arguments and leave the law itself alone: `delta` is the overlap the law
  *          sees (MC-strain passes the geometric overlap plus the displacements induced by the other contacts, Eq. 8)
  *          and `fn_extra` is added to the elastic normal force before damping and the clamp (MC-stress, Eq. 10;
- *          0 otherwise, and x + 0 == x bit for bit, so classical runs are unchanged).
+ *          only with DEM_EFFECT_MC_STRESS, so other runs compile exactly the classical law).
  *
  * Effects (dem_effects.h): without DEM_EFFECT_DAMPING the damping terms and their square root are left out; without
  *          DEM_EFFECT_FRICTION the whole tangential part is (no history, no torque).
@@ -75,7 +75,7 @@ DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real rstar, rea
     /* normal */
     r.fel = hm_elastic_srd(estar, srd, delta);
     real fn = r.fel;
-    if (fx & (DEM_EFFECT_MC_STRESS))
+    if (fx & DEM_EFFECT_MC_STRESS)
         fn = fn + fn_extra;
     if (fx & DEM_EFFECT_DAMPING) {
         q = dem_sqrt(srd * mstar);

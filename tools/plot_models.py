@@ -39,12 +39,15 @@ def main():
     sample = "strain" in files[0]["series"]
     if sample:
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
+        top = 0.0
         for f in files:
             s = f["series"]
-            ax.plot(100 * s["strain"][:], s["stress"][:], label=attr(f, "model"))
-        ax.set_xlabel("engineering strain [%]")
+            strain = 100 * s["strain"][:]
+            top = max(top, float(np.nanmax(strain)))
+            ax.plot(strain, s["stress"][:], label=attr(f, "model"))
+        ax.set_xlabel("engineering strain [%] (from the piston touching the sample)")
         ax.set_ylabel("stress [Pa]")
-        ax.set_xlim(left=0)
+        ax.set_xlim(0, 1.05 * top if top > 0 else None)
         ax.legend()
     else:
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
