@@ -13,6 +13,7 @@
 #include "vec3.h"
 #include "dem_layout.h"
 #include "dem_effects.h"
+#include "sorted_row.h"
 
 DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
                                DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *cell_of,
@@ -74,36 +75,13 @@ DEM_INLINE void nbr_carry_item(unsigned fx, int i, int maxn, int old_maxn, DEM_C
     for (int k = 0; k < nbr_count[i]; k++) {
         int j = nbr_list[i * maxn + k];
         /* mirror: the slot of the same pair in the partner's row (the slot of i in row j) */
-        int m = -1;
-        {
-            int a = 0, z = nbr_count[j] - 1;
-            while (a <= z) {
-                int mid = (a + z) / 2, p = nbr_list[j * maxn + mid];
-                if (p < i)
-                    a = mid + 1;
-                else if (p > i)
-                    z = mid - 1;
-                else {
-                    m = j * maxn + mid;
-                    break;
-                }
-            }
-        }
+        int m = row_find(nbr_list + j * maxn, nbr_count[j], i);
+        if (m >= 0)
+            m += j * maxn;
         mirror[i * maxn + k] = m;
         if (m < 0)
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
-        int lo = 0, hi = on - 1, found = -1;
-        while (lo <= hi) {
-            int mid = (lo + hi) / 2;
-            if (orow[mid] < j)
-                lo = mid + 1;
-            else if (orow[mid] > j)
-                hi = mid - 1;
-            else {
-                found = mid;
-                break;
-            }
-        }
+        int found = row_find(orow, on, j);
         int t = found >= 0 ? old_touch[i * old_maxn + found] : 0;
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
             v3_store(hist, i * maxn + k, t ? v3_load(old_hist, i * old_maxn + found) : v3_zero());

@@ -19,7 +19,7 @@ static const char *const header_files[] = {"common/dem_real.h", "common/dem_layo
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
                                            "common/neighbor.h", "common/dem_effects.h",
                                            "common/contact_geometry.h", "common/particle_stress.h",
-                                           "common/mc_strain.h"};
+                                           "common/mc_strain.h", "common/sorted_row.h"};
 
 int clb_arg_int(dem_backend *b, cl_kernel k, cl_uint idx, int v)
 {

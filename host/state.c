@@ -9,6 +9,7 @@
  */
 #include "sim.h"
 #include "dem_layout.h"
+#include "sorted_row.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -102,17 +103,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
 /* slot of partner j in row i, or -1 */
 static int find_slot(const int *cnt, const int *list, int maxn, int i, int j)
 {
-    int a = 0, z = cnt[i] - 1;
-    while (a <= z) {
-        int m = (a + z) / 2, p = list[i * maxn + m];
-        if (p < j)
-            a = m + 1;
-        else if (p > j)
-            z = m - 1;
-        else
-            return i * maxn + m;
-    }
-    return -1;
+    int k = row_find(list + i * maxn, cnt[i], j);
+    return k < 0 ? -1 : i * maxn + k;
 }
 
 int sim_rebuild(dem_sim *s); /* sim.c */

@@ -1,0 +1,25 @@
+/* sorted_row.h - binary search in a neighbour row (partner ids in ascending order), integers only, so that the
+ * kernels (neighbor.h) and the host (host/state.c, restoring a checkpoint) use the same code. */
+#ifndef DEM_SORTED_ROW_H
+#define DEM_SORTED_ROW_H
+#ifndef DEM_INLINE /* host code that does not include dem_real.h: the same definitions as its C branch */
+#define DEM_INLINE static inline
+#define DEM_CONST_GLOBAL const
+#endif
+
+/* Position of key in row[0..count), or -1. */
+DEM_INLINE int row_find(DEM_CONST_GLOBAL int *row, int count, int key)
+{
+    int a = 0, z = count - 1;
+    while (a <= z) {
+        int m = (a + z) / 2;
+        if (row[m] < key)
+            a = m + 1;
+        else if (row[m] > key)
+            z = m - 1;
+        else
+            return m;
+    }
+    return -1;
+}
+#endif /* DEM_SORTED_ROW_H */
