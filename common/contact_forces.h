@@ -72,11 +72,12 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
             h = v3_load(hist, slot);
     }
     real extra = (real)0, law_delta = delta;
-    if (fx & DEM_EFFECT_MC_STRESS)
-        extra = mc_stress_pair(pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic(pm[PM_ESTAR], rstar, delta));
     if (fx & DEM_EFFECT_MC_STRAIN)
         law_delta = mc_strain_overlap(delta, disp_a, disp_b);
-    hm_result r = hm_contact(fx, n, law_delta, rstar, mstar, v3_sub(vca, vcb), pm, dt, h, extra);
+    real srd = dem_sqrt(rstar * law_delta);
+    if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is delta) */
+        extra = mc_stress_pair(pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic_srd(pm[PM_ESTAR], srd, delta));
+    hm_result r = hm_contact(fx, n, law_delta, srd, mstar, v3_sub(vca, vcb), pm, dt, h, extra);
     pc.delta = delta;
     pc.fel = r.fel;
     pc.force = r.force;

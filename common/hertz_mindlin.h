@@ -63,12 +63,12 @@ DEM_INLINE real hm_elastic(real estar, real rstar, real delta)
     return hm_elastic_srd(estar, dem_sqrt(rstar * delta), delta);
 }
 
-DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real rstar, real mstar, vec3 vrel,
+/* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */
+DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
                                 DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
 {
     const real estar = pm[PM_ESTAR];
     hm_result r;
-    real srd = dem_sqrt(rstar * delta); /* sqrt(r* d) */
     real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
     real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
 

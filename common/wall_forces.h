@@ -44,12 +44,13 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
             vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
             DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
             real extra = (real)0, law_delta = g.delta;
-            if (fx & DEM_EFFECT_MC_STRESS)
-                extra = mc_stress_wall(pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
-                                       hm_elastic(pm[PM_ESTAR], ri, g.delta));
             if (fx & DEM_EFFECT_MC_STRAIN)
                 law_delta = mc_strain_overlap(g.delta, mc_wall_disp[slot], (real)0);
-            hm_result r = hm_contact(fx, g.n, law_delta, ri, mstar, vrel, pm, dt, h, extra);
+            real srd = dem_sqrt(ri * law_delta);
+            if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is g.delta) */
+                extra = mc_stress_wall(pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
+                                       hm_elastic_srd(pm[PM_ESTAR], srd, g.delta));
+            hm_result r = hm_contact(fx, g.n, law_delta, srd, mstar, vrel, pm, dt, h, extra);
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = r.fel;
             v3_store(wall_pf, k * n + i, r.force);
