@@ -6,14 +6,22 @@
 
 CC      ?= cc
 BUILD   := build
+DEPS_STAMP := $(BUILD)/config.mk
+# Packages first, flags second. build/config.mk is made by installing the missing Debian packages and only then
+# asking pkg-config for HDF5's and libcyaml's flags; make includes it, so it remakes it before anything else and
+# restarts with the flags in place. (Asking pkg-config while make reads this file, as before, gave empty flags on a
+# fresh machine: the first build failed on hdf5.h and the second worked - issue 9.) clean and test-fresh need none.
+ifneq ($(filter-out clean test-fresh,$(or $(MAKECMDGOALS),all)),)
+include $(DEPS_STAMP)
+endif
 # Bit equality rules: no FP contraction, no fast math, no tuning for the build machine (see common/dem_real.h).
 # -fno-math-errno only drops the errno branch around sqrt; results are unchanged (IEEE sqrt either way).
 CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -Wno-format-truncation -Wno-missing-field-initializers -ffp-contract=off -fno-fast-math -fno-math-errno \
            -D_GNU_SOURCE \
            -DCL_TARGET_OPENCL_VERSION=120 -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' \
-           -Iinclude -Icommon -Ihost -Ireference -Iapp $(shell pkg-config --cflags hdf5 2>/dev/null)
+           -Iinclude -Icommon -Ihost -Ireference -Iapp $(PKG_CFLAGS)
 LDLIBS  := -lOpenCL -lm
-APP_LDLIBS := $(shell pkg-config --libs hdf5 libcyaml yaml-0.1 2>/dev/null) $(LDLIBS)
+APP_LDLIBS := $(PKG_LIBS) $(LDLIBS)
 TEST_LDLIBS := $(APP_LDLIBS) -lcmocka
 
 HOST_SRC := $(filter-out host/demo.c,$(wildcard host/*.c))
@@ -30,15 +38,17 @@ HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h a
 
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps run demo test test-paraview fuzz bench clean validate
+.PHONY: all deps run demo test test-fresh test-paraview fuzz bench clean validate
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
 $(DEPS_STAMP): scripts/install-deps.sh
 	@bash scripts/install-deps.sh
-	@mkdir -p $(BUILD) && touch $@
+	@mkdir -p $(BUILD)
+	@c=$$(pkg-config --cflags hdf5) && l=$$(pkg-config --libs hdf5 libcyaml yaml-0.1) || \
+	  { echo "make: pkg-config finds no hdf5, libcyaml or yaml-0.1 after installing them" >&2; exit 1; }; \
+	  printf 'PKG_CFLAGS := %s\nPKG_LIBS := %s\n' "$$c" "$$l" > $@.tmp && mv $@.tmp $@
 
 $(BUILD)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
@@ -72,10 +82,16 @@ $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HE
 
 # The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
 SCENE ?= scenes/hydrogel_514.yaml
+RUN_OUT = out/$(basename $(notdir $(SCENE)))
 run: $(BUILD)/dem
 	@mkdir -p out
-	./$(BUILD)/dem run $(SCENE) -o out/$(basename $(notdir $(SCENE))).h5 --progress
-	/usr/bin/python3 tools/plot_series.py out/$(basename $(notdir $(SCENE))).h5
+	./$(BUILD)/dem run $(SCENE) -o $(RUN_OUT).h5 --progress
+	/usr/bin/python3 tools/plot_series.py $(RUN_OUT).h5
+	@echo "make run: results in out/"
+	@echo "  $(RUN_OUT).h5       frames (positions, velocities, forces ...) and time series, HDF5 (h5ls -r to list)"
+	@echo "  $(RUN_OUT).xmf      open in ParaView: File > Open, pick 'XDMF Reader', Apply; Filters > Glyph (Sphere, scale by radius)"
+	@echo "  $(RUN_OUT).png      energies, wall forces and stress-strain (tools/plot_series.py)"
+	@echo "  $(RUN_OUT).ckpt.h5  checkpoint: build/dem run --restart $(RUN_OUT).ckpt.h5 -o more.h5"
 
 # Seed 000's validation scenes under each contact model, and one comparison plot per scene, in out/validation/.
 VALIDATION ?= three_hydrogel five_hydrogel three_rubber five_rubber five_box rubber_plates
@@ -93,6 +109,11 @@ validate: $(BUILD)/dem
 	  /usr/bin/python3 tools/plot_models.py -o out/validation/$$s.png $$runs || exit 1; \
 	done
 
+# The README's two commands on a bare Debian 12 root (mmdebstrap minbase, cached; the committed HEAD is cloned
+# into it): make run, then make test, each must pass on the first try. Needs root or sudo. scripts/test-fresh.sh.
+test-fresh:
+	@bash scripts/test-fresh.sh
+
 # ParaView's own reader on our XDMF output (Debian's paraview is ~440 MB: not part of every CI run).
 test-paraview: $(BUILD)/dem
 	@bash scripts/install-deps.sh --paraview
@@ -102,6 +123,7 @@ test-paraview: $(BUILD)/dem
 FUZZ_RUNS ?= 1000000
 # The loader is instrumented; the library it calls (libdem.a) is linked as built.
 fuzz: $(LIB)
+	@bash scripts/install-deps.sh --fuzz
 	@mkdir -p $(BUILD)/fuzz/corpus
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
 	  -DDEM_SCENE_MAX_GENERATED=20000 -DDEM_SCENE_MAX_RANDOM=2000 \

@@ -38,6 +38,32 @@ struct output {
     double *buf;
 };
 
+/* One name per library wall, newline-separated, in the order of the wall_position / wall_force columns: the
+ * scene's name (or walls[k]); a box's six faces as "NAME x-", "NAME x+", ... (dem_add_box's order). */
+static char *wall_names(const scene *sc)
+{
+    size_t cap = 1, len = 0;
+    for (unsigned k = 0; k < sc->f->walls_count; k++)
+        cap += 6 * (strlen(sc->f->walls[k].name ? sc->f->walls[k].name : "") + 32);
+    char *t = malloc(cap);
+    if (!t)
+        return NULL;
+    t[0] = 0;
+    static const char *face[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+    for (unsigned k = 0; k < sc->f->walls_count; k++) {
+        const scene_wall *w = &sc->f->walls[k];
+        char own[32];
+        snprintf(own, sizeof own, "walls[%u]", k);
+        const char *nm = w->name ? w->name : own;
+        if (w->type && !strcmp(w->type, "box"))
+            for (int q = 0; q < 6; q++)
+                len += (size_t)snprintf(t + len, cap - len, "%s%s %s", len ? "\n" : "", nm, face[q]);
+        else
+            len += (size_t)snprintf(t + len, cap - len, "%s%s", len ? "\n" : "", nm);
+    }
+    return t;
+}
+
 output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen)
 {
     output *o = calloc(1, sizeof *o);
@@ -101,6 +127,11 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
         if (!rc && nw)
             rc = h5rows_create(&o->wall_pos, o->series, "wall_position", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "m") ||
                  h5rows_create(&o->wall_force, o->series, "wall_force", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "N");
+        if (!rc && nw) {
+            char *names = wall_names(sc);
+            rc = !names || h5_attr_string(o->series, "wall_names", names);
+            free(names);
+        }
         if (!rc && o->sample)
             rc = h5_attr_long(o->series, "piston_wall", run->piston) ||
                  h5_attr_double(o->series, "sample_height", run->sample_height) ||

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages this project builds and tests with, if any are missing.
 # Called by the Makefile (target `deps`); safe to run again: it does nothing when all are present.
-# With --paraview it also installs ParaView and pvpython (make test-paraview).
+# With --fuzz, --paraview or --fresh it installs what that one target needs (see below).
 set -euo pipefail
 
 PKGS=(
@@ -11,12 +11,16 @@ PKGS=(
   libcmocka-dev                                               # test framework
   libcyaml-dev libyaml-dev                                    # scene files (YAML -> C structs)
   python3-h5py python3-matplotlib                             # tools/plot_series.py, tests/xdmf_check.py
-  clang libclang-rt-14-dev                                    # make fuzz (libFuzzer, sanitizers)
 )
-# ParaView (about 440 MB) only for `make test-paraview`
-if [ "${1:-}" = "--paraview" ]; then
-  PKGS+=(paraview python3-paraview)
-fi
+# Only for the targets that need them: clang's libFuzzer and sanitizers (make fuzz), ParaView (about 440 MB,
+# make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it).
+case "${1:-}" in
+  --fuzz) PKGS+=(clang libclang-rt-14-dev) ;;
+  --paraview) PKGS+=(paraview python3-paraview) ;;
+  --fresh) PKGS=(mmdebstrap) ;;
+  "") ;;
+  *) echo "install-deps: unknown option $1 (--fuzz, --paraview or --fresh)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${PKGS[@]}"; do
@@ -32,4 +36,7 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
+# Say what this downloads before it does (apt-get -qq prints no sizes itself).
+$SUDO apt-get install -qq --no-install-recommends --print-uris "${missing[@]}" |
+  awk '$1 ~ /^\x27/ {n++; b += $3} END {if (n) printf "install-deps: downloading %d packages, %.0f MB\n", n, b/1e6}' >&2 || true
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -188,6 +188,11 @@ static void test_output_and_xdmf(void **st)
     assert_string_equal(eff, "hertz+damping+friction+gravity+walls");
     assert_non_null(strstr(text, "restart test box"));
     free(eff), free(text);
+    /* the wall series name each column after the scene: a box's six faces, then the named lid */
+    hid_t g = H5Gopen2(f, "series", H5P_DEFAULT);
+    char *wn = h5_read_attr_string(g, "wall_names");
+    assert_string_equal(wn, "walls[0] x-\nwalls[0] x+\nwalls[0] y-\nwalls[0] y+\nwalls[0] z-\nwalls[0] z+\nlid");
+    free(wn), H5Gclose(g);
     hid_t d = H5Dopen2(f, "frames/position", H5P_DEFAULT), sp = H5Dget_space(d);
     hsize_t dims[3];
     H5Sget_simple_extent_dims(sp, dims, NULL);

@@ -43,10 +43,11 @@ def main():
         ax[0].legend()
         if "wall_force" in s:
             wf = s["wall_force"][:]
+            names = s.attrs["wall_names"].decode(errors="replace").split("\n") if "wall_names" in s.attrs else []
             for k in range(wf.shape[1]):
                 mag = (wf[:, k, :] ** 2).sum(axis=1) ** 0.5
                 if mag.max() > 0:
-                    ax[1].plot(t, mag, label=f"wall {k}")
+                    ax[1].plot(t, mag, label=names[k] if k < len(names) else f"wall {k}")
             ax[1].legend(fontsize=7)
         ax[1].set_xlabel("time [s]")
         ax[1].set_ylabel("|force on wall| [N]")
