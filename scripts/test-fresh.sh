@@ -8,7 +8,7 @@
 # unmounted on every exit path; the copy is deleted only once nothing is mounted below it.
 #
 # Environment: DEM_FRESH_CACHE (where the bare root's tarball is kept, default /var/cache/libdem-test-fresh),
-# DEM_FRESH_KEEP=1 (leave the used root in place for a look, unmounted), DEM_FRESH_REV (what to clone, default HEAD).
+# DEM_FRESH_KEEP=1 (leave the used root in place for a look, unmounted; later runs leave it alone), DEM_FRESH_REV (what to clone, default HEAD).
 set -euo pipefail
 
 SRC=$(cd "$(dirname "$0")/.." && pwd)
@@ -45,33 +45,47 @@ else
   say "bare root from the cache: $tarball"
 fi
 
+# release DIR: unmount everything below DIR (deepest first), then delete DIR only if nothing is mounted there any more.
+release() {
+  local dir=$1 m
+  for m in $(findmnt -rn -o TARGET | grep "^$dir/" | sort -r); do
+    umount "$m" 2>/dev/null || umount -l "$m" || true
+  done
+  if findmnt -rn -o TARGET | grep -q "^$dir/"; then
+    echo "test-fresh: something is still mounted below $dir; leaving it in place (unmount it, then delete it)" >&2
+    return 1
+  fi
+  rm -rf --one-file-system "$dir"
+}
+# A run killed outright (SIGKILL, a lost machine) cannot clean up after itself: the next run does it.
+for old in /var/tmp/libdem-fresh.*; do
+  [ -d "$old" ] || continue
+  pid=$(cat "$old/pid" 2>/dev/null || echo 0)
+  { [ -e "$old/kept" ] || kill -0 "$pid" 2>/dev/null; } && continue
+  say "removing the root a killed run left: $old"
+  release "$old" || exit 1
+done
+
 work=$(mktemp -d /var/tmp/libdem-fresh.XXXXXX)
+echo $$ > "$work/pid"
 root=$work/root
 mounts=()
-unmount_all() {
-  local i
-  for (( i=${#mounts[@]}-1; i>=0; i-- )); do
-    mountpoint -q "${mounts[$i]}" && { umount "${mounts[$i]}" 2>/dev/null || umount -l "${mounts[$i]}"; }
-  done
-  mounts=()
-}
 cleanup() {
   local rc=$?
-  trap - EXIT INT TERM
-  unmount_all
-  if findmnt -rn -o TARGET | grep -q "^$work/"; then
-    echo "test-fresh: something is still mounted below $work; leaving it in place (unmount it, then delete it)" >&2
-    [ "$rc" -eq 0 ] && rc=1
-  elif [ "${DEM_FRESH_KEEP:-0}" = 1 ]; then
+  trap - EXIT INT TERM HUP
+  if [ "${DEM_FRESH_KEEP:-0}" = 1 ]; then
+    for (( i=${#mounts[@]}-1; i>=0; i-- )); do umount "${mounts[$i]}" 2>/dev/null || umount -l "${mounts[$i]}" || true; done
+    touch "$work/kept"
     say "root kept at $root"
   else
-    rm -rf --one-file-system "$work"
+    release "$work" || { [ "$rc" -eq 0 ] && rc=1; }
   fi
   exit "$rc"
 }
 trap cleanup EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
+trap 'exit 129' HUP
 
 mkdir -p "$root"
 tar -C "$root" -xf "$tarball"
