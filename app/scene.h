@@ -88,6 +88,14 @@ typedef struct {
     double contact_travel;        /* piston travel [m] at which the sample starts being strained (default 0) */
 } scene_sample;
 
+/* mc_stress_convention: {own_contact: in|out, lever: centres|contact_point, scale: mean_trace|text|mean_pressure};
+ * an absent key keeps DEM_MCS_DEFAULT's choice (docs/scenes.md, docs/multicontact.md). */
+typedef struct {
+    char *own_contact;
+    char *lever;
+    char *scale;
+} scene_mcs_convention;
+
 typedef struct {
     char *name;
     char *description;
@@ -110,6 +118,7 @@ typedef struct {
     scene_sample *sample;         /* optional: report engineering strain and stress of a compressed sample */
     int mc_iterations;            /* MC-strain: 0 lagged (published scheme), N > 0 iterate up to N times */
     double mc_tolerance;          /* MC-strain iteration: relative force change accepted (default 1e-6) */
+    scene_mcs_convention *mc_stress_convention; /* optional: how MC-stress builds its pressure (dem_effects.h) */
 } scene_file;
 
 typedef struct scene_locator scene_locator; /* scene_locate.c */
@@ -143,6 +152,7 @@ typedef struct {
     dem_time_scales ts;
     char note[1024];        /* remarks for `dem check` (ignored parameters ...) */
     char model[32];         /* normal law chosen on the command line (dem run --model), "" = the scene's */
+    unsigned mcs_conv;      /* DEM_MCS_* bits (used when MC-stress runs) */
 } scene_run;
 
 /* Loads and parses; on failure returns NULL and writes "file:line: field: reason" into err. */

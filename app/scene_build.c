@@ -35,6 +35,48 @@ int scene_fail(const scene *sc, char *err, size_t errlen, const char *path, cons
 static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
+
+/* mc_stress_convention: each sub-key picks one branch of common/particle_stress.h; absent ones keep the default. */
+static int parse_mcs_convention(const scene *sc, scene_run *run, char *err, size_t errlen)
+{
+    const scene_mcs_convention *c = sc->f->mc_stress_convention;
+    run->mcs_conv = DEM_MCS_DEFAULT;
+    if (!c)
+        return 0;
+    int beta = 0;
+    for (unsigned q = 0; q < sc->f->materials_count; q++)
+        beta |= sc->f->materials[q].beta > 0;
+    if (!(run->effects & DEM_EFFECT_MC_STRESS) && !beta)
+        return scene_fail(sc, err, errlen, "mc_stress_convention",
+                          "an MC-stress convention is given but mc_stress is off and no material has beta > 0");
+    static const struct {
+        const char *key, *names[3];
+        unsigned bits[3];
+        unsigned clear;
+    } opt[3] = {
+        {"own_contact", {"in", "out", NULL}, {DEM_MCS_OWN_IN, 0, 0}, DEM_MCS_OWN_IN},
+        {"lever", {"centres", "contact_point", NULL}, {DEM_MCS_LEVER_CENTRES, 0, 0}, DEM_MCS_LEVER_CENTRES},
+        {"scale", {"mean_trace", "text", "mean_pressure"}, {DEM_MCS_SCALE_TRACE, DEM_MCS_SCALE_TEXT, 0},
+         DEM_MCS_SCALE_TRACE | DEM_MCS_SCALE_TEXT},
+    };
+    const char *given[3] = {c->own_contact, c->lever, c->scale};
+    for (int k = 0; k < 3; k++) {
+        if (!given[k])
+            continue;
+        int q = 0;
+        while (q < 3 && !(opt[k].names[q] && !strcmp(given[k], opt[k].names[q])))
+            q++;
+        char p[64];
+        snprintf(p, sizeof p, "mc_stress_convention.%s", opt[k].key);
+        if (q == 3)
+            return scene_fail(sc, err, errlen, p, "unknown value '%s' (%s%s%s%s%s)", given[k], opt[k].names[0],
+                              ", ", opt[k].names[1], opt[k].names[2] ? ", " : "",
+                              opt[k].names[2] ? opt[k].names[2] : "");
+        run->mcs_conv = (run->mcs_conv & ~opt[k].clear) | opt[k].bits[q];
+    }
+    return 0;
+}
+
 static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
     const scene_file *f = sc->f;
@@ -67,7 +109,7 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
     if ((scene_has(sc->loc, "mc_iterations") || scene_has(sc->loc, "mc_tolerance")) && !(run->effects & DEM_EFFECT_MC_STRAIN))
         return scene_fail(sc, err, errlen, scene_has(sc->loc, "mc_iterations") ? "mc_iterations" : "mc_tolerance",
                           "MC-strain settings are given but the effect 'mc_strain' is off");
-    return 0;
+    return parse_mcs_convention(sc, run, err, errlen);
 }
 
 static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen)
@@ -390,6 +432,8 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
         return scene_fail(sc, err, errlen, "domain", "%s", dem_error(s));
     if (dem_set_effects(s, run->effects))
         return scene_fail(sc, err, errlen, "effects", "%s", dem_error(s));
+    if (dem_set_mc_stress_convention(s, run->mcs_conv))
+        return scene_fail(sc, err, errlen, "mc_stress_convention", "%s", dem_error(s));
     if (f->mc_iterations > 0 &&
         dem_set_mc_strain(s, f->mc_iterations, scene_has(sc->loc, "mc_tolerance") ? f->mc_tolerance : 1e-6))
         return scene_fail(sc, err, errlen, "mc_iterations", "%s", dem_error(s));

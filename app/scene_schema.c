@@ -98,6 +98,10 @@ static const cyaml_schema_field_t sample_fields[] = {
     REAL("height", scene_sample, height), REAL("area", scene_sample, area),
     REAL("contact_travel", scene_sample, contact_travel), CYAML_FIELD_END};
 
+static const cyaml_schema_field_t mcs_convention_fields[] = {
+    TEXT("own_contact", scene_mcs_convention, own_contact), TEXT("lever", scene_mcs_convention, lever),
+    TEXT("scale", scene_mcs_convention, scale), CYAML_FIELD_END};
+
 static const cyaml_schema_field_t domain_fields[] = {
     CYAML_FIELD_SEQUENCE_FIXED("lo", CYAML_FLAG_DEFAULT, scene_file, domain_lo, &real_entry, 3),
     CYAML_FIELD_SEQUENCE_FIXED("hi", CYAML_FLAG_DEFAULT, scene_file, domain_hi, &real_entry, 3), CYAML_FIELD_END};
@@ -124,6 +128,8 @@ static const cyaml_schema_field_t scene_fields[] = {
     CYAML_FIELD_MAPPING_PTR("sample", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, sample, sample_fields),
     CYAML_FIELD_INT("mc_iterations", CYAML_FLAG_OPTIONAL, scene_file, mc_iterations),
     REAL("mc_tolerance", scene_file, mc_tolerance),
+    CYAML_FIELD_MAPPING_PTR("mc_stress_convention", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file,
+                            mc_stress_convention, mcs_convention_fields),
     CYAML_FIELD_END};
 
 static const cyaml_schema_value_t scene_schema = {CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, scene_file, scene_fields)};

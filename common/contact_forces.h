@@ -76,7 +76,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         law_delta = mc_strain_overlap(delta, disp_a, disp_b);
     real srd = dem_sqrt(rstar * law_delta);
     if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is delta) */
-        extra = mc_stress_pair(pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic_srd(pm[PM_ESTAR], srd, delta));
+        extra = mc_stress_pair(fx, pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic_srd(pm[PM_ESTAR], srd, delta));
     hm_result r = hm_contact(fx, n, law_delta, srd, mstar, v3_sub(vca, vcb), pm, dt, h, extra);
     pc.delta = delta;
     pc.fel = r.fel;

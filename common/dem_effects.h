@@ -24,6 +24,29 @@ enum {
 };
 #define DEM_EFFECT_COUNT 7 /* number of effect bits */
 
+/* MC-stress pressure convention: how the pressure of Eq. 10 is built from the traces of Eq. 9. Seed 000 can be read
+ * several ways (docs/multicontact.md quotes the passages); each reading is a compiled branch. The bits sit above the
+ * effect bits and travel with them (the kernels get effects | convention as DEM_EFFECTS, the reference at run time);
+ * they are set with dem_set_mc_stress_convention and mean nothing without DEM_EFFECT_MC_STRESS. */
+enum {
+    DEM_MCS_OWN_IN = 128,        /* the contact's own term stays in both traces (Eq. 9 sums every contact; the
+                                    appendix adds every pair before pass 2; Eq. 11 counts all four). Off: left out,
+                                    so two spheres are exactly classical */
+    DEM_MCS_LEVER_CENTRES = 256, /* the trace's lever is the centre-to-centre distance d = r_i + r_j - delta (a wall:
+                                    to the centre's mirror image, 2 (r - delta)), as the appendix's BranchVector[i,j]
+                                    and Eq. 11's P_4 = (4/V) f d. Off: centre to contact point (r - delta/2; a wall
+                                    r - delta), Eq. 9's branch vector */
+    DEM_MCS_SCALE_TEXT = 512,    /* P_ij = -(tr_i + tr_j) / 3, Eq. 10's text */
+    DEM_MCS_SCALE_TRACE = 1024,  /* P_ij = -(tr_i + tr_j) / 2, the mean trace: Eq. 11's P_4 = tr of one particle.
+                                    Neither scale bit: -(tr_i + tr_j) / 6, the appendix's 1/6 (the mean pressure) */
+    DEM_MCS_MASK = 128 | 256 | 512 | 1024,
+    /* The default: the reading under which Eq. 11 holds exactly (own term in, centre-to-centre lever, mean trace);
+     * docs/multicontact.md gives the measurements behind the choice. */
+    DEM_MCS_DEFAULT = 128 | 256 | 1024,
+    /* The reading shipped before (contact's own term out, contact-point lever, appendix's 1/6) */
+    DEM_MCS_APPENDIX_OWN_OUT = 0
+};
+
 #ifndef DEM_EFFECTS
 #define DEM_EFFECTS DEM_EFFECT_CLASSICAL
 #endif

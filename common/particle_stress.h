@@ -13,20 +13,20 @@
  * Canonical order: partners in ascending id (the whole sorted neighbour row), then walls in index order. Each term
  * is rounded as t_c = -((r_p - a_c) f_H,c) * (1/V_p) and added in that order, so every device gets the same bits.
  *
- * MC-stress (Eq. 10 with the appendix's two passes): pass 1 (stress_trace) sums the traces; pass 2 (the contact
- * kernels) adds to the elastic normal force of a pair
- *   f_extra = beta nu A_ij P_ij,  A_ij = pi r* d,  P_ij = -((tr_i - t_i,c) + (tr_j - t_j,c)) / 6
- * and to a particle-wall contact f_extra = beta_i nu_i pi r_i d (-(tr_i - t_i,c) / 3). Decisions, tested in
- * tests/test_multicontact.c and written up in docs/multicontact.md:
- *  (a) /6, the appendix's "1/6 (StressTrace[i] + StressTrace[j])": the mean of the two particles' pressures
- *      tr/3 (Eq. 10's text, 1/3 of the sum of traces, would be twice that, i.e. a rescaled beta);
- *  (b) sign: the trace is negative in compression while the correction must stiffen, so P = -tr/3 (pressure
- *      positive in compression);
- *  (c) contact c's own term is taken out of both traces: the correction carries the influence of the OTHER
- *      contacts, so a two-sphere collision is exactly classical (seed 000 section 3.4: "multi-contact models do not
- *      show any difference with the classical DEM in case of two sphere interactions"). With one contact,
- *      tr - t = t - t = 0 exactly, so the two-sphere result is bit-identical to classical DEM.
- * beta nu = 0 makes f_extra an exact zero, so nu = 0 or beta = 0 reproduces classical DEM bit for bit.
+ * MC-stress (Eq. 10 with the appendix's two passes): pass 1 (stress_trace) sums each particle's trace; pass 2 (the
+ * contact kernels) adds to the elastic normal force of a pair
+ *   f_extra = beta nu A_ij P_ij,  A_ij = pi r* d,  P_ij = -(T_i + T_j) / K
+ * and to a particle-wall contact the same with the particle's own trace for both (the wall has none):
+ * f_extra = beta_i nu_i pi r_i d (-(T_i + T_i) / K). Sign: the trace is negative in compression while the correction
+ * must stiffen, so P is minus a trace. beta nu = 0 makes f_extra an exact zero (classical DEM bit for bit).
+ * The convention bits of dem_effects.h (compiled in with the effects) choose the reading of seed 000:
+ *   T    = tr (DEM_MCS_OWN_IN) or tr - t_c (contact c's own term out: then one contact gives tr - t = 0 exactly and a
+ *          two-sphere collision is bit-identical to classical DEM);
+ *   t_c  = -(lever f_H) / V_p with lever = d = r_i + r_j - delta, a wall 2 (r - delta) (DEM_MCS_LEVER_CENTRES), or the
+ *          contact point's r - delta/2, a wall r - delta (the tensor output always uses the contact point: Eq. 9);
+ *   K    = 2 (DEM_MCS_SCALE_TRACE, Eq. 11), 3 (DEM_MCS_SCALE_TEXT, Eq. 10's text) or 6 (the appendix's 1/6).
+ * The decisions and their measurements are in docs/multicontact.md; tests in tests/test_multicontact.c and
+ * tests/test_mc_validation.c (Eq. 11 on the octahedron).
  */
 #ifndef DEM_PARTICLE_STRESS_H
 #define DEM_PARTICLE_STRESS_H
@@ -35,6 +35,22 @@
 
 /* One contact's trace term: arm = r_p - a_c, fh the elastic force, invvol = 1/V_p. */
 DEM_INLINE real stress_term(real arm, real fh, real invvol) { return -(arm * fh) * invvol; }
+
+/* The lever of a pair's term in the MC-stress trace of the particle of radius ra (partner rb), and of a wall's. */
+DEM_INLINE real mcs_lever_pair(unsigned fx, real ra, real rb, real delta)
+{
+    return (fx & DEM_MCS_LEVER_CENTRES) ? (ra + rb) - delta : ra - (real)0.5 * delta;
+}
+DEM_INLINE real mcs_lever_wall(unsigned fx, real ri, real delta)
+{
+    return (fx & DEM_MCS_LEVER_CENTRES) ? (real)2 * (ri - delta) : ri - delta;
+}
+
+/* K of P = -(T_i + T_j) / K */
+DEM_INLINE real mcs_divisor(unsigned fx)
+{
+    return (fx & DEM_MCS_SCALE_TRACE) ? (real)2 : (fx & DEM_MCS_SCALE_TEXT) ? (real)3 : (real)6;
+}
 
 /* Adds one contact to a tensor sum: c * n (x) n with c = stress_term(...). */
 DEM_INLINE void stress_add(real *st, real c, vec3 n)
@@ -71,13 +87,15 @@ DEM_INLINE void stress_item(unsigned fx, int tensor, int i, int maxn, DEM_CONST_
             pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
             if (!g.active)
                 continue;
-            delta = g.delta, rstar = g.rstar, n = g.n, arm = ri - (real)0.5 * g.delta, other = mat[j];
+            delta = g.delta, rstar = g.rstar, n = g.n, other = mat[j];
+            arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
         } else {
             int w = k - cnt;
             wall_geom g = wall_geometry(wall_int[w * WI_STRIDE + WI_TYPE], wall_real + w * W_STRIDE, xi, ri);
             if (!g.active)
                 continue;
-            delta = g.delta, rstar = ri, n = g.n, arm = ri - g.delta, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
+            delta = g.delta, rstar = ri, n = g.n, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
+            arm = tensor ? ri - g.delta : mcs_lever_wall(fx, ri, g.delta);
         }
         real c = stress_term(arm, hm_elastic(pairmat[PM_STRIDE * (mi * nmat + other) + PM_ESTAR], rstar, delta), iv);
         if (tensor)
@@ -93,20 +111,25 @@ DEM_INLINE void stress_item(unsigned fx, int tensor, int i, int maxn, DEM_CONST_
 }
 
 /* MC-stress extra normal force of a pair (a, b) with overlap delta, effective radius rstar, elastic force fh. */
-DEM_INLINE real mc_stress_pair(DEM_CONST_GLOBAL real *pm, DEM_CONST_GLOBAL real *trace,
+DEM_INLINE real mc_stress_pair(unsigned fx, DEM_CONST_GLOBAL real *pm, DEM_CONST_GLOBAL real *trace,
                                DEM_CONST_GLOBAL real *invvol, int a, int b, real ra, real rb, real delta, real rstar,
                                real fh)
 {
-    real ta = trace[a] - stress_term(ra - (real)0.5 * delta, fh, invvol[a]);
-    real tb = trace[b] - stress_term(rb - (real)0.5 * delta, fh, invvol[b]);
-    return -(pm[PM_MC_STRESS] * rstar * delta) * ((ta + tb) / (real)6);
+    real ta = trace[a], tb = trace[b];
+    if (!(fx & DEM_MCS_OWN_IN)) {
+        ta = ta - stress_term(mcs_lever_pair(fx, ra, rb, delta), fh, invvol[a]);
+        tb = tb - stress_term(mcs_lever_pair(fx, rb, ra, delta), fh, invvol[b]);
+    }
+    return -(pm[PM_MC_STRESS] * rstar * delta) * ((ta + tb) / mcs_divisor(fx));
 }
 
 /* MC-stress extra normal force of particle i on a wall (pmi: the pair-table row of i's own material). */
-DEM_INLINE real mc_stress_wall(DEM_CONST_GLOBAL real *pmi, DEM_CONST_GLOBAL real *trace,
+DEM_INLINE real mc_stress_wall(unsigned fx, DEM_CONST_GLOBAL real *pmi, DEM_CONST_GLOBAL real *trace,
                                DEM_CONST_GLOBAL real *invvol, int i, real ri, real delta, real fh)
 {
-    real ti = trace[i] - stress_term(ri - delta, fh, invvol[i]);
-    return -(pmi[PM_MC_STRESS] * ri * delta) * (ti / (real)3);
+    real ti = trace[i];
+    if (!(fx & DEM_MCS_OWN_IN))
+        ti = ti - stress_term(mcs_lever_wall(fx, ri, delta), fh, invvol[i]);
+    return -(pmi[PM_MC_STRESS] * ri * delta) * ((ti + ti) / mcs_divisor(fx));
 }
 #endif /* DEM_PARTICLE_STRESS_H */

@@ -48,7 +48,7 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 law_delta = mc_strain_overlap(g.delta, mc_wall_disp[slot], (real)0);
             real srd = dem_sqrt(ri * law_delta);
             if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is g.delta) */
-                extra = mc_stress_wall(pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
+                extra = mc_stress_wall(fx, pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
                                        hm_elastic_srd(pm[PM_ESTAR], srd, g.delta));
             hm_result r = hm_contact(fx, g.n, law_delta, srd, mstar, vrel, pm, dt, h, extra);
             if (fx & DEM_EFFECT_MC_STRAIN)

@@ -13,6 +13,7 @@ dem_sim *dem_create(void)
     dem_sim *s = calloc(1, sizeof(dem_sim));
     if (s) {
         s->effects = DEM_EFFECT_CLASSICAL;
+        s->mcs_conv = DEM_MCS_DEFAULT;
         s->mc_tol = 1e-6;
     }
     return s;
@@ -259,6 +260,20 @@ int dem_set_effects(dem_sim *s, unsigned effects)
 }
 
 unsigned dem_effects(const dem_sim *s) { return s->effects; }
+
+int dem_set_mc_stress_convention(dem_sim *s, unsigned convention)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (convention & ~(unsigned)DEM_MCS_MASK)
+        return sim_fail(s, DEM_ERR_ARG, "MC-stress convention 0x%x has bits other than DEM_MCS_*", convention);
+    if ((convention & DEM_MCS_SCALE_TEXT) && (convention & DEM_MCS_SCALE_TRACE))
+        return sim_fail(s, DEM_ERR_ARG, "MC-stress convention: choose one scale (text or trace), not both");
+    s->mcs_conv = convention;
+    return 0;
+}
+
+unsigned dem_mc_stress_convention(const dem_sim *s) { return s->mcs_conv; }
 
 int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance)
 {

@@ -19,6 +19,7 @@ struct dem_sim {
     int have_domain;
     double dt;
     unsigned effects; /* DEM_EFFECT_* mask; DEM_EFFECT_CLASSICAL unless set */
+    unsigned mcs_conv; /* DEM_MCS_* bits; DEM_MCS_DEFAULT unless set (compiled in with mc_stress: sim_pack) */
     /* run state */
     int started;
     dem_config cfg;

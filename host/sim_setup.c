@@ -164,7 +164,9 @@ int sim_pack(dem_sim *s)
     int n = s->n, rs = (int)s->cfg.precision;
     memset(u, 0, sizeof *u);
     u->real_size = rs;
-    u->effects = s->effects;
+    /* the MC-stress convention is compiled in with the effects (only when MC-stress is on: other runs' kernels and
+     * their cached binaries stay as they were) */
+    u->effects = s->effects | ((s->effects & DEM_EFFECT_MC_STRESS) ? s->mcs_conv : 0u);
     u->n = n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;

@@ -140,6 +140,10 @@ unsigned dem_effects(const dem_sim *s);
 const char *dem_effect_name(int bit); /* "hertz", "damping", ... for bit 0, 1, ...; NULL past the last */
 int dem_effect_bit(const char *name); /* inverse of dem_effect_name; -1 for an unknown name */
 void dem_effects_string(unsigned effects, char *buf, size_t len); /* "hertz+damping+..." */
+/* MC-stress pressure convention: DEM_MCS_* bits of dem_effects.h (DEM_MCS_DEFAULT unless set; docs/multicontact.md).
+ * Compiled into the kernels with the effects; used only with DEM_EFFECT_MC_STRESS. */
+int dem_set_mc_stress_convention(dem_sim *s, unsigned convention);
+unsigned dem_mc_stress_convention(const dem_sim *s);
 
 /* MC-strain scheme: max_iterations 0 (default) is the published lagged scheme (the induced displacements use the
  * forces of the previous step, one pass); N > 0 iterates displacements and forces within each step until no contact

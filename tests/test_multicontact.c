@@ -26,6 +26,16 @@ static packing_opts dense(unsigned mc, double beta, double gamma, int iters)
     return o;
 }
 
+/* A run of `steps` on the reference, fp64. */
+static dem_sim *run_ref(const packing_opts *o, long steps)
+{
+    dem_sim *s = packing_build(o);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(s, &c);
+    step_or_fail(s, steps);
+    return s;
+}
+
 static void lockstep(const packing_opts *o, dem_precision prec, long steps)
 {
     dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
@@ -61,15 +71,30 @@ static void test_models_bitwise(void **st)
     }
 }
 
-/* A run of `steps` on the reference, fp64. */
-static dem_sim *run_ref(const packing_opts *o, long steps)
+/* Every MC-stress pressure convention is its own compiled branch: each one bitwise on PoCL against its reference
+ * twin (the default is covered by test_models_bitwise), and each one a different force law. */
+static void test_conventions_bitwise(void **st)
 {
-    dem_sim *s = packing_build(o);
-    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
-    start_or_fail(s, &c);
-    step_or_fail(s, steps);
-    return s;
+    (void)st;
+    char name[96];
+    uint64_t hash[MCS_CONVENTIONS];
+    for (int k = 0; k < MCS_CONVENTIONS; k++) {
+        packing_opts o = dense(DEM_EFFECT_MC_STRESS, 1.65, 0, 0);
+        o.mcs_conv = mcs_convention(k);
+        print_message("# convention %d: %s\n", k, mcs_convention_name(o.mcs_conv, name, sizeof name));
+        if (k > 0) {
+            lockstep(&o, DEM_FP64, STEPS / 2);
+            lockstep(&o, DEM_FP32, STEPS / 2);
+        }
+        dem_sim *s = run_ref(&o, STEPS / 2);
+        hash[k] = state_hash(s);
+        for (int q = 0; q < k; q++)
+            if (hash[q] == hash[k])
+                fail_msg("conventions %d and %d give the same state (%s)", q, k, name);
+        dem_destroy(s);
+    }
 }
+
 
 static void test_zero_prefactor_is_classical(void **st)
 {
@@ -105,71 +130,93 @@ static void test_zero_prefactor_is_classical(void **st)
     dem_destroy(base);
 }
 
-/* Two hydrogel spheres at 10 m/s (seed 000 section 3.4): both models are exactly classical (one contact each). */
+/* Two hydrogel spheres at 10 m/s (seed 000 section 3.4: "multi-contact models do not show any difference with the
+ * classical DEM in case of two sphere interactions"). MC-strain is exactly classical (one contact induces nothing),
+ * and so is MC-stress under every convention that leaves the contact's own term out (tr - t = 0 exactly). With the
+ * own term in (the default, under which Eq. 11 holds) a lone contact stiffens itself: the paper cannot have both,
+ * docs/multicontact.md quotes the two passages. That difference is asserted too. */
 static void test_two_spheres_identical(void **st)
 {
     (void)st;
     dem_material gel = {11.5, 23.3e3, 0.5, 0.95, 0.03, 1.65, 1.12};
-    unsigned fx[] = {CLASSIC & ~(unsigned)DEM_EFFECT_WALLS, (CLASSIC & ~(unsigned)DEM_EFFECT_WALLS) | DEM_EFFECT_MC_STRESS,
-                     (CLASSIC & ~(unsigned)DEM_EFFECT_WALLS) | DEM_EFFECT_MC_STRAIN};
-    dem_sim *s[4];
-    for (int k = 0; k < 4; k++) {
+    const unsigned base = CLASSIC & ~(unsigned)DEM_EFFECT_WALLS;
+    enum { NS = 2 + 6 + 1 + 1 }; /* classical, MC-strain lagged and iterated, MC-stress own-out x 6, default */
+    dem_sim *s[NS];
+    for (int k = 0; k < NS; k++) {
         s[k] = pair_build(&gel, 0.01, 0.01, 20, 0.002);
-        assert_int_equal(dem_set_effects(s[k], fx[k < 3 ? k : 2]), 0);
-        if (k == 3)
+        unsigned fx = base | (k == 0 ? 0u : k <= 2 ? (unsigned)DEM_EFFECT_MC_STRAIN : (unsigned)DEM_EFFECT_MC_STRESS);
+        assert_int_equal(dem_set_effects(s[k], fx), 0);
+        if (k == 2)
             assert_int_equal(dem_set_mc_strain(s[k], 10, 1e-9), 0);
+        if (k >= 3 && k < NS - 1) /* conventions 6..11: the contact's own term left out */
+            assert_int_equal(dem_set_mc_stress_convention(s[k], mcs_convention(k - 3 + 6)), 0);
         dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
         start_or_fail(s[k], &c);
     }
-    char msg[512];
-    double dmin = 1;
+    char msg[512], name[96];
+    double dmin = 1, dmin_own = 1;
+    int differs = 0;
     for (int step = 0; step < 800; step++) {
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < NS; k++)
             step_or_fail(s[k], 1);
-        for (int k = 1; k < 4; k++)
+        for (int k = 1; k < NS - 1; k++)
             if (state_diff(s[0], s[k], msg, sizeof msg))
-                fail_msg("model %d differs from classical at step %d: %s", k, step + 1, msg);
+                fail_msg("model %d (%s) differs from classical at step %d: %s", k,
+                         k >= 3 ? mcs_convention_name(mcs_convention(k - 3 + 6), name, sizeof name) : "MC-strain",
+                         step + 1, msg);
+        differs |= state_diff(s[0], s[NS - 1], msg, sizeof msg) != 0;
         dmin = fmin(dmin, pair_distance(s[0]));
+        dmin_own = fmin(dmin_own, pair_distance(s[NS - 1]));
     }
     assert_true(dmin < 0.02 - 1e-3); /* they really collided (overlap above 1 mm) */
-    for (int k = 0; k < 4; k++)
+    assert_true(differs);
+    assert_true(dmin_own > dmin); /* own term in: the lone contact is stiffer, the overlap smaller */
+    print_message("# two spheres: largest overlap %.4f mm classical, %.4f mm MC-stress with the own term in\n",
+                  1e3 * (0.02 - dmin), 1e3 * (0.02 - dmin_own));
+    for (int k = 0; k < NS; k++)
         dem_destroy(s[k]);
 }
 
 /* One sphere squeezed between two plates: sigma = -(1/V) sum (r - d) f_H n n, so sigma_zz = -2 (r - d) f_H / V,
- * the other components zero, and the online trace equals the tensor's trace. */
+ * the other components zero, whatever the MC-stress convention (the tensor is Eq. 9's, contact-point lever). The
+ * online trace is the convention's: the default's lever to the mirror centre doubles it, and the plate force is
+ * f_H + beta nu pi r d P with P = -(T + T)/2 = the whole trace (own term in); the shipped-before reading (own term
+ * out, contact point, 1/6) sees only the other plate's term, a third of it. */
 static void test_stress_tensor_closed_form(void **st)
 {
     (void)st;
-    dem_sim *s = dem_create();
-    dem_material rub = {2000, 1.85e6, 0.46, 0.7, 0.5, 1.71, 0.55};
-    int m = dem_add_material(s, &rub);
-    double r = 0.01, d = 0.001;
-    dem_add_particle(s, (double[3]){0, 0, 0}, NULL, r, m);
-    dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, -(r - d)}, {0, 0, 1}, 0, 0, {{0}}});
-    dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, r - d}, {0, 0, -1}, 0, 0, {{0}}});
-    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
-    dem_set_dt(s, 1e-6);
-    dem_set_effects(s, CLASSIC | DEM_EFFECT_MC_STRESS);
-    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
-    start_or_fail(s, &c);
-    double sig[6], tr[1];
-    assert_int_equal(dem_get_field(s, FIELD_STRESS, sig), 0);
-    assert_int_equal(dem_get_field(s, FIELD_STRESS_TRACE, tr), 0);
-    double es = 1 / (2 * (1 - 0.46 * 0.46) / 1.85e6), fh = 4.0 / 3.0 * es * sqrt(r * d) * d;
-    double V = 4.0 / 3.0 * M_PI * r * r * r, want = -2 * (r - d) * fh / V;
-    assert_true(fabs(sig[2] - want) <= 1e-12 * fabs(want));
-    for (int k = 0; k < 6; k++)
-        if (k != 2)
-            assert_true(fabs(sig[k]) <= 1e-12 * fabs(want));
-    assert_true(fabs(tr[0] - want) <= 1e-12 * fabs(want));
-    /* MC-stress: each plate contact sees the other's trace only: extra = beta nu pi r d (2(r-d) f_H/V / 3 ... /2) */
-    double f[3];
-    assert_int_equal(dem_wall_force(s, 0, f), 0);
-    double other = (r - d) * fh / V; /* -trace without this contact: the other plate's term */
-    double extra = 1.71 * 0.46 * M_PI * r * d * (other / 3);
-    assert_true(fabs(-f[2] - (fh + extra)) <= 1e-9 * fh);
-    dem_destroy(s);
+    for (int conv = 0; conv < 2; conv++) {
+        dem_sim *s = dem_create();
+        dem_material rub = {2000, 1.85e6, 0.46, 0.7, 0.5, 1.71, 0.55};
+        int m = dem_add_material(s, &rub);
+        double r = 0.01, d = 0.001;
+        dem_add_particle(s, (double[3]){0, 0, 0}, NULL, r, m);
+        dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, -(r - d)}, {0, 0, 1}, 0, 0, {{0}}});
+        dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, r - d}, {0, 0, -1}, 0, 0, {{0}}});
+        dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
+        dem_set_dt(s, 1e-6);
+        dem_set_effects(s, CLASSIC | DEM_EFFECT_MC_STRESS);
+        assert_int_equal(dem_set_mc_stress_convention(s, conv ? DEM_MCS_APPENDIX_OWN_OUT : DEM_MCS_DEFAULT), 0);
+        dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+        start_or_fail(s, &c);
+        double sig[6], tr[1];
+        assert_int_equal(dem_get_field(s, FIELD_STRESS, sig), 0);
+        assert_int_equal(dem_get_field(s, FIELD_STRESS_TRACE, tr), 0);
+        double es = 1 / (2 * (1 - 0.46 * 0.46) / 1.85e6), fh = 4.0 / 3.0 * es * sqrt(r * d) * d;
+        double V = 4.0 / 3.0 * M_PI * r * r * r, want = -2 * (r - d) * fh / V;
+        assert_true(fabs(sig[2] - want) <= 1e-12 * fabs(want));
+        for (int k = 0; k < 6; k++)
+            if (k != 2)
+                assert_true(fabs(sig[k]) <= 1e-12 * fabs(want));
+        double want_tr = conv ? want : 2 * want;
+        assert_true(fabs(tr[0] - want_tr) <= 1e-12 * fabs(want_tr));
+        double f[3];
+        assert_int_equal(dem_wall_force(s, 0, f), 0);
+        double p = conv ? (r - d) * fh / V / 3 : -want_tr; /* the pressure each plate contact sees */
+        double extra = 1.71 * 0.46 * M_PI * r * d * p;
+        assert_true(fabs(-f[2] - (fh + extra)) <= 1e-9 * fh);
+        dem_destroy(s);
+    }
 }
 
 /* The iterated scheme stops at the tolerance; a tight cap is reported as unconverged steps. */
@@ -222,6 +269,7 @@ int main(void)
         cmocka_unit_test(test_zero_prefactor_is_classical),
         cmocka_unit_test(test_iteration_reporting),
         cmocka_unit_test(test_models_bitwise),
+        cmocka_unit_test(test_conventions_bitwise),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -59,6 +59,22 @@ void packing_defaults(packing_opts *o)
     o->poisson = 0.3;
     o->gravity = 1;
     o->seed = 12345;
+    o->mcs_conv = DEM_MCS_DEFAULT;
+}
+
+unsigned mcs_convention(int k)
+{
+    static const unsigned scale[3] = {DEM_MCS_SCALE_TRACE, DEM_MCS_SCALE_TEXT, 0};
+    return (k / 6 ? 0u : (unsigned)DEM_MCS_OWN_IN) | ((k / 3) % 2 ? 0u : (unsigned)DEM_MCS_LEVER_CENTRES) |
+           scale[k % 3];
+}
+
+const char *mcs_convention_name(unsigned c, char *buf, size_t len)
+{
+    snprintf(buf, len, "own %s, lever %s, scale %s", (c & DEM_MCS_OWN_IN) ? "in" : "out",
+             (c & DEM_MCS_LEVER_CENTRES) ? "centres" : "contact_point",
+             (c & DEM_MCS_SCALE_TRACE) ? "mean_trace" : (c & DEM_MCS_SCALE_TEXT) ? "text" : "mean_pressure");
+    return buf;
 }
 
 dem_sim *packing_build(const packing_opts *o)
@@ -101,6 +117,7 @@ dem_sim *packing_build(const packing_opts *o)
         dem_set_effects(s, o->effects);
     if (o->mc_iterations)
         dem_set_mc_strain(s, o->mc_iterations, 1e-6);
+    dem_set_mc_stress_convention(s, o->mcs_conv);
     return s;
 }
 

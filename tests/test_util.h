@@ -20,9 +20,15 @@ typedef struct {
     unsigned effects;   /* DEM_EFFECT_* mask; 0 = the default (classical) */
     double mc_beta, mc_gamma; /* multi-contact prefactors of the particle material */
     int mc_iterations;  /* MC-strain: 0 lagged, else iterated with tolerance 1e-6 */
+    unsigned mcs_conv;  /* MC-stress convention, DEM_MCS_* (DEM_MCS_DEFAULT from packing_defaults) */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);
+/* The twelve MC-stress conventions, k = 0..11 (own in/out x lever centres/contact point x scale mean trace/text/
+ * mean pressure; k = 0 is DEM_MCS_DEFAULT), and a readable name of one. */
+#define MCS_CONVENTIONS 12
+unsigned mcs_convention(int k);
+const char *mcs_convention_name(unsigned c, char *buf, size_t len);
 /* Builds the packing into a fresh simulation: a box of 6 plane walls, the top one (wall 5) a moving lid. */
 dem_sim *packing_build(const packing_opts *o);
 
