@@ -22,9 +22,10 @@ static const struct {
                     {OUT_STRESS, FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
 #define NFF (sizeof frame_fields / sizeof frame_fields[0])
 
-enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S__N };
+enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };
 static const char *series_names[S__N] = {"time", "step", "kinetic", "elastic", "potential", "total",
-                                         "contacts", "wall_contacts", "strain", "stress", "mc_iterations"};
+                                         "contacts", "wall_contacts", "strain", "stress", "mc_iterations",
+                                         "mc_capped"};
 static const char *series_units[S__N] = {"s", NULL, "J", "J", "J", "J", NULL, NULL, "1", "Pa", NULL};
 
 struct output {
@@ -122,7 +123,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
         o->series = H5Gcreate2(o->file, "series", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         rc = o->series < 0;
         for (int k = 0; !rc && k < S__N; k++)
-            if (k < S_STRAIN || (k < S_MCIT && o->sample) || (k == S_MCIT && o->mc))
+            if (k < S_STRAIN || (k < S_MCIT && o->sample) || (k >= S_MCIT && o->mc))
                 rc = h5rows_create(&o->s[k], o->series, series_names[k], H5T_NATIVE_DOUBLE, 1, 0, 0, series_units[k]);
         if (!rc && nw)
             rc = h5rows_create(&o->wall_pos, o->series, "wall_position", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "m") ||
@@ -171,9 +172,10 @@ int output_series(output *o, dem_sim *s, double strain, double stress)
     dem_mc_stats mc;
     dem_mc_stats_get(s, &mc);
     double row[S__N] = {dem_time(s), (double)dem_step_index(s), e.kinetic, e.elastic, e.potential, e.total,
-                        (double)e.contacts, (double)e.wall_contacts, strain, stress, (double)mc.last};
+                        (double)e.contacts, (double)e.wall_contacts, strain, stress, (double)mc.last,
+                        (double)mc.unconverged};
     for (int k = 0; k < S__N; k++)
-        if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k == S_MCIT && o->mc)) && h5rows_append(&o->s[k], &row[k]))
+        if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k >= S_MCIT && o->mc)) && h5rows_append(&o->s[k], &row[k]))
             return -1;
     if (o->nwalls) {
         double pos[3 * 32], f[3 * 32];

@@ -38,10 +38,15 @@ static void default_out(const scene *sc, char *buf, size_t len)
     snprintf(buf, len, "%.*s.h5", (int)(dot ? (size_t)(dot - base) : strlen(base)), base);
 }
 
-static void progress_line(int tty, long step, long steps, double t, double rate_ps, double eta)
+/* capped < 0: not an iterated MC-strain run (no iteration column) */
+static void progress_line(int tty, long step, long steps, double t, double rate_ps, double eta, double it_per_step,
+                          long capped)
 {
-    fprintf(stderr, "%sstep %ld/%ld (%5.1f %%)  t = %.6g s  %.3g particle-steps/s  ETA %.0f s%s",
-            tty ? "\r" : "", step, steps, 100.0 * (double)step / (double)steps, t, rate_ps, eta, tty ? "   " : "\n");
+    char mc[96] = "";
+    if (capped >= 0)
+        snprintf(mc, sizeof mc, "  MC-strain %.1f it/step, %ld steps capped", it_per_step, capped);
+    fprintf(stderr, "%sstep %ld/%ld (%5.1f %%)  t = %.6g s  %.3g particle-steps/s%s  ETA %.0f s%s",
+            tty ? "\r" : "", step, steps, 100.0 * (double)step / (double)steps, t, rate_ps, mc, eta, tty ? "   " : "\n");
     fflush(stderr);
 }
 
@@ -199,7 +204,10 @@ int run_scene(const run_opts *o)
         double tn = now();
         if (show && (tn - last > 1 || st == end)) {
             double rate = (double)(st - step0) / (tn - t0 + 1e-12);
-            progress_line(tty, st, run.steps, dem_time(s), rate * dem_count(s), (double)(end - st) / (rate + 1e-12));
+            dem_mc_stats mc;
+            dem_mc_stats_get(s, &mc);
+            progress_line(tty, st, run.steps, dem_time(s), rate * dem_count(s), (double)(end - st) / (rate + 1e-12),
+                          (double)mc.total / (double)(st > 0 ? st : 1), run.mc_cap > 0 ? mc.unconverged : -1);
             last = tn;
         }
     }
@@ -217,10 +225,19 @@ int run_scene(const run_opts *o)
                 dem_step_index(s), now() - t0);
         dem_mc_stats mc;
         dem_mc_stats_get(s, &mc);
-        if ((run.effects & DEM_EFFECT_MC_STRAIN) && sc->f->mc_iterations)
+        if ((run.effects & DEM_EFFECT_MC_STRAIN) && run.mc_cap > 0)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
                             "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
-                    mc.max, mc.unconverged, sc->f->mc_iterations);
+                    mc.max, mc.unconverged, run.mc_cap);
+    }
+    {   /* a warning, even with --quiet: steps whose forces did not converge to the tolerance */
+        dem_mc_stats mc;
+        dem_mc_stats_get(s, &mc);
+        if ((run.effects & DEM_EFFECT_MC_STRAIN) && run.mc_cap > 0 && mc.unconverged > 0)
+            fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "
+                            "every contact force settled to mc_tolerance %g; the series mc_capped counts them. Raise "
+                            "mc_iterations, or loosen mc_tolerance, if that matters here\n",
+                    mc.unconverged, dem_step_index(s), run.mc_cap, run.mc_tol);
     }
 done:
     if (out)

@@ -153,6 +153,8 @@ typedef struct {
     char note[1024];        /* remarks for `dem check` (ignored parameters ...) */
     char model[32];         /* normal law chosen on the command line (dem run --model), "" = the scene's */
     unsigned mcs_conv;      /* DEM_MCS_* bits (used when MC-stress runs) */
+    int mc_cap;             /* MC-strain iteration cap in force (0: lagged) and its tolerance */
+    double mc_tol;
 } scene_run;
 
 /* Loads and parses; on failure returns NULL and writes "file:line: field: reason" into err. */

@@ -168,6 +168,8 @@ int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *m
     }
     int iters = k == 3 ? (sc->f->mc_iterations > 0 ? sc->f->mc_iterations : 20) : 0;
     double tol = scene_has(sc->loc, "mc_tolerance") ? sc->f->mc_tolerance : 1e-6;
+    run->mc_cap = iters;
+    run->mc_tol = tol;
     if (dem_set_effects(s, fx) || dem_set_mc_strain(s, iters, tol)) {
         snprintf(err, errlen, "model %s: %s", model, dem_error(s));
         return 1;
@@ -434,8 +436,9 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
         return scene_fail(sc, err, errlen, "effects", "%s", dem_error(s));
     if (dem_set_mc_stress_convention(s, run->mcs_conv))
         return scene_fail(sc, err, errlen, "mc_stress_convention", "%s", dem_error(s));
-    if (f->mc_iterations > 0 &&
-        dem_set_mc_strain(s, f->mc_iterations, scene_has(sc->loc, "mc_tolerance") ? f->mc_tolerance : 1e-6))
+    run->mc_cap = f->mc_iterations;
+    run->mc_tol = scene_has(sc->loc, "mc_tolerance") ? f->mc_tolerance : 1e-6;
+    if (f->mc_iterations > 0 && dem_set_mc_strain(s, f->mc_iterations, run->mc_tol))
         return scene_fail(sc, err, errlen, "mc_iterations", "%s", dem_error(s));
     return 0;
 }

@@ -231,6 +231,46 @@ static void test_output_and_xdmf(void **st)
     assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/o.xmf", SRC, tmp), 0);
 }
 
+/* Iterated MC-strain with a cap too small to converge: the progress line counts capped steps, the run ends with a
+ * warning (also with --quiet), and the series mc_capped holds the running count, the last row the warning's number. */
+static void test_mc_cap_reported(void **st)
+{
+    (void)st;
+    char err[16384], p[300];
+    assert_int_equal(sh(err, sizeof err, "sed 's/^mc_iterations: 5/mc_iterations: 2\\nmc_tolerance: 1.0e-12/' "
+                                          "%s/tests/scenes/restart_box_mc.yaml > %s/cap.yaml",
+                        SRC, tmp),
+                     0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/cap.yaml -o %s/cap.h5 --progress", DEM, tmp, tmp), 0);
+    assert_non_null(strstr(err, "steps capped"));
+    const char *w = strstr(err, "dem: warning: ");
+    assert_non_null(w);
+    long capped = 0, steps = 0;
+    assert_int_equal(sscanf(w, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of 2", &capped, &steps), 2);
+    assert_true(capped > 0 && capped <= steps);
+    snprintf(p, sizeof p, "%s/cap.h5", tmp);
+    hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    long rows = h5_count(f, "series/mc_capped");
+    assert_true(rows > 2 && rows < 1000);
+    double v[1000];
+    hid_t d = H5Dopen2(f, "series/mc_capped", H5P_DEFAULT);
+    assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0);
+    H5Dclose(d), H5Fclose(f);
+    assert_true(v[rows - 1] == (double)capped);
+    for (long k = 1; k < rows; k++)
+        assert_true(v[k] >= v[k - 1]); /* a running count */
+    /* --quiet keeps the warning */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/cap.yaml -o %s/cap2.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_non_null(strstr(err, "dem: warning: "));
+    /* and a converging run says nothing of the kind */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box_mc.yaml -o %s/ok.h5 --quiet --model "
+                                          "mc_strain",
+                        DEM, SRC, tmp),
+                     0);
+    assert_null(strstr(err, "warning"));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -240,6 +280,7 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_restart_bitwise),
         cmocka_unit_test(test_output_and_xdmf),
+        cmocka_unit_test(test_mc_cap_reported),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
