@@ -63,6 +63,11 @@ static int check(const char *path)
     printf("particles      %d (radius %.4g to %.4g m), %d walls, %u materials\n", n, rmin, rmax, dem_wall_count(s),
            sc->f->materials_count);
     printf("effects        %s\n", fx);
+    if (run.effects & DEM_EFFECT_MC_STRESS) {
+        char conv[128];
+        dem_mc_stress_convention_string(run.mcs_conv, conv, sizeof conv);
+        printf("MC-stress      %s\n", conv);
+    }
     printf("Rayleigh time  %.4g s (smallest particle)\n", ts.rayleigh_time);
     printf("Hertz time     %.4g s (two smallest like spheres, head-on at 1 m/s)\n", ts.hertz_time);
     printf("time step      %.4g s = %.3g x Rayleigh time (recommended %.4g s, bound %.4g s)\n", run.dt,

@@ -84,8 +84,9 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     o->buf = malloc(sizeof(double) * 6 * (size_t)(n > 32 ? n : 32));
     o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     int rc = !o->buf || o->file < 0;
-    char fx[128];
+    char fx[128], conv[128];
     dem_effects_string(run->effects, fx, sizeof fx);
+    dem_mc_stress_convention_string(run->mcs_conv, conv, sizeof conv);
     if (!rc)
         rc = h5_attr_string(o->file, "libdem_version", DEM_VERSION) ||
              h5_attr_string(o->file, "device", dem_describe(s)) ||
@@ -95,6 +96,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
              h5_attr_long(o->file, "steps", run->steps) || h5_attr_string(o->file, "scene_path", sc->path) ||
              h5_attr_string(o->file, "units", "SI: m, kg, s, N, Pa, J") ||
              h5_attr_string(o->file, "scene_name", sc->f->name ? sc->f->name : sc->path) ||
+             ((run->effects & DEM_EFFECT_MC_STRESS) && h5_attr_string(o->file, "mc_stress_convention", conv)) ||
              h5_write_text(o->file, "scene_text", sc->text);
     if (!rc) {
         hid_t g = H5Gcreate2(o->file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);

@@ -148,9 +148,15 @@ int run_scene(const run_opts *o)
                 sc->path, dem_count(s), dem_wall_count(s), run.dt, run.steps, dem_describe(s),
                 (run.effects & DEM_EFFECT_MC_STRESS)   ? "stress_trace, "
                 : !(run.effects & DEM_EFFECT_MC_STRAIN) ? ""
-                : sc->f->mc_iterations                  ? "mc_strain_disp + (mc_strain_update, mc_strain_disp) x iterations, "
+                : run.mc_cap > 0                        ? "mc_strain_disp + (mc_strain_update, mc_strain_disp) x iterations, "
                                                         : "mc_strain_disp, ",
                 (run.effects & DEM_EFFECT_WALLS) && dem_wall_count(s) ? ", wall_reduce_block, wall_reduce_final" : "");
+    if ((show || o->progress != 0) && (run.effects & DEM_EFFECT_MC_STRESS)) {
+        char conv[128];
+        dem_mc_stress_convention_string(run.mcs_conv, conv, sizeof conv);
+        fprintf(stderr, "dem: MC-stress pressure convention: %s%s\n", conv,
+                run.mcs_conv == DEM_MCS_DEFAULT ? " (the default: Eq. 11's reading)" : "");
+    }
     out = output_open(outp, sc, &run, s, err, sizeof err);
     if (!out) {
         code = fail_with(EXIT_IO, err);

@@ -275,6 +275,13 @@ int dem_set_mc_stress_convention(dem_sim *s, unsigned convention)
 
 unsigned dem_mc_stress_convention(const dem_sim *s) { return s->mcs_conv; }
 
+void dem_mc_stress_convention_string(unsigned c, char *buf, size_t len)
+{
+    snprintf(buf, len, "own_contact %s, lever %s, scale %s", (c & DEM_MCS_OWN_IN) ? "in" : "out",
+             (c & DEM_MCS_LEVER_CENTRES) ? "centres" : "contact_point",
+             (c & DEM_MCS_SCALE_TRACE) ? "mean_trace" : (c & DEM_MCS_SCALE_TEXT) ? "text" : "mean_pressure");
+}
+
 int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance)
 {
     if (not_started(s))

@@ -144,6 +144,8 @@ void dem_effects_string(unsigned effects, char *buf, size_t len); /* "hertz+damp
  * Compiled into the kernels with the effects; used only with DEM_EFFECT_MC_STRESS. */
 int dem_set_mc_stress_convention(dem_sim *s, unsigned convention);
 unsigned dem_mc_stress_convention(const dem_sim *s);
+/* "own_contact in, lever centres, scale mean_trace": the scene key's words */
+void dem_mc_stress_convention_string(unsigned convention, char *buf, size_t len);
 
 /* MC-strain scheme: max_iterations 0 (default) is the published lagged scheme (the induced displacements use the
  * forces of the previous step, one pass); N > 0 iterates displacements and forces within each step until no contact

@@ -71,9 +71,7 @@ unsigned mcs_convention(int k)
 
 const char *mcs_convention_name(unsigned c, char *buf, size_t len)
 {
-    snprintf(buf, len, "own %s, lever %s, scale %s", (c & DEM_MCS_OWN_IN) ? "in" : "out",
-             (c & DEM_MCS_LEVER_CENTRES) ? "centres" : "contact_point",
-             (c & DEM_MCS_SCALE_TRACE) ? "mean_trace" : (c & DEM_MCS_SCALE_TEXT) ? "text" : "mean_pressure");
+    dem_mc_stress_convention_string(c, buf, len);
     return buf;
 }
 

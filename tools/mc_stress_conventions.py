@@ -1,16 +1,20 @@
 #!/usr/bin/python3
-"""Runs seed 000's two MC-stress calibration points under every pressure convention and prints the table.
+"""Runs seed 000's validation scenes under every MC-stress pressure convention and prints the comparison table.
 
-usage: tools/mc_stress_conventions.py [--dem build/dem] [--out out/conventions]
+usage: tools/mc_stress_conventions.py [--dem build/dem] [--out out/conventions] [--scenes a,b,...]
 
-The calibrations (section 3.3 and 4.1): the rubber sphere between plates at d/r = 0.4 (beta 1.71 against MC-strain
-with gamma 0.55, Fig. 4) and the 514 hydrogel packing at 13.4 % strain (beta 1.65 against gamma 1.12, Fig. 11b).
-Each convention is written into a copy of the scene (key mc_stress_convention, docs/scenes.md) next to the original,
-run with `dem run --model mc_stress`, and compared with the classical and MC-strain runs of the same scene.
-docs/multicontact.md quotes the table this prints.
+Each convention (own contact in/out x lever centres/contact_point x scale mean_trace/text/mean_pressure; see
+docs/multicontact.md) is written into a copy of the scene (key mc_stress_convention, docs/scenes.md) next to the
+original, run with `dem run --model mc_stress`, and compared with the classical and the MC-strain runs of the scene:
+  rubber_plates   plate force at d/r = 0.4 (Fig. 4: beta 1.71 and gamma 0.55 calibrated on this point)
+  three_/five_*   largest overlap of the central sphere and when (Figs. 6-9: MC-stress lowest, both earlier)
+  five_box        x+ wall force at full strain against Eq. 11 with delta_4 = strain d (Fig. 10)
+  compression     peak stress (Fig. 11b hydrogel_514, 14 hydrogel_1921, 15 rubber_514, 16 glass_die)
+Prints one Markdown table; docs/multicontact.md quotes it. make conventions runs it (about 8 minutes on 2 cores).
 """
 import argparse
 import itertools
+import math
 import os
 import subprocess
 import sys
@@ -18,19 +22,45 @@ import sys
 import h5py
 import numpy as np
 
-SCENES = [("rubber_plates", "scenes/validation/rubber_plates.yaml", "force at d/r = 0.4 [N]", 10.0),
-          ("hydrogel_514", "scenes/hydrogel_514.yaml", "stress at 13.4 % [Pa]", 15.0)]
-OWN = ["in", "out"]
-LEVER = ["centres", "contact_point"]
-SCALE = ["mean_trace", "text", "mean_pressure"]
+ALL = ["rubber_plates", "three_hydrogel", "five_hydrogel", "three_rubber", "five_rubber", "five_box",
+       "hydrogel_514", "hydrogel_1921", "rubber_514", "glass_die"]
+CONVENTIONS = list(itertools.product(["in", "out"], ["centres", "contact_point"], ["mean_trace", "text", "mean_pressure"]))
 
 
-def peak(path, name):
-    with h5py.File(path, "r") as f:
+def path_of(name):
+    p = f"scenes/validation/{name}.yaml"
+    return p if os.path.exists(p) else f"scenes/{name}.yaml"
+
+
+def metric(name, h5):
+    """(value, text) of one run"""
+    with h5py.File(h5, "r") as f:
         s = f["series"]
-        if name == "rubber_plates":  # stress = plate force / (pi r^2): back to the force, at the deepest point
-            return float(np.max(s["stress"][:]) * f["series"].attrs["sample_area"])
-        return float(np.max(s["stress"][:]))
+        if name == "rubber_plates":
+            v = float(np.max(s["stress"][:]) * s.attrs["sample_area"])
+            return v, f"{v:.4g} N"
+        if name == "five_box":
+            v = float(np.max(s["stress"][:]) * s.attrs["sample_area"])
+            return v, f"{v:.4g} N"
+        if "strain" in s:
+            v = float(np.max(s["stress"][:]))
+            return v, f"{v:.4g} Pa"
+        fr = f["frames"]
+        x, r, t = fr["position"][:], f["particles/radius"][:], fr["time"][:]
+        d = r[0] + r[1] - np.linalg.norm(x[:, 0, :] - x[:, 1, :], axis=1)
+        k = int(np.argmax(d))
+        return float(d[k]), f"{1e3 * d[k]:.3f} mm at {1e3 * t[k]:.2f} ms"
+
+
+def eq11_box(h5):
+    """Eq. 11 at the five-box's full strain (delta_4 = strain d, d = 2r; hydrogel, beta 1.65)"""
+    with h5py.File(h5, "r") as f:
+        eps = float(np.max(f["series/strain"][:]))
+    r, E, nu, beta = 0.01, 23.3e3, 0.5, 1.65
+    es = E / (2 * (1 - nu * nu))
+    dl = eps * 2 * r
+    V, A = 4 / 3 * math.pi * r ** 3, math.pi * r / 2 * dl
+    return 4 / 3 * es * math.sqrt(r / 2 * dl) * dl * (1 + 4 * (2 * r - dl) * beta * nu * A / V)
 
 
 def run(dem, scene, out, model, conv=None):
@@ -52,30 +82,33 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--dem", default="build/dem")
     ap.add_argument("--out", default="out/conventions")
+    ap.add_argument("--scenes", default=",".join(ALL))
     a = ap.parse_args()
+    names = a.scenes.split(",")
     os.makedirs(a.out, exist_ok=True)
-    rows = {}
-    ref = {}
-    for name, scene, what, _ in SCENES:
-        ref[name] = {m: peak(run(a.dem, scene, f"{a.out}/{name}-{m}.h5", m), name) for m in ("classical", "mc_strain")}
-        for conv in itertools.product(OWN, LEVER, SCALE):
-            h5 = f"{a.out}/{name}-mc_stress-{'-'.join(conv)}.h5"
-            rows.setdefault(conv, {})[name] = peak(run(a.dem, scene, h5, "mc_stress", conv), name)
-    hdr = "| own contact | lever | scale |"
-    for name, _, what, tol in SCENES:
-        hdr += f" {name} {what} | vs MC-strain (target within {tol:g} %) |"
-    print(hdr)
-    print("|---" * (3 + 2 * len(SCENES)) + "|")
-    for name, _, what, _ in SCENES:
-        c, s = ref[name]["classical"], ref[name]["mc_strain"]
-        print(f"| reference: {name} | classical {c:.5g} | MC-strain {s:.5g} ({100 * (s / c - 1):+.1f} % over classical) |")
-    for conv, r in rows.items():
-        line = f"| {conv[0]} | {conv[1]} | {conv[2]} |"
-        for name, _, _, tol in SCENES:
-            c, s, v = ref[name]["classical"], ref[name]["mc_strain"], r[name]
-            dev = 100 * (v / s - 1)
-            line += f" {v:.5g} ({100 * (v / c - 1):+.1f} %) | {dev:+.1f} %{' ok' if abs(dev) <= tol else ''} |"
-        print(line)
+    res = {}
+    for name in names:
+        for m in ("classical", "mc_strain"):
+            res[(name, m)] = metric(name, run(a.dem, path_of(name), f"{a.out}/{name}-{m}.h5", m))
+        for conv in CONVENTIONS:
+            h5 = run(a.dem, path_of(name), f"{a.out}/{name}-mc_stress-{'-'.join(conv)}.h5", "mc_stress", conv)
+            res[(name, conv)] = metric(name, h5)
+            if name == "five_box":
+                res[(name, "eq11")] = eq11_box(h5)
+    print("| run | " + " | ".join(names) + " |")
+    print("|---" * (1 + len(names)) + "|")
+    for m in ("classical", "mc_strain"):
+        print(f"| {m} | " + " | ".join(res[(n, m)][1] for n in names) + " |")
+    if "five_box" in names:
+        print("| Eq. 11 (delta_4 = strain d) | " + " | ".join(
+            f"{res[(n, 'eq11')]:.4g} N" if n == "five_box" else "" for n in names) + " |")
+    for conv in CONVENTIONS:
+        cells = []
+        for n in names:
+            v, txt = res[(n, conv)]
+            c, s = res[(n, "classical")][0], res[(n, "mc_strain")][0]
+            cells.append(f"{txt} ({100 * (v / c - 1):+.1f} % vs classical, {100 * (v / s - 1):+.1f} % vs MC-strain)")
+        print(f"| mc_stress {'/'.join(conv)} | " + " | ".join(cells) + " |")
 
 
 if __name__ == "__main__":

@@ -1,12 +1,17 @@
 #!/usr/bin/python3
 """Compares runs of one scene under different contact models (dem run --model ...) in one PNG.
 
-usage: tools/plot_models.py -o OUT.png RUN.h5 [RUN.h5 ...]
+usage: tools/plot_models.py -o OUT.png [--eq11 K=V,...] [--hertz K=V,...] RUN.h5 [RUN.h5 ...]
 
 Scenes with a sample (a piston): engineering stress against strain, one curve per run (compression and return).
 Scenes without one (the 3- and 5-sphere collisions of seed 000 section 3.4): kinetic energy against time and the
 overlap of particles 0 and 1 (2 r - |x0 - x1|, geometric) against time. Each curve is labelled with the run's
-model attribute. Uses Debian's python3-h5py and python3-matplotlib; run it with /usr/bin/python3.
+model attribute (and MC-stress runs with their pressure convention). Closed forms drawn on a stress-strain plot:
+  --eq11 r=,E=,nu=,beta=,area=   seed 000 Eq. 11, f = k_H d4^{3/2} [1 + 4 d beta nu A / V] with d4 = strain 2r,
+                                 d = 2r - d4, A = pi (r/2) d4, V = 4/3 pi r^3 (the five-sphere box, Fig. 10)
+  --hertz r=,E=,nu=,E2=,nu2=,area=,height=   Hertz f = 4/3 E* sqrt(r) d^{3/2}, d = strain height, sphere on a
+                                 rigid-ish plate of E2, nu2 (the rubber sphere between plates, Fig. 4)
+Uses Debian's python3-h5py and python3-matplotlib; run it with /usr/bin/python3.
 """
 import argparse
 import sys
@@ -24,10 +29,26 @@ def attr(f, name, default=""):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
+def kv(text):
+    """"a=1,b=2" -> {"a": 1.0, "b": 2.0}"""
+    try:
+        return {k.strip(): float(v) for k, v in (item.split("=") for item in text.split(","))}
+    except ValueError:
+        sys.exit(f"plot_models: cannot read '{text}' (want key=value,...)")
+
+
+def label_of(f):
+    m = attr(f, "model")
+    conv = attr(f, "mc_stress_convention")
+    return f"{m} ({conv})" if conv and "stress" in m else m
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="+", help="HDF5 files written by dem run")
     ap.add_argument("-o", "--output", required=True, help="PNG file")
+    ap.add_argument("--eq11", help="r=,E=,nu=,beta=,area= : draw Eq. 11 (stress against strain)")
+    ap.add_argument("--hertz", help="r=,E=,nu=,E2=,nu2=,area=,height= : draw the Hertz force (stress against strain)")
     a = ap.parse_args()
     files = []
     for path in a.runs:
@@ -44,7 +65,20 @@ def main():
             s = f["series"]
             strain = 100 * s["strain"][:]
             top = max(top, float(np.nanmax(strain)))
-            ax.plot(strain, s["stress"][:], label=attr(f, "model"))
+            ax.plot(strain, s["stress"][:], label=label_of(f))
+        eps = np.linspace(0, top / 100, 200)
+        if a.eq11:
+            k = kv(a.eq11)
+            r, es = k["r"], k["E"] / (2 * (1 - k["nu"] ** 2))
+            d4 = eps * 2 * r
+            f = 4 / 3 * es * np.sqrt(r / 2 * d4) * d4 * (
+                1 + 4 * (2 * r - d4) * k["beta"] * k["nu"] * np.pi * (r / 2) * d4 / (4 / 3 * np.pi * r ** 3))
+            ax.plot(100 * eps, f / k["area"], "k--", label="Eq. 11 (δ4 = strain · d)")
+        if a.hertz:
+            k = kv(a.hertz)
+            es = 1 / ((1 - k["nu"] ** 2) / k["E"] + (1 - k["nu2"] ** 2) / k["E2"])
+            d = eps * k["height"]
+            ax.plot(100 * eps, 4 / 3 * es * np.sqrt(k["r"] * d) * d / k["area"], "k--", label="Hertz")
         ax.set_xlabel("engineering strain [%] (from the piston touching the sample)")
         ax.set_ylabel("stress [Pa]")
         ax.set_xlim(0, 1.05 * top if top > 0 else None)
@@ -53,7 +87,7 @@ def main():
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
         for f in files:
             s, fr = f["series"], f["frames"]
-            label = attr(f, "model")
+            label = label_of(f)
             ax1.plot(1e3 * s["time"][:], s["kinetic"][:], label=label)
             x = fr["position"][:]
             r = f["particles/radius"][:]
