@@ -70,6 +70,13 @@ static void test_errors(void **st)
     bad("s/hertz, damping/hertz, damping, walls/; s/^particles:/walls: [{type: plane, material: rubber, point: [0, 0, "
         "-0.005], normal: [0, 0, 1]}]\\nparticles:/", "walls[0]: particles[0].spheres[0] (radius 0.01 m");
     bad("s/name: two-sphere collision/name: [unclosed/", "bad.yaml:");
+    bad("s/^particles:/mc_stress_convention: {lever: centres}\\nparticles:/",
+        "bad.yaml:8: mc_stress_convention: an MC-stress convention is given but mc_stress is off and no material has "
+        "beta > 0");
+    bad("s/friction: 0.5}/friction: 0.5, beta: 1.71}/; s/^particles:/mc_stress_convention: {scale: median}\\nparticles:/",
+        "bad.yaml:8: mc_stress_convention.scale: unknown value 'median' (mean_trace, text, mean_pressure)");
+    bad("s/friction: 0.5}/friction: 0.5, beta: 1.71}/; s/^particles:/mc_stress_convention: {own: in}\\nparticles:/",
+        "bad.yaml:8: mc_stress_convention");
     char err[4096];
     assert_int_equal(sh(err, sizeof err, "%s run %s/missing.yaml -o %s/out.h5", DEM, tmp, tmp), 66);
     assert_non_null(strstr(err, "missing.yaml:0: cannot open the scene file"));
