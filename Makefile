@@ -39,7 +39,7 @@ HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h a
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz bench clean validate
+.PHONY: all deps run demo test test-fresh test-paraview fuzz bench clean validate conventions
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -97,6 +97,9 @@ run: $(BUILD)/dem
 VALIDATION ?= three_hydrogel five_hydrogel three_rubber five_rubber five_box rubber_plates
 COMPRESSION ?= hydrogel_514 rubber_514 glass_die hydrogel_1921
 MODELS ?= classical mc_stress mc_strain mc_strain_iterated
+# closed forms drawn over two of them: Eq. 11 on the five-sphere box (Fig. 10), Hertz on the rubber sphere (Fig. 4)
+PLOT_REF_five_box := --eq11 r=0.01,E=23.3e3,nu=0.5,beta=1.65,area=0.0012
+PLOT_REF_rubber_plates := --hertz r=0.01,E=1.85e6,nu=0.46,E2=200e9,nu2=0.3,area=0.000314159265358979,height=0.01
 validate: $(BUILD)/dem
 	@mkdir -p out/validation
 	@for s in $(VALIDATION) $(COMPRESSION); do \
@@ -106,13 +109,19 @@ validate: $(BUILD)/dem
 	    ./$(BUILD)/dem run $$f --model $$m -o out/validation/$$s-$$m.h5 --quiet || exit 1; \
 	    runs="$$runs out/validation/$$s-$$m.h5"; \
 	  done; \
-	  /usr/bin/python3 tools/plot_models.py -o out/validation/$$s.png $$runs || exit 1; \
+	  case $$s in five_box) ref="$(PLOT_REF_five_box)";; rubber_plates) ref="$(PLOT_REF_rubber_plates)";; *) ref="";; esac; \
+	  /usr/bin/python3 tools/plot_models.py -o out/validation/$$s.png $$ref $$runs || exit 1; \
 	done
 
 # The README's two commands on a bare Debian 12 root (mmdebstrap minbase, cached; the committed HEAD is cloned
 # into it): make run, then make test, each must pass on the first try. Needs root or sudo. scripts/test-fresh.sh.
 test-fresh:
 	@bash scripts/test-fresh.sh
+
+# seed 000's validation scenes under each of the twelve MC-stress pressure conventions (docs/multicontact.md):
+# one Markdown table on stdout, runs in out/conventions/ (about 8 minutes on 2 cores).
+conventions: $(BUILD)/dem
+	/usr/bin/python3 tools/mc_stress_conventions.py
 
 # ParaView's own reader on our XDMF output (Debian's paraview is ~440 MB: not part of every CI run).
 test-paraview: $(BUILD)/dem
