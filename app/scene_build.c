@@ -36,6 +36,20 @@ static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) &&
 static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 
+/* One rule for the scene's effects and for --model: a multi-contact law needs a material whose prefactor makes it do
+ * something (MC-stress: beta nu != 0, seed 000's "nu = 0 de-activates the model"; MC-strain: gamma > 0), or it would
+ * run as classical DEM in disguise. NULL when the law can act, else the reason. */
+static const char *mc_prefactor_missing(const scene *sc, unsigned law)
+{
+    for (unsigned q = 0; q < sc->f->materials_count; q++) {
+        const scene_material *m = &sc->f->materials[q];
+        if (law == DEM_EFFECT_MC_STRESS ? m->beta > 0 && m->poisson != 0 : m->gamma > 0)
+            return NULL;
+    }
+    return law == DEM_EFFECT_MC_STRESS ? "no material has beta > 0 and a non-zero poisson (beta nu = 0 is classical DEM)"
+                                       : "no material has gamma > 0 (gamma = 0 is classical DEM)";
+}
+
 /* mc_stress_convention: each sub-key picks one branch of common/particle_stress.h; absent ones keep the default. */
 static int parse_mcs_convention(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
@@ -102,6 +116,17 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         return scene_fail(sc, err, errlen, "effects", "'hertz' (the contact law) must be listed");
     if ((run->effects & DEM_EFFECT_MC_STRESS) && (run->effects & DEM_EFFECT_MC_STRAIN))
         return scene_fail(sc, err, errlen, "effects", "mc_stress and mc_strain are alternative normal laws: list one");
+    for (unsigned k = 0; k < f->effects_count; k++) {
+        int bit = dem_effect_bit(f->effects[k]);
+        unsigned law = 1u << bit;
+        const char *why = (law == DEM_EFFECT_MC_STRESS || law == DEM_EFFECT_MC_STRAIN) ? mc_prefactor_missing(sc, law)
+                                                                                        : NULL;
+        if (why) {
+            char path[64];
+            snprintf(path, sizeof path, "effects[%u]", k);
+            return scene_fail(sc, err, errlen, path, "%s is listed but %s", f->effects[k], why);
+        }
+    }
     if (f->mc_iterations < 0 || f->mc_iterations > 10000)
         return scene_fail(sc, err, errlen, "mc_iterations", "must be in 0..10000 (0: the lagged scheme)");
     if (scene_has(sc->loc, "mc_tolerance") && !(f->mc_tolerance > 0 && isfinite(f->mc_tolerance)))
@@ -159,11 +184,9 @@ int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *m
     }
     unsigned fx = run->effects & ~(unsigned)(DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN);
     fx |= k == 1 ? DEM_EFFECT_MC_STRESS : k >= 2 ? DEM_EFFECT_MC_STRAIN : 0;
-    int have = k == 0; /* a multi-contact model needs a non-zero prefactor, or it is classical DEM in disguise */
-    for (unsigned q = 0; q < sc->f->materials_count; q++)
-        have |= k == 1 ? sc->f->materials[q].beta > 0 : sc->f->materials[q].gamma > 0;
-    if (!have) {
-        snprintf(err, errlen, "model %s: no material of the scene has %s > 0", model, k == 1 ? "beta" : "gamma");
+    const char *why = k == 0 ? NULL : mc_prefactor_missing(sc, k == 1 ? DEM_EFFECT_MC_STRESS : DEM_EFFECT_MC_STRAIN);
+    if (why) {
+        snprintf(err, errlen, "model %s: %s", model, why);
         return 1;
     }
     int iters = k == 3 ? (sc->f->mc_iterations > 0 ? sc->f->mc_iterations : 20) : 0;

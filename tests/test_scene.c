@@ -70,6 +70,14 @@ static void test_errors(void **st)
     bad("s/hertz, damping/hertz, damping, walls/; s/^particles:/walls: [{type: plane, material: rubber, point: [0, 0, "
         "-0.005], normal: [0, 0, 1]}]\\nparticles:/", "walls[0]: particles[0].spheres[0] (radius 0.01 m");
     bad("s/name: two-sphere collision/name: [unclosed/", "bad.yaml:");
+    /* a multi-contact law without the prefactor that makes it act is refused, by the scene as by --model */
+    bad("s/hertz, damping/hertz, damping, mc_stress/",
+        "bad.yaml:5: effects[2]: mc_stress is listed but no material has beta > 0 and a non-zero poisson");
+    bad("s/hertz, damping/hertz, damping, mc_stress/; s/friction: 0.5}/friction: 0.5, beta: 1.71}/; "
+        "s/poisson: 0.46/poisson: 0/",
+        "effects[2]: mc_stress is listed but no material has beta > 0 and a non-zero poisson");
+    bad("s/hertz, damping/hertz, mc_strain, damping/",
+        "bad.yaml:5: effects[1]: mc_strain is listed but no material has gamma > 0");
     bad("s/^particles:/mc_stress_convention: {lever: centres}\\nparticles:/",
         "bad.yaml:8: mc_stress_convention: an MC-stress convention is given but mc_stress is off and no material has "
         "beta > 0");
@@ -80,6 +88,10 @@ static void test_errors(void **st)
     char err[4096];
     assert_int_equal(sh(err, sizeof err, "%s run %s/missing.yaml -o %s/out.h5", DEM, tmp, tmp), 66);
     assert_non_null(strstr(err, "missing.yaml:0: cannot open the scene file"));
+    assert_int_equal(sh(err, sizeof err, "%s run %s/scenes/two_spheres.yaml --model mc_stress -o %s/m.h5", DEM, SRC, tmp),
+                     2); /* the command line asked for what the scene cannot do */
+    assert_non_null(strstr(err, "model mc_stress: no material has beta > 0 and a non-zero poisson"));
+    assert_false(exists("%s/m.h5", tmp));
     assert_int_equal(sh(err, sizeof err, "%s run --bogus", DEM), 2);
     assert_int_equal(sh(err, sizeof err, "%s frobnicate", DEM), 2);
     /* a CSV error names the CSV file and line and the scene line that refers to it */
