@@ -2,6 +2,8 @@
 #include "run.h"
 #include "scene.h"
 #include <math.h>
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -115,11 +117,14 @@ static int need_value(int argc, char **argv, int k)
     return 1;
 }
 
-static int parse_long(const char *s, long *v)
+/* A whole decimal integer in [lo, hi] (lo >= 0): digits only, no sign or blanks, no trailing text, no overflow
+ * (strtol's ERANGE), no wrap into int. */
+static int parse_long(const char *s, long *v, long lo, long hi)
 {
     char *end;
+    errno = 0;
     *v = strtol(s, &end, 10);
-    return *s && !*end;
+    return *s >= '0' && *s <= '9' && !*end && errno == 0 && *v >= lo && *v <= hi;
 }
 
 int main(int argc, char **argv)
@@ -169,8 +174,8 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--device")) {
             if (!need_value(argc, argv, k))
                 return EXIT_USAGE;
-            if (!parse_long(argv[++k], &v) || v < 0) {
-                fprintf(stderr, "dem: --device needs an index >= 0 (see dem devices)\n");
+            if (!parse_long(argv[++k], &v, 0, 65535)) {
+                fprintf(stderr, "dem: --device needs an index in 0..65535 (see dem devices), not '%s'\n", argv[k]);
                 return EXIT_USAGE;
             }
             o.device = (int)v;
@@ -189,8 +194,8 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--stop-after")) {
             if (!need_value(argc, argv, k))
                 return EXIT_USAGE;
-            if (!parse_long(argv[++k], &v) || v < 1) {
-                fprintf(stderr, "dem: --stop-after needs a step count >= 1\n");
+            if (!parse_long(argv[++k], &v, 1, LONG_MAX)) {
+                fprintf(stderr, "dem: --stop-after needs a step count >= 1, not '%s'\n", argv[k]);
                 return EXIT_USAGE;
             }
             o.stop_after = v;

@@ -69,6 +69,12 @@ int cl_device_get(int want, cl_device_info_t *info, char *err, size_t errlen)
     cl_platform_id *p;
     cl_uint np;
     memset(info, 0, sizeof *info);
+    if (want < 0) {
+        const char *env = getenv("DEM_DEVICE");
+        snprintf(err, errlen, "OpenCL device index %d is not valid%s%s%s (an index from `dem devices` or `clinfo -l`)",
+                 want, env ? " (DEM_DEVICE='" : "", env ? env : "", env ? "')" : "");
+        return 1;
+    }
     if (!platforms(&p, &np)) {
         snprintf(err, errlen, "no OpenCL platform found (install pocl-opencl-icd, or run `make deps`)");
         return 1;

@@ -3,6 +3,7 @@
 #include "sim.h"
 #include "dem_layout.h"
 #include "cl_util.h"
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,8 +47,12 @@ void dem_config_default(dem_config *c)
     c->precision = DEM_FP64;
     c->local_size = 128; /* PoCL's own choice (groups of n/31) ran contact_forces 1.5-2x slower at n = 1e5 */
     const char *dev = getenv("DEM_DEVICE"); /* lets the demo and the tests run on another device unchanged */
-    if (dev && *dev)
-        c->device = atoi(dev);
+    if (dev && *dev) { /* a whole index in 0..65535; anything else is device -1, which dem_start refuses by name */
+        char *end;
+        errno = 0;
+        long v = strtol(dev, &end, 10);
+        c->device = (*dev < '0' || *dev > '9' || *end || errno || v > 65535) ? -1 : (int)v;
+    }
 }
 
 static int not_started(dem_sim *s)

@@ -290,6 +290,38 @@ static void test_mc_cap_reported(void **st)
     assert_null(strstr(err, "warning"));
 }
 
+/* Integer options and variables: whole numbers in range or a clear refusal, never a wrapped or truncated value
+ * (issue 17, class 7). Table-driven: every bad spelling of every integer input. */
+static void test_integer_arguments(void **st)
+{
+    (void)st;
+    char err[4096];
+    /* spellings no integer option takes, then each option's own range */
+    static const char *bad_values[] = {"-1", "1x", "99999999999999999999", "", "0x10", "1e3", " 1", "+1", "1.5"};
+    static const struct {
+        const char *option, *expect, *out_of_range[2];
+    } opts[] = {{"--device", "--device needs an index in 0..65535", {"4294967296", "65536"}},
+                {"--stop-after", "--stop-after needs a step count", {"0", "9223372036854775808"}}};
+    for (size_t o = 0; o < sizeof opts / sizeof opts[0]; o++)
+        for (size_t k = 0; k < sizeof bad_values / sizeof bad_values[0] + 2; k++) {
+            size_t nb = sizeof bad_values / sizeof bad_values[0];
+            const char *val = k < nb ? bad_values[k] : opts[o].out_of_range[k - nb];
+            int rc = sh(err, sizeof err, "%s run %s/scenes/two_spheres.yaml -o %s/i.h5 %s '%s'", DEM, SRC, tmp,
+                        opts[o].option, val);
+            if (rc != 2 || !strstr(err, opts[o].expect))
+                fail_msg("%s '%s': status %d, %s", opts[o].option, val, rc, err);
+            assert_false(exists("%s/i.h5", tmp));
+        }
+    static const char *bad_env[] = {"-1", "abc", "4294967296", "2x", " 0", "+0"};
+    for (size_t k = 0; k < sizeof bad_env / sizeof bad_env[0]; k++) {
+        int rc = sh(err, sizeof err, "DEM_DEVICE='%s' %s run %s/scenes/two_spheres.yaml -o %s/i.h5", bad_env[k], DEM,
+                    SRC, tmp);
+        if (rc != 69 || !strstr(err, "OpenCL device index -1 is not valid (DEM_DEVICE="))
+            fail_msg("DEM_DEVICE='%s': status %d, %s", bad_env[k], rc, err);
+        assert_false(exists("%s/i.h5", tmp));
+    }
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -300,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_restart_bitwise),
         cmocka_unit_test(test_output_and_xdmf),
         cmocka_unit_test(test_mc_cap_reported),
+        cmocka_unit_test(test_integer_arguments),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
