@@ -172,6 +172,7 @@ int run_scene(const run_opts *o)
         code = fail_with(EXIT_IO, "cannot write to the output file");
         goto done;
     }
+    long ck_step = -1; /* step of the last checkpoint this run wrote */
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next = end;
         long evs[3] = {run.frame_every, run.series_every, run.checkpoint_every};
@@ -185,8 +186,15 @@ int run_scene(const run_opts *o)
                 next = cap;
         }
         if (dem_step(s, next - st)) {
-            snprintf(err, sizeof err, "%s: run stopped at step %ld: %s (output so far: %s.part; last checkpoint: %s)",
-                     sc->path, dem_step_index(s), dem_error(s), outp, ckp);
+            char cknote[4400];
+            if (ck_step >= 0)
+                snprintf(cknote, sizeof cknote, "last checkpoint: %s, step %ld", ckp, ck_step);
+            else if (o->restart)
+                snprintf(cknote, sizeof cknote, "no checkpoint written by this run; it started from %s", o->restart);
+            else
+                snprintf(cknote, sizeof cknote, "no checkpoint written yet (output.checkpoint_every sets how often)");
+            snprintf(err, sizeof err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)", sc->path,
+                     dem_step_index(s), dem_error(s), outp, cknote);
             code = fail_with(EXIT_RUN_FAILED, err);
             goto done;
         }
@@ -202,11 +210,13 @@ int run_scene(const run_opts *o)
             code = fail_with(EXIT_IO, "cannot write to the output file");
             goto done;
         }
-        if ((run.checkpoint_every > 0 && st % run.checkpoint_every == 0) || st == end)
+        if ((run.checkpoint_every > 0 && st % run.checkpoint_every == 0) || st == end) {
             if (checkpoint_write(ckp, s, sc, &run, err, sizeof err)) {
                 code = fail_with(EXIT_IO, err);
                 goto done;
             }
+            ck_step = st;
+        }
         double tn = now();
         if (show && (tn - last > 1 || st == end)) {
             double rate = (double)(st - step0) / (tn - t0 + 1e-12);

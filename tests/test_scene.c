@@ -322,6 +322,33 @@ static void test_integer_arguments(void **st)
     }
 }
 
+/* A run that fails names the checkpoint it really has: none yet, or the last one with its step (issue 17, class 9).
+ * The two spheres rebound out of a narrowed domain after about 4160 steps. */
+static void test_run_failure_names_checkpoint(void **st)
+{
+    (void)st;
+    char err[8192];
+    const char *narrow = "s/lo: \\[-0.1/lo: [-0.025/; s/hi: \\[0.1/hi: [0.025/; s/duration: 0.003 /duration: 0.006 /";
+    assert_int_equal(sh(err, sizeof err, "sed '%s' %s/scenes/two_spheres.yaml > %s/dom.yaml", narrow, SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/dom.yaml -o %s/dom.h5 --quiet", DEM, tmp, tmp), 1);
+    assert_non_null(strstr(err, "is outside the binning domain"));
+    assert_non_null(strstr(err, "no checkpoint written yet"));
+    assert_null(strstr(err, "last checkpoint"));
+    assert_false(exists("%s/dom.ckpt.h5", tmp));
+    assert_true(exists("%s/dom.h5.part", tmp)); /* the output so far, never under the final name */
+    assert_false(exists("%s/dom.h5", tmp));
+    assert_int_equal(sh(err, sizeof err, "sed '%s; s/  series_every: 1.0e-5/  series_every: 1.0e-5\\n  checkpoint_every: "
+                                          "5.0e-4/' %s/scenes/two_spheres.yaml > %s/dom2.yaml",
+                        narrow, SRC, tmp),
+                     0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/dom2.yaml -o %s/dom2.h5 --quiet", DEM, tmp, tmp), 1);
+    char want[600];
+    snprintf(want, sizeof want, "last checkpoint: %s/dom2.ckpt.h5, step 4000)", tmp);
+    if (!strstr(err, want))
+        fail_msg("expected '%s' in: %s", want, err);
+    assert_true(exists("%s/dom2.ckpt.h5", tmp));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -333,6 +360,7 @@ int main(void)
         cmocka_unit_test(test_output_and_xdmf),
         cmocka_unit_test(test_mc_cap_reported),
         cmocka_unit_test(test_integer_arguments),
+        cmocka_unit_test(test_run_failure_names_checkpoint),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
