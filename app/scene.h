@@ -119,6 +119,7 @@ typedef struct {
     int mc_iterations;            /* MC-strain: 0 lagged (published scheme), N > 0 iterate up to N times */
     double mc_tolerance;          /* MC-strain iteration: relative force change accepted (default 1e-6) */
     scene_mcs_convention *mc_stress_convention; /* optional: how MC-stress builds its pressure (dem_effects.h) */
+    double mc_contact_distance;   /* MC-strain contact distance factor in [1, 2] (absent: 1, geometric contacts) */
 } scene_file;
 
 typedef struct scene_locator scene_locator; /* scene_locate.c */

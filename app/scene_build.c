@@ -134,6 +134,14 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
     if ((scene_has(sc->loc, "mc_iterations") || scene_has(sc->loc, "mc_tolerance")) && !(run->effects & DEM_EFFECT_MC_STRAIN))
         return scene_fail(sc, err, errlen, scene_has(sc->loc, "mc_iterations") ? "mc_iterations" : "mc_tolerance",
                           "MC-strain settings are given but the effect 'mc_strain' is off");
+    if (scene_has(sc->loc, "mc_contact_distance")) {
+        if (!(f->mc_contact_distance >= 1 && f->mc_contact_distance <= 2))
+            return scene_fail(sc, err, errlen, "mc_contact_distance",
+                              "must be in [1, 2] (a factor on r_i + r_j; 1: only overlapping spheres are contacts)");
+        if (!(run->effects & DEM_EFFECT_MC_STRAIN) && mc_prefactor_missing(sc, DEM_EFFECT_MC_STRAIN))
+            return scene_fail(sc, err, errlen, "mc_contact_distance",
+                              "an MC-strain setting is given but mc_strain is off and no material has gamma > 0");
+    }
     return parse_mcs_convention(sc, run, err, errlen);
 }
 
@@ -459,6 +467,8 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
         return scene_fail(sc, err, errlen, "effects", "%s", dem_error(s));
     if (dem_set_mc_stress_convention(s, run->mcs_conv))
         return scene_fail(sc, err, errlen, "mc_stress_convention", "%s", dem_error(s));
+    if (scene_has(sc->loc, "mc_contact_distance") && dem_set_mc_strain_reach(s, f->mc_contact_distance))
+        return scene_fail(sc, err, errlen, "mc_contact_distance", "%s", dem_error(s));
     run->mc_cap = f->mc_iterations;
     run->mc_tol = scene_has(sc->loc, "mc_tolerance") ? f->mc_tolerance : 1e-6;
     if (f->mc_iterations > 0 && dem_set_mc_strain(s, f->mc_iterations, run->mc_tol))

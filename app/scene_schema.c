@@ -128,6 +128,7 @@ static const cyaml_schema_field_t scene_fields[] = {
     CYAML_FIELD_MAPPING_PTR("sample", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, sample, sample_fields),
     CYAML_FIELD_INT("mc_iterations", CYAML_FLAG_OPTIONAL, scene_file, mc_iterations),
     REAL("mc_tolerance", scene_file, mc_tolerance),
+    REAL("mc_contact_distance", scene_file, mc_contact_distance),
     CYAML_FIELD_MAPPING_PTR("mc_stress_convention", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file,
                             mc_stress_convention, mcs_convention_fields),
     CYAML_FIELD_END};

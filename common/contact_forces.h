@@ -48,7 +48,8 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
-    pair_geom g = pair_geometry(v3_load(x, a), ra, v3_load(x, b), rb);
+    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
+    pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pm);
     pc.active = g.active;
     pc.delta = (real)0;
     pc.fel = (real)0;
@@ -59,7 +60,13 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         return pc;
     vec3 n = g.n;
     real delta = g.delta, rstar = g.rstar;
-    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
+    real extra = (real)0, law_delta = delta;
+    if (fx & DEM_EFFECT_MC_STRAIN)
+        law_delta = mc_strain_overlap(delta, disp_a, disp_b);
+    if ((fx & DEM_MC_REACH) && !(delta > (real)0) && !(law_delta > (real)0)) {
+        pc.active = 0; /* a neighbour within the contact distance whose induced overlap does not close the gap */
+        return pc;
+    }
     real mstar = hm_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */
@@ -71,9 +78,6 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         if (touching)
             h = v3_load(hist, slot);
     }
-    real extra = (real)0, law_delta = delta;
-    if (fx & DEM_EFFECT_MC_STRAIN)
-        law_delta = mc_strain_overlap(delta, disp_a, disp_b);
     real srd = dem_sqrt(rstar * law_delta);
     if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is delta) */
         extra = mc_stress_pair(fx, pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic_srd(pm[PM_ESTAR], srd, delta));

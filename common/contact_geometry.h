@@ -19,17 +19,19 @@ typedef struct {
     vec3 n;      /* unit vector from b to a */
 } pair_geom;
 
-DEM_INLINE pair_geom pair_geometry(vec3 xa, real ra, vec3 xb, real rb)
+/* reach >= 1: the pair is active when |x_a - x_b| < reach (r_a + r_b), so with reach > 1 delta is negative across a
+ * gap (MC-strain's contact distance, mc_strain.h). pair_geometry is reach 1 (1 * x == x: the same bits). */
+DEM_INLINE pair_geom pair_geometry_reach(vec3 xa, real ra, vec3 xb, real rb, real reach)
 {
     pair_geom g;
     vec3 d = v3_sub(xa, xb);
-    real rsum = ra + rb;
+    real rsum = ra + rb, cut = reach * rsum;
     real dist2 = v3_dot(d, d);
     g.active = 0;
     g.delta = (real)0;
     g.rstar = (real)0;
     g.n = v3((real)0, (real)0, (real)1);
-    if (!(dist2 < rsum * rsum))
+    if (!(dist2 < cut * cut))
         return g;
     g.active = 1;
     real dist = dem_sqrt(dist2);
@@ -39,6 +41,11 @@ DEM_INLINE pair_geom pair_geometry(vec3 xa, real ra, vec3 xb, real rb)
     g.delta = rsum - dist;
     g.rstar = ra * rb / rsum;
     return g;
+}
+
+DEM_INLINE pair_geom pair_geometry(vec3 xa, real ra, vec3 xb, real rb)
+{
+    return pair_geometry_reach(xa, ra, xb, rb, (real)1);
 }
 typedef struct {
     int active;

@@ -47,6 +47,12 @@ enum {
     DEM_MCS_APPENDIX_OWN_OUT = 0
 };
 
+/* MC-strain contact distance (LIGGGHTS' option, seed 000 section 3: enlarged radii can make new contacts): a pair
+ * whose centres are closer than PM_MC_REACH (r_i + r_j) is an MC-strain contact as soon as its overlap plus the
+ * induced displacements is positive, even with a gap. Set by the host when mc_strain runs with a reach above 1
+ * (dem_set_mc_strain_reach); compiled in with the effects like the bits above. Off: only geometric overlaps. */
+enum { DEM_MC_REACH = 2048 };
+
 #ifndef DEM_EFFECTS
 #define DEM_EFFECTS DEM_EFFECT_CLASSICAL
 #endif

@@ -21,7 +21,8 @@ enum {
     PM_MCS_K = 6,  /* gamma (1 + nu) / (2 pi E) [1/Pa] */
     PM_MCS_C1 = 7, /* 3 - 4 nu */
     PM_MCS_C2 = 8, /* 1 - 2 nu */
-    PM_STRIDE = 9
+    PM_MC_REACH = 9, /* MC-strain contact distance factor F >= 1, the same in every entry (dem_effects.h) [-] */
+    PM_STRIDE = 10
 };
 
 /* Wall geometry and motion, real part (index w*W_STRIDE + ...). */

@@ -13,7 +13,11 @@
  * A pair contact feeds both particles' fields into the Hertz law (Eq. 8):
  *   f = 4/3 E* sqrt(r*) d_eff^(3/2),  d_eff = max(0, d_c + D_i,c + D_j,c),  D_i,c = sum_{k != c} d_k->c over i's
  * contacts (walls included), so f_ij = -f_ji still holds; a wall contact uses D_i,c alone. Damping and the
- * tangential stiffness follow d_eff; lever arms keep the geometric overlap. Only geometric overlaps are contacts.
+ * tangential stiffness follow d_eff; lever arms keep the geometric overlap. Only geometric overlaps are contacts,
+ * unless DEM_MC_REACH is compiled in (LIGGGHTS' contact distance, dem_effects.h): then a pair whose centres are
+ * closer than F (r_i + r_j), F = PM_MC_REACH, is an MC-strain contact too, with a negative geometric overlap d_c (a
+ * gap) and its contact point at the middle of the gap; it receives displacements, and bears a force (and, with it,
+ * induces displacements, and counts as touching) while d_c + D_i,c + D_j,c > 0. Its contact radius is taken as 0.
  *
  * f_k comes from the previous evaluation: the previous time step in the lagged scheme (published, one pass), or
  * the previous iteration when iterating (host/sim.c repeats mc_strain_disp + mc_strain_update until no force changes
@@ -49,16 +53,26 @@ typedef struct {
     real rstar; /* effective radius [m] */
 } mc_contact;
 
+/* The pair geometry MC-strain works with: with DEM_MC_REACH, neighbours within the contact distance too (pm: any
+ * pair-table entry, PM_MC_REACH is the same in all). */
+DEM_INLINE pair_geom mc_pair_geometry(unsigned fx, vec3 xa, real ra, vec3 xb, real rb, DEM_CONST_GLOBAL real *pm)
+{
+    return (fx & DEM_MC_REACH) ? pair_geometry_reach(xa, ra, xb, rb, pm[PM_MC_REACH]) : pair_geometry(xa, ra, xb, rb);
+}
+
+/* Hertz contact radius sqrt(r* d) of a contact, 0 across a gap */
+DEM_INLINE real mc_contact_radius(mc_contact m) { return m.delta > (real)0 ? dem_sqrt(m.rstar * m.delta) : (real)0; }
+
 /* Contact number c of particle i: c < cnt is row slot c, c >= cnt is wall c - cnt. */
 DEM_INLINE mc_contact mc_contact_get(unsigned fx, int i, int c, int cnt, int maxn, vec3 xi, real ri,
                                      DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *radius,
                                      DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *wall_int,
-                                     DEM_CONST_GLOBAL real *wall_real)
+                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *pairmat)
 {
     mc_contact m;
     if (c < cnt) {
         int j = nbr_list[i * maxn + c];
-        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
+        pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
         m.active = g.active;
         m.n = g.n;
         m.delta = g.delta;
@@ -126,7 +140,7 @@ DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
     real fc[MC_CACHE], ac[MC_CACHE], sum[MC_CACHE];
     int where[MC_CACHE], nc = 0;
     for (int c = 0; c < total && nc <= MC_CACHE; c++) {
-        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
+        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real, pairmat);
         if (c < cnt)
             disp[i * maxn + c] = (real)0;
         else
@@ -140,7 +154,7 @@ DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
         cp[nc] = cc.p;
         cn[nc] = cc.n;
         fc[nc] = c < cnt ? fn[i * maxn + c] : wall_fn[i * nwalls + (c - cnt)];
-        ac[nc] = dem_sqrt(cc.rstar * cc.delta);
+        ac[nc] = mc_contact_radius(cc);
         sum[nc] = (real)0;
         where[nc++] = c;
     }
@@ -169,20 +183,20 @@ DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOB
         return;
     }
     for (int c = 0; c < total; c++) { /* slow path: recompute each contact's geometry where needed */
-        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
+        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real, pairmat);
         real s = (real)0;
         if (cc.active)
             for (int k = 0; k < total; k++) {
                 real fk = k < cnt ? fn[i * maxn + k] : wall_fn[i * nwalls + (k - cnt)];
                 if (k == c || !(fk > (real)0))
                     continue;
-                mc_contact kk = mc_contact_get(fx, i, k, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real);
+                mc_contact kk = mc_contact_get(fx, i, k, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real, pairmat);
                 if (!kk.active)
                     continue;
                 real d, inv_d;
                 vec3 u = mc_direction(kk.p, cc.p, &d, &inv_d);
                 s = s + mc_strain_term(pmi, v3_dot(kk.n, u), v3_dot(cc.n, u), v3_dot(kk.n, cc.n),
-                                       dem_sqrt(kk.rstar * kk.delta), fk, d, inv_d);
+                                       mc_contact_radius(kk), fk, d, inv_d);
             }
         if (c < cnt)
             disp[i * maxn + c] = s;
@@ -222,7 +236,7 @@ DEM_INLINE void mc_strain_update_item(unsigned fx, int i, int maxn, real tol, DE
         int slot = i * maxn + k, j = nbr_list[slot], m = nbr_mirror[slot];
         if (j < i || m < 0)
             continue;
-        pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
+        pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
         real f = (real)0;
         if (g.active)
             f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,

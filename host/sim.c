@@ -16,6 +16,7 @@ dem_sim *dem_create(void)
         s->effects = DEM_EFFECT_CLASSICAL;
         s->mcs_conv = DEM_MCS_DEFAULT;
         s->mc_tol = 1e-6;
+        s->mc_reach = 1;
     }
     return s;
 }
@@ -296,6 +297,16 @@ int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance)
                         max_iterations, tolerance);
     s->mc_max_iter = max_iterations;
     s->mc_tol = tolerance;
+    return 0;
+}
+
+int dem_set_mc_strain_reach(dem_sim *s, double factor)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (!(factor >= 1 && factor <= 2))
+        return sim_fail(s, DEM_ERR_ARG, "MC-strain contact distance factor must be in [1, 2] (got %g)", factor);
+    s->mc_reach = factor;
     return 0;
 }
 

@@ -27,6 +27,7 @@ struct dem_sim {
     void *packed[9];     /* packed setup arrays, freed at destroy */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
+    double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
     dem_mc_stats mc;
     const dem_backend_ops *ops;
     dem_backend *be;

@@ -167,6 +167,9 @@ int sim_pack(dem_sim *s)
     /* the MC-stress convention is compiled in with the effects (only when MC-stress is on: other runs' kernels and
      * their cached binaries stay as they were) */
     u->effects = s->effects | ((s->effects & DEM_EFFECT_MC_STRESS) ? s->mcs_conv : 0u);
+    int reach = (s->effects & DEM_EFFECT_MC_STRAIN) && s->mc_reach > 1; /* compiled in only when it can act */
+    if (reach)
+        u->effects |= DEM_MC_REACH;
     u->n = n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;
@@ -208,6 +211,7 @@ int sim_pack(dem_sim *s)
             row[PM_MCS_K] = ma->mc_gamma * (1 + ma->poisson) / (2 * M_PI * ma->young);
             row[PM_MCS_C1] = 3 - 4 * ma->poisson;
             row[PM_MCS_C2] = 1 - 2 * ma->poisson;
+            row[PM_MC_REACH] = s->mc_reach;
         }
     s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
     s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
@@ -253,7 +257,10 @@ int sim_pack(dem_sim *s)
     /* binning grid: cubic cells no smaller than 1.01 x the largest interaction range; the 1 % margin keeps a
      * rounding of (x - lo)/cell in fp32 from ever placing a neighbour two cells away */
     double skin = s->cfg.skin > 0 ? s->cfg.skin : 0.3 * s->rmin;
-    double cell = 1.01 * (2 * s->rmax + skin);
+    /* rows are built to the interaction range plus the skin: with the MC-strain contact distance the range is
+     * F (r_i + r_j) <= r_i + r_j + 2 (F - 1) r_max; the rebuild trigger stays at half the skin itself */
+    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc_reach - 1) * s->rmax : 0;
+    double cell = 1.01 * (2 * s->rmax + skin + reach_extra);
     if (s->cfg.cell_size > cell)
         cell = s->cfg.cell_size;
     double lo[3], hi[3];
@@ -296,7 +303,7 @@ int sim_pack(dem_sim *s)
     u->inv_cell = 1 / cell;
     u->dt = s->dt;
     memcpy(u->gravity, s->gravity, sizeof u->gravity);
-    u->skin = skin;
+    u->skin = skin + reach_extra;
     u->half_skin2 = 0.25 * skin * skin;
     u->maxn = 16;
     u->device = s->cfg.device;

@@ -151,6 +151,10 @@ void dem_mc_stress_convention_string(unsigned convention, char *buf, size_t len)
  * forces of the previous step, one pass); N > 0 iterates displacements and forces within each step until no contact
  * force changes by more than tolerance (relative) or N iterations have run. */
 int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance);
+/* MC-strain contact distance factor F in [1, 2] (default 1: only geometric overlaps, as published): neighbours whose
+ * centres are closer than F (r_i + r_j) become contacts when the induced displacements close their gap (LIGGGHTS'
+ * option; mc_strain.h). Neighbour rows then reach 2 (F - 1) r_max further; results stay independent of the skin. */
+int dem_set_mc_strain_reach(dem_sim *s, double factor);
 typedef struct {
     long last;        /* iterations in the last step */
     long max;         /* most iterations of any step */

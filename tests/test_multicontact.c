@@ -71,6 +71,73 @@ static void test_models_bitwise(void **st)
     }
 }
 
+/* Pairs in the row that touch (touch flag) while their spheres do not overlap: contacts made by MC-strain's reach. */
+static int gap_contacts(dem_sim *s)
+{
+    int n = dem_count(s);
+    size_t bl = dem_field_bytes(s, FIELD_NBR_LIST), bt = dem_field_bytes(s, FIELD_TOUCH);
+    int maxn = (int)(bl / sizeof(int) / (size_t)n), found = 0;
+    double *x = malloc(sizeof(double) * 3 * (size_t)n);
+    int *cnt = malloc(sizeof(int) * (size_t)n), *list = malloc(bl);
+    unsigned char *touch = malloc(bt);
+    assert_int_equal(dem_get_field(s, FIELD_X, x), 0);
+    assert_int_equal(dem_get_raw(s, FIELD_NBR_COUNT, cnt, sizeof(int) * (size_t)n), 0);
+    assert_int_equal(dem_get_raw(s, FIELD_NBR_LIST, list, bl), 0);
+    assert_int_equal(dem_get_raw(s, FIELD_TOUCH, touch, bt), 0);
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < cnt[i]; k++) {
+            int j = list[i * maxn + k];
+            double d2 = 0;
+            for (int q = 0; q < 3; q++)
+                d2 += (x[3 * i + q] - x[3 * j + q]) * (x[3 * i + q] - x[3 * j + q]);
+            double rs = dem_particle_radius(s, i) + dem_particle_radius(s, j);
+            found += touch[i * maxn + k] && d2 >= rs * rs;
+        }
+    free(x), free(cnt), free(list), free(touch);
+    return found;
+}
+
+/* MC-strain's contact distance (LIGGGHTS' option): neighbours within F (r_i + r_j) bear a force once the induced
+ * displacements close their gap. Bitwise on PoCL (fp64 and fp32, lagged and iterated), independent of the skin (the
+ * rows reach further, the trigger does not move), it really makes gap contacts, and it changes the physics. */
+static void test_mc_reach(void **st)
+{
+    (void)st;
+    packing_opts lag = dense(DEM_EFFECT_MC_STRAIN, 0, 1.12, 0), it = dense(DEM_EFFECT_MC_STRAIN, 0, 1.12, 8);
+    lag.mc_reach = it.mc_reach = 1.05;
+    lockstep(&lag, DEM_FP64, STEPS);
+    lockstep(&lag, DEM_FP32, STEPS);
+    lockstep(&it, DEM_FP64, STEPS / 2);
+    /* skin independence, with the reach off and on: the per-particle state (state_hash: x, v, w, force, torque, wall
+     * forces) must agree bit for bit; per-slot arrays are laid out by the rows and are not comparable across skins */
+    for (int on = 0; on < 2; on++) {
+        packing_opts o2 = lag;
+        o2.mc_reach = on ? 1.05 : 1;
+        dem_sim *p = run_ref(&o2, STEPS), *q = packing_build(&o2);
+        dem_config c0 = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+        c0.skin = 4e-4; /* default 0.3 x the smallest radius = 1.35e-4 m */
+        start_or_fail(q, &c0);
+        step_or_fail(q, STEPS);
+        if (state_hash(p) != state_hash(q))
+            fail_msg("reach %g: skin 4e-4 m and the default skin give different states", o2.mc_reach);
+        dem_destroy(p), dem_destroy(q);
+    }
+    dem_sim *a = run_ref(&lag, STEPS);
+    assert_true(gap_contacts(a) > 0);
+    char msg[512];
+    packing_opts off = lag;
+    off.mc_reach = 1;
+    dem_sim *o = run_ref(&off, STEPS);
+    assert_int_equal(gap_contacts(o), 0);
+    assert_true(state_diff(a, o, msg, sizeof msg) != 0);
+    assert_int_equal(dem_set_mc_strain_reach(o, 1.5), DEM_ERR_STATE); /* started: the set-up is fixed */
+    dem_sim *t = dem_create();
+    assert_int_equal(dem_set_mc_strain_reach(t, 0.99), DEM_ERR_ARG);
+    assert_int_equal(dem_set_mc_strain_reach(t, 2.01), DEM_ERR_ARG);
+    assert_int_equal(dem_set_mc_strain_reach(t, NAN), DEM_ERR_ARG);
+    dem_destroy(t), dem_destroy(a), dem_destroy(o);
+}
+
 /* Every MC-stress pressure convention is its own compiled branch: each one bitwise on PoCL against its reference
  * twin in fp64, and in fp32 three that between them take every branch (own term out, contact-point lever, text and
  * mean-pressure scales; the default is covered by test_models_bitwise in both). Each convention is a program build
@@ -272,6 +339,7 @@ int main(void)
         cmocka_unit_test(test_iteration_reporting),
         cmocka_unit_test(test_models_bitwise),
         cmocka_unit_test(test_conventions_bitwise),
+        cmocka_unit_test(test_mc_reach),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

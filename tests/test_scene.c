@@ -78,6 +78,14 @@ static void test_errors(void **st)
         "effects[2]: mc_stress is listed but no material has beta > 0 and a non-zero poisson");
     bad("s/hertz, damping/hertz, mc_strain, damping/",
         "bad.yaml:5: effects[1]: mc_strain is listed but no material has gamma > 0");
+    bad("s/^particles:/mc_contact_distance: 1.05\\nparticles:/",
+        "bad.yaml:8: mc_contact_distance: an MC-strain setting is given but mc_strain is off and no material has gamma");
+    bad("s/friction: 0.5}/friction: 0.5, gamma: 0.55}/; s/^particles:/mc_contact_distance: 0.9\\nparticles:/",
+        "bad.yaml:8: mc_contact_distance: must be in [1, 2]");
+    bad("s/friction: 0.5}/friction: 0.5, gamma: 0.55}/; s/^particles:/mc_contact_distance: .nan\\nparticles:/",
+        "bad.yaml:8: mc_contact_distance: Invalid FLOAT value");
+    bad("s/friction: 0.5}/friction: 0.5, gamma: 0.55}/; s/^particles:/mc_contact_distance: 2.5\\nparticles:/",
+        "bad.yaml:8: mc_contact_distance: must be in [1, 2]");
     bad("s/^particles:/mc_stress_convention: {lever: centres}\\nparticles:/",
         "bad.yaml:8: mc_stress_convention: an MC-stress convention is given but mc_stress is off and no material has "
         "beta > 0");

@@ -116,6 +116,8 @@ dem_sim *packing_build(const packing_opts *o)
     if (o->mc_iterations)
         dem_set_mc_strain(s, o->mc_iterations, 1e-6);
     dem_set_mc_stress_convention(s, o->mcs_conv);
+    if (o->mc_reach > 1)
+        dem_set_mc_strain_reach(s, o->mc_reach);
     return s;
 }
 

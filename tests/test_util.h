@@ -21,6 +21,7 @@ typedef struct {
     double mc_beta, mc_gamma; /* multi-contact prefactors of the particle material */
     int mc_iterations;  /* MC-strain: 0 lagged, else iterated with tolerance 1e-6 */
     unsigned mcs_conv;  /* MC-stress convention, DEM_MCS_* (DEM_MCS_DEFAULT from packing_defaults) */
+    double mc_reach;    /* MC-strain contact distance factor (0 or 1: off) */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);
