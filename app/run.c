@@ -157,6 +157,9 @@ int run_scene(const run_opts *o)
         fprintf(stderr, "dem: MC-stress pressure convention: %s%s\n", conv,
                 run.mcs_conv == DEM_MCS_DEFAULT ? " (the default: Eq. 11's reading)" : "");
     }
+    if ((show || o->progress != 0) && (run.effects & DEM_EFFECT_MC_STRAIN) && sc->f->mc_contact_distance > 1)
+        fprintf(stderr, "dem: MC-strain contact distance %g (r_i + r_j): gaps that the induced displacements close are "
+                        "contacts\n", sc->f->mc_contact_distance);
     out = output_open(outp, sc, &run, s, err, sizeof err);
     if (!out) {
         code = fail_with(EXIT_IO, err);

@@ -1,8 +1,10 @@
 /* test_multicontact.c - stress trace, MC-stress and MC-strain kernels (issue: multi-contact DEM ...).
  * Reference and PoCL bitwise identical for every model in fp32 and fp64 (stress tensor, traces and stored MC-strain
- * forces included); zero prefactors reproduce classical DEM bit for bit; two spheres are exactly classical under
- * both models; the stress tensor agrees with its closed form; the iterated MC-strain scheme converges and reports its
- * iterations. The physics checks against seed 000 live in test_mc_validation.c. */
+ * forces included), and every MC-stress pressure convention; zero prefactors reproduce classical DEM bit for bit;
+ * two spheres are exactly classical under MC-strain and the own-term-out MC-stress readings (not under the default,
+ * asserted too); the stress tensor agrees with its closed form; the iterated MC-strain scheme converges and reports
+ * its iterations; MC-strain's contact distance makes gap contacts, bitwise and skin-independent. The physics checks
+ * against seed 000 live in test_mc_validation.c. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
