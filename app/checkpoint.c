@@ -5,6 +5,7 @@
 #include "h5util.h"
 #include <fcntl.h>
 #include <stdio.h>
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -84,6 +85,10 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
 {
     memset(ck, 0, sizeof *ck);
+    if (access(path, R_OK) != 0) { /* missing or unreadable: exit 66, unlike a damaged file (65) */
+        snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path, strerror(errno));
+        return 1;
+    }
     H5E_auto2_t old;
     void *old_data;
     H5Eget_auto2(H5E_DEFAULT, &old, &old_data);

@@ -38,7 +38,7 @@ static int check(const char *path)
     if (!s) {
         fprintf(stderr, "dem: %s\n", err);
         scene_free(sc);
-        return EXIT_BAD_INPUT;
+        return strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT;
     }
     int n = dem_count(s);
     double rmin = INFINITY, rmax = 0;

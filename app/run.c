@@ -63,8 +63,8 @@ int run_scene(const run_opts *o)
     int have_ck = 0;
     scene *sc;
     if (o->restart) {
-        if (checkpoint_read(o->restart, &ck, err, sizeof err))
-            return fail_with(EXIT_NO_INPUT, err);
+        if (checkpoint_read(o->restart, &ck, err, sizeof err)) /* 66 when it cannot be opened, 65 when damaged */
+            return fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
         have_ck = 1;
         sc = scene_load_text(o->scene_path ? o->scene_path : ck.scene_path, ck.scene_text, strlen(ck.scene_text), err,
                              sizeof err);
@@ -81,8 +81,8 @@ int run_scene(const run_opts *o)
     int code = 0;
     output *out = NULL;
     char outp[4096], ckp[4200];
-    if (!s) {
-        code = fail_with(EXIT_BAD_INPUT, err);
+    if (!s) { /* a file the scene names (a CSV) that cannot be opened: 66, like the scene itself */
+        code = fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
         goto done;
     }
     const char *model = o->model ? o->model : have_ck && ck.model[0] ? ck.model : NULL;

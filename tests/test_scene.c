@@ -357,6 +357,41 @@ static void test_run_failure_names_checkpoint(void **st)
     assert_true(exists("%s/dom2.ckpt.h5", tmp));
 }
 
+/* Exit codes as the README's table says (issue 17, class 8): a file that cannot be opened (scene, CSV, checkpoint)
+ * is 66; a file that opens but is wrong (scene, CSV content, damaged checkpoint) is 65; and no HDF5 error stack. */
+static void test_exit_codes(void **st)
+{
+    (void)st;
+    char err[8192];
+    static const struct {
+        const char *cmd;
+        int code;
+        const char *expect;
+    } cases[] = {
+        {"%s run --restart %s/none.ckpt.h5 -o %s/e.h5", 66, "none.ckpt.h5: cannot open the checkpoint: No such file"},
+        {"echo damaged > %s/dmg.ckpt.h5 && %s run --restart %s/dmg.ckpt.h5 -o %s/e.h5", 65,
+         "dmg.ckpt.h5: not a readable HDF5 checkpoint"},
+        {"sed 's|csv: data/hydrogel_514.csv|csv: data/missing.csv|' %s/scenes/hydrogel_514.yaml > %s/mc.yaml && "
+         "%s check %s/mc.yaml",
+         66, "mc.yaml:17: particles[0].csv: cannot open"},
+        {"%s run %s/mc.yaml -o %s/e.h5", 66, "mc.yaml:17: particles[0].csv: cannot open"},
+        {"%s check %s/no-such-scene.yaml", 66, "no-such-scene.yaml:0: cannot open the scene file"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        int rc;
+        switch (k) {
+        case 0: rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp, tmp); break;
+        case 1: rc = sh(err, sizeof err, cases[k].cmd, tmp, DEM, tmp, tmp); break;
+        case 2: rc = sh(err, sizeof err, cases[k].cmd, SRC, tmp, DEM, tmp); break;
+        case 3: rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp, tmp); break;
+        default: rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp); break;
+        }
+        if (rc != cases[k].code || !strstr(err, cases[k].expect) || strstr(err, "HDF5-DIAG"))
+            fail_msg("case %zu: status %d (want %d), message: %s", k, rc, cases[k].code, err);
+        assert_false(exists("%s/e.h5", tmp));
+    }
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -369,6 +404,7 @@ int main(void)
         cmocka_unit_test(test_mc_cap_reported),
         cmocka_unit_test(test_integer_arguments),
         cmocka_unit_test(test_run_failure_names_checkpoint),
+        cmocka_unit_test(test_exit_codes),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
