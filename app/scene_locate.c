@@ -1,6 +1,7 @@
 /* scene_locate.c - where each key of a YAML document sits: field path -> line, from libyaml's event stream.
  * Paths look like "walls[1].motion[0].velocity"; a sequence entry is "particles[2]". A syntax error is recorded
- * under the path "#error" at the line where libyaml stopped. */
+ * under the path "#error" at the line where libyaml stopped; a second document in the stream (after ---) under
+ * "#second_document" at its first line (libcyaml reads the first document only, so the loader refuses it). */
 #include "scene.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,7 +62,7 @@ scene_locator *scene_locate(const char *text, size_t len)
     }
     yaml_parser_set_input_string(&p, (const unsigned char *)text, len);
     frame st[MAX_DEPTH];
-    int depth = 0, done = 0;
+    int depth = 0, done = 0, documents = 0;
     char path[512];
     while (!done) {
         yaml_event_t ev;
@@ -114,6 +115,12 @@ scene_locator *scene_locate(const char *text, size_t len)
         case YAML_ALIAS_EVENT:
             if (depth > 0)
                 child_path(&st[depth - 1], path, sizeof path);
+            break;
+        case YAML_DOCUMENT_START_EVENT:
+            if (++documents == 2) {
+                add(l, "#second_document", line);
+                done = 1;
+            }
             break;
         case YAML_STREAM_END_EVENT:
             done = 1;

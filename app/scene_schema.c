@@ -219,6 +219,13 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         return NULL;
     }
     sc->loc = scene_locate(text, len);
+    int second = scene_line(sc->loc, "#second_document");
+    if (second > 0) { /* libcyaml would read the first document and drop the rest without a word */
+        snprintf(err, errlen, "%s:%d: a second YAML document starts here: a scene is one document (remove the '---' "
+                              "and merge the keys, or split it into two scene files)", path, second);
+        scene_free(sc);
+        return NULL;
+    }
     cyaml_log_capture cap = {{0}, {0}, 0, 0, 0};
     cyaml_config_t cfg = {.log_fn = capture_log, .log_ctx = &cap, .mem_fn = cyaml_mem, .log_level = CYAML_LOG_ERROR,
                           .flags = CYAML_CFG_NO_ALIAS};

@@ -70,6 +70,9 @@ static void test_errors(void **st)
     bad("s/hertz, damping/hertz, damping, walls/; s/^particles:/walls: [{type: plane, material: rubber, point: [0, 0, "
         "-0.005], normal: [0, 0, 1]}]\\nparticles:/", "walls[0]: particles[0].spheres[0] (radius 0.01 m");
     bad("s/name: two-sphere collision/name: [unclosed/", "bad.yaml:");
+    /* a second YAML document is refused where it starts, not silently dropped (issue 17, class 11) */
+    bad("$a ---", "bad.yaml:21: a second YAML document starts here");
+    bad("$a ---\\nname: second", "bad.yaml:21: a second YAML document starts here");
     /* a multi-contact law without the prefactor that makes it act is refused, by the scene as by --model */
     bad("s/hertz, damping/hertz, damping, mc_stress/",
         "bad.yaml:5: effects[2]: mc_stress is listed but no material has beta > 0 and a non-zero poisson");
