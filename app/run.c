@@ -7,6 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <errno.h>
+#include <libgen.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static double now(void)
@@ -54,6 +57,64 @@ static int fail_with(int code, const char *msg)
 {
     fprintf(stderr, "dem: %s\n", msg);
     return code;
+}
+
+/* Both name the same existing file (a link or another spelling included). */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* Everything a run writes (OUT, OUT.part, its XDMF and .xmf.part, the checkpoint and its .tmp) is checked before the
+ * run starts: no output may be a directory or replace an input (the scene, a CSV it reads, the checkpoint restarted
+ * from: exit 2), and each output's folder must exist and be writable (exit 74, with the system's reason). */
+static int check_output_paths(const scene *sc, const run_opts *o, const char *outp, const char *ckp, char *err,
+                              size_t errlen)
+{
+    char outs[6][4400];
+    size_t l = strlen(outp);
+    int stem = (int)(l > 3 && !strcmp(outp + l - 3, ".h5") ? l - 3 : l);
+    snprintf(outs[0], sizeof outs[0], "%s", outp);
+    snprintf(outs[1], sizeof outs[1], "%s.part", outp);
+    snprintf(outs[2], sizeof outs[2], "%.*s.xmf", stem, outp);
+    snprintf(outs[3], sizeof outs[3], "%.*s.xmf.part", stem, outp);
+    snprintf(outs[4], sizeof outs[4], "%s", ckp);
+    snprintf(outs[5], sizeof outs[5], "%s.tmp", ckp);
+    const char *in[66];
+    const char *what[66];
+    char csv[64][4400];
+    int nin = 0;
+    in[nin] = sc->path, what[nin++] = "the scene";
+    if (o->restart)
+        in[nin] = o->restart, what[nin++] = "the checkpoint this run restarts from";
+    for (unsigned k = 0; k < sc->f->particles_count && k < 64; k++)
+        if (sc->f->particles[k].csv) {
+            snprintf(csv[k], sizeof csv[k], "%s/%s", sc->dir, sc->f->particles[k].csv);
+            in[nin] = csv[k], what[nin++] = "a CSV file the scene reads";
+        }
+    for (int q = 0; q < 6; q++) {
+        struct stat st;
+        if (stat(outs[q], &st) == 0 && S_ISDIR(st.st_mode)) {
+            snprintf(err, errlen, "%s: is a directory; -o names the HDF5 file to write (e.g. %s/run.h5)", outs[q],
+                     outs[q]);
+            return EXIT_USAGE;
+        }
+        for (int k = 0; k < nin; k++)
+            if (same_file(outs[q], in[k])) {
+                snprintf(err, errlen, "%s: writing it would replace %s (%s); choose another -o%s", outs[q], what[k],
+                         in[k], q >= 4 ? " or --checkpoint" : "");
+                return EXIT_USAGE;
+            }
+        char dir[4400];
+        snprintf(dir, sizeof dir, "%s", outs[q]);
+        const char *d = dirname(dir);
+        if (access(d, W_OK | X_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot write into the folder '%s': %s", outs[q], d, strerror(errno));
+            return EXIT_IO;
+        }
+    }
+    return 0;
 }
 
 int run_scene(const run_opts *o)
@@ -110,6 +171,11 @@ int run_scene(const run_opts *o)
     else {
         size_t l = strlen(outp);
         snprintf(ckp, sizeof ckp, "%.*s.ckpt.h5", (int)(l > 3 && !strcmp(outp + l - 3, ".h5") ? l - 3 : l), outp);
+    }
+    int pc = check_output_paths(sc, o, outp, ckp, err, sizeof err);
+    if (pc) {
+        code = fail_with(pc, err);
+        goto done;
     }
     if (have_ck) {
         if (ck.st.n != dem_count(s) || ck.st.real_size != (int)run.cfg.precision) {

@@ -395,6 +395,59 @@ static void test_exit_codes(void **st)
     }
 }
 
+/* Output paths are checked before the run (issue 17, class 5): a directory, an input (the scene, a CSV it reads, the
+ * checkpoint restarted from) or a missing folder is refused at once, every input survives byte for byte, and nothing
+ * is written. */
+static void test_output_paths(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/op/dir %s/op/data && cp %s/scenes/two_spheres.yaml %s/op/s.yaml && "
+                                          "cp %s/scenes/hydrogel_514.yaml %s/op/h.yaml && cp %s/scenes/data/hydrogel_514.csv "
+                                          "%s/op/data/ && %s run %s/op/s.yaml -o %s/op/a.h5 --quiet",
+                        tmp, tmp, SRC, tmp, SRC, tmp, SRC, tmp, DEM, tmp, tmp),
+                     0);
+    static const struct {
+        const char *args; /* %1$s: the folder */
+        int code;
+        const char *expect;
+    } cases[] = {
+        {"%1$s/s.yaml -o %1$s/dir", 2, "dir: is a directory"},
+        {"%1$s/s.yaml -o %1$s/s.yaml", 2, "s.yaml: writing it would replace the scene"},
+        {"%1$s/s.yaml -o %1$s/s.yaml.h5 --checkpoint %1$s/s.yaml", 2, "writing it would replace the scene"},
+        {"%1$s/h.yaml -o %1$s/data/hydrogel_514.csv", 2, "would replace a CSV file the scene reads"},
+        {"--restart %1$s/a.ckpt.h5 -o %1$s/a.h5", 2, "would replace the checkpoint this run restarts from"},
+        {"%1$s/s.yaml -o %1$s/no/such/folder/x.h5", 74, "cannot write into the folder"},
+    };
+    char before[3][64];
+    const char *inputs[3] = {"s.yaml", "data/hydrogel_514.csv", "a.ckpt.h5"};
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(sh(err, sizeof err, "md5sum < %s/op/%s > %s/md5", tmp, inputs[k], tmp), 0);
+        FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/md5"), "r");
+        assert_non_null(fgets(before[k], sizeof before[k], fp));
+        fclose(fp);
+    }
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char args[1024], dir[300];
+        snprintf(dir, sizeof dir, "%s/op", tmp);
+        snprintf(args, sizeof args, cases[k].args, dir);
+        int rc = sh(err, sizeof err, "%s run %s --quiet", DEM, args);
+        if (rc != cases[k].code || !strstr(err, cases[k].expect))
+            fail_msg("dem run %s: status %d (want %d): %s", args, rc, cases[k].code, err);
+    }
+    for (int k = 0; k < 3; k++) {
+        char now[64];
+        assert_int_equal(sh(err, sizeof err, "md5sum < %s/op/%s > %s/md5", tmp, inputs[k], tmp), 0);
+        FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/md5"), "r");
+        assert_non_null(fgets(now, sizeof now, fp));
+        fclose(fp);
+        assert_string_equal(before[k], now);
+    }
+    assert_false(exists("%s/op/dir.part", tmp));
+    assert_false(exists("%s/op/s.yaml.part", tmp));
+    assert_false(exists("%s/op/s.yaml.h5", tmp));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -408,6 +461,7 @@ int main(void)
         cmocka_unit_test(test_integer_arguments),
         cmocka_unit_test(test_run_failure_names_checkpoint),
         cmocka_unit_test(test_exit_codes),
+        cmocka_unit_test(test_output_paths),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
