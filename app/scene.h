@@ -173,4 +173,7 @@ scene_locator *scene_locate(const char *text, size_t len);
 void scene_locator_free(scene_locator *l);
 int scene_line(const scene_locator *l, const char *path);
 int scene_has(const scene_locator *l, const char *path);
+/* Entry k of the located paths in document order: its path, the scalar value's text (NULL for a collection) and line;
+ * 0 past the end. */
+int scene_scalar(const scene_locator *l, size_t k, const char **path, const char **value, int *line);
 #endif

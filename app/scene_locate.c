@@ -11,6 +11,7 @@
 typedef struct {
     char *path;
     int line;
+    char *value; /* the text of a scalar value at this path (NULL for keys of collections) */
 } loc_entry;
 
 struct scene_locator {
@@ -30,7 +31,14 @@ static void add(scene_locator *l, const char *path, int line)
     }
     char *p = strdup(path);
     if (p)
-        l->e[l->n++] = (loc_entry){p, line};
+        l->e[l->n++] = (loc_entry){p, line, NULL};
+}
+
+/* The scalar value of the entry just added (a map key's entry, or a sequence entry's). */
+static void set_value(scene_locator *l, const char *path, const char *value)
+{
+    if (l->n && !strcmp(l->e[l->n - 1].path, path) && !l->e[l->n - 1].value)
+        l->e[l->n - 1].value = strdup(value);
 }
 
 typedef struct {
@@ -85,6 +93,7 @@ scene_locator *scene_locate(const char *text, size_t len)
                     child_path(f, path, sizeof path);
                     if (!is_map)
                         add(l, path, line);
+                    set_value(l, path, (const char *)ev.data.scalar.value);
                 }
             }
             break;
@@ -139,9 +148,19 @@ void scene_locator_free(scene_locator *l)
     if (!l)
         return;
     for (size_t k = 0; k < l->n; k++)
-        free(l->e[k].path);
+        free(l->e[k].path), free(l->e[k].value);
     free(l->e);
     free(l);
+}
+
+int scene_scalar(const scene_locator *l, size_t k, const char **path, const char **value, int *line)
+{
+    if (!l || k >= l->n)
+        return 0;
+    *path = l->e[k].path;
+    *value = l->e[k].value;
+    *line = l->e[k].line;
+    return 1;
 }
 
 int scene_line(const scene_locator *l, const char *path)

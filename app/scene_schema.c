@@ -5,6 +5,7 @@
 #include "scene.h"
 #include <cyaml/cyaml.h>
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -135,6 +136,73 @@ static const cyaml_schema_field_t scene_fields[] = {
 
 static const cyaml_schema_value_t scene_schema = {CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, scene_file, scene_fields)};
 
+/* The libcyaml type of the value at a located path such as "particles[0].spheres[1].x[2]", or -1. */
+static int schema_type_at(const char *path)
+{
+    const cyaml_schema_field_t *fields = scene_fields;
+    const cyaml_schema_value_t *v = NULL;
+    const char *p = path;
+    while (*p) {
+        size_t n = strcspn(p, ".[");
+        if (n == 0 || !fields)
+            return -1;
+        const cyaml_schema_field_t *f = fields;
+        while (f->key && (strlen(f->key) != n || strncmp(f->key, p, n)))
+            f++;
+        if (!f->key)
+            return -1;
+        v = &f->value;
+        p += n;
+        while (*p == '[') {
+            const char *e = strchr(p, ']');
+            if (!e || (v->type != CYAML_SEQUENCE && v->type != CYAML_SEQUENCE_FIXED))
+                return -1;
+            v = v->sequence.entry;
+            p = e + 1;
+        }
+        fields = v->type == CYAML_MAPPING ? v->mapping.fields : NULL;
+        if (*p == '.')
+            p++;
+    }
+    return v ? (int)v->type : -1;
+}
+
+/* libcyaml reads a number from its front and drops the rest ("0.004 mm" is 0.004, "2_500" is 2, "1e12" for an int
+ * is 1): every scalar of a numeric field must be one number, whole, before libcyaml sees it. 0 when all are. */
+static int check_numbers(const scene *sc, const char *path, char *err, size_t errlen)
+{
+    const char *fp, *val;
+    int line;
+    for (size_t k = 0; scene_scalar(sc->loc, k, &fp, &val, &line); k++) {
+        if (!val)
+            continue;
+        int t = schema_type_at(fp);
+        if (t != CYAML_INT && t != CYAML_UINT && t != CYAML_FLOAT)
+            continue;
+        char *end;
+        errno = 0;
+        int range = 0;
+        if (t == CYAML_FLOAT) {
+            double d = strtod(val, &end);
+            range = errno == ERANGE && (d == HUGE_VAL || d == -HUGE_VAL); /* underflow is left to the field checks */
+        } else {
+            (void)strtoll(val, &end, 10);
+            range = errno == ERANGE;
+        }
+        if (range) {
+            snprintf(err, errlen, "%s:%d: %s: '%s' is out of range", path, line, fp, val);
+            return 1;
+        }
+        if (end == val || *end) {
+            snprintf(err, errlen, "%s:%d: %s: '%s' is not %s%s", path, line, fp, val,
+                     t == CYAML_FLOAT ? "a number" : "a whole number",
+                     t == CYAML_FLOAT ? " (values are plain SI numbers: write 0.004 for 4 mm, no units or '_')" : "");
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* libcyaml's messages, collected: the first error line and the backtrace of keys under it. */
 typedef struct {
     char msg[512];
@@ -219,6 +287,10 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         return NULL;
     }
     sc->loc = scene_locate(text, len);
+    if (check_numbers(sc, path, err, errlen)) {
+        scene_free(sc);
+        return NULL;
+    }
     int second = scene_line(sc->loc, "#second_document");
     if (second > 0) { /* libcyaml would read the first document and drop the rest without a word */
         snprintf(err, errlen, "%s:%d: a second YAML document starts here: a scene is one document (remove the '---' "
