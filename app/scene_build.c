@@ -1,5 +1,9 @@
 /* scene_build.c - checks a loaded scene and builds the simulation it describes.
  * Every rejection names file, line and field (scene_locate.c) and says why; nothing is half-built. */
+/* The most steps a scene may ask for (1e12: weeks of run time even for two spheres). */
+#ifndef DEM_SCENE_MAX_STEPS
+#define DEM_SCENE_MAX_STEPS 1e12
+#endif
 #include "scene.h"
 #include "scene_particles.h"
 #include <math.h>
@@ -395,7 +399,10 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
         double v = scene_has(sc->loc, iv[q].key) ? iv[q].value : iv[q].dflt;
         if (!(v >= 0) || !isfinite(v))
             return scene_fail(sc, err, errlen, iv[q].key, "must be >= 0 s");
-        long st = (long)llround(v / dt);
+        /* in steps, computed in double and capped at the run's length before it becomes an integer: an interval longer
+         * than the run means the first and last frames only (1e300 s used to overflow into "every step") */
+        double r = v / dt;
+        long st = r >= (double)run->steps ? run->steps : (long)llround(r);
         *iv[q].steps = st < 1 ? (q == 2 && v == 0 ? 0 : 1) : st;
     }
     return 0;
@@ -408,7 +415,22 @@ static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, si
     if (has_dt == has_fr)
         return scene_fail(sc, err, errlen, "time", "give exactly one of dt [s] or dt_rayleigh (fraction of the "
                                                    "Rayleigh time)");
+    /* every particle's mass and its inverse must be ordinary numbers: a denormal density or radius would make the
+     * time scales 0 and be blamed on the time step */
+    for (int i = 0; i < dem_count(s); i++) {
+        int m = dem_particle_material(s, i);
+        double r = dem_particle_radius(s, i), mass = sc->f->materials[m].density * 4.0 / 3.0 * M_PI * r * r * r;
+        if (!isnormal(mass) || !isfinite(1 / mass)) {
+            char p[64];
+            snprintf(p, sizeof p, "materials[%d].density", m);
+            return scene_fail(sc, err, errlen, p, "particle %d (radius %g m) would weigh %g kg, too small to integrate "
+                              "(its inverse overflows); check the density [kg/m^3] and the radii [m]", i, r, mass);
+        }
+    }
     dem_time_scales_get(s, 0, &run->ts);
+    if (!(run->ts.rayleigh_time > 0) || !isfinite(run->ts.rayleigh_time))
+        return scene_fail(sc, err, errlen, "materials", "the Rayleigh time of these materials and radii is %g s: check "
+                          "young, poisson and density", run->ts.rayleigh_time);
     if (has_fr) {
         if (!(t->dt_rayleigh > 0) || !isfinite(t->dt_rayleigh))
             return scene_fail(sc, err, errlen, "time.dt_rayleigh", "must be > 0");
@@ -427,7 +449,12 @@ static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, si
         return scene_fail(sc, err, errlen, "time.duration", "duration must be > 0 s");
     if (!(t->settle >= 0) || !(t->settle < t->duration))
         return scene_fail(sc, err, errlen, "time.settle", "settling time must be in [0, duration)");
-    run->steps = (long)llround(t->duration / run->dt);
+    double ns = t->duration / run->dt; /* in double first: 1e-300 s used to overflow into "1 steps" */
+    if (!(ns <= DEM_SCENE_MAX_STEPS))
+        return scene_fail(sc, err, errlen, has_dt ? "time.dt" : "time.dt_rayleigh",
+                          "duration %g s / time step %g s = %.3g steps, more than %.0e: use a larger time step or a "
+                          "shorter duration", t->duration, run->dt, ns, (double)DEM_SCENE_MAX_STEPS);
+    run->steps = (long)llround(ns);
     if (run->steps < 1)
         run->steps = 1;
     dem_set_dt(s, run->dt);

@@ -86,6 +86,18 @@ static void test_errors(void **st)
     };
     for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; k++)
         bad(numbers[k].sed, numbers[k].expect);
+    /* derived values checked in range, blamed on the input that made them impossible (issue 17, class 1) */
+    bad("s/dt: 1.0e-6 /dt: 1.0e-300 /", "bad.yaml:15: time.dt: duration 0.003 s / time step 1e-300 s = 3e+297 steps");
+    bad("s/density: 2000/density: 1e-320/", "bad.yaml:7: materials[0].density: particle 0 (radius 0.01 m) would weigh");
+    bad("s/radius: 0.01}/radius: 1e-200}/", "materials[0].density: particle 0 (radius 1e-200 m) would weigh 0 kg");
+    {
+        char e2[8192];
+        assert_int_equal(sh(e2, sizeof e2, "sed 's/  frame_every: 1.0e-4/  frame_every: 1.0e300/' "
+                                            "%s/scenes/two_spheres.yaml > %s/fe.yaml && %s check %s/fe.yaml > %s/fe.txt",
+                            SRC, tmp, DEM, tmp, tmp),
+                         0);
+        assert_int_equal(sh(e2, sizeof e2, "grep -q 'frame every 3000 steps (2 frames' %s/fe.txt", tmp), 0);
+    }
     /* a second YAML document is refused where it starts, not silently dropped (issue 17, class 11) */
     bad("$a ---", "bad.yaml:21: a second YAML document starts here");
     bad("$a ---\\nname: second", "bad.yaml:21: a second YAML document starts here");
