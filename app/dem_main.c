@@ -1,6 +1,7 @@
 /* dem_main.c - the `dem` command: run a scene, check it, list devices. */
 #include "run.h"
 #include "scene.h"
+#include <hdf5.h>
 #include <math.h>
 #include <errno.h>
 #include <limits.h>
@@ -129,6 +130,7 @@ static int parse_long(const char *s, long *v, long lo, long hi)
 
 int main(int argc, char **argv)
 {
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's own error stack never reaches the user: our messages say it */
     if (argc < 2) {
         fputs(usage, stderr);
         return EXIT_USAGE;

@@ -2,6 +2,7 @@
 #include "output.h"
 #include "h5util.h"
 #include <math.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,7 +83,9 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     o->sample = run->piston >= 0;
     o->mc = (run->effects & DEM_EFFECT_MC_STRAIN) != 0;
     o->buf = malloc(sizeof(double) * 6 * (size_t)(n > 32 ? n : 32));
+    errno = 0;
     o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int create_errno = o->file < 0 ? errno : 0;
     int rc = !o->buf || o->file < 0;
     char fx[128], conv[128];
     dem_effects_string(run->effects, fx, sizeof fx);
@@ -145,7 +148,11 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
                                                          "(compression positive)");
     }
     if (rc) {
-        snprintf(err, errlen, "%s: cannot create the output file", o->part);
+        if (create_errno)
+            snprintf(err, errlen, "%s: cannot create the output file: %s", o->part, strerror(create_errno));
+        else
+            snprintf(err, errlen, "%s: cannot write the output file's header (HDF5 refused a value; names longer than "
+                                  "1000 characters are refused by `dem check`)", o->part);
         output_abort(o);
         unlink(o->part);
         return NULL;

@@ -17,6 +17,9 @@ static const cyaml_schema_value_t string_entry = {CYAML_VALUE_STRING(CYAML_FLAG_
 #define REAL(key, st, member) CYAML_FIELD_FLOAT(key, CYAML_FLAG_OPTIONAL, st, member)
 #define TEXT(key, st, member) CYAML_FIELD_STRING_PTR(key, CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, st, member, 0, \
                                                      CYAML_UNLIMITED)
+/* names go into HDF5 attributes (scene_name, wall_names), whose size is limited: keep them short, so that `dem check`
+ * refuses what the output could not hold */
+#define NAME(key, st, member) CYAML_FIELD_STRING_PTR(key, CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, st, member, 0, 1000)
 
 static const cyaml_schema_field_t material_fields[] = {
     CYAML_FIELD_STRING_PTR("name", CYAML_FLAG_POINTER, scene_material, name, 1, 64),
@@ -73,7 +76,7 @@ static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_
 
 static const cyaml_schema_field_t wall_fields[] = {
     CYAML_FIELD_STRING_PTR("type", CYAML_FLAG_POINTER, scene_wall, type, 1, 16),
-    TEXT("name", scene_wall, name),
+    NAME("name", scene_wall, name),
     CYAML_FIELD_STRING_PTR("material", CYAML_FLAG_POINTER, scene_wall, material, 1, 64),
     VEC3("point", scene_wall, point), VEC3("normal", scene_wall, normal), VEC3("axis", scene_wall, axis),
     REAL("radius", scene_wall, radius), VEC3("lo", scene_wall, lo), VEC3("hi", scene_wall, hi),
@@ -110,7 +113,7 @@ static const cyaml_schema_field_t domain_fields[] = {
 /* "domain" maps onto two members of scene_file itself: a mapping field at offset 0 whose fields carry their own
  * offsets into scene_file. */
 static const cyaml_schema_field_t scene_fields[] = {
-    TEXT("name", scene_file, name),
+    NAME("name", scene_file, name),
     TEXT("description", scene_file, description),
     TEXT("precision", scene_file, precision),
     CYAML_FIELD_INT("device", CYAML_FLAG_OPTIONAL, scene_file, device),

@@ -86,6 +86,13 @@ static void test_errors(void **st)
     };
     for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; k++)
         bad(numbers[k].sed, numbers[k].expect);
+    /* what the output could not hold is refused by check, not by a failing run (issue 17, class 4) */
+    {
+        char sed[1200], many[1002];
+        memset(many, 'x', 1001), many[1001] = 0;
+        snprintf(sed, sizeof sed, "s/^name: two-sphere collision/name: %s/", many);
+        bad(sed, "bad.yaml:3: name: STRING length > 1000");
+    }
     /* derived values checked in range, blamed on the input that made them impossible (issue 17, class 1) */
     bad("s/dt: 1.0e-6 /dt: 1.0e-300 /", "bad.yaml:15: time.dt: duration 0.003 s / time step 1e-300 s = 3e+297 steps");
     bad("s/density: 2000/density: 1e-320/", "bad.yaml:7: materials[0].density: particle 0 (radius 0.01 m) would weigh");
