@@ -2,6 +2,9 @@
  * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
+/* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
+#define CHECKPOINT_MAX_PARTICLES 100000000L
+#define CHECKPOINT_MAX_STEP 1000000000000L
 #include "h5util.h"
 #include <fcntl.h>
 #include <stdio.h>
@@ -105,6 +108,11 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
     int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
              h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
              h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > 32;
+    /* nothing is allocated on a size the file merely claims: the counts must agree with the datasets actually
+     * there, within the library's limits, before any memory is asked for */
+    if (!rc && (n > CHECKPOINT_MAX_PARTICLES || h5_count(g, "x") != 3 * n || h5_count(g, "radius") != n ||
+                st->step < 0 || st->step > CHECKPOINT_MAX_STEP || (hh != 0 && hh != 1)))
+        rc = 1;
     if (!rc) {
         h5_read_attr_long(g, "rebuilds", &st->rebuilds);
         h5_read_attr_long(g, "has_mc", &hm);
@@ -117,6 +125,8 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
         size_t n3 = 3 * (size_t)n;
         long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist */
+        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1))
+            rc = 1, npairs = 0;
         size_t want_wh = hh ? n3 * (size_t)nw : 0;
         if (npairs < 0)
             rc = 1, npairs = 0;
@@ -157,12 +167,14 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         hid_t sg = H5Lexists(f, "scene", H5P_DEFAULT) > 0 ? H5Gopen2(f, "scene", H5P_DEFAULT) : -1;
         ck->scene_text = sg >= 0 ? h5_read_text(sg, "text") : NULL;
         ck->scene_path = sg >= 0 ? h5_read_text(sg, "path") : NULL;
-        char *model = sg >= 0 && H5Aexists(sg, "model") > 0 ? h5_read_attr_string(sg, "model") : NULL;
+        int has_model = sg >= 0 && H5Aexists(sg, "model") > 0;
+        char *model = has_model ? h5_read_attr_string(sg, "model") : NULL;
+        int model_ok = !has_model || model;
         snprintf(ck->model, sizeof ck->model, "%s", model ? model : "");
         free(model);
         if (sg >= 0)
             H5Gclose(sg);
-        rc = !ck->scene_text || !ck->scene_path;
+        rc = !ck->scene_text || !ck->scene_path || !model_ok; /* a model that cannot be read: damaged */
     }
     H5Fclose(f);
     if (rc) {

@@ -132,12 +132,25 @@ int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t c
     return rc;
 }
 
+/* Number of elements of an attribute (1 for a scalar), -1 on error. */
+static long attr_points(hid_t a)
+{
+    hid_t sp = a >= 0 ? H5Aget_space(a) : -1;
+    long n = sp >= 0 ? (long)H5Sget_simple_extent_npoints(sp) : -1;
+    if (sp >= 0)
+        H5Sclose(sp);
+    return n;
+}
+
 char *h5_read_attr_string(hid_t obj, const char *name)
 {
     if (H5Aexists(obj, name) <= 0)
         return NULL;
     hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t = a >= 0 ? H5Aget_type(a) : -1;
-    size_t n = t >= 0 ? H5Tget_size(t) : 0;
+    /* one fixed-length string only: an array would be read past the buffer, a variable-length one as a pointer */
+    size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) == 0 && attr_points(a) == 1
+                   ? H5Tget_size(t)
+                   : 0;
     char *buf = n ? calloc(n + 1, 1) : NULL;
     if (buf && H5Aread(a, t, buf) < 0) {
         free(buf);
@@ -155,7 +168,7 @@ static int attr_read(hid_t obj, const char *name, hid_t type, void *v)
     if (H5Aexists(obj, name) <= 0)
         return -1;
     hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-    int rc = a >= 0 && H5Aread(a, type, v) >= 0 ? 0 : -1;
+    int rc = a >= 0 && attr_points(a) == 1 && H5Aread(a, type, v) >= 0 ? 0 : -1; /* one value, never an array */
     if (a >= 0)
         H5Aclose(a);
     return rc;
@@ -185,7 +198,8 @@ char *h5_read_text(hid_t parent, const char *name)
     if (H5Lexists(parent, name, H5P_DEFAULT) <= 0)
         return NULL;
     hid_t d = H5Dopen2(parent, name, H5P_DEFAULT), t = d >= 0 ? H5Dget_type(d) : -1;
-    size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING ? H5Tget_size(t) : 0;
+    /* a fixed-length string, as h5_write_text writes it; a variable-length one would read as a pointer */
+    size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) == 0 ? H5Tget_size(t) : 0;
     char *buf = n ? calloc(n + 1, 1) : NULL;
     if (buf && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
         free(buf);

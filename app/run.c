@@ -199,6 +199,12 @@ int run_scene(const run_opts *o)
         code = fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, err);
         goto done;
     }
+    if (have_ck && ck.st.step > run.steps) {
+        snprintf(err, sizeof err, "%s: the checkpoint is at step %ld, past the end of the scene (%ld steps of %g s)",
+                 o->restart, ck.st.step, run.steps, run.dt);
+        code = fail_with(EXIT_BAD_INPUT, err);
+        goto done;
+    }
     if (have_ck && dem_state_set(s, &ck.st)) {
         snprintf(err, sizeof err, "%s: %s", o->restart, dem_error(s));
         code = fail_with(EXIT_BAD_INPUT, err);

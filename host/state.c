@@ -117,6 +117,22 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     if (st->n != n || st->nwalls != s->nwalls || st->real_size != rs)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has %d particles, %d walls, %d-byte reals; this run has %d, "
                         "%d, %d", st->n, st->nwalls, st->real_size, n, s->nwalls, rs);
+    /* every check before the first write: a state that does not fit this run changes nothing */
+    unsigned fx = s->setup.effects;
+    int fric = (fx & DEM_EFFECT_FRICTION) != 0, mce = (fx & DEM_EFFECT_MC_STRAIN) != 0;
+    if (!!st->has_hist != fric)
+        return sim_fail(s, DEM_ERR_ARG, "the saved state %s tangential history but this run %s friction",
+                        st->has_hist ? "has" : "has no", fric ? "has" : "has no");
+    if (!!st->has_mc != mce)
+        return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
+                        st->has_mc ? "has" : "has no", mce ? "has" : "has no");
+    if (st->wall_hist_bytes != dem_field_bytes(s, FIELD_WALL_HIST) ||
+        st->wall_mc_fn_bytes != dem_field_bytes(s, FIELD_MC_WALL_FORCE))
+        return sim_fail(s, DEM_ERR_ARG, "the saved wall contact memory has %zu + %zu bytes; this run needs %zu + %zu",
+                        st->wall_hist_bytes, st->wall_mc_fn_bytes, dem_field_bytes(s, FIELD_WALL_HIST),
+                        dem_field_bytes(s, FIELD_MC_WALL_FORCE));
+    if (st->step < 0 || st->npairs < 0)
+        return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld and %ld contacts", st->step, st->npairs);
     size_t v3b = 3 * (size_t)n * rs;
     int e = 0;
     if (s->ops->write(s->be, FIELD_X, st->x, v3b) || s->ops->write(s->be, FIELD_V, st->v, v3b) ||
@@ -126,9 +142,6 @@ int dem_state_set(dem_sim *s, const dem_state *st)
         return e;
     int maxn = s->maxn;
     size_t b, hb = dem_field_bytes(s, FIELD_HIST), fb = dem_field_bytes(s, FIELD_MC_FORCE);
-    if (!!st->has_mc != (fb > 0))
-        return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
-                        st->has_mc ? "has" : "has no", fb ? "has" : "has no");
     int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     if (!e && (!touch || !hist || !mcf))
@@ -160,9 +173,6 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     free(cnt), free(list), free(touch), free(hist), free(mcf);
     if (e)
         return e;
-    if (!!st->has_hist != (hb > 0))
-        return sim_fail(s, DEM_ERR_ARG, "the saved state %s tangential history but this run %s friction",
-                        st->has_hist ? "has" : "has no", hb ? "has" : "has no");
     s->step = st->step;
     s->mc = st->mc;
     for (int k = 0; k < s->nwalls; k++)

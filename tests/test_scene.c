@@ -483,6 +483,43 @@ static void test_output_paths(void **st)
     assert_false(exists("%s/op/s.yaml.h5", tmp));
 }
 
+/* Checkpoints are not trusted (issue 17, class 12): each crafted variant (tests/craft_checkpoint.py) is refused with
+ * status 65 and a reason, before anything is allocated on its claims or written to the device, and leaves no output. */
+static void test_crafted_checkpoints(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/good.h5 --quiet --stop-after 100",
+                        DEM, SRC, tmp),
+                     0);
+    static const struct {
+        const char *variant, *expect;
+    } cases[] = {
+        {"step_negative", "incomplete or damaged checkpoint"},
+        {"step_huge", "incomplete or damaged checkpoint"},
+        {"step_past_end", "the checkpoint is at step 1000000, past the end of the scene (660 steps"},
+        {"n_huge", "incomplete or damaged checkpoint"},
+        {"n_mismatch", "incomplete or damaged checkpoint"},
+        {"pairs_huge", "incomplete or damaged checkpoint"},
+        {"step_array", "incomplete or damaged checkpoint"},
+        {"model_array", "incomplete or damaged checkpoint"},
+        {"text_varlen", "incomplete or damaged checkpoint"},
+        {"hist_dropped", "the saved state has no tangential history but this run has friction"},
+        {"scene_frictionless", "the saved state has tangential history but this run has no friction"},
+        {"pairs_out_of_range", "saved contact 1000000-2 is not a neighbour pair"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        int rc = sh(err, sizeof err, "/usr/bin/python3 %s/tests/craft_checkpoint.py %s/good.ckpt.h5 %s/bad.ckpt.h5 %s && "
+                                     "%s run --restart %s/bad.ckpt.h5 -o %s/after.h5 --quiet",
+                    SRC, tmp, tmp, cases[k].variant, DEM, tmp, tmp);
+        if (rc != 65 || !strstr(err, cases[k].expect) || strstr(err, "HDF5-DIAG"))
+            fail_msg("%s: status %d (want 65): %s", cases[k].variant, rc, err);
+        assert_false(exists("%s/after.h5", tmp));
+        assert_false(exists("%s/after.h5.part", tmp));
+        assert_false(exists("%s/after.ckpt.h5", tmp));
+    }
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -497,6 +534,7 @@ int main(void)
         cmocka_unit_test(test_run_failure_names_checkpoint),
         cmocka_unit_test(test_exit_codes),
         cmocka_unit_test(test_output_paths),
+        cmocka_unit_test(test_crafted_checkpoints),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
