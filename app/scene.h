@@ -176,4 +176,6 @@ int scene_has(const scene_locator *l, const char *path);
 /* Entry k of the located paths in document order: its path, the scalar value's text (NULL for a collection) and line;
  * 0 past the end. */
 int scene_scalar(const scene_locator *l, size_t k, const char **path, const char **value, int *line);
+/* The first key given twice in one mapping: returns its second line (0 if none), with its path and first line. */
+int scene_duplicate(const scene_locator *l, const char **path, int *first);
 #endif

@@ -17,6 +17,8 @@ typedef struct {
 struct scene_locator {
     loc_entry *e;
     size_t n, cap;
+    int dup_line, dup_first; /* a key given twice in one mapping: its second line and its first */
+    char dup_path[512];
 };
 
 static void add(scene_locator *l, const char *path, int line)
@@ -75,7 +77,14 @@ scene_locator *scene_locate(const char *text, size_t len)
     while (!done) {
         yaml_event_t ev;
         if (!yaml_parser_parse(&p, &ev)) {
-            add(l, "#error", (int)p.problem_mark.line + 1);
+            /* a reader error (bad UTF-8, a control character) has a byte offset, not a mark: count its line */
+            int at = (int)p.problem_mark.line + 1;
+            if (p.error == YAML_READER_ERROR) {
+                at = 1;
+                for (size_t k = 0; k < p.problem_offset && k < len; k++)
+                    at += text[k] == '\n';
+            }
+            add(l, "#error", at);
             break;
         }
         int line = (int)ev.start_mark.line + 1;
@@ -87,6 +96,11 @@ scene_locator *scene_locate(const char *text, size_t len)
                     snprintf(f->key, sizeof f->key, "%s", (const char *)ev.data.scalar.value);
                     f->want_key = 0;
                     snprintf(path, sizeof path, "%s%s%s", f->prefix, f->prefix[0] ? "." : "", f->key);
+                    int first = l->dup_line ? 0 : scene_line(l, path);
+                    if (first > 0) { /* the same key twice in one mapping (paths carry the sequence indices) */
+                        l->dup_line = line, l->dup_first = first;
+                        snprintf(l->dup_path, sizeof l->dup_path, "%s", path);
+                    }
                     add(l, path, line);
                 } else {
                     int is_map = f->is_map;
@@ -151,6 +165,15 @@ void scene_locator_free(scene_locator *l)
         free(l->e[k].path), free(l->e[k].value);
     free(l->e);
     free(l);
+}
+
+int scene_duplicate(const scene_locator *l, const char **path, int *first)
+{
+    if (!l || !l->dup_line)
+        return 0;
+    *path = l->dup_path;
+    *first = l->dup_first;
+    return l->dup_line;
 }
 
 int scene_scalar(const scene_locator *l, size_t k, const char **path, const char **value, int *line)

@@ -290,6 +290,14 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         return NULL;
     }
     sc->loc = scene_locate(text, len);
+    const char *dpath;
+    int dfirst, dline = scene_duplicate(sc->loc, &dpath, &dfirst);
+    if (dline > 0 && scene_line(sc->loc, "#error") == 0) {
+        snprintf(err, errlen, "%s:%d: %s: the key is given twice (first at line %d); keep one", path, dline, dpath,
+                 dfirst);
+        scene_free(sc);
+        return NULL;
+    }
     if (check_numbers(sc, path, err, errlen)) {
         scene_free(sc);
         return NULL;
@@ -327,6 +335,8 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
             snprintf(full + l, sizeof full - l, "%s%s", l ? "." : "", uk + 16);
         }
         int line = scene_line(sc->loc, full);
+        if (strstr(cap.msg, "libyaml") && scene_line(sc->loc, "#error")) /* a syntax error: where libyaml stopped */
+            line = scene_line(sc->loc, "#error");
         if (mk) { /* name the missing key in the path; the line is its mapping's */
             size_t l = strlen(full);
             snprintf(full + l, sizeof full - l, "%s%s", l ? "." : "", mk + 32);

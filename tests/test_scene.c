@@ -105,6 +105,14 @@ static void test_errors(void **st)
                          0);
         assert_int_equal(sh(e2, sizeof e2, "grep -q 'frame every 3000 steps (2 frames' %s/fe.txt", tmp), 0);
     }
+    /* errors at the offending line (issue 17, class 3): a tab, invalid UTF-8, a key given twice */
+    bad("7s/^  - /\\t- /", "bad.yaml:7: materials: libyaml: found character that cannot start any token");
+    bad("s/duration: 0.003 /duration: 0.003 \\xff/", "bad.yaml:16: libyaml: invalid");
+    bad("s/^name: two-sphere collision/name: caf\\xe9/", "bad.yaml:3: libyaml: invalid");
+    bad("s/^precision: fp64/precision: fp64\\nprecision: fp32/",
+        "bad.yaml:5: precision: the key is given twice (first at line 4)");
+    bad("s/restitution: 0.7,/restitution: 0.7, restitution: 0.8,/",
+        "bad.yaml:7: materials[0].restitution: the key is given twice (first at line 7)");
     /* a second YAML document is refused where it starts, not silently dropped (issue 17, class 11) */
     bad("$a ---", "bad.yaml:21: a second YAML document starts here");
     bad("$a ---\\nname: second", "bad.yaml:21: a second YAML document starts here");
