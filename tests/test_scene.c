@@ -528,6 +528,36 @@ static void test_crafted_checkpoints(void **st)
     }
 }
 
+/* Random packings (issue 17, class 6): placement looks only at nearby spheres (a spatial hash), which must still
+ * keep every sphere clear of every other (the build's overlap check would refuse the scene) and give the same
+ * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by a bounded
+ * number of tries per sphere. */
+static void test_random_packing(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/random_groups.yaml -o %s/rg1.h5 --quiet && %s run "
+                                          "%s/tests/scenes/random_groups.yaml -o %s/rg2.h5 --quiet && cmp -s "
+                                          "%s/rg1.ckpt.h5 %s/rg2.ckpt.h5 || h5diff %s/rg1.ckpt.h5 %s/rg2.ckpt.h5 /state/x",
+                        DEM, SRC, tmp, DEM, SRC, tmp, tmp, tmp, tmp, tmp),
+                     0);
+    /* 200 000 spheres where they fill 2500 % of the region */
+    assert_int_equal(sh(err, sizeof err, "sed 's/count: 2000,/count: 200000,/' %s/tests/scenes/random_groups.yaml > "
+                                          "%s/full.yaml && %s check %s/full.yaml",
+                        SRC, tmp, DEM, tmp),
+                     65);
+    assert_non_null(strstr(err, "full.yaml:9: particles[0].generate.count: 200000 spheres fill 2511 % of the region"));
+    /* 20 000 equal spheres at 38 %: random sequential addition jams before the last */
+    assert_int_equal(sh(err, sizeof err, "sed 's/count: 2000,/count: 20000,/; s/radius_min: 0.001, radius_max: 0.002/"
+                                          "radius_min: 0.0015, radius_max: 0.0015/; s/hi: \\[0.05, 0.05, 0.05\\]/hi: "
+                                          "[0.0902, 0.0902, 0.0902]/' %s/tests/scenes/random_groups.yaml > %s/jam.yaml "
+                                          "&& %s check %s/jam.yaml",
+                        SRC, tmp, DEM, tmp),
+                     65);
+    assert_non_null(strstr(err, "spheres without overlap ("));
+    assert_non_null(strstr(err, "at most 20000 for one sphere)"));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -543,6 +573,7 @@ int main(void)
         cmocka_unit_test(test_exit_codes),
         cmocka_unit_test(test_output_paths),
         cmocka_unit_test(test_crafted_checkpoints),
+        cmocka_unit_test(test_random_packing),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
