@@ -438,6 +438,17 @@ static void test_exit_codes(void **st)
     }
 }
 
+/* The md5 sum of tmp/op/NAME, as md5sum prints it (64 bytes of room). */
+static void md5_of(const char *name, char *out)
+{
+    char err[4096];
+    assert_int_equal(sh(err, sizeof err, "md5sum < %s/op/%s > %s/md5", tmp, name, tmp), 0);
+    FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/md5"), "r");
+    assert_non_null(fp);
+    assert_non_null(fgets(out, 64, fp));
+    fclose(fp);
+}
+
 /* Output paths are checked before the run (issue 17, class 5): a directory, an input (the scene, a CSV it reads, the
  * checkpoint restarted from) or a missing folder is refused at once, every input survives byte for byte, and nothing
  * is written. */
@@ -464,12 +475,8 @@ static void test_output_paths(void **st)
     };
     char before[3][64];
     const char *inputs[3] = {"s.yaml", "data/hydrogel_514.csv", "a.ckpt.h5"};
-    for (int k = 0; k < 3; k++) {
-        assert_int_equal(sh(err, sizeof err, "md5sum < %s/op/%s > %s/md5", tmp, inputs[k], tmp), 0);
-        FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/md5"), "r");
-        assert_non_null(fgets(before[k], sizeof before[k], fp));
-        fclose(fp);
-    }
+    for (int k = 0; k < 3; k++)
+        md5_of(inputs[k], before[k]);
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char args[1024], dir[300];
         snprintf(dir, sizeof dir, "%s/op", tmp);
@@ -480,10 +487,7 @@ static void test_output_paths(void **st)
     }
     for (int k = 0; k < 3; k++) {
         char now[64];
-        assert_int_equal(sh(err, sizeof err, "md5sum < %s/op/%s > %s/md5", tmp, inputs[k], tmp), 0);
-        FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/md5"), "r");
-        assert_non_null(fgets(now, sizeof now, fp));
-        fclose(fp);
+        md5_of(inputs[k], now);
         assert_string_equal(before[k], now);
     }
     assert_false(exists("%s/op/dir.part", tmp));
