@@ -39,7 +39,7 @@ HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h a
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz bench clean validate conventions
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-checkpoint bench clean validate conventions
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -140,6 +140,17 @@ fuzz: $(LIB)
 	  app/scene_particles.c app/scene_overlaps.c $(LIB) -o $(BUILD)/fuzz/fuzz_scene -lcyaml -lyaml -lOpenCL -lm
 	cp scenes/*.yaml $(BUILD)/fuzz/corpus/
 	./$(BUILD)/fuzz/fuzz_scene -runs=$(FUZZ_RUNS) -max_len=4096 -timeout=20 -dict=tests/fuzz_scene.dict $(BUILD)/fuzz/corpus
+
+# libFuzzer on the checkpoint reader and the restore: edits of a real checkpoint through the HDF5 API
+# (tests/fuzz_checkpoint.c), FUZZ_RUNS executions.
+fuzz-checkpoint: $(LIB)
+	@bash scripts/install-deps.sh --fuzz
+	@mkdir -p $(BUILD)/fuzz/ckpt-corpus
+	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
+	  -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' -Icommon -Iapp $(PKG_CFLAGS) tests/fuzz_checkpoint.c app/checkpoint.c \
+	  app/h5util.c app/scene_schema.c app/scene_locate.c app/scene_build.c app/scene_particles.c app/scene_overlaps.c \
+	  $(LIB) -o $(BUILD)/fuzz/fuzz_checkpoint $(PKG_LIBS) -lOpenCL -lm
+	./$(BUILD)/fuzz/fuzz_checkpoint -runs=$(FUZZ_RUNS) -max_len=400 -timeout=20 $(BUILD)/fuzz/ckpt-corpus
 
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo
