@@ -31,7 +31,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
         return 1;
     }
     char tmp[4200];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    snprintf(tmp, sizeof tmp, "%s" CHECKPOINT_TMP_SUFFIX, path);
     hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     int rc = f < 0;
     hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;

@@ -13,6 +13,8 @@ typedef struct {
     double *radius;    /* [n], checked against the rebuilt scene */
 } checkpoint;
 
+/* A checkpoint is written to PATH CHECKPOINT_TMP_SUFFIX, flushed, then renamed over PATH. */
+#define CHECKPOINT_TMP_SUFFIX ".tmp"
 int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_run *run, char *err, size_t errlen);
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
 void checkpoint_free(checkpoint *ck);

@@ -66,6 +66,12 @@ static char *wall_names(const scene *sc)
     return t;
 }
 
+void output_xmf_path(const char *h5, char *buf, size_t len)
+{
+    size_t l = strlen(h5);
+    snprintf(buf, len, "%.*s.xmf", (int)(l > 3 && !strcmp(h5 + l - 3, ".h5") ? l - 3 : l), h5);
+}
+
 output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen)
 {
     output *o = calloc(1, sizeof *o);
@@ -263,10 +269,7 @@ int output_finish(output *o, char *err, size_t errlen)
         rc = 1;
     o->file = -1;
     char xmf[4200], xmf_part[4300];
-    snprintf(xmf, sizeof xmf, "%.*s.xmf",
-             (int)(strlen(o->path) > 3 && !strcmp(o->path + strlen(o->path) - 3, ".h5") ? strlen(o->path) - 3
-                                                                                          : strlen(o->path)),
-             o->path);
+    output_xmf_path(o->path, xmf, sizeof xmf);
     snprintf(xmf_part, sizeof xmf_part, "%s.part", xmf);
     if (!rc && (write_xdmf(o, xmf_part, times) || rename(o->part, o->path) || rename(xmf_part, xmf)))
         rc = 1;

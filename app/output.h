@@ -15,6 +15,8 @@
 
 typedef struct output output;
 
+/* The XDMF sidecar of an HDF5 output: OUT.h5 -> OUT.xmf (any other name gets .xmf appended). */
+void output_xmf_path(const char *h5, char *buf, size_t len);
 output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen);
 int output_frame(output *o, dem_sim *s);
 /* One time-series row; strain and stress are NAN without a sample. */

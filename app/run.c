@@ -73,14 +73,12 @@ static int check_output_paths(const scene *sc, const run_opts *o, const char *ou
                               size_t errlen)
 {
     char outs[6][4400];
-    size_t l = strlen(outp);
-    int stem = (int)(l > 3 && !strcmp(outp + l - 3, ".h5") ? l - 3 : l);
     snprintf(outs[0], sizeof outs[0], "%s", outp);
     snprintf(outs[1], sizeof outs[1], "%s.part", outp);
-    snprintf(outs[2], sizeof outs[2], "%.*s.xmf", stem, outp);
-    snprintf(outs[3], sizeof outs[3], "%.*s.xmf.part", stem, outp);
+    output_xmf_path(outp, outs[2], sizeof outs[2]);
+    snprintf(outs[3], sizeof outs[3], "%s.part", outs[2]);
     snprintf(outs[4], sizeof outs[4], "%s", ckp);
-    snprintf(outs[5], sizeof outs[5], "%s.tmp", ckp);
+    snprintf(outs[5], sizeof outs[5], "%s" CHECKPOINT_TMP_SUFFIX, ckp);
     const char *in[66];
     const char *what[66];
     char csv[64][4400];

@@ -48,8 +48,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
-    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
-    pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pm);
+    pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pairmat);
     pc.active = g.active;
     pc.delta = (real)0;
     pc.fel = (real)0;
@@ -60,6 +59,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         return pc;
     vec3 n = g.n;
     real delta = g.delta, rstar = g.rstar;
+    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     real extra = (real)0, law_delta = delta;
     if (fx & DEM_EFFECT_MC_STRAIN)
         law_delta = mc_strain_overlap(delta, disp_a, disp_b);

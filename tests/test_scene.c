@@ -410,28 +410,21 @@ static void test_exit_codes(void **st)
     (void)st;
     char err[8192];
     static const struct {
-        const char *cmd;
+        const char *cmd; /* %1$s: the dem command, %2$s: the test folder, %3$s: the project */
         int code;
         const char *expect;
     } cases[] = {
-        {"%s run --restart %s/none.ckpt.h5 -o %s/e.h5", 66, "none.ckpt.h5: cannot open the checkpoint: No such file"},
-        {"echo damaged > %s/dmg.ckpt.h5 && %s run --restart %s/dmg.ckpt.h5 -o %s/e.h5", 65,
+        {"%1$s run --restart %2$s/none.ckpt.h5 -o %2$s/e.h5", 66, "none.ckpt.h5: cannot open the checkpoint: No such file"},
+        {"echo damaged > %2$s/dmg.ckpt.h5 && %1$s run --restart %2$s/dmg.ckpt.h5 -o %2$s/e.h5", 65,
          "dmg.ckpt.h5: not a readable HDF5 checkpoint"},
-        {"sed 's|csv: data/hydrogel_514.csv|csv: data/missing.csv|' %s/scenes/hydrogel_514.yaml > %s/mc.yaml && "
-         "%s check %s/mc.yaml",
+        {"sed 's|csv: data/hydrogel_514.csv|csv: data/missing.csv|' %3$s/scenes/hydrogel_514.yaml > %2$s/mc.yaml && "
+         "%1$s check %2$s/mc.yaml",
          66, "mc.yaml:17: particles[0].csv: cannot open"},
-        {"%s run %s/mc.yaml -o %s/e.h5", 66, "mc.yaml:17: particles[0].csv: cannot open"},
-        {"%s check %s/no-such-scene.yaml", 66, "no-such-scene.yaml:0: cannot open the scene file"},
+        {"%1$s run %2$s/mc.yaml -o %2$s/e.h5", 66, "mc.yaml:17: particles[0].csv: cannot open"},
+        {"%1$s check %2$s/no-such-scene.yaml", 66, "no-such-scene.yaml:0: cannot open the scene file"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        int rc;
-        switch (k) {
-        case 0: rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp, tmp); break;
-        case 1: rc = sh(err, sizeof err, cases[k].cmd, tmp, DEM, tmp, tmp); break;
-        case 2: rc = sh(err, sizeof err, cases[k].cmd, SRC, tmp, DEM, tmp); break;
-        case 3: rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp, tmp); break;
-        default: rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp); break;
-        }
+        int rc = sh(err, sizeof err, cases[k].cmd, DEM, tmp, SRC);
         if (rc != cases[k].code || !strstr(err, cases[k].expect) || strstr(err, "HDF5-DIAG"))
             fail_msg("case %zu: status %d (want %d), message: %s", k, rc, cases[k].code, err);
         assert_false(exists("%s/e.h5", tmp));
