@@ -527,8 +527,8 @@ static void test_crafted_checkpoints(void **st)
 
 /* Random packings (issue 17, class 6): placement looks only at nearby spheres (a spatial hash), which must still
  * keep every sphere clear of every other (the build's overlap check would refuse the scene) and give the same
- * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by a bounded
- * number of tries per sphere. */
+ * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by an attempt
+ * budget (per sphere and per group) that counts attempts, not time. */
 static void test_random_packing(void **st)
 {
     (void)st;
@@ -552,7 +552,29 @@ static void test_random_packing(void **st)
                         SRC, tmp, DEM, tmp),
                      65);
     assert_non_null(strstr(err, "spheres without overlap ("));
-    assert_non_null(strstr(err, "at most 20000 for one sphere)"));
+    assert_non_null(strstr(err, "the budget of 420000 attempts (16 per sphere + 100000) is spent"));
+    /* the largest count near jamming (41 % of a box, equal spheres): refused by the attempt budget, not by volume,
+     * after having placed most of them (the budget is what bounds the refusal's time: about 0.3 s here) */
+    assert_int_equal(sh(err, sizeof err, "sed 's/count: 2000,/count: 200000,/; s/radius_min: 0.001, radius_max: 0.002/"
+                                          "radius_min: 0.001, radius_max: 0.001/; s/hi: \\[0.05, 0.05, 0.05\\]/hi: "
+                                          "[0.12694, 0.12694, 0.12694]/' %s/tests/scenes/random_groups.yaml > %s/jam2.yaml "
+                                          "&& %s check %s/jam2.yaml",
+                        SRC, tmp, DEM, tmp),
+                     65);
+    assert_non_null(strstr(err, "the budget of 3300000 attempts (16 per sphere + 100000) is spent"));
+    int placed = 0;
+    const char *c = strstr(err, "could place only ");
+    assert_non_null(c);
+    assert_int_equal(sscanf(c, "could place only %d of 200000", &placed), 1);
+    assert_true(placed > 100000 && placed < 200000);
+    /* one sphere that cannot fit anywhere: refused by the per-sphere bound, naming the sphere */
+    assert_int_equal(sh(err, sizeof err, "sed 's/count: 2000,/count: 2,/; s/radius_min: 0.001, radius_max: 0.002/"
+                                          "radius_min: 0.016, radius_max: 0.016/' %s/tests/scenes/random_groups.yaml > "
+                                          "%s/one.yaml && %s check %s/one.yaml",
+                        SRC, tmp, DEM, tmp),
+                     65);
+    assert_non_null(strstr(err, "could place only 1 of 2 spheres"));
+    assert_non_null(strstr(err, "no place for sphere 2 in 20000 tries"));
 }
 
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
