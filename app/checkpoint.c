@@ -32,6 +32,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     }
     char tmp[4200];
     snprintf(tmp, sizeof tmp, "%s" CHECKPOINT_TMP_SUFFIX, path);
+    errno = 0;
     hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     int rc = f < 0;
     hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
@@ -75,11 +76,15 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     }
     free(radius);
     dem_state_free(&st);
+    int e = errno; /* the first failure's reason, before close and unlink add their own */
     if (f >= 0 && H5Fclose(f) < 0)
-        rc = 1;
-    if (rc || sync_file(tmp) || rename(tmp, path)) {
+        rc = 1, e = e ? e : errno;
+    if (!rc && (sync_file(tmp) || rename(tmp, path)))
+        rc = 1, e = errno;
+    if (rc) {
         unlink(tmp);
-        snprintf(err, errlen, "%s: cannot write the checkpoint (the previous one, if any, is kept)", path);
+        snprintf(err, errlen, "%s: cannot write the checkpoint: %s (the previous one, if any, is kept)", path,
+                 h5_io_reason(e));
         return 1;
     }
     return 0;

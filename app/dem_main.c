@@ -130,6 +130,10 @@ static int parse_long(const char *s, long *v, long lo, long hi)
 
 int main(int argc, char **argv)
 {
+    /* HDF5 1.10 crashes in its exit handler when a file's close had failed (a full disk, a file-size limit): it
+     * closes the half-closed file again. Its exit handler only frees memory, every file we write is closed (or
+     * abandoned as .part) by us before exit, so it is switched off; must come before any other HDF5 call. */
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's own error stack never reaches the user: our messages say it */
     if (argc < 2) {
         fputs(usage, stderr);

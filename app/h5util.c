@@ -211,3 +211,8 @@ char *h5_read_text(hid_t parent, const char *name)
         H5Dclose(d);
     return buf;
 }
+
+const char *h5_io_reason(int saved_errno)
+{
+    return saved_errno ? strerror(saved_errno) : "the HDF5 library refused it without an operating-system error";
+}

@@ -33,4 +33,8 @@ int h5_read_attr_long(hid_t obj, const char *name, long *v);
 /* A text of any length as a scalar string dataset (attributes are limited to 64 KiB). */
 int h5_write_text(hid_t parent, const char *name, const char *text);
 char *h5_read_text(hid_t parent, const char *name); /* malloc'd, NULL if absent */
+
+/* Why a write failed, for a one-line message: the operating system's reason when the failing call left one in errno
+ * (callers set errno = 0 before the write), else that HDF5 refused it without one. */
+const char *h5_io_reason(int saved_errno);
 #endif

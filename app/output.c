@@ -261,21 +261,24 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
 
 int output_finish(output *o, char *err, size_t errlen)
 {
+    errno = 0;
     double *times = malloc(sizeof(double) * (size_t)(o->nframes + 1));
     int rc = !times || (o->nframes && H5Dread(o->ftime.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                                                times) < 0);
+    int e = errno;
     close_all(o);
     if (H5Fclose(o->file) < 0)
-        rc = 1;
+        rc = 1, e = e ? e : errno;
     o->file = -1;
     char xmf[4200], xmf_part[4300];
     output_xmf_path(o->path, xmf, sizeof xmf);
     snprintf(xmf_part, sizeof xmf_part, "%s.part", xmf);
     if (!rc && (write_xdmf(o, xmf_part, times) || rename(o->part, o->path) || rename(xmf_part, xmf)))
-        rc = 1;
+        rc = 1, e = errno;
     free(times);
     if (rc)
-        snprintf(err, errlen, "%s: cannot finish the output file (what was written is in %s)", o->path, o->part);
+        snprintf(err, errlen, "%s: cannot finish the output file: %s (what was written is in %s)", o->path,
+                 h5_io_reason(e), o->part);
     free(o->buf);
     free(o);
     return rc;

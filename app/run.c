@@ -2,6 +2,7 @@
 #include "run.h"
 #include "checkpoint.h"
 #include "output.h"
+#include "h5util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,6 +52,17 @@ static void progress_line(int tty, long step, long steps, double t, double rate_
     fprintf(stderr, "%sstep %ld/%ld (%5.1f %%)  t = %.6g s  %.3g particle-steps/s%s  ETA %.0f s%s",
             tty ? "\r" : "", step, steps, 100.0 * (double)step / (double)steps, t, rate_ps, mc, eta, tty ? "   " : "\n");
     fflush(stderr);
+}
+
+/* What a failed run leaves to restart from. */
+static void checkpoint_note(char *buf, size_t len, const char *ckp, long ck_step, const char *restart)
+{
+    if (ck_step >= 0)
+        snprintf(buf, len, "last checkpoint: %s, step %ld", ckp, ck_step);
+    else if (restart)
+        snprintf(buf, len, "no checkpoint written by this run; it started from %s", restart);
+    else
+        snprintf(buf, len, "no checkpoint written yet (output.checkpoint_every sets how often)");
 }
 
 static int fail_with(int code, const char *msg)
@@ -241,8 +253,12 @@ int run_scene(const run_opts *o)
         end = step0 + o->stop_after;
     int tty = isatty(2);
     run_sample_state(s, &run, &strain, &stress);
+    errno = 0;
     if (output_frame(out, s) || output_series(out, s, strain, stress)) {
-        code = fail_with(EXIT_IO, "cannot write to the output file");
+        int e = errno;
+        snprintf(err, sizeof err, "%s.part: cannot write the first frame to the output file: %s", outp,
+                 h5_io_reason(e));
+        code = fail_with(EXIT_IO, err);
         goto done;
     }
     long ck_step = -1; /* step of the last checkpoint this run wrote */
@@ -260,12 +276,7 @@ int run_scene(const run_opts *o)
         }
         if (dem_step(s, next - st)) {
             char cknote[4400];
-            if (ck_step >= 0)
-                snprintf(cknote, sizeof cknote, "last checkpoint: %s, step %ld", ckp, ck_step);
-            else if (o->restart)
-                snprintf(cknote, sizeof cknote, "no checkpoint written by this run; it started from %s", o->restart);
-            else
-                snprintf(cknote, sizeof cknote, "no checkpoint written yet (output.checkpoint_every sets how often)");
+            checkpoint_note(cknote, sizeof cknote, ckp, ck_step, o->restart);
             snprintf(err, sizeof err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)", sc->path,
                      dem_step_index(s), dem_error(s), outp, cknote);
             code = fail_with(EXIT_RUN_FAILED, err);
@@ -273,14 +284,20 @@ int run_scene(const run_opts *o)
         }
         st = dem_step_index(s);
         int io = 0;
+        errno = 0;
         if (st % run.frame_every == 0 || st == end)
             io |= output_frame(out, s);
-        if (st % run.series_every == 0 || st == end) {
+        if (!io && (st % run.series_every == 0 || st == end)) {
             run_sample_state(s, &run, &strain, &stress);
             io |= output_series(out, s, strain, stress);
         }
         if (io) {
-            code = fail_with(EXIT_IO, "cannot write to the output file");
+            int e = errno;
+            char cknote[4400];
+            checkpoint_note(cknote, sizeof cknote, ckp, ck_step, o->restart);
+            snprintf(err, sizeof err, "%s.part: cannot write step %ld to the output file: %s (%s)", outp, st,
+                     h5_io_reason(e), cknote);
+            code = fail_with(EXIT_IO, err);
             goto done;
         }
         if ((run.checkpoint_every > 0 && st % run.checkpoint_every == 0) || st == end) {

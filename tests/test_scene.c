@@ -403,6 +403,50 @@ static void test_run_failure_names_checkpoint(void **st)
     assert_true(exists("%s/dom2.ckpt.h5", tmp));
 }
 
+/* A write that fails part way (issue 17, class 13; here a file-size limit, as a full disk would): the one-line
+ * message names the file and the operating system's reason, exit 74, the output so far stays in .part, the previous
+ * checkpoint is kept whole, and nothing crashes on the way out (HDF5's exit handler did, after a failed close).
+ * The limit is above what PoCL writes to its kernel cache on each run (~0.9 MB), and an unlimited run of the same
+ * scene first warms that cache (PoCL compiles per work-group size, which follows the particle count). */
+static void test_io_failure_reasons(void **st)
+{
+    (void)st;
+    char err[8192];
+    /* SIGXFSZ ignored (inherited through exec), so the write fails with EFBIG instead of killing the process; the
+     * limit in bytes (prlimit, util-linux) rather than in the shell's ulimit blocks, which differ between shells */
+    const char *lim = "trap '' XFSZ; prlimit --fsize=";
+    /* the checkpoint (3.6 MB) fails at 2000 KiB; the output (1.3 MB) does not */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/io_limit.yaml -o %s/io.h5 --quiet && cp %s/io.ckpt.h5 "
+                                          "%s/io.keep.h5", DEM, SRC, tmp, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s2048000 %s run %s/tests/scenes/io_limit.yaml -o %s/io.h5 --quiet", lim, DEM,
+                        SRC, tmp),
+                     74);
+    char want[600];
+    snprintf(want, sizeof want, "dem: %s/io.ckpt.h5: cannot write the checkpoint: File too large (the previous one, if "
+                                "any, is kept)", tmp);
+    if (!strstr(err, want))
+        fail_msg("expected '%s' in: %s", want, err);
+    assert_int_equal(sh(err, sizeof err, "cmp %s/io.ckpt.h5 %s/io.keep.h5", tmp, tmp), 0);
+    assert_false(exists("%s/io.ckpt.h5.tmp", tmp));
+    assert_true(exists("%s/io.h5.part", tmp));
+    /* 8000 spheres, a frame every 10 steps: the output passes 1500 KiB near its end, after the checkpoint of step
+     * 150 (1.1 MB) */
+    assert_int_equal(sh(err, sizeof err, "sed 's/0.075, 0.075, 0.075/0.05, 0.05, 0.05/; s/frame_every: 1.0e-4/"
+                                          "frame_every: 1.0e-5/' %s/tests/scenes/io_limit.yaml > %s/io8.yaml && %s run %s/io8.yaml "
+                                          "-o %s/warm.h5 --quiet && %s1536000 %s run %s/io8.yaml -o %s/io8.h5 --quiet",
+                        SRC, tmp, DEM, tmp, tmp, lim, DEM, tmp, tmp),
+                     74);
+    snprintf(want, sizeof want, "dem: %s/io8.h5.part: cannot write step ", tmp);
+    if (!strstr(err, want) || !strstr(err, "to the output file: File too large (last checkpoint: ") ||
+        !strstr(err, "io8.ckpt.h5, step 150)"))
+        fail_msg("expected '%s... File too large (last checkpoint: ...io8.ckpt.h5, step 150)' in: %s", want, err);
+    assert_null(strstr(err, "HDF5-DIAG"));
+    assert_true(exists("%s/io8.h5.part", tmp));
+    assert_false(exists("%s/io8.h5", tmp));
+    assert_int_equal(sh(err, sizeof err, "%s run --restart %s/io8.ckpt.h5 -o %s/io8r.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_true(exists("%s/io8r.h5", tmp)); /* the run goes on from the kept checkpoint */
+}
+
 /* Exit codes as the README's table says (issue 17, class 8): a file that cannot be opened (scene, CSV, checkpoint)
  * is 66; a file that opens but is wrong (scene, CSV content, damaged checkpoint) is 65; and no HDF5 error stack. */
 static void test_exit_codes(void **st)
@@ -590,6 +634,7 @@ int main(void)
         cmocka_unit_test(test_integer_arguments),
         cmocka_unit_test(test_run_failure_names_checkpoint),
         cmocka_unit_test(test_exit_codes),
+        cmocka_unit_test(test_io_failure_reasons),
         cmocka_unit_test(test_output_paths),
         cmocka_unit_test(test_crafted_checkpoints),
         cmocka_unit_test(test_random_packing),
