@@ -39,7 +39,7 @@ HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h a
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-checkpoint bench clean validate conventions
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-checkpoint fuzz-cli bench clean validate conventions
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -151,6 +151,20 @@ fuzz-checkpoint: $(LIB)
 	  app/h5util.c app/scene_schema.c app/scene_locate.c app/scene_build.c app/scene_particles.c app/scene_overlaps.c \
 	  $(LIB) -o $(BUILD)/fuzz/fuzz_checkpoint $(PKG_LIBS) -lOpenCL -lm
 	./$(BUILD)/fuzz/fuzz_checkpoint -runs=$(FUZZ_RUNS) -max_len=400 -timeout=20 $(BUILD)/fuzz/ckpt-corpus
+
+# libFuzzer on the command line and the output-path check (tests/fuzz_cli.c), FUZZ_RUNS executions; it works in a
+# scratch folder of its own, hence the absolute paths.
+fuzz-cli: $(LIB)
+	@bash scripts/install-deps.sh --fuzz
+	@mkdir -p $(BUILD)/fuzz/cli-corpus
+	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
+	  -Icommon -Iapp $(PKG_CFLAGS) tests/fuzz_cli.c app/cli.c app/run.c app/output.c app/checkpoint.c app/h5util.c \
+	  app/scene_schema.c app/scene_locate.c app/scene_build.c app/scene_particles.c app/scene_overlaps.c \
+	  $(LIB) -o $(BUILD)/fuzz/fuzz_cli $(PKG_LIBS) -lOpenCL -lm
+	printf '%s\0' run scene.yaml -o out.h5 > $(BUILD)/fuzz/cli-corpus/seed1
+	printf '%s\0' run --restart ck.ckpt.h5 --checkpoint ck.h5 --device 1 > $(BUILD)/fuzz/cli-corpus/seed2
+	./$(BUILD)/fuzz/fuzz_cli -runs=$(FUZZ_RUNS) -max_len=8400 -timeout=20 -artifact_prefix=$(CURDIR)/$(BUILD)/fuzz/ -dict=$(CURDIR)/tests/fuzz_cli.dict \
+	  $(CURDIR)/$(BUILD)/fuzz/cli-corpus
 
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo

@@ -1,4 +1,5 @@
 /* dem_main.c - the `dem` command: run a scene, check it, list devices. */
+#include "cli.h"
 #include "run.h"
 #include "scene.h"
 #include <hdf5.h>
@@ -8,23 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static const char usage[] =
-    "usage: dem run SCENE.yaml [-o OUT.h5] [--device N] [--precision fp32|fp64] [--checkpoint FILE]\n"
-    "                          [--progress | --quiet] [--stop-after STEPS]\n"
-    "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated]\n"
-    "       dem run --restart CHECKPOINT.h5 [-o OUT.h5] [options as above]\n"
-    "       dem check SCENE.yaml     validate a scene and print what it implies (time scales, memory, effects)\n"
-    "       dem devices              list OpenCL devices (index for --device)\n"
-    "       dem --help | --version\n"
-    "\n"
-    "run writes OUT.h5 (frames and time series; OUT.h5.part until it completes), OUT.xmf for ParaView, and\n"
-    "checkpoints to OUT.ckpt.h5 (the scene's output.checkpoint_every, and at the end). A progress line goes to\n"
-    "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI. --model replaces the\n"
-    "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart).\n"
-    "\n"
-    "exit status: 0 done; 1 the simulation failed while running; 2 bad command line; 65 invalid scene or\n"
-    "checkpoint; 66 a file could not be opened; 69 no usable OpenCL device; 74 output could not be written.\n";
 
 static int check(const char *path)
 {
@@ -109,25 +93,6 @@ static int devices(void)
     return 0;
 }
 
-static int need_value(int argc, char **argv, int k)
-{
-    if (k + 1 >= argc) {
-        fprintf(stderr, "dem: option %s needs a value\n%s", argv[k], usage);
-        return 0;
-    }
-    return 1;
-}
-
-/* A whole decimal integer in [lo, hi] (lo >= 0): digits only, no sign or blanks, no trailing text, no overflow
- * (strtol's ERANGE), no wrap into int. */
-static int parse_long(const char *s, long *v, long lo, long hi)
-{
-    char *end;
-    errno = 0;
-    *v = strtol(s, &end, 10);
-    return *s >= '0' && *s <= '9' && !*end && errno == 0 && *v >= lo && *v <= hi;
-}
-
 int main(int argc, char **argv)
 {
     /* HDF5 1.10 crashes in its exit handler when a file's close had failed (a full disk, a file-size limit): it
@@ -135,97 +100,27 @@ int main(int argc, char **argv)
      * abandoned as .part) by us before exit, so it is switched off; must come before any other HDF5 call. */
     H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's own error stack never reaches the user: our messages say it */
-    if (argc < 2) {
-        fputs(usage, stderr);
-        return EXIT_USAGE;
+    cli c;
+    char err[8192];
+    int with_usage;
+    int code = cli_parse(argc, argv, &c, err, sizeof err, &with_usage);
+    if (code) {
+        fprintf(stderr, "dem: %s\n%s", err, with_usage ? cli_usage : "");
+        return code;
     }
-    const char *cmd = argv[1];
-    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
-        fputs(usage, stdout);
+    switch (c.cmd) {
+    case CLI_HELP:
+        fputs(cli_usage, stdout);
         return 0;
-    }
-    if (!strcmp(cmd, "--version")) {
+    case CLI_VERSION:
         printf("dem (libdem) %s\n", DEM_VERSION);
         return 0;
+    case CLI_DEVICES:
+        return devices();
+    case CLI_CHECK:
+        return check(c.check_path);
+    case CLI_RUN:
+        break;
     }
-    if (!strcmp(cmd, "devices"))
-        return argc == 2 ? devices() : (fputs(usage, stderr), EXIT_USAGE);
-    if (!strcmp(cmd, "check")) {
-        if (argc != 3) {
-            fputs(usage, stderr);
-            return EXIT_USAGE;
-        }
-        return check(argv[2]);
-    }
-    if (strcmp(cmd, "run")) {
-        fprintf(stderr, "dem: unknown command '%s'\n%s", cmd, usage);
-        return EXIT_USAGE;
-    }
-    run_opts o = {NULL, NULL, NULL, NULL, -1, 0, -1, 0, NULL};
-    for (int k = 2; k < argc; k++) {
-        const char *a = argv[k];
-        long v;
-        if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            o.out = argv[++k];
-        } else if (!strcmp(a, "--checkpoint")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            o.checkpoint = argv[++k];
-        } else if (!strcmp(a, "--restart")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            o.restart = argv[++k];
-        } else if (!strcmp(a, "--device")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            if (!parse_long(argv[++k], &v, 0, 65535)) {
-                fprintf(stderr, "dem: --device needs an index in 0..65535 (see dem devices), not '%s'\n", argv[k]);
-                return EXIT_USAGE;
-            }
-            o.device = (int)v;
-        } else if (!strcmp(a, "--precision")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            const char *p = argv[++k];
-            if (!strcmp(p, "fp32"))
-                o.precision = DEM_FP32;
-            else if (!strcmp(p, "fp64"))
-                o.precision = DEM_FP64;
-            else {
-                fprintf(stderr, "dem: --precision must be fp32 or fp64\n");
-                return EXIT_USAGE;
-            }
-        } else if (!strcmp(a, "--stop-after")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            if (!parse_long(argv[++k], &v, 1, LONG_MAX)) {
-                fprintf(stderr, "dem: --stop-after needs a step count >= 1, not '%s'\n", argv[k]);
-                return EXIT_USAGE;
-            }
-            o.stop_after = v;
-        } else if (!strcmp(a, "--model")) {
-            if (!need_value(argc, argv, k))
-                return EXIT_USAGE;
-            o.model = argv[++k];
-        } else if (!strcmp(a, "--progress")) {
-            o.progress = 1;
-        } else if (!strcmp(a, "--quiet")) {
-            o.progress = 0;
-        } else if (a[0] == '-') {
-            fprintf(stderr, "dem: unknown option '%s'\n%s", a, usage);
-            return EXIT_USAGE;
-        } else if (!o.scene_path) {
-            o.scene_path = a;
-        } else {
-            fprintf(stderr, "dem: more than one scene given ('%s')\n", a);
-            return EXIT_USAGE;
-        }
-    }
-    if (!o.scene_path && !o.restart) {
-        fprintf(stderr, "dem: run needs a scene file or --restart\n%s", usage);
-        return EXIT_USAGE;
-    }
-    return run_scene(&o);
+    return run_scene(&c.run);
 }

@@ -3,6 +3,7 @@
 #include "checkpoint.h"
 #include "output.h"
 #include "h5util.h"
+#include "cli.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,11 +36,11 @@ void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *
     *stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
 }
 
-static void default_out(const scene *sc, char *buf, size_t len)
+static int default_out(const scene *sc, char *buf, size_t len)
 {
     const char *base = strrchr(sc->path, '/') ? strrchr(sc->path, '/') + 1 : sc->path;
     const char *dot = strrchr(base, '.');
-    snprintf(buf, len, "%.*s.h5", (int)(dot ? (size_t)(dot - base) : strlen(base)), base);
+    return snprintf(buf, len, "%.*s.h5", (int)(dot ? (size_t)(dot - base) : strlen(base)), base);
 }
 
 /* capped < 0: not an iterated MC-strain run (no iteration column) */
@@ -78,13 +79,34 @@ static int same_file(const char *a, const char *b)
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-/* Everything a run writes (OUT, OUT.part, its XDMF and .xmf.part, the checkpoint and its .tmp) is checked before the
- * run starts: no output may be a directory or replace an input (the scene, a CSV it reads, the checkpoint restarted
- * from: exit 2), and each output's folder must exist and be writable (exit 74, with the system's reason). */
-static int check_output_paths(const scene *sc, const run_opts *o, const char *outp, const char *ckp, char *err,
-                              size_t errlen)
+int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN], char ckp[RUN_PATH_LEN], char *err,
+                     size_t errlen)
 {
-    char outs[6][4400];
+    int l;
+    if (o->out)
+        l = snprintf(outp, RUN_PATH_LEN, "%s", o->out);
+    else
+        l = default_out(sc, outp, RUN_PATH_LEN);
+    if (l < 0 || l > DEM_MAX_PATH) {
+        char shown[CLI_SHOW_LEN];
+        snprintf(err, errlen, "%s: the output path has %d characters; at most %d are accepted",
+                 cli_show(outp, shown, 200), l, DEM_MAX_PATH);
+        return EXIT_USAGE;
+    }
+    if (o->checkpoint)
+        l = snprintf(ckp, RUN_PATH_LEN, "%s", o->checkpoint);
+    else {
+        size_t n = strlen(outp);
+        l = snprintf(ckp, RUN_PATH_LEN, "%.*s.ckpt.h5", (int)(n > 3 && !strcmp(outp + n - 3, ".h5") ? n - 3 : n),
+                     outp);
+    }
+    if (l < 0 || l > DEM_MAX_PATH) {
+        char shown[CLI_SHOW_LEN];
+        snprintf(err, errlen, "%s: the checkpoint path has %d characters; at most %d are accepted (--checkpoint "
+                              "names another)", cli_show(ckp, shown, 200), l, DEM_MAX_PATH);
+        return EXIT_USAGE;
+    }
+    char outs[6][RUN_PATH_LEN + 16];
     snprintf(outs[0], sizeof outs[0], "%s", outp);
     snprintf(outs[1], sizeof outs[1], "%s.part", outp);
     output_xmf_path(outp, outs[2], sizeof outs[2]);
@@ -105,22 +127,32 @@ static int check_output_paths(const scene *sc, const run_opts *o, const char *ou
         }
     for (int q = 0; q < 6; q++) {
         struct stat st;
+        char shown[CLI_SHOW_LEN], shown2[CLI_SHOW_LEN];
+        cli_show(outs[q], shown, sizeof shown);
         if (stat(outs[q], &st) == 0 && S_ISDIR(st.st_mode)) {
-            snprintf(err, errlen, "%s: is a directory; -o names the HDF5 file to write (e.g. %s/run.h5)", outs[q],
-                     outs[q]);
+            snprintf(err, errlen, "%s: is a directory; -o names the HDF5 file to write (e.g. %s/run.h5)", shown, shown);
+            return EXIT_USAGE;
+        }
+        /* a device, pipe or socket would be replaced by a regular file when the run renames its output into place
+         * (as root, -o /dev/null would remove /dev/null) */
+        if (stat(outs[q], &st) == 0 && !S_ISREG(st.st_mode)) {
+            snprintf(err, errlen, "%s: is not a regular file (a device, pipe or socket); a run replaces what it "
+                                  "writes, so -o and --checkpoint must name regular files or new ones", shown);
             return EXIT_USAGE;
         }
         for (int k = 0; k < nin; k++)
             if (same_file(outs[q], in[k])) {
-                snprintf(err, errlen, "%s: writing it would replace %s (%s); choose another -o%s", outs[q], what[k],
-                         in[k], q >= 4 ? " or --checkpoint" : "");
+                snprintf(err, errlen, "%s: writing it would replace %s (%s); choose another -o%s", shown, what[k],
+                         cli_show(in[k], shown2, sizeof shown2), q >= 4 ? " or --checkpoint" : "");
                 return EXIT_USAGE;
             }
-        char dir[4400];
+        char dir[RUN_PATH_LEN + 16];
         snprintf(dir, sizeof dir, "%s", outs[q]);
         const char *d = dirname(dir);
         if (access(d, W_OK | X_OK) != 0) {
-            snprintf(err, errlen, "%s: cannot write into the folder '%s': %s", outs[q], d, strerror(errno));
+            int e = errno;
+            snprintf(err, errlen, "%s: cannot write into the folder '%s': %s", shown,
+                     cli_show(d, shown2, sizeof shown2), strerror(e));
             return EXIT_IO;
         }
     }
@@ -151,7 +183,7 @@ int run_scene(const run_opts *o)
     dem_sim *s = scene_build(sc, &run, err, sizeof err);
     int code = 0;
     output *out = NULL;
-    char outp[4096], ckp[4200];
+    char outp[RUN_PATH_LEN], ckp[RUN_PATH_LEN];
     if (!s) { /* a file the scene names (a CSV) that cannot be opened: 66, like the scene itself */
         code = fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
         goto done;
@@ -172,17 +204,7 @@ int run_scene(const run_opts *o)
         run.cfg.precision = (dem_precision)ck.st.real_size;
     if (o->precision)
         run.cfg.precision = (dem_precision)o->precision;
-    if (o->out)
-        snprintf(outp, sizeof outp, "%s", o->out);
-    else
-        default_out(sc, outp, sizeof outp);
-    if (o->checkpoint)
-        snprintf(ckp, sizeof ckp, "%s", o->checkpoint);
-    else {
-        size_t l = strlen(outp);
-        snprintf(ckp, sizeof ckp, "%.*s.ckpt.h5", (int)(l > 3 && !strcmp(outp + l - 3, ".h5") ? l - 3 : l), outp);
-    }
-    int pc = check_output_paths(sc, o, outp, ckp, err, sizeof err);
+    int pc = run_output_paths(sc, o, outp, ckp, err, sizeof err);
     if (pc) {
         code = fail_with(pc, err);
         goto done;

@@ -20,6 +20,16 @@ typedef struct {
 } run_opts;
 
 int run_scene(const run_opts *o);
+
+/* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more). */
+#define RUN_PATH_LEN 4096
+/* The output and checkpoint paths of a run (from -o / --checkpoint, or from the scene's file name), and the check of
+ * everything the run will write (OUT, OUT.part, its XDMF and .xmf.part, the checkpoint and its .tmp) before it
+ * starts: no path longer than DEM_MAX_PATH, none a directory, a device, pipe or socket, or the same file as an input
+ * (the scene, a CSV it reads, the checkpoint restarted from): EXIT_USAGE; each output's folder must exist and be
+ * writable: EXIT_IO with the system's reason. 0 when all is well. */
+int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN], char ckp[RUN_PATH_LEN], char *err,
+                     size_t errlen);
 /* Strain and engineering stress of the sample (NAN without one). */
 void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *stress);
 #endif

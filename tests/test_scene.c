@@ -509,6 +509,14 @@ static void test_output_paths(void **st)
         {"%1$s/h.yaml -o %1$s/data/hydrogel_514.csv", 2, "would replace a CSV file the scene reads"},
         {"--restart %1$s/a.ckpt.h5 -o %1$s/a.h5", 2, "would replace the checkpoint this run restarts from"},
         {"%1$s/s.yaml -o %1$s/no/such/folder/x.h5", 74, "cannot write into the folder"},
+        {"%1$s/s.yaml -o /dev/null", 2, "/dev/null: is not a regular file"},
+        {"%1$s/s.yaml -o %1$s/x.h5 --checkpoint /dev/zero", 2, "/dev/zero: is not a regular file"},
+        {"%1$s/s.yaml -o ''", 2, "-o needs a file name, not an empty string"},
+        {"%1$s/s.yaml -o \"$(printf 'a%%.0s' $(seq 4001))\"", 2, "-o: a path of 4001 characters; at most 4000"},
+        {"%1$s/s.yaml -o \"$(printf 'a%%.0s' $(seq 3995))\"", 2,
+         "the checkpoint path has 4003 characters; at most 4000 are accepted"},
+        {"%1$s/s.yaml -o \"%1$s/no\nsuch/x.h5\"", 74, "/op/no\\x0asuch/x.h5: cannot write into the folder '"},
+        {"%1$s/s.yaml \"--bad\toption\"", 2, "unknown option '--bad\\x09option'"},
     };
     char before[3][64];
     const char *inputs[3] = {"s.yaml", "data/hydrogel_514.csv", "a.ckpt.h5"};
