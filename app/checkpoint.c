@@ -112,7 +112,7 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
     long n = 0, nw = 0, rs = 0, hh = 0, hm = 0;
     int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
              h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
-             h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > 32;
+             h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > DEM_MAX_WALLS;
     /* nothing is allocated on a size the file merely claims: the counts must agree with the datasets actually
      * there, within the library's limits, before any memory is asked for */
     if (!rc && (n > CHECKPOINT_MAX_PARTICLES || h5_count(g, "x") != 3 * n || h5_count(g, "radius") != n ||

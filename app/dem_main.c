@@ -37,11 +37,13 @@ static int check(const char *path)
     char fx[128];
     dem_effects_string(run.effects, fx, sizeof fx);
     int rs = (int)run.cfg.precision;
-    /* memory: per particle about 24 reals and 8 ints, plus two sets of neighbour rows (16 slots to start: list,
-     * mirror, touch, and the tangential history with friction), plus 3 contacts per particle of pair records */
-    int fr = (run.effects & DEM_EFFECT_FRICTION) != 0;
-    double per = 24.0 * rs + 8 * 4 + 2 * 16 * (4 + 4 + 1 + (fr ? 3 * rs : 0)) + 3 * 8 * rs +
-                 (fr ? 3.0 * rs * dem_wall_count(s) : 0) + 2 * 3.0 * rs * dem_wall_count(s);
+    size_t dev_bytes = 0; /* the library's own estimate, from its buffer registry */
+    if (dem_memory_estimate(s, &run.cfg, &dev_bytes)) {
+        fprintf(stderr, "dem: %s: %s\n", path, dem_error(s));
+        dem_destroy(s);
+        scene_free(sc);
+        return EXIT_BAD_INPUT;
+    }
     long frames = run.steps / run.frame_every + 1;
     int nfields = 0;
     for (unsigned b = run.fields & ~(unsigned)(OUT_RADIUS | OUT_MATERIAL); b; b >>= 1)
@@ -64,8 +66,8 @@ static int check(const char *path)
     printf("output         frame every %ld steps (%ld frames, %d vector fields), series every %ld steps, "
            "checkpoint every %ld steps (0: end only)\n", run.frame_every, frames, nfields, run.series_every,
            run.checkpoint_every);
-    printf("memory         about %.3g MB on the device (%s), frames about %.3g MB before compression\n",
-           per * n / 1e6, rs == 8 ? "fp64" : "fp32", (double)frames * nfields * 3 * 8 * n / 1e6);
+    printf("memory         about %.3g MB on the device at the start (%s), frames about %.3g MB before compression\n",
+           (double)dev_bytes / 1e6, rs == 8 ? "fp64" : "fp32", (double)frames * nfields * 3 * 8 * n / 1e6);
     printf("backend        %s, device %d\n", run.cfg.backend == DEM_BACKEND_OPENCL ? "OpenCL" : "reference",
            run.cfg.device);
     if (run.piston >= 0)

@@ -88,7 +88,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     o->fields = run->fields;
     o->sample = run->piston >= 0;
     o->mc = (run->effects & DEM_EFFECT_MC_STRAIN) != 0;
-    o->buf = malloc(sizeof(double) * 6 * (size_t)(n > 32 ? n : 32));
+    o->buf = malloc(sizeof(double) * 6 * (size_t)(n > DEM_MAX_WALLS ? n : DEM_MAX_WALLS)); /* frames, and wall rows */
     errno = 0;
     o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     int create_errno = o->file < 0 ? errno : 0;
@@ -193,7 +193,7 @@ int output_series(output *o, dem_sim *s, double strain, double stress)
         if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k >= S_MCIT && o->mc)) && h5rows_append(&o->s[k], &row[k]))
             return -1;
     if (o->nwalls) {
-        double pos[3 * 32], f[3 * 32];
+        double pos[3 * DEM_MAX_WALLS], f[3 * DEM_MAX_WALLS];
         for (int w = 0; w < o->nwalls; w++)
             if (dem_wall_position(s, w, pos + 3 * w) || dem_wall_force(s, w, f + 3 * w))
                 return -1;

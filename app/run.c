@@ -246,15 +246,8 @@ int run_scene(const run_opts *o)
     dem_effects_string(run.effects, fx, sizeof fx);
     int show = o->progress < 0 ? isatty(2) : o->progress;
     if (show || o->progress != 0)
-        fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n"
-                        "dem: kernels per step: integrate_kick_drift, %scontact_pairs, contact_forces%s, integrate_kick "
-                        "(+ binning and neighbour kernels at each rebuild)\n",
-                sc->path, dem_count(s), dem_wall_count(s), run.dt, run.steps, dem_describe(s),
-                (run.effects & DEM_EFFECT_MC_STRESS)   ? "stress_trace, "
-                : !(run.effects & DEM_EFFECT_MC_STRAIN) ? ""
-                : run.mc_cap > 0                        ? "mc_strain_disp + (mc_strain_update, mc_strain_disp) x iterations, "
-                                                        : "mc_strain_disp, ",
-                (run.effects & DEM_EFFECT_WALLS) && dem_wall_count(s) ? ", wall_reduce_block, wall_reduce_final" : "");
+        fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", sc->path, dem_count(s),
+                dem_wall_count(s), run.dt, run.steps, dem_describe(s));
     if ((show || o->progress != 0) && (run.effects & DEM_EFFECT_MC_STRESS)) {
         char conv[128];
         dem_mc_stress_convention_string(run.mcs_conv, conv, sizeof conv);
@@ -351,6 +344,12 @@ int run_scene(const run_opts *o)
     {
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", outp, ckp,
                 dem_step_index(s), now() - t0);
+        char seq[2048];
+        if (dem_kernel_sequence(s, 0, seq, sizeof seq))
+            fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
+        if (dem_kernel_sequence(s, 1, seq, sizeof seq))
+            fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all): %s\n", dem_rebuild_count(s), seq);
+        fprintf(stderr, "dem: device memory held: %.3g MB\n", (double)dem_device_bytes(s) / 1e6);
         dem_mc_stats mc;
         dem_mc_stats_get(s, &mc);
         if ((run.effects & DEM_EFFECT_MC_STRAIN) && run.mc_cap > 0)

@@ -561,7 +561,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
     memset(run, 0, sizeof *run);
     dem_sim *s = dem_create();
-    int first_wall[32];
+    int first_wall[DEM_MAX_WALLS];
     scene_origin *origin = NULL;
     if (!s) {
         snprintf(err, errlen, "%s: out of memory", sc->path);

@@ -121,7 +121,7 @@ static const cyaml_schema_field_t scene_fields[] = {
     CYAML_FIELD_SEQUENCE("effects", CYAML_FLAG_POINTER, scene_file, effects, &string_entry, 1, 16),
     CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_file, materials, &material_entry, 1, 64),
     CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 1, 64),
-    CYAML_FIELD_SEQUENCE("walls", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, walls, &wall_entry, 0, 32),
+    CYAML_FIELD_SEQUENCE("walls", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, walls, &wall_entry, 0, DEM_MAX_WALLS),
     VEC3("gravity", scene_file, gravity),
     {.key = "domain", .data_offset = 0,
      .value = {.type = CYAML_MAPPING, .flags = CYAML_FLAG_OPTIONAL, .data_size = sizeof(scene_file),

@@ -14,6 +14,7 @@
 #define DEM_BINNING_H
 #include "vec3.h"
 #include "dem_layout.h"
+#include "dem_kernels.h"
 
 DEM_INLINE int bin_axis(real xc, real lo, real inv_cell, int nc, int *outside)
 {
@@ -25,9 +26,9 @@ DEM_INLINE int bin_axis(real xc, real lo, real inv_cell, int nc, int *outside)
     return (int)s;
 }
 
-DEM_INLINE void bin_index_item(int i, vec3 lo, real inv_cell, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
-                               DEM_GLOBAL int *cell_of, DEM_GLOBAL int *cell_count, DEM_GLOBAL int *flags)
+DEM_ITEM(bin_index)
 {
+    vec3 lo = v3(lox, loy, loz);
     vec3 xi = v3_load(x, i);
     int outside = 0;
     int cx = bin_axis(xi.x, lo.x, inv_cell, ncx, &outside);
@@ -42,15 +43,16 @@ DEM_INLINE void bin_index_item(int i, vec3 lo, real inv_cell, int ncx, int ncy, 
 
 /* Exclusive scan in fixed blocks of DEM_SCAN_BLOCK items (dem_layout.h): block sums, a scan of the block sums,
  * then each block. Also used for the per-particle pair-record offsets (neighbor.h, contact_forces.h). */
-DEM_INLINE void scan_block_sum_item(int b, int ncells, DEM_CONST_GLOBAL int *count, DEM_GLOBAL int *block_sum)
+DEM_ITEM(scan_block_sum)
 {
+    int b = i;
     int s = 0, end = (b + 1) * DEM_SCAN_BLOCK < ncells ? (b + 1) * DEM_SCAN_BLOCK : ncells;
     for (int c = b * DEM_SCAN_BLOCK; c < end; c++)
         s += count[c];
     block_sum[b] = s;
 }
 
-DEM_INLINE void scan_block_sums_item(int nblocks, DEM_GLOBAL int *block_sum)
+DEM_ITEM(scan_block_sums) /* one item */
 {
     int s = 0;
     for (int b = 0; b < nblocks; b++) {
@@ -60,9 +62,9 @@ DEM_INLINE void scan_block_sums_item(int nblocks, DEM_GLOBAL int *block_sum)
     }
 }
 
-DEM_INLINE void scan_apply_item(int b, int ncells, DEM_CONST_GLOBAL int *count, DEM_CONST_GLOBAL int *block_sum,
-                                DEM_GLOBAL int *start)
+DEM_ITEM(scan_apply)
 {
+    int b = i;
     int s = block_sum[b], end = (b + 1) * DEM_SCAN_BLOCK < ncells ? (b + 1) * DEM_SCAN_BLOCK : ncells;
     for (int c = b * DEM_SCAN_BLOCK; c < end; c++) {
         start[c] = s;
@@ -72,15 +74,15 @@ DEM_INLINE void scan_apply_item(int b, int ncells, DEM_CONST_GLOBAL int *count, 
         start[ncells] = s;
 }
 
-DEM_INLINE void bin_scatter_item(int i, DEM_CONST_GLOBAL int *cell_of, DEM_CONST_GLOBAL int *start,
-                                 DEM_GLOBAL int *fill, DEM_GLOBAL int *cell_particles)
+DEM_ITEM(bin_scatter)
 {
     int c = cell_of[i];
     cell_particles[start[c] + DEM_ATOMIC_INC(&fill[c])] = i;
 }
 
-DEM_INLINE void bin_sort_item(int c, DEM_CONST_GLOBAL int *start, DEM_GLOBAL int *cell_particles)
+DEM_ITEM(bin_sort)
 {
+    int c = i;
     int s = start[c], e = start[c + 1];
     for (int k = s + 1; k < e; k++) { /* insertion sort: cells hold a handful of particles */
         int id = cell_particles[k], m = k - 1;

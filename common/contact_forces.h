@@ -22,6 +22,7 @@
  */
 #ifndef DEM_CONTACT_FORCES_H
 #define DEM_CONTACT_FORCES_H
+#include "dem_kernels.h"
 #include "hertz_mindlin.h"
 #include "wall_forces.h"
 #include "particle_stress.h"
@@ -97,16 +98,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
  * for the partner's pass 2 (in the partner's packed incoming records). The flag is copied
  * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
  * exactly one writer, the pair's owner. */
-DEM_INLINE void contact_pairs_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
-                                   DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
-                                   DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
-                                   DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                   DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
-                                   DEM_GLOBAL real *hist, DEM_GLOBAL unsigned char *touch, real dt,
-                                   DEM_CONST_GLOBAL int *in_start, DEM_GLOBAL real *pair, DEM_GLOBAL real *force,
-                                   DEM_GLOBAL real *torque, DEM_CONST_GLOBAL real *trace,
-                                   DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_disp,
-                                   DEM_GLOBAL real *mc_fn)
+DEM_ITEM(contact_pairs)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i];
@@ -170,19 +162,7 @@ DEM_INLINE void contact_pairs_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBA
  * walls. Rows are sorted, so the partners j < i are the front of the row, and their records lie packed at
  * pair[in_start[i] ...] (in_start: prefix sum of those counts, made at each rebuild): the whole pass reads the
  * records in memory order, and pass 1 does the scattered stores instead. */
-DEM_INLINE void contact_forces_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
-                                    DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
-                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
-                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                    DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror,
-                                    DEM_CONST_GLOBAL unsigned char *touch, DEM_CONST_GLOBAL int *in_start,
-                                    DEM_CONST_GLOBAL real *pair, real dt,
-                                    DEM_GLOBAL real *force, DEM_GLOBAL real *torque, int n, int nwalls,
-                                    DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                                    DEM_GLOBAL real *wall_hist, DEM_GLOBAL real *wall_pf,
-                                    DEM_GLOBAL unsigned *wall_mask, DEM_CONST_GLOBAL real *trace,
-                                    DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_wall_disp,
-                                    DEM_GLOBAL real *mc_wall_fn)
+DEM_ITEM(contact_forces)
 {
     vec3 fi = v3_load(force, i), ti = v3_zero();
     if (fx & DEM_EFFECT_FRICTION)

@@ -53,4 +53,8 @@ static inline int dem_serial_min(int *p, int v) { int o = *p; if (v < o) *p = v;
 #define DEM_ATOMIC_MIN(p, v) dem_serial_min((p), (v))
 #endif
 
+/* one byte per element (the row slots' touching flags): one token, so that the kernels' argument lists
+ * (dem_kernels.h) can name it */
+typedef unsigned char dem_byte;
+
 #endif /* DEM_REAL_H */

@@ -10,6 +10,7 @@
  */
 #ifndef DEM_INTEGRATE_H
 #define DEM_INTEGRATE_H
+#include "dem_kernels.h"
 #include "vec3.h"
 #include "dem_layout.h"
 #include "dem_effects.h"
@@ -29,12 +30,9 @@ DEM_INLINE void integrate_kick_velocity(unsigned fx, int i, real half_dt, vec3 g
         v3_store(w, i, v3_add(v3_load(w, i), v3_scale(v3_scale(v3_load(torque, i), ii), half_dt)));
 }
 
-DEM_INLINE void integrate_kick_drift_item(unsigned fx, int i, real dt, vec3 g, real half_skin2, DEM_GLOBAL real *x,
-                                          DEM_GLOBAL real *v, DEM_GLOBAL real *w, DEM_CONST_GLOBAL real *force,
-                                          DEM_CONST_GLOBAL real *torque, DEM_CONST_GLOBAL real *invmass,
-                                          DEM_CONST_GLOBAL real *invinertia, DEM_CONST_GLOBAL real *x_build,
-                                          DEM_GLOBAL int *flags)
+DEM_ITEM(integrate_kick_drift)
 {
+    vec3 g = v3(gx, gy, gz);
     integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
     vec3 xi = v3_add(v3_load(x, i), v3_scale(v3_load(v, i), dt));
     v3_store(x, i, xi);
@@ -43,10 +41,9 @@ DEM_INLINE void integrate_kick_drift_item(unsigned fx, int i, real dt, vec3 g, r
         DEM_ATOMIC_MAX(&flags[FLAG_REBUILD], 1);
 }
 
-DEM_INLINE void integrate_kick_item(unsigned fx, int i, real dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
-                                    DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
-                                    DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia)
+DEM_ITEM(integrate_kick)
 {
+    vec3 g = v3(gx, gy, gz);
     integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
 }
 #endif /* DEM_INTEGRATE_H */

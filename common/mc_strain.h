@@ -34,6 +34,7 @@
  */
 #ifndef DEM_MC_STRAIN_H
 #define DEM_MC_STRAIN_H
+#include "dem_kernels.h"
 #include "contact_geometry.h"
 #include "hertz_mindlin.h"
 
@@ -124,12 +125,7 @@ DEM_INLINE vec3 mc_direction(vec3 pk, vec3 pc, real *d, real *inv_d)
 /* D_i,c for every contact c of particle i: row slots into disp[i*maxn + c], walls into wall_disp[i*nwalls + k];
  * zero where c does not touch. f_k is read from fn (row slots) and wall_fn (walls). Each D_i,c sums k in canonical
  * order (ascending contact number), whichever path computes it. */
-DEM_INLINE void mc_strain_disp_item(unsigned fx, int i, int maxn, DEM_CONST_GLOBAL real *x,
-                                    DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *mat,
-                                    DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                    DEM_CONST_GLOBAL int *nbr_list, int nwalls, DEM_CONST_GLOBAL int *wall_int,
-                                    DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *fn,
-                                    DEM_CONST_GLOBAL real *wall_fn, DEM_GLOBAL real *disp, DEM_GLOBAL real *wall_disp)
+DEM_ITEM(mc_strain_disp)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
@@ -221,13 +217,7 @@ DEM_INLINE int mc_changed(real fnew, real fold, real tol)
     return d > tol * m;
 }
 
-DEM_INLINE void mc_strain_update_item(unsigned fx, int i, int maxn, real tol, DEM_CONST_GLOBAL real *x,
-                                      DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *mat,
-                                      DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                                      DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *nbr_mirror, int nwalls,
-                                      DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                                      DEM_CONST_GLOBAL real *disp, DEM_CONST_GLOBAL real *wall_disp,
-                                      DEM_GLOBAL real *fn, DEM_GLOBAL real *wall_fn, DEM_GLOBAL int *flags)
+DEM_ITEM(mc_strain_update)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];

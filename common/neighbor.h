@@ -10,16 +10,13 @@
  */
 #ifndef DEM_NEIGHBOR_H
 #define DEM_NEIGHBOR_H
+#include "dem_kernels.h"
 #include "vec3.h"
 #include "dem_layout.h"
 #include "dem_effects.h"
 #include "sorted_row.h"
 
-DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int ncz, DEM_CONST_GLOBAL real *x,
-                               DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *cell_of,
-                               DEM_CONST_GLOBAL int *cell_start, DEM_CONST_GLOBAL int *cell_particles,
-                               DEM_GLOBAL int *nbr_count, DEM_GLOBAL int *nbr_list, DEM_GLOBAL int *in_count,
-                               DEM_GLOBAL int *flags)
+DEM_ITEM(nbr_build)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
@@ -63,12 +60,7 @@ DEM_INLINE void nbr_build_item(int i, int maxn, real skin, int ncx, int ncy, int
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 
-DEM_INLINE void nbr_carry_item(unsigned fx, int i, int maxn, int old_maxn, DEM_CONST_GLOBAL int *nbr_count,
-                               DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *old_count,
-                               DEM_CONST_GLOBAL int *old_list, DEM_CONST_GLOBAL real *old_hist,
-                               DEM_CONST_GLOBAL unsigned char *old_touch, DEM_GLOBAL real *hist,
-                               DEM_GLOBAL unsigned char *touch, DEM_GLOBAL int *mirror, DEM_GLOBAL int *flags,
-                               DEM_CONST_GLOBAL real *old_mc_fn, DEM_GLOBAL real *mc_fn)
+DEM_ITEM(nbr_carry)
 {
     int on = old_count[i];
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;

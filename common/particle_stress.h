@@ -30,6 +30,7 @@
  */
 #ifndef DEM_PARTICLE_STRESS_H
 #define DEM_PARTICLE_STRESS_H
+#include "dem_kernels.h"
 #include "contact_geometry.h"
 #include "hertz_mindlin.h"
 
@@ -66,7 +67,7 @@ DEM_INLINE void stress_add(real *st, real c, vec3 n)
 /* Particle i's stress, one work item per particle: tensor = 0 writes the trace into out[i] (MC-stress pass 1, every
  * step), tensor = 1 the six components into out[6i...] (output, when FIELD_STRESS is read). The kernels pass a
  * constant, so each compiles only its own sums. Same terms, same order either way. */
-DEM_INLINE void stress_item(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GLOBAL real *x,
+DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GLOBAL real *x,
                             DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL int *mat,
                             DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                             DEM_CONST_GLOBAL int *nbr_list, int nwalls, DEM_CONST_GLOBAL int *wall_int,
@@ -131,5 +132,16 @@ DEM_INLINE real mc_stress_wall(unsigned fx, DEM_CONST_GLOBAL real *pmi, DEM_CONS
     if (!(fx & DEM_MCS_OWN_IN))
         ti = ti - stress_term(mcs_lever_wall(fx, ri, delta), fh, invvol[i]);
     return -(pmi[PM_MC_STRESS] * ri * delta) * ((ti + ti) / mcs_divisor(fx));
+}
+DEM_ITEM(stress_trace)
+{
+    stress_at(fx, 0, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int, wall_real,
+              trace);
+}
+
+DEM_ITEM(stress_tensor)
+{
+    stress_at(fx, 1, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int, wall_real,
+              stress);
 }
 #endif /* DEM_PARTICLE_STRESS_H */

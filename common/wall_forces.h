@@ -9,6 +9,7 @@
  */
 #ifndef DEM_WALL_FORCES_H
 #define DEM_WALL_FORCES_H
+#include "dem_kernels.h"
 #include "hertz_mindlin.h"
 #include "contact_geometry.h"
 #include "particle_stress.h"
@@ -71,19 +72,23 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
 }
 
 /* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK). */
-DEM_INLINE void wall_reduce_block_item(int b, int k, int n, int nblocks, DEM_CONST_GLOBAL real *wall_pf,
-                                       DEM_CONST_GLOBAL unsigned *wall_mask, DEM_GLOBAL real *partial)
+DEM_INLINE void wall_reduce_block_at(int b, int k, int n, int nblocks, DEM_CONST_GLOBAL real *wall_pf,
+                                     DEM_CONST_GLOBAL unsigned *wall_mask, DEM_GLOBAL real *partial)
 {
     vec3 s = v3_zero();
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int i = b * DEM_REDUCE_BLOCK; i < end; i++)
-        if ((wall_mask[i] >> k) & 1u) /* the wall receives minus the force on the particle */
-            s = v3_sub(s, v3_load(wall_pf, k * n + i));
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
+        if ((wall_mask[j] >> k) & 1u) /* the wall receives minus the force on the particle */
+            s = v3_sub(s, v3_load(wall_pf, k * n + j));
     v3_store(partial, k * nblocks + b, s);
 }
 
-DEM_INLINE void wall_reduce_final_item(int k, int nblocks, DEM_CONST_GLOBAL real *partial, DEM_GLOBAL real *wall_force)
+/* item i = block i % nblocks of wall i / nblocks */
+DEM_ITEM(wall_reduce_block) { wall_reduce_block_at(i % nblocks, i / nblocks, n, nblocks, wall_pf, wall_mask, partial); }
+
+DEM_ITEM(wall_reduce_final)
 {
+    int k = i;
     vec3 s = v3_zero();
     for (int b = 0; b < nblocks; b++)
         s = v3_add(s, v3_load(partial, k * nblocks + b));

@@ -1,15 +1,20 @@
-/* backend.h - the interface every backend implements: the plain C reference (reference/) and OpenCL (host/cl_*.c).
+/* backend.h - what a backend is: the plain C reference (reference/) and OpenCL (host/cl_backend.c).
  *
- * A backend owns the working arrays in its precision and runs the kernel steps; it makes no decisions. The driver
- * (host/sim.c) decides when to rebuild, grows capacities, moves walls and checks flags, identically for every
- * backend, so two backends given the same setup execute the same sequence of steps.
+ * A backend owns buffers and runs kernels; it makes no decisions. It implements a handful of primitives (allocate a
+ * registry buffer, launch a kernel of common/dem_kernels.h with its arguments looked up by their sources, fill,
+ * copy, read, write); everything else is written once on top of them: the buffers a run needs (walking the registry,
+ * common/dem_buffers.h, in host/backend.c), and the steps of a time step (host/<family>.c: binning, neighbour rows,
+ * contact forces, wall forces, integration, stress, MC-strain). The driver (host/sim.c) decides when to rebuild,
+ * grows capacities, moves walls and checks flags, identically for every backend, so two backends given the same
+ * setup execute the same sequence of launches.
  * Arrays cross this interface as raw bytes in the backend's precision (real_size 4 or 8).
  */
 #ifndef DEM_BACKEND_H
 #define DEM_BACKEND_H
 #include <stddef.h>
 #include "dem.h" /* dem_field */
-
+#include "dem_buffers.h"
+#include "dem_kernels.h"
 
 /* Everything a backend needs, already packed into its precision by the driver. */
 typedef struct {
@@ -35,43 +40,123 @@ typedef struct {
     const char *extra_build_options;
 } dem_setup;
 
-/* Size in bytes of a field for the effect mask, n particles, rows of capacity maxn, nwalls walls, ncells cells, rs-byte reals.
- * The one place that knows every layout's size (host/sim.c, both backends). */
-size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs);
+/* The kernels, by id (K_bin_index, ...), in the order of DEM_KERNEL_LIST. */
+#define DEM_ENUM_KERNEL(name) K_##name,
+typedef enum { DEM_KERNEL_LIST(DEM_ENUM_KERNEL) K__COUNT } dem_kernel_id;
+#undef DEM_ENUM_KERNEL
+extern const char *const dem_kernel_names[K__COUNT];
+
+/* Where a buffer is: a DEM_BUFFERS id, or a DEM_ROWS id of the current set or of the set being built. */
+typedef enum { TABLE_ONE, TABLE_CUR, TABLE_NEW } dem_table;
+typedef struct {
+    dem_table table;
+    int id;
+} dem_bufref;
+
+#define DEM_TRACE_MAX 256 /* launches recorded per step (dem_kernel_sequence) */
+/* Slots per neighbour row to start with; a build that needs more doubles it and builds again (host/sim.c). */
+#define DEM_INITIAL_ROW_CAPACITY 16
+/* Pair records per particle assumed by dem_memory_estimate (a dense packing has about 3 partners of higher id). */
+#define DEM_ESTIMATE_PAIRS_PER_PARTICLE 3
+
+/* What every backend keeps alike, as the first member of its struct dem_backend (DEM_CORE): dimensions, scalar
+ * argument values, the row sets, the aliases, and the size of every buffer held. */
+typedef struct {
+    unsigned fx;
+    int rs;
+    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red;
+    int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
+    size_t pair_cap;   /* pair records allocated */
+    int si[SI__COUNT];
+    double sr[SR__COUNT];
+    int alias[ALIAS__COUNT];               /* a DEM_BUFFERS id per alias */
+    size_t bytes[BUF__COUNT];              /* bytes held */
+    size_t row_bytes[2][ROW__COUNT];
+    double ktime[K__COUNT]; /* seconds per kernel, when timed (OpenCL: DEM_PROFILE set; reference: always) */
+    int timed;
+    int ntrace;                            /* launches since the driver last cleared it (sim.c) */
+    unsigned char trace[DEM_TRACE_MAX];    /* their kernel ids, the first DEM_TRACE_MAX */
+    char err[4096];
+} dem_core;
 
 typedef struct dem_backend dem_backend;
+#define DEM_CORE(b) ((dem_core *)(void *)(b))
 
 typedef struct {
     const char *name;
-    /* Allocates and uploads. On failure returns non-zero with a message in err. */
+    /* Allocates the backend with its core filled from the setup (dem_core_init) and every buffer (dem_buffers_create).
+     * On failure returns non-zero with a message in err. */
     int (*create)(dem_backend **out, const dem_setup *s, char *err, size_t errlen);
     void (*destroy)(dem_backend *b);
-    const char *(*error)(dem_backend *b); /* message of the last failure */
     const char *(*describe)(dem_backend *b); /* device / build description */
-    int (*reset_flags)(dem_backend *b);
-    int (*kick_drift)(dem_backend *b);
-    int (*bin)(dem_backend *b);
-    int (*nbr_reserve)(dem_backend *b, int maxn);  /* capacity of the rows being built */
-    int (*nbr_build)(dem_backend *b);
-    int (*nbr_commit)(dem_backend *b);             /* carry history, make the new rows current, save x_build */
-    int (*contact_forces)(dem_backend *b);         /* particle and wall contacts */
-    int (*wall_reduce)(dem_backend *b);            /* the force each wall received (contacts: contact_forces) */
-    int (*kick)(dem_backend *b);
-    int (*stress_trace)(dem_backend *b);           /* MC-stress pass 1: FIELD_STRESS_TRACE from the positions */
-    int (*stress_tensor)(dem_backend *b);          /* FIELD_STRESS from the positions (output) */
-    int (*mc_strain_disp)(dem_backend *b);         /* induced displacements from the stored MC-strain forces */
-    int (*mc_strain_update)(dem_backend *b, double tol); /* one fixed-point iteration; sets FLAG_MC_PENDING */
-    /* New wall positions and velocities (real[W_STRIDE*nwalls]). May return before the copy is done: the caller
-     * keeps src unchanged until its next blocking call (the driver's flag read follows at once). */
-    int (*set_walls)(dem_backend *b, const void *src);
-    int (*read)(dem_backend *b, dem_field f, void *dst, size_t bytes);
-    int (*write)(dem_backend *b, dem_field f, const void *src, size_t bytes);
-    int (*finish)(dem_backend *b);                 /* wait for queued work (timing) */
-    /* optional per-kernel timing: seconds spent in each named step since creation */
-    int (*kernel_times)(dem_backend *b, const char ***names, const double **seconds, int *count);
+    /* (Re)allocates a buffer: bytes (0 allowed), uploaded from init or zero-filled; the old contents are dropped.
+     * set: the row set (0 or 1) for a DEM_ROWS id. */
+    int (*alloc)(dem_backend *b, dem_table table, int set, int id, size_t bytes, const void *init);
+    int (*launch)(dem_backend *b, dem_kernel_id k); /* the kernel over DEM_ITEMS of its arguments */
+    int (*fill_int)(dem_backend *b, dem_bufref r, int value, size_t count);
+    int (*copy)(dem_backend *b, dem_bufref from, dem_bufref to, size_t bytes);
+    int (*read)(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes);
+    /* blocking = 0 may return before the copy is done: the caller keeps src unchanged until its next blocking call */
+    int (*write)(dem_backend *b, dem_bufref r, size_t offset, const void *src, size_t bytes, int blocking);
+    int (*finish)(dem_backend *b); /* wait for queued work (timing) */
 } dem_backend_ops;
 
 extern const dem_backend_ops dem_reference_ops_f32, dem_reference_ops_f64;
 extern const dem_backend_ops dem_opencl_ops;
+
+/* ---- host/backend.c: the registry walked ---- */
+/* Fills the core's dimensions and scalars from the setup. */
+void dem_core_init(dem_core *c, const dem_setup *s);
+/* The scalars that follow the row sets (MAXN_CUR, MAXN_NEW), after cur or maxn changed. */
+void dem_core_sync(dem_core *c);
+/* Element size and the bytes a buffer needs now. */
+size_t dem_elem_size(int elem, int rs);
+size_t dem_buffer_bytes(const dem_core *c, int id);
+size_t dem_row_bytes(const dem_core *c, int id, int maxn);
+/* Every buffer of the registry, at the setup's sizes, uploaded from the setup where the registry says so. */
+int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_setup *s);
+/* The current buffer behind a field, and its size. -1 when the field has none. */
+int dem_field_ref(const dem_core *c, dem_field f, dem_bufref *r, size_t *bytes);
+/* Size in bytes of a field for the effect mask, n particles, rows of capacity maxn, nwalls walls, ncells cells,
+ * rs-byte reals (from the registry). */
+size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs);
+/* Makes a lazy buffer (DEM_GATE_LAZY) at its full size when first needed. */
+int dem_buffer_ensure(const dem_backend_ops *ops, dem_backend *b, int id);
+/* Records a message in the core's err; returns 1. */
+int dem_core_fail(dem_core *c, const char *fmt, ...);
+/* The buffer a kernel argument of each buffer kind names, from its source (common/dem_kernels.h). */
+#define DEM_REF_BIN(c, src) ((dem_bufref){TABLE_ONE, BUF_##src})
+#define DEM_REF_BOUT DEM_REF_BIN
+#define DEM_REF_CIN(c, src) ((dem_bufref){TABLE_CUR, ROW_##src})
+#define DEM_REF_COUT DEM_REF_CIN
+#define DEM_REF_NIN(c, src) ((dem_bufref){TABLE_NEW, ROW_##src})
+#define DEM_REF_NOUT DEM_REF_NIN
+#define DEM_REF_AIN(c, src) ((dem_bufref){TABLE_ONE, (c)->alias[ALIAS_##src]})
+#define DEM_REF_AOUT DEM_REF_AIN
+/* Number of work items of kernel k with the core's current scalars. */
+size_t dem_kernel_items(const dem_core *c, dem_kernel_id k);
+
+/* Launches kernel k (o->launch), recording it in the core's trace. The steps launch through it. */
+int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k);
+
+/* ---- the steps, written once for every backend (host/<family>.c) ---- */
+int dem_stage_reset_flags(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_kick_drift(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_kick(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_bin(const dem_backend_ops *o, dem_backend *b);
+/* Exclusive prefix sum of count[0..items) into start[0..items] (fixed blocks of DEM_SCAN_BLOCK, integers). */
+int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, int count, int start, int block_sum, int items);
+int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int maxn); /* capacity of the rows being built */
+int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry history, swap, offsets, x_build */
+int dem_stage_contact_forces(const dem_backend_ops *o, dem_backend *b); /* particle and wall contacts */
+int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b);    /* the force each wall received */
+int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b);   /* MC-stress pass 1 */
+int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* FIELD_STRESS from the positions */
+int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double tol); /* sets FLAG_MC_PENDING */
+int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */
+int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
+int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes);
 
 #endif /* DEM_BACKEND_H */

@@ -1,28 +1,43 @@
-/* neighbor.c - host driver of kernels/neighbor.cl: build rows into the spare set, carry history into them. */
-#include "cl_backend.h"
+/* neighbor.c - the neighbour-row steps (kernels/neighbor.cl): capacity of the rows being built, the build, and the
+ * commit (history carried into the new rows, which become current; pair-record offsets; x_build). Written once for
+ * every backend. */
+#include "backend.h"
 
-int clb_nbr_build(dem_backend *b)
+int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int maxn)
 {
-    int s = 1 - b->cur;
-    cl_kernel k = b->k[K_NBR_BUILD];
-    return clb_arg_int(b, k, 0, b->n) || clb_arg_int(b, k, 1, b->maxn[s]) || clb_arg_real(b, k, 2, b->skin) ||
-           clb_arg_int(b, k, 3, b->ncx) || clb_arg_int(b, k, 4, b->ncy) || clb_arg_int(b, k, 5, b->ncz) ||
-           clb_arg_mem(b, k, 6, b->x) || clb_arg_mem(b, k, 7, b->radius) || clb_arg_mem(b, k, 8, b->cell_of) ||
-           clb_arg_mem(b, k, 9, b->cell_start) || clb_arg_mem(b, k, 10, b->cell_particles) ||
-           clb_arg_mem(b, k, 11, b->count[s]) || clb_arg_mem(b, k, 12, b->list[s]) ||
-           clb_arg_mem(b, k, 13, b->in_count) || clb_arg_mem(b, k, 14, b->flags) ||
-           clb_launch(b, K_NBR_BUILD, (size_t)b->n);
+    dem_core *c = DEM_CORE(b);
+    int set = 1 - c->cur;
+    if (c->maxn[set] == maxn)
+        return 0;
+    for (int id = 0; id < ROW__COUNT; id++) {
+        size_t bytes = dem_row_bytes(c, id, maxn);
+        if (bytes != c->row_bytes[set][id] && o->alloc(b, TABLE_NEW, set, id, bytes, NULL))
+            return 1;
+    }
+    c->maxn[set] = maxn;
+    dem_core_sync(c);
+    return 0;
 }
 
-int clb_nbr_carry(dem_backend *b)
+int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_nbr_build); }
+
+int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
 {
-    int s = 1 - b->cur, o = b->cur;
-    cl_kernel k = b->k[K_NBR_CARRY];
-    return clb_arg_int(b, k, 0, b->n) || clb_arg_int(b, k, 1, b->maxn[s]) || clb_arg_int(b, k, 2, b->maxn[o]) ||
-           clb_arg_mem(b, k, 3, b->count[s]) || clb_arg_mem(b, k, 4, b->list[s]) ||
-           clb_arg_mem(b, k, 5, b->count[o]) || clb_arg_mem(b, k, 6, b->list[o]) ||
-           clb_arg_mem(b, k, 7, b->hist[o]) || clb_arg_mem(b, k, 8, b->touch[o]) || clb_arg_mem(b, k, 9, b->hist[s]) ||
-           clb_arg_mem(b, k, 10, b->touch[s]) || clb_arg_mem(b, k, 11, b->mirror[s]) || clb_arg_mem(b, k, 12, b->flags) ||
-           clb_arg_mem(b, k, 13, b->mc_fn[o]) || clb_arg_mem(b, k, 14, b->mc_fn[s]) ||
-           clb_launch(b, K_NBR_CARRY, (size_t)b->n);
+    dem_core *c = DEM_CORE(b);
+    if (dem_launch(o, b, K_nbr_carry))
+        return 1;
+    c->cur = 1 - c->cur;
+    dem_core_sync(c);
+    int total = 0;
+    dem_bufref start = {TABLE_ONE, BUF_IN_START};
+    if (dem_stage_scan(o, b, BUF_IN_COUNT, BUF_IN_START, BUF_IN_BLOCK_SUM, c->n) ||
+        o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total))
+        return 1;
+    if ((size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0) { /* rewritten every step before being read */
+        c->pair_cap = (size_t)total + (size_t)total / 4 + 16;
+        if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL))
+            return 1;
+    }
+    dem_bufref x = {TABLE_ONE, BUF_X}, xb = {TABLE_ONE, BUF_X_BUILD};
+    return o->copy(b, x, xb, c->bytes[BUF_X]);
 }

@@ -163,8 +163,8 @@ int dem_add_wall(dem_sim *s, const dem_wall *w)
     if (not_started(s))
         return -1;
     int k = s->nwalls;
-    if (k >= 32)
-        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most 32)"), -1;
+    if (k >= DEM_MAX_WALLS)
+        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most %d)", DEM_MAX_WALLS), -1;
     if (w->kind != DEM_WALL_PLANE && w->kind != DEM_WALL_CYLINDER)
         return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown kind %d", k, (int)w->kind), -1;
     if (w->material < 0 || w->material >= s->nmat)
@@ -336,14 +336,16 @@ int dem_effect_bit(const char *name)
 
 /* ---- stepping ---- */
 
+static int sim_rebuild_traced(dem_sim *s);
+
 static int be_fail(dem_sim *s)
 {
-    return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, s->ops->error(s->be));
+    return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
 }
 
 static int read_flags(dem_sim *s, int *flags)
 {
-    return s->ops->read(s->be, FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? be_fail(s) : 0;
+    return dem_stage_read_field(s->ops, s->be, FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? be_fail(s) : 0;
 }
 
 static int report_out_of_domain(dem_sim *s, int id)
@@ -351,7 +353,7 @@ static int report_out_of_domain(dem_sim *s, int id)
     int rs = s->setup.real_size;
     double p[3] = {NAN, NAN, NAN};
     unsigned char *buf = malloc((size_t)3 * s->n * rs);
-    if (buf && s->ops->read(s->be, FIELD_X, buf, (size_t)3 * s->n * rs) == 0)
+    if (buf && dem_stage_read_field(s->ops, s->be, FIELD_X, buf, (size_t)3 * s->n * rs) == 0)
         for (int d = 0; d < 3; d++)
             p[d] = rs == 8 ? ((double *)buf)[3 * id + d] : ((float *)buf)[3 * id + d];
     free(buf);
@@ -361,17 +363,37 @@ static int report_out_of_domain(dem_sim *s, int id)
                     s->step, id, p[0], p[1], p[2], s->lo[0], s->hi[0], s->lo[1], s->hi[1], s->lo[2], s->hi[2]);
 }
 
+/* Copies launches [a, z) of the core's trace after the n already in dst. */
+static int copy_trace(const dem_core *c, int a, int z, unsigned char *dst, int n)
+{
+    for (int k = a; k < z && k < DEM_TRACE_MAX && n < DEM_TRACE_MAX; k++)
+        dst[n++] = c->trace[k];
+    return n;
+}
+
 int sim_rebuild(dem_sim *s)
 {
+    int e = sim_rebuild_traced(s);
+    if (!e) {
+        const dem_core *c = DEM_CORE(s->be);
+        s->nseq_rebuild = copy_trace(c, s->rebuild_at, c->ntrace, s->seq_rebuild, 0);
+        s->rebuild_len = c->ntrace - s->rebuild_at;
+    }
+    return e;
+}
+
+static int sim_rebuild_traced(dem_sim *s)
+{
     int flags[FLAG_COUNT];
-    if (s->ops->bin(s->be))
+    s->rebuild_at = DEM_CORE(s->be)->ntrace;
+    if (dem_stage_bin(s->ops, s->be))
         return be_fail(s);
     if (read_flags(s, flags))
         return DEM_ERR_DEVICE;
     if (flags[FLAG_OUT_OF_DOMAIN] != DEM_NO_PARTICLE)
         return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
     for (;;) {
-        if (s->ops->nbr_reserve(s->be, s->maxn) || s->ops->nbr_build(s->be))
+        if (dem_stage_nbr_reserve(s->ops, s->be, s->maxn) || dem_stage_nbr_build(s->ops, s->be))
             return be_fail(s);
         if (read_flags(s, flags))
             return DEM_ERR_DEVICE;
@@ -380,10 +402,10 @@ int sim_rebuild(dem_sim *s)
         while (s->maxn < flags[FLAG_NBR_NEEDED])
             s->maxn *= 2;
         flags[FLAG_NBR_NEEDED] = 0;
-        if (s->ops->write(s->be, FIELD_FLAGS, flags, sizeof flags))
+        if (dem_stage_write_field(s->ops, s->be, FIELD_FLAGS, flags, sizeof flags))
             return be_fail(s);
     }
-    if (s->ops->nbr_commit(s->be))
+    if (dem_stage_nbr_commit(s->ops, s->be))
         return be_fail(s);
     if (read_flags(s, flags))
         return DEM_ERR_DEVICE;
@@ -399,15 +421,15 @@ static int mc_strain(dem_sim *s)
 {
     long it = 0;
     int converged = 0;
-    if (s->ops->mc_strain_disp(s->be))
+    if (dem_stage_mc_strain_disp(s->ops, s->be))
         return be_fail(s);
     while (it < s->mc_max_iter) {
         int flags[FLAG_COUNT];
         if (read_flags(s, flags))
             return DEM_ERR_DEVICE;
         flags[FLAG_MC_PENDING] = 0;
-        if (s->ops->write(s->be, FIELD_FLAGS, flags, sizeof flags) || s->ops->mc_strain_update(s->be, s->mc_tol) ||
-            s->ops->mc_strain_disp(s->be))
+        if (dem_stage_write_field(s->ops, s->be, FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc_tol) ||
+            dem_stage_mc_strain_disp(s->ops, s->be))
             return be_fail(s);
         it++;
         if (read_flags(s, flags))
@@ -428,16 +450,16 @@ static int mc_strain(dem_sim *s)
 
 static int forces(dem_sim *s)
 {
-    if ((s->effects & DEM_EFFECT_MC_STRESS) && s->ops->stress_trace(s->be))
+    if ((s->effects & DEM_EFFECT_MC_STRESS) && dem_stage_stress_trace(s->ops, s->be))
         return be_fail(s);
     if (s->effects & DEM_EFFECT_MC_STRAIN) {
         int e = mc_strain(s);
         if (e)
             return e;
     }
-    if (s->ops->contact_forces(s->be))
+    if (dem_stage_contact_forces(s->ops, s->be))
         return be_fail(s);
-    if (s->nwalls && (s->effects & DEM_EFFECT_WALLS) && s->ops->wall_reduce(s->be))
+    if (s->nwalls && (s->effects & DEM_EFFECT_WALLS) && dem_stage_wall_reduce(s->ops, s->be))
         return be_fail(s);
     return 0;
 }
@@ -462,7 +484,7 @@ int dem_start(dem_sim *s, const dem_config *c)
         return sim_fail(s, DEM_ERR_DEVICE, "%s", err);
     }
     s->started = 1;
-    if (s->ops->reset_flags(s->be))
+    if (dem_stage_reset_flags(s->ops, s->be))
         return be_fail(s);
     if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
@@ -475,7 +497,10 @@ int dem_step(dem_sim *s, long nsteps)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     for (long k = 0; k < nsteps; k++) {
         int flags[FLAG_COUNT], e;
-        if (s->ops->reset_flags(s->be) || s->ops->kick_drift(s->be))
+        dem_core *c = DEM_CORE(s->be);
+        c->ntrace = 0;
+        s->rebuild_at = s->rebuild_len = 0;
+        if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
             return be_fail(s);
         /* walls move with the particles' drift: positions at t + dt, velocity of this step */
         if (s->nwalls) {
@@ -486,7 +511,7 @@ int dem_step(dem_sim *s, long nsteps)
                     s->wall_pos[w][d] += v[d] * s->dt;
             }
             sim_pack_walls(s);
-            if (s->ops->set_walls(s->be, s->wall_real))
+            if (dem_stage_set_walls(s->ops, s->be, s->wall_real))
                 return be_fail(s);
         }
         if (read_flags(s, flags))
@@ -495,8 +520,11 @@ int dem_step(dem_sim *s, long nsteps)
             return e;
         if ((e = forces(s)))
             return e;
-        if (s->ops->kick(s->be))
+        if (dem_stage_kick(s->ops, s->be))
             return be_fail(s);
+        s->nseq_step = copy_trace(c, 0, s->rebuild_len ? s->rebuild_at : c->ntrace, s->seq_step, 0);
+        if (s->rebuild_len)
+            s->nseq_step = copy_trace(c, s->rebuild_at + s->rebuild_len, c->ntrace, s->seq_step, s->nseq_step);
         s->step++;
     }
     return 0;
@@ -534,9 +562,9 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 {
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    if (f == FIELD_STRESS && s->ops->stress_tensor(s->be)) /* computed from the current positions when asked */
+    if (f == FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return be_fail(s);
-    return s->ops->read(s->be, f, dst, bytes) ? be_fail(s) : 0;
+    return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? be_fail(s) : 0;
 }
 
 int dem_get_field(dem_sim *s, dem_field f, double *dst)
@@ -559,7 +587,7 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
 {
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
-    double all[3 * 32];
+    double all[3 * DEM_MAX_WALLS];
     int e = dem_get_field(s, FIELD_WALL_FORCE, all);
     if (!e)
         memcpy(f, all + 3 * wall, sizeof(double) * 3);
@@ -577,11 +605,14 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3])
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count)
 {
     *count = 0;
-    if (!s->be || !s->ops->kernel_times)
+    if (!s->be)
         return 0;
     if (s->ops->finish(s->be))
         return be_fail(s);
-    return s->ops->kernel_times(s->be, names, seconds, count);
+    *names = (const char **)dem_kernel_names;
+    *seconds = DEM_CORE(s->be)->ktime;
+    *count = DEM_CORE(s->be)->timed ? K__COUNT : 0;
+    return 0;
 }
 
 int dem_device_count(void) { return cl_device_count(); }
@@ -596,5 +627,63 @@ int dem_device_name(int k, char *buf, size_t len)
     }
     snprintf(buf, len, "%s / %s (%s)%s", info.platform_name, info.device_name, info.device_version,
              info.fp64 ? ", fp64" : "");
+    return 0;
+}
+
+int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
+{
+    const unsigned char *q = rebuild ? s->seq_rebuild : s->seq_step;
+    int n = rebuild ? s->nseq_rebuild : s->nseq_step;
+    size_t o = 0;
+    if (len)
+        buf[0] = 0;
+    for (int k = 0; k < n && o < len;) {
+        /* a repeated pair of launches (an iteration) is written once with its count */
+        int rep = 1;
+        while (k + 2 * rep + 1 < n && q[k + 2 * rep] == q[k] && q[k + 2 * rep + 1] == q[k + 1])
+            rep++;
+        if (rep > 1) {
+            o += (size_t)snprintf(buf + o, len - o, "%s%d x (%s, %s)", o ? ", " : "", rep, dem_kernel_names[q[k]],
+                                  dem_kernel_names[q[k + 1]]);
+            k += 2 * rep;
+        } else {
+            o += (size_t)snprintf(buf + o, len - o, "%s%s", o ? ", " : "", dem_kernel_names[q[k]]);
+            k++;
+        }
+    }
+    return n;
+}
+
+size_t dem_device_bytes(const dem_sim *s)
+{
+    if (!s->be)
+        return 0;
+    const dem_core *c = DEM_CORE(s->be);
+    size_t sum = 0;
+    for (int id = 0; id < BUF__COUNT; id++)
+        sum += c->bytes[id];
+    for (int set = 0; set < 2; set++)
+        for (int id = 0; id < ROW__COUNT; id++)
+            sum += c->row_bytes[set][id];
+    return sum;
+}
+
+int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
+{
+    *bytes = 0;
+    if (s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_memory_estimate is for a run not started (dem_device_bytes after)");
+    s->cfg = *c;
+    int e = sim_validate(s);
+    if (e || (e = sim_pack(s)))
+        return e;
+    dem_core core;
+    dem_core_init(&core, &s->setup);
+    core.pair_cap = (size_t)DEM_ESTIMATE_PAIRS_PER_PARTICLE * (size_t)s->n;
+    for (int id = 0; id < BUF__COUNT; id++)
+        *bytes += dem_buffer_bytes(&core, id);
+    for (int set = 0; set < 2; set++)
+        for (int id = 0; id < ROW__COUNT; id++)
+            *bytes += dem_row_bytes(&core, id, core.maxn[set]);
     return 0;
 }

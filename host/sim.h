@@ -13,7 +13,7 @@ struct dem_sim {
     int nmat;
     dem_material mats[64];
     int nwalls;
-    dem_wall walls[32];
+    dem_wall walls[DEM_MAX_WALLS];
     double gravity[3];
     double lo[3], hi[3];
     int have_domain;
@@ -33,12 +33,16 @@ struct dem_sim {
     dem_backend *be;
     int maxn;
     long step, rebuilds;
-    double wall_pos[32][3]; /* wall reference point now [m] */
-    long wall_stage_steps[32][DEM_MAX_STAGES];
+    double wall_pos[DEM_MAX_WALLS][3]; /* wall reference point now [m] */
+    long wall_stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;
     char err[4096];
     char desc[1024];
+    /* the kernels launched (ids, dem_kernel_names): by the last step, without a rebuild's, and by the last rebuild */
+    unsigned char seq_step[DEM_TRACE_MAX], seq_rebuild[DEM_TRACE_MAX];
+    int nseq_step, nseq_rebuild;
+    int rebuild_at, rebuild_len; /* the current step's rebuild within the core's trace */
 };
 
 /* sim_setup.c */

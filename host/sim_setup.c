@@ -136,7 +136,7 @@ void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3])
 
 void sim_pack_walls(dem_sim *s)
 {
-    double tab[W_STRIDE * 32];
+    double tab[W_STRIDE * DEM_MAX_WALLS];
     for (int k = 0; k < s->nwalls; k++) {
         const dem_wall *w = &s->walls[k];
         double *t = tab + k * W_STRIDE, v[3];
@@ -162,6 +162,12 @@ int sim_pack(dem_sim *s)
 {
     dem_setup *u = &s->setup;
     int n = s->n, rs = (int)s->cfg.precision;
+    for (int k = 0; k < 9; k++) { /* packed again (dem_memory_estimate, then dem_start): the last packing holds */
+        free(s->packed[k]);
+        s->packed[k] = NULL;
+    }
+    free(s->wall_real);
+    s->wall_real = NULL;
     memset(u, 0, sizeof *u);
     u->real_size = rs;
     /* the MC-stress convention is compiled in with the effects (only when MC-stress is on: other runs' kernels and
@@ -305,7 +311,7 @@ int sim_pack(dem_sim *s)
     memcpy(u->gravity, s->gravity, sizeof u->gravity);
     u->skin = skin + reach_extra;
     u->half_skin2 = 0.25 * skin * skin;
-    u->maxn = 16;
+    u->maxn = DEM_INITIAL_ROW_CAPACITY;
     u->device = s->cfg.device;
     u->local_size = s->cfg.local_size;
     u->source_dir = s->cfg.source_dir;

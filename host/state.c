@@ -135,9 +135,9 @@ int dem_state_set(dem_sim *s, const dem_state *st)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld and %ld contacts", st->step, st->npairs);
     size_t v3b = 3 * (size_t)n * rs;
     int e = 0;
-    if (s->ops->write(s->be, FIELD_X, st->x, v3b) || s->ops->write(s->be, FIELD_V, st->v, v3b) ||
-        s->ops->write(s->be, FIELD_W, st->w, v3b))
-        return sim_fail(s, DEM_ERR_DEVICE, "%s", s->ops->error(s->be));
+    if (dem_stage_write_field(s->ops, s->be, FIELD_X, st->x, v3b) || dem_stage_write_field(s->ops, s->be, FIELD_V, st->v, v3b) ||
+        dem_stage_write_field(s->ops, s->be, FIELD_W, st->w, v3b))
+        return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     if ((e = sim_rebuild(s)))
         return e;
     int maxn = s->maxn;
@@ -162,14 +162,14 @@ int dem_state_set(dem_sim *s, const dem_state *st)
             memcpy(mcf + (size_t)m * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
         }
     }
-    if (!e && (s->ops->write(s->be, FIELD_TOUCH, touch, (size_t)n * maxn) ||
-               s->ops->write(s->be, FIELD_HIST, hist, hb) || s->ops->write(s->be, FIELD_MC_FORCE, mcf, fb) ||
-               s->ops->write(s->be, FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, FIELD_MC_WALL_FORCE)) ||
-               s->ops->write(s->be, FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, FIELD_WALL_HIST)) ||
-               s->ops->write(s->be, FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
-               s->ops->write(s->be, FIELD_FORCE, st->force, v3b) || s->ops->write(s->be, FIELD_TORQUE, st->torque, v3b) ||
-               s->ops->write(s->be, FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
-        e = sim_fail(s, DEM_ERR_DEVICE, "%s", s->ops->error(s->be));
+    if (!e && (dem_stage_write_field(s->ops, s->be, FIELD_TOUCH, touch, (size_t)n * maxn) ||
+               dem_stage_write_field(s->ops, s->be, FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, FIELD_MC_FORCE, mcf, fb) ||
+               dem_stage_write_field(s->ops, s->be, FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, FIELD_MC_WALL_FORCE)) ||
+               dem_stage_write_field(s->ops, s->be, FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, FIELD_WALL_HIST)) ||
+               dem_stage_write_field(s->ops, s->be, FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
+               dem_stage_write_field(s->ops, s->be, FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, FIELD_TORQUE, st->torque, v3b) ||
+               dem_stage_write_field(s->ops, s->be, FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
+        e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(touch), free(hist), free(mcf);
     if (e)
         return e;

@@ -42,6 +42,8 @@ typedef struct {
 } dem_material;
 
 #define DEM_MAX_STAGES 16
+/* Most walls in a run: each particle keeps a 32-bit mask of the walls it touches (common/dem_layout.h). */
+#define DEM_MAX_WALLS 32
 typedef struct {
     double duration;    /* [s] */
     double velocity[3]; /* [m/s] */
@@ -198,6 +200,16 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3]);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
+/* The kernels the last step launched, in order, without a rebuild's (rebuild = 0), or those of the last neighbour
+ * rebuild (rebuild = 1), as "name, name, N x (name, name), ..." (an iteration's pair once, with its count).
+ * Returns the number of launches (0 before the first step). */
+int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len);
+/* Bytes the backend holds now for the run (every buffer of the registry, both neighbour-row sets). */
+size_t dem_device_bytes(const dem_sim *s);
+/* Before dem_start: the bytes the run would hold on the device at the start, from the same registry (rows at their
+ * initial capacity, three pair records per particle; rows double when a packing needs more). Validates and packs
+ * the description as dem_start does. */
+int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes);
 
 /* The dynamic state of a run, enough to continue it bit for bit (a checkpoint). Real arrays are raw bytes in the
  * run's precision (real_size 4 or 8). Contacts: the touching pairs (i < j) and, with friction, their tangential
@@ -207,7 +219,7 @@ typedef struct {
     int n, nwalls, real_size;
     void *x, *v, *w, *force, *torque; /* real[3n] */
     void *wall_force;                 /* real[3 nwalls] */
-    double wall_pos[32][3];           /* [m] */
+    double wall_pos[DEM_MAX_WALLS][3]; /* [m] */
     long npairs;
     int *pair_i, *pair_j;
     void *pair_hist;                  /* real[3 npairs] */

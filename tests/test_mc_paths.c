@@ -58,7 +58,7 @@ static void test_slow_path_equals_fast_path(void **st)
     memset(slow, 0xff, sizeof slow);
     memset(fast, 0xff, sizeof fast);
     for (int i = 0; i < N; i++)
-        mc_strain_disp_item(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, i, MAXN, x, radius, mat, pairmat, 2, count,
+        mc_strain_disp_item(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, i, N, MAXN, 2, x, radius, mat, pairmat, count,
                             list, NW, wall_int, wall_real, fn, wall_fn, slow, wslow);
     ref_mc_strain_disp_f64(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, N, MAXN, 2, x, radius, mat, pairmat, count,
                            list, NW, wall_int, wall_real, fn, wall_fn, fast, wfast);

@@ -251,7 +251,13 @@ static void test_output_and_xdmf(void **st)
                      0);
     /* the run reports its effects and its kernels, and shows progress */
     assert_non_null(strstr(err, "effects hertz+damping+friction+gravity+walls"));
-    assert_non_null(strstr(err, "kernels per step: integrate_kick_drift, contact_pairs, contact_forces"));
+    /* the kernels as the library launched them (dem_kernel_sequence), walls included */
+    assert_non_null(strstr(err, "kernels of the last step: integrate_kick_drift, contact_pairs, contact_forces, "
+                                "wall_reduce_block, wall_reduce_final, integrate_kick\n"));
+    assert_non_null(strstr(err, "at each neighbour rebuild"));
+    assert_non_null(strstr(err, "bin_index, scan_block_sum, scan_block_sums, scan_apply, bin_scatter, bin_sort, "
+                                "nbr_build, nbr_carry, scan_block_sum, scan_block_sums, scan_apply\n"));
+    assert_non_null(strstr(err, "dem: device memory held: "));
     assert_non_null(strstr(err, "step 660/660 (100.0 %)"));
     assert_false(exists("%s/o.h5.part", tmp));
     snprintf(p, sizeof p, "%s/o.h5", tmp);

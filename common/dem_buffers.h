@@ -1,0 +1,104 @@
+/* dem_buffers.h - the one registry of device buffers and kernel scalars (issue 18): name, element type, size rule, the
+ * effect that gates it, the field it is read and written as, and what it starts from. The backends create, grow,
+ * look up and destroy buffers by walking it (host/backend.c); the kernels' argument lists (dem_kernels.h) name their
+ * sources here. Host only: the kernels see plain pointers.
+ *
+ * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
+ * blocks of the cells), NBR (reduction blocks of the particles), MAXN (capacity of the row set the buffer belongs
+ * to) and PAIRS (pair records allocated), in elements.
+ * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
+ * made when first needed (the output stress tensor).
+ * Init: what create uploads: SETUP(member) of dem_setup, or NONE (zero-filled).
+ */
+#ifndef DEM_BUFFERS_H
+#define DEM_BUFFERS_H
+#include "dem_layout.h"
+#include "dem_effects.h"
+
+/* element types */
+enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
+#define DEM_GATE_LAZY 0x80000000u
+
+/* ENTRY(ID, element, count, gate, field, init) - buffers that exist once */
+#define DEM_BUFFERS(ENTRY)                                                                                               \
+    ENTRY(X, REAL, 3 * N, 0, FIELD_X, SETUP(x))                                                                          \
+    ENTRY(V, REAL, 3 * N, 0, FIELD_V, SETUP(v))                                                                          \
+    ENTRY(W, REAL, 3 * N, 0, FIELD_W, SETUP(w))                                                                          \
+    ENTRY(FORCE, REAL, 3 * N, 0, FIELD_FORCE, NONE)                                                                      \
+    ENTRY(TORQUE, REAL, 3 * N, 0, FIELD_TORQUE, NONE)                                                                    \
+    ENTRY(RADIUS, REAL, N, 0, -1, SETUP(radius))                                                                         \
+    ENTRY(INVMASS, REAL, N, 0, -1, SETUP(invmass))                                                                       \
+    ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia))                                                                 \
+    ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol))                                                                         \
+    ENTRY(X_BUILD, REAL, 3 * N, 0, FIELD_X_BUILD, SETUP(x))                                                              \
+    ENTRY(MAT, INT, N, 0, -1, SETUP(mat))                                                                                \
+    ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat))                                                 \
+    ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int))                                                         \
+    ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, FIELD_WALL_REAL, SETUP(wall_real))                                          \
+    ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, FIELD_WALL_HIST, NONE)                                       \
+    ENTRY(WALL_PF, REAL, 3 * N * NW, 0, -1, NONE)                                                                        \
+    ENTRY(WALL_MASK, UINT, N, 0, FIELD_WALL_MASK, NONE)                                                                  \
+    ENTRY(PARTIAL, REAL, 3 * NBR * NW, 0, -1, NONE)                                                                      \
+    ENTRY(WALL_FORCE, REAL, 3 * NW, 0, FIELD_WALL_FORCE, NONE)                                                           \
+    ENTRY(CELL_OF, INT, N, 0, -1, NONE)                                                                                  \
+    ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE)                                                                              \
+    ENTRY(CELL_START, INT, NC + 1, 0, FIELD_CELL_START, NONE)                                                            \
+    ENTRY(CELL_FILL, INT, NC, 0, -1, NONE)                                                                               \
+    ENTRY(CELL_PARTICLES, INT, N, 0, FIELD_CELL_PARTICLES, NONE)                                                         \
+    ENTRY(BLOCK_SUM, INT, NBS, 0, -1, NONE)                                                                              \
+    ENTRY(FLAGS, INT, FLAG_COUNT, 0, FIELD_FLAGS, NONE)                                                                  \
+    ENTRY(IN_COUNT, INT, N, 0, -1, NONE)                                                                                 \
+    ENTRY(IN_START, INT, N + 1, 0, -1, NONE)                                                                             \
+    ENTRY(IN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE)                                     \
+    ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, -1, NONE)                                                                    \
+    ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, FIELD_STRESS_TRACE, NONE)                                                \
+    ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, FIELD_STRESS, NONE)                                                \
+    ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, FIELD_MC_WALL_FORCE, NONE)                                     \
+    ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, FIELD_MC_WALL_DISP, NONE)
+
+/* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
+ * (swapped at each rebuild); the field names the current set's */
+#define DEM_ROWS(ENTRY)                                                                                                  \
+    ENTRY(COUNT, INT, N, 0, FIELD_NBR_COUNT)                                                                             \
+    ENTRY(LIST, INT, N * MAXN, 0, FIELD_NBR_LIST)                                                                        \
+    ENTRY(HIST, REAL, 3 * N * MAXN, DEM_EFFECT_FRICTION, FIELD_HIST)                                                     \
+    ENTRY(TOUCH, BYTE, N * MAXN, 0, FIELD_TOUCH)                                                                         \
+    ENTRY(MIRROR, INT, N * MAXN, 0, -1)                                                                                  \
+    ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, FIELD_MC_FORCE)                                                   \
+    ENTRY(MC_DISP, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, FIELD_MC_DISP)
+
+/* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
+#define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)
+
+/* ENTRY(ID) - scalar kernel arguments */
+#define DEM_SCALARS_INT(ENTRY)                                                                                       \
+    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ)              \
+    ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS)
+#define DEM_SCALARS_REAL(ENTRY)                                                                                      \
+    ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \
+    ENTRY(GZ) ENTRY(MC_TOL)
+
+#define DEM_ENUM_BUF(id, elem, count, gate, field, init) BUF_##id,
+#define DEM_ENUM_ROW(id, elem, count, gate, field) ROW_##id,
+#define DEM_ENUM_ID(id) id,
+enum { DEM_BUFFERS(DEM_ENUM_BUF) BUF__COUNT };
+enum { DEM_ROWS(DEM_ENUM_ROW) ROW__COUNT };
+#define DEM_ENUM_ALIAS(id) ALIAS_##id,
+enum { DEM_ALIASES(DEM_ENUM_ALIAS) ALIAS__COUNT };
+#define DEM_ENUM_SI(id) SI_##id,
+#define DEM_ENUM_SR(id) SR_##id,
+enum { DEM_SCALARS_INT(DEM_ENUM_SI) SI__COUNT };
+enum { DEM_SCALARS_REAL(DEM_ENUM_SR) SR__COUNT };
+#undef DEM_ENUM_BUF
+#undef DEM_ENUM_ROW
+#undef DEM_ENUM_ID
+#undef DEM_ENUM_ALIAS
+#undef DEM_ENUM_SI
+#undef DEM_ENUM_SR
+
+/* element types of the registry, for the kernels' lists to be checked against (host/backend.c) */
+#define DEM_ELEM_OF_real DEM_ELEM_REAL
+#define DEM_ELEM_OF_int DEM_ELEM_INT
+#define DEM_ELEM_OF_unsigned DEM_ELEM_UINT
+#define DEM_ELEM_OF_dem_byte DEM_ELEM_BYTE
+#endif /* DEM_BUFFERS_H */

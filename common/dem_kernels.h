@@ -1,0 +1,191 @@
+/* dem_kernels.h - every kernel's argument list, written once (issue 18).
+ *
+ * From each list below come, by the macros at the end of this file:
+ *   - the OpenCL kernel (kernels/<family>.cl: one DEM_KERNEL(name) line),
+ *   - the work-item function's signature (common/<family>.h: DEM_ITEM(name) { body }),
+ *   - the reference loop and its prototype (reference/<family>.c: one DEM_REF_LOOP(name) line),
+ *   - the host's argument setting (host/cl_backend.c) and the reference backend's call (reference/backend_ref.c),
+ *     which look each argument's value up by its source (the last field) in the buffer and scalar registries
+ *     (common/dem_buffers.h).
+ * Adding an argument is one line here (and its use in the item's body); an argument whose source is not in a
+ * registry, or whose element type disagrees with it, does not compile.
+ *
+ * An entry is A(kind, type, name, source); the first entry of a list is written F(...) (it takes no leading comma).
+ * Kinds:
+ *   I, R       an int / a real scalar; source: a DEM_SCALARS id (the host converts a real with a plain cast)
+ *   BIN, BOUT  a buffer read / written; source: a DEM_BUFFERS id
+ *   CIN, COUT  a neighbour-row buffer of the current row set; source: a DEM_ROWS id
+ *   NIN, NOUT  the same of the row set being built (the new rows, before they become current)
+ *   AIN, AOUT  a buffer named by an alias the driver sets before the launch (the scan's operands); source: a
+ *              DEM_ALIASES id
+ * Every work-item function is called as name_item(fx, i, <the list>): fx the effect mask (DEM_EFFECTS in a kernel,
+ * a run-time value in the reference), i the item, 0 <= i < DEM_ITEMS_<name> (an expression of the list's names).
+ */
+#ifndef DEM_KERNELS_H
+#define DEM_KERNELS_H
+#ifdef DEM_REAL_SIZE /* the host, which has no precision, uses the lists only */
+#include "dem_real.h"
+#endif
+
+/* ---- the kernels, in the order of their families ---- */
+#define DEM_KERNEL_LIST(K)                                                                                           \
+    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)       \
+    K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                      \
+    K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                   \
+    K(mc_strain_update)
+
+/* ---- binning.h ---- */
+#define DEM_ARGS_bin_index(F, A)                                                                                     \
+    F(I, int, n, N) A(R, real, lox, LOX) A(R, real, loy, LOY) A(R, real, loz, LOZ) A(R, real, inv_cell, INV_CELL)  \
+    A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BOUT, int, cell_of, CELL_OF)  \
+    A(BOUT, int, cell_count, CELL_COUNT) A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_bin_index n
+/* the scan (exclusive prefix sum of count into start) works on the buffers its aliases name */
+#define DEM_ARGS_scan_block_sum(F, A)                                                                                \
+    F(I, int, nblocks, SCAN_NBLOCKS) A(I, int, ncells, SCAN_ITEMS) A(AIN, int, count, SCAN_COUNT)                    \
+    A(AOUT, int, block_sum, SCAN_BLOCK_SUM)
+#define DEM_ITEMS_scan_block_sum nblocks
+#define DEM_ARGS_scan_block_sums(F, A) F(I, int, nblocks, SCAN_NBLOCKS) A(AOUT, int, block_sum, SCAN_BLOCK_SUM)
+#define DEM_ITEMS_scan_block_sums 1
+#define DEM_ARGS_scan_apply(F, A)                                                                                    \
+    F(I, int, nblocks, SCAN_NBLOCKS) A(I, int, ncells, SCAN_ITEMS) A(AIN, int, count, SCAN_COUNT)                    \
+    A(AIN, int, block_sum, SCAN_BLOCK_SUM) A(AOUT, int, start, SCAN_START)
+#define DEM_ITEMS_scan_apply nblocks
+#define DEM_ARGS_bin_scatter(F, A)                                                                                   \
+    F(I, int, n, N) A(BIN, int, cell_of, CELL_OF) A(BIN, int, start, CELL_START) A(BOUT, int, fill, CELL_FILL)      \
+    A(BOUT, int, cell_particles, CELL_PARTICLES)
+#define DEM_ITEMS_bin_scatter n
+#define DEM_ARGS_bin_sort(F, A)                                                                                      \
+    F(I, int, ncells, NCELLS) A(BIN, int, start, CELL_START) A(BOUT, int, cell_particles, CELL_PARTICLES)
+#define DEM_ITEMS_bin_sort ncells
+
+/* ---- neighbor.h ---- */
+#define DEM_ARGS_nbr_build(F, A)                                                                                     \
+    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY)        \
+    A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)               \
+    A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)  \
+    A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_nbr_build n
+#define DEM_ARGS_nbr_carry(F, A)                                                                                     \
+    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)           \
+    A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                           \
+    A(CIN, real, old_hist, HIST) A(CIN, dem_byte, old_touch, TOUCH) A(NOUT, real, hist, HIST)                  \
+    A(NOUT, dem_byte, touch, TOUCH) A(NOUT, int, mirror, MIRROR) A(BOUT, int, flags, FLAGS)                    \
+    A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
+#define DEM_ITEMS_nbr_carry n
+
+/* ---- contact_forces.h ---- */
+#define DEM_ARGS_contact_pairs(F, A)                                                                                 \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)           \
+    A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)               \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)  \
+    A(CIN, int, nbr_mirror, MIRROR) A(COUT, real, hist, HIST) A(COUT, dem_byte, touch, TOUCH)                  \
+    A(BIN, int, in_start, IN_START) A(BOUT, real, pair, PAIR) A(BOUT, real, force, FORCE)                           \
+    A(BOUT, real, torque, TORQUE) A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL)                           \
+    A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
+#define DEM_ITEMS_contact_pairs n
+#define DEM_ARGS_contact_forces(F, A)                                                                                \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)           \
+    A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)               \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)  \
+    A(CIN, int, nbr_mirror, MIRROR) A(CIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)             \
+    A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)    \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)          \
+    A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)              \
+    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)
+#define DEM_ITEMS_contact_forces n
+
+/* ---- wall_forces.h ---- */
+#define DEM_ARGS_wall_reduce_block(F, A)                                                                             \
+    F(I, int, n, N) A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, wall_pf, WALL_PF)        \
+    A(BIN, unsigned, wall_mask, WALL_MASK) A(BOUT, real, partial, PARTIAL)
+#define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
+#define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
+    F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \
+    A(BOUT, real, wall_force, WALL_FORCE)
+#define DEM_ITEMS_wall_reduce_final nwalls
+
+/* ---- integrate.h ---- */
+#define DEM_ARGS_integrate_kick_drift(F, A)                                                                          \
+    F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                     \
+    A(R, real, half_skin2, HALF_SKIN2) A(BOUT, real, x, X) A(BOUT, real, v, V) A(BOUT, real, w, W)                  \
+    A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE) A(BIN, real, invmass, INVMASS)                          \
+    A(BIN, real, invinertia, INVINERTIA) A(BIN, real, x_build, X_BUILD) A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_integrate_kick_drift n
+#define DEM_ARGS_integrate_kick(F, A)                                                                                \
+    F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                     \
+    A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                 \
+    A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA)
+#define DEM_ITEMS_integrate_kick n
+
+/* ---- particle_stress.h ---- */
+#define DEM_ARGS_stress_trace(F, A)                                                                                  \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) \
+    A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                               \
+    A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                             \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, trace, TRACE)
+#define DEM_ITEMS_stress_trace n
+#define DEM_ARGS_stress_tensor(F, A)                                                                                 \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) \
+    A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                               \
+    A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                             \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, stress, STRESS)
+#define DEM_ITEMS_stress_tensor n
+
+/* ---- mc_strain.h ---- */
+#define DEM_ARGS_mc_strain_disp(F, A)                                                                                \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)  \
+    A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                    \
+    A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                          \
+    A(BOUT, real, wall_disp, MC_WALL_DISP)
+#define DEM_ITEMS_mc_strain_disp n
+#define DEM_ARGS_mc_strain_update(F, A)                                                                              \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)      \
+    A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) \
+    A(CIN, int, nbr_list, LIST) A(CIN, int, nbr_mirror, MIRROR) A(I, int, nwalls, NWALLS)                           \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                  \
+    A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)               \
+    A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_mc_strain_update n
+
+/* ---- what the lists become ---- */
+/* a parameter declaration of each kind */
+#define DEM_PARAM_I(type, name) int name
+#define DEM_PARAM_R(type, name) real name
+#define DEM_PARAM_BIN(type, name) DEM_CONST_GLOBAL type *name
+#define DEM_PARAM_BOUT(type, name) DEM_GLOBAL type *name
+#define DEM_PARAM_CIN DEM_PARAM_BIN
+#define DEM_PARAM_COUT DEM_PARAM_BOUT
+#define DEM_PARAM_NIN DEM_PARAM_BIN
+#define DEM_PARAM_NOUT DEM_PARAM_BOUT
+#define DEM_PARAM_AIN DEM_PARAM_BIN
+#define DEM_PARAM_AOUT DEM_PARAM_BOUT
+#define DEM_P_FIRST(kind, type, name, src) DEM_PARAM_##kind(type, name)
+#define DEM_P_NEXT(kind, type, name, src) , DEM_PARAM_##kind(type, name)
+#define DEM_N_NEXT(kind, type, name, src) , name
+
+/* The work-item function's signature: DEM_ITEM(name) { body using the list's names, fx and i } */
+#define DEM_ITEM(name) DEM_INLINE void name##_item(unsigned fx, int i, DEM_ARGS_##name(DEM_P_FIRST, DEM_P_NEXT))
+
+#ifdef __OPENCL_C_VERSION__
+/* The kernel: one work item per item, the effect mask compiled in. */
+#define DEM_KERNEL(name)                                                                                             \
+    __kernel void name(DEM_ARGS_##name(DEM_P_FIRST, DEM_P_NEXT))                                                     \
+    {                                                                                                                \
+        int i = (int)get_global_id(0);                                                                               \
+        if (i < DEM_ITEMS_##name)                                                                                    \
+            name##_item(DEM_EFFECTS, i DEM_ARGS_##name(DEM_N_NEXT, DEM_N_NEXT));                                     \
+    }
+#else
+/* The reference loop: the same items in ascending order (REF: reference/ref_kernels.h). */
+#define DEM_REF_PROTO(name) void REF(ref_##name)(unsigned fx, DEM_ARGS_##name(DEM_P_FIRST, DEM_P_NEXT))
+#define DEM_REF_LOOP(name)                                                                                           \
+    DEM_REF_PROTO(name)                                                                                              \
+    {                                                                                                                \
+        for (int i = 0; i < DEM_ITEMS_##name; i++)                                                                   \
+            name##_item(fx, i DEM_ARGS_##name(DEM_N_NEXT, DEM_N_NEXT));                                              \
+    }
+#endif
+
+#endif /* DEM_KERNELS_H */

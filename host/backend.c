@@ -1,0 +1,245 @@
+/* backend.c - the buffer registry (common/dem_buffers.h) and the kernels' argument lists (common/dem_kernels.h)
+ * walked for every backend: sizes, creation, field lookup, work-item counts, and the compile-time check that each
+ * kernel argument's element type is its buffer's. */
+#include "backend.h"
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define DEM_NAME_KERNEL(name) #name,
+const char *const dem_kernel_names[K__COUNT] = {DEM_KERNEL_LIST(DEM_NAME_KERNEL)};
+#undef DEM_NAME_KERNEL
+
+/* ---- element types: each kernel argument's against its registry entry, at compile time ---- */
+#define ELEM_BUF(id, elem, count, gate, field, init) BUFELEM_##id = DEM_ELEM_##elem,
+#define ELEM_ROW(id, elem, count, gate, field) ROWELEM_##id = DEM_ELEM_##elem,
+enum { DEM_BUFFERS(ELEM_BUF) BUFELEM__END };
+enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
+#define ALIASELEM_SCAN_COUNT DEM_ELEM_INT /* the scan's operands are integer buffers */
+#define ALIASELEM_SCAN_BLOCK_SUM DEM_ELEM_INT
+#define ALIASELEM_SCAN_START DEM_ELEM_INT
+#define CHECK_I(type, src) _Static_assert(SI_##src >= 0, "int scalar");
+#define CHECK_R(type, src) _Static_assert(SR_##src >= 0, "real scalar");
+#define CHECK_BIN(type, src) _Static_assert((int)BUFELEM_##src == (int)DEM_ELEM_OF_##type, #src ": element type");
+#define CHECK_BOUT CHECK_BIN
+#define CHECK_CIN(type, src) _Static_assert((int)ROWELEM_##src == (int)DEM_ELEM_OF_##type, #src ": element type");
+#define CHECK_COUT CHECK_CIN
+#define CHECK_NIN CHECK_CIN
+#define CHECK_NOUT CHECK_CIN
+#define CHECK_AIN(type, src) _Static_assert((int)ALIASELEM_##src == (int)DEM_ELEM_OF_##type, #src ": element type");
+#define CHECK_AOUT CHECK_AIN
+#define CHECK_ARG(kind, type, name, src) CHECK_##kind(type, src)
+#define CHECK_KERNEL(name) DEM_ARGS_##name(CHECK_ARG, CHECK_ARG)
+DEM_KERNEL_LIST(CHECK_KERNEL)
+_Static_assert(PR_STRIDE == 8 && W_STRIDE == 10 && WI_STRIDE == 2 && PM_STRIDE == 10 && ST_STRIDE == 6,
+               "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
+_Static_assert(FLAG_COUNT == 5, "flags (dem_layout.h)");
+_Static_assert(K__COUNT <= 256, "kernel ids fit the trace's bytes");
+_Static_assert(DEM_MAX_WALLS <= 8 * sizeof(unsigned), "a particle's wall mask is one unsigned (WALL_MASK)");
+
+int dem_core_fail(dem_core *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->err, sizeof c->err, fmt, ap);
+    va_end(ap);
+    return 1;
+}
+
+void dem_core_sync(dem_core *c)
+{
+    c->si[SI_MAXN_CUR] = c->maxn[c->cur];
+    c->si[SI_MAXN_NEW] = c->maxn[1 - c->cur];
+}
+
+void dem_core_init(dem_core *c, const dem_setup *s)
+{
+    memset(c, 0, sizeof *c);
+    c->fx = s->effects;
+    c->rs = s->real_size;
+    c->n = s->n;
+    c->nmat = s->nmat;
+    c->nwalls = s->nwalls;
+    c->ncells = s->ncell[0] * s->ncell[1] * s->ncell[2];
+    c->nblocks_scan = (c->ncells + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK;
+    c->nblocks_red = (s->n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
+    c->maxn[0] = c->maxn[1] = s->maxn;
+    int *si = c->si;
+    si[SI_N] = s->n, si[SI_NMAT] = s->nmat, si[SI_NWALLS] = s->nwalls, si[SI_NCELLS] = c->ncells;
+    si[SI_NBLOCKS_RED] = c->nblocks_red;
+    si[SI_NCX] = s->ncell[0], si[SI_NCY] = s->ncell[1], si[SI_NCZ] = s->ncell[2];
+    double *sr = c->sr;
+    sr[SR_DT] = s->dt, sr[SR_SKIN] = s->skin, sr[SR_HALF_SKIN2] = s->half_skin2, sr[SR_INV_CELL] = s->inv_cell;
+    sr[SR_LOX] = s->lo[0], sr[SR_LOY] = s->lo[1], sr[SR_LOZ] = s->lo[2];
+    sr[SR_GX] = s->gravity[0], sr[SR_GY] = s->gravity[1], sr[SR_GZ] = s->gravity[2];
+    dem_core_sync(c);
+}
+
+size_t dem_elem_size(int elem, int rs)
+{
+    return elem == DEM_ELEM_REAL ? (size_t)rs : elem == DEM_ELEM_BYTE ? 1 : sizeof(int);
+}
+
+/* the size rules' names, bound to a core */
+#define SIZE_NAMES(c, maxn_)                                                                                         \
+    size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->ncells,         \
+           NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
+           MAXN = (size_t)(maxn_);                                                                                   \
+    (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN
+
+static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
+
+size_t dem_buffer_bytes(const dem_core *c, int id)
+{
+    SIZE_NAMES(c, 0);
+    switch (id) {
+#define SIZE_BUF(id_, elem, count, gate, field, init)                                                                \
+    case BUF_##id_:                                                                                                  \
+        return gate_open(c->fx, gate) ? (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs) : 0;
+        DEM_BUFFERS(SIZE_BUF)
+#undef SIZE_BUF
+    }
+    return 0;
+}
+
+/* the lazy buffers' size once they are made */
+static size_t lazy_bytes(const dem_core *c, int id)
+{
+    SIZE_NAMES(c, 0);
+    switch (id) {
+#define SIZE_LAZY(id_, elem, count, gate, field, init)                                                               \
+    case BUF_##id_:                                                                                                  \
+        return (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs);
+        DEM_BUFFERS(SIZE_LAZY)
+#undef SIZE_LAZY
+    }
+    return 0;
+}
+
+size_t dem_row_bytes(const dem_core *c, int id, int maxn)
+{
+    SIZE_NAMES(c, maxn);
+    switch (id) {
+#define SIZE_ROW(id_, elem, count, gate, field)                                                                      \
+    case ROW_##id_:                                                                                                  \
+        return gate_open(c->fx, gate) ? (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs) : 0;
+        DEM_ROWS(SIZE_ROW)
+#undef SIZE_ROW
+    }
+    return 0;
+}
+
+int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_setup *s)
+{
+    dem_core *c = DEM_CORE(b);
+#define SETUP(member) ((const void *)s->member)
+#define NONE NULL
+#define CREATE_BUF(id, elem, count, gate, field, init)                                                               \
+    if (ops->alloc(b, TABLE_ONE, 0, BUF_##id, dem_buffer_bytes(c, BUF_##id), dem_buffer_bytes(c, BUF_##id) ? init : NULL)) \
+        return 1;
+    DEM_BUFFERS(CREATE_BUF)
+#undef CREATE_BUF
+#undef SETUP
+#undef NONE
+    for (int set = 0; set < 2; set++)
+        for (int id = 0; id < ROW__COUNT; id++)
+            if (ops->alloc(b, TABLE_CUR, set, id, dem_row_bytes(c, id, c->maxn[set]), NULL))
+                return 1;
+    return 0;
+}
+
+/* Makes a lazy buffer when first needed. */
+int dem_buffer_ensure(const dem_backend_ops *ops, dem_backend *b, int id)
+{
+    dem_core *c = DEM_CORE(b);
+    size_t need = lazy_bytes(c, id);
+    return c->bytes[id] >= need ? 0 : ops->alloc(b, TABLE_ONE, 0, id, need, NULL);
+}
+
+int dem_field_ref(const dem_core *c, dem_field f, dem_bufref *r, size_t *bytes)
+{
+    int fi = (int)f;
+#define FIELD_BUF(id_, elem, count, gate, field, init)                                                               \
+    if (field >= 0 && fi == field) {                                                                                 \
+        r->table = TABLE_ONE, r->id = BUF_##id_;                                                                     \
+        *bytes = gate == DEM_GATE_LAZY ? lazy_bytes(c, BUF_##id_) : dem_buffer_bytes(c, BUF_##id_);                  \
+        return 0;                                                                                                    \
+    }
+#define FIELD_ROW(id_, elem, count, gate, field)                                                                     \
+    if (field >= 0 && fi == field) {                                                                                 \
+        r->table = TABLE_CUR, r->id = ROW_##id_;                                                                     \
+        *bytes = dem_row_bytes(c, ROW_##id_, c->maxn[c->cur]);                                                       \
+        return 0;                                                                                                    \
+    }
+    DEM_BUFFERS(FIELD_BUF)
+    DEM_ROWS(FIELD_ROW)
+#undef FIELD_BUF
+#undef FIELD_ROW
+    *bytes = 0;
+    return -1;
+}
+
+size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs)
+{
+    dem_core c;
+    memset(&c, 0, sizeof c);
+    c.fx = effects, c.rs = (int)rs, c.n = (int)n, c.nwalls = (int)nwalls, c.ncells = (int)ncells;
+    c.maxn[0] = c.maxn[1] = (int)maxn;
+    dem_bufref r;
+    size_t bytes;
+    return dem_field_ref(&c, f, &r, &bytes) ? 0 : bytes;
+}
+
+size_t dem_kernel_items(const dem_core *c, dem_kernel_id k)
+{
+#define BIND_I(type, name, src) int name = c->si[SI_##src]; (void)name;
+#define BIND_R(type, name, src)
+#define BIND_BIN(type, name, src)
+#define BIND_BOUT BIND_BIN
+#define BIND_CIN BIND_BIN
+#define BIND_COUT BIND_BIN
+#define BIND_NIN BIND_BIN
+#define BIND_NOUT BIND_BIN
+#define BIND_AIN BIND_BIN
+#define BIND_AOUT BIND_BIN
+#define BIND_ARG(kind, type, name, src) BIND_##kind(type, name, src)
+#define ITEMS_CASE(name)                                                                                             \
+    case K_##name: {                                                                                                 \
+        DEM_ARGS_##name(BIND_ARG, BIND_ARG) long items = (long)(DEM_ITEMS_##name);                                   \
+        return items > 0 ? (size_t)items : 0;                                                                        \
+    }
+    switch (k) {
+        DEM_KERNEL_LIST(ITEMS_CASE)
+    default:
+        return 0;
+    }
+}
+
+int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes)
+{
+    dem_core *c = DEM_CORE(b);
+    dem_bufref r;
+    size_t have;
+    if (dem_field_ref(c, f, &r, &have) || bytes > have)
+        return dem_core_fail(c, "read of field %d: %zu bytes asked, %zu held", (int)f, bytes, have);
+    return bytes ? o->read(b, r, 0, dst, bytes) : 0;
+}
+
+int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes)
+{
+    dem_core *c = DEM_CORE(b);
+    dem_bufref r;
+    size_t have;
+    if (dem_field_ref(c, f, &r, &have) || bytes > have)
+        return dem_core_fail(c, "write of field %d: %zu bytes given, %zu held", (int)f, bytes, have);
+    return bytes ? o->write(b, r, 0, src, bytes, 1) : 0;
+}
+
+int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k)
+{
+    dem_core *c = DEM_CORE(b);
+    if (c->ntrace < DEM_TRACE_MAX)
+        c->trace[c->ntrace] = (unsigned char)k;
+    c->ntrace++;
+    return o->launch(b, k);
+}
