@@ -1,0 +1,35 @@
+#!/bin/bash
+# state_hashes.sh - a hash of the dynamic state of every shipped scene (scenes/, scenes/validation/, the restart test
+# scene) after 150 steps, under every contact model, on both backends, in fp64 and fp32: one line per run,
+# "scene backend model precision hash". A refactor that claims bit-identity compares this table before and after
+# (docs/design.md, issue 18):
+#   tools/state_hashes.sh OLD_BUILD/dem > before.txt; tools/state_hashes.sh build/dem > after.txt; diff before.txt after.txt
+# The hash covers positions, velocities, spins, forces, contact histories, wall forces and MC-strain forces of the
+# checkpoint. A model a scene cannot take (MC-strain without gamma) is listed as refused.
+set -u
+DEM=$(readlink -f "${1:-build/dem}")
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+for s in "$ROOT"/scenes/*.yaml "$ROOT"/scenes/validation/*.yaml "$ROOT"/tests/scenes/restart_box.yaml; do
+    b=$(basename "$s" .yaml)
+    rm -rf "$T/data" && { cp -r "$(dirname "$s")/data" "$T/" 2>/dev/null || true; }
+    for be in opencl reference; do
+        for model in scene mc_stress mc_strain mc_strain_iterated; do
+            for prec in fp64 fp32; do
+                sed "s/^precision:.*/precision: $prec/; /^backend:/d" "$s" > "$T/s.yaml"
+                echo "backend: $be" >> "$T/s.yaml"
+                m=()
+                [ "$model" != scene ] && m=(--model "$model")
+                if "$DEM" run "$T/s.yaml" -o "$T/o.h5" --quiet --stop-after 150 "${m[@]}" > "$T/log" 2>&1; then
+                    h=$(h5dump -d /state/x -d /state/v -d /state/w -d /state/force -d /state/pair_hist \
+                        -d /state/wall_force -d /state/pair_mc_fn "$T/o.ckpt.h5" 2>/dev/null | tail -n +2 | md5sum |
+                        cut -c1-16)
+                else
+                    h="refused"
+                fi
+                echo "$b $be $model $prec $h"
+            done
+        done
+    done
+done
