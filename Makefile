@@ -170,11 +170,37 @@ fuzz-cli: $(LIB)
 	./$(BUILD)/fuzz/fuzz_cli -runs=$(FUZZ_RUNS) -max_len=8400 -timeout=20 -artifact_prefix=$(CURDIR)/$(BUILD)/fuzz/ -dict=$(CURDIR)/tests/fuzz_cli.dict \
 	  $(CURDIR)/$(BUILD)/fuzz/cli-corpus
 
+# make install [PREFIX=/usr/local] [DESTDIR=]: the library, its public headers, the kernel sources it reads at run
+# time (PREFIX/share/libdem, compiled into the installed library as its default source folder: that one object is
+# remade at every install, for the PREFIX given) and a pkg-config
+# file; tests/install_check.sh compiles and runs the README's example against an installed copy.
+PREFIX ?= /usr/local
+DATADIR = $(PREFIX)/share/libdem
+INSTALL_LIB := $(BUILD)/install/libdem.a
+$(BUILD)/install/sim_setup.o: host/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(filter-out -DDEM_DEFAULT_SOURCE_DIR=%,$(CFLAGS)) -DDEM_DEFAULT_SOURCE_DIR='"$(DATADIR)"' -c $< -o $@
+$(INSTALL_LIB): $(filter-out $(BUILD)/host/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ) FORCE
+	@rm -f $@
+	ar rcs $@ $(filter-out FORCE,$^)
+install: $(INSTALL_LIB)
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(DATADIR)/kernels \
+	  $(DESTDIR)$(DATADIR)/common $(DESTDIR)$(DATADIR)/include
+	install -m 644 $(INSTALL_LIB) $(DESTDIR)$(PREFIX)/lib/libdem.a
+	install -m 644 include/dem.h include/dem_effects.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 kernels/*.cl $(DESTDIR)$(DATADIR)/kernels/
+	install -m 644 common/*.h $(DESTDIR)$(DATADIR)/common/
+	install -m 644 include/dem_effects.h $(DESTDIR)$(DATADIR)/include/
+	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|'"$$(sed -n 's/^#define DEM_VERSION "\(.*\)"/\1/p' include/dem.h)"'|' \
+	  scripts/libdem.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem.pc
+.PHONY: install FORCE
+FORCE:
+
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo
 
 test: $(TEST_BIN)
-	@bash scripts/run-tests.sh $(TEST_BIN)
+	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh
 
 bench: $(BUILD)/dem-bench $(BUILD)/dem
 	./$(BUILD)/dem-bench

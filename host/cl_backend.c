@@ -30,7 +30,7 @@ static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighb
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
                                            "common/hertz_mindlin.h", "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
-                                           "common/neighbor.h", "common/dem_effects.h",
+                                           "common/neighbor.h", "include/dem_effects.h",
                                            "common/contact_geometry.h", "common/particle_stress.h",
                                            "common/mc_strain.h", "common/sorted_row.h",
                                            "common/dem_kernels.h"};
@@ -276,8 +276,8 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
     char options[8192];
     snprintf(options, sizeof options,
              "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
-             "-I%s/common %s %s",
-             s->real_size, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir,
+             "-I%s/common -I%s/include %s %s",
+             s->real_size, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir, s->source_dir,
              s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
              s->extra_build_options ? s->extra_build_options : "");
     const char *src = "#include \"binning.cl\"\n#include \"neighbor.cl\"\n#include \"contact_forces.cl\"\n"

@@ -1,6 +1,7 @@
 /* dem_effects.h - the effect mask: which physics a run simulates ("simulate only the effects a scene calls for").
  *
- * Declared once for the public API (include/dem.h), the host, the reference and the kernels. In kernels the mask
+ * Declared once for the public API (include/dem.h, which it completes: both are installed), the host, the
+ * reference and the kernels (the program is built with -I<source dir>/include). In kernels the mask
  * is the compile-time constant DEM_EFFECTS (the host passes -DDEM_EFFECTS=<mask> when it builds the program), so
  * every `if (fx & DEM_EFFECT_...)` on an effect that is off is folded away and its code does not exist in the
  * binary. The reference receives the same mask at run time and takes the same branches, so the two stay
