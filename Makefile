@@ -16,8 +16,10 @@ include $(DEPS_STAMP)
 endif
 # Bit equality rules: no FP contraction, no fast math, no tuning for the build machine (see common/dem_real.h).
 # -fno-math-errno only drops the errno branch around sqrt; results are unchanged (IEEE sqrt either way).
-CFLAGS  := -std=c11 -O2 -g -Wall -Wextra -Wno-unused-parameter -Wno-format-truncation -Wno-missing-field-initializers -ffp-contract=off -fno-fast-math -fno-math-errno \
-           -D_GNU_SOURCE \
+# NUM_FLAGS: the flags that decide the reference's arithmetic, recorded in every output (dem_build_info).
+NUM_FLAGS := -std=c11 -O2 -ffp-contract=off -fno-fast-math -fno-math-errno
+CFLAGS  := $(NUM_FLAGS) -g -Wall -Wextra -Wno-unused-parameter -Wno-format-truncation -Wno-missing-field-initializers \
+           -D_GNU_SOURCE -DDEM_BUILD_FLAGS='"$(NUM_FLAGS)"' \
            -DCL_TARGET_OPENCL_VERSION=120 -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' \
            -Iinclude -Icommon -Ihost -Ireference -Iapp $(PKG_CFLAGS)
 LDLIBS  := -lOpenCL -lm

@@ -99,6 +99,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     if (!rc)
         rc = h5_attr_string(o->file, "libdem_version", DEM_VERSION) ||
              h5_attr_string(o->file, "device", dem_describe(s)) ||
+             h5_attr_string(o->file, "build", dem_build_info(s)) ||
              h5_attr_string(o->file, "precision", run->cfg.precision == DEM_FP64 ? "fp64" : "fp32") ||
              h5_attr_string(o->file, "effects", fx) || h5_attr_double(o->file, "dt", run->dt) ||
              h5_attr_string(o->file, "model", run->model[0] ? run->model : "as in the scene") ||

@@ -225,6 +225,21 @@ int main(void)
         dem_device_name(d, name, sizeof name);
         printf("OpenCL device %d: %s\n", d, name);
     }
+    { /* provenance: how each backend's code was built */
+        for (int b = -1; b < ndev; b++) {
+            dem_config c;
+            dem_config_default(&c);
+            c.backend = b < 0 ? DEM_BACKEND_REFERENCE : DEM_BACKEND_OPENCL;
+            c.device = b < 0 ? 0 : b;
+            dem_sim *t = dem_create();
+            dem_add_material(t, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+            dem_add_particle(t, (double[3]){0, 0, 0}, NULL, 0.001, 0);
+            dem_set_dt(t, 1e-6);
+            if (dem_start(t, &c) == 0)
+                printf("build (%s): %s\n", b < 0 ? "reference" : "opencl", dem_build_info(t));
+            dem_destroy(t);
+        }
+    }
     printf("\n| n | contacts/particle | backend | precision | particle-steps/s | us per step by kernel |\n"
            "|---|---|---|---|---|---|\n");
     for (int si = 0; si < nsides; si++) {

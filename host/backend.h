@@ -76,6 +76,7 @@ typedef struct {
     int timed;
     int ntrace;                            /* launches since the driver last cleared it (sim.c) */
     unsigned char trace[DEM_TRACE_MAX];    /* their kernel ids, the first DEM_TRACE_MAX */
+    char build[2048]; /* provenance: how the kernels were built (dem_build_info) */
     char err[4096];
 } dem_core;
 

@@ -285,6 +285,8 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
                       "#include \"mc_strain.cl\"\n";
     if (cl_build(b->ctx, b->dev.device, src, options, &b->prog, err, errlen))
         goto fail;
+    snprintf(b->core.build, sizeof b->core.build, "OpenCL C built by %s (driver %s) with: %s",
+             b->dev.device_name, b->dev.driver_version, options);
     for (int k = 0; k < K__COUNT; k++) {
         b->k[k] = clCreateKernel(b->prog, dem_kernel_names[k], &e);
         if (cl_check(e, dem_kernel_names[k], err, errlen))

@@ -687,3 +687,21 @@ int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
             *bytes += dem_row_bytes(&core, id, core.maxn[set]);
     return 0;
 }
+
+#ifndef DEM_BUILD_FLAGS
+#define DEM_BUILD_FLAGS "unknown"
+#endif
+#if defined(__clang__)
+#define DEM_COMPILER "clang " __clang_version__
+#elif defined(__GNUC__)
+#define DEM_COMPILER "gcc " __VERSION__
+#else
+#define DEM_COMPILER "unknown"
+#endif
+
+const char *dem_build_info(dem_sim *s)
+{
+    snprintf(s->build, sizeof s->build, "libdem %s; host code compiled by %s with %s; kernels: %s", DEM_VERSION,
+             DEM_COMPILER, DEM_BUILD_FLAGS, s->be ? DEM_CORE(s->be)->build : "not started");
+    return s->build;
+}

@@ -39,6 +39,7 @@ struct dem_sim {
     double rmin, rmax;
     char err[4096];
     char desc[1024];
+    char build[4096];
     /* the kernels launched (ids, dem_kernel_names): by the last step, without a rebuild's, and by the last rebuild */
     unsigned char seq_step[DEM_TRACE_MAX], seq_rebuild[DEM_TRACE_MAX];
     int nseq_step, nseq_rebuild;

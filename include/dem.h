@@ -204,6 +204,9 @@ int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, in
  * rebuild (rebuild = 1), as "name, name, N x (name, name), ..." (an iteration's pair once, with its count).
  * Returns the number of launches (0 before the first step). */
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len);
+/* Provenance of a started run's arithmetic: the library version, the compiler and numeric flags of the host code and
+ * the reference, and for OpenCL the device, driver and the program's build options (with the source hash). */
+const char *dem_build_info(dem_sim *s);
 /* Bytes the backend holds now for the run (every buffer of the registry, both neighbour-row sets). */
 size_t dem_device_bytes(const dem_sim *s);
 /* Before dem_start: the bytes the run would hold on the device at the start, from the same registry (rows at their

@@ -155,6 +155,8 @@ static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t e
     }
     dem_core_init(&b->core, s);
     b->core.timed = 1;
+    snprintf(b->core.build, sizeof b->core.build, "reference (serial C, fp%d) compiled into the library",
+             8 * (int)sizeof(real));
     if (dem_buffers_create(&REF(dem_reference_ops), b, s)) {
         snprintf(err, errlen, "%s (%d particles)", b->core.err, s->n);
         ref_destroy(b);

@@ -265,6 +265,13 @@ static void test_output_and_xdmf(void **st)
     assert_true(f >= 0);
     char *eff = h5_read_attr_string(f, "effects"), *text = h5_read_text(f, "scene_text");
     assert_string_equal(eff, "hertz+damping+friction+gravity+walls");
+    /* provenance: compiler and numeric flags of the host code, the kernels' build options with the source hash */
+    char *build = h5_read_attr_string(f, "build");
+    assert_non_null(build);
+    assert_non_null(strstr(build, "-ffp-contract=off"));
+    assert_non_null(strstr(build, "-DDEM_EFFECTS=31 -DDEM_SOURCE_HASH=0x"));
+    assert_non_null(strstr(build, "compiled by gcc ") ? build : strstr(build, "compiled by clang "));
+    free(build);
     assert_non_null(strstr(text, "restart test box"));
     free(eff), free(text);
     /* the wall series name each column after the scene: a box's six faces, then the named lid */
