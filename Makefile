@@ -26,7 +26,7 @@ LDLIBS  := -lOpenCL -lm
 APP_LDLIBS := $(PKG_LIBS) $(LDLIBS)
 TEST_LDLIBS := $(APP_LDLIBS) -lcmocka
 
-HOST_SRC := $(filter-out host/demo.c,$(wildcard host/*.c))
+HOST_SRC := $(wildcard host/*.c)
 REF_SRC  := $(wildcard reference/*.c)
 HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/%.o)
 REF32_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref32/%.o)
@@ -74,7 +74,7 @@ $(APPLIB): $(APP_OBJ)
 $(BUILD)/dem: app/dem_main.c $(APPLIB) $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
 
-$(BUILD)/dem-demo: host/demo.c $(LIB) $(HEADERS)
+$(BUILD)/dem-demo: examples/demo.c $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-bench: bench/bench.c $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@

@@ -99,15 +99,26 @@ int cl_device_get(int want, cl_device_info_t *info, char *err, size_t errlen)
         return 1;
     }
     cl_device_id dv = info->device;
-    clGetPlatformInfo(info->platform, CL_PLATFORM_NAME, sizeof info->platform_name, info->platform_name, NULL);
-    clGetDeviceInfo(dv, CL_DEVICE_NAME, sizeof info->device_name, info->device_name, NULL);
-    clGetDeviceInfo(dv, CL_DEVICE_VERSION, sizeof info->device_version, info->device_version, NULL);
-    clGetDeviceInfo(dv, CL_DRIVER_VERSION, sizeof info->driver_version, info->driver_version, NULL);
-    clGetDeviceInfo(dv, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof info->compute_units, &info->compute_units, NULL);
-    clGetDeviceInfo(dv, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof info->max_wg, &info->max_wg, NULL);
-    clGetDeviceInfo(dv, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof info->global_mem, &info->global_mem, NULL);
     cl_device_fp_config sfp = 0, dfp = 0;
-    clGetDeviceInfo(dv, CL_DEVICE_SINGLE_FP_CONFIG, sizeof sfp, &sfp, NULL);
+    /* every query must answer (a device that cannot name itself or its limits is not used); only the double
+     * configuration may be missing, which means no fp64 */
+    if (cl_check(clGetPlatformInfo(info->platform, CL_PLATFORM_NAME, sizeof info->platform_name, info->platform_name,
+                                   NULL), "clGetPlatformInfo(NAME)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_NAME, sizeof info->device_name, info->device_name, NULL),
+                 "clGetDeviceInfo(NAME)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_VERSION, sizeof info->device_version, info->device_version, NULL),
+                 "clGetDeviceInfo(VERSION)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DRIVER_VERSION, sizeof info->driver_version, info->driver_version, NULL),
+                 "clGetDeviceInfo(DRIVER_VERSION)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof info->compute_units, &info->compute_units,
+                                 NULL), "clGetDeviceInfo(MAX_COMPUTE_UNITS)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof info->max_wg, &info->max_wg, NULL),
+                 "clGetDeviceInfo(MAX_WORK_GROUP_SIZE)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof info->global_mem, &info->global_mem, NULL),
+                 "clGetDeviceInfo(GLOBAL_MEM_SIZE)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_SINGLE_FP_CONFIG, sizeof sfp, &sfp, NULL),
+                 "clGetDeviceInfo(SINGLE_FP_CONFIG)", err, errlen))
+        return 1;
     if (clGetDeviceInfo(dv, CL_DEVICE_DOUBLE_FP_CONFIG, sizeof dfp, &dfp, NULL) != CL_SUCCESS)
         dfp = 0;
     info->fp32_correct_div_sqrt = (sfp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
@@ -125,14 +136,15 @@ int cl_build(cl_context ctx, cl_device_id dev, const char *source, const char *o
     e = clBuildProgram(prog, 1, &dev, options, NULL, NULL);
     if (e != CL_SUCCESS) {
         size_t len = 0;
-        clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, 0, NULL, &len);
-        char *log = malloc(len + 1);
-        if (log) {
-            clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, len, log, NULL);
+        char *log = NULL;
+        if (clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, 0, NULL, &len) == CL_SUCCESS &&
+            (log = malloc(len + 1)) != NULL) {
+            if (clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, len, log, NULL) != CL_SUCCESS)
+                len = 0; /* said as "(no log)" below */
             log[len] = 0;
         }
         snprintf(err, errlen, "kernel build failed: %s (%d)\noptions: %s\nbuild log:\n%s", cl_errname(e), (int)e,
-                 options, log ? log : "(no log)");
+                 options, log && log[0] ? log : "(no log)");
         free(log);
         clReleaseProgram(prog);
         return 1;

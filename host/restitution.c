@@ -21,11 +21,18 @@ static void rhs(double kappa, double x, double u, double *dx, double *du)
 
 static double damping_by_bisection(double e);
 
+/* The scaled collision lasts about 3.2 time units: RESTITUTION_STEP resolves it in some 16 000 RK4 steps (the
+ * rebound speed to ~1e-12); RESTITUTION_MAX_STEPS only stops a contact that never separates (c very large). */
+#define RESTITUTION_STEP 2e-4
+#define RESTITUTION_MAX_STEPS 10000000L
+/* Bisection halvings of [0, hi]: 60 take the interval below one ulp of c, so c is the double nearest the root. */
+#define RESTITUTION_BISECTIONS 60
+
 double dem_restitution_for_damping(double c)
 {
-    const double h = 2e-4, kappa = c * sqrt(1.5);
+    const double h = RESTITUTION_STEP, kappa = c * sqrt(1.5);
     double x = 0, u = 1;
-    for (long step = 0; step < 10000000; step++) {
+    for (long step = 0; step < RESTITUTION_MAX_STEPS; step++) {
         double k1x, k1u, k2x, k2u, k3x, k3u, k4x, k4u;
         rhs(kappa, x, u, &k1x, &k1u);
         rhs(kappa, x + 0.5 * h * k1x, u + 0.5 * h * k1u, &k2x, &k2u);
@@ -68,7 +75,7 @@ static double damping_by_bisection(double e)
     double lo = 0, hi = 1;
     while (dem_restitution_for_damping(hi) > e && hi < 1e6)
         hi *= 2;
-    for (int it = 0; it < 60; it++) {
+    for (int it = 0; it < RESTITUTION_BISECTIONS; it++) {
         double mid = 0.5 * (lo + hi);
         if (dem_restitution_for_damping(mid) > e)
             lo = mid;

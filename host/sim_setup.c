@@ -29,9 +29,13 @@ static double gstar(const dem_material *a, const dem_material *b)
     return 1 / ((2 - a->poisson) / shear_modulus(a) + (2 - b->poisson) / shear_modulus(b));
 }
 
+/* Hertz's head-on impact without damping: t_c = HERTZ_TC (m*^2 / (r* E*^2 v))^(1/5), with
+ * HERTZ_TC = 2 (15/16)^(2/5) Int_0^1 dx / sqrt(1 - x^(5/2)) = 2.868 (Johnson, Contact Mechanics, 1985, Sec. 11.4). */
+#define HERTZ_TC 2.868
+
 double dem_hertz_contact_time(double mstar, double rstar, double es, double v)
 {
-    return 2.868 * pow(mstar * mstar / (rstar * es * es * v), 0.2);
+    return HERTZ_TC * pow(mstar * mstar / (rstar * es * es * v), 0.2);
 }
 
 double dem_hertz_max_overlap(double mstar, double rstar, double es, double v)

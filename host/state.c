@@ -10,6 +10,7 @@
 #include "sim.h"
 #include "dem_layout.h"
 #include "sorted_row.h"
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -133,13 +134,31 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                         dem_field_bytes(s, FIELD_MC_WALL_FORCE));
     if (st->step < 0 || st->npairs < 0)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld and %ld contacts", st->step, st->npairs);
+    for (long p = 0; p < st->npairs; p++)
+        if (!(st->pair_i[p] >= 0 && st->pair_i[p] < st->pair_j[p] && st->pair_j[p] < n))
+            return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i < j < %d)", p,
+                            st->pair_i[p], st->pair_j[p], n);
+    /* Whether each saved contact is a neighbour pair needs the rows of the saved positions, so those are written
+     * and the rows rebuilt first; when a contact then does not fit, the run's own positions go back (below) and
+     * the state changes nothing. */
     size_t v3b = 3 * (size_t)n * rs;
     int e = 0;
-    if (dem_stage_write_field(s->ops, s->be, FIELD_X, st->x, v3b) || dem_stage_write_field(s->ops, s->be, FIELD_V, st->v, v3b) ||
-        dem_stage_write_field(s->ops, s->be, FIELD_W, st->w, v3b))
+    unsigned char *old = malloc(3 * v3b + 1);
+    if (!old)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if (dem_stage_read_field(s->ops, s->be, FIELD_X, old, v3b) ||
+        dem_stage_read_field(s->ops, s->be, FIELD_V, old + v3b, v3b) ||
+        dem_stage_read_field(s->ops, s->be, FIELD_W, old + 2 * v3b, v3b) ||
+        dem_stage_write_field(s->ops, s->be, FIELD_X, st->x, v3b) ||
+        dem_stage_write_field(s->ops, s->be, FIELD_V, st->v, v3b) ||
+        dem_stage_write_field(s->ops, s->be, FIELD_W, st->w, v3b)) {
+        free(old);
         return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    if ((e = sim_rebuild(s)))
+    }
+    if ((e = sim_rebuild(s))) {
+        free(old);
         return e;
+    }
     int maxn = s->maxn;
     size_t b, hb = dem_field_bytes(s, FIELD_HIST), fb = dem_field_bytes(s, FIELD_MC_FORCE);
     int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
@@ -171,6 +190,16 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                dem_stage_write_field(s->ops, s->be, FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(touch), free(hist), free(mcf);
+    if (e == DEM_ERR_ARG) { /* the run's own positions and rows back; the message stays the state's */
+        char why[sizeof s->err];
+        snprintf(why, sizeof why, "%s", s->err);
+        if (dem_stage_write_field(s->ops, s->be, FIELD_X, old, v3b) ||
+            dem_stage_write_field(s->ops, s->be, FIELD_V, old + v3b, v3b) ||
+            dem_stage_write_field(s->ops, s->be, FIELD_W, old + 2 * v3b, v3b) || sim_rebuild(s))
+            e = DEM_ERR_DEVICE;
+        snprintf(s->err, sizeof s->err, "%s", why);
+    }
+    free(old);
     if (e)
         return e;
     s->step = st->step;
