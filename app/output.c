@@ -14,13 +14,13 @@ static const struct {
     const char *name, *units;
     int ncomp;          /* components per particle */
     const char *xdmf;   /* XDMF attribute type */
-} frame_fields[] = {{OUT_POSITION, FIELD_X, "position", "m", 3, "Vector"},
-                    {OUT_VELOCITY, FIELD_V, "velocity", "m/s", 3, "Vector"},
-                    {OUT_ANGULAR_VELOCITY, FIELD_W, "angular_velocity", "rad/s", 3, "Vector"},
-                    {OUT_FORCE, FIELD_FORCE, "force", "N", 3, "Vector"},
-                    {OUT_TORQUE, FIELD_TORQUE, "torque", "N m", 3, "Vector"},
+} frame_fields[] = {{OUT_POSITION, DEM_FIELD_X, "position", "m", 3, "Vector"},
+                    {OUT_VELOCITY, DEM_FIELD_V, "velocity", "m/s", 3, "Vector"},
+                    {OUT_ANGULAR_VELOCITY, DEM_FIELD_W, "angular_velocity", "rad/s", 3, "Vector"},
+                    {OUT_FORCE, DEM_FIELD_FORCE, "force", "N", 3, "Vector"},
+                    {OUT_TORQUE, DEM_FIELD_TORQUE, "torque", "N m", 3, "Vector"},
                     /* xx, yy, zz, xy, xz, yz (dem_layout.h ST_*), seed 000 Eq. 9, negative in compression */
-                    {OUT_STRESS, FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
+                    {OUT_STRESS, DEM_FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
 #define NFF (sizeof frame_fields / sizeof frame_fields[0])
 
 enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };

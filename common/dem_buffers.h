@@ -21,51 +21,51 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 
 /* ENTRY(ID, element, count, gate, field, init) - buffers that exist once */
 #define DEM_BUFFERS(ENTRY)                                                                                               \
-    ENTRY(X, REAL, 3 * N, 0, FIELD_X, SETUP(x))                                                                          \
-    ENTRY(V, REAL, 3 * N, 0, FIELD_V, SETUP(v))                                                                          \
-    ENTRY(W, REAL, 3 * N, 0, FIELD_W, SETUP(w))                                                                          \
-    ENTRY(FORCE, REAL, 3 * N, 0, FIELD_FORCE, NONE)                                                                      \
-    ENTRY(TORQUE, REAL, 3 * N, 0, FIELD_TORQUE, NONE)                                                                    \
+    ENTRY(X, REAL, 3 * N, 0, DEM_FIELD_X, SETUP(x))                                                                          \
+    ENTRY(V, REAL, 3 * N, 0, DEM_FIELD_V, SETUP(v))                                                                          \
+    ENTRY(W, REAL, 3 * N, 0, DEM_FIELD_W, SETUP(w))                                                                          \
+    ENTRY(FORCE, REAL, 3 * N, 0, DEM_FIELD_FORCE, NONE)                                                                      \
+    ENTRY(TORQUE, REAL, 3 * N, 0, DEM_FIELD_TORQUE, NONE)                                                                    \
     ENTRY(RADIUS, REAL, N, 0, -1, SETUP(radius))                                                                         \
     ENTRY(INVMASS, REAL, N, 0, -1, SETUP(invmass))                                                                       \
     ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia))                                                                 \
     ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol))                                                                         \
-    ENTRY(X_BUILD, REAL, 3 * N, 0, FIELD_X_BUILD, SETUP(x))                                                              \
+    ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x))                                                              \
     ENTRY(MAT, INT, N, 0, -1, SETUP(mat))                                                                                \
     ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat))                                                 \
     ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int))                                                         \
-    ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, FIELD_WALL_REAL, SETUP(wall_real))                                          \
-    ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, FIELD_WALL_HIST, NONE)                                       \
+    ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, DEM_FIELD_WALL_REAL, SETUP(wall_real))                                          \
+    ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, DEM_FIELD_WALL_HIST, NONE)                                       \
     ENTRY(WALL_PF, REAL, 3 * N * NW, 0, -1, NONE)                                                                        \
-    ENTRY(WALL_MASK, UINT, N, 0, FIELD_WALL_MASK, NONE)                                                                  \
+    ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE)                                                                  \
     ENTRY(PARTIAL, REAL, 3 * NBR * NW, 0, -1, NONE)                                                                      \
-    ENTRY(WALL_FORCE, REAL, 3 * NW, 0, FIELD_WALL_FORCE, NONE)                                                           \
+    ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE)                                                           \
     ENTRY(CELL_OF, INT, N, 0, -1, NONE)                                                                                  \
     ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE)                                                                              \
-    ENTRY(CELL_START, INT, NC + 1, 0, FIELD_CELL_START, NONE)                                                            \
+    ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE)                                                            \
     ENTRY(CELL_FILL, INT, NC, 0, -1, NONE)                                                                               \
-    ENTRY(CELL_PARTICLES, INT, N, 0, FIELD_CELL_PARTICLES, NONE)                                                         \
+    ENTRY(CELL_PARTICLES, INT, N, 0, DEM_FIELD_CELL_PARTICLES, NONE)                                                         \
     ENTRY(BLOCK_SUM, INT, NBS, 0, -1, NONE)                                                                              \
-    ENTRY(FLAGS, INT, FLAG_COUNT, 0, FIELD_FLAGS, NONE)                                                                  \
+    ENTRY(FLAGS, INT, FLAG_COUNT, 0, DEM_FIELD_FLAGS, NONE)                                                                  \
     ENTRY(IN_COUNT, INT, N, 0, -1, NONE)                                                                                 \
     ENTRY(IN_START, INT, N + 1, 0, -1, NONE)                                                                             \
     ENTRY(IN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE)                                     \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, -1, NONE)                                                                    \
-    ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, FIELD_STRESS_TRACE, NONE)                                                \
-    ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, FIELD_STRESS, NONE)                                                \
-    ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, FIELD_MC_WALL_FORCE, NONE)                                     \
-    ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, FIELD_MC_WALL_DISP, NONE)
+    ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE)                                                \
+    ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE)                                                \
+    ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE)                                     \
+    ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE)
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
  * (swapped at each rebuild); the field names the current set's */
 #define DEM_ROWS(ENTRY)                                                                                                  \
-    ENTRY(COUNT, INT, N, 0, FIELD_NBR_COUNT)                                                                             \
-    ENTRY(LIST, INT, N * MAXN, 0, FIELD_NBR_LIST)                                                                        \
-    ENTRY(HIST, REAL, 3 * N * MAXN, DEM_EFFECT_FRICTION, FIELD_HIST)                                                     \
-    ENTRY(TOUCH, BYTE, N * MAXN, 0, FIELD_TOUCH)                                                                         \
+    ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
+    ENTRY(LIST, INT, N * MAXN, 0, DEM_FIELD_NBR_LIST)                                                                        \
+    ENTRY(HIST, REAL, 3 * N * MAXN, DEM_EFFECT_FRICTION, DEM_FIELD_HIST)                                                     \
+    ENTRY(TOUCH, BYTE, N * MAXN, 0, DEM_FIELD_TOUCH)                                                                         \
     ENTRY(MIRROR, INT, N * MAXN, 0, -1)                                                                                  \
-    ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, FIELD_MC_FORCE)                                                   \
-    ENTRY(MC_DISP, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, FIELD_MC_DISP)
+    ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)                                                   \
+    ENTRY(MC_DISP, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP)
 
 /* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
 #define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)

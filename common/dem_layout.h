@@ -56,7 +56,7 @@ enum {
     FLAG_COUNT = 5
 };
 #define DEM_NO_PARTICLE 2147483647
-/* Per-particle symmetric stress tensor (FIELD_STRESS): 6 reals per particle in this order [Pa]. */
+/* Per-particle symmetric stress tensor (DEM_FIELD_STRESS): 6 reals per particle in this order [Pa]. */
 enum { ST_XX = 0, ST_YY, ST_ZZ, ST_XY, ST_XZ, ST_YZ, ST_STRIDE };
 
 /* Fixed block length of the canonical wall-force reduction: partial sums over blocks of this many

@@ -65,7 +65,7 @@ DEM_INLINE void stress_add(real *st, real c, vec3 n)
 }
 
 /* Particle i's stress, one work item per particle: tensor = 0 writes the trace into out[i] (MC-stress pass 1, every
- * step), tensor = 1 the six components into out[6i...] (output, when FIELD_STRESS is read). The kernels pass a
+ * step), tensor = 1 the six components into out[6i...] (output, when DEM_FIELD_STRESS is read). The kernels pass a
  * constant, so each compiles only its own sums. Same terms, same order either way. */
 DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GLOBAL real *x,
                             DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL int *mat,

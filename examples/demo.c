@@ -77,10 +77,10 @@ int main(void)
                "rebuilds %ld\n", dem_describe(sims[k]), secs[k], (double)n * steps / secs[k], e.kinetic, e.contacts,
                peak, dem_rebuild_count(sims[k]));
     }
-    size_t bytes = dem_field_bytes(sims[0], FIELD_X);
+    size_t bytes = dem_field_bytes(sims[0], DEM_FIELD_X);
     unsigned char *a = malloc(bytes), *b = malloc(bytes);
     int same = a && b;
-    for (dem_field f = FIELD_X; same && f <= FIELD_TORQUE; f++)
+    for (dem_field f = DEM_FIELD_X; same && f <= DEM_FIELD_TORQUE; f++)
         same = !dem_get_raw(sims[0], f, a, bytes) && !dem_get_raw(sims[1], f, b, bytes) && !memcmp(a, b, bytes);
     printf("OpenCL and reference state after %ld steps: %s\n", steps, same ? "bitwise identical" : "DIFFERENT");
     free(a);

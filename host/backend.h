@@ -153,7 +153,7 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry his
 int dem_stage_contact_forces(const dem_backend_ops *o, dem_backend *b); /* particle and wall contacts */
 int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b);    /* the force each wall received */
 int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b);   /* MC-stress pass 1 */
-int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* FIELD_STRESS from the positions */
+int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_FIELD_STRESS from the positions */
 int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double tol); /* sets FLAG_MC_PENDING */
 int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */

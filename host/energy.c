@@ -25,12 +25,12 @@ int dem_energy(dem_sim *s, dem_energy_t *en)
     int n = s->n;
     double *x = malloc(sizeof(double) * 3 * n), *v = malloc(sizeof(double) * 3 * n),
            *w = malloc(sizeof(double) * 3 * n);
-    int *cnt = malloc(sizeof(int) * n), *list = malloc(dem_field_bytes(s, FIELD_NBR_LIST) + 1);
+    int *cnt = malloc(sizeof(int) * n), *list = malloc(dem_field_bytes(s, DEM_FIELD_NBR_LIST) + 1);
     int e = (!x || !v || !w || !cnt || !list) ? sim_fail(s, DEM_ERR_NOMEM, "out of host memory") : 0;
     if (!e)
-        e = dem_get_field(s, FIELD_X, x) || dem_get_field(s, FIELD_V, v) || dem_get_field(s, FIELD_W, w) ||
-            dem_get_raw(s, FIELD_NBR_COUNT, cnt, sizeof(int) * n) ||
-            dem_get_raw(s, FIELD_NBR_LIST, list, dem_field_bytes(s, FIELD_NBR_LIST));
+        e = dem_get_field(s, DEM_FIELD_X, x) || dem_get_field(s, DEM_FIELD_V, v) || dem_get_field(s, DEM_FIELD_W, w) ||
+            dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * n) ||
+            dem_get_raw(s, DEM_FIELD_NBR_LIST, list, dem_field_bytes(s, DEM_FIELD_NBR_LIST));
     for (int i = 0; !e && i < n; i++) {
         double m = mass_of(s, i), r = s->radius[i], I = 0.4 * m * r * r;
         unsigned fl = s->pflags[i];

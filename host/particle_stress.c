@@ -1,5 +1,5 @@
 /* particle_stress.c - the stress steps (kernels/particle_stress.cl): the trace each step (MC-stress) and the tensor
- * when FIELD_STRESS is read (its buffer made then). Written once for every backend. */
+ * when DEM_FIELD_STRESS is read (its buffer made then). Written once for every backend. */
 #include "backend.h"
 
 int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_stress_trace); }

@@ -345,7 +345,7 @@ static int be_fail(dem_sim *s)
 
 static int read_flags(dem_sim *s, int *flags)
 {
-    return dem_stage_read_field(s->ops, s->be, FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? be_fail(s) : 0;
+    return dem_stage_read_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? be_fail(s) : 0;
 }
 
 static int report_out_of_domain(dem_sim *s, int id)
@@ -353,7 +353,7 @@ static int report_out_of_domain(dem_sim *s, int id)
     int rs = s->setup.real_size;
     double p[3] = {NAN, NAN, NAN};
     unsigned char *buf = malloc((size_t)3 * s->n * rs);
-    if (buf && dem_stage_read_field(s->ops, s->be, FIELD_X, buf, (size_t)3 * s->n * rs) == 0)
+    if (buf && dem_stage_read_field(s->ops, s->be, DEM_FIELD_X, buf, (size_t)3 * s->n * rs) == 0)
         for (int d = 0; d < 3; d++)
             p[d] = rs == 8 ? ((double *)buf)[3 * id + d] : ((float *)buf)[3 * id + d];
     free(buf);
@@ -402,7 +402,7 @@ static int sim_rebuild_traced(dem_sim *s)
         while (s->maxn < flags[FLAG_NBR_NEEDED])
             s->maxn *= 2;
         flags[FLAG_NBR_NEEDED] = 0;
-        if (dem_stage_write_field(s->ops, s->be, FIELD_FLAGS, flags, sizeof flags))
+        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags))
             return be_fail(s);
     }
     if (dem_stage_nbr_commit(s->ops, s->be))
@@ -428,7 +428,7 @@ static int mc_strain(dem_sim *s)
         if (read_flags(s, flags))
             return DEM_ERR_DEVICE;
         flags[FLAG_MC_PENDING] = 0;
-        if (dem_stage_write_field(s->ops, s->be, FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc_tol) ||
+        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc_tol) ||
             dem_stage_mc_strain_disp(s->ops, s->be))
             return be_fail(s);
         it++;
@@ -562,15 +562,15 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 {
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    if (f == FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
+    if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return be_fail(s);
     return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? be_fail(s) : 0;
 }
 
 int dem_get_field(dem_sim *s, dem_field f, double *dst)
 {
-    if (f == FIELD_NBR_COUNT || f == FIELD_NBR_LIST || f == FIELD_CELL_START || f == FIELD_CELL_PARTICLES ||
-        f == FIELD_FLAGS)
+    if (f == DEM_FIELD_NBR_COUNT || f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_CELL_START || f == DEM_FIELD_CELL_PARTICLES ||
+        f == DEM_FIELD_FLAGS)
         return sim_fail(s, DEM_ERR_ARG, "field %d holds integers: use dem_get_raw", (int)f);
     size_t bytes = dem_field_bytes(s, f), cnt = bytes / (size_t)s->setup.real_size;
     void *buf = malloc(bytes ? bytes : 1);
@@ -588,7 +588,7 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
     double all[3 * DEM_MAX_WALLS];
-    int e = dem_get_field(s, FIELD_WALL_FORCE, all);
+    int e = dem_get_field(s, DEM_FIELD_WALL_FORCE, all);
     if (!e)
         memcpy(f, all + 3 * wall, sizeof(double) * 3);
     return e;

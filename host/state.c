@@ -51,20 +51,20 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->rebuilds = s->rebuilds;
     for (int k = 0; k < s->nwalls; k++)
         memcpy(st->wall_pos[k], s->wall_pos[k], sizeof st->wall_pos[k]);
-    st->x = get_all(s, FIELD_X, &b, &e);
-    st->v = get_all(s, FIELD_V, &b, &e);
-    st->w = get_all(s, FIELD_W, &b, &e);
-    st->force = get_all(s, FIELD_FORCE, &b, &e);
-    st->torque = get_all(s, FIELD_TORQUE, &b, &e);
-    st->wall_force = get_all(s, FIELD_WALL_FORCE, &b, &e);
-    st->wall_hist = get_all(s, FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
-    st->wall_mask = get_all(s, FIELD_WALL_MASK, &b, &e);
-    st->wall_mc_fn = get_all(s, FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
+    st->x = get_all(s, DEM_FIELD_X, &b, &e);
+    st->v = get_all(s, DEM_FIELD_V, &b, &e);
+    st->w = get_all(s, DEM_FIELD_W, &b, &e);
+    st->force = get_all(s, DEM_FIELD_FORCE, &b, &e);
+    st->torque = get_all(s, DEM_FIELD_TORQUE, &b, &e);
+    st->wall_force = get_all(s, DEM_FIELD_WALL_FORCE, &b, &e);
+    st->wall_hist = get_all(s, DEM_FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
+    st->wall_mask = get_all(s, DEM_FIELD_WALL_MASK, &b, &e);
+    st->wall_mc_fn = get_all(s, DEM_FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
     st->mc = s->mc;
     size_t hb, fb;
-    unsigned char *mcf = get_all(s, FIELD_MC_FORCE, &fb, &e);
-    int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
-    unsigned char *touch = get_all(s, FIELD_TOUCH, &b, &e), *hist = get_all(s, FIELD_HIST, &hb, &e);
+    unsigned char *mcf = get_all(s, DEM_FIELD_MC_FORCE, &fb, &e);
+    int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
+    unsigned char *touch = get_all(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_all(s, DEM_FIELD_HIST, &hb, &e);
     /* touching pairs, once each (owner i < j), in row order: ascending i, then j */
     long np = 0;
     for (int i = 0; !e && i < n; i++)
@@ -127,11 +127,11 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     if (!!st->has_mc != mce)
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
                         st->has_mc ? "has" : "has no", mce ? "has" : "has no");
-    if (st->wall_hist_bytes != dem_field_bytes(s, FIELD_WALL_HIST) ||
-        st->wall_mc_fn_bytes != dem_field_bytes(s, FIELD_MC_WALL_FORCE))
+    if (st->wall_hist_bytes != dem_field_bytes(s, DEM_FIELD_WALL_HIST) ||
+        st->wall_mc_fn_bytes != dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE))
         return sim_fail(s, DEM_ERR_ARG, "the saved wall contact memory has %zu + %zu bytes; this run needs %zu + %zu",
-                        st->wall_hist_bytes, st->wall_mc_fn_bytes, dem_field_bytes(s, FIELD_WALL_HIST),
-                        dem_field_bytes(s, FIELD_MC_WALL_FORCE));
+                        st->wall_hist_bytes, st->wall_mc_fn_bytes, dem_field_bytes(s, DEM_FIELD_WALL_HIST),
+                        dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE));
     if (st->step < 0 || st->npairs < 0)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld and %ld contacts", st->step, st->npairs);
     for (long p = 0; p < st->npairs; p++)
@@ -146,12 +146,12 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     unsigned char *old = malloc(3 * v3b + 1);
     if (!old)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    if (dem_stage_read_field(s->ops, s->be, FIELD_X, old, v3b) ||
-        dem_stage_read_field(s->ops, s->be, FIELD_V, old + v3b, v3b) ||
-        dem_stage_read_field(s->ops, s->be, FIELD_W, old + 2 * v3b, v3b) ||
-        dem_stage_write_field(s->ops, s->be, FIELD_X, st->x, v3b) ||
-        dem_stage_write_field(s->ops, s->be, FIELD_V, st->v, v3b) ||
-        dem_stage_write_field(s->ops, s->be, FIELD_W, st->w, v3b)) {
+    if (dem_stage_read_field(s->ops, s->be, DEM_FIELD_X, old, v3b) ||
+        dem_stage_read_field(s->ops, s->be, DEM_FIELD_V, old + v3b, v3b) ||
+        dem_stage_read_field(s->ops, s->be, DEM_FIELD_W, old + 2 * v3b, v3b) ||
+        dem_stage_write_field(s->ops, s->be, DEM_FIELD_X, st->x, v3b) ||
+        dem_stage_write_field(s->ops, s->be, DEM_FIELD_V, st->v, v3b) ||
+        dem_stage_write_field(s->ops, s->be, DEM_FIELD_W, st->w, v3b)) {
         free(old);
         return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     }
@@ -160,8 +160,8 @@ int dem_state_set(dem_sim *s, const dem_state *st)
         return e;
     }
     int maxn = s->maxn;
-    size_t b, hb = dem_field_bytes(s, FIELD_HIST), fb = dem_field_bytes(s, FIELD_MC_FORCE);
-    int *cnt = get_all(s, FIELD_NBR_COUNT, &b, &e), *list = get_all(s, FIELD_NBR_LIST, &b, &e);
+    size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE);
+    int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     if (!e && (!touch || !hist || !mcf))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -181,21 +181,21 @@ int dem_state_set(dem_sim *s, const dem_state *st)
             memcpy(mcf + (size_t)m * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
         }
     }
-    if (!e && (dem_stage_write_field(s->ops, s->be, FIELD_TOUCH, touch, (size_t)n * maxn) ||
-               dem_stage_write_field(s->ops, s->be, FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, FIELD_MC_FORCE, mcf, fb) ||
-               dem_stage_write_field(s->ops, s->be, FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, FIELD_MC_WALL_FORCE)) ||
-               dem_stage_write_field(s->ops, s->be, FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, FIELD_WALL_HIST)) ||
-               dem_stage_write_field(s->ops, s->be, FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
-               dem_stage_write_field(s->ops, s->be, FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, FIELD_TORQUE, st->torque, v3b) ||
-               dem_stage_write_field(s->ops, s->be, FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
+    if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, (size_t)n * maxn) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_TORQUE, st->torque, v3b) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(touch), free(hist), free(mcf);
     if (e == DEM_ERR_ARG) { /* the run's own positions and rows back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);
-        if (dem_stage_write_field(s->ops, s->be, FIELD_X, old, v3b) ||
-            dem_stage_write_field(s->ops, s->be, FIELD_V, old + v3b, v3b) ||
-            dem_stage_write_field(s->ops, s->be, FIELD_W, old + 2 * v3b, v3b) || sim_rebuild(s))
+        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_X, old, v3b) ||
+            dem_stage_write_field(s->ops, s->be, DEM_FIELD_V, old + v3b, v3b) ||
+            dem_stage_write_field(s->ops, s->be, DEM_FIELD_W, old + 2 * v3b, v3b) || sim_rebuild(s))
             e = DEM_ERR_DEVICE;
         snprintf(s->err, sizeof s->err, "%s", why);
     }

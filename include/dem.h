@@ -76,28 +76,28 @@ typedef struct {
 
 /* Fields that can be read back (dem_get_raw, dem_get_field). */
 typedef enum {
-    FIELD_X, FIELD_V, FIELD_W,  /* position [m], velocity [m/s], angular velocity [rad/s]: real[3n] */
-    FIELD_FORCE, FIELD_TORQUE,  /* [N], [N m]: real[3n] */
-    FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
-    FIELD_NBR_COUNT,            /* int[n] */
-    FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id */
-    FIELD_HIST,                 /* real[3*n*maxn]: elastic tangential force per row slot [N]; empty without friction */
-    FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
-    FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
-    FIELD_CELL_START,           /* int[ncells+1] */
-    FIELD_CELL_PARTICLES,       /* int[n] */
-    FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
-    FIELD_WALL_REAL,            /* real[10*nwalls] */
-    FIELD_TOUCH,                /* unsigned char[n*maxn]: 1 where the row slot's pair touched in the last step */
-    FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
-    FIELD_STRESS,               /* real[6n]: stress tensor xx,yy,zz,xy,xz,yz of each particle [Pa] (seed 000 Eq. 9,
+    DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W,  /* position [m], velocity [m/s], angular velocity [rad/s]: real[3n] */
+    DEM_FIELD_FORCE, DEM_FIELD_TORQUE,  /* [N], [N m]: real[3n] */
+    DEM_FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
+    DEM_FIELD_NBR_COUNT,            /* int[n] */
+    DEM_FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id */
+    DEM_FIELD_HIST,                 /* real[3*n*maxn]: elastic tangential force per row slot [N]; empty without friction */
+    DEM_FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
+    DEM_FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
+    DEM_FIELD_CELL_START,           /* int[ncells+1] */
+    DEM_FIELD_CELL_PARTICLES,       /* int[n] */
+    DEM_FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
+    DEM_FIELD_WALL_REAL,            /* real[10*nwalls] */
+    DEM_FIELD_TOUCH,                /* unsigned char[n*maxn]: 1 where the row slot's pair touched in the last step */
+    DEM_FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
+    DEM_FIELD_STRESS,               /* real[6n]: stress tensor xx,yy,zz,xy,xz,yz of each particle [Pa] (seed 000 Eq. 9,
                                    elastic normal forces; negative in compression), computed when read */
-    FIELD_STRESS_TRACE,         /* real[n]: the trace MC-stress used in the last step [Pa]; empty without mc_stress */
-    FIELD_MC_FORCE,             /* real[n*maxn]: MC-strain elastic normal force per row slot [N]; mc_strain only */
-    FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
-    FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
-    FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
-    FIELD__COUNT
+    DEM_FIELD_STRESS_TRACE,         /* real[n]: the trace MC-stress used in the last step [Pa]; empty without mc_stress */
+    DEM_FIELD_MC_FORCE,             /* real[n*maxn]: MC-strain elastic normal force per row slot [N]; mc_strain only */
+    DEM_FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
+    DEM_FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
+    DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
+    DEM_FIELD__COUNT
 } dem_field;
 
 typedef struct {

@@ -20,10 +20,10 @@ static void check(dem_precision prec, size_t local)
     assert_int_equal(nc, dem_cell_count(cl));
     int *s1 = malloc(sizeof(int) * (nc + 1)), *s2 = malloc(sizeof(int) * (nc + 1));
     int *p1 = malloc(sizeof(int) * n), *p2 = malloc(sizeof(int) * n);
-    assert_int_equal(dem_get_raw(ref, FIELD_CELL_START, s1, sizeof(int) * (nc + 1)), 0);
-    assert_int_equal(dem_get_raw(cl, FIELD_CELL_START, s2, sizeof(int) * (nc + 1)), 0);
-    assert_int_equal(dem_get_raw(ref, FIELD_CELL_PARTICLES, p1, sizeof(int) * n), 0);
-    assert_int_equal(dem_get_raw(cl, FIELD_CELL_PARTICLES, p2, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_CELL_START, s1, sizeof(int) * (nc + 1)), 0);
+    assert_int_equal(dem_get_raw(cl, DEM_FIELD_CELL_START, s2, sizeof(int) * (nc + 1)), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_CELL_PARTICLES, p1, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(cl, DEM_FIELD_CELL_PARTICLES, p2, sizeof(int) * n), 0);
     assert_memory_equal(s1, s2, sizeof(int) * (nc + 1));
     assert_memory_equal(p1, p2, sizeof(int) * n);
     /* definition: a permutation, sorted within cells, covering all particles */

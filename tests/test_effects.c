@@ -62,14 +62,14 @@ static void test_frictionless_allocates_no_history(void **st)
     dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
     start_or_fail(s, &c);
     step_or_fail(s, STEPS);
-    assert_int_equal(dem_field_bytes(s, FIELD_HIST), 0);
-    assert_int_equal(dem_field_bytes(s, FIELD_WALL_HIST), 0);
-    assert_true(dem_field_bytes(s, FIELD_TOUCH) > 0); /* the touching flags remain: pass 2 needs them */
+    assert_int_equal(dem_field_bytes(s, DEM_FIELD_HIST), 0);
+    assert_int_equal(dem_field_bytes(s, DEM_FIELD_WALL_HIST), 0);
+    assert_true(dem_field_bytes(s, DEM_FIELD_TOUCH) > 0); /* the touching flags remain: pass 2 needs them */
     assert_non_null(strstr(dem_describe(s), "effects hertz+damping+gravity+walls"));
     int n = dem_count(s);
     double *t = malloc(sizeof(double) * 3 * n), *w = malloc(sizeof(double) * 3 * n);
-    assert_int_equal(dem_get_field(s, FIELD_TORQUE, t), 0);
-    assert_int_equal(dem_get_field(s, FIELD_W, w), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_TORQUE, t), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_W, w), 0);
     for (int k = 0; k < 3 * n; k++) {
         assert_true(t[k] == 0);
         assert_true(w[k] == (k == 3 * 3 + 1 ? 50 : 0));
@@ -93,10 +93,10 @@ static void same_physics(packing_opts on, unsigned off_effects)
     step_or_fail(b, STEPS);
     int n = dem_count(a);
     double *xa = malloc(sizeof(double) * 6 * n), *xb = malloc(sizeof(double) * 6 * n);
-    assert_int_equal(dem_get_field(a, FIELD_X, xa), 0);
-    assert_int_equal(dem_get_field(a, FIELD_V, xa + 3 * n), 0);
-    assert_int_equal(dem_get_field(b, FIELD_X, xb), 0);
-    assert_int_equal(dem_get_field(b, FIELD_V, xb + 3 * n), 0);
+    assert_int_equal(dem_get_field(a, DEM_FIELD_X, xa), 0);
+    assert_int_equal(dem_get_field(a, DEM_FIELD_V, xa + 3 * n), 0);
+    assert_int_equal(dem_get_field(b, DEM_FIELD_X, xb), 0);
+    assert_int_equal(dem_get_field(b, DEM_FIELD_V, xb + 3 * n), 0);
     double moved = 0;
     for (int k = 0; k < 6 * n; k++) {
         if (xa[k] != xb[k])

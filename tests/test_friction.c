@@ -38,11 +38,11 @@ static slope_result slide(double theta, int rotate)
     long half = lround(0.05 / dem_dt(s));
     double x[3], v1[3], v[3], w[3];
     step_or_fail(s, half);
-    dem_get_field(s, FIELD_V, v1);
+    dem_get_field(s, DEM_FIELD_V, v1);
     step_or_fail(s, half);
-    dem_get_field(s, FIELD_X, x);
-    dem_get_field(s, FIELD_V, v);
-    dem_get_field(s, FIELD_W, w);
+    dem_get_field(s, DEM_FIELD_X, x);
+    dem_get_field(s, DEM_FIELD_V, v);
+    dem_get_field(s, DEM_FIELD_W, w);
     slope_result res = {x[0], (v[0] - v1[0]) / (half * dem_dt(s)), v[0] - w[1] * r};
     dem_destroy(s);
     return res;

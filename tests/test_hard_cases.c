@@ -43,8 +43,8 @@ static void test_coincident_centres(void **st)
         double x[6] = {0};
         for (int k = 0; k < 200 && x[2] - x[5] < 0.02; k++) { /* until they no longer touch */
             step_or_fail(s, 10);
-            assert_true(all_finite(s, FIELD_X) && all_finite(s, FIELD_V) && all_finite(s, FIELD_FORCE));
-            dem_get_field(s, FIELD_X, x);
+            assert_true(all_finite(s, DEM_FIELD_X) && all_finite(s, DEM_FIELD_V) && all_finite(s, DEM_FIELD_FORCE));
+            dem_get_field(s, DEM_FIELD_X, x);
         }
         /* defined policy: the lower id is pushed along +z; they separate along z */
         assert_true(x[2] > x[5]);
@@ -133,13 +133,13 @@ static void test_glass_recommended_dt(void **st)
         assert_true(isfinite(e.total));
         assert_true(e.total <= e0.total * 1.001); /* nothing creates energy */
         double x[3 * 64];
-        dem_get_field(s, FIELD_X, x);
+        dem_get_field(s, DEM_FIELD_X, x);
         for (int i = 0; i < 64; i++)
             worst = fmax(worst, 0.002 - x[3 * i + 2]); /* overlap with the floor */
     }
     printf("  glass: %ld steps, energy %.4g -> %.4g J, largest floor overlap %.3g %% of r\n", dem_step_index(s),
            e0.total, e.total, 100 * worst / 0.002);
-    assert_true(all_finite(s, FIELD_V) && all_finite(s, FIELD_W));
+    assert_true(all_finite(s, DEM_FIELD_V) && all_finite(s, DEM_FIELD_W));
     assert_true(worst < 0.01 * 0.002);
     dem_destroy(s);
 }

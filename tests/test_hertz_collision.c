@@ -18,7 +18,7 @@ static void collide(double r1, double r2, double v, dem_precision prec)
         step_or_fail(s, 1);
         step_or_fail(ref, 1);
         double delta = r1 + r2 - pair_distance(s), f[6];
-        dem_get_field(s, FIELD_FORCE, f);
+        dem_get_field(s, DEM_FIELD_FORCE, f);
         if (delta > 0) {
             was = 1;
             tc += dt;

@@ -55,7 +55,7 @@ static collision spheres(const dem_material *m, int n, int model, double dt)
     for (int step = 1; step <= 600; step++) {
         step_or_fail(s, 1);
         double x[15];
-        assert_int_equal(dem_get_field(s, FIELD_X, x), 0);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
         double g = 2 * r - sqrt((x[3] - x[0]) * (x[3] - x[0]) + (x[4] - x[1]) * (x[4] - x[1]) +
                                 (x[5] - x[2]) * (x[5] - x[2]));
         double d = g;
@@ -63,9 +63,9 @@ static collision spheres(const dem_material *m, int n, int model, double dt)
             int cnt[5], list[5 * 64], maxn = dem_neighbor_capacity(s);
             double disp[5 * 64];
             assert_true(maxn <= 64);
-            assert_int_equal(dem_get_raw(s, FIELD_NBR_COUNT, cnt, sizeof(int) * n), 0);
-            assert_int_equal(dem_get_raw(s, FIELD_NBR_LIST, list, sizeof(int) * n * maxn), 0);
-            assert_int_equal(dem_get_field(s, FIELD_MC_DISP, disp), 0);
+            assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * n), 0);
+            assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_LIST, list, sizeof(int) * n * maxn), 0);
+            assert_int_equal(dem_get_field(s, DEM_FIELD_MC_DISP, disp), 0);
             for (int k = 0; k < cnt[0]; k++)
                 if (list[k] == 1)
                     d += disp[k];
@@ -195,7 +195,7 @@ static void test_eq11_octahedron(void **st)
                         dem_set_mc_stress_convention(s, conv ? DEM_MCS_APPENDIX_OWN_OUT : DEM_MCS_DEFAULT), 0);
                     dem_config c = cfg_of(be ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, DEM_FP64);
                     start_or_fail(s, &c);
-                    assert_int_equal(dem_get_field(s, FIELD_FORCE, f[be]), 0);
+                    assert_int_equal(dem_get_field(s, DEM_FIELD_FORCE, f[be]), 0);
                     dem_destroy(s);
                 }
                 assert_memory_equal(f[0], f[1], sizeof f[0]); /* reference and PoCL bitwise */
@@ -259,7 +259,7 @@ static void test_five_in_box_closed_form(void **st)
             double p[3], f[3], fc, fw, x[15];
             dem_wall_position(s, first + 1, p);
             dem_wall_force(s, first + 1, f);
-            assert_int_equal(dem_get_field(s, FIELD_X, x), 0);
+            assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
             double travel = 0.03 - p[0], fc0, fw0, eps = travel / 0.03, dc = 2 * r - x[3];
             box_closed_form(cv, travel, r, es, es, 1.65 * 0.5, &fc, &fw);
             box_closed_form(cv, travel, r, es, es, 0, &fc0, &fw0);

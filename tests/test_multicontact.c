@@ -77,15 +77,15 @@ static void test_models_bitwise(void **st)
 static int gap_contacts(dem_sim *s)
 {
     int n = dem_count(s);
-    size_t bl = dem_field_bytes(s, FIELD_NBR_LIST), bt = dem_field_bytes(s, FIELD_TOUCH);
+    size_t bl = dem_field_bytes(s, DEM_FIELD_NBR_LIST), bt = dem_field_bytes(s, DEM_FIELD_TOUCH);
     int maxn = (int)(bl / sizeof(int) / (size_t)n), found = 0;
     double *x = malloc(sizeof(double) * 3 * (size_t)n);
     int *cnt = malloc(sizeof(int) * (size_t)n), *list = malloc(bl);
     unsigned char *touch = malloc(bt);
-    assert_int_equal(dem_get_field(s, FIELD_X, x), 0);
-    assert_int_equal(dem_get_raw(s, FIELD_NBR_COUNT, cnt, sizeof(int) * (size_t)n), 0);
-    assert_int_equal(dem_get_raw(s, FIELD_NBR_LIST, list, bl), 0);
-    assert_int_equal(dem_get_raw(s, FIELD_TOUCH, touch, bt), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+    assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * (size_t)n), 0);
+    assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_LIST, list, bl), 0);
+    assert_int_equal(dem_get_raw(s, DEM_FIELD_TOUCH, touch, bt), 0);
     for (int i = 0; i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             int j = list[i * maxn + k];
@@ -271,8 +271,8 @@ static void test_stress_tensor_closed_form(void **st)
         dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
         start_or_fail(s, &c);
         double sig[6], tr[1];
-        assert_int_equal(dem_get_field(s, FIELD_STRESS, sig), 0);
-        assert_int_equal(dem_get_field(s, FIELD_STRESS_TRACE, tr), 0);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_STRESS, sig), 0);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_STRESS_TRACE, tr), 0);
         double es = 1 / (2 * (1 - 0.46 * 0.46) / 1.85e6), fh = 4.0 / 3.0 * es * sqrt(r * d) * d;
         double V = 4.0 / 3.0 * M_PI * r * r * r, want = -2 * (r - d) * fh / V;
         assert_true(fabs(sig[2] - want) <= 1e-12 * fabs(want));

@@ -31,13 +31,13 @@ static void check(dem_precision prec, double skin)
     int *c1 = malloc(sizeof(int) * n), *c2 = malloc(sizeof(int) * n);
     int *l1 = malloc(sizeof(int) * n * m), *l2 = malloc(sizeof(int) * n * m);
     double *rad = malloc(sizeof(double) * n);
-    size_t bytes = dem_field_bytes(ref, FIELD_X_BUILD);
+    size_t bytes = dem_field_bytes(ref, DEM_FIELD_X_BUILD);
     void *xb = malloc(bytes);
-    assert_int_equal(dem_get_raw(ref, FIELD_NBR_COUNT, c1, sizeof(int) * n), 0);
-    assert_int_equal(dem_get_raw(cl, FIELD_NBR_COUNT, c2, sizeof(int) * n), 0);
-    assert_int_equal(dem_get_raw(ref, FIELD_NBR_LIST, l1, sizeof(int) * n * m), 0);
-    assert_int_equal(dem_get_raw(cl, FIELD_NBR_LIST, l2, sizeof(int) * n * m), 0);
-    assert_int_equal(dem_get_raw(ref, FIELD_X_BUILD, xb, bytes), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_NBR_COUNT, c1, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(cl, DEM_FIELD_NBR_COUNT, c2, sizeof(int) * n), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_NBR_LIST, l1, sizeof(int) * n * m), 0);
+    assert_int_equal(dem_get_raw(cl, DEM_FIELD_NBR_LIST, l2, sizeof(int) * n * m), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_X_BUILD, xb, bytes), 0);
     assert_memory_equal(c1, c2, sizeof(int) * n);
     for (int i = 0; i < n; i++) {
         assert_memory_equal(l1 + i * m, l2 + i * m, sizeof(int) * c1[i]);

@@ -44,7 +44,7 @@ static void test_pairs_exact(void **st)
             double *f = malloc(sizeof(double) * 3 * n);
             for (int k = 0; k < 400; k++) {
                 step_or_fail(s, 1);
-                dem_get_field(s, FIELD_FORCE, f);
+                dem_get_field(s, DEM_FIELD_FORCE, f);
                 for (int i = 0; i < n; i += 2)
                     for (int d = 0; d < 3; d++) {
                         /* exact: the partner's force is the bitwise negation */
@@ -79,7 +79,7 @@ static void test_packing_bounded(void **st)
     double *x = malloc(sizeof(double) * 3 * n), *f = malloc(sizeof(double) * 3 * n);
     dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
     start_or_fail(s, &rc);
-    dem_get_field(s, FIELD_X, x);
+    dem_get_field(s, DEM_FIELD_X, x);
     unsigned seed = 5;
     for (int i = 0; i < n; i++) {
         double v[3] = {0.1 * (uniform01(&seed) - 0.5), 0.1 * (uniform01(&seed) - 0.5), 0.1 * (uniform01(&seed) - 0.5)};
@@ -94,7 +94,7 @@ static void test_packing_bounded(void **st)
     int loaded = 0;
     for (int k = 0; k < 200; k++) {
         step_or_fail(t, 1);
-        dem_get_field(t, FIELD_FORCE, f);
+        dem_get_field(t, DEM_FIELD_FORCE, f);
         double sum[3] = {0, 0, 0}, fmax = 0;
         for (int i = 0; i < n; i++)
             for (int d = 0; d < 3; d++) {

@@ -20,7 +20,7 @@ static double measure(double e, double v)
             break;
     }
     double vel[6];
-    dem_get_field(s, FIELD_V, vel);
+    dem_get_field(s, DEM_FIELD_V, vel);
     dem_destroy(s);
     assert_true(touched);
     return (vel[3] - vel[0]) / v;

@@ -172,17 +172,17 @@ static int zero_bits(const unsigned char *p, size_t n)
 
 int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
 {
-    static const dem_field fields[] = {FIELD_X, FIELD_V, FIELD_W, FIELD_FORCE, FIELD_TORQUE, FIELD_WALL_FORCE,
-                                       FIELD_WALL_HIST, FIELD_STRESS, FIELD_STRESS_TRACE, FIELD_MC_FORCE,
-                                       FIELD_MC_WALL_FORCE};
+    static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE,
+                                       DEM_FIELD_WALL_HIST, DEM_FIELD_STRESS, DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_FORCE,
+                                       DEM_FIELD_MC_WALL_FORCE};
     static const char *names[] = {"position", "velocity", "angular velocity", "force", "torque", "wall force",
                                   "wall history", "stress tensor", "stress trace", "MC-strain force",
                                   "MC-strain wall force"};
-    size_t rs = dem_field_bytes(a, FIELD_X) / (3 * (size_t)dem_count(a));
+    size_t rs = dem_field_bytes(a, DEM_FIELD_X) / (3 * (size_t)dem_count(a));
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
         size_t na, nb;
         /* fields of a model one run does not have (multi-contact) are compared only when both have them */
-        if (fields[k] >= FIELD_STRESS_TRACE && (!dem_field_bytes(a, fields[k]) || !dem_field_bytes(b, fields[k])))
+        if (fields[k] >= DEM_FIELD_STRESS_TRACE && (!dem_field_bytes(a, fields[k]) || !dem_field_bytes(b, fields[k])))
             continue;
         unsigned char *pa = get(a, fields[k], &na), *pb = get(b, fields[k], &nb);
         int bad = na != nb || memcmp(pa, pb, na) != 0;
@@ -202,9 +202,9 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
     }
     /* contact history: merge the sorted rows; a partner in one row only must carry zero history */
     size_t n1, n2, l1, l2, h1, h2;
-    int *c1 = get(a, FIELD_NBR_COUNT, &n1), *c2 = get(b, FIELD_NBR_COUNT, &n2);
-    int *r1 = get(a, FIELD_NBR_LIST, &l1), *r2 = get(b, FIELD_NBR_LIST, &l2);
-    unsigned char *g1 = get(a, FIELD_HIST, &h1), *g2 = get(b, FIELD_HIST, &h2);
+    int *c1 = get(a, DEM_FIELD_NBR_COUNT, &n1), *c2 = get(b, DEM_FIELD_NBR_COUNT, &n2);
+    int *r1 = get(a, DEM_FIELD_NBR_LIST, &l1), *r2 = get(b, DEM_FIELD_NBR_LIST, &l2);
+    unsigned char *g1 = get(a, DEM_FIELD_HIST, &h1), *g2 = get(b, DEM_FIELD_HIST, &h2);
     int m1 = dem_neighbor_capacity(a), m2 = dem_neighbor_capacity(b), bad = h1 != h2 && (h1 == 0 || h2 == 0);
     if (bad)
         snprintf(msg, len, "one run has tangential history and the other none");
@@ -233,7 +233,7 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
 
 uint64_t state_hash(dem_sim *s)
 {
-    static const dem_field fields[] = {FIELD_X, FIELD_V, FIELD_W, FIELD_FORCE, FIELD_TORQUE, FIELD_WALL_FORCE};
+    static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE};
     uint64_t h = 1469598103934665603ull;
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
         size_t n;
@@ -263,7 +263,7 @@ dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, doubl
 double pair_distance(dem_sim *s)
 {
     double x[6];
-    if (dem_get_field(s, FIELD_X, x))
+    if (dem_get_field(s, DEM_FIELD_X, x))
         fail_msg("%s", dem_error(s));
     double d = sqrt((x[0] - x[3]) * (x[0] - x[3]) + (x[1] - x[4]) * (x[1] - x[4]) + (x[2] - x[5]) * (x[2] - x[5]));
     return d;

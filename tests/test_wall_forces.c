@@ -62,7 +62,7 @@ static void test_die(void **st)
     /* the walls are pushed down by the weight (cylinder friction may carry part of it) */
     assert_true(fabs((-ff[2] - fc[2]) / weight - 1) < 0.01);
     assert_true(fabs(fc[0]) < weight && fabs(fc[1]) < weight);
-    dem_get_field(s, FIELD_X, x);
+    dem_get_field(s, DEM_FIELD_X, x);
     double top = 0;
     for (int i = 0; i < 17; i++)
         top = fmax(top, x[3 * i + 2] + R_BEAD);
