@@ -359,8 +359,10 @@ static int report_out_of_domain(dem_sim *s, int id)
     free(buf);
     return sim_fail(s, DEM_ERR_DOMAIN,
                     "step %ld: particle %d at (%g, %g, %g) m is outside the binning domain [%g,%g]x[%g,%g]x[%g,%g] "
-                    "or not finite; enlarge the domain or check the set-up (time step, overlaps)",
-                    s->step, id, p[0], p[1], p[2], s->lo[0], s->hi[0], s->lo[1], s->hi[1], s->lo[2], s->hi[2]);
+                    "(the domain rounded up to whole cells of %g m) or not finite; enlarge the domain or check the "
+                    "set-up (time step, overlaps)",
+                    s->step, id, p[0], p[1], p[2], s->lo[0], s->grid_hi[0], s->lo[1], s->grid_hi[1], s->lo[2],
+                    s->grid_hi[2], s->grid_cell);
 }
 
 /* Copies launches [a, z) of the core's trace after the n already in dst. */

@@ -16,6 +16,7 @@ struct dem_sim {
     dem_wall walls[DEM_MAX_WALLS];
     double gravity[3];
     double lo[3], hi[3];
+    double grid_hi[3], grid_cell; /* upper corner of the binning grid (lo + whole cells) and its cell size [m] */
     int have_domain;
     double dt;
     unsigned effects; /* DEM_EFFECT_* mask; DEM_EFFECT_CLASSICAL unless set */

@@ -309,7 +309,9 @@ int sim_pack(dem_sim *s)
         u->lo[d] = lo[d];
         s->lo[d] = lo[d];
         s->hi[d] = hi[d];
+        s->grid_hi[d] = lo[d] + u->ncell[d] * cell; /* what the binning checks: whole cells, past hi by < 1 cell */
     }
+    s->grid_cell = cell;
     u->inv_cell = 1 / cell;
     u->dt = s->dt;
     memcpy(u->gravity, s->gravity, sizeof u->gravity);

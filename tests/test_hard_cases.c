@@ -66,8 +66,21 @@ static void test_leaves_domain(void **st)
         printf("  %s: %s\n", b ? "PoCL" : "reference", msg);
         assert_non_null(strstr(msg, "particle 1 "));
         assert_non_null(strstr(msg, "outside the binning domain"));
-        /* it stopped right after leaving: within skin/2 + one step of the boundary */
+        /* it stopped right after leaving: the check runs at each neighbour rebuild, which comes once a particle has
+         * moved skin/2 (skin: the default 0.3 r_min), so the particle is past the grid's boundary (the domain's
+         * 0.1 m rounded up to whole cells, as the message says) by at most skin/2 plus one step's travel */
         assert_true(dem_step_index(s) < need);
+        const char *at = strstr(msg, " at ("), *dom = strstr(msg, "domain [");
+        double px = NAN, lo = NAN, hi = NAN;
+        assert_non_null(at);
+        assert_non_null(dom);
+        assert_int_equal(sscanf(at, " at (%lf", &px), 1);
+        assert_int_equal(sscanf(dom, "domain [%lf,%lf]", &lo, &hi), 2);
+        assert_true(lo == -0.1 && hi >= 0.1 && hi < 0.2);
+        double bound = hi + 0.5 * 0.3 * 0.001 + 5 * dem_dt(s);
+        printf("  stopped at x = %.6f m: %.3g m past the grid's boundary %.6f m (bound %.3g m)\n", px, px - hi, hi,
+               bound - hi);
+        assert_true(px > hi && px <= bound * (1 + 1e-6));
         dem_destroy(s);
     }
 }
@@ -166,8 +179,9 @@ static void test_kernel_build_log(void **st)
     (void)st;
     char dir[] = "/tmp/dem-kernels-XXXXXX", cmd[512];
     assert_non_null(mkdtemp(dir));
-    snprintf(cmd, sizeof cmd, "cp -r '%s/kernels' '%s/common' '%s/' && echo 'this is not OpenCL C;' >> '%s/kernels/integrate.cl'",
-             DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir, dir);
+    snprintf(cmd, sizeof cmd, "cp -r '%s/kernels' '%s/common' '%s/include' '%s/' && echo 'this is not OpenCL C;' >> "
+             "'%s/kernels/integrate.cl'", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir,
+             dir);
     assert_int_equal(system(cmd), 0);
     dem_sim *s = glass_box(1.0);
     dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
