@@ -544,6 +544,15 @@ double dem_dt(const dem_sim *s) { return s->dt; }
 int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
 long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
 int dem_cell_count(const dem_sim *s) { return s->setup.ncell[0] * s->setup.ncell[1] * s->setup.ncell[2]; }
+int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3])
+{
+    if (!s->started)
+        return DEM_ERR_STATE;
+    memcpy(lo, s->setup.lo, sizeof(double) * 3);
+    memcpy(ncell, s->setup.ncell, sizeof(int) * 3);
+    *inv_cell = s->setup.inv_cell;
+    return 0;
+}
 const char *dem_describe(dem_sim *s)
 {
     if (!s->be)

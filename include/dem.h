@@ -188,6 +188,10 @@ double dem_dt(const dem_sim *s);
 int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
 long dem_rebuild_count(const dem_sim *s);
 int dem_cell_count(const dem_sim *s);
+/* The binning grid of a started run: its lower corner [m], 1 / cell size [1/m] (as the kernels get it, before the
+ * cast to the run's precision) and cells per axis. Cell of a position x: floor((x - lo) * inv_cell) per axis, in the
+ * run's precision, cell index (cz * ncy + cy) * ncx + cx (common/binning.h). */
+int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3]);
 const char *dem_describe(dem_sim *s);   /* backend, device and active effects */
 
 /* Raw bytes of a field in the run's precision (bit comparisons); bytes must not exceed the field's size. */

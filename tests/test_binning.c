@@ -40,6 +40,33 @@ static void check(dem_precision prec, size_t local)
         }
     }
     free(seen);
+    /* definition: each particle is listed in the cell of its position at the last binning (x_build), the cell
+     * computed here in the run's precision from the grid (floor((x - lo) / cell) per axis) */
+    double lo[3], inv_cell, *xb = malloc(sizeof(double) * 3 * n);
+    int ncell[3], *cell_of = malloc(sizeof(int) * n);
+    assert_int_equal(dem_grid_get(ref, lo, &inv_cell, ncell), 0);
+    assert_int_equal(ncell[0] * ncell[1] * ncell[2], nc);
+    assert_int_equal(dem_get_field(ref, DEM_FIELD_X_BUILD, xb), 0);
+    for (int c0 = 0; c0 < nc; c0++)
+        for (int k = s1[c0]; k < s1[c0 + 1]; k++)
+            cell_of[p1[k]] = c0;
+    for (int i = 0; i < n; i++) {
+        int cc[3];
+        for (int d = 0; d < 3; d++) {
+            double t = prec == DEM_FP64 ? (xb[3 * i + d] - lo[d]) * inv_cell
+                                        : (double)(((float)xb[3 * i + d] - (float)lo[d]) * (float)inv_cell);
+            assert_true(t >= 0 && t < ncell[d]);
+            cc[d] = (int)t;
+        }
+        int want = (cc[2] * ncell[1] + cc[1]) * ncell[0] + cc[0];
+        if (cell_of[i] != want)
+            fail_msg("particle %d is listed in cell %d, its position is in cell %d", i, cell_of[i], want);
+    }
+    int used = 0; /* the check spans many cells, not one */
+    for (int c0 = 0; c0 < nc; c0++)
+        used += s1[c0 + 1] > s1[c0];
+    assert_true(used > 100);
+    free(xb), free(cell_of);
     free(s1), free(s2), free(p1), free(p2);
     dem_destroy(ref);
     dem_destroy(cl);
