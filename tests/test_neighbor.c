@@ -65,6 +65,11 @@ static void check(dem_precision prec, double skin)
     printf("  %s, skin %g m: %ld row entries, widest row %d, capacity %d\n", prec == DEM_FP64 ? "fp64" : "fp32", skin,
            total, widest, m);
     assert_true(total > 2 * n); /* a dense packing */
+    /* the capacity starts at 16 and doubles when a build overflows (it never shrinks): with the large skin the rows
+     * outgrew it, so it must have grown and the overflow-and-grow path has run */
+    assert_true(widest <= m);
+    if (skin > 1e-3)
+        assert_true(m > 16 && widest > 16);
     free(xb);
     free(c1), free(c2), free(l1), free(l2), free(rad);
     dem_destroy(ref);
