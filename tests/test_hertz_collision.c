@@ -1,6 +1,9 @@
 /* test_hertz_collision.c - two-sphere head-on Hertz collision without damping or friction against the closed forms
  *   t_c = 2.868 (m*^2 / (r* E*^2 v))^(1/5),  d_max = (15 m* v^2 / (16 E* sqrt(r*)))^(2/5),  F_max = 4/3 E* sqrt(r*) d_max^(3/2)
- * within 0.5 %, for equal and unequal spheres, on PoCL in fp64 and fp32, each bitwise equal to the reference. */
+ * typed in here from the textbook (Johnson, Contact Mechanics, 1985, Sec. 11.4), not taken from the library:
+ * t_c within 0.1 % (it is counted in steps of t_c / 2000), d_max and F_max within 0.02 %; for equal and unequal
+ * spheres, on PoCL in fp64 and fp32, each bitwise equal to the reference. The library's own dem_hertz_* helpers
+ * must give the same closed forms. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -33,13 +36,16 @@ static void collide(double r1, double r2, double v, dem_precision prec)
         fail_msg("PoCL vs reference: %s", msg);
     double m1 = 4.0 / 3.0 * M_PI * r1 * r1 * r1 * m.density, m2 = 4.0 / 3.0 * M_PI * r2 * r2 * r2 * m.density;
     double ms = m1 * m2 / (m1 + m2), rs = r1 * r2 / (r1 + r2), es = m.young / (2 * (1 - m.poisson * m.poisson));
-    double tc0 = dem_hertz_contact_time(ms, rs, es, v), d0 = dem_hertz_max_overlap(ms, rs, es, v);
+    double tc0 = 2.868 * pow(ms * ms / (rs * es * es * v), 0.2);
+    double d0 = pow(15 * ms * v * v / (16 * es * sqrt(rs)), 0.4);
     double f0 = 4.0 / 3.0 * es * sqrt(rs) * d0 * sqrt(d0);
+    assert_true(fabs(dem_hertz_contact_time(ms, rs, es, v) / tc0 - 1) < 1e-12);
+    assert_true(fabs(dem_hertz_max_overlap(ms, rs, es, v) / d0 - 1) < 1e-12);
     printf("  r %g/%g m, v %g m/s, %s: t_c %.6g (closed %.6g), d_max %.6g (%.6g), F_max %.6g (%.6g)\n", r1, r2, v,
            prec == DEM_FP64 ? "fp64" : "fp32", tc, tc0, dmax, d0, fpeak, f0);
-    assert_true(fabs(tc / tc0 - 1) < 0.005);
-    assert_true(fabs(dmax / d0 - 1) < 0.005);
-    assert_true(fabs(fpeak / f0 - 1) < 0.005);
+    assert_true(fabs(tc / tc0 - 1) < 1e-3);
+    assert_true(fabs(dmax / d0 - 1) < 2e-4);
+    assert_true(fabs(fpeak / f0 - 1) < 2e-4);
     dem_destroy(s);
     dem_destroy(ref);
 }
