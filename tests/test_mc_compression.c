@@ -7,10 +7,10 @@
  *  - hard cases stay numerically stable (finite, bounded kinetic energy, no particle pushed through another):
  *    MC-strain at 10x the paper's compression speed, lagged and iterated; rubber to 40 % under both models; glass
  *    under both models at its recommended time step (0.2 Rayleigh times, as its scene has).
- * Overlap bound: a uniaxial strain e brings two spheres stacked along the axis to d/r = 2e by geometry alone
- * (28 % strain: 56 % of a radius, 40 %: 80 %, whatever the contact law), so "overlaps < 50 % of the radius" is
- * read per particle: each of the two is indented by less than half its radius, d < 50 % of the smaller DIAMETER.
- * A blow-up (spheres passing through each other) breaks that at once. Overlaps are also printed per radius.
+ * Overlap bound: a uniaxial strain e compresses a contact along the axis to d/D = e of the smaller diameter D by
+ * geometry alone, whatever the contact law; the largest overlap in any frame must stay below the run's peak strain
+ * plus OVERLAP_MARGIN (settling and polydispersity). A blow-up (spheres passing through each other) breaks it at
+ * once. Each multi-contact model's stiffening over classical is asserted at the figure docs/multicontact.md states.
  * Figures measured here are printed for the closing note; `make validate` draws the stress-strain PNGs. */
 #include "test_util.h"
 #include "h5util.h"
@@ -42,15 +42,21 @@ static double *series(hid_t f, const char *name, long *n)
     return d;
 }
 
-/* Runs scene (a path, or a sed expression applied to it first) with a model and reads its output. */
-static loop_result run_loop(const char *scene, const char *sed, const char *model)
+/* Runs scene (a path, or that scene edited by a NULL-terminated list of sed expressions first) with a model and
+ * reads its output. Each expression must change the scene: one that stops matching (the scene was edited) fails the
+ * test instead of silently running the plain scene as the "hard case". */
+static loop_result run_loop(const char *scene, const char *const *sed, const char *model)
 {
     char err[8192], path[512], out[512];
     snprintf(path, sizeof path, "%s", scene);
     if (sed) { /* a variant of a shipped scene, its CSV path made absolute */
         snprintf(path, sizeof path, "%s/variant.yaml", tmp);
-        assert_int_equal(test_sh(tmp, err, sizeof err, "sed -e 's|csv: data/|csv: %s/scenes/data/|' -e '%s' %s > %s",
-                                 SRC, sed, scene, path), 0);
+        assert_int_equal(test_sh(tmp, err, sizeof err, "sed -e 's|csv: data/|csv: %s/scenes/data/|' %s > %s", SRC,
+                                 scene, path), 0);
+        for (int k = 0; sed[k]; k++)
+            if (test_sh(tmp, err, sizeof err, "sed -e '%s' %s > %s.next && ! cmp -s %s %s.next && mv %s.next %s", sed[k],
+                        path, path, path, path, path, path))
+                fail_msg("the edit '%s' no longer changes %s", sed[k], scene);
     }
     snprintf(out, sizeof out, "%s/loop.h5", tmp);
     int rc = test_sh(tmp, err, sizeof err, "%s run %s --model %s -o %s --quiet", DEM, path, model, out);
@@ -102,7 +108,21 @@ static loop_result run_loop(const char *scene, const char *sed, const char *mode
     return r;
 }
 
-static void stiffer_and_closed(const char *scene)
+/* Overlap bound: a contact along the axis of a uniaxial strain e is compressed to d/D = e (D the smaller diameter)
+ * by geometry alone; settling under gravity and polydispersity add a little. A blow-up exceeds it at once. */
+#define OVERLAP_MARGIN 0.03
+
+static void bounded_overlap(loop_result r)
+{
+    if (!(r.max_overlap < r.peak_strain + OVERLAP_MARGIN))
+        fail_msg("largest overlap %.1f %% of the smaller diameter exceeds the peak strain %.1f %% + %.0f %%",
+                 100 * r.max_overlap, 100 * r.peak_strain, 100 * OVERLAP_MARGIN);
+}
+
+/* mc_stress / mc_strain: the peak stress over classical as docs/multicontact.md's table settles it (issue 16:
+ * default MC-stress reading, the paper's beta and gamma). The runs are bitwise reproducible on every device; the
+ * tolerance covers the table's rounding. Changing the physics means changing both. */
+static void stiffer_and_closed(const char *scene, double mc_stress_ratio, double mc_strain_ratio)
 {
     loop_result c = run_loop(scene, NULL, "classical"), s = run_loop(scene, NULL, "mc_stress"),
                 e = run_loop(scene, NULL, "mc_strain");
@@ -111,22 +131,41 @@ static void stiffer_and_closed(const char *scene)
         assert_true(all[k].finite);
         assert_true(all[k].final_strain < 1e-3);                           /* the piston is back ... */
         assert_true(fabs(all[k].final_stress) < 0.05 * all[k].max_stress); /* ... and the load is gone */
-        assert_true(all[k].max_overlap < 0.5);
+        bounded_overlap(all[k]);
     }
-    /* both multi-contact laws stiffen the packing (MC-stress only slightly on glass: +1.2 %, docs/multicontact.md) */
-    assert_true(s.stress_at_peak > c.stress_at_peak);
-    assert_true(e.stress_at_peak > 1.1 * c.stress_at_peak);
+    double rs = s.max_stress / c.max_stress, re = e.max_stress / c.max_stress;
+    printf("# peak stress over classical: MC-stress %.4f (table %.4f), MC-strain %.4f (table %.4f)\n", rs,
+           mc_stress_ratio, re, mc_strain_ratio);
+    assert_true(fabs(rs / mc_stress_ratio - 1) < 0.002);
+    assert_true(fabs(re / mc_strain_ratio - 1) < 0.002);
 }
 
-static void test_hydrogel_514(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/hydrogel_514.yaml"); }
-static void test_rubber_514(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/rubber_514.yaml"); }
-static void test_glass_die(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/glass_die.yaml"); }
-static void test_hydrogel_1921(void **st) { (void)st; stiffer_and_closed(SRC "/scenes/hydrogel_1921.yaml"); }
+/* docs/multicontact.md, "peak stress for the packings": classical / MC-strain / default MC-stress */
+static void test_hydrogel_514(void **st)
+{
+    (void)st;
+    stiffer_and_closed(SRC "/scenes/hydrogel_514.yaml", 195.7 / 145.0, 251.3 / 145.0);
+}
+static void test_rubber_514(void **st)
+{
+    (void)st;
+    stiffer_and_closed(SRC "/scenes/rubber_514.yaml", 138.6 / 83.8, 120.0 / 83.8);
+}
+static void test_glass_die(void **st)
+{
+    (void)st;
+    stiffer_and_closed(SRC "/scenes/glass_die.yaml", 39.5 / 35.8, 55.6 / 35.8);
+}
+static void test_hydrogel_1921(void **st)
+{
+    (void)st;
+    stiffer_and_closed(SRC "/scenes/hydrogel_1921.yaml", 112.8 / 87.16, 133.5 / 87.16);
+}
 
 static void stable(loop_result r)
 {
     assert_true(r.finite);
-    assert_true(r.max_overlap < 0.5);
+    bounded_overlap(r);
     /* bounded: the quasi-static compression never turns into a violent motion with more kinetic than stored energy */
     assert_true(r.max_kinetic < r.max_elastic);
 }
@@ -135,12 +174,18 @@ static void test_hard_cases(void **st)
 {
     (void)st;
     /* 10x the paper's piston speed (2 -> 20 cm/s); the hold and settling times stay */
-    const char *fast = "s/velocity: \\[0, 0, -0.02\\]/velocity: [0, 0, -0.2]/; s/velocity: \\[0, 0, 0.02\\]/velocity: "
-                       "[0, 0, 0.2]/; s/duration: 2.65 /duration: 0.75 /";
-    stable(run_loop(SRC "/scenes/hydrogel_514.yaml", fast, "mc_strain"));
+    const char *const fast[] = {"s/velocity: \\[0, 0, -0.02\\]/velocity: [0, 0, -0.2]/",
+                                "s/velocity: \\[0, 0, 0.02\\]/velocity: [0, 0, 0.2]/", "s/duration: 2.65 /duration: 0.75 /",
+                                NULL};
+    loop_result plain = run_loop(SRC "/scenes/hydrogel_514.yaml", NULL, "mc_strain");
+    loop_result f1 = run_loop(SRC "/scenes/hydrogel_514.yaml", fast, "mc_strain");
+    stable(f1);
     stable(run_loop(SRC "/scenes/hydrogel_514.yaml", fast, "mc_strain_iterated"));
-    const char *forty = "s/strain: 0.28/strain: 0.40/g; s/duration: 2.7 /duration: 3.8 /";
-    stable(run_loop(SRC "/scenes/rubber_514.yaml", forty, "mc_stress"));
+    assert_true(fabs(f1.peak_strain - plain.peak_strain) < 0.005); /* the same strain, reached 10x faster */
+    const char *const forty[] = {"s/strain: 0.28/strain: 0.40/g", "s/duration: 2.7 /duration: 3.8 /", NULL};
+    loop_result r1 = run_loop(SRC "/scenes/rubber_514.yaml", forty, "mc_stress");
+    stable(r1);
+    assert_true(r1.peak_strain > 0.39); /* the variant did reach 40 % */
     stable(run_loop(SRC "/scenes/rubber_514.yaml", forty, "mc_strain"));
     /* glass: its scene already runs at the recommended dt (dt_rayleigh 0.2); iterated MC-strain too */
     stable(run_loop(SRC "/scenes/glass_die.yaml", NULL, "mc_strain_iterated"));
