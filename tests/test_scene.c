@@ -1,6 +1,7 @@
 /* test_scene.c - the dem command end to end: scene errors (file, line, field, exit status, no output), HDF5 and
  * XDMF output, progress/effects report, and bit-exact restart (2N steps = N steps + restart + N steps). */
 #include "test_util.h"
+#include <math.h>
 #include "h5util.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -293,10 +294,28 @@ static void test_output_and_xdmf(void **st)
     assert_int_equal(h5_read(f, "series/stress", H5T_NATIVE_DOUBLE, stress, (size_t)rows), 0);
     assert_true(strain[0] == 0);
     assert_true(strain[rows - 1] > 0.15); /* the lid went 9 mm down into a 45 mm sample */
+    /* and pushed on the grains: the stress series is, row by row, the force the lid receives against its normal
+     * (its normal is -z: the z component) over the sample area, as the series' convention says; it did load */
+    long piston = -1;
+    double area = 0, wf[128 * 8 * 3];
+    hid_t sg = H5Gopen2(f, "series", H5P_DEFAULT);
+    assert_int_equal(h5_read_attr_long(sg, "piston_wall", &piston), 0);
+    assert_int_equal(h5_read_attr_double(sg, "sample_area", &area), 0);
+    H5Gclose(sg);
+    long nw = h5_count(f, "series/wall_force") / (rows * 3);
+    assert_int_equal(nw, 7); /* the box's six planes, then the lid */
+    assert_int_equal(piston, 6);
+    assert_true(fabs(area - 0.04 * 0.04) < 1e-12);
+    assert_int_equal(h5_read(f, "series/wall_force", H5T_NATIVE_DOUBLE, wf, (size_t)(rows * nw * 3)), 0);
     double peak = 0;
-    for (long k = 0; k < rows; k++)
+    for (long k = 0; k < rows; k++) {
+        double want = wf[(k * nw + piston) * 3 + 2] / area;
+        if (!(fabs(stress[k] - want) <= 1e-12 * fabs(want)))
+            fail_msg("row %ld: stress %.17g, lid force / area %.17g", k, stress[k], want);
         peak = stress[k] > peak ? stress[k] : peak;
-    assert_true(peak > 0); /* and pushed on the grains */
+    }
+    printf("  lid: peak stress %.4g Pa\n", peak);
+    assert_true(peak > 10); /* the 64 grains weigh 0.02 N over 16 cm^2: the compression loads far beyond that */
     H5Fclose(f);
     /* the XDMF sidecar: one grid per frame, pointing at this file's datasets */
     snprintf(p, sizeof p, "%s/o.xmf", tmp);

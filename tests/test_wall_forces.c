@@ -59,9 +59,11 @@ static void test_die(void **st)
     dem_wall_force(s, 1, ff);
     double weight = 17 * RHO * 4.0 / 3.0 * M_PI * pow(R_BEAD, 3) * 9.81;
     printf("  settled: floor %.5g N, cylinder %.5g N (z), weight %.5g N\n", -ff[2], -fc[2], weight);
-    /* the walls are pushed down by the weight (cylinder friction may carry part of it) */
+    /* the walls are pushed down by the weight (cylinder friction may carry part of it); at rest the beads feel no net
+     * horizontal force: what the cylinder receives sideways, the floor's friction takes back */
+    printf("  settled: sideways cylinder %.3g, %.3g N, floor %.3g, %.3g N\n", fc[0], fc[1], ff[0], ff[1]);
     assert_true(fabs((-ff[2] - fc[2]) / weight - 1) < 0.01);
-    assert_true(fabs(fc[0]) < weight && fabs(fc[1]) < weight);
+    assert_true(fabs(fc[0] + ff[0]) < 0.002 * weight && fabs(fc[1] + ff[1]) < 0.002 * weight);
     dem_get_field(s, DEM_FIELD_X, x);
     double top = 0;
     for (int i = 0; i < 17; i++)
@@ -72,17 +74,28 @@ static void test_die(void **st)
     /* the piston: rest, approach, press; its position follows the stages */
     long rest = lround(0.30 / dt), s1 = lround(0.32 / dt), s2 = lround(0.175 / dt);
     step_or_fail(s, rest + s1 - settle);
-    double p[3], fp[3], fpeak = 0;
-    for (long k = 0; k < s2 + 100; k += 100) { /* the press: largest force on the piston */
+    double p[3], fp[3], fpeak = 0, below = 0;
+    for (long k = 0; k < s2 + 100; k += 100) { /* the press: largest force on the piston, and the others then */
         step_or_fail(s, 100);
         dem_wall_force(s, 2, fp);
-        fpeak = fmax(fpeak, fp[2]);
+        if (fp[2] > fpeak) {
+            fpeak = fp[2];
+            dem_wall_force(s, 0, fc);
+            dem_wall_force(s, 1, ff);
+            below = -ff[2] - fc[2];
+        }
     }
     dem_wall_position(s, 2, p);
     double expect = 0.08 - 0.2 * s1 * dt - 0.02 * s2 * dt;
     printf("  piston at %.9g m (expected %.9g), largest force while pressing %.4g N\n", p[2], expect, fpeak);
     assert_true(fabs(p[2] - expect) < 1e-12);
-    assert_true(fpeak > weight); /* it pressed on the column */
+    /* the slow press is nearly quasi-static (within 5 %: the column is still being set in motion; measured 3.4 %):
+     * at the piston's largest force, what the floor and the cylinder receive downwards is the beads' weight plus
+     * what the piston receives (force balance on the beads) */
+    double above = weight + fpeak;
+    printf("  at the piston's largest force: floor + cylinder %.5g N, weight + piston %.5g N\n", below, above);
+    assert_true(fpeak > 0.5 * weight);
+    assert_true(fabs(below / above - 1) < 0.05);
     dem_destroy(s);
     dem_destroy(ref);
 }
