@@ -130,6 +130,36 @@ dem_config cfg_of(dem_backend_kind b, dem_precision p)
     return c;
 }
 
+const backend_case backend_cases[BACKEND_CASES] = {
+    {"reference fp64", DEM_BACKEND_REFERENCE, DEM_FP64, 0x1p-53},
+    {"reference fp32", DEM_BACKEND_REFERENCE, DEM_FP32, 0x1p-24},
+    {"OpenCL fp64", DEM_BACKEND_OPENCL, DEM_FP64, 0x1p-53},
+    {"OpenCL fp32", DEM_BACKEND_OPENCL, DEM_FP32, 0x1p-24},
+};
+
+void backend_run(const backend_case *bc, dem_sim *(*build)(void *ctx), long steps,
+                 void (*check)(dem_sim *s, const backend_case *bc, void *ctx), void *ctx)
+{
+    dem_sim *s = build(ctx);
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    start_or_fail(s, &c);
+    if (steps)
+        step_or_fail(s, steps);
+    check(s, bc, ctx);
+    if (bc->backend == DEM_BACKEND_OPENCL) {
+        dem_sim *r = build(ctx);
+        dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, bc->precision);
+        start_or_fail(r, &rc);
+        if (steps)
+            step_or_fail(r, steps);
+        char msg[512];
+        if (state_diff(s, r, msg, sizeof msg))
+            fail_msg("%s against the reference: %s", bc->name, msg);
+        dem_destroy(r);
+    }
+    dem_destroy(s);
+}
+
 void packing_pair(const packing_opts *o, const dem_config *rc, const dem_config *c, long steps, dem_sim **ref,
                   dem_sim **cl)
 {

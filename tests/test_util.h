@@ -34,6 +34,23 @@ const char *mcs_convention_name(unsigned c, char *buf, size_t len);
 dem_sim *packing_build(const packing_opts *o);
 
 dem_config cfg_of(dem_backend_kind b, dem_precision p);
+
+/* The backend x precision matrix every kernel test runs over (HOOMD style): the reference and OpenCL device
+ * DEM_DEVICE (default 0), each in fp32 and fp64. A test builds the same scene for each case, checks the physics on
+ * it, and checks that the OpenCL case has the reference's bits (backend_same_bits). */
+typedef struct {
+    const char *name;      /* "reference fp64", ... */
+    dem_backend_kind backend;
+    dem_precision precision;
+    double eps;            /* unit roundoff of the precision (2^-53 or 2^-24) */
+} backend_case;
+#define BACKEND_CASES 4
+extern const backend_case backend_cases[BACKEND_CASES];
+#define FOR_EACH_BACKEND(bc) for (const backend_case *bc = backend_cases; bc < backend_cases + BACKEND_CASES; bc++)
+/* Runs build() for the case, starts it, steps it, calls check(); then the same for the reference of that precision
+ * when the case is OpenCL, and asserts their states are bitwise equal. */
+void backend_run(const backend_case *bc, dem_sim *(*build)(void *ctx), long steps,
+                 void (*check)(dem_sim *s, const backend_case *bc, void *ctx), void *ctx);
 /* The same packing on the reference (rc) and on OpenCL (c), both started and advanced by `steps`. */
 void packing_pair(const packing_opts *o, const dem_config *rc, const dem_config *c, long steps, dem_sim **ref,
                   dem_sim **cl);

@@ -1,0 +1,79 @@
+/* test_integrate.c - kernels/integrate.cl (integrate_kick_drift, integrate_kick) and its reference twin, on every
+ * backend x precision: a free particle under gravity follows x0 + v0 t + g t^2 / 2 and v0 + g t (velocity Verlet
+ * is exact for a constant force, so only rounding remains: checked to 4 eps per step of the motion's scale), spins
+ * at its initial angular velocity (no torque), and a fixed particle stays exactly where it is. With the gravity
+ * effect off, the same particle flies straight. OpenCL = the reference bit for bit. The rebuild trigger (moved more
+ * than skin/2) is exercised by every moving run (tests/test_neighbor.c checks the rows it produces). */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+
+#define STEPS 1000
+#define DT 1e-5
+
+static const double x0[3] = {0.001, -0.002, 0.003}, v0[3] = {0.4, -0.1, 0.7}, w0[3] = {3, -5, 11};
+static const double g[3] = {0.5, 0, -9.81};
+
+static dem_sim *build(void *ctx)
+{
+    int gravity = *(const int *)ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    int a = dem_add_particle(s, x0, v0, 0.001, m);
+    dem_set_particle_omega(s, a, w0);
+    int b = dem_add_particle(s, (double[3]){0.02, 0.02, 0.02}, NULL, 0.001, m);
+    dem_set_particle_flags(s, b, DEM_PARTICLE_FIXED);
+    dem_set_gravity(s, g);
+    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
+    dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | (gravity ? DEM_EFFECT_GRAVITY : 0));
+    dem_set_dt(s, DT);
+    return s;
+}
+
+static void check(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    int gravity = *(const int *)ctx;
+    double x[6], v[6], w[6], t = STEPS * DT, worst = 0;
+    assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_V, v), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_W, w), 0);
+    for (int k = 0; k < 3; k++) {
+        double gk = gravity ? g[k] : 0;
+        double xe = x0[k] + v0[k] * t + 0.5 * gk * t * t, ve = v0[k] + gk * t;
+        double xs = fabs(x0[k]) + fabs(v0[k]) * t + 0.5 * fabs(g[k]) * t * t;
+        double tol_x = 4.0 * STEPS * bc->eps * xs, tol_v = 4.0 * STEPS * bc->eps * (fabs(v0[k]) + fabs(g[k]) * t);
+        if (!(fabs(x[k] - xe) <= tol_x && fabs(v[k] - ve) <= tol_v))
+            fail_msg("%s: component %d: x %.17g (want %.17g), v %.17g (want %.17g)", bc->name, k, x[k], xe, v[k], ve);
+        worst = fmax(worst, fabs(x[k] - xe) / tol_x);
+        assert_true(w[k] == (bc->precision == DEM_FP32 ? (double)(float)w0[k] : w0[k])); /* no torque: spin kept */
+        assert_true(x[3 + k] == (bc->precision == DEM_FP32 ? (double)(float)0.02 : 0.02)); /* fixed stays */
+        assert_true(v[3 + k] == 0);
+    }
+    printf("  %s, gravity %s: position error %.2g of the rounding bound after %d steps\n", bc->name,
+           gravity ? "on" : "off", worst, STEPS);
+}
+
+static void test_free_flight(void **st)
+{
+    (void)st;
+    int gravity = 1;
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build, STEPS, check, &gravity);
+}
+
+static void test_gravity_off(void **st)
+{
+    (void)st;
+    int gravity = 0;
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build, STEPS, check, &gravity);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_flight),
+        cmocka_unit_test(test_gravity_off),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
