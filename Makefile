@@ -21,12 +21,14 @@ NUM_FLAGS := -std=c11 -O2 -ffp-contract=off -fno-fast-math -fno-math-errno
 CFLAGS  := $(NUM_FLAGS) -g -Wall -Wextra -Wno-unused-parameter -Wno-format-truncation -Wno-missing-field-initializers \
            -D_GNU_SOURCE -DDEM_BUILD_FLAGS='"$(NUM_FLAGS)"' \
            -DCL_TARGET_OPENCL_VERSION=120 -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' \
-           -Iinclude -Icommon -Ihost -Ireference -Iapp $(PKG_CFLAGS)
+           -Iinclude -Icommon -Ibackend -Ihost -Ireference -Iapp $(PKG_CFLAGS)
 LDLIBS  := -lOpenCL -lm
 APP_LDLIBS := $(PKG_LIBS) $(LDLIBS)
 TEST_LDLIBS := $(APP_LDLIBS) -lcmocka
 
-HOST_SRC := $(wildcard host/*.c)
+# backend/: what a backend is (the interface and the registry walked for every backend); host/: the driver, the
+# steps written once, the OpenCL backend; reference/: the plain C backend
+HOST_SRC := $(wildcard backend/*.c host/*.c)
 REF_SRC  := $(wildcard reference/*.c)
 HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/%.o)
 REF32_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref32/%.o)
@@ -36,7 +38,7 @@ LIB      := $(BUILD)/libdem.a
 APP_SRC  := $(filter-out app/dem_main.c,$(wildcard app/*.c))
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
 APPLIB   := $(BUILD)/libdemapp.a
-HEADERS  := $(wildcard include/*.h common/*.h host/*.h reference/*.h tests/*.h app/*.h)
+HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h tests/*.h app/*.h)
 
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -53,6 +55,9 @@ $(DEPS_STAMP): scripts/install-deps.sh
 	  printf 'PKG_CFLAGS := %s\nPKG_LIBS := %s\n' "$$c" "$$l" > $@.tmp && mv $@.tmp $@
 
 $(BUILD)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+$(BUILD)/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 $(BUILD)/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)

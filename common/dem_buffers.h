@@ -1,6 +1,6 @@
 /* dem_buffers.h - the one registry of device buffers and kernel scalars (issue 18): name, element type, size rule, the
  * effect that gates it, the field it is read and written as, and what it starts from. The backends create, grow,
- * look up and destroy buffers by walking it (host/backend.c); the kernels' argument lists (dem_kernels.h) name their
+ * look up and destroy buffers by walking it (backend/backend.c); the kernels' argument lists (dem_kernels.h) name their
  * sources here. Host only: the kernels see plain pointers.
  *
  * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
@@ -96,7 +96,7 @@ enum { DEM_SCALARS_REAL(DEM_ENUM_SR) SR__COUNT };
 #undef DEM_ENUM_SI
 #undef DEM_ENUM_SR
 
-/* element types of the registry, for the kernels' lists to be checked against (host/backend.c) */
+/* element types of the registry, for the kernels' lists to be checked against (backend/backend.c) */
 #define DEM_ELEM_OF_real DEM_ELEM_REAL
 #define DEM_ELEM_OF_int DEM_ELEM_INT
 #define DEM_ELEM_OF_unsigned DEM_ELEM_UINT

@@ -321,3 +321,19 @@ const dem_backend_ops dem_opencl_ops = {
     .write = cl_write,
     .finish = cl_finish,
 };
+
+/* the public device queries (dem.h): OpenCL's, so they live here and the driver (sim.c) holds no OpenCL call */
+int dem_device_count(void) { return cl_device_count(); }
+
+int dem_device_name(int k, char *buf, size_t len)
+{
+    cl_device_info_t info;
+    char err[256];
+    if (cl_device_get(k, &info, err, sizeof err)) {
+        snprintf(buf, len, "%s", err);
+        return DEM_ERR_DEVICE;
+    }
+    snprintf(buf, len, "%s / %s (%s)%s", info.platform_name, info.device_name, info.device_version,
+             info.fp64 ? ", fp64" : "");
+    return 0;
+}

@@ -2,7 +2,6 @@
  * neighbour rows, how large they are, where the walls are) is taken here, the same way for every backend. */
 #include "sim.h"
 #include "dem_layout.h"
-#include "cl_util.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -450,19 +449,32 @@ static int mc_strain(dem_sim *s)
     return 0;
 }
 
+/* The force stages of a step, in order, each run only when the run has its effect (0: always) and, for the walls'
+ * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through be_fail). */
+static int stage_stress_trace(dem_sim *s) { return dem_stage_stress_trace(s->ops, s->be) ? be_fail(s) : 0; }
+static int stage_contacts(dem_sim *s) { return dem_stage_contact_forces(s->ops, s->be) ? be_fail(s) : 0; }
+static int stage_wall_sums(dem_sim *s)
+{
+    return s->nwalls && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
+}
+static const struct {
+    unsigned gate;
+    int (*run)(dem_sim *s);
+} force_stages[] = {
+    {DEM_EFFECT_MC_STRESS, stage_stress_trace}, /* pass 1 of MC-stress: the traces the contacts read */
+    {DEM_EFFECT_MC_STRAIN, mc_strain},          /* induced displacements (lagged or iterated forces) */
+    {0, stage_contacts},                        /* pairs once, then per-particle sums with the walls */
+    {DEM_EFFECT_WALLS, stage_wall_sums},        /* the force each wall received */
+};
+
 static int forces(dem_sim *s)
 {
-    if ((s->effects & DEM_EFFECT_MC_STRESS) && dem_stage_stress_trace(s->ops, s->be))
-        return be_fail(s);
-    if (s->effects & DEM_EFFECT_MC_STRAIN) {
-        int e = mc_strain(s);
-        if (e)
-            return e;
-    }
-    if (dem_stage_contact_forces(s->ops, s->be))
-        return be_fail(s);
-    if (s->nwalls && (s->effects & DEM_EFFECT_WALLS) && dem_stage_wall_reduce(s->ops, s->be))
-        return be_fail(s);
+    for (size_t k = 0; k < sizeof force_stages / sizeof force_stages[0]; k++)
+        if (!force_stages[k].gate || (s->effects & force_stages[k].gate)) {
+            int e = force_stages[k].run(s);
+            if (e)
+                return e;
+        }
     return 0;
 }
 
@@ -626,20 +638,6 @@ int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, in
     return 0;
 }
 
-int dem_device_count(void) { return cl_device_count(); }
-
-int dem_device_name(int k, char *buf, size_t len)
-{
-    cl_device_info_t info;
-    char err[256];
-    if (cl_device_get(k, &info, err, sizeof err)) {
-        snprintf(buf, len, "%s", err);
-        return DEM_ERR_DEVICE;
-    }
-    snprintf(buf, len, "%s / %s (%s)%s", info.platform_name, info.device_name, info.device_version,
-             info.fp64 ? ", fp64" : "");
-    return 0;
-}
 
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 {

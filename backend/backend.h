@@ -3,7 +3,7 @@
  * A backend owns buffers and runs kernels; it makes no decisions. It implements a handful of primitives (allocate a
  * registry buffer, launch a kernel of common/dem_kernels.h with its arguments looked up by their sources, fill,
  * copy, read, write); everything else is written once on top of them: the buffers a run needs (walking the registry,
- * common/dem_buffers.h, in host/backend.c), and the steps of a time step (host/<family>.c: binning, neighbour rows,
+ * common/dem_buffers.h, in backend/backend.c), and the steps of a time step (host/<family>.c: binning, neighbour rows,
  * contact forces, wall forces, integration, stress, MC-strain). The driver (host/sim.c) decides when to rebuild,
  * grows capacities, moves walls and checks flags, identically for every backend, so two backends given the same
  * setup execute the same sequence of launches.
@@ -105,7 +105,7 @@ typedef struct {
 extern const dem_backend_ops dem_reference_ops_f32, dem_reference_ops_f64;
 extern const dem_backend_ops dem_opencl_ops;
 
-/* ---- host/backend.c: the registry walked ---- */
+/* ---- backend/backend.c: the registry walked ---- */
 /* Fills the core's dimensions and scalars from the setup. */
 void dem_core_init(dem_core *c, const dem_setup *s);
 /* The scalars that follow the row sets (MAXN_CUR, MAXN_NEW), after cur or maxn changed. */
