@@ -159,219 +159,251 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
     return 0;
 }
 
-int run_scene(const run_opts *o)
-{
-    char err[8192];
+/* A run's state across its phases (run_scene): what was loaded, what was built, where it writes. */
+typedef struct {
+    const run_opts *o;
     checkpoint ck;
-    int have_ck = 0;
+    int have_ck;
     scene *sc;
-    if (o->restart) {
-        if (checkpoint_read(o->restart, &ck, err, sizeof err)) /* 66 when it cannot be opened, 65 when damaged */
-            return fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
-        have_ck = 1;
-        sc = scene_load_text(o->scene_path ? o->scene_path : ck.scene_path, ck.scene_text, strlen(ck.scene_text), err,
-                             sizeof err);
-    } else {
-        sc = scene_load(o->scene_path, err, sizeof err);
-    }
-    if (!sc) {
-        if (have_ck)
-            checkpoint_free(&ck);
-        return fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
-    }
     scene_run run;
-    dem_sim *s = scene_build(sc, &run, err, sizeof err);
-    int code = 0;
-    output *out = NULL;
+    dem_sim *s;
+    output *out;
     char outp[RUN_PATH_LEN], ckp[RUN_PATH_LEN];
-    if (!s) { /* a file the scene names (a CSV) that cannot be opened: 66, like the scene itself */
-        code = fail_with(strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, err);
-        goto done;
+    int show;     /* progress lines */
+    double t0;    /* wall clock at the first step */
+    char err[8192];
+} run_ctx;
+
+/* 1. The scene, from its file or from the checkpoint restarted from, built into a simulation (not started). */
+static int phase_load(run_ctx *c)
+{
+    const run_opts *o = c->o;
+    if (o->restart) {
+        if (checkpoint_read(o->restart, &c->ck, c->err, sizeof c->err)) /* 66: cannot be opened; 65: damaged */
+            return fail_with(strstr(c->err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, c->err);
+        c->have_ck = 1;
+        c->sc = scene_load_text(o->scene_path ? o->scene_path : c->ck.scene_path, c->ck.scene_text,
+                                strlen(c->ck.scene_text), c->err, sizeof c->err);
+    } else {
+        c->sc = scene_load(o->scene_path, c->err, sizeof c->err);
     }
-    const char *model = o->model ? o->model : have_ck && ck.model[0] ? ck.model : NULL;
-    if (have_ck && o->model && strcmp(o->model, ck.model[0] ? ck.model : o->model)) {
-        snprintf(err, sizeof err, "%s: the checkpoint was run with --model %s, not %s", o->restart, ck.model, o->model);
-        code = fail_with(EXIT_USAGE, err);
-        goto done;
+    if (!c->sc)
+        return fail_with(strstr(c->err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, c->err);
+    c->s = scene_build(c->sc, &c->run, c->err, sizeof c->err);
+    if (!c->s) /* a file the scene names (a CSV) that cannot be opened: 66, like the scene itself */
+        return fail_with(strstr(c->err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, c->err);
+    return 0;
+}
+
+/* 2. The command line's choices (model, device, precision), the output paths, and the checkpoint against the
+ * scene: everything refusable before the device is touched. */
+static int phase_configure(run_ctx *c)
+{
+    const run_opts *o = c->o;
+    scene_run *run = &c->run;
+    const char *model = o->model ? o->model : c->have_ck && c->ck.model[0] ? c->ck.model : NULL;
+    if (c->have_ck && o->model && strcmp(o->model, c->ck.model[0] ? c->ck.model : o->model)) {
+        snprintf(c->err, sizeof c->err, "%s: the checkpoint was run with --model %s, not %s", o->restart, c->ck.model,
+                 o->model);
+        return fail_with(EXIT_USAGE, c->err);
     }
-    if (model && scene_apply_model(sc, s, &run, model, err, sizeof err)) {
-        code = fail_with(o->model ? EXIT_USAGE : EXIT_BAD_INPUT, err);
-        goto done;
-    }
+    if (model && scene_apply_model(c->sc, c->s, run, model, c->err, sizeof c->err))
+        return fail_with(o->model ? EXIT_USAGE : EXIT_BAD_INPUT, c->err);
     if (o->device >= 0)
-        run.cfg.device = o->device;
-    if (have_ck) /* a restart continues in the checkpoint's precision */
-        run.cfg.precision = (dem_precision)ck.st.real_size;
+        run->cfg.device = o->device;
+    if (c->have_ck) /* a restart continues in the checkpoint's precision */
+        run->cfg.precision = (dem_precision)c->ck.st.real_size;
     if (o->precision)
-        run.cfg.precision = (dem_precision)o->precision;
-    int pc = run_output_paths(sc, o, outp, ckp, err, sizeof err);
-    if (pc) {
-        code = fail_with(pc, err);
-        goto done;
+        run->cfg.precision = (dem_precision)o->precision;
+    int pc = run_output_paths(c->sc, o, c->outp, c->ckp, c->err, sizeof c->err);
+    if (pc)
+        return fail_with(pc, c->err);
+    if (!c->have_ck)
+        return 0;
+    if (c->ck.st.n != dem_count(c->s) || c->ck.st.real_size != (int)run->cfg.precision) {
+        snprintf(c->err, sizeof c->err, "%s: the checkpoint has %d particles in %s; the scene gives %d in %s",
+                 o->restart, c->ck.st.n, c->ck.st.real_size == 8 ? "fp64" : "fp32", dem_count(c->s),
+                 run->cfg.precision == DEM_FP64 ? "fp64" : "fp32");
+        return fail_with(EXIT_BAD_INPUT, c->err);
     }
-    if (have_ck) {
-        if (ck.st.n != dem_count(s) || ck.st.real_size != (int)run.cfg.precision) {
-            snprintf(err, sizeof err, "%s: the checkpoint has %d particles in %s; the scene gives %d in %s", o->restart,
-                     ck.st.n, ck.st.real_size == 8 ? "fp64" : "fp32", dem_count(s),
-                     run.cfg.precision == DEM_FP64 ? "fp64" : "fp32");
-            code = fail_with(EXIT_BAD_INPUT, err);
-            goto done;
+    for (int i = 0; i < c->ck.st.n; i++)
+        if (c->ck.radius[i] != dem_particle_radius(c->s, i)) {
+            snprintf(c->err, sizeof c->err, "%s: particle %d has radius %g m in the checkpoint and %g m in the scene "
+                     "(did a CSV file change?)", o->restart, i, c->ck.radius[i], dem_particle_radius(c->s, i));
+            return fail_with(EXIT_BAD_INPUT, c->err);
         }
-        for (int i = 0; i < ck.st.n; i++)
-            if (ck.radius[i] != dem_particle_radius(s, i)) {
-                snprintf(err, sizeof err, "%s: particle %d has radius %g m in the checkpoint and %g m in the scene "
-                         "(did a CSV file change?)", o->restart, i, ck.radius[i], dem_particle_radius(s, i));
-                code = fail_with(EXIT_BAD_INPUT, err);
-                goto done;
-            }
-    }
-    int se = dem_start(s, &run.cfg);
+    return 0;
+}
+
+/* 3. The device started, the checkpoint's state restored, the run announced. */
+static int phase_start(run_ctx *c)
+{
+    const run_opts *o = c->o;
+    const scene_run *run = &c->run;
+    int se = dem_start(c->s, &run->cfg);
     if (se) {
-        snprintf(err, sizeof err, "%s: %s", sc->path, dem_error(s));
-        code = fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, err);
-        goto done;
+        snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
+        return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
     }
-    if (have_ck && ck.st.step > run.steps) {
-        snprintf(err, sizeof err, "%s: the checkpoint is at step %ld, past the end of the scene (%ld steps of %g s)",
-                 o->restart, ck.st.step, run.steps, run.dt);
-        code = fail_with(EXIT_BAD_INPUT, err);
-        goto done;
+    if (c->have_ck && c->ck.st.step > run->steps) {
+        snprintf(c->err, sizeof c->err, "%s: the checkpoint is at step %ld, past the end of the scene (%ld steps of "
+                 "%g s)", o->restart, c->ck.st.step, run->steps, run->dt);
+        return fail_with(EXIT_BAD_INPUT, c->err);
     }
-    if (have_ck && dem_state_set(s, &ck.st)) {
-        snprintf(err, sizeof err, "%s: %s", o->restart, dem_error(s));
-        code = fail_with(EXIT_BAD_INPUT, err);
-        goto done;
+    if (c->have_ck && dem_state_set(c->s, &c->ck.st)) {
+        snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
+        return fail_with(EXIT_BAD_INPUT, c->err);
     }
-    char fx[128];
-    dem_effects_string(run.effects, fx, sizeof fx);
-    int show = o->progress < 0 ? isatty(2) : o->progress;
-    if (show || o->progress != 0)
-        fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", sc->path, dem_count(s),
-                dem_wall_count(s), run.dt, run.steps, dem_describe(s));
-    if ((show || o->progress != 0) && (run.effects & DEM_EFFECT_MC_STRESS)) {
+    c->show = o->progress < 0 ? isatty(2) : o->progress;
+    if (!c->show && o->progress == 0)
+        return 0;
+    fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", c->sc->path, dem_count(c->s),
+            dem_wall_count(c->s), run->dt, run->steps, dem_describe(c->s));
+    if (run->effects & DEM_EFFECT_MC_STRESS) {
         char conv[128];
-        dem_mc_stress_convention_string(run.mcs_conv, conv, sizeof conv);
+        dem_mc_stress_convention_string(run->mcs_conv, conv, sizeof conv);
         fprintf(stderr, "dem: MC-stress pressure convention: %s%s\n", conv,
-                run.mcs_conv == DEM_MCS_DEFAULT ? " (the default: Eq. 11's reading)" : "");
+                run->mcs_conv == DEM_MCS_DEFAULT ? " (the default: Eq. 11's reading)" : "");
     }
-    if ((show || o->progress != 0) && (run.effects & DEM_EFFECT_MC_STRAIN) && sc->f->mc_contact_distance > 1)
+    if ((run->effects & DEM_EFFECT_MC_STRAIN) && c->sc->f->mc_contact_distance > 1)
         fprintf(stderr, "dem: MC-strain contact distance %g (r_i + r_j): gaps that the induced displacements close are "
-                        "contacts\n", sc->f->mc_contact_distance);
-    out = output_open(outp, sc, &run, s, err, sizeof err);
-    if (!out) {
-        code = fail_with(EXIT_IO, err);
-        goto done;
-    }
-    double strain, stress, t0 = now(), last = t0;
-    long step0 = dem_step_index(s), end = run.steps;
+                        "contacts\n", c->sc->f->mc_contact_distance);
+    return 0;
+}
+
+/* 4. The steps, with frames, series, checkpoints and progress, to the end (or --stop-after); the output finished. */
+static int phase_steps(run_ctx *c)
+{
+    const run_opts *o = c->o;
+    const scene_run *run = &c->run;
+    dem_sim *s = c->s;
+    c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
+    if (!c->out)
+        return fail_with(EXIT_IO, c->err);
+    double strain, stress, last;
+    c->t0 = last = now();
+    long step0 = dem_step_index(s), end = run->steps;
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
-    run_sample_state(s, &run, &strain, &stress);
+    run_sample_state(s, run, &strain, &stress);
     errno = 0;
-    if (output_frame(out, s) || output_series(out, s, strain, stress)) {
+    if (output_frame(c->out, s) || output_series(c->out, s, strain, stress)) {
         int e = errno;
-        snprintf(err, sizeof err, "%s.part: cannot write the first frame to the output file: %s", outp,
+        snprintf(c->err, sizeof c->err, "%s.part: cannot write the first frame to the output file: %s", c->outp,
                  h5_io_reason(e));
-        code = fail_with(EXIT_IO, err);
-        goto done;
+        return fail_with(EXIT_IO, c->err);
     }
     long ck_step = -1; /* step of the last checkpoint this run wrote */
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next = end;
-        long evs[3] = {run.frame_every, run.series_every, run.checkpoint_every};
+        long evs[3] = {run->frame_every, run->series_every, run->checkpoint_every};
         for (int k = 0; k < 3; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
                 next = (st / evs[k] + 1) * evs[k];
-        if (show) { /* at most ~1 s between progress lines */
-            double rate = (double)(st - step0 + 1) / (now() - t0 + 1e-9);
+        if (c->show) { /* at most ~1 s between progress lines */
+            double rate = (double)(st - step0 + 1) / (now() - c->t0 + 1e-9);
             long cap = st + (long)(rate > 1 ? rate : 1) + 1;
             if (cap < next)
                 next = cap;
         }
         if (dem_step(s, next - st)) {
             char cknote[4400];
-            checkpoint_note(cknote, sizeof cknote, ckp, ck_step, o->restart);
-            snprintf(err, sizeof err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)", sc->path,
-                     dem_step_index(s), dem_error(s), outp, cknote);
-            code = fail_with(EXIT_RUN_FAILED, err);
-            goto done;
+            checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
+            snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
+                     c->sc->path, dem_step_index(s), dem_error(s), c->outp, cknote);
+            return fail_with(EXIT_RUN_FAILED, c->err);
         }
         st = dem_step_index(s);
         int io = 0;
         errno = 0;
-        if (st % run.frame_every == 0 || st == end)
-            io |= output_frame(out, s);
-        if (!io && (st % run.series_every == 0 || st == end)) {
-            run_sample_state(s, &run, &strain, &stress);
-            io |= output_series(out, s, strain, stress);
+        if (st % run->frame_every == 0 || st == end)
+            io |= output_frame(c->out, s);
+        if (!io && (st % run->series_every == 0 || st == end)) {
+            run_sample_state(s, run, &strain, &stress);
+            io |= output_series(c->out, s, strain, stress);
         }
         if (io) {
             int e = errno;
             char cknote[4400];
-            checkpoint_note(cknote, sizeof cknote, ckp, ck_step, o->restart);
-            snprintf(err, sizeof err, "%s.part: cannot write step %ld to the output file: %s (%s)", outp, st,
+            checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
+            snprintf(c->err, sizeof c->err, "%s.part: cannot write step %ld to the output file: %s (%s)", c->outp, st,
                      h5_io_reason(e), cknote);
-            code = fail_with(EXIT_IO, err);
-            goto done;
+            return fail_with(EXIT_IO, c->err);
         }
-        if ((run.checkpoint_every > 0 && st % run.checkpoint_every == 0) || st == end) {
-            if (checkpoint_write(ckp, s, sc, &run, err, sizeof err)) {
-                code = fail_with(EXIT_IO, err);
-                goto done;
-            }
+        if ((run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end) {
+            if (checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err))
+                return fail_with(EXIT_IO, c->err);
             ck_step = st;
         }
         double tn = now();
-        if (show && (tn - last > 1 || st == end)) {
-            double rate = (double)(st - step0) / (tn - t0 + 1e-12);
+        if (c->show && (tn - last > 1 || st == end)) {
+            double rate = (double)(st - step0) / (tn - c->t0 + 1e-12);
             dem_mc_stats mc;
             dem_mc_stats_get(s, &mc);
-            progress_line(tty, st, run.steps, dem_time(s), rate * dem_count(s), (double)(end - st) / (rate + 1e-12),
-                          (double)mc.total / (double)(st > 0 ? st : 1), run.mc_cap > 0 ? mc.unconverged : -1);
+            progress_line(tty, st, run->steps, dem_time(s), rate * dem_count(s), (double)(end - st) / (rate + 1e-12),
+                          (double)mc.total / (double)(st > 0 ? st : 1), run->mc_cap > 0 ? mc.unconverged : -1);
             last = tn;
         }
     }
-    if (show && tty)
+    if (c->show && tty)
         fputc('\n', stderr);
-    if (output_finish(out, err, sizeof err)) {
-        out = NULL;
-        code = fail_with(EXIT_IO, err);
-        goto done;
-    }
-    out = NULL;
-    if (o->progress != 0 || show)
-    {
-        fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", outp, ckp,
-                dem_step_index(s), now() - t0);
+    int rc = output_finish(c->out, c->err, sizeof c->err);
+    c->out = NULL;
+    return rc ? fail_with(EXIT_IO, c->err) : 0;
+}
+
+/* 5. What the run did: files, kernels, memory, MC-strain iterations (and a warning, even with --quiet, for steps
+ * whose forces did not converge to the tolerance). */
+static void phase_report(run_ctx *c)
+{
+    const scene_run *run = &c->run;
+    dem_sim *s = c->s;
+    dem_mc_stats mc;
+    dem_mc_stats_get(s, &mc);
+    int iterated = (run->effects & DEM_EFFECT_MC_STRAIN) && run->mc_cap > 0;
+    if (c->o->progress != 0 || c->show) {
+        fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", c->outp, c->ckp,
+                dem_step_index(s), now() - c->t0);
         char seq[2048];
         if (dem_kernel_sequence(s, 0, seq, sizeof seq))
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
         if (dem_kernel_sequence(s, 1, seq, sizeof seq))
             fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all): %s\n", dem_rebuild_count(s), seq);
         fprintf(stderr, "dem: device memory held: %.3g MB\n", (double)dem_device_bytes(s) / 1e6);
-        dem_mc_stats mc;
-        dem_mc_stats_get(s, &mc);
-        if ((run.effects & DEM_EFFECT_MC_STRAIN) && run.mc_cap > 0)
+        if (iterated)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
                             "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
-                    mc.max, mc.unconverged, run.mc_cap);
+                    mc.max, mc.unconverged, run->mc_cap);
     }
-    {   /* a warning, even with --quiet: steps whose forces did not converge to the tolerance */
-        dem_mc_stats mc;
-        dem_mc_stats_get(s, &mc);
-        if ((run.effects & DEM_EFFECT_MC_STRAIN) && run.mc_cap > 0 && mc.unconverged > 0)
-            fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "
-                            "every contact force settled to mc_tolerance %g; the series mc_capped counts them. Raise "
-                            "mc_iterations, or loosen mc_tolerance, if that matters here\n",
-                    mc.unconverged, dem_step_index(s), run.mc_cap, run.mc_tol);
-    }
-done:
-    if (out)
-        output_abort(out);
-    dem_destroy(s);
-    scene_free(sc);
-    if (have_ck)
-        checkpoint_free(&ck);
+    if (iterated && mc.unconverged > 0)
+        fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "
+                        "every contact force settled to mc_tolerance %g; the series mc_capped counts them. Raise "
+                        "mc_iterations, or loosen mc_tolerance, if that matters here\n",
+                mc.unconverged, dem_step_index(s), run->mc_cap, run->mc_tol);
+}
+
+int run_scene(const run_opts *o)
+{
+    run_ctx *c = calloc(1, sizeof *c);
+    if (!c)
+        return fail_with(EXIT_IO, "out of memory");
+    c->o = o;
+    int code = phase_load(c);
+    if (!code)
+        code = phase_configure(c);
+    if (!code)
+        code = phase_start(c);
+    if (!code)
+        code = phase_steps(c);
+    if (!code)
+        phase_report(c);
+    if (c->out)
+        output_abort(c->out);
+    dem_destroy(c->s);
+    scene_free(c->sc);
+    if (c->have_ck)
+        checkpoint_free(&c->ck);
+    free(c);
     return code;
 }

@@ -162,46 +162,38 @@ void sim_pack_walls(dem_sim *s)
     }
 }
 
-int sim_pack(dem_sim *s)
+/* sim_pack in phases: what the kernels are compiled with, the bodies, the material pairs, the packing into the run's
+ * precision with the walls, and the binning grid. */
+
+/* Effects and the convention bits compiled in with them. */
+static void pack_effects(dem_sim *s, dem_setup *u)
 {
-    dem_setup *u = &s->setup;
-    int n = s->n, rs = (int)s->cfg.precision;
-    for (int k = 0; k < 9; k++) { /* packed again (dem_memory_estimate, then dem_start): the last packing holds */
-        free(s->packed[k]);
-        s->packed[k] = NULL;
-    }
-    free(s->wall_real);
-    s->wall_real = NULL;
-    memset(u, 0, sizeof *u);
-    u->real_size = rs;
     /* the MC-stress convention is compiled in with the effects (only when MC-stress is on: other runs' kernels and
      * their cached binaries stay as they were) */
     u->effects = s->effects | ((s->effects & DEM_EFFECT_MC_STRESS) ? s->mcs_conv : 0u);
     int reach = (s->effects & DEM_EFFECT_MC_STRAIN) && s->mc_reach > 1; /* compiled in only when it can act */
     if (reach)
         u->effects |= DEM_MC_REACH;
-    u->n = n;
+    u->n = s->n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;
+}
 
-    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n), *invv = malloc(sizeof(double) * n);
-    double *pm = malloc(sizeof(double) * PM_STRIDE * s->nmat * s->nmat);
-    double *damp = malloc(sizeof(double) * s->nmat * s->nmat);
-    if (!invm || !invi || !invv || !pm || !damp) {
-        free(invv);
-        free(invm);
-        free(invi);
-        free(pm);
-        free(damp);
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    }
-    for (int i = 0; i < n; i++) {
+/* Per particle: inverse mass, inverse moment of inertia, inverse volume (double). */
+static void pack_bodies(const dem_sim *s, double *invm, double *invi, double *invv)
+{
+    for (int i = 0; i < s->n; i++) {
         const dem_material *m = &s->mats[s->mat[i]];
         double r = s->radius[i], mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
         invm[i] = (s->pflags[i] & DEM_PARTICLE_FIXED) ? 0 : 1 / mass;
         invi[i] = (s->pflags[i] & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)) ? 0 : 1 / (0.4 * mass * r * r);
         invv[i] = 1 / (4.0 / 3.0 * M_PI * r * r * r);
     }
+}
+
+/* The material-pair table (dem_layout.h PM_*), double; damp: scratch of nmat^2. */
+static void pack_pairs(const dem_sim *s, double *pm, double *damp)
+{
     /* pair table: restitution and friction of a pair are the means of the two materials' values */
     for (int a = 0; a < s->nmat; a++)
         for (int b = 0; b < s->nmat; b++) {
@@ -223,27 +215,11 @@ int sim_pack(dem_sim *s)
             row[PM_MCS_C2] = 1 - 2 * ma->poisson;
             row[PM_MC_REACH] = s->mc_reach;
         }
-    s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
-    s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
-    s->packed[2] = pack_real(s->w, 3 * (size_t)n, rs);
-    s->packed[3] = pack_real(s->radius, (size_t)n, rs);
-    s->packed[4] = pack_real(invm, (size_t)n, rs);
-    s->packed[5] = pack_real(invi, (size_t)n, rs);
-    s->packed[6] = pack_real(pm, (size_t)PM_STRIDE * s->nmat * s->nmat, rs);
-    int *wint = calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int));
-    s->packed[7] = wint;
-    s->packed[8] = pack_real(invv, (size_t)n, rs);
-    s->wall_real = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
-    free(invm);
-    free(invi);
-    free(invv);
-    free(pm);
-    free(damp);
-    for (int k = 0; k < 9; k++)
-        if (!s->packed[k])
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    if (!s->wall_real)
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+}
+
+/* The walls' integer table, start positions and stage lengths in steps, and the real table of step 0. */
+static void pack_walls(dem_sim *s, int *wint)
+{
     for (int k = 0; k < s->nwalls; k++) {
         wint[k * WI_STRIDE + WI_TYPE] = s->walls[k].kind == DEM_WALL_PLANE ? WALL_PLANE : WALL_CYLINDER_INSIDE;
         wint[k * WI_STRIDE + WI_MATERIAL] = s->walls[k].material;
@@ -252,18 +228,13 @@ int sim_pack(dem_sim *s)
             s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
     }
     sim_pack_walls(s);
-    u->x = s->packed[0];
-    u->v = s->packed[1];
-    u->w = s->packed[2];
-    u->radius = s->packed[3];
-    u->invmass = s->packed[4];
-    u->invinertia = s->packed[5];
-    u->pairmat = s->packed[6];
-    u->invvol = s->packed[8];
-    u->wall_int = wint;
-    u->wall_real = s->wall_real;
-    u->mat = s->mat;
+}
 
+/* The binning grid: the domain (given, or the particles' padded bounding box) cut into cubic cells. Returns the
+ * skin actually used; the cell size goes to u->inv_cell. */
+static double pack_grid(dem_sim *s, dem_setup *u)
+{
+    int n = s->n;
     /* binning grid: cubic cells no smaller than 1.01 x the largest interaction range; the 1 % margin keeps a
      * rounding of (x - lo)/cell in fp32 from ever placing a neighbour two cells away */
     double skin = s->cfg.skin > 0 ? s->cfg.skin : 0.3 * s->rmin;
@@ -313,6 +284,71 @@ int sim_pack(dem_sim *s)
     }
     s->grid_cell = cell;
     u->inv_cell = 1 / cell;
+    return skin;
+}
+
+int sim_pack(dem_sim *s)
+{
+    dem_setup *u = &s->setup;
+    int n = s->n, rs = (int)s->cfg.precision;
+    for (int k = 0; k < 9; k++) { /* packed again (dem_memory_estimate, then dem_start): the last packing holds */
+        free(s->packed[k]);
+        s->packed[k] = NULL;
+    }
+    free(s->wall_real);
+    s->wall_real = NULL;
+    memset(u, 0, sizeof *u);
+    u->real_size = rs;
+    pack_effects(s, u);
+    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n), *invv = malloc(sizeof(double) * n);
+    double *pm = malloc(sizeof(double) * PM_STRIDE * s->nmat * s->nmat);
+    double *damp = malloc(sizeof(double) * s->nmat * s->nmat);
+    if (!invm || !invi || !invv || !pm || !damp) {
+        free(invv);
+        free(invm);
+        free(invi);
+        free(pm);
+        free(damp);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    pack_bodies(s, invm, invi, invv);
+    pack_pairs(s, pm, damp);
+    s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
+    s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
+    s->packed[2] = pack_real(s->w, 3 * (size_t)n, rs);
+    s->packed[3] = pack_real(s->radius, (size_t)n, rs);
+    s->packed[4] = pack_real(invm, (size_t)n, rs);
+    s->packed[5] = pack_real(invi, (size_t)n, rs);
+    s->packed[6] = pack_real(pm, (size_t)PM_STRIDE * s->nmat * s->nmat, rs);
+    int *wint = calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int));
+    s->packed[7] = wint;
+    s->packed[8] = pack_real(invv, (size_t)n, rs);
+    s->wall_real = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
+    free(invm);
+    free(invi);
+    free(invv);
+    free(pm);
+    free(damp);
+    for (int k = 0; k < 9; k++)
+        if (!s->packed[k])
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if (!s->wall_real)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    pack_walls(s, wint);
+    u->x = s->packed[0];
+    u->v = s->packed[1];
+    u->w = s->packed[2];
+    u->radius = s->packed[3];
+    u->invmass = s->packed[4];
+    u->invinertia = s->packed[5];
+    u->pairmat = s->packed[6];
+    u->invvol = s->packed[8];
+    u->wall_int = wint;
+    u->wall_real = s->wall_real;
+    u->mat = s->mat;
+
+    double skin = pack_grid(s, u);
+    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc_reach - 1) * s->rmax : 0;
     u->dt = s->dt;
     memcpy(u->gravity, s->gravity, sizeof u->gravity);
     u->skin = skin + reach_extra;
