@@ -7,6 +7,7 @@
  */
 #ifndef DEM_SCENE_H
 #define DEM_SCENE_H
+#include <stdbool.h>
 #include "dem.h"
 #include <stddef.h>
 
@@ -64,6 +65,7 @@ typedef struct {
     char *type;                   /* "plane", "cylinder" or "box" */
     scene_stage *motion;
     unsigned motion_count;
+    bool rigid;                   /* infinitely stiff: E* of a contact from the particle alone (dem.h) */
 } scene_wall;
 
 typedef struct {

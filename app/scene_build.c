@@ -162,7 +162,12 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
             return scene_fail(sc, err, errlen, p, why);                                                              \
         }                                                                                                            \
     } while (0)
-        MCHECK("density", m->density > 0 && isfinite(m->density), "density must be > 0 kg/m^3");
+        int used = 0; /* by a particle group: only then is a density needed (a wall's material has no mass) */
+        for (unsigned g = 0; g < f->particles_count && !used; g++)
+            used = f->particles[g].material && !strcmp(f->particles[g].material, m->name);
+        MCHECK("density", !used || (m->density > 0 && isfinite(m->density)),
+               "density must be > 0 kg/m^3 (a material that particles use needs one)");
+        MCHECK("density", m->density >= 0 && isfinite(m->density), "density must be >= 0 kg/m^3");
         MCHECK("young", m->young > 0 && isfinite(m->young), "Young's modulus must be > 0 Pa");
         MCHECK("poisson", m->poisson > -1 && m->poisson <= 0.5, "Poisson's ratio must be in (-1, 0.5]");
         MCHECK("restitution", m->restitution > 0 && m->restitution <= 1, "restitution must be in (0, 1]");
@@ -175,7 +180,9 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
                 snprintf(p, sizeof p, "materials[%u].name", k);
                 return scene_fail(sc, err, errlen, p, "material '%s' is defined twice", m->name);
             }
-        dem_material dm = {m->density, m->young, m->poisson, m->restitution, m->friction, m->beta, m->gamma};
+        /* a wall-only material without a density gets a placeholder the library accepts; no mass is made from it */
+        dem_material dm = {used || m->density > 0 ? m->density : 1.0, m->young, m->poisson, m->restitution,
+                           m->friction, m->beta, m->gamma};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
@@ -293,6 +300,9 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
     const scene_file *f = sc->f;
     if (f->walls_count && !(run->effects & DEM_EFFECT_WALLS))
         return scene_fail(sc, err, errlen, "walls", "walls are defined but the effect 'walls' is not listed");
+    int rigid_of[64]; /* the rigid copy of each scene material, made when a rigid wall first needs it */
+    for (int k = 0; k < 64; k++)
+        rigid_of[k] = -1;
     for (unsigned k = 0; k < f->walls_count; k++) {
         const scene_wall *w = &f->walls[k];
         char base[64], p[128];
@@ -301,6 +311,18 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
         snprintf(p, sizeof p, "%s.material", base);
         if (lookup_material(sc, w->material, p, &mat, err, errlen))
             return 1;
+        if (w->rigid) { /* a copy of its material, infinitely stiff (same friction and restitution), one per material */
+            if (rigid_of[mat] < 0) {
+                const scene_material *m = &f->materials[mat];
+                dem_material dm = {0, INFINITY, m->poisson, m->restitution, m->friction, m->beta, m->gamma};
+                rigid_of[mat] = dem_add_material(s, &dm);
+            }
+            if (rigid_of[mat] < 0) {
+                snprintf(p, sizeof p, "%s.rigid", base);
+                return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+            }
+            mat = rigid_of[mat];
+        }
         dem_stage st[DEM_MAX_STAGES];
         int nst = 0;
         if (parse_motion(sc, (int)k, f->time.settle, st, &nst, err, errlen))

@@ -23,7 +23,7 @@ static const cyaml_schema_value_t string_entry = {CYAML_VALUE_STRING(CYAML_FLAG_
 
 static const cyaml_schema_field_t material_fields[] = {
     CYAML_FIELD_STRING_PTR("name", CYAML_FLAG_POINTER, scene_material, name, 1, 64),
-    CYAML_FIELD_FLOAT("density", CYAML_FLAG_DEFAULT, scene_material, density),
+    REAL("density", scene_material, density), /* required for the materials particles use (scene_build.c) */
     CYAML_FIELD_FLOAT("young", CYAML_FLAG_DEFAULT, scene_material, young),
     CYAML_FIELD_FLOAT("poisson", CYAML_FLAG_DEFAULT, scene_material, poisson),
     CYAML_FIELD_FLOAT("restitution", CYAML_FLAG_DEFAULT, scene_material, restitution),
@@ -80,6 +80,7 @@ static const cyaml_schema_field_t wall_fields[] = {
     CYAML_FIELD_STRING_PTR("material", CYAML_FLAG_POINTER, scene_wall, material, 1, 64),
     VEC3("point", scene_wall, point), VEC3("normal", scene_wall, normal), VEC3("axis", scene_wall, axis),
     REAL("radius", scene_wall, radius), VEC3("lo", scene_wall, lo), VEC3("hi", scene_wall, hi),
+    CYAML_FIELD_BOOL("rigid", CYAML_FLAG_OPTIONAL, scene_wall, rigid),
     CYAML_FIELD_SEQUENCE("motion", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_wall, motion, &stage_entry, 0,
                          DEM_MAX_STAGES - 1),
     CYAML_FIELD_END};

@@ -66,10 +66,14 @@ int dem_add_material(dem_sim *s, const dem_material *m)
         return -1;
     if (s->nmat >= (int)(sizeof s->mats / sizeof s->mats[0]))
         return sim_fail(s, DEM_ERR_ARG, "too many materials (at most 64)"), -1;
-    if (!(m->density > 0) || !isfinite(m->density))
+    /* young = +inf: a rigid material, for walls only (E* and G* of a contact then come from the particle alone,
+     * exactly: (1 - nu^2) / inf = 0); its density is never used and may be 0 */
+    int rigid = m->young == INFINITY;
+    if (!rigid && (!(m->density > 0) || !isfinite(m->density)))
         return sim_fail(s, DEM_ERR_ARG, "material %d: density must be > 0 kg/m^3 (got %g)", s->nmat, m->density), -1;
-    if (!(m->young > 0) || !isfinite(m->young))
-        return sim_fail(s, DEM_ERR_ARG, "material %d: Young's modulus must be > 0 Pa (got %g)", s->nmat, m->young), -1;
+    if (!(m->young > 0) || !(isfinite(m->young) || rigid))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: Young's modulus must be > 0 Pa, or infinite for a rigid wall "
+                        "material (got %g)", s->nmat, m->young), -1;
     if (!(m->poisson > -1 && m->poisson <= 0.5))
         return sim_fail(s, DEM_ERR_ARG, "material %d: Poisson's ratio must be in (-1, 0.5] (got %g)", s->nmat,
                         m->poisson), -1;
@@ -95,6 +99,9 @@ int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double ra
         return sim_fail(s, DEM_ERR_ARG, "particle %d: radius must be > 0 m (got %g)", s->n, radius), -1;
     if (material < 0 || material >= s->nmat)
         return sim_fail(s, DEM_ERR_ARG, "particle %d: unknown material %d", s->n, material), -1;
+    if (s->mats[material].young == INFINITY)
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: material %d is rigid (Young's modulus infinite): for walls only",
+                        s->n, material), -1;
     if (!finite3(x) || (v && !finite3(v)))
         return sim_fail(s, DEM_ERR_ARG, "particle %d: position and velocity must be finite", s->n), -1;
     if (s->n == s->cap) {

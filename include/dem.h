@@ -31,6 +31,8 @@ typedef enum {
 typedef enum { DEM_FP32 = 4, DEM_FP64 = 8 } dem_precision;
 typedef enum { DEM_BACKEND_REFERENCE = 0, DEM_BACKEND_OPENCL = 1 } dem_backend_kind;
 
+/* A material with young = INFINITY is rigid, for walls only: a contact's E* and G* come from the particle alone
+ * (seed 000 Eq. 3 and 5 with the wall's terms exactly zero) and its density is not used. */
 typedef struct {
     double density;     /* [kg/m^3] */
     double young;       /* Young's modulus E [Pa] */

@@ -50,6 +50,8 @@ static void test_errors(void **st)
 {
     (void)st;
     bad("s/poisson: 0.46/poisson: 0.7/", "bad.yaml:7: materials[0].poisson: Poisson's ratio must be in (-1, 0.5]");
+    bad("s/density: 2000, //", "bad.yaml:7: materials[0].density: density must be > 0 kg/m^3 (a material that "
+                               "particles use needs one)");
     bad("s/restitution: 0.7/restitution: 1.5/", "bad.yaml:7: materials[0].restitution: restitution must be in (0, 1]");
     bad("0,/radius: 0.01}/s//radius: -0.01}/", "bad.yaml:11: particles[0].spheres[0].radius: radius must be > 0");
     bad("s/^time:/timme:/", "bad.yaml:14: timme: Unexpected key");
