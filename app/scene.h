@@ -66,6 +66,7 @@ typedef struct {
     scene_stage *motion;
     unsigned motion_count;
     bool rigid;                   /* infinitely stiff: E* of a contact from the particle alone (dem.h) */
+    unsigned repeat;              /* the motion list this many times (0 = given: once) */
 } scene_wall;
 
 typedef struct {

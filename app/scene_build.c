@@ -291,6 +291,22 @@ static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, in
             st[n].velocity[d] = has_v ? g->velocity[d] : 0;
         n++;
     }
+    /* repeat: N plays the list N times (load-unload cycles), each stage rounded to steps on its own as if written
+     * out */
+    char rp[96];
+    snprintf(rp, sizeof rp, "walls[%d].repeat", k);
+    if (scene_has(sc->loc, rp)) {
+        int first = settle > 0, len = n - first;
+        if (w->repeat < 1 || len < 1)
+            return scene_fail(sc, err, errlen, rp, "repeat needs a motion list and a count >= 1");
+        if ((double)first + (double)len * w->repeat > DEM_MAX_STAGES)
+            return scene_fail(sc, err, errlen, rp, "%u x %d stages%s make %.0f; at most %d", w->repeat, len,
+                              first ? " (+ the settling pause)" : "", (double)first + (double)len * w->repeat,
+                              DEM_MAX_STAGES);
+        for (unsigned r = 1; r < w->repeat; r++)
+            for (int j = 0; j < len; j++)
+                st[n++] = st[first + j];
+    }
     *nst = n;
     return 0;
 }

@@ -81,6 +81,7 @@ static const cyaml_schema_field_t wall_fields[] = {
     VEC3("point", scene_wall, point), VEC3("normal", scene_wall, normal), VEC3("axis", scene_wall, axis),
     REAL("radius", scene_wall, radius), VEC3("lo", scene_wall, lo), VEC3("hi", scene_wall, hi),
     CYAML_FIELD_BOOL("rigid", CYAML_FLAG_OPTIONAL, scene_wall, rigid),
+    CYAML_FIELD_UINT("repeat", CYAML_FLAG_OPTIONAL, scene_wall, repeat),
     CYAML_FIELD_SEQUENCE("motion", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_wall, motion, &stage_entry, 0,
                          DEM_MAX_STAGES - 1),
     CYAML_FIELD_END};

@@ -43,7 +43,9 @@ typedef struct {
     double mc_gamma;    /* MC-strain prefactor gamma >= 0 (seed 000 Eq. 7; used with DEM_EFFECT_MC_STRAIN) */
 } dem_material;
 
-#define DEM_MAX_STAGES 16
+/* Most motion stages of one wall (a scene's settling pause counts as one; `repeat` multiplies a list): enough for
+ * a hundred load-unload cycles. */
+#define DEM_MAX_STAGES 256
 /* Most walls in a run: each particle keeps a 32-bit mask of the walls it touches (common/dem_layout.h). */
 #define DEM_MAX_WALLS 32
 typedef struct {

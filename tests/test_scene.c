@@ -663,6 +663,43 @@ static void test_random_packing(void **st)
     assert_non_null(strstr(err, "no place for sphere 2 in 20000 tries"));
 }
 
+/* Motion stages: repeat: N plays a wall's list N times (issue 15, item 5), here 40 load-unload cycles, 80 stages: the
+ * piston goes 0.1 mm down and back 40 times and ends where it started; past the limit, the error names the field. */
+static void test_wall_repeat(void **st)
+{
+    (void)st;
+    char err[8192], p[300];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/wall_cycles.yaml -o %s/cyc.h5 --quiet", DEM, SRC, tmp),
+                     0);
+    snprintf(p, sizeof p, "%s/cyc.h5", tmp);
+    hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    long rows = h5_count(f, "series/wall_position") / 6;
+    assert_int_equal(rows, 801); /* every 0.001 s over 0.8 s, and the start */
+    double *wp = malloc(sizeof(double) * 6 * (size_t)rows), lo = 1, last;
+    assert_int_equal(h5_read(f, "series/wall_position", H5T_NATIVE_DOUBLE, wp, (size_t)rows * 6), 0);
+    int turns = 0, down = 0; /* reversals from moving down to moving up */
+    for (long k = 1; k < rows; k++) {
+        double z = wp[6 * k + 5], dz = z - wp[6 * (k - 1) + 5];
+        lo = z < lo ? z : lo;
+        if (dz < -1e-12)
+            down = 1;
+        else if (dz > 1e-12 && down)
+            turns++, down = 0;
+    }
+    last = wp[6 * (rows - 1) + 5];
+    free(wp);
+    H5Fclose(f);
+    printf("  piston: lowest %.9g m, last %.9g m, %d reversals\n", lo, last, turns);
+    assert_true(fabs(lo - 0.0101) < 1e-12);   /* each cycle reaches 0.1 mm below the start (100 steps of 1e-4 s) */
+    assert_true(fabs(last - 0.0102) < 1e-12); /* and the last one returns to it */
+    assert_int_equal(turns, 40);
+    assert_int_equal(sh(err, sizeof err, "sed 's/repeat: 40/repeat: 200/' %s/tests/scenes/wall_cycles.yaml > "
+                                          "%s/cyc2.yaml && %s check %s/cyc2.yaml", SRC, tmp, DEM, tmp),
+                     65);
+    assert_non_null(strstr(err, "cyc2.yaml:20: walls[1].repeat: 200 x 2 stages make 400; at most 256"));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -680,6 +717,7 @@ int main(void)
         cmocka_unit_test(test_output_paths),
         cmocka_unit_test(test_crafted_checkpoints),
         cmocka_unit_test(test_random_packing),
+        cmocka_unit_test(test_wall_repeat),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
