@@ -2,6 +2,7 @@
 #ifndef DEM_RUN_H
 #define DEM_RUN_H
 #include "scene.h"
+#include <stdio.h>
 
 /* Exit statuses of the dem command (sysexits.h where one fits). */
 enum { EXIT_RUN_FAILED = 1, EXIT_USAGE = 2, EXIT_BAD_INPUT = 65, EXIT_NO_INPUT = 66, EXIT_DEVICE = 69,
@@ -20,6 +21,10 @@ typedef struct {
 } run_opts;
 
 int run_scene(const run_opts *o);
+/* The scene's shortest contact against its dt (dem_contact_advice_get): with info, two lines for `dem check` on out;
+ * always, a warning on stderr when a contact spans fewer than DEM_MIN_STEPS_PER_CONTACT steps (`dem run` asks for it
+ * unless --quiet). */
+void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 
 /* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more). */
 #define RUN_PATH_LEN 4096

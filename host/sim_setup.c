@@ -70,6 +70,50 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     return 0;
 }
 
+int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
+{
+    memset(a, 0, sizeof *a);
+    a->pair_time = a->wall_time = a->contact_time = INFINITY;
+    a->wall = -1;
+    if (s->n == 0)
+        return sim_fail(s, DEM_ERR_ARG, "contact times need particles");
+    /* the fastest particle (gravity is left out: a settled bed is not falling, and a pour's impact speed is
+     * sqrt(2 g h) of its own drop height, which the user knows better than a bound would) */
+    double vmax = 0, fall = 0;
+    for (int i = 0; i < s->n; i++) {
+        const double *v = s->v + 3 * i;
+        vmax = fmax(vmax, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+    a->pair_speed = 2 * vmax + fall;
+    double stage_max = 0;
+    for (int i = 0; i < s->n; i++) {
+        const dem_material *m = &s->mats[s->mat[i]];
+        double r = s->radius[i], mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
+        if (a->pair_speed > 0)
+            a->pair_time = fmin(a->pair_time, dem_hertz_contact_time(mass / 2, r / 2, estar(m, m), a->pair_speed));
+        if (!(s->effects & DEM_EFFECT_WALLS))
+            continue;
+        for (int w = 0; w < s->nwalls; w++) {
+            double ws = 0;
+            for (int st = 0; st < s->walls[w].nstages; st++) {
+                const double *u = s->walls[w].stages[st].velocity;
+                ws = fmax(ws, sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+            }
+            stage_max = fmax(stage_max, ws);
+            double v = vmax + ws + fall;
+            if (!(v > 0))
+                continue;
+            double t = dem_hertz_contact_time(mass, r, estar(m, &s->mats[s->walls[w].material]), v);
+            if (t < a->wall_time)
+                a->wall_time = t, a->wall = w;
+        }
+    }
+    a->wall_speed = s->nwalls && (s->effects & DEM_EFFECT_WALLS) ? vmax + stage_max + fall : 0;
+    a->contact_time = fmin(a->pair_time, a->wall_time);
+    a->steps = s->dt > 0 && isfinite(a->contact_time) ? a->contact_time / s->dt : 0;
+    return 0;
+}
+
 int sim_validate(dem_sim *s)
 {
     if (s->n == 0)

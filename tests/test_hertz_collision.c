@@ -40,6 +40,14 @@ static void collide(double r1, double r2, double v, dem_precision prec)
     double d0 = pow(15 * ms * v * v / (16 * es * sqrt(rs)), 0.4);
     double f0 = 4.0 / 3.0 * es * sqrt(rs) * d0 * sqrt(d0);
     assert_true(fabs(dem_hertz_contact_time(ms, rs, es, v) / tc0 - 1) < 1e-12);
+    if (r1 == r2) { /* the scene's advice: approach at twice each sphere's speed, the same contact time, 2000 steps */
+        dem_sim *t = pair_build(&m, r1, r2, v, 1.0 / 2000);
+        dem_contact_advice a;
+        assert_int_equal(dem_contact_advice_get(t, &a), 0);
+        assert_true(fabs(a.pair_speed - v) < 1e-12 * v && a.wall < 0 && a.wall_speed == 0);
+        assert_true(fabs(a.contact_time / tc0 - 1) < 1e-12 && fabs(a.steps - 2000) < 1e-6);
+        dem_destroy(t);
+    }
     assert_true(fabs(dem_hertz_max_overlap(ms, rs, es, v) / d0 - 1) < 1e-12);
     printf("  r %g/%g m, v %g m/s, %s: t_c %.6g (closed %.6g), d_max %.6g (%.6g), F_max %.6g (%.6g)\n", r1, r2, v,
            prec == DEM_FP64 ? "fp64" : "fp32", tc, tc0, dmax, d0, fpeak, f0);

@@ -350,10 +350,11 @@ static void test_mc_cap_reported(void **st)
                      0);
     assert_int_equal(sh(err, sizeof err, "%s run %s/cap.yaml -o %s/cap.h5 --progress", DEM, tmp, tmp), 0);
     assert_non_null(strstr(err, "steps capped"));
+    long capped = 0, steps = 0; /* the cap's warning (the dt advice may warn first) */
     const char *w = strstr(err, "dem: warning: ");
+    while (w && sscanf(w, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of 2", &capped, &steps) != 2)
+        w = strstr(w + 1, "dem: warning: ");
     assert_non_null(w);
-    long capped = 0, steps = 0;
-    assert_int_equal(sscanf(w, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of 2", &capped, &steps), 2);
     assert_true(capped > 0 && capped <= steps);
     snprintf(p, sizeof p, "%s/cap.h5", tmp);
     hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -700,6 +701,28 @@ static void test_wall_repeat(void **st)
     assert_non_null(strstr(err, "cyc2.yaml:20: walls[1].repeat: 200 x 2 stages make 400; at most 256"));
 }
 
+/* dt advice for the scene at hand (issue 15, item 4): `dem check` names the fastest approach and the shortest
+ * contact in steps of dt, and warns below 20 steps; `dem run` warns too (not with --quiet). */
+static void test_dt_advice(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "%s check %s/tests/scenes/restart_box.yaml > %s/adv.txt", DEM, SRC, tmp), 0);
+    assert_non_null(strstr(err, "spans 12.0 steps of dt; below 20 a collision is resolved badly"));
+    assert_non_null(strstr(err, "dt <= 3.64e-05 s would give 20"));
+    assert_int_equal(sh(err, sizeof err, "grep -c 'contact time   0.0007271 s (two smallest like particles' %s/adv.txt",
+                        tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s check %s/scenes/two_spheres.yaml > %s/adv2.txt && grep -q "
+                                          "'1899.6 steps of dt' %s/adv2.txt", DEM, SRC, tmp, tmp), 0);
+    assert_null(strstr(err, "warning"));
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/adv.h5 --progress --stop-after 2",
+                        DEM, SRC, tmp), 0);
+    assert_non_null(strstr(err, "dem: warning: "));
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/adv.h5 --quiet --stop-after 2",
+                        DEM, SRC, tmp), 0);
+    assert_null(strstr(err, "warning"));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -718,6 +741,7 @@ int main(void)
         cmocka_unit_test(test_crafted_checkpoints),
         cmocka_unit_test(test_random_packing),
         cmocka_unit_test(test_wall_repeat),
+        cmocka_unit_test(test_dt_advice),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
