@@ -22,6 +22,10 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     int ok = space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0 && H5Pset_shuffle(dcpl) >= 0 &&
              H5Pset_deflate(dcpl, 4) >= 0;
     hid_t file_type = mem_type == H5T_NATIVE_DOUBLE ? H5T_IEEE_F64LE : H5T_STD_I32LE;
+    r->row_bytes = (mem_type == H5T_NATIVE_DOUBLE ? 8 : 4) * (size_t)(rank > 1 ? d1 : 1) * (size_t)(rank > 2 ? d2 : 1);
+    r->cap = H5ROWS_BUFFER_BYTES / r->row_bytes;
+    if (r->cap > 1 && !(r->buf = malloc(r->cap * r->row_bytes)))
+        r->cap = 0; /* no memory for the buffer: rows go straight through */
     r->id = ok ? H5Dcreate2(parent, name, file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT) : -1;
     if (space >= 0)
         H5Sclose(space);
@@ -34,21 +38,41 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     return 0;
 }
 
-int h5rows_append(h5rows *r, const void *row)
+/* rows [first, first + count) of the dataset from buf */
+static int write_rows(h5rows *r, const void *buf, hsize_t count)
 {
-    hsize_t start[3] = {r->dims[0], 0, 0}, count[3] = {1, r->dims[1], r->dims[2]};
-    r->dims[0]++;
-    if (H5Dset_extent(r->id, r->dims) < 0)
+    hsize_t start[3] = {r->dims[0], 0, 0}, cnt[3] = {count, r->dims[1], r->dims[2]};
+    hsize_t grown[3] = {r->dims[0] + count, r->dims[1], r->dims[2]};
+    if (H5Dset_extent(r->id, grown) < 0)
         return -1;
-    hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, count, NULL);
-    int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
-                     H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, row) >= 0
+    hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, cnt, NULL);
+    int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
+                     H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, buf) >= 0
                  ? 0
                  : -1;
     if (fs >= 0)
         H5Sclose(fs);
     if (ms >= 0)
         H5Sclose(ms);
+    if (!rc)
+        r->dims[0] += count;
+    return rc;
+}
+
+int h5rows_append(h5rows *r, const void *row)
+{
+    if (r->cap <= 1)
+        return write_rows(r, row, 1);
+    memcpy(r->buf + r->nbuf * r->row_bytes, row, r->row_bytes);
+    return ++r->nbuf == r->cap ? h5rows_flush(r) : 0;
+}
+
+int h5rows_flush(h5rows *r)
+{
+    if (r->id <= 0 || r->nbuf == 0)
+        return 0;
+    int rc = write_rows(r, r->buf, r->nbuf);
+    r->nbuf = 0;
     return rc;
 }
 
@@ -57,6 +81,9 @@ void h5rows_close(h5rows *r)
     if (r->id > 0)
         H5Dclose(r->id);
     r->id = 0;
+    free(r->buf);
+    r->buf = NULL;
+    r->nbuf = r->cap = 0;
 }
 
 static int attr_write(hid_t obj, const char *name, hid_t type, const void *v)

@@ -23,7 +23,6 @@ static const struct {
                     {OUT_STRESS, DEM_FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
 #define NFF (sizeof frame_fields / sizeof frame_fields[0])
 
-enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };
 static const char *series_names[S__N] = {"time", "step", "kinetic", "elastic", "potential", "total",
                                          "contacts", "wall_contacts", "strain", "stress", "mc_iterations",
                                          "mc_capped"};
@@ -180,28 +179,76 @@ int output_frame(output *o, dem_sim *s)
     return 0;
 }
 
-int output_series(output *o, dem_sim *s, double strain, double stress)
+int output_sample(dem_sim *s, const scene_run *run, series_row *r)
 {
-    dem_energy_t e;
-    if (dem_energy(s, &e))
+    dem_sample smp;
+    if (dem_sample_get(s, &smp))
         return -1;
     dem_mc_stats mc;
     dem_mc_stats_get(s, &mc);
-    double row[S__N] = {dem_time(s), (double)dem_step_index(s), e.kinetic, e.elastic, e.potential, e.total,
-                        (double)e.contacts, (double)e.wall_contacts, strain, stress, (double)mc.last,
-                        (double)mc.unconverged};
-    for (int k = 0; k < S__N; k++)
-        if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k >= S_MCIT && o->mc)) && h5rows_append(&o->s[k], &row[k]))
+    const dem_energy_t *e = &smp.energy;
+    double strain = NAN, stress = NAN;
+    int nw = dem_wall_count(s);
+    for (int w = 0; w < nw; w++) {
+        if (dem_wall_position(s, w, r->wall_pos + 3 * w))
             return -1;
-    if (o->nwalls) {
-        double pos[3 * DEM_MAX_WALLS], f[3 * DEM_MAX_WALLS];
-        for (int w = 0; w < o->nwalls; w++)
-            if (dem_wall_position(s, w, pos + 3 * w) || dem_wall_force(s, w, f + 3 * w))
-                return -1;
-        if (h5rows_append(&o->wall_pos, pos) || h5rows_append(&o->wall_force, f))
-            return -1;
+        memcpy(r->wall_force + 3 * w, smp.wall_force + 3 * w, sizeof(double) * 3);
     }
+    if (run->piston >= 0) { /* engineering strain and stress of the sample (scene.h: sample) */
+        const double *n = run->piston_normal, *p0 = run->piston_point, *p = r->wall_pos + 3 * run->piston,
+                     *f = r->wall_force + 3 * run->piston;
+        /* n points from the piston into the sample: travel into it is (p - p0).n */
+        double travel = (p[0] - p0[0]) * n[0] + (p[1] - p0[1]) * n[1] + (p[2] - p0[2]) * n[2];
+        strain = (travel - run->contact_travel) / run->sample_height;
+        stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
+    }
+    double v[S__N] = {dem_time(s), (double)dem_step_index(s), e->kinetic, e->elastic, e->potential, e->total,
+                      (double)e->contacts, (double)e->wall_contacts, strain, stress, (double)mc.last,
+                      (double)mc.unconverged};
+    memcpy(r->v, v, sizeof v);
     return 0;
+}
+
+void output_row_add(series_row *sum, const series_row *r, int nwalls)
+{
+    for (int k = 0; k < S__N; k++)
+        sum->v[k] = (k == S_TIME || k == S_STEP || k == S_MCCAP) ? r->v[k] : sum->v[k] + r->v[k];
+    for (int k = 0; k < 3 * nwalls; k++) {
+        sum->wall_pos[k] += r->wall_pos[k];
+        sum->wall_force[k] += r->wall_force[k];
+    }
+}
+
+void output_row_mean(series_row *sum, int count, int nwalls)
+{
+    for (int k = 0; k < S__N; k++)
+        if (k != S_TIME && k != S_STEP && k != S_MCCAP)
+            sum->v[k] /= count;
+    for (int k = 0; k < 3 * nwalls; k++) {
+        sum->wall_pos[k] /= count;
+        sum->wall_force[k] /= count;
+    }
+}
+
+int output_series(output *o, const series_row *r)
+{
+    for (int k = 0; k < S__N; k++)
+        if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k >= S_MCIT && o->mc)) && h5rows_append(&o->s[k], &r->v[k]))
+            return -1;
+    if (o->nwalls && (h5rows_append(&o->wall_pos, r->wall_pos) || h5rows_append(&o->wall_force, r->wall_force)))
+        return -1;
+    return 0;
+}
+
+int output_flush(output *o)
+{
+    int rc = 0;
+    for (int k = 0; k < S__N; k++)
+        rc |= h5rows_flush(&o->s[k]);
+    for (size_t k = 0; k < NFF; k++)
+        rc |= h5rows_flush(&o->fdata[k]);
+    rc |= h5rows_flush(&o->wall_pos) | h5rows_flush(&o->wall_force) | h5rows_flush(&o->ftime) | h5rows_flush(&o->fstep);
+    return rc ? -1 : 0;
 }
 
 static void close_all(output *o)
@@ -264,8 +311,8 @@ int output_finish(output *o, char *err, size_t errlen)
 {
     errno = 0;
     double *times = malloc(sizeof(double) * (size_t)(o->nframes + 1));
-    int rc = !times || (o->nframes && H5Dread(o->ftime.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                               times) < 0);
+    int rc = !times || output_flush(o) ||
+             (o->nframes && H5Dread(o->ftime.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, times) < 0);
     int e = errno;
     close_all(o);
     if (H5Fclose(o->file) < 0)
@@ -289,6 +336,7 @@ void output_abort(output *o)
 {
     if (!o)
         return;
+    output_flush(o); /* keep in OUT.part what can still be written (a full disk may refuse it) */
     close_all(o);
     if (o->file > 0)
         H5Fclose(o->file);

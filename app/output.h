@@ -19,8 +19,24 @@ typedef struct output output;
 void output_xmf_path(const char *h5, char *buf, size_t len);
 output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen);
 int output_frame(output *o, dem_sim *s);
-/* One time-series row; strain and stress are NAN without a sample. */
-int output_series(output *o, dem_sim *s, double strain, double stress);
+
+/* One time-series row: the series' columns (time, step, energies, contact counts, strain and stress - NAN without a
+ * sample -, MC-strain iterations and capped steps) and every wall's position and received force. */
+enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };
+typedef struct {
+    double v[S__N];
+    double wall_pos[3 * DEM_MAX_WALLS], wall_force[3 * DEM_MAX_WALLS];
+} series_row;
+/* The row of the current state, read from the device with one synchronisation (dem_sample_get). */
+int output_sample(dem_sim *s, const scene_run *run, series_row *r);
+/* Accumulates a row into a sum (series_average), and turns a sum of count rows into their mean: every column is
+ * averaged except time, step and the running count of capped steps, which are the last row's. */
+void output_row_add(series_row *sum, const series_row *r, int nwalls);
+void output_row_mean(series_row *sum, int count, int nwalls);
+/* Appends a row (buffered: rows reach the file in chunks, at output_flush and at the end). */
+int output_series(output *o, const series_row *r);
+/* Writes the buffered rows (at checkpoints, so that OUT.part holds the series up to the last checkpoint). */
+int output_flush(output *o);
 /* Closes, writes PATH.xmf, renames PATH.part to PATH. */
 int output_finish(output *o, char *err, size_t errlen);
 /* Closes and keeps PATH.part (after a failure). */

@@ -21,21 +21,6 @@ static double now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *stress)
-{
-    *strain = *stress = NAN;
-    if (run->piston < 0)
-        return;
-    double p[3], f[3];
-    const double *n = run->piston_normal, *p0 = run->piston_point;
-    if (dem_wall_position(s, run->piston, p) || dem_wall_force(s, run->piston, f))
-        return;
-    /* n points from the piston into the sample: travel into it is (p - p0).n */
-    double travel = (p[0] - p0[0]) * n[0] + (p[1] - p0[1]) * n[1] + (p[2] - p0[2]) * n[2];
-    *strain = (travel - run->contact_travel) / run->sample_height;
-    *stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
-}
-
 static int default_out(const scene *sc, char *buf, size_t len)
 {
     const char *base = strrchr(sc->path, '/') ? strrchr(sc->path, '/') + 1 : sc->path;
@@ -320,15 +305,16 @@ static int phase_steps(run_ctx *c)
     c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
     if (!c->out)
         return fail_with(EXIT_IO, c->err);
-    double strain, stress, last;
+    double last;
     c->t0 = last = now();
     long step0 = dem_step_index(s), end = run->steps;
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
-    run_sample_state(s, run, &strain, &stress);
+    series_row row, sum;
+    int nw = dem_wall_count(s);
     errno = 0;
-    if (output_frame(c->out, s) || output_series(c->out, s, strain, stress)) {
+    if (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row)) {
         int e = errno;
         snprintf(c->err, sizeof c->err, "%s.part: cannot write the first frame to the output file: %s", c->outp,
                  h5_io_reason(e));
@@ -341,6 +327,15 @@ static int phase_steps(run_ctx *c)
         for (int k = 0; k < 3; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
                 next = (st / evs[k] + 1) * evs[k];
+        /* series_average N: the N steps that end at a series row are taken one by one and sampled */
+        long row_at = (st / run->series_every + 1) * run->series_every, avg_from = row_at - run->series_average + 1;
+        if (row_at > end)
+            row_at = end, avg_from = end - run->series_average + 1;
+        int averaging = run->series_average > 1 && st + 1 >= avg_from;
+        if (averaging)
+            next = st + 1;
+        else if (run->series_average > 1 && avg_from - 1 > st && avg_from - 1 < next)
+            next = avg_from - 1;
         if (c->show) { /* at most ~1 s between progress lines */
             double rate = (double)(st - step0 + 1) / (now() - c->t0 + 1e-9);
             long cap = st + (long)(rate > 1 ? rate : 1) + 1;
@@ -359,9 +354,18 @@ static int phase_steps(run_ctx *c)
         errno = 0;
         if (st % run->frame_every == 0 || st == end)
             io |= output_frame(c->out, s);
-        if (!io && (st % run->series_every == 0 || st == end)) {
-            run_sample_state(s, run, &strain, &stress);
-            io |= output_series(c->out, s, strain, stress);
+        if (!io && averaging) { /* a step of the averaging window: into the sum, a row at its end */
+            if (!(io = output_sample(s, run, &row))) {
+                if (st == (avg_from > step0 ? avg_from : step0 + 1))
+                    memset(&sum, 0, sizeof sum);
+                output_row_add(&sum, &row, nw);
+            }
+            if (!io && (st % run->series_every == 0 || st == end)) {
+                output_row_mean(&sum, (int)(st - (avg_from > step0 ? avg_from : step0 + 1) + 1), nw);
+                io = output_series(c->out, &sum);
+            }
+        } else if (!io && (st % run->series_every == 0 || st == end)) {
+            io = output_sample(s, run, &row) || output_series(c->out, &row);
         }
         if (io) {
             int e = errno;
@@ -372,6 +376,13 @@ static int phase_steps(run_ctx *c)
             return fail_with(EXIT_IO, c->err);
         }
         if ((run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end) {
+            errno = 0;
+            if (output_flush(c->out)) { /* the series up to the checkpoint reach OUT.part with it */
+                int e = errno;
+                snprintf(c->err, sizeof c->err, "%s.part: cannot write to the output file: %s", c->outp,
+                         h5_io_reason(e));
+                return fail_with(EXIT_IO, c->err);
+            }
             if (checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err))
                 return fail_with(EXIT_IO, c->err);
             ck_step = st;

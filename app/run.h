@@ -35,6 +35,5 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
  * writable: EXIT_IO with the system's reason. 0 when all is well. */
 int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN], char ckp[RUN_PATH_LEN], char *err,
                      size_t errlen);
-/* Strain and engineering stress of the sample (NAN without one). */
-void run_sample_state(dem_sim *s, const scene_run *run, double *strain, double *stress);
+
 #endif

@@ -80,6 +80,7 @@ typedef struct {
     double frame_every;           /* [s] between particle frames */
     double series_every;          /* [s] between time-series rows */
     double checkpoint_every;      /* [s] between checkpoints (0: only at the end) */
+    unsigned series_average;      /* each series row the mean over this many steps ending at it (0, 1: no mean) */
     char **fields;
     unsigned fields_count;
 } scene_output;
@@ -147,6 +148,7 @@ typedef struct {
     dem_config cfg;
     double dt;
     long steps, frame_every, series_every, checkpoint_every; /* in steps */
+    long series_average;          /* steps each series row averages (1: the row's own step) */
     unsigned fields;        /* OUT_* */
     int piston;             /* wall whose position and force define the sample's strain and stress, -1 none */
     double sample_height;   /* initial piston-to-opposite-wall distance [m] (strain reference) */

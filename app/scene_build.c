@@ -443,6 +443,16 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
         long st = r >= (double)run->steps ? run->steps : (long)llround(r);
         *iv[q].steps = st < 1 ? (q == 2 && v == 0 ? 0 : 1) : st;
     }
+    /* series_average N: a row is the mean of the N steps that end at it (LIGGGHTS' fix ave/time), so N cannot
+     * exceed the steps between rows */
+    run->series_average = 1;
+    if (scene_has(sc->loc, "output.series_average")) {
+        if (o->series_average < 1 || (long)o->series_average > run->series_every)
+            return scene_fail(sc, err, errlen, "output.series_average",
+                              "must be 1 .. %ld (steps between series rows: series_every / dt), got %u",
+                              run->series_every, o->series_average);
+        run->series_average = o->series_average;
+    }
     return 0;
 }
 

@@ -94,6 +94,7 @@ static const cyaml_schema_field_t time_fields[] = {
 
 static const cyaml_schema_field_t output_fields[] = {
     REAL("frame_every", scene_output, frame_every), REAL("series_every", scene_output, series_every),
+    CYAML_FIELD_UINT("series_average", CYAML_FLAG_OPTIONAL, scene_output, series_average),
     REAL("checkpoint_every", scene_output, checkpoint_every),
     CYAML_FIELD_SEQUENCE("fields", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_output, fields, &string_entry, 0,
                          16),

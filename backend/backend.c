@@ -222,7 +222,22 @@ int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, 
     size_t have;
     if (dem_field_ref(c, f, &r, &have) || bytes > have)
         return dem_core_fail(c, "read of field %d: %zu bytes asked, %zu held", (int)f, bytes, have);
-    return bytes ? o->read(b, r, 0, dst, bytes) : 0;
+    return bytes ? o->read(b, r, 0, dst, bytes, 1) : 0;
+}
+
+int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,
+                          const size_t *bytes)
+{
+    dem_core *c = DEM_CORE(b);
+    for (int k = 0; k < count; k++) {
+        dem_bufref r;
+        size_t have;
+        if (dem_field_ref(c, f[k], &r, &have) || bytes[k] > have)
+            return dem_core_fail(c, "read of field %d: %zu bytes asked, %zu held", (int)f[k], bytes[k], have);
+        if (bytes[k] && o->read(b, r, 0, dst[k], bytes[k], 0))
+            return 1;
+    }
+    return o->finish(b);
 }
 
 int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes)

@@ -96,7 +96,8 @@ typedef struct {
     int (*launch)(dem_backend *b, dem_kernel_id k); /* the kernel over DEM_ITEMS of its arguments */
     int (*fill_int)(dem_backend *b, dem_bufref r, int value, size_t count);
     int (*copy)(dem_backend *b, dem_bufref from, dem_bufref to, size_t bytes);
-    int (*read)(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes);
+    /* blocking = 0 may return before dst is filled: finish() waits (several reads, one synchronisation) */
+    int (*read)(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes, int blocking);
     /* blocking = 0 may return before the copy is done: the caller keeps src unchanged until its next blocking call */
     int (*write)(dem_backend *b, dem_bufref r, size_t offset, const void *src, size_t bytes, int blocking);
     int (*finish)(dem_backend *b); /* wait for queued work (timing) */
@@ -158,6 +159,9 @@ int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double tol); /* sets FLAG_MC_PENDING */
 int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
+/* Several fields with one synchronisation (the series of a step read everything at once). */
+int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,
+                          const size_t *bytes);
 int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes);
 
 #endif /* DEM_BACKEND_H */

@@ -166,11 +166,12 @@ static int cl_copy(dem_backend *b, dem_bufref from, dem_bufref to, size_t bytes)
                     "clEnqueueCopyBuffer", ERR(b));
 }
 
-static int cl_read(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes)
+static int cl_read(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes, int blocking)
 {
     if (bytes == 0)
         return 0;
-    return cl_check(clEnqueueReadBuffer(b->q, *slot(b, r), CL_TRUE, offset, bytes, dst, 0, NULL, NULL),
+    return cl_check(clEnqueueReadBuffer(b->q, *slot(b, r), blocking ? CL_TRUE : CL_FALSE, offset, bytes, dst, 0, NULL,
+                                        NULL),
                     "clEnqueueReadBuffer", ERR(b));
 }
 

@@ -19,18 +19,63 @@ static double pair_estar(const dem_sim *s, int a, int b)
     return 1 / ((1 - p->poisson * p->poisson) / p->young + (1 - q->poisson * q->poisson) / q->young);
 }
 
-int dem_energy(dem_sim *s, dem_energy_t *en)
+/* raw reals of the run's precision to double */
+static void widen(const void *raw, double *dst, size_t count, int rs)
+{
+    for (size_t k = 0; k < count; k++)
+        dst[k] = rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
+}
+
+/* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
+ * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
+static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force);
+
+int dem_energy(dem_sim *s, dem_energy_t *en) { return energy_of(s, en, NULL); }
+
+int dem_sample_get(dem_sim *s, dem_sample *out)
+{
+    memset(out, 0, sizeof *out);
+    return energy_of(s, &out->energy, out->wall_force);
+}
+
+static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
 {
     memset(en, 0, sizeof *en);
-    int n = s->n;
-    double *x = malloc(sizeof(double) * 3 * n), *v = malloc(sizeof(double) * 3 * n),
-           *w = malloc(sizeof(double) * 3 * n);
-    int *cnt = malloc(sizeof(int) * n), *list = malloc(dem_field_bytes(s, DEM_FIELD_NBR_LIST) + 1);
-    int e = (!x || !v || !w || !cnt || !list) ? sim_fail(s, DEM_ERR_NOMEM, "out of host memory") : 0;
-    if (!e)
-        e = dem_get_field(s, DEM_FIELD_X, x) || dem_get_field(s, DEM_FIELD_V, v) || dem_get_field(s, DEM_FIELD_W, w) ||
-            dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * n) ||
-            dem_get_raw(s, DEM_FIELD_NBR_LIST, list, dem_field_bytes(s, DEM_FIELD_NBR_LIST));
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int n = s->n, rs = s->setup.real_size;
+    size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
+    /* one scratch block kept in the simulation (a series every step allocated and freed it every step) */
+    size_t need = 3 * n3 * sizeof(double) + sizeof(int) * (size_t)n + lb + 3 * n3 * (size_t)rs +
+                  3 * DEM_MAX_WALLS * (size_t)rs + 64;
+    if (need > s->scratch_bytes) {
+        free(s->scratch);
+        s->scratch = malloc(need);
+        s->scratch_bytes = s->scratch ? need : 0;
+    }
+    if (!s->scratch)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    double *x = (double *)s->scratch, *v = x + n3, *w = v + n3;
+    int *cnt = (int *)(w + n3), *list = cnt + n;
+    unsigned char *raw = (unsigned char *)list + lb;
+    int e = 0;
+    if (!e) {
+        dem_field f[6] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST,
+                          DEM_FIELD_WALL_FORCE};
+        void *dst[6] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, cnt, list, raw + 3 * n3 * rs};
+        size_t bytes[6] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, dem_field_bytes(s, DEM_FIELD_NBR_LIST),
+                           3 * (size_t)s->nwalls * rs};
+        if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 6 : 5, f, dst, bytes))
+            e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
+    }
+    if (!e) {
+        widen(raw, x, n3, rs);
+        widen(raw + n3 * rs, v, n3, rs);
+        widen(raw + 2 * n3 * rs, w, n3, rs);
+        if (wall_force)
+            widen(raw + 3 * n3 * rs, wall_force, 3 * (size_t)s->nwalls, rs);
+    }
+
     for (int i = 0; !e && i < n; i++) {
         double m = mass_of(s, i), r = s->radius[i], I = 0.4 * m * r * r;
         unsigned fl = s->pflags[i];
@@ -51,7 +96,7 @@ int dem_energy(dem_sim *s, dem_energy_t *en)
             double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             if (delta > 0) {
                 double rs = r * s->radius[j] / (r + s->radius[j]);
-                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], s->mat[j]) * sqrt(rs) * pow(delta, 2.5);
+                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], s->mat[j]) * sqrt(rs) * (delta * delta * sqrt(delta));
                 en->contacts++;
             }
         }
@@ -67,16 +112,11 @@ int dem_energy(dem_sim *s, dem_energy_t *en)
                 delta = r + sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]) - wl->radius;
             }
             if (delta > 0) {
-                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], wl->material) * sqrt(r) * pow(delta, 2.5);
+                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], wl->material) * sqrt(r) * (delta * delta * sqrt(delta));
                 en->wall_contacts++;
             }
         }
     }
     en->total = en->kinetic + en->elastic + en->potential;
-    free(x);
-    free(v);
-    free(w);
-    free(cnt);
-    free(list);
     return e;
 }

@@ -31,7 +31,7 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     int total = 0;
     dem_bufref start = {TABLE_ONE, BUF_IN_START};
     if (dem_stage_scan(o, b, BUF_IN_COUNT, BUF_IN_START, BUF_IN_BLOCK_SUM, c->n) ||
-        o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total))
+        o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total, 1))
         return 1;
     if ((size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0) { /* rewritten every step before being read */
         c->pair_cap = (size_t)total + (size_t)total / 4 + 16;

@@ -29,6 +29,7 @@ void dem_destroy(dem_sim *s)
     for (int k = 0; k < 9; k++)
         free(s->packed[k]);
     free(s->wall_real);
+    free(s->scratch);
     free(s->x);
     free(s->v);
     free(s->w);

@@ -45,6 +45,8 @@ struct dem_sim {
     unsigned char seq_step[DEM_TRACE_MAX], seq_rebuild[DEM_TRACE_MAX];
     int nseq_step, nseq_rebuild;
     int rebuild_at, rebuild_len; /* the current step's rebuild within the core's trace */
+    void *scratch;               /* host scratch of dem_energy / dem_sample_get, kept between calls */
+    size_t scratch_bytes;
 };
 
 /* sim_setup.c */

@@ -221,6 +221,13 @@ int dem_get_field(dem_sim *s, dem_field f, double *dst);
 int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall received in the last step [N] */
 int dem_wall_position(const dem_sim *s, int wall, double p[3]);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
+/* What a time-series row needs, read from the device with one synchronisation: the energies and contact counts
+ * (dem_energy) and the force each wall received (dem_wall_force of every wall). */
+typedef struct {
+    dem_energy_t energy;
+    double wall_force[3 * DEM_MAX_WALLS]; /* [N] */
+} dem_sample;
+int dem_sample_get(dem_sim *s, dem_sample *out);
 /* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
 /* The kernels the last step launched, in order, without a rebuild's (rebuild = 0), or those of the last neighbour

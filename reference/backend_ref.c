@@ -103,8 +103,9 @@ static int ref_copy(dem_backend *b, dem_bufref from, dem_bufref to, size_t bytes
     return 0;
 }
 
-static int ref_read(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes)
+static int ref_read(dem_backend *b, dem_bufref r, size_t offset, void *dst, size_t bytes, int blocking)
 {
+    (void)blocking;
     if (bytes)
         memcpy(dst, (const char *)ptr(b, r) + offset, bytes);
     return 0;

@@ -723,6 +723,54 @@ static void test_dt_advice(void **st)
     assert_null(strstr(err, "warning"));
 }
 
+/* series_average N (issue 15, item 2): each row is the mean of the N steps that end at it. Checked against a run of
+ * the same scene with a row every step: row k of the averaged run (step 10 k) is the mean of that run's rows
+ * 10 k - 9 .. 10 k, column by column (time, step: the last step's). Also: the buffered series hold every row. */
+static void test_series_average(void **st)
+{
+    (void)st;
+    char err[8192], p[300];
+    assert_int_equal(sh(err, sizeof err, "sed 's/  series_every: 1.0e-5/  series_every: 1.0e-6/' %s/scenes/two_spheres.yaml"
+                                          " > %s/every.yaml && sed 's/  series_every: 1.0e-5/  series_every: 1.0e-5\\n"
+                                          "  series_average: 10/' %s/scenes/two_spheres.yaml > %s/avg.yaml && "
+                                          "%s run %s/every.yaml -o %s/every.h5 --quiet && %s run %s/avg.yaml -o %s/avg.h5 "
+                                          "--quiet", SRC, tmp, SRC, tmp, DEM, tmp, tmp, DEM, tmp, tmp),
+                     0);
+    const char *cols[] = {"time", "step", "kinetic", "elastic", "total", "contacts"};
+    double *a = malloc(sizeof(double) * 4000), *m = malloc(sizeof(double) * 400);
+    for (int c = 0; c < 6; c++) {
+        snprintf(p, sizeof p, "%s/every.h5", tmp);
+        hid_t fa = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+        snprintf(p, sizeof p, "%s/avg.h5", tmp);
+        hid_t fm = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+        char d[64];
+        snprintf(d, sizeof d, "series/%s", cols[c]);
+        long na = h5_count(fa, d), nm = h5_count(fm, d);
+        assert_int_equal(na, 3001); /* 3000 steps and the start: every row made it through the buffer */
+        assert_int_equal(nm, 301);
+        assert_int_equal(h5_read(fa, d, H5T_NATIVE_DOUBLE, a, (size_t)na), 0);
+        assert_int_equal(h5_read(fm, d, H5T_NATIVE_DOUBLE, m, (size_t)nm), 0);
+        H5Fclose(fa), H5Fclose(fm);
+        assert_true(m[0] == a[0]); /* the first row: the start itself */
+        for (long k = 1; k < nm; k++) {
+            double want = 0;
+            for (long j = 10 * k - 9; j <= 10 * k; j++)
+                want += a[j];
+            if (c >= 2)
+                want /= 10;
+            else
+                want = a[10 * k];
+            if (!(fabs(m[k] - want) <= 1e-12 * fabs(want)))
+                fail_msg("%s row %ld: %.17g, mean of the steps %.17g", cols[c], k, m[k], want);
+        }
+    }
+    free(a), free(m);
+    assert_int_equal(sh(err, sizeof err, "sed 's/  series_average: 10/  series_average: 11/' %s/avg.yaml > %s/avg2.yaml "
+                                          "&& %s check %s/avg2.yaml", tmp, tmp, DEM, tmp),
+                     65);
+    assert_non_null(strstr(err, "output.series_average: must be 1 .. 10 (steps between series rows"));
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -742,6 +790,7 @@ int main(void)
         cmocka_unit_test(test_random_packing),
         cmocka_unit_test(test_wall_repeat),
         cmocka_unit_test(test_dt_advice),
+        cmocka_unit_test(test_series_average),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
