@@ -21,8 +21,10 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     hid_t space = H5Screate_simple(rank, r->dims, maxd), dcpl = H5Pcreate(H5P_DATASET_CREATE);
     int ok = space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0 && H5Pset_shuffle(dcpl) >= 0 &&
              H5Pset_deflate(dcpl, 4) >= 0;
-    hid_t file_type = mem_type == H5T_NATIVE_DOUBLE ? H5T_IEEE_F64LE : H5T_STD_I32LE;
-    r->row_bytes = (mem_type == H5T_NATIVE_DOUBLE ? 8 : 4) * (size_t)(rank > 1 ? d1 : 1) * (size_t)(rank > 2 ? d2 : 1);
+    hid_t file_type = mem_type == H5T_NATIVE_DOUBLE ? H5T_IEEE_F64LE
+                      : mem_type == H5T_NATIVE_LLONG ? H5T_STD_I64LE
+                                                     : H5T_STD_I32LE;
+    r->row_bytes = H5Tget_size(mem_type) * (size_t)(rank > 1 ? d1 : 1) * (size_t)(rank > 2 ? d2 : 1);
     r->cap = H5ROWS_BUFFER_BYTES / r->row_bytes;
     if (r->cap > 1 && !(r->buf = malloc(r->cap * r->row_bytes)))
         r->cap = 0; /* no memory for the buffer: rows go straight through */

@@ -4,7 +4,7 @@
 #include <hdf5.h>
 #include <stddef.h>
 
-/* A dataset of shape [rows, d1, d2] (rank 1..3) whose first dimension grows; double or int elements. Small rows
+/* A dataset of shape [rows, d1, d2] (rank 1..3) whose first dimension grows; double, int or long long elements. Small rows
  * (a time series) are gathered in memory and written in chunks of up to H5ROWS_BUFFER_BYTES: one HDF5 write per
  * chunk instead of per row (a series every step made a run 3x slower). Large rows (frames) go straight through. */
 #define H5ROWS_BUFFER_BYTES (256 * 1024)

@@ -37,6 +37,12 @@ struct output {
     h5rows s[S__N], wall_pos, wall_force;
     long nframes;
     double *buf;
+    /* the contact network per frame (field "contacts"): rows of ids and data, where each frame starts */
+    hid_t contacts;
+    h5rows c_start, c_pairs, c_ids, c_data, c_fn;
+    long long c_total;
+    long long *c_frame; /* per frame: first row, pair rows (for the XDMF) */
+    long c_cap;
 };
 
 /* One name per library wall, newline-separated, in the order of the wall_position / wall_force columns: the
@@ -130,6 +136,21 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
                 rc = h5rows_create(&o->fdata[k], o->frames, frame_fields[k].name, H5T_NATIVE_DOUBLE, 3, (hsize_t)n,
                                    (hsize_t)frame_fields[k].ncomp, frame_fields[k].units);
     }
+    if (!rc && (o->fields & OUT_CONTACTS)) { /* the contact network, ragged: each frame's rows from start[f] */
+        o->contacts = H5Gcreate2(o->file, "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = o->contacts < 0 ||
+             h5rows_create(&o->c_start, o->contacts, "frame_start", H5T_NATIVE_LLONG, 1, 0, 0, NULL) ||
+             h5rows_create(&o->c_pairs, o->contacts, "frame_pairs", H5T_NATIVE_LLONG, 1, 0, 0, NULL) ||
+             h5rows_create(&o->c_ids, o->contacts, "ids", H5T_NATIVE_INT, 2, 2, 0, NULL) ||
+             h5rows_create(&o->c_data, o->contacts, "data", H5T_NATIVE_DOUBLE, 2, 12, 0, NULL) ||
+             h5rows_create(&o->c_fn, o->contacts, "normal_force", H5T_NATIVE_DOUBLE, 1, 0, 0, "N") ||
+             h5_attr_string(o->contacts, "layout",
+                            "frame f holds rows frame_start[f] .. frame_start[f+1] (or the end): first frame_pairs[f] "
+                            "particle pairs (ids i < j, ascending), then particle-wall pairs (ids i, -1 - wall). data: "
+                            "overlap [m], normal force on i [N] (3), tangential force on i [N] (3), contact point [m] "
+                            "(3), the law's terms (2: MC-stress traces T_i, T_j [Pa]; MC-strain induced displacements "
+                            "at i and j [m]; else 0). normal_force: |normal force| [N].");
+    }
     if (!rc) {
         o->series = H5Gcreate2(o->file, "series", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         rc = o->series < 0;
@@ -166,10 +187,43 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     return o;
 }
 
+static int output_contacts(output *o, dem_sim *s)
+{
+    dem_contact *cs;
+    long count, npairs;
+    if (dem_contacts_get(s, &cs, &count, &npairs))
+        return -1;
+    long long start = o->c_total, np = npairs;
+    int rc = h5rows_append(&o->c_start, &start) || h5rows_append(&o->c_pairs, &np);
+    for (long k = 0; !rc && k < count; k++) {
+        const dem_contact *e = &cs[k];
+        int ids[2] = {e->i, e->j};
+        double row[12] = {e->overlap, e->fn[0], e->fn[1], e->fn[2], e->ft[0], e->ft[1], e->ft[2],
+                          e->point[0], e->point[1], e->point[2], e->extra[0], e->extra[1]};
+        double fn = sqrt(e->fn[0] * e->fn[0] + e->fn[1] * e->fn[1] + e->fn[2] * e->fn[2]);
+        rc = h5rows_append(&o->c_ids, ids) || h5rows_append(&o->c_data, row) || h5rows_append(&o->c_fn, &fn);
+    }
+    free(cs);
+    if (rc)
+        return -1;
+    if (o->nframes >= o->c_cap) {
+        long cap = o->c_cap ? 2 * o->c_cap : 64;
+        long long *g = realloc(o->c_frame, sizeof(long long) * 2 * (size_t)cap);
+        if (!g)
+            return -1;
+        o->c_frame = g, o->c_cap = cap;
+    }
+    o->c_frame[2 * o->nframes] = start, o->c_frame[2 * o->nframes + 1] = np;
+    o->c_total += count;
+    return 0;
+}
+
 int output_frame(output *o, dem_sim *s)
 {
     double t = dem_time(s), st = (double)dem_step_index(s);
     if (h5rows_append(&o->ftime, &t) || h5rows_append(&o->fstep, &st))
+        return -1;
+    if ((o->fields & OUT_CONTACTS) && output_contacts(o, s))
         return -1;
     for (size_t k = 0; k < NFF; k++)
         if (o->fields & frame_fields[k].bit)
@@ -247,6 +301,8 @@ int output_flush(output *o)
         rc |= h5rows_flush(&o->s[k]);
     for (size_t k = 0; k < NFF; k++)
         rc |= h5rows_flush(&o->fdata[k]);
+    rc |= h5rows_flush(&o->c_start) | h5rows_flush(&o->c_pairs) | h5rows_flush(&o->c_ids) | h5rows_flush(&o->c_data) |
+          h5rows_flush(&o->c_fn);
     rc |= h5rows_flush(&o->wall_pos) | h5rows_flush(&o->wall_force) | h5rows_flush(&o->ftime) | h5rows_flush(&o->fstep);
     return rc ? -1 : 0;
 }
@@ -261,10 +317,18 @@ static void close_all(output *o)
         h5rows_close(&o->s[k]);
     h5rows_close(&o->wall_pos);
     h5rows_close(&o->wall_force);
+    h5rows_close(&o->c_start);
+    h5rows_close(&o->c_pairs);
+    h5rows_close(&o->c_ids);
+    h5rows_close(&o->c_data);
+    h5rows_close(&o->c_fn);
     if (o->frames > 0)
         H5Gclose(o->frames);
     if (o->series > 0)
         H5Gclose(o->series);
+    if (o->contacts > 0)
+        H5Gclose(o->contacts);
+    o->frames = o->series = o->contacts = 0;
 }
 
 /* XDMF 2: a temporal collection of point sets; every attribute is a hyperslab of the frame arrays. */
@@ -303,7 +367,38 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
                     "<DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
                     "%s:/particles/material</DataItem>\n</Attribute>\n</Grid>\n", o->n, h5name);
     }
-    fprintf(fp, "</Grid>\n</Domain>\n</Xdmf>\n");
+    fprintf(fp, "</Grid>\n");
+    if ((o->fields & OUT_CONTACTS) && (o->fields & OUT_POSITION) && o->c_total > 0) {
+        /* the contact network: per frame, a line between the centres of each touching pair, coloured by the normal
+         * force (frames without a pair are left out: XDMF has no empty polyline) */
+        fprintf(fp, "<Grid Name=\"contacts\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+        for (long f = 0; f < F; f++) {
+            long long s0 = o->c_frame[2 * f], np = o->c_frame[2 * f + 1];
+            if (np < 1)
+                continue;
+            fprintf(fp, "<Grid Name=\"network %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
+            fprintf(fp, "<Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n"
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%lld 2\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 2\" Format=\"XML\">%lld 0 1 1 %lld 2</DataItem>\n"
+                        "<DataItem Dimensions=\"%lld 2\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                        "%s:/contacts/ids</DataItem>\n</DataItem>\n</Topology>\n",
+                    np, np, s0, np, o->c_total, h5name);
+            fprintf(fp, "<Geometry GeometryType=\"XYZ\">\n"
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
+                        "<DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                        "%s:/frames/position</DataItem>\n</DataItem>\n</Geometry>\n",
+                    o->n, f, o->n, F, o->n, h5name);
+            fprintf(fp, "<Attribute Name=\"normal_force\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%lld\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 1\" Format=\"XML\">%lld 1 %lld</DataItem>\n"
+                        "<DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                        "%s:/contacts/normal_force</DataItem>\n</DataItem>\n</Attribute>\n</Grid>\n",
+                    np, s0, np, o->c_total, h5name);
+        }
+        fprintf(fp, "</Grid>\n");
+    }
+    fprintf(fp, "</Domain>\n</Xdmf>\n");
     return fclose(fp) ? -1 : 0;
 }
 
@@ -328,6 +423,7 @@ int output_finish(output *o, char *err, size_t errlen)
         snprintf(err, errlen, "%s: cannot finish the output file: %s (what was written is in %s)", o->path,
                  h5_io_reason(e), o->part);
     free(o->buf);
+    free(o->c_frame);
     free(o);
     return rc;
 }
@@ -341,5 +437,6 @@ void output_abort(output *o)
     if (o->file > 0)
         H5Fclose(o->file);
     free(o->buf);
+    free(o->c_frame);
     free(o);
 }

@@ -140,7 +140,7 @@ typedef struct {
 
 /* Output fields a scene may ask for. */
 enum { OUT_POSITION = 1, OUT_VELOCITY = 2, OUT_ANGULAR_VELOCITY = 4, OUT_RADIUS = 8, OUT_FORCE = 16,
-       OUT_TORQUE = 32, OUT_MATERIAL = 64, OUT_STRESS = 128 };
+       OUT_TORQUE = 32, OUT_MATERIAL = 64, OUT_STRESS = 128, OUT_CONTACTS = 256 };
 
 /* What scene_build derives. */
 typedef struct {

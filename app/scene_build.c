@@ -408,13 +408,13 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
 {
     const scene_output *o = &sc->f->output;
     static const char *names[] = {"position", "velocity", "angular_velocity", "radius", "force", "torque", "material",
-                                  "stress"};
+                                  "stress", "contacts"};
     run->fields = 0;
     if (!o->fields_count)
         run->fields = OUT_POSITION | OUT_VELOCITY | OUT_RADIUS;
     for (unsigned k = 0; k < o->fields_count; k++) {
         unsigned bit = 0;
-        for (int q = 0; q < 8; q++)
+        for (int q = 0; q < 9; q++)
             if (!strcmp(o->fields[k], names[q]))
                 bit = 1u << q;
         char p[64];
@@ -422,7 +422,7 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
         if (!bit)
             return scene_fail(sc, err, errlen, p,
                               "unknown field '%s' (position, velocity, angular_velocity, radius, force, torque, "
-                              "material, stress)", o->fields[k]);
+                              "material, stress, contacts)", o->fields[k]);
         run->fields |= bit;
     }
     const double dt = run->dt, T = sc->f->time.duration;

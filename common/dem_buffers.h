@@ -36,7 +36,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int))                                                         \
     ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, DEM_FIELD_WALL_REAL, SETUP(wall_real))                                          \
     ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, DEM_FIELD_WALL_HIST, NONE)                                       \
-    ENTRY(WALL_PF, REAL, 3 * N * NW, 0, -1, NONE)                                                                        \
+    ENTRY(WALL_PF, REAL, 3 * N * NW, 0, DEM_FIELD_WALL_PF, NONE)                                                         \
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE)                                                                  \
     ENTRY(PARTIAL, REAL, 3 * NBR * NW, 0, -1, NONE)                                                                      \
     ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE)                                                           \
@@ -48,9 +48,9 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(BLOCK_SUM, INT, NBS, 0, -1, NONE)                                                                              \
     ENTRY(FLAGS, INT, FLAG_COUNT, 0, DEM_FIELD_FLAGS, NONE)                                                                  \
     ENTRY(IN_COUNT, INT, N, 0, -1, NONE)                                                                                 \
-    ENTRY(IN_START, INT, N + 1, 0, -1, NONE)                                                                             \
+    ENTRY(IN_START, INT, N + 1, 0, DEM_FIELD_IN_START, NONE)                                                             \
     ENTRY(IN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE)                                     \
-    ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, -1, NONE)                                                                    \
+    ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE)                                                \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE)                                                \
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE)                                                \
     ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE)                                     \

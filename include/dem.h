@@ -101,6 +101,10 @@ typedef enum {
     DEM_FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
     DEM_FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
     DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
+    DEM_FIELD_PAIR_RECORDS,         /* real[8*records]: each touching pair's force on its lower id (common/dem_layout.h
+                                       PR_*), at the higher id's incoming slot (dem_contacts_get reads them) */
+    DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming records start */
+    DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N] */
     DEM_FIELD__COUNT
 } dem_field;
 
@@ -228,6 +232,20 @@ typedef struct {
     double wall_force[3 * DEM_MAX_WALLS]; /* [N] */
 } dem_sample;
 int dem_sample_get(dem_sim *s, dem_sample *out);
+
+/* The contact network of the current state: every touching particle pair (by i < j, ascending) and then every
+ * touching particle-wall pair (by particle, then wall), with the force the step computed on particle i split along
+ * the contact normal and across it, the overlap and the contact point (host/contacts.c). */
+typedef struct {
+    int i, j;            /* particles, i < j; for a wall contact j = -1 - wall */
+    double overlap;      /* [m] */
+    double fn[3], ft[3]; /* normal and tangential parts of the force on particle i [N] */
+    double point[3];     /* contact point [m] */
+    double extra[2];     /* the law's own terms: MC-stress, the traces T_i, T_j [Pa] (P = -(T_i + T_j) / K);
+                            MC-strain, the induced displacements D at i's and at j's end [m]; otherwise 0 */
+} dem_contact;
+/* Allocates *out (free() it): count contacts, the first npairs of them particle pairs. */
+int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs);
 /* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
 /* The kernels the last step launched, in order, without a rebuild's (rebuild = 0), or those of the last neighbour

@@ -771,6 +771,70 @@ static void test_series_average(void **st)
     assert_non_null(strstr(err, "output.series_average: must be 1 .. 10 (steps between series rows"));
 }
 
+/* The contact network (issue 15, item 1): field `contacts` writes each frame's touching pairs and particle-wall
+ * pairs; per frame, the contact forces add up to every particle's force (the frames' `force`, a sum in another
+ * order: 1e-12 of the largest), the pairs come by (i, j) with i < j, then walls; the XDMF's networks point at
+ * datasets of the right shapes; tools/contacts.py draws P(f/<f>). */
+static void test_contact_network(void **st)
+{
+    (void)st;
+    char err[8192], p[300];
+    assert_int_equal(sh(err, sizeof err, "sed 's/fields: \\[position, velocity, angular_velocity, force, torque\\]/"
+                                          "fields: [position, force, contacts]/' %s/tests/scenes/restart_box.yaml > "
+                                          "%s/net.yaml && grep -q 'force, contacts' %s/net.yaml && %s run %s/net.yaml -o "
+                                          "%s/net.h5 --quiet", SRC, tmp, tmp, DEM, tmp, tmp),
+                     0);
+    snprintf(p, sizeof p, "%s/net.h5", tmp);
+    hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    long nf = h5_count(f, "contacts/frame_start"), rows = h5_count(f, "contacts/normal_force"), n = 64;
+    assert_int_equal(nf, 10);
+    assert_true(rows > 50);
+    long long *start = malloc(sizeof(long long) * (size_t)nf), *np = malloc(sizeof(long long) * (size_t)nf);
+    int *ids = malloc(sizeof(int) * 2 * (size_t)rows);
+    double *d = malloc(sizeof(double) * 12 * (size_t)rows), *force = malloc(sizeof(double) * 3 * (size_t)(n * nf));
+    assert_int_equal(h5_read(f, "contacts/frame_start", H5T_NATIVE_LLONG, start, (size_t)nf), 0);
+    assert_int_equal(h5_read(f, "contacts/frame_pairs", H5T_NATIVE_LLONG, np, (size_t)nf), 0);
+    assert_int_equal(h5_read(f, "contacts/ids", H5T_NATIVE_INT, ids, (size_t)rows * 2), 0);
+    assert_int_equal(h5_read(f, "contacts/data", H5T_NATIVE_DOUBLE, d, (size_t)rows * 12), 0);
+    assert_int_equal(h5_read(f, "frames/force", H5T_NATIVE_DOUBLE, force, (size_t)(n * nf) * 3), 0);
+    H5Fclose(f);
+    long walls = 0, pairs = 0;
+    for (long fr = 0; fr < nf; fr++) {
+        long a = (long)start[fr], b = fr + 1 < nf ? (long)start[fr + 1] : rows;
+        assert_true(a <= b && b - a >= np[fr]);
+        double acc[64 * 3] = {0}, big = 0;
+        for (long k = a; k < b; k++) {
+            int i = ids[2 * k], j = ids[2 * k + 1];
+            int is_pair = k < a + np[fr];
+            assert_true(i >= 0 && i < n && (is_pair ? (j > i && j < n) : (j < 0 && -1 - j < 7)));
+            if (k > a && is_pair) /* (i, j) ascending */
+                assert_true(ids[2 * (k - 1)] < i || (ids[2 * (k - 1)] == i && ids[2 * (k - 1) + 1] < j));
+            assert_true(d[12 * k] > 0); /* touching: a positive overlap */
+            for (int q = 0; q < 3; q++) {
+                double fo = d[12 * k + 1 + q] + d[12 * k + 4 + q];
+                acc[3 * i + q] += fo;
+                if (j >= 0)
+                    acc[3 * j + q] -= fo;
+            }
+            pairs += is_pair, walls += !is_pair;
+        }
+        for (int k = 0; k < 3 * n; k++)
+            big = fmax(big, fabs(force[3 * n * fr + k]));
+        for (int k = 0; k < 3 * n; k++)
+            if (!(fabs(acc[k] - force[3 * n * fr + k]) <= 1e-12 * big))
+                fail_msg("frame %ld, particle %d: contacts add up to %.17g N, its force is %.17g N", fr, k / 3, acc[k],
+                         force[3 * n * fr + k]);
+    }
+    printf("  contact network: %ld pair rows, %ld wall rows over %ld frames\n", pairs, walls, nf);
+    assert_true(pairs > 0 && walls > 0);
+    free(start), free(np), free(ids), free(d), free(force);
+    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/net.xmf && /usr/bin/python3 "
+                                          "%s/tools/contacts.py %s/net.h5 > %s/net.txt && grep -q 'particle pairs, <f> = ' "
+                                          "%s/net.txt && test -s %s/net.contacts.png", SRC, tmp, SRC, tmp, tmp, tmp, tmp),
+                     0);
+}
+
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
@@ -791,6 +855,7 @@ int main(void)
         cmocka_unit_test(test_wall_repeat),
         cmocka_unit_test(test_dt_advice),
         cmocka_unit_test(test_series_average),
+        cmocka_unit_test(test_contact_network),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,0 +1,164 @@
+/* contacts.c - the contact network of the current state (dem_contacts_get): every touching particle pair and
+ * particle-wall pair with the force the kernels computed, read from the device with one synchronisation and
+ * assembled on the host in double. Pairs come from the records contact_pairs leaves for the higher id
+ * (common/contact_forces.h: the force on the lower id, at the higher id's incoming slot), walls from the per-particle
+ * wall forces (common/wall_forces.h); geometry (overlap, normal, contact point) is recomputed from the positions as
+ * the kernels define it. Order: pairs by (i, j), i < j, then particle-wall pairs by (particle, wall). */
+#include "sim.h"
+#include "dem_layout.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double real_at(const unsigned char *raw, size_t k, int rs)
+{
+    return rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
+}
+
+/* splits f into its part along the unit n and the rest */
+static void split(const double *f, const double *n, double *fn, double *ft)
+{
+    double a = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
+    for (int d = 0; d < 3; d++) {
+        fn[d] = a * n[d];
+        ft[d] = f[d] - fn[d];
+    }
+}
+
+int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
+{
+    *out = NULL, *count = 0, *npairs = 0;
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    dem_core *c = DEM_CORE(s->be);
+    int n = s->n, nw = s->nwalls, rs = s->setup.real_size, maxn = c->maxn[c->cur];
+    unsigned fx = s->setup.effects;
+    int mcs = (fx & DEM_EFFECT_MC_STRESS) != 0, mce = (fx & DEM_EFFECT_MC_STRAIN) != 0;
+    enum { FX_, FCNT, FLIST, FTOUCH, FREC, FSTART, FMASK, FPF, FTRACE, FDISP, FWDISP, NF };
+    dem_field f[NF] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST, DEM_FIELD_TOUCH, DEM_FIELD_PAIR_RECORDS,
+                       DEM_FIELD_IN_START, DEM_FIELD_WALL_MASK, DEM_FIELD_WALL_PF, DEM_FIELD_STRESS_TRACE,
+                       DEM_FIELD_MC_DISP, DEM_FIELD_MC_WALL_DISP};
+    size_t bytes[NF], total = 0;
+    void *dst[NF];
+    for (int k = 0; k < NF; k++) {
+        dem_bufref r;
+        if (dem_field_ref(c, f[k], &r, &bytes[k]))
+            bytes[k] = 0;
+        total += bytes[k] + 16;
+    }
+    if (!mcs)
+        bytes[FTRACE] = 0;
+    if (!mce)
+        bytes[FDISP] = bytes[FWDISP] = 0;
+    unsigned char *raw = malloc(total + 1);
+    if (!raw)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    size_t off = 0;
+    for (int k = 0; k < NF; k++) {
+        dst[k] = raw + off;
+        off += bytes[k] + 16 - (bytes[k] % 16); /* aligned slices */
+    }
+    if (dem_stage_read_fields(s->ops, s->be, NF, f, dst, bytes)) {
+        free(raw);
+        return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, c->err);
+    }
+    const unsigned char *x = dst[FX_], *rec = dst[FREC], *pf = dst[FPF], *tr = dst[FTRACE], *disp = dst[FDISP],
+                        *wdisp = dst[FWDISP];
+    const int *cnt = dst[FCNT], *list = dst[FLIST], *start = dst[FSTART];
+    const unsigned char *touch = dst[FTOUCH];
+    const unsigned *mask = dst[FMASK];
+    long np = 0, nwc = 0;
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < cnt[i] && list[i * maxn + k] < i; k++)
+            np += touch[i * maxn + k] != 0;
+        for (int w = 0; w < nw; w++)
+            nwc += (mask[i] >> w) & 1u;
+    }
+    dem_contact *cs = calloc((size_t)(np + nwc) + 1, sizeof *cs);
+    if (!cs) {
+        free(raw);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    /* pairs: particle j's incoming slots hold the pairs (i, j), i < j, in ascending i; gathered per j, then put in
+     * (i, j) order by a counting pass over i */
+    long *per_i = calloc((size_t)n + 1, sizeof(long));
+    if (!per_i) {
+        free(raw), free(cs);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    for (int j = 0; j < n; j++)
+        for (int k = 0; k < cnt[j] && list[j * maxn + k] < j; k++)
+            if (touch[j * maxn + k])
+                per_i[list[j * maxn + k] + 1]++;
+    for (int i = 0; i < n; i++)
+        per_i[i + 1] += per_i[i];
+    for (int j = 0; j < n; j++) /* ascending j, so each i's pairs land in ascending j */
+        for (int k = 0; k < cnt[j] && list[j * maxn + k] < j; k++) {
+            if (!touch[j * maxn + k])
+                continue;
+            int i = list[j * maxn + k];
+            dem_contact *e = &cs[per_i[i]++];
+            size_t r0 = ((size_t)start[j] + (size_t)k) * PR_STRIDE;
+            double F[3] = {real_at(rec, r0 + PR_FX, rs), real_at(rec, r0 + PR_FY, rs), real_at(rec, r0 + PR_FZ, rs)};
+            double xi[3], xj[3], d2 = 0;
+            for (int q = 0; q < 3; q++) {
+                xi[q] = real_at(x, 3 * (size_t)i + q, rs), xj[q] = real_at(x, 3 * (size_t)j + q, rs);
+                d2 += (xi[q] - xj[q]) * (xi[q] - xj[q]);
+            }
+            double dist = sqrt(d2), nrm[3];
+            for (int q = 0; q < 3; q++) /* from j into i */
+                nrm[q] = dist > 0 ? (xi[q] - xj[q]) / dist : (q == 2);
+            e->i = i, e->j = j;
+            e->overlap = s->radius[i] + s->radius[j] - dist;
+            split(F, nrm, e->fn, e->ft);
+            for (int q = 0; q < 3; q++)
+                e->point[q] = xi[q] - nrm[q] * (s->radius[i] - 0.5 * e->overlap);
+            if (mcs)
+                e->extra[0] = real_at(tr, (size_t)i, rs), e->extra[1] = real_at(tr, (size_t)j, rs);
+            if (mce) { /* D at i's slot of j and at j's slot of i */
+                int ki = 0;
+                while (ki < cnt[i] && list[i * maxn + ki] != j)
+                    ki++;
+                e->extra[0] = ki < cnt[i] ? real_at(disp, (size_t)i * maxn + ki, rs) : 0;
+                e->extra[1] = real_at(disp, (size_t)j * maxn + k, rs);
+            }
+        }
+    long m = np;
+    for (int i = 0; i < n; i++)
+        for (int w = 0; w < nw; w++) {
+            if (!((mask[i] >> w) & 1u))
+                continue;
+            dem_contact *e = &cs[m++];
+            const dem_wall *wl = &s->walls[w];
+            const double *p = s->wall_pos[w], *nn = wl->normal;
+            double xi[3], F[3], dv[3], nrm[3];
+            for (int q = 0; q < 3; q++) {
+                xi[q] = real_at(x, 3 * (size_t)i + q, rs);
+                F[q] = real_at(pf, 3 * ((size_t)w * n + i) + q, rs);
+                dv[q] = xi[q] - p[q];
+            }
+            double dn = dv[0] * nn[0] + dv[1] * nn[1] + dv[2] * nn[2];
+            if (wl->kind == DEM_WALL_PLANE) {
+                e->overlap = s->radius[i] - dn;
+                memcpy(nrm, nn, sizeof nrm); /* into the particle */
+            } else {
+                double rad[3] = {dv[0] - dn * nn[0], dv[1] - dn * nn[1], dv[2] - dn * nn[2]};
+                double rl = sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]);
+                e->overlap = s->radius[i] + rl - wl->radius;
+                for (int q = 0; q < 3; q++) /* inward, towards the axis */
+                    nrm[q] = rl > 0 ? -rad[q] / rl : 0;
+            }
+            e->i = i, e->j = -1 - w;
+            split(F, nrm, e->fn, e->ft);
+            for (int q = 0; q < 3; q++)
+                e->point[q] = xi[q] - nrm[q] * (s->radius[i] - e->overlap);
+            if (mcs)
+                e->extra[0] = e->extra[1] = real_at(tr, (size_t)i, rs);
+            if (mce)
+                e->extra[0] = real_at(wdisp, (size_t)i * nw + w, rs);
+        }
+    free(per_i);
+    free(raw);
+    *out = cs, *count = np + nwc, *npairs = np;
+    return 0;
+}
