@@ -64,6 +64,18 @@ static int same_file(const char *a, const char *b)
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
+void run_output_files(const char *outp, const char *ckp, char outs[6][RUN_OUT_LEN])
+{
+    snprintf(outs[0], RUN_OUT_LEN, "%s", outp);
+    snprintf(outs[1], RUN_OUT_LEN, "%s.part", outp);
+    char xmf[RUN_OUT_LEN];
+    output_xmf_path(outp, xmf, sizeof xmf);
+    snprintf(outs[2], RUN_OUT_LEN, "%s", xmf);
+    snprintf(outs[3], RUN_OUT_LEN, "%s.part", xmf);
+    snprintf(outs[4], RUN_OUT_LEN, "%s", ckp);
+    snprintf(outs[5], RUN_OUT_LEN, "%s" CHECKPOINT_TMP_SUFFIX, ckp);
+}
+
 int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN], char ckp[RUN_PATH_LEN], char *err,
                      size_t errlen)
 {
@@ -91,13 +103,8 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
                               "names another)", cli_show(ckp, shown, 200), l, DEM_MAX_PATH);
         return EXIT_USAGE;
     }
-    char outs[6][RUN_PATH_LEN + 16];
-    snprintf(outs[0], sizeof outs[0], "%s", outp);
-    snprintf(outs[1], sizeof outs[1], "%s.part", outp);
-    output_xmf_path(outp, outs[2], sizeof outs[2]);
-    snprintf(outs[3], sizeof outs[3], "%s.part", outs[2]);
-    snprintf(outs[4], sizeof outs[4], "%s", ckp);
-    snprintf(outs[5], sizeof outs[5], "%s" CHECKPOINT_TMP_SUFFIX, ckp);
+    char outs[6][RUN_OUT_LEN];
+    run_output_files(outp, ckp, outs);
     const char *in[66];
     const char *what[66];
     char csv[64][4400];

@@ -26,8 +26,12 @@ int run_scene(const run_opts *o);
  * unless --quiet). */
 void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 
-/* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more). */
+/* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more), and for the names
+ * derived from them. */
 #define RUN_PATH_LEN 4096
+#define RUN_OUT_LEN (RUN_PATH_LEN + 16)
+/* The six files a run writes: OUT, OUT.part, its XDMF and the XDMF's .part, the checkpoint and its .tmp. */
+void run_output_files(const char *outp, const char *ckp, char outs[6][RUN_OUT_LEN]);
 /* The output and checkpoint paths of a run (from -o / --checkpoint, or from the scene's file name), and the check of
  * everything the run will write (OUT, OUT.part, its XDMF and .xmf.part, the checkpoint and its .tmp) before it
  * starts: no path longer than DEM_MAX_PATH, none a directory, a device, pipe or socket, or the same file as an input

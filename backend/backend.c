@@ -217,12 +217,7 @@ size_t dem_kernel_items(const dem_core *c, dem_kernel_id k)
 
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes)
 {
-    dem_core *c = DEM_CORE(b);
-    dem_bufref r;
-    size_t have;
-    if (dem_field_ref(c, f, &r, &have) || bytes > have)
-        return dem_core_fail(c, "read of field %d: %zu bytes asked, %zu held", (int)f, bytes, have);
-    return bytes ? o->read(b, r, 0, dst, bytes, 1) : 0;
+    return dem_stage_read_fields(o, b, 1, &f, &dst, &bytes);
 }
 
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,

@@ -29,15 +29,15 @@
 
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
-    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)       \
-    K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                      \
-    K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                   \
+    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
+    K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
+    K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_index(F, A)                                                                                     \
-    F(I, int, n, N) A(R, real, lox, LOX) A(R, real, loy, LOY) A(R, real, loz, LOZ) A(R, real, inv_cell, INV_CELL)  \
-    A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BOUT, int, cell_of, CELL_OF)  \
+    F(I, int, n, N) A(R, real, lox, LOX) A(R, real, loy, LOY) A(R, real, loz, LOZ) A(R, real, inv_cell, INV_CELL)    \
+    A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BOUT, int, cell_of, CELL_OF)    \
     A(BOUT, int, cell_count, CELL_COUNT) A(BOUT, int, flags, FLAGS)
 #define DEM_ITEMS_bin_index n
 /* the scan (exclusive prefix sum of count into start) works on the buffers its aliases name */
@@ -52,7 +52,7 @@
     A(AIN, int, block_sum, SCAN_BLOCK_SUM) A(AOUT, int, start, SCAN_START)
 #define DEM_ITEMS_scan_apply nblocks
 #define DEM_ARGS_bin_scatter(F, A)                                                                                   \
-    F(I, int, n, N) A(BIN, int, cell_of, CELL_OF) A(BIN, int, start, CELL_START) A(BOUT, int, fill, CELL_FILL)      \
+    F(I, int, n, N) A(BIN, int, cell_of, CELL_OF) A(BIN, int, start, CELL_START) A(BOUT, int, fill, CELL_FILL)       \
     A(BOUT, int, cell_particles, CELL_PARTICLES)
 #define DEM_ITEMS_bin_scatter n
 #define DEM_ARGS_bin_sort(F, A)                                                                                      \
@@ -61,43 +61,43 @@
 
 /* ---- neighbor.h ---- */
 #define DEM_ARGS_nbr_build(F, A)                                                                                     \
-    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY)        \
-    A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)               \
-    A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)  \
+    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY)         \
+    A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)                \
+    A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
     A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, flags, FLAGS)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
-    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)           \
-    A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                           \
-    A(CIN, real, old_hist, HIST) A(CIN, dem_byte, old_touch, TOUCH) A(NOUT, real, hist, HIST)                  \
-    A(NOUT, dem_byte, touch, TOUCH) A(NOUT, int, mirror, MIRROR) A(BOUT, int, flags, FLAGS)                    \
+    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
+    A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
+    A(CIN, real, old_hist, HIST) A(CIN, dem_byte, old_touch, TOUCH) A(NOUT, real, hist, HIST)                        \
+    A(NOUT, dem_byte, touch, TOUCH) A(NOUT, int, mirror, MIRROR) A(BOUT, int, flags, FLAGS)                          \
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_nbr_carry n
 
 /* ---- contact_forces.h ---- */
+/* the two contact kernels' common head */
+#define DEM_ARGS_contact_head(F, A)                                                                                  \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)            \
+    A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)                \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
+    A(CIN, int, nbr_mirror, MIRROR)
 #define DEM_ARGS_contact_pairs(F, A)                                                                                 \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)           \
-    A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)               \
-    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)  \
-    A(CIN, int, nbr_mirror, MIRROR) A(COUT, real, hist, HIST) A(COUT, dem_byte, touch, TOUCH)                  \
-    A(BIN, int, in_start, IN_START) A(BOUT, real, pair, PAIR) A(BOUT, real, force, FORCE)                           \
-    A(BOUT, real, torque, TORQUE) A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL)                           \
+    DEM_ARGS_contact_head(F, A) A(COUT, real, hist, HIST) A(COUT, dem_byte, touch, TOUCH)                            \
+    A(BIN, int, in_start, IN_START) A(BOUT, real, pair, PAIR) A(BOUT, real, force, FORCE)                            \
+    A(BOUT, real, torque, TORQUE) A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL)                            \
     A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_contact_pairs n
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)           \
-    A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)               \
-    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)  \
-    A(CIN, int, nbr_mirror, MIRROR) A(CIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)             \
-    A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)    \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)          \
-    A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)              \
+    DEM_ARGS_contact_head(F, A) A(CIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
+    A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)     \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
+    A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */
 #define DEM_ARGS_wall_reduce_block(F, A)                                                                             \
-    F(I, int, n, N) A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, wall_pf, WALL_PF)        \
+    F(I, int, n, N) A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, wall_pf, WALL_PF)         \
     A(BIN, unsigned, wall_mask, WALL_MASK) A(BOUT, real, partial, PARTIAL)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
@@ -107,45 +107,45 @@
 
 /* ---- integrate.h ---- */
 #define DEM_ARGS_integrate_kick_drift(F, A)                                                                          \
-    F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                     \
-    A(R, real, half_skin2, HALF_SKIN2) A(BOUT, real, x, X) A(BOUT, real, v, V) A(BOUT, real, w, W)                  \
-    A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE) A(BIN, real, invmass, INVMASS)                          \
+    F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                      \
+    A(R, real, half_skin2, HALF_SKIN2) A(BOUT, real, x, X) A(BOUT, real, v, V) A(BOUT, real, w, W)                   \
+    A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE) A(BIN, real, invmass, INVMASS)                           \
     A(BIN, real, invinertia, INVINERTIA) A(BIN, real, x_build, X_BUILD) A(BOUT, int, flags, FLAGS)
 #define DEM_ITEMS_integrate_kick_drift n
 #define DEM_ARGS_integrate_kick(F, A)                                                                                \
-    F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                     \
-    A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                 \
+    F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                      \
+    A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                  \
     A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA)
 #define DEM_ITEMS_integrate_kick n
 
 /* ---- particle_stress.h ---- */
+/* the two stress kernels' common head: they differ only in what they write */
+#define DEM_ARGS_stress_head(F, A)                                                                                   \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
+    A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                                \
+    A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                              \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)
 #define DEM_ARGS_stress_trace(F, A)                                                                                  \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) \
-    A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                               \
-    A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                             \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, trace, TRACE)
+    DEM_ARGS_stress_head(F, A) A(BOUT, real, trace, TRACE)
 #define DEM_ITEMS_stress_trace n
 #define DEM_ARGS_stress_tensor(F, A)                                                                                 \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) \
-    A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                               \
-    A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                             \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, stress, STRESS)
+    DEM_ARGS_stress_head(F, A) A(BOUT, real, stress, STRESS)
 #define DEM_ITEMS_stress_tensor n
 
 /* ---- mc_strain.h ---- */
 #define DEM_ARGS_mc_strain_disp(F, A)                                                                                \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) \
-    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)  \
-    A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                    \
-    A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                          \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
+    A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
+    A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                           \
     A(BOUT, real, wall_disp, MC_WALL_DISP)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)      \
-    A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) \
-    A(CIN, int, nbr_list, LIST) A(CIN, int, nbr_mirror, MIRROR) A(I, int, nwalls, NWALLS)                           \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                  \
-    A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)               \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
+    A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT)  \
+    A(CIN, int, nbr_list, LIST) A(CIN, int, nbr_mirror, MIRROR) A(I, int, nwalls, NWALLS)                            \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                   \
+    A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
     A(BOUT, int, flags, FLAGS)
 #define DEM_ITEMS_mc_strain_update n
 

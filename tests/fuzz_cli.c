@@ -107,13 +107,8 @@ static void check_accepted(const run_opts *o, const char *outp, const char *ckp)
 {
     if ((o->out && strcmp(outp, o->out)) || (o->checkpoint && strcmp(ckp, o->checkpoint)))
         __builtin_trap(); /* a path was cut or changed */
-    char outs[6][RUN_PATH_LEN + 16];
-    snprintf(outs[0], sizeof outs[0], "%s", outp);
-    snprintf(outs[1], sizeof outs[1], "%s.part", outp);
-    output_xmf_path(outp, outs[2], sizeof outs[2]);
-    snprintf(outs[3], sizeof outs[3], "%s.part", outs[2]);
-    snprintf(outs[4], sizeof outs[4], "%s", ckp);
-    snprintf(outs[5], sizeof outs[5], "%s" CHECKPOINT_TMP_SUFFIX, ckp);
+    char outs[6][RUN_OUT_LEN]; /* the names are the run's; what the oracle checks about them is its own */
+    run_output_files(outp, ckp, outs);
     const char *inputs[3] = {"scene.yaml", "pts.csv", o->restart};
     for (int q = 0; q < 6; q++) {
         struct stat st;
