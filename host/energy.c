@@ -7,11 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double mass_of(const dem_sim *s, int i)
-{
-    double r = s->radius[i];
-    return s->mats[s->mat[i]].density * 4.0 / 3.0 * M_PI * r * r * r;
-}
 
 static double pair_estar(const dem_sim *s, int a, int b)
 {
@@ -77,7 +72,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
     }
 
     for (int i = 0; !e && i < n; i++) {
-        double m = mass_of(s, i), r = s->radius[i], I = 0.4 * m * r * r;
+        double m = sim_mass(s, i), r = s->radius[i], I = sim_inertia(s, i);
         unsigned fl = s->pflags[i];
         double v2 = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
         double w2 = w[3 * i] * w[3 * i] + w[3 * i + 1] * w[3 * i + 1] + w[3 * i + 2] * w[3 * i + 2];

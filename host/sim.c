@@ -36,6 +36,7 @@ void dem_destroy(dem_sim *s)
     free(s->radius);
     free(s->mat);
     free(s->pflags);
+    free(s->body);
     free(s);
 }
 
@@ -119,7 +120,9 @@ int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double ra
         if (nm) s->mat = nm;
         unsigned *nf = realloc(s->pflags, sizeof(unsigned) * cap);
         if (nf) s->pflags = nf;
-        if (!nx || !nv || !nw || !nr || !nm || !nf)
+        double *nb = realloc(s->body, sizeof(double) * 2 * cap);
+        if (nb) s->body = nb;
+        if (!nx || !nv || !nw || !nr || !nm || !nf || !nb)
             return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d particles", s->n), -1;
         s->cap = cap;
     }
@@ -132,7 +135,35 @@ int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double ra
     s->radius[i] = radius;
     s->mat[i] = material;
     s->pflags[i] = 0;
+    s->body[2 * i] = s->body[2 * i + 1] = 0; /* mass and inertia from the material's density and the radius */
     return i;
+}
+
+int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (id < 0 || id >= s->n)
+        return sim_fail(s, DEM_ERR_ARG, "no particle %d", id);
+    if (!(mass > 0) || !isfinite(mass) || !(inertia >= 0) || !isfinite(inertia) ||
+        !isnormal(1 / mass) || (inertia > 0 && !isnormal(1 / inertia)))
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: mass must be > 0 kg and inertia >= 0 kg m^2, both with a finite "
+                        "normal inverse (got %g, %g)", id, mass, inertia);
+    s->body[2 * id] = mass;
+    s->body[2 * id + 1] = inertia;
+    return 0;
+}
+
+double sim_mass(const dem_sim *s, int i)
+{
+    double r = s->radius[i];
+    return s->body[2 * i] > 0 ? s->body[2 * i] : s->mats[s->mat[i]].density * 4.0 / 3.0 * M_PI * r * r * r;
+}
+
+double sim_inertia(const dem_sim *s, int i)
+{
+    double r = s->radius[i];
+    return s->body[2 * i + 1] > 0 ? s->body[2 * i + 1] : 0.4 * sim_mass(s, i) * r * r;
 }
 
 int dem_set_particle_flags(dem_sim *s, int id, unsigned flags)

@@ -10,6 +10,8 @@ struct dem_sim {
     double *x, *v, *w, *radius;
     int *mat;
     unsigned *pflags;
+    double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
+                            (sim_mass, sim_inertia) */
     int nmat;
     dem_material mats[64];
     int nwalls;
@@ -48,6 +50,10 @@ struct dem_sim {
     void *scratch;               /* host scratch of dem_energy / dem_sample_get, kept between calls */
     size_t scratch_bytes;
 };
+
+/* sim.c: a particle's mass and moment of inertia (explicit, or a solid sphere of its material and radius) */
+double sim_mass(const dem_sim *s, int i);
+double sim_inertia(const dem_sim *s, int i);
 
 /* sim_setup.c */
 int sim_validate(dem_sim *s);

@@ -51,13 +51,14 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     double tr = INFINITY, tc = INFINITY;
     for (int i = 0; i < s->n; i++) {
         const dem_material *m = &s->mats[s->mat[i]];
-        double r = s->radius[i], nu = m->poisson;
-        /* Rayleigh wave time across a particle: pi r sqrt(rho/G) / (0.1631 nu + 0.8766) */
-        double t = M_PI * r * sqrt(m->density / shear_modulus(m)) / (0.1631 * nu + 0.8766);
+        double r = s->radius[i], nu = m->poisson, mass = sim_mass(s, i);
+        /* Rayleigh wave time across a particle: pi r sqrt(rho/G) / (0.1631 nu + 0.8766), rho the body's own
+         * (mass / volume: the material's density unless the body's mass is set apart, dem_set_particle_mass) */
+        double rho = s->body[2 * i] > 0 ? mass / (4.0 / 3.0 * M_PI * r * r * r) : m->density;
+        double t = M_PI * r * sqrt(rho / shear_modulus(m)) / (0.1631 * nu + 0.8766);
         if (t < tr)
             tr = t;
         if (v > 0) {
-            double mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
             double c = dem_hertz_contact_time(mass / 2, r / 2, estar(m, m), v);
             if (c < tc)
                 tc = c;
@@ -88,7 +89,7 @@ int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
     double stage_max = 0;
     for (int i = 0; i < s->n; i++) {
         const dem_material *m = &s->mats[s->mat[i]];
-        double r = s->radius[i], mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
+        double r = s->radius[i], mass = sim_mass(s, i);
         if (a->pair_speed > 0)
             a->pair_time = fmin(a->pair_time, dem_hertz_contact_time(mass / 2, r / 2, estar(m, m), a->pair_speed));
         if (!(s->effects & DEM_EFFECT_WALLS))
@@ -227,10 +228,9 @@ static void pack_effects(dem_sim *s, dem_setup *u)
 static void pack_bodies(const dem_sim *s, double *invm, double *invi, double *invv)
 {
     for (int i = 0; i < s->n; i++) {
-        const dem_material *m = &s->mats[s->mat[i]];
-        double r = s->radius[i], mass = m->density * 4.0 / 3.0 * M_PI * r * r * r;
+        double r = s->radius[i], mass = sim_mass(s, i);
         invm[i] = (s->pflags[i] & DEM_PARTICLE_FIXED) ? 0 : 1 / mass;
-        invi[i] = (s->pflags[i] & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)) ? 0 : 1 / (0.4 * mass * r * r);
+        invi[i] = (s->pflags[i] & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)) ? 0 : 1 / sim_inertia(s, i);
         invv[i] = 1 / (4.0 / 3.0 * M_PI * r * r * r);
     }
 }

@@ -134,6 +134,10 @@ void dem_config_default(dem_config *c);
 int dem_add_material(dem_sim *s, const dem_material *m); /* returns the material id, or -1 (see dem_error) */
 int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double radius, int material); /* id or -1 */
 int dem_set_particle_flags(dem_sim *s, int id, unsigned flags);
+/* A body's mass [kg] and moment of inertia [kg m^2] (isotropic; 0 = 2/5 m r^2), apart from its contact radius: by
+ * default a particle is a solid sphere of its material (density x volume). For bodies whose mass is not that of
+ * their contact sphere, e.g. the vertices of a membrane. The contact law still uses the material's E and nu. */
+int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */

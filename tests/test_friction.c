@@ -15,6 +15,8 @@ typedef struct {
     double slip;      /* contact-point speed v - w r at the end [m/s] */
 } slope_result;
 
+static double inertia_factor = 0; /* > 0: the sphere's moment of inertia set to this x m r^2 (dem_set_particle_mass) */
+
 static slope_result slide(double theta, int rotate)
 {
     const double r = 0.005, rho = 2500, E = 1e7, nu = 0.3;
@@ -26,6 +28,8 @@ static slope_result slide(double theta, int rotate)
     int id = dem_add_particle(s, (double[3]){0, 0, r - d}, (double[3]){0, 0, 0}, r, m);
     if (!rotate)
         dem_set_particle_flags(s, id, DEM_PARTICLE_NO_ROTATION);
+    if (inertia_factor > 0)
+        assert_int_equal(dem_set_particle_mass(s, id, mass, inertia_factor * mass * r * r), 0);
     dem_wall floor = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1}};
     dem_add_wall(s, &floor);
     dem_set_gravity(s, (double[3]){G * sin(theta), 0, -G * cos(theta)});
@@ -76,11 +80,28 @@ static void test_rolling_sphere(void **st)
     assert_true(fabs(slip.slip / slip_expect - 1) < 0.03);
 }
 
+/* A body's inertia apart from its radius (dem_set_particle_mass): with I = m r^2 (a thin shell's 2/3 would do too)
+ * a rolling sphere accelerates at g sin(theta) / (1 + I / (m r^2)) = g sin(theta) / 2, and rolls for
+ * tan(theta) < mu (1 + m r^2 / I) = 2 mu. */
+static void test_explicit_inertia(void **st)
+{
+    (void)st;
+    inertia_factor = 1.0;
+    double th = 0.5 * atan(2 * MU);
+    slope_result roll = slide(th, 1);
+    inertia_factor = 0;
+    double a = G * sin(th) / 2;
+    printf("  I = m r^2: theta %.4f: a %.4g m/s^2 (rolling %.4g), slip %.3g m/s\n", th, roll.accel, a, roll.slip);
+    assert_true(fabs(roll.accel / a - 1) < 0.02);
+    assert_true(fabs(roll.slip) < 1e-3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_block),
         cmocka_unit_test(test_rolling_sphere),
+        cmocka_unit_test(test_explicit_inertia),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
