@@ -23,6 +23,7 @@
 #ifndef DEM_CONTACT_FORCES_H
 #define DEM_CONTACT_FORCES_H
 #include "dem_kernels.h"
+#include "contacts.h"
 #include "hertz_mindlin.h"
 #include "wall_forces.h"
 #include "particle_stress.h"
@@ -103,11 +104,11 @@ DEM_ITEM(contact_pairs)
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i];
     int cnt = nbr_count[i];
-    for (int k = 0; k < cnt; k++) {
-        int slot = i * maxn + k;
-        int j = nbr_list[slot];
-        if (j < i)
+    for (int k = 0; k < cnt; k++) { /* the pairs i owns (contacts.h), in row order */
+        contact_ref r = contact_at(i, k, cnt, maxn, 0, nbr_list);
+        if (r.kind != CONTACT_OWNED)
             continue;
+        int slot = r.slot, j = r.partner;
         int touching = touch[slot], m = nbr_mirror[slot];
         if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
             continue;
@@ -169,10 +170,11 @@ DEM_ITEM(contact_forces)
         ti = v3_load(torque, i);
     real ri = radius[i];
     int cnt = nbr_count[i];
-    for (int k = 0; k < cnt; k++) {
-        int slot = i * maxn + k;
-        if (nbr_list[slot] > i)
+    for (int k = 0; k < cnt; k++) { /* the mirrored pairs (contacts.h): the front of the sorted row */
+        contact_ref r = contact_at(i, k, cnt, maxn, 0, nbr_list);
+        if (r.kind == CONTACT_OWNED)
             break;
+        int slot = r.slot;
         if (!touch[slot])
             continue;
         DEM_CONST_GLOBAL real *pr = pair + (in_start[i] + k) * PR_STRIDE;

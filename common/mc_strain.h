@@ -35,6 +35,7 @@
 #ifndef DEM_MC_STRAIN_H
 #define DEM_MC_STRAIN_H
 #include "dem_kernels.h"
+#include "contacts.h"
 #include "contact_geometry.h"
 #include "hertz_mindlin.h"
 
@@ -64,15 +65,14 @@ DEM_INLINE pair_geom mc_pair_geometry(unsigned fx, vec3 xa, real ra, vec3 xb, re
 /* Hertz contact radius sqrt(r* d) of a contact, 0 across a gap */
 DEM_INLINE real mc_contact_radius(mc_contact m) { return m.delta > (real)0 ? dem_sqrt(m.rstar * m.delta) : (real)0; }
 
-/* Contact number c of particle i: c < cnt is row slot c, c >= cnt is wall c - cnt. */
-DEM_INLINE mc_contact mc_contact_get(unsigned fx, int i, int c, int cnt, int maxn, vec3 xi, real ri,
-                                     DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *radius,
-                                     DEM_CONST_GLOBAL int *nbr_list, DEM_CONST_GLOBAL int *wall_int,
+/* The geometry of one contact of particle i (contacts.h: a pair or a wall). */
+DEM_INLINE mc_contact mc_contact_get(unsigned fx, contact_ref r, vec3 xi, real ri, DEM_CONST_GLOBAL real *x,
+                                     DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
                                      DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *pairmat)
 {
     mc_contact m;
-    if (c < cnt) {
-        int j = nbr_list[i * maxn + c];
+    if (r.kind != CONTACT_WALL) {
+        int j = r.partner;
         pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
         m.active = g.active;
         m.n = g.n;
@@ -80,7 +80,7 @@ DEM_INLINE mc_contact mc_contact_get(unsigned fx, int i, int c, int cnt, int max
         m.rstar = g.rstar;
         m.p = v3_sub(xi, v3_scale(g.n, ri - (real)0.5 * g.delta));
     } else {
-        int k = c - cnt;
+        int k = r.partner;
         wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
         m.active = (fx & DEM_EFFECT_WALLS) ? g.active : 0;
         m.n = g.n;
@@ -129,18 +129,16 @@ DEM_ITEM(mc_strain_disp)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
-    int cnt = nbr_count[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0, total = cnt + nw;
+    int cnt = nbr_count[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0, total = contact_count(cnt, nw);
     DEM_CONST_GLOBAL real *pmi = pairmat + PM_STRIDE * (mat[i] * nmat + mat[i]);
     /* fast path: the touching contacts, gathered once (in canonical order), then each unordered pair once */
     vec3 cp[MC_CACHE], cn[MC_CACHE];
     real fc[MC_CACHE], ac[MC_CACHE], sum[MC_CACHE];
     int where[MC_CACHE], nc = 0;
     for (int c = 0; c < total && nc <= MC_CACHE; c++) {
-        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real, pairmat);
-        if (c < cnt)
-            disp[i * maxn + c] = (real)0;
-        else
-            wall_disp[i * nwalls + (c - cnt)] = (real)0;
+        contact_ref r = contact_at(i, c, cnt, maxn, nwalls, nbr_list);
+        mc_contact cc = mc_contact_get(fx, r, xi, ri, x, radius, wall_int, wall_real, pairmat);
+        contact_set(r, disp, wall_disp, (real)0);
         if (!cc.active)
             continue;
         if (nc == MC_CACHE) {
@@ -149,7 +147,7 @@ DEM_ITEM(mc_strain_disp)
         }
         cp[nc] = cc.p;
         cn[nc] = cc.n;
-        fc[nc] = c < cnt ? fn[i * maxn + c] : wall_fn[i * nwalls + (c - cnt)];
+        fc[nc] = contact_get(r, fn, wall_fn);
         ac[nc] = mc_contact_radius(cc);
         sum[nc] = (real)0;
         where[nc++] = c;
@@ -169,24 +167,21 @@ DEM_ITEM(mc_strain_disp)
                 if (fc[b] > (real)0)
                     sum[a] = sum[a] + mc_strain_term(pmi, -nbu, -nau, nab, ac[b], fc[b], d, inv_d);
             }
-        for (int a = 0; a < nc; a++) {
-            int c = where[a];
-            if (c < cnt)
-                disp[i * maxn + c] = sum[a];
-            else
-                wall_disp[i * nwalls + (c - cnt)] = sum[a];
-        }
+        for (int a = 0; a < nc; a++)
+            contact_set(contact_at(i, where[a], cnt, maxn, nwalls, nbr_list), disp, wall_disp, sum[a]);
         return;
     }
     for (int c = 0; c < total; c++) { /* slow path: recompute each contact's geometry where needed */
-        mc_contact cc = mc_contact_get(fx, i, c, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real, pairmat);
+        contact_ref rc = contact_at(i, c, cnt, maxn, nwalls, nbr_list);
+        mc_contact cc = mc_contact_get(fx, rc, xi, ri, x, radius, wall_int, wall_real, pairmat);
         real s = (real)0;
         if (cc.active)
             for (int k = 0; k < total; k++) {
-                real fk = k < cnt ? fn[i * maxn + k] : wall_fn[i * nwalls + (k - cnt)];
+                contact_ref rk = contact_at(i, k, cnt, maxn, nwalls, nbr_list);
+                real fk = contact_get(rk, fn, wall_fn);
                 if (k == c || !(fk > (real)0))
                     continue;
-                mc_contact kk = mc_contact_get(fx, i, k, cnt, maxn, xi, ri, x, radius, nbr_list, wall_int, wall_real, pairmat);
+                mc_contact kk = mc_contact_get(fx, rk, xi, ri, x, radius, wall_int, wall_real, pairmat);
                 if (!kk.active)
                     continue;
                 real d, inv_d;
@@ -194,10 +189,7 @@ DEM_ITEM(mc_strain_disp)
                 s = s + mc_strain_term(pmi, v3_dot(kk.n, u), v3_dot(cc.n, u), v3_dot(kk.n, cc.n),
                                        mc_contact_radius(kk), fk, d, inv_d);
             }
-        if (c < cnt)
-            disp[i * maxn + c] = s;
-        else
-            wall_disp[i * nwalls + (c - cnt)] = s;
+        contact_set(rc, disp, wall_disp, s);
     }
 }
 
@@ -221,31 +213,31 @@ DEM_ITEM(mc_strain_update)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
-    int mi = mat[i], cnt = nbr_count[i], changed = 0;
-    for (int k = 0; k < cnt; k++) {
-        int slot = i * maxn + k, j = nbr_list[slot], m = nbr_mirror[slot];
-        if (j < i || m < 0)
-            continue;
-        pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
+    int mi = mat[i], cnt = nbr_count[i], changed = 0, nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
+    for (int c = 0; c < contact_count(cnt, nw); c++) { /* the pairs i owns (both slots), then its walls */
+        contact_ref r = contact_at(i, c, cnt, maxn, nwalls, nbr_list);
         real f = (real)0;
-        if (g.active)
-            f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,
-                           mc_strain_overlap(g.delta, disp[slot], disp[m]));
-        changed |= mc_changed(f, fn[slot], tol);
-        fn[slot] = f;
-        fn[m] = f;
-    }
-    if (fx & DEM_EFFECT_WALLS)
-        for (int k = 0; k < nwalls; k++) {
-            int slot = i * nwalls + k;
+        if (r.kind == CONTACT_OWNED) {
+            int slot = r.slot, j = r.partner, m = nbr_mirror[slot];
+            if (m < 0)
+                continue;
+            pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
+            if (g.active)
+                f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,
+                               mc_strain_overlap(g.delta, disp[slot], disp[m]));
+            changed |= mc_changed(f, fn[slot], tol);
+            fn[slot] = f;
+            fn[m] = f;
+        } else if (r.kind == CONTACT_WALL) {
+            int k = r.partner;
             wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
-            real f = (real)0;
             if (g.active)
                 f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR], ri,
-                               mc_strain_overlap(g.delta, wall_disp[slot], (real)0));
-            changed |= mc_changed(f, wall_fn[slot], tol);
-            wall_fn[slot] = f;
+                               mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0));
+            changed |= mc_changed(f, wall_fn[r.slot], tol);
+            wall_fn[r.slot] = f;
         }
+    }
     if (changed)
         DEM_ATOMIC_MAX(&flags[FLAG_MC_PENDING], 1);
 }

@@ -31,6 +31,7 @@
 #ifndef DEM_PARTICLE_STRESS_H
 #define DEM_PARTICLE_STRESS_H
 #include "dem_kernels.h"
+#include "contacts.h"
 #include "contact_geometry.h"
 #include "hertz_mindlin.h"
 
@@ -79,19 +80,20 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GL
     for (int c = 0; c < ST_STRIDE; c++)
         st[c] = (real)0;
     int mi = mat[i], cnt = nbr_count[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
-    for (int k = 0; k < cnt + nw; k++) { /* the sorted row, then the walls */
+    for (int k = 0; k < contact_count(cnt, nw); k++) { /* the canonical order (contacts.h): the row, then the walls */
+        contact_ref r = contact_at(i, k, cnt, maxn, nwalls, nbr_list);
         real delta, rstar, arm;
         vec3 n;
         int other;
-        if (k < cnt) {
-            int j = nbr_list[i * maxn + k];
+        if (r.kind != CONTACT_WALL) {
+            int j = r.partner;
             pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
             if (!g.active)
                 continue;
             delta = g.delta, rstar = g.rstar, n = g.n, other = mat[j];
             arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
         } else {
-            int w = k - cnt;
+            int w = r.partner;
             wall_geom g = wall_geometry(wall_int[w * WI_STRIDE + WI_TYPE], wall_real + w * W_STRIDE, xi, ri);
             if (!g.active)
                 continue;

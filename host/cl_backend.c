@@ -33,7 +33,7 @@ static const char *const header_files[] = {"common/dem_real.h", "common/dem_layo
                                            "common/neighbor.h", "include/dem_effects.h",
                                            "common/contact_geometry.h", "common/particle_stress.h",
                                            "common/mc_strain.h", "common/sorted_row.h",
-                                           "common/dem_kernels.h"};
+                                           "common/dem_kernels.h", "common/contacts.h"};
 
 static cl_mem *slot(dem_backend *b, dem_bufref r)
 {

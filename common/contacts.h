@@ -1,0 +1,55 @@
+/* contacts.h - the contacts of one particle in the one canonical order every per-particle sum uses (issue 18).
+ *
+ * Particle i's possible contacts are numbered c = 0 .. contact_count(cnt, nw) - 1:
+ *   c <  cnt:  its neighbour row's slot c, partners in ascending id: OWNED when the partner's id is larger (the pair
+ *              is evaluated by i: contact_pairs), MIRRORED when it is smaller (i reads the pair's record);
+ *   c >= cnt:  wall c - cnt, in index order (nw: the walls when the walls effect is on, else none).
+ * The stress sums (particle_stress.h) and MC-strain (mc_strain.h) run over every c; the force sum takes the OWNED
+ * ones in pass 1 and the MIRRORED ones, then the walls, in pass 2 (contact_forces.h). A contact_ref also names where
+ * its per-contact values live: a row slot (i * maxn + c) or a wall slot (i * nwalls + w), so that arrays kept per
+ * row slot and per wall slot (forces, displacements) are read and written through one pair of helpers.
+ * A new kind of partner (the membrane's patches, next) is one more range here and one more case in each user.
+ */
+#ifndef DEM_CONTACTS_H
+#define DEM_CONTACTS_H
+#include "dem_real.h"
+
+enum { CONTACT_OWNED = 0, CONTACT_MIRRORED = 1, CONTACT_WALL = 2 };
+
+typedef struct {
+    int kind;    /* CONTACT_* */
+    int partner; /* the partner particle's id, or the wall's index */
+    int slot;    /* i * maxn + c for a pair, i * nwalls + wall for a wall */
+} contact_ref;
+
+DEM_INLINE int contact_count(int cnt, int nw) { return cnt + nw; }
+
+/* Contact number c of particle i (cnt = nbr_count[i]). */
+DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int maxn, int nwalls, DEM_CONST_GLOBAL int *nbr_list)
+{
+    contact_ref r;
+    if (c < cnt) {
+        r.slot = i * maxn + c;
+        r.partner = nbr_list[r.slot];
+        r.kind = r.partner > i ? CONTACT_OWNED : CONTACT_MIRRORED;
+    } else {
+        r.kind = CONTACT_WALL;
+        r.partner = c - cnt;
+        r.slot = i * nwalls + r.partner;
+    }
+    return r;
+}
+
+/* A per-contact value kept per row slot (row) and per wall slot (wall). */
+DEM_INLINE real contact_get(contact_ref r, DEM_CONST_GLOBAL real *row, DEM_CONST_GLOBAL real *wall)
+{
+    return r.kind == CONTACT_WALL ? wall[r.slot] : row[r.slot];
+}
+DEM_INLINE void contact_set(contact_ref r, DEM_GLOBAL real *row, DEM_GLOBAL real *wall, real v)
+{
+    if (r.kind == CONTACT_WALL)
+        wall[r.slot] = v;
+    else
+        row[r.slot] = v;
+}
+#endif /* DEM_CONTACTS_H */
