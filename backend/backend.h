@@ -27,6 +27,11 @@ typedef struct {
     const void *pairmat;    /* real[PM_STRIDE*nmat*nmat] */
     const int *wall_int;    /* int[WI_STRIDE*nwalls] */
     const void *wall_real;  /* real[W_STRIDE*nwalls] */
+    int nsprings;           /* springs (seed 001 Eq. 6): their particles, constants, and their records' channel */
+    const int *spring_int;  /* int[2*nsprings] */
+    const void *spring_real; /* real[SP_STRIDE*nsprings] */
+    const int *chan_slot;   /* int[2*nsprings]: where each end's force record goes */
+    const int *chan_start;  /* int[n+1]: each particle's records, in spring order */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
     int ncell[3];
@@ -64,7 +69,7 @@ typedef struct {
 typedef struct {
     unsigned fx;
     int rs;
-    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red;
+    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings;
     int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
     size_t pair_cap;   /* pair records allocated */
     int si[SI__COUNT];
@@ -158,6 +163,7 @@ int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_F
 int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double tol); /* sets FLAG_MC_PENDING */
 int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */
+int dem_stage_springs(const dem_backend_ops *o, dem_backend *b); /* spring forces into the particles' sums */
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
 /* Several fields with one synchronisation (the series of a step read everything at once). */
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,

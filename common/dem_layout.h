@@ -25,6 +25,15 @@ enum {
     PM_STRIDE = 10
 };
 
+/* Spring table, real part (index s*SP_STRIDE + ...; seed 001 Eq. 6): the two particles are in the int table
+ * spring_int[2s], [2s+1]. */
+enum {
+    SP_K = 0,    /* spring constant k [N/m] */
+    SP_REST = 1, /* rest length rho^0 [m] */
+    SP_DAMP = 2, /* 2 gamma sqrt(k m_eff) [kg/s], m_eff of the two particles (host/sim_setup.c) */
+    SP_STRIDE = 3
+};
+
 /* Wall geometry and motion, real part (index w*W_STRIDE + ...). */
 enum {
     W_PX = 0, W_PY, W_PZ, /* plane: a point on it; cylinder: a point on its axis [m] */

@@ -26,14 +26,15 @@ struct dem_backend {
 
 static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighbor.cl", "kernels/contact_forces.cl",
                                            "kernels/wall_forces.cl", "kernels/integrate.cl",
-                                           "kernels/particle_stress.cl", "kernels/mc_strain.cl"};
+                                           "kernels/particle_stress.cl", "kernels/mc_strain.cl",
+                                           "kernels/springs.cl"};
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
                                            "common/hertz_mindlin.h", "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
                                            "common/neighbor.h", "include/dem_effects.h",
                                            "common/contact_geometry.h", "common/particle_stress.h",
                                            "common/mc_strain.h", "common/sorted_row.h",
-                                           "common/dem_kernels.h", "common/contacts.h"};
+                                           "common/dem_kernels.h", "common/contacts.h", "common/springs.h"};
 
 static cl_mem *slot(dem_backend *b, dem_bufref r)
 {
@@ -281,9 +282,9 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
              s->real_size, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir, s->source_dir,
              s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
              s->extra_build_options ? s->extra_build_options : "");
-    const char *src = "#include \"binning.cl\"\n#include \"neighbor.cl\"\n#include \"contact_forces.cl\"\n"
-                      "#include \"wall_forces.cl\"\n#include \"integrate.cl\"\n#include \"particle_stress.cl\"\n"
-                      "#include \"mc_strain.cl\"\n";
+    char src[1024] = ""; /* the program: every kernel file of the list above, included in order */
+    for (size_t k = 0; k < sizeof kernel_files / sizeof *kernel_files; k++)
+        snprintf(src + strlen(src), sizeof src - strlen(src), "#include \"%s\"\n", strrchr(kernel_files[k], '/') + 1);
     if (cl_build(b->ctx, b->dev.device, src, options, &b->prog, err, errlen))
         goto fail;
     snprintf(b->core.build, sizeof b->core.build, "OpenCL C built by %s (driver %s) with: %s",

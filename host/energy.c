@@ -1,6 +1,7 @@
 /* energy.c - energy bookkeeping on the host, in double precision, from the backend's current state.
- * Elastic: Hertz normal energy 8/15 E* sqrt(r*) d^(5/2) per contact (the integral of Eq. 3's elastic part),
- * walls included; tangential spring energy is not counted (zero when mu = 0). */
+ * Elastic: Hertz normal energy 8/15 E* sqrt(r*) d^(5/2) per contact (the integral of Eq. 3's elastic part), walls
+ * included, and k e^2 / 2 per spring (e its extension); the Mindlin tangential spring's energy is not counted (zero
+ * when mu = 0). */
 #include "sim.h"
 #include "dem_layout.h"
 #include <math.h>
@@ -111,6 +112,16 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
                 en->wall_contacts++;
             }
         }
+    }
+    for (int k = 0; !e && k < s->nsprings; k++) { /* springs: k (|rho| - rho0)^2 / 2 */
+        int a = s->spring_ij[2 * k], b = s->spring_ij[2 * k + 1];
+        double d2 = 0, r2 = 0, rest = s->spring_kr[3 * k + 1];
+        for (int q = 0; q < 3; q++) {
+            d2 += (x[3 * a + q] - x[3 * b + q]) * (x[3 * a + q] - x[3 * b + q]);
+            r2 += (s->x[3 * a + q] - s->x[3 * b + q]) * (s->x[3 * a + q] - s->x[3 * b + q]);
+        }
+        double ext = sqrt(d2) - (rest < 0 ? sqrt(r2) : rest);
+        en->elastic += 0.5 * s->spring_kr[3 * k] * ext * ext;
     }
     en->total = en->kinetic + en->elastic + en->potential;
     return e;

@@ -26,7 +26,7 @@ void dem_destroy(dem_sim *s)
         return;
     if (s->be)
         s->ops->destroy(s->be);
-    for (int k = 0; k < 9; k++)
+    for (int k = 0; k < SIM_PACKED; k++)
         free(s->packed[k]);
     free(s->wall_real);
     free(s->scratch);
@@ -37,6 +37,8 @@ void dem_destroy(dem_sim *s)
     free(s->mat);
     free(s->pflags);
     free(s->body);
+    free(s->spring_ij);
+    free(s->spring_kr);
     free(s);
 }
 
@@ -153,6 +155,37 @@ int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia)
     s->body[2 * id + 1] = inertia;
     return 0;
 }
+
+int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma)
+{
+    if (not_started(s))
+        return -1;
+    if (i < 0 || i >= s->n || j < 0 || j >= s->n || i == j)
+        return sim_fail(s, DEM_ERR_ARG, "spring %d: particles %d and %d (two different particles of 0..%d)",
+                        s->nsprings, i, j, s->n - 1), -1;
+    if (!(k > 0) || !isfinite(k) || !isfinite(rest) || !(gamma >= 0) || !isfinite(gamma))
+        return sim_fail(s, DEM_ERR_ARG, "spring %d: k must be > 0 N/m, rest finite, gamma >= 0 (got %g, %g, %g)",
+                        s->nsprings, k, rest, gamma), -1;
+    if (s->nsprings == s->spring_cap) {
+        int cap = s->spring_cap ? 2 * s->spring_cap : 256;
+        int *ij = realloc(s->spring_ij, sizeof(int) * 2 * (size_t)cap);
+        if (ij)
+            s->spring_ij = ij;
+        double *kr = realloc(s->spring_kr, sizeof(double) * 3 * (size_t)cap);
+        if (kr)
+            s->spring_kr = kr;
+        if (!ij || !kr)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d springs", s->nsprings), -1;
+        s->spring_cap = cap;
+    }
+    int id = s->nsprings++;
+    s->spring_ij[2 * id] = i, s->spring_ij[2 * id + 1] = j;
+    s->spring_kr[3 * id] = k, s->spring_kr[3 * id + 1] = rest, s->spring_kr[3 * id + 2] = gamma;
+    s->effects |= DEM_EFFECT_SPRINGS;
+    return id;
+}
+
+int dem_spring_count(const dem_sim *s) { return s->nsprings; }
 
 double sim_mass(const dem_sim *s, int i)
 {
@@ -350,8 +383,10 @@ int dem_set_mc_strain_reach(dem_sim *s, double factor)
 
 void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
 
+/* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
-                                                           "mc_stress", "mc_strain"};
+                                                           "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
+                                                           "springs"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 
@@ -360,14 +395,14 @@ void dem_effects_string(unsigned effects, char *buf, size_t len)
     size_t at = 0;
     buf[0] = 0;
     for (int k = 0; k < DEM_EFFECT_COUNT && at < len; k++)
-        if (effects & (1u << k))
+        if (effect_names[k] && (effects & (1u << k)))
             at += (size_t)snprintf(buf + at, len - at, "%s%s", at ? "+" : "", effect_names[k]);
 }
 
 int dem_effect_bit(const char *name)
 {
     for (int k = 0; k < DEM_EFFECT_COUNT; k++)
-        if (!strcmp(name, effect_names[k]))
+        if (effect_names[k] && !strcmp(name, effect_names[k]))
             return k;
     return -1;
 }
@@ -492,6 +527,10 @@ static int mc_strain(dem_sim *s)
  * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through be_fail). */
 static int stage_stress_trace(dem_sim *s) { return dem_stage_stress_trace(s->ops, s->be) ? be_fail(s) : 0; }
 static int stage_contacts(dem_sim *s) { return dem_stage_contact_forces(s->ops, s->be) ? be_fail(s) : 0; }
+static int stage_springs(dem_sim *s)
+{
+    return s->nsprings && dem_stage_springs(s->ops, s->be) ? be_fail(s) : 0;
+}
 static int stage_wall_sums(dem_sim *s)
 {
     return s->nwalls && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
@@ -503,6 +542,7 @@ static const struct {
     {DEM_EFFECT_MC_STRESS, stage_stress_trace}, /* pass 1 of MC-stress: the traces the contacts read */
     {DEM_EFFECT_MC_STRAIN, mc_strain},          /* induced displacements (lagged or iterated forces) */
     {0, stage_contacts},                        /* pairs once, then per-particle sums with the walls */
+    {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces added in spring order (common/springs.h) */
     {DEM_EFFECT_WALLS, stage_wall_sums},        /* the force each wall received */
 };
 

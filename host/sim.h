@@ -12,6 +12,9 @@ struct dem_sim {
     unsigned *pflags;
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
+    int nsprings, spring_cap;
+    int *spring_ij;      /* [2 * nsprings] */
+    double *spring_kr;   /* [3 * nsprings]: k, rest (< 0: at the start), gamma */
     int nmat;
     dem_material mats[64];
     int nwalls;
@@ -27,7 +30,8 @@ struct dem_sim {
     int started;
     dem_config cfg;
     dem_setup setup;
-    void *packed[9];     /* packed setup arrays, freed at destroy */
+#define SIM_PACKED 13
+    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..12: the springs' tables) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */

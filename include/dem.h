@@ -113,6 +113,8 @@ typedef struct {
     double recommended_dt; /* 0.2 x rayleigh_time [s] */
     double max_dt;         /* stability bound: 0.5 x rayleigh_time [s] */
     double hertz_time;     /* Hertz contact time of the two smallest like particles at the given speed [s] */
+    double spring_period;  /* shortest undamped period 2 pi sqrt(m_eff / k) of the springs [s] (INFINITY: none); the
+                              bounds above then also hold 50 steps (recommended) and 10 steps (bound) per period */
 } dem_time_scales;
 
 typedef struct {
@@ -138,6 +140,13 @@ int dem_set_particle_flags(dem_sim *s, int id, unsigned flags);
  * default a particle is a solid sphere of its material (density x volume). For bodies whose mass is not that of
  * their contact sphere, e.g. the vertices of a membrane. The contact law still uses the material's E and nu. */
 int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia);
+/* A damped linear spring between particles i and j (seed 001 Eq. 6-7, the membrane's stretching): particle i feels
+ * F_i = -rho_hat [k (rho - rest) + 2 gamma sqrt(k m_eff) rho_hat . rho_dot], rho = x_i - x_j, m_eff = m_i m_j /
+ * (m_i + m_j), and j the exact negation. k > 0 [N/m]; rest >= 0 [m], or < 0 for the distance at dem_start; gamma >=
+ * 0 the damping ratio. Turns on DEM_EFFECT_SPRINGS. Each particle's spring forces are added in spring order after
+ * its contact forces (a channel of records gathered per particle: no atomics). Returns the spring's index. */
+int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma);
+int dem_spring_count(const dem_sim *s);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */

@@ -21,9 +21,13 @@ enum {
     DEM_EFFECT_MC_STRESS = 32, /* stress-based multi-contact normal law (seed 000 Eq. 9-10): common/particle_stress.h */
     DEM_EFFECT_MC_STRAIN = 64, /* strain-based multi-contact normal law (Brodu et al., seed 000 Eq. 7-8):
                                   common/mc_strain.h; excludes mc_stress */
-    DEM_EFFECT_ALL = 127
+    DEM_EFFECT_SPRINGS = 4096, /* damped linear springs between particles (seed 001 Eq. 6-7, the membrane's
+                                  stretching): common/springs.h. Above the convention bits below, which sit at
+                                  128..2048 */
+    DEM_EFFECT_ALL = 127 | 4096
 };
-#define DEM_EFFECT_COUNT 7 /* number of effect bits */
+/* Bit positions an effect name can have (dem_effect_name): 0..12; 7..11 are the convention bits, not effects. */
+#define DEM_EFFECT_COUNT 13
 
 /* MC-stress pressure convention: how the pressure of Eq. 10 is built from the traces of Eq. 9. Seed 000 can be read
  * several ways (docs/multicontact.md quotes the passages); each reading is a compiled branch. The bits sit above the

@@ -47,8 +47,8 @@ typedef struct {
 #define BACKEND_CASES 4
 extern const backend_case backend_cases[BACKEND_CASES];
 #define FOR_EACH_BACKEND(bc) for (const backend_case *bc = backend_cases; bc < backend_cases + BACKEND_CASES; bc++)
-/* Runs build() for the case, starts it, steps it, calls check(); then the same for the reference of that precision
- * when the case is OpenCL, and asserts their states are bitwise equal. */
+/* Runs build() for the case, starts it, steps it, calls check() (which may step it further); when the case is
+ * OpenCL, builds the reference of that precision, steps it to the same step and asserts the states bitwise equal. */
 void backend_run(const backend_case *bc, dem_sim *(*build)(void *ctx), long steps,
                  void (*check)(dem_sim *s, const backend_case *bc, void *ctx), void *ctx);
 /* The same packing on the reference (rc) and on OpenCL (c), both started and advanced by `steps`. */
