@@ -114,9 +114,9 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         }
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
-        if ((1u << bit) == DEM_EFFECT_SPRINGS) /* library only, so far: a scene cannot define springs yet */
-            return scene_fail(sc, err, errlen, path, "effect 'springs' has no scene keys in libdem %s yet (the "
-                              "library's dem_add_spring has)", DEM_VERSION);
+        if ((1u << bit) & DEM_EFFECT_CHANNEL) /* library only, so far: a scene cannot define springs or triangles */
+            return scene_fail(sc, err, errlen, path, "effect '%s' has no scene keys in libdem %s yet (the library's "
+                              "dem_add_spring, dem_add_triangle and dem_set_pressure have)", e, DEM_VERSION);
         run->effects |= 1u << bit;
     }
     if (!(run->effects & DEM_EFFECT_HERTZ))

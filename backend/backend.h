@@ -30,8 +30,11 @@ typedef struct {
     int nsprings;           /* springs (seed 001 Eq. 6): their particles, constants, and their records' channel */
     const int *spring_int;  /* int[2*nsprings] */
     const void *spring_real; /* real[SP_STRIDE*nsprings] */
-    const int *chan_slot;   /* int[2*nsprings]: where each end's force record goes */
-    const int *chan_start;  /* int[n+1]: each particle's records, in spring order */
+    int ntriangles;         /* triangles under the pressure (seed 001 Eq. 18) */
+    const int *tri;         /* int[3*ntriangles] */
+    double pressure;        /* [Pa] */
+    const int *chan_slot;   /* int[2*nsprings + 3*ntriangles]: where each spring end's and triangle vertex's record goes */
+    const int *chan_start;  /* int[n+1]: each particle's records: its springs in order, then its triangles */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
     int ncell[3];
@@ -69,7 +72,7 @@ typedef struct {
 typedef struct {
     unsigned fx;
     int rs;
-    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings;
+    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles;
     int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
     size_t pair_cap;   /* pair records allocated */
     int si[SI__COUNT];
@@ -163,7 +166,9 @@ int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_F
 int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double tol); /* sets FLAG_MC_PENDING */
 int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */
-int dem_stage_springs(const dem_backend_ops *o, dem_backend *b); /* spring forces into the particles' sums */
+int dem_stage_springs(const dem_backend_ops *o, dem_backend *b);  /* spring forces into the channel */
+int dem_stage_pressure(const dem_backend_ops *o, dem_backend *b); /* triangle loads into the channel */
+int dem_stage_channel_gather(const dem_backend_ops *o, dem_backend *b); /* the channel into the particles' forces */
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
 /* Several fields with one synchronisation (the series of a step read everything at once). */
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,

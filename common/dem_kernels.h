@@ -32,7 +32,7 @@
     K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
     K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
-    K(mc_strain_update) K(spring_forces) K(channel_gather)
+    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(channel_gather)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_index(F, A)                                                                                     \
@@ -154,6 +154,11 @@
     F(I, int, nsprings, NSPRINGS) A(BIN, real, x, X) A(BIN, real, v, V) A(BIN, int, spring_int, SPRING_INT)         \
     A(BIN, real, spring_real, SPRING_REAL) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
 #define DEM_ITEMS_spring_forces nsprings
+/* ---- pressure.h ---- */
+#define DEM_ARGS_pressure_forces(F, A)                                                                               \
+    F(I, int, ntriangles, NTRIANGLES) A(I, int, nsprings, NSPRINGS) A(R, real, pressure, PRESSURE)                  \
+    A(BIN, real, x, X) A(BIN, int, tri, TRI) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
+#define DEM_ITEMS_pressure_forces ntriangles
 #define DEM_ARGS_channel_gather(F, A)                                                                                \
     F(I, int, n, N) A(BIN, int, chan_start, CHAN_START) A(BIN, real, chan_rec, CHAN_REC) A(BOUT, real, force, FORCE)
 #define DEM_ITEMS_channel_gather n

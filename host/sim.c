@@ -39,6 +39,7 @@ void dem_destroy(dem_sim *s)
     free(s->body);
     free(s->spring_ij);
     free(s->spring_kr);
+    free(s->tri);
     free(s);
 }
 
@@ -186,6 +187,38 @@ int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma
 }
 
 int dem_spring_count(const dem_sim *s) { return s->nsprings; }
+
+int dem_add_triangle(dem_sim *s, int a, int b, int c)
+{
+    if (not_started(s))
+        return -1;
+    if (a < 0 || a >= s->n || b < 0 || b >= s->n || c < 0 || c >= s->n || a == b || b == c || a == c)
+        return sim_fail(s, DEM_ERR_ARG, "triangle %d: particles %d, %d, %d (three different particles of 0..%d)",
+                        s->ntri, a, b, c, s->n - 1), -1;
+    if (s->ntri == s->tri_cap) {
+        int cap = s->tri_cap ? 2 * s->tri_cap : 256;
+        int *t = realloc(s->tri, sizeof(int) * 3 * (size_t)cap);
+        if (!t)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d triangles", s->ntri), -1;
+        s->tri = t, s->tri_cap = cap;
+    }
+    int id = s->ntri++;
+    s->tri[3 * id] = a, s->tri[3 * id + 1] = b, s->tri[3 * id + 2] = c;
+    return id;
+}
+
+int dem_triangle_count(const dem_sim *s) { return s->ntri; }
+
+int dem_set_pressure(dem_sim *s, double sigma)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (!isfinite(sigma))
+        return sim_fail(s, DEM_ERR_ARG, "pressure must be finite (got %g Pa)", sigma);
+    s->pressure = sigma;
+    s->effects |= DEM_EFFECT_PRESSURE;
+    return 0;
+}
 
 double sim_mass(const dem_sim *s, int i)
 {
@@ -386,7 +419,7 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
 /* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
-                                                           "springs"};
+                                                           "springs", "pressure"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 
@@ -531,6 +564,14 @@ static int stage_springs(dem_sim *s)
 {
     return s->nsprings && dem_stage_springs(s->ops, s->be) ? be_fail(s) : 0;
 }
+static int stage_pressure(dem_sim *s)
+{
+    return s->ntri && dem_stage_pressure(s->ops, s->be) ? be_fail(s) : 0;
+}
+static int stage_gather(dem_sim *s)
+{
+    return (s->nsprings || s->ntri) && dem_stage_channel_gather(s->ops, s->be) ? be_fail(s) : 0;
+}
 static int stage_wall_sums(dem_sim *s)
 {
     return s->nwalls && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
@@ -542,7 +583,9 @@ static const struct {
     {DEM_EFFECT_MC_STRESS, stage_stress_trace}, /* pass 1 of MC-stress: the traces the contacts read */
     {DEM_EFFECT_MC_STRAIN, mc_strain},          /* induced displacements (lagged or iterated forces) */
     {0, stage_contacts},                        /* pairs once, then per-particle sums with the walls */
-    {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces added in spring order (common/springs.h) */
+    {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces into the contribution channel (springs.h) */
+    {DEM_EFFECT_PRESSURE, stage_pressure},      /* triangle loads into it (pressure.h) */
+    {DEM_EFFECT_CHANNEL, stage_gather},         /* each particle's records added in order */
     {DEM_EFFECT_WALLS, stage_wall_sums},        /* the force each wall received */
 };
 

@@ -15,6 +15,9 @@ struct dem_sim {
     int nsprings, spring_cap;
     int *spring_ij;      /* [2 * nsprings] */
     double *spring_kr;   /* [3 * nsprings]: k, rest (< 0: at the start), gamma */
+    int ntri, tri_cap;
+    int *tri;            /* [3 * ntri] */
+    double pressure;     /* [Pa] on every triangle (DEM_EFFECT_PRESSURE) */
     int nmat;
     dem_material mats[64];
     int nwalls;
@@ -30,8 +33,8 @@ struct dem_sim {
     int started;
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 13
-    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..12: the springs' tables) */
+#define SIM_PACKED 14
+    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..13: springs, channel, triangles) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */

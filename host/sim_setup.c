@@ -273,21 +273,26 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
         }
 }
 
-/* The springs' tables and their channel (common/springs.h): particle p's records at chan_start[p] .. chan_start[p+1],
- * in ascending spring index, so that every device adds them in one order. A rest length < 0 is the distance of the
- * initial positions; the damping constant 2 gamma sqrt(k m_eff) is computed here in double. */
-static int pack_springs(dem_sim *s, dem_setup *u, int rs)
+/* The springs' and triangles' tables and their contribution channel (common/springs.h): particle p's records at
+ * chan_start[p] .. chan_start[p+1] - its spring ends in ascending spring index, then its triangle vertices in
+ * ascending triangle index - so that every device adds them in one order. chan_slot: 2 per spring, then 3 per
+ * triangle. A rest length < 0 is the distance of the initial positions; the damping constant 2 gamma
+ * sqrt(k m_eff) is computed here in double. */
+static int pack_channel(dem_sim *s, dem_setup *u, int rs)
 {
-    int ns = s->nsprings, n = s->n;
-    int *ij = calloc(2 * (size_t)ns + 1, sizeof(int)), *slot = calloc(2 * (size_t)ns + 1, sizeof(int));
+    int ns = s->nsprings, nt = s->ntri, n = s->n;
+    int *ij = calloc(2 * (size_t)ns + 1, sizeof(int)), *slot = calloc(2 * (size_t)ns + 3 * (size_t)nt + 1, sizeof(int));
     int *start = calloc((size_t)n + 1, sizeof(int)), *fill = calloc((size_t)n + 1, sizeof(int));
+    int *tri = calloc(3 * (size_t)nt + 1, sizeof(int));
     double *kr = calloc(SP_STRIDE * (size_t)ns + 1, sizeof(double));
-    if (!ij || !slot || !start || !fill || !kr) {
-        free(ij), free(slot), free(start), free(fill), free(kr);
+    if (!ij || !slot || !start || !fill || !tri || !kr) {
+        free(ij), free(slot), free(start), free(fill), free(tri), free(kr);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (int k = 0; k < ns; k++)
         start[s->spring_ij[2 * k] + 1]++, start[s->spring_ij[2 * k + 1] + 1]++;
+    for (int t = 0; t < 3 * nt; t++)
+        start[s->tri[t] + 1]++;
     for (int p = 0; p < n; p++)
         start[p + 1] += start[p];
     for (int k = 0; k < ns; k++) {
@@ -306,10 +311,15 @@ static int pack_springs(dem_sim *s, dem_setup *u, int rs)
         kr[SP_STRIDE * k + SP_REST] = rest;
         kr[SP_STRIDE * k + SP_DAMP] = 2 * gamma * sqrt(kk * ma * mb / (ma + mb));
     }
+    for (int t = 0; t < 3 * nt; t++) { /* after every spring: a particle's triangles follow its springs */
+        tri[t] = s->tri[t];
+        slot[2 * ns + t] = start[tri[t]] + fill[tri[t]]++;
+    }
     s->packed[9] = ij, s->packed[10] = pack_real(kr, SP_STRIDE * (size_t)ns, rs), s->packed[11] = slot;
-    s->packed[12] = start;
+    s->packed[12] = start, s->packed[13] = tri;
     free(fill), free(kr);
     u->nsprings = ns, u->spring_int = ij, u->spring_real = s->packed[10], u->chan_slot = slot, u->chan_start = start;
+    u->ntriangles = nt, u->tri = tri, u->pressure = s->pressure;
     return s->packed[10] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }
 
@@ -432,7 +442,7 @@ int sim_pack(dem_sim *s)
     if (!s->wall_real)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     pack_walls(s, wint);
-    if ((e = pack_springs(s, u, rs)))
+    if ((e = pack_channel(s, u, rs)))
         return e;
     u->x = s->packed[0];
     u->v = s->packed[1];

@@ -147,6 +147,14 @@ int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia);
  * its contact forces (a channel of records gathered per particle: no atomics). Returns the spring's index. */
 int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma);
 int dem_spring_count(const dem_sim *s);
+/* A triangle of particles a, b, c (a membrane patch). Under a pressure sigma (dem_set_pressure) it is loaded with
+ * F = sigma A n_hat (seed 001 Eq. 18), A and n_hat its current area and unit normal along (x_b - x_a) x (x_c - x_a):
+ * order the vertices so that this points where the pressure pushes (into the enclosed granulate); each vertex gets
+ * F / 3, added in triangle order after its spring forces (the contribution channel). Returns the triangle's index. */
+int dem_add_triangle(dem_sim *s, int a, int b, int c);
+int dem_triangle_count(const dem_sim *s);
+/* The pressure [Pa] on every triangle; turns on DEM_EFFECT_PRESSURE. */
+int dem_set_pressure(dem_sim *s, double sigma);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */

@@ -24,10 +24,14 @@ enum {
     DEM_EFFECT_SPRINGS = 4096, /* damped linear springs between particles (seed 001 Eq. 6-7, the membrane's
                                   stretching): common/springs.h. Above the convention bits below, which sit at
                                   128..2048 */
-    DEM_EFFECT_ALL = 127 | 4096
+    DEM_EFFECT_PRESSURE = 8192, /* a pressure on triangles of particles (seed 001 Eq. 18, the membrane's confining
+                                   stress): common/pressure.h */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..12; 7..11 are the convention bits, not effects. */
-#define DEM_EFFECT_COUNT 13
+/* Bit positions an effect name can have (dem_effect_name): 0..13; 7..11 are the convention bits, not effects. */
+#define DEM_EFFECT_COUNT 14
+/* The effects whose forces reach particles through the contribution channel (common/springs.h) */
+#define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE)
 
 /* MC-stress pressure convention: how the pressure of Eq. 10 is built from the traces of Eq. 9. Seed 000 can be read
  * several ways (docs/multicontact.md quotes the passages); each reading is a compiled branch. The bits sit above the
