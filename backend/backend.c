@@ -65,12 +65,14 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->nblocks_red = (s->n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
     c->nsprings = s->nsprings;
     c->ntriangles = s->ntriangles;
+    c->nhinges = s->nhinges;
     c->maxn[0] = c->maxn[1] = s->maxn;
     int *si = c->si;
     si[SI_N] = s->n, si[SI_NMAT] = s->nmat, si[SI_NWALLS] = s->nwalls, si[SI_NCELLS] = c->ncells;
     si[SI_NBLOCKS_RED] = c->nblocks_red;
     si[SI_NSPRINGS] = c->nsprings;
     si[SI_NTRIANGLES] = c->ntriangles;
+    si[SI_NHINGES] = c->nhinges;
     si[SI_NCX] = s->ncell[0], si[SI_NCY] = s->ncell[1], si[SI_NCZ] = s->ncell[2];
     double *sr = c->sr;
     sr[SR_DT] = s->dt, sr[SR_SKIN] = s->skin, sr[SR_HALF_SKIN2] = s->half_skin2, sr[SR_INV_CELL] = s->inv_cell;
@@ -89,8 +91,10 @@ size_t dem_elem_size(int elem, int rs)
 #define SIZE_NAMES(c, maxn_)                                                                                         \
     size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->ncells,         \
            NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
-           MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles;                         \
-    (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT
+           MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
+           NH = (size_t)(c)->nhinges;                                                                                \
+    (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
+        (void)NH
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 

@@ -33,8 +33,12 @@ typedef struct {
     int ntriangles;         /* triangles under the pressure (seed 001 Eq. 18) */
     const int *tri;         /* int[3*ntriangles] */
     double pressure;        /* [Pa] */
-    const int *chan_slot;   /* int[2*nsprings + 3*ntriangles]: where each spring end's and triangle vertex's record goes */
-    const int *chan_start;  /* int[n+1]: each particle's records: its springs in order, then its triangles */
+    int nhinges;            /* hinges (seed 001 Eq. 8-16) */
+    const int *hinge_int;   /* int[4*nhinges] */
+    const void *hinge_real; /* real[HG_STRIDE*nhinges] */
+    const int *chan_slot;   /* int[2*nsprings + 3*ntriangles + 4*nhinges]: where each spring end's, triangle vertex's
+                               and hinge vertex's record goes */
+    const int *chan_start;  /* int[n+1]: each particle's records: its springs, its triangles, its hinges, in order */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
     int ncell[3];
@@ -72,7 +76,7 @@ typedef struct {
 typedef struct {
     unsigned fx;
     int rs;
-    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles;
+    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges;
     int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
     size_t pair_cap;   /* pair records allocated */
     int si[SI__COUNT];
@@ -168,6 +172,7 @@ int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double 
 int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */
 int dem_stage_springs(const dem_backend_ops *o, dem_backend *b);  /* spring forces into the channel */
 int dem_stage_pressure(const dem_backend_ops *o, dem_backend *b); /* triangle loads into the channel */
+int dem_stage_bending(const dem_backend_ops *o, dem_backend *b);  /* hinge forces into the channel */
 int dem_stage_channel_gather(const dem_backend_ops *o, dem_backend *b); /* the channel into the particles' forces */
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
 /* Several fields with one synchronisation (the series of a step read everything at once). */

@@ -32,7 +32,7 @@
     K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
     K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
-    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(channel_gather)
+    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_index(F, A)                                                                                     \
@@ -159,6 +159,12 @@
     F(I, int, ntriangles, NTRIANGLES) A(I, int, nsprings, NSPRINGS) A(R, real, pressure, PRESSURE)                  \
     A(BIN, real, x, X) A(BIN, int, tri, TRI) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
 #define DEM_ITEMS_pressure_forces ntriangles
+/* ---- bending.h ---- */
+#define DEM_ARGS_hinge_forces(F, A)                                                                                  \
+    F(I, int, nhinges, NHINGES) A(I, int, nsprings, NSPRINGS) A(I, int, ntriangles, NTRIANGLES) A(BIN, real, x, X)  \
+    A(BIN, real, v, V) A(BIN, int, hinge_int, HINGE_INT) A(BIN, real, hinge_real, HINGE_REAL)                       \
+    A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
+#define DEM_ITEMS_hinge_forces nhinges
 #define DEM_ARGS_channel_gather(F, A)                                                                                \
     F(I, int, n, N) A(BIN, int, chan_start, CHAN_START) A(BIN, real, chan_rec, CHAN_REC) A(BOUT, real, force, FORCE)
 #define DEM_ITEMS_channel_gather n

@@ -34,6 +34,14 @@ enum {
     SP_STRIDE = 3
 };
 
+/* Hinge table, real part (index h*HG_STRIDE + ...; seed 001 Eq. 11-12): the four particles are in hinge_int[4h..] */
+enum {
+    HG_KEL = 0,  /* elastic constant k_el [N/m] */
+    HG_KDISS = 1, /* dissipative constant k_diss [N s/m] */
+    HG_SIN0 = 2, /* sin(theta0 / 2) of the rest angle, signed as theta (bending.h) */
+    HG_STRIDE = 3
+};
+
 /* Wall geometry and motion, real part (index w*W_STRIDE + ...). */
 enum {
     W_PX = 0, W_PY, W_PZ, /* plane: a point on it; cylinder: a point on its axis [m] */

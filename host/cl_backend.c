@@ -27,7 +27,8 @@ struct dem_backend {
 static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighbor.cl", "kernels/contact_forces.cl",
                                            "kernels/wall_forces.cl", "kernels/integrate.cl",
                                            "kernels/particle_stress.cl", "kernels/mc_strain.cl",
-                                           "kernels/springs.cl", "kernels/pressure.cl"};
+                                           "kernels/springs.cl", "kernels/pressure.cl",
+                                           "kernels/bending.cl"};
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
                                            "common/hertz_mindlin.h", "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
@@ -35,7 +36,7 @@ static const char *const header_files[] = {"common/dem_real.h", "common/dem_layo
                                            "common/contact_geometry.h", "common/particle_stress.h",
                                            "common/mc_strain.h", "common/sorted_row.h",
                                            "common/dem_kernels.h", "common/contacts.h", "common/springs.h",
-                                           "common/pressure.h"};
+                                           "common/pressure.h", "common/bending.h"};
 
 static cl_mem *slot(dem_backend *b, dem_bufref r)
 {

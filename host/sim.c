@@ -40,6 +40,8 @@ void dem_destroy(dem_sim *s)
     free(s->spring_ij);
     free(s->spring_kr);
     free(s->tri);
+    free(s->hinge);
+    free(s->hinge_k);
     free(s);
 }
 
@@ -208,6 +210,42 @@ int dem_add_triangle(dem_sim *s, int a, int b, int c)
 }
 
 int dem_triangle_count(const dem_sim *s) { return s->ntri; }
+
+int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double kdiss, double theta0)
+{
+    if (not_started(s))
+        return -1;
+    int p[4] = {p1, p2, p3, p4};
+    for (int a = 0; a < 4; a++) {
+        if (p[a] < 0 || p[a] >= s->n)
+            return sim_fail(s, DEM_ERR_ARG, "hinge %d: no particle %d", s->nhinges, p[a]), -1;
+        for (int b = 0; b < a; b++)
+            if (p[a] == p[b])
+                return sim_fail(s, DEM_ERR_ARG, "hinge %d: particle %d twice", s->nhinges, p[a]), -1;
+    }
+    if (!(kel >= 0) || !isfinite(kel) || !(kdiss >= 0) || !isfinite(kdiss) || isinf(theta0))
+        return sim_fail(s, DEM_ERR_ARG, "hinge %d: kel and kdiss must be >= 0, theta0 finite or NAN (got %g, %g, %g)",
+                        s->nhinges, kel, kdiss, theta0), -1;
+    if (s->nhinges == s->hinge_cap) {
+        int cap = s->hinge_cap ? 2 * s->hinge_cap : 256;
+        int *h = realloc(s->hinge, sizeof(int) * 4 * (size_t)cap);
+        if (h)
+            s->hinge = h;
+        double *k = realloc(s->hinge_k, sizeof(double) * 3 * (size_t)cap);
+        if (k)
+            s->hinge_k = k;
+        if (!h || !k)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d hinges", s->nhinges), -1;
+        s->hinge_cap = cap;
+    }
+    int id = s->nhinges++;
+    memcpy(s->hinge + 4 * id, p, sizeof p);
+    s->hinge_k[3 * id] = kel, s->hinge_k[3 * id + 1] = kdiss, s->hinge_k[3 * id + 2] = theta0;
+    s->effects |= DEM_EFFECT_BENDING;
+    return id;
+}
+
+int dem_hinge_count(const dem_sim *s) { return s->nhinges; }
 
 int dem_set_pressure(dem_sim *s, double sigma)
 {
@@ -419,7 +457,7 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
 /* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
-                                                           "springs", "pressure"};
+                                                           "springs", "pressure", "bending"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 
@@ -568,9 +606,13 @@ static int stage_pressure(dem_sim *s)
 {
     return s->ntri && dem_stage_pressure(s->ops, s->be) ? be_fail(s) : 0;
 }
+static int stage_bending(dem_sim *s)
+{
+    return s->nhinges && dem_stage_bending(s->ops, s->be) ? be_fail(s) : 0;
+}
 static int stage_gather(dem_sim *s)
 {
-    return (s->nsprings || s->ntri) && dem_stage_channel_gather(s->ops, s->be) ? be_fail(s) : 0;
+    return (s->nsprings || s->ntri || s->nhinges) && dem_stage_channel_gather(s->ops, s->be) ? be_fail(s) : 0;
 }
 static int stage_wall_sums(dem_sim *s)
 {
@@ -585,6 +627,7 @@ static const struct {
     {0, stage_contacts},                        /* pairs once, then per-particle sums with the walls */
     {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces into the contribution channel (springs.h) */
     {DEM_EFFECT_PRESSURE, stage_pressure},      /* triangle loads into it (pressure.h) */
+    {DEM_EFFECT_BENDING, stage_bending},        /* hinge forces into it (bending.h) */
     {DEM_EFFECT_CHANNEL, stage_gather},         /* each particle's records added in order */
     {DEM_EFFECT_WALLS, stage_wall_sums},        /* the force each wall received */
 };

@@ -18,6 +18,9 @@ struct dem_sim {
     int ntri, tri_cap;
     int *tri;            /* [3 * ntri] */
     double pressure;     /* [Pa] on every triangle (DEM_EFFECT_PRESSURE) */
+    int nhinges, hinge_cap;
+    int *hinge;          /* [4 * nhinges] */
+    double *hinge_k;     /* [3 * nhinges]: kel, kdiss, theta0 (NAN: from the initial positions) */
     int nmat;
     dem_material mats[64];
     int nwalls;
@@ -33,8 +36,8 @@ struct dem_sim {
     int started;
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 14
-    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..13: springs, channel, triangles) */
+#define SIM_PACKED 16
+    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
@@ -68,4 +71,9 @@ int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
 void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
+/* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
+double dem_hinge_rest_shalf(const double *x, const int *p);
+/* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
+double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
+
 #endif

@@ -67,7 +67,7 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     ts->rayleigh_time = tr;
     ts->recommended_dt = 0.2 * tr;
     ts->max_dt = 0.5 * tr;
-    /* springs: velocity Verlet is stable for omega dt < 2 (dt < T / pi) and misses the period by (omega dt)^2 / 24:
+    /* springs and hinges: velocity Verlet is stable for omega dt < 2 (dt < T / pi) and misses the period by (omega dt)^2 / 24:
      * 10 steps per period (1.6 %) bound it, 50 (0.07 %) are recommended */
     ts->spring_period = INFINITY;
     for (int k = 0; k < s->nsprings; k++) {
@@ -75,8 +75,16 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
         double t = 2 * M_PI * sqrt(ma * mb / (ma + mb) / s->spring_kr[3 * k]);
         ts->spring_period = fmin(ts->spring_period, t);
     }
-    ts->recommended_dt = fmin(ts->recommended_dt, ts->spring_period / 50);
-    ts->max_dt = fmin(ts->max_dt, ts->spring_period / 10);
+    ts->hinge_period = INFINITY;
+    for (int h = 0; h < s->nhinges; h++) {
+        double m4[4];
+        for (int k = 0; k < 4; k++)
+            m4[k] = sim_mass(s, s->hinge[4 * h + k]);
+        ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, s->hinge + 4 * h, s->hinge_k[3 * h], m4));
+    }
+    double t_osc = fmin(ts->spring_period, ts->hinge_period);
+    ts->recommended_dt = fmin(ts->recommended_dt, t_osc / 50);
+    ts->max_dt = fmin(ts->max_dt, t_osc / 10);
     ts->hertz_time = v > 0 ? tc : 0;
     return 0;
 }
@@ -158,6 +166,8 @@ int sim_validate(dem_sim *s)
         return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
     if (s->nsprings && !(s->effects & DEM_EFFECT_SPRINGS))
         return sim_fail(s, DEM_ERR_ARG, "%d springs are defined but the effect 'springs' is off", s->nsprings);
+    if (s->nhinges && !(s->effects & DEM_EFFECT_BENDING))
+        return sim_fail(s, DEM_ERR_ARG, "%d hinges are defined but the effect 'bending' is off", s->nhinges);
     if (s->cfg.skin < 0 || !isfinite(s->cfg.skin))
         return sim_fail(s, DEM_ERR_ARG, "skin must be >= 0 (got %g)", s->cfg.skin);
     if (s->cfg.precision != DEM_FP32 && s->cfg.precision != DEM_FP64)
@@ -280,19 +290,23 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
  * sqrt(k m_eff) is computed here in double. */
 static int pack_channel(dem_sim *s, dem_setup *u, int rs)
 {
-    int ns = s->nsprings, nt = s->ntri, n = s->n;
-    int *ij = calloc(2 * (size_t)ns + 1, sizeof(int)), *slot = calloc(2 * (size_t)ns + 3 * (size_t)nt + 1, sizeof(int));
+    int ns = s->nsprings, nt = s->ntri, nh = s->nhinges, n = s->n;
+    int *ij = calloc(2 * (size_t)ns + 1, sizeof(int));
+    int *slot = calloc(2 * (size_t)ns + 3 * (size_t)nt + 4 * (size_t)nh + 1, sizeof(int));
     int *start = calloc((size_t)n + 1, sizeof(int)), *fill = calloc((size_t)n + 1, sizeof(int));
-    int *tri = calloc(3 * (size_t)nt + 1, sizeof(int));
-    double *kr = calloc(SP_STRIDE * (size_t)ns + 1, sizeof(double));
-    if (!ij || !slot || !start || !fill || !tri || !kr) {
-        free(ij), free(slot), free(start), free(fill), free(tri), free(kr);
+    int *tri = calloc(3 * (size_t)nt + 1, sizeof(int)), *hg = calloc(4 * (size_t)nh + 1, sizeof(int));
+    double *kr = calloc(SP_STRIDE * (size_t)ns + 1, sizeof(double)), *hk = calloc(HG_STRIDE * (size_t)nh + 1,
+                                                                                   sizeof(double));
+    if (!ij || !slot || !start || !fill || !tri || !kr || !hg || !hk) {
+        free(ij), free(slot), free(start), free(fill), free(tri), free(kr), free(hg), free(hk);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (int k = 0; k < ns; k++)
         start[s->spring_ij[2 * k] + 1]++, start[s->spring_ij[2 * k + 1] + 1]++;
     for (int t = 0; t < 3 * nt; t++)
         start[s->tri[t] + 1]++;
+    for (int t = 0; t < 4 * nh; t++)
+        start[s->hinge[t] + 1]++;
     for (int p = 0; p < n; p++)
         start[p + 1] += start[p];
     for (int k = 0; k < ns; k++) {
@@ -315,9 +329,23 @@ static int pack_channel(dem_sim *s, dem_setup *u, int rs)
         tri[t] = s->tri[t];
         slot[2 * ns + t] = start[tri[t]] + fill[tri[t]]++;
     }
+    for (int h = 0; h < nh; h++) { /* then its hinges; the rest angle as s(theta0) = sin(theta0 / 2) (bending.h) */
+        for (int k = 0; k < 4; k++) {
+            hg[4 * h + k] = s->hinge[4 * h + k];
+            slot[2 * ns + 3 * nt + 4 * h + k] = start[hg[4 * h + k]] + fill[hg[4 * h + k]]++;
+        }
+        double th0 = s->hinge_k[3 * h + 2];
+        hk[HG_STRIDE * h + HG_KEL] = s->hinge_k[3 * h];
+        hk[HG_STRIDE * h + HG_KDISS] = s->hinge_k[3 * h + 1];
+        hk[HG_STRIDE * h + HG_SIN0] = isnan(th0) ? dem_hinge_rest_shalf(s->x, hg + 4 * h) : sin(0.5 * th0);
+    }
     s->packed[9] = ij, s->packed[10] = pack_real(kr, SP_STRIDE * (size_t)ns, rs), s->packed[11] = slot;
-    s->packed[12] = start, s->packed[13] = tri;
-    free(fill), free(kr);
+    s->packed[12] = start, s->packed[13] = tri, s->packed[14] = hg;
+    s->packed[15] = pack_real(hk, HG_STRIDE * (size_t)nh, rs);
+    free(fill), free(kr), free(hk);
+    u->nhinges = nh, u->hinge_int = hg, u->hinge_real = s->packed[15];
+    if (!s->packed[15])
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     u->nsprings = ns, u->spring_int = ij, u->spring_real = s->packed[10], u->chan_slot = slot, u->chan_start = start;
     u->ntriangles = nt, u->tri = tri, u->pressure = s->pressure;
     return s->packed[10] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");

@@ -115,6 +115,8 @@ typedef struct {
     double hertz_time;     /* Hertz contact time of the two smallest like particles at the given speed [s] */
     double spring_period;  /* shortest undamped period 2 pi sqrt(m_eff / k) of the springs [s] (INFINITY: none); the
                               bounds above then also hold 50 steps (recommended) and 10 steps (bound) per period */
+    double hinge_period;   /* shortest period of a hinge's fold at the initial positions, linearised (reference/
+                              bending.c) [s] (INFINITY: none); held like spring_period */
 } dem_time_scales;
 
 typedef struct {
@@ -155,6 +157,11 @@ int dem_add_triangle(dem_sim *s, int a, int b, int c);
 int dem_triangle_count(const dem_sim *s);
 /* The pressure [Pa] on every triangle; turns on DEM_EFFECT_PRESSURE. */
 int dem_set_pressure(dem_sim *s, double sigma);
+/* A hinge: the triangles (p1, p3, p4) and (p2, p4, p3) sharing the edge p3-p4 resist bending (seed 001 Eq. 8-16,
+ * Bridson et al. 2003; common/bending.h has the derivation): elastic constant kel [N/m], dissipative kdiss [N s/m],
+ * rest angle theta0 [rad] (NAN: the angle of the initial positions). Turns on DEM_EFFECT_BENDING. Returns its index. */
+int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double kdiss, double theta0);
+int dem_hinge_count(const dem_sim *s);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */

@@ -26,12 +26,14 @@ enum {
                                   128..2048 */
     DEM_EFFECT_PRESSURE = 8192, /* a pressure on triangles of particles (seed 001 Eq. 18, the membrane's confining
                                    stress): common/pressure.h */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192
+    DEM_EFFECT_BENDING = 16384, /* hinges between pairs of triangles (seed 001 Eq. 8-16, the membrane's bending):
+                                   common/bending.h */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..13; 7..11 are the convention bits, not effects. */
-#define DEM_EFFECT_COUNT 14
+/* Bit positions an effect name can have (dem_effect_name): 0..14; 7..11 are the convention bits, not effects. */
+#define DEM_EFFECT_COUNT 15
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
-#define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE)
+#define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 
 /* MC-stress pressure convention: how the pressure of Eq. 10 is built from the traces of Eq. 9. Seed 000 can be read
  * several ways (docs/multicontact.md quotes the passages); each reading is a compiled branch. The bits sit above the
