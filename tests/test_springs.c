@@ -2,7 +2,8 @@
  * precision: two particles on a spring oscillate with the period 2 pi sqrt(m_eff / k) (undamped, energy kept to the
  * integrator's error) and, damped with ratio gamma, lose amplitude by exp(-2 pi gamma / sqrt(1 - gamma^2)) per
  * period (seed 001 Eq. 6 read as a damped oscillator: common/springs.h); the two ends' forces are exact negations;
- * a particle on three springs gets them added in spring order (bitwise equal to the reference). The time-step bound
+ * a particle on three springs gets them added in spring order (bitwise equal to the reference); a flat equilateral
+ * sheet of springs has the 2D Young's modulus 2k/sqrt(3) and Poisson's ratio 1/3 (issue 10, test 2). The time-step bound
  * includes the spring period; springs need their effect. */
 #include "test_util.h"
 #include <math.h>
@@ -142,6 +143,87 @@ static void test_star_order(void **st)
     backend_run(bc, build_star, 300, check_star, NULL);
 }
 
+/* Seed 001's stretching law on a flat equilateral sheet (issue 10, test 2): springs of stiffness k on the edges of a
+ * triangular lattice of spacing a make a 2D elastic sheet of Young's modulus 2k/sqrt(3) (= E d for the paper's
+ * k = (sqrt(3)/2) E d) and Poisson's ratio 1/3. The sheet is given the affine strain (ex, ey); the force across a cut
+ * is the sum of the forces on the vertices on one side of it (the springs inside a side cancel), which is exact for
+ * an affine strain - no boundary layer. Two values of ey give, by linear interpolation, the ey at which the force
+ * across a horizontal cut vanishes (uniaxial stress: nu = -ey / ex) and the force across a vertical cut there
+ * (E2D = force / (height ex)). */
+#define SHEET_NX 12
+#define SHEET_NY 9
+#define SHEET_A 0.01
+#define SHEET_EX 1e-3
+
+typedef struct {
+    double ey;
+    double fx_cut, fy_cut; /* force on the right half along x, on the top half along y [N] */
+} sheet;
+
+static dem_sim *build_sheet(void *ctx)
+{
+    const sheet *sh = ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0});
+    double h = SHEET_A * sqrt(3) / 2, x0 = -SHEET_A * SHEET_NX / 2, y0 = -h * SHEET_NY / 2;
+    for (int j = 0; j < SHEET_NY; j++)
+        for (int i = 0; i < SHEET_NX; i++) {
+            double p[3] = {(x0 + SHEET_A * (i + 0.5 * (j % 2))) * (1 + SHEET_EX), (y0 + h * j) * (1 + sh->ey), 0};
+            dem_add_particle(s, p, NULL, 0.1 * SHEET_A, m);
+        }
+#define V(i, j) ((j) * SHEET_NX + (i))
+    for (int j = 0; j < SHEET_NY; j++)
+        for (int i = 0; i < SHEET_NX; i++) {
+            if (i + 1 < SHEET_NX)
+                dem_add_spring(s, V(i, j), V(i + 1, j), K_SPRING, SHEET_A, 0);
+            if (j + 1 < SHEET_NY) {
+                int other = j % 2 ? i + 1 : i - 1; /* the two neighbours in the row above */
+                dem_add_spring(s, V(i, j), V(i, j + 1), K_SPRING, SHEET_A, 0);
+                if (other >= 0 && other < SHEET_NX)
+                    dem_add_spring(s, V(i, j), V(other, j + 1), K_SPRING, SHEET_A, 0);
+            }
+        }
+#undef V
+    dem_set_domain(s, (double[3]){-0.1, -0.1, -0.05}, (double[3]){0.1, 0.1, 0.05});
+    dem_set_dt(s, period() / 400);
+    return s;
+}
+
+static void check_sheet(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    (void)bc;
+    sheet *sh = ctx;
+    int n = SHEET_NX * SHEET_NY;
+    double x[3 * SHEET_NX * SHEET_NY], f[3 * SHEET_NX * SHEET_NY];
+    assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_FORCE, f), 0);
+    sh->fx_cut = sh->fy_cut = 0;
+    for (int i = 0; i < n; i++) { /* the cuts pass between vertices: x = -a/4 (strained), y = 0 between rows 4, 5 */
+        if (x[3 * i] > -0.25 * SHEET_A)
+            sh->fx_cut += f[3 * i];
+        if (i / SHEET_NX >= SHEET_NY / 2 + 1)
+            sh->fy_cut += f[3 * i + 1];
+    }
+}
+
+static void test_sheet_moduli(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        sheet a = {0}, b = {-0.5 * SHEET_EX};
+        backend_run(bc, build_sheet, 0, check_sheet, &a);
+        backend_run(bc, build_sheet, 0, check_sheet, &b);
+        double t = a.fy_cut / (a.fy_cut - b.fy_cut);       /* where the horizontal cut carries nothing */
+        double ey = a.ey + t * (b.ey - a.ey), fx = a.fx_cut + t * (b.fx_cut - a.fx_cut);
+        double nu = -ey / SHEET_EX, height = SHEET_NY * SHEET_A * sqrt(3) / 2;
+        double e2d = -fx / (height * SHEET_EX), want = 2 * K_SPRING / sqrt(3); /* tension pulls the right half left */
+        printf("  %s: 2D Young's modulus %.6g N/m (2k/sqrt(3) = %.6g, relative %.2g), Poisson's ratio %.6f "
+               "(1/3: relative %.2g)\n", bc->name, e2d, want, e2d / want - 1, nu, 3 * nu - 1);
+        assert_true(fabs(e2d / want - 1) < 1e-2 && fabs(3 * nu - 1) < 1e-2);
+    }
+}
+
 /* The time-step bound holds 10 steps per spring period; springs need their effect. */
 static void test_bound_and_effect(void **st)
 {
@@ -171,6 +253,7 @@ int main(void)
         cmocka_unit_test(test_undamped_period),
         cmocka_unit_test(test_damped_decay),
         cmocka_unit_test(test_star_order),
+        cmocka_unit_test(test_sheet_moduli),
         cmocka_unit_test(test_bound_and_effect),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
