@@ -106,8 +106,8 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         int bit = dem_effect_bit(e);
         if (bit < 0) {
             if (!strcmp(e, "membrane"))
-                return scene_fail(sc, err, errlen, path, "effect '%s' is not available in libdem %s yet", e,
-                                  DEM_VERSION);
+                return scene_fail(sc, err, errlen, path, "effect '%s' is not available in scenes in libdem %s yet (the "
+                                  "library's dem_add_membrane builds one)", e, DEM_VERSION);
             return scene_fail(sc, err, errlen, path,
                               "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
                               "mc_strain)", e);
@@ -116,7 +116,8 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
         if ((1u << bit) & DEM_EFFECT_CHANNEL) /* library only, so far: a scene cannot define springs or triangles */
             return scene_fail(sc, err, errlen, path, "effect '%s' has no scene keys in libdem %s yet (the library's "
-                              "dem_add_spring, dem_add_triangle, dem_set_pressure and dem_add_hinge have)", e, DEM_VERSION);
+                              "dem_add_membrane, dem_add_spring, dem_add_triangle, dem_set_pressure and "
+                              "dem_add_hinge have)", e, DEM_VERSION);
         run->effects |= 1u << bit;
     }
     if (!(run->effects & DEM_EFFECT_HERTZ))

@@ -714,6 +714,7 @@ int dem_step(dem_sim *s, long nsteps)
 int dem_count(const dem_sim *s) { return s->n; }
 double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[i] : NAN; }
 int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[i] : -1; }
+double dem_particle_mass(const dem_sim *s, int i) { return i >= 0 && i < s->n ? sim_mass(s, i) : NAN; }
 int dem_wall_count(const dem_sim *s) { return s->nwalls; }
 long dem_step_index(const dem_sim *s) { return s->step; }
 double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }

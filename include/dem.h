@@ -158,10 +158,62 @@ int dem_triangle_count(const dem_sim *s);
 /* The pressure [Pa] on every triangle; turns on DEM_EFFECT_PRESSURE. */
 int dem_set_pressure(dem_sim *s, double sigma);
 /* A hinge: the triangles (p1, p3, p4) and (p2, p4, p3) sharing the edge p3-p4 resist bending (seed 001 Eq. 8-16,
- * Bridson et al. 2003; common/bending.h has the derivation): elastic constant kel [N/m], dissipative kdiss [N s/m],
+ * Bridson et al. 2003; common/bending.h has the derivation): elastic constant kel [N m], dissipative kdiss [N s],
  * rest angle theta0 [rad] (NAN: the angle of the initial positions). Turns on DEM_EFFECT_BENDING. Returns its index. */
 int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double kdiss, double theta0);
 int dem_hinge_count(const dem_sim *s);
+
+/* Membranes (seed 001 section 2.2). A triangulated surface: nv vertices (x[3 nv], m) and nt triangles (tri[3 nt])
+ * ordered so that (x_b - x_a) x (x_c - x_a) points where a pressure pushes (dem_add_triangle). */
+typedef struct {
+    int nv, nt;
+    double *x;
+    int *tri;
+} dem_mesh;
+typedef enum { DEM_MESH_SHEET = 0, DEM_MESH_TUBE = 1, DEM_MESH_SPHERE = 2 } dem_mesh_kind;
+/* A generated mesh (host/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z; a
+ * tube around the axis through center along z, radius a, height b, pushed inward (open ends); a sphere of radius a
+ * about center, pushed inward (the icosahedron split until its edges are nearest `edge`, smoothed). Near-equilateral
+ * triangles with edges near `edge` [m]. */
+typedef struct {
+    dem_mesh_kind kind;
+    double center[3];
+    double a, b;
+    double edge;
+} dem_mesh_spec;
+/* Fills m (free it with dem_mesh_free); 0, or -1 with the reason in err. */
+int dem_mesh_make(const dem_mesh_spec *spec, dem_mesh *m, char *err, size_t errlen);
+void dem_mesh_free(dem_mesh *m);
+/* A mesh's edges (each once, edge[2 ne], in the order of their (lower, higher) vertex) and hinges (one per edge
+ * shared by two triangles, hinge[4 nhinges] as dem_add_hinge takes them); nboundary edges belong to one triangle.
+ * Refuses an edge of more than two triangles and two triangles turned opposite ways. */
+typedef struct {
+    int ne, nhinges, nboundary;
+    int *edge, *hinge;
+} dem_mesh_topo;
+int dem_mesh_topology(const dem_mesh *m, dem_mesh_topo *t, char *err, size_t errlen);
+void dem_mesh_topo_free(dem_mesh_topo *t);
+/* A membrane's material (seed 001 section 2.2 and Table 2). The springs on its edges get k = (sqrt(3)/2) young
+ * thickness (the stiffness at which a lattice of equilateral triangles has the 2D Young's modulus young x thickness;
+ * its Poisson's ratio is then 1/3 whatever `poisson` is: tests/test_springs.c), damping ratio `damping`, rest length
+ * the initial one; its hinges k_el, k_diss and the initial angle; a vertex the mass density x thickness x a third of
+ * its triangles' area. The vertices are particles of radius vertex_radius that touch other particles as spheres with
+ * the membrane's young, poisson, restitution and friction (seed 001's MSS_particle model); vertex_radius must leave
+ * a membrane's vertices apart at rest (at most half its shortest edge). */
+typedef struct {
+    double young, poisson, thickness, density, restitution, friction;
+    double damping;          /* damping ratio gamma of the edge springs */
+    double kel, kdiss;       /* hinges [N m], [N s]; 0 and 0: no hinges */
+    double vertex_radius;    /* [m] */
+} dem_membrane;
+typedef struct {
+    int first_particle, nvertices, first_spring, nsprings, first_triangle, ntriangles, first_hinge, nhinges;
+    double area, mass;       /* at rest [m^2], [kg] */
+} dem_membrane_info;
+/* Adds the mesh m as a membrane: its vertices as particles (first_particle onwards, in mesh order), its edges as
+ * springs, its triangles (in mesh order, for dem_set_pressure) and its hinges; info (may be NULL) says where they
+ * went. Everything is checked before anything is added: on an error nothing is. Returns 0, or -1 (dem_error). */
+int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
@@ -232,6 +284,7 @@ int dem_step(dem_sim *s, long nsteps);
 int dem_count(const dem_sim *s);
 double dem_particle_radius(const dem_sim *s, int i); /* [m], as given */
 int dem_particle_material(const dem_sim *s, int i);   /* material id, -1 for no such particle */
+double dem_particle_mass(const dem_sim *s, int i);     /* [kg]: set apart or the material's; NAN for no such particle */
 int dem_wall_count(const dem_sim *s);
 long dem_step_index(const dem_sim *s);
 double dem_time(const dem_sim *s);
