@@ -247,6 +247,37 @@ int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double
 
 int dem_hinge_count(const dem_sim *s) { return s->nhinges; }
 
+int dem_set_pressure_stages(dem_sim *s, int nstages, const dem_pressure_stage *st)
+{
+    if (not_started(s))
+        return DEM_ERR_STATE;
+    if (nstages < 0 || nstages > DEM_MAX_STAGES || (nstages > 0 && !st))
+        return sim_fail(s, DEM_ERR_ARG, "pressure stages: 0 to %d stages (got %d)", DEM_MAX_STAGES, nstages);
+    for (int k = 0; k < nstages; k++)
+        if (!(st[k].duration >= 0) || !isfinite(st[k].duration) || !isfinite(st[k].pressure))
+            return sim_fail(s, DEM_ERR_ARG, "pressure stage %d: duration must be >= 0 and finite, pressure finite (got "
+                            "%g s, %g Pa)", k, st[k].duration, st[k].pressure);
+    memcpy(s->pstages, st, sizeof *st * (size_t)nstages);
+    s->npstages = nstages;
+    s->effects |= DEM_EFFECT_PRESSURE;
+    return 0;
+}
+
+/* The scheduled pressure at time t [s] (dem_set_pressure_stages) */
+static double pressure_at(const dem_sim *s, double t)
+{
+    double from = s->pressure, t0 = 0;
+    for (int k = 0; k < s->npstages; k++) {
+        const dem_pressure_stage *g = &s->pstages[k];
+        if (t < t0 + g->duration)
+            return from + (g->pressure - from) * ((t - t0) / g->duration);
+        from = g->pressure, t0 += g->duration;
+    }
+    return from;
+}
+
+double dem_pressure(const dem_sim *s) { return s->started ? s->pressure_now : 0; }
+
 int dem_set_pressure(dem_sim *s, double sigma)
 {
     if (not_started(s))
@@ -604,6 +635,8 @@ static int stage_springs(dem_sim *s)
 }
 static int stage_pressure(dem_sim *s)
 {
+    s->pressure_now = pressure_at(s, (double)s->force_step * s->dt);
+    DEM_CORE(s->be)->sr[SR_PRESSURE] = s->pressure_now;
     return s->ntri && dem_stage_pressure(s->ops, s->be) ? be_fail(s) : 0;
 }
 static int stage_bending(dem_sim *s)
@@ -665,6 +698,7 @@ int dem_start(dem_sim *s, const dem_config *c)
     s->started = 1;
     if (dem_stage_reset_flags(s->ops, s->be))
         return be_fail(s);
+    s->force_step = s->step;
     if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
     return 0;
@@ -697,6 +731,7 @@ int dem_step(dem_sim *s, long nsteps)
             return DEM_ERR_DEVICE;
         if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
             return e;
+        s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
         if ((e = forces(s)))
             return e;
         if (dem_stage_kick(s->ops, s->be))

@@ -17,7 +17,10 @@ struct dem_sim {
     double *spring_kr;   /* [3 * nsprings]: k, rest (< 0: at the start), gamma */
     int ntri, tri_cap;
     int *tri;            /* [3 * ntri] */
-    double pressure;     /* [Pa] on every triangle (DEM_EFFECT_PRESSURE) */
+    double pressure;     /* [Pa] on every triangle (DEM_EFFECT_PRESSURE); the start of the schedule: */
+    int npstages;
+    dem_pressure_stage pstages[DEM_MAX_STAGES];
+    double pressure_now; /* of the last force computation */
     int nhinges, hinge_cap;
     int *hinge;          /* [4 * nhinges] */
     double *hinge_k;     /* [3 * nhinges]: kel, kdiss, theta0 (NAN: from the initial positions) */
@@ -34,6 +37,7 @@ struct dem_sim {
     unsigned mcs_conv; /* DEM_MCS_* bits; DEM_MCS_DEFAULT unless set (compiled in with mc_stress: sim_pack) */
     /* run state */
     int started;
+    long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
 #define SIM_PACKED 16

@@ -157,6 +157,16 @@ int dem_add_triangle(dem_sim *s, int a, int b, int c);
 int dem_triangle_count(const dem_sim *s);
 /* The pressure [Pa] on every triangle; turns on DEM_EFFECT_PRESSURE. */
 int dem_set_pressure(dem_sim *s, double sigma);
+/* A pressure schedule (before dem_start): stage k takes the pressure linearly from where the previous stage ended
+ * (the first: dem_set_pressure's value, 0 by default) to `pressure` over `duration` [s] (0: a jump); after the last
+ * stage it holds. Evaluated on the host at the time of each force computation, so every backend gets the same value.
+ * At most DEM_MAX_STAGES stages; turns on DEM_EFFECT_PRESSURE. */
+typedef struct {
+    double duration; /* [s] */
+    double pressure; /* [Pa] at the stage's end */
+} dem_pressure_stage;
+int dem_set_pressure_stages(dem_sim *s, int nstages, const dem_pressure_stage *stages);
+double dem_pressure(const dem_sim *s); /* the pressure of the last force computation [Pa] (before dem_start: 0) */
 /* A hinge: the triangles (p1, p3, p4) and (p2, p4, p3) sharing the edge p3-p4 resist bending (seed 001 Eq. 8-16,
  * Bridson et al. 2003; common/bending.h has the derivation): elastic constant kel [N m], dissipative kdiss [N s],
  * rest angle theta0 [rad] (NAN: the angle of the initial positions). Turns on DEM_EFFECT_BENDING. Returns its index. */

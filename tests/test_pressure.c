@@ -3,7 +3,7 @@
  * sigma A n_hat / 3 (seed 001 Eq. 18, current area and normal); a closed octahedron of springs under an inward
  * pressure settles where the springs carry it, at the edge length L of sigma L^2 / 3 = 2 sqrt(2) k (L0 - L) (each
  * vertex: four faces push sigma (sqrt(3)/4) L^2 / 3 each along their inward normals, four springs at 45 degrees
- * push back), and stays symmetric. */
+ * push back), and stays symmetric; a pressure schedule ramps and holds. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -122,11 +122,64 @@ static void test_octahedron_equilibrium(void **st)
     backend_run(bc, build_octahedron, 0, check_octahedron, NULL);
 }
 
+/* A pressure schedule: ramp 0 -> 1e4 Pa over 100 steps, then -> -2e4 Pa over 100 steps, then hold. The loads at
+ * steps 0, 50, 100, 150, 250 are sigma(t) A n_hat / 3 with sigma(t) of the schedule at the positions' time. */
+#define SCHED_DT 1e-6
+
+static dem_sim *build_schedule(void *ctx)
+{
+    dem_sim *s = build_triangle(ctx);
+    assert_int_equal(dem_set_pressure(s, 0), 0);
+    dem_pressure_stage st[2] = {{100 * SCHED_DT, 1e4}, {100 * SCHED_DT, -2e4}};
+    assert_int_equal(dem_set_pressure_stages(s, 2, st), 0);
+    for (int k = 0; k < 3; k++) /* heavy vertices: the triangle barely moves */
+        dem_set_particle_mass(s, k, 1e3, 0);
+    dem_set_dt(s, SCHED_DT);
+    return s;
+}
+
+static void check_schedule(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    (void)ctx;
+    static const long at[5] = {0, 50, 100, 150, 250};
+    static const double want_sigma[5] = {0, 5e3, 1e4, -5e3, -2e4};
+    for (int q = 0; q < 5; q++) {
+        step_or_fail(s, at[q] - dem_step_index(s));
+        double sigma = dem_pressure(s), x[9], f[9], u[3], v[3], cr[3], big = 0;
+        if (!(fabs(sigma - want_sigma[q]) <= 1e-9 * 2e4))
+            fail_msg("%s: step %ld: pressure %.17g Pa, schedule %.17g Pa", bc->name, at[q], sigma, want_sigma[q]);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_FORCE, f), 0);
+        for (int k = 0; k < 3; k++)
+            u[k] = x[3 + k] - x[k], v[k] = x[6 + k] - x[k];
+        cr[0] = u[1] * v[2] - u[2] * v[1], cr[1] = u[2] * v[0] - u[0] * v[2], cr[2] = u[0] * v[1] - u[1] * v[0];
+        for (int k = 0; k < 3; k++)
+            big = fmax(big, fabs(2e4 * cr[k] / 6));
+        for (int k = 0; k < 9; k++)
+            if (!(fabs(f[k] - want_sigma[q] * cr[k % 3] / 6) <= 32 * bc->eps * big))
+                fail_msg("%s: step %ld, vertex %d component %d: %.17g N, sigma(t) A n / 3 = %.17g N", bc->name,
+                         at[q], k / 3, k % 3, f[k], want_sigma[q] * cr[k % 3] / 6);
+    }
+}
+
+static void test_pressure_schedule(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build_schedule, 0, check_schedule, NULL);
+    dem_sim *s = dem_create();
+    assert_int_equal(dem_set_pressure_stages(s, 1, &(dem_pressure_stage){-1, 0}), DEM_ERR_ARG);
+    assert_int_equal(dem_set_pressure_stages(s, 1, &(dem_pressure_stage){1, NAN}), DEM_ERR_ARG);
+    assert_int_equal(dem_set_pressure_stages(s, DEM_MAX_STAGES + 1, NULL), DEM_ERR_ARG);
+    dem_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_triangle_load),
         cmocka_unit_test(test_octahedron_equilibrium),
+        cmocka_unit_test(test_pressure_schedule),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
