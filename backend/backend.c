@@ -244,14 +244,20 @@ int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, c
     return o->finish(b);
 }
 
-int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes)
+int dem_stage_write_field_at(const dem_backend_ops *o, dem_backend *b, dem_field f, size_t offset, const void *src,
+                             size_t bytes)
 {
     dem_core *c = DEM_CORE(b);
     dem_bufref r;
     size_t have;
-    if (dem_field_ref(c, f, &r, &have) || bytes > have)
-        return dem_core_fail(c, "write of field %d: %zu bytes given, %zu held", (int)f, bytes, have);
-    return bytes ? o->write(b, r, 0, src, bytes, 1) : 0;
+    if (dem_field_ref(c, f, &r, &have) || offset > have || bytes > have - offset)
+        return dem_core_fail(c, "write of field %d: %zu bytes at %zu given, %zu held", (int)f, bytes, offset, have);
+    return bytes ? o->write(b, r, offset, src, bytes, 1) : 0;
+}
+
+int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes)
+{
+    return dem_stage_write_field_at(o, b, f, 0, src, bytes);
 }
 
 int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k)

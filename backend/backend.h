@@ -179,5 +179,8 @@ int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, 
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,
                           const size_t *bytes);
 int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes);
+/* The same, bytes at a byte offset into the field (a few particles' values) */
+int dem_stage_write_field_at(const dem_backend_ops *o, dem_backend *b, dem_field f, size_t offset, const void *src,
+                             size_t bytes);
 
 #endif /* DEM_BACKEND_H */

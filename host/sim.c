@@ -41,6 +41,7 @@ void dem_destroy(dem_sim *s)
     free(s->spring_kr);
     free(s->tri);
     free(s->hinge);
+    free(s->att);
     free(s->hinge_k);
     free(s);
 }
@@ -682,7 +683,10 @@ int dem_start(dem_sim *s, const dem_config *c)
         return DEM_ERR_STATE;
     s->cfg = *c;
     int e = sim_validate(s);
-    if (e || (e = sim_pack(s)))
+    if (e)
+        return e;
+    sim_attach_start(s); /* riders take their walls' velocities before the run is packed */
+    if ((e = sim_pack(s)))
         return e;
     if (c->backend == DEM_BACKEND_REFERENCE)
         s->ops = c->precision == DEM_FP64 ? &dem_reference_ops_f64 : &dem_reference_ops_f32;
@@ -713,7 +717,8 @@ int dem_step(dem_sim *s, long nsteps)
         dem_core *c = DEM_CORE(s->be);
         c->ntrace = 0;
         s->rebuild_at = s->rebuild_len = 0;
-        if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
+        if ((s->natt && sim_attach_step(s)) || dem_stage_reset_flags(s->ops, s->be) ||
+            dem_stage_kick_drift(s->ops, s->be))
             return be_fail(s);
         /* walls move with the particles' drift: positions at t + dt, velocity of this step */
         if (s->nwalls) {
@@ -885,7 +890,10 @@ int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
         return sim_fail(s, DEM_ERR_STATE, "dem_memory_estimate is for a run not started (dem_device_bytes after)");
     s->cfg = *c;
     int e = sim_validate(s);
-    if (e || (e = sim_pack(s)))
+    if (e)
+        return e;
+    sim_attach_start(s); /* riders take their walls' velocities before the run is packed */
+    if ((e = sim_pack(s)))
         return e;
     dem_core core;
     dem_core_init(&core, &s->setup);

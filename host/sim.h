@@ -24,6 +24,10 @@ struct dem_sim {
     int nhinges, hinge_cap;
     int *hinge;          /* [4 * nhinges] */
     double *hinge_k;     /* [3 * nhinges]: kel, kdiss, theta0 (NAN: from the initial positions) */
+    int natt, att_cap;
+    int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/attach.c) */
+    double att_v[DEM_MAX_WALLS][3]; /* the velocity last written to a wall's riders */
+    int att_valid;       /* 0: write them all at the next step */
     int nmat;
     dem_material mats[64];
     int nwalls;
@@ -79,5 +83,9 @@ int sim_fail(dem_sim *s, int code, const char *fmt, ...);
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
 double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
+
+/* host/attach.c: riders take their wall's velocity (host side before packing; on the device when it changes) */
+void sim_attach_start(dem_sim *s);
+int sim_attach_step(dem_sim *s);
 
 #endif

@@ -287,6 +287,94 @@ static void test_restart_bitwise(void **st)
     }
 }
 
+/* Riders: a tube membrane whose end rings ride on two plane walls (dem_attach_to_wall), the top wall moving down,
+ * pausing, and moving up. Every rider's velocity is its wall's, and its z follows the wall's (the same v dt added
+ * each step, in the run's precision); the bottom ring does not move at all; OpenCL equals the reference. */
+#define TUBE_DT 2e-6
+
+typedef struct {
+    int nv, na;              /* vertices; riders per ring */
+    int ring[2][256];        /* bottom, top */
+    double z0[2][256];
+} riders;
+
+static dem_sim *build_riders(void *ctx)
+{
+    riders *rd = ctx;
+    dem_sim *s = dem_create();
+    dem_mesh m;
+    char err[256];
+    dem_mesh_spec sp = {DEM_MESH_TUBE, {0, 0, 0.05}, 0.02, 0.06, 0.006};
+    if (dem_mesh_make(&sp, &m, err, sizeof err))
+        fail_msg("%s", err);
+    dem_membrane_info info;
+    if (dem_add_membrane(s, &m, &rubber, &info))
+        fail_msg("%s", dem_error(s));
+    int steel = dem_add_material(s, &(dem_material){7800, INFINITY, 0.3, 0.5, 0.3});
+    dem_wall lo = {DEM_WALL_PLANE, steel, {0, 0, 0.019}, {0, 0, 1}, 0, 0, {{0}}};
+    dem_wall hi = {DEM_WALL_PLANE, steel, {0, 0, 0.081}, {0, 0, -1}, 0, 3,
+                   {{200 * TUBE_DT, {0, 0, -0.5}}, {100 * TUBE_DT, {0, 0, 0}}, {100 * TUBE_DT, {0, 0, 1.0}}}};
+    int wl = dem_add_wall(s, &lo), wh = dem_add_wall(s, &hi);
+    rd->nv = info.nvertices;
+    int count[2] = {0, 0};
+    for (int i = 0; i < m.nv; i++) {
+        double z = m.x[3 * i + 2];
+        int side = fabs(z - 0.02) < 1e-12 ? 0 : fabs(z - 0.08) < 1e-12 ? 1 : -1;
+        if (side < 0)
+            continue;
+        assert_true(count[side] < 256);
+        rd->ring[side][count[side]] = i, rd->z0[side][count[side]++] = z;
+        assert_int_equal(dem_attach_to_wall(s, i, side ? wh : wl), 0);
+    }
+    assert_int_equal(count[0], count[1]);
+    rd->na = count[0];
+    assert_int_equal(dem_attach_to_wall(s, rd->ring[0][0], wh), DEM_ERR_ARG); /* one wall per rider */
+    dem_mesh_free(&m);
+    dem_set_domain(s, (double[3]){-0.05, -0.05, 0}, (double[3]){0.05, 0.05, 0.1});
+    dem_set_dt(s, TUBE_DT);
+    return s;
+}
+
+static void check_riders(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    riders *rd = ctx;
+    static const long phase[3] = {200, 100, 100};
+    static const double vz[3] = {-0.5, 0, 1.0};
+    double *x = malloc(sizeof(double) * 3 * (size_t)rd->nv), *v = malloc(sizeof(double) * 3 * (size_t)rd->nv);
+    double p0[3], p[3];
+    dem_wall_position(s, 1, p0);
+    for (int ph = 0; ph < 3; ph++) {
+        step_or_fail(s, phase[ph] - 1); /* the last step of the phase still moves at its velocity: look before it */
+        assert_int_equal(dem_get_field(s, DEM_FIELD_V, v), 0);
+        step_or_fail(s, 1);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+        dem_wall_position(s, 1, p);
+        double worst = 0;
+        for (int k = 0; k < rd->na; k++) {
+            int b = rd->ring[0][k], t = rd->ring[1][k];
+            assert_true(x[3 * b + 2] == (double)(bc->precision == DEM_FP64 ? rd->z0[0][k] : (float)rd->z0[0][k]));
+            assert_true(v[3 * t + 2] == vz[ph] && v[3 * t] == 0 && v[3 * b + 2] == 0);
+            worst = fmax(worst, fabs((x[3 * t + 2] - rd->z0[1][k]) - (p[2] - p0[2])));
+        }
+        printf("  %s, phase %d: top wall moved %.6g mm, its riders within %.2g m of it\n", bc->name, ph,
+               1e3 * (p[2] - p0[2]), worst);
+        assert_true(worst <= 400 * 0.1 * bc->eps); /* 400 additions of v dt to coordinates near 0.1 m */
+        double want = ph < 2 ? -2e-4 : 0; /* down 0.2 mm, hold, up 0.2 mm */
+        assert_true(fabs(p[2] - p0[2] - want) < 1e-12);
+    }
+    free(x), free(v);
+}
+
+static void test_riders(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        riders rd;
+        backend_run(bc, build_riders, 0, check_riders, &rd);
+    }
+}
+
 /* Refusals leave the simulation as it was. */
 static void test_membrane_refusals(void **st)
 {
@@ -332,6 +420,7 @@ int main(void)
         cmocka_unit_test(test_membrane_parameters),
         cmocka_unit_test(test_balloon),
         cmocka_unit_test(test_restart_bitwise),
+        cmocka_unit_test(test_riders),
         cmocka_unit_test(test_membrane_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
