@@ -1,0 +1,107 @@
+/* patch.h - the geometry of a sphere touching a membrane's triangular patches (seed 001 section 2.5, Eq. 17 and
+ * Table 1): where on a triangle a point is closest, classified face, edge or vertex, with the barycentric weights
+ * that carry the contact's velocity from and its force to the three vertices (Fig. 3); and which of a sphere's
+ * patch contacts are kept. The building blocks of the patch contacts (not yet a force pass: README, "Not yet").
+ *
+ * Closest point: the Voronoi regions of the triangle's features, tested in order (Ericson, Real-Time Collision
+ * Detection, section 5.1.5), with only + - * /. Edge k joins vertices k and k+1 (mod 3). The classification is
+ * exact by construction - a vertex contact has the weights (1, 0, 0) exactly, an edge contact a zero weight for the
+ * vertex off the edge - where Eq. 17 would test a cross product for zero in floating point.
+ *
+ * Selection (Table 1, read as: of two patches with a common edge, the contact with the higher-dimensional feature
+ * stays - face over edge over vertex -, two faces both stay, and where the table says "rand" for two edges or two
+ * vertices the patch of lower index stays; of vertex contacts at one mesh vertex, "one selected randomly" in the
+ * text, likewise the lower patch index). Deterministic and independent of the order the contacts are listed in, so
+ * the same on every device and after a restart; a random pick would need a counter-based hash for that and would
+ * buy nothing physical (the kept contacts are at the same point).
+ */
+#ifndef DEM_PATCH_H
+#define DEM_PATCH_H
+#include "dem_real.h"
+#include "vec3.h"
+
+#define PATCH_FACE 2 /* the kinds, numbered by the feature's dimension */
+#define PATCH_EDGE 1
+#define PATCH_VERTEX 0
+
+typedef struct {
+    vec3 point;  /* closest point on the triangle */
+    real w[3];   /* barycentric weights of point: w0 a + w1 b + w2 c */
+    int kind;    /* PATCH_FACE, PATCH_EDGE, PATCH_VERTEX */
+    int index;   /* edge k (vertices k, k+1 mod 3) or vertex k; 0 for a face */
+} patch_point;
+
+DEM_INLINE patch_point patch_feature(int kind, int index, real w0, real w1, real w2, vec3 point)
+{
+    patch_point r;
+    r.kind = kind, r.index = index, r.w[0] = w0, r.w[1] = w1, r.w[2] = w2, r.point = point;
+    return r;
+}
+
+DEM_INLINE patch_point patch_closest(vec3 p, vec3 a, vec3 b, vec3 c)
+{
+    vec3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a);
+    real d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
+    if (d1 <= (real)0 && d2 <= (real)0)
+        return patch_feature(PATCH_VERTEX, 0, (real)1, (real)0, (real)0, a);
+    vec3 bp = v3_sub(p, b);
+    real d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
+    if (d3 >= (real)0 && d4 <= d3)
+        return patch_feature(PATCH_VERTEX, 1, (real)0, (real)1, (real)0, b);
+    real vc = d1 * d4 - d3 * d2;
+    if (vc <= (real)0 && d1 >= (real)0 && d3 <= (real)0) {
+        real v = d1 / (d1 - d3);
+        return patch_feature(PATCH_EDGE, 0, (real)1 - v, v, (real)0, v3_add(a, v3_scale(ab, v)));
+    }
+    vec3 cp = v3_sub(p, c);
+    real d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
+    if (d6 >= (real)0 && d5 <= d6)
+        return patch_feature(PATCH_VERTEX, 2, (real)0, (real)0, (real)1, c);
+    real vb = d5 * d2 - d1 * d6;
+    if (vb <= (real)0 && d2 >= (real)0 && d6 <= (real)0) {
+        real w = d2 / (d2 - d6);
+        return patch_feature(PATCH_EDGE, 2, (real)1 - w, (real)0, w, v3_add(a, v3_scale(ac, w)));
+    }
+    real va = d3 * d6 - d5 * d4;
+    if (va <= (real)0 && d4 - d3 >= (real)0 && d5 - d6 >= (real)0) {
+        real w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return patch_feature(PATCH_EDGE, 1, (real)0, (real)1 - w, w, v3_add(b, v3_scale(v3_sub(c, b), w)));
+    }
+    real sum = va + vb + vc;
+    if (!(sum > (real)0)) /* a triangle of no area: its first vertex */
+        return patch_feature(PATCH_VERTEX, 0, (real)1, (real)0, (real)0, a);
+    real v = vb / sum, w = vc / sum;
+    return patch_feature(PATCH_FACE, 0, (real)1 - v - w, v, w, v3_add(a, v3_add(v3_scale(ab, v), v3_scale(ac, w))));
+}
+
+/* The number of vertices two triangles (three vertex ids each) have in common */
+DEM_INLINE int patch_common(const int *t, const int *u)
+{
+    int n = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            n += t[i] == u[j];
+    return n;
+}
+
+/* Whether contact i of a sphere stays, among its n patch contacts: patch ids id[k], vertex ids tri[3k..3k+2],
+ * kinds kind[k] and feature indices index[k] (patch_closest). Table 1 for patches with a common edge; vertex
+ * contacts at one mesh vertex keep the lowest patch id. */
+DEM_INLINE int patch_keep(int i, int n, const int *id, const int *tri, const int *kind, const int *index)
+{
+    for (int j = 0; j < n; j++) {
+        if (j == i)
+            continue;
+        if (patch_common(tri + 3 * i, tri + 3 * j) == 2) { /* a common edge: Table 1 */
+            if (kind[i] < kind[j])
+                return 0;
+            if (kind[i] == kind[j] && kind[i] != PATCH_FACE && id[j] < id[i])
+                return 0;
+        }
+        if (kind[i] == PATCH_VERTEX && kind[j] == PATCH_VERTEX && tri[3 * i + index[i]] == tri[3 * j + index[j]] &&
+            id[j] < id[i])
+            return 0;
+    }
+    return 1;
+}
+#endif /* DEM_PATCH_H */
