@@ -9,7 +9,6 @@
  * for long runs with riders; the remedy is a small kernel that places riders at their start plus the wall's
  * displacement (a device-side table), not yet written. */
 #include "sim.h"
-#include <stdlib.h>
 #include <string.h>
 
 int dem_attach_to_wall(dem_sim *s, int particle, int wall)
@@ -23,13 +22,8 @@ int dem_attach_to_wall(dem_sim *s, int particle, int wall)
         if (s->att[2 * k] == particle)
             return sim_fail(s, DEM_ERR_ARG, "attach: particle %d already rides on wall %d", particle,
                             s->att[2 * k + 1]);
-    if (s->natt == s->att_cap) {
-        int cap = s->att_cap ? 2 * s->att_cap : 64;
-        int *a = realloc(s->att, sizeof(int) * 2 * (size_t)cap);
-        if (!a)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d riders", s->natt);
-        s->att = a, s->att_cap = cap;
-    }
+    if (sim_grow(s, s->natt, &s->att_cap, &s->att, 2, NULL, 0, "riders"))
+        return DEM_ERR_NOMEM;
     s->att[2 * s->natt] = particle, s->att[2 * s->natt + 1] = wall, s->natt++;
     s->pflags[particle] |= DEM_PARTICLE_FIXED;
     return 0;

@@ -160,6 +160,25 @@ int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia)
     return 0;
 }
 
+/* Room for one more row of a table of `count` rows (ni ints and nr doubles each; reals may be NULL), doubling its
+ * capacity; 0, or -1 with DEM_ERR_NOMEM and the table's name. */
+int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what)
+{
+    if (count < *cap)
+        return 0;
+    int c = *cap ? 2 * *cap : 256;
+    int *a = realloc(*ints, sizeof(int) * (size_t)ni * (size_t)c);
+    if (a)
+        *ints = a;
+    double *r = reals ? realloc(*reals, sizeof(double) * (size_t)nr * (size_t)c) : NULL;
+    if (r)
+        *reals = r;
+    if (!a || (reals && !r))
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d %s", count, what), -1;
+    *cap = c;
+    return 0;
+}
+
 int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma)
 {
     if (not_started(s))
@@ -170,18 +189,8 @@ int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma
     if (!(k > 0) || !isfinite(k) || !isfinite(rest) || !(gamma >= 0) || !isfinite(gamma))
         return sim_fail(s, DEM_ERR_ARG, "spring %d: k must be > 0 N/m, rest finite, gamma >= 0 (got %g, %g, %g)",
                         s->nsprings, k, rest, gamma), -1;
-    if (s->nsprings == s->spring_cap) {
-        int cap = s->spring_cap ? 2 * s->spring_cap : 256;
-        int *ij = realloc(s->spring_ij, sizeof(int) * 2 * (size_t)cap);
-        if (ij)
-            s->spring_ij = ij;
-        double *kr = realloc(s->spring_kr, sizeof(double) * 3 * (size_t)cap);
-        if (kr)
-            s->spring_kr = kr;
-        if (!ij || !kr)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d springs", s->nsprings), -1;
-        s->spring_cap = cap;
-    }
+    if (sim_grow(s, s->nsprings, &s->spring_cap, &s->spring_ij, 2, &s->spring_kr, 3, "springs"))
+        return -1;
     int id = s->nsprings++;
     s->spring_ij[2 * id] = i, s->spring_ij[2 * id + 1] = j;
     s->spring_kr[3 * id] = k, s->spring_kr[3 * id + 1] = rest, s->spring_kr[3 * id + 2] = gamma;
@@ -198,13 +207,8 @@ int dem_add_triangle(dem_sim *s, int a, int b, int c)
     if (a < 0 || a >= s->n || b < 0 || b >= s->n || c < 0 || c >= s->n || a == b || b == c || a == c)
         return sim_fail(s, DEM_ERR_ARG, "triangle %d: particles %d, %d, %d (three different particles of 0..%d)",
                         s->ntri, a, b, c, s->n - 1), -1;
-    if (s->ntri == s->tri_cap) {
-        int cap = s->tri_cap ? 2 * s->tri_cap : 256;
-        int *t = realloc(s->tri, sizeof(int) * 3 * (size_t)cap);
-        if (!t)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d triangles", s->ntri), -1;
-        s->tri = t, s->tri_cap = cap;
-    }
+    if (sim_grow(s, s->ntri, &s->tri_cap, &s->tri, 3, NULL, 0, "triangles"))
+        return -1;
     int id = s->ntri++;
     s->tri[3 * id] = a, s->tri[3 * id + 1] = b, s->tri[3 * id + 2] = c;
     return id;
@@ -227,18 +231,8 @@ int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double
     if (!(kel >= 0) || !isfinite(kel) || !(kdiss >= 0) || !isfinite(kdiss) || isinf(theta0))
         return sim_fail(s, DEM_ERR_ARG, "hinge %d: kel and kdiss must be >= 0, theta0 finite or NAN (got %g, %g, %g)",
                         s->nhinges, kel, kdiss, theta0), -1;
-    if (s->nhinges == s->hinge_cap) {
-        int cap = s->hinge_cap ? 2 * s->hinge_cap : 256;
-        int *h = realloc(s->hinge, sizeof(int) * 4 * (size_t)cap);
-        if (h)
-            s->hinge = h;
-        double *k = realloc(s->hinge_k, sizeof(double) * 3 * (size_t)cap);
-        if (k)
-            s->hinge_k = k;
-        if (!h || !k)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d hinges", s->nhinges), -1;
-        s->hinge_cap = cap;
-    }
+    if (sim_grow(s, s->nhinges, &s->hinge_cap, &s->hinge, 4, &s->hinge_k, 3, "hinges"))
+        return -1;
     int id = s->nhinges++;
     memcpy(s->hinge + 4 * id, p, sizeof p);
     s->hinge_k[3 * id] = kel, s->hinge_k[3 * id + 1] = kdiss, s->hinge_k[3 * id + 2] = theta0;

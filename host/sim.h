@@ -79,6 +79,7 @@ int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
 void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
+int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what);
 /* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
