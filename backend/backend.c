@@ -66,6 +66,7 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->nsprings = s->nsprings;
     c->ntriangles = s->ntriangles;
     c->nhinges = s->nhinges;
+    c->nriders = s->nriders;
     c->maxn[0] = c->maxn[1] = s->maxn;
     int *si = c->si;
     si[SI_N] = s->n, si[SI_NMAT] = s->nmat, si[SI_NWALLS] = s->nwalls, si[SI_NCELLS] = c->ncells;
@@ -73,6 +74,7 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     si[SI_NSPRINGS] = c->nsprings;
     si[SI_NTRIANGLES] = c->ntriangles;
     si[SI_NHINGES] = c->nhinges;
+    si[SI_NRIDERS] = c->nriders;
     si[SI_NCX] = s->ncell[0], si[SI_NCY] = s->ncell[1], si[SI_NCZ] = s->ncell[2];
     double *sr = c->sr;
     sr[SR_DT] = s->dt, sr[SR_SKIN] = s->skin, sr[SR_HALF_SKIN2] = s->half_skin2, sr[SR_INV_CELL] = s->inv_cell;
@@ -92,9 +94,9 @@ size_t dem_elem_size(int elem, int rs)
     size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->ncells,         \
            NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
-           NH = (size_t)(c)->nhinges;                                                                                \
+           NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders;                                                     \
     (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
-        (void)NH
+        (void)NH, (void)NR
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 
@@ -244,20 +246,14 @@ int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, c
     return o->finish(b);
 }
 
-int dem_stage_write_field_at(const dem_backend_ops *o, dem_backend *b, dem_field f, size_t offset, const void *src,
-                             size_t bytes)
+int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes)
 {
     dem_core *c = DEM_CORE(b);
     dem_bufref r;
     size_t have;
-    if (dem_field_ref(c, f, &r, &have) || offset > have || bytes > have - offset)
-        return dem_core_fail(c, "write of field %d: %zu bytes at %zu given, %zu held", (int)f, bytes, offset, have);
-    return bytes ? o->write(b, r, offset, src, bytes, 1) : 0;
-}
-
-int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes)
-{
-    return dem_stage_write_field_at(o, b, f, 0, src, bytes);
+    if (dem_field_ref(c, f, &r, &have) || bytes > have)
+        return dem_core_fail(c, "write of field %d: %zu bytes given, %zu held", (int)f, bytes, have);
+    return bytes ? o->write(b, r, 0, src, bytes, 1) : 0;
 }
 
 int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k)

@@ -39,6 +39,9 @@ typedef struct {
     const int *chan_slot;   /* int[2*nsprings + 3*ntriangles + 4*nhinges]: where each spring end's, triangle vertex's
                                and hinge vertex's record goes */
     const int *chan_start;  /* int[n+1]: each particle's records: its springs, its triangles, its hinges, in order */
+    int nriders;            /* particles riding on walls (dem_attach_to_wall) */
+    const int *rider_int;   /* int[2*nriders]: particle, wall */
+    const void *rider_off;  /* real[3*nriders]: the particle's place relative to its wall's point */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
     int ncell[3];
@@ -76,7 +79,7 @@ typedef struct {
 typedef struct {
     unsigned fx;
     int rs;
-    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges;
+    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges, nriders;
     int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
     size_t pair_cap;   /* pair records allocated */
     int si[SI__COUNT];
@@ -173,14 +176,12 @@ int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *sr
 int dem_stage_springs(const dem_backend_ops *o, dem_backend *b);  /* spring forces into the channel */
 int dem_stage_pressure(const dem_backend_ops *o, dem_backend *b); /* triangle loads into the channel */
 int dem_stage_bending(const dem_backend_ops *o, dem_backend *b);  /* hinge forces into the channel */
+int dem_stage_riders(const dem_backend_ops *o, dem_backend *b);   /* riders to their walls' places and velocities */
 int dem_stage_channel_gather(const dem_backend_ops *o, dem_backend *b); /* the channel into the particles' forces */
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
 /* Several fields with one synchronisation (the series of a step read everything at once). */
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,
                           const size_t *bytes);
 int dem_stage_write_field(const dem_backend_ops *o, dem_backend *b, dem_field f, const void *src, size_t bytes);
-/* The same, bytes at a byte offset into the field (a few particles' values) */
-int dem_stage_write_field_at(const dem_backend_ops *o, dem_backend *b, dem_field f, size_t offset, const void *src,
-                             size_t bytes);
 
 #endif /* DEM_BACKEND_H */

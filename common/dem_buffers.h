@@ -5,7 +5,7 @@
  *
  * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
  * blocks of the cells), NBR (reduction blocks of the particles), MAXN (capacity of the row set the buffer belongs
- * to), PAIRS (pair records allocated), NS (springs), NT (triangles) and NH (hinges), in elements.
+ * to), PAIRS (pair records allocated), NS (springs), NT (triangles), NH (hinges) and NR (riders), in elements.
  * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
  * made when first needed (the output stress tensor).
  * Init: what create uploads: SETUP(member) of dem_setup, or NONE (zero-filled).
@@ -62,7 +62,9 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(HINGE_REAL, REAL, HG_STRIDE * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_real))                                  \
     ENTRY(CHAN_SLOT, INT, 2 * NS + 3 * NT + 4 * NH, DEM_EFFECT_CHANNEL, -1, SETUP(chan_slot))                           \
     ENTRY(CHAN_START, INT, N + 1, DEM_EFFECT_CHANNEL, -1, SETUP(chan_start))                                            \
-    ENTRY(CHAN_REC, REAL, 3 * (2 * NS + 3 * NT + 4 * NH), DEM_EFFECT_CHANNEL, -1, NONE)
+    ENTRY(CHAN_REC, REAL, 3 * (2 * NS + 3 * NT + 4 * NH), DEM_EFFECT_CHANNEL, -1, NONE)                                 \
+    ENTRY(RIDER_INT, INT, 2 * NR, 0, -1, SETUP(rider_int))                                                              \
+    ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off))
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
  * (swapped at each rebuild); the field names the current set's */
@@ -81,7 +83,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 /* ENTRY(ID) - scalar kernel arguments */
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
     ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(NSPRINGS) \
-    ENTRY(NTRIANGLES) ENTRY(NHINGES)                                                                                 \
+    ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS)                                                                  \
     ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \

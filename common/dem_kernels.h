@@ -32,7 +32,7 @@
     K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
     K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
-    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather)
+    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_index(F, A)                                                                                     \
@@ -168,6 +168,11 @@
 #define DEM_ARGS_channel_gather(F, A)                                                                                \
     F(I, int, n, N) A(BIN, int, chan_start, CHAN_START) A(BIN, real, chan_rec, CHAN_REC) A(BOUT, real, force, FORCE)
 #define DEM_ITEMS_channel_gather n
+/* ---- riders.h ---- */
+#define DEM_ARGS_rider_place(F, A)                                                                                   \
+    F(I, int, nriders, NRIDERS) A(BIN, int, rider_int, RIDER_INT) A(BIN, real, rider_off, RIDER_OFF)                 \
+    A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, x, X) A(BOUT, real, v, V)
+#define DEM_ITEMS_rider_place nriders
 
 /* ---- what the lists become ---- */
 /* a parameter declaration of each kind */

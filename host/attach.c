@@ -1,15 +1,10 @@
 /* attach.c - particles that ride on a wall (dem_attach_to_wall): a membrane's end rings on the platens of a triaxial
- * cell (seed 001 section 3.1). A rider is a fixed particle (DEM_PARTICLE_FIXED: infinite mass, moves at its
- * velocity) whose velocity is its wall's at every step: set on the host before the run is packed, and written to the
- * device for the riders of a wall whenever that wall's velocity changes (at its stage boundaries), before the
- * step's drift. Its position therefore advances by the same v dt as the wall's, but in the run's precision, while the
- * wall's is kept in double on the host: in fp64 they agree exactly (tests/test_membrane.c, test_riders); in fp32 each
- * step's addition rounds to half an ulp of the coordinate, the same way every step, so a rider drifts from its wall
- * (measured: 3.2e-7 m after 200 steps of 1e-6 m at z = 0.08 m, 1.6e-9 m per step; 0.3 mm over 2e5 steps). Use fp64
- * for long runs with riders; the remedy is a small kernel that places riders at their start plus the wall's
- * displacement (a device-side table), not yet written. */
+ * cell (seed 001 section 3.1). A rider is a fixed particle (DEM_PARTICLE_FIXED: infinite mass) that the device puts
+ * at its wall's place and velocity every step after the walls move (common/riders.h, kernels/riders.cl); here it
+ * gets its wall's velocity of the first step on the host, for the forces at the start. Placed rather than
+ * integrated: integrated in fp32, a rider drifted from its wall by half an ulp per step (1.6e-9 m per step of 1e-6
+ * m at z = 0.08 m, 0.3 mm over 2e5 steps); placed, it stays one rounding from the wall's double position. */
 #include "sim.h"
-#include <string.h>
 
 int dem_attach_to_wall(dem_sim *s, int particle, int wall)
 {
@@ -36,29 +31,4 @@ void sim_attach_start(dem_sim *s)
         s->pflags[i] |= DEM_PARTICLE_FIXED;
         sim_wall_velocity(s, w, s->step, s->v + 3 * i);
     }
-    for (int w = 0; w < s->nwalls; w++)
-        sim_wall_velocity(s, w, s->step, s->att_v[w]);
-    s->att_valid = 1;
-}
-
-int sim_attach_step(dem_sim *s)
-{
-    int rs = s->setup.real_size;
-    for (int w = 0; w < s->nwalls; w++) {
-        double v[3];
-        sim_wall_velocity(s, w, s->step, v);
-        if (s->att_valid && !memcmp(v, s->att_v[w], sizeof v))
-            continue;
-        memcpy(s->att_v[w], v, sizeof v);
-        float vf[3] = {(float)v[0], (float)v[1], (float)v[2]};
-        for (int k = 0; k < s->natt; k++) {
-            int i = s->att[2 * k];
-            if (s->att[2 * k + 1] == w &&
-                dem_stage_write_field_at(s->ops, s->be, DEM_FIELD_V, (size_t)rs * 3 * (size_t)i,
-                                         rs == 8 ? (const void *)v : (const void *)vf, (size_t)rs * 3))
-                return 1;
-        }
-    }
-    s->att_valid = 1;
-    return 0;
 }

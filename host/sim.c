@@ -711,8 +711,7 @@ int dem_step(dem_sim *s, long nsteps)
         dem_core *c = DEM_CORE(s->be);
         c->ntrace = 0;
         s->rebuild_at = s->rebuild_len = 0;
-        if ((s->natt && sim_attach_step(s)) || dem_stage_reset_flags(s->ops, s->be) ||
-            dem_stage_kick_drift(s->ops, s->be))
+        if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
             return be_fail(s);
         /* walls move with the particles' drift: positions at t + dt, velocity of this step */
         if (s->nwalls) {
@@ -723,7 +722,7 @@ int dem_step(dem_sim *s, long nsteps)
                     s->wall_pos[w][d] += v[d] * s->dt;
             }
             sim_pack_walls(s);
-            if (dem_stage_set_walls(s->ops, s->be, s->wall_real))
+            if (dem_stage_set_walls(s->ops, s->be, s->wall_real) || (s->natt && dem_stage_riders(s->ops, s->be)))
                 return be_fail(s);
         }
         if (read_flags(s, flags))

@@ -26,8 +26,6 @@ struct dem_sim {
     double *hinge_k;     /* [3 * nhinges]: kel, kdiss, theta0 (NAN: from the initial positions) */
     int natt, att_cap;
     int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/attach.c) */
-    double att_v[DEM_MAX_WALLS][3]; /* the velocity last written to a wall's riders */
-    int att_valid;       /* 0: write them all at the next step */
     int nmat;
     dem_material mats[64];
     int nwalls;
@@ -44,8 +42,8 @@ struct dem_sim {
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 16
-    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges) */
+#define SIM_PACKED 18
+    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
@@ -85,8 +83,8 @@ double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
 double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
 
-/* host/attach.c: riders take their wall's velocity (host side before packing; on the device when it changes) */
+/* host/attach.c: riders take their walls' velocities on the host before packing (the device places them each step:
+ * common/riders.h) */
 void sim_attach_start(dem_sim *s);
-int sim_attach_step(dem_sim *s);
 
 #endif

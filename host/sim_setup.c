@@ -351,6 +351,27 @@ static int pack_channel(dem_sim *s, dem_setup *u, int rs)
     return s->packed[10] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }
 
+/* The riders' table (common/riders.h): particle and wall, and the particle's offset from the wall's point at the
+ * start (after pack_walls) */
+static int pack_riders(dem_sim *s, dem_setup *u, int rs)
+{
+    int nr = s->natt;
+    int *ri = malloc(sizeof(int) * 2 * (size_t)(nr ? nr : 1));
+    double *off = malloc(sizeof(double) * 3 * (size_t)(nr ? nr : 1));
+    if (!ri || !off)
+        return free(ri), free(off), sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int k = 0; k < nr; k++) {
+        int p = s->att[2 * k], w = s->att[2 * k + 1];
+        ri[2 * k] = p, ri[2 * k + 1] = w;
+        for (int d = 0; d < 3; d++)
+            off[3 * k + d] = s->x[3 * p + d] - s->wall_pos[w][d];
+    }
+    s->packed[16] = ri, s->packed[17] = pack_real(off, 3 * (size_t)nr, rs);
+    free(off);
+    u->nriders = nr, u->rider_int = ri, u->rider_off = s->packed[17];
+    return s->packed[17] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+}
+
 /* The walls' integer table, start positions and stage lengths in steps, and the real table of step 0. */
 static void pack_walls(dem_sim *s, int *wint)
 {
@@ -470,7 +491,7 @@ int sim_pack(dem_sim *s)
     if (!s->wall_real)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     pack_walls(s, wint);
-    if ((e = pack_channel(s, u, rs)))
+    if ((e = pack_channel(s, u, rs)) || (e = pack_riders(s, u, rs)))
         return e;
     u->x = s->packed[0];
     u->v = s->packed[1];

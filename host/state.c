@@ -203,7 +203,6 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     if (e)
         return e;
     s->step = st->step;
-    s->att_valid = 0; /* riders get their walls' velocity of this step at the next one (attach.c) */
     s->mc = st->mc;
     for (int k = 0; k < s->nwalls; k++)
         memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);

@@ -288,8 +288,9 @@ static void test_restart_bitwise(void **st)
 }
 
 /* Riders: a tube membrane whose end rings ride on two plane walls (dem_attach_to_wall), the top wall moving down,
- * pausing, and moving up. Every rider's velocity is its wall's, and its z follows the wall's (the same v dt added
- * each step, in the run's precision); the bottom ring does not move at all; OpenCL equals the reference. */
+ * pausing, and moving up. Every rider's velocity is its wall's, and its z stays within a rounding or two of its wall's
+ * displacement, in fp32 too (placed, not integrated: common/riders.h); the bottom ring stays; OpenCL equals the
+ * reference. */
 #define TUBE_DT 2e-6
 
 typedef struct {
@@ -352,13 +353,13 @@ static void check_riders(dem_sim *s, const backend_case *bc, void *ctx)
         double worst = 0;
         for (int k = 0; k < rd->na; k++) {
             int b = rd->ring[0][k], t = rd->ring[1][k];
-            assert_true(x[3 * b + 2] == (double)(bc->precision == DEM_FP64 ? rd->z0[0][k] : (float)rd->z0[0][k]));
+            assert_true(fabs(x[3 * b + 2] - rd->z0[0][k]) <= 2 * 0.1 * bc->eps);
             assert_true(v[3 * t + 2] == vz[ph] && v[3 * t] == 0 && v[3 * b + 2] == 0);
             worst = fmax(worst, fabs((x[3 * t + 2] - rd->z0[1][k]) - (p[2] - p0[2])));
         }
         printf("  %s, phase %d: top wall moved %.6g mm, its riders within %.2g m of it\n", bc->name, ph,
                1e3 * (p[2] - p0[2]), worst);
-        assert_true(worst <= 400 * 0.1 * bc->eps); /* 400 additions of v dt to coordinates near 0.1 m */
+        assert_true(worst <= 4 * 0.1 * bc->eps); /* a rounding or two of coordinates near 0.1 m, at any step */
         double want = ph < 2 ? -2e-4 : 0; /* down 0.2 mm, hold, up 0.2 mm */
         assert_true(fabs(p[2] - p0[2] - want) < 1e-12);
     }
