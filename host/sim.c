@@ -677,10 +677,7 @@ int dem_start(dem_sim *s, const dem_config *c)
         return DEM_ERR_STATE;
     s->cfg = *c;
     int e = sim_validate(s);
-    if (e)
-        return e;
-    sim_attach_start(s); /* riders take their walls' velocities before the run is packed */
-    if ((e = sim_pack(s)))
+    if (e || (e = sim_pack(s)))
         return e;
     if (c->backend == DEM_BACKEND_REFERENCE)
         s->ops = c->precision == DEM_FP64 ? &dem_reference_ops_f64 : &dem_reference_ops_f32;
@@ -883,10 +880,7 @@ int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
         return sim_fail(s, DEM_ERR_STATE, "dem_memory_estimate is for a run not started (dem_device_bytes after)");
     s->cfg = *c;
     int e = sim_validate(s);
-    if (e)
-        return e;
-    sim_attach_start(s); /* riders take their walls' velocities before the run is packed */
-    if ((e = sim_pack(s)))
+    if (e || (e = sim_pack(s)))
         return e;
     dem_core core;
     dem_core_init(&core, &s->setup);

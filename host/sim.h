@@ -83,8 +83,8 @@ double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
 double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
 
-/* host/attach.c: riders take their walls' velocities on the host before packing (the device places them each step:
- * common/riders.h) */
+/* host/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
+ * lengths are known; the device places them each step: common/riders.h) */
 void sim_attach_start(dem_sim *s);
 
 #endif

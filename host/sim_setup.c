@@ -372,15 +372,13 @@ static int pack_riders(dem_sim *s, dem_setup *u, int rs)
     return s->packed[17] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }
 
-/* The walls' integer table, start positions and stage lengths in steps, and the real table of step 0. */
+/* The walls' integer table and start positions, and the real table of step 0. */
 static void pack_walls(dem_sim *s, int *wint)
 {
     for (int k = 0; k < s->nwalls; k++) {
         wint[k * WI_STRIDE + WI_TYPE] = s->walls[k].kind == DEM_WALL_PLANE ? WALL_PLANE : WALL_CYLINDER_INSIDE;
         wint[k * WI_STRIDE + WI_MATERIAL] = s->walls[k].material;
         memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
-        for (int st = 0; st < s->walls[k].nstages; st++)
-            s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
     }
     sim_pack_walls(s);
 }
@@ -469,6 +467,10 @@ int sim_pack(dem_sim *s)
     }
     pack_bodies(s, invm, invi, invv);
     pack_pairs(s, pm, damp);
+    for (int k = 0; k < s->nwalls; k++) /* the walls' stage lengths in steps, then the riders' velocities of step 0 */
+        for (int st = 0; st < s->walls[k].nstages; st++)
+            s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
+    sim_attach_start(s);
     s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
     s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
     s->packed[2] = pack_real(s->w, 3 * (size_t)n, rs);

@@ -344,6 +344,9 @@ static void check_riders(dem_sim *s, const backend_case *bc, void *ctx)
     double *x = malloc(sizeof(double) * 3 * (size_t)rd->nv), *v = malloc(sizeof(double) * 3 * (size_t)rd->nv);
     double p0[3], p[3];
     dem_wall_position(s, 1, p0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_V, v), 0); /* at the start too: the first stage's velocity */
+    for (int k = 0; k < rd->na; k++)
+        assert_true(v[3 * rd->ring[1][k] + 2] == vz[0] && v[3 * rd->ring[0][k] + 2] == 0);
     for (int ph = 0; ph < 3; ph++) {
         step_or_fail(s, phase[ph] - 1); /* the last step of the phase still moves at its velocity: look before it */
         assert_int_equal(dem_get_field(s, DEM_FIELD_V, v), 0);
