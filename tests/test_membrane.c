@@ -96,16 +96,17 @@ static void test_generated_meshes(void **st)
 
 static const dem_membrane rubber = {1.25e6, 1.0 / 3, 3e-4, 1000, 0.5, 1.2, 0.3, 1e-4, 1e-6, 0.001};
 
-static dem_sim *build_sphere(void *ctx)
+/* A simulation holding one generated sphere membrane of radius r and edge length `edge` in a 10 cm box, at the
+ * recommended time step (set again after anything that changes it) */
+static dem_sim *sphere_sim(double r, double edge, const dem_membrane *mm, dem_membrane_info *info)
 {
-    dem_membrane_info *info = ctx;
     dem_sim *s = dem_create();
     dem_mesh m;
     char err[256];
-    dem_mesh_spec sp = {DEM_MESH_SPHERE, {0, 0, 0}, 0.03, 0, 0.006};
+    dem_mesh_spec sp = {DEM_MESH_SPHERE, {0, 0, 0}, r, 0, edge};
     if (dem_mesh_make(&sp, &m, err, sizeof err))
         fail_msg("%s", err);
-    if (dem_add_membrane(s, &m, &rubber, info))
+    if (dem_add_membrane(s, &m, mm, info))
         fail_msg("%s", dem_error(s));
     dem_mesh_free(&m);
     dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
@@ -114,6 +115,8 @@ static dem_sim *build_sphere(void *ctx)
     dem_set_dt(s, ts.recommended_dt);
     return s;
 }
+
+static dem_sim *build_sphere(void *ctx) { return sphere_sim(0.03, 0.006, &rubber, ctx); }
 
 /* At rest (springs at their rest lengths, hinges at their rest angles, no pressure) a membrane exerts nothing, and
  * stays put for 200 steps. */
@@ -194,23 +197,10 @@ static double balloon_pressure(void)
 
 static dem_sim *build_balloon(void *ctx)
 {
-    dem_membrane_info *info = ctx;
-    dem_sim *s = dem_create();
-    dem_mesh m;
-    char err[256];
-    dem_mesh_spec sp = {DEM_MESH_SPHERE, {0, 0, 0}, BALLOON_R, 0, 0.004};
-    if (dem_mesh_make(&sp, &m, err, sizeof err))
-        fail_msg("%s", err);
     dem_membrane mm = rubber;
     mm.kel = mm.kdiss = 0;
-    if (dem_add_membrane(s, &m, &mm, info))
-        fail_msg("%s", dem_error(s));
-    dem_mesh_free(&m);
+    dem_sim *s = sphere_sim(BALLOON_R, 0.004, &mm, ctx);
     assert_int_equal(dem_set_pressure(s, -balloon_pressure()), 0);
-    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
-    dem_time_scales ts;
-    dem_time_scales_get(s, 0, &ts);
-    dem_set_dt(s, ts.recommended_dt);
     return s;
 }
 
