@@ -34,7 +34,7 @@
 /* s(theta) of a hinge, and its pieces (the item and the host's rest angle use the same expressions) */
 typedef struct {
     vec3 e, n1, n2;
-    real le, n1s, n2s, shalf;
+    real le, n1s, n2s, l1, l2, shalf; /* |E|, |N1|^2, |N2|^2, |N1|, |N2|, s(theta) */
     int ok;
 } hinge_geom;
 
@@ -47,10 +47,12 @@ DEM_INLINE hinge_geom hinge_geometry(vec3 x1, vec3 x2, vec3 x3, vec3 x4)
     g.le = dem_sqrt(v3_dot(g.e, g.e));
     g.n1s = v3_dot(g.n1, g.n1);
     g.n2s = v3_dot(g.n2, g.n2);
+    g.l1 = dem_sqrt(g.n1s);
+    g.l2 = dem_sqrt(g.n2s);
     g.ok = g.le > (real)0 && g.n1s > (real)0 && g.n2s > (real)0;
     g.shalf = (real)0;
     if (g.ok) {
-        vec3 d = v3_sub(v3_scale(g.n1, (real)1 / dem_sqrt(g.n1s)), v3_scale(g.n2, (real)1 / dem_sqrt(g.n2s)));
+        vec3 d = v3_sub(v3_scale(g.n1, (real)1 / g.l1), v3_scale(g.n2, (real)1 / g.l2));
         real h = dem_sqrt(v3_dot(d, d)) / (real)2, sn = v3_dot(v3_cross(g.n2, g.n1), g.e);
         g.shalf = sn < (real)0 ? -h : h;
     }
@@ -70,7 +72,7 @@ DEM_INLINE void hinge_gradient(hinge_geom g, vec3 x1, vec3 x2, vec3 x3, vec3 x4,
 }
 
 /* the elastic prefactor k_el |E|^2 / (|N1| + |N2|) [N m]: the elastic force on vertex i is -it (s - s0) u_i */
-DEM_INLINE real hinge_stiffness(hinge_geom g, real kel) { return kel * (g.le * g.le) / (dem_sqrt(g.n1s) + dem_sqrt(g.n2s)); }
+DEM_INLINE real hinge_stiffness(hinge_geom g, real kel) { return kel * (g.le * g.le) / (g.l1 + g.l2); }
 
 DEM_ITEM(hinge_forces)
 {
