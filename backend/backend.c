@@ -33,7 +33,7 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 DEM_KERNEL_LIST(CHECK_KERNEL)
 _Static_assert(PR_STRIDE == 8 && W_STRIDE == 10 && WI_STRIDE == 2 && PM_STRIDE == 10 && ST_STRIDE == 6,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
-_Static_assert(FLAG_COUNT == 5, "flags (dem_layout.h)");
+_Static_assert(FLAG_COUNT == 8, "flags (dem_layout.h)");
 _Static_assert(K__COUNT <= 256, "kernel ids fit the trace's bytes");
 _Static_assert(DEM_MAX_WALLS <= 8 * sizeof(unsigned), "a particle's wall mask is one unsigned (WALL_MASK)");
 
@@ -68,6 +68,7 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->nhinges = s->nhinges;
     c->nriders = s->nriders;
     c->maxn[0] = c->maxn[1] = s->maxn;
+    c->maxp = c->maxp_old = s->maxp, c->maxv = s->maxv;
     int *si = c->si;
     si[SI_N] = s->n, si[SI_NMAT] = s->nmat, si[SI_NWALLS] = s->nwalls, si[SI_NCELLS] = c->ncells;
     si[SI_NBLOCKS_RED] = c->nblocks_red;
@@ -81,6 +82,8 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     sr[SR_LOX] = s->lo[0], sr[SR_LOY] = s->lo[1], sr[SR_LOZ] = s->lo[2];
     sr[SR_GX] = s->gravity[0], sr[SR_GY] = s->gravity[1], sr[SR_GZ] = s->gravity[2];
     sr[SR_PRESSURE] = s->pressure;
+    sr[SR_REACH] = s->reach, sr[SR_RMAX] = s->rmax;
+    si[SI_MAXP] = c->maxp, si[SI_MAXPO] = c->maxp_old, si[SI_MAXV] = c->maxv;
     dem_core_sync(c);
 }
 
@@ -94,9 +97,10 @@ size_t dem_elem_size(int elem, int rs)
     size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->ncells,         \
            NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
-           NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders;                                                     \
+           NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
+           MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv;                                                  \
     (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
-        (void)NH, (void)NR
+        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 

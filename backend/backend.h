@@ -48,6 +48,11 @@ typedef struct {
     /* per-step scalars (converted to real by the backend with a plain C cast) */
     double dt, gravity[3], skin, half_skin2;
     int maxn; /* initial neighbour-row capacity */
+    /* patch contacts (patch_contacts.h) */
+    const int *vtri_start;  /* int[n+1]: each particle's patch triangles at vtri_list[vtri_start[p] ..] */
+    const int *vtri_list;   /* int[3*ntriangles]: ascending triangle ids per particle (the tail unused) */
+    double reach, rmax;     /* the search reach (> every patch edge) and the largest sphere radius [m] */
+    int maxp, maxv;         /* initial capacities of the sphere and vertex patch rows */
     /* OpenCL only */
     int platform, device;
     size_t local_size; /* 0: let the runtime choose */
@@ -81,6 +86,7 @@ typedef struct {
     int rs;
     int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges, nriders;
     int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
+    int maxp, maxp_old, maxv; /* patch rows' capacities (patch_contacts.h) */
     size_t pair_cap;   /* pair records allocated */
     int si[SI__COUNT];
     double sr[SR__COUNT];
@@ -178,6 +184,11 @@ int dem_stage_pressure(const dem_backend_ops *o, dem_backend *b); /* triangle lo
 int dem_stage_bending(const dem_backend_ops *o, dem_backend *b);  /* hinge forces into the channel */
 int dem_stage_riders(const dem_backend_ops *o, dem_backend *b);   /* riders to their walls' places and velocities */
 int dem_stage_channel_gather(const dem_backend_ops *o, dem_backend *b); /* the channel into the particles' forces */
+/* Patch rows (first: the current sphere rows become the old ones first; a retry after growth passes 0), the
+ * spheres' patch forces, the vertices' sums of them (patch_contacts.h). */
+int dem_stage_patch_build(const dem_backend_ops *o, dem_backend *b, int first, int maxp, int maxv, double reach);
+int dem_stage_patch_forces(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_patch_gather(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
 /* Several fields with one synchronisation (the series of a step read everything at once). */
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,

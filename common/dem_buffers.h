@@ -5,7 +5,9 @@
  *
  * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
  * blocks of the cells), NBR (reduction blocks of the particles), MAXN (capacity of the row set the buffer belongs
- * to), PAIRS (pair records allocated), NS (springs), NT (triangles), NH (hinges) and NR (riders), in elements.
+ * to), PAIRS (pair records allocated), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV
+ * (capacity of the sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows:
+ * patch_contacts.h), in elements.
  * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
  * made when first needed (the output stress tensor).
  * Init: what create uploads: SETUP(member) of dem_setup, or NONE (zero-filled).
@@ -57,14 +59,27 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE)                                \
     ENTRY(SPRING_INT, INT, 2 * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_int))                                           \
     ENTRY(SPRING_REAL, REAL, SP_STRIDE * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_real))                                \
-    ENTRY(TRI, INT, 3 * NT, DEM_EFFECT_PRESSURE, -1, SETUP(tri))                                                        \
+    ENTRY(TRI, INT, 3 * NT, (DEM_EFFECT_PRESSURE | DEM_EFFECT_PATCHES), -1, SETUP(tri))                                \
     ENTRY(HINGE_INT, INT, 4 * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_int))                                             \
     ENTRY(HINGE_REAL, REAL, HG_STRIDE * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_real))                                  \
     ENTRY(CHAN_SLOT, INT, 2 * NS + 3 * NT + 4 * NH, DEM_EFFECT_CHANNEL, -1, SETUP(chan_slot))                           \
     ENTRY(CHAN_START, INT, N + 1, DEM_EFFECT_CHANNEL, -1, SETUP(chan_start))                                            \
     ENTRY(CHAN_REC, REAL, 3 * (2 * NS + 3 * NT + 4 * NH), DEM_EFFECT_CHANNEL, -1, NONE)                                 \
     ENTRY(RIDER_INT, INT, 2 * NR, 0, -1, SETUP(rider_int))                                                              \
-    ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off))
+    ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off))                                                             \
+    ENTRY(VTRI_START, INT, N + 1, DEM_EFFECT_PATCHES, -1, SETUP(vtri_start))                                           \
+    ENTRY(VTRI_LIST, INT, 3 * NT, DEM_EFFECT_PATCHES, -1, SETUP(vtri_list))                                            \
+    ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE)                                                                \
+    ENTRY(PLIST, INT, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE)                                                          \
+    ENTRY(PHIST, REAL, 3 * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE)                                                     \
+    ENTRY(PTOUCH, BYTE, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE)                                                        \
+    ENTRY(PREC, REAL, PK_STRIDE * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE)                                              \
+    ENTRY(OLD_PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE)                                                            \
+    ENTRY(OLD_PLIST, INT, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE)                                                     \
+    ENTRY(OLD_PHIST, REAL, 3 * N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE)                                                \
+    ENTRY(OLD_PTOUCH, BYTE, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE)                                                   \
+    ENTRY(VCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE)                                                                \
+    ENTRY(VLIST, INT, N * MAXV, DEM_EFFECT_PATCHES, -1, NONE)
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
  * (swapped at each rebuild); the field names the current set's */
@@ -83,11 +98,11 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 /* ENTRY(ID) - scalar kernel arguments */
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
     ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(NSPRINGS) \
-    ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS)                                                                  \
+    ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                            \
     ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \
-    ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE)
+    ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE) ENTRY(REACH) ENTRY(RMAX)
 
 #define DEM_ENUM_BUF(id, elem, count, gate, field, init) BUF_##id,
 #define DEM_ENUM_ROW(id, elem, count, gate, field) ROW_##id,

@@ -32,7 +32,8 @@
     K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
     K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
-    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)
+    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
+    K(patch_build) K(patch_forces) K(patch_gather)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_index(F, A)                                                                                     \
@@ -64,7 +65,8 @@
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY)         \
     A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)                \
     A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
-    A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, flags, FLAGS)
+    A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, flags, FLAGS)                        \
+    A(BIN, int, vtri_start, VTRI_START)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
@@ -173,6 +175,31 @@
     F(I, int, nriders, NRIDERS) A(BIN, int, rider_int, RIDER_INT) A(BIN, real, rider_off, RIDER_OFF)                 \
     A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, x, X) A(BOUT, real, v, V)
 #define DEM_ITEMS_rider_place nriders
+/* ---- patch_contacts.h ---- */
+#define DEM_ARGS_patch_build(F, A)                                                                                   \
+    F(I, int, n, N) A(I, int, maxp, MAXP) A(I, int, old_maxp, MAXPO) A(I, int, maxv, MAXV) A(R, real, skin, SKIN)    \
+    A(R, real, reach, REACH) A(R, real, rmax, RMAX) A(R, real, inv_cell, INV_CELL) A(I, int, ncx, NCX)              \
+    A(I, int, ncy, NCY) A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)                          \
+    A(BIN, int, cell_of, CELL_OF) A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES)    \
+    A(BIN, int, tri, TRI) A(BIN, int, vtri_start, VTRI_START) A(BIN, int, vtri_list, VTRI_LIST)                      \
+    A(BIN, int, old_pcount, OLD_PCOUNT) A(BIN, int, old_plist, OLD_PLIST) A(BIN, real, old_phist, OLD_PHIST)         \
+    A(BIN, dem_byte, old_ptouch, OLD_PTOUCH) A(BOUT, int, pcount, PCOUNT) A(BOUT, int, plist, PLIST)                 \
+    A(BOUT, real, phist, PHIST) A(BOUT, dem_byte, ptouch, PTOUCH) A(BOUT, int, vcount, VCOUNT)                       \
+    A(BOUT, int, vlist, VLIST) A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_patch_build n
+#define DEM_ARGS_patch_forces(F, A)                                                                                  \
+    F(I, int, n, N) A(I, int, maxp, MAXP) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)               \
+    A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)                \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BIN, int, tri, TRI) A(BIN, int, pcount, PCOUNT)           \
+    A(BIN, int, plist, PLIST) A(BOUT, real, phist, PHIST) A(BOUT, dem_byte, ptouch, PTOUCH)                          \
+    A(BOUT, real, prec, PREC) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE)
+#define DEM_ITEMS_patch_forces n
+#define DEM_ARGS_patch_gather(F, A)                                                                                  \
+    F(I, int, n, N) A(I, int, maxp, MAXP) A(I, int, maxv, MAXV) A(BIN, int, tri, TRI)                                \
+    A(BIN, int, vtri_start, VTRI_START) A(BIN, int, vtri_list, VTRI_LIST) A(BIN, int, pcount, PCOUNT)                \
+    A(BIN, int, plist, PLIST) A(BIN, dem_byte, ptouch, PTOUCH) A(BIN, real, prec, PREC) A(BIN, int, vcount, VCOUNT)  \
+    A(BIN, int, vlist, VLIST) A(BOUT, real, force, FORCE)
+#define DEM_ITEMS_patch_gather n
 
 /* ---- what the lists become ---- */
 /* a parameter declaration of each kind */

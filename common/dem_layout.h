@@ -63,6 +63,14 @@ enum {
     PR_STRIDE = 8            /* padded to 8 reals */
 };
 
+/* A sphere's patch contact, left by patch_forces for the triangle's vertices (patch_contacts.h): one record per
+ * sphere row slot. */
+enum {
+    PK_FX = 0, PK_FY, PK_FZ, /* force on the sphere [N] */
+    PK_W0, PK_W1, PK_W2,     /* barycentric weights of the contact point on the triangle's vertices 0, 1, 2 */
+    PK_STRIDE = 6
+};
+
 /* Integer status flags written by kernels (integer atomics only), read by the host. */
 enum {
     FLAG_REBUILD = 0,       /* set to 1 when some particle moved more than skin/2 since the last build */
@@ -70,7 +78,10 @@ enum {
     FLAG_NBR_NEEDED = 2,    /* largest neighbour count found; > capacity means the build overflowed */
     FLAG_ASYMMETRIC = 3,    /* 1 when some row lacks its partner's mirror slot (a bug: rows are symmetric) */
     FLAG_MC_PENDING = 4,    /* MC-strain iteration: 1 when some contact force changed by more than the tolerance */
-    FLAG_COUNT = 5
+    FLAG_PATCH_NEEDED = 5,  /* largest sphere patch row found (patch_contacts.h); > capacity: overflowed */
+    FLAG_VROW_NEEDED = 6,   /* largest vertex row found; > capacity: overflowed */
+    FLAG_PATCH_REACH = 7,   /* 1 when a patch edge is not shorter than the search reach */
+    FLAG_COUNT = 8
 };
 #define DEM_NO_PARTICLE 2147483647
 /* Per-particle symmetric stress tensor (DEM_FIELD_STRESS): 6 reals per particle in this order [Pa]. */

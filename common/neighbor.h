@@ -7,6 +7,7 @@
  * A new row takes the tangential history, touching flag and MC-strain force of the same partner from the old row
  * (binary search), or zero, and records for each slot the slot of the same pair in the partner's row (mirror; see
  * contact_forces.h).
+ * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches).
  */
 #ifndef DEM_NEIGHBOR_H
 #define DEM_NEIGHBOR_H
@@ -24,13 +25,18 @@ DEM_ITEM(nbr_build)
     int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
     int cnt = 0;
     DEM_GLOBAL int *row = nbr_list + i * maxn;
+    /* a membrane's patch vertex touches no particle as a sphere (patch_contacts.h): its row stays empty, and it is
+     * in no other row */
+    int patch_vertex = (fx & DEM_EFFECT_PATCHES) && vtri_start[i + 1] > vtri_start[i];
     for (int z = cz > 0 ? cz - 1 : 0; z <= (cz + 1 < ncz ? cz + 1 : cz); z++)
         for (int y = cy > 0 ? cy - 1 : 0; y <= (cy + 1 < ncy ? cy + 1 : cy); y++)
             for (int xx = cx > 0 ? cx - 1 : 0; xx <= (cx + 1 < ncx ? cx + 1 : cx); xx++) {
                 int cc = (z * ncy + y) * ncx + xx;
                 for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
                     int j = cell_particles[s];
-                    if (j == i)
+                    if (j == i || patch_vertex)
+                        continue;
+                    if ((fx & DEM_EFFECT_PATCHES) && vtri_start[j + 1] > vtri_start[j])
                         continue;
                     vec3 d = v3_sub(xi, v3_load(x, j));
                     real cut = ri + radius[j] + skin;

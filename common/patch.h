@@ -1,19 +1,26 @@
 /* patch.h - the geometry of a sphere touching a membrane's triangular patches (seed 001 section 2.5, Eq. 17 and
  * Table 1): where on a triangle a point is closest, classified face, edge or vertex, with the barycentric weights
  * that carry the contact's velocity from and its force to the three vertices (Fig. 3); and which of a sphere's
- * patch contacts are kept. The building blocks of the patch contacts (not yet a force pass: README, "Not yet").
+ * patch contacts are kept. The force pass that uses them is common/patch_contacts.h.
  *
  * Closest point: the Voronoi regions of the triangle's features, tested in order (Ericson, Real-Time Collision
  * Detection, section 5.1.5), with only + - * /. Edge k joins vertices k and k+1 (mod 3). The classification is
  * exact by construction - a vertex contact has the weights (1, 0, 0) exactly, an edge contact a zero weight for the
  * vertex off the edge - where Eq. 17 would test a cross product for zero in floating point.
  *
- * Selection (Table 1, read as: of two patches with a common edge, the contact with the higher-dimensional feature
- * stays - face over edge over vertex -, two faces both stay, and where the table says "rand" for two edges or two
- * vertices the patch of lower index stays; of vertex contacts at one mesh vertex, "one selected randomly" in the
- * text, likewise the lower patch index). Deterministic and independent of the order the contacts are listed in, so
- * the same on every device and after a restart; a random pick would need a counter-based hash for that and would
- * buy nothing physical (the kept contacts are at the same point).
+ * Selection (Table 1). The table orders the contacts of a sphere with two patches that share an edge: face over edge
+ * over vertex, two faces both stay, and "rand" for two edges or two vertices; the text adds that of vertex contacts at
+ * one mesh vertex one is selected. Read literally, only patches with a common edge compete, and a sphere resting on
+ * a flat sheet near a mesh vertex then keeps a face contact and an edge contact of a patch that shares only that
+ * vertex: twice the force (tests/test_patch_contacts.c found it). So the rule here extends the table to every pair
+ * of a sphere's patches with a vertex in common: a face contact always stays and removes every edge or vertex
+ * contact; of two edge or vertex contacts the nearer stays, and at the same distance (the same point: Table 1's
+ * cases) the edge over the vertex and, for "rand", the lower patch id. Patches with no vertex in common do not
+ * compete (two regions of the membrane). Each removal is by a contact that ranks strictly higher in one order
+ * (faces, then distance, kind, id), so the best contact of a sphere always stays. Deterministic and independent of
+ * the order the contacts are listed in, so the same on every device and after a restart; a random pick would need
+ * a counter-based hash for that and would buy nothing physical (the candidates are at the same point). An edge
+ * point computed from two triangles may differ in its last bit; then the nearer by that bit stays.
  */
 #ifndef DEM_PATCH_H
 #define DEM_PATCH_H
@@ -84,24 +91,31 @@ DEM_INLINE int patch_common(const int *t, const int *u)
     return n;
 }
 
-/* Whether contact i of a sphere stays, among its n patch contacts: patch ids id[k], vertex ids tri[3k..3k+2],
- * kinds kind[k] and feature indices index[k] (patch_closest). Table 1 for patches with a common edge; vertex
- * contacts at one mesh vertex keep the lowest patch id. */
-DEM_INLINE int patch_keep(int i, int n, const int *id, const int *tri, const int *kind, const int *index)
+/* Whether contact j removes contact i of the same sphere (Table 1, extended; see the head of this file): ti, tj the
+ * triangles' vertex ids, k their kinds (patch_closest), d2 the squared distances from the sphere's centre to their
+ * closest points. Only a triangle with a vertex in common competes; a face contact is never removed and removes
+ * every edge or vertex contact; of two edge or vertex contacts the nearer stays, at the same distance the edge,
+ * then the lower patch id. */
+DEM_INLINE int patch_beats(int idj, const int *tj, int kj, real d2j, int idi, const int *ti, int ki, real d2i)
 {
-    for (int j = 0; j < n; j++) {
-        if (j == i)
-            continue;
-        if (patch_common(tri + 3 * i, tri + 3 * j) == 2) { /* a common edge: Table 1 */
-            if (kind[i] < kind[j])
-                return 0;
-            if (kind[i] == kind[j] && kind[i] != PATCH_FACE && id[j] < id[i])
-                return 0;
-        }
-        if (kind[i] == PATCH_VERTEX && kind[j] == PATCH_VERTEX && tri[3 * i + index[i]] == tri[3 * j + index[j]] &&
-            id[j] < id[i])
+    if (ki == PATCH_FACE || patch_common(ti, tj) == 0)
+        return 0;
+    if (kj == PATCH_FACE)
+        return 1;
+    if (d2j != d2i)
+        return d2j < d2i;
+    if (kj != ki)
+        return kj > ki;
+    return idj < idi;
+}
+
+/* Whether contact i of a sphere stays, among its n patch contacts: patch ids id[k], vertex ids tri[3k..3k+2],
+ * kinds kind[k] (patch_closest) and squared distances d2[k]. */
+DEM_INLINE int patch_keep(int i, int n, const int *id, const int *tri, const int *kind, const real *d2)
+{
+    for (int j = 0; j < n; j++)
+        if (j != i && patch_beats(id[j], tri + 3 * j, kind[j], d2[j], id[i], tri + 3 * i, kind[i], d2[i]))
             return 0;
-    }
     return 1;
 }
 #endif /* DEM_PATCH_H */

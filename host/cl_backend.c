@@ -28,7 +28,8 @@ static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighb
                                            "kernels/wall_forces.cl", "kernels/integrate.cl",
                                            "kernels/particle_stress.cl", "kernels/mc_strain.cl",
                                            "kernels/springs.cl", "kernels/pressure.cl",
-                                           "kernels/bending.cl", "kernels/riders.cl"};
+                                           "kernels/bending.cl", "kernels/riders.cl",
+                                           "kernels/patch_contacts.cl"};
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
                                            "common/hertz_mindlin.h", "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
@@ -36,7 +37,8 @@ static const char *const header_files[] = {"common/dem_real.h", "common/dem_layo
                                            "common/contact_geometry.h", "common/particle_stress.h",
                                            "common/mc_strain.h", "common/sorted_row.h",
                                            "common/dem_kernels.h", "common/contacts.h", "common/springs.h",
-                                           "common/pressure.h", "common/bending.h", "common/riders.h"};
+                                           "common/pressure.h", "common/bending.h", "common/riders.h",
+                                           "common/patch.h", "common/patch_contacts.h"};
 
 static cl_mem *slot(dem_backend *b, dem_bufref r)
 {

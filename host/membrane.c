@@ -24,6 +24,8 @@ static int check_material(dem_sim *s, const dem_membrane *mm)
         return sim_fail(s, DEM_ERR_ARG, "membrane: young, thickness, density and vertex_radius must be > 0 and finite "
                         "(got %g Pa, %g m, %g kg/m^3, %g m)", mm->young, mm->thickness, mm->density,
                         mm->vertex_radius);
+    if (mm->model != DEM_MEMBRANE_PARTICLE && mm->model != DEM_MEMBRANE_PATCH)
+        return sim_fail(s, DEM_ERR_ARG, "membrane: model %d (DEM_MEMBRANE_PARTICLE 0 or DEM_MEMBRANE_PATCH 1)", mm->model);
     if (!NONNEG(mm->damping) || !NONNEG(mm->kel) || !NONNEG(mm->kdiss))
         return sim_fail(s, DEM_ERR_ARG, "membrane: damping, kel and kdiss must be >= 0 and finite (got %g, %g N m, "
                         "%g N s)", mm->damping, mm->kel, mm->kdiss);
@@ -76,7 +78,7 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
                         "half the shortest edge, %g m)", mm->vertex_radius, 0.5 * shortest), -1;
     }
     /* everything checked; what follows fails only for memory, and then is undone */
-    int n0 = s->n, ns0 = s->nsprings, nt0 = s->ntri, nh0 = s->nhinges, nm0 = s->nmat;
+    int n0 = s->n, ns0 = s->nsprings, nt0 = s->ntri, nh0 = s->nhinges, nm0 = s->nmat, np0 = s->npatch;
     unsigned eff0 = s->effects;
     double k = sqrt(3.0) / 2 * mm->young * mm->thickness;
     int mat = dem_add_material(s, &(dem_material){mm->density, mm->young, mm->poisson, mm->restitution,
@@ -94,12 +96,15 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
         const int *g = t.hinge + 4 * h;
         ok = dem_add_hinge(s, n0 + g[0], n0 + g[1], n0 + g[2], n0 + g[3], mm->kel, mm->kdiss, NAN) >= 0;
     }
+    if (ok && mm->model == DEM_MEMBRANE_PATCH)
+        ok = dem_add_patches(s, nt0, m->nt) == 0;
     if (ok && info)
         *info = (dem_membrane_info){n0, m->nv, ns0, t.ne, nt0, m->nt, nh0, hinges ? t.nhinges : 0, area,
                                     mm->density * mm->thickness * area};
     free(vmass), dem_mesh_topo_free(&t);
     if (!ok) { /* undo: the message of the failed call stays */
         s->n = n0, s->nsprings = ns0, s->ntri = nt0, s->nhinges = nh0, s->nmat = nm0, s->effects = eff0;
+        s->npatch = np0;
         return -1;
     }
     return 0;

@@ -40,6 +40,7 @@ void dem_destroy(dem_sim *s)
     free(s->spring_ij);
     free(s->spring_kr);
     free(s->tri);
+    free(s->patch);
     free(s->hinge);
     free(s->att);
     free(s->hinge_k);
@@ -215,6 +216,24 @@ int dem_add_triangle(dem_sim *s, int a, int b, int c)
 }
 
 int dem_triangle_count(const dem_sim *s) { return s->ntri; }
+
+int dem_add_patches(dem_sim *s, int first, int count)
+{
+    if (not_started(s))
+        return -1;
+    if (first < 0 || count < 1 || first > s->ntri - count)
+        return sim_fail(s, DEM_ERR_ARG, "patches: triangles %d..%d (of 0..%d)", first, first + count - 1, s->ntri - 1);
+    for (int k = 0; k < s->npatch; k++)
+        if (s->patch[k] >= first && s->patch[k] < first + count)
+            return sim_fail(s, DEM_ERR_ARG, "patches: triangle %d is a patch already", s->patch[k]);
+    for (int t = first; t < first + count; t++) {
+        if (sim_grow(s, s->npatch, &s->patch_cap, &s->patch, 1, NULL, 0, "patches"))
+            return -1;
+        s->patch[s->npatch++] = t;
+    }
+    s->effects |= DEM_EFFECT_PATCHES;
+    return 0;
+}
 
 int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double kdiss, double theta0)
 {
@@ -483,7 +502,7 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
 /* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
-                                                           "springs", "pressure", "bending"};
+                                                           "springs", "pressure", "bending", "patches"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 
@@ -554,9 +573,32 @@ int sim_rebuild(dem_sim *s)
     return e;
 }
 
+/* The patch rows (common/patch_contacts.h), built again with wider rows or a wider reach until nothing overflowed */
+static int patch_rows(dem_sim *s)
+{
+    for (int first = 1;; first = 0) {
+        int flags[FLAG_COUNT];
+        if (dem_stage_patch_build(s->ops, s->be, first, s->maxp, s->maxv, s->reach))
+            return be_fail(s);
+        if (read_flags(s, flags))
+            return DEM_ERR_DEVICE;
+        if (flags[FLAG_PATCH_NEEDED] <= s->maxp && flags[FLAG_VROW_NEEDED] <= s->maxv && !flags[FLAG_PATCH_REACH])
+            return 0;
+        while (s->maxp < flags[FLAG_PATCH_NEEDED])
+            s->maxp *= 2;
+        while (s->maxv < flags[FLAG_VROW_NEEDED])
+            s->maxv *= 2;
+        if (flags[FLAG_PATCH_REACH])
+            s->reach *= 1.5;
+        flags[FLAG_PATCH_NEEDED] = flags[FLAG_VROW_NEEDED] = flags[FLAG_PATCH_REACH] = 0;
+        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags))
+            return be_fail(s);
+    }
+}
+
 static int sim_rebuild_traced(dem_sim *s)
 {
-    int flags[FLAG_COUNT];
+    int flags[FLAG_COUNT], e;
     s->rebuild_at = DEM_CORE(s->be)->ntrace;
     if (dem_stage_bin(s->ops, s->be))
         return be_fail(s);
@@ -584,6 +626,8 @@ static int sim_rebuild_traced(dem_sim *s)
     if (flags[FLAG_ASYMMETRIC])
         return sim_fail(s, DEM_ERR_STATE, "step %ld: neighbour rows are not symmetric (a library bug; please report)",
                         s->step);
+    if ((s->effects & DEM_EFFECT_PATCHES) && s->npatch && (e = patch_rows(s)))
+        return e;
     s->rebuilds++;
     return 0;
 }
@@ -642,6 +686,11 @@ static int stage_gather(dem_sim *s)
 {
     return (s->nsprings || s->ntri || s->nhinges) && dem_stage_channel_gather(s->ops, s->be) ? be_fail(s) : 0;
 }
+static int stage_patches(dem_sim *s)
+{
+    return s->npatch && (dem_stage_patch_forces(s->ops, s->be) || dem_stage_patch_gather(s->ops, s->be)) ? be_fail(s)
+                                                                                                            : 0;
+}
 static int stage_wall_sums(dem_sim *s)
 {
     return s->nwalls && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
@@ -657,6 +706,7 @@ static const struct {
     {DEM_EFFECT_PRESSURE, stage_pressure},      /* triangle loads into it (pressure.h) */
     {DEM_EFFECT_BENDING, stage_bending},        /* hinge forces into it (bending.h) */
     {DEM_EFFECT_CHANNEL, stage_gather},         /* each particle's records added in order */
+    {DEM_EFFECT_PATCHES, stage_patches},        /* spheres on patches, then the vertices' sums (patch_contacts.h) */
     {DEM_EFFECT_WALLS, stage_wall_sums},        /* the force each wall received */
 };
 

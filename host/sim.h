@@ -24,6 +24,10 @@ struct dem_sim {
     int nhinges, hinge_cap;
     int *hinge;          /* [4 * nhinges] */
     double *hinge_k;     /* [3 * nhinges]: kel, kdiss, theta0 (NAN: from the initial positions) */
+    int npatch, patch_cap;
+    int *patch;          /* [npatch]: triangles that spheres touch as surfaces (dem_add_patches) */
+    int maxp, maxv;      /* capacities of the patch rows (patch_contacts.h), grown on overflow */
+    double reach;        /* patch search reach [m], widened when an edge reaches it */
     int natt, att_cap;
     int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/attach.c) */
     int nmat;
@@ -42,8 +46,9 @@ struct dem_sim {
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 18
-    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders) */
+#define SIM_PACKED 20
+    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders;
+                                 18, 19: patch triangles per vertex) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */

@@ -440,6 +440,47 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     return skin;
 }
 
+/* The patch triangles of each particle (common/patch_contacts.h): vtri_start / vtri_list in ascending triangle id; the
+ * search reach (1.5 x the longest patch edge: the device widens it when an edge reaches it) and the largest radius of
+ * the particles that are not patch vertices. */
+static int pack_patches(dem_sim *s, dem_setup *u)
+{
+    int n = s->n, nt = s->ntri;
+    int *start = calloc((size_t)n + 1, sizeof(int)), *list = calloc(3 * (size_t)(nt ? nt : 1), sizeof(int));
+    int *fill = calloc((size_t)n + 1, sizeof(int));
+    unsigned char *mark = calloc((size_t)(nt ? nt : 1), 1);
+    if (!start || !list || !mark || !fill)
+        return free(start), free(list), free(mark), free(fill), sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int k = 0; k < s->npatch; k++)
+        mark[s->patch[k]] = 1;
+    double longest = 0;
+    for (int t = 0; t < nt; t++)
+        for (int c = 0; mark[t] && c < 3; c++) {
+            start[s->tri[3 * t + c] + 1]++;
+            const double *a = s->x + 3 * s->tri[3 * t + c], *b = s->x + 3 * s->tri[3 * t + (c + 1) % 3];
+            longest = fmax(longest, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                         (a[2] - b[2]) * (a[2] - b[2])));
+        }
+    for (int p = 0; p < n; p++)
+        start[p + 1] += start[p];
+    for (int t = 0; t < nt; t++)
+        for (int c = 0; mark[t] && c < 3; c++) {
+            int p = s->tri[3 * t + c];
+            list[start[p] + fill[p]++] = t;
+        }
+    u->rmax = 0;
+    for (int p = 0; p < n; p++)
+        if (start[p + 1] == start[p] && s->radius[p] > u->rmax)
+            u->rmax = s->radius[p];
+    free(fill), free(mark);
+    s->packed[18] = start, s->packed[19] = list;
+    u->vtri_start = start, u->vtri_list = list;
+    s->reach = u->reach = longest > 0 ? 1.5 * longest : s->rmax;
+    s->maxp = u->maxp = 16;
+    s->maxv = u->maxv = 32;
+    return 0;
+}
+
 int sim_pack(dem_sim *s)
 {
     dem_setup *u = &s->setup;
@@ -493,7 +534,7 @@ int sim_pack(dem_sim *s)
     if (!s->wall_real)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     pack_walls(s, wint);
-    if ((e = pack_channel(s, u, rs)) || (e = pack_riders(s, u, rs)))
+    if ((e = pack_channel(s, u, rs)) || (e = pack_riders(s, u, rs)) || (e = pack_patches(s, u)))
         return e;
     u->x = s->packed[0];
     u->v = s->packed[1];

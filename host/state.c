@@ -21,6 +21,7 @@ void dem_state_free(dem_state *st)
     free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force);
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->wall_hist), free(st->wall_mask);
     free(st->pair_mc_fn), free(st->wall_mc_fn);
+    free(st->patch_i), free(st->patch_t), free(st->patch_hist);
     memset(st, 0, sizeof *st);
 }
 
@@ -35,6 +36,86 @@ static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
     if (!*e)
         *e = dem_get_raw(s, f, p, *bytes);
     return p;
+}
+
+/* A whole registry buffer (the patch rows have no field: their capacity is the driver's), read or written */
+static void *buf_get(dem_sim *s, int id, int *e)
+{
+    size_t bytes = DEM_CORE(s->be)->bytes[id];
+    void *p = malloc(bytes ? bytes : 1);
+    if (!p) {
+        *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        return NULL;
+    }
+    if (!*e && bytes && s->ops->read(s->be, (dem_bufref){TABLE_ONE, id}, 0, p, bytes, 1))
+        *e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
+    return p;
+}
+
+/* The touching sphere-patch contacts of the current rows, in row order (common/patch_contacts.h) */
+static int patch_contacts_get(dem_sim *s, dem_state *st)
+{
+    int e = 0, n = s->n, maxp = DEM_CORE(s->be)->maxp, rs = s->setup.real_size;
+    if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->npatch)
+        return 0;
+    int *cnt = buf_get(s, BUF_PCOUNT, &e), *list = buf_get(s, BUF_PLIST, &e);
+    unsigned char *touch = buf_get(s, BUF_PTOUCH, &e), *hist = buf_get(s, BUF_PHIST, &e);
+    long np = 0;
+    for (int i = 0; !e && i < n; i++)
+        for (int k = 0; k < cnt[i]; k++)
+            np += touch[i * maxp + k];
+    if (!e) {
+        st->patch_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
+        st->patch_t = malloc(sizeof(int) * (size_t)(np ? np : 1));
+        st->patch_hist = calloc((size_t)(np ? np : 1), 3 * (size_t)rs);
+        if (!st->patch_i || !st->patch_t || !st->patch_hist)
+            e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    np = 0;
+    for (int i = 0; !e && i < n; i++)
+        for (int k = 0; k < cnt[i]; k++) {
+            int slot = i * maxp + k;
+            if (!touch[slot])
+                continue;
+            st->patch_i[np] = i, st->patch_t[np] = list[slot];
+            memcpy((char *)st->patch_hist + (size_t)np * 3 * rs, hist + (size_t)slot * 3 * rs, 3 * (size_t)rs);
+            np++;
+        }
+    st->npatch = np;
+    free(cnt), free(list), free(touch), free(hist);
+    return e;
+}
+
+/* The saved patch contacts into the rows just rebuilt from the saved positions; DEM_ERR_ARG when one is not there */
+static int patch_contacts_set(dem_sim *s, const dem_state *st)
+{
+    int e = 0, n = s->n, rs = s->setup.real_size;
+    dem_core *c = DEM_CORE(s->be);
+    if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->npatch)
+        return st->npatch ? sim_fail(s, DEM_ERR_ARG, "the saved state has %ld patch contacts; this run has no patches",
+                                     st->npatch) : 0;
+    int maxp = c->maxp;
+    int *cnt = buf_get(s, BUF_PCOUNT, &e), *list = buf_get(s, BUF_PLIST, &e);
+    unsigned char *touch = calloc(c->bytes[BUF_PTOUCH] + 1, 1), *hist = calloc(c->bytes[BUF_PHIST] + 1, 1);
+    if (!e && (!touch || !hist))
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (long p = 0; !e && p < st->npatch; p++) {
+        int i = st->patch_i[p], t = st->patch_t[p];
+        int k = i >= 0 && i < n ? row_find(list + (size_t)i * maxp, cnt[i], t) : -1;
+        if (k < 0) {
+            e = sim_fail(s, DEM_ERR_ARG, "saved patch contact of particle %d and triangle %d is not a patch candidate "
+                         "of the saved positions", i, t);
+            break;
+        }
+        touch[(size_t)i * maxp + k] = 1;
+        memcpy(hist + ((size_t)i * maxp + k) * 3 * rs, (const char *)st->patch_hist + (size_t)p * 3 * rs,
+               3 * (size_t)rs);
+    }
+    if (!e && (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_PTOUCH}, 0, touch, c->bytes[BUF_PTOUCH], 1) ||
+               s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_PHIST}, 0, hist, c->bytes[BUF_PHIST], 1)))
+        e = sim_fail(s, DEM_ERR_DEVICE, "%s", c->err);
+    free(cnt), free(list), free(touch), free(hist);
+    return e;
 }
 
 int dem_state_get(dem_sim *s, dem_state *st)
@@ -96,6 +177,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
     free(cnt), free(list), free(touch), free(hist), free(mcf);
+    if (!e)
+        e = patch_contacts_get(s, st);
     if (e)
         dem_state_free(st);
     return e;
@@ -181,6 +264,8 @@ int dem_state_set(dem_sim *s, const dem_state *st)
             memcpy(mcf + (size_t)m * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
         }
     }
+    if (!e)
+        e = patch_contacts_set(s, st);
     if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, (size_t)n * maxn) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||

@@ -155,6 +155,10 @@ int dem_spring_count(const dem_sim *s);
  * F / 3, added in triangle order after its spring forces (the contribution channel). Returns the triangle's index. */
 int dem_add_triangle(dem_sim *s, int a, int b, int c);
 int dem_triangle_count(const dem_sim *s);
+/* Triangles first .. first+count-1 become patches: surfaces that the other particles touch (seed 001 section 2.5,
+ * common/patch_contacts.h), with the Hertz-Mindlin law of the particle's and the triangle's first vertex's materials;
+ * their vertices then touch no particle as spheres (walls still, with their radius). Turns on DEM_EFFECT_PATCHES. */
+int dem_add_patches(dem_sim *s, int first, int count);
 /* The pressure [Pa] on every triangle; turns on DEM_EFFECT_PRESSURE. */
 int dem_set_pressure(dem_sim *s, double sigma);
 /* A pressure schedule (before dem_start): stage k takes the pressure linearly from where the previous stage ended
@@ -215,7 +219,10 @@ typedef struct {
     double damping;          /* damping ratio gamma of the edge springs */
     double kel, kdiss;       /* hinges [N m], [N s]; 0 and 0: no hinges */
     double vertex_radius;    /* [m] */
+    int model;               /* DEM_MEMBRANE_PARTICLE (0): particles touch the vertices as spheres; DEM_MEMBRANE_PATCH:
+                                they touch the triangles (dem_add_patches) */
 } dem_membrane;
+enum { DEM_MEMBRANE_PARTICLE = 0, DEM_MEMBRANE_PATCH = 1 };
 typedef struct {
     int first_particle, nvertices, first_spring, nsprings, first_triangle, ntriangles, first_hinge, nhinges;
     double area, mass;       /* at rest [m^2], [kg] */
@@ -377,6 +384,9 @@ typedef struct {
     void *wall_mc_fn;                 /* real[n nwalls] with MC-strain, else empty */
     size_t wall_mc_fn_bytes;
     dem_mc_stats mc;                  /* iteration counts so far */
+    long npatch;                      /* touching sphere-patch contacts (dem_add_patches), by sphere then triangle */
+    int *patch_i, *patch_t;           /* the sphere, the triangle */
+    void *patch_hist;                 /* real[3 npatch]: their tangential springs (zero without friction) */
 } dem_state;
 int dem_state_get(dem_sim *s, dem_state *st); /* allocates; free with dem_state_free */
 /* After dem_start of the same set-up: continue from st (replaces positions, velocities, contacts, step). */

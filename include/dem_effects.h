@@ -28,10 +28,13 @@ enum {
                                    stress): common/pressure.h */
     DEM_EFFECT_BENDING = 16384, /* hinges between pairs of triangles (seed 001 Eq. 8-16, the membrane's bending):
                                    common/bending.h */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384
+    DEM_EFFECT_PATCHES = 32768, /* spheres touch triangles of particles as surfaces (seed 001 Eq. 17 and Table 1, the
+                                   membrane's patch contacts): common/patch_contacts.h; the triangles' vertices then
+                                   touch no particle as spheres */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..14; 7..11 are the convention bits, not effects. */
-#define DEM_EFFECT_COUNT 15
+/* Bit positions an effect name can have (dem_effect_name): 0..15; 7..11 are the convention bits, not effects. */
+#define DEM_EFFECT_COUNT 16
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

@@ -1,5 +1,5 @@
 /* patch.c - reference twin of the patch geometry (common/patch.h) as tests/test_patch.c probes it, until the patch
- * contact pass (seed 001 section 2.5) runs it: the closest feature of point i to triangle i, and which of a list of
+ * contact pass (common/patch_contacts.h) runs it in full: the closest feature of point i to triangle i, and which of a list of
  * contacts stay. The test runs the same items in an OpenCL program and compares the bits. */
 #include "ref_kernels.h"
 #include "patch.h"
@@ -15,7 +15,7 @@ void REF(dem_patch_probe)(int n, const real *p, const real *tri_x, int *kind, in
     }
 }
 
-int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *kind, const int *index)
+int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *kind, const real *d2)
 {
-    return patch_keep(i, n, id, tri, kind, index);
+    return patch_keep(i, n, id, tri, kind, d2);
 }

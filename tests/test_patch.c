@@ -19,7 +19,7 @@
 
 void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind, int *index, double *w, double *pt);
 void dem_patch_probe_f32(int n, const float *p, const float *tri_x, int *kind, int *index, float *w, float *pt);
-int dem_patch_keep_f64(int i, int n, const int *id, const int *tri, const int *kind, const int *index);
+int dem_patch_keep_f64(int i, int n, const int *id, const int *tri, const int *kind, const double *d2);
 
 #define NPROBE 4000
 
@@ -197,15 +197,15 @@ static void test_opencl_bits(void **st)
 }
 
 /* Two patches with the common edge 1-2: A = (0, 1, 2) id 7, B = (2, 1, 3) id 4; a third, C = (3, 4, 5) id 9,
- * touching B only at vertex 3. */
+ * touching B only at vertex 3 and A nowhere. */
 
-static void decide(int n, const int *id, const int (*tri)[3], const int *kind, const int *index, int *keep)
+static void decide(int n, const int *id, const int (*tri)[3], const int *kind, const double *d2, int *keep)
 {
     int t[3 * 8];
     for (int k = 0; k < n; k++)
         memcpy(t + 3 * k, tri[k], sizeof(int[3]));
     for (int k = 0; k < n; k++)
-        keep[k] = dem_patch_keep_f64(k, n, id, t, kind, index);
+        keep[k] = dem_patch_keep_f64(k, n, id, t, kind, d2);
 }
 
 static void test_table_1(void **st)
@@ -217,27 +217,39 @@ static void test_table_1(void **st)
     static const int kinds[3] = {PATCH_FACE, PATCH_EDGE, PATCH_VERTEX};
     for (int row = 0; row < 3; row++)
         for (int col = 0; col < 3; col++) {
-            int id[2] = {7, 4}, kind[2] = {kinds[col], kinds[row]}, index[2] = {1, 0}, keep[2];
+            int id[2] = {7, 4}, kind[2] = {kinds[col], kinds[row]}, keep[2];
+            double same[2] = {1e-6, 1e-6}; /* the table's cases: both at one point */
             const int (*tri)[3] = (const int (*)[3])(const int[2][3]){{0, 1, 2}, {2, 1, 3}};
-            decide(2, id, tri, kind, index, keep);
+            decide(2, id, tri, kind, same, keep);
             int got = keep[0] + 2 * keep[1];
             if (got != table[row][col])
                 fail_msg("Table 1, A %d / B %d: kept %d, the table says %d", kinds[col], kinds[row], got,
                          table[row][col]);
             /* listed the other way round: the same decisions */
-            int id2[2] = {4, 7}, kind2[2] = {kind[1], kind[0]}, index2[2] = {0, 1}, keep2[2];
-            decide(2, id2, (const int (*)[3])(const int[2][3]){{2, 1, 3}, {0, 1, 2}}, kind2, index2, keep2);
+            int id2[2] = {4, 7}, kind2[2] = {kind[1], kind[0]}, keep2[2];
+            decide(2, id2, (const int (*)[3])(const int[2][3]){{2, 1, 3}, {0, 1, 2}}, kind2, same, keep2);
             assert_int_equal(keep2[0], keep[1]);
             assert_int_equal(keep2[1], keep[0]);
         }
-    /* no common edge: B and C share vertex 3 only; edge and face contacts both stay */
-    int id[2] = {4, 9}, kind[2] = {PATCH_EDGE, PATCH_FACE}, index[2] = {2, 0}, keep[2];
-    decide(2, id, (const int (*)[3])(const int[2][3]){{2, 1, 3}, {3, 4, 5}}, kind, index, keep);
+    /* B and C share vertex 3 only (the extension, patch.h): C's face removes B's edge contact, even when farther */
+    int id[2] = {4, 9}, kind[2] = {PATCH_EDGE, PATCH_FACE}, keep[2];
+    double d2[2] = {1e-6, 2e-6};
+    decide(2, id, (const int (*)[3])(const int[2][3]){{2, 1, 3}, {3, 4, 5}}, kind, d2, keep);
+    assert_true(!keep[0] && keep[1]);
+    /* ... two edge contacts of B and C: the nearer stays, whatever the ids */
+    int kind_e[2] = {PATCH_EDGE, PATCH_EDGE};
+    double d2e[2] = {3e-6, 2e-6};
+    decide(2, id, (const int (*)[3])(const int[2][3]){{2, 1, 3}, {3, 4, 5}}, kind_e, d2e, keep);
+    assert_true(!keep[0] && keep[1]);
+    /* patches with no vertex in common (A and C) do not compete: both stay */
+    int kind_v[2] = {PATCH_VERTEX, PATCH_EDGE};
+    decide(2, id, (const int (*)[3])(const int[2][3]){{0, 1, 2}, {3, 4, 5}}, kind_v, d2e, keep);
     assert_true(keep[0] && keep[1]);
-    /* vertex contacts at the common vertex 3 of A-less B and C (index 2 of B, 0 of C), and of a third patch D =
-     * (6, 3, 7) id 2 at its index 1: only D (lowest id) stays */
-    int id3[3] = {4, 9, 2}, kind3[3] = {PATCH_VERTEX, PATCH_VERTEX, PATCH_VERTEX}, index3[3] = {2, 0, 1}, keep3[3];
-    decide(3, id3, (const int (*)[3])(const int[3][3]){{2, 1, 3}, {3, 4, 5}, {6, 3, 7}}, kind3, index3, keep3);
+    /* vertex contacts at the common vertex 3 of B and C, and of a third patch D = (6, 3, 7) id 2: one point, so only
+     * D (lowest id) stays */
+    int id3[3] = {4, 9, 2}, kind3[3] = {PATCH_VERTEX, PATCH_VERTEX, PATCH_VERTEX}, keep3[3];
+    double d3[3] = {1e-6, 1e-6, 1e-6};
+    decide(3, id3, (const int (*)[3])(const int[3][3]){{2, 1, 3}, {3, 4, 5}, {6, 3, 7}}, kind3, d3, keep3);
     assert_true(!keep3[0] && !keep3[1] && keep3[2]);
 }
 

@@ -1,0 +1,240 @@
+/* patch_contacts.h - spheres touching a membrane's triangular patches (seed 001 section 2.5, Eq. 17, Table 1, Fig. 3):
+ * the candidate rows, the contact forces and their sums, without atomics on reals.
+ *
+ * Who is what: a particle with patch triangles (vtri_start[p] < vtri_start[p+1]) is a patch vertex; every other
+ * particle is a sphere. With DEM_EFFECT_PATCHES a patch vertex touches no particle as a sphere (nbr_build leaves it
+ * out of every row); spheres touch its triangles instead. Vertices still touch walls with their own radius.
+ *
+ * Rows, rebuilt with the neighbour rows (the same skin and trigger), from the same cell grid:
+ *   - sphere i: the patch triangles t with dist(x_i, t) < r_i + skin, ascending t (plist[i*maxp ...]). Found
+ *     through the vertices in the grid: a point of t lies within the longest edge of t from each of t's vertices, so
+ *     with every patch edge shorter than `reach` each vertex of a listed triangle is within r_i + skin + reach of
+ *     x_i, and the search looks at the cells within that distance. Between rebuilds no particle moves more than skin/2,
+ *     so a triangle left out stays farther than r_i: it cannot touch (as for the neighbour rows).
+ *   - patch vertex v: the spheres s with |x_s - x_v| < r_s + skin + reach, ascending s (vlist[v*maxv ...]): a
+ *     superset of the spheres whose rows hold one of v's triangles (same argument), the ones whose forces v gathers.
+ *   A patch vertex also checks its triangles' edges against `reach` (FLAG_PATCH_REACH); the host then widens the
+ *   reach and builds again, as it grows a row that overflowed (FLAG_PATCH_NEEDED, FLAG_VROW_NEEDED).
+ *   A sphere's new row takes each triangle's tangential history and touching flag from the old row (binary search).
+ *
+ * Forces (patch_forces, one sphere per item): for each listed triangle the closest point p (patch.h) and, where
+ * |x_i - p| < r_i, a contact with normal n = (x_i - p)/|x_i - p| and overlap d = r_i - |x_i - p|, unless another
+ * touching triangle of the same sphere removes it (Table 1 as patch.h extends it, patch_beats; the sphere's touching
+ * triangles are all in its row). The law is the project's Hertz-Mindlin (hertz_mindlin.h) with the pair table entry of the sphere's and
+ * the triangle's first vertex's materials, r* = r_i (a flat patch), the patch's inverse mass the barycentric mean of
+ * its vertices' (w0/m_a + w1/m_b + w2/m_c: a pinned patch is a wall), the contact point's velocity on the patch
+ * w0 v_a + w1 v_b + w2 v_c (Fig. 3), and the sphere's contact point at the lever r_i - d, as for walls. The sphere
+ * adds its contacts in ascending triangle id after its particle and wall contacts; each contact leaves its force F
+ * on the sphere and the weights w in a record (PK_*).
+ * Sums (patch_gather, one patch vertex per item, after the contribution channel): vertex v adds -(w_c F) of each
+ * touching record of its triangles, by ascending sphere id, then ascending triangle id. Each vertex's share is a
+ * product of the record's bits, so the shares sum to -F up to the rounding of w0 + w1 + w2 = 1 (tests/test_patch.c
+ * measures it); the sphere's F and the shares are the same numbers on every device.
+ */
+#ifndef DEM_PATCH_CONTACTS_H
+#define DEM_PATCH_CONTACTS_H
+#include "dem_kernels.h"
+#include "vec3.h"
+#include "dem_layout.h"
+#include "dem_effects.h"
+#include "sorted_row.h"
+#include "patch.h"
+#include "hertz_mindlin.h"
+
+DEM_INLINE int patch_is_vertex(DEM_CONST_GLOBAL int *vtri_start, int p) { return vtri_start[p + 1] > vtri_start[p]; }
+
+DEM_INLINE patch_point patch_of(vec3 p, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t)
+{
+    return patch_closest(p, v3_load(x, tri[3 * t]), v3_load(x, tri[3 * t + 1]), v3_load(x, tri[3 * t + 2]));
+}
+
+/* Inserts key into the sorted row of count entries (capacity cap) unless it is there; returns the new count, which
+ * goes on counting past the capacity (the entries beyond it are not stored). */
+DEM_INLINE int patch_row_insert(DEM_GLOBAL int *row, int count, int cap, int key)
+{
+    int m = (count < cap ? count : cap) - 1;
+    for (int q = 0; q <= m; q++)
+        if (row[q] == key)
+            return count;
+    if (count >= cap && row[m] < key)
+        return count + 1;
+    if (count >= cap)
+        m--;
+    while (m >= 0 && row[m] > key) {
+        row[m + 1] = row[m];
+        m--;
+    }
+    row[m + 1] = key;
+    return count + 1;
+}
+
+DEM_ITEM(patch_build)
+{
+    vec3 xi = v3_load(x, i);
+    int c = cell_of[i];
+    int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
+    int vertex = patch_is_vertex(vtri_start, i);
+    real ri = radius[i], near = ri + skin;
+    real range = (vertex ? rmax : ri) + skin + reach; /* the cells to look at */
+    int m = (int)(range * inv_cell) + 1, cnt = 0;
+    if (vertex) { /* the triangles' edges against the reach */
+        for (int q = vtri_start[i]; q < vtri_start[i + 1]; q++) {
+            int t = vtri_list[q];
+            for (int e = 0; e < 3; e++) {
+                vec3 d = v3_sub(v3_load(x, tri[3 * t + e]), v3_load(x, tri[3 * t + (e + 1) % 3]));
+                if (!(v3_dot(d, d) < reach * reach))
+                    DEM_ATOMIC_MAX(&flags[FLAG_PATCH_REACH], 1);
+            }
+        }
+    }
+    DEM_GLOBAL int *row = vertex ? vlist + i * maxv : plist + i * maxp;
+    int cap = vertex ? maxv : maxp;
+    for (int z = cz - m > 0 ? cz - m : 0; z <= (cz + m < ncz ? cz + m : ncz - 1); z++)
+        for (int y = cy - m > 0 ? cy - m : 0; y <= (cy + m < ncy ? cy + m : ncy - 1); y++)
+            for (int xx = cx - m > 0 ? cx - m : 0; xx <= (cx + m < ncx ? cx + m : ncx - 1); xx++) {
+                int cc = (z * ncy + y) * ncx + xx;
+                for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
+                    int j = cell_particles[s];
+                    if (patch_is_vertex(vtri_start, j) == vertex)
+                        continue; /* spheres look for vertices, vertices for spheres */
+                    int sph = vertex ? j : i, vtx = vertex ? i : j;
+                    vec3 d = v3_sub(v3_load(x, sph), v3_load(x, vtx));
+                    real cut = radius[sph] + skin + reach; /* the same expression from either side */
+                    if (!(v3_dot(d, d) < cut * cut))
+                        continue;
+                    if (vertex) {
+                        cnt = patch_row_insert(row, cnt, cap, j);
+                        continue;
+                    }
+                    for (int q = vtri_start[j]; q < vtri_start[j + 1]; q++) {
+                        int t = vtri_list[q];
+                        vec3 e = v3_sub(xi, patch_of(xi, x, tri, t).point);
+                        if (v3_dot(e, e) < near * near)
+                            cnt = patch_row_insert(row, cnt, cap, t);
+                    }
+                }
+            }
+    int stored = cnt < cap ? cnt : cap;
+    if (vertex) {
+        vcount[i] = stored;
+        pcount[i] = 0;
+        DEM_ATOMIC_MAX(&flags[FLAG_VROW_NEEDED], cnt);
+        return;
+    }
+    pcount[i] = stored;
+    vcount[i] = 0;
+    DEM_ATOMIC_MAX(&flags[FLAG_PATCH_NEEDED], cnt);
+    /* the history of the same triangle in the old row, or none */
+    for (int k = 0; k < stored; k++) {
+        int found = row_find(old_plist + i * old_maxp, old_pcount[i], row[k]);
+        int t = found >= 0 ? old_ptouch[i * old_maxp + found] : 0;
+        ptouch[i * maxp + k] = (unsigned char)t;
+        if (fx & DEM_EFFECT_FRICTION)
+            v3_store(phist, i * maxp + k, t ? v3_load(old_phist, i * old_maxp + found) : v3_zero());
+    }
+}
+
+/* Whether the sphere at p touches triangle t (r2 = r_i^2), where, and the squared distance */
+DEM_INLINE int patch_touches(vec3 p, real r2, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t,
+                             patch_point *pp, real *e2)
+{
+    *pp = patch_of(p, x, tri, t);
+    vec3 e = v3_sub(p, pp->point);
+    *e2 = v3_dot(e, e);
+    return *e2 < r2 && *e2 > (real)0;
+}
+
+DEM_ITEM(patch_forces)
+{
+    int cnt = pcount[i];
+    if (cnt == 0)
+        return;
+    vec3 xi = v3_load(x, i), vi = v3_load(v, i), wi = v3_zero();
+    if (fx & DEM_EFFECT_FRICTION)
+        wi = v3_load(w, i);
+    real ri = radius[i], r2 = ri * ri;
+    vec3 fi = v3_load(force, i), ti = v3_zero();
+    if (fx & DEM_EFFECT_FRICTION)
+        ti = v3_load(torque, i);
+    for (int k = 0; k < cnt; k++) {
+        int slot = i * maxp + k, t = plist[slot];
+        int touched = ptouch[slot];
+        patch_point pk;
+        real dk;
+        int on = patch_touches(xi, r2, x, tri, t, &pk, &dk);
+        if (on && pk.kind != PATCH_FACE) { /* Table 1: does another touching triangle of this sphere remove it? */
+            int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
+            for (int j = 0; j < cnt && on; j++) {
+                int u = plist[i * maxp + j];
+                patch_point pj;
+                real dj;
+                if (j == k || !patch_touches(xi, r2, x, tri, u, &pj, &dj))
+                    continue;
+                int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
+                if (patch_beats(u, tj, pj.kind, dj, t, tk, pk.kind, dk))
+                    on = 0;
+            }
+        }
+        if (!on) {
+            if (touched) { /* the contact ended: so does its history */
+                ptouch[slot] = 0;
+                if (fx & DEM_EFFECT_FRICTION)
+                    v3_store(phist, slot, v3_zero());
+            }
+            continue;
+        }
+        int a = tri[3 * t], b = tri[3 * t + 1], cc = tri[3 * t + 2];
+        vec3 e = v3_sub(xi, pk.point);
+        real dist = dem_sqrt(v3_dot(e, e));
+        vec3 n = v3_scale(e, (real)1 / dist);
+        real delta = ri - dist;
+        DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + mat[a]);
+        real invm_p = pk.w[0] * invmass[a] + pk.w[1] * invmass[b] + pk.w[2] * invmass[cc];
+        real mstar = hm_effective_mass(invmass[i], invm_p);
+        real arm = ri - delta;
+        vec3 vp = v3_add(v3_add(v3_scale(v3_load(v, a), pk.w[0]), v3_scale(v3_load(v, b), pk.w[1])),
+                         v3_scale(v3_load(v, cc), pk.w[2]));
+        vec3 vc = vi, h = v3_zero();
+        if (fx & DEM_EFFECT_FRICTION) {
+            vc = v3_add(vi, v3_cross(wi, v3_scale(n, -arm)));
+            if (touched)
+                h = v3_load(phist, slot);
+        }
+        hm_result r = hm_contact(fx, n, delta, dem_sqrt(ri * delta), mstar, v3_sub(vc, vp), pm, dt, h, (real)0);
+        if (fx & DEM_EFFECT_FRICTION) {
+            v3_store(phist, slot, r.hist);
+            ti = v3_sub(ti, v3_scale(v3_cross(n, r.ft), arm));
+        }
+        if (!touched)
+            ptouch[slot] = 1;
+        DEM_GLOBAL real *rec = prec + slot * PK_STRIDE;
+        rec[PK_FX] = r.force.x, rec[PK_FY] = r.force.y, rec[PK_FZ] = r.force.z;
+        rec[PK_W0] = pk.w[0], rec[PK_W1] = pk.w[1], rec[PK_W2] = pk.w[2];
+        fi = v3_add(fi, r.force);
+    }
+    v3_store(force, i, fi);
+    if (fx & DEM_EFFECT_FRICTION)
+        v3_store(torque, i, ti);
+}
+
+DEM_ITEM(patch_gather)
+{
+    int nv = vcount[i];
+    if (nv == 0)
+        return;
+    vec3 f = v3_load(force, i);
+    for (int q = 0; q < nv; q++) {
+        int s = vlist[i * maxv + q];
+        for (int p = vtri_start[i]; p < vtri_start[i + 1]; p++) {
+            int t = vtri_list[p];
+            int k = row_find(plist + s * maxp, pcount[s], t);
+            if (k < 0 || !ptouch[s * maxp + k])
+                continue;
+            DEM_CONST_GLOBAL real *rec = prec + (s * maxp + k) * PK_STRIDE;
+            int corner = tri[3 * t] == i ? 0 : tri[3 * t + 1] == i ? 1 : 2;
+            f = v3_sub(f, v3_scale(v3(rec[PK_FX], rec[PK_FY], rec[PK_FZ]), rec[PK_W0 + corner]));
+        }
+    }
+    v3_store(force, i, f);
+}
+#endif /* DEM_PATCH_CONTACTS_H */
