@@ -114,10 +114,10 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         }
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
-        if ((1u << bit) & DEM_EFFECT_CHANNEL) /* library only, so far: a scene cannot define springs or triangles */
+        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES)) /* library only, so far: no scene triangles */
             return scene_fail(sc, err, errlen, path, "effect '%s' has no scene keys in libdem %s yet (the library's "
-                              "dem_add_membrane, dem_add_spring, dem_add_triangle, dem_set_pressure and "
-                              "dem_add_hinge have)", e, DEM_VERSION);
+                              "dem_add_membrane, dem_add_spring, dem_add_triangle, dem_add_patches, "
+                              "dem_set_pressure and dem_add_hinge have)", e, DEM_VERSION);
         run->effects |= 1u << bit;
     }
     if (!(run->effects & DEM_EFFECT_HERTZ))

@@ -256,22 +256,11 @@ static void test_restart_bitwise(void **st)
     {
         dem_config c = cfg_of(bc->backend, bc->precision);
         dem_sim *a = build_squeezed(), *b = build_squeezed();
-        start_or_fail(a, &c);
-        start_or_fail(b, &c);
-        step_or_fail(a, 300);
-        dem_state saved;
-        assert_int_equal(dem_state_get(a, &saved), 0);
-        assert_int_equal(dem_state_set(b, &saved), 0);
-        step_or_fail(a, 300);
-        step_or_fail(b, 300);
-        char msg[512];
-        if (state_diff(a, b, msg, sizeof msg))
-            fail_msg("%s: restored membrane run differs: %s", bc->name, msg);
+        restart_check(a, b, &c, 300, 300, bc->name);
         double *x = malloc(sizeof(double) * 3 * (size_t)dem_count(a));
         assert_int_equal(dem_get_field(a, DEM_FIELD_X, x), 0); /* the first vertex moved: the run did something */
         assert_true(fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - 0.03) > 1e-6);
         free(x);
-        dem_state_free(&saved);
         dem_destroy(a);
         dem_destroy(b);
     }

@@ -59,6 +59,7 @@ static void test_errors(void **st)
     bad("s/hertz, damping/hertz, dampng/", "bad.yaml:5: effects[1]: unknown effect 'dampng'");
     bad("s/friction: 0.5}/friction: 0.5, beta: -1}/", "bad.yaml:7: materials[0].beta: the MC-stress prefactor beta");
     bad("s/hertz, damping/hertz, membrane/", "effects[1]: effect 'membrane' is not available");
+    bad("s/hertz, damping/hertz, patches/", "effects[1]: effect 'patches' has no scene keys");
     bad("s/hertz, damping/hertz, mc_stress, mc_strain/", "effects: mc_stress and mc_strain are alternative");
     bad("s/duration: 0.003 /duration: abc /", "bad.yaml:16: time.duration: 'abc' is not a number");
     bad("s/x: \\[-0.0101, 0, 0\\]/x: [-0.0101, 0]/", "bad.yaml:11: particles[0].spheres[0].x: Insufficient entries");

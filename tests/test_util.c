@@ -200,6 +200,22 @@ static int zero_bits(const unsigned char *p, size_t n)
     return 1;
 }
 
+void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, long after, const char *what)
+{
+    start_or_fail(a, c);
+    start_or_fail(b, c);
+    step_or_fail(a, before);
+    dem_state saved;
+    if (dem_state_get(a, &saved) || dem_state_set(b, &saved))
+        fail_msg("%s: %s", what, dem_error(a)[0] ? dem_error(a) : dem_error(b));
+    step_or_fail(a, after);
+    step_or_fail(b, after);
+    char msg[512];
+    if (state_diff(a, b, msg, sizeof msg))
+        fail_msg("%s: the restored run differs: %s", what, msg);
+    dem_state_free(&saved);
+}
+
 int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
 {
     static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE,
