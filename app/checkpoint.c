@@ -1,5 +1,5 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_pos,pair_i,pair_j,pair_hist,
- * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn} with attributes step, n, nwalls, real_size (4 or 8: the arrays
+ * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 /* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
@@ -40,6 +40,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs};
     hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size}, wm[1] = {st.wall_mc_fn_bytes / (size_t)st.real_size};
     hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0};
+    hsize_t q1[1] = {(hsize_t)st.npatch}, q3[2] = {(hsize_t)st.npatch, 3};
     double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
     if (!rc) {
         hid_t g = H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -64,7 +65,10 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_attr_long(g, "mc_max", st.mc.max) || h5_attr_long(g, "mc_total", st.mc.total) ||
              h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
-             h5_write(g, "wall_mc_fn", real_t, 1, wm, st.wall_mc_fn, "N");
+             h5_write(g, "wall_mc_fn", real_t, 1, wm, st.wall_mc_fn, "N") ||
+             h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
+             h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
+             h5_write(g, "patch_hist", real_t, 2, q3, st.patch_hist, "N");
         if (g >= 0)
             H5Gclose(g);
         hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -165,6 +169,20 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
                                         h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
+        /* sphere-patch contacts (membranes; absent from checkpoints of libdem before them: none) */
+        long npatch = H5Lexists(g, "patch_i", H5P_DEFAULT) > 0 ? h5_count(g, "patch_i") : 0;
+        if (!rc && (npatch < 0 || npatch > 64 * n || (npatch && (h5_count(g, "patch_t") != npatch ||
+                                                                 h5_count(g, "patch_hist") != 3 * npatch))))
+            rc = 1;
+        if (!rc && npatch) {
+            st->patch_i = malloc(sizeof(int) * (size_t)npatch), st->patch_t = malloc(sizeof(int) * (size_t)npatch);
+            st->patch_hist = malloc(3 * (size_t)npatch * rs);
+            st->npatch = npatch;
+            rc = !st->patch_i || !st->patch_t || !st->patch_hist ||
+                 h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
+                 h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
+                 h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
+        }
     }
     if (g >= 0)
         H5Gclose(g);

@@ -32,6 +32,7 @@ struct output {
     char path[4096], part[4200];
     hid_t file, frames, series;
     int n, nwalls, sample, mc; /* mc: MC-strain iterations are recorded */
+    int ntri;                  /* membrane triangles (/membranes/triangles), drawn as a second XDMF grid */
     unsigned fields;
     h5rows ftime, fstep, fdata[NFF];
     h5rows s[S__N], wall_pos, wall_force;
@@ -124,6 +125,21 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
         rc = g < 0 || !mat || h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, dn, o->buf, "m") ||
              h5_write(g, "material", H5T_NATIVE_INT, 1, dn, mat, NULL);
         free(mat);
+        if (g >= 0)
+            H5Gclose(g);
+    }
+    o->ntri = dem_triangle_count(s);
+    if (!rc && o->ntri) { /* the membranes' connectivity: rows of the frames' particle arrays */
+        hid_t g = H5Gcreate2(o->file, "membranes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        int *tri = malloc(sizeof(int) * 3 * (size_t)o->ntri);
+        if (tri)
+            dem_triangles_get(s, tri);
+        hsize_t dt[2] = {(hsize_t)o->ntri, 3};
+        rc = g < 0 || !tri || h5_write(g, "triangles", H5T_NATIVE_INT, 2, dt, tri, NULL) ||
+             h5_attr_string(g, "layout", "triangles: the particle ids (rows of /frames/position ...) of each membrane "
+                                         "triangle, ordered so that (x1 - x0) x (x2 - x0) points where the confining "
+                                         "pressure pushes; the vertices are particles too, with their radius");
+        free(tri);
         if (g >= 0)
             H5Gclose(g);
     }
@@ -368,6 +384,33 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
                     "%s:/particles/material</DataItem>\n</Attribute>\n</Grid>\n", o->n, h5name);
     }
     fprintf(fp, "</Grid>\n");
+    if (o->ntri && (o->fields & OUT_POSITION)) { /* the membranes as surfaces over the same positions */
+        fprintf(fp, "<Grid Name=\"membranes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+        for (long f = 0; f < F; f++) {
+            fprintf(fp, "<Grid Name=\"membranes %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
+            fprintf(fp, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n"
+                        "<DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                        "%s:/membranes/triangles</DataItem>\n</Topology>\n", o->ntri, o->ntri, h5name);
+            for (size_t k = 0; k < NFF; k++) {
+                if (!(o->fields & frame_fields[k].bit) || frame_fields[k].ncomp != 3)
+                    continue;
+                if (k > 0)
+                    fprintf(fp, "<Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n",
+                            frame_fields[k].name);
+                else
+                    fprintf(fp, "<Geometry GeometryType=\"XYZ\">\n");
+                fprintf(fp,
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
+                        "<DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                        "%s:/frames/%s</DataItem>\n</DataItem>\n",
+                        o->n, f, o->n, F, o->n, h5name, frame_fields[k].name);
+                fprintf(fp, k > 0 ? "</Attribute>\n" : "</Geometry>\n");
+            }
+            fprintf(fp, "</Grid>\n");
+        }
+        fprintf(fp, "</Grid>\n");
+    }
     if ((o->fields & OUT_CONTACTS) && (o->fields & OUT_POSITION) && o->c_total > 0) {
         /* the contact network: per frame, a line between the centres of each touching pair, coloured by the normal
          * force (frames without a pair are left out: XDMF has no empty polyline) */

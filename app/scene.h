@@ -69,6 +69,44 @@ typedef struct {
     unsigned repeat;              /* the motion list this many times (0 = given: once) */
 } scene_wall;
 
+/* membranes: [{name, mesh: {kind, center, radius, height, size, edge}, material: {...}, model, pressure,
+ * pressure_stages, attach: [{wall, within}]}] (seed 001; docs/scenes.md) */
+typedef struct {
+    char *kind;                   /* "tube", "sheet" or "sphere" */
+    double center[3];             /* tube: centre of its bottom ring; sheet, sphere: centre [m] */
+    double radius, height;        /* tube, sphere (radius) [m] */
+    double size[2];               /* sheet: along x and y [m] */
+    double edge;                  /* target edge length [m] */
+} scene_mesh;
+
+typedef struct {
+    double young, poisson, thickness, density, restitution, friction;
+    double damping;               /* damping ratio of the edge springs */
+    double kel, kdiss;            /* bending [N m], [N s] */
+    double vertex_radius;         /* [m] */
+} scene_membrane_material;
+
+typedef struct {
+    char *wall;                   /* a plane wall's name */
+    double within;                /* vertices closer to the plane than this ride on the wall [m] */
+} scene_attach;
+
+typedef struct {
+    double duration, pressure;    /* [s], [Pa] at the stage's end */
+} scene_pressure_stage;
+
+typedef struct {
+    char *name;
+    scene_mesh mesh;
+    scene_membrane_material material;
+    char *model;                  /* "patch" (default) or "particle" */
+    double pressure;              /* [Pa] pushing towards the inside (tube, sphere) or along -z (sheet) */
+    scene_pressure_stage *pressure_stages;
+    unsigned pressure_stages_count;
+    scene_attach *attach;
+    unsigned attach_count;
+} scene_membrane;
+
 typedef struct {
     double dt;                    /* [s], or */
     double dt_rayleigh;           /* fraction of the Rayleigh time */
@@ -114,6 +152,8 @@ typedef struct {
     unsigned particles_count;
     scene_wall *walls;
     unsigned walls_count;
+    scene_membrane *membranes;
+    unsigned membranes_count;
     double gravity[3];
     double domain_lo[3], domain_hi[3];
     double overlap_tolerance;     /* largest initial overlap accepted, fraction of the smaller radius */

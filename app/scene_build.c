@@ -104,20 +104,21 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         snprintf(path, sizeof path, "effects[%u]", k);
         const char *e = f->effects[k];
         int bit = dem_effect_bit(e);
-        if (bit < 0) {
-            if (!strcmp(e, "membrane"))
-                return scene_fail(sc, err, errlen, path, "effect '%s' is not available in scenes in libdem %s yet (the "
-                                  "library's dem_add_membrane builds one)", e, DEM_VERSION);
+        if (!strcmp(e, "membrane")) { /* springs, pressure, bending, patches as the membranes need (scene_membranes.c) */
+            for (unsigned j = 0; j < k; j++)
+                if (!strcmp(f->effects[j], e))
+                    return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
+            continue;
+        }
+        if (bit < 0)
             return scene_fail(sc, err, errlen, path,
                               "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
-                              "mc_strain)", e);
-        }
+                              "mc_strain, membrane)", e);
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
-        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES)) /* library only, so far: no scene triangles */
-            return scene_fail(sc, err, errlen, path, "effect '%s' has no scene keys in libdem %s yet (the library's "
-                              "dem_add_membrane, dem_add_spring, dem_add_triangle, dem_add_patches, "
-                              "dem_set_pressure and dem_add_hinge have)", e, DEM_VERSION);
+        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES)) /* they come with the membranes */
+            return scene_fail(sc, err, errlen, path, "effect '%s' is part of the effect 'membrane': list that, and "
+                              "the scene's membranes turn on what they need", e);
         run->effects |= 1u << bit;
     }
     if (!(run->effects & DEM_EFFECT_HERTZ))
@@ -126,6 +127,8 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         return scene_fail(sc, err, errlen, "effects", "mc_stress and mc_strain are alternative normal laws: list one");
     for (unsigned k = 0; k < f->effects_count; k++) {
         int bit = dem_effect_bit(f->effects[k]);
+        if (bit < 0) /* membrane */
+            continue;
         unsigned law = 1u << bit;
         const char *why = (law == DEM_EFFECT_MC_STRESS || law == DEM_EFFECT_MC_STRAIN) ? mc_prefactor_missing(sc, law)
                                                                                         : NULL;
@@ -471,10 +474,13 @@ static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, si
      * time scales 0 and be blamed on the time step */
     for (int i = 0; i < dem_count(s); i++) {
         int m = dem_particle_material(s, i);
-        double r = dem_particle_radius(s, i), mass = sc->f->materials[m].density * 4.0 / 3.0 * M_PI * r * r * r;
+        double r = dem_particle_radius(s, i), mass = dem_particle_mass(s, i);
         if (!isnormal(mass) || !isfinite(1 / mass)) {
             char p[64];
-            snprintf(p, sizeof p, "materials[%d].density", m);
+            if (m < (int)sc->f->materials_count)
+                snprintf(p, sizeof p, "materials[%d].density", m);
+            else
+                snprintf(p, sizeof p, "membranes"); /* a vertex: its membrane's density x thickness x area */
             return scene_fail(sc, err, errlen, p, "particle %d (radius %g m) would weigh %g kg, too small to integrate "
                               "(its inverse overflows); check the density [kg/m^3] and the radii [m]", i, r, mass);
         }
@@ -613,17 +619,19 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
     memset(run, 0, sizeof *run);
     dem_sim *s = dem_create();
-    int first_wall[DEM_MAX_WALLS];
+    int first_wall[DEM_MAX_WALLS], nspheres = 0;
     scene_origin *origin = NULL;
     if (!s) {
         snprintf(err, errlen, "%s: out of memory", sc->path);
         return NULL;
     }
     if (parse_effects(sc, run, err, errlen) || parse_materials(sc, s, err, errlen) ||
-        scene_add_particles(sc, s, &origin, err, errlen) || parse_walls(sc, s, run, first_wall, err, errlen) ||
+        scene_add_particles(sc, s, &origin, err, errlen) || (nspheres = dem_count(s), 0) ||
+        parse_walls(sc, s, run, first_wall, err, errlen) ||
+        scene_add_membranes(sc, s, run, first_wall, err, errlen) ||
         parse_run_options(sc, s, run, err, errlen) || parse_time(sc, s, run, err, errlen) ||
         parse_output(sc, run, err, errlen) ||
-        scene_check_overlaps(sc, s, origin, err, errlen) ||
+        scene_check_overlaps(sc, s, origin, nspheres, err, errlen) ||
         parse_sample(sc, s, run, first_wall, origin, err, errlen)) {
         free(origin);
         dem_destroy(s);

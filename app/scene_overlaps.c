@@ -49,9 +49,8 @@ static int cmp_cell(const void *a, const void *b)
     return x->cell < y->cell ? -1 : x->cell > y->cell ? 1 : x->id - y->id;
 }
 
-int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *o, char *err, size_t errlen)
+int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *o, int n, char *err, size_t errlen)
 {
-    int n = dem_count(s);
     double tol = scene_has(sc->loc, "overlap_tolerance") ? sc->f->overlap_tolerance : 0.01;
     if (!(tol >= 0) || !(tol < 1))
         return scene_fail(sc, err, errlen, "overlap_tolerance", "must be in [0, 1) (fraction of the radius)");

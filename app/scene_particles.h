@@ -18,5 +18,7 @@ int scene_material_id(const scene *sc, const char *name);
 /* Adds every particle group to s; *origin (malloc'd) gets one entry per particle. */
 int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *err, size_t errlen);
 /* Rejects initial particle-particle and particle-wall overlaps above the scene's tolerance. */
-int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *origin, char *err, size_t errlen);
+int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *origin, int n, char *err, size_t errlen);
+/* The scene's membranes (scene_membranes.c), after the walls (first_wall: each scene wall's first library wall) */
+int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *first_wall, char *err, size_t errlen);
 #endif

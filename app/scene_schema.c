@@ -87,6 +87,47 @@ static const cyaml_schema_field_t wall_fields[] = {
     CYAML_FIELD_END};
 static const cyaml_schema_value_t wall_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_wall, wall_fields)};
 
+static const cyaml_schema_field_t mesh_fields[] = {
+    CYAML_FIELD_STRING_PTR("kind", CYAML_FLAG_POINTER, scene_mesh, kind, 1, 16),
+    VEC3("center", scene_mesh, center), REAL("radius", scene_mesh, radius), REAL("height", scene_mesh, height),
+    CYAML_FIELD_SEQUENCE_FIXED("size", CYAML_FLAG_OPTIONAL, scene_mesh, size, &real_entry, 2),
+    CYAML_FIELD_FLOAT("edge", CYAML_FLAG_DEFAULT, scene_mesh, edge), CYAML_FIELD_END};
+
+static const cyaml_schema_field_t membrane_material_fields[] = {
+    CYAML_FIELD_FLOAT("young", CYAML_FLAG_DEFAULT, scene_membrane_material, young),
+    CYAML_FIELD_FLOAT("poisson", CYAML_FLAG_DEFAULT, scene_membrane_material, poisson),
+    CYAML_FIELD_FLOAT("thickness", CYAML_FLAG_DEFAULT, scene_membrane_material, thickness),
+    CYAML_FIELD_FLOAT("density", CYAML_FLAG_DEFAULT, scene_membrane_material, density),
+    CYAML_FIELD_FLOAT("restitution", CYAML_FLAG_DEFAULT, scene_membrane_material, restitution),
+    REAL("friction", scene_membrane_material, friction), REAL("damping", scene_membrane_material, damping),
+    REAL("kel", scene_membrane_material, kel), REAL("kdiss", scene_membrane_material, kdiss),
+    REAL("vertex_radius", scene_membrane_material, vertex_radius), CYAML_FIELD_END};
+
+static const cyaml_schema_field_t attach_fields[] = {
+    CYAML_FIELD_STRING_PTR("wall", CYAML_FLAG_POINTER, scene_attach, wall, 1, 1000),
+    CYAML_FIELD_FLOAT("within", CYAML_FLAG_DEFAULT, scene_attach, within), CYAML_FIELD_END};
+static const cyaml_schema_value_t attach_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_attach, attach_fields)};
+
+static const cyaml_schema_field_t pressure_stage_fields[] = {
+    CYAML_FIELD_FLOAT("duration", CYAML_FLAG_DEFAULT, scene_pressure_stage, duration),
+    CYAML_FIELD_FLOAT("pressure", CYAML_FLAG_DEFAULT, scene_pressure_stage, pressure), CYAML_FIELD_END};
+static const cyaml_schema_value_t pressure_stage_entry = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_pressure_stage, pressure_stage_fields)};
+
+static const cyaml_schema_field_t membrane_fields[] = {
+    NAME("name", scene_membrane, name),
+    CYAML_FIELD_MAPPING("mesh", CYAML_FLAG_DEFAULT, scene_membrane, mesh, mesh_fields),
+    CYAML_FIELD_MAPPING("material", CYAML_FLAG_DEFAULT, scene_membrane, material, membrane_material_fields),
+    TEXT("model", scene_membrane, model),
+    REAL("pressure", scene_membrane, pressure),
+    CYAML_FIELD_SEQUENCE("pressure_stages", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_membrane, pressure_stages,
+                         &pressure_stage_entry, 1, DEM_MAX_STAGES),
+    CYAML_FIELD_SEQUENCE("attach", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_membrane, attach, &attach_entry, 1,
+                         DEM_MAX_WALLS),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t membrane_entry = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_membrane, membrane_fields)};
+
 static const cyaml_schema_field_t time_fields[] = {
     REAL("dt", scene_time, dt), REAL("dt_rayleigh", scene_time, dt_rayleigh),
     CYAML_FIELD_FLOAT("duration", CYAML_FLAG_DEFAULT, scene_time, duration), REAL("settle", scene_time, settle),
@@ -125,6 +166,8 @@ static const cyaml_schema_field_t scene_fields[] = {
     CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_file, materials, &material_entry, 1, 64),
     CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 1, 64),
     CYAML_FIELD_SEQUENCE("walls", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, walls, &wall_entry, 0, DEM_MAX_WALLS),
+    CYAML_FIELD_SEQUENCE("membranes", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, membranes,
+                         &membrane_entry, 0, 16),
     VEC3("gravity", scene_file, gravity),
     {.key = "domain", .data_offset = 0,
      .value = {.type = CYAML_MAPPING, .flags = CYAML_FLAG_OPTIONAL, .data_size = sizeof(scene_file),

@@ -216,6 +216,7 @@ int dem_add_triangle(dem_sim *s, int a, int b, int c)
 }
 
 int dem_triangle_count(const dem_sim *s) { return s->ntri; }
+void dem_triangles_get(const dem_sim *s, int *tri) { memcpy(tri, s->tri, sizeof(int) * 3 * (size_t)s->ntri); }
 
 int dem_add_patches(dem_sim *s, int first, int count)
 {

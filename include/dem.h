@@ -155,6 +155,8 @@ int dem_spring_count(const dem_sim *s);
  * F / 3, added in triangle order after its spring forces (the contribution channel). Returns the triangle's index. */
 int dem_add_triangle(dem_sim *s, int a, int b, int c);
 int dem_triangle_count(const dem_sim *s);
+/* The triangles' particles, 3 per triangle in triangle order, into tri[3 dem_triangle_count] */
+void dem_triangles_get(const dem_sim *s, int *tri);
 /* Triangles first .. first+count-1 become patches: surfaces that the other particles touch (seed 001 section 2.5,
  * common/patch_contacts.h), with the Hertz-Mindlin law of the particle's and the triangle's first vertex's materials;
  * their vertices then touch no particle as spheres (walls still, with their radius). Turns on DEM_EFFECT_PATCHES. */

@@ -24,12 +24,12 @@ static int exists(const char *fmt, const char *a)
     return stat(p, &sb) == 0;
 }
 
-/* A scene derived from two_spheres.yaml by a sed expression must fail with status 65, a message naming the file,
- * line and field, and leave no output (and an older output file untouched). */
-static void bad(const char *sed, const char *expect)
+/* A scene derived from `from` (a path under the source folder) by a sed expression must fail with status 65, a
+ * message naming the file, line and field, and leave no output (and an older output file untouched). */
+static void bad_in(const char *from, const char *sed, const char *expect)
 {
     char err[8192];
-    assert_int_equal(sh(err, sizeof err, "sed '%s' %s/scenes/two_spheres.yaml > %s/bad.yaml", sed, SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "sed '%s' %s/%s > %s/bad.yaml", sed, SRC, from, tmp), 0);
     FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/out.h5"), "w");
     fputs("older result", fp);
     fclose(fp);
@@ -46,6 +46,8 @@ static void bad(const char *sed, const char *expect)
     assert_string_equal(buf, "older result");
 }
 
+static void bad(const char *sed, const char *expect) { bad_in("scenes/two_spheres.yaml", sed, expect); }
+
 static void test_errors(void **st)
 {
     (void)st;
@@ -58,8 +60,8 @@ static void test_errors(void **st)
     bad("s/  dt: 1.0e-6/  dt: 1.0e-2/", "bad.yaml:15: time.dt: time step 0.01 s exceeds the stability bound");
     bad("s/hertz, damping/hertz, dampng/", "bad.yaml:5: effects[1]: unknown effect 'dampng'");
     bad("s/friction: 0.5}/friction: 0.5, beta: -1}/", "bad.yaml:7: materials[0].beta: the MC-stress prefactor beta");
-    bad("s/hertz, damping/hertz, membrane/", "effects[1]: effect 'membrane' is not available");
-    bad("s/hertz, damping/hertz, patches/", "effects[1]: effect 'patches' has no scene keys");
+    bad("s/hertz, damping/hertz, membrane/", "effects[1]: effect 'membrane' is listed but the scene has no membranes");
+    bad("s/hertz, damping/hertz, patches/", "effects[1]: effect 'patches' is part of the effect 'membrane'");
     bad("s/hertz, damping/hertz, mc_stress, mc_strain/", "effects: mc_stress and mc_strain are alternative");
     bad("s/duration: 0.003 /duration: abc /", "bad.yaml:16: time.duration: 'abc' is not a number");
     bad("s/x: \\[-0.0101, 0, 0\\]/x: [-0.0101, 0]/", "bad.yaml:11: particles[0].spheres[0].x: Insufficient entries");
@@ -245,6 +247,91 @@ static void test_restart_bitwise(void **st)
     restart_case(SRC "/tests/scenes/restart_box.yaml", "fp64", 0);
     restart_case(SRC "/tests/scenes/restart_box.yaml", "fp32", 0);
     restart_case(SRC "/tests/scenes/restart_box_mc.yaml", "fp64", 1);
+}
+
+/* A membrane scene (tests/scenes/membrane_tube.yaml: a patch tube between platens, beads inside, a pressure ramp):
+ * its refusals name file, line and field; a run writes the triangles and a second XDMF grid; the beads stay inside
+ * the tube; a restart from the checkpoint halfway continues bit for bit, patch contacts included. */
+static void test_membrane_scene(void **st)
+{
+    (void)st;
+    static const char *const cases[][2] = {
+        {"s/walls, membrane\\]/walls]/", "membranes: membranes are defined but the effect 'membrane' is not listed"},
+        {"s/walls, membrane\\]/walls, membrane, springs]/", "effect 'springs' is part of the effect 'membrane'"},
+        {"s/kind: tube/kind: cube/", "bad.yaml:23: membranes[0].mesh.kind: unknown mesh kind 'cube'"},
+        {"s/, height: 0.04, edge/, edge/", "membranes[0].mesh.height: a tube mesh needs 'height'"},
+        {"s/edge: 0.006/edge: 0/", "bad.yaml:23: membranes[0].mesh: "},
+        {"s/model: patch/model: patches/", "bad.yaml:26: membranes[0].model: unknown model 'patches' (patch or particle)"},
+        {"s/young: 1.25e6/young: -1/", "membranes[0]: membrane: young, thickness, density and vertex_radius must be > 0"},
+        {"s/duration: 0.005, pressure/duration: -1, pressure/", "membranes[0].pressure_stages[0]: duration must be >= 0"},
+        {"s/wall: top, within/wall: lid, within/", "membranes[0].attach[1].wall: no wall named 'lid'"},
+        {"s/point: \\[0, 0, 0\\], normal/point: [0, 0, -0.01], normal/",
+         "membranes[0].attach[0].within: no vertex of the membrane is within 0.0001 m of wall 'bottom'"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
+        bad_in("tests/scenes/membrane_tube.yaml", cases[k][0], cases[k][1]);
+
+    char err[8192];
+    const char *sc = SRC "/tests/scenes/membrane_tube.yaml";
+    assert_int_equal(sh(err, sizeof err, "%s run %s -o %s/mt.h5 --quiet", DEM, sc, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s -o %s/mh.h5 --stop-after 369 --quiet", DEM, sc, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run --restart %s/mh.ckpt.h5 -o %s/mr.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/mt.xmf", SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "test $(grep -c 'Grid Name=\"membranes ' %s/mt.xmf) = $(grep -c "
+                                         "'Grid Name=\"frame ' %s/mt.xmf)", tmp, tmp), 0); /* a surface per frame */
+    char a[300], b[300], h5[300];
+    snprintf(a, sizeof a, "%s/mt.ckpt.h5", tmp);
+    snprintf(b, sizeof b, "%s/mr.ckpt.h5", tmp);
+    snprintf(h5, sizeof h5, "%s/mt.h5", tmp);
+    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+    long nt = h5_count(f, "membranes/triangles") / 3, n = h5_count(f, "particles/radius");
+    long nf = h5_count(f, "frames/step");
+    double *x = malloc(sizeof(double) * 3 * (size_t)(n * nf)), *r = malloc(sizeof(double) * (size_t)n);
+    int *mat = malloc(sizeof(int) * (size_t)n);
+    assert_int_equal(h5_read(f, "frames/position", H5T_NATIVE_DOUBLE, x, 3 * (size_t)(n * nf)), 0);
+    assert_int_equal(h5_read(f, "particles/material", H5T_NATIVE_INT, mat, (size_t)n), 0);
+    H5Fclose(f);
+    double out = 0, rim = INFINITY;
+    int beads = 0;
+    const double *last = x + 3 * (size_t)(n * (nf - 1));
+    for (long i = 0; i < n; i++) {
+        double rho = sqrt(last[3 * i] * last[3 * i] + last[3 * i + 1] * last[3 * i + 1]);
+        if (mat[i] == 0)
+            out = fmax(out, rho), beads++;
+        else
+            rim = fmin(rim, rho);
+    }
+    printf("  membrane scene: %ld particles (%d beads), %ld triangles; at the end the beads reach %.4f m from the "
+           "axis, the membrane's vertices %.4f m and more\n", n, beads, nt, out, rim);
+    assert_true(nt > 100 && beads > 10);
+    assert_true(out < 0.02); /* inside the tube (radius 0.02 m at the start) */
+    assert_true(rim < 0.02); /* the pressure pulled the membrane in */
+    free(x), free(r), free(mat);
+    static const char *const fields[] = {"x", "v", "force"};
+    size_t rs = 8;
+    unsigned char *pa = malloc(3 * (size_t)n * rs), *pb = malloc(3 * (size_t)n * rs);
+    for (int k = 0; k < 3; k++) {
+        read_state(a, fields[k], pa, 3 * (size_t)n, H5T_NATIVE_DOUBLE);
+        read_state(b, fields[k], pb, 3 * (size_t)n, H5T_NATIVE_DOUBLE);
+        if (memcmp(pa, pb, 3 * (size_t)n * rs))
+            fail_msg("membrane scene: state/%s differs between the straight and the restarted run", fields[k]);
+    }
+    f = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT);
+    long np = h5_count(f, "state/patch_i");
+    H5Fclose(f);
+    f = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_int_equal(h5_count(f, "state/patch_i"), np);
+    H5Fclose(f);
+    assert_true(np > 0);
+    int ia[4096], ib[4096];
+    assert_true(np < 4096);
+    read_state(a, "patch_t", ia, (size_t)np, H5T_NATIVE_INT);
+    read_state(b, "patch_t", ib, (size_t)np, H5T_NATIVE_INT);
+    assert_memory_equal(ia, ib, sizeof(int) * (size_t)np);
+    read_state(a, "patch_hist", pa, 3 * (size_t)np, H5T_NATIVE_DOUBLE);
+    read_state(b, "patch_hist", pb, 3 * (size_t)np, H5T_NATIVE_DOUBLE);
+    assert_memory_equal(pa, pb, 3 * (size_t)np * rs);
+    free(pa), free(pb);
 }
 
 static void test_output_and_xdmf(void **st)
@@ -857,6 +944,7 @@ int main(void)
         cmocka_unit_test(test_dt_advice),
         cmocka_unit_test(test_series_average),
         cmocka_unit_test(test_contact_network),
+        cmocka_unit_test(test_membrane_scene),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,0 +1,184 @@
+/* scene_membranes.c - the scene's `membranes:` (seed 001): each a generated mesh made a membrane of its material and
+ * model, the confining pressure (one for all membranes: the library loads every triangle with it), and the vertices
+ * near a plane wall riding on it. Keys in docs/scenes.md; the library calls in include/dem.h (dem_mesh_make,
+ * dem_add_membrane, dem_set_pressure_stages, dem_attach_to_wall). */
+#include "scene.h"
+#include "scene_particles.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh_spec *sp, char *err, size_t errlen)
+{
+    static const struct {
+        const char *kind;
+        dem_mesh_kind id;
+        const char *need[2];
+    } kinds[] = {{"tube", DEM_MESH_TUBE, {"radius", "height"}},
+                 {"sheet", DEM_MESH_SHEET, {"size", NULL}},
+                 {"sphere", DEM_MESH_SPHERE, {"radius", NULL}}};
+    char p[128];
+    int q = 0;
+    while (q < 3 && strcmp(ms->kind, kinds[q].kind))
+        q++;
+    if (q == 3) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.kind", k);
+        return scene_fail(sc, err, errlen, p, "unknown mesh kind '%s' (tube, sheet or sphere)", ms->kind);
+    }
+    for (int j = 0; j < 2 && kinds[q].need[j]; j++) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.%s", k, kinds[q].need[j]);
+        if (!scene_has(sc->loc, p))
+            return scene_fail(sc, err, errlen, p, "a %s mesh needs '%s'", ms->kind, kinds[q].need[j]);
+    }
+    memset(sp, 0, sizeof *sp);
+    sp->kind = kinds[q].id;
+    memcpy(sp->center, ms->center, sizeof sp->center);
+    sp->a = q == 1 ? ms->size[0] : ms->radius;
+    sp->b = q == 1 ? ms->size[1] : ms->height;
+    sp->edge = ms->edge;
+    return 0;
+}
+
+static int find_wall(const scene *sc, const char *name, const int *first_wall)
+{
+    for (unsigned w = 0; w < sc->f->walls_count; w++)
+        if (sc->f->walls[w].name && !strcmp(sc->f->walls[w].name, name))
+            return (int)w;
+    (void)first_wall;
+    return -1;
+}
+
+/* Vertices (particles first .. first + nv - 1 at x) within `within` of plane wall k ride on it */
+static int attach(const scene *sc, dem_sim *s, unsigned k, unsigned a, const double *x, int first, int nv,
+                  const int *first_wall, char *err, size_t errlen)
+{
+    const scene_attach *at = &sc->f->membranes[k].attach[a];
+    char p[128];
+    snprintf(p, sizeof p, "membranes[%u].attach[%u].wall", k, a);
+    int w = find_wall(sc, at->wall, first_wall);
+    if (w < 0)
+        return scene_fail(sc, err, errlen, p, "no wall named '%s'", at->wall);
+    const scene_wall *sw = &sc->f->walls[w];
+    if (strcmp(sw->type, "plane"))
+        return scene_fail(sc, err, errlen, p, "wall '%s' is a %s: vertices ride on plane walls only", at->wall,
+                          sw->type);
+    snprintf(p, sizeof p, "membranes[%u].attach[%u].within", k, a);
+    if (!(at->within >= 0) || !isfinite(at->within))
+        return scene_fail(sc, err, errlen, p, "must be >= 0 m and finite");
+    double n = sqrt(sw->normal[0] * sw->normal[0] + sw->normal[1] * sw->normal[1] + sw->normal[2] * sw->normal[2]);
+    int count = 0;
+    for (int i = 0; i < nv; i++) {
+        double d = 0;
+        for (int c = 0; c < 3; c++)
+            d += (x[3 * i + c] - sw->point[c]) * sw->normal[c] / n;
+        if (fabs(d) <= at->within) {
+            if (dem_attach_to_wall(s, first + i, first_wall[w]))
+                return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+            count++;
+        }
+    }
+    if (!count)
+        return scene_fail(sc, err, errlen, p, "no vertex of the membrane is within %g m of wall '%s'", at->within,
+                          at->wall);
+    return 0;
+}
+
+/* The confining pressure: the first membrane that gives one sets it; every other must give the same */
+static int pressure(const scene *sc, dem_sim *s, unsigned k, int *set_by, char *err, size_t errlen)
+{
+    const scene_membrane *m = &sc->f->membranes[k];
+    char p[128], ps[128];
+    snprintf(p, sizeof p, "membranes[%u].pressure", k);
+    snprintf(ps, sizeof ps, "membranes[%u].pressure_stages", k);
+    int has_p = scene_has(sc->loc, p), has_st = m->pressure_stages_count > 0;
+    if (!has_p && !has_st)
+        return 0;
+    if (!isfinite(m->pressure))
+        return scene_fail(sc, err, errlen, p, "must be finite [Pa]");
+    for (unsigned j = 0; j < m->pressure_stages_count; j++)
+        if (!(m->pressure_stages[j].duration >= 0) || !isfinite(m->pressure_stages[j].duration) ||
+            !isfinite(m->pressure_stages[j].pressure)) {
+            snprintf(ps, sizeof ps, "membranes[%u].pressure_stages[%u]", k, j);
+            return scene_fail(sc, err, errlen, ps, "duration must be >= 0 s and pressure finite");
+        }
+    if (*set_by >= 0) { /* the same as the first, or refused */
+        const scene_membrane *f = &sc->f->membranes[*set_by];
+        int same = f->pressure == m->pressure && f->pressure_stages_count == m->pressure_stages_count;
+        for (unsigned j = 0; same && j < m->pressure_stages_count; j++)
+            same = f->pressure_stages[j].duration == m->pressure_stages[j].duration &&
+                   f->pressure_stages[j].pressure == m->pressure_stages[j].pressure;
+        if (!same)
+            return scene_fail(sc, err, errlen, has_p ? p : ps, "differs from membranes[%d]'s: libdem %s loads every "
+                              "triangle with one confining pressure", *set_by, DEM_VERSION);
+        return 0;
+    }
+    *set_by = (int)k;
+    if (dem_set_pressure(s, m->pressure))
+        return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+    if (has_st) {
+        dem_pressure_stage st[DEM_MAX_STAGES];
+        for (unsigned j = 0; j < m->pressure_stages_count; j++)
+            st[j].duration = m->pressure_stages[j].duration, st[j].pressure = m->pressure_stages[j].pressure;
+        if (dem_set_pressure_stages(s, (int)m->pressure_stages_count, st))
+            return scene_fail(sc, err, errlen, ps, "%s", dem_error(s));
+    }
+    return 0;
+}
+
+int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *first_wall, char *err, size_t errlen)
+{
+    const scene_file *f = sc->f;
+    int listed = -1;
+    for (unsigned k = 0; k < f->effects_count; k++)
+        if (!strcmp(f->effects[k], "membrane"))
+            listed = (int)k;
+    if (f->membranes_count && listed < 0)
+        return scene_fail(sc, err, errlen, "membranes", "membranes are defined but the effect 'membrane' is not listed");
+    if (!f->membranes_count && listed >= 0) {
+        char p[64];
+        snprintf(p, sizeof p, "effects[%d]", listed);
+        return scene_fail(sc, err, errlen, p, "effect 'membrane' is listed but the scene has no membranes");
+    }
+    int set_by = -1;
+    for (unsigned k = 0; k < f->membranes_count; k++) {
+        const scene_membrane *m = &f->membranes[k];
+        const scene_membrane_material *mt = &m->material;
+        char p[128];
+        dem_mesh_spec sp;
+        if (mesh_spec(sc, k, &m->mesh, &sp, err, errlen))
+            return 1;
+        dem_mesh mesh;
+        char why[256];
+        snprintf(p, sizeof p, "membranes[%u].mesh", k);
+        if (dem_mesh_make(&sp, &mesh, why, sizeof why))
+            return scene_fail(sc, err, errlen, p, "%s", why);
+        int model = DEM_MEMBRANE_PATCH;
+        if (m->model && !strcmp(m->model, "particle"))
+            model = DEM_MEMBRANE_PARTICLE;
+        else if (m->model && strcmp(m->model, "patch")) {
+            dem_mesh_free(&mesh);
+            snprintf(p, sizeof p, "membranes[%u].model", k);
+            return scene_fail(sc, err, errlen, p, "unknown model '%s' (patch or particle)", m->model);
+        }
+        snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
+        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * sp.edge;
+        dem_membrane dm = {mt->young, mt->poisson, mt->thickness, mt->density, mt->restitution, mt->friction,
+                           mt->damping, mt->kel, mt->kdiss, vr, model};
+        dem_membrane_info info;
+        snprintf(p, sizeof p, "membranes[%u]", k);
+        if (dem_add_membrane(s, &mesh, &dm, &info)) {
+            dem_mesh_free(&mesh);
+            return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+        }
+        for (unsigned a = 0; a < m->attach_count; a++)
+            if (attach(sc, s, k, a, mesh.x, info.first_particle, info.nvertices, first_wall, err, errlen)) {
+                dem_mesh_free(&mesh);
+                return 1;
+            }
+        dem_mesh_free(&mesh);
+        if (pressure(sc, s, k, &set_by, err, errlen))
+            return 1;
+    }
+    run->effects |= dem_effects(s) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES);
+    return 0;
+}
