@@ -8,6 +8,10 @@
 #include <stdio.h>
 #include <string.h>
 
+#ifndef DEM_SCENE_MAX_GENERATED /* as scene_particles.c */
+#define DEM_SCENE_MAX_GENERATED 5000000
+#endif
+
 static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh_spec *sp, char *err, size_t errlen)
 {
     static const struct {
@@ -29,6 +33,16 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
         snprintf(p, sizeof p, "membranes[%u].mesh.%s", k, kinds[q].need[j]);
         if (!scene_has(sc->loc, p))
             return scene_fail(sc, err, errlen, p, "a %s mesh needs '%s'", ms->kind, kinds[q].need[j]);
+    }
+    /* the vertices it would have, roughly (area over that of an equilateral triangle's share of a vertex), before
+     * anything is made: the cap of generated particle groups (scene_particles.c) holds for meshes too */
+    double area = q == 0 ? 2 * M_PI * ms->radius * ms->height : q == 1 ? ms->size[0] * ms->size[1]
+                                                                       : 4 * M_PI * ms->radius * ms->radius;
+    double nv = area / (0.433 * ms->edge * ms->edge);
+    if (ms->edge > 0 && isfinite(nv) && nv > DEM_SCENE_MAX_GENERATED) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
+        return scene_fail(sc, err, errlen, p, "edges of %g m make about %.3g vertices (at most %d): use longer edges",
+                          ms->edge, nv, DEM_SCENE_MAX_GENERATED);
     }
     memset(sp, 0, sizeof *sp);
     sp->kind = kinds[q].id;
