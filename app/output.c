@@ -388,9 +388,14 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
         fprintf(fp, "<Grid Name=\"membranes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
         for (long f = 0; f < F; f++) {
             fprintf(fp, "<Grid Name=\"membranes %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
+            /* the connectivity as a whole-array hyperslab: ParaView's XDMF reader otherwise tries to cache the
+             * geometry with it, finds a hyperslab there and logs an error (the surface was right either way) */
             fprintf(fp, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n"
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 2\" Format=\"XML\">0 0 1 1 %d 3</DataItem>\n"
                         "<DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
-                        "%s:/membranes/triangles</DataItem>\n</Topology>\n", o->ntri, o->ntri, h5name);
+                        "%s:/membranes/triangles</DataItem>\n</DataItem>\n</Topology>\n",
+                    o->ntri, o->ntri, o->ntri, o->ntri, h5name);
             for (size_t k = 0; k < NFF; k++) {
                 if (!(o->fields & frame_fields[k].bit) || frame_fields[k].ncomp != 3)
                     continue;
