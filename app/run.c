@@ -105,9 +105,9 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
     }
     char outs[6][RUN_OUT_LEN];
     run_output_files(outp, ckp, outs);
-    const char *in[66];
-    const char *what[66];
-    char csv[64][4400];
+    const char *in[82];
+    const char *what[82];
+    char csv[64][4400], mesh[16][4400];
     int nin = 0;
     in[nin] = sc->path, what[nin++] = "the scene";
     if (o->restart)
@@ -116,6 +116,15 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
         if (sc->f->particles[k].csv) {
             snprintf(csv[k], sizeof csv[k], "%s/%s", sc->dir, sc->f->particles[k].csv);
             in[nin] = csv[k], what[nin++] = "a CSV file the scene reads";
+        }
+    for (unsigned k = 0; k < sc->f->membranes_count && k < 16; k++)
+        if (sc->f->membranes[k].mesh.path) {
+            const char *mp = sc->f->membranes[k].mesh.path;
+            if (mp[0] == '/')
+                snprintf(mesh[k], sizeof mesh[k], "%s", mp);
+            else
+                snprintf(mesh[k], sizeof mesh[k], "%s/%s", sc->dir, mp);
+            in[nin] = mesh[k], what[nin++] = "a mesh file the scene reads";
         }
     for (int q = 0; q < 6; q++) {
         struct stat st;

@@ -72,11 +72,15 @@ typedef struct {
 /* membranes: [{name, mesh: {kind, center, radius, height, size, edge}, material: {...}, model, pressure,
  * pressure_stages, attach: [{wall, within}]}] (seed 001; docs/scenes.md) */
 typedef struct {
-    char *kind;                   /* "tube", "sheet" or "sphere" */
-    double center[3];             /* tube: centre of its bottom ring; sheet, sphere: centre [m] */
+    char *kind;                   /* "tube", "sheet", "sphere" or "file" */
+    double center[3];             /* tube, sheet, sphere: centre [m] */
     double radius, height;        /* tube, sphere (radius) [m] */
     double size[2];               /* sheet: along x and y [m] */
-    double edge;                  /* target edge length [m] */
+    double edge;                  /* target edge length [m] (generated meshes) */
+    char *path;                   /* file: .obj or .stl, relative to the scene file */
+    double scale;                 /* file: coordinates x scale [m per file unit] (default 1) ... */
+    double translate[3];          /* ... + translate [m] */
+    bool flip;                    /* file: reverse every triangle (the pressure then pushes the other way) */
 } scene_mesh;
 
 typedef struct {

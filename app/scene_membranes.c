@@ -12,24 +12,38 @@
 #define DEM_SCENE_MAX_GENERATED 5000000
 #endif
 
+/* A generated mesh's spec (0), a file mesh (-1: read_mesh reads it), or a refusal (1) */
 static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh_spec *sp, char *err, size_t errlen)
 {
     static const struct {
         const char *kind;
         dem_mesh_kind id;
-        const char *need[2];
-    } kinds[] = {{"tube", DEM_MESH_TUBE, {"radius", "height"}},
-                 {"sheet", DEM_MESH_SHEET, {"size", NULL}},
-                 {"sphere", DEM_MESH_SPHERE, {"radius", NULL}}};
+        const char *need[3];
+    } kinds[] = {{"tube", DEM_MESH_TUBE, {"radius", "height", "edge"}},
+                 {"sheet", DEM_MESH_SHEET, {"size", "edge", NULL}},
+                 {"sphere", DEM_MESH_SPHERE, {"radius", "edge", NULL}}};
+    static const char *const generated_only[] = {"center", "radius", "height", "size", "edge"};
+    static const char *const file_only[] = {"path", "scale", "translate", "flip"};
     char p[128];
-    int q = 0;
+    int q = 0, file = !strcmp(ms->kind, "file");
     while (q < 3 && strcmp(ms->kind, kinds[q].kind))
         q++;
-    if (q == 3) {
+    if (q == 3 && !file) {
         snprintf(p, sizeof p, "membranes[%u].mesh.kind", k);
-        return scene_fail(sc, err, errlen, p, "unknown mesh kind '%s' (tube, sheet or sphere)", ms->kind);
+        return scene_fail(sc, err, errlen, p, "unknown mesh kind '%s' (tube, sheet, sphere or file)", ms->kind);
     }
-    for (int j = 0; j < 2 && kinds[q].need[j]; j++) {
+    for (int j = 0; j < (file ? 5 : 4); j++) { /* keys of the other family are refused, not ignored */
+        snprintf(p, sizeof p, "membranes[%u].mesh.%s", k, file ? generated_only[j] : file_only[j]);
+        if (scene_has(sc->loc, p))
+            return scene_fail(sc, err, errlen, p, "not a key of a %s mesh", ms->kind);
+    }
+    if (file) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.path", k);
+        if (!ms->path)
+            return scene_fail(sc, err, errlen, p, "a file mesh needs 'path' (.obj or .stl)");
+        return -1; /* a file: the caller reads it */
+    }
+    for (int j = 0; j < 3 && kinds[q].need[j]; j++) {
         snprintf(p, sizeof p, "membranes[%u].mesh.%s", k, kinds[q].need[j]);
         if (!scene_has(sc->loc, p))
             return scene_fail(sc, err, errlen, p, "a %s mesh needs '%s'", ms->kind, kinds[q].need[j]);
@@ -39,7 +53,11 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
     double area = q == 0 ? 2 * M_PI * ms->radius * ms->height : q == 1 ? ms->size[0] * ms->size[1]
                                                                        : 4 * M_PI * ms->radius * ms->radius;
     double nv = area / (0.433 * ms->edge * ms->edge);
-    if (ms->edge > 0 && isfinite(nv) && nv > DEM_SCENE_MAX_GENERATED) {
+    if (!(ms->edge > 0) || !isfinite(ms->edge)) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
+        return scene_fail(sc, err, errlen, p, "must be > 0 m and finite");
+    }
+    if (isfinite(nv) && nv > DEM_SCENE_MAX_GENERATED) {
         snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
         return scene_fail(sc, err, errlen, p, "edges of %g m make about %.3g vertices (at most %d): use longer edges",
                           ms->edge, nv, DEM_SCENE_MAX_GENERATED);
@@ -139,6 +157,45 @@ static int pressure(const scene *sc, dem_sim *s, unsigned k, int *set_by, char *
     return 0;
 }
 
+/* A mesh file (relative to the scene's folder), scaled, moved and, if asked, turned over */
+static int read_mesh(const scene *sc, unsigned k, dem_mesh *mesh, char *err, size_t errlen)
+{
+    const scene_mesh *ms = &sc->f->membranes[k].mesh;
+    char file[4200], why[4600], p[128];
+    if (ms->path[0] == '/')
+        snprintf(file, sizeof file, "%s", ms->path);
+    else
+        snprintf(file, sizeof file, "%s/%s", sc->dir, ms->path);
+    snprintf(p, sizeof p, "membranes[%u].mesh.path", k);
+    if (dem_mesh_read(file, mesh, why, sizeof why))
+        return scene_fail(sc, err, errlen, p, "%s", why);
+    snprintf(p, sizeof p, "membranes[%u].mesh.scale", k);
+    double scale = scene_has(sc->loc, p) ? ms->scale : 1;
+    if (!(scale > 0) || !isfinite(scale)) {
+        dem_mesh_free(mesh);
+        return scene_fail(sc, err, errlen, p, "must be > 0 and finite [m per unit of the file]");
+    }
+    for (int i = 0; i < mesh->nv; i++)
+        for (int d = 0; d < 3; d++)
+            mesh->x[3 * i + d] = mesh->x[3 * i + d] * scale + ms->translate[d];
+    for (int t = 0; ms->flip && t < mesh->nt; t++) {
+        int a = mesh->tri[3 * t + 1];
+        mesh->tri[3 * t + 1] = mesh->tri[3 * t + 2], mesh->tri[3 * t + 2] = a;
+    }
+    return 0;
+}
+
+static double shortest_edge(const dem_mesh *m)
+{
+    double s = INFINITY;
+    for (int t = 0; t < m->nt; t++)
+        for (int c = 0; c < 3; c++) {
+            const double *a = m->x + 3 * m->tri[3 * t + c], *b = m->x + 3 * m->tri[3 * t + (c + 1) % 3];
+            s = fmin(s, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+        }
+    return s;
+}
+
 int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *first_wall, char *err, size_t errlen)
 {
     const scene_file *f = sc->f;
@@ -159,13 +216,17 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
         const scene_membrane_material *mt = &m->material;
         char p[128];
         dem_mesh_spec sp;
-        if (mesh_spec(sc, k, &m->mesh, &sp, err, errlen))
+        int e = mesh_spec(sc, k, &m->mesh, &sp, err, errlen);
+        if (e > 0)
             return 1;
         dem_mesh mesh;
-        char why[256];
+        char why[4600];
         snprintf(p, sizeof p, "membranes[%u].mesh", k);
-        if (dem_mesh_make(&sp, &mesh, why, sizeof why))
+        if (e == 0 && dem_mesh_make(&sp, &mesh, why, sizeof why))
             return scene_fail(sc, err, errlen, p, "%s", why);
+        if (e < 0 && read_mesh(sc, k, &mesh, err, errlen))
+            return 1;
+
         int model = DEM_MEMBRANE_PATCH;
         if (m->model && !strcmp(m->model, "particle"))
             model = DEM_MEMBRANE_PARTICLE;
@@ -175,7 +236,7 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
             return scene_fail(sc, err, errlen, p, "unknown model '%s' (patch or particle)", m->model);
         }
         snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
-        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * sp.edge;
+        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * shortest_edge(&mesh);
         dem_membrane dm = {mt->young, mt->poisson, mt->thickness, mt->density, mt->restitution, mt->friction,
                            mt->damping, mt->kel, mt->kdiss, vr, model};
         dem_membrane_info info;

@@ -91,7 +91,9 @@ static const cyaml_schema_field_t mesh_fields[] = {
     CYAML_FIELD_STRING_PTR("kind", CYAML_FLAG_POINTER, scene_mesh, kind, 1, 16),
     VEC3("center", scene_mesh, center), REAL("radius", scene_mesh, radius), REAL("height", scene_mesh, height),
     CYAML_FIELD_SEQUENCE_FIXED("size", CYAML_FLAG_OPTIONAL, scene_mesh, size, &real_entry, 2),
-    CYAML_FIELD_FLOAT("edge", CYAML_FLAG_DEFAULT, scene_mesh, edge), CYAML_FIELD_END};
+    REAL("edge", scene_mesh, edge), TEXT("path", scene_mesh, path), REAL("scale", scene_mesh, scale),
+    VEC3("translate", scene_mesh, translate), CYAML_FIELD_BOOL("flip", CYAML_FLAG_OPTIONAL, scene_mesh, flip),
+    CYAML_FIELD_END};
 
 static const cyaml_schema_field_t membrane_material_fields[] = {
     CYAML_FIELD_FLOAT("young", CYAML_FLAG_DEFAULT, scene_membrane_material, young),

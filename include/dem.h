@@ -200,6 +200,10 @@ typedef struct {
 /* Fills m (free it with dem_mesh_free); 0, or -1 with the reason in err. */
 int dem_mesh_make(const dem_mesh_spec *spec, dem_mesh *m, char *err, size_t errlen);
 void dem_mesh_free(dem_mesh *m);
+/* Reads a mesh from a Wavefront OBJ (v and triangular f) or an STL file (ASCII or binary; equal coordinates become one
+ * vertex), strictly: anything it cannot take is refused with "path:line: reason" in err (host/mesh_file.c). The
+ * triangles keep the file's order and orientation. Free with dem_mesh_free. 0, or -1. */
+int dem_mesh_read(const char *path, dem_mesh *m, char *err, size_t errlen);
 /* A mesh's edges (each once, edge[2 ne], in the order of their (lower, higher) vertex) and hinges (one per edge
  * shared by two triangles, hinge[4 nhinges] as dem_add_hinge takes them); nboundary edges belong to one triangle.
  * Refuses an edge of more than two triangles and two triangles turned opposite ways. */

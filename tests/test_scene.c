@@ -250,8 +250,9 @@ static void test_restart_bitwise(void **st)
 }
 
 /* A membrane scene (tests/scenes/membrane_tube.yaml: a patch tube between platens, beads inside, a pressure ramp):
- * its refusals name file, line and field; a run writes the triangles and a second XDMF grid; the beads stay inside
- * the tube; a restart from the checkpoint halfway continues bit for bit, patch contacts included. */
+ * its refusals name file, line and field; the same tube read from an OBJ file runs to the same bits; a run writes
+ * the triangles and a second XDMF grid; the beads stay inside the tube; a restart from the checkpoint halfway
+ * continues bit for bit, patch contacts included. */
 static void test_membrane_scene(void **st)
 {
     (void)st;
@@ -260,7 +261,8 @@ static void test_membrane_scene(void **st)
         {"s/walls, membrane\\]/walls, membrane, springs]/", "effect 'springs' is part of the effect 'membrane'"},
         {"s/kind: tube/kind: cube/", "bad.yaml:23: membranes[0].mesh.kind: unknown mesh kind 'cube'"},
         {"s/, height: 0.04, edge/, edge/", "membranes[0].mesh.height: a tube mesh needs 'height'"},
-        {"s/edge: 0.006/edge: 0/", "bad.yaml:23: membranes[0].mesh: "},
+        {"s/edge: 0.006/edge: 0/", "bad.yaml:23: membranes[0].mesh.edge: must be > 0 m and finite"},
+        {"s/kdiss: 1.0e-6}/kdiss: 1.0e-6, vertex_radius: 0.01}/", "membranes[0]: membrane: vertex_radius 0.01 m overlaps"},
         {"s/model: patch/model: patches/", "bad.yaml:26: membranes[0].model: unknown model 'patches' (patch or particle)"},
         {"s/young: 1.25e6/young: -1/", "membranes[0]: membrane: young, thickness, density and vertex_radius must be > 0"},
         {"s/duration: 0.005, pressure/duration: -1, pressure/", "membranes[0].pressure_stages[0]: duration must be >= 0"},
@@ -270,6 +272,40 @@ static void test_membrane_scene(void **st)
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
         bad_in("tests/scenes/membrane_tube.yaml", cases[k][0], cases[k][1]);
+    /* the same tube from an OBJ file (written here from the generated mesh, every digit kept) runs to the same bits;
+     * a file's errors name its line */
+    dem_mesh tube;
+    char why[256], obj[512];
+    dem_mesh_spec tsp = {DEM_MESH_TUBE, {0, 0, 0.02}, 0.02, 0.04, 0.006};
+    assert_int_equal(dem_mesh_make(&tsp, &tube, why, sizeof why), 0);
+    snprintf(obj, sizeof obj, "%s/tube.obj", tmp);
+    FILE *fp = fopen(obj, "w");
+    for (int i = 0; i < tube.nv; i++)
+        fprintf(fp, "v %.17g %.17g %.17g\n", tube.x[3 * i], tube.x[3 * i + 1], tube.x[3 * i + 2]);
+    for (int t = 0; t < tube.nt; t++)
+        fprintf(fp, "f %d %d %d\n", tube.tri[3 * t] + 1, tube.tri[3 * t + 1] + 1, tube.tri[3 * t + 2] + 1);
+    fclose(fp);
+    dem_mesh_free(&tube);
+    const char *file_mesh = "s/mesh: {kind: tube.*/mesh: {kind: file, path: tube.obj}/";
+    bad_in("tests/scenes/membrane_tube.yaml", "s/mesh: {kind: tube, /mesh: {kind: file, path: tube.obj, /",
+           "bad.yaml:23: membranes[0].mesh.center: not a key of a file mesh");
+    bad_in("tests/scenes/membrane_tube.yaml", "s/mesh: {kind: tube.*/mesh: {kind: file, path: none.obj}/",
+           "bad.yaml:23: membranes[0].mesh.path: ");
+    char err0[8192];
+    assert_int_equal(sh(err0, sizeof err0, "printf 'v 0 0 0\\nv 1 0 0\\nv 0 1 0\\nv 1 1 0\\nf 1 2 3 4\\n' > %s/quad.obj",
+                        tmp), 0);
+    bad_in("tests/scenes/membrane_tube.yaml", "s/mesh: {kind: tube.*/mesh: {kind: file, path: quad.obj}/",
+           "quad.obj:5: face: 4 corners (only triangles)");
+    assert_int_equal(sh(err0, sizeof err0, "sed '%s' %s/tests/scenes/membrane_tube.yaml > %s/file.yaml && %s run "
+                        "%s/file.yaml -o %s/mf.h5 --quiet && %s run %s/tests/scenes/membrane_tube.yaml -o %s/mg.h5 "
+                        "--quiet", file_mesh, SRC, tmp, DEM, tmp, tmp, DEM, SRC, tmp), 0);
+    char fa[300], fb[300];
+    snprintf(fa, sizeof fa, "%s/mf.ckpt.h5", tmp);
+    snprintf(fb, sizeof fb, "%s/mg.ckpt.h5", tmp);
+    double xa[3 * 225], xb[3 * 225];
+    read_state(fa, "x", xa, 3 * 225, H5T_NATIVE_DOUBLE);
+    read_state(fb, "x", xb, 3 * 225, H5T_NATIVE_DOUBLE);
+    assert_memory_equal(xa, xb, sizeof xa);
 
     char err[8192];
     const char *sc = SRC "/tests/scenes/membrane_tube.yaml";
