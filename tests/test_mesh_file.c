@@ -103,12 +103,7 @@ static void test_round_trip(void **st)
     assert_int_equal(dem_mesh_make(&sp, &g, err, sizeof err), 0);
     char path[512];
     snprintf(path, sizeof path, "%s/sphere.obj", dir);
-    FILE *fp = fopen(path, "w");
-    for (int i = 0; i < g.nv; i++)
-        fprintf(fp, "v %.17g %.17g %.17g\n", g.x[3 * i], g.x[3 * i + 1], g.x[3 * i + 2]);
-    for (int t = 0; t < g.nt; t++)
-        fprintf(fp, "f %d %d %d\n", g.tri[3 * t] + 1, g.tri[3 * t + 1] + 1, g.tri[3 * t + 2] + 1);
-    fclose(fp);
+    mesh_write_obj(&g, path);
     if (dem_mesh_read(path, &r, err, sizeof err))
         fail_msg("%s", err);
     assert_int_equal(r.nv, g.nv);

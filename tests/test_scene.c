@@ -279,12 +279,7 @@ static void test_membrane_scene(void **st)
     dem_mesh_spec tsp = {DEM_MESH_TUBE, {0, 0, 0.02}, 0.02, 0.04, 0.006};
     assert_int_equal(dem_mesh_make(&tsp, &tube, why, sizeof why), 0);
     snprintf(obj, sizeof obj, "%s/tube.obj", tmp);
-    FILE *fp = fopen(obj, "w");
-    for (int i = 0; i < tube.nv; i++)
-        fprintf(fp, "v %.17g %.17g %.17g\n", tube.x[3 * i], tube.x[3 * i + 1], tube.x[3 * i + 2]);
-    for (int t = 0; t < tube.nt; t++)
-        fprintf(fp, "f %d %d %d\n", tube.tri[3 * t] + 1, tube.tri[3 * t + 1] + 1, tube.tri[3 * t + 2] + 1);
-    fclose(fp);
+    mesh_write_obj(&tube, obj);
     dem_mesh_free(&tube);
     const char *file_mesh = "s/mesh: {kind: tube.*/mesh: {kind: file, path: tube.obj}/";
     bad_in("tests/scenes/membrane_tube.yaml", "s/mesh: {kind: tube, /mesh: {kind: file, path: tube.obj, /",

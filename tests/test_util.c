@@ -216,6 +216,18 @@ void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, lon
     dem_state_free(&saved);
 }
 
+void mesh_write_obj(const dem_mesh *m, const char *path)
+{
+    FILE *fp = fopen(path, "w");
+    if (!fp)
+        fail_msg("cannot write %s", path);
+    for (int i = 0; i < m->nv; i++)
+        fprintf(fp, "v %.17g %.17g %.17g\n", m->x[3 * i], m->x[3 * i + 1], m->x[3 * i + 2]);
+    for (int t = 0; t < m->nt; t++)
+        fprintf(fp, "f %d %d %d\n", m->tri[3 * t] + 1, m->tri[3 * t + 1] + 1, m->tri[3 * t + 2] + 1);
+    fclose(fp);
+}
+
 int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
 {
     static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE,

@@ -61,6 +61,8 @@ void step_or_fail(dem_sim *s, long n);
 /* Bitwise comparison of the dynamic state of two simulations (x, v, w, force, torque, wall force and the
  * tangential history of every pair in contact). Returns 0 when identical; else describes the first difference. */
 int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len);
+/* Writes m as a Wavefront OBJ with every digit of its coordinates (%.17g), for dem_mesh_read to read back */
+void mesh_write_obj(const dem_mesh *m, const char *path);
 /* Restart: starts a and b (the same set-up) with c, steps a by `before`, restores a's state into b, steps both by
  * `after` and fails the test (naming `what`) unless they are bitwise equal. Leaves both alive for further checks. */
 void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, long after, const char *what);
