@@ -116,7 +116,7 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
                               "mc_strain, membrane)", e);
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
-        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES)) /* they come with the membranes */
+        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS)) /* with the membranes */
             return scene_fail(sc, err, errlen, path, "effect '%s' is part of the effect 'membrane': list that, and "
                               "the scene's membranes turn on what they need", e);
         run->effects |= 1u << bit;

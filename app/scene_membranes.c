@@ -254,6 +254,6 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
         if (pressure(sc, s, k, &set_by, err, errlen))
             return 1;
     }
-    run->effects |= dem_effects(s) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES);
+    run->effects |= dem_effects(s) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS);
     return 0;
 }

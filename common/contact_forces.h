@@ -185,7 +185,7 @@ DEM_ITEM(contact_forces)
     if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
                           invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, trace, invvol,
-                          mc_wall_disp, mc_wall_fn, &fi, &ti);
+                          mc_wall_disp, mc_wall_fn, ride, &fi, &ti);
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(torque, i, ti);

@@ -11,6 +11,7 @@
 #define DEM_CONTACT_GEOMETRY_H
 #include "vec3.h"
 #include "dem_layout.h"
+#include "dem_effects.h"
 
 typedef struct {
     int active;  /* 1 when the spheres overlap */
@@ -77,6 +78,18 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
         }
         /* a centre exactly on the axis cannot touch: the host rejects particles wider than the cylinder */
     }
+    return g;
+}
+
+/* Particle i against wall k: wall_geometry, except that a particle riding on the wall (ride[i] bit k, with
+ * DEM_EFFECT_RIDERS) does not touch it - a membrane's ring sits on its platen, and the platen's force is the
+ * granulate's alone. Every wall loop (forces, stress, MC-strain) goes through here. */
+DEM_INLINE wall_geom wall_met(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                              DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri)
+{
+    wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+    if ((fx & DEM_EFFECT_RIDERS) && ((ride[i] >> k) & 1u))
+        g.active = 0;
     return g;
 }
 

@@ -8,7 +8,8 @@
  * ones in pass 1 and the MIRRORED ones, then the walls, in pass 2 (contact_forces.h). A contact_ref also names where
  * its per-contact values live: a row slot (i * maxn + c) or a wall slot (i * nwalls + w), so that arrays kept per
  * row slot and per wall slot (forces, displacements) are read and written through one pair of helpers.
- * A new kind of partner (the membrane's patches, next) is one more range here and one more case in each user.
+ * The membrane's patch contacts are not a range here: they have rows of their own (patch_contacts.h), are summed
+ * after everything above, and enter neither the stress sums nor MC-strain.
  */
 #ifndef DEM_CONTACTS_H
 #define DEM_CONTACTS_H

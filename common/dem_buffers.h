@@ -67,6 +67,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(CHAN_REC, REAL, 3 * (2 * NS + 3 * NT + 4 * NH), DEM_EFFECT_CHANNEL, -1, NONE)                                 \
     ENTRY(RIDER_INT, INT, 2 * NR, 0, -1, SETUP(rider_int))                                                              \
     ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off))                                                             \
+    ENTRY(RIDE, UINT, N, DEM_EFFECT_RIDERS, -1, SETUP(ride))                                                           \
     ENTRY(VTRI_START, INT, N + 1, DEM_EFFECT_PATCHES, -1, SETUP(vtri_start))                                           \
     ENTRY(VTRI_LIST, INT, 3 * NT, DEM_EFFECT_PATCHES, -1, SETUP(vtri_list))                                            \
     ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE)                                                                \

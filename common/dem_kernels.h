@@ -94,7 +94,8 @@
     A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)     \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
-    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)
+    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
+    A(BIN, unsigned, ride, RIDE)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */
@@ -126,7 +127,7 @@
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
     A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                                \
     A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                              \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE)
 #define DEM_ARGS_stress_trace(F, A)                                                                                  \
     DEM_ARGS_stress_head(F, A) A(BOUT, real, trace, TRACE)
 #define DEM_ITEMS_stress_trace n
@@ -140,7 +141,7 @@
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
     A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                           \
-    A(BOUT, real, wall_disp, MC_WALL_DISP)
+    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
@@ -148,7 +149,7 @@
     A(CIN, int, nbr_list, LIST) A(CIN, int, nbr_mirror, MIRROR) A(I, int, nwalls, NWALLS)                            \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                   \
     A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
-    A(BOUT, int, flags, FLAGS)
+    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE)
 #define DEM_ITEMS_mc_strain_update n
 
 /* ---- springs.h ---- */

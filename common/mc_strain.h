@@ -66,9 +66,10 @@ DEM_INLINE pair_geom mc_pair_geometry(unsigned fx, vec3 xa, real ra, vec3 xb, re
 DEM_INLINE real mc_contact_radius(mc_contact m) { return m.delta > (real)0 ? dem_sqrt(m.rstar * m.delta) : (real)0; }
 
 /* The geometry of one contact of particle i (contacts.h: a pair or a wall). */
-DEM_INLINE mc_contact mc_contact_get(unsigned fx, contact_ref r, vec3 xi, real ri, DEM_CONST_GLOBAL real *x,
+DEM_INLINE mc_contact mc_contact_get(unsigned fx, int i, contact_ref r, vec3 xi, real ri, DEM_CONST_GLOBAL real *x,
                                      DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
-                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL real *pairmat)
+                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride,
+                                     DEM_CONST_GLOBAL real *pairmat)
 {
     mc_contact m;
     if (r.kind != CONTACT_WALL) {
@@ -81,7 +82,7 @@ DEM_INLINE mc_contact mc_contact_get(unsigned fx, contact_ref r, vec3 xi, real r
         m.p = v3_sub(xi, v3_scale(g.n, ri - (real)0.5 * g.delta));
     } else {
         int k = r.partner;
-        wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+        wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
         m.active = (fx & DEM_EFFECT_WALLS) ? g.active : 0;
         m.n = g.n;
         m.delta = g.delta;
@@ -137,7 +138,7 @@ DEM_ITEM(mc_strain_disp)
     int where[MC_CACHE], nc = 0;
     for (int c = 0; c < total && nc <= MC_CACHE; c++) {
         contact_ref r = contact_at(i, c, cnt, maxn, nwalls, nbr_list);
-        mc_contact cc = mc_contact_get(fx, r, xi, ri, x, radius, wall_int, wall_real, pairmat);
+        mc_contact cc = mc_contact_get(fx, i, r, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         contact_set(r, disp, wall_disp, (real)0);
         if (!cc.active)
             continue;
@@ -173,7 +174,7 @@ DEM_ITEM(mc_strain_disp)
     }
     for (int c = 0; c < total; c++) { /* slow path: recompute each contact's geometry where needed */
         contact_ref rc = contact_at(i, c, cnt, maxn, nwalls, nbr_list);
-        mc_contact cc = mc_contact_get(fx, rc, xi, ri, x, radius, wall_int, wall_real, pairmat);
+        mc_contact cc = mc_contact_get(fx, i, rc, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         real s = (real)0;
         if (cc.active)
             for (int k = 0; k < total; k++) {
@@ -181,7 +182,7 @@ DEM_ITEM(mc_strain_disp)
                 real fk = contact_get(rk, fn, wall_fn);
                 if (k == c || !(fk > (real)0))
                     continue;
-                mc_contact kk = mc_contact_get(fx, rk, xi, ri, x, radius, wall_int, wall_real, pairmat);
+                mc_contact kk = mc_contact_get(fx, i, rk, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
                 if (!kk.active)
                     continue;
                 real d, inv_d;
@@ -230,7 +231,7 @@ DEM_ITEM(mc_strain_update)
             fn[m] = f;
         } else if (r.kind == CONTACT_WALL) {
             int k = r.partner;
-            wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+            wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
             if (g.active)
                 f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR], ri,
                                mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0));

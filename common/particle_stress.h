@@ -72,7 +72,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GL
                             DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL int *mat,
                             DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                             DEM_CONST_GLOBAL int *nbr_list, int nwalls, DEM_CONST_GLOBAL int *wall_int,
-                            DEM_CONST_GLOBAL real *wall_real, DEM_GLOBAL real *out)
+                            DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride, DEM_GLOBAL real *out)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i], iv = invvol[i], tr = (real)0;
@@ -94,7 +94,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GL
             arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
         } else {
             int w = r.partner;
-            wall_geom g = wall_geometry(wall_int[w * WI_STRIDE + WI_TYPE], wall_real + w * W_STRIDE, xi, ri);
+            wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, w, xi, ri);
             if (!g.active)
                 continue;
             delta = g.delta, rstar = ri, n = g.n, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
@@ -137,13 +137,13 @@ DEM_INLINE real mc_stress_wall(unsigned fx, DEM_CONST_GLOBAL real *pmi, DEM_CONS
 }
 DEM_ITEM(stress_trace)
 {
-    stress_at(fx, 0, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int, wall_real,
+    stress_at(fx, 0, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int, wall_real, ride,
               trace);
 }
 
 DEM_ITEM(stress_tensor)
 {
-    stress_at(fx, 1, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int, wall_real,
+    stress_at(fx, 1, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_list, nwalls, wall_int, wall_real, ride,
               stress);
 }
 #endif /* DEM_PARTICLE_STRESS_H */

@@ -25,14 +25,14 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                                   int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
                                   real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask,
                                   DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
-                                  DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn, vec3 *fi,
-                                  vec3 *ti)
+                                  DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn,
+                                  DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti)
 {
     unsigned old_mask = wall_mask[i], mask = 0;
     for (int k = 0; k < nwalls; k++) {
         DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
         int slot = i * nwalls + k;
-        wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wr, xi, ri);
+        wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
         if (g.active) {
             real arm = ri - g.delta;
             real mstar = hm_effective_mass(invm, (real)0);

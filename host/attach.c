@@ -21,6 +21,7 @@ int dem_attach_to_wall(dem_sim *s, int particle, int wall)
         return DEM_ERR_NOMEM;
     s->att[2 * s->natt] = particle, s->att[2 * s->natt + 1] = wall, s->natt++;
     s->pflags[particle] |= DEM_PARTICLE_FIXED;
+    s->effects |= DEM_EFFECT_RIDERS; /* and it does not touch that wall (contact_geometry.h, wall_met) */
     return 0;
 }
 

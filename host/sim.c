@@ -503,7 +503,7 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
 /* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
-                                                           "springs", "pressure", "bending", "patches"};
+                                                           "springs", "pressure", "bending", "patches", "riders"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

@@ -366,10 +366,13 @@ static int pack_riders(dem_sim *s, dem_setup *u, int rs)
         for (int d = 0; d < 3; d++)
             off[3 * k + d] = s->x[3 * p + d] - s->wall_pos[w][d];
     }
-    s->packed[16] = ri, s->packed[17] = pack_real(off, 3 * (size_t)nr, rs);
+    unsigned *ride = calloc((size_t)s->n, sizeof(unsigned));
+    for (int k = 0; ride && k < nr; k++)
+        ride[ri[2 * k]] |= 1u << ri[2 * k + 1];
+    s->packed[16] = ri, s->packed[17] = pack_real(off, 3 * (size_t)nr, rs), s->packed[20] = ride;
     free(off);
-    u->nriders = nr, u->rider_int = ri, u->rider_off = s->packed[17];
-    return s->packed[17] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    u->nriders = nr, u->rider_int = ri, u->rider_off = s->packed[17], u->ride = ride;
+    return s->packed[17] && ride ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }
 
 /* The walls' integer table and start positions, and the real table of step 0. */

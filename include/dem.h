@@ -242,7 +242,8 @@ int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 *
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
 int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material);
 /* Particle `particle` rides on wall `wall` (added before): it becomes fixed (DEM_PARTICLE_FIXED) and moves with the
- * wall's velocity at every step, its own given velocity replaced - a membrane's end ring on a platen. */
+ * wall's velocity at every step, its own given velocity replaced - a membrane's end ring on a platen. It does not
+ * touch that wall (the platen's force is the granulate's alone). Turns on DEM_EFFECT_RIDERS. */
 int dem_attach_to_wall(dem_sim *s, int particle, int wall);
 /* Replaces the motion stages of a wall (before dem_start). */
 int dem_set_wall_motion(dem_sim *s, int wall, int nstages, const dem_stage *stages);

@@ -31,10 +31,12 @@ enum {
     DEM_EFFECT_PATCHES = 32768, /* spheres touch triangles of particles as surfaces (seed 001 Eq. 17 and Table 1, the
                                    membrane's patch contacts): common/patch_contacts.h; the triangles' vertices then
                                    touch no particle as spheres */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768
+    DEM_EFFECT_RIDERS = 65536, /* particles ride on walls (dem_attach_to_wall; common/riders.h) and do not touch the
+                                  wall they ride on (contact_geometry.h: wall_met) */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..15; 7..11 are the convention bits, not effects. */
-#define DEM_EFFECT_COUNT 16
+/* Bit positions an effect name can have (dem_effect_name): 0..16; 7..11 are the convention bits, not effects. */
+#define DEM_EFFECT_COUNT 17
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

@@ -268,8 +268,8 @@ static void test_restart_bitwise(void **st)
 
 /* Riders: a tube membrane whose end rings ride on two plane walls (dem_attach_to_wall), the top wall moving down,
  * pausing, and moving up. Every rider's velocity is its wall's, and its z stays within a rounding or two of its wall's
- * displacement, in fp32 too (placed, not integrated: common/riders.h); the bottom ring stays; OpenCL equals the
- * reference. */
+ * displacement, in fp32 too (placed, not integrated: common/riders.h); the bottom ring stays; the rings lie on their
+ * walls and exert no force on them (a rider does not touch its wall); OpenCL equals the reference. */
 #define TUBE_DT 2e-6
 
 typedef struct {
@@ -291,8 +291,9 @@ static dem_sim *build_riders(void *ctx)
     if (dem_add_membrane(s, &m, &rubber, &info))
         fail_msg("%s", dem_error(s));
     int steel = dem_add_material(s, &(dem_material){7800, INFINITY, 0.3, 0.5, 0.3});
-    dem_wall lo = {DEM_WALL_PLANE, steel, {0, 0, 0.019}, {0, 0, 1}, 0, 0, {{0}}};
-    dem_wall hi = {DEM_WALL_PLANE, steel, {0, 0, 0.081}, {0, 0, -1}, 0, 3,
+    /* the rings lie on the walls: each vertex overlaps its wall by its radius, and touches it not at all */
+    dem_wall lo = {DEM_WALL_PLANE, steel, {0, 0, 0.02}, {0, 0, 1}, 0, 0, {{0}}};
+    dem_wall hi = {DEM_WALL_PLANE, steel, {0, 0, 0.08}, {0, 0, -1}, 0, 3,
                    {{200 * TUBE_DT, {0, 0, -0.5}}, {100 * TUBE_DT, {0, 0, 0}}, {100 * TUBE_DT, {0, 0, 1.0}}}};
     int wl = dem_add_wall(s, &lo), wh = dem_add_wall(s, &hi);
     rd->nv = info.nvertices;
@@ -342,6 +343,12 @@ static void check_riders(dem_sim *s, const backend_case *bc, void *ctx)
         printf("  %s, phase %d: top wall moved %.6g mm, its riders within %.2g m of it\n", bc->name, ph,
                1e3 * (p[2] - p0[2]), worst);
         assert_true(worst <= 4 * 0.1 * bc->eps); /* a rounding or two of coordinates near 0.1 m, at any step */
+        double f0[3], f1[3]; /* riders do not push the walls they ride on */
+        dem_wall_force(s, 0, f0), dem_wall_force(s, 1, f1);
+        assert_true(f0[0] == 0 && f0[1] == 0 && f0[2] == 0 && f1[0] == 0 && f1[1] == 0 && f1[2] == 0);
+        dem_energy_t en;
+        assert_int_equal(dem_energy(s, &en), 0);
+        assert_int_equal(en.wall_contacts, 0);
         double want = ph < 2 ? -2e-4 : 0; /* down 0.2 mm, hold, up 0.2 mm */
         assert_true(fabs(p[2] - p0[2] - want) < 1e-12);
     }
