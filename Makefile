@@ -121,6 +121,12 @@ validate: $(BUILD)/dem
 	  case $$s in five_box) ref="$(PLOT_REF_five_box)";; rubber_plates) ref="$(PLOT_REF_rubber_plates)";; *) ref="";; esac; \
 	  /usr/bin/python3 tools/plot_models.py -o out/validation/$$s.png $$ref $$runs || exit 1; \
 	done
+	@for m in patch particle; do \
+	  echo "validate: seed001/friction_slide_$$m"; \
+	  ./$(BUILD)/dem run scenes/seed001/friction_slide_$$m.yaml -o out/validation/friction_slide_$$m.h5 --quiet || exit 1; \
+	done
+	/usr/bin/python3 tools/plot_friction_slide.py -o out/validation/friction_slide.png \
+	  out/validation/friction_slide_patch.h5 out/validation/friction_slide_particle.h5
 
 # The README's two commands on a bare Debian 12 root (mmdebstrap minbase, cached; the committed HEAD is cloned
 # into it): make run, then make test, each must pass on the first try. Needs root or sudo. scripts/test-fresh.sh.

@@ -47,6 +47,9 @@ typedef struct {
     char *csv;                    /* a CSV file (path relative to the scene file), or */
     char *csv_density;            /* "check" (default: a density column must match the material) or "ignore" */
     scene_generate *generate;     /* generated */
+    char **hold;                  /* velocity components every sphere of the group keeps: "x", "y", "z" */
+    unsigned hold_count;
+    bool fixed_rotation;          /* the group's spheres do not rotate */
 } scene_particles;
 
 typedef struct {
@@ -109,6 +112,7 @@ typedef struct {
     unsigned pressure_stages_count;
     scene_attach *attach;
     unsigned attach_count;
+    bool fixed;                   /* every vertex fixed (a membrane on a rigid support) */
 } scene_membrane;
 
 typedef struct {

@@ -116,9 +116,12 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
                               "mc_strain, membrane)", e);
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
-        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS)) /* with the membranes */
-            return scene_fail(sc, err, errlen, path, "effect '%s' is part of the effect 'membrane': list that, and "
-                              "the scene's membranes turn on what they need", e);
+        if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS))
+            return scene_fail(sc, err, errlen, path, "effect '%s' is not listed by name: %s", e,
+                              (1u << bit) == DEM_EFFECT_CONSTRAINTS
+                                  ? "a particle group's 'hold' turns it on"
+                                  : "it is part of the effect 'membrane': list that, and the scene's membranes turn on "
+                                    "what they need");
         run->effects |= 1u << bit;
     }
     if (!(run->effects & DEM_EFFECT_HERTZ))
@@ -629,6 +632,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
         scene_add_particles(sc, s, &origin, err, errlen) || (nspheres = dem_count(s), 0) ||
         parse_walls(sc, s, run, first_wall, err, errlen) ||
         scene_add_membranes(sc, s, run, first_wall, err, errlen) ||
+        (run->effects |= dem_effects(s) & DEM_EFFECT_CONSTRAINTS, 0) ||
         parse_run_options(sc, s, run, err, errlen) || parse_time(sc, s, run, err, errlen) ||
         parse_output(sc, run, err, errlen) ||
         scene_check_overlaps(sc, s, origin, nspheres, err, errlen) ||

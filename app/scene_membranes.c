@@ -245,6 +245,8 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
             dem_mesh_free(&mesh);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
         }
+        for (int i = 0; m->fixed && i < info.nvertices; i++)
+            dem_set_particle_flags(s, info.first_particle + i, DEM_PARTICLE_FIXED);
         for (unsigned a = 0; a < m->attach_count; a++)
             if (attach(sc, s, k, a, mesh.x, info.first_particle, info.nvertices, first_wall, err, errlen)) {
                 dem_mesh_free(&mesh);

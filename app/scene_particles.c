@@ -479,12 +479,35 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
     return 0;
 }
 
+/* The group's constraints (hold, fixed_rotation) on its particles first .. ol->n - 1 */
+static int constrain(const scene *sc, dem_sim *s, unsigned g, int first, int last, char *err, size_t errlen)
+{
+    const scene_particles *pg = &sc->f->particles[g];
+    unsigned flags = pg->fixed_rotation ? DEM_PARTICLE_NO_ROTATION : 0;
+    for (unsigned k = 0; k < pg->hold_count; k++) {
+        const char *a = pg->hold[k];
+        unsigned bit = !strcmp(a, "x") ? DEM_PARTICLE_HOLD_VX : !strcmp(a, "y") ? DEM_PARTICLE_HOLD_VY
+                     : !strcmp(a, "z") ? DEM_PARTICLE_HOLD_VZ : 0;
+        char p[96];
+        snprintf(p, sizeof p, "particles[%u].hold[%u]", g, k);
+        if (!bit)
+            return scene_fail(sc, err, errlen, p, "'%s' is not an axis (x, y or z)", a);
+        if (flags & bit)
+            return scene_fail(sc, err, errlen, p, "axis '%s' is listed twice", a);
+        flags |= bit;
+    }
+    for (int i = first; flags && i < last; i++)
+        dem_set_particle_flags(s, i, flags);
+    return 0;
+}
+
 int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *err, size_t errlen)
 {
     origin_list ol = {NULL, 0, 0};
     int rc = 0;
     for (unsigned g = 0; g < sc->f->particles_count && !rc; g++) {
         const scene_particles *pg = &sc->f->particles[g];
+        int first = dem_count(s);
         char p[96];
         snprintf(p, sizeof p, "particles[%u].material", g);
         int mat = scene_material_id(sc, pg->material);
@@ -514,6 +537,8 @@ int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char
                 }
             }
         }
+        if (!rc)
+            rc = constrain(sc, s, g, first, dem_count(s), err, errlen);
     }
     if (rc) {
         free(ol.o);

@@ -64,6 +64,8 @@ static const cyaml_schema_field_t particles_fields[] = {
     TEXT("csv_density", scene_particles, csv_density),
     CYAML_FIELD_MAPPING_PTR("generate", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_particles, generate,
                             generate_fields),
+    CYAML_FIELD_SEQUENCE("hold", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_particles, hold, &string_entry, 1, 3),
+    CYAML_FIELD_BOOL("fixed_rotation", CYAML_FLAG_OPTIONAL, scene_particles, fixed_rotation),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t particles_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_particles, particles_fields)};
@@ -126,6 +128,7 @@ static const cyaml_schema_field_t membrane_fields[] = {
                          &pressure_stage_entry, 1, DEM_MAX_STAGES),
     CYAML_FIELD_SEQUENCE("attach", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_membrane, attach, &attach_entry, 1,
                          DEM_MAX_WALLS),
+    CYAML_FIELD_BOOL("fixed", CYAML_FLAG_OPTIONAL, scene_membrane, fixed),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t membrane_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_membrane, membrane_fields)};

@@ -43,6 +43,7 @@ typedef struct {
     const int *rider_int;   /* int[2*nriders]: particle, wall */
     const void *rider_off;  /* real[3*nriders]: the particle's place relative to its wall's point */
     const unsigned *ride;   /* unsigned[n]: bit k set when the particle rides on wall k (it does not touch it) */
+    const unsigned *hold;   /* unsigned[n]: bits 0, 1, 2: the particle keeps its velocity along x, y, z */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
     int ncell[3];

@@ -68,6 +68,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(RIDER_INT, INT, 2 * NR, 0, -1, SETUP(rider_int))                                                              \
     ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off))                                                             \
     ENTRY(RIDE, UINT, N, DEM_EFFECT_RIDERS, -1, SETUP(ride))                                                           \
+    ENTRY(HOLD, UINT, N, DEM_EFFECT_CONSTRAINTS, -1, SETUP(hold))                                                      \
     ENTRY(VTRI_START, INT, N + 1, DEM_EFFECT_PATCHES, -1, SETUP(vtri_start))                                           \
     ENTRY(VTRI_LIST, INT, 3 * NT, DEM_EFFECT_PATCHES, -1, SETUP(vtri_list))                                            \
     ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE)                                                                \

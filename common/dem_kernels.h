@@ -113,12 +113,13 @@
     F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                      \
     A(R, real, half_skin2, HALF_SKIN2) A(BOUT, real, x, X) A(BOUT, real, v, V) A(BOUT, real, w, W)                   \
     A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE) A(BIN, real, invmass, INVMASS)                           \
-    A(BIN, real, invinertia, INVINERTIA) A(BIN, real, x_build, X_BUILD) A(BOUT, int, flags, FLAGS)
+    A(BIN, real, invinertia, INVINERTIA) A(BIN, real, x_build, X_BUILD) A(BOUT, int, flags, FLAGS)                  \
+    A(BIN, unsigned, hold, HOLD)
 #define DEM_ITEMS_integrate_kick_drift n
 #define DEM_ARGS_integrate_kick(F, A)                                                                                \
     F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                      \
     A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                  \
-    A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA)
+    A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA) A(BIN, unsigned, hold, HOLD)
 #define DEM_ITEMS_integrate_kick n
 
 /* ---- particle_stress.h ---- */

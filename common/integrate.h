@@ -5,6 +5,8 @@
  *
  * a = f/m + g for free particles; inverse mass 0 marks a particle moving at constant velocity (no gravity),
  * inverse inertia 0 a particle that does not rotate. Spheres: I = 2/5 m r^2, so no gyroscopic term.
+ * With DEM_EFFECT_CONSTRAINTS a particle's held velocity components (hold[i] bits 0, 1, 2: x, y, z) get no
+ * acceleration: a motion prescribed along those axes, free along the others.
  * kick_drift also raises the rebuild flag once a particle has moved more than skin/2 since the last neighbour
  * build (a non-finite position raises it too, so that binning reports it).
  */
@@ -17,13 +19,23 @@
 
 DEM_INLINE void integrate_kick_velocity(unsigned fx, int i, real half_dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
                                         DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
-                                        DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia)
+                                        DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL real *invinertia,
+                                        DEM_CONST_GLOBAL unsigned *hold)
 {
     real im = invmass[i], ii = invinertia[i];
     if (im > (real)0) {
         vec3 a = v3_scale(v3_load(force, i), im);
         if (fx & DEM_EFFECT_GRAVITY)
             a = v3_add(a, g);
+        if (fx & DEM_EFFECT_CONSTRAINTS) { /* held components keep their velocity: v + 0 dt/2 is v */
+            unsigned h = hold[i];
+            if (h & 1u)
+                a.x = (real)0;
+            if (h & 2u)
+                a.y = (real)0;
+            if (h & 4u)
+                a.z = (real)0;
+        }
         v3_store(v, i, v3_add(v3_load(v, i), v3_scale(a, half_dt)));
     }
     if ((fx & DEM_EFFECT_FRICTION) && ii > (real)0) /* torques come from friction only */
@@ -33,7 +45,7 @@ DEM_INLINE void integrate_kick_velocity(unsigned fx, int i, real half_dt, vec3 g
 DEM_ITEM(integrate_kick_drift)
 {
     vec3 g = v3(gx, gy, gz);
-    integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
+    integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia, hold);
     vec3 xi = v3_add(v3_load(x, i), v3_scale(v3_load(v, i), dt));
     v3_store(x, i, xi);
     vec3 d = v3_sub(xi, v3_load(x_build, i));
@@ -44,6 +56,6 @@ DEM_ITEM(integrate_kick_drift)
 DEM_ITEM(integrate_kick)
 {
     vec3 g = v3(gx, gy, gz);
-    integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia);
+    integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia, hold);
 }
 #endif /* DEM_INTEGRATE_H */

@@ -25,7 +25,8 @@
  * its vertices' (w0/m_a + w1/m_b + w2/m_c: a pinned patch is a wall), the contact point's velocity on the patch
  * w0 v_a + w1 v_b + w2 v_c (Fig. 3), and the sphere's contact point at the lever r_i - d, as for walls. The sphere
  * adds its contacts in ascending triangle id after its particle and wall contacts; each contact leaves its force F
- * on the sphere and the weights w in a record (PK_*).
+ * on the sphere and the weights w in a record (PK_*). A contact that starts where a neighbouring one ended takes its
+ * tangential spring (patch_forces).
  * Sums (patch_gather, one patch vertex per item, after the contribution channel): vertex v adds -(w_c F) of each
  * touching record of its triangles, by ascending sphere id, then ascending triangle id. Each vertex's share is a
  * product of the record's bits, so the shares sum to -F up to the rounding of w0 + w1 + w2 = 1 (tests/test_patch.c
@@ -144,6 +145,37 @@ DEM_INLINE int patch_touches(vec3 p, real r2, DEM_CONST_GLOBAL real *x, DEM_CONS
     return *e2 < r2 && *e2 > (real)0;
 }
 
+/* Whether contact k of sphere i stays this step: it touches, and no other touching triangle of the sphere removes it
+ * (Table 1 as patch.h extends it; the sphere's touching triangles are all in its row) */
+DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real r2, DEM_CONST_GLOBAL real *x,
+                          DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *plist, patch_point *pk)
+{
+    int t = plist[i * maxp + k];
+    real dk;
+    if (!patch_touches(xi, r2, x, tri, t, pk, &dk))
+        return 0;
+    if (pk->kind == PATCH_FACE)
+        return 1;
+    int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
+    for (int j = 0; j < cnt; j++) {
+        int u = plist[i * maxp + j];
+        patch_point pj;
+        real dj;
+        if (j == k || !patch_touches(xi, r2, x, tri, u, &pj, &dj))
+            continue;
+        int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
+        if (patch_beats(u, tj, pj.kind, dj, t, tk, pk->kind, dk))
+            return 0;
+    }
+    return 1;
+}
+
+/* Three passes over the sphere's row; ptouch holds bit 0 = touched in the previous step, bit 1 = kept now (between
+ * the passes only). 1: which contacts stay. 2: their forces; a contact that starts on a triangle sharing a vertex
+ * with one that ended in this step (the sphere slid across an edge or a vertex) takes that one's tangential spring -
+ * the first such in row order - so that the tangential spring of a sphere moving across a membrane does not restart
+ * from zero at every crossing (it fell from 1.2 N to 0 where a dragged sphere passed onto the next patch:
+ * tests/test_patch_contacts.c, test_spring_across_edges). 3: the flags become 0/1, ended contacts lose their history. */
 DEM_ITEM(patch_forces)
 {
     int cnt = pcount[i];
@@ -156,36 +188,22 @@ DEM_ITEM(patch_forces)
     vec3 fi = v3_load(force, i), ti = v3_zero();
     if (fx & DEM_EFFECT_FRICTION)
         ti = v3_load(torque, i);
-    for (int k = 0; k < cnt; k++) {
+    for (int k = 0; k < cnt; k++) { /* pass 1 */
+        patch_point pk;
+        if (patch_kept(i, k, cnt, maxp, xi, r2, x, tri, plist, &pk))
+            ptouch[i * maxp + k] = (unsigned char)(ptouch[i * maxp + k] | 2u);
+    }
+    for (int k = 0; k < cnt; k++) { /* pass 2 */
         int slot = i * maxp + k, t = plist[slot];
-        int touched = ptouch[slot];
+        unsigned state = ptouch[slot];
+        if (!(state & 2u))
+            continue;
         patch_point pk;
         real dk;
-        int on = patch_touches(xi, r2, x, tri, t, &pk, &dk);
-        if (on && pk.kind != PATCH_FACE) { /* Table 1: does another touching triangle of this sphere remove it? */
-            int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
-            for (int j = 0; j < cnt && on; j++) {
-                int u = plist[i * maxp + j];
-                patch_point pj;
-                real dj;
-                if (j == k || !patch_touches(xi, r2, x, tri, u, &pj, &dj))
-                    continue;
-                int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
-                if (patch_beats(u, tj, pj.kind, dj, t, tk, pk.kind, dk))
-                    on = 0;
-            }
-        }
-        if (!on) {
-            if (touched) { /* the contact ended: so does its history */
-                ptouch[slot] = 0;
-                if (fx & DEM_EFFECT_FRICTION)
-                    v3_store(phist, slot, v3_zero());
-            }
-            continue;
-        }
+        patch_touches(xi, r2, x, tri, t, &pk, &dk);
         int a = tri[3 * t], b = tri[3 * t + 1], cc = tri[3 * t + 2];
         vec3 e = v3_sub(xi, pk.point);
-        real dist = dem_sqrt(v3_dot(e, e));
+        real dist = dem_sqrt(dk);
         vec3 n = v3_scale(e, (real)1 / dist);
         real delta = ri - dist;
         DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + mat[a]);
@@ -197,20 +215,37 @@ DEM_ITEM(patch_forces)
         vec3 vc = vi, h = v3_zero();
         if (fx & DEM_EFFECT_FRICTION) {
             vc = v3_add(vi, v3_cross(wi, v3_scale(n, -arm)));
-            if (touched)
+            if (state & 1u) {
                 h = v3_load(phist, slot);
+            } else { /* a new contact: the spring of a neighbour that ended now, if any */
+                int tk[3] = {a, b, cc};
+                for (int j = 0; j < cnt; j++) {
+                    int u = plist[i * maxp + j];
+                    int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
+                    if (ptouch[i * maxp + j] == 1u && patch_common(tk, tj) > 0) {
+                        h = v3_load(phist, i * maxp + j);
+                        break;
+                    }
+                }
+            }
         }
         hm_result r = hm_contact(fx, n, delta, dem_sqrt(ri * delta), mstar, v3_sub(vc, vp), pm, dt, h, (real)0);
         if (fx & DEM_EFFECT_FRICTION) {
             v3_store(phist, slot, r.hist);
             ti = v3_sub(ti, v3_scale(v3_cross(n, r.ft), arm));
         }
-        if (!touched)
-            ptouch[slot] = 1;
         DEM_GLOBAL real *rec = prec + slot * PK_STRIDE;
         rec[PK_FX] = r.force.x, rec[PK_FY] = r.force.y, rec[PK_FZ] = r.force.z;
         rec[PK_W0] = pk.w[0], rec[PK_W1] = pk.w[1], rec[PK_W2] = pk.w[2];
         fi = v3_add(fi, r.force);
+    }
+    for (int k = 0; k < cnt; k++) { /* pass 3 */
+        int slot = i * maxp + k;
+        unsigned state = ptouch[slot];
+        if (state == 1u && (fx & DEM_EFFECT_FRICTION)) /* the contact ended: so does its history */
+            v3_store(phist, slot, v3_zero());
+        if (state)
+            ptouch[slot] = (unsigned char)(state >> 1);
     }
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)

@@ -323,6 +323,8 @@ int dem_set_particle_flags(dem_sim *s, int id, unsigned flags)
     if (id < 0 || id >= s->n)
         return sim_fail(s, DEM_ERR_ARG, "no particle %d", id);
     s->pflags[id] = flags;
+    if (flags & DEM_PARTICLE_HOLD_V)
+        s->effects |= DEM_EFFECT_CONSTRAINTS;
     return 0;
 }
 
@@ -503,7 +505,7 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
 /* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
-                                                           "springs", "pressure", "bending", "patches", "riders"};
+                                                           "springs", "pressure", "bending", "patches", "riders", "constraints"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

@@ -539,6 +539,12 @@ int sim_pack(dem_sim *s)
     pack_walls(s, wint);
     if ((e = pack_channel(s, u, rs)) || (e = pack_riders(s, u, rs)) || (e = pack_patches(s, u)))
         return e;
+    unsigned *hold = calloc((size_t)n, sizeof(unsigned)); /* DEM_PARTICLE_HOLD_V{X,Y,Z} as bits 0, 1, 2 */
+    if (!hold)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int i = 0; i < n; i++)
+        hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
+    s->packed[21] = hold, u->hold = hold;
     u->x = s->packed[0];
     u->v = s->packed[1];
     u->w = s->packed[2];

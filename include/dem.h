@@ -65,7 +65,11 @@ typedef struct {
 } dem_wall;
 
 enum { DEM_PARTICLE_NO_ROTATION = 1, /* infinite moment of inertia */
-       DEM_PARTICLE_FIXED = 2 };     /* infinite mass and inertia: moves at its set velocity */
+       DEM_PARTICLE_FIXED = 2,       /* infinite mass and inertia: moves at its set velocity */
+       /* keeps its set velocity along x, y or z (a motion prescribed along that axis, e.g. a sphere pushed across a
+        * surface), integrates the other components; turns on DEM_EFFECT_CONSTRAINTS */
+       DEM_PARTICLE_HOLD_VX = 4, DEM_PARTICLE_HOLD_VY = 8, DEM_PARTICLE_HOLD_VZ = 16 };
+#define DEM_PARTICLE_HOLD_V (DEM_PARTICLE_HOLD_VX | DEM_PARTICLE_HOLD_VY | DEM_PARTICLE_HOLD_VZ)
 
 typedef struct {
     dem_backend_kind backend;

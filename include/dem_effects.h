@@ -33,10 +33,12 @@ enum {
                                    touch no particle as spheres */
     DEM_EFFECT_RIDERS = 65536, /* particles ride on walls (dem_attach_to_wall; common/riders.h) and do not touch the
                                   wall they ride on (contact_geometry.h: wall_met) */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536
+    DEM_EFFECT_CONSTRAINTS = 131072, /* particles keep velocity components (DEM_PARTICLE_HOLD_V*: a prescribed
+                                        motion along some axes, free along the others; common/integrate.h) */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..16; 7..11 are the convention bits, not effects. */
-#define DEM_EFFECT_COUNT 17
+/* Bit positions an effect name can have (dem_effect_name): 0..17; 7..11 are the convention bits, not effects. */
+#define DEM_EFFECT_COUNT 18
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

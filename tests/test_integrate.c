@@ -3,7 +3,8 @@
  * is exact for a constant force, so only rounding remains: checked to 4 eps per step of the motion's scale), spins
  * at its initial angular velocity (no torque), and a fixed particle stays exactly where it is. With the gravity
  * effect off, the same particle flies straight. OpenCL = the reference bit for bit. The rebuild trigger (moved more
- * than skin/2) is exercised by every moving run (tests/test_neighbor.c checks the rows it produces). */
+ * than skin/2) is exercised by every moving run (tests/test_neighbor.c checks the rows it produces). Held velocity
+ * components (DEM_PARTICLE_HOLD_V*) stay as set. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -105,9 +106,57 @@ static void test_explicit_mass(void **st)
     backend_run(bc, build_mass, 2000, check_mass, NULL);
 }
 
+/* Held velocity components (DEM_PARTICLE_HOLD_V*): a particle under gravity (0.5, 0.3, -9.81) m/s^2, held along x
+ * and z, keeps those velocity components bit for bit and moves at them, while y follows gravity; a second one, held
+ * along z only and dropped onto a plane, keeps its vertical velocity through the contact (the wall cannot stop a
+ * prescribed motion) and pushes it. */
+static dem_sim *build_hold(void *ctx)
+{
+    (void)ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    int a = dem_add_particle(s, x0, v0, 0.001, m);
+    int b = dem_add_particle(s, (double[3]){0.02, 0.02, 0.0012}, (double[3]){0, 0, -0.1}, 0.001, m);
+    assert_int_equal(dem_set_particle_flags(s, a, DEM_PARTICLE_HOLD_VX | DEM_PARTICLE_HOLD_VZ), 0);
+    assert_int_equal(dem_set_particle_flags(s, b, DEM_PARTICLE_HOLD_VZ), 0);
+    dem_wall floor = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 0, {{0}}};
+    dem_add_wall(s, &floor);
+    dem_set_gravity(s, (double[3]){0.5, 0.3, -9.81});
+    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
+    assert_true(dem_effects(s) & DEM_EFFECT_CONSTRAINTS);
+    dem_set_dt(s, DT);
+    return s;
+}
+
+static void check_hold(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    (void)ctx;
+    double x[6], v[6], f[3], t = STEPS * DT;
+    assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+    assert_int_equal(dem_get_field(s, DEM_FIELD_V, v), 0);
+    double r0 = bc->precision == DEM_FP32 ? (double)(float)v0[0] : v0[0];
+    double r2 = bc->precision == DEM_FP32 ? (double)(float)v0[2] : v0[2];
+    double rb = bc->precision == DEM_FP32 ? (double)(float)-0.1 : -0.1;
+    assert_true(v[0] == r0 && v[2] == r2 && v[5] == rb); /* held: not a bit changed */
+    assert_true(fabs(v[1] - (v0[1] + 0.3 * t)) <= 4.0 * STEPS * bc->eps); /* free: gravity */
+    assert_true(fabs(x[2] - (x0[2] + v0[2] * t)) <= 4.0 * STEPS * bc->eps * 0.01);
+    dem_wall_force(s, 0, f);
+    printf("  %s: held components unchanged, free ones follow gravity; the held sphere pushes into the floor with "
+           "%.3g N after %d steps (it moved down %.3g mm)\n", bc->name, -f[2], STEPS, 1e3 * (0.0012 - x[5]));
+    assert_true(f[2] < 0); /* the floor does feel it */
+}
+
+static void test_hold(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build_hold, STEPS, check_hold, NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hold),
         cmocka_unit_test(test_free_flight),
         cmocka_unit_test(test_gravity_off),
         cmocka_unit_test(test_explicit_mass),

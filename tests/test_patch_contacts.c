@@ -147,6 +147,75 @@ static void test_hertz_across_sheet(void **st)
     }
 }
 
+/* The tangential spring crosses edges: a sphere held at a fixed overlap and dragged slowly (both bodies moved, so
+ * no damping) across a pinned sheet of 1 mm patches over 3 mm, with friction high enough that it never slides: the
+ * friction force grows steadily, never dropping where the sphere passes onto the next patch - the new contact takes
+ * the ended one's spring (patch_contacts.h). Without that it falls to zero at every crossing. */
+typedef struct {
+    int nv;
+    long steps;
+} drag_case;
+
+static dem_sim *build_drag(void *ctx)
+{
+    drag_case *dc = ctx;
+    dem_mesh_spec sp = {DEM_MESH_SHEET, {0, 0, 0}, 0.03, 0.03, 0.001};
+    dem_membrane mm = rubber;
+    mm.friction = 50;
+    dem_sim *s = dem_create();
+    dem_mesh m;
+    char err[256];
+    assert_int_equal(dem_mesh_make(&sp, &m, err, sizeof err), 0);
+    mm.vertex_radius = 0.0002;
+    if (dem_add_membrane(s, &m, &mm, NULL))
+        fail_msg("%s", dem_error(s));
+    dc->nv = m.nv;
+    dem_mesh_free(&m);
+    for (int i = 0; i < dc->nv; i++)
+        dem_set_particle_flags(s, i, DEM_PARTICLE_FIXED);
+    dem_material g = glass;
+    g.friction = 50;
+    int id = dem_add_particle(s, (double[3]){-0.0013, 0.0004, SPHERE_R - OVERLAP}, (double[3]){0.1, 0, 0}, SPHERE_R,
+                              dem_add_material(s, &g));
+    dem_set_particle_flags(s, id, DEM_PARTICLE_FIXED);
+    dem_set_domain(s, (double[3]){-0.02, -0.02, -0.01}, (double[3]){0.02, 0.02, 0.01});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    dc->steps = (long)(0.003 / (0.1 * ts.recommended_dt));
+    return s;
+}
+
+static void check_drag(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    drag_case *dc = ctx;
+    double *f = malloc(sizeof(double) * 3 * (size_t)dem_count(s)), prev = 0, worst_drop = 0, first = 0;
+    for (long k = 0; k < dc->steps; k += 10) {
+        step_or_fail(s, 10);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_FORCE, f), 0);
+        double ft = -f[3 * dc->nv]; /* against the motion (+x) */
+        if (k == 0)
+            first = ft;
+        worst_drop = fmax(worst_drop, prev - ft);
+        prev = ft;
+    }
+    printf("  %s: dragged 3 mm over 1 mm patches: friction from %.4g to %.4g N, largest drop between samples %.2g N\n",
+           bc->name, first, prev, worst_drop);
+    assert_true(prev > 10 * first);           /* the spring kept building */
+    assert_true(worst_drop <= 1e-6 * prev);   /* and never restarted */
+    free(f);
+}
+
+static void test_spring_across_edges(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        drag_case dc;
+        backend_run(bc, build_drag, 0, check_drag, &dc);
+    }
+}
+
 /* ---- test 6: no tunnelling; test 7: bitwise ---- */
 #define BALL_R 0.03
 #define BALL_EDGE 0.01        /* twice the spheres' diameter */
@@ -332,6 +401,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_across_sheet),
+        cmocka_unit_test(test_spring_across_edges),
         cmocka_unit_test(test_no_tunnelling),
         cmocka_unit_test(test_patch_restart),
         cmocka_unit_test(test_patch_variants),
