@@ -32,6 +32,42 @@ static void widen(const void *raw, double *dst, size_t count, int rs)
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
 static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force);
 
+/* the closest point of a triangle, as the kernels compute it (common/patch.h through reference/patch.c, in double) */
+void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind, int *index, double *w, double *point);
+
+/* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
+ * positions x, 8/15 E* sqrt(r) d^(5/2) as for a wall (r* = the sphere's radius) */
+static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
+{
+    dem_core *c = DEM_CORE(s->be);
+    int n = s->n, maxp = c->maxp;
+    int *cnt = malloc(c->bytes[BUF_PCOUNT] + 1), *list = malloc(c->bytes[BUF_PLIST] + 1);
+    unsigned char *touch = malloc(c->bytes[BUF_PTOUCH] + 1);
+    int e = !cnt || !list || !touch ? sim_fail(s, DEM_ERR_NOMEM, "out of host memory") : 0;
+    if (!e && (s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_PCOUNT}, 0, cnt, c->bytes[BUF_PCOUNT], 1) ||
+               s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_PLIST}, 0, list, c->bytes[BUF_PLIST], 1) ||
+               s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_PTOUCH}, 0, touch, c->bytes[BUF_PTOUCH], 1)))
+        e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, c->err);
+    for (int i = 0; !e && i < n; i++)
+        for (int k = 0; k < cnt[i]; k++) {
+            if (!touch[(size_t)i * maxp + k])
+                continue;
+            int t = list[(size_t)i * maxp + k], kind, index;
+            double tx[9], wgt[3], q[3];
+            for (int v = 0; v < 3; v++)
+                memcpy(tx + 3 * v, x + 3 * s->tri[3 * t + v], sizeof(double) * 3);
+            dem_patch_probe_f64(1, x + 3 * i, tx, &kind, &index, wgt, q);
+            double d = s->radius[i] - sqrt((x[3 * i] - q[0]) * (x[3 * i] - q[0]) + (x[3 * i + 1] - q[1]) *
+                                           (x[3 * i + 1] - q[1]) + (x[3 * i + 2] - q[2]) * (x[3 * i + 2] - q[2]));
+            if (d > 0)
+                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]) * sqrt(s->radius[i]) *
+                               (d * d * sqrt(d));
+            en->patch_contacts++;
+        }
+    free(cnt), free(list), free(touch);
+    return e;
+}
+
 int dem_energy(dem_sim *s, dem_energy_t *en) { return energy_of(s, en, NULL); }
 
 int dem_sample_get(dem_sim *s, dem_sample *out)
@@ -131,6 +167,8 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
         double ext = sqrt(d2) - (rest < 0 ? sqrt(r2) : rest);
         en->elastic += 0.5 * s->spring_kr[3 * k] * ext * ext;
     }
+    if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->npatch)
+        e = patch_energy(s, x, en);
     en->total = en->kinetic + en->elastic + en->potential;
     return e;
 }

@@ -125,11 +125,13 @@ typedef struct {
 
 typedef struct {
     double kinetic;    /* translational + rotational [J] */
-    double elastic;    /* Hertz normal elastic energy of all contacts, walls included [J] */
+    double elastic;    /* Hertz normal elastic energy of all contacts, walls and membrane patches included, and the
+                          springs' k (l - l0)^2 / 2 (not the hinges') [J] */
     double potential;  /* -m g.x [J] */
     double total;
     long contacts;      /* touching particle pairs */
     long wall_contacts; /* touching particle-wall pairs */
+    long patch_contacts; /* touching sphere-patch pairs (dem_add_patches) */
 } dem_energy_t;
 
 typedef struct dem_sim dem_sim;

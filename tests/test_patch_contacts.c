@@ -216,6 +216,41 @@ static void test_spring_across_edges(void **st)
     }
 }
 
+/* Energy: a sphere released at an overlap of 0.2 mm on a pinned patched sheet, without damping or friction, bounces
+ * with its total energy (kinetic + potential + the patch contact's Hertz energy in dem_energy) kept to 1e-4 */
+static void test_patch_energy(void **st)
+{
+    (void)st;
+    sheet_case sc = {0.0013, 0.0007, DEM_MEMBRANE_PATCH, 0};
+    FOR_EACH_BACKEND(bc)
+    {
+        if (bc->precision != DEM_FP64)
+            continue;
+        dem_sim *s = build_sheet(&sc);
+        assert_int_equal(dem_set_particle_flags(s, sc.nv, 0), 0); /* the sphere free */
+        dem_set_effects(s, dem_effects(s) & ~(unsigned)(DEM_EFFECT_DAMPING | DEM_EFFECT_FRICTION));
+        dem_set_gravity(s, (double[3]){0, 0, -9.81});
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        start_or_fail(s, &c);
+        dem_energy_t e0, e;
+        assert_int_equal(dem_energy(s, &e0), 0);
+        double worst = 0, emax = 0;
+        long touching = 0;
+        for (int k = 0; k < 400; k++) {
+            step_or_fail(s, 5);
+            assert_int_equal(dem_energy(s, &e), 0);
+            worst = fmax(worst, fabs(e.total - e0.total));
+            emax = fmax(emax, e.elastic);
+            touching += e.patch_contacts > 0;
+        }
+        printf("  %s: bouncing on patches, elastic energy up to %.3g J, total energy %.6g J kept to %.2g of it "
+               "(%ld of 400 samples in contact)\n", bc->name, emax, e0.total, worst / fabs(e0.total), touching);
+        assert_true(touching > 10 && emax > 0);
+        assert_true(worst < 1e-4 * fabs(e0.total));
+        dem_destroy(s);
+    }
+}
+
 /* ---- test 6: no tunnelling; test 7: bitwise ---- */
 #define BALL_R 0.03
 #define BALL_EDGE 0.01        /* twice the spheres' diameter */
@@ -402,6 +437,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_across_sheet),
         cmocka_unit_test(test_spring_across_edges),
+        cmocka_unit_test(test_patch_energy),
         cmocka_unit_test(test_no_tunnelling),
         cmocka_unit_test(test_patch_restart),
         cmocka_unit_test(test_patch_variants),
