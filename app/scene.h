@@ -57,6 +57,9 @@ typedef struct {
     double duration;              /* [s], or */
     double distance;              /* [m] travelled at |velocity|, or */
     double strain, length;        /* distance = strain x length */
+    double force;                 /* servo stage: the normal force the wall should receive [N], or */
+    double stress, area;          /* stress [Pa] x area [m^2] */
+    double gain, max_speed;       /* [m/s per N], [m/s] */
 } scene_stage;
 
 typedef struct {

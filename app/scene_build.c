@@ -248,6 +248,47 @@ static int lookup_material(const scene *sc, const char *name, const char *path, 
 }
 
 /* Motion stages of wall k, after an optional settling pause. */
+/* A servo stage (dem_stage.force): `force` [N], or `stress` [Pa] x `area` [m^2], with `gain` and `max_speed`, for a
+ * duration; the wall then moves along its normal to receive that force (plane walls: checked by the library) */
+static int servo_stage(const scene *sc, const char *base, const scene_stage *g, int has_v, int has_d, dem_stage *st,
+                       char *err, size_t errlen)
+{
+    char p[160];
+    int has[5];
+    static const char *const keys[5] = {"force", "stress", "area", "gain", "max_speed"};
+    for (int q = 0; q < 5; q++) {
+        snprintf(p, sizeof p, "%s.%s", base, keys[q]);
+        has[q] = scene_has(sc->loc, p);
+    }
+    if (!has[0] && !has[1]) {
+        for (int q = 2; q < 5; q++)
+            if (has[q]) {
+                snprintf(p, sizeof p, "%s.%s", base, keys[q]);
+                return scene_fail(sc, err, errlen, p, "belongs to a servo stage (force or stress)");
+            }
+        return 0;
+    }
+    if (has[0] && has[1])
+        return scene_fail(sc, err, errlen, base, "give force [N] or stress [Pa] x area [m^2], not both");
+    if (has_v || has_d != 0)
+        return scene_fail(sc, err, errlen, base, "a servo stage has a duration and no velocity");
+    if (has[1] && !(has[2] && g->area > 0 && isfinite(g->area)))
+        return scene_fail(sc, err, errlen, base, "a stress needs the area > 0 m^2 it acts on");
+    st->force = has[0] ? g->force : g->stress * g->area;
+    st->gain = g->gain, st->max_speed = g->max_speed;
+    if (!(st->force > 0) || !isfinite(st->force)) {
+        snprintf(p, sizeof p, "%s.%s", base, has[0] ? "force" : "stress");
+        return scene_fail(sc, err, errlen, p, "must be > 0 and finite");
+    }
+    for (int q = 3; q < 5; q++)
+        if (!has[q] || !(q == 3 ? g->gain > 0 && isfinite(g->gain) : g->max_speed > 0 && isfinite(g->max_speed))) {
+            snprintf(p, sizeof p, "%s.%s", base, keys[q]);
+            return scene_fail(sc, err, errlen, p, "a servo stage needs %s > 0 (%s)", keys[q],
+                              q == 3 ? "m/s per N" : "m/s");
+        }
+    return 0;
+}
+
 static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, int *nst, char *err, size_t errlen)
 {
     const scene_wall *w = &sc->f->walls[k];
@@ -296,9 +337,12 @@ static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, in
         }
         if (n >= DEM_MAX_STAGES)
             return scene_fail(sc, err, errlen, base, "at most %d motion stages", DEM_MAX_STAGES - 1);
+        memset(&st[n], 0, sizeof st[n]);
         st[n].duration = dur;
         for (int d = 0; d < 3; d++)
             st[n].velocity[d] = has_v ? g->velocity[d] : 0;
+        if (servo_stage(sc, base, g, has_v, has_d, &st[n], err, errlen))
+            return 1;
         n++;
     }
     /* repeat: N plays the list N times (load-unload cycles), each stage rounded to steps on its own as if written

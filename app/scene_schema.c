@@ -73,7 +73,8 @@ static const cyaml_schema_value_t particles_entry = {
 static const cyaml_schema_field_t stage_fields[] = {
     VEC3("velocity", scene_stage, velocity), REAL("duration", scene_stage, duration),
     REAL("distance", scene_stage, distance), REAL("strain", scene_stage, strain), REAL("length", scene_stage, length),
-    CYAML_FIELD_END};
+    REAL("force", scene_stage, force), REAL("stress", scene_stage, stress), REAL("area", scene_stage, area),
+    REAL("gain", scene_stage, gain), REAL("max_speed", scene_stage, max_speed), CYAML_FIELD_END};
 static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_stage, stage_fields)};
 
 static const cyaml_schema_field_t wall_fields[] = {

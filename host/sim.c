@@ -338,13 +338,57 @@ int dem_set_particle_omega(dem_sim *s, int id, const double w[3])
     return 0;
 }
 
-static int check_stages(dem_sim *s, int wall, int nstages, const dem_stage *stages)
+static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, const dem_stage *stages)
 {
     if (nstages < 0 || nstages > DEM_MAX_STAGES)
         return sim_fail(s, DEM_ERR_ARG, "wall %d: 0..%d motion stages (got %d)", wall, DEM_MAX_STAGES, nstages);
-    for (int st = 0; st < nstages; st++)
-        if (!(stages[st].duration >= 0) || !finite3(stages[st].velocity))
+    for (int st = 0; st < nstages; st++) {
+        const dem_stage *g = &stages[st];
+        if (!(g->duration >= 0) || !finite3(g->velocity))
             return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: duration >= 0 s and finite velocity", wall, st);
+        if (!(g->force >= 0) || !isfinite(g->force))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: a servo force must be >= 0 N and finite", wall, st);
+        if (g->force > 0 && (kind != DEM_WALL_PLANE || !(g->gain > 0) || !isfinite(g->gain) ||
+                             !(g->max_speed > 0) || !isfinite(g->max_speed)))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: a servo stage needs a plane wall, gain > 0 m/(s N) and "
+                            "max_speed > 0 m/s (got gain %g, max_speed %g)", wall, st, g->gain, g->max_speed);
+    }
+    return 0;
+}
+
+/* The stage wall k is in at step `step`, or -1 after its last */
+static int stage_at(const dem_sim *s, int k, long step)
+{
+    long start = 0;
+    for (int st = 0; st < s->walls[k].nstages; st++) {
+        long len = s->wall_stage_steps[k][st];
+        if (step >= start && step < start + len)
+            return st;
+        start += len;
+    }
+    return -1;
+}
+
+/* Servo stages: each such wall's velocity for this step from the force it received in the last (dem_stage) */
+static int servo_update(dem_sim *s)
+{
+    double f[3 * DEM_MAX_WALLS];
+    int read = 0;
+    for (int k = 0; k < s->nwalls; k++) {
+        int st = stage_at(s, k, s->step);
+        const dem_stage *g = st >= 0 ? &s->walls[k].stages[st] : NULL;
+        if (!g || !(g->force > 0))
+            continue;
+        if (!read && dem_get_field(s, DEM_FIELD_WALL_FORCE, f))
+            return DEM_ERR_DEVICE;
+        read = 1;
+        const double *n = s->walls[k].normal;
+        double fn = -(f[3 * k] * n[0] + f[3 * k + 1] * n[1] + f[3 * k + 2] * n[2]);
+        double u = g->gain * (g->force - fn);
+        u = u > g->max_speed ? g->max_speed : u < -g->max_speed ? -g->max_speed : u;
+        for (int d = 0; d < 3; d++)
+            s->servo_v[k][d] = u * n[d];
+    }
     return 0;
 }
 
@@ -364,7 +408,7 @@ int dem_add_wall(dem_sim *s, const dem_wall *w)
         return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k), -1;
     if (w->kind == DEM_WALL_CYLINDER && !(w->radius > 0 && isfinite(w->radius)))
         return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius), -1;
-    if (check_stages(s, k, w->nstages, w->stages))
+    if (check_stages(s, k, w->kind, w->nstages, w->stages))
         return -1;
     s->walls[k] = *w;
     for (int d = 0; d < 3; d++)
@@ -399,7 +443,7 @@ int dem_set_wall_motion(dem_sim *s, int wall, int nstages, const dem_stage *stag
         return DEM_ERR_STATE;
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
-    int e = check_stages(s, wall, nstages, stages);
+    int e = check_stages(s, wall, s->walls[wall].kind, nstages, stages);
     if (e)
         return e;
     s->walls[wall].nstages = nstages;
@@ -764,6 +808,8 @@ int dem_step(dem_sim *s, long nsteps)
         if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
             return be_fail(s);
         /* walls move with the particles' drift: positions at t + dt, velocity of this step */
+        if (s->nwalls && (e = servo_update(s)))
+            return e;
         if (s->nwalls) {
             for (int w = 0; w < s->nwalls; w++) {
                 double v[3];

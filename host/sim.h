@@ -58,6 +58,7 @@ struct dem_sim {
     int maxn;
     long step, rebuilds;
     double wall_pos[DEM_MAX_WALLS][3]; /* wall reference point now [m] */
+    double servo_v[DEM_MAX_WALLS][3];  /* the velocity of each wall in a servo stage, this step [m/s] */
     long wall_stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;

@@ -197,8 +197,8 @@ void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3])
     v[0] = v[1] = v[2] = 0;
     for (int st = 0; st < w->nstages; st++) {
         long len = s->wall_stage_steps[k][st];
-        if (step >= start && step < start + len) {
-            memcpy(v, w->stages[st].velocity, sizeof(double) * 3);
+        if (step >= start && step < start + len) { /* a servo stage: the velocity dem_step worked out (sim.c) */
+            memcpy(v, w->stages[st].force > 0 ? s->servo_v[k] : w->stages[st].velocity, sizeof(double) * 3);
             return;
         }
         start += len;

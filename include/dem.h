@@ -51,6 +51,13 @@ typedef struct {
 typedef struct {
     double duration;    /* [s] */
     double velocity[3]; /* [m/s] */
+    /* A servo stage (force > 0, plane walls): instead of `velocity` the wall moves along its normal at
+     * gain x (force - F) [m/s], within +-max_speed, F the normal force the particles exerted on it in the previous
+     * step (pushing it back along -normal counts positive): a platen held at a stress. Evaluated on the host from
+     * the device's wall force, so every backend moves the wall alike. */
+    double force;       /* [N] */
+    double gain;        /* [m/s per N] */
+    double max_speed;   /* [m/s] */
 } dem_stage;
 
 typedef enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 } dem_wall_kind;

@@ -272,6 +272,19 @@ static void test_membrane_scene(void **st)
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
         bad_in("tests/scenes/membrane_tube.yaml", cases[k][0], cases[k][1]);
+    /* servo stages (a platen held at a stress) */
+    static const char *const servo[][2] = {
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], force: 2, gain: 1, max_speed: 1, "
+         "duration: 0.03}/", "bad.yaml:22: walls[1].motion[0]: a servo stage has a duration and no velocity"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{force: 2, max_speed: 1, duration: 0.03}/",
+         "bad.yaml:22: walls[1].motion[0].gain: a servo stage needs gain > 0 (m/s per N)"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{stress: 1000, gain: 1, max_speed: 1, duration: 0.03}/",
+         "bad.yaml:22: walls[1].motion[0]: a stress needs the area > 0 m^2 it acts on"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], gain: 1, duration: 0.03}/",
+         "bad.yaml:22: walls[1].motion[0].gain: belongs to a servo stage (force or stress)"},
+    };
+    for (size_t k = 0; k < sizeof servo / sizeof servo[0]; k++)
+        bad_in("tests/scenes/restart_box.yaml", servo[k][0], servo[k][1]);
     /* the same tube from an OBJ file (written here from the generated mesh, every digit kept) runs to the same bits;
      * a file's errors name its line */
     dem_mesh tube;

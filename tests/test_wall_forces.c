@@ -100,8 +100,62 @@ static void test_die(void **st)
     dem_destroy(ref);
 }
 
+/* A servo stage (dem_stage.force): a plane lowered onto a fixed sphere from 10 um above comes down at its speed
+ * limit, then settles where the sphere pushes back with the target force - to 1e-5 of it after 3000 steps - and
+ * stays there; the second stage then lifts it at a set velocity. OpenCL moves it to the reference's bits. */
+#define SERVO_F 2.0
+static dem_sim *build_servo(void *ctx)
+{
+    (void)ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    int a = dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.005, m);
+    dem_set_particle_flags(s, a, DEM_PARTICLE_FIXED);
+    dem_wall lid = {DEM_WALL_PLANE, m, {0, 0, 0.00501}, {0, 0, -1}, 0, 2, {{0}}};
+    lid.stages[0] = (dem_stage){3000e-6, {0, 0, 0}, SERVO_F, 0.5, 0.2};
+    lid.stages[1] = (dem_stage){100e-6, {0, 0, 0.01}, 0, 0, 0};
+    assert_int_equal(dem_add_wall(s, &lid), 0);
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.01});
+    dem_set_dt(s, 1e-6);
+    return s;
+}
+
+static void check_servo(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    (void)ctx;
+    double f[3], p[3], p1[3];
+    step_or_fail(s, 400); /* 10 um at 0.2 m/s: 50 steps to touch, then at most 0.2 m/s */
+    dem_wall_force(s, 0, f);
+    double early = f[2];
+    step_or_fail(s, 2600);
+    dem_wall_force(s, 0, f);
+    dem_wall_position(s, 0, p);
+    printf("  %s: servo lid at %.6f mm receives %.9g N after 3000 steps (target %g N; %.3g N after 400)\n",
+           bc->name, 1e3 * p[2], f[2], SERVO_F, early);
+    assert_true(fabs(f[2] / SERVO_F - 1) < 1e-5);
+    assert_true(early > 0 && early < SERVO_F);
+    step_or_fail(s, 100); /* the velocity stage lifts it 1 um */
+    dem_wall_position(s, 0, p1);
+    assert_true(fabs((p1[2] - p[2]) - 1e-6) < 1e-9);
+}
+
+static void test_servo(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build_servo, 0, check_servo, NULL);
+    dem_sim *s = dem_create(); /* a servo stage is refused on a cylinder and without a gain */
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    dem_wall cyl = {DEM_WALL_CYLINDER, m, {0, 0, 0}, {0, 0, 1}, 0.01, 1, {{1e-3, {0, 0, 0}, 1, 1, 1}}};
+    assert_int_equal(dem_add_wall(s, &cyl), -1);
+    assert_non_null(strstr(dem_error(s), "a servo stage needs a plane wall"));
+    dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{1e-3, {0, 0, 0}, 1, 0, 1}}};
+    assert_int_equal(dem_add_wall(s, &pl), -1);
+    dem_destroy(s);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
