@@ -168,6 +168,7 @@ fuzz-checkpoint: $(LIB)
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
 	  -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' -Icommon -Iapp $(PKG_CFLAGS) tests/fuzz_checkpoint.c app/checkpoint.c \
 	  app/h5util.c app/scene_schema.c app/scene_locate.c app/scene_build.c app/scene_particles.c app/scene_overlaps.c \
+	  app/scene_membranes.c \
 	  $(LIB) -o $(BUILD)/fuzz/fuzz_checkpoint $(PKG_LIBS) -lOpenCL -lm
 	./$(BUILD)/fuzz/fuzz_checkpoint -runs=$(FUZZ_RUNS) -max_len=400 -timeout=20 $(BUILD)/fuzz/ckpt-corpus
 
@@ -179,6 +180,7 @@ fuzz-cli: $(LIB)
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
 	  -Icommon -Iapp $(PKG_CFLAGS) tests/fuzz_cli.c app/cli.c app/run.c app/output.c app/checkpoint.c app/h5util.c \
 	  app/scene_schema.c app/scene_locate.c app/scene_build.c app/scene_particles.c app/scene_overlaps.c \
+	  app/scene_membranes.c \
 	  $(LIB) -o $(BUILD)/fuzz/fuzz_cli $(PKG_LIBS) -lOpenCL -lm
 	printf '%s\0' run scene.yaml -o out.h5 > $(BUILD)/fuzz/cli-corpus/seed1
 	printf '%s\0' run --restart ck.ckpt.h5 --checkpoint ck.h5 --device 1 > $(BUILD)/fuzz/cli-corpus/seed2
