@@ -211,6 +211,8 @@ static void test_spring_across_edges(void **st)
     (void)st;
     FOR_EACH_BACKEND(bc)
     {
+        if (bc->precision != DEM_FP64) /* the rule is integer logic; fp64 shows it (and OpenCL = reference) */
+            continue;
         drag_case dc;
         backend_run(bc, build_drag, 0, check_drag, &dc);
     }
@@ -332,7 +334,7 @@ static int escaped(dem_sim *s, const ball_case *bc, double *mean_r)
     return out;
 }
 
-#define SQUEEZE_STEPS 6000
+#define SQUEEZE_STEPS 3000
 #define SQUEEZE_P 4000.0
 
 static void check_squeeze(dem_sim *s, const backend_case *bc, void *ctx)
@@ -382,7 +384,7 @@ static void test_patch_restart(void **st)
         dem_config c = cfg_of(bc->backend, bc->precision);
         ball_case ba = {DEM_MEMBRANE_PATCH, SQUEEZE_P, 0.05, 0, 0}, bb = ba;
         dem_sim *a = build_ball(&ba), *b = build_ball(&bb);
-        restart_check(a, b, &c, 3000, 500, bc->name);
+        restart_check(a, b, &c, 1500, 500, bc->name);
         dem_destroy(a);
         dem_destroy(b);
     }
