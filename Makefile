@@ -127,6 +127,9 @@ validate: $(BUILD)/dem
 	done
 	/usr/bin/python3 tools/plot_friction_slide.py -o out/validation/friction_slide.png \
 	  out/validation/friction_slide_patch.h5 out/validation/friction_slide_particle.h5
+	@echo "validate: seed001/triaxial_case1_patch (about 4 minutes on PoCL)"
+	./$(BUILD)/dem run scenes/seed001/triaxial_case1_patch.yaml -o out/validation/triaxial_case1_patch.h5 --quiet
+	/usr/bin/python3 tools/plot_triaxial.py -o out/validation/triaxial_case1.png out/validation/triaxial_case1_patch.h5
 
 # The README's two commands on a bare Debian 12 root (mmdebstrap minbase, cached; the committed HEAD is cloned
 # into it): make run, then make test, each must pass on the first try. Needs root or sudo. scripts/test-fresh.sh.
