@@ -66,7 +66,7 @@
     A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)                \
     A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
     A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, flags, FLAGS)                        \
-    A(BIN, int, vtri_start, VTRI_START)
+    A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \

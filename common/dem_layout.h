@@ -22,7 +22,9 @@ enum {
     PM_MCS_C1 = 7, /* 3 - 4 nu */
     PM_MCS_C2 = 8, /* 1 - 2 nu */
     PM_MC_REACH = 9, /* MC-strain contact distance factor F >= 1, the same in every entry (dem_effects.h) [-] */
-    PM_STRIDE = 10
+    PM_APART = 10,   /* 1: particles of this pair of materials never touch - two vertices of one membrane, whose
+                        spheres may overlap (dem_add_membrane); read with DEM_EFFECT_SPRINGS only (neighbor.h) */
+    PM_STRIDE = 11
 };
 
 /* Spring table, real part (index s*SP_STRIDE + ...; seed 001 Eq. 6): the two particles are in the int table

@@ -7,7 +7,8 @@
  * A new row takes the tangential history, touching flag and MC-strain force of the same partner from the old row
  * (binary search), or zero, and records for each slot the slot of the same pair in the partner's row (mirror; see
  * contact_forces.h).
- * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches).
+ * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
+ * DEM_EFFECT_SPRINGS two vertices of one membrane are not partners (PM_APART: their spheres may overlap).
  */
 #ifndef DEM_NEIGHBOR_H
 #define DEM_NEIGHBOR_H
@@ -38,6 +39,8 @@ DEM_ITEM(nbr_build)
                         continue;
                     if ((fx & DEM_EFFECT_PATCHES) && vtri_start[j + 1] > vtri_start[j])
                         continue;
+                    if ((fx & DEM_EFFECT_SPRINGS) && pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_APART] != (real)0)
+                        continue; /* two vertices of one membrane */
                     vec3 d = v3_sub(xi, v3_load(x, j));
                     real cut = ri + radius[j] + skin;
                     if (!(v3_dot(d, d) < cut * cut))

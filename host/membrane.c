@@ -70,12 +70,12 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     for (int i = 0; i < m->nv && bad < 0; i++)
         if (!(vmass[i] > 0))
             bad = i;
-    if (bad >= 0 || mm->vertex_radius > 0.5 * shortest) {
+    if (bad >= 0 || mm->vertex_radius > shortest) {
         free(vmass), dem_mesh_topo_free(&t);
         if (bad >= 0)
             return sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d belongs to no triangle", bad), -1;
-        return sim_fail(s, DEM_ERR_ARG, "membrane: vertex_radius %g m overlaps neighbouring vertices at rest (at most "
-                        "half the shortest edge, %g m)", mm->vertex_radius, 0.5 * shortest), -1;
+        return sim_fail(s, DEM_ERR_ARG, "membrane: vertex_radius %g m is more than the shortest edge, %g m (a vertex "
+                        "would reach past its neighbours)", mm->vertex_radius, shortest), -1;
     }
     /* everything checked; what follows fails only for memory, and then is undone */
     int n0 = s->n, ns0 = s->nsprings, nt0 = s->ntri, nh0 = s->nhinges, nm0 = s->nmat, np0 = s->npatch;
@@ -84,6 +84,8 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     int mat = dem_add_material(s, &(dem_material){mm->density, mm->young, mm->poisson, mm->restitution,
                                                   mm->friction, 0, 0});
     int ok = mat >= 0;
+    if (ok) /* its vertices do not touch each other: their spheres may overlap (neighbor.h) */
+        s->mat_apart[mat] = 1;
     for (int i = 0; ok && i < m->nv; i++)
         ok = dem_add_particle(s, m->x + 3 * i, NULL, mm->vertex_radius, mat) >= 0 &&
              dem_set_particle_mass(s, n0 + i, vmass[i], 0) == 0;
@@ -104,6 +106,8 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     free(vmass), dem_mesh_topo_free(&t);
     if (!ok) { /* undo: the message of the failed call stays */
         s->n = n0, s->nsprings = ns0, s->ntri = nt0, s->nhinges = nh0, s->nmat = nm0, s->effects = eff0;
+        if (mat >= 0)
+            s->mat_apart[mat] = 0;
         s->npatch = np0;
         return -1;
     }

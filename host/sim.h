@@ -32,6 +32,7 @@ struct dem_sim {
     int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/attach.c) */
     int nmat;
     dem_material mats[64];
+    unsigned char mat_apart[64]; /* 1: a membrane's material, whose particles do not touch each other (PM_APART) */
     int nwalls;
     dem_wall walls[DEM_MAX_WALLS];
     double gravity[3];

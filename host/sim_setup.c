@@ -280,6 +280,7 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_MCS_C1] = 3 - 4 * ma->poisson;
             row[PM_MCS_C2] = 1 - 2 * ma->poisson;
             row[PM_MC_REACH] = s->mc_reach;
+            row[PM_APART] = a == b && s->mat_apart[a];
         }
 }
 

@@ -231,8 +231,8 @@ void dem_mesh_topo_free(dem_mesh_topo *t);
  * its Poisson's ratio is then 1/3 whatever `poisson` is: tests/test_springs.c), damping ratio `damping`, rest length
  * the initial one; its hinges k_el, k_diss and the initial angle; a vertex the mass density x thickness x a third of
  * its triangles' area. The vertices are particles of radius vertex_radius that touch other particles as spheres with
- * the membrane's young, poisson, restitution and friction (seed 001's MSS_particle model); vertex_radius must leave
- * a membrane's vertices apart at rest (at most half its shortest edge). */
+ * the membrane's young, poisson, restitution and friction (seed 001's MSS_particle model). A membrane's vertices do not
+ * touch each other, so their spheres may overlap: vertex_radius is at most the shortest edge. */
 typedef struct {
     double young, poisson, thickness, density, restitution, friction;
     double damping;          /* damping ratio gamma of the edge springs */
