@@ -545,11 +545,13 @@ static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, si
             return scene_fail(sc, err, errlen, "time.dt", "time step must be > 0 s");
         run->dt = t->dt;
     }
-    if (run->dt > run->ts.max_dt)
+    if (run->dt > run->ts.max_dt) {
+        char why[160];
+        dem_time_scales_limit(&run->ts, why, sizeof why);
         return scene_fail(sc, err, errlen, has_dt ? "time.dt" : "time.dt_rayleigh",
-                          "time step %.6g s exceeds the stability bound %.6g s (0.5 x Rayleigh time %.6g s; "
-                          "recommended %.6g s)", run->dt, run->ts.max_dt, run->ts.rayleigh_time,
-                          run->ts.recommended_dt);
+                          "time step %.6g s exceeds the stability bound %.6g s (%s; recommended %.6g s)", run->dt,
+                          run->ts.max_dt, why, run->ts.recommended_dt);
+    }
     if (!(t->duration > 0) || !isfinite(t->duration))
         return scene_fail(sc, err, errlen, "time.duration", "duration must be > 0 s");
     if (!(t->settle >= 0) || !(t->settle < t->duration))

@@ -89,6 +89,7 @@ int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
 double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
+void dem_hinge_damping_rows(const double *x, const int *p, double kdiss, double row[4]);
 
 /* host/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
  * lengths are known; the device places them each step: common/riders.h) */

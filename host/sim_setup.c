@@ -43,6 +43,23 @@ double dem_hertz_max_overlap(double mstar, double rstar, double es, double v)
     return pow(15 * mstar * v * v / (16 * es * sqrt(rstar)), 0.4);
 }
 
+void dem_time_scales_limit(const dem_time_scales *ts, char *buf, size_t len)
+{
+    double b = ts->max_dt;
+    if (b == ts->hinge_damping_time)
+        snprintf(buf, len, "the membrane hinges' damping time %.6g s: k_diss over a vertex's hinges, lambda dt <= 1",
+                 ts->hinge_damping_time);
+    else if (b == ts->spring_period / 10)
+        snprintf(buf, len, "a tenth of the shortest spring period, %.6g s", ts->spring_period);
+    else if (b == ts->hinge_period / 10)
+        snprintf(buf, len, "a tenth of the shortest hinge period, %.6g s", ts->hinge_period);
+    else
+        snprintf(buf, len, "0.5 x Rayleigh time %.6g s", ts->rayleigh_time);
+}
+
+/* 1 / mass, 0 for a fixed particle (it does not move: no share in a spring's or hinge's oscillation) */
+static double inverse_mass(const dem_sim *s, int i) { return (s->pflags[i] & DEM_PARTICLE_FIXED) ? 0 : 1 / sim_mass(s, i); }
+
 int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
 {
     memset(ts, 0, sizeof *ts);
@@ -70,21 +87,34 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     /* springs and hinges: velocity Verlet is stable for omega dt < 2 (dt < T / pi) and misses the period by (omega dt)^2 / 24:
      * 10 steps per period (1.6 %) bound it, 50 (0.07 %) are recommended */
     ts->spring_period = INFINITY;
-    for (int k = 0; k < s->nsprings; k++) {
-        double ma = sim_mass(s, s->spring_ij[2 * k]), mb = sim_mass(s, s->spring_ij[2 * k + 1]);
-        double t = 2 * M_PI * sqrt(ma * mb / (ma + mb) / s->spring_kr[3 * k]);
-        ts->spring_period = fmin(ts->spring_period, t);
+    for (int k = 0; k < s->nsprings; k++) { /* a fixed end has no inverse mass; two fixed ends, no period */
+        double ia = inverse_mass(s, s->spring_ij[2 * k]), ib = inverse_mass(s, s->spring_ij[2 * k + 1]);
+        if (ia + ib > 0)
+            ts->spring_period = fmin(ts->spring_period, 2 * M_PI * sqrt(1 / (ia + ib) / s->spring_kr[3 * k]));
     }
-    ts->hinge_period = INFINITY;
+    ts->hinge_period = ts->hinge_damping_time = INFINITY;
+    double *crow = s->nhinges ? calloc((size_t)s->n, sizeof(double)) : NULL; /* each vertex's damping row sum */
     for (int h = 0; h < s->nhinges; h++) {
         double m4[4];
-        for (int k = 0; k < 4; k++)
-            m4[k] = sim_mass(s, s->hinge[4 * h + k]);
+        for (int k = 0; k < 4; k++) /* a fixed vertex: an infinite mass, no share in the fold's motion */
+            m4[k] = inverse_mass(s, s->hinge[4 * h + k]) > 0 ? sim_mass(s, s->hinge[4 * h + k]) : INFINITY;
         ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, s->hinge + 4 * h, s->hinge_k[3 * h], m4));
+        double row[4];
+        dem_hinge_damping_rows(s->x, s->hinge + 4 * h, s->hinge_k[3 * h + 1], row);
+        for (int k = 0; crow && k < 4; k++)
+            crow[s->hinge[4 * h + k]] += row[k];
     }
+    for (int i = 0; crow && i < s->n; i++) /* Gershgorin: lambda <= max_i (row sum_i / m_i) */
+        if (crow[i] > 0 && inverse_mass(s, i) > 0)
+            ts->hinge_damping_time = fmin(ts->hinge_damping_time, 1 / (crow[i] * inverse_mass(s, i)));
+    free(crow);
     double t_osc = fmin(ts->spring_period, ts->hinge_period);
     ts->recommended_dt = fmin(ts->recommended_dt, t_osc / 50);
     ts->max_dt = fmin(ts->max_dt, t_osc / 10);
+    /* the hinges' dissipative term: lambda dt < 2 is the explicit limit (a fine membrane with seed 001's k_diss, each
+     * hinge's own lambda dt 0.5 but six hinges to a vertex, blew up within 30 steps); the bound keeps lambda dt <= 1 */
+    ts->recommended_dt = fmin(ts->recommended_dt, 0.2 * ts->hinge_damping_time);
+    ts->max_dt = fmin(ts->max_dt, ts->hinge_damping_time);
     ts->hertz_time = v > 0 ? tc : 0;
     return 0;
 }
@@ -149,11 +179,12 @@ int sim_validate(dem_sim *s)
     }
     dem_time_scales ts;
     dem_time_scales_get(s, 0, &ts);
-    if (s->dt > ts.max_dt && !s->cfg.force_dt)
-        return sim_fail(s, DEM_ERR_DT,
-                        "time step %.6g s exceeds the stability bound %.6g s (0.5 x Rayleigh time %.6g s; "
-                        "recommended %.6g s); set force_dt to run anyway",
-                        s->dt, ts.max_dt, ts.rayleigh_time, ts.recommended_dt);
+    if (s->dt > ts.max_dt && !s->cfg.force_dt) {
+        char why[160];
+        dem_time_scales_limit(&ts, why, sizeof why);
+        return sim_fail(s, DEM_ERR_DT, "time step %.6g s exceeds the stability bound %.6g s (%s; recommended %.6g s); "
+                        "set force_dt to run anyway", s->dt, ts.max_dt, why, ts.recommended_dt);
+    }
     for (int k = 0; k < s->nwalls; k++) {
         const dem_wall *w = &s->walls[k];
         if (w->kind == DEM_WALL_CYLINDER)

@@ -128,7 +128,12 @@ typedef struct {
                               bounds above then also hold 50 steps (recommended) and 10 steps (bound) per period */
     double hinge_period;   /* shortest period of a hinge's fold at the initial positions, linearised (reference/
                               bending.c) [s] (INFINITY: none); held like spring_period */
+    double hinge_damping_time; /* shortest decay time 1 / lambda of a hinge's fold under its k_diss, linearised [s]
+                              (INFINITY: none); an explicit step needs lambda dt < 2: the bound holds lambda dt <= 1,
+                              the recommendation 0.2 */
 } dem_time_scales;
+/* What sets max_dt, in words ("0.5 x Rayleigh time 2.9e-06 s", "the hinges' damping time ..."), for messages */
+void dem_time_scales_limit(const dem_time_scales *ts, char *buf, size_t len);
 
 typedef struct {
     double kinetic;    /* translational + rotational [J] */
