@@ -262,7 +262,7 @@ static void test_membrane_scene(void **st)
         {"s/kind: tube/kind: cube/", "bad.yaml:23: membranes[0].mesh.kind: unknown mesh kind 'cube'"},
         {"s/, height: 0.04, edge/, edge/", "membranes[0].mesh.height: a tube mesh needs 'height'"},
         {"s/edge: 0.006/edge: 0/", "bad.yaml:23: membranes[0].mesh.edge: must be > 0 m and finite"},
-        {"s/kdiss: 1.0e-6}/kdiss: 1.0e-6, vertex_radius: 0.01}/", "membranes[0]: membrane: vertex_radius 0.01 m overlaps"},
+        {"s/kdiss: 1.0e-6}/kdiss: 1.0e-6, vertex_radius: 0.01}/", "membranes[0]: membrane: vertex_radius 0.01 m is more than the shortest edge"},
         {"s/model: patch/model: patches/", "bad.yaml:26: membranes[0].model: unknown model 'patches' (patch or particle)"},
         {"s/young: 1.25e6/young: -1/", "membranes[0]: membrane: young, thickness, density and vertex_radius must be > 0"},
         {"s/duration: 0.005, pressure/duration: -1, pressure/", "membranes[0].pressure_stages[0]: duration must be >= 0"},
