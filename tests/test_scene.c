@@ -425,6 +425,69 @@ static void test_friction_slide(void **st)
     assert_true(spread[1] > 0.5 && height[1] > 1e-5);    /* vertex particles: bumps */
 }
 
+/* A small triaxial test (tests/scenes/triaxial_small.yaml: 200 grains in a patch membrane, 100 kPa, the platens
+ * closing for 4 ms): the deviatoric stress grows with the strain; the top platen's force is the sum of the grains'
+ * contact forces on it (the contact network's wall rows); every grain is inside the membrane (closer to the axis than
+ * the membrane vertex nearest to it). */
+static void test_triaxial_small(void **st)
+{
+    (void)st;
+    char err[8192], h5[300];
+    snprintf(h5, sizeof h5, "%s/tri.h5", tmp);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/triaxial_small.yaml -o %s --quiet", DEM, SRC, h5), 0);
+    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+    long ns = h5_count(f, "series/time"), n = h5_count(f, "particles/radius"), nf = h5_count(f, "frames/step");
+    long nc = h5_count(f, "contacts/normal_force");
+    double *t = malloc(sizeof(double) * (size_t)ns), *wf = malloc(sizeof(double) * 6 * (size_t)ns);
+    double *x = malloc(sizeof(double) * 3 * (size_t)(n * nf)), *data = malloc(sizeof(double) * 12 * (size_t)nc);
+    int *ids = malloc(sizeof(int) * 2 * (size_t)nc), *mat = malloc(sizeof(int) * (size_t)n);
+    long long *start = malloc(sizeof(long long) * (size_t)nf);
+    assert_int_equal(h5_read(f, "series/time", H5T_NATIVE_DOUBLE, t, (size_t)ns), 0);
+    assert_int_equal(h5_read(f, "series/wall_force", H5T_NATIVE_DOUBLE, wf, 6 * (size_t)ns), 0);
+    assert_int_equal(h5_read(f, "frames/position", H5T_NATIVE_DOUBLE, x, 3 * (size_t)(n * nf)), 0);
+    assert_int_equal(h5_read(f, "contacts/data", H5T_NATIVE_DOUBLE, data, 12 * (size_t)nc), 0);
+    assert_int_equal(h5_read(f, "contacts/ids", H5T_NATIVE_INT, ids, 2 * (size_t)nc), 0);
+    assert_int_equal(h5_read(f, "contacts/frame_start", H5T_NATIVE_LLONG, start, (size_t)nf), 0);
+    assert_int_equal(h5_read(f, "particles/material", H5T_NATIVE_INT, mat, (size_t)n), 0);
+    H5Fclose(f);
+    /* the shearing starts at 4 ms: the top platen's force then and at the end */
+    long k0 = 0;
+    while (k0 < ns && t[k0] < 0.004 - 1e-9)
+        k0++;
+    double f0 = wf[6 * k0 + 5], f1 = wf[6 * (ns - 1) + 5], area = 0.00045239;
+    /* the last frame's grain-platen contacts on the top platen (wall 1), their forces on the grains */
+    double sum = 0;
+    for (long r = start[nf - 1]; r < nc; r++)
+        if (ids[2 * r + 1] == -2)
+            sum += data[12 * r + 3] + data[12 * r + 6];
+    /* grains inside: closer to the axis than their nearest membrane vertex */
+    const double *xl = x + 3 * (size_t)(n * (nf - 1));
+    int outside = 0, grains = 0;
+    for (long i = 0; i < n; i++) {
+        if (mat[i] != 0)
+            continue;
+        grains++;
+        double best = INFINITY, rv = 0;
+        for (long j = 0; j < n; j++) {
+            if (mat[j] == 0)
+                continue;
+            double d2 = 0;
+            for (int c = 0; c < 3; c++)
+                d2 += (xl[3 * i + c] - xl[3 * j + c]) * (xl[3 * i + c] - xl[3 * j + c]);
+            if (d2 < best)
+                best = d2, rv = hypot(xl[3 * j], xl[3 * j + 1]);
+        }
+        outside += hypot(xl[3 * i], xl[3 * i + 1]) >= rv;
+    }
+    printf("  small triaxial: sigma_d %.1f kPa at the start of shearing, %.1f kPa after 4 ms; top platen %.4f N, its "
+           "grain contacts %.4f N; %d of %d grains outside\n", (f0 / area - 1e5) / 1e3, (f1 / area - 1e5) / 1e3, f1,
+           -sum, outside, grains);
+    assert_true(f1 > 1.2 * f0);                      /* sigma_d grows with the strain */
+    assert_true(fabs(-sum - f1) <= 1e-9 * fabs(f1)); /* the platen's force is its contacts' */
+    assert_int_equal(outside, 0);
+    free(t), free(wf), free(x), free(data), free(ids), free(mat), free(start);
+}
+
 static void test_output_and_xdmf(void **st)
 {
     (void)st;
@@ -1037,6 +1100,7 @@ int main(void)
         cmocka_unit_test(test_contact_network),
         cmocka_unit_test(test_membrane_scene),
         cmocka_unit_test(test_friction_slide),
+        cmocka_unit_test(test_triaxial_small),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
