@@ -114,16 +114,12 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
         in[nin] = o->restart, what[nin++] = "the checkpoint this run restarts from";
     for (unsigned k = 0; k < sc->f->particles_count && k < 64; k++)
         if (sc->f->particles[k].csv) {
-            snprintf(csv[k], sizeof csv[k], "%s/%s", sc->dir, sc->f->particles[k].csv);
+            scene_file_path(sc, sc->f->particles[k].csv, csv[k], sizeof csv[k]); /* an absolute one too */
             in[nin] = csv[k], what[nin++] = "a CSV file the scene reads";
         }
     for (unsigned k = 0; k < sc->f->membranes_count && k < 16; k++)
         if (sc->f->membranes[k].mesh.path) {
-            const char *mp = sc->f->membranes[k].mesh.path;
-            if (mp[0] == '/')
-                snprintf(mesh[k], sizeof mesh[k], "%s", mp);
-            else
-                snprintf(mesh[k], sizeof mesh[k], "%s/%s", sc->dir, mp);
+            scene_file_path(sc, sc->f->membranes[k].mesh.path, mesh[k], sizeof mesh[k]);
             in[nin] = mesh[k], what[nin++] = "a mesh file the scene reads";
         }
     for (int q = 0; q < 6; q++) {

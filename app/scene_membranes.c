@@ -162,10 +162,7 @@ static int read_mesh(const scene *sc, unsigned k, dem_mesh *mesh, char *err, siz
 {
     const scene_mesh *ms = &sc->f->membranes[k].mesh;
     char file[4200], why[4600], p[128];
-    if (ms->path[0] == '/')
-        snprintf(file, sizeof file, "%s", ms->path);
-    else
-        snprintf(file, sizeof file, "%s/%s", sc->dir, ms->path);
+    scene_file_path(sc, ms->path, file, sizeof file);
     snprintf(p, sizeof p, "membranes[%u].mesh.path", k);
     if (dem_mesh_read(file, mesh, why, sizeof why))
         return scene_fail(sc, err, errlen, p, "%s", why);

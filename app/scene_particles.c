@@ -47,10 +47,7 @@ static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
 {
     const scene_particles *pg = &sc->f->particles[g];
     char file[4096];
-    if (pg->csv[0] == '/')
-        snprintf(file, sizeof file, "%s", pg->csv);
-    else
-        snprintf(file, sizeof file, "%s/%s", sc->dir, pg->csv);
+    scene_file_path(sc, pg->csv, file, sizeof file);
     FILE *fp = fopen(file, "r");
     if (!fp) {
         char p[64];

@@ -444,6 +444,14 @@ scene *scene_load(const char *path, char *err, size_t errlen)
     return sc;
 }
 
+void scene_file_path(const scene *sc, const char *name, char *buf, size_t len)
+{
+    if (name[0] == '/')
+        snprintf(buf, len, "%s", name);
+    else
+        snprintf(buf, len, "%s/%s", sc->dir, name);
+}
+
 void scene_free(scene *sc)
 {
     if (!sc)

@@ -39,15 +39,9 @@ void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind,
  * positions x, 8/15 E* sqrt(r) d^(5/2) as for a wall (r* = the sphere's radius) */
 static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
 {
-    dem_core *c = DEM_CORE(s->be);
-    int n = s->n, maxp = c->maxp;
-    int *cnt = malloc(c->bytes[BUF_PCOUNT] + 1), *list = malloc(c->bytes[BUF_PLIST] + 1);
-    unsigned char *touch = malloc(c->bytes[BUF_PTOUCH] + 1);
-    int e = !cnt || !list || !touch ? sim_fail(s, DEM_ERR_NOMEM, "out of host memory") : 0;
-    if (!e && (s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_PCOUNT}, 0, cnt, c->bytes[BUF_PCOUNT], 1) ||
-               s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_PLIST}, 0, list, c->bytes[BUF_PLIST], 1) ||
-               s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_PTOUCH}, 0, touch, c->bytes[BUF_PTOUCH], 1)))
-        e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, c->err);
+    int n = s->n, maxp = DEM_CORE(s->be)->maxp, e = 0;
+    int *cnt = sim_buffer_get(s, BUF_PCOUNT, &e), *list = sim_buffer_get(s, BUF_PLIST, &e);
+    unsigned char *touch = sim_buffer_get(s, BUF_PTOUCH, &e);
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             if (!touch[(size_t)i * maxp + k])

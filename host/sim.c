@@ -180,6 +180,20 @@ int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals
     return 0;
 }
 
+void *sim_buffer_get(dem_sim *s, int id, int *e)
+{
+    size_t bytes = DEM_CORE(s->be)->bytes[id];
+    void *p = malloc(bytes ? bytes : 1);
+    if (!p) {
+        if (!*e)
+            *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        return NULL;
+    }
+    if (!*e && bytes && s->ops->read(s->be, (dem_bufref){TABLE_ONE, id}, 0, p, bytes, 1))
+        *e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
+    return p;
+}
+
 int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma)
 {
     if (not_started(s))

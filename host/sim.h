@@ -85,6 +85,9 @@ void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the cur
 void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
 int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what);
+/* A whole registry buffer read from the device (malloc'd; the patch rows have no field: their capacity is the
+ * driver's). Sets *e (a dem_status) on failure unless it is set already; the caller frees the result. */
+void *sim_buffer_get(dem_sim *s, int id, int *e);
 /* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */

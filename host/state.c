@@ -38,28 +38,14 @@ static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
     return p;
 }
 
-/* A whole registry buffer (the patch rows have no field: their capacity is the driver's), read or written */
-static void *buf_get(dem_sim *s, int id, int *e)
-{
-    size_t bytes = DEM_CORE(s->be)->bytes[id];
-    void *p = malloc(bytes ? bytes : 1);
-    if (!p) {
-        *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-        return NULL;
-    }
-    if (!*e && bytes && s->ops->read(s->be, (dem_bufref){TABLE_ONE, id}, 0, p, bytes, 1))
-        *e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    return p;
-}
-
 /* The touching sphere-patch contacts of the current rows, in row order (common/patch_contacts.h) */
 static int patch_contacts_get(dem_sim *s, dem_state *st)
 {
     int e = 0, n = s->n, maxp = DEM_CORE(s->be)->maxp, rs = s->setup.real_size;
     if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->npatch)
         return 0;
-    int *cnt = buf_get(s, BUF_PCOUNT, &e), *list = buf_get(s, BUF_PLIST, &e);
-    unsigned char *touch = buf_get(s, BUF_PTOUCH, &e), *hist = buf_get(s, BUF_PHIST, &e);
+    int *cnt = sim_buffer_get(s, BUF_PCOUNT, &e), *list = sim_buffer_get(s, BUF_PLIST, &e);
+    unsigned char *touch = sim_buffer_get(s, BUF_PTOUCH, &e), *hist = sim_buffer_get(s, BUF_PHIST, &e);
     long np = 0;
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++)
@@ -95,7 +81,7 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
         return st->npatch ? sim_fail(s, DEM_ERR_ARG, "the saved state has %ld patch contacts; this run has no patches",
                                      st->npatch) : 0;
     int maxp = c->maxp;
-    int *cnt = buf_get(s, BUF_PCOUNT, &e), *list = buf_get(s, BUF_PLIST, &e);
+    int *cnt = sim_buffer_get(s, BUF_PCOUNT, &e), *list = sim_buffer_get(s, BUF_PLIST, &e);
     unsigned char *touch = calloc(c->bytes[BUF_PTOUCH] + 1, 1), *hist = calloc(c->bytes[BUF_PHIST] + 1, 1);
     if (!e && (!touch || !hist))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");

@@ -174,6 +174,22 @@ static void read_state(const char *path, const char *name, void *buf, size_t cou
     H5Fclose(f);
 }
 
+/* A whole dataset of an output file (malloc'd), and its element count in *count if asked */
+static void *read_all(const char *h5, const char *name, hid_t type, long *count)
+{
+    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    long c = h5_count(f, name);
+    assert_true(c >= 0);
+    void *p = malloc(H5Tget_size(type) * (size_t)(c ? c : 1));
+    if (h5_read(f, name, type, p, (size_t)c))
+        fail_msg("%s: cannot read %s", h5, name);
+    H5Fclose(f);
+    if (count)
+        *count = c;
+    return p;
+}
+
 static long n_pairs(const char *path)
 {
     hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -327,14 +343,12 @@ static void test_membrane_scene(void **st)
     snprintf(a, sizeof a, "%s/mt.ckpt.h5", tmp);
     snprintf(b, sizeof b, "%s/mr.ckpt.h5", tmp);
     snprintf(h5, sizeof h5, "%s/mt.h5", tmp);
-    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-    long nt = h5_count(f, "membranes/triangles") / 3, n = h5_count(f, "particles/radius");
-    long nf = h5_count(f, "frames/step");
-    double *x = malloc(sizeof(double) * 3 * (size_t)(n * nf)), *r = malloc(sizeof(double) * (size_t)n);
-    int *mat = malloc(sizeof(int) * (size_t)n);
-    assert_int_equal(h5_read(f, "frames/position", H5T_NATIVE_DOUBLE, x, 3 * (size_t)(n * nf)), 0);
-    assert_int_equal(h5_read(f, "particles/material", H5T_NATIVE_INT, mat, (size_t)n), 0);
-    H5Fclose(f);
+    long nt, n, nf;
+    free(read_all(h5, "membranes/triangles", H5T_NATIVE_INT, &nt));
+    nt /= 3;
+    free(read_all(h5, "frames/step", H5T_NATIVE_DOUBLE, &nf));
+    double *x = read_all(h5, "frames/position", H5T_NATIVE_DOUBLE, NULL);
+    int *mat = read_all(h5, "particles/material", H5T_NATIVE_INT, &n);
     double out = 0, rim = INFINITY;
     int beads = 0;
     const double *last = x + 3 * (size_t)(n * (nf - 1));
@@ -350,7 +364,7 @@ static void test_membrane_scene(void **st)
     assert_true(nt > 100 && beads > 10);
     assert_true(out < 0.02); /* inside the tube (radius 0.02 m at the start) */
     assert_true(rim < 0.02); /* the pressure pulled the membrane in */
-    free(x), free(r), free(mat);
+    free(x), free(mat);
     static const char *const fields[] = {"x", "v", "force"};
     size_t rs = 8;
     unsigned char *pa = malloc(3 * (size_t)n * rs), *pb = malloc(3 * (size_t)n * rs);
@@ -360,18 +374,12 @@ static void test_membrane_scene(void **st)
         if (memcmp(pa, pb, 3 * (size_t)n * rs))
             fail_msg("membrane scene: state/%s differs between the straight and the restarted run", fields[k]);
     }
-    f = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT);
-    long np = h5_count(f, "state/patch_i");
-    H5Fclose(f);
-    f = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
-    assert_int_equal(h5_count(f, "state/patch_i"), np);
-    H5Fclose(f);
-    assert_true(np > 0);
-    int ia[4096], ib[4096];
-    assert_true(np < 4096);
-    read_state(a, "patch_t", ia, (size_t)np, H5T_NATIVE_INT);
-    read_state(b, "patch_t", ib, (size_t)np, H5T_NATIVE_INT);
+    long np, npb;
+    int *ia = read_all(a, "state/patch_t", H5T_NATIVE_INT, &np), *ib = read_all(b, "state/patch_t", H5T_NATIVE_INT, &npb);
+    assert_int_equal(npb, np);
+    assert_true(np > 0 && np < 4096);
     assert_memory_equal(ia, ib, sizeof(int) * (size_t)np);
+    free(ia), free(ib);
     read_state(a, "patch_hist", pa, 3 * (size_t)np, H5T_NATIVE_DOUBLE);
     read_state(b, "patch_hist", pb, 3 * (size_t)np, H5T_NATIVE_DOUBLE);
     assert_memory_equal(pa, pb, 3 * (size_t)np * rs);
@@ -383,13 +391,11 @@ static void test_membrane_scene(void **st)
  * within 0.1 um; across vertex particles both oscillate (Fig. 6). */
 static void slide_stats(const char *h5, double *mean, double *spread, double *height)
 {
-    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-    assert_true(f >= 0);
-    long n = h5_count(f, "particles/radius"), nf = h5_count(f, "frames/step");
-    double *x = malloc(sizeof(double) * 3 * (size_t)(n * nf)), *F = malloc(sizeof(double) * 3 * (size_t)(n * nf));
-    assert_int_equal(h5_read(f, "frames/position", H5T_NATIVE_DOUBLE, x, 3 * (size_t)(n * nf)), 0);
-    assert_int_equal(h5_read(f, "frames/force", H5T_NATIVE_DOUBLE, F, 3 * (size_t)(n * nf)), 0);
-    H5Fclose(f);
+    long n, nf;
+    free(read_all(h5, "particles/radius", H5T_NATIVE_DOUBLE, &n));
+    free(read_all(h5, "frames/step", H5T_NATIVE_DOUBLE, &nf));
+    double *x = read_all(h5, "frames/position", H5T_NATIVE_DOUBLE, NULL);
+    double *F = read_all(h5, "frames/force", H5T_NATIVE_DOUBLE, NULL);
     double sum = 0, lo = INFINITY, hi = -INFINITY, zlo = INFINITY, zhi = -INFINITY;
     int k = 0;
     for (long q = 0; q < nf; q++) { /* the sphere is particle 0 */
@@ -435,21 +441,15 @@ static void test_triaxial_small(void **st)
     char err[8192], h5[300];
     snprintf(h5, sizeof h5, "%s/tri.h5", tmp);
     assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/triaxial_small.yaml -o %s --quiet", DEM, SRC, h5), 0);
-    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-    long ns = h5_count(f, "series/time"), n = h5_count(f, "particles/radius"), nf = h5_count(f, "frames/step");
-    long nc = h5_count(f, "contacts/normal_force");
-    double *t = malloc(sizeof(double) * (size_t)ns), *wf = malloc(sizeof(double) * 6 * (size_t)ns);
-    double *x = malloc(sizeof(double) * 3 * (size_t)(n * nf)), *data = malloc(sizeof(double) * 12 * (size_t)nc);
-    int *ids = malloc(sizeof(int) * 2 * (size_t)nc), *mat = malloc(sizeof(int) * (size_t)n);
-    long long *start = malloc(sizeof(long long) * (size_t)nf);
-    assert_int_equal(h5_read(f, "series/time", H5T_NATIVE_DOUBLE, t, (size_t)ns), 0);
-    assert_int_equal(h5_read(f, "series/wall_force", H5T_NATIVE_DOUBLE, wf, 6 * (size_t)ns), 0);
-    assert_int_equal(h5_read(f, "frames/position", H5T_NATIVE_DOUBLE, x, 3 * (size_t)(n * nf)), 0);
-    assert_int_equal(h5_read(f, "contacts/data", H5T_NATIVE_DOUBLE, data, 12 * (size_t)nc), 0);
-    assert_int_equal(h5_read(f, "contacts/ids", H5T_NATIVE_INT, ids, 2 * (size_t)nc), 0);
-    assert_int_equal(h5_read(f, "contacts/frame_start", H5T_NATIVE_LLONG, start, (size_t)nf), 0);
-    assert_int_equal(h5_read(f, "particles/material", H5T_NATIVE_INT, mat, (size_t)n), 0);
-    H5Fclose(f);
+    long ns, n, nf, nc;
+    double *t = read_all(h5, "series/time", H5T_NATIVE_DOUBLE, &ns);
+    double *wf = read_all(h5, "series/wall_force", H5T_NATIVE_DOUBLE, NULL);
+    double *x = read_all(h5, "frames/position", H5T_NATIVE_DOUBLE, NULL);
+    double *data = read_all(h5, "contacts/data", H5T_NATIVE_DOUBLE, NULL);
+    int *ids = read_all(h5, "contacts/ids", H5T_NATIVE_INT, NULL);
+    int *mat = read_all(h5, "particles/material", H5T_NATIVE_INT, &n);
+    long long *start = read_all(h5, "contacts/frame_start", H5T_NATIVE_LLONG, &nf);
+    free(read_all(h5, "contacts/normal_force", H5T_NATIVE_DOUBLE, &nc));
     /* the shearing starts at 4 ms: the top platen's force then and at the end */
     long k0 = 0;
     while (k0 < ns && t[k0] < 0.004 - 1e-9)
