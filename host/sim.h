@@ -92,7 +92,8 @@ void *sim_buffer_get(dem_sim *s, int id, int *e);
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
 double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
-void dem_hinge_damping_rows(const double *x, const int *p, double kdiss, double row[4]);
+double dem_hinge_damping_rate(const double *x, const int *hinge, const double *hinge_k, int nh, const double *sqrt_im,
+                              int n);
 
 /* host/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
  * lengths are known; the device places them each step: common/riders.h) */

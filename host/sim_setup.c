@@ -93,27 +93,29 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
             ts->spring_period = fmin(ts->spring_period, 2 * M_PI * sqrt(1 / (ia + ib) / s->spring_kr[3 * k]));
     }
     ts->hinge_period = ts->hinge_damping_time = INFINITY;
-    double *crow = s->nhinges ? calloc((size_t)s->n, sizeof(double)) : NULL; /* each vertex's damping row sum */
     for (int h = 0; h < s->nhinges; h++) {
         double m4[4];
         for (int k = 0; k < 4; k++) /* a fixed vertex: an infinite mass, no share in the fold's motion */
             m4[k] = inverse_mass(s, s->hinge[4 * h + k]) > 0 ? sim_mass(s, s->hinge[4 * h + k]) : INFINITY;
         ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, s->hinge + 4 * h, s->hinge_k[3 * h], m4));
-        double row[4];
-        dem_hinge_damping_rows(s->x, s->hinge + 4 * h, s->hinge_k[3 * h + 1], row);
-        for (int k = 0; crow && k < 4; k++)
-            crow[s->hinge[4 * h + k]] += row[k];
     }
-    for (int i = 0; crow && i < s->n; i++) /* Gershgorin: lambda <= max_i (row sum_i / m_i) */
-        if (crow[i] > 0 && inverse_mass(s, i) > 0)
-            ts->hinge_damping_time = fmin(ts->hinge_damping_time, 1 / (crow[i] * inverse_mass(s, i)));
-    free(crow);
+    if (s->nhinges) {
+        double *sqrt_im = malloc(sizeof(double) * (size_t)s->n), rate;
+        if (!sqrt_im)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' damping rate");
+        for (int i = 0; i < s->n; i++)
+            sqrt_im[i] = sqrt(inverse_mass(s, i));
+        rate = dem_hinge_damping_rate(s->x, s->hinge, s->hinge_k, s->nhinges, sqrt_im, s->n);
+        free(sqrt_im);
+        if (rate > 0)
+            ts->hinge_damping_time = 1 / rate;
+    }
     double t_osc = fmin(ts->spring_period, ts->hinge_period);
     ts->recommended_dt = fmin(ts->recommended_dt, t_osc / 50);
     ts->max_dt = fmin(ts->max_dt, t_osc / 10);
-    /* the hinges' dissipative term: lambda dt < 2 is the explicit limit (a fine membrane with seed 001's k_diss, each
-     * hinge's own lambda dt 0.5 but six hinges to a vertex, blew up within 30 steps); the bound keeps lambda dt <= 1 */
-    ts->recommended_dt = fmin(ts->recommended_dt, 0.2 * ts->hinge_damping_time);
+    /* the hinges' dissipative term: lambda dt < 2 is the explicit limit; the bound keeps lambda dt <= 1 (each step then
+     * removes at most all of a mode's speed, never reverses it), and 0.5 is recommended */
+    ts->recommended_dt = fmin(ts->recommended_dt, 0.5 * ts->hinge_damping_time);
     ts->max_dt = fmin(ts->max_dt, ts->hinge_damping_time);
     ts->hertz_time = v > 0 ? tc : 0;
     return 0;

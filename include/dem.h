@@ -128,9 +128,10 @@ typedef struct {
                               bounds above then also hold 50 steps (recommended) and 10 steps (bound) per period */
     double hinge_period;   /* shortest period of a hinge's fold at the initial positions, linearised (reference/
                               bending.c) [s] (INFINITY: none); held like spring_period */
-    double hinge_damping_time; /* shortest decay time 1 / lambda of a hinge's fold under its k_diss, linearised [s]
-                              (INFINITY: none); an explicit step needs lambda dt < 2: the bound holds lambda dt <= 1,
-                              the recommendation 0.2 */
+    double hinge_damping_time; /* 1 / lambda, lambda the largest decay rate of the hinges' k_diss term over all the
+                              membranes' vertices together (power iteration, reference/bending.c) [s] (INFINITY:
+                              none); an explicit step needs lambda dt < 2: the bound holds lambda dt <= 1, the
+                              recommendation 0.5 */
 } dem_time_scales;
 /* What sets max_dt, in words ("0.5 x Rayleigh time 2.9e-06 s", "the hinges' damping time ..."), for messages */
 void dem_time_scales_limit(const dem_time_scales *ts, char *buf, size_t len);

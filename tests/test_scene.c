@@ -488,6 +488,71 @@ static void test_triaxial_small(void **st)
     free(t), free(wf), free(x), free(data), free(ids), free(mat), free(start);
 }
 
+/* Every dataset of two checkpoints' /state, byte for byte (the name of the first that differs fails the test) */
+static int same_state(const char *a, const char *b, const char *what)
+{
+    char names[64][64] = {{0}};
+    H5G_info_t gi;
+    hid_t fa = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT), fb = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(fa >= 0 && fb >= 0);
+    hid_t ga = H5Gopen2(fa, "state", H5P_DEFAULT), gb = H5Gopen2(fb, "state", H5P_DEFAULT);
+    assert_true(H5Gget_info(ga, &gi) >= 0 && gi.nlinks < 64);
+    for (hsize_t k = 0; k < gi.nlinks; k++)
+        assert_true(H5Lget_name_by_idx(ga, ".", H5_INDEX_NAME, H5_ITER_INC, k, names[k], 64, H5P_DEFAULT) > 0);
+    int k = 0;
+    for (; k < 63 && names[k][0]; k++) {
+        hid_t da = H5Dopen2(ga, names[k], H5P_DEFAULT), db = H5Dopen2(gb, names[k], H5P_DEFAULT);
+        if (db < 0)
+            fail_msg("%s: state/%s is missing from %s", what, names[k], b);
+        hid_t ta = H5Dget_type(da), tb = H5Dget_type(db);
+        size_t size = H5Tget_size(ta);
+        long ca = h5_count(ga, names[k]), cb = h5_count(gb, names[k]);
+        if (ca != cb || size != H5Tget_size(tb))
+            fail_msg("%s: state/%s has %ld against %ld elements", what, names[k], ca, cb);
+        unsigned char *pa = malloc(size * (size_t)(ca ? ca : 1)), *pb = malloc(size * (size_t)(ca ? ca : 1));
+        assert_true(H5Dread(da, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, pa) >= 0);
+        assert_true(H5Dread(db, tb, H5S_ALL, H5S_ALL, H5P_DEFAULT, pb) >= 0);
+        if (memcmp(pa, pb, size * (size_t)ca))
+            fail_msg("%s: state/%s differs between %s and %s", what, names[k], a, b);
+        free(pa), free(pb);
+        H5Tclose(ta), H5Tclose(tb), H5Dclose(da), H5Dclose(db);
+    }
+    H5Gclose(ga), H5Gclose(gb), H5Fclose(fa), H5Fclose(fb);
+    return k;
+}
+
+/* Seed 001's triaxial scenes in fp32 (issue 11): the small triaxial with patches and its twin with vertex particles
+ * (edges 2 mm, vertex spheres of 1 mm outside the grains) run 1000 steps - the confining pressure ramping, the top
+ * platen servo-held, grains pressed into the membrane - to the same bits on PoCL and on the reference: every dataset
+ * of the checkpoint's state. */
+static void test_triaxial_fp32_bitwise(void **st)
+{
+    (void)st;
+    static const char *const model[2] = {
+        "", "s/radius: 0.012, height: 0.0518044, edge: 0.004/radius: 0.013, height: 0.0518044, edge: 0.002/; "
+            "s/kdiss: 1.0e-4}/kdiss: 1.0e-4, vertex_radius: 0.001}/; s/model: patch/model: particle/; "
+            "s/dt_rayleigh: 0.2/dt_rayleigh: 0.15/"};
+    char err[8192], a[300], b[300];
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/data && cp %s/tests/scenes/data/triaxial_small.csv %s/data/", tmp,
+                        SRC, tmp), 0);
+    for (int m = 0; m < 2; m++) {
+        for (int be = 0; be < 2; be++) {
+            assert_int_equal(sh(err, sizeof err, "sed 's/^backend: reference/backend: %s/; %s' "
+                                "%s/tests/scenes/triaxial_small.yaml > %s/tri%d.yaml && %s run %s/tri%d.yaml "
+                                "--precision fp32 --stop-after 1000 -o %s/tri%d.h5 --quiet", be ? "reference" : "opencl",
+                                model[m], SRC, tmp, be, DEM, tmp, be, tmp, be), 0);
+        }
+        snprintf(a, sizeof a, "%s/tri0.ckpt.h5", tmp);
+        snprintf(b, sizeof b, "%s/tri1.ckpt.h5", tmp);
+        int fields = same_state(a, b, m ? "triaxial, vertex particles" : "triaxial, patches");
+        long np;
+        free(read_all(a, m ? "state/pair_i" : "state/patch_t", H5T_NATIVE_INT, &np));
+        printf("  small triaxial (%s), fp32, 1000 steps: PoCL = reference in all %d state datasets (%ld %s rows)\n",
+               m ? "vertex particles" : "patches", fields, np, m ? "pair" : "patch");
+        assert_true(fields >= 10 && np > 100);
+    }
+}
+
 static void test_output_and_xdmf(void **st)
 {
     (void)st;
@@ -1101,6 +1166,7 @@ int main(void)
         cmocka_unit_test(test_membrane_scene),
         cmocka_unit_test(test_friction_slide),
         cmocka_unit_test(test_triaxial_small),
+        cmocka_unit_test(test_triaxial_fp32_bitwise),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
