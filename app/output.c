@@ -46,9 +46,9 @@ struct output {
     long c_cap;
 };
 
-/* One name per library wall, newline-separated, in the order of the wall_position / wall_force columns: the
- * scene's name (or walls[k]); a box's six faces as "NAME x-", "NAME x+", ... (dem_add_box's order). */
-static char *wall_names(const scene *sc)
+/* One name per library wall, newline-separated, in the order of the wall_position / wall_force columns
+ * (scene_wall_label) */
+static char *wall_names(const scene *sc, int nw)
 {
     size_t cap = 1, len = 0;
     for (unsigned k = 0; k < sc->f->walls_count; k++)
@@ -57,17 +57,10 @@ static char *wall_names(const scene *sc)
     if (!t)
         return NULL;
     t[0] = 0;
-    static const char *face[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
-    for (unsigned k = 0; k < sc->f->walls_count; k++) {
-        const scene_wall *w = &sc->f->walls[k];
-        char own[32];
-        snprintf(own, sizeof own, "walls[%u]", k);
-        const char *nm = w->name ? w->name : own;
-        if (w->type && !strcmp(w->type, "box"))
-            for (int q = 0; q < 6; q++)
-                len += (size_t)snprintf(t + len, cap - len, "%s%s %s", len ? "\n" : "", nm, face[q]);
-        else
-            len += (size_t)snprintf(t + len, cap - len, "%s%s", len ? "\n" : "", nm);
+    for (int k = 0; k < nw; k++) {
+        char one[1100];
+        scene_wall_label(sc, k, one, sizeof one);
+        len += (size_t)snprintf(t + len, cap - len, "%s%s", len ? "\n" : "", one);
     }
     return t;
 }
@@ -177,7 +170,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
             rc = h5rows_create(&o->wall_pos, o->series, "wall_position", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "m") ||
                  h5rows_create(&o->wall_force, o->series, "wall_force", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "N");
         if (!rc && nw) {
-            char *names = wall_names(sc);
+            char *names = wall_names(sc, nw);
             rc = !names || h5_attr_string(o->series, "wall_names", names);
             free(names);
         }

@@ -163,15 +163,9 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
         return;
     char which[1200] = "";
     if (a.wall >= 0 && a.wall_time <= a.pair_time) {
-        const char *name = NULL; /* the scene's name of the wall (a box makes six) */
-        int k = 0;
-        for (unsigned w = 0; w < sc->f->walls_count && !name; w++) {
-            int nw = !strcmp(sc->f->walls[w].type, "box") ? 6 : 1;
-            if (a.wall < k + nw)
-                name = sc->f->walls[w].name ? sc->f->walls[w].name : sc->f->walls[w].type;
-            k += nw;
-        }
-        snprintf(which, sizeof which, "particle on wall %d '%.1000s'", a.wall, name ? name : "?");
+        char name[1100];
+        scene_wall_label(sc, a.wall, name, sizeof name);
+        snprintf(which, sizeof which, "particle on wall %d '%.1000s'", a.wall, name);
     } else {
         snprintf(which, sizeof which, "two smallest like particles");
     }
@@ -438,6 +432,26 @@ static void phase_report(run_ctx *c)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
                             "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
                     mc.max, mc.unconverged, run->mc_cap);
+    }
+    for (int k = 0; k < dem_wall_count(s); k++) { /* servo stages: what force they held, and whether they chattered */
+        dem_servo_stats sv;
+        if (dem_servo_stats_get(s, k, &sv) || sv.stage < 0)
+            continue;
+        char name[1100];
+        scene_wall_label(c->sc, k, name, sizeof name);
+        double off = (sv.held - sv.force) / sv.force, chatter = (double)sv.chatter / (double)sv.steps;
+        if (c->o->progress != 0 || c->show)
+            fprintf(stderr, "dem: wall '%s' servo stage %d: target %.6g N, held %.6g N on average over the %ld steps of "
+                            "its last tenth (%+.2g %%); force error reversed beyond 10 %% of the target in %ld of %ld "
+                            "steps\n", name, sv.stage, sv.force, sv.held, sv.tail, 100 * off, sv.chatter, sv.steps);
+        if (chatter > 0.1 || (sv.tail > 0 && fabs(off) > 0.05))
+            fprintf(stderr, "dem: warning: wall '%s' servo stage %d held %.6g N on average over its last tenth for a "
+                            "target of %.6g N (%+.2g %%), its force error reversing in %.0f %% of its steps: %s\n", name,
+                    sv.stage, sv.held, sv.force, 100 * off, 100 * chatter,
+                    chatter > 0.1 ? "it chatters - the wall touches and leaves the particles in turn - because gain x "
+                                    "the contacts' stiffness x dt is above 1: lower the gain (docs/scenes.md)"
+                                  : "it had not settled: a longer stage, or a higher gain within gain x stiffness x dt "
+                                    "< 1 (docs/scenes.md)");
     }
     if (iterated && mc.unconverged > 0)
         fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "

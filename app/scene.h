@@ -220,6 +220,8 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
 void scene_free(scene *sc);
 /* A file the scene names (a CSV, a mesh): an absolute path as it is, else relative to the scene file's folder */
 void scene_file_path(const scene *sc, const char *name, char *buf, size_t len);
+/* Library wall k's name, as the output's wall_names lists it (a box's faces "NAME x-" ...) */
+void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
 /* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
 /* Replaces the scene's normal law (after scene_build, before dem_start): "classical", "mc_stress", "mc_strain"

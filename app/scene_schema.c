@@ -466,3 +466,27 @@ void scene_free(scene *sc)
     free(sc->text);
     free(sc);
 }
+
+/* Library wall k's name: the scene's (or walls[i]); a box's six faces "NAME x-", "NAME x+", ... (dem_add_box's
+ * order); "?" past the last */
+void scene_wall_label(const scene *sc, int k, char *buf, size_t len)
+{
+    static const char *face[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+    int at = 0;
+    snprintf(buf, len, "?");
+    for (unsigned i = 0; i < sc->f->walls_count; i++) {
+        const scene_wall *w = &sc->f->walls[i];
+        int box = w->type && !strcmp(w->type, "box"), nw = box ? 6 : 1;
+        if (k < at + nw) {
+            char own[32];
+            snprintf(own, sizeof own, "walls[%u]", i);
+            const char *nm = w->name ? w->name : own;
+            if (box)
+                snprintf(buf, len, "%s %s", nm, face[k - at]);
+            else
+                snprintf(buf, len, "%s", nm);
+            return;
+        }
+        at += nw;
+    }
+}

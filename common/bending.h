@@ -22,6 +22,11 @@
  * Forces. Seed 001 Eq. 11 and 12 give the elastic and the dissipative force along u_i with opposite signs; a restoring
  * force must point down the gradient of the bending energy, so both are read as restoring:
  *     F_i = -[ k_el |E|^2 / (|N1| + |N2|) (s(theta) - s(theta0)) + k_diss |E| d theta/dt ] u_i.
+ * Units. With u_i as Eq. 13-16 print them (|u_1| = |E| / |N1|, one over the wing's height: 1/m), k_el is in N m and
+ * k_diss in N s. Seed 001 gives k_el = 1e-3 N/m and k_diss = 1e-4 N s/m, units no reading of its equations yields
+ * (unit vectors u_i would make k_diss N s/m but k_el N). Decision: the printed equations rule, and the printed
+ * numbers are taken in N m and N s. The damping is then strong - on 1.33 mm edges it bounds the time step at
+ * 1.64e-7 s (host/sim_setup.c) - but the paper's triaxial sets no time step to hold it against.
  * A degenerate hinge (an edge or a triangle of zero size) exerts nothing. The four forces go to the contribution
  * channel (springs.h) at chan_slot[2 nsprings + 3 ntriangles + 4h + k].
  */

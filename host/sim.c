@@ -370,26 +370,30 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
     return 0;
 }
 
-/* The stage wall k is in at step `step`, or -1 after its last */
-static int stage_at(const dem_sim *s, int k, long step)
+/* The stage wall k is in at step `step`, or -1 after its last; its first step in *first */
+static int stage_at(const dem_sim *s, int k, long step, long *first)
 {
     long start = 0;
     for (int st = 0; st < s->walls[k].nstages; st++) {
         long len = s->wall_stage_steps[k][st];
-        if (step >= start && step < start + len)
+        if (step >= start && step < start + len) {
+            *first = start;
             return st;
+        }
         start += len;
     }
     return -1;
 }
 
-/* Servo stages: each such wall's velocity for this step from the force it received in the last (dem_stage) */
+/* Servo stages: each such wall's velocity for this step from the force it received in the last (dem_stage), and
+ * the record of how the stage goes (dem_servo_stats) */
 static int servo_update(dem_sim *s)
 {
     double f[3 * DEM_MAX_WALLS];
     int read = 0;
     for (int k = 0; k < s->nwalls; k++) {
-        int st = stage_at(s, k, s->step);
+        long first;
+        int st = stage_at(s, k, s->step, &first);
         const dem_stage *g = st >= 0 ? &s->walls[k].stages[st] : NULL;
         if (!g || !(g->force > 0))
             continue;
@@ -397,12 +401,33 @@ static int servo_update(dem_sim *s)
             return DEM_ERR_DEVICE;
         read = 1;
         const double *n = s->walls[k].normal;
-        double fn = -(f[3 * k] * n[0] + f[3 * k + 1] * n[1] + f[3 * k + 2] * n[2]);
-        double u = g->gain * (g->force - fn);
+        double fn = -(f[3 * k] * n[0] + f[3 * k + 1] * n[1] + f[3 * k + 2] * n[2]), err = g->force - fn;
+        double u = g->gain * err;
         u = u > g->max_speed ? g->max_speed : u < -g->max_speed ? -g->max_speed : u;
         for (int d = 0; d < 3; d++)
             s->servo_v[k][d] = u * n[d];
+        dem_servo_stats *r = &s->servo[k];
+        if (r->stage != st || r->steps == 0) /* a new stage, or the first step this process runs */
+            *r = (dem_servo_stats){st, g->force, 0, 0, 0, 0}, s->servo_err[k] = 0;
+        double big = 0.1 * g->force, prev = s->servo_err[k];
+        r->chatter += (prev > big && err < -big) || (prev < -big && err > big);
+        s->servo_err[k] = err;
+        long len = s->wall_stage_steps[k][st];
+        if (s->step - first >= len - len / 10) /* its last tenth: the force it holds */
+            r->held += fn, r->tail++;
+        r->steps++;
     }
+    return 0;
+}
+
+int dem_servo_stats_get(const dem_sim *s, int wall, dem_servo_stats *st)
+{
+    if (wall < 0 || wall >= s->nwalls)
+        return sim_fail((dem_sim *)s, DEM_ERR_ARG, "wall %d: no such wall (%d)", wall, s->nwalls);
+    *st = s->servo[wall];
+    if (!s->servo[wall].steps)
+        st->stage = -1;
+    st->held = st->tail ? st->held / (double)st->tail : NAN;
     return 0;
 }
 

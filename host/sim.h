@@ -60,6 +60,9 @@ struct dem_sim {
     long step, rebuilds;
     double wall_pos[DEM_MAX_WALLS][3]; /* wall reference point now [m] */
     double servo_v[DEM_MAX_WALLS][3];  /* the velocity of each wall in a servo stage, this step [m/s] */
+    dem_servo_stats servo[DEM_MAX_WALLS]; /* how each wall's latest servo stage went (sum of the held force in .held
+                                             until queried) */
+    double servo_err[DEM_MAX_WALLS];       /* its force error in the step before [N] */
     long wall_stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;

@@ -298,6 +298,18 @@ typedef struct {
     long unconverged; /* steps that hit the iteration cap */
 } dem_mc_stats;
 void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st);
+/* How wall k's latest servo stage went (a P controller: it settles when gain x the stiffness of the wall's contacts
+ * x dt is below 1; above it the force chatters about the target, the wall touching and leaving the particles in
+ * turn, and the mean force it holds is off). Counted by this process from dem_start (a restored run counts anew). */
+typedef struct {
+    int stage;     /* the stage's index, -1 if none has run */
+    double force;  /* its target [N] */
+    long steps;    /* its steps run */
+    long tail;     /* of them, the steps in its last tenth */
+    double held;   /* the mean normal force the wall received over those [N] (NAN: none yet) */
+    long chatter;  /* steps whose force error changed sign from the step before, both beyond 10 % of the target */
+} dem_servo_stats;
+int dem_servo_stats_get(const dem_sim *s, int wall, dem_servo_stats *st);
 
 /* Time scales of the current particles and materials; hertz_velocity is the impact speed for hertz_time. */
 int dem_time_scales_get(dem_sim *s, double hertz_velocity, dem_time_scales *ts);

@@ -553,6 +553,34 @@ static void test_triaxial_fp32_bitwise(void **st)
     }
 }
 
+/* A servo stage's report (dem_servo_stats): tests/scenes/servo_lid.yaml holds a lid at 100 kPa on 200 grains. At its
+ * gain (2e-3 m/(s N)) the run reports the force held over the stage's last tenth within 0.1 % of the target and no
+ * chatter; at 50 times the gain the force error reverses nearly every step and the run warns, under --quiet too. */
+static void test_servo_report(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/data && cp %s/tests/scenes/data/triaxial_small.csv %s/data/", tmp,
+                        SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/servo_lid.yaml -o %s/servo.h5 --progress", DEM, SRC,
+                        tmp), 0);
+    double target, held;
+    long tail, rev, steps;
+    const char *line = strstr(err, "dem: wall 'lid' servo stage 0: target ");
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "dem: wall 'lid' servo stage 0: target %lf N, held %lf N on average over the %ld "
+                                  "steps of its last tenth (%*[^)]); force error reversed beyond 10 %% of the target in "
+                                  "%ld of %ld steps", &target, &held, &tail, &rev, &steps), 5);
+    printf("  servo lid, gain 2e-3: target %.4f N, held %.4f N, %ld reversals in %ld steps\n", target, held, rev, steps);
+    assert_true(fabs(held - target) < 1e-3 * target && rev == 0 && tail == steps / 10);
+    assert_null(strstr(err, "warning"));
+    assert_int_equal(sh(err, sizeof err, "sed 's/gain: 0.002/gain: 0.1/' %s/tests/scenes/servo_lid.yaml > %s/sv.yaml "
+                        "&& %s run %s/sv.yaml -o %s/servo.h5 --quiet", SRC, tmp, DEM, tmp, tmp), 0);
+    printf("  servo lid, gain 0.1: %s", err);
+    assert_non_null(strstr(err, "dem: warning: wall 'lid' servo stage 0 held "));
+    assert_non_null(strstr(err, "it chatters"));
+}
+
 static void test_output_and_xdmf(void **st)
 {
     (void)st;
@@ -1167,6 +1195,7 @@ int main(void)
         cmocka_unit_test(test_friction_slide),
         cmocka_unit_test(test_triaxial_small),
         cmocka_unit_test(test_triaxial_fp32_bitwise),
+        cmocka_unit_test(test_servo_report),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
