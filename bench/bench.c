@@ -3,9 +3,11 @@
  * spent in each kernel. Prints markdown tables. Not a test: nothing here passes or fails on speed.
  *   DEM_BENCH_SIZES="8 17 37"   lattice sides (n = side^3 + (side-1)^3), default as shown
  *   DEM_BENCH_QUICK=1           fewer steps
- *   DEM_BENCH_ONLY=models       only the contact model cost table (or: effects)
- * Then two more tables: what an effect that is off costs (effects_table), and what each contact model costs on seed
- * 000's compression scenes (model_cost_table, the paper's Table 2). */
+ *   DEM_BENCH_ONLY=models       only the contact model cost table (or: effects, series, membranes)
+ *   DEM_BENCH_TRIAXIAL_MS=2     simulated milliseconds of each triaxial run in the membrane cost table
+ * Then more tables: what an effect that is off costs (effects_table), what each contact model costs on seed 000's
+ * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
+ * each membrane model costs in seed 001's triaxial test (membrane_cost_table, the paper's Table 4). */
 #include "dem.h"
 #include <math.h>
 #include <stdio.h>
@@ -240,6 +242,79 @@ static void model_cost_table(int quick)
                best[1][m] / best[1][0], paper[m]);
 }
 
+/* Seed 001's Table 4: the wall time of 20 ms of simulated time of the triaxial test, both membrane models, both
+ * cases, on OpenCL device 0 and on the reference. Whole `dem run`s of scenes/seed001/triaxial_case*_*.yaml (set-up
+ * included) cut by --stop-after to `ms` milliseconds of their time step, and a run of one step for the set-up; the
+ * table gives the set-up plus 20 ms of steps at the cost per step measured (steady: the packing is dense from the
+ * first step). DEM_BENCH_TRIAXIAL_MS sets `ms` (default 2, quick 0.5; 20 runs the whole 20 ms: about an hour on 2
+ * cores). */
+static double scene_dt(const char *yaml, long *n)
+{
+    char cmd[1024], line[512];
+    double dt = NAN;
+    snprintf(cmd, sizeof cmd, "%s/build/dem check %s 2>/dev/null", DEM_DEFAULT_SOURCE_DIR, yaml);
+    FILE *fp = popen(cmd, "r");
+    while (fp && fgets(line, sizeof line, fp)) {
+        if (!strncmp(line, "time step", 9))
+            sscanf(line, "time step %lf", &dt);
+        if (!strncmp(line, "particles", 9))
+            sscanf(line, "particles %ld", n);
+    }
+    if (fp)
+        pclose(fp);
+    return dt;
+}
+
+static void membrane_cost_table(int quick)
+{
+    const char *env = getenv("DEM_BENCH_TRIAXIAL_MS");
+    double ms = env ? atof(env) : quick ? 0.5 : 2;
+    static const char *models[2] = {"particle", "patch"};
+    static const double paper[2][2] = {{32, 96}, {5, 17}}; /* MercuryDPM [min]: [model][case] */
+    double t[2][2][2]; /* [case][model][reference] [s] for 20 ms */
+    long n[2][2] = {{0, 0}, {0, 0}}, steps[2][2];
+    double dts[2][2];
+    for (int c = 0; c < 2; c++)
+        for (int m = 0; m < 2; m++) {
+            char yaml[1024], cmd[4096];
+            snprintf(yaml, sizeof yaml, "/tmp/dem-bench-tri-%d-%s.yaml", c + 1, models[m]);
+            snprintf(cmd, sizeof cmd, "sed 's|csv: ../data/|csv: %s/scenes/data/|' %s/scenes/seed001/triaxial_case%d_%s.yaml "
+                     "> %s", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, c + 1, models[m], yaml);
+            double dt = system(cmd) == 0 ? scene_dt(yaml, &n[c][m]) : NAN;
+            steps[c][m] = isfinite(dt) ? lround(ms * 1e-3 / dt) : 0;
+            for (int r = 0; r < 2; r++) {
+                t[c][m][r] = NAN;
+                if (steps[c][m] < 2)
+                    continue;
+                double took[2] = {NAN, NAN}; /* one step (the set-up), then all */
+                for (int q = 0; q < 2; q++) {
+                    snprintf(cmd, sizeof cmd, "%s%s && %s/build/dem run %s -o /tmp/dem-bench-tri.h5 --quiet "
+                             "--stop-after %ld", r && !q ? "echo 'backend: reference' >> " : "true", r && !q ? yaml : "",
+                             DEM_DEFAULT_SOURCE_DIR, yaml, q ? steps[c][m] : 1);
+                    double t0 = now();
+                    if (system(cmd) == 0)
+                        took[q] = now() - t0;
+                }
+                /* the set-up, and the steps of 20 ms at the measured cost per step */
+                t[c][m][r] = took[0] + (took[1] - took[0]) / (double)(steps[c][m] - 1) * (lround(0.02 / dt) - 1);
+                fprintf(stderr, "  triaxial case %d %s %s: set-up and a step %.1f s, %ld steps %.1f s: %.1f s for 20 ms\n",
+                        c + 1, models[m], r ? "reference" : "opencl", took[0], steps[c][m], took[1], t[c][m][r]);
+            }
+            dts[c][m] = dt;
+        }
+    printf("\n## Membrane cost (seed 001 Table 4: wall time of 20 ms of the triaxial test; measured over %g ms of "
+           "simulated time%s; OpenCL device 0 and the reference)\n\n"
+           "| case | model | particles | time step [s] | OpenCL [min] | reference [min] | paper, MercuryDPM [min] |\n"
+           "|---|---|---|---|---|---|---|\n", ms, ms < 20 ? ": the set-up (a run of one step) plus 20 ms of steps at the cost per step measured" : "");
+    for (int c = 0; c < 2; c++)
+        for (int m = 0; m < 2; m++)
+            printf("| %d | MSS_%s | %ld | %.3g | %.2f | %.2f | %g |\n", c + 1, models[m], n[c][m],
+                   dts[c][m], t[c][m][0] / 60, t[c][m][1] / 60, paper[m][c]);
+    for (int c = 0; c < 2; c++)
+        printf("| %d | ratio MSS_particle / MSS_patch | | | %.1f | %.1f | %.1f |\n", c + 1, t[c][0][0] / t[c][1][0],
+               t[c][0][1] / t[c][1][1], paper[0][c] / paper[1][c]);
+}
+
 int main(void)
 {
     int sides[8] = {8, 17, 37}, nsides = 3;
@@ -263,6 +338,10 @@ int main(void)
     }
     if (only && !strcmp(only, "series")) {
         series_cost_table(quick);
+        return 0;
+    }
+    if (only && !strcmp(only, "membranes")) {
+        membrane_cost_table(quick);
         return 0;
     }
     if (only && !strcmp(only, "effects")) {
@@ -322,5 +401,6 @@ int main(void)
     effects_table(quick);
     model_cost_table(quick);
     series_cost_table(quick);
+    membrane_cost_table(quick);
     return 0;
 }
