@@ -109,8 +109,9 @@ MODELS ?= classical mc_stress mc_strain mc_strain_iterated
 # closed forms drawn over two of them: Eq. 11 on the five-sphere box (Fig. 10), Hertz on the rubber sphere (Fig. 4)
 PLOT_REF_five_box := --eq11 r=0.01,E=23.3e3,nu=0.5,beta=1.65,area=0.0012
 PLOT_REF_rubber_plates := --hertz r=0.01,E=1.85e6,nu=0.46,E2=200e9,nu2=0.3,area=0.000314159265358979,height=0.01
-# seed 001's triaxial test (Fig. 5): each case with each membrane model, one plot per case. On PoCL, 2 cores: case 1
-# TRIAXIAL_TIMES_1; case 2 TRIAXIAL_TIMES_2. TRIAXIAL_CASES=1 TRIAXIAL_MODELS=patch for a short validation.
+# seed 001's triaxial test (Fig. 5): each case with each membrane model, one plot per case. On PoCL, 2 cores, at make
+# bench's costs per step: case 1 about 6 min with patches, 21 with vertex particles; case 2 about 8 and 100 min.
+# TRIAXIAL_CASES=1 TRIAXIAL_MODELS=patch for a short validation.
 TRIAXIAL_CASES ?= 1 2
 TRIAXIAL_MODELS ?= patch particle
 validate: $(BUILD)/dem

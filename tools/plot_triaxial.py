@@ -3,8 +3,8 @@
 triaxial run (walls 0 and 1 the bottom and top platens; sigma_p the top platen's force over the initial cross-section;
 h0 the platen distance when the shearing starts), for each run given on one plot.
 usage: plot_triaxial.py -o OUT.png [--sigma-c PA] [--area M2] [--start S] RUN.h5 [RUN.h5 ...]
-Prints each run's peak sigma_d and, with two or more runs, the largest difference between the first and each other
-over their common strain range, relative to the first run's peak."""
+Prints each run's peak sigma_d and, with two or more runs, the largest and the mean difference between the first and
+each other over their common strain range (200 points), relative to the first run's peak."""
 import argparse
 
 import h5py
@@ -19,7 +19,9 @@ def curve(path, sigma_c, area, start):
         name = f.attrs["scene_name"]
         name = name.decode() if isinstance(name, bytes) else str(name)
     h = z[:, 1] - z[:, 0]
-    shear = t >= start - 1e-9  # the row at the start itself (times are sums of steps)
+    # the row nearest the start: stages last whole steps, so the start is up to a step off the time asked (with
+    # dt 5.8004e-7 s, 10 ms of servo ends at 0.0099999 s)
+    shear = t >= start - 0.5 * (t[1] - t[0])
     h0 = h[shear][0]
     eps = np.log(h0 / h[shear])
     sd = fz[shear] / area - sigma_c
@@ -48,8 +50,9 @@ def main():
     for name, eps, sd in curves[1:]:
         top = min(e0.max(), eps.max())
         grid = np.linspace(0, top, 200)
-        diff = np.abs(np.interp(grid, e0, s0) - np.interp(grid, eps, sd)).max() / s0.max()
-        print(f"{name} vs {name0}: largest difference {100 * diff:.3g} % of the peak, strain 0 to {top:.4f}")
+        d = np.abs(np.interp(grid, e0, s0) - np.interp(grid, eps, sd)) / s0.max()
+        print(f"{name} vs {name0}: largest difference {100 * d.max():.3g} % of the peak (at strain "
+              f"{grid[d.argmax()]:.4f}), mean {100 * d.mean():.3g} %, strain 0 to {top:.4f}")
     ax.set_xlabel("axial strain log(h0 / h)")
     ax.set_ylabel("deviatoric stress sigma_p - sigma_c [kPa]")
     ax.set_title("seed 001 Fig. 5: triaxial test, confining 100 kPa", fontsize=10)
