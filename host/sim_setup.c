@@ -47,8 +47,8 @@ void dem_time_scales_limit(const dem_time_scales *ts, char *buf, size_t len)
 {
     double b = ts->max_dt;
     if (b == ts->hinge_damping_time)
-        snprintf(buf, len, "the membrane hinges' damping time %.6g s: k_diss over a vertex's hinges, lambda dt <= 1",
-                 ts->hinge_damping_time);
+        snprintf(buf, len, "the membrane hinges' damping time %.6g s: 1 / the largest decay rate of their k_diss terms, "
+                           "lambda dt <= 1", ts->hinge_damping_time);
     else if (b == ts->spring_period / 10)
         snprintf(buf, len, "a tenth of the shortest spring period, %.6g s", ts->spring_period);
     else if (b == ts->hinge_period / 10)

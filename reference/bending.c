@@ -42,9 +42,9 @@ double dem_hinge_period(const double *x, const int *p, double kel, const double 
  * power iteration from a fixed start until the Rayleigh quotient changes by less than 1e-4 (at most 2000 products),
  * then raised by 5 % (the quotient approaches lambda from below). A vertex shares twelve hinges, so one hinge's own
  * rate is not enough (a fine membrane passing that blew up), and the Gershgorin bound over the rows - the first
- * version - was 3-4 times too high: it held seed 001's MSS_particle triaxial to a step 3x smaller than needed.
- * tests/test_bending.c checks it against a dense eigenvalue solution and against runs at and beyond it. 0 when no
- * hinge damps. */
+ * version - was 2.4 times too high on seed 001's MSS_particle triaxial (6.8e-8 s against 1.64e-7 s). tests/
+ * test_bending.c checks it against a dense eigenvalue bracket and against runs at and beyond it. 0 when no hinge
+ * damps. */
 double dem_hinge_damping_rate(const double *x, const int *hinge, const double *hinge_k, int nh, const double *sqrt_im,
                               int n)
 {
