@@ -166,6 +166,24 @@ static double time_run(const char *scene, const char *model)
     return rc == 0 ? now() - t0 : NAN;
 }
 
+/* A scene's time step and particle count, as `dem check` prints them */
+static double scene_dt(const char *yaml, long *n)
+{
+    char cmd[1024], line[512];
+    double dt = NAN;
+    snprintf(cmd, sizeof cmd, "%s/build/dem check %s 2>/dev/null", DEM_DEFAULT_SOURCE_DIR, yaml);
+    FILE *fp = popen(cmd, "r");
+    while (fp && fgets(line, sizeof line, fp)) {
+        if (!strncmp(line, "time step", 9))
+            sscanf(line, "time step %lf", &dt);
+        if (!strncmp(line, "particles", 9))
+            sscanf(line, "particles %ld", n);
+    }
+    if (fp)
+        pclose(fp);
+    return dt;
+}
+
 /* The cost of the time series (issue 15): 514 hydrogel spheres, 5000 steps of their compression, a row every 100
  * steps against a row every step, and a row every 100 steps each the mean of those 100 (series_average). */
 static double time_series_run(const char *series_every, const char *extra)
@@ -187,15 +205,8 @@ static void series_cost_table(int quick)
     const char *names[3] = {"a row every 100 steps", "a row every step", "a row every 100 steps, each the mean of 100"};
     /* series_every in steps: 1e-9 s rounds up to every step; 100 steps from the scene's own dt (dem check) */
     char hundred[64];
-    double dt = NAN;
-    FILE *fp = popen(DEM_DEFAULT_SOURCE_DIR "/build/dem check " DEM_DEFAULT_SOURCE_DIR "/scenes/hydrogel_514.yaml "
-                     "2>/dev/null", "r");
-    char line[512];
-    while (fp && fgets(line, sizeof line, fp))
-        if (!strncmp(line, "time step", 9))
-            sscanf(line, "time step %lf", &dt);
-    if (fp)
-        pclose(fp);
+    long n;
+    double dt = scene_dt(DEM_DEFAULT_SOURCE_DIR "/scenes/hydrogel_514.yaml", &n);
     snprintf(hundred, sizeof hundred, "%.17g", 100 * dt);
     every[0] = every[2] = hundred;
     int reps = quick ? 1 : 3;
@@ -248,23 +259,6 @@ static void model_cost_table(int quick)
  * table gives the set-up plus 20 ms of steps at the cost per step measured (steady: the packing is dense from the
  * first step). DEM_BENCH_TRIAXIAL_MS sets `ms` (default 2, quick 0.5; 20 runs the whole 20 ms: about an hour on 2
  * cores). */
-static double scene_dt(const char *yaml, long *n)
-{
-    char cmd[1024], line[512];
-    double dt = NAN;
-    snprintf(cmd, sizeof cmd, "%s/build/dem check %s 2>/dev/null", DEM_DEFAULT_SOURCE_DIR, yaml);
-    FILE *fp = popen(cmd, "r");
-    while (fp && fgets(line, sizeof line, fp)) {
-        if (!strncmp(line, "time step", 9))
-            sscanf(line, "time step %lf", &dt);
-        if (!strncmp(line, "particles", 9))
-            sscanf(line, "particles %ld", n);
-    }
-    if (fp)
-        pclose(fp);
-    return dt;
-}
-
 static void membrane_cost_table(int quick)
 {
     const char *env = getenv("DEM_BENCH_TRIAXIAL_MS");

@@ -408,13 +408,13 @@ static int servo_update(dem_sim *s)
             s->servo_v[k][d] = u * n[d];
         dem_servo_stats *r = &s->servo[k];
         if (r->stage != st || r->steps == 0) /* a new stage, or the first step this process runs */
-            *r = (dem_servo_stats){st, g->force, 0, 0, 0, 0}, s->servo_err[k] = 0;
+            *r = (dem_servo_stats){st, g->force, 0, 0, NAN, 0}, s->servo_err[k] = s->servo_sum[k] = 0;
         double big = 0.1 * g->force, prev = s->servo_err[k];
         r->chatter += (prev > big && err < -big) || (prev < -big && err > big);
         s->servo_err[k] = err;
         long len = s->wall_stage_steps[k][st];
         if (s->step - first >= len - len / 10) /* its last tenth: the force it holds */
-            r->held += fn, r->tail++;
+            s->servo_sum[k] += fn, r->tail++;
         r->steps++;
     }
     return 0;
@@ -425,9 +425,10 @@ int dem_servo_stats_get(const dem_sim *s, int wall, dem_servo_stats *st)
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail((dem_sim *)s, DEM_ERR_ARG, "wall %d: no such wall (%d)", wall, s->nwalls);
     *st = s->servo[wall];
-    if (!s->servo[wall].steps)
+    if (!st->steps)
         st->stage = -1;
-    st->held = st->tail ? st->held / (double)st->tail : NAN;
+    if (st->tail)
+        st->held = s->servo_sum[wall] / (double)st->tail;
     return 0;
 }
 

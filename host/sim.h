@@ -60,8 +60,8 @@ struct dem_sim {
     long step, rebuilds;
     double wall_pos[DEM_MAX_WALLS][3]; /* wall reference point now [m] */
     double servo_v[DEM_MAX_WALLS][3];  /* the velocity of each wall in a servo stage, this step [m/s] */
-    dem_servo_stats servo[DEM_MAX_WALLS]; /* how each wall's latest servo stage went (sum of the held force in .held
-                                             until queried) */
+    dem_servo_stats servo[DEM_MAX_WALLS]; /* how each wall's latest servo stage went (.held: dem_servo_stats_get) */
+    double servo_sum[DEM_MAX_WALLS];       /* the normal force summed over its last tenth so far [N] */
     double servo_err[DEM_MAX_WALLS];       /* its force error in the step before [N] */
     long wall_stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
     void *wall_real;        /* packed wall table uploaded each step */

@@ -107,6 +107,8 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
             sqrt_im[i] = sqrt(inverse_mass(s, i));
         rate = dem_hinge_damping_rate(s->x, s->hinge, s->hinge_k, s->nhinges, sqrt_im, s->n);
         free(sqrt_im);
+        if (rate < 0)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' damping rate");
         if (rate > 0)
             ts->hinge_damping_time = 1 / rate;
     }

@@ -44,13 +44,17 @@ double dem_hinge_period(const double *x, const int *p, double kel, const double 
  * rate is not enough (a fine membrane passing that blew up), and the Gershgorin bound over the rows - the first
  * version - was 2.4 times too high on seed 001's MSS_particle triaxial (6.8e-8 s against 1.64e-7 s). tests/
  * test_bending.c checks it against a dense eigenvalue bracket and against runs at and beyond it. 0 when no hinge
- * damps. */
+ * damps, -1 when memory runs out. */
 double dem_hinge_damping_rate(const double *x, const int *hinge, const double *hinge_k, int nh, const double *sqrt_im,
                               int n)
 {
     double *u = malloc(sizeof(double) * 13 * (size_t)(nh > 0 ? nh : 1)); /* per hinge: sqrt(im_k) u_k, then c */
     double *v = calloc(3 * (size_t)n, sizeof(double)), *w = calloc(3 * (size_t)n, sizeof(double)), lambda = 0;
     int any = 0;
+    if (!u || !v || !w) {
+        free(u), free(v), free(w);
+        return -1;
+    }
     for (int h = 0; h < nh; h++) {
         const int *p = hinge + 4 * h;
         vec3 x1 = v3_load(x, p[0]), x2 = v3_load(x, p[1]), x3 = v3_load(x, p[2]), x4 = v3_load(x, p[3]), g4[4];
@@ -61,8 +65,10 @@ double dem_hinge_damping_rate(const double *x, const int *hinge, const double *h
             hinge_gradient(g, x1, x2, x3, x4, g4);
         for (int k = 0; k < 4; k++) {
             double f = r[12] > 0 ? sqrt_im[p[k]] : 0;
-            r[3 * k] = f * g4[k].x, r[3 * k + 1] = f * g4[k].y, r[3 * k + 2] = f * g4[k].z;
-            any |= f > 0;
+            if (f > 0)
+                r[3 * k] = f * g4[k].x, r[3 * k + 1] = f * g4[k].y, r[3 * k + 2] = f * g4[k].z, any = 1;
+            else /* a fixed vertex, or a hinge that does not damp (its gradient is not computed) */
+                r[3 * k] = r[3 * k + 1] = r[3 * k + 2] = 0;
         }
     }
     if (any) {

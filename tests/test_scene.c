@@ -489,6 +489,14 @@ static void test_triaxial_small(void **st)
     free(t), free(wf), free(x), free(data), free(ids), free(mat), free(start);
 }
 
+/* tests/scenes/data/triaxial_small.csv into tmp/data, for scenes rewritten into tmp that read data/triaxial_small.csv */
+static void small_packing_to_tmp(void)
+{
+    char err[4096];
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/data && cp %s/tests/scenes/data/triaxial_small.csv %s/data/", tmp,
+                        SRC, tmp), 0);
+}
+
 /* Every dataset of two checkpoints' /state, byte for byte (the name of the first that differs fails the test) */
 static int same_state(const char *a, const char *b, const char *what)
 {
@@ -534,8 +542,7 @@ static void test_triaxial_fp32_bitwise(void **st)
             "s/kdiss: 1.0e-4}/kdiss: 1.0e-4, vertex_radius: 0.001}/; s/model: patch/model: particle/; "
             "s/dt_rayleigh: 0.2/dt_rayleigh: 0.15/"};
     char err[8192], a[300], b[300];
-    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/data && cp %s/tests/scenes/data/triaxial_small.csv %s/data/", tmp,
-                        SRC, tmp), 0);
+    small_packing_to_tmp();
     for (int m = 0; m < 2; m++) {
         for (int be = 0; be < 2; be++) {
             assert_int_equal(sh(err, sizeof err, "sed 's/^backend: reference/backend: %s/; %s' "
@@ -561,8 +568,7 @@ static void test_servo_report(void **st)
 {
     (void)st;
     char err[8192];
-    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/data && cp %s/tests/scenes/data/triaxial_small.csv %s/data/", tmp,
-                        SRC, tmp), 0);
+    small_packing_to_tmp();
     assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/servo_lid.yaml -o %s/servo.h5 --progress", DEM, SRC,
                         tmp), 0);
     double target, held;
