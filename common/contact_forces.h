@@ -1,10 +1,11 @@
-/* contact_forces.h - particle-particle contact forces and their per-particle accumulation (one work item = one particle).
+/* contact_forces.h - particle-particle contact forces (one work item = one pair) and their per-particle accumulation
+ * (one work item = one particle).
  *
- * Two passes, no scatter, no atomics. Pass 1 evaluates each pair once, by its lower-id particle a, in canonical
- * orientation (n from b to a), adds it to a's sum and leaves the result in b's incoming records. Pass 2 has every particle
- * add the pairs owned by lower ids (the exact negation of what they computed), then its walls. The canonical order
- * of every particle's sum is therefore: partners j > i ascending, then partners j < i ascending, then walls by
- * index; f_ji = -f_ij bit for bit.
+ * Two passes, no atomics. Pass 1 evaluates each listed pair once, for its lower-id particle a, in canonical
+ * orientation (n from b to a), and leaves the result in the pair's record. Pass 2 has every particle add the records
+ * of the pairs it owns, then subtract those owned by lower ids (the exact negation of what they computed), then add
+ * its walls. The canonical order of every particle's sum is therefore: partners j > i ascending, then partners j < i
+ * ascending, then walls by index; f_ji = -f_ij bit for bit.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
  * touch[slot] says whether the pair touches (both slots of a pair carry it); the 24-byte history is read only when
  * it touched in the previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair
@@ -94,90 +95,80 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     return pc;
 }
 
-/* Pass 1, contact_pairs: particle i evaluates the pairs it owns (partner j > i) once, sums them into its force and
- * torque, keeps their history and touching flag, and leaves the force on i, n x f_t and the overlap in the slot
- * for the partner's pass 2 (in the partner's packed incoming records). The flag is copied
- * into the partner's slot (nbr_mirror) so that pass 2 reads flags from its own row only; each flag byte has
- * exactly one writer, the pair's owner. */
+/* Pass 1, contact_pairs: one work item per listed pair p (the flat list of neighbor.h's pair_index: owned pairs in
+ * the lower ids' row order), evaluated once by its lower-id particle i in canonical orientation. It keeps the pair's
+ * history and touching flag in i's slot (the flag is copied to the partner's slot, nbr_mirror, so that pass 2 reads
+ * flags from each particle's own row) and leaves force on i, n x f_t and the overlap in record p. Each flag byte and
+ * record has exactly one writer. A work item per pair, not per particle, gives every item the same work: a compiler
+ * for SIMD lanes (PoCL) can run neighbouring pairs side by side. */
 DEM_ITEM(contact_pairs)
+{
+    int slot = pair_slot[i];
+    int a = slot / maxn, j = nbr_list[slot];
+    int touching = touch[slot], m = nbr_mirror[slot];
+    if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
+        return;
+    real da = (real)0, db = (real)0;
+    if (fx & DEM_EFFECT_MC_STRAIN) {
+        da = mc_disp[slot];
+        db = mc_disp[m];
+    }
+    pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
+                                        touching, trace, invvol, da, db);
+    /* both slots: the partner's mc_strain_disp reads its own row. A pair that neither touched nor touches holds
+     * 0 already (mc_strain_update zeroes what it set for a pair that does not touch now) */
+    if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching)) {
+        mc_fn[slot] = pc.fel;
+        mc_fn[m] = pc.fel;
+    }
+    if (!pc.active) {
+        if (touching) { /* the contact ended: so does its history */
+            if (fx & DEM_EFFECT_FRICTION)
+                v3_store(hist, slot, v3_zero());
+            touch[slot] = 0;
+            touch[m] = 0;
+        }
+        return;
+    }
+    if (fx & DEM_EFFECT_FRICTION)
+        v3_store(hist, slot, pc.hist);
+    if (!touching) {
+        touch[slot] = 1;
+        touch[m] = 1;
+    }
+    DEM_GLOBAL real *pr = pair + i * PR_STRIDE;
+    pr[PR_FX] = pc.force.x;
+    pr[PR_FY] = pc.force.y;
+    pr[PR_FZ] = pc.force.z;
+    if (fx & DEM_EFFECT_FRICTION) {
+        pr[PR_CX] = pc.c.x;
+        pr[PR_CY] = pc.c.y;
+        pr[PR_CZ] = pc.c.z;
+        pr[PR_DELTA] = pc.delta;
+    }
+}
+
+/* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
+ * j > i ascending: records own_start[i] ...), then those owned by lower ids (partners j < i ascending: the front of
+ * its sorted row, records in_pair[in_start[i] ...], subtracted), then its walls. */
+DEM_ITEM(contact_forces)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i];
     int cnt = nbr_count[i];
-    for (int k = 0; k < cnt; k++) { /* the pairs i owns (contacts.h), in row order */
-        contact_ref r = contact_at(i, k, cnt, maxn, 0, nbr_list);
-        if (r.kind != CONTACT_OWNED)
+    int first = own_start[i], lower = cnt - (own_start[i + 1] - first);
+    for (int k = lower; k < cnt; k++) { /* owned: partners j > i */
+        if (!touch[i * maxn + k])
             continue;
-        int slot = r.slot, j = r.partner;
-        int touching = touch[slot], m = nbr_mirror[slot];
-        if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
-            continue;
-        real da = (real)0, db = (real)0;
-        if (fx & DEM_EFFECT_MC_STRAIN) {
-            da = mc_disp[slot];
-            db = mc_disp[m];
-        }
-        pair_contact pc = pair_contact_eval(fx, i, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
-                                            touching, trace, invvol, da, db);
-        /* both slots: the partner's mc_strain_disp reads its own row. A pair that neither touched nor touches holds
-         * 0 already (mc_strain_update zeroes what it set for a pair that does not touch now) */
-        if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching)) {
-            mc_fn[slot] = pc.fel;
-            mc_fn[m] = pc.fel;
-        }
-        if (!pc.active) {
-            if (touching) { /* the contact ended: so does its history */
-                if (fx & DEM_EFFECT_FRICTION)
-                    v3_store(hist, slot, v3_zero());
-                touch[slot] = 0;
-                touch[m] = 0;
-            }
-            continue;
-        }
+        DEM_CONST_GLOBAL real *pr = pair + (first + k - lower) * PR_STRIDE;
+        fi = v3_add(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
-            v3_store(hist, slot, pc.hist);
-        if (!touching) {
-            touch[slot] = 1;
-            touch[m] = 1;
-        }
-        /* the record goes to the partner's list of incoming pairs, at the position of this pair in its row */
-        DEM_GLOBAL real *pr = pair + (in_start[j] + (m - j * maxn)) * PR_STRIDE;
-        pr[PR_FX] = pc.force.x;
-        pr[PR_FY] = pc.force.y;
-        pr[PR_FZ] = pc.force.z;
-        fi = v3_add(fi, pc.force);
-        if (fx & DEM_EFFECT_FRICTION) {
-            pr[PR_CX] = pc.c.x;
-            pr[PR_CY] = pc.c.y;
-            pr[PR_CZ] = pc.c.z;
-            pr[PR_DELTA] = pc.delta;
-            ti = v3_sub(ti, v3_scale(pc.c, ri - (real)0.5 * pc.delta));
-        }
+            ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }
-    v3_store(force, i, fi);
-    if (fx & DEM_EFFECT_FRICTION)
-        v3_store(torque, i, ti);
-}
-
-/* Pass 2, contact_forces: particle i adds its touching pairs with lower ids in ascending partner id, then its
- * walls. Rows are sorted, so the partners j < i are the front of the row, and their records lie packed at
- * pair[in_start[i] ...] (in_start: prefix sum of those counts, made at each rebuild): the whole pass reads the
- * records in memory order, and pass 1 does the scattered stores instead. */
-DEM_ITEM(contact_forces)
-{
-    vec3 fi = v3_load(force, i), ti = v3_zero();
-    if (fx & DEM_EFFECT_FRICTION)
-        ti = v3_load(torque, i);
-    real ri = radius[i];
-    int cnt = nbr_count[i];
-    for (int k = 0; k < cnt; k++) { /* the mirrored pairs (contacts.h): the front of the sorted row */
-        contact_ref r = contact_at(i, k, cnt, maxn, 0, nbr_list);
-        if (r.kind == CONTACT_OWNED)
-            break;
-        int slot = r.slot;
-        if (!touch[slot])
+    for (int k = 0; k < lower; k++) { /* mirrored: partners j < i */
+        if (!touch[i * maxn + k])
             continue;
-        DEM_CONST_GLOBAL real *pr = pair + (in_start[i] + k) * PR_STRIDE;
+        DEM_CONST_GLOBAL real *pr = pair + in_pair[in_start[i] + k] * PR_STRIDE;
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));

@@ -52,6 +52,11 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(IN_COUNT, INT, N, 0, -1, NONE)                                                                                 \
     ENTRY(IN_START, INT, N + 1, 0, DEM_FIELD_IN_START, NONE)                                                             \
     ENTRY(IN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE)                                     \
+    ENTRY(OWN_COUNT, INT, N, 0, -1, NONE)                                                                                \
+    ENTRY(OWN_START, INT, N + 1, 0, -1, NONE)                                                                            \
+    ENTRY(OWN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE)                                    \
+    ENTRY(PAIR_SLOT, INT, PAIRS, 0, -1, NONE)                                                                            \
+    ENTRY(IN_PAIR, INT, PAIRS, 0, DEM_FIELD_IN_PAIR, NONE)                                                               \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE)                                                \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE)                                                \
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE)                                                \
@@ -101,7 +106,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
     ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(NSPRINGS) \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                            \
-    ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS)
+    ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \
     ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE) ENTRY(REACH) ENTRY(RMAX)

@@ -30,7 +30,7 @@
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
     K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
-    K(nbr_carry) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
+    K(nbr_carry) K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather)
@@ -65,8 +65,9 @@
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY)         \
     A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)                \
     A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
-    A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, flags, FLAGS)                        \
-    A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)
+    A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, own_count, OWN_COUNT)                \
+    A(BOUT, int, flags, FLAGS) A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT) A(BIN, int, mat, MAT)       \
+    A(BIN, real, pairmat, PAIRMAT)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
@@ -75,6 +76,11 @@
     A(NOUT, dem_byte, touch, TOUCH) A(NOUT, int, mirror, MIRROR) A(BOUT, int, flags, FLAGS)                          \
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_nbr_carry n
+#define DEM_ARGS_pair_index(F, A)                                                                                    \
+    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)             \
+    A(CIN, int, nbr_mirror, MIRROR) A(BIN, int, in_count, IN_COUNT) A(BIN, int, in_start, IN_START)                  \
+    A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)
+#define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
 /* the two contact kernels' common head */
@@ -84,13 +90,13 @@
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(CIN, int, nbr_mirror, MIRROR)
 #define DEM_ARGS_contact_pairs(F, A)                                                                                 \
-    DEM_ARGS_contact_head(F, A) A(COUT, real, hist, HIST) A(COUT, dem_byte, touch, TOUCH)                            \
-    A(BIN, int, in_start, IN_START) A(BOUT, real, pair, PAIR) A(BOUT, real, force, FORCE)                            \
-    A(BOUT, real, torque, TORQUE) A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL)                            \
-    A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
-#define DEM_ITEMS_contact_pairs n
+    DEM_ARGS_contact_head(F, A) A(I, int, npairs, NPAIRS) A(BIN, int, pair_slot, PAIR_SLOT)                          \
+    A(COUT, real, hist, HIST) A(COUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR) A(BIN, real, trace, TRACE)   \
+    A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
+#define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(CIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
+    A(BIN, int, in_pair, IN_PAIR) A(BIN, int, own_start, OWN_START) A(BIN, int, pair_slot, PAIR_SLOT)               \
     A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)     \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \

@@ -56,8 +56,9 @@ enum {
 enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
 enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1 };
 
-/* Result of a touching pair, left by contact_pairs for the higher id's contact_forces. Each particle's incoming
- * pairs (partners with lower ids) have consecutive records from in_start[i]; one record per pair, 8 reals. */
+/* Result of a touching pair, left by contact_pairs (one work item per listed pair) for contact_forces. Records are
+ * numbered by pair in the lower ids' row order: particle i's owned pairs (partners j > i) are own_start[i] ...
+ * own_start[i + 1] - 1; its incoming pairs (partners j < i) are in_pair[in_start[i] ...]. 8 reals per pair. */
 enum {
     PR_FX = 0, PR_FY, PR_FZ, /* force on the lower id [N] */
     PR_CX, PR_CY, PR_CZ,     /* n x f_t [N] */

@@ -66,6 +66,7 @@ DEM_ITEM(nbr_build)
     while (lower < nbr_count[i] && row[lower] < i)
         lower++;
     in_count[i] = lower;
+    own_count[i] = nbr_count[i] - lower;
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 
@@ -89,6 +90,23 @@ DEM_ITEM(nbr_carry)
         touch[i * maxn + k] = (unsigned char)t;
         if (fx & DEM_EFFECT_MC_STRAIN) /* the lagged MC-strain force of the same contact (mc_strain.h) */
             mc_fn[i * maxn + k] = t ? old_mc_fn[i * old_maxn + found] : (real)0;
+    }
+}
+/* The flat pair list of the committed rows (contact_forces.h): pair p = own_start[i] + c - in_count[i] is the owned
+ * pair in particle i's row slot c (partner j > i); pair_slot[p] names that slot. The partner j's incoming slot of
+ * the same pair (row slot k < in_count[j], found through nbr_mirror) gets in_pair[in_start[j] + k] = p. Each entry
+ * has one writer: p's owner writes both. */
+DEM_ITEM(pair_index)
+{
+    int cnt = nbr_count[i], lower = in_count[i];
+    for (int c = lower; c < cnt; c++) {
+        int slot = i * maxn + c, p = own_start[i] + c - lower;
+        int m = nbr_mirror[slot];
+        pair_slot[p] = slot;
+        if (m >= 0) {
+            int j = nbr_list[slot];
+            in_pair[in_start[j] + (m - j * maxn)] = p;
+        }
     }
 }
 #endif /* DEM_NEIGHBOR_H */

@@ -34,10 +34,10 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     int n = s->n, nw = s->nwalls, rs = s->setup.real_size, maxn = c->maxn[c->cur];
     unsigned fx = s->setup.effects;
     int mcs = (fx & DEM_EFFECT_MC_STRESS) != 0, mce = (fx & DEM_EFFECT_MC_STRAIN) != 0;
-    enum { FX_, FCNT, FLIST, FTOUCH, FREC, FSTART, FMASK, FPF, FTRACE, FDISP, FWDISP, NF };
+    enum { FX_, FCNT, FLIST, FTOUCH, FREC, FSTART, FMASK, FPF, FTRACE, FDISP, FWDISP, FINPAIR, NF };
     dem_field f[NF] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST, DEM_FIELD_TOUCH, DEM_FIELD_PAIR_RECORDS,
                        DEM_FIELD_IN_START, DEM_FIELD_WALL_MASK, DEM_FIELD_WALL_PF, DEM_FIELD_STRESS_TRACE,
-                       DEM_FIELD_MC_DISP, DEM_FIELD_MC_WALL_DISP};
+                       DEM_FIELD_MC_DISP, DEM_FIELD_MC_WALL_DISP, DEM_FIELD_IN_PAIR};
     size_t bytes[NF], total = 0;
     void *dst[NF];
     for (int k = 0; k < NF; k++) {
@@ -64,7 +64,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     }
     const unsigned char *x = dst[FX_], *rec = dst[FREC], *pf = dst[FPF], *tr = dst[FTRACE], *disp = dst[FDISP],
                         *wdisp = dst[FWDISP];
-    const int *cnt = dst[FCNT], *list = dst[FLIST], *start = dst[FSTART];
+    const int *cnt = dst[FCNT], *list = dst[FLIST], *start = dst[FSTART], *in_pair = dst[FINPAIR];
     const unsigned char *touch = dst[FTOUCH];
     const unsigned *mask = dst[FMASK];
     long np = 0, nwc = 0;
@@ -79,7 +79,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
         free(raw);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
-    /* pairs: particle j's incoming slots hold the pairs (i, j), i < j, in ascending i; gathered per j, then put in
+    /* pairs: particle j's incoming slots name the pairs (i, j), i < j, in ascending i; gathered per j, then put in
      * (i, j) order by a counting pass over i */
     long *per_i = calloc((size_t)n + 1, sizeof(long));
     if (!per_i) {
@@ -98,7 +98,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
                 continue;
             int i = list[j * maxn + k];
             dem_contact *e = &cs[per_i[i]++];
-            size_t r0 = ((size_t)start[j] + (size_t)k) * PR_STRIDE;
+            size_t r0 = (size_t)in_pair[start[j] + k] * PR_STRIDE;
             double F[3] = {real_at(rec, r0 + PR_FX, rs), real_at(rec, r0 + PR_FY, rs), real_at(rec, r0 + PR_FZ, rs)};
             double xi[3], xj[3], d2 = 0;
             for (int q = 0; q < 3; q++) {

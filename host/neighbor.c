@@ -28,16 +28,24 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         return 1;
     c->cur = 1 - c->cur;
     dem_core_sync(c);
-    int total = 0;
-    dem_bufref start = {TABLE_ONE, BUF_IN_START};
+    int total = 0, owned = 0;
+    dem_bufref start = {TABLE_ONE, BUF_IN_START}, own = {TABLE_ONE, BUF_OWN_START};
     if (dem_stage_scan(o, b, BUF_IN_COUNT, BUF_IN_START, BUF_IN_BLOCK_SUM, c->n) ||
-        o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total, 1))
+        dem_stage_scan(o, b, BUF_OWN_COUNT, BUF_OWN_START, BUF_OWN_BLOCK_SUM, c->n) ||
+        o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total, 1) ||
+        o->read(b, own, (size_t)c->n * sizeof(int), &owned, sizeof owned, 1))
         return 1;
+    if (owned != total) /* every pair is owned by one row and mirrored in one other (nbr_carry checks symmetry) */
+        return dem_core_fail(c, "neighbour rows list %d owned and %d incoming pairs (a library bug; please report)",
+                             owned, total);
     if ((size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0) { /* rewritten every step before being read */
         c->pair_cap = (size_t)total + (size_t)total / 4 + 16;
-        if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL))
+        if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL) ||
+            o->alloc(b, TABLE_ONE, 0, BUF_PAIR_SLOT, dem_buffer_bytes(c, BUF_PAIR_SLOT), NULL) ||
+            o->alloc(b, TABLE_ONE, 0, BUF_IN_PAIR, dem_buffer_bytes(c, BUF_IN_PAIR), NULL))
             return 1;
     }
+    c->si[SI_NPAIRS] = total;
     dem_bufref x = {TABLE_ONE, BUF_X}, xb = {TABLE_ONE, BUF_X_BUILD};
-    return o->copy(b, x, xb, c->bytes[BUF_X]);
+    return dem_launch(o, b, K_pair_index) || o->copy(b, x, xb, c->bytes[BUF_X]);
 }

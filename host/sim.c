@@ -778,9 +778,21 @@ static int stage_patches(dem_sim *s)
     return s->npatch && (dem_stage_patch_forces(s->ops, s->be) || dem_stage_patch_gather(s->ops, s->be)) ? be_fail(s)
                                                                                                             : 0;
 }
+/* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
+ * dem_get_field and the output see it after any call) and every step while a servo stage may read it. The sums of
+ * the other steps were never observable; skipping them saves a pass over every particle's wall forces (about 3 % of
+ * a step of 1e5 particles in a box). */
 static int stage_wall_sums(dem_sim *s)
 {
-    return s->nwalls && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
+    return s->nwalls && s->wall_sums_due && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
+}
+static int has_servo(const dem_sim *s)
+{
+    for (int k = 0; k < s->nwalls; k++)
+        for (int st = 0; st < s->walls[k].nstages; st++)
+            if (s->walls[k].stages[st].force > 0)
+                return 1;
+    return 0;
 }
 static const struct {
     unsigned gate;
@@ -831,6 +843,7 @@ int dem_start(dem_sim *s, const dem_config *c)
     if (dem_stage_reset_flags(s->ops, s->be))
         return be_fail(s);
     s->force_step = s->step;
+    s->wall_sums_due = 1;
     if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
     return 0;
@@ -866,6 +879,7 @@ int dem_step(dem_sim *s, long nsteps)
         if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
             return e;
         s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
+        s->wall_sums_due = k == nsteps - 1 || has_servo(s);
         if ((e = forces(s)))
             return e;
         if (dem_stage_kick(s->ops, s->be))

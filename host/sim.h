@@ -44,6 +44,7 @@ struct dem_sim {
     unsigned mcs_conv; /* DEM_MCS_* bits; DEM_MCS_DEFAULT unless set (compiled in with mc_stress: sim_pack) */
     /* run state */
     int started;
+    int wall_sums_due;                 /* this step's force stages sum the force each wall received (dem_step) */
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;

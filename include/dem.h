@@ -112,10 +112,13 @@ typedef enum {
     DEM_FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
     DEM_FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
     DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
-    DEM_FIELD_PAIR_RECORDS,         /* real[8*records]: each touching pair's force on its lower id (common/dem_layout.h
-                                       PR_*), at the higher id's incoming slot (dem_contacts_get reads them) */
-    DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming records start */
+    DEM_FIELD_PAIR_RECORDS,         /* real[8*pairs]: each touching pair's force on its lower id (common/dem_layout.h
+                                       PR_*), one record per listed pair in the lower ids' row order (dem_contacts_get
+                                       reads them) */
+    DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming pairs (partners with lower ids) start
+                                       in DEM_FIELD_IN_PAIR */
     DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N] */
+    DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair, in_start[i] + k for row slot k */
     DEM_FIELD__COUNT
 } dem_field;
 

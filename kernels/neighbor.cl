@@ -4,3 +4,4 @@
 
 DEM_KERNEL(nbr_build)
 DEM_KERNEL(nbr_carry)
+DEM_KERNEL(pair_index)

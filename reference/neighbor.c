@@ -5,3 +5,4 @@
 
 DEM_REF_LOOP(nbr_build)
 DEM_REF_LOOP(nbr_carry)
+DEM_REF_LOOP(pair_index)

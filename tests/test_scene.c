@@ -601,7 +601,8 @@ static void test_output_and_xdmf(void **st)
                                 "wall_reduce_block, wall_reduce_final, integrate_kick\n"));
     assert_non_null(strstr(err, "at each neighbour rebuild"));
     assert_non_null(strstr(err, "bin_index, scan_block_sum, scan_block_sums, scan_apply, bin_scatter, bin_sort, "
-                                "nbr_build, nbr_carry, scan_block_sum, scan_block_sums, scan_apply\n"));
+                                "nbr_build, nbr_carry, scan_block_sum, scan_block_sums, scan_apply, scan_block_sum, "
+                                "scan_block_sums, scan_apply, pair_index\n"));
     assert_non_null(strstr(err, "dem: device memory held: "));
     assert_non_null(strstr(err, "step 660/660 (100.0 %)"));
     assert_false(exists("%s/o.h5.part", tmp));
