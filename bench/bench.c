@@ -3,7 +3,9 @@
  * spent in each kernel. Prints markdown tables. Not a test: nothing here passes or fails on speed.
  *   DEM_BENCH_SIZES="8 17 37"   lattice sides (n = side^3 + (side-1)^3), default as shown
  *   DEM_BENCH_QUICK=1           fewer steps
- *   DEM_BENCH_ONLY=models       only the contact model cost table (or: effects, series, membranes)
+ *   DEM_BENCH_ONLY=models       only the contact model cost table (or: bed, effects, series, membranes)
+ *   DEM_BENCH_BED=FILE.csv      the poured bed of the bed table (default out/peer/bed.csv, made by make bench-peer)
+ *   DEM_BENCH_JSON=FILE         where the bed table's figures go as JSON (default out/bench_bed.json)
  *   DEM_BENCH_TRIAXIAL_MS=2     simulated milliseconds of each triaxial run in the membrane cost table
  * Then more tables: what an effect that is off costs (effects_table), what each contact model costs on seed 000's
  * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
@@ -309,6 +311,251 @@ static void membrane_cost_table(int quick)
                t[c][0][1] / t[c][1][1], paper[0][c] / paper[1][c]);
 }
 
+/* ---- Issue 14: throughput on a poured polydisperse bed, the input users have ----
+ * make bench-peer pours 100 000 spheres (r 0.6 / 0.8 / 1.0 mm at 30 / 40 / 30 %) into a 0.1 x 0.1 m box and saves
+ * them as out/peer/bed.csv in the order the pour generated them (random placement: spatially random, as data from
+ * another code arrives). The sizes below are that bed cut to a smaller square (the spheres wholly inside it, walls on
+ * its sides) and, for 1e6, tiled 5 x 2 times (copies side by side; the small overlaps where the copies meet are of
+ * the order of the wall contacts'). Physics of the peer comparison: rho 2500, E 5 MPa, nu 0.3, e 0.3, mu 0.5, walls
+ * of the same material, gravity, dt 2e-6 s. Per size: particle-steps/s of PoCL (fp64, fp32) and the reference, the
+ * device memory per particle, the time per kernel, and the state after the timed steps hashed on each backend: the
+ * OpenCL hash must equal the reference's (checked up to 1e5 particles; the reference is too slow beyond). */
+typedef struct {
+    double *p; /* x, y, z, r per sphere */
+    long n;
+} bed_t;
+
+static int bed_read(const char *path, bed_t *b)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 1;
+    char line[1024];
+    int col[4] = {-1, -1, -1, -1}, hdr = 0;
+    long cap = 0;
+    b->p = NULL, b->n = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#' || line[0] == '\n')
+            continue;
+        char *tok, *save;
+        if (!hdr) { /* header: column names */
+            int c = 0;
+            for (tok = strtok_r(line, ", \t\r\n", &save); tok; tok = strtok_r(NULL, ", \t\r\n", &save), c++) {
+                const char *names[4] = {"x", "y", "z", "radius"};
+                for (int k = 0; k < 4; k++)
+                    if (!strcmp(tok, names[k]))
+                        col[k] = c;
+            }
+            hdr = 1;
+            if (col[0] < 0 || col[1] < 0 || col[2] < 0 || col[3] < 0)
+                break;
+            continue;
+        }
+        double v[4] = {0};
+        int c = 0;
+        for (tok = strtok_r(line, ", \t\r\n", &save); tok; tok = strtok_r(NULL, ", \t\r\n", &save), c++)
+            for (int k = 0; k < 4; k++)
+                if (c == col[k])
+                    v[k] = atof(tok);
+        if (b->n == cap) {
+            cap = cap ? 2 * cap : 4096;
+            b->p = realloc(b->p, sizeof(double) * 4 * (size_t)cap);
+        }
+        memcpy(b->p + 4 * b->n++, v, sizeof v);
+    }
+    fclose(f);
+    return b->n == 0;
+}
+
+/* The bed cut to [0, side]^2 (side <= 0.1 m) or tiled tx x ty times (side 0) */
+static dem_sim *bed_sim(const bed_t *b, double side, int tx, int ty)
+{
+    dem_sim *s = dem_create();
+    dem_set_effects(s, DEM_EFFECT_CLASSICAL);
+    int m = dem_add_material(s, &(dem_material){2500, 5e6, 0.3, 0.3, 0.5});
+    double lx = side > 0 ? side : 0.1 * tx, ly = side > 0 ? side : 0.1 * ty, top = 0;
+    for (int a = 0; a < (side > 0 ? 1 : tx); a++)
+        for (int c = 0; c < (side > 0 ? 1 : ty); c++)
+            for (long k = 0; k < b->n; k++) {
+                const double *q = b->p + 4 * k;
+                if (side > 0 && (q[0] + q[3] > side || q[1] + q[3] > side))
+                    continue;
+                double x[3] = {q[0] + 0.1 * a, q[1] + 0.1 * c, q[2]};
+                dem_add_particle(s, x, NULL, q[3], m);
+                if (q[2] + q[3] > top)
+                    top = q[2] + q[3];
+            }
+    double pts[5][3] = {{0, 0, 0}, {0, 0, 0}, {lx, 0, 0}, {0, 0, 0}, {0, ly, 0}};
+    double nrm[5][3] = {{0, 0, 1}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+    for (int k = 0; k < 5; k++) {
+        dem_wall w;
+        memset(&w, 0, sizeof w);
+        w.kind = DEM_WALL_PLANE;
+        w.material = m;
+        memcpy(w.point, pts[k], sizeof w.point);
+        memcpy(w.normal, nrm[k], sizeof w.normal);
+        dem_add_wall(s, &w);
+    }
+    dem_set_gravity(s, (double[3]){0, 0, -9.81});
+    dem_set_domain(s, (double[3]){-0.005, -0.005, -0.005}, (double[3]){lx + 0.005, ly + 0.005, top + 0.02});
+    dem_set_dt(s, 2e-6);
+    return s;
+}
+
+/* FNV-1a of positions, velocities and spins */
+static unsigned long long state_hash(dem_sim *s)
+{
+    size_t n = 3 * (size_t)dem_count(s);
+    double *buf = malloc(sizeof(double) * n);
+    unsigned long long h = 1469598103934665603ull;
+    dem_field f[3] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W};
+    for (int k = 0; k < 3 && buf; k++) {
+        if (dem_get_field(s, f[k], buf))
+            return 0;
+        const unsigned char *c = (const unsigned char *)buf;
+        for (size_t q = 0; q < n * sizeof(double); q++)
+            h = (h ^ c[q]) * 1099511628211ull;
+    }
+    free(buf);
+    return h;
+}
+
+typedef struct {
+    long n;
+    double rate, bytes_per_particle, contacts;
+    unsigned long long hash;
+    char kernels[1024];
+} bed_result;
+
+static int bed_run(const bed_t *b, double side, int tx, int ty, dem_backend_kind kind, dem_precision prec, long steps,
+                   int profile, bed_result *r)
+{
+    if (profile)
+        setenv("DEM_PROFILE", "1", 1);
+    else
+        unsetenv("DEM_PROFILE");
+    dem_sim *s = bed_sim(b, side, tx, ty);
+    dem_config c;
+    dem_config_default(&c);
+    c.backend = kind;
+    c.precision = prec;
+    memset(r, 0, sizeof *r);
+    if (dem_start(s, &c) || dem_step(s, 5)) {
+        fprintf(stderr, "bench bed: %s\n", dem_error(s));
+        dem_destroy(s);
+        return 1;
+    }
+    const char **names;
+    const double *secs;
+    int cnt;
+    double before[64] = {0};
+    dem_kernel_times(s, &names, &secs, &cnt);
+    for (int k = 0; k < cnt && k < 64; k++)
+        before[k] = secs[k];
+    double t0 = now();
+    int e = dem_step(s, steps);
+    double t = now() - t0;
+    if (e) {
+        fprintf(stderr, "bench bed: %s\n", dem_error(s));
+        dem_destroy(s);
+        return 1;
+    }
+    r->n = dem_count(s);
+    r->rate = (double)r->n * steps / t;
+    r->bytes_per_particle = kind == DEM_BACKEND_OPENCL ? (double)dem_device_bytes(s) / r->n : 0;
+    dem_energy_t en;
+    dem_energy(s, &en);
+    r->contacts = (2.0 * en.contacts + en.wall_contacts) / r->n;
+    r->hash = state_hash(s);
+    dem_kernel_times(s, &names, &secs, &cnt);
+    size_t len = 0;
+    for (int k = 0; k < cnt && k < 64 && profile; k++) {
+        double us = 1e6 * (secs[k] - before[k]) / steps;
+        if (us >= 1)
+            len += (size_t)snprintf(r->kernels + len, sizeof r->kernels - len, "%s%s %.0f", len ? ", " : "", names[k], us);
+        if (len >= sizeof r->kernels)
+            break;
+    }
+    dem_destroy(s);
+    return 0;
+}
+
+static void bed_table(int quick)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s", getenv("DEM_BENCH_BED") ? getenv("DEM_BENCH_BED") : DEM_DEFAULT_SOURCE_DIR "/out/peer/bed.csv");
+    bed_t b;
+    if (bed_read(path, &b)) {
+        printf("\n(no poured bed at %s: `make bench-peer` pours it once, or set DEM_BENCH_BED)\n", path);
+        return;
+    }
+    /* sides giving ~1e3, 1e4 and the whole bed, then 1e6 by tiling (not in quick mode) */
+    struct { double side; int tx, ty; } sizes[4] = {{0.01, 0, 0}, {0.032, 0, 0}, {0.1, 0, 0}, {0, 5, 2}};
+    int nsizes = quick ? 3 : 4;
+    const char *json = getenv("DEM_BENCH_JSON") ? getenv("DEM_BENCH_JSON") : DEM_DEFAULT_SOURCE_DIR "/out/bench_bed.json";
+    FILE *js = fopen(json, "w");
+    char dev[256] = "";
+    dem_device_name(0, dev, sizeof dev);
+    printf("\n### Throughput on a poured polydisperse bed (issue 14)\n\n%s: %ld spheres as poured (random order), cut or "
+           "tiled; Hertz-Mindlin with friction, damping, gravity, 5 walls; dt 2e-6 s. OpenCL device 0: %s. The state "
+           "after the timed steps is hashed on each backend.\n\n"
+           "| n | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | state hash = reference | us per step by kernel |\n"
+           "|---|---|---|---|---|---|---|---|\n", path, b.n, dev);
+    if (js)
+        fprintf(js, "{\n  \"bench\": \"poured bed\", \"bed\": \"%s\", \"device\": \"%s\",\n  \"rows\": [", path, dev);
+    double lnN[8], lnT[8];
+    int nfit = 0, first = 1;
+    for (int z = 0; z < nsizes; z++)
+        for (int p = 0; p < 2; p++) {
+            dem_precision prec = p ? DEM_FP32 : DEM_FP64;
+            bed_result ro, rp, rr;
+            long n_est = z == 3 ? 10 * b.n : (long)(b.n * sizes[z].side * sizes[z].side / 0.01);
+            long steps = (long)((quick ? 5e6 : 4e7) / (double)(n_est > 0 ? n_est : 1));
+            steps = steps < 20 ? 20 : steps > 2000 ? 2000 : steps;
+            if (bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, DEM_BACKEND_OPENCL, prec, steps, 0, &ro) ||
+                bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, DEM_BACKEND_OPENCL, prec, steps, 1, &rp)) {
+                printf("| %ld | | opencl | %s | failed | | | |\n", n_est, p ? "fp32" : "fp64");
+                continue;
+            }
+            int have_ref = z < 3 && !bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, DEM_BACKEND_REFERENCE, prec,
+                                             steps, 0, &rr);
+            const char *eq = !have_ref ? "not checked" : rr.hash == ro.hash && rp.hash == ro.hash ? "yes" : "NO";
+            printf("| %ld | %.2f | opencl | %s | %.3g | %.0f | %s | %s |\n", ro.n, ro.contacts, p ? "fp32" : "fp64", ro.rate,
+                   ro.bytes_per_particle, eq, rp.kernels);
+            if (have_ref)
+                printf("| %ld | | reference | %s | %.3g | | | |\n", rr.n, p ? "fp32" : "fp64", rr.rate);
+            fflush(stdout);
+            if (!p && ro.n >= 5000) {
+                lnN[nfit] = log((double)ro.n);
+                lnT[nfit++] = log((double)ro.n / ro.rate);
+            }
+            if (js) {
+                char refrate[32] = "null";
+                if (have_ref)
+                    snprintf(refrate, sizeof refrate, "%.4g", rr.rate);
+                fprintf(js, "%s\n    {\"n\": %ld, \"precision\": \"%s\", \"steps\": %ld, \"contacts_per_particle\": %.3f, "
+                        "\"opencl_particle_steps_per_s\": %.4g, \"device_bytes_per_particle\": %.0f, "
+                        "\"reference_particle_steps_per_s\": %s, \"hash_opencl\": \"%016llx\", \"hash_equal\": \"%s\"}",
+                        first ? "" : ",", ro.n, p ? "fp32" : "fp64", steps, ro.contacts, ro.rate, ro.bytes_per_particle,
+                        refrate, ro.hash, eq);
+                first = 0;
+            }
+        }
+    if (nfit >= 2) { /* least squares slope of ln(time per step) on ln n, fp64 OpenCL, n >= 5000 */
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        for (int k = 0; k < nfit; k++)
+            sx += lnN[k], sy += lnT[k], sxx += lnN[k] * lnN[k], sxy += lnN[k] * lnT[k];
+        double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
+        printf("\nCost per step grows as n^%.3f (fp64 OpenCL, %d sizes from 1e4 up; goal <= 1.05).\n", slope, nfit);
+        if (js)
+            fprintf(js, "\n  ],\n  \"cost_exponent_fp64\": %.4f\n}\n", slope);
+    } else if (js)
+        fprintf(js, "\n  ]\n}\n");
+    if (js)
+        fclose(js), printf("(JSON: %s)\n", json);
+    free(b.p);
+}
+
 int main(void)
 {
     int sides[8] = {8, 17, 37}, nsides = 3;
@@ -340,6 +587,10 @@ int main(void)
     }
     if (only && !strcmp(only, "effects")) {
         effects_table(quick);
+        return 0;
+    }
+    if (only && !strcmp(only, "bed")) {
+        bed_table(quick);
         return 0;
     }
     int ndev = dem_device_count();
@@ -392,6 +643,7 @@ int main(void)
                 fflush(stdout);
             }
     }
+    bed_table(quick);
     effects_table(quick);
     model_cost_table(quick);
     series_cost_table(quick);
