@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages this project builds and tests with, if any are missing.
 # Called by the Makefile (target `deps`); safe to run again: it does nothing when all are present.
-# With --fuzz, --paraview or --fresh it installs what that one target needs (see below).
+# With --fuzz, --paraview, --fresh or --peer it installs what that one target needs (see below).
 set -euo pipefail
 
 PKGS=(
@@ -13,13 +13,15 @@ PKGS=(
   python3-h5py python3-matplotlib                             # tools/plot_series.py, tests/xdmf_check.py
 )
 # Only for the targets that need them: clang's libFuzzer and sanitizers (make fuzz), ParaView (about 440 MB,
-# make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it).
+# make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it), LIGGGHTS and Open MPI
+# (make bench-peer times the same bed in both codes).
 case "${1:-}" in
   --fuzz) PKGS+=(clang libclang-rt-14-dev) ;;
   --paraview) PKGS+=(paraview python3-paraview) ;;
   --fresh) PKGS=(mmdebstrap) ;;
+  --peer) PKGS=(liggghts openmpi-bin) ;;
   "") ;;
-  *) echo "install-deps: unknown option $1 (--fuzz, --paraview or --fresh)" >&2; exit 2 ;;
+  *) echo "install-deps: unknown option $1 (--fuzz, --paraview, --fresh or --peer)" >&2; exit 2 ;;
 esac
 
 missing=()
