@@ -2,6 +2,7 @@
 #   make demo    build, then run a small packing on PoCL and on the reference; prints a summary
 #   make test    build and run every test (PoCL + reference)
 #   make bench   particle-steps per second, every backend and precision
+#   make bench-peer  the same 100 000-sphere bed in LIGGGHTS (1 and 2 MPI ranks) and libdem: speeds, floor forces
 # Each target first installs missing Debian packages (scripts/install-deps.sh).
 
 CC      ?= cc
@@ -43,7 +44,7 @@ HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench clean validate conventions
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -236,6 +237,14 @@ test: $(TEST_BIN)
 
 bench: $(BUILD)/dem-bench $(BUILD)/dem
 	./$(BUILD)/dem-bench
+
+# Against a peer code (issue 14): Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
+# 100 000 spheres, poured once and cached in out/peer/bed.csv; 2000 steps each; the floor forces must agree within
+# 2 %; one Markdown table on stdout and out/peer/peer.json. bench/peer/run.sh says how; 10-20 minutes on 2 cores
+# (the first time several more for the pour).
+bench-peer: $(BUILD)/dem $(LIB)
+	@bash scripts/install-deps.sh --peer
+	bash bench/peer/run.sh
 
 clean:
 	rm -rf $(BUILD)
