@@ -240,8 +240,8 @@ bench: $(BUILD)/dem-bench $(BUILD)/dem
 
 # Against a peer code (issue 14): Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
 # 100 000 spheres, poured once and cached in out/peer/bed.csv; 2000 steps each; the floor forces must agree within
-# 2 %; one Markdown table on stdout and out/peer/peer.json. bench/peer/run.sh says how; 10-20 minutes on 2 cores
-# (the first time several more for the pour).
+# 2 %; one Markdown table on stdout and out/peer/peer.json. bench/peer/run.sh says how; about 5 minutes on 2 cores,
+# the first time 15-30 more for the pour.
 bench-peer: $(BUILD)/dem $(LIB)
 	@bash scripts/install-deps.sh --peer
 	bash bench/peer/run.sh

@@ -49,7 +49,7 @@ def series_last(path):
         names = (names.decode() if isinstance(names, bytes) else str(names)).split("\n")
         wf = s["wall_force"][-1]
         row["floor_fz"] = float(wf[names.index("floor")][2])
-        row["n"] = int(f["frames"][next(iter(f["frames"]))].shape[-2]) if "frames" in f else None
+        row["n"] = len(f["particles/radius"])
     return row
 
 
@@ -65,7 +65,7 @@ def cmd_pour(path, density):
     vrms = math.sqrt(2 * ke[-1] / mass)
     vmax = max(math.sqrt(a * a + b * b + c * c) for a, b, c in v)
     prev = f" ({ke[-2]:.3g} J at t = {t[-2]:.4g} s)" if len(t) > 1 else ""
-    print(f"bench-peer: pour ends at t = {t[-1]:.4g} s with kinetic energy {ke[-1]:.3g} J{prev}: rms speed "
+    print(f"bench-peer: pour ends at t = {t[-1]:.4g} s with kinetic energy {ke[-1]:.3g} J{prev}: an rms speed of "
           f"{1e3 * vrms:.3g} mm/s, fastest grain {1e3 * vmax:.3g} mm/s{'' if vrms < 1e-2 else '  (NOT SETTLED)'}")
     return 0
 
@@ -129,7 +129,7 @@ def liggghts_log(path):
     row = dict(zip(head, last))
     out["step"] = int(row["Step"])
     # LIGGGHTS heads the columns without the c_ / f_ of in.peer's c_ke, f_floor[3], c_zsum
-    out["kinetic"] = row.get("ke")
+    out["kinetic"] = row["ke"] + row["rke"] if "ke" in row and "rke" in row else None
     out["floor_fz"] = row["floor[3]"]
     out["contacts_per_particle"] = row["zsum"] / out["n"] if "zsum" in row else None
     ver = re.search(r"LIGGGHTS \(Version ([^,)]+)", text)
@@ -190,6 +190,8 @@ def cmd_report(a):
         print(f"  {q['code']:14s} {q['config']:11s} {q['floor_fz']:12.6f} N  {100 * q['floor_diff']:+7.3f} % "
               f"against LIGGGHTS 2 ranks  ({-q['floor_fz'] / weight:.4f} of the weight){'' if ok else '  BEYOND 2 %'}")
 
+    print("Kinetic energy after the steps (translational + rotational): " +
+          ", ".join(f"{q['code']} {q['config']} {q['kinetic']:.4g} J" for q in rows if q["kinetic"] is not None))
     print(f"\nMachine: {meta.get('cpu', '?')}, nproc {meta.get('nproc', '?')}. "
           f"{meta.get('liggghts_version', 'LIGGGHTS ?')}; {meta.get('pocl', 'PoCL ?')}; {meta.get('libdem', '?')}.")
     print(f"Bed: {ref['n']} spheres from {a.bed}; {ref['steps']} steps of dt = {meta.get('dt', '?')} s.")
@@ -203,13 +205,16 @@ def cmd_report(a):
         print(f"Damping: {meta['damping']}")
     print()
     print("| code | ranks / precision | particle-steps/s | ratio to LIGGGHTS 2 ranks | contacts per particle "
-          "| LIGGGHTS neighbours per atom |")
+          "| neighbour pairs per particle |")
     print("|---|---|---:|---:|---:|---:|")
     for q in rows:
         nb = f"{q['neighs_per_atom']:.2f}" if q["neighs_per_atom"] is not None else "-"
         print(f"| {q['code']} | {q['config']} | {q['rate']:.3g} | {q['ratio']:.2f} | "
               f"{q['contacts_per_particle']:.2f} | {nb} |")
     print()
+    print("  contacts per particle: 2 x touching pairs / particles after the steps (walls not counted; LIGGGHTS: "
+          "compute contact/atom summed). Neighbour pairs: LIGGGHTS' 'Ave neighs/atom' (its half list, each pair "
+          "once, within the cut-off plus the skin; libdem does not report its rows).")
     for q in rows:
         extra = (f"; whole process {q['process_s']:.1f} s, set-up {q['setup_s']:.1f} s" if "setup_s" in q else "")
         print(f"  {q['code']} {q['config']}: {q['seconds']:.2f} s for {q['steps']} steps; {q['timing']}{extra}")

@@ -3,7 +3,7 @@
 # 3.8.0, 1 and 2 MPI ranks) and in libdem (PoCL, fp64 and fp32). The floor forces after the steps must agree within
 # 2 % before the timings count; then one Markdown table of particle-steps per second (also out/peer/peer.json).
 #
-#   1. the bed: bench/peer/bed_pour.yaml poured once (several minutes), its checkpoint saved as out/peer/bed.csv
+#   1. the bed: bench/peer/bed_pour.yaml poured once (15-30 minutes on 2 cores), its checkpoint saved as out/peer/bed.csv
 #      (x, y, z, radius, vx, vy, vz) and reused by every later run (delete it to pour again)
 #   2. LIGGGHTS: bench/peer/in.peer on a data file and a floor STL made from bed.csv (bench/peer/peer.py)
 #   3. libdem: out/peer/bed_run.yaml reading bed.csv
@@ -39,7 +39,7 @@ now() { date +%s.%N; }
 # 1. The bed, poured once.
 if [ ! -s "$OUT/bed.csv" ]; then
   if [ ! -s "$OUT/pour.ckpt.h5" ]; then
-    say "pouring the bed ($POUR; several minutes, once)"
+    say "pouring the bed ($POUR; 15-30 minutes on 2 cores, once)"
     "$DEM" run "$POUR" -o "$OUT/pour.h5" --progress
   fi
   "$PY" tools/ckpt_to_csv.py "$OUT/pour.ckpt.h5" "$OUT/bed.csv.tmp" \
