@@ -45,7 +45,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
-                                          DEM_CONST_GLOBAL real *hist, int slot, int touching,
+                                          DEM_CONST_GLOBAL real *hist, int hp, int touching,
                                           DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol, real disp_a,
                                           real disp_b)
 {
@@ -79,7 +79,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         vcb = v3_add(vcb, v3_cross(v3_load(w, b), v3_scale(n, arm_b)));
         /* the stored history is read only for a pair that touched in the previous step (otherwise it is zero) */
         if (touching)
-            h = v3_load(hist, slot);
+            h = v3_load(hist, hp);
     }
     real srd = dem_sqrt(rstar * law_delta);
     if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is delta) */
@@ -97,8 +97,8 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 
 /* Pass 1, contact_pairs: one work item per listed pair p (the flat list of neighbor.h's pair_index: owned pairs in
  * the lower ids' row order), evaluated once by its lower-id particle i in canonical orientation. It keeps the pair's
- * history and touching flag in i's slot (the flag is copied to the partner's slot, nbr_mirror, so that pass 2 reads
- * flags from each particle's own row) and leaves force on i, n x f_t and the overlap in record p. Each flag byte and
+ * history (hist[3 p]) and touching flag in i's slot (the flag is copied to the partner's slot, nbr_mirror, so that
+ * pass 2 reads flags from each particle's own row) and leaves force on i, n x f_t and the overlap in record p. Each flag byte and
  * record has exactly one writer. A work item per pair, not per particle, gives every item the same work: a compiler
  * for SIMD lanes (PoCL) can run neighbouring pairs side by side. */
 DEM_ITEM(contact_pairs)
@@ -113,7 +113,7 @@ DEM_ITEM(contact_pairs)
         da = mc_disp[slot];
         db = mc_disp[m];
     }
-    pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, slot,
+    pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, i,
                                         touching, trace, invvol, da, db);
     /* both slots: the partner's mc_strain_disp reads its own row. A pair that neither touched nor touches holds
      * 0 already (mc_strain_update zeroes what it set for a pair that does not touch now) */
@@ -124,14 +124,14 @@ DEM_ITEM(contact_pairs)
     if (!pc.active) {
         if (touching) { /* the contact ended: so does its history */
             if (fx & DEM_EFFECT_FRICTION)
-                v3_store(hist, slot, v3_zero());
+                v3_store(hist, i, v3_zero());
             touch[slot] = 0;
             touch[m] = 0;
         }
         return;
     }
     if (fx & DEM_EFFECT_FRICTION)
-        v3_store(hist, slot, pc.hist);
+        v3_store(hist, i, pc.hist);
     if (!touching) {
         touch[slot] = 1;
         touch[m] = 1;

@@ -58,6 +58,9 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(PAIR_SLOT, INT, PAIRS, 0, -1, NONE)                                                                            \
     ENTRY(IN_PAIR, INT, PAIRS, 0, DEM_FIELD_IN_PAIR, NONE)                                                               \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE)                                                \
+    ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE)                                         \
+    ENTRY(PAIR_HIST_OLD, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, -1, NONE)                                                 \
+    ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE)                                                                        \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE)                                                \
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE)                                                \
     ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE)                                     \
@@ -93,7 +96,6 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 #define DEM_ROWS(ENTRY)                                                                                                  \
     ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
     ENTRY(LIST, INT, N * MAXN, 0, DEM_FIELD_NBR_LIST)                                                                        \
-    ENTRY(HIST, REAL, 3 * N * MAXN, DEM_EFFECT_FRICTION, DEM_FIELD_HIST)                                                     \
     ENTRY(TOUCH, BYTE, N * MAXN, 0, DEM_FIELD_TOUCH)                                                                         \
     ENTRY(MIRROR, INT, N * MAXN, 0, -1)                                                                                  \
     ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)                                                   \

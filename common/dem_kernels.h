@@ -72,14 +72,17 @@
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
-    A(CIN, real, old_hist, HIST) A(CIN, dem_byte, old_touch, TOUCH) A(NOUT, real, hist, HIST)                        \
+    A(CIN, dem_byte, old_touch, TOUCH)                                                                               \
     A(NOUT, dem_byte, touch, TOUCH) A(NOUT, int, mirror, MIRROR) A(BOUT, int, flags, FLAGS)                          \
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_nbr_carry n
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)             \
     A(CIN, int, nbr_mirror, MIRROR) A(BIN, int, in_count, IN_COUNT) A(BIN, int, in_start, IN_START)                  \
-    A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)
+    A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)              \
+    A(CIN, dem_byte, touch, TOUCH) A(I, int, old_maxn, MAXN_NEW) A(NIN, int, old_count, COUNT)                       \
+    A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
+    A(BOUT, real, hist, PAIR_HIST)
 #define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
@@ -91,7 +94,8 @@
     A(CIN, int, nbr_mirror, MIRROR)
 #define DEM_ARGS_contact_pairs(F, A)                                                                                 \
     DEM_ARGS_contact_head(F, A) A(I, int, npairs, NPAIRS) A(BIN, int, pair_slot, PAIR_SLOT)                          \
-    A(COUT, real, hist, HIST) A(COUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR) A(BIN, real, trace, TRACE)   \
+    A(BOUT, real, hist, PAIR_HIST) A(COUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
+    A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \

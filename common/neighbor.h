@@ -85,9 +85,7 @@ DEM_ITEM(nbr_carry)
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
         int found = row_find(orow, on, j);
         int t = found >= 0 ? old_touch[i * old_maxn + found] : 0;
-        if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
-            v3_store(hist, i * maxn + k, t ? v3_load(old_hist, i * old_maxn + found) : v3_zero());
-        touch[i * maxn + k] = (unsigned char)t;
+        touch[i * maxn + k] = (unsigned char)t; /* the history follows in pair_index, once the pairs are numbered */
         if (fx & DEM_EFFECT_MC_STRAIN) /* the lagged MC-strain force of the same contact (mc_strain.h) */
             mc_fn[i * maxn + k] = t ? old_mc_fn[i * old_maxn + found] : (real)0;
     }
@@ -95,17 +93,28 @@ DEM_ITEM(nbr_carry)
 /* The flat pair list of the committed rows (contact_forces.h): pair p = own_start[i] + c - in_count[i] is the owned
  * pair in particle i's row slot c (partner j > i); pair_slot[p] names that slot. The partner j's incoming slot of
  * the same pair (row slot k < in_count[j], found through nbr_mirror) gets in_pair[in_start[j] + k] = p. Each entry
- * has one writer: p's owner writes both. */
+ * has one writer: p's owner writes both.
+ * The tangential history is kept per pair (hist[3 p]): a touching pair takes it from its number in the old rows
+ * (old_own_start[i] + its old slot - the old row's partners below i), a new one starts from zero. Per pair, not per
+ * row slot, it is a dense array read in order by contact_pairs, and a third of the memory. */
 DEM_ITEM(pair_index)
 {
     int cnt = nbr_count[i], lower = in_count[i];
     for (int c = lower; c < cnt; c++) {
-        int slot = i * maxn + c, p = own_start[i] + c - lower;
+        int slot = i * maxn + c, p = row_pair_number(own_start[i], own_start[i + 1], cnt, c);
         int m = nbr_mirror[slot];
+        int j = nbr_list[slot];
         pair_slot[p] = slot;
-        if (m >= 0) {
-            int j = nbr_list[slot];
+        if (m >= 0)
             in_pair[in_start[j] + (m - j * maxn)] = p;
+        if (fx & DEM_EFFECT_FRICTION) { /* no history exists without friction */
+            vec3 h = v3_zero();
+            if (touch[slot]) { /* carried by nbr_carry: the pair is in the old row too */
+                int on = old_count[i], found = row_find(old_list + i * old_maxn, on, j);
+                if (found >= 0)
+                    h = v3_load(old_hist, row_pair_number(old_own_start[i], old_own_start[i + 1], on, found));
+            }
+            v3_store(hist, p, h);
         }
     }
 }

@@ -22,4 +22,11 @@ DEM_INLINE int row_find(DEM_CONST_GLOBAL int *row, int count, int key)
     }
     return -1;
 }
+
+/* The number of the pair in row slot k of a row of count partners, whose owned pairs (partners above the row's own
+ * id: the back of the row) are numbered from own_first to own_end - 1 (neighbor.h's pair_index; host/state.c). */
+DEM_INLINE int row_pair_number(int own_first, int own_end, int count, int k)
+{
+    return own_first + k - (count - (own_end - own_first));
+}
 #endif /* DEM_SORTED_ROW_H */

@@ -24,12 +24,20 @@ int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b) { return dem_l
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
 {
     dem_core *c = DEM_CORE(b);
-    if (dem_launch(o, b, K_nbr_carry))
+    /* the old pair numbering and history, which pair_index carries into the new (neighbor.h); the copy of the history
+     * is grown here to the capacity of the history itself (which may have grown at the last commit) */
+    dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, old_hist = {TABLE_ONE, BUF_PAIR_HIST_OLD};
+    dem_bufref own = {TABLE_ONE, BUF_OWN_START}, old_own = {TABLE_ONE, BUF_OWN_START_OLD};
+    if (c->bytes[BUF_PAIR_HIST_OLD] != c->bytes[BUF_PAIR_HIST] &&
+        o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST_OLD, c->bytes[BUF_PAIR_HIST], NULL))
+        return 1;
+    if ((c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, old_hist, c->bytes[BUF_PAIR_HIST])) ||
+        o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
         return 1;
     c->cur = 1 - c->cur;
     dem_core_sync(c);
     int total = 0, owned = 0;
-    dem_bufref start = {TABLE_ONE, BUF_IN_START}, own = {TABLE_ONE, BUF_OWN_START};
+    dem_bufref start = {TABLE_ONE, BUF_IN_START};
     if (dem_stage_scan(o, b, BUF_IN_COUNT, BUF_IN_START, BUF_IN_BLOCK_SUM, c->n) ||
         dem_stage_scan(o, b, BUF_OWN_COUNT, BUF_OWN_START, BUF_OWN_BLOCK_SUM, c->n) ||
         o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total, 1) ||
@@ -42,7 +50,8 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         c->pair_cap = (size_t)total + (size_t)total / 4 + 16;
         if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_PAIR_SLOT, dem_buffer_bytes(c, BUF_PAIR_SLOT), NULL) ||
-            o->alloc(b, TABLE_ONE, 0, BUF_IN_PAIR, dem_buffer_bytes(c, BUF_IN_PAIR), NULL))
+            o->alloc(b, TABLE_ONE, 0, BUF_IN_PAIR, dem_buffer_bytes(c, BUF_IN_PAIR), NULL) ||
+            o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST, dem_buffer_bytes(c, BUF_PAIR_HIST), NULL))
             return 1;
     }
     c->si[SI_NPAIRS] = total;

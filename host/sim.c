@@ -926,6 +926,11 @@ const char *dem_describe(dem_sim *s)
 
 size_t dem_field_bytes(const dem_sim *s, dem_field f)
 {
+    if (s->started) { /* the run's own sizes: the pair-sized fields follow the pairs allocated */
+        dem_bufref r;
+        size_t bytes;
+        return dem_field_ref(DEM_CORE(s->be), f, &r, &bytes) ? 0 : bytes;
+    }
     return dem_field_size(f, s->setup.effects, (size_t)s->n, (size_t)s->maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
                           (size_t)s->setup.real_size);
 }

@@ -104,6 +104,22 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
     return e;
 }
 
+/* Where each row's owned pairs start in the pair numbering (neighbor.h's pair_index: own_start), from the rows */
+static int *own_starts(const int *cnt, const int *list, int maxn, int n)
+{
+    int *own = malloc(sizeof(int) * ((size_t)n + 1));
+    if (!own)
+        return NULL;
+    own[0] = 0;
+    for (int i = 0; i < n; i++) {
+        int lower = 0;
+        while (lower < cnt[i] && list[i * maxn + lower] < i)
+            lower++;
+        own[i + 1] = own[i] + cnt[i] - lower;
+    }
+    return own;
+}
+
 int dem_state_get(dem_sim *s, dem_state *st)
 {
     memset(st, 0, sizeof *st);
@@ -146,6 +162,9 @@ int dem_state_get(dem_sim *s, dem_state *st)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
+    int *own = e ? NULL : own_starts(cnt, list, maxn, n);
+    if (!e && !own)
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             int slot = i * maxn + k, j = list[slot];
@@ -153,8 +172,9 @@ int dem_state_get(dem_sim *s, dem_state *st)
                 continue;
             st->pair_i[np] = i;
             st->pair_j[np] = j;
-            if (hb) /* no tangential history without friction */
-                memcpy((char *)st->pair_hist + (size_t)np * 3 * rs, hist + (size_t)slot * 3 * rs, 3 * (size_t)rs);
+            if (hb) /* no tangential history without friction; it is kept per pair (neighbor.h) */
+                memcpy((char *)st->pair_hist + (size_t)np * 3 * rs,
+                       hist + (size_t)row_pair_number(own[i], own[i + 1], cnt[i], k) * 3 * rs, 3 * (size_t)rs);
             if (fb) /* MC-strain: the force the next step's induced displacements start from */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)slot * rs, (size_t)rs);
             np++;
@@ -162,7 +182,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->npairs = np;
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
-    free(cnt), free(list), free(touch), free(hist), free(mcf);
+    free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
     if (!e)
         e = patch_contacts_get(s, st);
     if (e)
@@ -232,7 +252,8 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE);
     int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
-    if (!e && (!touch || !hist || !mcf))
+    int *own = e ? NULL : own_starts(cnt, list, maxn, n);
+    if (!e && (!touch || !hist || !mcf || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int i = st->pair_i[p], j = st->pair_j[p];
@@ -243,8 +264,9 @@ int dem_state_set(dem_sim *s, const dem_state *st)
             break;
         }
         touch[a] = touch[m] = 1;
-        if (hb && st->has_hist)
-            memcpy(hist + (size_t)a * 3 * rs, (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
+        if (hb && st->has_hist) /* kept per pair (neighbor.h) */
+            memcpy(hist + (size_t)row_pair_number(own[i], own[i + 1], cnt[i], a - i * maxn) * 3 * rs,
+                   (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) { /* both slots of the pair hold the force (mc_strain.h) */
             memcpy(mcf + (size_t)a * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
             memcpy(mcf + (size_t)m * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
@@ -260,7 +282,7 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_TORQUE, st->torque, v3b) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    free(cnt), free(list), free(touch), free(hist), free(mcf);
+    free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
     if (e == DEM_ERR_ARG) { /* the run's own positions and rows back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);

@@ -96,7 +96,8 @@ typedef enum {
     DEM_FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
     DEM_FIELD_NBR_COUNT,            /* int[n] */
     DEM_FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id */
-    DEM_FIELD_HIST,                 /* real[3*n*maxn]: elastic tangential force per row slot [N]; empty without friction */
+    DEM_FIELD_HIST,                 /* real[3*pairs]: elastic tangential force per listed pair [N], pairs numbered in the
+                                       lower ids' row order (partners j > i, ascending i then j); empty without friction */
     DEM_FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
     DEM_FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
     DEM_FIELD_CELL_START,           /* int[ncells+1] */
