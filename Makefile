@@ -236,6 +236,7 @@ test: $(TEST_BIN)
 	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh
 
 bench: $(BUILD)/dem-bench $(BUILD)/dem
+	bash bench/peer/run.sh --bed
 	./$(BUILD)/dem-bench
 
 # Against a peer code (issue 14): Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
