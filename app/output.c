@@ -117,6 +117,12 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
         hsize_t dn[1] = {(hsize_t)n};
         rc = g < 0 || !mat || h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, dn, o->buf, "m") ||
              h5_write(g, "material", H5T_NATIVE_INT, 1, dn, mat, NULL);
+        int moved = 0; /* particle_order: spatial - each particle's place in the scene's own order */
+        for (int i = 0; mat && i < n; i++)
+            moved |= (mat[i] = dem_particle_source(s, i)) != i;
+        rc = rc || (moved && (h5_write(g, "input_index", H5T_NATIVE_INT, 1, dn, mat, NULL) ||
+                              h5_attr_string(g, "input_index", "particle_order: spatial - particle i is the scene's "
+                                                               "particle input_index[i] (its groups in order)")));
         free(mat);
         if (g >= 0)
             H5Gclose(g);

@@ -155,6 +155,7 @@ typedef struct {
     char *precision;              /* "fp32" or "fp64" */
     int device;
     char *backend;                /* "opencl" (default) or "reference" */
+    char *particle_order;         /* "input" (default) or "spatial" (dem_sort_particles) */
     char **effects;
     unsigned effects_count;
     scene_material *materials;

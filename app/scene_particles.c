@@ -537,6 +537,21 @@ int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char
         if (!rc)
             rc = constrain(sc, s, g, first, dem_count(s), err, errlen);
     }
+    const char *order = sc->f->particle_order;
+    if (!rc && order && strcmp(order, "input") && strcmp(order, "spatial"))
+        rc = scene_fail(sc, err, errlen, "particle_order", "particle_order must be input or spatial (got '%s')", order);
+    if (!rc && order && !strcmp(order, "spatial")) { /* before the membranes add their vertices, springs and hinges */
+        scene_origin *sorted = malloc(sizeof *sorted * (size_t)(ol.n ? ol.n : 1));
+        if (!sorted || dem_sort_particles(s))
+            rc = scene_fail(sc, err, errlen, "particle_order", "%s", sorted ? dem_error(s) : "out of host memory");
+        for (int i = 0; !rc && i < ol.n; i++) /* the origins follow their particles */
+            sorted[i] = ol.o[dem_particle_source(s, i)];
+        if (!rc) {
+            free(ol.o);
+            ol.o = sorted;
+        } else
+            free(sorted);
+    }
     if (rc) {
         free(ol.o);
         return rc;

@@ -168,6 +168,7 @@ static const cyaml_schema_field_t scene_fields[] = {
     TEXT("precision", scene_file, precision),
     CYAML_FIELD_INT("device", CYAML_FLAG_OPTIONAL, scene_file, device),
     TEXT("backend", scene_file, backend),
+    TEXT("particle_order", scene_file, particle_order),
     CYAML_FIELD_SEQUENCE("effects", CYAML_FLAG_POINTER, scene_file, effects, &string_entry, 1, 16),
     CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_file, materials, &material_entry, 1, 64),
     CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 1, 64),

@@ -37,6 +37,7 @@ void dem_destroy(dem_sim *s)
     free(s->mat);
     free(s->pflags);
     free(s->body);
+    free(s->source);
     free(s->spring_ij);
     free(s->spring_kr);
     free(s->tri);

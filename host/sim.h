@@ -12,6 +12,7 @@ struct dem_sim {
     unsigned *pflags;
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
+    int *source, source_n; /* after dem_sort_particles: each particle's id before it (the first source_n) */
     int nsprings, spring_cap;
     int *spring_ij;      /* [2 * nsprings] */
     double *spring_kr;   /* [3 * nsprings]: k, rest (< 0: at the start), gamma */

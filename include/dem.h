@@ -261,6 +261,12 @@ typedef struct {
  * went. Everything is checked before anything is added: on an error nothing is. Returns 0, or -1 (dem_error). */
 int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
+/* Orders all particles added so far along a Morton (Z-order) curve through their positions, for memory locality
+ * (host/particle_order.c: a bed of 1e5 spheres in random order ran 2.4x faster sorted). Before dem_start and before
+ * any spring, triangle, hinge, patch or attachment refers to particles. Particle ids change: dem_particle_source(s,
+ * i) is the id particle i had when it was added (i itself when nothing was sorted). Returns 0 or a dem_status. */
+int dem_sort_particles(dem_sim *s);
+int dem_particle_source(const dem_sim *s, int i);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
 int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material);

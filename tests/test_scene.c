@@ -1181,6 +1181,49 @@ static void test_contact_network(void **st)
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
+/* particle_order: spatial (dem_sort_particles): the scene's particles sorted along a Morton curve at load. The first
+ * frame holds the scene's own particles, moved (/particles/input_index says from where), the reference and PoCL
+ * agree bit for bit, a restart continues bit for bit (the sort is a function of the scene), and a bad value is
+ * refused with its line. */
+static void test_particle_order(void **st)
+{
+    (void)st;
+    char err[8192], a[300], b[300], sp[300];
+    assert_int_equal(sh(err, sizeof err, "sed 's/^precision: fp64/precision: fp64\\nparticle_order: spatial/' "
+                        "%s/tests/scenes/restart_box.yaml > %s/sp.yaml && sed 's/^precision: fp64/precision: fp64\\n"
+                        "particle_order: spatial\\nbackend: reference/' %s/tests/scenes/restart_box.yaml > %s/spr.yaml",
+                        SRC, tmp, SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/sp.yaml -o %s/sp.h5 --quiet --stop-after 300", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/spr.yaml -o %s/spr.h5 --quiet --stop-after 300", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/in.h5 --quiet --stop-after 1",
+                        DEM, SRC, tmp), 0);
+    snprintf(a, sizeof a, "%s/sp.ckpt.h5", tmp);
+    snprintf(b, sizeof b, "%s/spr.ckpt.h5", tmp);
+    assert_true(same_state(a, b, "particle_order spatial, PoCL against the reference") > 5);
+    snprintf(a, sizeof a, "%s/sp.h5", tmp);
+    snprintf(b, sizeof b, "%s/in.h5", tmp);
+    long n = 0, moved = 0;
+    int *idx = read_all(a, "particles/input_index", H5T_NATIVE_INT, &n);
+    assert_int_equal(n, 64);
+    int seen[64] = {0};
+    for (int i = 0; i < n; i++) {
+        assert_true(idx[i] >= 0 && idx[i] < n && !seen[idx[i]]); /* a permutation */
+        seen[idx[i]] = 1;
+        moved += idx[i] != i;
+    }
+    assert_true(moved > n / 2);
+    double *xs = read_all(a, "frames/position", H5T_NATIVE_DOUBLE, NULL), *xi = read_all(b, "frames/position",
+                                                                                            H5T_NATIVE_DOUBLE, NULL);
+    for (int i = 0; i < n; i++) /* frame 0: the initial positions */
+        for (int d = 0; d < 3; d++)
+            assert_memory_equal(&xs[3 * i + d], &xi[3 * idx[i] + d], sizeof(double));
+    free(idx), free(xs), free(xi);
+    snprintf(sp, sizeof sp, "%s/sp.yaml", tmp);
+    restart_case(sp, "fp64", 0);
+    bad_in("tests/scenes/restart_box.yaml", "s/^precision: fp64/precision: fp64\\nparticle_order: random/",
+           "bad.yaml:4: particle_order: particle_order must be input or spatial (got 'random')");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1195,6 +1238,7 @@ int main(void)
         cmocka_unit_test(test_output_paths),
         cmocka_unit_test(test_crafted_checkpoints),
         cmocka_unit_test(test_random_packing),
+        cmocka_unit_test(test_particle_order),
         cmocka_unit_test(test_wall_repeat),
         cmocka_unit_test(test_dt_advice),
         cmocka_unit_test(test_series_average),

@@ -245,6 +245,13 @@ static void test_bound_and_effect(void **st)
     assert_int_equal(dem_add_spring(s, 0, 0, 1, 0, 0), -1);
     assert_int_equal(dem_add_spring(s, 0, 1, -1, 0, 0), -1);
     dem_destroy(s);
+    /* particles a spring joins by id are not sorted (dem_sort_particles): refused, nothing moved */
+    s = build(&o);
+    assert_int_equal(dem_sort_particles(s), DEM_ERR_STATE);
+    assert_non_null(strstr(dem_error(s), "before any spring"));
+    assert_int_equal(dem_particle_source(s, 1), 1);
+    assert_true(dem_particle_radius(s, 0) == R);
+    dem_destroy(s);
 }
 
 int main(void)
