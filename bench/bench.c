@@ -317,7 +317,8 @@ static void membrane_cost_table(int quick)
  * another code arrives). The sizes below are that bed cut to a smaller square (the spheres wholly inside it, walls on
  * its sides) and, for 1e6, tiled 5 x 2 times (copies side by side; the small overlaps where the copies meet are of
  * the order of the wall contacts'). Physics of the peer comparison: rho 2500, E 5 MPa, nu 0.3, e 0.3, mu 0.5, walls
- * of the same material, gravity, dt 2e-6 s. Per size: particle-steps/s of PoCL (fp64, fp32) and the reference, the
+ * of the same material, gravity, dt 2e-6 s. Each size as poured and sorted along a Morton curve (dem_sort_particles,
+ * a scene's particle_order: spatial). Per size: particle-steps/s of PoCL (fp64, fp32) and the reference, the
  * device memory per particle, the time per kernel, and the state after the timed steps hashed on each backend: the
  * OpenCL hash must equal the reference's (checked up to 1e5 particles; the reference is too slow beyond). */
 typedef struct {
@@ -367,8 +368,9 @@ static int bed_read(const char *path, bed_t *b)
     return b->n == 0;
 }
 
-/* The bed cut to [0, side]^2 (side <= 0.1 m) or tiled tx x ty times (side 0) */
-static dem_sim *bed_sim(const bed_t *b, double side, int tx, int ty)
+/* The bed cut to [0, side]^2 (side <= 0.1 m) or tiled tx x ty times (side 0); sorted along a Morton curve when
+ * `sorted` (dem_sort_particles, a scene's particle_order: spatial) */
+static dem_sim *bed_sim(const bed_t *b, double side, int tx, int ty, int sorted)
 {
     dem_sim *s = dem_create();
     dem_set_effects(s, DEM_EFFECT_CLASSICAL);
@@ -399,6 +401,8 @@ static dem_sim *bed_sim(const bed_t *b, double side, int tx, int ty)
     dem_set_gravity(s, (double[3]){0, 0, -9.81});
     dem_set_domain(s, (double[3]){-0.005, -0.005, -0.005}, (double[3]){lx + 0.005, ly + 0.005, top + 0.02});
     dem_set_dt(s, 2e-6);
+    if (sorted)
+        dem_sort_particles(s);
     return s;
 }
 
@@ -427,14 +431,14 @@ typedef struct {
     char kernels[1024];
 } bed_result;
 
-static int bed_run(const bed_t *b, double side, int tx, int ty, dem_backend_kind kind, dem_precision prec, long steps,
-                   int profile, bed_result *r)
+static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_backend_kind kind, dem_precision prec,
+                   long steps, int profile, bed_result *r)
 {
     if (profile)
         setenv("DEM_PROFILE", "1", 1);
     else
         unsetenv("DEM_PROFILE");
-    dem_sim *s = bed_sim(b, side, tx, ty);
+    dem_sim *s = bed_sim(b, side, tx, ty, sorted);
     dem_config c;
     dem_config_default(&c);
     c.backend = kind;
@@ -499,33 +503,35 @@ static void bed_table(int quick)
     printf("\n### Throughput on a poured polydisperse bed (issue 14)\n\n%s: %ld spheres as poured (random order), cut or "
            "tiled; Hertz-Mindlin with friction, damping, gravity, 5 walls; dt 2e-6 s. OpenCL device 0: %s. The state "
            "after the timed steps is hashed on each backend.\n\n"
-           "| n | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | state hash = reference | us per step by kernel |\n"
-           "|---|---|---|---|---|---|---|---|\n", path, b.n, dev);
+           "| n | order | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | state hash = reference | us per step by kernel |\n"
+           "|---|---|---|---|---|---|---|---|---|\n", path, b.n, dev);
     if (js)
         fprintf(js, "{\n  \"bench\": \"poured bed\", \"bed\": \"%s\", \"device\": \"%s\",\n  \"rows\": [", path, dev);
     double lnN[8], lnT[8];
     int nfit = 0, first = 1;
     for (int z = 0; z < nsizes; z++)
-        for (int p = 0; p < 2; p++) {
+        for (int q = 0; q < 4; q++) {
+            int p = q & 1, sorted = q >> 1;
             dem_precision prec = p ? DEM_FP32 : DEM_FP64;
             bed_result ro, rp, rr;
             long n_est = z == 3 ? 10 * b.n : (long)(b.n * sizes[z].side * sizes[z].side / 0.01);
             long steps = (long)((quick ? 5e6 : 4e7) / (double)(n_est > 0 ? n_est : 1));
             steps = steps < 20 ? 20 : steps > 2000 ? 2000 : steps;
-            if (bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, DEM_BACKEND_OPENCL, prec, steps, 0, &ro) ||
-                bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, DEM_BACKEND_OPENCL, prec, steps, 1, &rp)) {
-                printf("| %ld | | opencl | %s | failed | | | |\n", n_est, p ? "fp32" : "fp64");
+            const char *order = sorted ? "sorted" : "as poured";
+            if (bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_OPENCL, prec, steps, 0, &ro) ||
+                bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_OPENCL, prec, steps, 1, &rp)) {
+                printf("| %ld | %s | | opencl | %s | failed | | | |\n", n_est, order, p ? "fp32" : "fp64");
                 continue;
             }
-            int have_ref = z < 3 && !bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, DEM_BACKEND_REFERENCE, prec,
-                                             steps, 0, &rr);
+            int have_ref = z < 3 && !bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_REFERENCE,
+                                             prec, steps, 0, &rr);
             const char *eq = !have_ref ? "not checked" : rr.hash == ro.hash && rp.hash == ro.hash ? "yes" : "NO";
-            printf("| %ld | %.2f | opencl | %s | %.3g | %.0f | %s | %s |\n", ro.n, ro.contacts, p ? "fp32" : "fp64", ro.rate,
-                   ro.bytes_per_particle, eq, rp.kernels);
+            printf("| %ld | %s | %.2f | opencl | %s | %.3g | %.0f | %s | %s |\n", ro.n, order, ro.contacts,
+                   p ? "fp32" : "fp64", ro.rate, ro.bytes_per_particle, eq, rp.kernels);
             if (have_ref)
-                printf("| %ld | | reference | %s | %.3g | | | |\n", rr.n, p ? "fp32" : "fp64", rr.rate);
+                printf("| %ld | %s | | reference | %s | %.3g | | | |\n", rr.n, order, p ? "fp32" : "fp64", rr.rate);
             fflush(stdout);
-            if (!p && ro.n >= 5000) {
+            if (!p && sorted && ro.n >= 5000) {
                 lnN[nfit] = log((double)ro.n);
                 lnT[nfit++] = log((double)ro.n / ro.rate);
             }
@@ -533,10 +539,10 @@ static void bed_table(int quick)
                 char refrate[32] = "null";
                 if (have_ref)
                     snprintf(refrate, sizeof refrate, "%.4g", rr.rate);
-                fprintf(js, "%s\n    {\"n\": %ld, \"precision\": \"%s\", \"steps\": %ld, \"contacts_per_particle\": %.3f, "
+                fprintf(js, "%s\n    {\"n\": %ld, \"order\": \"%s\", \"precision\": \"%s\", \"steps\": %ld, \"contacts_per_particle\": %.3f, "
                         "\"opencl_particle_steps_per_s\": %.4g, \"device_bytes_per_particle\": %.0f, "
                         "\"reference_particle_steps_per_s\": %s, \"hash_opencl\": \"%016llx\", \"hash_equal\": \"%s\"}",
-                        first ? "" : ",", ro.n, p ? "fp32" : "fp64", steps, ro.contacts, ro.rate, ro.bytes_per_particle,
+                        first ? "" : ",", ro.n, order, p ? "fp32" : "fp64", steps, ro.contacts, ro.rate, ro.bytes_per_particle,
                         refrate, ro.hash, eq);
                 first = 0;
             }
@@ -546,7 +552,7 @@ static void bed_table(int quick)
         for (int k = 0; k < nfit; k++)
             sx += lnN[k], sy += lnT[k], sxx += lnN[k] * lnN[k], sxy += lnN[k] * lnT[k];
         double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
-        printf("\nCost per step grows as n^%.3f (fp64 OpenCL, %d sizes from 1e4 up; goal <= 1.05).\n", slope, nfit);
+        printf("\nCost per step grows as n^%.3f (fp64 OpenCL, sorted, %d sizes from 1e4 up; goal <= 1.05).\n", slope, nfit);
         if (js)
             fprintf(js, "\n  ],\n  \"cost_exponent_fp64\": %.4f\n}\n", slope);
     } else if (js)

@@ -6,7 +6,7 @@
 #   1. the bed: bench/peer/bed_pour.yaml poured once (15-30 minutes on 2 cores), its checkpoint saved as out/peer/bed.csv
 #      (x, y, z, radius, vx, vy, vz) and reused by every later run (delete it to pour again)
 #   2. LIGGGHTS: bench/peer/in.peer on a data file and a floor STL made from bed.csv (bench/peer/peer.py)
-#   3. libdem: out/peer/bed_run.yaml reading bed.csv
+#   3. libdem: out/peer/bed_run-{input,spatial}.yaml reading bed.csv (the particles as given, and sorted at load)
 #   4. bench/peer/peer.py report: the check and the table
 #
 # `run.sh --bed` stops after step 1 (make bench uses the bed too).
@@ -80,10 +80,13 @@ done
 # first step's one-off costs (PoCL compiles each kernel for its work-group size at the first launch) and the first
 # and last frames and the checkpoint. So: a 1-step run to warm PoCL's kernel cache (discarded), a 1-step run whose
 # steps phase is those fixed costs, and the full run; the steps' time is the difference.
-cat > "$OUT/bed_run.yaml" <<EOF
+for order in input spatial; do
+  cat > "$OUT/bed_run-$order.yaml" <<EOF
 # make bench-peer's timed run (written by bench/peer/run.sh): the bed of bed.csv, $STEPS steps of dt = $DT s
 name: bench-peer bed
 precision: fp64
+# input: the particles in bed.csv's order (as poured: random); spatial: sorted along a Morton curve at load
+particle_order: $order
 effects: [hertz, damping, friction, gravity, walls]
 materials:
   - {name: grain, density: $RHO, young: $YOUNG, poisson: $POISSON, restitution: $RESTITUTION, friction: $FRICTION}
@@ -105,22 +108,27 @@ output:
   series_every: $(awk -v d="$DURATION" 'BEGIN { printf "%.10g", d / 10 }')
   fields: [position, velocity]
 EOF
+done
 DEMRUNS=()
-for prec in fp64 fp32; do
-  base=$OUT/dem-$prec
-  say "libdem on PoCL, $prec, $STEPS steps"
-  for one in warm 1step; do
-    t0=$(now)
-    "$DEM" run "$OUT/bed_run.yaml" --precision "$prec" -o "$base-$one.h5" --stop-after 1 --progress \
-      2> "$base-$one.log" || { cat "$base-$one.log" >&2; die "dem run failed"; }
+for order in input spatial; do
+  for prec in fp64 fp32; do
+    base=$OUT/dem-$prec-$order
+    label=$prec
+    [ "$order" = spatial ] && label="$prec, particle_order spatial"
+    say "libdem on PoCL, $label, $STEPS steps"
+    for one in warm 1step; do
+      t0=$(now)
+      "$DEM" run "$OUT/bed_run-$order.yaml" --precision "$prec" -o "$base-$one.h5" --stop-after 1 --progress \
+        2> "$base-$one.log" || { cat "$base-$one.log" >&2; die "dem run failed"; }
+    done
+    t1=$(now)
+    "$DEM" run "$OUT/bed_run-$order.yaml" --precision "$prec" -o "$base.h5" --progress 2> "$base.log" ||
+      { tail -20 "$base.log" >&2; die "dem run failed"; }
+    t2=$(now)
+    grep 'wall time' "$base-1step.log" "$base.log" | sed 's/^/bench-peer:   /' >&2
+    DEMRUNS+=(--dem "$label:$base.h5:$base.log:$base-1step.log:$(awk -v a="$t1" -v b="$t2" 'BEGIN { print b - a }'):$(
+      awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')")
   done
-  t1=$(now)
-  "$DEM" run "$OUT/bed_run.yaml" --precision "$prec" -o "$base.h5" --progress 2> "$base.log" ||
-    { tail -20 "$base.log" >&2; die "dem run failed"; }
-  t2=$(now)
-  grep 'wall time' "$base-1step.log" "$base.log" | sed 's/^/bench-peer:   /' >&2
-  DEMRUNS+=(--dem "$prec:$base.h5:$base.log:$base-1step.log:$(awk -v a="$t1" -v b="$t2" 'BEGIN { print b - a }'):$(
-    awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }')")
 done
 
 # 5. The check and the table.
