@@ -100,7 +100,7 @@
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(CIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
-    A(BIN, int, in_pair, IN_PAIR) A(BIN, int, own_start, OWN_START) A(BIN, int, pair_slot, PAIR_SLOT)               \
+    A(BIN, int, in_pair, IN_PAIR) A(BIN, int, own_start, OWN_START)                                                  \
     A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)     \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \

@@ -37,19 +37,13 @@ static int by_key(const void *a, const void *b)
     return p->key < q->key ? -1 : p->key > q->key ? 1 : (p->id > q->id) - (p->id < q->id);
 }
 
-/* permute n items of size bytes by the sorted order (new item k = old item k_old) */
-static int permute(void *base, size_t size, const keyed *o, int n)
+/* permute n items of size bytes by the sorted order (new item k = old item o[k].id), through tmp (size * n bytes) */
+static void permute(void *base, size_t size, const keyed *o, int n, unsigned char *tmp)
 {
-    if (!base)
-        return 0;
-    unsigned char *tmp = malloc(size * (size_t)n + 1), *b = base;
-    if (!tmp)
-        return -1;
+    unsigned char *b = base;
     for (int k = 0; k < n; k++)
         memcpy(tmp + size * (size_t)k, b + size * (size_t)o[k].id, size);
     memcpy(b, tmp, size * (size_t)n);
-    free(tmp);
-    return 0;
 }
 
 int dem_sort_particles(dem_sim *s)
@@ -70,8 +64,9 @@ int dem_sort_particles(dem_sim *s)
         }
     keyed *o = malloc(sizeof *o * (size_t)n);
     int *src = malloc(sizeof(int) * (size_t)n);
-    if (!o || !src) {
-        free(o), free(src);
+    unsigned char *tmp = malloc(3 * sizeof(double) * (size_t)n); /* every allocation first: nothing moves unless all */
+    if (!o || !src || !tmp) {
+        free(o), free(src), free(tmp);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (int i = 0; i < n; i++) {
@@ -86,15 +81,14 @@ int dem_sort_particles(dem_sim *s)
     qsort(o, (size_t)n, sizeof *o, by_key);
     for (int k = 0; k < n; k++) /* where each particle came from, through earlier sorts too */
         src[k] = s->source && o[k].id < s->source_n ? s->source[o[k].id] : o[k].id;
-    int e = permute(s->x, 3 * sizeof(double), o, n) || permute(s->v, 3 * sizeof(double), o, n) ||
-            permute(s->w, 3 * sizeof(double), o, n) || permute(s->radius, sizeof(double), o, n) ||
-            permute(s->mat, sizeof(int), o, n) || permute(s->pflags, sizeof(unsigned), o, n) ||
-            permute(s->body, 2 * sizeof(double), o, n);
-    free(o);
-    if (e) {
-        free(src);
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    }
+    permute(s->x, 3 * sizeof(double), o, n, tmp);
+    permute(s->v, 3 * sizeof(double), o, n, tmp);
+    permute(s->w, 3 * sizeof(double), o, n, tmp);
+    permute(s->radius, sizeof(double), o, n, tmp);
+    permute(s->mat, sizeof(int), o, n, tmp);
+    permute(s->pflags, sizeof(unsigned), o, n, tmp);
+    permute(s->body, 2 * sizeof(double), o, n, tmp);
+    free(o), free(tmp);
     free(s->source);
     s->source = src;
     s->source_n = n;

@@ -694,21 +694,23 @@ static int sim_rebuild_traced(dem_sim *s)
         return DEM_ERR_DEVICE;
     if (flags[FLAG_OUT_OF_DOMAIN] != DEM_NO_PARTICLE)
         return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
+    int maxn = s->maxn; /* s->maxn is the current rows' capacity: it changes only once new rows are committed */
     for (;;) {
-        if (dem_stage_nbr_reserve(s->ops, s->be, s->maxn) || dem_stage_nbr_build(s->ops, s->be))
+        if (dem_stage_nbr_reserve(s->ops, s->be, maxn) || dem_stage_nbr_build(s->ops, s->be))
             return be_fail(s);
         if (read_flags(s, flags))
             return DEM_ERR_DEVICE;
-        if (flags[FLAG_NBR_NEEDED] <= s->maxn)
+        if (flags[FLAG_NBR_NEEDED] <= maxn)
             break;
-        while (s->maxn < flags[FLAG_NBR_NEEDED])
-            s->maxn *= 2;
+        while (maxn < flags[FLAG_NBR_NEEDED])
+            maxn *= 2;
         flags[FLAG_NBR_NEEDED] = 0;
         if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags))
             return be_fail(s);
     }
     if (dem_stage_nbr_commit(s->ops, s->be))
         return be_fail(s);
+    s->maxn = maxn;
     if (read_flags(s, flags))
         return DEM_ERR_DEVICE;
     if (flags[FLAG_ASYMMETRIC])
@@ -948,7 +950,8 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 int dem_get_field(dem_sim *s, dem_field f, double *dst)
 {
     if (f == DEM_FIELD_NBR_COUNT || f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_CELL_START || f == DEM_FIELD_CELL_PARTICLES ||
-        f == DEM_FIELD_FLAGS)
+        f == DEM_FIELD_FLAGS || f == DEM_FIELD_TOUCH || f == DEM_FIELD_WALL_MASK || f == DEM_FIELD_IN_START ||
+        f == DEM_FIELD_IN_PAIR)
         return sim_fail(s, DEM_ERR_ARG, "field %d holds integers: use dem_get_raw", (int)f);
     size_t bytes = dem_field_bytes(s, f), cnt = bytes / (size_t)s->setup.real_size;
     void *buf = malloc(bytes ? bytes : 1);

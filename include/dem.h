@@ -119,7 +119,10 @@ typedef enum {
     DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming pairs (partners with lower ids) start
                                        in DEM_FIELD_IN_PAIR */
     DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N] */
-    DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair, in_start[i] + k for row slot k */
+    DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair, in_start[i] + k for row slot k.
+                                       The pair-sized fields (HIST, PAIR_RECORDS, IN_PAIR) hold the pairs allocated, which
+                                       grow at rebuilds: take dem_field_bytes just before each read; entries beyond the
+                                       pairs listed (in_start[n]) hold nothing meaningful */
     DEM_FIELD__COUNT
 } dem_field;
 
@@ -347,6 +350,8 @@ double dem_restitution_for_damping(double c);
 
 /* Validates everything, builds the backend and computes the initial forces. */
 int dem_start(dem_sim *s, const dem_config *c);
+/* Advances nsteps steps. The force each wall received (DEM_FIELD_WALL_FORCE, dem_wall_force) is summed on the last
+ * of them (on every one under a servo stage): after a call that failed, it is that of an earlier call. */
 int dem_step(dem_sim *s, long nsteps);
 
 int dem_count(const dem_sim *s);
