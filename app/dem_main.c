@@ -68,8 +68,9 @@ static int check(const char *path)
     printf("output         frame every %ld steps (%ld frames, %d vector fields), series every %ld steps, "
            "checkpoint every %ld steps (0: end only)\n", run.frame_every, frames, nfields, run.series_every,
            run.checkpoint_every);
-    printf("memory         about %.3g MB on the device at the start (%s), frames about %.3g MB before compression\n",
-           (double)dev_bytes / 1e6, rs == 8 ? "fp64" : "fp32", (double)frames * nfields * 3 * 8 * n / 1e6);
+    printf("memory         about %.3g MB on the device at the start (%s, %.0f bytes per particle; dem run reports what "
+           "it held), frames about %.3g MB before compression\n", (double)dev_bytes / 1e6, rs == 8 ? "fp64" : "fp32",
+           n > 0 ? (double)dev_bytes / n : 0.0, (double)frames * nfields * 3 * 8 * n / 1e6);
     printf("backend        %s, device %d\n", run.cfg.backend == DEM_BACKEND_OPENCL ? "OpenCL" : "reference",
            run.cfg.device);
     if (run.piston >= 0)

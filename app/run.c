@@ -427,7 +427,8 @@ static void phase_report(run_ctx *c)
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
         if (dem_kernel_sequence(s, 1, seq, sizeof seq))
             fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all): %s\n", dem_rebuild_count(s), seq);
-        fprintf(stderr, "dem: device memory held: %.3g MB\n", (double)dem_device_bytes(s) / 1e6);
+        fprintf(stderr, "dem: device memory held: %.3g MB (%.0f bytes per particle)\n", (double)dem_device_bytes(s) / 1e6,
+                dem_count(s) > 0 ? (double)dem_device_bytes(s) / dem_count(s) : 0.0);
         if (iterated)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
                             "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
