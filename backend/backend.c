@@ -230,6 +230,33 @@ size_t dem_kernel_items(const dem_core *c, dem_kernel_id k)
     }
 }
 
+/* The bytes of every buffer kernel k is given (its argument list), as bound now: what it could move if it touched
+ * each byte once - the traffic model of make bench's bandwidth column. */
+size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
+{
+    size_t total = 0;
+#define BB_I(type, name, src)
+#define BB_R(type, name, src)
+#define BB_BIN(type, name, src) total += c->bytes[BUF_##src];
+#define BB_BOUT BB_BIN
+#define BB_CIN(type, name, src) total += c->row_bytes[c->cur][ROW_##src];
+#define BB_COUT BB_CIN
+#define BB_NIN(type, name, src) total += c->row_bytes[1 - c->cur][ROW_##src];
+#define BB_NOUT BB_NIN
+#define BB_AIN(type, name, src) total += c->bytes[c->alias[ALIAS_##src]];
+#define BB_AOUT BB_AIN
+#define BB_ARG(kind, type, name, src) BB_##kind(type, name, src)
+#define BB_CASE(name)                                                                                                \
+    case K_##name:                                                                                                   \
+        DEM_ARGS_##name(BB_ARG, BB_ARG) break;
+    switch (k) {
+        DEM_KERNEL_LIST(BB_CASE)
+    default:
+        break;
+    }
+    return total;
+}
+
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes)
 {
     return dem_stage_read_fields(o, b, 1, &f, &dst, &bytes);

@@ -160,6 +160,7 @@ int dem_core_fail(dem_core *c, const char *fmt, ...);
 #define DEM_REF_AOUT DEM_REF_AIN
 /* Number of work items of kernel k with the core's current scalars. */
 size_t dem_kernel_items(const dem_core *c, dem_kernel_id k);
+size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k);
 
 /* Launches kernel k (o->launch), recording it in the core's trace. The steps launch through it. */
 int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k);

@@ -11,6 +11,7 @@
  * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
  * each membrane model costs in seed 001's triaxial test (membrane_cost_table, the paper's Table 4). */
 #include "dem.h"
+#include <CL/cl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -434,6 +435,60 @@ static unsigned long long state_hash(dem_sim *s)
     return h;
 }
 
+/* The device's copy rate [GB/s, bytes read + written]: clEnqueueCopyBuffer of 256 MiB (or an eighth of the device's
+ * memory), best of 5 after a warm-up. Devices in dem's order (platforms, then their devices). 0 when it fails. */
+static double copy_gbs(int device)
+{
+    cl_uint np = 0;
+    if (clGetPlatformIDs(0, NULL, &np) != CL_SUCCESS || np == 0)
+        return 0;
+    cl_platform_id pl[16];
+    clGetPlatformIDs(np < 16 ? np : 16, pl, NULL);
+    cl_device_id dev = NULL;
+    int seen = 0;
+    for (cl_uint k = 0; k < np && k < 16 && !dev; k++) {
+        cl_uint nd = 0;
+        cl_device_id d[64];
+        if (clGetDeviceIDs(pl[k], CL_DEVICE_TYPE_ALL, 64, d, &nd) != CL_SUCCESS)
+            continue;
+        if (device < seen + (int)nd)
+            dev = d[device - seen];
+        seen += (int)nd;
+    }
+    if (!dev)
+        return 0;
+    cl_ulong mem = 0;
+    clGetDeviceInfo(dev, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL);
+    size_t bytes = (size_t)256 << 20;
+    if (mem / 8 < bytes)
+        bytes = (size_t)(mem / 8);
+    cl_int e;
+    cl_context ctx = clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
+    if (e != CL_SUCCESS)
+        return 0;
+    cl_command_queue q = clCreateCommandQueue(ctx, dev, 0, &e);
+    cl_mem a = clCreateBuffer(ctx, CL_MEM_READ_WRITE, bytes, NULL, &e), b = clCreateBuffer(ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
+    double best = 0;
+    unsigned char zero = 0;
+    if (q && a && b && clEnqueueFillBuffer(q, a, &zero, 1, 0, bytes, 0, NULL, NULL) == CL_SUCCESS &&
+        clEnqueueCopyBuffer(q, a, b, 0, 0, bytes, 0, NULL, NULL) == CL_SUCCESS && clFinish(q) == CL_SUCCESS)
+        for (int r = 0; r < 5; r++) {
+            double t0 = now();
+            if (clEnqueueCopyBuffer(q, a, b, 0, 0, bytes, 0, NULL, NULL) != CL_SUCCESS || clFinish(q) != CL_SUCCESS)
+                break;
+            double g = 2.0 * (double)bytes / (now() - t0) / 1e9;
+            best = g > best ? g : best;
+        }
+    if (a)
+        clReleaseMemObject(a);
+    if (b)
+        clReleaseMemObject(b);
+    if (q)
+        clReleaseCommandQueue(q);
+    clReleaseContext(ctx);
+    return best;
+}
+
 typedef struct {
     long n;
     double rate, bytes_per_particle, contacts;
@@ -483,9 +538,18 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     r->hash = state_hash(s);
     dem_kernel_times(s, &names, &secs, &cnt);
     size_t len = 0;
+    char seq[2048] = ""; /* the kernels of every step: each launched once per step, so its bytes / its time is a rate */
+    dem_kernel_sequence(s, 0, seq, sizeof seq);
     for (int k = 0; k < cnt && k < 64 && profile; k++) {
         double us = 1e6 * (secs[k] - before[k]) / steps;
-        if (us >= 1)
+        size_t ln = strlen(names[k]);
+        int each_step = 0;
+        for (const char *at = strstr(seq, names[k]); at && !each_step; at = strstr(at + 1, names[k]))
+            each_step = (at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' ');
+        if (us >= 1 && each_step)
+            len += (size_t)snprintf(r->kernels + len, sizeof r->kernels - len, "%s%s %.0f (%.1f GB/s)", len ? ", " : "",
+                                    names[k], us, dem_kernel_bytes(s, k) / (us * 1e-6) / 1e9);
+        else if (us >= 1)
             len += (size_t)snprintf(r->kernels + len, sizeof r->kernels - len, "%s%s %.0f", len ? ", " : "", names[k], us);
         if (len >= sizeof r->kernels)
             break;
@@ -510,13 +574,18 @@ static void bed_table(int quick)
     FILE *js = fopen(json, "w");
     char dev[256] = "";
     dem_device_name(0, dev, sizeof dev);
+    double gbs = copy_gbs(0);
     printf("\n### Throughput on a poured polydisperse bed (issue 14)\n\n%s: %ld spheres as poured (random order), cut or "
            "tiled; Hertz-Mindlin with friction, damping, gravity, 5 walls; dt 2e-6 s. OpenCL device 0: %s. The state "
-           "after the timed steps is hashed on each backend.\n\n"
+           "after the timed steps is hashed on each backend. The device copies %.1f GB/s (clEnqueueCopyBuffer, bytes read "
+           "+ written); beside each kernel launched every step, the bytes of the buffers it is given over its time: the "
+           "rate if it moved each of them once (gathers that hit the cache make it higher, rows and records it skips "
+           "lower).\n\n"
            "| n | order | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | state hash = reference | us per step by kernel |\n"
-           "|---|---|---|---|---|---|---|---|---|\n", path, b.n, dev);
+           "|---|---|---|---|---|---|---|---|---|\n", path, b.n, dev, gbs);
     if (js)
-        fprintf(js, "{\n  \"bench\": \"poured bed\", \"bed\": \"%s\", \"device\": \"%s\",\n  \"rows\": [", path, dev);
+        fprintf(js, "{\n  \"bench\": \"poured bed\", \"bed\": \"%s\", \"device\": \"%s\", \"copy_gb_per_s\": %.2f,\n  \"rows\": [",
+                path, dev, gbs);
     double lnN[8], lnT[8];
     int nfit = 0, first = 1;
     for (int z = 0; z < nsizes; z++)

@@ -997,6 +997,11 @@ int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, in
 }
 
 
+double dem_kernel_bytes(const dem_sim *s, int k)
+{
+    return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
+}
+
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 {
     const unsigned char *q = rebuild ? s->seq_rebuild : s->seq_step;

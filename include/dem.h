@@ -402,6 +402,10 @@ typedef struct {
 int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs);
 /* Per-kernel seconds when the environment has DEM_PROFILE set (OpenCL only); count 0 otherwise. */
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count);
+/* The bytes of every buffer kernel k (an index of dem_kernel_times' names) is given, as now allocated: what one launch
+ * would move if it touched each byte once (make bench divides it by the kernel's time: a bandwidth to set against
+ * the device's copy rate). */
+double dem_kernel_bytes(const dem_sim *s, int k);
 /* The kernels the last step launched, in order, without a rebuild's (rebuild = 0), or those of the last neighbour
  * rebuild (rebuild = 1), as "name, name, N x (name, name), ..." (an iteration's pair once, with its count).
  * Returns the number of launches (0 before the first step). */
