@@ -11,7 +11,7 @@
  * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
  * each membrane model costs in seed 001's triaxial test (membrane_cost_table, the paper's Table 4). */
 #include "dem.h"
-#include <CL/cl.h>
+#include "cl_util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -436,29 +436,15 @@ static unsigned long long state_hash(dem_sim *s)
 }
 
 /* The device's copy rate [GB/s, bytes read + written]: clEnqueueCopyBuffer of 256 MiB (or an eighth of the device's
- * memory), best of 5 after a warm-up. Devices in dem's order (platforms, then their devices). 0 when it fails. */
+ * memory), best of 5 after a warm-up. The device as dem numbers it (cl_device_get). 0 when it fails. */
 static double copy_gbs(int device)
 {
-    cl_uint np = 0;
-    if (clGetPlatformIDs(0, NULL, &np) != CL_SUCCESS || np == 0)
+    cl_device_info_t info;
+    char err[512];
+    if (cl_device_get(device, &info, err, sizeof err))
         return 0;
-    cl_platform_id pl[16];
-    clGetPlatformIDs(np < 16 ? np : 16, pl, NULL);
-    cl_device_id dev = NULL;
-    int seen = 0;
-    for (cl_uint k = 0; k < np && k < 16 && !dev; k++) {
-        cl_uint nd = 0;
-        cl_device_id d[64];
-        if (clGetDeviceIDs(pl[k], CL_DEVICE_TYPE_ALL, 64, d, &nd) != CL_SUCCESS)
-            continue;
-        if (device < seen + (int)nd)
-            dev = d[device - seen];
-        seen += (int)nd;
-    }
-    if (!dev)
-        return 0;
-    cl_ulong mem = 0;
-    clGetDeviceInfo(dev, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL);
+    cl_device_id dev = info.device;
+    cl_ulong mem = info.global_mem;
     size_t bytes = (size_t)256 << 20;
     if (mem / 8 < bytes)
         bytes = (size_t)(mem / 8);

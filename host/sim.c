@@ -789,6 +789,7 @@ static int stage_wall_sums(dem_sim *s)
 {
     return s->nwalls && s->wall_sums_due && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
 }
+/* whether any wall has a servo stage (walls are fixed once started: dem_start asks once) */
 static int has_servo(const dem_sim *s)
 {
     for (int k = 0; k < s->nwalls; k++)
@@ -847,6 +848,7 @@ int dem_start(dem_sim *s, const dem_config *c)
         return be_fail(s);
     s->force_step = s->step;
     s->wall_sums_due = 1;
+    s->servo_walls = has_servo(s);
     if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
     return 0;
@@ -882,7 +884,7 @@ int dem_step(dem_sim *s, long nsteps)
         if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
             return e;
         s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
-        s->wall_sums_due = k == nsteps - 1 || has_servo(s);
+        s->wall_sums_due = k == nsteps - 1 || s->servo_walls;
         if ((e = forces(s)))
             return e;
         if (dem_stage_kick(s->ops, s->be))

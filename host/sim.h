@@ -46,6 +46,7 @@ struct dem_sim {
     /* run state */
     int started;
     int wall_sums_due;                 /* this step's force stages sum the force each wall received (dem_step) */
+    int servo_walls;                   /* a wall has a servo stage: the sums are due every step (dem_start) */
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
