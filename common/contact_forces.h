@@ -97,15 +97,15 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 
 /* Pass 1, contact_pairs: one work item per listed pair p (the flat list of neighbor.h's pair_index: owned pairs in
  * the lower ids' row order), evaluated once by its lower-id particle i in canonical orientation. It keeps the pair's
- * history (hist[3 p]) and touching flag in i's slot (the flag is copied to the partner's slot, nbr_mirror, so that
- * pass 2 reads flags from each particle's own row) and leaves force on i, n x f_t and the overlap in record p. Each flag byte and
+ * history (hist[3 p]) and touching flag in i's slot (the flag is copied to the partner's slot, pair_mirror[p], so
+ * that pass 2 reads flags from each particle's own row) and leaves force on i, n x f_t and the overlap in record p. Each flag byte and
  * record has exactly one writer. A work item per pair, not per particle, gives every item the same work: a compiler
  * for SIMD lanes (PoCL) can run neighbouring pairs side by side. */
 DEM_ITEM(contact_pairs)
 {
     int slot = pair_slot[i];
     int a = slot / maxn, j = nbr_list[slot];
-    int touching = touch[slot], m = nbr_mirror[slot];
+    int touching = touch[slot], m = pair_mirror[i];
     if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
         return;
     real da = (real)0, db = (real)0;

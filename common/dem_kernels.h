@@ -73,12 +73,13 @@
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
     A(CIN, dem_byte, old_touch, TOUCH)                                                                               \
-    A(NOUT, dem_byte, touch, TOUCH) A(NOUT, int, mirror, MIRROR) A(BOUT, int, flags, FLAGS)                          \
+    A(NOUT, dem_byte, touch, TOUCH)                                                                                   \
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_nbr_carry n
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)             \
-    A(CIN, int, nbr_mirror, MIRROR) A(BIN, int, in_count, IN_COUNT) A(BIN, int, in_start, IN_START)                  \
+    A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_count, IN_COUNT)                \
+    A(BIN, int, in_start, IN_START)                                                                                  \
     A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)              \
     A(CIN, dem_byte, touch, TOUCH) A(I, int, old_maxn, MAXN_NEW) A(NIN, int, old_count, COUNT)                       \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
@@ -90,10 +91,10 @@
 #define DEM_ARGS_contact_head(F, A)                                                                                  \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)            \
     A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)                \
-    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
-    A(CIN, int, nbr_mirror, MIRROR)
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)
 #define DEM_ARGS_contact_pairs(F, A)                                                                                 \
     DEM_ARGS_contact_head(F, A) A(I, int, npairs, NPAIRS) A(BIN, int, pair_slot, PAIR_SLOT)                          \
+    A(BIN, int, pair_mirror, PAIR_MIRROR)                                                                            \
     A(BOUT, real, hist, PAIR_HIST) A(COUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
@@ -157,7 +158,8 @@
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
     A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT)  \
-    A(CIN, int, nbr_list, LIST) A(CIN, int, nbr_mirror, MIRROR) A(I, int, nwalls, NWALLS)                            \
+    A(CIN, int, nbr_list, LIST) A(BIN, int, own_start, OWN_START) A(BIN, int, pair_mirror, PAIR_MIRROR)             \
+    A(I, int, nwalls, NWALLS)                                                                                        \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                   \
     A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
     A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE)

@@ -36,6 +36,7 @@
 #define DEM_MC_STRAIN_H
 #include "dem_kernels.h"
 #include "contacts.h"
+#include "sorted_row.h"
 #include "contact_geometry.h"
 #include "hertz_mindlin.h"
 
@@ -219,7 +220,7 @@ DEM_ITEM(mc_strain_update)
         contact_ref r = contact_at(i, c, cnt, maxn, nwalls, nbr_list);
         real f = (real)0;
         if (r.kind == CONTACT_OWNED) {
-            int slot = r.slot, j = r.partner, m = nbr_mirror[slot];
+            int slot = r.slot, j = r.partner, m = pair_mirror[row_pair_number(own_start[i], own_start[i + 1], cnt, c)];
             if (m < 0)
                 continue;
             pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);

@@ -5,8 +5,7 @@
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
  * A new row takes the tangential history, touching flag and MC-strain force of the same partner from the old row
- * (binary search), or zero, and records for each slot the slot of the same pair in the partner's row (mirror; see
- * contact_forces.h).
+ * (binary search), or zero.
  * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
  * DEM_EFFECT_SPRINGS two vertices of one membrane are not partners (PM_APART: their spheres may overlap).
  */
@@ -76,13 +75,6 @@ DEM_ITEM(nbr_carry)
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
     for (int k = 0; k < nbr_count[i]; k++) {
         int j = nbr_list[i * maxn + k];
-        /* mirror: the slot of the same pair in the partner's row (the slot of i in row j) */
-        int m = row_find(nbr_list + j * maxn, nbr_count[j], i);
-        if (m >= 0)
-            m += j * maxn;
-        mirror[i * maxn + k] = m;
-        if (m < 0)
-            DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
         int found = row_find(orow, on, j);
         int t = found >= 0 ? old_touch[i * old_maxn + found] : 0;
         touch[i * maxn + k] = (unsigned char)t; /* the history follows in pair_index, once the pairs are numbered */
@@ -92,8 +84,9 @@ DEM_ITEM(nbr_carry)
 }
 /* The flat pair list of the committed rows (contact_forces.h): pair p = own_start[i] + c - in_count[i] is the owned
  * pair in particle i's row slot c (partner j > i); pair_slot[p] names that slot. The partner j's incoming slot of
- * the same pair (row slot k < in_count[j], found through nbr_mirror) gets in_pair[in_start[j] + k] = p. Each entry
- * has one writer: p's owner writes both.
+ * the same pair (row slot k < in_count[j]: the slot of i in row j, found by binary search) is pair_mirror[p], and
+ * in_pair[in_start[j] + k] = p. Each entry has one writer: p's owner writes all three. A pair whose partner row
+ * lacks it (rows are symmetric: a bug) gets pair_mirror -1 and raises FLAG_ASYMMETRIC.
  * The tangential history is kept per pair (hist[3 p]): a touching pair takes it from its number in the old rows
  * (old_own_start[i] + its old slot - the old row's partners below i), a new one starts from zero. Per pair, not per
  * row slot, it is a dense array read in order by contact_pairs, and a third of the memory. */
@@ -102,11 +95,14 @@ DEM_ITEM(pair_index)
     int cnt = nbr_count[i], lower = in_count[i];
     for (int c = lower; c < cnt; c++) {
         int slot = i * maxn + c, p = row_pair_number(own_start[i], own_start[i + 1], cnt, c);
-        int m = nbr_mirror[slot];
         int j = nbr_list[slot];
+        int m = row_find(nbr_list + j * maxn, nbr_count[j], i);
         pair_slot[p] = slot;
+        pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
         if (m >= 0)
-            in_pair[in_start[j] + (m - j * maxn)] = p;
+            in_pair[in_start[j] + m] = p;
+        else
+            DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
         if (fx & DEM_EFFECT_FRICTION) { /* no history exists without friction */
             vec3 h = v3_zero();
             if (touch[slot]) { /* carried by nbr_carry: the pair is in the old row too */

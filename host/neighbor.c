@@ -43,7 +43,7 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total, 1) ||
         o->read(b, own, (size_t)c->n * sizeof(int), &owned, sizeof owned, 1))
         return 1;
-    if (owned != total) /* every pair is owned by one row and mirrored in one other (nbr_carry checks symmetry) */
+    if (owned != total) /* every pair is owned by one row and mirrored in one other (pair_index checks symmetry) */
         return dem_core_fail(c, "neighbour rows list %d owned and %d incoming pairs (a library bug; please report)",
                              owned, total);
     if ((size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0) { /* rewritten every step before being read */
@@ -51,6 +51,7 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_PAIR_SLOT, dem_buffer_bytes(c, BUF_PAIR_SLOT), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_IN_PAIR, dem_buffer_bytes(c, BUF_IN_PAIR), NULL) ||
+            o->alloc(b, TABLE_ONE, 0, BUF_PAIR_MIRROR, dem_buffer_bytes(c, BUF_PAIR_MIRROR), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST, dem_buffer_bytes(c, BUF_PAIR_HIST), NULL))
             return 1;
     }

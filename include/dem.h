@@ -113,7 +113,7 @@ typedef enum {
     DEM_FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
     DEM_FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
     DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
-    DEM_FIELD_PAIR_RECORDS,         /* real[8*pairs]: each touching pair's force on its lower id (common/dem_layout.h
+    DEM_FIELD_PAIR_RECORDS,         /* real[7*pairs]: each touching pair's force on its lower id (common/dem_layout.h
                                        PR_*), one record per listed pair in the lower ids' row order (dem_contacts_get
                                        reads them) */
     DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming pairs (partners with lower ids) start
