@@ -269,7 +269,8 @@ static int phase_configure(run_ctx *c)
 static int phase_start(run_ctx *c)
 {
     const run_opts *o = c->o;
-    const scene_run *run = &c->run;
+    scene_run *run = &c->run;
+    run->cfg.contacts = (run->fields & OUT_CONTACTS) != 0; /* frames carry the contact network */
     int se = dem_start(c->s, &run->cfg);
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));

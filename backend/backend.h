@@ -175,7 +175,8 @@ int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, int count, int star
 int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int maxn); /* capacity of the rows being built */
 int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry history, swap, offsets, x_build */
-int dem_stage_contact_forces(const dem_backend_ops *o, dem_backend *b); /* particle and wall contacts */
+int dem_stage_contact_pairs(const dem_backend_ops *o, dem_backend *b); /* each listed pair once */
+int dem_stage_contact_sums(const dem_backend_ops *o, dem_backend *b);  /* per-particle sums, walls included */
 int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b);    /* the force each wall received */
 int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b);   /* MC-stress pass 1 */
 int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_FIELD_STRESS from the positions */

@@ -111,8 +111,12 @@
 
 /* ---- wall_forces.h ---- */
 #define DEM_ARGS_wall_reduce_block(F, A)                                                                             \
-    F(I, int, n, N) A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, wall_pf, WALL_PF)         \
-    A(BIN, unsigned, wall_mask, WALL_MASK) A(BOUT, real, partial, PARTIAL)
+    F(I, int, n, N) A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(I, int, nmat, NMAT) A(R, real, dt, DT) \
+    A(BIN, real, x, X) A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS)                            \
+    A(BIN, real, invmass, INVMASS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BIN, int, wall_int, WALL_INT) \
+    A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
+    A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
+    A(BIN, unsigned, ride, RIDE) A(BOUT, real, partial, PARTIAL)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \

@@ -15,11 +15,58 @@
 #include "particle_stress.h"
 #include "mc_strain.h"
 
+/* Particle i against wall k: the law's result when they touch (active). old_touch: whether they touched in the
+ * previous step (wall_mask), i.e. whether a tangential history is stored. A pure function of the state before the
+ * step's contacts are committed, so that wall_reduce_block, run before contact_forces, computes exactly the forces
+ * contact_forces then applies (the reduction keeps no per-particle copy of them). */
+typedef struct {
+    int active;
+    vec3 n;   /* unit normal from the wall to the particle centre */
+    real arm; /* lever arm of the contact point, r_i - delta [m] */
+    hm_result r;
+} wall_contact;
+
+DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+                                          DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri,
+                                          real invm, int mi, DEM_CONST_GLOBAL real *pairmat, int nmat,
+                                          DEM_CONST_GLOBAL real *wall_hist, real dt, int old_touch,
+                                          DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
+                                          DEM_CONST_GLOBAL real *mc_wall_disp, DEM_CONST_GLOBAL unsigned *ride)
+{
+    wall_contact c;
+    DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
+    int slot = i * nwalls + k;
+    wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
+    c.active = g.active;
+    c.n = g.n;
+    c.arm = ri - g.delta;
+    if (!g.active)
+        return c;
+    real mstar = hm_effective_mass(invm, (real)0);
+    vec3 vc = vi, h = v3_zero();
+    if (fx & DEM_EFFECT_FRICTION) {
+        vc = v3_add(vi, v3_cross(wi, v3_scale(g.n, -c.arm)));
+        if (old_touch)
+            h = v3_load(wall_hist, slot);
+    }
+    vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
+    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
+    real extra = (real)0, law_delta = g.delta;
+    if (fx & DEM_EFFECT_MC_STRAIN)
+        law_delta = mc_strain_overlap(g.delta, mc_wall_disp[slot], (real)0);
+    real srd = dem_sqrt(ri * law_delta);
+    if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is g.delta) */
+        extra = mc_stress_wall(fx, pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
+                               hm_elastic_srd(pm[PM_ESTAR], srd, g.delta));
+    c.r = hm_contact(fx, g.n, law_delta, srd, mstar, vrel, pm, dt, h, extra);
+    return c;
+}
+
 /* One particle against every wall, added to its force and torque after all its particle contacts (called by
  * contact_forces_item, so the particle's data are read and its sums written once per step). Keeps each wall's
- * tangential history and stores the force on the particle from each touching wall for the reduction.
- * wall_mask[i] has bit k set when particle i touches wall k: only those entries of wall_pf are written and read,
- * and the history of wall k is only touched when bit k is set now or was set in the previous step. */
+ * tangential history; wall_mask[i] gets bit k set when particle i touches wall k (the history of wall k is only
+ * touched when bit k is set now or was set in the previous step). With DEM_KEEP_WALL_FORCES (a run that reads the
+ * contact network) the force from each touching wall is also stored, at wall_pf[k * n + i]. */
 DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                   DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri, real invm,
                                   int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
@@ -30,39 +77,22 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
 {
     unsigned old_mask = wall_mask[i], mask = 0;
     for (int k = 0; k < nwalls; k++) {
-        DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
-        int slot = i * nwalls + k;
-        wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
-        if (g.active) {
-            real arm = ri - g.delta;
-            real mstar = hm_effective_mass(invm, (real)0);
-            vec3 vc = vi, h = v3_zero();
-            if (fx & DEM_EFFECT_FRICTION) {
-                vc = v3_add(vi, v3_cross(wi, v3_scale(g.n, -arm)));
-                if ((old_mask >> k) & 1u)
-                    h = v3_load(wall_hist, slot);
-            }
-            vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
-            DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
-            real extra = (real)0, law_delta = g.delta;
+        int slot = i * nwalls + k, old_touch = (old_mask >> k) & 1u;
+        wall_contact c = wall_contact_eval(fx, i, k, nwalls, wall_int, wall_real, xi, vi, wi, ri, invm, mi, pairmat,
+                                           nmat, wall_hist, dt, old_touch, trace, invvol, mc_wall_disp, ride);
+        if (c.active) {
             if (fx & DEM_EFFECT_MC_STRAIN)
-                law_delta = mc_strain_overlap(g.delta, mc_wall_disp[slot], (real)0);
-            real srd = dem_sqrt(ri * law_delta);
-            if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is g.delta) */
-                extra = mc_stress_wall(fx, pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
-                                       hm_elastic_srd(pm[PM_ESTAR], srd, g.delta));
-            hm_result r = hm_contact(fx, g.n, law_delta, srd, mstar, vrel, pm, dt, h, extra);
-            if (fx & DEM_EFFECT_MC_STRAIN)
-                mc_wall_fn[slot] = r.fel;
-            v3_store(wall_pf, k * n + i, r.force);
-            *fi = v3_add(*fi, r.force);
+                mc_wall_fn[slot] = c.r.fel;
+            if (fx & DEM_KEEP_WALL_FORCES)
+                v3_store(wall_pf, k * n + i, c.r.force);
+            *fi = v3_add(*fi, c.r.force);
             if (fx & DEM_EFFECT_FRICTION) {
-                v3_store(wall_hist, slot, r.hist);
-                *ti = v3_sub(*ti, v3_scale(v3_cross(g.n, r.ft), arm));
+                v3_store(wall_hist, slot, c.r.hist);
+                *ti = v3_sub(*ti, v3_scale(v3_cross(c.n, c.r.ft), c.arm));
             }
             mask |= 1u << k;
         } else {
-            if ((fx & DEM_EFFECT_FRICTION) && ((old_mask >> k) & 1u))
+            if ((fx & DEM_EFFECT_FRICTION) && old_touch)
                 v3_store(wall_hist, slot, v3_zero());
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = (real)0;
@@ -71,20 +101,23 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     wall_mask[i] = mask;
 }
 
-/* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK). */
-DEM_INLINE void wall_reduce_block_at(int b, int k, int n, int nblocks, DEM_CONST_GLOBAL real *wall_pf,
-                                     DEM_CONST_GLOBAL unsigned *wall_mask, DEM_GLOBAL real *partial)
+/* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK): each
+ * particle's force from the wall evaluated as contact_forces is about to (this kernel runs between contact_pairs
+ * and contact_forces, on the same state), so nothing per particle and wall is stored for it. */
+DEM_ITEM(wall_reduce_block)
 {
+    int b = i % nblocks, k = i / nblocks;
     vec3 s = v3_zero();
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
-        if ((wall_mask[j] >> k) & 1u) /* the wall receives minus the force on the particle */
-            s = v3_sub(s, v3_load(wall_pf, k * n + j));
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) {
+        wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
+                                           v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist, dt,
+                                           (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);
+        if (c.active) /* the wall receives minus the force on the particle */
+            s = v3_sub(s, c.r.force);
+    }
     v3_store(partial, k * nblocks + b, s);
 }
-
-/* item i = block i % nblocks of wall i / nblocks */
-DEM_ITEM(wall_reduce_block) { wall_reduce_block_at(i % nblocks, i / nblocks, n, nblocks, wall_pf, wall_mask, partial); }
 
 DEM_ITEM(wall_reduce_final)
 {

@@ -757,7 +757,18 @@ static int mc_strain(dem_sim *s)
 /* The force stages of a step, in order, each run only when the run has its effect (0: always) and, for the walls'
  * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through be_fail). */
 static int stage_stress_trace(dem_sim *s) { return dem_stage_stress_trace(s->ops, s->be) ? be_fail(s) : 0; }
-static int stage_contacts(dem_sim *s) { return dem_stage_contact_forces(s->ops, s->be) ? be_fail(s) : 0; }
+/* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
+ * dem_get_field and the output see it after any call) and every step while a servo stage may read it. The sum
+ * evaluates the wall contacts itself, between the pair pass and the per-particle sums, which then apply exactly
+ * those forces (common/wall_forces.h): no per-particle copy of the wall forces is kept for it. */
+static int stage_contacts(dem_sim *s)
+{
+    int sums = (s->effects & DEM_EFFECT_WALLS) && s->nwalls && s->wall_sums_due;
+    return dem_stage_contact_pairs(s->ops, s->be) || (sums && dem_stage_wall_reduce(s->ops, s->be)) ||
+                   dem_stage_contact_sums(s->ops, s->be)
+               ? be_fail(s)
+               : 0;
+}
 static int stage_springs(dem_sim *s)
 {
     return s->nsprings && dem_stage_springs(s->ops, s->be) ? be_fail(s) : 0;
@@ -781,14 +792,6 @@ static int stage_patches(dem_sim *s)
     return s->npatch && (dem_stage_patch_forces(s->ops, s->be) || dem_stage_patch_gather(s->ops, s->be)) ? be_fail(s)
                                                                                                             : 0;
 }
-/* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
- * dem_get_field and the output see it after any call) and every step while a servo stage may read it. The sums of
- * the other steps were never observable; skipping them saves a pass over every particle's wall forces (about 3 % of
- * a step of 1e5 particles in a box). */
-static int stage_wall_sums(dem_sim *s)
-{
-    return s->nwalls && s->wall_sums_due && dem_stage_wall_reduce(s->ops, s->be) ? be_fail(s) : 0;
-}
 /* whether any wall has a servo stage (walls are fixed once started: dem_start asks once) */
 static int has_servo(const dem_sim *s)
 {
@@ -804,13 +807,12 @@ static const struct {
 } force_stages[] = {
     {DEM_EFFECT_MC_STRESS, stage_stress_trace}, /* pass 1 of MC-stress: the traces the contacts read */
     {DEM_EFFECT_MC_STRAIN, mc_strain},          /* induced displacements (lagged or iterated forces) */
-    {0, stage_contacts},                        /* pairs once, then per-particle sums with the walls */
+    {0, stage_contacts},                        /* pairs once, [the walls' sums,] per-particle sums with the walls */
     {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces into the contribution channel (springs.h) */
     {DEM_EFFECT_PRESSURE, stage_pressure},      /* triangle loads into it (pressure.h) */
     {DEM_EFFECT_BENDING, stage_bending},        /* hinge forces into it (bending.h) */
     {DEM_EFFECT_CHANNEL, stage_gather},         /* each particle's records added in order */
     {DEM_EFFECT_PATCHES, stage_patches},        /* spheres on patches, then the vertices' sums (patch_contacts.h) */
-    {DEM_EFFECT_WALLS, stage_wall_sums},        /* the force each wall received */
 };
 
 static int forces(dem_sim *s)

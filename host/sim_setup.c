@@ -276,6 +276,8 @@ static void pack_effects(dem_sim *s, dem_setup *u)
     int reach = (s->effects & DEM_EFFECT_MC_STRAIN) && s->mc_reach > 1; /* compiled in only when it can act */
     if (reach)
         u->effects |= DEM_MC_REACH;
+    if (s->cfg.contacts && s->nwalls > 0 && (s->effects & DEM_EFFECT_WALLS))
+        u->effects |= DEM_KEEP_WALL_FORCES;
     u->n = s->n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;

@@ -87,6 +87,9 @@ typedef struct {
     double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum */
     int force_dt;        /* 1: accept a time step above the stability bound */
     const char *source_dir; /* folder with kernels/ and common/; NULL = $DEM_SOURCE_DIR or the build's */
+    int contacts;        /* 1: the run reads the contact network (dem_contacts_get), so the device keeps the force from
+                            every wall on every particle (3 reals per particle and wall); 0 (default): it does not,
+                            and dem_contacts_get refuses a run with walls */
 } dem_config;
 
 /* Fields that can be read back (dem_get_raw, dem_get_field). */

@@ -71,6 +71,11 @@ enum {
  * (dem_set_mc_strain_reach); compiled in with the effects like the bits above. Off: only geometric overlaps. */
 enum { DEM_MC_REACH = 2048 };
 
+/* A run that reads the contact network (dem_config.contacts, dem_contacts_get) keeps the force from every wall on
+ * every particle (WALL_PF: 3 reals per particle and wall); other runs do not hold that buffer (the walls' sums
+ * evaluate the wall contacts themselves: common/wall_forces.h). Set by the host, compiled in like the bits above. */
+enum { DEM_KEEP_WALL_FORCES = 262144 };
+
 #ifndef DEM_EFFECTS
 #define DEM_EFFECTS DEM_EFFECT_CLASSICAL
 #endif

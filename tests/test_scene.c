@@ -597,8 +597,8 @@ static void test_output_and_xdmf(void **st)
     /* the run reports its effects and its kernels, and shows progress */
     assert_non_null(strstr(err, "effects hertz+damping+friction+gravity+walls"));
     /* the kernels as the library launched them (dem_kernel_sequence), walls included */
-    assert_non_null(strstr(err, "kernels of the last step: integrate_kick_drift, contact_pairs, contact_forces, "
-                                "wall_reduce_block, wall_reduce_final, integrate_kick\n"));
+    assert_non_null(strstr(err, "kernels of the last step: integrate_kick_drift, contact_pairs, wall_reduce_block, "
+                                "wall_reduce_final, contact_forces, integrate_kick\n"));
     assert_non_null(strstr(err, "at each neighbour rebuild"));
     assert_non_null(strstr(err, "bin_index, scan_block_sum, scan_block_sums, scan_apply, bin_scatter, bin_sort, "
                                 "nbr_build, nbr_carry, scan_block_sum, scan_block_sums, scan_apply, scan_block_sum, "
