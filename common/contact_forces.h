@@ -7,7 +7,7 @@
  * its walls. The canonical order of every particle's sum is therefore: partners j > i ascending, then partners j < i
  * ascending, then walls by index; f_ji = -f_ij bit for bit.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
- * touch[slot] says whether the pair touches (both slots of a pair carry it); the 24-byte history is read only when
+ * touch[p] says whether pair p touches (one byte per pair, like its history); the 24-byte history is read only when
  * it touched in the previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair
  * that does not touch.
  *
@@ -97,19 +97,19 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 
 /* Pass 1, contact_pairs: one work item per listed pair p (the flat list of neighbor.h's pair_index: owned pairs in
  * the lower ids' row order), evaluated once by its lower-id particle i in canonical orientation. It keeps the pair's
- * history (hist[3 p]) and touching flag in i's slot (the flag is copied to the partner's slot, pair_mirror[p], so
- * that pass 2 reads flags from each particle's own row) and leaves force on i, n x f_t and the overlap in record p. Each flag byte and
- * record has exactly one writer. A work item per pair, not per particle, gives every item the same work: a compiler
+ * history (hist[3 p]) and touching flag (touch[p]) and leaves force on i, n x f_t and the overlap in record p. Each
+ * flag byte and record has exactly one writer. A work item per pair, not per particle, gives every item the same work: a compiler
  * for SIMD lanes (PoCL) can run neighbouring pairs side by side. */
 DEM_ITEM(contact_pairs)
 {
     int slot = pair_slot[i];
     int a = slot / maxn, j = nbr_list[slot];
-    int touching = touch[slot], m = pair_mirror[i];
-    if (m < 0) /* cannot happen (rows are symmetric; nbr_carry reports it): never write out of bounds */
-        return;
+    int touching = touch[i], m = -1;
     real da = (real)0, db = (real)0;
     if (fx & DEM_EFFECT_MC_STRAIN) {
+        m = pair_mirror[i];
+        if (m < 0) /* cannot happen (rows are symmetric; pair_index reports it): never write out of bounds */
+            return;
         da = mc_disp[slot];
         db = mc_disp[m];
     }
@@ -125,17 +125,14 @@ DEM_ITEM(contact_pairs)
         if (touching) { /* the contact ended: so does its history */
             if (fx & DEM_EFFECT_FRICTION)
                 v3_store(hist, i, v3_zero());
-            touch[slot] = 0;
-            touch[m] = 0;
+            touch[i] = 0;
         }
         return;
     }
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(hist, i, pc.hist);
-    if (!touching) {
-        touch[slot] = 1;
-        touch[m] = 1;
-    }
+    if (!touching)
+        touch[i] = 1;
     DEM_GLOBAL real *pr = pair + i * PR_STRIDE;
     pr[PR_FX] = pc.force.x;
     pr[PR_FY] = pc.force.y;
@@ -158,17 +155,19 @@ DEM_ITEM(contact_forces)
     int cnt = nbr_count[i];
     int first = own_start[i], lower = cnt - (own_start[i + 1] - first);
     for (int k = lower; k < cnt; k++) { /* owned: partners j > i */
-        if (!touch[i * maxn + k])
+        int p = first + k - lower;
+        if (!touch[p])
             continue;
-        DEM_CONST_GLOBAL real *pr = pair + (first + k - lower) * PR_STRIDE;
+        DEM_CONST_GLOBAL real *pr = pair + p * PR_STRIDE;
         fi = v3_add(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
     }
     for (int k = 0; k < lower; k++) { /* mirrored: partners j < i */
-        if (!touch[i * maxn + k])
+        int p = in_pair[in_start[i] + k];
+        if (!touch[p])
             continue;
-        DEM_CONST_GLOBAL real *pr = pair + in_pair[in_start[i] + k] * PR_STRIDE;
+        DEM_CONST_GLOBAL real *pr = pair + p * PR_STRIDE;
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));

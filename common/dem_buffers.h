@@ -57,7 +57,9 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(OWN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE)                                    \
     ENTRY(PAIR_SLOT, INT, PAIRS, 0, -1, NONE)                                                                            \
     ENTRY(IN_PAIR, INT, PAIRS, 0, DEM_FIELD_IN_PAIR, NONE)                                                               \
-    ENTRY(PAIR_MIRROR, INT, PAIRS, 0, -1, NONE)                                                                          \
+    ENTRY(PAIR_MIRROR, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE)                                                       \
+    ENTRY(TOUCH, BYTE, PAIRS, 0, DEM_FIELD_TOUCH, NONE)                                                                  \
+    ENTRY(TOUCH_OLD, BYTE, PAIRS, 0, -1, NONE)                                                                           \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE)                                                \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE)                                         \
     ENTRY(PAIR_HIST_OLD, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, -1, NONE)                                                 \
@@ -97,7 +99,6 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 #define DEM_ROWS(ENTRY)                                                                                                  \
     ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
     ENTRY(LIST, INT, N * MAXN, 0, DEM_FIELD_NBR_LIST)                                                                        \
-    ENTRY(TOUCH, BYTE, N * MAXN, 0, DEM_FIELD_TOUCH)                                                                         \
     ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)                                                   \
     ENTRY(MC_DISP, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP)
 

@@ -72,8 +72,7 @@
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
-    A(CIN, dem_byte, old_touch, TOUCH)                                                                               \
-    A(NOUT, dem_byte, touch, TOUCH)                                                                                   \
+    A(BIN, dem_byte, old_touch, TOUCH_OLD) A(BIN, int, old_own_start, OWN_START_OLD)                                 \
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_nbr_carry n
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
@@ -81,7 +80,8 @@
     A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_count, IN_COUNT)                \
     A(BIN, int, in_start, IN_START)                                                                                  \
     A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)              \
-    A(CIN, dem_byte, touch, TOUCH) A(I, int, old_maxn, MAXN_NEW) A(NIN, int, old_count, COUNT)                       \
+    A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(I, int, old_maxn, MAXN_NEW)            \
+    A(NIN, int, old_count, COUNT)                                                                                    \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
     A(BOUT, real, hist, PAIR_HIST)
 #define DEM_ITEMS_pair_index n
@@ -95,12 +95,12 @@
 #define DEM_ARGS_contact_pairs(F, A)                                                                                 \
     DEM_ARGS_contact_head(F, A) A(I, int, npairs, NPAIRS) A(BIN, int, pair_slot, PAIR_SLOT)                          \
     A(BIN, int, pair_mirror, PAIR_MIRROR)                                                                            \
-    A(BOUT, real, hist, PAIR_HIST) A(COUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
+    A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
-    DEM_ARGS_contact_head(F, A) A(CIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
+    DEM_ARGS_contact_head(F, A) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
     A(BIN, int, in_pair, IN_PAIR) A(BIN, int, own_start, OWN_START)                                                  \
     A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)     \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
@@ -116,7 +116,7 @@
     A(BIN, real, invmass, INVMASS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BIN, int, wall_int, WALL_INT) \
     A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
     A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
-    A(BIN, unsigned, ride, RIDE) A(BOUT, real, partial, PARTIAL)
+    A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \

@@ -4,8 +4,8 @@
  * order of contact_forces.h), at nbr_list[i*maxn ...]. The test is symmetric in i and j bit for bit (IEEE + and *
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
- * A new row takes the tangential history, touching flag and MC-strain force of the same partner from the old row
- * (binary search), or zero.
+ * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's
+ * touching flag and tangential history follow in pair_index, once the new pairs are numbered.
  * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
  * DEM_EFFECT_SPRINGS two vertices of one membrane are not partners (PM_APART: their spheres may overlap).
  */
@@ -73,23 +73,35 @@ DEM_ITEM(nbr_carry)
 {
     int on = old_count[i];
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
-    for (int k = 0; k < nbr_count[i]; k++) {
+    if (!(fx & DEM_EFFECT_MC_STRAIN))
+        return;
+    for (int k = 0; k < nbr_count[i]; k++) { /* the lagged MC-strain force of the same contact (mc_strain.h) */
         int j = nbr_list[i * maxn + k];
         int found = row_find(orow, on, j);
-        int t = found >= 0 ? old_touch[i * old_maxn + found] : 0;
-        touch[i * maxn + k] = (unsigned char)t; /* the history follows in pair_index, once the pairs are numbered */
-        if (fx & DEM_EFFECT_MC_STRAIN) /* the lagged MC-strain force of the same contact (mc_strain.h) */
-            mc_fn[i * maxn + k] = t ? old_mc_fn[i * old_maxn + found] : (real)0;
+        real f = (real)0;
+        if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower id */
+            int q = -1;
+            if (j > i)
+                q = row_pair_number(old_own_start[i], old_own_start[i + 1], on, found);
+            else {
+                int fj = row_find(old_list + j * old_maxn, old_count[j], i);
+                if (fj >= 0)
+                    q = row_pair_number(old_own_start[j], old_own_start[j + 1], old_count[j], fj);
+            }
+            if (q >= 0 && old_touch[q])
+                f = old_mc_fn[i * old_maxn + found];
+        }
+        mc_fn[i * maxn + k] = f;
     }
 }
 /* The flat pair list of the committed rows (contact_forces.h): pair p = own_start[i] + c - in_count[i] is the owned
  * pair in particle i's row slot c (partner j > i); pair_slot[p] names that slot. The partner j's incoming slot of
- * the same pair (row slot k < in_count[j]: the slot of i in row j, found by binary search) is pair_mirror[p], and
- * in_pair[in_start[j] + k] = p. Each entry has one writer: p's owner writes all three. A pair whose partner row
- * lacks it (rows are symmetric: a bug) gets pair_mirror -1 and raises FLAG_ASYMMETRIC.
- * The tangential history is kept per pair (hist[3 p]): a touching pair takes it from its number in the old rows
- * (old_own_start[i] + its old slot - the old row's partners below i), a new one starts from zero. Per pair, not per
- * row slot, it is a dense array read in order by contact_pairs, and a third of the memory. */
+ * the same pair (row slot k < in_count[j]: the slot of i in row j, found by binary search) gets
+ * in_pair[in_start[j] + k] = p, and with MC-strain pair_mirror[p] names that slot. Each entry has one writer: p's
+ * owner writes them all. A pair whose partner row lacks it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC.
+ * The touching flag (touch[p]) and tangential history (hist[3 p]) are kept per pair: a pair takes them from its
+ * number in the old rows (old_own_start[i] + its old slot - the old row's partners below i), a new one starts
+ * untouched, from zero. Per pair, not per row slot, they are dense arrays read in order by contact_pairs. */
 DEM_ITEM(pair_index)
 {
     int cnt = nbr_count[i], lower = in_count[i];
@@ -98,20 +110,20 @@ DEM_ITEM(pair_index)
         int j = nbr_list[slot];
         int m = row_find(nbr_list + j * maxn, nbr_count[j], i);
         pair_slot[p] = slot;
-        pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
+        if (fx & DEM_EFFECT_MC_STRAIN)
+            pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
         if (m >= 0)
             in_pair[in_start[j] + m] = p;
         else
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
-        if (fx & DEM_EFFECT_FRICTION) { /* no history exists without friction */
-            vec3 h = v3_zero();
-            if (touch[slot]) { /* carried by nbr_carry: the pair is in the old row too */
-                int on = old_count[i], found = row_find(old_list + i * old_maxn, on, j);
-                if (found >= 0)
-                    h = v3_load(old_hist, row_pair_number(old_own_start[i], old_own_start[i + 1], on, found));
-            }
-            v3_store(hist, p, h);
+        int on = old_count[i], found = row_find(old_list + i * old_maxn, on, j), t = 0, q = -1;
+        if (found >= 0) { /* the pair is in the old rows too */
+            q = row_pair_number(old_own_start[i], old_own_start[i + 1], on, found);
+            t = old_touch[q];
         }
+        touch[p] = (unsigned char)t;
+        if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
+            v3_store(hist, p, t ? v3_load(old_hist, q) : v3_zero());
     }
 }
 #endif /* DEM_NEIGHBOR_H */

@@ -101,20 +101,27 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     wall_mask[i] = mask;
 }
 
-/* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK): each
- * particle's force from the wall evaluated as contact_forces is about to (this kernel runs between contact_pairs
- * and contact_forces, on the same state), so nothing per particle and wall is stored for it. */
+/* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK).
+ * With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it). Without: each particle's
+ * force from the wall evaluated as contact_forces is about to (this kernel runs between contact_pairs and
+ * contact_forces, on the same state), so nothing per particle and wall is stored. The same terms in the same order:
+ * the same bits either way. */
 DEM_ITEM(wall_reduce_block)
 {
     int b = i % nblocks, k = i / nblocks;
     vec3 s = v3_zero();
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) {
-        wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
-                                           v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist, dt,
-                                           (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);
-        if (c.active) /* the wall receives minus the force on the particle */
-            s = v3_sub(s, c.r.force);
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) { /* the wall receives minus the force on the particle */
+        if (fx & DEM_KEEP_WALL_FORCES) {
+            if ((wall_mask[j] >> k) & 1u)
+                s = v3_sub(s, v3_load(wall_pf, k * n + j));
+        } else {
+            wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
+                                               v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
+                                               dt, (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);
+            if (c.active)
+                s = v3_sub(s, c.r.force);
+        }
     }
     v3_store(partial, k * nblocks + b, s);
 }

@@ -73,7 +73,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     long np = 0, nwc = 0;
     for (int i = 0; i < n; i++) {
         for (int k = 0; k < cnt[i] && list[i * maxn + k] < i; k++)
-            np += touch[i * maxn + k] != 0;
+            np += touch[in_pair[start[i] + k]] != 0;
         for (int w = 0; w < nw; w++)
             nwc += (mask[i] >> w) & 1u;
     }
@@ -91,17 +91,18 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     }
     for (int j = 0; j < n; j++)
         for (int k = 0; k < cnt[j] && list[j * maxn + k] < j; k++)
-            if (touch[j * maxn + k])
+            if (touch[in_pair[start[j] + k]])
                 per_i[list[j * maxn + k] + 1]++;
     for (int i = 0; i < n; i++)
         per_i[i + 1] += per_i[i];
     for (int j = 0; j < n; j++) /* ascending j, so each i's pairs land in ascending j */
         for (int k = 0; k < cnt[j] && list[j * maxn + k] < j; k++) {
-            if (!touch[j * maxn + k])
+            int p = in_pair[start[j] + k];
+            if (!touch[p])
                 continue;
             int i = list[j * maxn + k];
             dem_contact *e = &cs[per_i[i]++];
-            size_t r0 = (size_t)in_pair[start[j] + k] * PR_STRIDE;
+            size_t r0 = (size_t)p * PR_STRIDE;
             double F[3] = {real_at(rec, r0 + PR_FX, rs), real_at(rec, r0 + PR_FY, rs), real_at(rec, r0 + PR_FZ, rs)};
             double xi[3], xj[3], d2 = 0;
             for (int q = 0; q < 3; q++) {

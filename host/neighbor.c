@@ -27,11 +27,15 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     /* the old pair numbering and history, which pair_index carries into the new (neighbor.h); the copy of the history
      * is grown here to the capacity of the history itself (which may have grown at the last commit) */
     dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, old_hist = {TABLE_ONE, BUF_PAIR_HIST_OLD};
+    dem_bufref touch = {TABLE_ONE, BUF_TOUCH}, old_touch = {TABLE_ONE, BUF_TOUCH_OLD};
     dem_bufref own = {TABLE_ONE, BUF_OWN_START}, old_own = {TABLE_ONE, BUF_OWN_START_OLD};
-    if (c->bytes[BUF_PAIR_HIST_OLD] != c->bytes[BUF_PAIR_HIST] &&
-        o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST_OLD, c->bytes[BUF_PAIR_HIST], NULL))
+    if ((c->bytes[BUF_PAIR_HIST_OLD] != c->bytes[BUF_PAIR_HIST] &&
+         o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST_OLD, c->bytes[BUF_PAIR_HIST], NULL)) ||
+        (c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
+         o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)))
         return 1;
     if ((c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, old_hist, c->bytes[BUF_PAIR_HIST])) ||
+        (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
         o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
         return 1;
     c->cur = 1 - c->cur;
@@ -47,11 +51,14 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         return dem_core_fail(c, "neighbour rows list %d owned and %d incoming pairs (a library bug; please report)",
                              owned, total);
     if ((size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0) { /* rewritten every step before being read */
-        c->pair_cap = (size_t)total + (size_t)total / 4 + 16;
+        /* 1/8 to spare: the pair arrays are two thirds of the memory, and growing them costs one allocation at a
+         * rebuild (the history and flags are carried from their copies either way) */
+        c->pair_cap = (size_t)total + (size_t)total / 8 + 16;
         if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_PAIR_SLOT, dem_buffer_bytes(c, BUF_PAIR_SLOT), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_IN_PAIR, dem_buffer_bytes(c, BUF_IN_PAIR), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_PAIR_MIRROR, dem_buffer_bytes(c, BUF_PAIR_MIRROR), NULL) ||
+            o->alloc(b, TABLE_ONE, 0, BUF_TOUCH, dem_buffer_bytes(c, BUF_TOUCH), NULL) ||
             o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST, dem_buffer_bytes(c, BUF_PAIR_HIST), NULL))
             return 1;
     }

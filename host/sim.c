@@ -758,14 +758,16 @@ static int mc_strain(dem_sim *s)
  * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through be_fail). */
 static int stage_stress_trace(dem_sim *s) { return dem_stage_stress_trace(s->ops, s->be) ? be_fail(s) : 0; }
 /* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
- * dem_get_field and the output see it after any call) and every step while a servo stage may read it. The sum
- * evaluates the wall contacts itself, between the pair pass and the per-particle sums, which then apply exactly
- * those forces (common/wall_forces.h): no per-particle copy of the wall forces is kept for it. */
+ * dem_get_field and the output see it after any call) and every step while a servo stage may read it. Unless the
+ * run keeps each particle's wall forces (DEM_KEEP_WALL_FORCES: a servo, the contact network), the sum evaluates
+ * the wall contacts itself, between the pair pass and the per-particle sums, which then apply exactly those forces
+ * (common/wall_forces.h); otherwise it adds the kept forces after the per-particle sums. The bits are the same. */
 static int stage_contacts(dem_sim *s)
 {
     int sums = (s->effects & DEM_EFFECT_WALLS) && s->nwalls && s->wall_sums_due;
-    return dem_stage_contact_pairs(s->ops, s->be) || (sums && dem_stage_wall_reduce(s->ops, s->be)) ||
-                   dem_stage_contact_sums(s->ops, s->be)
+    int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
+    return dem_stage_contact_pairs(s->ops, s->be) || (sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) ||
+                   dem_stage_contact_sums(s->ops, s->be) || (sums && kept && dem_stage_wall_reduce(s->ops, s->be))
                ? be_fail(s)
                : 0;
 }
@@ -791,15 +793,6 @@ static int stage_patches(dem_sim *s)
 {
     return s->npatch && (dem_stage_patch_forces(s->ops, s->be) || dem_stage_patch_gather(s->ops, s->be)) ? be_fail(s)
                                                                                                             : 0;
-}
-/* whether any wall has a servo stage (walls are fixed once started: dem_start asks once) */
-static int has_servo(const dem_sim *s)
-{
-    for (int k = 0; k < s->nwalls; k++)
-        for (int st = 0; st < s->walls[k].nstages; st++)
-            if (s->walls[k].stages[st].force > 0)
-                return 1;
-    return 0;
 }
 static const struct {
     unsigned gate;
@@ -850,7 +843,7 @@ int dem_start(dem_sim *s, const dem_config *c)
         return be_fail(s);
     s->force_step = s->step;
     s->wall_sums_due = 1;
-    s->servo_walls = has_servo(s);
+    s->servo_walls = sim_has_servo(s);
     if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
     return 0;

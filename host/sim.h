@@ -87,6 +87,7 @@ double sim_inertia(const dem_sim *s, int i);
 /* sim_setup.c */
 int sim_validate(dem_sim *s);
 int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
+int sim_has_servo(const dem_sim *s); /* a wall has a servo stage */
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
 void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);

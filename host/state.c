@@ -150,9 +150,12 @@ int dem_state_get(dem_sim *s, dem_state *st)
     unsigned char *touch = get_all(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_all(s, DEM_FIELD_HIST, &hb, &e);
     /* touching pairs, once each (owner i < j), in row order: ascending i, then j */
     long np = 0;
-    for (int i = 0; !e && i < n; i++)
+    int *own = e ? NULL : own_starts(cnt, list, maxn, n);
+    if (!e && !own)
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int i = 0; !e && i < n; i++) /* the touching flags are kept per pair, numbered like the history */
         for (int k = 0; k < cnt[i]; k++)
-            np += list[i * maxn + k] > i && touch[i * maxn + k];
+            np += list[i * maxn + k] > i && touch[row_pair_number(own[i], own[i + 1], cnt[i], k)];
     if (!e) {
         st->pair_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->pair_j = malloc(sizeof(int) * (size_t)(np ? np : 1));
@@ -162,13 +165,10 @@ int dem_state_get(dem_sim *s, dem_state *st)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
-    int *own = e ? NULL : own_starts(cnt, list, maxn, n);
-    if (!e && !own)
-        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             int slot = i * maxn + k, j = list[slot];
-            if (j <= i || !touch[slot])
+            if (j <= i || !touch[row_pair_number(own[i], own[i + 1], cnt[i], k)])
                 continue;
             st->pair_i[np] = i;
             st->pair_j[np] = j;
@@ -249,9 +249,10 @@ int dem_state_set(dem_sim *s, const dem_state *st)
         return e;
     }
     int maxn = s->maxn;
-    size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE);
+    size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE),
+              tb = dem_field_bytes(s, DEM_FIELD_TOUCH);
     int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
-    unsigned char *touch = calloc((size_t)n * maxn + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
+    unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     int *own = e ? NULL : own_starts(cnt, list, maxn, n);
     if (!e && (!touch || !hist || !mcf || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -263,9 +264,10 @@ int dem_state_set(dem_sim *s, const dem_state *st)
             e = sim_fail(s, DEM_ERR_ARG, "saved contact %d-%d is not a neighbour pair of the saved positions", i, j);
             break;
         }
-        touch[a] = touch[m] = 1;
-        if (hb && st->has_hist) /* kept per pair (neighbor.h) */
-            memcpy(hist + (size_t)row_pair_number(own[i], own[i + 1], cnt[i], a - i * maxn) * 3 * rs,
+        size_t pn = (size_t)row_pair_number(own[i], own[i + 1], cnt[i], a - i * maxn);
+        touch[pn] = 1; /* flag and history are kept per pair (neighbor.h) */
+        if (hb && st->has_hist)
+            memcpy(hist + pn * 3 * rs,
                    (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) { /* both slots of the pair hold the force (mc_strain.h) */
             memcpy(mcf + (size_t)a * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
@@ -274,7 +276,7 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     }
     if (!e)
         e = patch_contacts_set(s, st);
-    if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, (size_t)n * maxn) ||
+    if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, tb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||

@@ -107,7 +107,8 @@ typedef enum {
     DEM_FIELD_CELL_PARTICLES,       /* int[n] */
     DEM_FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
     DEM_FIELD_WALL_REAL,            /* real[10*nwalls] */
-    DEM_FIELD_TOUCH,                /* unsigned char[n*maxn]: 1 where the row slot's pair touched in the last step */
+    DEM_FIELD_TOUCH,                /* unsigned char[pairs]: 1 where the pair touched in the last step, one byte per
+                                       listed pair in the lower ids' row order (like PAIR_RECORDS and HIST) */
     DEM_FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
     DEM_FIELD_STRESS,               /* real[6n]: stress tensor xx,yy,zz,xy,xz,yz of each particle [Pa] (seed 000 Eq. 9,
                                    elastic normal forces; negative in compression), computed when read */
@@ -123,7 +124,7 @@ typedef enum {
                                        in DEM_FIELD_IN_PAIR */
     DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N] */
     DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair, in_start[i] + k for row slot k.
-                                       The pair-sized fields (HIST, PAIR_RECORDS, IN_PAIR) hold the pairs allocated, which
+                                       The pair-sized fields (HIST, TOUCH, PAIR_RECORDS, IN_PAIR) hold the pairs allocated, which
                                        grow at rebuilds: take dem_field_bytes just before each read; entries beyond the
                                        pairs listed (in_start[n]) hold nothing meaningful */
     DEM_FIELD__COUNT

@@ -71,9 +71,10 @@ enum {
  * (dem_set_mc_strain_reach); compiled in with the effects like the bits above. Off: only geometric overlaps. */
 enum { DEM_MC_REACH = 2048 };
 
-/* A run that reads the contact network (dem_config.contacts, dem_contacts_get) keeps the force from every wall on
- * every particle (WALL_PF: 3 reals per particle and wall); other runs do not hold that buffer (the walls' sums
- * evaluate the wall contacts themselves: common/wall_forces.h). Set by the host, compiled in like the bits above. */
+/* A run that reads the contact network (dem_config.contacts, dem_contacts_get) or sums the walls' forces every step
+ * (a servo stage) keeps the force from every wall on every particle (WALL_PF: 3 reals per particle and wall); other
+ * runs do not hold that buffer (the walls' sums evaluate the wall contacts themselves: common/wall_forces.h). Set by
+ * the host, compiled in like the bits above. */
 enum { DEM_KEEP_WALL_FORCES = 262144 };
 
 #ifndef DEM_EFFECTS

@@ -86,14 +86,18 @@ static int gap_contacts(dem_sim *s)
     assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * (size_t)n), 0);
     assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_LIST, list, bl), 0);
     assert_int_equal(dem_get_raw(s, DEM_FIELD_TOUCH, touch, bt), 0);
+    size_t p = 0; /* touching flags are kept per pair: the owned slots (partner above) in row order */
     for (int i = 0; i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             int j = list[i * maxn + k];
+            if (j < i)
+                continue;
             double d2 = 0;
             for (int q = 0; q < 3; q++)
                 d2 += (x[3 * i + q] - x[3 * j + q]) * (x[3 * i + q] - x[3 * j + q]);
             double rs = dem_particle_radius(s, i) + dem_particle_radius(s, j);
-            found += touch[i * maxn + k] && d2 >= rs * rs;
+            assert_true(p < bt);
+            found += touch[p++] && d2 >= rs * rs;
         }
     free(x), free(cnt), free(list), free(touch);
     return found;

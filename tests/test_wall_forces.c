@@ -154,8 +154,51 @@ static void test_servo(void **st)
     dem_destroy(s);
 }
 
+/* The walls' sums two ways: a run that keeps each particle's wall forces (dem_config.contacts: the sums add what
+ * contact_forces kept) and one that does not (the sums evaluate the wall contacts again, before contact_forces).
+ * Same bits, every backend and precision, over settling beads in the die; only the first can give the contact
+ * network, whose wall contacts then add up to what each wall received. */
+static void test_kept_wall_forces(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        dem_sim *a = die(), *b = die();
+        dem_config ca = cfg_of(bc->backend, bc->precision), cb = ca;
+        cb.contacts = 1;
+        start_or_fail(a, &ca);
+        start_or_fail(b, &cb);
+        char msg[256];
+        for (int chunk = 0; chunk < 20; chunk++) { /* the sums are due at the end of each call */
+            step_or_fail(a, 397);
+            step_or_fail(b, 397);
+            if (state_diff(a, b, msg, sizeof msg))
+                fail_msg("%s, after %d steps: wall forces evaluated again vs kept: %s", bc->name, 397 * (chunk + 1), msg);
+        }
+        dem_contact *cs;
+        long count, npairs;
+        assert_int_equal(dem_contacts_get(a, &cs, &count, &npairs), DEM_ERR_STATE);
+        assert_non_null(strstr(dem_error(a), "dem_config.contacts"));
+        assert_int_equal(dem_contacts_get(b, &cs, &count, &npairs), 0);
+        double sum[3] = {0, 0, 0}, fw[3], big = 0;
+        for (long k = npairs; k < count; k++) /* particle-wall contacts: j = -1 - wall */
+            if (cs[k].j == -1 - 1) /* wall 1, the floor */
+                for (int d = 0; d < 3; d++)
+                    sum[d] -= cs[k].fn[d] + cs[k].ft[d], big = fmax(big, fabs(cs[k].fn[d]));
+        dem_wall_force(b, 1, fw);
+        printf("  %s: floor receives %.6g N; its contacts in the network add up to %.6g N\n", bc->name, fw[2], sum[2]);
+        assert_true(count > npairs && big > 0);
+        for (int d = 0; d < 3; d++)
+            assert_true(fabs(sum[d] - fw[d]) <= 1e-4 * big);
+        free(cs);
+        dem_destroy(a);
+        dem_destroy(b);
+    }
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo),
+                                       cmocka_unit_test(test_kept_wall_forces)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
