@@ -25,6 +25,8 @@ int run_scene(const run_opts *o);
  * always, a warning on stderr when a contact spans fewer than DEM_MIN_STEPS_PER_CONTACT steps (`dem run` asks for it
  * unless --quiet). */
 void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
+/* the same for the particles' order in memory (dem_order_scatter) */
+void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 
 /* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more), and for the names
  * derived from them. */

@@ -101,3 +101,33 @@ int dem_particle_source(const dem_sim *s, int i)
         return -1;
     return s->source && i < s->source_n ? s->source[i] : i;
 }
+
+static int by_double(const void *a, const void *b)
+{
+    double p = *(const double *)a, q = *(const double *)b;
+    return (p > q) - (p < q);
+}
+
+/* How scattered the particles' order is: the median, over consecutive particles i and i + 1, of their distance over
+ * the sum of their radii (1 or less when each particle's successor touches it, as along a lattice row or a sorted
+ * packing; tens for a packing generated at random or taken over from a code that orders by something else). */
+double dem_order_scatter(const dem_sim *s)
+{
+    int n = s->n;
+    if (n < 2)
+        return 0;
+    double *d = malloc(sizeof(double) * (size_t)(n - 1));
+    if (!d)
+        return 0;
+    for (int i = 0; i + 1 < n; i++) {
+        double q = 0;
+        for (int k = 0; k < 3; k++)
+            q += (s->x[3 * i + 3 + k] - s->x[3 * i + k]) * (s->x[3 * i + 3 + k] - s->x[3 * i + k]);
+        double rr = s->radius[i] + s->radius[i + 1];
+        d[i] = rr > 0 ? sqrt(q) / rr : 0;
+    }
+    qsort(d, (size_t)(n - 1), sizeof *d, by_double);
+    double m = d[(n - 1) / 2];
+    free(d);
+    return m;
+}

@@ -274,6 +274,11 @@ int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
  * i) is the id particle i had when it was added (i itself when nothing was sorted). Returns 0 or a dem_status. */
 int dem_sort_particles(dem_sim *s);
 int dem_particle_source(const dem_sim *s, int i);
+/* How scattered the particles' order is in space: the median over consecutive particles of their distance over the
+ * sum of their radii (about 1 for a lattice or a sorted packing, tens for one generated at random; dem run suggests
+ * particle_order: spatial above DEM_ORDER_SCATTERED). 0 for fewer than 2 particles. */
+double dem_order_scatter(const dem_sim *s);
+#define DEM_ORDER_SCATTERED 4.0
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
 int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material);

@@ -1218,6 +1218,23 @@ static void test_particle_order(void **st)
         for (int d = 0; d < 3; d++)
             assert_memory_equal(&xs[3 * i + d], &xi[3 * idx[i] + d], sizeof(double));
     free(idx), free(xs), free(xi);
+    /* dem check reports how scattered the order is; dem run notes a scattered order of many particles (8000 spheres
+     * placed at random), and not once they are sorted */
+    assert_int_equal(sh(err, sizeof err, "{ sed 's/count: 2000,/count: 8000,/; s/radius_min: 0.001, radius_max: 0.002/"
+                                          "radius_min: 0.0008, radius_max: 0.0012/' %s/tests/scenes/random_groups.yaml > "
+                                          "%s/scat.yaml && %s check %s/scat.yaml >&2 && %s run %s/scat.yaml -o %s/scat.h5 "
+                                          "--stop-after 1; }",
+                        SRC, tmp, DEM, tmp, DEM, tmp, tmp),
+                     0);
+    assert_non_null(strstr(err, "apart (scattered: particle_order: spatial would sort them at load)"));
+    assert_non_null(strstr(err, "dem: note: ") && strstr(err, "the particles are in a scattered order"));
+    assert_int_equal(sh(err, sizeof err, "{ sed 's/^precision: fp64/precision: fp64\\nparticle_order: spatial/' %s/scat.yaml "
+                                          "> %s/scat2.yaml && %s check %s/scat2.yaml >&2 && %s run %s/scat2.yaml -o "
+                                          "%s/scat2.h5 --stop-after 1; }",
+                        tmp, tmp, DEM, tmp, DEM, tmp, tmp),
+                     0);
+    assert_non_null(strstr(err, "apart (close enough, or too few particles for the order to matter)"));
+    assert_null(strstr(err, "scattered order"));
     snprintf(sp, sizeof sp, "%s/sp.yaml", tmp);
     restart_case(sp, "fp64", 0);
     bad_in("tests/scenes/restart_box.yaml", "s/^precision: fp64/precision: fp64\\nparticle_order: random/",
