@@ -77,6 +77,8 @@ static int check(const char *path)
     if (run.piston >= 0)
         printf("sample         piston = wall %d, height %.6g m, area %.6g m^2\n", run.piston, run.sample_height,
                run.sample_area);
+    if (run.fill[0])
+        printf("fill           %s\n", run.fill);
     if (run.note[0])
         printf("note           %s\n", run.note);
     dem_destroy(s);

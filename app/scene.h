@@ -29,12 +29,24 @@ typedef struct {
 } scene_region;
 
 typedef struct {
+    double median, sigma;         /* lognormal radii: median [m], standard deviation of ln r */
+} scene_lognormal;
+
+typedef struct {
+    double radius, fraction;      /* one size of a listed distribution [m], its share (by number or volume) */
+} scene_size;
+
+typedef struct {
     char *kind;                   /* "random" (random sequential addition, no overlaps) or "lattice" (cubic) */
     char *shape;                  /* "box" or "cylinder" */
     scene_region region;
     unsigned count;               /* number of spheres (random; lattice: at most this many, 0 = fill) */
     double radius;                /* every sphere, or: */
-    double radius_min, radius_max; /* radii uniform in [min, max] */
+    double radius_min, radius_max; /* radii uniform in [min, max], or the bounds of a lognormal */
+    scene_lognormal *lognormal;   /* random: lognormal radii, truncated to [radius_min, radius_max] */
+    scene_size *sizes;            /* random: listed radii, shares summing to 1 */
+    unsigned sizes_count;
+    char *fractions;              /* the shares of sizes: "number" (default) or "volume" */
     double spacing;               /* lattice: centre distance (default 2 radius_max) */
     double speed;                 /* random initial velocity, each component uniform in [-speed, speed] */
     unsigned seed;
@@ -209,6 +221,7 @@ typedef struct {
     double contact_travel;  /* [m] */
     dem_time_scales ts;
     char note[1024];        /* remarks for `dem check` (ignored parameters ...) */
+    char fill[2048];        /* the random groups' placement: count, volume share, time (dem check) */
     char model[32];         /* normal law chosen on the command line (dem run --model), "" = the scene's */
     unsigned mcs_conv;      /* DEM_MCS_* bits (used when MC-stress runs) */
     int mc_cap;             /* MC-strain iteration cap in force (0: lagged) and its tolerance */

@@ -675,7 +675,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
         return NULL;
     }
     if (parse_effects(sc, run, err, errlen) || parse_materials(sc, s, err, errlen) ||
-        scene_add_particles(sc, s, &origin, err, errlen) || (nspheres = dem_count(s), 0) ||
+        scene_add_particles(sc, s, &origin, run->fill, sizeof run->fill, err, errlen) || (nspheres = dem_count(s), 0) ||
         parse_walls(sc, s, run, first_wall, err, errlen) ||
         scene_add_membranes(sc, s, run, first_wall, err, errlen) ||
         (run->effects |= dem_effects(s) & DEM_EFFECT_CONSTRAINTS, 0) ||

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 typedef struct {
     scene_origin *o;
@@ -161,14 +162,15 @@ static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
 #define DEM_SCENE_MAX_GENERATED 5000000
 #endif
 #ifndef DEM_SCENE_MAX_RANDOM
-#define DEM_SCENE_MAX_RANDOM 200000
+#define DEM_SCENE_MAX_RANDOM 2000000
 #endif
 /* Random sequential addition's attempt budget: at most DEM_RSA_TRIES_PER_SPHERE candidates for one sphere, and
- * DEM_RSA_ATTEMPTS_PER_SPHERE * count + DEM_RSA_ATTEMPTS_BASE for the whole group. An attempt costs about 0.08 us on
- * one core (up to 27 cells of a spatial hash, own cell first), so the largest group (200 000) is placed or refused
+ * DEM_RSA_ATTEMPTS_PER_SPHERE * count + DEM_RSA_ATTEMPTS_BASE for the whole group: time linear in the count. An
+ * attempt costs about 0.08 us on one core (up to 27 cells of a spatial hash, own cell first) while the region is
+ * loose, more near jamming (the hash's buckets are shared by more spheres): a group of 200 000 is placed or refused
  * within about 0.4 s (measured 0.30-0.38 s for refusals at 27-41 % on this 2-core VM); the budget reaches about
- * 27 % of a box's volume with equal spheres at that count (more for fewer spheres, where the
- * base dominates). A placement is a pure function of the scene: the budget counts attempts, never time. Denser
+ * 27 % of a box's volume with equal spheres at that count (more for fewer spheres, where the base dominates).
+ * dem check reports each group's time and volume share ("fill"). A placement is a pure function of the scene: the budget counts attempts, never time. Denser
  * packings: place loosely and let gravity or a moving wall compact them (docs/scenes.md). */
 #define DEM_RSA_TRIES_PER_SPHERE 20000L
 #define DEM_RSA_ATTEMPTS_PER_SPHERE 16L
@@ -320,7 +322,85 @@ static int make_region(const scene *sc, int g, const scene_generate *gen, region
     return 0;
 }
 
-static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat, char *err, size_t errlen)
+/* Listed sizes: each radius's share of the n spheres (by number, or by volume: number share ~ f / r^3), rounded down,
+ * the spheres left over going to the largest remainders (the earlier size on a tie). No random draw. */
+static int listed_radii(const scene *sc, int g, const scene_generate *gen, int n, double *r, char *err, size_t errlen)
+{
+    char p[96];
+    unsigned k, m = gen->sizes_count;
+    int by_volume = 0;
+    if (gen->fractions) {
+        by_volume = !strcmp(gen->fractions, "volume");
+        if (!by_volume && strcmp(gen->fractions, "number")) {
+            snprintf(p, sizeof p, "particles[%d].generate.fractions", g);
+            return scene_fail(sc, err, errlen, p, "fractions must be number or volume (got '%s')", gen->fractions);
+        }
+    }
+    double sum = 0, q[64], norm = 0;
+    for (k = 0; k < m; k++) {
+        snprintf(p, sizeof p, "particles[%d].generate.sizes[%u]", g, k);
+        if (!(gen->sizes[k].radius > 0) || !isfinite(gen->sizes[k].radius) || !(gen->sizes[k].fraction >= 0) ||
+            !(gen->sizes[k].fraction <= 1))
+            return scene_fail(sc, err, errlen, p, "each size needs radius > 0 m and 0 <= fraction <= 1");
+        sum += gen->sizes[k].fraction;
+        double rr = gen->sizes[k].radius;
+        q[k] = by_volume ? gen->sizes[k].fraction / (rr * rr * rr) : gen->sizes[k].fraction;
+        norm += q[k];
+    }
+    snprintf(p, sizeof p, "particles[%d].generate.sizes", g);
+    if (!(fabs(sum - 1) <= 1e-3) || !(norm > 0))
+        return scene_fail(sc, err, errlen, p, "the fractions must add up to 1 (got %.6g)", sum);
+    long cnt[64], given = 0;
+    double rem[64];
+    for (k = 0; k < m; k++) {
+        double want = q[k] / norm * n;
+        cnt[k] = (long)floor(want);
+        rem[k] = want - (double)cnt[k];
+        given += cnt[k];
+    }
+    for (; given < n; given++) { /* the largest remainder first, the earlier size on a tie */
+        unsigned best = 0;
+        for (k = 1; k < m; k++)
+            if (rem[k] > rem[best])
+                best = k;
+        cnt[best]++;
+        rem[best] = -1;
+    }
+    int i = 0;
+    for (k = 0; k < m; k++)
+        for (long c = 0; c < cnt[k] && i < n; c++)
+            r[i++] = gen->sizes[k].radius;
+    return 0;
+}
+
+/* Lognormal radii (median, sigma of ln r), truncated to [rmin, rmax] by drawing again. The draw uses the C library's
+ * log, exp and cos (Box-Muller): the same scene gives the same radii with the same C library. */
+static int lognormal_radii(const scene *sc, int g, const scene_generate *gen, double rmin, double rmax, int n,
+                           double *r, uint64_t *st, char *err, size_t errlen)
+{
+    char p[96];
+    double med = gen->lognormal->median, sig = gen->lognormal->sigma;
+    snprintf(p, sizeof p, "particles[%d].generate.lognormal", g);
+    if (!(med > 0) || !isfinite(med) || !(sig >= 0) || !(sig <= 3))
+        return scene_fail(sc, err, errlen, p, "a lognormal needs median > 0 m and 0 <= sigma <= 3");
+    /* the share of the distribution inside the bounds: below 1 % the draws would mostly be thrown away */
+    double share = sig > 0 ? 0.5 * (erf(log(rmax / med) / (sig * sqrt(2.0))) - erf(log(rmin / med) / (sig * sqrt(2.0))))
+                           : (med >= rmin && med <= rmax);
+    if (!(share >= 0.01))
+        return scene_fail(sc, err, errlen, p, "only %.3g %% of this lognormal lies within radius_min %g m and radius_max "
+                          "%g m (want at least 1 %%)", 100 * share, rmin, rmax);
+    for (int i = 0; i < n;) {
+        double u1 = rng_unit(st), u2 = rng_unit(st);
+        double z = sqrt(-2 * log(u1 > 0 ? u1 : 1e-300)) * cos(2 * M_PI * u2);
+        double v = med * exp(sig * z);
+        if (v >= rmin && v <= rmax)
+            r[i++] = v;
+    }
+    return 0;
+}
+
+static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat, char *fill, size_t fill_len,
+                    char *err, size_t errlen)
 {
     const scene_generate *gen = sc->f->particles[g].generate;
     char p[96];
@@ -330,12 +410,31 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
     double rmin = gen->radius, rmax = gen->radius;
     snprintf(p, sizeof p, "particles[%d].generate.radius", g);
     int has_r = scene_has(sc->loc, p);
-    if (!has_r) {
+    if ((has_r != 0) + (gen->lognormal != NULL) + (gen->sizes_count > 0) > 1) {
+        snprintf(p, sizeof p, "particles[%d].generate", g);
+        return scene_fail(sc, err, errlen, p, "give one of radius, radius_min/radius_max, lognormal or sizes");
+    }
+    if ((gen->lognormal || gen->sizes_count) && strcmp(gen->kind, "random")) {
+        snprintf(p, sizeof p, "particles[%d].generate.%s", g, gen->lognormal ? "lognormal" : "sizes");
+        return scene_fail(sc, err, errlen, p, "size distributions are for kind: random");
+    }
+    if (gen->sizes_count) { /* the listed radii bound the group */
+        rmin = INFINITY, rmax = 0;
+        for (unsigned k = 0; k < gen->sizes_count; k++) {
+            rmin = fmin(rmin, gen->sizes[k].radius);
+            rmax = fmax(rmax, gen->sizes[k].radius);
+        }
+        snprintf(p, sizeof p, "particles[%d].generate.radius_min", g);
+        if (scene_has(sc->loc, p) || (snprintf(p, sizeof p, "particles[%d].generate.radius_max", g), scene_has(sc->loc, p)))
+            return scene_fail(sc, err, errlen, p, "listed sizes give their own radii: no radius_min or radius_max");
+    } else if (!has_r) {
         rmin = gen->radius_min;
         rmax = gen->radius_max;
         if (!(rmin > 0) || !(rmax >= rmin) || !isfinite(rmax)) {
             snprintf(p, sizeof p, "particles[%d].generate.radius_min", g);
-            return scene_fail(sc, err, errlen, p, "give radius, or 0 < radius_min <= radius_max [m]");
+            return scene_fail(sc, err, errlen, p, gen->lognormal ? "a lognormal needs its bounds: 0 < radius_min <= "
+                                                                   "radius_max [m]"
+                                                                 : "give radius, or 0 < radius_min <= radius_max [m]");
         }
     } else if (!(rmin > 0) || !isfinite(rmin)) {
         return scene_fail(sc, err, errlen, p, "radius must be > 0 m");
@@ -356,12 +455,26 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
         if (gen->count < 1 || gen->count > DEM_SCENE_MAX_RANDOM)
             return scene_fail(sc, err, errlen, p, "a random packing needs 1 <= count <= %d", DEM_SCENE_MAX_RANDOM);
         /* random sequential addition, largest first, clear of every sphere placed before (all groups) */
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
         int n = (int)gen->count;
         double *r = malloc(sizeof(double) * n);
         if (!r)
             return scene_fail(sc, err, errlen, p, "out of memory");
-        for (int i = 0; i < n; i++)
-            r[i] = rmin + (rmax - rmin) * rng_unit(&st);
+        if (gen->sizes_count) {
+            if (listed_radii(sc, g, gen, n, r, err, errlen)) {
+                free(r);
+                return 1;
+            }
+        } else if (gen->lognormal) {
+            if (lognormal_radii(sc, g, gen, rmin, rmax, n, r, &st, err, errlen)) {
+                free(r);
+                return 1;
+            }
+        } else {
+            for (int i = 0; i < n; i++)
+                r[i] = rmin + (rmax - rmin) * rng_unit(&st);
+        }
         /* descending radii; equal radii are equal bits, so any sort gives the same array */
         qsort(r, (size_t)n, sizeof *r, cmp_desc);
         /* a region the spheres cannot fit is refused at once: random sequential addition jams at 38.4 % of the
@@ -414,6 +527,13 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
         double vplaced = 0;
         for (int i = 0; i < placed; i++)
             vplaced += 4.0 / 3.0 * M_PI * r[i] * r[i] * r[i];
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        size_t o = strlen(fill);
+        if (o < fill_len)
+            snprintf(fill + o, fill_len - o, "%sgroup %d: %d spheres (radius %.4g to %.4g m) fill %.1f %% of the region's "
+                     "volume, placed in %.2f s (%ld attempts)", o ? "\n               " : "", g, placed, r[n - 1], r[0],
+                     100 * vplaced / region_volume(&rg), (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec),
+                     attempts);
         free(r), free(h.head), free(h.next);
         if (hfail)
             return scene_fail(sc, err, errlen, p, "out of memory");
@@ -498,9 +618,12 @@ static int constrain(const scene *sc, dem_sim *s, unsigned g, int first, int las
     return 0;
 }
 
-int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *err, size_t errlen)
+int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *fill, size_t fill_len, char *err,
+                        size_t errlen)
 {
     origin_list ol = {NULL, 0, 0};
+    if (fill_len)
+        fill[0] = 0;
     int rc = 0;
     for (unsigned g = 0; g < sc->f->particles_count && !rc; g++) {
         const scene_particles *pg = &sc->f->particles[g];
@@ -521,7 +644,7 @@ int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char
         if (pg->csv) {
             rc = load_csv(sc, s, &ol, (int)g, mat, err, errlen);
         } else if (pg->generate) {
-            rc = generate(sc, s, &ol, (int)g, mat, err, errlen);
+            rc = generate(sc, s, &ol, (int)g, mat, fill, fill_len, err, errlen);
         } else {
             for (unsigned i = 0; i < pg->spheres_count && !rc; i++) {
                 const scene_sphere *q = &pg->spheres[i];

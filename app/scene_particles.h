@@ -16,7 +16,9 @@ int scene_fail(const scene *sc, char *err, size_t errlen, const char *path, cons
     __attribute__((format(printf, 5, 6)));
 int scene_material_id(const scene *sc, const char *name);
 /* Adds every particle group to s; *origin (malloc'd) gets one entry per particle. */
-int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *err, size_t errlen);
+/* fill: a line per random group (count, volume share, time taken), for dem check */
+int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char *fill, size_t fill_len, char *err,
+                        size_t errlen);
 /* Rejects initial particle-particle and particle-wall overlaps above the scene's tolerance. */
 int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *origin, int n, char *err, size_t errlen);
 /* The scene's membranes (scene_membranes.c), after the walls (first_wall: each scene wall's first library wall) */

@@ -45,6 +45,14 @@ static const cyaml_schema_field_t region_fields[] = {
     VEC3("axis", scene_region, axis), REAL("radius", scene_region, radius), REAL("height", scene_region, height),
     CYAML_FIELD_END};
 
+static const cyaml_schema_field_t lognormal_fields[] = {
+    CYAML_FIELD_FLOAT("median", CYAML_FLAG_DEFAULT, scene_lognormal, median),
+    CYAML_FIELD_FLOAT("sigma", CYAML_FLAG_DEFAULT, scene_lognormal, sigma), CYAML_FIELD_END};
+static const cyaml_schema_field_t size_fields[] = {
+    CYAML_FIELD_FLOAT("radius", CYAML_FLAG_DEFAULT, scene_size, radius),
+    CYAML_FIELD_FLOAT("fraction", CYAML_FLAG_DEFAULT, scene_size, fraction), CYAML_FIELD_END};
+static const cyaml_schema_value_t size_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_size, size_fields)};
+
 static const cyaml_schema_field_t generate_fields[] = {
     CYAML_FIELD_STRING_PTR("kind", CYAML_FLAG_POINTER, scene_generate, kind, 1, 16),
     CYAML_FIELD_STRING_PTR("shape", CYAML_FLAG_POINTER, scene_generate, shape, 1, 16),
@@ -53,6 +61,10 @@ static const cyaml_schema_field_t generate_fields[] = {
     REAL("radius", scene_generate, radius), REAL("radius_min", scene_generate, radius_min),
     REAL("radius_max", scene_generate, radius_max), REAL("spacing", scene_generate, spacing),
     REAL("speed", scene_generate, speed),
+    CYAML_FIELD_MAPPING_PTR("lognormal", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_generate, lognormal,
+                            lognormal_fields),
+    CYAML_FIELD_SEQUENCE("sizes", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_generate, sizes, &size_entry, 1, 64),
+    CYAML_FIELD_STRING_PTR("fractions", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_generate, fractions, 1, 16),
     CYAML_FIELD_UINT("seed", CYAML_FLAG_OPTIONAL, scene_generate, seed),
     CYAML_FIELD_END};
 

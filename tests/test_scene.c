@@ -1185,6 +1185,66 @@ static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
  * frame holds the scene's own particles, moved (/particles/input_index says from where), the reference and PoCL
  * agree bit for bit, a restart continues bit for bit (the sort is a function of the scene), and a bad value is
  * refused with its line. */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Size distributions of random packings (tests/scenes/size_distributions.yaml): a lognormal truncated to its bounds,
+ * listed sizes by number (counts rounded by largest remainder) and by volume; and their refusals. */
+static void test_size_distributions(void **st)
+{
+    (void)st;
+    char err[8192], path[300];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/size_distributions.yaml -o %s/sd.h5 --quiet "
+                                          "--stop-after 1", DEM, SRC, tmp), 0);
+    snprintf(path, sizeof path, "%s/sd.h5", tmp);
+    long n = 0;
+    double *r = read_all(path, "particles/radius", H5T_NATIVE_DOUBLE, &n);
+    assert_int_equal(n, 4000 + 1001 + 900);
+    /* the lognormal (median 0.6 mm, sigma 0.3, within 0.3 .. 1.5 mm): the bounds hold, median and spread follow */
+    double ln[4000], mean = 0, var = 0;
+    for (int i = 0; i < 4000; i++) {
+        assert_true(r[i] >= 0.0003 && r[i] <= 0.0015);
+        ln[i] = log(r[i]);
+        mean += ln[i] / 4000;
+    }
+    for (int i = 0; i < 4000; i++)
+        var += (ln[i] - mean) * (ln[i] - mean) / 3999;
+    qsort(ln, 4000, sizeof ln[0], cmp_double);
+    double med = exp(0.5 * (ln[1999] + ln[2000]));
+    printf("  lognormal: median %.4g mm (0.6 asked), sigma %.4g (0.3 asked, truncated)\n", 1e3 * med, sqrt(var));
+    assert_true(fabs(med / 0.0006 - 1) < 0.03);
+    assert_true(fabs(sqrt(var) / 0.3 - 1) < 0.1);
+    /* listed by number: 0.3 / 0.4 / 0.3 of 1001 -> 300, 401 (the largest remainder), 300 */
+    int c1 = 0, c08 = 0, c06 = 0, b1 = 0, b05 = 0;
+    for (int i = 4000; i < 5001; i++) {
+        c1 += r[i] == 0.001, c08 += r[i] == 0.0008, c06 += r[i] == 0.0006;
+    }
+    assert_int_equal(c1, 300);
+    assert_int_equal(c08, 401);
+    assert_int_equal(c06, 300);
+    /* listed by volume: half the volume each in 1 mm and 0.5 mm spheres -> 8 times as many small ones */
+    for (int i = 5001; i < 5901; i++)
+        b1 += r[i] == 0.001, b05 += r[i] == 0.0005;
+    assert_int_equal(b1, 100);
+    assert_int_equal(b05, 800);
+    free(r);
+    const char *f = "tests/scenes/size_distributions.yaml";
+    bad_in(f, "s/fraction: 0.4}/fraction: 0.3}/", "bad.yaml:11: particles[1].generate.sizes: the fractions must add up "
+                                                  "to 1 (got 0.9)");
+    bad_in(f, "s/fractions: volume/fractions: mass/",
+           "bad.yaml:13: particles[2].generate.fractions: fractions must be number or volume (got 'mass')");
+    bad_in(f, "s/radius_min: 0.0003, radius_max: 0.0015, //",
+           "particles[0].generate.radius_min: a lognormal needs its bounds: 0 < radius_min <= radius_max [m]");
+    bad_in(f, "s/sigma: 0.3}/sigma: 0.3}, radius: 0.001/",
+           "particles[0].generate: give one of radius, radius_min/radius_max, lognormal or sizes");
+    bad_in(f, "s/radius_max: 0.0015/radius_max: 0.00031/", "particles[0].generate.lognormal: only 0.");
+    bad_in(f, "/lognormal: {/s/kind: random/kind: lattice/",
+           "particles[0].generate.lognormal: size distributions are for kind: random");
+}
+
 static void test_particle_order(void **st)
 {
     (void)st;
@@ -1255,6 +1315,7 @@ int main(void)
         cmocka_unit_test(test_output_paths),
         cmocka_unit_test(test_crafted_checkpoints),
         cmocka_unit_test(test_random_packing),
+        cmocka_unit_test(test_size_distributions),
         cmocka_unit_test(test_particle_order),
         cmocka_unit_test(test_wall_repeat),
         cmocka_unit_test(test_dt_advice),
