@@ -79,6 +79,7 @@ typedef struct {
     char *material;
     double point[3], normal[3];   /* plane (normal towards the particles) */
     double axis[3], radius;       /* cylinder: point on its axis, axis direction, inner radius */
+    double height;                /* cylinder: length from the point along the axis (0: endless) */
     double lo[3], hi[3];          /* box: six planes from inside */
     char *type;                   /* "plane", "cylinder" or "box" */
     scene_stage *motion;

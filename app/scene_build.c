@@ -448,6 +448,12 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
             snprintf(p, sizeof p, "%s.radius", base);
             return scene_fail(sc, err, errlen, p, "cylinder radius must be > 0 m");
         }
+        snprintf(p, sizeof p, "%s.height", base);
+        if (scene_has(sc->loc, p) && (dw.kind != DEM_WALL_CYLINDER || !(w->height > 0) || !isfinite(w->height)))
+            return scene_fail(sc, err, errlen, p, dw.kind == DEM_WALL_CYLINDER ? "cylinder height must be > 0 m (leave "
+                                                                               "it out for an endless cylinder)"
+                                                                             : "only a cylinder has a height");
+        dw.height = dw.kind == DEM_WALL_CYLINDER ? w->height : 0;
         dw.nstages = nst;
         memcpy(dw.stages, st, sizeof(dem_stage) * (size_t)nst);
         int id = dem_add_wall(s, &dw);

@@ -68,13 +68,27 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
         g.delta = ri - v3_dot(d, nw);
         g.active = g.delta > (real)0;
     } else { /* WALL_CYLINDER_INSIDE */
-        vec3 radial = v3_sub(d, v3_scale(nw, v3_dot(d, nw)));
+        real h = v3_dot(d, nw), len = wr[W_HEIGHT];
+        vec3 radial = v3_sub(d, v3_scale(nw, h));
         real rho2 = v3_dot(radial, radial);
         if (rho2 > (real)0) {
             real rho = dem_sqrt(rho2);
-            g.delta = ri + rho - wr[W_RADIUS];
-            g.active = g.delta > (real)0;
-            g.n = v3_scale(radial, (real)-1 / rho);
+            if (!(len > (real)0) || (h >= (real)0 && h <= len)) { /* the side, seen from inside */
+                g.delta = ri + rho - wr[W_RADIUS];
+                g.active = g.delta > (real)0;
+                g.n = v3_scale(radial, (real)-1 / rho);
+            } else { /* beyond an end of a finite cylinder: the rim, a circle, touched as an edge */
+                real e = h > len ? h - len : h;      /* axial distance past the end */
+                real q = rho - wr[W_RADIUS];          /* radial distance from the rim (negative: inside it) */
+                real dist2 = e * e + q * q;
+                if (dist2 > (real)0 && dist2 < ri * ri) {
+                    real dist = dem_sqrt(dist2);
+                    g.delta = ri - dist;
+                    g.active = 1;
+                    /* from the rim to the centre: q along the outward radial, e along the axis */
+                    g.n = v3_add(v3_scale(radial, q / (dist * rho)), v3_scale(nw, e / dist));
+                }
+            }
         }
         /* a centre exactly on the axis cannot touch: the host rejects particles wider than the cylinder */
     }

@@ -50,6 +50,7 @@ enum {
     W_NX, W_NY, W_NZ,     /* plane: unit normal pointing into the particle side; cylinder: unit axis */
     W_RADIUS,             /* cylinder radius [m] (particles live inside) */
     W_VX, W_VY, W_VZ,     /* wall velocity during the current step [m/s] */
+    W_HEIGHT,             /* cylinder length from the point along the axis [m]; 0: endless */
     W_STRIDE
 };
 /* Wall integer part (index w*WI_STRIDE + ...). */

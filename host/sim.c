@@ -449,6 +449,9 @@ int dem_add_wall(dem_sim *s, const dem_wall *w)
         return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k), -1;
     if (w->kind == DEM_WALL_CYLINDER && !(w->radius > 0 && isfinite(w->radius)))
         return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius), -1;
+    if (w->kind == DEM_WALL_CYLINDER && !(w->height >= 0 && isfinite(w->height)))
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height),
+               -1;
     if (check_stages(s, k, w->kind, w->nstages, w->stages))
         return -1;
     s->walls[k] = *w;

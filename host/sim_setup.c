@@ -254,6 +254,7 @@ void sim_pack_walls(dem_sim *s)
             t[W_VX + d] = v[d];
         }
         t[W_RADIUS] = w->radius;
+        t[W_HEIGHT] = w->kind == DEM_WALL_CYLINDER ? w->height : 0;
     }
     int rs = s->setup.real_size;
     for (int k = 0; k < W_STRIDE * s->nwalls; k++) {

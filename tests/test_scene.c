@@ -1231,7 +1231,13 @@ static void test_size_distributions(void **st)
     assert_int_equal(b1, 100);
     assert_int_equal(b05, 800);
     free(r);
+    /* a cylinder's height: only a cylinder has one, and it is > 0 */
     const char *f = "tests/scenes/size_distributions.yaml";
+    bad_in(f, "s/{type: box, .*}/{type: cylinder, material: g, point: [0.025, 0.025, -0.01], axis: [0, 0, 1], "
+              "radius: 0.04, height: -1}/",
+           "walls[0].height: cylinder height must be > 0 m (leave it out for an endless cylinder)");
+    bad_in(f, "s/{type: box, .*}/{type: plane, material: g, point: [0, 0, -0.01], normal: [0, 0, 1], height: 1}/",
+           "walls[0].height: only a cylinder has a height");
     bad_in(f, "s/fraction: 0.4}/fraction: 0.3}/", "bad.yaml:11: particles[1].generate.sizes: the fractions must add up "
                                                   "to 1 (got 0.9)");
     bad_in(f, "s/fractions: volume/fractions: mass/",

@@ -196,9 +196,78 @@ static void test_kept_wall_forces(void **st)
     }
 }
 
+/* A finite cylinder (dem_wall.height: a die a tablet can leave): its side inside its length, only its rim (an edge)
+ * beyond either end. One sphere (r = 1 mm) at rest against a die of radius 5 mm and height 10 mm, one step each:
+ * what the wall receives points the way the geometry says, and an endless cylinder still touches where the finite
+ * one does not. PoCL bitwise = reference (backend_run). */
+typedef struct {
+    double x[3], height;
+    int expect; /* 0: no contact; 1: the side (along +x); 2: the rim, along (0.3, 0, -0.5) or (0.3, 0, +0.5) */
+} die_case;
+static const die_case die_cases[] = {
+    {{0.00401, 0, 0.005}, 0.01, 1},    /* inside, against the side */
+    {{0.00401, 0, 0.0115}, 0.01, 0},   /* above the top, clear of the rim */
+    {{0.00401, 0, 0.0115}, 0, 1},      /* the same place in an endless cylinder: the side */
+    {{0.0047, 0, 0.0105}, 0.01, 2},    /* straddling the top rim: 0.3 mm inside it, 0.5 mm above */
+    {{0.0047, 0, -0.0005}, 0.01, 2},   /* the same below the bottom rim */
+    {{0.0020, 0, 0.0105}, 0.01, 0},    /* above the top near the axis: nothing */
+};
+static dem_sim *build_die_case(void *ctx)
+{
+    const die_case *c = ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 1.0, 0.4}); /* e = 1: no damping, the bare law */
+    dem_add_particle(s, c->x, NULL, 0.001, m);
+    dem_wall die = {.kind = DEM_WALL_CYLINDER, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1},
+                    .radius = 0.005, .height = c->height};
+    assert_int_equal(dem_add_wall(s, &die), 0);
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.03});
+    dem_set_dt(s, 1e-7);
+    return s;
+}
+static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    const die_case *c = ctx;
+    double f[3];
+    dem_wall_force(s, 0, f);
+    double mag = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    if (c->expect == 0) {
+        assert_true(mag == 0);
+        return;
+    }
+    /* the Hertz force of the overlap: 0.01 mm at the side, 1 - sqrt(0.3^2 + 0.5^2) = 0.417 mm at the rim */
+    double delta = c->expect == 1 ? 1e-5 : 0.001 - sqrt(0.0003 * 0.0003 + 0.0005 * 0.0005);
+    double estar = 1e7 / (2 * (1 - 0.3 * 0.3)), fh = 4.0 / 3.0 * estar * sqrt(0.001) * delta * sqrt(delta);
+    printf("  %s: sphere at (%.4g, %.4g) mm, height %g mm: wall receives (%.6g, %.6g, %.6g) N (Hertz %.6g N)\n", bc->name,
+           1e3 * c->x[0], 1e3 * c->x[2], 1e3 * c->height, f[0], f[1], f[2], fh);
+    /* within the one step's drift (5e-6 at the rim) and the rounding of the side's overlap (3 digits cancel) */
+    assert_true(fabs(mag / fh - 1) < 1e-5 + 2000 * bc->eps);
+    assert_true(fabs(f[1]) <= 1e-9 * mag);
+    if (c->expect == 1) {
+        assert_true(f[0] > 0 && fabs(f[2]) <= 1e-9 * mag);
+    } else { /* from the rim towards the centre: (-0.3, 0, +-0.5) on the sphere, the opposite on the wall */
+        double sz = c->x[2] > 0 ? -1 : 1;
+        assert_true(fabs(f[0] / mag - 0.3 / sqrt(0.34)) < 1e-6 * (1 + 1e6 * bc->eps));
+        assert_true(fabs(f[2] / mag - sz * 0.5 / sqrt(0.34)) < 1e-6 * (1 + 1e6 * bc->eps));
+    }
+}
+static void test_finite_die(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    for (size_t k = 0; k < sizeof die_cases / sizeof die_cases[0]; k++)
+        backend_run(bc, build_die_case, 1, check_die_case, (void *)&die_cases[k]);
+    dem_sim *s = dem_create(); /* a negative or non-finite height is refused */
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    dem_wall bad = {.kind = DEM_WALL_CYLINDER, .material = m, .normal = {0, 0, 1}, .radius = 0.005, .height = -1};
+    assert_int_equal(dem_add_wall(s, &bad), -1);
+    assert_non_null(strstr(dem_error(s), "cylinder height must be >= 0 m"));
+    dem_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo),
-                                       cmocka_unit_test(test_kept_wall_forces)};
+                                       cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
