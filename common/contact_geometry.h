@@ -73,13 +73,13 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
         real rho2 = v3_dot(radial, radial);
         if (rho2 > (real)0) {
             real rho = dem_sqrt(rho2);
-            if (!(len > (real)0) || (h >= (real)0 && h <= len)) { /* the side, seen from inside */
+            real q = rho - wr[W_RADIUS]; /* radial distance from the bore's surface (negative: inside the bore) */
+            if (!(len > (real)0) || (h >= (real)0 && h <= len && q <= (real)0)) { /* the side, seen from inside */
                 g.delta = ri + rho - wr[W_RADIUS];
                 g.active = g.delta > (real)0;
                 g.n = v3_scale(radial, (real)-1 / rho);
-            } else { /* beyond an end of a finite cylinder: the rim, a circle, touched as an edge */
-                real e = h > len ? h - len : h;      /* axial distance past the end */
-                real q = rho - wr[W_RADIUS];          /* radial distance from the rim (negative: inside it) */
+            } else if (q <= (real)0) { /* in the bore beyond an end: the rim, a circle, touched as an edge */
+                real e = h > len ? h - len : h; /* axial distance past the end */
                 real dist2 = e * e + q * q;
                 if (dist2 > (real)0 && dist2 < ri * ri) {
                     real dist = dem_sqrt(dist2);
@@ -87,6 +87,27 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
                     g.active = 1;
                     /* from the rim to the centre: q along the outward radial, e along the axis */
                     g.n = v3_add(v3_scale(radial, q / (dist * rho)), v3_scale(nw, e / dist));
+                }
+            } else if (h > len) { /* outside the bore, above: the die's top face (the die table) */
+                g.delta = ri - (h - len);
+                g.active = g.delta > (real)0;
+                g.n = nw;
+            } else if (h < (real)0) { /* below: its bottom face */
+                g.delta = ri + h;
+                g.active = g.delta > (real)0;
+                g.n = v3_scale(nw, (real)-1);
+            } else { /* a centre inside the die's body: pushed back out the nearest way, like a plane's */
+                real top = len - h;
+                g.active = 1;
+                if (q <= top && q <= h) {
+                    g.delta = ri + q;
+                    g.n = v3_scale(radial, (real)-1 / rho);
+                } else if (top <= h) {
+                    g.delta = ri + top;
+                    g.n = nw;
+                } else {
+                    g.delta = ri + h;
+                    g.n = v3_scale(nw, (real)-1);
                 }
             }
         }

@@ -69,8 +69,9 @@ typedef struct {
     double radius;    /* cylinder: inner radius [m]; particles live inside */
     int nstages;      /* motion: stages run one after the other; the wall rests after the last */
     dem_stage stages[DEM_MAX_STAGES];
-    double height;    /* cylinder: its length from `point` along the axis [m], e.g. a die a tablet leaves at the top;
-                         beyond either end a sphere touches only the rim (the end circle) as an edge. 0: endless */
+    double height;    /* cylinder: its length from `point` along the axis [m]: a die, a block with a bore a tablet can
+                         leave at the top. In the bore beyond either end a sphere touches the rim (the end circle) as
+                         an edge; outside the bore, the die's end faces (the die table). 0: endless */
 } dem_wall;
 
 enum { DEM_PARTICLE_NO_ROTATION = 1, /* infinite moment of inertia */

@@ -196,13 +196,14 @@ static void test_kept_wall_forces(void **st)
     }
 }
 
-/* A finite cylinder (dem_wall.height: a die a tablet can leave): its side inside its length, only its rim (an edge)
- * beyond either end. One sphere (r = 1 mm) at rest against a die of radius 5 mm and height 10 mm, one step each:
+/* A finite cylinder (dem_wall.height: a die a tablet can leave): its side inside its length, its rim (an edge) in the
+ * bore beyond either end, its end faces (the die table) outside the bore. One sphere (r = 1 mm) at rest against a die of radius 5 mm and height 10 mm, one step each:
  * what the wall receives points the way the geometry says, and an endless cylinder still touches where the finite
  * one does not. PoCL bitwise = reference (backend_run). */
 typedef struct {
     double x[3], height;
-    int expect; /* 0: no contact; 1: the side (along +x); 2: the rim, along (0.3, 0, -0.5) or (0.3, 0, +0.5) */
+    int expect; /* 0: no contact; 1: the side (along +x); 2: the rim, along (0.3, 0, -0.5) or (0.3, 0, +0.5);
+                 * 3, 4: an end face, along -z or +z */
 } die_case;
 static const die_case die_cases[] = {
     {{0.00401, 0, 0.005}, 0.01, 1},    /* inside, against the side */
@@ -211,6 +212,8 @@ static const die_case die_cases[] = {
     {{0.0047, 0, 0.0105}, 0.01, 2},    /* straddling the top rim: 0.3 mm inside it, 0.5 mm above */
     {{0.0047, 0, -0.0005}, 0.01, 2},   /* the same below the bottom rim */
     {{0.0020, 0, 0.0105}, 0.01, 0},    /* above the top near the axis: nothing */
+    {{0.0060, 0, 0.0105}, 0.01, 3},    /* outside the bore, on the die table (the top face): 0.5 mm down */
+    {{0.0060, 0, -0.0005}, 0.01, 4},   /* under the bottom face: 0.5 mm up */
 };
 static dem_sim *build_die_case(void *ctx)
 {
@@ -236,7 +239,7 @@ static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
         return;
     }
     /* the Hertz force of the overlap: 0.01 mm at the side, 1 - sqrt(0.3^2 + 0.5^2) = 0.417 mm at the rim */
-    double delta = c->expect == 1 ? 1e-5 : 0.001 - sqrt(0.0003 * 0.0003 + 0.0005 * 0.0005);
+    double delta = c->expect == 1 ? 1e-5 : c->expect == 2 ? 0.001 - sqrt(0.0003 * 0.0003 + 0.0005 * 0.0005) : 0.0005;
     double estar = 1e7 / (2 * (1 - 0.3 * 0.3)), fh = 4.0 / 3.0 * estar * sqrt(0.001) * delta * sqrt(delta);
     printf("  %s: sphere at (%.4g, %.4g) mm, height %g mm: wall receives (%.6g, %.6g, %.6g) N (Hertz %.6g N)\n", bc->name,
            1e3 * c->x[0], 1e3 * c->x[2], 1e3 * c->height, f[0], f[1], f[2], fh);
@@ -245,6 +248,8 @@ static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
     assert_true(fabs(f[1]) <= 1e-9 * mag);
     if (c->expect == 1) {
         assert_true(f[0] > 0 && fabs(f[2]) <= 1e-9 * mag);
+    } else if (c->expect >= 3) {
+        assert_true(fabs(f[0]) <= 1e-9 * mag && (c->expect == 3 ? f[2] < 0 : f[2] > 0));
     } else { /* from the rim towards the centre: (-0.3, 0, +-0.5) on the sphere, the opposite on the wall */
         double sz = c->x[2] > 0 ? -1 : 1;
         assert_true(fabs(f[0] / mag - 0.3 / sqrt(0.34)) < 1e-6 * (1 + 1e6 * bc->eps));

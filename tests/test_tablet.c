@@ -1,0 +1,159 @@
+/* test_tablet.c - a tablet press cycle at small scale (tests/scenes/tablet_small.yaml; issue 12): 600 spheres poured
+ * into a finite die (dem_wall.height), compacted by the upper punch under a servo to 1 N, held, decompressed, and
+ * ejected by the lower punch. Checks the signs and balances a press must show, and that PoCL has the reference's
+ * bits after the whole cycle:
+ *   - no sphere leaves the die before ejection (inside the bore, between the punches);
+ *   - the relative density rises monotonically during compaction;
+ *   - in the dwell, force balance on the compact: upper punch + weight = lower punch + die-wall friction (averaged
+ *     over the dwell's steps), each force with its sign (the punches pushed apart, the die dragged down);
+ *   - after ejection every sphere is above the die, whose wall then carries nothing. */
+#include "test_util.h"
+#include "scene.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SCENE DEM_DEFAULT_SOURCE_DIR "/tests/scenes/tablet_small.yaml"
+enum { DIE = 0, LOWER = 1, UPPER = 2 };
+#define R_DIE 0.004
+#define H_DIE 0.012
+
+static dem_sim *load(dem_backend_kind be, scene **sc, scene_run *run)
+{
+    char err[2048];
+    *sc = scene_load(SCENE, err, sizeof err);
+    if (!*sc)
+        fail_msg("%s", err);
+    dem_sim *s = scene_build(*sc, run, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    run->cfg.backend = be;
+    start_or_fail(s, &run->cfg);
+    return s;
+}
+
+static double zpos(dem_sim *s, int wall)
+{
+    double p[3];
+    dem_wall_position(s, wall, p);
+    return p[2];
+}
+
+/* every sphere's centre inside the bore and between the punches (a sphere pressed against the die overlaps it) */
+static int inside_die(dem_sim *s, const double *x, int n)
+{
+    double zl = zpos(s, LOWER), zu = zpos(s, UPPER);
+    for (int i = 0; i < n; i++)
+        if (!(hypot(x[3 * i], x[3 * i + 1]) < R_DIE && x[3 * i + 2] > zl && x[3 * i + 2] < fmin(zu, H_DIE)))
+            return 0;
+    return 1;
+}
+
+static void test_press_cycle(void **st)
+{
+    (void)st;
+    scene *sc, *scr;
+    scene_run run, runr;
+    dem_sim *s = load(DEM_BACKEND_OPENCL, &sc, &run);
+    int n = dem_count(s);
+    double dt = dem_dt(s), vs = 0, weight = 0;
+    for (int i = 0; i < n; i++) {
+        double r = dem_particle_radius(s, i), v = 4.0 / 3.0 * M_PI * r * r * r;
+        vs += v;
+        weight += 1500 * v * 9.81;
+    }
+    double *x = malloc(sizeof(double) * 3 * (size_t)n);
+    /* time line (the scene): settle 0.08 s; servo 0.08-0.16 s; slow lift to 0.22 s, fast to 0.32 s; ejection
+     * from 0.32 s to the end at 0.385 s */
+    long settle = lround(0.08 / dt), servo_end = lround(0.16 / dt), eject = lround(0.32 / dt), end = run.steps;
+    step_or_fail(s, settle);
+    dem_get_field(s, DEM_FIELD_X, x);
+    assert_true(inside_die(s, x, n));
+    /* compaction and dwell, one step at a time (the servo sums the walls every step anyway) */
+    double prev_density = 0, fu_sum = 0, fl_sum = 0, fd_sum = 0, f[3], peak = 0;
+    long dwell_steps = 0, touched = -1, reached = -1;
+    for (long k = settle; k < servo_end; k++) {
+        step_or_fail(s, 1);
+        dem_wall_force(s, UPPER, f);
+        double fu = f[2]; /* the upper punch is pushed up: positive */
+        if (touched < 0 && fu > 0.05)
+            touched = k;
+        if (reached < 0 && fu >= 0.9)
+            reached = k;
+        if (touched >= 0 && reached < 0) { /* compaction: the gap only closes */
+            double density = vs / (M_PI * R_DIE * R_DIE * (zpos(s, UPPER) - zpos(s, LOWER)));
+            assert_true(density >= prev_density);
+            prev_density = density;
+        }
+        if (k >= servo_end - lround(0.03 / dt)) { /* the dwell's last 30 ms */
+            fu_sum += fu;
+            dem_wall_force(s, LOWER, f);
+            fl_sum += -f[2]; /* pushed down */
+            dem_wall_force(s, DIE, f);
+            fd_sum += -f[2]; /* dragged down by friction */
+            dwell_steps++;
+        }
+        if (k % 500 == 0) {
+            dem_get_field(s, DEM_FIELD_X, x);
+            assert_true(inside_die(s, x, n));
+        }
+    }
+    assert_true(touched > 0 && reached > touched);
+    double fu = fu_sum / dwell_steps, fl = fl_sum / dwell_steps, fd = fd_sum / dwell_steps;
+    double density = vs / (M_PI * R_DIE * R_DIE * (zpos(s, UPPER) - zpos(s, LOWER)));
+    printf("  compaction: punch met the powder at %.4f s, 0.9 N at %.4f s; relative density %.3f (spheres' volume over "
+           "the die's between the punches, overlaps counted twice)\n", touched * dt, reached * dt, density);
+    printf("  dwell: upper punch %.5f N, lower %.5f N, die wall friction %.5f N, weight %.5f N: upper + weight - lower - "
+           "die = %.2g N; transmission %.3f\n", fu, fl, fd, weight, fu + weight - fl - fd, fl / fu);
+    assert_true(fabs(fu - 1.0) < 0.05);                        /* the servo holds its target */
+    assert_true(fl > 0 && fl <= fu + weight);                   /* the lower punch carries what friction leaves */
+    assert_true(fd > -0.01 * fu);                               /* the die is dragged down, not up */
+    assert_true(fabs(fu + weight - fl - fd) < 0.02 * fu);       /* the compact is in equilibrium */
+    /* decompression: still in the die until the ejection starts */
+    for (long k = servo_end; k < eject; k += 500) {
+        step_or_fail(s, k + 500 <= eject ? 500 : eject - k);
+        dem_get_field(s, DEM_FIELD_X, x);
+        if (!inside_die(s, x, n))
+            fail_msg("a sphere left the die at %.4f s, before the ejection", (k + 500) * dt);
+    }
+    /* ejection: the lower punch pushes the compact up and out */
+    for (long k = eject; k < end; k += 100) {
+        step_or_fail(s, k + 100 <= end ? 100 : end - k);
+        dem_wall_force(s, LOWER, f);
+        peak = fmax(peak, -f[2]);
+    }
+    dem_get_field(s, DEM_FIELD_X, x);
+    double zmin = INFINITY;
+    for (int i = 0; i < n; i++)
+        zmin = fmin(zmin, x[3 * i + 2] - dem_particle_radius(s, i));
+    dem_wall_force(s, DIE, f);
+    printf("  ejection: largest lower-punch force %.4g N; afterwards the lowest sphere bottom at %.5f m (die top %.3f m), "
+           "die force %.2g N\n", peak, zmin, H_DIE, hypot(hypot(f[0], f[1]), f[2]));
+    assert_true(peak > 0);
+    assert_true(zmin > H_DIE - 1e-6);
+    assert_true(hypot(hypot(f[0], f[1]), f[2]) == 0);
+    /* the same cycle on the reference: the same bits */
+    dem_sim *r = load(DEM_BACKEND_REFERENCE, &scr, &runr);
+    step_or_fail(r, settle);
+    for (long k = settle; k < servo_end; k++) /* the same calls: a dem_step call's end sums the walls */
+        step_or_fail(r, 1);
+    for (long k = servo_end; k < eject; k += 500)
+        step_or_fail(r, k + 500 <= eject ? 500 : eject - k);
+    for (long k = eject; k < end; k += 100)
+        step_or_fail(r, k + 100 <= end ? 100 : end - k);
+    char msg[256];
+    if (state_diff(s, r, msg, sizeof msg))
+        fail_msg("after the press cycle, PoCL vs reference: %s", msg);
+    free(x);
+    dem_destroy(s);
+    dem_destroy(r);
+    scene_free(sc);
+    scene_free(scr);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_press_cycle)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
