@@ -191,7 +191,8 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
 
 /* The particles' order in memory (dem_order_scatter): with info, one line for dem check; a note when the order is
  * scattered in a run large enough for it to matter (from about 1e4 particles: the bed of make bench ran 1.5x faster
- * sorted at 9 468 spheres, 2.3x at 1e5; below, the arrays stay in cache). */
+ * sorted at 9 468 spheres, 2.3x at 1e5 in make bench and 1.8-2x in make bench-peer's whole runs; below, the arrays
+ * stay in cache). */
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out)
 {
     double q = dem_order_scatter(s);
@@ -288,9 +289,8 @@ static int phase_configure(run_ctx *c)
 static int phase_start(run_ctx *c)
 {
     const run_opts *o = c->o;
-    scene_run *run = &c->run;
-    run->cfg.contacts = (run->fields & OUT_CONTACTS) != 0; /* frames carry the contact network */
-    int se = dem_start(c->s, &run->cfg);
+    const scene_run *run = &c->run;
+    int se = dem_start(c->s, &run->cfg); /* run->cfg.contacts: set by scene_build when frames carry contacts */
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);

@@ -418,6 +418,11 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
             if (!scene_has(sc->loc, p))
                 return scene_fail(sc, err, errlen, p, "a %s wall needs '%s'", w->type, need[q]);
         }
+        snprintf(p, sizeof p, "%s.height", base);
+        if (scene_has(sc->loc, p) && (strcmp(w->type, "cylinder") || !(w->height > 0) || !isfinite(w->height)))
+            return scene_fail(sc, err, errlen, p, !strcmp(w->type, "cylinder") ? "cylinder height must be > 0 m (leave "
+                                                                               "it out for an endless cylinder)"
+                                                                             : "only a cylinder has a height");
         if (!strcmp(w->type, "box")) {
             for (int d = 0; d < 3; d++)
                 if (!(w->hi[d] > w->lo[d]) || !isfinite(w->lo[d]) || !isfinite(w->hi[d])) {
@@ -448,11 +453,6 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
             snprintf(p, sizeof p, "%s.radius", base);
             return scene_fail(sc, err, errlen, p, "cylinder radius must be > 0 m");
         }
-        snprintf(p, sizeof p, "%s.height", base);
-        if (scene_has(sc->loc, p) && (dw.kind != DEM_WALL_CYLINDER || !(w->height > 0) || !isfinite(w->height)))
-            return scene_fail(sc, err, errlen, p, dw.kind == DEM_WALL_CYLINDER ? "cylinder height must be > 0 m (leave "
-                                                                               "it out for an endless cylinder)"
-                                                                             : "only a cylinder has a height");
         dw.height = dw.kind == DEM_WALL_CYLINDER ? w->height : 0;
         dw.nstages = nst;
         memcpy(dw.stages, st, sizeof(dem_stage) * (size_t)nst);
@@ -694,6 +694,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
         return NULL;
     }
     free(origin);
+    run->cfg.contacts = (run->fields & OUT_CONTACTS) != 0; /* frames carry the contact network: keep wall forces */
     if (!(run->effects & DEM_EFFECT_FRICTION))
         for (unsigned k = 0; k < sc->f->materials_count; k++)
             if (sc->f->materials[k].friction > 0) {

@@ -30,12 +30,11 @@ static double wall_overlap(const scene_wall *w, const double *x, double r)
     }
     const double *nr = !strcmp(w->type, "plane") ? w->normal : w->axis;
     double nn = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
-    double d[3] = {x[0] - w->point[0], x[1] - w->point[1], x[2] - w->point[2]};
-    double dn = (d[0] * nr[0] + d[1] * nr[1] + d[2] * nr[2]) / nn;
-    if (!strcmp(w->type, "plane"))
-        return r - dn;
-    double rad[3] = {d[0] - dn * nr[0] / nn, d[1] - dn * nr[1] / nn, d[2] - dn * nr[2] / nn};
-    return r + sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]) - w->radius;
+    dem_wall dw = {.kind = !strcmp(w->type, "plane") ? DEM_WALL_PLANE : DEM_WALL_CYLINDER, .radius = w->radius,
+                   .height = w->height};
+    for (int d = 0; d < 3; d++)
+        dw.normal[d] = nr[d] / nn;
+    return dem_wall_overlap(&dw, w->point, x, r, NULL); /* the kernels' geometry (a finite die's rim and faces) */
 }
 
 typedef struct {

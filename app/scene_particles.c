@@ -345,11 +345,15 @@ static int listed_radii(const scene *sc, int g, const scene_generate *gen, int n
         sum += gen->sizes[k].fraction;
         double rr = gen->sizes[k].radius;
         q[k] = by_volume ? gen->sizes[k].fraction / (rr * rr * rr) : gen->sizes[k].fraction;
+        if (!isfinite(q[k]))
+            return scene_fail(sc, err, errlen, p, "radius %g m is too small to weigh by volume", rr);
         norm += q[k];
     }
     snprintf(p, sizeof p, "particles[%d].generate.sizes", g);
-    if (!(fabs(sum - 1) <= 1e-3) || !(norm > 0))
+    if (!(fabs(sum - 1) <= 1e-3))
         return scene_fail(sc, err, errlen, p, "the fractions must add up to 1 (got %.6g)", sum);
+    if (!(norm > 0) || !isfinite(norm))
+        return scene_fail(sc, err, errlen, p, "the radii are too far apart to weigh by volume");
     long cnt[64], given = 0;
     double rem[64];
     for (k = 0; k < m; k++) {
@@ -389,13 +393,19 @@ static int lognormal_radii(const scene *sc, int g, const scene_generate *gen, do
     if (!(share >= 0.01))
         return scene_fail(sc, err, errlen, p, "only %.3g %% of this lognormal lies within radius_min %g m and radius_max "
                           "%g m (want at least 1 %%)", 100 * share, rmin, rmax);
-    for (int i = 0; i < n;) {
+    /* at least 1 % of the draws land (above): 1000 per sphere is a bound no proper case reaches */
+    long draws = 0, max_draws = 1000L * n + 1000000L;
+    int i = 0;
+    for (; i < n && draws < max_draws; draws++) {
         double u1 = rng_unit(st), u2 = rng_unit(st);
         double z = sqrt(-2 * log(u1 > 0 ? u1 : 1e-300)) * cos(2 * M_PI * u2);
         double v = med * exp(sig * z);
         if (v >= rmin && v <= rmax)
             r[i++] = v;
     }
+    if (i < n)
+        return scene_fail(sc, err, errlen, p, "%ld draws of this lognormal gave too few radii within radius_min %g m and "
+                          "radius_max %g m", max_draws, rmin, rmax);
     return 0;
 }
 
@@ -413,6 +423,10 @@ static int generate(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
     if ((has_r != 0) + (gen->lognormal != NULL) + (gen->sizes_count > 0) > 1) {
         snprintf(p, sizeof p, "particles[%d].generate", g);
         return scene_fail(sc, err, errlen, p, "give one of radius, radius_min/radius_max, lognormal or sizes");
+    }
+    if (gen->fractions && !gen->sizes_count) {
+        snprintf(p, sizeof p, "particles[%d].generate.fractions", g);
+        return scene_fail(sc, err, errlen, p, "fractions weigh listed sizes: give sizes too");
     }
     if ((gen->lognormal || gen->sizes_count) && strcmp(gen->kind, "random")) {
         snprintf(p, sizeof p, "particles[%d].generate.%s", g, gen->lognormal ? "lognormal" : "sizes");

@@ -1,11 +1,12 @@
-/* wall_forces.h - particle-wall contacts (planes of any orientation, the inside of a cylinder) and the canonical
- * reduction of the force each wall receives.
+/* wall_forces.h - particle-wall contacts (planes of any orientation, the inside of a cylinder, a finite die:
+ * contact_geometry.h) and the canonical reduction of the force each wall receives.
  *
  * A wall is a rigid body of infinite mass and radius: r* = r_i, m* = m_i, the contact point lies on the wall
  * surface (lever arm r_i - d). The same Hertz-Mindlin law as between particles (hertz_mindlin.h) is used with the
  * wall's own material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
- * the summation order of every particle's force. The force each wall receives is then summed over particles in
- * fixed blocks (wall_reduce_*), the same way on every device.
+ * the summation order of every particle's force. The force each wall receives is summed over particles in fixed
+ * blocks (wall_reduce_*), the same way on every device: after contact_forces from the forces it kept
+ * (DEM_KEEP_WALL_FORCES), or before it by evaluating the same contacts (wall_reduce_block).
  */
 #ifndef DEM_WALL_FORCES_H
 #define DEM_WALL_FORCES_H

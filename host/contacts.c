@@ -134,24 +134,14 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
                 continue;
             dem_contact *e = &cs[m++];
             const dem_wall *wl = &s->walls[w];
-            const double *p = s->wall_pos[w], *nn = wl->normal;
-            double xi[3], F[3], dv[3], nrm[3];
+            const double *p = s->wall_pos[w];
+            double xi[3], F[3], nrm[3];
             for (int q = 0; q < 3; q++) {
                 xi[q] = real_at(x, 3 * (size_t)i + q, rs);
                 F[q] = real_at(pf, 3 * ((size_t)w * n + i) + q, rs);
-                dv[q] = xi[q] - p[q];
             }
-            double dn = dv[0] * nn[0] + dv[1] * nn[1] + dv[2] * nn[2];
-            if (wl->kind == DEM_WALL_PLANE) {
-                e->overlap = s->radius[i] - dn;
-                memcpy(nrm, nn, sizeof nrm); /* into the particle */
-            } else {
-                double rad[3] = {dv[0] - dn * nn[0], dv[1] - dn * nn[1], dv[2] - dn * nn[2]};
-                double rl = sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]);
-                e->overlap = s->radius[i] + rl - wl->radius;
-                for (int q = 0; q < 3; q++) /* inward, towards the axis */
-                    nrm[q] = rl > 0 ? -rad[q] / rl : 0;
-            }
+            /* the kernels' geometry: a plane, a cylinder's side, a finite die's rim or faces; n into the particle */
+            e->overlap = dem_wall_overlap(wl, p, xi, s->radius[i], nrm);
             e->i = i, e->j = -1 - w;
             split(F, nrm, e->fn, e->ft);
             for (int q = 0; q < 3; q++)

@@ -136,15 +136,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
             if (rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
                 continue;
             const dem_wall *wl = &s->walls[k];
-            const double *p = s->wall_pos[k], *nn = wl->normal;
-            double d[3] = {x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2]};
-            double dn = d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2], delta;
-            if (wl->kind == DEM_WALL_PLANE) {
-                delta = r - dn;
-            } else {
-                double rad[3] = {d[0] - dn * nn[0], d[1] - dn * nn[1], d[2] - dn * nn[2]};
-                delta = r + sqrt(rad[0] * rad[0] + rad[1] * rad[1] + rad[2] * rad[2]) - wl->radius;
-            }
+            double delta = dem_wall_overlap(wl, s->wall_pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
             if (delta > 0) {
                 en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], wl->material) * sqrt(r) * (delta * delta * sqrt(delta));
                 en->wall_contacts++;

@@ -91,8 +91,9 @@ typedef struct {
     int force_dt;        /* 1: accept a time step above the stability bound */
     const char *source_dir; /* folder with kernels/ and common/; NULL = $DEM_SOURCE_DIR or the build's */
     int contacts;        /* 1: the run reads the contact network (dem_contacts_get), so the device keeps the force from
-                            every wall on every particle (3 reals per particle and wall); 0 (default): it does not,
-                            and dem_contacts_get refuses a run with walls */
+                            every wall on every particle (3 reals per particle and wall); 0 (default): only a run with a
+                            servo wall keeps them (its every-step sums read them), and dem_contacts_get refuses a run
+                            with walls that does not */
 } dem_config;
 
 /* Fields that can be read back (dem_get_raw, dem_get_field). */
@@ -109,7 +110,7 @@ typedef enum {
     DEM_FIELD_CELL_START,           /* int[ncells+1] */
     DEM_FIELD_CELL_PARTICLES,       /* int[n] */
     DEM_FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
-    DEM_FIELD_WALL_REAL,            /* real[10*nwalls] */
+    DEM_FIELD_WALL_REAL,            /* real[11*nwalls] (common/dem_layout.h W_*) */
     DEM_FIELD_TOUCH,                /* unsigned char[pairs]: 1 where the pair touched in the last step, one byte per
                                        listed pair in the lower ids' row order (like PAIR_RECORDS and HIST) */
     DEM_FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
@@ -125,7 +126,8 @@ typedef enum {
                                        reads them) */
     DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming pairs (partners with lower ids) start
                                        in DEM_FIELD_IN_PAIR */
-    DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N] */
+    DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N];
+                                       kept only by runs with dem_config.contacts or a servo wall, else empty */
     DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair, in_start[i] + k for row slot k.
                                        The pair-sized fields (HIST, TOUCH, PAIR_RECORDS, IN_PAIR) hold the pairs allocated, which
                                        grow at rebuilds: take dem_field_bytes just before each read; entries beyond the
@@ -285,6 +287,11 @@ double dem_order_scatter(const dem_sim *s);
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
 int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material);
+/* The overlap of a sphere (centre x, radius r) with wall w when the wall is at `point` (w->point, or its current
+ * position: dem_wall_position), by the kernels' own geometry (common/contact_geometry.h) in double: > 0 when they
+ * touch, <= 0 when apart; n (may be NULL) gets the unit normal from the wall towards the centre. w->normal must be a
+ * unit vector (dem_add_wall normalises the walls it keeps). */
+double dem_wall_overlap(const dem_wall *w, const double point[3], const double x[3], double r, double n[3]);
 /* Particle `particle` rides on wall `wall` (added before): it becomes fixed (DEM_PARTICLE_FIXED) and moves with the
  * wall's velocity at every step, its own given velocity replaced - a membrane's end ring on a platen. It does not
  * touch that wall (the platen's force is the granulate's alone). Turns on DEM_EFFECT_RIDERS. */

@@ -1,5 +1,6 @@
 /* wall_forces.cl - the canonical per-wall force sum (common/wall_forces.h); the wall contacts themselves are
- * evaluated per particle inside kernels/contact_forces.cl. Twin: reference/wall_forces.c
+ * applied per particle inside kernels/contact_forces.cl (and evaluated again here when their forces are not kept).
+ * Twin: reference/wall_forces.c
  * Arguments: common/dem_kernels.h. */
 #include "wall_forces.h"
 

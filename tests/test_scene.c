@@ -1247,6 +1247,9 @@ static void test_size_distributions(void **st)
     bad_in(f, "s/sigma: 0.3}/sigma: 0.3}, radius: 0.001/",
            "particles[0].generate: give one of radius, radius_min/radius_max, lognormal or sizes");
     bad_in(f, "s/radius_max: 0.0015/radius_max: 0.00031/", "particles[0].generate.lognormal: only 0.");
+    bad_in(f, "s/, fractions: volume//; s/fraction: 0.4}], count: 1001/fraction: 0.4}], fractions: volume, count: 1001/;"
+              " /lognormal: {/s/seed: 7}/seed: 7, fractions: number}/",
+           "particles[0].generate.fractions: fractions weigh listed sizes: give sizes too");
     bad_in(f, "/lognormal: {/s/kind: random/kind: lattice/",
            "particles[0].generate.lognormal: size distributions are for kind: random");
 }

@@ -203,7 +203,7 @@ static void test_kept_wall_forces(void **st)
 typedef struct {
     double x[3], height;
     int expect; /* 0: no contact; 1: the side (along +x); 2: the rim, along (0.3, 0, -0.5) or (0.3, 0, +0.5);
-                 * 3, 4: an end face, along -z or +z */
+                 * 3, 4: an end face, along -z or +z; 5: pushed out of the die's body into the bore (+x) */
 } die_case;
 static const die_case die_cases[] = {
     {{0.00401, 0, 0.005}, 0.01, 1},    /* inside, against the side */
@@ -214,6 +214,7 @@ static const die_case die_cases[] = {
     {{0.0020, 0, 0.0105}, 0.01, 0},    /* above the top near the axis: nothing */
     {{0.0060, 0, 0.0105}, 0.01, 3},    /* outside the bore, on the die table (the top face): 0.5 mm down */
     {{0.0060, 0, -0.0005}, 0.01, 4},   /* under the bottom face: 0.5 mm up */
+    {{0.0052, 0, 0.006}, 0.01, 5},     /* a centre in the die's body, 0.2 mm from the bore: pushed back into it */
 };
 static dem_sim *build_die_case(void *ctx)
 {
@@ -236,17 +237,29 @@ static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
     double mag = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     if (c->expect == 0) {
         assert_true(mag == 0);
+        assert_true(dem_wall_overlap(&(dem_wall){.kind = DEM_WALL_CYLINDER, .normal = {0, 0, 1}, .radius = 0.005,
+                                                 .height = c->height},
+                                     (double[3]){0, 0, 0}, c->x, 0.001, NULL) <= 0);
         return;
     }
     /* the Hertz force of the overlap: 0.01 mm at the side, 1 - sqrt(0.3^2 + 0.5^2) = 0.417 mm at the rim */
-    double delta = c->expect == 1 ? 1e-5 : c->expect == 2 ? 0.001 - sqrt(0.0003 * 0.0003 + 0.0005 * 0.0005) : 0.0005;
+    double delta = c->expect == 1   ? 1e-5
+                   : c->expect == 2 ? 0.001 - sqrt(0.0003 * 0.0003 + 0.0005 * 0.0005)
+                   : c->expect == 5 ? 0.0012
+                                    : 0.0005;
     double estar = 1e7 / (2 * (1 - 0.3 * 0.3)), fh = 4.0 / 3.0 * estar * sqrt(0.001) * delta * sqrt(delta);
     printf("  %s: sphere at (%.4g, %.4g) mm, height %g mm: wall receives (%.6g, %.6g, %.6g) N (Hertz %.6g N)\n", bc->name,
            1e3 * c->x[0], 1e3 * c->x[2], 1e3 * c->height, f[0], f[1], f[2], fh);
     /* within the one step's drift (5e-6 at the rim) and the rounding of the side's overlap (3 digits cancel) */
     assert_true(fabs(mag / fh - 1) < 1e-5 + 2000 * bc->eps);
     assert_true(fabs(f[1]) <= 1e-9 * mag);
-    if (c->expect == 1) {
+    /* the host's view of the same contact (dem_wall_overlap: the contact network, energies, start-up checks) */
+    double nh[3], dw = dem_wall_overlap(&(dem_wall){.kind = DEM_WALL_CYLINDER, .normal = {0, 0, 1}, .radius = 0.005,
+                                                    .height = c->height},
+                                        (double[3]){0, 0, 0}, c->x, 0.001, nh);
+    assert_true(fabs(dw / delta - 1) < 1e-9);
+    assert_true(fabs(nh[0] * f[0] + nh[2] * f[2] + mag) < 1e-6 * mag); /* the wall receives minus n */
+    if (c->expect == 1 || c->expect == 5) {
         assert_true(f[0] > 0 && fabs(f[2]) <= 1e-9 * mag);
     } else if (c->expect >= 3) {
         assert_true(fabs(f[0]) <= 1e-9 * mag && (c->expect == 3 ? f[2] < 0 : f[2] > 0));

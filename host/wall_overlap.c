@@ -1,0 +1,25 @@
+/* wall_overlap.c - dem_wall_overlap: the kernels' own wall geometry (common/contact_geometry.h, wall_geometry),
+ * compiled here in double, for the host's views of wall contacts (the contact network, energies, the scene's
+ * start-up overlap check), so that a finite die's rim and faces are seen as the kernels see them. */
+#define DEM_REAL_SIZE 8
+#include "contact_geometry.h"
+#include "dem.h"
+
+double dem_wall_overlap(const dem_wall *w, const double point[3], const double x[3], double r, double n[3])
+{
+    real wr[W_STRIDE] = {0};
+    for (int d = 0; d < 3; d++) {
+        wr[W_PX + d] = point[d];
+        wr[W_NX + d] = w->normal[d];
+    }
+    wr[W_RADIUS] = w->kind == DEM_WALL_CYLINDER ? w->radius : 0;
+    wr[W_HEIGHT] = w->kind == DEM_WALL_CYLINDER ? w->height : 0;
+    wall_geom g = wall_geometry(w->kind == DEM_WALL_PLANE ? WALL_PLANE : WALL_CYLINDER_INSIDE, wr,
+                                v3(x[0], x[1], x[2]), r);
+    if (n) {
+        n[0] = g.n.x;
+        n[1] = g.n.y;
+        n[2] = g.n.z;
+    }
+    return g.active ? g.delta : (g.delta < 0 ? g.delta : 0);
+}
