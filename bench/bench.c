@@ -577,8 +577,11 @@ static void bed_table(int quick)
                 path, dev, gbs);
     double lnN[8], lnT[8];
     int nfit = 0, first = 1;
+    const char *only_sizes = getenv("DEM_BENCH_BED_SIZES"); /* e.g. "3": the 1e6 rows only (0..3: 1e3 .. 1e6) */
     for (int z = 0; z < nsizes; z++)
         for (int q = 0; q < 4; q++) {
+            if (only_sizes && !strchr(only_sizes, '0' + z))
+                break;
             int p = q & 1, sorted = q >> 1;
             dem_precision prec = p ? DEM_FP32 : DEM_FP64;
             bed_result ro, rp, rr;
