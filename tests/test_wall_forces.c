@@ -12,11 +12,17 @@
 #define R_BEAD 0.002
 #define RHO 2500.0
 
-static dem_sim *die(void)
+/* the die scene under a contact model: 0 classical, 1 MC-stress, 2 lagged MC-strain, 3 iterated MC-strain */
+static dem_sim *die_model(int model)
 {
     dem_sim *s = dem_create();
-    int m = dem_add_material(s, &(dem_material){RHO, 1e7, 0.24, 0.5, 0.2});
-    int steel = dem_add_material(s, &(dem_material){7800, 2e8, 0.3, 0.5, 0.2});
+    double beta = model == 1 ? 0.3 : 0, gamma = model >= 2 ? 0.5 : 0;
+    int m = dem_add_material(s, &(dem_material){RHO, 1e7, 0.24, 0.5, 0.2, beta, gamma});
+    int steel = dem_add_material(s, &(dem_material){7800, 2e8, 0.3, 0.5, 0.2, beta, gamma});
+    if (model)
+        dem_set_effects(s, DEM_EFFECT_CLASSICAL | (model == 1 ? DEM_EFFECT_MC_STRESS : DEM_EFFECT_MC_STRAIN));
+    if (model == 3)
+        dem_set_mc_strain(s, 10, 1e-6);
     for (int k = 0; k < 17; k++) { /* a loose column, slightly off axis */
         double a = 2.1 * k, x[3] = {0.0025 * cos(a), 0.0025 * sin(a), 0.0025 + 0.0042 * k};
         dem_add_particle(s, x, NULL, R_BEAD, m);
@@ -39,6 +45,7 @@ static dem_sim *die(void)
     dem_set_dt(s, ts.recommended_dt);
     return s;
 }
+static dem_sim *die(void) { return die_model(0); }
 
 static void test_die(void **st)
 {
@@ -156,14 +163,17 @@ static void test_servo(void **st)
 
 /* The walls' sums two ways: a run that keeps each particle's wall forces (dem_config.contacts: the sums add what
  * contact_forces kept) and one that does not (the sums evaluate the wall contacts again, before contact_forces).
- * Same bits, every backend and precision, over settling beads in the die; only the first can give the contact
- * network, whose wall contacts then add up to what each wall received. */
+ * Same bits, every backend and precision and contact model (MC-stress and MC-strain feed the wall law their own
+ * terms), over settling beads in the die; only the first can give the contact network, whose wall contacts then
+ * add up to what each wall received. */
 static void test_kept_wall_forces(void **st)
 {
     (void)st;
+    static const char *models[] = {"classical", "mc_stress", "mc_strain lagged", "mc_strain iterated"};
+    for (int model = 0; model < 4; model++)
     FOR_EACH_BACKEND(bc)
     {
-        dem_sim *a = die(), *b = die();
+        dem_sim *a = die_model(model), *b = die_model(model);
         dem_config ca = cfg_of(bc->backend, bc->precision), cb = ca;
         cb.contacts = 1;
         start_or_fail(a, &ca);
@@ -173,7 +183,8 @@ static void test_kept_wall_forces(void **st)
             step_or_fail(a, 397);
             step_or_fail(b, 397);
             if (state_diff(a, b, msg, sizeof msg))
-                fail_msg("%s, after %d steps: wall forces evaluated again vs kept: %s", bc->name, 397 * (chunk + 1), msg);
+                fail_msg("%s, %s, after %d steps: wall forces evaluated again vs kept: %s", bc->name, models[model],
+                         397 * (chunk + 1), msg);
         }
         dem_contact *cs;
         long count, npairs;
@@ -186,7 +197,8 @@ static void test_kept_wall_forces(void **st)
                 for (int d = 0; d < 3; d++)
                     sum[d] -= cs[k].fn[d] + cs[k].ft[d], big = fmax(big, fabs(cs[k].fn[d]));
         dem_wall_force(b, 1, fw);
-        printf("  %s: floor receives %.6g N; its contacts in the network add up to %.6g N\n", bc->name, fw[2], sum[2]);
+        printf("  %s, %s: floor receives %.6g N; its contacts in the network add up to %.6g N\n", bc->name,
+               models[model], fw[2], sum[2]);
         assert_true(count > npairs && big > 0);
         for (int d = 0; d < 3; d++)
             assert_true(fabs(sum[d] - fw[d]) <= 1e-4 * big);
