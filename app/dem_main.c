@@ -62,6 +62,7 @@ static int check(const char *path)
     fflush(stdout);
     run_contact_advice(s, sc, 1, stdout);
     run_order_advice(s, sc, 1, stdout);
+    run_precision_advice(s, sc, run.cfg.precision, 1, stdout);
     printf("time step      %.4g s = %.3g x Rayleigh time (recommended %.4g s, bound %.4g s)\n", run.dt,
            run.dt / ts.rayleigh_time, ts.recommended_dt, ts.max_dt);
     printf("duration       %.6g s = %ld steps (%.3g particle-steps)\n", sc->f->time.duration, run.steps,

@@ -27,6 +27,8 @@ int run_scene(const run_opts *o);
 void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* the same for the particles' order in memory (dem_order_scatter) */
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);
+/* the same for the precision's position resolution far from the origin (dem_position_resolution) */
+void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info, FILE *out);
 
 /* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more), and for the names
  * derived from them. */

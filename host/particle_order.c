@@ -131,3 +131,23 @@ double dem_order_scatter(const dem_sim *s)
     free(d);
     return m;
 }
+
+/* The spacing of representable coordinates at the largest coordinate magnitude of the set-up (particles' initial
+ * positions, wall points), in precision p: how finely positions, and so overlaps, are resolved there. *largest gets
+ * that magnitude. */
+double dem_position_resolution(const dem_sim *s, dem_precision p, double *largest)
+{
+    double m = 0;
+    for (int i = 0; i < 3 * s->n; i++)
+        m = fmax(m, fabs(s->x[i]));
+    for (int k = 0; k < s->nwalls; k++)
+        for (int d = 0; d < 3; d++)
+            m = fmax(m, fabs(s->walls[k].point[d]));
+    if (largest)
+        *largest = m;
+    if (p == DEM_FP32) {
+        float f = (float)m;
+        return (double)nextafterf(f, INFINITY) - (double)f;
+    }
+    return nextafter(m, INFINITY) - m;
+}

@@ -284,6 +284,12 @@ int dem_particle_source(const dem_sim *s, int i);
  * particle_order: spatial above DEM_ORDER_SCATTERED). 0 for fewer than 2 particles. */
 double dem_order_scatter(const dem_sim *s);
 #define DEM_ORDER_SCATTERED 4.0
+/* How finely precision p resolves positions where the set-up lies: the spacing of representable numbers at the largest
+ * coordinate magnitude of the particles' initial positions and the walls' points (*largest, may be NULL). fp32 far
+ * from the origin resolves overlaps coarsely: dem check and dem run warn above DEM_RESOLUTION_WARN of the smallest
+ * radius. */
+double dem_position_resolution(const dem_sim *s, dem_precision p, double *largest);
+#define DEM_RESOLUTION_WARN 1e-4
 int dem_add_wall(dem_sim *s, const dem_wall *w); /* returns the wall id, or -1 */
 /* Six planes enclosing [lo, hi] from inside, in the order x-, x+, y-, y+, z-, z+; returns the first wall id. */
 int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material);

@@ -1046,6 +1046,31 @@ static void test_wall_repeat(void **st)
 
 /* dt advice for the scene at hand (issue 15, item 4): `dem check` names the fastest approach and the shortest
  * contact in steps of dt, and warns below 20 steps; `dem run` warns too (not with --quiet). */
+/* fp32 far from the origin (issue 13): two spheres of 1 cm 100 m away resolve positions to 7.6e-6 m, 7.6e-4 of a
+ * radius; dem check and dem run warn, and not for the same spheres at the origin */
+static void test_position_resolution(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "{ sed 's/^precision: fp64/precision: fp32/; s/x: \\[-0.0101, 0, 0\\]/x: "
+                                          "[99.9899, 0, 0]/; s/x: \\[0.0101, 0, 0\\]/x: [100.0101, 0, 0]/; s/lo: "
+                                          "\\[-0.1,/lo: [99.9,/; s/hi: \\[0.1,/hi: [100.1,/' %s/scenes/two_spheres.yaml > "
+                                          "%s/far.yaml && %s check %s/far.yaml >&2 && %s run %s/far.yaml -o %s/far.h5 "
+                                          "--stop-after 1; }",
+                        SRC, tmp, DEM, tmp, DEM, tmp, tmp),
+                     0);
+    assert_non_null(strstr(err, "resolution     fp32 resolves positions to 7.63e-06 m out to 100 m from the origin"));
+    const char *w = strstr(err, "fp32 resolves positions only to 7.63e-06 m this far from the origin (100 m)");
+    assert_non_null(w);
+    assert_non_null(strstr(w + 1, "fp32 resolves positions only to")); /* dem run too */
+    assert_int_equal(sh(err, sizeof err, "{ sed 's/^precision: fp64/precision: fp32/' %s/scenes/two_spheres.yaml > "
+                                          "%s/near.yaml && %s check %s/near.yaml >&2; }",
+                        SRC, tmp, DEM, tmp),
+                     0);
+    assert_non_null(strstr(err, "resolution     fp32 resolves positions to"));
+    assert_null(strstr(err, "resolves positions only"));
+}
+
 static void test_dt_advice(void **st)
 {
     (void)st;
@@ -1328,6 +1353,7 @@ int main(void)
         cmocka_unit_test(test_particle_order),
         cmocka_unit_test(test_wall_repeat),
         cmocka_unit_test(test_dt_advice),
+        cmocka_unit_test(test_position_resolution),
         cmocka_unit_test(test_series_average),
         cmocka_unit_test(test_contact_network),
         cmocka_unit_test(test_membrane_scene),
