@@ -26,6 +26,14 @@ static int exists(const char *fmt, const char *a)
 
 /* A scene derived from `from` (a path under the source folder) by a sed expression must fail with status 65, a
  * message naming the file, line and field, and leave no output (and an older output file untouched). */
+/* sed a scene into tmp/NAME.yaml, then dem check it and run it one step (to tmp/NAME.h5): both their messages in err */
+static int sed_check_run(char *err, size_t len, const char *sed, const char *from, const char *name)
+{
+    return sh(err, len, "{ sed '%s' %s > %s/%s.yaml && %s check %s/%s.yaml >&2 && %s run %s/%s.yaml -o %s/%s.h5 "
+                        "--stop-after 1; }",
+              sed, from, tmp, name, DEM, tmp, name, DEM, tmp, name, tmp, name);
+}
+
 static void bad_in(const char *from, const char *sed, const char *expect)
 {
     char err[8192];
@@ -1052,12 +1060,11 @@ static void test_position_resolution(void **st)
 {
     (void)st;
     char err[8192];
-    assert_int_equal(sh(err, sizeof err, "{ sed 's/^precision: fp64/precision: fp32/; s/x: \\[-0.0101, 0, 0\\]/x: "
-                                          "[99.9899, 0, 0]/; s/x: \\[0.0101, 0, 0\\]/x: [100.0101, 0, 0]/; s/lo: "
-                                          "\\[-0.1,/lo: [99.9,/; s/hi: \\[0.1,/hi: [100.1,/' %s/scenes/two_spheres.yaml > "
-                                          "%s/far.yaml && %s check %s/far.yaml >&2 && %s run %s/far.yaml -o %s/far.h5 "
-                                          "--stop-after 1; }",
-                        SRC, tmp, DEM, tmp, DEM, tmp, tmp),
+    assert_int_equal(sed_check_run(err, sizeof err,
+                                   "s/^precision: fp64/precision: fp32/; s/x: \\[-0.0101, 0, 0\\]/x: [99.9899, 0, 0]/; "
+                                   "s/x: \\[0.0101, 0, 0\\]/x: [100.0101, 0, 0]/; s/lo: \\[-0.1,/lo: [99.9,/; s/hi: "
+                                   "\\[0.1,/hi: [100.1,/",
+                                   SRC "/scenes/two_spheres.yaml", "far"),
                      0);
     assert_non_null(strstr(err, "resolution     fp32 resolves positions to 7.63e-06 m out to 100 m from the origin"));
     const char *w = strstr(err, "fp32 resolves positions only to 7.63e-06 m this far from the origin (100 m)");
@@ -1314,18 +1321,17 @@ static void test_particle_order(void **st)
     free(idx), free(xs), free(xi);
     /* dem check reports how scattered the order is; dem run notes a scattered order of many particles (8000 spheres
      * placed at random), and not once they are sorted */
-    assert_int_equal(sh(err, sizeof err, "{ sed 's/count: 2000,/count: 8000,/; s/radius_min: 0.001, radius_max: 0.002/"
-                                          "radius_min: 0.0008, radius_max: 0.0012/' %s/tests/scenes/random_groups.yaml > "
-                                          "%s/scat.yaml && %s check %s/scat.yaml >&2 && %s run %s/scat.yaml -o %s/scat.h5 "
-                                          "--stop-after 1; }",
-                        SRC, tmp, DEM, tmp, DEM, tmp, tmp),
+    assert_int_equal(sed_check_run(err, sizeof err,
+                                   "s/count: 2000,/count: 8000,/; s/radius_min: 0.001, radius_max: 0.002/radius_min: "
+                                   "0.0008, radius_max: 0.0012/",
+                                   SRC "/tests/scenes/random_groups.yaml", "scat"),
                      0);
     assert_non_null(strstr(err, "apart (scattered: particle_order: spatial would sort them at load)"));
     assert_non_null(strstr(err, "dem: note: ") && strstr(err, "the particles are in a scattered order"));
-    assert_int_equal(sh(err, sizeof err, "{ sed 's/^precision: fp64/precision: fp64\\nparticle_order: spatial/' %s/scat.yaml "
-                                          "> %s/scat2.yaml && %s check %s/scat2.yaml >&2 && %s run %s/scat2.yaml -o "
-                                          "%s/scat2.h5 --stop-after 1; }",
-                        tmp, tmp, DEM, tmp, DEM, tmp, tmp),
+    char scat[300];
+    snprintf(scat, sizeof scat, "%s/scat.yaml", tmp);
+    assert_int_equal(sed_check_run(err, sizeof err, "s/^precision: fp64/precision: fp64\\nparticle_order: spatial/", scat,
+                                   "scat2"),
                      0);
     assert_non_null(strstr(err, "apart (close enough, or too few particles for the order to matter)"));
     assert_null(strstr(err, "scattered order"));
