@@ -69,25 +69,26 @@ DEM_ITEM(nbr_build)
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 
+/* The number of pair (a, b), a < b, in the old rows' pair list (its owner a's row), or -1 when it was not listed. */
+DEM_INLINE int old_pair_number(int a, int b, DEM_CONST_GLOBAL int *old_count, DEM_CONST_GLOBAL int *old_list,
+                               int old_maxn, DEM_CONST_GLOBAL int *old_own_start)
+{
+    int found = row_find(old_list + a * old_maxn, old_count[a], b);
+    return found < 0 ? -1 : row_pair_number(old_own_start[a], old_own_start[a + 1], old_count[a], found);
+}
+
 DEM_ITEM(nbr_carry)
 {
-    int on = old_count[i];
-    DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
     if (!(fx & DEM_EFFECT_MC_STRAIN))
         return;
+    DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
     for (int k = 0; k < nbr_count[i]; k++) { /* the lagged MC-strain force of the same contact (mc_strain.h) */
         int j = nbr_list[i * maxn + k];
-        int found = row_find(orow, on, j);
+        int found = row_find(orow, old_count[i], j);
         real f = (real)0;
         if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower id */
-            int q = -1;
-            if (j > i)
-                q = row_pair_number(old_own_start[i], old_own_start[i + 1], on, found);
-            else {
-                int fj = row_find(old_list + j * old_maxn, old_count[j], i);
-                if (fj >= 0)
-                    q = row_pair_number(old_own_start[j], old_own_start[j + 1], old_count[j], fj);
-            }
+            int q = j > i ? old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start)
+                          : old_pair_number(j, i, old_count, old_list, old_maxn, old_own_start);
             if (q >= 0 && old_touch[q])
                 f = old_mc_fn[i * old_maxn + found];
         }
@@ -116,11 +117,8 @@ DEM_ITEM(pair_index)
             in_pair[in_start[j] + m] = p;
         else
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
-        int on = old_count[i], found = row_find(old_list + i * old_maxn, on, j), t = 0, q = -1;
-        if (found >= 0) { /* the pair is in the old rows too */
-            q = row_pair_number(old_own_start[i], old_own_start[i + 1], on, found);
-            t = old_touch[q];
-        }
+        int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start); /* -1: a new pair */
+        int t = q >= 0 ? old_touch[q] : 0;
         touch[p] = (unsigned char)t;
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
             v3_store(hist, p, t ? v3_load(old_hist, q) : v3_zero());

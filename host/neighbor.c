@@ -26,17 +26,16 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     dem_core *c = DEM_CORE(b);
     /* the old pair numbering and history, which pair_index carries into the new (neighbor.h); the copy of the history
      * is grown here to the capacity of the history itself (which may have grown at the last commit) */
-    dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, old_hist = {TABLE_ONE, BUF_PAIR_HIST_OLD};
-    dem_bufref touch = {TABLE_ONE, BUF_TOUCH}, old_touch = {TABLE_ONE, BUF_TOUCH_OLD};
+    static const int carried[][2] = {{BUF_PAIR_HIST, BUF_PAIR_HIST_OLD}, {BUF_TOUCH, BUF_TOUCH_OLD}};
+    for (size_t k = 0; k < sizeof carried / sizeof carried[0]; k++) {
+        int from = carried[k][0], to = carried[k][1];
+        dem_bufref src = {TABLE_ONE, from}, dst = {TABLE_ONE, to};
+        if ((c->bytes[to] != c->bytes[from] && o->alloc(b, TABLE_ONE, 0, to, c->bytes[from], NULL)) ||
+            (c->bytes[from] && o->copy(b, src, dst, c->bytes[from])))
+            return 1;
+    }
     dem_bufref own = {TABLE_ONE, BUF_OWN_START}, old_own = {TABLE_ONE, BUF_OWN_START_OLD};
-    if ((c->bytes[BUF_PAIR_HIST_OLD] != c->bytes[BUF_PAIR_HIST] &&
-         o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST_OLD, c->bytes[BUF_PAIR_HIST], NULL)) ||
-        (c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
-         o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)))
-        return 1;
-    if ((c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, old_hist, c->bytes[BUF_PAIR_HIST])) ||
-        (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
-        o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
+    if (o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
         return 1;
     c->cur = 1 - c->cur;
     dem_core_sync(c);
@@ -54,13 +53,12 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         /* 1/8 to spare: the pair arrays are two thirds of the memory, and growing them costs one allocation at a
          * rebuild (the history and flags are carried from their copies either way) */
         c->pair_cap = (size_t)total + (size_t)total / 8 + 16;
-        if (o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL) ||
-            o->alloc(b, TABLE_ONE, 0, BUF_PAIR_SLOT, dem_buffer_bytes(c, BUF_PAIR_SLOT), NULL) ||
-            o->alloc(b, TABLE_ONE, 0, BUF_IN_PAIR, dem_buffer_bytes(c, BUF_IN_PAIR), NULL) ||
-            o->alloc(b, TABLE_ONE, 0, BUF_PAIR_MIRROR, dem_buffer_bytes(c, BUF_PAIR_MIRROR), NULL) ||
-            o->alloc(b, TABLE_ONE, 0, BUF_TOUCH, dem_buffer_bytes(c, BUF_TOUCH), NULL) ||
-            o->alloc(b, TABLE_ONE, 0, BUF_PAIR_HIST, dem_buffer_bytes(c, BUF_PAIR_HIST), NULL))
-            return 1;
+        /* the pair-sized buffers (dem_buffers.h: PAIRS) that pair_index rewrites; the old copies follow at the next
+         * commit (above) */
+        static const int grown[] = {BUF_PAIR, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR, BUF_TOUCH, BUF_PAIR_HIST};
+        for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
+            if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
+                return 1;
     }
     c->si[SI_NPAIRS] = total;
     dem_bufref x = {TABLE_ONE, BUF_X}, xb = {TABLE_ONE, BUF_X_BUILD};
