@@ -13,8 +13,10 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     r->dims[1] = d1;
     r->dims[2] = d2;
     hsize_t maxd[3] = {H5S_UNLIMITED, d1, d2}, chunk[3] = {1, d1, d2};
-    if (rank == 1)
-        chunk[0] = 1024; /* time series: many short rows */
+    r->row_bytes = H5Tget_size(mem_type) * (size_t)(rank > 1 ? d1 : 1) * (size_t)(rank > 2 ? d2 : 1);
+    if (r->row_bytes <= 1024)
+        chunk[0] = 1024; /* many short rows (series, wall series, contact records): a chunk per row would make every
+                            row a compressed write of its own (a wall series every step doubled a small run's time) */
     /* frames: one frame per chunk, split along particles so that a chunk stays below ~4 MiB */
     while (rank > 1 && chunk[1] > 1 && chunk[1] * (rank > 2 ? d2 : 1) * 8 > ((hsize_t)4 << 20))
         chunk[1] = (chunk[1] + 1) / 2;
@@ -24,7 +26,6 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     hid_t file_type = mem_type == H5T_NATIVE_DOUBLE ? H5T_IEEE_F64LE
                       : mem_type == H5T_NATIVE_LLONG ? H5T_STD_I64LE
                                                      : H5T_STD_I32LE;
-    r->row_bytes = H5Tget_size(mem_type) * (size_t)(rank > 1 ? d1 : 1) * (size_t)(rank > 2 ? d2 : 1);
     r->cap = H5ROWS_BUFFER_BYTES / r->row_bytes;
     if (r->cap > 1 && !(r->buf = malloc(r->cap * r->row_bytes)))
         r->cap = 0; /* no memory for the buffer: rows go straight through */

@@ -248,21 +248,12 @@ int output_frame(output *o, dem_sim *s)
     return 0;
 }
 
-int output_sample(dem_sim *s, const scene_run *run, series_row *r)
+void output_row_of(const dem_sample *smp, const scene_run *run, int nwalls, series_row *r)
 {
-    dem_sample smp;
-    if (dem_sample_get(s, &smp))
-        return -1;
-    dem_mc_stats mc;
-    dem_mc_stats_get(s, &mc);
-    const dem_energy_t *e = &smp.energy;
+    const dem_energy_t *e = &smp->energy;
     double strain = NAN, stress = NAN;
-    int nw = dem_wall_count(s);
-    for (int w = 0; w < nw; w++) {
-        if (dem_wall_position(s, w, r->wall_pos + 3 * w))
-            return -1;
-        memcpy(r->wall_force + 3 * w, smp.wall_force + 3 * w, sizeof(double) * 3);
-    }
+    memcpy(r->wall_pos, smp->wall_pos, sizeof(double) * 3 * nwalls);
+    memcpy(r->wall_force, smp->wall_force, sizeof(double) * 3 * nwalls);
     if (run->piston >= 0) { /* engineering strain and stress of the sample (scene.h: sample) */
         const double *n = run->piston_normal, *p0 = run->piston_point, *p = r->wall_pos + 3 * run->piston,
                      *f = r->wall_force + 3 * run->piston;
@@ -271,10 +262,18 @@ int output_sample(dem_sim *s, const scene_run *run, series_row *r)
         strain = (travel - run->contact_travel) / run->sample_height;
         stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
     }
-    double v[S__N] = {dem_time(s), (double)dem_step_index(s), e->kinetic, e->elastic, e->potential, e->total,
-                      (double)e->contacts, (double)e->wall_contacts, strain, stress, (double)mc.last,
-                      (double)mc.unconverged};
+    double v[S__N] = {smp->time, (double)smp->step, e->kinetic, e->elastic, e->potential, e->total,
+                      (double)e->contacts, (double)e->wall_contacts, strain, stress, (double)smp->mc.last,
+                      (double)smp->mc.unconverged};
     memcpy(r->v, v, sizeof v);
+}
+
+int output_sample(dem_sim *s, const scene_run *run, series_row *r)
+{
+    dem_sample smp;
+    if (dem_sample_get(s, &smp))
+        return -1;
+    output_row_of(&smp, run, dem_wall_count(s), r);
     return 0;
 }
 

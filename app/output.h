@@ -27,7 +27,9 @@ typedef struct {
     double v[S__N];
     double wall_pos[3 * DEM_MAX_WALLS], wall_force[3 * DEM_MAX_WALLS];
 } series_row;
-/* The row of the current state, read from the device with one synchronisation (dem_sample_get). */
+/* The row of a sample (dem_sample_get, dem_step_sampled). */
+void output_row_of(const dem_sample *smp, const scene_run *run, int nwalls, series_row *r);
+/* The row of the current state (dem_sample_get: one synchronisation). */
 int output_sample(dem_sim *s, const scene_run *run, series_row *r);
 /* Accumulates a row into a sum (series_average), and turns a sum of count rows into their mean: every column is
  * averaged except time, step and the running count of capped steps, which are the last row's. */

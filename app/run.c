@@ -230,6 +230,24 @@ void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info
                 sc->path, pn, res, far, res / rmin, 1e-3 * rmin / res);
 }
 
+/* Steps one call of dem_step_sampled takes at most, and the samples it holds at most. */
+#define RUN_STRETCH 65536
+#define RUN_SAMPLE_CHUNK 1024
+
+/* The step of the series row that step t leads to: the next multiple of series_every, or the run's end. */
+static long row_step(const scene_run *run, long t, long end)
+{
+    long at = (t + run->series_every - 1) / run->series_every * run->series_every;
+    return at < end ? at : end;
+}
+
+/* The first step of that row's window (series_average N: the N steps that end at it; none before this run's first) */
+static long row_window(const scene_run *run, long t, long end, long step0)
+{
+    long from = row_step(run, t, end) - (run->series_average > 1 ? run->series_average : 1) + 1;
+    return from > step0 + 1 ? from : step0 + 1;
+}
+
 /* A run's state across its phases (run_scene): what was loaded, what was built, where it writes. */
 typedef struct {
     const run_opts *o;
@@ -243,6 +261,8 @@ typedef struct {
     int show;     /* progress lines */
     double t0;    /* wall clock at the first step */
     char err[8192];
+    dem_sample rows[RUN_SAMPLE_CHUNK]; /* the samples of one stretch */
+    unsigned char want[RUN_STRETCH];   /* which of its steps are sampled */
 } run_ctx;
 
 /* 1. The scene, from its file or from the checkpoint restarted from, built into a simulation (not started). */
@@ -372,26 +392,27 @@ static int phase_steps(run_ctx *c)
     long ck_step = -1; /* step of the last checkpoint this run wrote */
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next = end;
-        long evs[3] = {run->frame_every, run->series_every, run->checkpoint_every};
-        for (int k = 0; k < 3; k++)
+        long evs[2] = {run->frame_every, run->checkpoint_every}; /* the series rows are sampled within a stretch */
+        for (int k = 0; k < 2; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
                 next = (st / evs[k] + 1) * evs[k];
-        /* series_average N: the N steps that end at a series row are taken one by one and sampled */
-        long row_at = (st / run->series_every + 1) * run->series_every, avg_from = row_at - run->series_average + 1;
-        if (row_at > end)
-            row_at = end, avg_from = end - run->series_average + 1;
-        int averaging = run->series_average > 1 && st + 1 >= avg_from;
-        if (averaging)
-            next = st + 1;
-        else if (run->series_average > 1 && avg_from - 1 > st && avg_from - 1 < next)
-            next = avg_from - 1;
         if (c->show) { /* at most ~1 s between progress lines */
             double rate = (double)(st - step0 + 1) / (now() - c->t0 + 1e-9);
             long cap = st + (long)(rate > 1 ? rate : 1) + 1;
             if (cap < next)
                 next = cap;
         }
-        if (dem_step(s, next - st)) {
+        /* The steps to sample: each series row's step, and with series_average N the N - 1 before it (its window).
+         * dem_step_sampled samples them on the device without a synchronisation per row. */
+        long nrows = 0;
+        if (next - st > RUN_STRETCH)
+            next = st + RUN_STRETCH;
+        for (long t = st + 1; t <= next; t++) {
+            c->want[t - st - 1] = t >= row_window(run, t, end, step0);
+            if (c->want[t - st - 1] && ++nrows == RUN_SAMPLE_CHUNK)
+                next = t;
+        }
+        if (dem_step_sampled(s, next - st, c->want, c->rows)) {
             char cknote[4400];
             checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
             snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
@@ -403,18 +424,21 @@ static int phase_steps(run_ctx *c)
         errno = 0;
         if (st % run->frame_every == 0 || st == end)
             io |= output_frame(c->out, s);
-        if (!io && averaging) { /* a step of the averaging window: into the sum, a row at its end */
-            if (!(io = output_sample(s, run, &row))) {
-                if (st == (avg_from > step0 ? avg_from : step0 + 1))
+        for (long k = 0; !io && k < nrows; k++) {
+            long t = c->rows[k].step, at = row_step(run, t, end);
+            output_row_of(&c->rows[k], run, nw, &row);
+            if (run->series_average > 1) { /* a step of the averaging window: into the sum, a row at its end */
+                long win0 = row_window(run, t, end, step0);
+                if (t == win0)
                     memset(&sum, 0, sizeof sum);
                 output_row_add(&sum, &row, nw);
+                if (t == at) {
+                    output_row_mean(&sum, (int)(t - win0 + 1), nw);
+                    io = output_series(c->out, &sum);
+                }
+            } else if (t == at) {
+                io = output_series(c->out, &row);
             }
-            if (!io && (st % run->series_every == 0 || st == end)) {
-                output_row_mean(&sum, (int)(st - (avg_from > step0 ? avg_from : step0 + 1) + 1), nw);
-                io = output_series(c->out, &sum);
-            }
-        } else if (!io && (st % run->series_every == 0 || st == end)) {
-            io = output_sample(s, run, &row) || output_series(c->out, &row);
         }
         if (io) {
             int e = errno;

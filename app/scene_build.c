@@ -695,6 +695,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
     }
     free(origin);
     run->cfg.contacts = (run->fields & OUT_CONTACTS) != 0; /* frames carry the contact network: keep wall forces */
+    run->cfg.sample_every = run->series_average > 1 ? 1 : run->series_every; /* steps between the series' samples */
     if (!(run->effects & DEM_EFFECT_FRICTION))
         for (unsigned k = 0; k < sc->f->materials_count; k++)
             if (sc->f->materials[k].friction > 0) {

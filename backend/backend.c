@@ -63,6 +63,9 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->ncells = s->ncell[0] * s->ncell[1] * s->ncell[2];
     c->nblocks_scan = (c->ncells + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK;
     c->nblocks_red = (s->n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
+    size_t row_bytes = (size_t)s->n * SE_STRIDE * (size_t)s->real_size; /* a sampled step's terms (series.h) */
+    c->series_rows = row_bytes ? (int)(DEM_SERIES_RING_BYTES / row_bytes) : DEM_SERIES_RING;
+    c->series_rows = c->series_rows < 1 ? 1 : c->series_rows > DEM_SERIES_RING ? DEM_SERIES_RING : c->series_rows;
     c->nsprings = s->nsprings;
     c->ntriangles = s->ntriangles;
     c->nhinges = s->nhinges;
@@ -98,9 +101,9 @@ size_t dem_elem_size(int elem, int rs)
            NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
            NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
-           MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv;                                                  \
+           MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows;                  \
     (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
-        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV
+        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 

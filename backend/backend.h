@@ -87,6 +87,7 @@ typedef struct {
     unsigned fx;
     int rs;
     int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges, nriders;
+    int series_rows; /* rows of the series ring (common/series.h) */
     int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
     int maxp, maxp_old, maxv; /* patch rows' capacities (patch_contacts.h) */
     size_t pair_cap;   /* pair records allocated */
@@ -177,7 +178,12 @@ int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry history, swap, offsets, x_build */
 int dem_stage_contact_pairs(const dem_backend_ops *o, dem_backend *b); /* each listed pair once */
 int dem_stage_contact_sums(const dem_backend_ops *o, dem_backend *b);  /* per-particle sums, walls included */
-int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b);    /* the force each wall received */
+int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b, int final); /* walls' block sums [and final] */
+/* Series rows (common/series.h): arm(1, row) has the next step write its terms to row `row` of the device's ring
+ * (arm(0, 0) after it); series_read reads the first `rows` rows back (real[rows][n][SE_STRIDE] and
+ * real[rows][nwalls][nblocks_red][3], the walls' block partial sums) with one synchronisation. */
+int dem_stage_series_arm(const dem_backend_ops *o, dem_backend *b, int on, int row);
+int dem_stage_series_read(const dem_backend_ops *o, dem_backend *b, int rows, void *sums, void *walls);
 int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b);   /* MC-stress pass 1 */
 int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_FIELD_STRESS from the positions */
 int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);

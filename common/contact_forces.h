@@ -29,6 +29,7 @@
 #include "wall_forces.h"
 #include "particle_stress.h"
 #include "mc_strain.h"
+#include "series.h"
 
 typedef struct {
     int active;  /* 1 when the spheres overlap */
@@ -141,8 +142,8 @@ DEM_ITEM(contact_pairs)
         pr[PR_CX] = pc.c.x;
         pr[PR_CY] = pc.c.y;
         pr[PR_CZ] = pc.c.z;
-        pr[PR_DELTA] = pc.delta;
     }
+    pr[PR_DELTA] = pc.delta; /* the torque's lever arm, and a sampled step's elastic energy (series.h) */
 }
 
 /* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
@@ -151,7 +152,7 @@ DEM_ITEM(contact_pairs)
 DEM_ITEM(contact_forces)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
-    real ri = radius[i];
+    real ri = radius[i], ela = (real)0, con = (real)0, wcon = (real)0;
     int cnt = nbr_count[i];
     int first = own_start[i], lower = cnt - (own_start[i + 1] - first);
     for (int k = lower; k < cnt; k++) { /* owned: partners j > i */
@@ -162,6 +163,12 @@ DEM_ITEM(contact_forces)
         fi = v3_add(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
+        if (sample && pr[PR_DELTA] > (real)0) { /* a sampled step: the pair's elastic energy, by its lower id */
+            int j = nbr_list[i * maxn + k];
+            ela += series_pair_energy(pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_ESTAR], ri, radius[j],
+                                      pr[PR_DELTA]);
+            con += (real)1;
+        }
     }
     for (int k = 0; k < lower; k++) { /* mirrored: partners j < i */
         int p = in_pair[in_start[i] + k];
@@ -175,9 +182,15 @@ DEM_ITEM(contact_forces)
     if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
                           invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, trace, invvol,
-                          mc_wall_disp, mc_wall_fn, ride, &fi, &ti);
+                          mc_wall_disp, mc_wall_fn, ride, &fi, &ti, sample ? &ela : 0, &wcon);
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(torque, i, ti);
+    if (sample) { /* the particle's contact terms of the sampled step (series.h) */
+        DEM_GLOBAL real *slot = series_slot(ring, row, n, i);
+        slot[SE_ELA] = ela;
+        slot[SE_CON] = con;
+        slot[SE_WCON] = wcon;
+    }
 }
 #endif /* DEM_CONTACT_FORCES_H */

@@ -42,6 +42,8 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE)                                                                  \
     ENTRY(PARTIAL, REAL, 3 * NBR * NW, 0, -1, NONE)                                                                      \
     ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE)                                                           \
+    ENTRY(SERIES_RING, REAL, SE_STRIDE * N * NSR, DEM_GATE_LAZY, -1, NONE)                                               \
+    ENTRY(SERIES_WALL, REAL, 3 * NW * NBR * NSR, DEM_GATE_LAZY, -1, NONE)                                                \
     ENTRY(CELL_OF, INT, N, 0, -1, NONE)                                                                                  \
     ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE)                                                                              \
     ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE)                                                            \
@@ -109,7 +111,8 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
     ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(NSPRINGS) \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                            \
-    ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)
+    ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                  \
+    ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \
     ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE) ENTRY(REACH) ENTRY(RMAX)

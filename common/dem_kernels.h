@@ -106,7 +106,8 @@
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
-    A(BIN, unsigned, ride, RIDE)
+    A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
+    A(BOUT, real, ring, SERIES_RING)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */
@@ -134,7 +135,10 @@
 #define DEM_ARGS_integrate_kick(F, A)                                                                                \
     F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                      \
     A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                  \
-    A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA) A(BIN, unsigned, hold, HOLD)
+    A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA) A(BIN, unsigned, hold, HOLD)                 \
+    A(BIN, real, x, X) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW) A(BOUT, real, ring, SERIES_RING)  \
+    A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, unsigned, wall_mask, WALL_MASK)                 \
+    A(BIN, real, wall_pf, WALL_PF) A(BIN, real, partial, PARTIAL) A(BOUT, real, ring_wall, SERIES_WALL)
 #define DEM_ITEMS_integrate_kick n
 
 /* ---- particle_stress.h ---- */

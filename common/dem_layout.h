@@ -95,6 +95,14 @@ enum { ST_XX = 0, ST_YY, ST_ZZ, ST_XY, ST_XZ, ST_YZ, ST_STRIDE };
  * particles, in ascending id, then the partials in ascending block order. It is a constant, not the
  * work-group size, so the sum has the same bits on every device and launch configuration. */
 #define DEM_REDUCE_BLOCK 256
+/* A time-series row's terms per particle (series.h), in the ring's slot of each particle and sampled step: kinetic
+ * energy (translation and rotation) [J], gravitational potential energy [J], Hertz elastic energy of the contacts it
+ * owns (pairs with higher ids, walls) [J], those touching pairs, those touching walls. */
+enum { SE_KIN = 0, SE_POT, SE_ELA, SE_CON, SE_WCON, SE_STRIDE };
+/* Sampled steps the device holds before the host reads them: up to DEM_SERIES_RING, as many as fit in
+ * DEM_SERIES_RING_BYTES of per-particle terms (at least one). */
+#define DEM_SERIES_RING 64
+#define DEM_SERIES_RING_BYTES (8 << 20)
 /* Items per block of the integer exclusive scan (binning.h). */
 #define DEM_SCAN_BLOCK 1024
 

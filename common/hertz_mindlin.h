@@ -63,6 +63,14 @@ DEM_INLINE real hm_elastic(real estar, real rstar, real delta)
     return hm_elastic_srd(estar, dem_sqrt(rstar * delta), delta);
 }
 
+/* The elastic energy stored in a Hertz contact: the work of hm_elastic from 0 to delta, 2/5 F delta
+ * = 8/15 E* sqrt(r*) delta^(5/2) [J]. The host's energies in double and the
+ * series rows (series.h) use this function (reference/series.c exports it). */
+DEM_INLINE real hertz_energy(real estar, real rstar, real delta)
+{
+    return (real)2 / (real)5 * hm_elastic(estar, rstar, delta) * delta;
+}
+
 /* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */
 DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
                                 DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)

@@ -16,6 +16,7 @@
 #include "vec3.h"
 #include "dem_layout.h"
 #include "dem_effects.h"
+#include "series.h"
 
 DEM_INLINE void integrate_kick_velocity(unsigned fx, int i, real half_dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,
                                         DEM_CONST_GLOBAL real *force, DEM_CONST_GLOBAL real *torque,
@@ -57,5 +58,12 @@ DEM_ITEM(integrate_kick)
 {
     vec3 g = v3(gx, gy, gz);
     integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia, hold);
+    if (sample) { /* a sampled step (series.h): the energies of the motion at its end, and at a block's first
+                     particle the walls' partial sums over the block */
+        series_motion_terms(fx, v3_load(x, i), v3_load(v, i), v3_load(w, i), invmass[i], invinertia[i], g,
+                            series_slot(ring, row, n, i));
+        if ((fx & DEM_EFFECT_WALLS) && i % DEM_REDUCE_BLOCK == 0)
+            series_wall_blocks(fx, i / DEM_REDUCE_BLOCK, n, nwalls, nblocks, row, wall_mask, wall_pf, partial, ring_wall);
+    }
 }
 #endif /* DEM_INTEGRATE_H */

@@ -22,8 +22,9 @@
  * contact_forces then applies (the reduction keeps no per-particle copy of them). */
 typedef struct {
     int active;
-    vec3 n;   /* unit normal from the wall to the particle centre */
-    real arm; /* lever arm of the contact point, r_i - delta [m] */
+    vec3 n;     /* unit normal from the wall to the particle centre */
+    real delta; /* overlap [m] */
+    real arm;   /* lever arm of the contact point, r_i - delta [m] */
     hm_result r;
 } wall_contact;
 
@@ -40,6 +41,7 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
     c.active = g.active;
     c.n = g.n;
+    c.delta = g.delta;
     c.arm = ri - g.delta;
     if (!g.active)
         return c;
@@ -67,14 +69,15 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
  * contact_forces_item, so the particle's data are read and its sums written once per step). Keeps each wall's
  * tangential history; wall_mask[i] gets bit k set when particle i touches wall k (the history of wall k is only
  * touched when bit k is set now or was set in the previous step). With DEM_KEEP_WALL_FORCES (a run that reads the
- * contact network) the force from each touching wall is also stored, at wall_pf[k * n + i]. */
+ * contact network) the force from each touching wall is also stored, at wall_pf[k * n + i]. In a sampled step (ela
+ * not null) the Hertz energy and count of the touching walls are added to *ela and *wcon (series.h). */
 DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                   DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri, real invm,
                                   int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
                                   real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask,
                                   DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
                                   DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn,
-                                  DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti)
+                                  DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti, real *ela, real *wcon)
 {
     unsigned old_mask = wall_mask[i], mask = 0;
     for (int k = 0; k < nwalls; k++) {
@@ -86,6 +89,11 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 mc_wall_fn[slot] = c.r.fel;
             if (fx & DEM_KEEP_WALL_FORCES)
                 v3_store(wall_pf, k * n + i, c.r.force);
+            if (ela && c.delta > (real)0) { /* a sampled step (series.h) */
+                *ela += hertz_energy(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR],
+                                     ri, c.delta);
+                *wcon += (real)1;
+            }
             *fi = v3_add(*fi, c.r.force);
             if (fx & DEM_EFFECT_FRICTION) {
                 v3_store(wall_hist, slot, c.r.hist);
@@ -102,6 +110,19 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     wall_mask[i] = mask;
 }
 
+/* Block b's partial sum for wall k from the forces contact_forces kept (DEM_KEEP_WALL_FORCES): the wall receives
+ * minus the force on each particle that touches it. Also taken by integrate_kick in a sampled step (series.h). */
+DEM_INLINE vec3 wall_block_kept(int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
+                                DEM_CONST_GLOBAL real *wall_pf)
+{
+    vec3 s = v3_zero();
+    int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
+        if ((wall_mask[j] >> k) & 1u)
+            s = v3_sub(s, v3_load(wall_pf, k * n + j));
+    return s;
+}
+
 /* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK).
  * With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it). Without: each particle's
  * force from the wall evaluated as contact_forces is about to (this kernel runs between contact_pairs and
@@ -112,18 +133,16 @@ DEM_ITEM(wall_reduce_block)
     int b = i % nblocks, k = i / nblocks;
     vec3 s = v3_zero();
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) { /* the wall receives minus the force on the particle */
-        if (fx & DEM_KEEP_WALL_FORCES) {
-            if ((wall_mask[j] >> k) & 1u)
-                s = v3_sub(s, v3_load(wall_pf, k * n + j));
-        } else {
+    if (fx & DEM_KEEP_WALL_FORCES)
+        s = wall_block_kept(b, k, n, wall_mask, wall_pf);
+    else
+        for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) { /* the wall receives minus the force on the particle */
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
                                                dt, (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);
             if (c.active)
                 s = v3_sub(s, c.r.force);
         }
-    }
     v3_store(partial, k * nblocks + b, s);
 }
 

@@ -38,7 +38,7 @@ static const char *const header_files[] = {"common/dem_real.h", "common/dem_layo
                                            "common/mc_strain.h", "common/sorted_row.h",
                                            "common/dem_kernels.h", "common/contacts.h", "common/springs.h",
                                            "common/pressure.h", "common/bending.h", "common/riders.h",
-                                           "common/patch.h", "common/patch_contacts.h"};
+                                           "common/patch.h", "common/patch_contacts.h", "common/series.h"};
 
 static cl_mem *slot(dem_backend *b, dem_bufref r)
 {

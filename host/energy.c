@@ -32,6 +32,9 @@ static void widen(const void *raw, double *dst, size_t count, int rs)
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
 static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force);
 
+/* the Hertz contact energy of common/series.h, as the reference computes it in double */
+double dem_hertz_energy_f64(double estar, double rstar, double delta);
+
 /* the closest point of a triangle, as the kernels compute it (common/patch.h through reference/patch.c, in double) */
 void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind, int *index, double *w, double *point);
 
@@ -54,8 +57,7 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
             double d = s->radius[i] - sqrt((x[3 * i] - q[0]) * (x[3 * i] - q[0]) + (x[3 * i + 1] - q[1]) *
                                            (x[3 * i + 1] - q[1]) + (x[3 * i + 2] - q[2]) * (x[3 * i + 2] - q[2]));
             if (d > 0)
-                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]) * sqrt(s->radius[i]) *
-                               (d * d * sqrt(d));
+                en->elastic += dem_hertz_energy_f64(pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]), s->radius[i], d);
             en->patch_contacts++;
         }
     free(cnt), free(list), free(touch);
@@ -64,9 +66,102 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
 
 int dem_energy(dem_sim *s, dem_energy_t *en) { return energy_of(s, en, NULL); }
 
+/* ---- series rows (dem_sample) ---- */
+
+/* Rows are summed on the device (common/series.h) unless a membrane's springs or patches add terms that only the
+ * host computes. */
+static int device_rows(const dem_sim *s) { return !(s->setup.effects & (DEM_EFFECT_SPRINGS | DEM_EFFECT_PATCHES)); }
+
+/* what the host knows of the step just taken */
+static void sample_begin(const dem_sim *s, dem_sample *o)
+{
+    memset(o, 0, sizeof *o);
+    o->step = s->step;
+    o->time = dem_time(s);
+    o->mc = s->mc;
+    for (int w = 0; w < s->nwalls; w++)
+        memcpy(o->wall_pos + 3 * w, s->wall_pos[w], sizeof(double) * 3);
+}
+
+/* the reference's final wall sum (common/wall_forces.h), which the device runs as wall_reduce_final */
+void ref_wall_reduce_final_f32(unsigned fx, int nwalls, int nblocks, const float *partial, float *wall_force);
+void ref_wall_reduce_final_f64(unsigned fx, int nwalls, int nblocks, const double *partial, double *wall_force);
+
+/* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending particle order, in
+ * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened. */
+static void rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
+                           dem_sample *out)
+{
+    int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nw = s->nwalls, n = s->n;
+    double one[SE_STRIDE];
+    unsigned char wf[3 * DEM_MAX_WALLS * sizeof(double)];
+    for (int r = 0; r < count; r++) {
+        double t[SE_STRIDE] = {0};
+        for (int i = 0; i < n; i++) {
+            widen(terms + ((size_t)r * n + i) * SE_STRIDE * rs, one, SE_STRIDE, rs);
+            for (int q = 0; q < SE_STRIDE; q++)
+                t[q] += one[q];
+        }
+        dem_energy_t *en = &out[r].energy;
+        en->kinetic = t[SE_KIN];
+        en->potential = t[SE_POT];
+        en->elastic = t[SE_ELA];
+        en->contacts = (long)t[SE_CON];
+        en->wall_contacts = (long)t[SE_WCON];
+        en->total = en->kinetic + en->elastic + en->potential;
+        if (!nw || !(s->effects & DEM_EFFECT_WALLS))
+            continue;
+        const unsigned char *part = walls + (size_t)r * 3 * nw * nb * rs;
+        if (rs == 8)
+            ref_wall_reduce_final_f64(s->setup.effects, nw, nb, (const double *)part, (double *)wf);
+        else
+            ref_wall_reduce_final_f32(s->setup.effects, nw, nb, (const float *)part, (float *)wf);
+        widen(wf, out[r].wall_force, 3 * (size_t)nw, rs);
+    }
+}
+
+int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
+{
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    long nrows = 0, last = -1;
+    for (long k = 0; want && k < nsteps; k++)
+        if (want[k])
+            nrows++, last = k;
+    if (nrows && !rows)
+        return sim_fail(s, DEM_ERR_ARG, "dem_step_sampled: %ld samples and no rows to take them", nrows);
+    int dev = device_rows(s), cap = DEM_CORE(s->be)->series_rows, held = 0, e = 0;
+    size_t rs = (size_t)s->setup.real_size, tb = (size_t)cap * SE_STRIDE * (size_t)s->n * rs,
+           wb = (size_t)cap * 3 * (size_t)s->nwalls * (size_t)DEM_CORE(s->be)->nblocks_red * rs + 1;
+    unsigned char *terms = dev && nrows ? malloc(tb) : NULL, *walls = dev && nrows ? malloc(wb) : NULL;
+    if (dev && nrows && (!terms || !walls))
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    dem_sample *o = rows;
+    for (long k = 0; !e && k < nsteps; k++) {
+        int wk = want && want[k];
+        /* on the device a sampled step writes its row itself; the host's samples need the walls' sums */
+        if ((e = sim_step_once(s, (wk && !dev) || k == nsteps - 1, wk && dev ? held : -1)) || !wk)
+            continue;
+        sample_begin(s, o);
+        if (!dev)
+            e = energy_of(s, &o->energy, o->wall_force);
+        else if (++held == cap || k == last) {
+            if (dem_stage_series_read(s->ops, s->be, held, terms, walls))
+                e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
+            else
+                rows_from_ring(s, held, terms, walls, o - (held - 1));
+            held = 0;
+        }
+        o++;
+    }
+    free(terms);
+    free(walls);
+    return e;
+}
+
 int dem_sample_get(dem_sim *s, dem_sample *out)
 {
-    memset(out, 0, sizeof *out);
+    sample_begin(s, out);
     return energy_of(s, &out->energy, out->wall_force);
 }
 
@@ -128,7 +223,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
             double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             if (delta > 0) {
                 double rs = r * s->radius[j] / (r + s->radius[j]);
-                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], s->mat[j]) * sqrt(rs) * (delta * delta * sqrt(delta));
+                en->elastic += dem_hertz_energy_f64(pair_estar(s, s->mat[i], s->mat[j]), rs, delta);
                 en->contacts++;
             }
         }
@@ -138,7 +233,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
             const dem_wall *wl = &s->walls[k];
             double delta = dem_wall_overlap(wl, s->wall_pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
             if (delta > 0) {
-                en->elastic += 8.0 / 15.0 * pair_estar(s, s->mat[i], wl->material) * sqrt(r) * (delta * delta * sqrt(delta));
+                en->elastic += dem_hertz_energy_f64(pair_estar(s, s->mat[i], wl->material), r, delta);
                 en->wall_contacts++;
             }
         }

@@ -16,6 +16,7 @@ dem_sim *dem_create(void)
         s->mcs_conv = DEM_MCS_DEFAULT;
         s->mc_tol = 1e-6;
         s->mc_reach = 1;
+        s->sample_row = -1; /* no step is sampled until dem_step_sampled says so */
     }
     return s;
 }
@@ -767,10 +768,14 @@ static int stage_stress_trace(dem_sim *s) { return dem_stage_stress_trace(s->ops
  * (common/wall_forces.h); otherwise it adds the kept forces after the per-particle sums. The bits are the same. */
 static int stage_contacts(dem_sim *s)
 {
-    int sums = (s->effects & DEM_EFFECT_WALLS) && s->nwalls && s->wall_sums_due;
+    /* A sampled step's row (common/series.h) keeps the blocks' partial sums: integrate_kick takes them from the kept
+     * forces, or else they are computed here; the final sum runs only when due. */
+    int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls, fin = walls && s->wall_sums_due;
     int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
-    return dem_stage_contact_pairs(s->ops, s->be) || (sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) ||
-                   dem_stage_contact_sums(s->ops, s->be) || (sums && kept && dem_stage_wall_reduce(s->ops, s->be))
+    int blocks = fin || (walls && s->sample_row >= 0 && !kept);
+    return dem_stage_contact_pairs(s->ops, s->be) || (blocks && !kept && dem_stage_wall_reduce(s->ops, s->be, fin)) ||
+                   dem_stage_contact_sums(s->ops, s->be) ||
+                   (blocks && kept && dem_stage_wall_reduce(s->ops, s->be, fin))
                ? be_fail(s)
                : 0;
 }
@@ -857,41 +862,53 @@ int dem_step(dem_sim *s, long nsteps)
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     for (long k = 0; k < nsteps; k++) {
-        int flags[FLAG_COUNT], e;
-        dem_core *c = DEM_CORE(s->be);
-        c->ntrace = 0;
-        s->rebuild_at = s->rebuild_len = 0;
-        if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
-            return be_fail(s);
-        /* walls move with the particles' drift: positions at t + dt, velocity of this step */
-        if (s->nwalls && (e = servo_update(s)))
+        int e = sim_step_once(s, k == nsteps - 1, -1);
+        if (e)
             return e;
-        if (s->nwalls) {
-            for (int w = 0; w < s->nwalls; w++) {
-                double v[3];
-                sim_wall_velocity(s, w, s->step, v);
-                for (int d = 0; d < 3; d++)
-                    s->wall_pos[w][d] += v[d] * s->dt;
-            }
-            sim_pack_walls(s);
-            if (dem_stage_set_walls(s->ops, s->be, s->wall_real) || (s->natt && dem_stage_riders(s->ops, s->be)))
-                return be_fail(s);
-        }
-        if (read_flags(s, flags))
-            return DEM_ERR_DEVICE;
-        if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
-            return e;
-        s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
-        s->wall_sums_due = k == nsteps - 1 || s->servo_walls;
-        if ((e = forces(s)))
-            return e;
-        if (dem_stage_kick(s->ops, s->be))
-            return be_fail(s);
-        s->nseq_step = copy_trace(c, 0, s->rebuild_len ? s->rebuild_at : c->ntrace, s->seq_step, 0);
-        if (s->rebuild_len)
-            s->nseq_step = copy_trace(c, s->rebuild_at + s->rebuild_len, c->ntrace, s->seq_step, s->nseq_step);
-        s->step++;
     }
+    return 0;
+}
+
+int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
+{
+    int flags[FLAG_COUNT], e;
+    dem_core *c = DEM_CORE(s->be);
+    c->ntrace = 0;
+    s->rebuild_at = s->rebuild_len = 0;
+    if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
+        return be_fail(s);
+    /* walls move with the particles' drift: positions at t + dt, velocity of this step */
+    if (s->nwalls && (e = servo_update(s)))
+        return e;
+    if (s->nwalls) {
+        for (int w = 0; w < s->nwalls; w++) {
+            double v[3];
+            sim_wall_velocity(s, w, s->step, v);
+            for (int d = 0; d < 3; d++)
+                s->wall_pos[w][d] += v[d] * s->dt;
+        }
+        sim_pack_walls(s);
+        if (dem_stage_set_walls(s->ops, s->be, s->wall_real) || (s->natt && dem_stage_riders(s->ops, s->be)))
+            return be_fail(s);
+    }
+    if (read_flags(s, flags))
+        return DEM_ERR_DEVICE;
+    if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
+        return e;
+    s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
+    s->wall_sums_due = wall_sums || s->servo_walls;
+    s->sample_row = sample_row;
+    if (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 1, sample_row))
+        return be_fail(s);
+    if ((e = forces(s)))
+        return e;
+    if (dem_stage_kick(s->ops, s->be) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
+        return be_fail(s);
+    s->sample_row = -1;
+    s->nseq_step = copy_trace(c, 0, s->rebuild_len ? s->rebuild_at : c->ntrace, s->seq_step, 0);
+    if (s->rebuild_len)
+        s->nseq_step = copy_trace(c, s->rebuild_at + s->rebuild_len, c->ntrace, s->seq_step, s->nseq_step);
+    s->step++;
     return 0;
 }
 

@@ -46,6 +46,7 @@ struct dem_sim {
     /* run state */
     int started;
     int wall_sums_due;                 /* this step's force stages sum the force each wall received (dem_step) */
+    int sample_row;                    /* >= 0: this step is sampled into that row of the series ring (series.h) */
     int servo_walls;                   /* a wall has a servo stage: the sums are due every step (dem_start) */
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
@@ -88,6 +89,9 @@ double sim_inertia(const dem_sim *s, int i);
 int sim_validate(dem_sim *s);
 int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
 int sim_has_servo(const dem_sim *s); /* a wall has a servo stage */
+/* One step (dem_step's body); wall_sums: sum the force each wall received in it (always under a servo); sample_row
+ * >= 0: a sampled step, whose series row goes to that row of the device's ring (common/series.h). */
+int sim_step_once(dem_sim *s, int wall_sums, int sample_row);
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
 void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);

@@ -289,8 +289,10 @@ static void pack_effects(dem_sim *s, dem_setup *u)
         u->effects |= DEM_MC_REACH;
     /* the force from each wall on each particle is kept where it is read: by the contact network, and by the
      * walls' sums when they are due every step (a servo): evaluating the wall contacts again for the sums costs
-     * about 7 % of such a step (1e5 spheres, 5 walls), while a sum over kept forces costs 2 % */
-    if ((s->cfg.contacts || sim_has_servo(s)) && s->nwalls > 0 && (s->effects & DEM_EFFECT_WALLS))
+     * about 7 % of such a step (1e5 spheres, 5 walls), while a sum over kept forces costs 2 %; and by the sums of
+     * frequent samples (a series row every few steps) for the same reason */
+    int sampled = s->cfg.sample_every > 0 && s->cfg.sample_every <= DEM_SAMPLE_KEEP;
+    if ((s->cfg.contacts || sampled || sim_has_servo(s)) && s->nwalls > 0 && (s->effects & DEM_EFFECT_WALLS))
         u->effects |= DEM_KEEP_WALL_FORCES;
     u->n = s->n;
     u->nmat = s->nmat;

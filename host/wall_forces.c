@@ -2,9 +2,9 @@
  * receives. Written once for every backend. */
 #include "backend.h"
 
-int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b)
+int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b, int final)
 {
-    return dem_launch(o, b, K_wall_reduce_block) || dem_launch(o, b, K_wall_reduce_final);
+    return dem_launch(o, b, K_wall_reduce_block) || (final && dem_launch(o, b, K_wall_reduce_final));
 }
 
 /* New wall positions and velocities (real[W_STRIDE*nwalls]), non-blocking: the driver's next flag read waits. */

@@ -94,7 +94,11 @@ typedef struct {
                             every wall on every particle (3 reals per particle and wall); 0 (default): only a run with a
                             servo wall keeps them (its every-step sums read them), and dem_contacts_get refuses a run
                             with walls that does not */
+    long sample_every;   /* steps between the samples the caller will take (dem_step_sampled), 0 = rarely or never: at
+                            DEM_SAMPLE_KEEP or fewer the device keeps the wall forces as for `contacts`, so each sample's
+                            wall sums add them up instead of evaluating the wall contacts again */
 } dem_config;
+#define DEM_SAMPLE_KEEP 10
 
 /* Fields that can be read back (dem_get_raw, dem_get_field). */
 typedef enum {
@@ -404,13 +408,26 @@ int dem_get_field(dem_sim *s, dem_field f, double *dst);
 int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall received in the last step [N] */
 int dem_wall_position(const dem_sim *s, int wall, double p[3]);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
-/* What a time-series row needs, read from the device with one synchronisation: the energies and contact counts
- * (dem_energy) and the force each wall received (dem_wall_force of every wall). */
+/* What a time-series row needs: the energies and contact counts (as dem_energy defines them) and every wall's force
+ * and position, with the step, its time and the MC-strain iteration counts, all as they were after that step. */
 typedef struct {
     dem_energy_t energy;
     double wall_force[3 * DEM_MAX_WALLS]; /* [N] */
+    double wall_pos[3 * DEM_MAX_WALLS];   /* [m] */
+    long step;
+    double time;     /* [s] */
+    dem_mc_stats mc; /* dem_mc_stats_get after the step */
 } dem_sample;
+/* The current state's sample, computed on the host in double like dem_energy (one synchronisation). */
 int dem_sample_get(dem_sim *s, dem_sample *out);
+/* Advances nsteps steps like dem_step and samples the steps k (0 <= k < nsteps, of this call) with want[k] != 0:
+ * rows receives one sample per such step, in order (want NULL: none). The kernels of a sampled step write each
+ * particle's terms in the run's precision to a ring of rows on the device (common/series.h), which the host reads
+ * when it is full or the call ends and adds up in double: no synchronisation and no kernel launch per row. The same
+ * bits on every backend, and within rounding of dem_sample_get (fp64: a few roundoffs; fp32: the overlaps' own
+ * precision). A run with a membrane (springs, patches) is sampled on the host, one synchronisation per row. As after
+ * dem_step, DEM_FIELD_WALL_FORCE holds the last step's wall forces; each row holds its own step's. */
+int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows);
 
 /* The contact network of the current state: every touching particle pair (by i < j, ascending) and then every
  * touching particle-wall pair (by particle, then wall), with the force the step computed on particle i split along

@@ -1,0 +1,66 @@
+/* series.h - a time-series row's terms, on the device in a sampled step (issue 15): each particle's kinetic and
+ * potential energy, the Hertz elastic energy of its contacts and its contact counts (dem_layout.h SE_*), written to
+ * the particle's slot in one row of a ring of rows by the kernels that have them at hand - integrate_kick (the
+ * velocities at the step's end; and at each block's first particle the walls' block partial sums), contact_forces
+ * (the touching pairs it owns and its walls). So a sampled step launches no kernel more than another step (with the
+ * wall forces kept; without, the walls' block sums) and needs no synchronisation; the host reads the ring when it is full or the steps end and adds each row's terms in ascending
+ * particle order in double, and finishes the walls' sums with wall_reduce_final's own loop (host/energy.c): the same
+ * bits on every backend.
+ *
+ * A pair's contact is counted by its lower id when the overlap the contact law computed (PR_DELTA) is positive, a wall
+ * when the particle overlaps it (a rider never touches its wall); host/energy.c counts the same from whole rows. A
+ * fixed particle has neither kinetic nor potential energy, one that does not rotate no rotational energy (its inverse
+ * mass or inertia is 0: host/sim_setup.c). The membrane's springs and patches are not counted: a run with them samples
+ * on the host.
+ */
+#ifndef DEM_SERIES_H
+#define DEM_SERIES_H
+#include "vec3.h"
+#include "dem_layout.h"
+#include "hertz_mindlin.h"
+#include "wall_forces.h"
+
+/* particle i's slot in row `row` of the ring */
+DEM_INLINE DEM_GLOBAL real *series_slot(DEM_GLOBAL real *ring, int row, int n, int i)
+{
+    return ring + ((long)row * n + i) * SE_STRIDE;
+}
+
+/* Kinetic and potential energy of particle i at the end of the step (integrate_kick). */
+DEM_INLINE void series_motion_terms(unsigned fx, vec3 xi, vec3 vi, vec3 wi, real invm, real invi, vec3 g,
+                                    DEM_GLOBAL real *slot)
+{
+    real kin = (real)0, pot = (real)0;
+    if (invm > (real)0) {
+        real m = (real)1 / invm;
+        kin = (real)0.5 * m * v3_dot(vi, vi);
+        if (fx & DEM_EFFECT_GRAVITY)
+            pot = -(m * v3_dot(g, xi));
+    }
+    if (invi > (real)0)
+        kin += (real)0.5 / invi * v3_dot(wi, wi);
+    slot[SE_KIN] = kin;
+    slot[SE_POT] = pot;
+}
+
+/* Block b's partial sums of the force each wall received, into the row: from the forces contact_forces kept
+ * (DEM_KEEP_WALL_FORCES, the same function as wall_reduce_block's), or, without them, the partial sums
+ * wall_reduce_block computed in this step (the driver has them computed in a sampled step). The host finishes them
+ * with wall_reduce_final's loop. */
+DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nblocks, int row,
+                                   DEM_CONST_GLOBAL unsigned *wall_mask, DEM_CONST_GLOBAL real *wall_pf,
+                                   DEM_CONST_GLOBAL real *partial, DEM_GLOBAL real *ring_wall)
+{
+    for (int k = 0; k < nwalls; k++) {
+        vec3 s = (fx & DEM_KEEP_WALL_FORCES) ? wall_block_kept(b, k, n, wall_mask, wall_pf)
+                                             : v3_load(partial, k * nblocks + b);
+        v3_store(ring_wall, ((long)row * nwalls + k) * nblocks + b, s);
+    }
+}
+
+/* The elastic energy of a touching pair of radii ra, rb and overlap delta, as its lower id counts it */
+DEM_INLINE real series_pair_energy(real estar, real ra, real rb, real delta)
+{
+    return hertz_energy(estar, ra * rb / (ra + rb), delta);
+}
+#endif /* DEM_SERIES_H */

@@ -1,0 +1,20 @@
+/* series.c - the series rows' buffers (common/series.h): a sampled step's terms go to a row of the device's ring,
+ * written by the step's own kernels; the ring is read back in one synchronisation. Written once for every backend. */
+#include "backend.h"
+
+int dem_stage_series_arm(const dem_backend_ops *o, dem_backend *b, int on, int row)
+{
+    dem_core *c = DEM_CORE(b);
+    c->si[SI_SERIES_SAMPLE] = on;
+    c->si[SI_SERIES_ROW] = row;
+    return on ? dem_buffer_ensure(o, b, BUF_SERIES_RING) || dem_buffer_ensure(o, b, BUF_SERIES_WALL) : 0;
+}
+
+int dem_stage_series_read(const dem_backend_ops *o, dem_backend *b, int rows, void *terms, void *walls)
+{
+    dem_core *c = DEM_CORE(b);
+    size_t tb = (size_t)rows * SE_STRIDE * (size_t)c->n * (size_t)c->rs,
+           wb = (size_t)rows * 3 * (size_t)c->nwalls * (size_t)c->nblocks_red * (size_t)c->rs;
+    dem_bufref rt = {TABLE_ONE, BUF_SERIES_RING}, rw = {TABLE_ONE, BUF_SERIES_WALL};
+    return (tb && o->read(b, rt, 0, terms, tb, 0)) || (wb && o->read(b, rw, 0, walls, wb, 0)) || o->finish(b);
+}
