@@ -1,4 +1,5 @@
-/* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_pos,pair_i,pair_j,pair_hist,
+/* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_pos,wall_stage,
+ * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,
  * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
@@ -37,7 +38,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     int rc = f < 0;
     hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
     hsize_t n3[2] = {(hsize_t)st.n, 3}, w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
-    hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs};
+    hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs}, w1[1] = {(hsize_t)st.nwalls};
     hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size}, wm[1] = {st.wall_mc_fn_bytes / (size_t)st.real_size};
     hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0};
     hsize_t q1[1] = {(hsize_t)st.npatch}, q3[2] = {(hsize_t)st.npatch, 3};
@@ -55,6 +56,9 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_write(g, "torque", real_t, 2, n3, st.torque, "N m") ||
              h5_write(g, "wall_force", real_t, 2, w3, st.wall_force, "N") ||
              h5_write(g, "wall_pos", H5T_NATIVE_DOUBLE, 2, w3, st.wall_pos, "m") ||
+             h5_write(g, "wall_stage", H5T_NATIVE_INT, 1, w1, st.wall_stage, NULL) ||
+             h5_write(g, "wall_stage_first", H5T_NATIVE_LONG, 1, w1, st.wall_stage_first, NULL) ||
+             h5_write(g, "wall_stage_from", H5T_NATIVE_DOUBLE, 2, w3, st.wall_stage_from, "m") ||
              h5_write(g, "pair_i", H5T_NATIVE_INT, 1, p1, st.pair_i, NULL) ||
              h5_write(g, "pair_j", H5T_NATIVE_INT, 1, p1, st.pair_j, NULL) ||
              h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
@@ -169,6 +173,14 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
                                         h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
+        /* each wall's motion stage (absent from checkpoints of libdem before stages could end early: derived from
+         * the step by dem_state_set) */
+        st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
+        rc = rc || (st->has_stages && (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
+                                       h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first,
+                                               (size_t)nw) ||
+                                       h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from,
+                                               3 * (size_t)nw)));
         /* sphere-patch contacts (membranes; absent from checkpoints of libdem before them: none) */
         long npatch = H5Lexists(g, "patch_i", H5P_DEFAULT) > 0 ? h5_count(g, "patch_i") : 0;
         if (!rc && (npatch < 0 || npatch > 64 * n || (npatch && (h5_count(g, "patch_t") != npatch ||

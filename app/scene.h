@@ -72,6 +72,9 @@ typedef struct {
     double force;                 /* servo stage: the normal force the wall should receive [N], or */
     double stress, area;          /* stress [Pa] x area [m^2] */
     double gain, max_speed;       /* [m/s per N], [m/s] */
+    double until_force;           /* the stage ends early once the wall receives this normal force [N], or */
+    double until_stress;          /* this stress [Pa] x area, and/or */
+    double until_distance;        /* once it has moved this far [m] */
 } scene_stage;
 
 typedef struct {

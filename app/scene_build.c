@@ -261,8 +261,10 @@ static int servo_stage(const scene *sc, const char *base, const scene_stage *g, 
         has[q] = scene_has(sc->loc, p);
     }
     if (!has[0] && !has[1]) {
+        snprintf(p, sizeof p, "%s.until_stress", base);
+        int until_area = scene_has(sc->loc, p); /* the area an until_stress acts on (until_stage) */
         for (int q = 2; q < 5; q++)
-            if (has[q]) {
+            if (has[q] && !(q == 2 && until_area)) {
                 snprintf(p, sizeof p, "%s.%s", base, keys[q]);
                 return scene_fail(sc, err, errlen, p, "belongs to a servo stage (force or stress)");
             }
@@ -286,6 +288,32 @@ static int servo_stage(const scene *sc, const char *base, const scene_stage *g, 
             return scene_fail(sc, err, errlen, p, "a servo stage needs %s > 0 (%s)", keys[q],
                               q == 3 ? "m/s per N" : "m/s");
         }
+    return 0;
+}
+
+/* A stage's early end (dem_stage.until_force, until_distance): `until_force` [N] or `until_stress` [Pa] x `area`
+ * [m^2], and/or `until_distance` [m]; its duration (or distance, strain) stays its longest. */
+static int until_stage(const scene *sc, const char *base, const scene_stage *g, dem_stage *st, char *err, size_t errlen)
+{
+    char p[160];
+    int has[4];
+    static const char *const keys[4] = {"until_force", "until_stress", "until_distance", "area"};
+    const double v[3] = {g->until_force, g->until_stress, g->until_distance};
+    for (int q = 0; q < 4; q++) {
+        snprintf(p, sizeof p, "%s.%s", base, keys[q]);
+        has[q] = scene_has(sc->loc, p);
+    }
+    if (has[0] && has[1])
+        return scene_fail(sc, err, errlen, base, "give until_force [N] or until_stress [Pa] x area [m^2], not both");
+    for (int q = 0; q < 3; q++) {
+        snprintf(p, sizeof p, "%s.%s", base, keys[q]);
+        if (has[q] && (!(v[q] > 0) || !isfinite(v[q])))
+            return scene_fail(sc, err, errlen, p, "must be > 0 and finite");
+    }
+    if (has[1] && !(has[3] && g->area > 0 && isfinite(g->area)))
+        return scene_fail(sc, err, errlen, base, "until_stress needs the area > 0 m^2 it acts on");
+    st->until_force = has[0] ? g->until_force : has[1] ? g->until_stress * g->area : 0;
+    st->until_distance = has[2] ? g->until_distance : 0;
     return 0;
 }
 
@@ -341,7 +369,7 @@ static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, in
         st[n].duration = dur;
         for (int d = 0; d < 3; d++)
             st[n].velocity[d] = has_v ? g->velocity[d] : 0;
-        if (servo_stage(sc, base, g, has_v, has_d, &st[n], err, errlen))
+        if (servo_stage(sc, base, g, has_v, has_d, &st[n], err, errlen) || until_stage(sc, base, g, &st[n], err, errlen))
             return 1;
         n++;
     }

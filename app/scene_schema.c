@@ -86,7 +86,9 @@ static const cyaml_schema_field_t stage_fields[] = {
     VEC3("velocity", scene_stage, velocity), REAL("duration", scene_stage, duration),
     REAL("distance", scene_stage, distance), REAL("strain", scene_stage, strain), REAL("length", scene_stage, length),
     REAL("force", scene_stage, force), REAL("stress", scene_stage, stress), REAL("area", scene_stage, area),
-    REAL("gain", scene_stage, gain), REAL("max_speed", scene_stage, max_speed), CYAML_FIELD_END};
+    REAL("gain", scene_stage, gain), REAL("max_speed", scene_stage, max_speed),
+    REAL("until_force", scene_stage, until_force), REAL("until_stress", scene_stage, until_stress),
+    REAL("until_distance", scene_stage, until_distance), CYAML_FIELD_END};
 static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_stage, stage_fields)};
 
 static const cyaml_schema_field_t wall_fields[] = {

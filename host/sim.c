@@ -368,23 +368,52 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
                              !(g->max_speed > 0) || !isfinite(g->max_speed)))
             return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: a servo stage needs a plane wall, gain > 0 m/(s N) and "
                             "max_speed > 0 m/s (got gain %g, max_speed %g)", wall, st, g->gain, g->max_speed);
+        if (!(g->until_force >= 0) || !isfinite(g->until_force) || !(g->until_distance >= 0) ||
+            !isfinite(g->until_distance))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: until_force and until_distance must be >= 0 and finite "
+                            "(got %g N, %g m)", wall, st, g->until_force, g->until_distance);
+        if (g->until_force > 0 && kind != DEM_WALL_PLANE)
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: until_force needs a plane wall (the force along its "
+                            "normal)", wall, st);
     }
     return 0;
 }
 
-/* The stage wall k is in at step `step`, or -1 after its last; its first step in *first */
-static int stage_at(const dem_sim *s, int k, long step, long *first)
+/* Each wall's stage for the step about to be taken: the next one once the current one has run its duration, or once
+ * its end condition held after the step before (dem_stage.until_force, until_distance); a stage of no steps is
+ * passed at once. Decided on the host from the device's wall force and the host's positions: the same step on
+ * every backend. */
+static int stages_advance(dem_sim *s)
 {
-    long start = 0;
-    for (int st = 0; st < s->walls[k].nstages; st++) {
-        long len = s->wall_stage_steps[k][st];
-        if (step >= start && step < start + len) {
-            *first = start;
-            return st;
+    double f[3 * DEM_MAX_WALLS];
+    int read = 0;
+    for (int k = 0; k < s->nwalls; k++) {
+        const dem_wall *w = &s->walls[k];
+        while (s->stage_cur[k] < w->nstages) {
+            const dem_stage *g = &w->stages[s->stage_cur[k]];
+            long ran = s->step - s->stage_first[k];
+            int done = ran >= s->wall_stage_steps[k][s->stage_cur[k]];
+            if (!done && ran > 0 && g->until_distance > 0) {
+                const double *p = s->wall_pos[k], *p0 = s->stage_from[k];
+                double d = sqrt((p[0] - p0[0]) * (p[0] - p0[0]) + (p[1] - p0[1]) * (p[1] - p0[1]) +
+                                (p[2] - p0[2]) * (p[2] - p0[2]));
+                done = d >= g->until_distance;
+            }
+            if (!done && ran > 0 && g->until_force > 0) { /* the force the particles exerted in the step before */
+                if (!read && dem_get_field(s, DEM_FIELD_WALL_FORCE, f))
+                    return DEM_ERR_DEVICE;
+                read = 1;
+                const double *n = w->normal;
+                done = -(f[3 * k] * n[0] + f[3 * k + 1] * n[1] + f[3 * k + 2] * n[2]) >= g->until_force;
+            }
+            if (!done)
+                break;
+            s->stage_cur[k]++;
+            s->stage_first[k] = s->step;
+            memcpy(s->stage_from[k], s->wall_pos[k], sizeof(double) * 3);
         }
-        start += len;
     }
-    return -1;
+    return 0;
 }
 
 /* Servo stages: each such wall's velocity for this step from the force it received in the last (dem_stage), and
@@ -395,7 +424,7 @@ static int servo_update(dem_sim *s)
     int read = 0;
     for (int k = 0; k < s->nwalls; k++) {
         long first;
-        int st = stage_at(s, k, s->step, &first);
+        int st = sim_stage_now(s, k, &first);
         const dem_stage *g = st >= 0 ? &s->walls[k].stages[st] : NULL;
         if (!g || !(g->force > 0))
             continue;
@@ -878,7 +907,7 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
         return be_fail(s);
     /* walls move with the particles' drift: positions at t + dt, velocity of this step */
-    if (s->nwalls && (e = servo_update(s)))
+    if (s->nwalls && ((e = stages_advance(s)) || (e = servo_update(s))))
         return e;
     if (s->nwalls) {
         for (int w = 0; w < s->nwalls; w++) {

@@ -68,6 +68,9 @@ struct dem_sim {
     double servo_sum[DEM_MAX_WALLS];       /* the normal force summed over its last tenth so far [N] */
     double servo_err[DEM_MAX_WALLS];       /* its force error in the step before [N] */
     long wall_stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
+    int stage_cur[DEM_MAX_WALLS];          /* each wall's current motion stage (nstages: past the last) */
+    long stage_first[DEM_MAX_WALLS];       /* the step it began */
+    double stage_from[DEM_MAX_WALLS][3];   /* the wall's position then [m] */
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;
     char err[4096];
@@ -88,7 +91,12 @@ double sim_inertia(const dem_sim *s, int i);
 /* sim_setup.c */
 int sim_validate(dem_sim *s);
 int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
-int sim_has_servo(const dem_sim *s); /* a wall has a servo stage */
+int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that ends at a force (both read every step's) */
+/* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
+int sim_stage_now(const dem_sim *s, int k, long *first);
+/* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
+ * checkpoint written before stages could end early). */
+void sim_stages_from_step(dem_sim *s);
 /* One step (dem_step's body); wall_sums: sum the force each wall received in it (always under a servo); sample_row
  * >= 0: a sampled step, whose series row goes to that row of the device's ring (common/series.h). */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row);

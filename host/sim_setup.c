@@ -225,19 +225,35 @@ static void *pack_real(const double *src, size_t n, int rs)
     return p;
 }
 
+int sim_stage_now(const dem_sim *s, int k, long *first)
+{
+    int st = s->stage_cur[k];
+    *first = s->stage_first[k];
+    return st < s->walls[k].nstages ? st : -1;
+}
+
+void sim_stages_from_step(dem_sim *s)
+{
+    for (int k = 0; k < s->nwalls; k++) {
+        long start = 0;
+        int st = 0;
+        while (st < s->walls[k].nstages && s->step >= start + s->wall_stage_steps[k][st])
+            start += s->wall_stage_steps[k][st++];
+        s->stage_cur[k] = st;
+        s->stage_first[k] = start;
+        memcpy(s->stage_from[k], s->wall_pos[k], sizeof(double) * 3); /* only a distance-ended stage reads it */
+    }
+}
+
 void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3])
 {
-    const dem_wall *w = &s->walls[k];
-    long start = 0;
+    (void)step; /* always the current step: the stage state says where each wall is */
+    long first;
+    int st = sim_stage_now(s, k, &first);
     v[0] = v[1] = v[2] = 0;
-    for (int st = 0; st < w->nstages; st++) {
-        long len = s->wall_stage_steps[k][st];
-        if (step >= start && step < start + len) { /* a servo stage: the velocity dem_step worked out (sim.c) */
-            memcpy(v, w->stages[st].force > 0 ? s->servo_v[k] : w->stages[st].velocity, sizeof(double) * 3);
-            return;
-        }
-        start += len;
-    }
+    if (st >= 0) /* a servo stage: the velocity dem_step worked out (sim.c) */
+        memcpy(v, s->walls[k].stages[st].force > 0 ? s->servo_v[k] : s->walls[k].stages[st].velocity,
+               sizeof(double) * 3);
 }
 
 void sim_pack_walls(dem_sim *s)
@@ -273,7 +289,7 @@ int sim_has_servo(const dem_sim *s)
 {
     for (int k = 0; k < s->nwalls; k++)
         for (int st = 0; st < s->walls[k].nstages; st++)
-            if (s->walls[k].stages[st].force > 0)
+            if (s->walls[k].stages[st].force > 0 || s->walls[k].stages[st].until_force > 0)
                 return 1;
     return 0;
 }
@@ -568,6 +584,9 @@ int sim_pack(dem_sim *s)
     for (int k = 0; k < s->nwalls; k++) /* the walls' stage lengths in steps, then the riders' velocities of step 0 */
         for (int st = 0; st < s->walls[k].nstages; st++)
             s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
+    for (int k = 0; k < s->nwalls; k++) /* where the walls start (pack_walls packs them), and the stages of step 0 */
+        memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
+    sim_stages_from_step(s);
     sim_attach_start(s);
     s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
     s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);

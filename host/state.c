@@ -8,6 +8,7 @@
  * positions and puts each touching pair's history back into the new rows.
  */
 #include "sim.h"
+#include <math.h>
 #include "dem_layout.h"
 #include "sorted_row.h"
 #include <stdio.h>
@@ -132,8 +133,13 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->nwalls = s->nwalls;
     st->real_size = rs;
     st->rebuilds = s->rebuilds;
-    for (int k = 0; k < s->nwalls; k++)
+    st->has_stages = 1;
+    for (int k = 0; k < s->nwalls; k++) {
         memcpy(st->wall_pos[k], s->wall_pos[k], sizeof st->wall_pos[k]);
+        st->wall_stage[k] = s->stage_cur[k];
+        st->wall_stage_first[k] = s->stage_first[k];
+        memcpy(st->wall_stage_from[k], s->stage_from[k], sizeof st->wall_stage_from[k]);
+    }
     st->x = get_all(s, DEM_FIELD_X, &b, &e);
     st->v = get_all(s, DEM_FIELD_V, &b, &e);
     st->w = get_all(s, DEM_FIELD_W, &b, &e);
@@ -223,6 +229,14 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                         dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE));
     if (st->step < 0 || st->npairs < 0)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld and %ld contacts", st->step, st->npairs);
+    for (int k = 0; st->has_stages && k < s->nwalls; k++) {
+        const double *p = st->wall_stage_from[k];
+        if (st->wall_stage[k] < 0 || st->wall_stage[k] > s->walls[k].nstages || st->wall_stage_first[k] < 0 ||
+            st->wall_stage_first[k] > st->step || !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d: the saved motion stage %d (of %d), begun at step %ld (of %ld), "
+                            "does not fit this run", k, st->wall_stage[k], s->walls[k].nstages,
+                            st->wall_stage_first[k], st->step);
+    }
     for (long p = 0; p < st->npairs; p++)
         if (!(st->pair_i[p] >= 0 && st->pair_i[p] < st->pair_j[p] && st->pair_j[p] < n))
             return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i < j < %d)", p,
@@ -301,5 +315,12 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     s->mc = st->mc;
     for (int k = 0; k < s->nwalls; k++)
         memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);
+    if (!st->has_stages) /* a state from before stages could end early: every stage ran its duration */
+        sim_stages_from_step(s);
+    for (int k = 0; st->has_stages && k < s->nwalls; k++) {
+        s->stage_cur[k] = st->wall_stage[k];
+        s->stage_first[k] = st->wall_stage_first[k];
+        memcpy(s->stage_from[k], st->wall_stage_from[k], sizeof s->stage_from[k]);
+    }
     return 0;
 }

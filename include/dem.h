@@ -58,6 +58,13 @@ typedef struct {
     double force;       /* [N] */
     double gain;        /* [m/s per N] */
     double max_speed;   /* [m/s] */
+    /* A stage may end before its duration (0: not this way; `duration` stays its longest): after the first step in
+     * which the normal force the particles exerted on the wall reached until_force [N] (plane walls; a press stage
+     * "down until 5 kN"), or in which the wall got until_distance [m] or farther from where the stage began. The
+     * next stage begins with the next step. Checked on the host, from the device's wall force and the host's wall
+     * positions, so every backend ends a stage at the same step; the stage state is part of dem_state. */
+    double until_force;
+    double until_distance;
 } dem_stage;
 
 typedef enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 } dem_wall_kind;
@@ -471,6 +478,10 @@ typedef struct {
     void *x, *v, *w, *force, *torque; /* real[3n] */
     void *wall_force;                 /* real[3 nwalls] */
     double wall_pos[DEM_MAX_WALLS][3]; /* [m] */
+    int has_stages;                       /* 1: the three below hold (0: derive them from the step) */
+    int wall_stage[DEM_MAX_WALLS];        /* each wall's motion stage (nstages: past the last) */
+    long wall_stage_first[DEM_MAX_WALLS]; /* the step it began */
+    double wall_stage_from[DEM_MAX_WALLS][3]; /* where the wall was then [m] (dem_stage.until_distance) */
     long npairs;
     int *pair_i, *pair_j;
     void *pair_hist;                  /* real[3 npairs] */

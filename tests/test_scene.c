@@ -249,6 +249,9 @@ static void restart_case(const char *sc, const char *precision, int mc)
     read_state(a, "wall_force", wa, 21, rt);
     read_state(b, "wall_force", wb, 21, rt);
     assert_memory_equal(wa, wb, 21 * (size_t)rs);
+    read_state(a, "wall_pos", wa, 21, H5T_NATIVE_DOUBLE); /* the walls went the same way (their stages) */
+    read_state(b, "wall_pos", wb, 21, H5T_NATIVE_DOUBLE);
+    assert_memory_equal(wa, wb, 21 * sizeof(double));
     /* and the history is not trivially zero: friction was at work */
     int nonzero = 0;
     for (long k = 0; k < 3 * np * rs; k++)
@@ -271,6 +274,14 @@ static void test_restart_bitwise(void **st)
     restart_case(SRC "/tests/scenes/restart_box.yaml", "fp64", 0);
     restart_case(SRC "/tests/scenes/restart_box.yaml", "fp32", 0);
     restart_case(SRC "/tests/scenes/restart_box_mc.yaml", "fp64", 1);
+    /* the lid comes down until it has moved 2 mm (about 110 steps, well before its 500-step duration) and goes back
+     * up: the restart at step 330 must carry which stage it is in, or the lid would come down again */
+    char err[8192], until[300];
+    snprintf(until, sizeof until, "%s/until.yaml", tmp);
+    assert_int_equal(sh(err, sizeof err, "sed 's/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], "
+                        "duration: 0.03, until_distance: 0.002}, {velocity: [0, 0, 0.3], duration: 0.03}/' "
+                        "%s/tests/scenes/restart_box.yaml > %s", SRC, until), 0);
+    restart_case(until, "fp64", 0);
 }
 
 /* A membrane scene (tests/scenes/membrane_tube.yaml: a patch tube between platens, beads inside, a pressure ramp):
@@ -306,6 +317,14 @@ static void test_membrane_scene(void **st)
          "bad.yaml:22: walls[1].motion[0]: a stress needs the area > 0 m^2 it acts on"},
         {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], gain: 1, duration: 0.03}/",
          "bad.yaml:22: walls[1].motion[0].gain: belongs to a servo stage (force or stress)"},
+        /* stages that end early */
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_stress: 1e3}/",
+         "bad.yaml:22: walls[1].motion[0]: until_stress needs the area > 0 m^2 it acts on"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_force: 1, "
+         "until_stress: 1e3, area: 1e-3}/",
+         "bad.yaml:22: walls[1].motion[0]: give until_force [N] or until_stress [Pa] x area [m^2], not both"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_distance: -1}/",
+         "bad.yaml:22: walls[1].motion[0].until_distance: must be > 0 and finite"},
     };
     for (size_t k = 0; k < sizeof servo / sizeof servo[0]; k++)
         bad_in("tests/scenes/restart_box.yaml", servo[k][0], servo[k][1]);

@@ -161,6 +161,85 @@ static void test_servo(void **st)
     dem_destroy(s);
 }
 
+/* Stages that end early (dem_stage.until_force, until_distance): a lid comes down at 0.1 m/s onto a fixed sphere
+ * until it receives 1 N (at most 3 ms: it gets there after about 1600 steps), goes back up at 10 mm/s until it has
+ * moved 0.495 um (at most 0.2 ms), then rests. The first stage ends after the first step whose force reached 1 N,
+ * the lid going up from the next; the second after 50 steps of 0.01 um. OpenCL ends them at the reference's steps (its bits), and a restart from dem_state after the
+ * first early end continues bit for bit. */
+#define UNTIL_F 1.0
+static dem_sim *build_until(void *ctx)
+{
+    (void)ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    int a = dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.005, m);
+    dem_set_particle_flags(s, a, DEM_PARTICLE_FIXED);
+    dem_wall lid = {DEM_WALL_PLANE, m, {0, 0, 0.00501}, {0, 0, -1}, 0, 3, {{0}}};
+    lid.stages[0] = (dem_stage){.duration = 3000e-6, .velocity = {0, 0, -0.1}, .until_force = UNTIL_F};
+    lid.stages[1] = (dem_stage){.duration = 200e-6, .velocity = {0, 0, 0.01}, .until_distance = 0.495e-6};
+    lid.stages[2] = (dem_stage){.duration = 100e-6};
+    assert_int_equal(dem_add_wall(s, &lid), 0);
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.01});
+    dem_set_dt(s, 1e-6);
+    return s;
+}
+
+static void check_until(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    long *ends = ctx;
+    double f[3], p[3], prev = 0.00501;
+    long hit = -1, up_end = -1;
+    for (long k = 1; k <= 3300; k++) {
+        step_or_fail(s, 1);
+        dem_wall_force(s, 0, f);
+        dem_wall_position(s, 0, p);
+        double dz = p[2] - prev;
+        prev = p[2];
+        if (hit < 0) {
+            assert_true(dz < 0); /* still coming down */
+            if (f[2] >= UNTIL_F)
+                hit = k;
+        } else if (k == hit + 1) {
+            assert_true(fabs(dz - 0.01e-6) < 1e-15); /* going up from the next step */
+        } else if (up_end < 0 && fabs(dz) < 1e-15) {
+            up_end = k - 1; /* the last step that moved */
+        }
+    }
+    printf("  %s: the lid reached %g N at step %ld (it would have come down for 3000), went up for %ld steps\n",
+           bc->name, UNTIL_F, hit, up_end - hit);
+    assert_true(hit > 0 && hit < 3000);
+    assert_int_equal(up_end - hit, 50);
+    if (ends[0] < 0)
+        ends[0] = hit;
+    assert_int_equal(hit, ends[0]); /* the same step in every precision and backend: here the force is far from 1 N
+                                       at the step before and after */
+}
+
+static void test_stage_ends(void **st)
+{
+    (void)st;
+    long ends[1] = {-1};
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build_until, 0, check_until, ends);
+    FOR_EACH_BACKEND(bc)
+    { /* a restart 5 steps after the first stage ended early */
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        dem_sim *a = build_until(NULL), *b = build_until(NULL);
+        restart_check(a, b, &c, ends[0] + 5, 200, bc->name);
+        dem_destroy(a);
+        dem_destroy(b);
+    }
+    dem_sim *s = dem_create(); /* an early end at a force needs a plane; the limits must be >= 0 and finite */
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    dem_wall cyl = {DEM_WALL_CYLINDER, m, {0, 0, 0}, {0, 0, 1}, 0.01, 1, {{.duration = 1e-3, .until_force = 1}}};
+    assert_int_equal(dem_add_wall(s, &cyl), -1);
+    assert_non_null(strstr(dem_error(s), "until_force needs a plane wall"));
+    dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{.duration = 1e-3, .until_distance = -1}}};
+    assert_int_equal(dem_add_wall(s, &pl), -1);
+    assert_non_null(strstr(dem_error(s), "until_force and until_distance must be >= 0"));
+    dem_destroy(s);
+}
+
 /* The walls' sums two ways: a run that keeps each particle's wall forces (dem_config.contacts: the sums add what
  * contact_forces kept) and one that does not (the sums evaluate the wall contacts again, before contact_forces).
  * Same bits, every backend and precision and contact model (MC-stress and MC-strain feed the wall law their own
@@ -297,7 +376,7 @@ static void test_finite_die(void **st)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo),
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
