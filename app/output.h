@@ -7,7 +7,8 @@
  *   /particles/  radius [n], material [n] (constant over the run)
  *   /frames/     time [F], step [F], position|velocity|angular_velocity|force|torque [F, n, 3]
  *   /series/     time, step, kinetic, elastic, potential, total [R]; contacts, wall_contacts [R];
- *                wall_position, wall_force [R, nwalls, 3]; strain, stress [R] when the scene names a sample
+ *                wall_position, wall_force [R, nwalls, 3]; strain, stress [R] when the scene names a sample;
+ *                wall_radius, wall_height [nwalls] (cylinders; 0 for planes), wall_normal [nwalls, 3] (normal or axis)
  */
 #ifndef DEM_OUTPUT_H
 #define DEM_OUTPUT_H

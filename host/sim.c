@@ -1029,6 +1029,14 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3])
     return 0;
 }
 
+int dem_wall_get(const dem_sim *s, int wall, dem_wall *w)
+{
+    if (wall < 0 || wall >= s->nwalls)
+        return DEM_ERR_ARG;
+    *w = s->walls[wall];
+    return 0;
+}
+
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count)
 {
     *count = 0;

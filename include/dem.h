@@ -414,6 +414,7 @@ size_t dem_field_bytes(const dem_sim *s, dem_field f);
 int dem_get_field(dem_sim *s, dem_field f, double *dst);
 int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall received in the last step [N] */
 int dem_wall_position(const dem_sim *s, int wall, double p[3]);
+int dem_wall_get(const dem_sim *s, int wall, dem_wall *w); /* the wall as added (its normal or axis normalised) */
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* What a time-series row needs: the energies and contact counts (as dem_energy defines them) and every wall's force
  * and position, with the step, its time and the MC-strain iteration counts, all as they were after that step. */

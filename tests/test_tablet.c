@@ -152,8 +152,48 @@ static void test_press_cycle(void **st)
     scene_free(scr);
 }
 
+/* The tablet report (tools/plot_tablet.py) of the same cycle run by `dem run`: it draws its PNG and its numbers are
+ * the press's - the largest upper punch pressure is the servo's 1 N over the bore, the density there the dwell's,
+ * the lower punch carries nearly what the upper one does, the compact springs back once unloaded, the ejection
+ * needs a force. */
+static void test_tablet_report(void **st)
+{
+    (void)st;
+    char dir[256], err[8192], line[1024] = {0};
+    assert_int_equal(test_tmpdir_make(dir, sizeof dir, "dem-test-tablet"), 0);
+    assert_int_equal(test_sh(dir, err, sizeof err, "%s/build/dem run %s -o %s/t.h5 --quiet", DEM_DEFAULT_SOURCE_DIR,
+                             SCENE, dir), 0);
+    if (test_sh(dir, err, sizeof err, "{ /usr/bin/python3 %s/tools/plot_tablet.py %s/t.h5 > %s/report.txt; }",
+                DEM_DEFAULT_SOURCE_DIR, dir, dir))
+        fail_msg("plot_tablet.py: %s", err);
+    char path[300];
+    snprintf(path, sizeof path, "%s/report.txt", dir);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    assert_non_null(fgets(line, sizeof line, fp));
+    fclose(fp);
+    printf("  %s", line);
+    double pmax, dens, ratio, rec, yld, ej;
+    const char *at = strstr(line, "max_upper_pa=");
+    assert_non_null(at);
+    assert_int_equal(sscanf(at, "max_upper_pa=%lf density_at_max=%lf yield_pa=%lf transmission=%lf "
+                                "elastic_recovery=%lf max_ejection_n=%lf", &pmax, &dens, &yld, &ratio, &rec, &ej), 6);
+    double target = 1.0 / (M_PI * R_DIE * R_DIE);
+    assert_true(fabs(pmax / target - 1) < 0.05);
+    assert_true(dens > 0.6 && dens < 0.72);
+    assert_true(ratio > 0.9 && ratio < 1.1);
+    assert_true(rec > 0 && rec < 0.5);
+    assert_true(yld > 0 && isfinite(yld));
+    assert_true(ej > 0);
+    snprintf(path, sizeof path, "%s/t_tablet.png", dir);
+    fp = fopen(path, "rb");
+    assert_non_null(fp);
+    fclose(fp);
+    test_tmpdir_remove(dir);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_press_cycle)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_press_cycle), cmocka_unit_test(test_tablet_report)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

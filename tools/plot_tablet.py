@@ -1,0 +1,144 @@
+#!/usr/bin/python3
+"""The tablet report of a press cycle run by dem run (issue 12): one PNG and a few numbers.
+
+usage: tools/plot_tablet.py RUN.h5 [-o RUN_tablet.png] [--die NAME] [--upper NAME] [--lower NAME]
+
+Reads the run's time series (/series: wall_position, wall_force, the walls' names and shapes) and the spheres' radii.
+The die is the cylinder wall (or --die), the punches the planes named upper and lower (or --upper, --lower).
+  - punch pressure: the normal force the powder exerts on a punch over the bore's area pi R^2 [Pa];
+  - gap: the distance between the punch faces along the lower punch's normal; relative density D = the spheres'
+    volume / (pi R^2 gap), as if the compact filled the bore between the punches;
+  - Heckel: ln(1 / (1 - D)) against the upper punch pressure over the loading (up to the largest pressure), a line
+    fitted over its upper half; the mean yield pressure is 1 / slope;
+  - transmission ratio: lower over upper punch pressure while the upper punch is loaded (above 10 % of its largest);
+    the die-wall friction is the die's force along its axis;
+  - elastic recovery: (gap where the upper punch lets go - gap at the largest pressure) / gap at the largest pressure;
+  - ejection: the lower punch's force against its travel once it rises after the upper punch let go.
+Panels: pressures against upper punch travel, pressure against relative density, the Heckel plot with its fit, and
+the ejection force against lower punch travel. The radial pressure on the die wall is not in the series (the die's
+force is a vector sum, in which the radial parts cancel); its axial part, the wall friction, is drawn. Prints one
+line of numbers: `key=value` pairs. Uses Debian's python3-h5py, python3-numpy and python3-matplotlib.
+"""
+import argparse
+import math
+import sys
+
+import h5py
+import numpy as np
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def fail(msg):
+    sys.exit(f"plot_tablet: {msg}")
+
+
+def wall_index(names, want, what):
+    if want in names:
+        return names.index(want)
+    fail(f"no wall named '{want}' for the {what} (walls: {', '.join(names)}; name it with --{what})")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run", help="HDF5 file written by dem run")
+    ap.add_argument("-o", "--output", help="PNG file (default: RUN_tablet.png)")
+    ap.add_argument("--die", help="the die's wall name (default: the first cylinder)")
+    ap.add_argument("--upper", default="upper", help="the upper punch's wall name")
+    ap.add_argument("--lower", default="lower", help="the lower punch's wall name")
+    a = ap.parse_args()
+    out = a.output or (a.run[:-3] if a.run.endswith(".h5") else a.run) + "_tablet.png"
+    try:
+        f = h5py.File(a.run, "r")
+    except OSError as e:
+        fail(f"cannot open {a.run}: {e}")
+    with f:
+        s = f.get("series")
+        if s is None or "wall_force" not in s or "wall_radius" not in s:
+            fail(f"{a.run}: no wall series with the walls' shapes (a run of a scene with walls, libdem >= issue 12)")
+        raw = s.attrs["wall_names"]
+        names = (raw.decode() if isinstance(raw, bytes) else str(raw)).split("\n")
+        t = s["time"][:]
+        pos = s["wall_position"][:]
+        force = s["wall_force"][:]
+        radius = s["wall_radius"][:]
+        normal = s["wall_normal"][:]
+        r = f["particles/radius"][:]
+    if a.die:
+        die = wall_index(names, a.die, "die")
+    else:
+        cyl = [k for k in range(len(names)) if radius[k] > 0]
+        if not cyl:
+            fail("no cylinder wall (the die); name it with --die")
+        die = cyl[0]
+    up, lo = wall_index(names, a.upper, "upper"), wall_index(names, a.lower, "lower")
+    area = math.pi * radius[die] ** 2
+    solid = float(np.sum(4.0 / 3.0 * math.pi * r**3))
+    n_up, n_lo, axis = normal[up], normal[lo], normal[die]
+    # the force the powder exerts on a plane along -normal (pushing it back) counts positive, as a servo's
+    p_up = -(force[:, up, :] @ n_up) / area
+    p_lo = -(force[:, lo, :] @ n_lo) / area
+    die_axial = force[:, die, :] @ axis
+    gap = (pos[:, up, :] - pos[:, lo, :]) @ n_lo
+    dens = solid / (area * gap)
+    travel_up = (pos[0, up, :] - pos[:, up, :]) @ n_lo  # downwards travel of the upper punch
+    k_max = int(np.argmax(p_up))
+    p_max = p_up[k_max]
+    if not p_max > 0:
+        fail("the upper punch never pressed on the powder")
+    after = np.nonzero((np.arange(len(t)) > k_max) & (p_up <= 1e-3 * p_max))[0]
+    k_rel = int(after[0]) if len(after) else None
+    # Heckel over the loading: from where the punch starts pressing (2 % of the largest) to the largest pressure
+    load = np.nonzero((np.arange(len(t)) <= k_max) & (p_up > 0.02 * p_max) & (dens < 1))[0]
+    heckel = -np.log(1 - dens[load])
+    fit = load[p_up[load] >= 0.5 * p_max]
+    slope = intercept = yield_p = float("nan")
+    if len(fit) >= 2:
+        slope, intercept = np.polyfit(p_up[fit], -np.log(1 - dens[fit]), 1)
+        yield_p = 1 / slope if slope > 0 else float("nan")
+    loaded = p_up > 0.1 * p_max
+    ratio = float(np.median(p_lo[loaded] / p_up[loaded])) if loaded.any() else float("nan")
+    recovery = (gap[k_rel] - gap[k_max]) / gap[k_max] if k_rel is not None else float("nan")
+    # ejection: the lower punch rising after the upper one let go
+    ej = np.array([], dtype=int)
+    if k_rel is not None:
+        z_lo = pos[:, lo, :] @ n_lo
+        ej = np.nonzero((np.arange(len(t)) >= k_rel) & (z_lo > z_lo[k_rel] + 1e-12))[0]
+    eject_travel = (pos[ej, lo, :] - pos[k_rel, lo, :]) @ n_lo if len(ej) else np.array([])
+    eject_force = -(force[ej, lo, :] @ n_lo) if len(ej) else np.array([])
+
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8.5))
+    cyc = slice(0, (k_rel if k_rel is not None else len(t) - 1) + 1)  # loading and unloading, before the punch leaves
+    ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * p_up[cyc], label="upper punch")
+    ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * p_lo[cyc], label="lower punch")
+    ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * die_axial[cyc] / area, label="die wall, axial (friction) / bore area",
+                  lw=0.8)
+    ax[0, 0].set(xlabel="upper punch travel [mm]", ylabel="pressure [kPa]", title="pressure against displacement")
+    ax[0, 0].legend(fontsize=8)
+    ax[0, 1].plot(dens[: k_max + 1], 1e-3 * p_up[: k_max + 1], label="loading")
+    if k_rel is not None:
+        ax[0, 1].plot(dens[k_max : k_rel + 1], 1e-3 * p_up[k_max : k_rel + 1], label="unloading")
+    ax[0, 1].set(xlabel="relative density D", ylabel="upper punch pressure [kPa]", title="compaction curve")
+    ax[0, 1].legend(fontsize=8)
+    ax[1, 0].plot(1e-3 * p_up[load], heckel, "o", ms=3, label="ln 1/(1-D)")
+    if math.isfinite(slope):
+        pp = np.linspace(0, p_max, 50)
+        ax[1, 0].plot(1e-3 * pp, slope * pp + intercept, "--",
+                      label=f"fit: yield pressure {1e-3 * yield_p:.3g} kPa" if math.isfinite(yield_p) else "fit")
+    ax[1, 0].set(xlabel="upper punch pressure [kPa]", ylabel="ln 1/(1 - D)", title="Heckel plot")
+    ax[1, 0].legend(fontsize=8)
+    if len(ej):
+        ax[1, 1].plot(1e3 * eject_travel, eject_force)
+    ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="lower punch force [N]", title="ejection")
+    fig.suptitle(f"{a.run}: transmission {ratio:.3f}, elastic recovery {100 * recovery:.2f} %", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    print(f"png={out} bore_area_m2={area:.6g} solid_m3={solid:.6g} max_upper_pa={p_max:.6g} "
+          f"density_at_max={dens[k_max]:.6g} yield_pa={yield_p:.6g} transmission={ratio:.6g} "
+          f"elastic_recovery={recovery:.6g} max_ejection_n={float(np.max(eject_force)) if len(ej) else float('nan'):.6g}")
+
+
+if __name__ == "__main__":
+    main()
