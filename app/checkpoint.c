@@ -1,4 +1,4 @@
-/* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_pos,wall_stage,
+/* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_normal_force,wall_pos,wall_stage,
  * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,
  * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
@@ -55,6 +55,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_write(g, "w", real_t, 2, n3, st.w, "rad/s") || h5_write(g, "force", real_t, 2, n3, st.force, "N") ||
              h5_write(g, "torque", real_t, 2, n3, st.torque, "N m") ||
              h5_write(g, "wall_force", real_t, 2, w3, st.wall_force, "N") ||
+             h5_write(g, "wall_normal_force", real_t, 1, w1, st.wall_nforce, "N") ||
              h5_write(g, "wall_pos", H5T_NATIVE_DOUBLE, 2, w3, st.wall_pos, "m") ||
              h5_write(g, "wall_stage", H5T_NATIVE_INT, 1, w1, st.wall_stage, NULL) ||
              h5_write(g, "wall_stage_first", H5T_NATIVE_LONG, 1, w1, st.wall_stage_first, NULL) ||
@@ -173,6 +174,11 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
                                         h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
+        /* each wall's normal force (absent from checkpoints of libdem before it: zero until the next sum) */
+        if (!rc && H5Lexists(g, "wall_normal_force", H5P_DEFAULT) > 0) {
+            st->wall_nforce = malloc((size_t)(nw + 1) * rs);
+            rc = !st->wall_nforce || h5_read(g, "wall_normal_force", real_t, st->wall_nforce, (size_t)nw);
+        }
         /* each wall's motion stage (absent from checkpoints of libdem before stages could end early: derived from
          * the step by dem_state_set) */
         st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;

@@ -35,7 +35,7 @@ struct output {
     int ntri;                  /* membrane triangles (/membranes/triangles), drawn as a second XDMF grid */
     unsigned fields;
     h5rows ftime, fstep, fdata[NFF];
-    h5rows s[S__N], wall_pos, wall_force;
+    h5rows s[S__N], wall_pos, wall_force, wall_normal;
     long nframes;
     double *buf;
     /* the contact network per frame (field "contacts"): rows of ids and data, where each frame starts */
@@ -174,7 +174,9 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
                 rc = h5rows_create(&o->s[k], o->series, series_names[k], H5T_NATIVE_DOUBLE, 1, 0, 0, series_units[k]);
         if (!rc && nw)
             rc = h5rows_create(&o->wall_pos, o->series, "wall_position", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "m") ||
-                 h5rows_create(&o->wall_force, o->series, "wall_force", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "N");
+                 h5rows_create(&o->wall_force, o->series, "wall_force", H5T_NATIVE_DOUBLE, 3, (hsize_t)nw, 3, "N") ||
+                 h5rows_create(&o->wall_normal, o->series, "wall_normal_force", H5T_NATIVE_DOUBLE, 2, (hsize_t)nw, 0,
+                               "N");
         if (!rc && nw) {
             char *names = wall_names(sc, nw);
             rc = !names || h5_attr_string(o->series, "wall_names", names);
@@ -267,6 +269,7 @@ void output_row_of(const dem_sample *smp, const scene_run *run, int nwalls, seri
     double strain = NAN, stress = NAN;
     memcpy(r->wall_pos, smp->wall_pos, sizeof(double) * 3 * nwalls);
     memcpy(r->wall_force, smp->wall_force, sizeof(double) * 3 * nwalls);
+    memcpy(r->wall_normal, smp->wall_normal, sizeof(double) * nwalls);
     if (run->piston >= 0) { /* engineering strain and stress of the sample (scene.h: sample) */
         const double *n = run->piston_normal, *p0 = run->piston_point, *p = r->wall_pos + 3 * run->piston,
                      *f = r->wall_force + 3 * run->piston;
@@ -298,6 +301,8 @@ void output_row_add(series_row *sum, const series_row *r, int nwalls)
         sum->wall_pos[k] += r->wall_pos[k];
         sum->wall_force[k] += r->wall_force[k];
     }
+    for (int k = 0; k < nwalls; k++)
+        sum->wall_normal[k] += r->wall_normal[k];
 }
 
 void output_row_mean(series_row *sum, int count, int nwalls)
@@ -309,6 +314,8 @@ void output_row_mean(series_row *sum, int count, int nwalls)
         sum->wall_pos[k] /= count;
         sum->wall_force[k] /= count;
     }
+    for (int k = 0; k < nwalls; k++)
+        sum->wall_normal[k] /= count;
 }
 
 int output_series(output *o, const series_row *r)
@@ -316,7 +323,8 @@ int output_series(output *o, const series_row *r)
     for (int k = 0; k < S__N; k++)
         if ((k < S_STRAIN || (k < S_MCIT && o->sample) || (k >= S_MCIT && o->mc)) && h5rows_append(&o->s[k], &r->v[k]))
             return -1;
-    if (o->nwalls && (h5rows_append(&o->wall_pos, r->wall_pos) || h5rows_append(&o->wall_force, r->wall_force)))
+    if (o->nwalls && (h5rows_append(&o->wall_pos, r->wall_pos) || h5rows_append(&o->wall_force, r->wall_force) ||
+                      h5rows_append(&o->wall_normal, r->wall_normal)))
         return -1;
     return 0;
 }
@@ -330,7 +338,8 @@ int output_flush(output *o)
         rc |= h5rows_flush(&o->fdata[k]);
     rc |= h5rows_flush(&o->c_start) | h5rows_flush(&o->c_pairs) | h5rows_flush(&o->c_ids) | h5rows_flush(&o->c_data) |
           h5rows_flush(&o->c_fn);
-    rc |= h5rows_flush(&o->wall_pos) | h5rows_flush(&o->wall_force) | h5rows_flush(&o->ftime) | h5rows_flush(&o->fstep);
+    rc |= h5rows_flush(&o->wall_pos) | h5rows_flush(&o->wall_force) | h5rows_flush(&o->wall_normal) |
+          h5rows_flush(&o->ftime) | h5rows_flush(&o->fstep);
     return rc ? -1 : 0;
 }
 
@@ -344,6 +353,7 @@ static void close_all(output *o)
         h5rows_close(&o->s[k]);
     h5rows_close(&o->wall_pos);
     h5rows_close(&o->wall_force);
+    h5rows_close(&o->wall_normal);
     h5rows_close(&o->c_start);
     h5rows_close(&o->c_pairs);
     h5rows_close(&o->c_ids);

@@ -7,7 +7,8 @@
  *   /particles/  radius [n], material [n] (constant over the run)
  *   /frames/     time [F], step [F], position|velocity|angular_velocity|force|torque [F, n, 3]
  *   /series/     time, step, kinetic, elastic, potential, total [R]; contacts, wall_contacts [R];
- *                wall_position, wall_force [R, nwalls, 3]; strain, stress [R] when the scene names a sample;
+ *                wall_position, wall_force [R, nwalls, 3], wall_normal_force [R, nwalls]; strain, stress [R] when the
+ *                scene names a sample;
  *                wall_radius, wall_height [nwalls] (cylinders; 0 for planes), wall_normal [nwalls, 3] (normal or axis)
  */
 #ifndef DEM_OUTPUT_H
@@ -26,7 +27,7 @@ int output_frame(output *o, dem_sim *s);
 enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };
 typedef struct {
     double v[S__N];
-    double wall_pos[3 * DEM_MAX_WALLS], wall_force[3 * DEM_MAX_WALLS];
+    double wall_pos[3 * DEM_MAX_WALLS], wall_force[3 * DEM_MAX_WALLS], wall_normal[DEM_MAX_WALLS];
 } series_row;
 /* The row of a sample (dem_sample_get, dem_step_sampled). */
 void output_row_of(const dem_sample *smp, const scene_run *run, int nwalls, series_row *r);

@@ -40,10 +40,11 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, DEM_FIELD_WALL_HIST, NONE)                                       \
     ENTRY(WALL_PF, REAL, 3 * N * NW, DEM_KEEP_WALL_FORCES, DEM_FIELD_WALL_PF, NONE)                                      \
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE)                                                                  \
-    ENTRY(PARTIAL, REAL, 3 * NBR * NW, 0, -1, NONE)                                                                      \
+    ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE)                                                              \
     ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE)                                                           \
+    ENTRY(WALL_NFORCE, REAL, NW, 0, DEM_FIELD_WALL_NORMAL_FORCE, NONE)                                                   \
     ENTRY(SERIES_RING, REAL, SE_STRIDE * N * NSR, DEM_GATE_LAZY, -1, NONE)                                               \
-    ENTRY(SERIES_WALL, REAL, 3 * NW * NBR * NSR, DEM_GATE_LAZY, -1, NONE)                                                \
+    ENTRY(SERIES_WALL, REAL, WP_STRIDE * NW * NBR * NSR, DEM_GATE_LAZY, -1, NONE)                                        \
     ENTRY(CELL_OF, INT, N, 0, -1, NONE)                                                                                  \
     ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE)                                                                              \
     ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE)                                                            \

@@ -121,7 +121,7 @@
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \
-    A(BOUT, real, wall_force, WALL_FORCE)
+    A(BOUT, real, wall_force, WALL_FORCE) A(BOUT, real, wall_nforce, WALL_NFORCE)
 #define DEM_ITEMS_wall_reduce_final nwalls
 
 /* ---- integrate.h ---- */
@@ -138,7 +138,9 @@
     A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA) A(BIN, unsigned, hold, HOLD)                 \
     A(BIN, real, x, X) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW) A(BOUT, real, ring, SERIES_RING)  \
     A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, unsigned, wall_mask, WALL_MASK)                 \
-    A(BIN, real, wall_pf, WALL_PF) A(BIN, real, partial, PARTIAL) A(BOUT, real, ring_wall, SERIES_WALL)
+    A(BIN, real, wall_pf, WALL_PF) A(BIN, real, radius, RADIUS) A(BIN, int, wall_int, WALL_INT)                      \
+    A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE) A(BIN, real, partial, PARTIAL)                   \
+    A(BOUT, real, ring_wall, SERIES_WALL)
 #define DEM_ITEMS_integrate_kick n
 
 /* ---- particle_stress.h ---- */

@@ -91,6 +91,10 @@ enum {
 /* Per-particle symmetric stress tensor (DEM_FIELD_STRESS): 6 reals per particle in this order [Pa]. */
 enum { ST_XX = 0, ST_YY, ST_ZZ, ST_XY, ST_XZ, ST_YZ, ST_STRIDE };
 
+/* A block's partial sums for one wall (wall_reduce_block): the force the wall received, and the sum of the normal
+ * force components (each particle's force from the wall along its contact normal: for a cylinder the radial force on
+ * the die wall, for a plane its normal force) [N]. */
+enum { WP_FX = 0, WP_FY, WP_FZ, WP_FN, WP_STRIDE };
 /* Fixed block length of the canonical wall-force reduction: partial sums over blocks of this many
  * particles, in ascending id, then the partials in ascending block order. It is a constant, not the
  * work-group size, so the sum has the same bits on every device and launch configuration. */

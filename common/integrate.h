@@ -63,7 +63,8 @@ DEM_ITEM(integrate_kick)
         series_motion_terms(fx, v3_load(x, i), v3_load(v, i), v3_load(w, i), invmass[i], invinertia[i], g,
                             series_slot(ring, row, n, i));
         if ((fx & DEM_EFFECT_WALLS) && i % DEM_REDUCE_BLOCK == 0)
-            series_wall_blocks(fx, i / DEM_REDUCE_BLOCK, n, nwalls, nblocks, row, wall_mask, wall_pf, partial, ring_wall);
+            series_wall_blocks(fx, i / DEM_REDUCE_BLOCK, n, nwalls, nblocks, row, wall_mask, wall_pf, x, radius,
+                               wall_int, wall_real, ride, partial, ring_wall);
     }
 }
 #endif /* DEM_INTEGRATE_H */

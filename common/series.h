@@ -43,18 +43,26 @@ DEM_INLINE void series_motion_terms(unsigned fx, vec3 xi, vec3 vi, vec3 wi, real
     slot[SE_POT] = pot;
 }
 
-/* Block b's partial sums of the force each wall received, into the row: from the forces contact_forces kept
+/* Block b's partial sums for each wall (wall_part), into the row: from the forces contact_forces kept
  * (DEM_KEEP_WALL_FORCES, the same function as wall_reduce_block's), or, without them, the partial sums
  * wall_reduce_block computed in this step (the driver has them computed in a sampled step). The host finishes them
  * with wall_reduce_final's loop. */
 DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nblocks, int row,
                                    DEM_CONST_GLOBAL unsigned *wall_mask, DEM_CONST_GLOBAL real *wall_pf,
-                                   DEM_CONST_GLOBAL real *partial, DEM_GLOBAL real *ring_wall)
+                                   DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *radius,
+                                   DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                   DEM_CONST_GLOBAL unsigned *ride, DEM_CONST_GLOBAL real *partial,
+                                   DEM_GLOBAL real *ring_wall)
 {
     for (int k = 0; k < nwalls; k++) {
-        vec3 s = (fx & DEM_KEEP_WALL_FORCES) ? wall_block_kept(b, k, n, wall_mask, wall_pf)
-                                             : v3_load(partial, k * nblocks + b);
-        v3_store(ring_wall, ((long)row * nwalls + k) * nblocks + b, s);
+        long at = ((long)row * nwalls + k) * nblocks + b;
+        if (fx & DEM_KEEP_WALL_FORCES) {
+            wall_part_store(ring_wall, at, wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int,
+                                                           wall_real, ride));
+        } else {
+            for (int q = 0; q < WP_STRIDE; q++)
+                ring_wall[at * WP_STRIDE + q] = partial[(k * nblocks + b) * WP_STRIDE + q];
+        }
     }
 }
 

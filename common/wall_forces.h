@@ -110,48 +110,83 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     wall_mask[i] = mask;
 }
 
-/* Block b's partial sum for wall k from the forces contact_forces kept (DEM_KEEP_WALL_FORCES): the wall receives
- * minus the force on each particle that touches it. Also taken by integrate_kick in a sampled step (series.h). */
-DEM_INLINE vec3 wall_block_kept(int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
-                                DEM_CONST_GLOBAL real *wall_pf)
+/* A block's partial sums for one wall (dem_layout.h WP_*) */
+typedef struct {
+    vec3 f;  /* the force the wall received [N] */
+    real fn; /* the sum of the particles' normal force components [N] */
+} wall_part;
+
+DEM_INLINE void wall_part_store(DEM_GLOBAL real *p, long idx, wall_part w)
 {
-    vec3 s = v3_zero();
-    int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
-        if ((wall_mask[j] >> k) & 1u)
-            s = v3_sub(s, v3_load(wall_pf, k * n + j));
-    return s;
+    DEM_GLOBAL real *q = p + idx * WP_STRIDE;
+    q[WP_FX] = w.f.x;
+    q[WP_FY] = w.f.y;
+    q[WP_FZ] = w.f.z;
+    q[WP_FN] = w.fn;
 }
 
-/* Partial sum of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK).
- * With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it). Without: each particle's
- * force from the wall evaluated as contact_forces is about to (this kernel runs between contact_pairs and
- * contact_forces, on the same state), so nothing per particle and wall is stored. The same terms in the same order:
- * the same bits either way. */
+/* Block b's partial sums for wall k from the forces contact_forces kept (DEM_KEEP_WALL_FORCES): the wall receives
+ * minus the force on each particle that touches it; the normal part is that force along the contact normal
+ * (wall_met: the geometry the force law saw, the state being the same). Also taken by integrate_kick in a sampled
+ * step (series.h). */
+DEM_INLINE wall_part wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
+                                     DEM_CONST_GLOBAL real *wall_pf, DEM_CONST_GLOBAL real *x,
+                                     DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
+                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride)
+{
+    wall_part p;
+    p.f = v3_zero();
+    p.fn = (real)0;
+    int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
+        if ((wall_mask[j] >> k) & 1u) {
+            vec3 fj = v3_load(wall_pf, k * n + j);
+            wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
+            p.f = v3_sub(p.f, fj);
+            p.fn += v3_dot(fj, g.n);
+        }
+    return p;
+}
+
+/* Partial sums of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK), and
+ * of their normal parts. With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
+ * Without: each particle's force from the wall evaluated as contact_forces is about to (this kernel runs between
+ * contact_pairs and contact_forces, on the same state), so nothing per particle and wall is stored. The same terms in
+ * the same order: the same bits either way. */
 DEM_ITEM(wall_reduce_block)
 {
     int b = i % nblocks, k = i / nblocks;
-    vec3 s = v3_zero();
+    wall_part p;
+    p.f = v3_zero();
+    p.fn = (real)0;
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     if (fx & DEM_KEEP_WALL_FORCES)
-        s = wall_block_kept(b, k, n, wall_mask, wall_pf);
+        p = wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride);
     else
         for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) { /* the wall receives minus the force on the particle */
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
                                                dt, (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);
-            if (c.active)
-                s = v3_sub(s, c.r.force);
+            if (c.active) {
+                p.f = v3_sub(p.f, c.r.force);
+                p.fn += v3_dot(c.r.force, c.n);
+            }
         }
-    v3_store(partial, k * nblocks + b, s);
+    wall_part_store(partial, k * nblocks + b, p);
 }
 
+/* Wall k's sums over the blocks in ascending order: its force and its normal force. */
 DEM_ITEM(wall_reduce_final)
 {
     int k = i;
     vec3 s = v3_zero();
-    for (int b = 0; b < nblocks; b++)
-        s = v3_add(s, v3_load(partial, k * nblocks + b));
+    real sn = (real)0;
+    for (int b = 0; b < nblocks; b++) {
+        DEM_CONST_GLOBAL real *q = partial + (k * nblocks + b) * WP_STRIDE;
+        s = v3_add(s, v3(q[WP_FX], q[WP_FY], q[WP_FZ]));
+        sn += q[WP_FN];
+    }
     v3_store(wall_force, k, s);
+    wall_nforce[k] = sn;
 }
 #endif /* DEM_WALL_FORCES_H */

@@ -30,7 +30,7 @@ static void widen(const void *raw, double *dst, size_t count, int rs)
 
 /* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
-static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force);
+static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal);
 
 /* the Hertz contact energy of common/series.h, as the reference computes it in double */
 double dem_hertz_energy_f64(double estar, double rstar, double delta);
@@ -64,7 +64,7 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
     return e;
 }
 
-int dem_energy(dem_sim *s, dem_energy_t *en) { return energy_of(s, en, NULL); }
+int dem_energy(dem_sim *s, dem_energy_t *en) { return energy_of(s, en, NULL, NULL); }
 
 /* ---- series rows (dem_sample) ---- */
 
@@ -84,8 +84,10 @@ static void sample_begin(const dem_sim *s, dem_sample *o)
 }
 
 /* the reference's final wall sum (common/wall_forces.h), which the device runs as wall_reduce_final */
-void ref_wall_reduce_final_f32(unsigned fx, int nwalls, int nblocks, const float *partial, float *wall_force);
-void ref_wall_reduce_final_f64(unsigned fx, int nwalls, int nblocks, const double *partial, double *wall_force);
+void ref_wall_reduce_final_f32(unsigned fx, int nwalls, int nblocks, const float *partial, float *wall_force,
+                               float *wall_nforce);
+void ref_wall_reduce_final_f64(unsigned fx, int nwalls, int nblocks, const double *partial, double *wall_force,
+                               double *wall_nforce);
 
 /* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending particle order, in
  * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened. */
@@ -94,7 +96,7 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
 {
     int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nw = s->nwalls, n = s->n;
     double one[SE_STRIDE];
-    unsigned char wf[3 * DEM_MAX_WALLS * sizeof(double)];
+    unsigned char wf[3 * DEM_MAX_WALLS * sizeof(double)], wn[DEM_MAX_WALLS * sizeof(double)];
     for (int r = 0; r < count; r++) {
         double t[SE_STRIDE] = {0};
         for (int i = 0; i < n; i++) {
@@ -111,12 +113,13 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
         en->total = en->kinetic + en->elastic + en->potential;
         if (!nw || !(s->effects & DEM_EFFECT_WALLS))
             continue;
-        const unsigned char *part = walls + (size_t)r * 3 * nw * nb * rs;
+        const unsigned char *part = walls + (size_t)r * WP_STRIDE * nw * nb * rs;
         if (rs == 8)
-            ref_wall_reduce_final_f64(s->setup.effects, nw, nb, (const double *)part, (double *)wf);
+            ref_wall_reduce_final_f64(s->setup.effects, nw, nb, (const double *)part, (double *)wf, (double *)wn);
         else
-            ref_wall_reduce_final_f32(s->setup.effects, nw, nb, (const float *)part, (float *)wf);
+            ref_wall_reduce_final_f32(s->setup.effects, nw, nb, (const float *)part, (float *)wf, (float *)wn);
         widen(wf, out[r].wall_force, 3 * (size_t)nw, rs);
+        widen(wn, out[r].wall_normal, (size_t)nw, rs);
     }
 }
 
@@ -132,7 +135,7 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
         return sim_fail(s, DEM_ERR_ARG, "dem_step_sampled: %ld samples and no rows to take them", nrows);
     int dev = device_rows(s), cap = DEM_CORE(s->be)->series_rows, held = 0, e = 0;
     size_t rs = (size_t)s->setup.real_size, tb = (size_t)cap * SE_STRIDE * (size_t)s->n * rs,
-           wb = (size_t)cap * 3 * (size_t)s->nwalls * (size_t)DEM_CORE(s->be)->nblocks_red * rs + 1;
+           wb = (size_t)cap * WP_STRIDE * (size_t)s->nwalls * (size_t)DEM_CORE(s->be)->nblocks_red * rs + 1;
     unsigned char *terms = dev && nrows ? malloc(tb) : NULL, *walls = dev && nrows ? malloc(wb) : NULL;
     if (dev && nrows && (!terms || !walls))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -144,7 +147,7 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
             continue;
         sample_begin(s, o);
         if (!dev)
-            e = energy_of(s, &o->energy, o->wall_force);
+            e = energy_of(s, &o->energy, o->wall_force, o->wall_normal);
         else if (++held == cap || k == last) {
             if (dem_stage_series_read(s->ops, s->be, held, terms, walls))
                 e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
@@ -162,10 +165,10 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
 int dem_sample_get(dem_sim *s, dem_sample *out)
 {
     sample_begin(s, out);
-    return energy_of(s, &out->energy, out->wall_force);
+    return energy_of(s, &out->energy, out->wall_force, out->wall_normal);
 }
 
-static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
+static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal)
 {
     memset(en, 0, sizeof *en);
     if (!s->started)
@@ -174,7 +177,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
     size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
     /* one scratch block kept in the simulation (a series every step allocated and freed it every step) */
     size_t need = 3 * n3 * sizeof(double) + sizeof(int) * (size_t)n + lb + 3 * n3 * (size_t)rs +
-                  3 * DEM_MAX_WALLS * (size_t)rs + 64;
+                  4 * DEM_MAX_WALLS * (size_t)rs + 64;
     if (need > s->scratch_bytes) {
         free(s->scratch);
         s->scratch = malloc(need);
@@ -187,12 +190,13 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
     unsigned char *raw = (unsigned char *)list + lb;
     int e = 0;
     if (!e) {
-        dem_field f[6] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST,
-                          DEM_FIELD_WALL_FORCE};
-        void *dst[6] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, cnt, list, raw + 3 * n3 * rs};
-        size_t bytes[6] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, dem_field_bytes(s, DEM_FIELD_NBR_LIST),
-                           3 * (size_t)s->nwalls * rs};
-        if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 6 : 5, f, dst, bytes))
+        unsigned char *wraw = raw + 3 * n3 * rs;
+        dem_field f[7] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST,
+                          DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE};
+        void *dst[7] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, cnt, list, wraw, wraw + 3 * (size_t)s->nwalls * rs};
+        size_t bytes[7] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, dem_field_bytes(s, DEM_FIELD_NBR_LIST),
+                           3 * (size_t)s->nwalls * rs, (size_t)s->nwalls * rs};
+        if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 7 : 5, f, dst, bytes))
             e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     }
     if (!e) {
@@ -201,6 +205,8 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force)
         widen(raw + 2 * n3 * rs, w, n3, rs);
         if (wall_force)
             widen(raw + 3 * n3 * rs, wall_force, 3 * (size_t)s->nwalls, rs);
+        if (wall_normal)
+            widen(raw + 3 * n3 * rs + 3 * (size_t)s->nwalls * rs, wall_normal, (size_t)s->nwalls, rs);
     }
 
     for (int i = 0; !e && i < n; i++) {

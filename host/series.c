@@ -14,7 +14,7 @@ int dem_stage_series_read(const dem_backend_ops *o, dem_backend *b, int rows, vo
 {
     dem_core *c = DEM_CORE(b);
     size_t tb = (size_t)rows * SE_STRIDE * (size_t)c->n * (size_t)c->rs,
-           wb = (size_t)rows * 3 * (size_t)c->nwalls * (size_t)c->nblocks_red * (size_t)c->rs;
+           wb = (size_t)rows * WP_STRIDE * (size_t)c->nwalls * (size_t)c->nblocks_red * (size_t)c->rs;
     dem_bufref rt = {TABLE_ONE, BUF_SERIES_RING}, rw = {TABLE_ONE, BUF_SERIES_WALL};
     return (tb && o->read(b, rt, 0, terms, tb, 0)) || (wb && o->read(b, rw, 0, walls, wb, 0)) || o->finish(b);
 }

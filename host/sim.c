@@ -1021,6 +1021,17 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
     return e;
 }
 
+int dem_wall_normal_force(dem_sim *s, int wall, double *fn)
+{
+    if (wall < 0 || wall >= s->nwalls)
+        return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
+    double all[DEM_MAX_WALLS];
+    int e = dem_get_field(s, DEM_FIELD_WALL_NORMAL_FORCE, all);
+    if (!e)
+        *fn = all[wall];
+    return e;
+}
+
 int dem_wall_position(const dem_sim *s, int wall, double p[3])
 {
     if (wall < 0 || wall >= s->nwalls)

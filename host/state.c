@@ -19,7 +19,7 @@ void dem_state_free(dem_state *st)
 {
     if (!st)
         return;
-    free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force);
+    free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force), free(st->wall_nforce);
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->wall_hist), free(st->wall_mask);
     free(st->pair_mc_fn), free(st->wall_mc_fn);
     free(st->patch_i), free(st->patch_t), free(st->patch_hist);
@@ -146,6 +146,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->force = get_all(s, DEM_FIELD_FORCE, &b, &e);
     st->torque = get_all(s, DEM_FIELD_TORQUE, &b, &e);
     st->wall_force = get_all(s, DEM_FIELD_WALL_FORCE, &b, &e);
+    st->wall_nforce = get_all(s, DEM_FIELD_WALL_NORMAL_FORCE, &b, &e);
     st->wall_hist = get_all(s, DEM_FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
     st->wall_mask = get_all(s, DEM_FIELD_WALL_MASK, &b, &e);
     st->wall_mc_fn = get_all(s, DEM_FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
@@ -296,7 +297,9 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_TORQUE, st->torque, v3b) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs)))
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs) ||
+               (st->wall_nforce &&
+                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE, st->wall_nforce, (size_t)s->nwalls * rs))))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
     if (e == DEM_ERR_ARG) { /* the run's own positions and rows back; the message stays the state's */

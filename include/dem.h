@@ -143,6 +143,8 @@ typedef enum {
                                        The pair-sized fields (HIST, TOUCH, PAIR_RECORDS, IN_PAIR) hold the pairs allocated, which
                                        grow at rebuilds: take dem_field_bytes just before each read; entries beyond the
                                        pairs listed (in_start[n]) hold nothing meaningful */
+    DEM_FIELD_WALL_NORMAL_FORCE,    /* real[nwalls]: each wall's normal force, the sum of the particles' force components
+                                       along their contact normals [N] (a die's radial force; a plane's normal force) */
     DEM_FIELD__COUNT
 } dem_field;
 
@@ -413,6 +415,9 @@ size_t dem_field_bytes(const dem_sim *s, dem_field f);
 /* A real-valued field converted to double. */
 int dem_get_field(dem_sim *s, dem_field f, double *dst);
 int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall received in the last step [N] */
+/* The wall's normal force in the last step: the sum of the particles' force components along their contact normals
+ * [N], summed with the force; for a die (cylinder) its radial force, whose vector sum cancels. */
+int dem_wall_normal_force(dem_sim *s, int wall, double *fn);
 int dem_wall_position(const dem_sim *s, int wall, double p[3]);
 int dem_wall_get(const dem_sim *s, int wall, dem_wall *w); /* the wall as added (its normal or axis normalised) */
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
@@ -422,6 +427,7 @@ typedef struct {
     dem_energy_t energy;
     double wall_force[3 * DEM_MAX_WALLS]; /* [N] */
     double wall_pos[3 * DEM_MAX_WALLS];   /* [m] */
+    double wall_normal[DEM_MAX_WALLS];    /* each wall's normal force (DEM_FIELD_WALL_NORMAL_FORCE) [N] */
     long step;
     double time;     /* [s] */
     dem_mc_stats mc; /* dem_mc_stats_get after the step */
@@ -478,6 +484,7 @@ typedef struct {
     int n, nwalls, real_size;
     void *x, *v, *w, *force, *torque; /* real[3n] */
     void *wall_force;                 /* real[3 nwalls] */
+    void *wall_nforce;                /* real[nwalls]: DEM_FIELD_WALL_NORMAL_FORCE (NULL: zero) */
     double wall_pos[DEM_MAX_WALLS][3]; /* [m] */
     int has_stages;                       /* 1: the three below hold (0: derive them from the step) */
     int wall_stage[DEM_MAX_WALLS];        /* each wall's motion stage (nstages: past the last) */

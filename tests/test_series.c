@@ -81,6 +81,7 @@ static void check_case(const backend_case *bc, long sample_every, dem_sample *ro
         assert_int_equal(d->step, hs.step);
         assert_true(d->time == hs.time);
         assert_memory_equal(d->wall_force, hs.wall_force, sizeof(double) * 3 * nw);
+        assert_memory_equal(d->wall_normal, hs.wall_normal, sizeof(double) * nw);
         assert_memory_equal(d->wall_pos, hs.wall_pos, sizeof(double) * 3 * nw);
         assert_int_equal(d->energy.contacts, hs.energy.contacts);
         assert_int_equal(d->energy.wall_contacts, hs.energy.wall_contacts);
@@ -128,6 +129,7 @@ static void test_series_rows(void **st)
                 assert_memory_equal(&rows[k].energy.elastic, &ref_rows[k].energy.elastic, sizeof(double));
                 assert_int_equal(rows[k].energy.contacts, ref_rows[k].energy.contacts);
                 assert_memory_equal(rows[k].wall_force, ref_rows[k].wall_force, sizeof rows[k].wall_force);
+                assert_memory_equal(rows[k].wall_normal, ref_rows[k].wall_normal, sizeof rows[k].wall_normal);
             }
         }
 }

@@ -343,6 +343,10 @@ static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
            1e3 * c->x[0], 1e3 * c->x[2], 1e3 * c->height, f[0], f[1], f[2], fh);
     /* within the one step's drift (5e-6 at the rim) and the rounding of the side's overlap (3 digits cancel) */
     assert_true(fabs(mag / fh - 1) < 1e-5 + 2000 * bc->eps);
+    /* one contact, frictionless here: its normal force (DEM_FIELD_WALL_NORMAL_FORCE) is the whole force's magnitude */
+    double fn;
+    assert_int_equal(dem_wall_normal_force(s, 0, &fn), 0);
+    assert_true(fabs(fn / mag - 1) < 1e-6 * (1 + 1e6 * bc->eps));
     assert_true(fabs(f[1]) <= 1e-9 * mag);
     /* the host's view of the same contact (dem_wall_overlap: the contact network, energies, start-up checks) */
     double nh[3], dw = dem_wall_overlap(&(dem_wall){.kind = DEM_WALL_CYLINDER, .normal = {0, 0, 1}, .radius = 0.005,

@@ -12,12 +12,14 @@ The die is the cylinder wall (or --die), the punches the planes named upper and 
     fitted over its upper half; the mean yield pressure is 1 / slope;
   - transmission ratio: lower over upper punch pressure while the upper punch is loaded (above 10 % of its largest);
     the die-wall friction is the die's force along its axis;
+  - radial die-wall pressure: the die's normal force (/series/wall_normal_force: the sum of the particles' forces
+    along their contact normals, radial on a cylinder) over the bore's wall between the punches, 2 pi R gap; its
+    ratio to the upper punch pressure at the largest pressure (the radial transmission, Janssen's coefficient);
   - elastic recovery: (gap where the upper punch lets go - gap at the largest pressure) / gap at the largest pressure;
   - ejection: the lower punch's force against its travel once it rises after the upper punch let go.
-Panels: pressures against upper punch travel, pressure against relative density, the Heckel plot with its fit, and
-the ejection force against lower punch travel. The radial pressure on the die wall is not in the series (the die's
-force is a vector sum, in which the radial parts cancel); its axial part, the wall friction, is drawn. Prints one
-line of numbers: `key=value` pairs. Uses Debian's python3-h5py, python3-numpy and python3-matplotlib.
+Panels: pressures against upper punch travel (with the radial die-wall pressure and the wall friction), pressure
+against relative density, the Heckel plot with its fit, and the ejection force against lower punch travel. Prints
+one line of numbers: `key=value` pairs. Uses Debian's python3-h5py, python3-numpy and python3-matplotlib.
 """
 import argparse
 import math
@@ -65,6 +67,7 @@ def main():
         force = s["wall_force"][:]
         radius = s["wall_radius"][:]
         normal = s["wall_normal"][:]
+        fnorm = s["wall_normal_force"][:] if "wall_normal_force" in s else None
         r = f["particles/radius"][:]
     if a.die:
         die = wall_index(names, a.die, "die")
@@ -83,6 +86,7 @@ def main():
     die_axial = force[:, die, :] @ axis
     gap = (pos[:, up, :] - pos[:, lo, :]) @ n_lo
     dens = solid / (area * gap)
+    p_rad = fnorm[:, die] / (2 * math.pi * radius[die] * gap) if fnorm is not None else np.full(len(t), np.nan)
     travel_up = (pos[0, up, :] - pos[:, up, :]) @ n_lo  # downwards travel of the upper punch
     k_max = int(np.argmax(p_up))
     p_max = p_up[k_max]
@@ -101,6 +105,7 @@ def main():
     loaded = p_up > 0.1 * p_max
     ratio = float(np.median(p_lo[loaded] / p_up[loaded])) if loaded.any() else float("nan")
     recovery = (gap[k_rel] - gap[k_max]) / gap[k_max] if k_rel is not None else float("nan")
+    radial_ratio = float(p_rad[k_max] / p_max)
     # ejection: the lower punch rising after the upper one let go
     ej = np.array([], dtype=int)
     if k_rel is not None:
@@ -113,6 +118,7 @@ def main():
     cyc = slice(0, (k_rel if k_rel is not None else len(t) - 1) + 1)  # loading and unloading, before the punch leaves
     ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * p_up[cyc], label="upper punch")
     ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * p_lo[cyc], label="lower punch")
+    ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * p_rad[cyc], label="die wall, radial")
     ax[0, 0].plot(1e3 * travel_up[cyc], 1e-3 * die_axial[cyc] / area, label="die wall, axial (friction) / bore area",
                   lw=0.8)
     ax[0, 0].set(xlabel="upper punch travel [mm]", ylabel="pressure [kPa]", title="pressure against displacement")
@@ -132,11 +138,13 @@ def main():
     if len(ej):
         ax[1, 1].plot(1e3 * eject_travel, eject_force)
     ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="lower punch force [N]", title="ejection")
-    fig.suptitle(f"{a.run}: transmission {ratio:.3f}, elastic recovery {100 * recovery:.2f} %", fontsize=10)
+    fig.suptitle(f"{a.run}: transmission {ratio:.3f}, radial/axial {radial_ratio:.3f}, elastic recovery "
+                 f"{100 * recovery:.2f} %", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     print(f"png={out} bore_area_m2={area:.6g} solid_m3={solid:.6g} max_upper_pa={p_max:.6g} "
           f"density_at_max={dens[k_max]:.6g} yield_pa={yield_p:.6g} transmission={ratio:.6g} "
+          f"radial_pa={p_rad[k_max]:.6g} radial_ratio={radial_ratio:.6g} "
           f"elastic_recovery={recovery:.6g} max_ejection_n={float(np.max(eject_force)) if len(ej) else float('nan'):.6g}")
 
 
