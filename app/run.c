@@ -365,6 +365,23 @@ static int phase_start(run_ctx *c)
     return 0;
 }
 
+/* DEM_TEST_POISON's act: particle id's velocity becomes NAN in the run's own state */
+static int poison_hook(dem_sim *s, long id)
+{
+    dem_state st;
+    if (id < 0 || id >= dem_count(s) || dem_state_get(s, &st))
+        return -1;
+    for (int d = 0; d < 3; d++) {
+        if (st.real_size == 8)
+            ((double *)st.v)[3 * id + d] = NAN;
+        else
+            ((float *)st.v)[3 * id + d] = NAN;
+    }
+    int e = dem_state_set(s, &st);
+    dem_state_free(&st);
+    return e;
+}
+
 /* 4. The steps, with frames, series, checkpoints and progress, to the end (or --stop-after); the output finished. */
 static int phase_steps(run_ctx *c)
 {
@@ -390,8 +407,18 @@ static int phase_steps(run_ctx *c)
         return fail_with(EXIT_IO, c->err);
     }
     long ck_step = -1; /* step of the last checkpoint this run wrote */
+    /* A test-only hook (tests/test_scene.c, issue 13): DEM_TEST_POISON="STEP PARTICLE" makes that particle's velocity
+     * not a number once STEP is reached, to show how a run that goes non-finite stops and what it keeps. */
+    long poison_step = -1, poison_id = -1;
+    const char *poison = getenv("DEM_TEST_POISON");
+    if (poison && sscanf(poison, "%ld %ld", &poison_step, &poison_id) != 2)
+        poison_step = -1;
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next = end;
+        if (st == poison_step && poison_hook(s, poison_id))
+            return fail_with(EXIT_RUN_FAILED, "DEM_TEST_POISON: cannot poison that particle");
+        if (poison_step > st && poison_step < next)
+            next = poison_step;
         long evs[2] = {run->frame_every, run->checkpoint_every}; /* the series rows are sampled within a stretch */
         for (int k = 0; k < 2; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)

@@ -667,6 +667,11 @@ static int report_out_of_domain(dem_sim *s, int id)
         for (int d = 0; d < 3; d++)
             p[d] = rs == 8 ? ((double *)buf)[3 * id + d] : ((float *)buf)[3 * id + d];
     free(buf);
+    if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) /* a value that overflowed or was never a number */
+        return sim_fail(s, DEM_ERR_DOMAIN,
+                        "step %ld: particle %d: its position became non-finite (%g, %g, %g): a velocity or force "
+                        "overflowed or was not a number (check the time step, overlaps and parameters)",
+                        s->step, id, p[0], p[1], p[2]);
     return sim_fail(s, DEM_ERR_DOMAIN,
                     "step %ld: particle %d at (%g, %g, %g) m is outside the binning domain [%g,%g]x[%g,%g]x[%g,%g] "
                     "(the domain rounded up to whole cells of %g m) or not finite; enlarge the domain or check the "

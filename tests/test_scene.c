@@ -808,6 +808,45 @@ static void test_run_failure_names_checkpoint(void **st)
     assert_true(exists("%s/dom2.ckpt.h5", tmp));
 }
 
+/* A run whose state goes non-finite (issue 13, hard case 8): the test-only hook DEM_TEST_POISON makes particle 7's
+ * velocity not a number at step 300. The run stops with status 1, naming the step, the particle and the field, and
+ * the checkpoint of step 165 before it; that checkpoint stays whole, and a restart from it runs to the end with the
+ * bits of a run that was never poisoned. */
+static void test_nonfinite_stops(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "sed 's/^output: {frame_every: 0.005, series_every: 0.001,/output: "
+                                          "{frame_every: 0.005, series_every: 0.001, checkpoint_every: 0.01,/' "
+                                          "%s/tests/scenes/restart_box.yaml > %s/poison.yaml",
+                        SRC, tmp),
+                     0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/poison.yaml -o %s/clean.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "DEM_TEST_POISON='300 7' %s run %s/poison.yaml -o %s/p.h5 --quiet", DEM, tmp,
+                        tmp), 1);
+    char want[600];
+    snprintf(want, sizeof want, "last checkpoint: %s/p.ckpt.h5, step 165)", tmp);
+    if (!strstr(err, "step 300: particle 7: its position became non-finite") || !strstr(err, want))
+        fail_msg("expected the step, the particle, the field and '%s' in: %s", want, err);
+    char ck[300], a[300], b[300];
+    snprintf(ck, sizeof ck, "%s/p.ckpt.h5", tmp);
+    hid_t f = H5Fopen(ck, H5F_ACC_RDONLY, H5P_DEFAULT), g = H5Gopen2(f, "state", H5P_DEFAULT);
+    long step = -1;
+    assert_int_equal(h5_read_attr_long(g, "step", &step), 0);
+    H5Gclose(g), H5Fclose(f);
+    assert_int_equal(step, 165);
+    assert_int_equal(sh(err, sizeof err, "%s run --restart %s/p.ckpt.h5 -o %s/p2.h5 --quiet", DEM, tmp, tmp), 0);
+    snprintf(a, sizeof a, "%s/clean.ckpt.h5", tmp);
+    snprintf(b, sizeof b, "%s/p2.ckpt.h5", tmp);
+    static const char *fields[] = {"x", "v", "w"};
+    for (int k = 0; k < 3; k++) {
+        double pa[64 * 3], pb[64 * 3];
+        read_state(a, fields[k], pa, 64 * 3, H5T_NATIVE_DOUBLE);
+        read_state(b, fields[k], pb, 64 * 3, H5T_NATIVE_DOUBLE);
+        assert_memory_equal(pa, pb, sizeof pa);
+    }
+}
+
 /* A write that fails part way (issue 17, class 13; here a file-size limit, as a full disk would): the one-line
  * message names the file and the operating system's reason, exit 74, the output so far stays in .part, the previous
  * checkpoint is kept whole, and nothing crashes on the way out (HDF5's exit handler did, after a failed close).
@@ -1369,6 +1408,7 @@ int main(void)
         cmocka_unit_test(test_mc_cap_reported),
         cmocka_unit_test(test_integer_arguments),
         cmocka_unit_test(test_run_failure_names_checkpoint),
+        cmocka_unit_test(test_nonfinite_stops),
         cmocka_unit_test(test_exit_codes),
         cmocka_unit_test(test_io_failure_reasons),
         cmocka_unit_test(test_output_paths),
