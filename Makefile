@@ -44,7 +44,7 @@ HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -153,6 +153,10 @@ test-fresh:
 # one Markdown table on stdout, runs in out/conventions/ (about 8 minutes on 2 cores).
 conventions: $(BUILD)/dem
 	/usr/bin/python3 tools/mc_stress_conventions.py
+
+# issue 13's hard cases at the issue's lengths (tests/test_stability.c; the short versions are in make test)
+stability: $(BUILD)/tests/test_stability
+	DEM_STABILITY_LONG=1 ./$(BUILD)/tests/test_stability
 
 # ParaView's own reader on our XDMF output (Debian's paraview is ~440 MB: not part of every CI run).
 test-paraview: $(BUILD)/dem
