@@ -241,10 +241,13 @@ static long row_step(const scene_run *run, long t, long end)
     return at < end ? at : end;
 }
 
-/* The first step of that row's window (series_average N: the N steps that end at it; none before this run's first) */
+/* The first step of that row's window (series_average N: the N steps that end at it; none before this run's first,
+ * and none of the row before it: the last row, at the run's end, may come sooner than series_every after it) */
 static long row_window(const scene_run *run, long t, long end, long step0)
 {
-    long from = row_step(run, t, end) - (run->series_average > 1 ? run->series_average : 1) + 1;
+    long at = row_step(run, t, end), prev = (at - 1) / run->series_every * run->series_every;
+    long from = at - (run->series_average > 1 ? run->series_average : 1) + 1;
+    from = from > prev + 1 ? from : prev + 1;
     return from > step0 + 1 ? from : step0 + 1;
 }
 

@@ -96,7 +96,7 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
 {
     int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nw = s->nwalls, n = s->n;
     double one[SE_STRIDE];
-    unsigned char wf[3 * DEM_MAX_WALLS * sizeof(double)], wn[DEM_MAX_WALLS * sizeof(double)];
+    double wf[3 * DEM_MAX_WALLS], wn[DEM_MAX_WALLS]; /* the run's reals (float or double) in double-aligned room */
     for (int r = 0; r < count; r++) {
         double t[SE_STRIDE] = {0};
         for (int i = 0; i < n; i++) {

@@ -934,8 +934,11 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     s->sample_row = sample_row;
     if (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 1, sample_row))
         return be_fail(s);
-    if ((e = forces(s)))
+    if ((e = forces(s))) {
+        s->sample_row = -1; /* a later step is not sampled into this row */
+        dem_stage_series_arm(s->ops, s->be, 0, 0);
         return e;
+    }
     if (dem_stage_kick(s->ops, s->be) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
         return be_fail(s);
     s->sample_row = -1;

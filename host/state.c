@@ -291,6 +291,7 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     }
     if (!e)
         e = patch_contacts_set(s, st);
+    static const double zero_nforce[DEM_MAX_WALLS]; /* a state without the walls' normal forces: zero until summed */
     if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, tb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
@@ -298,8 +299,8 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_TORQUE, st->torque, v3b) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs) ||
-               (st->wall_nforce &&
-                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE, st->wall_nforce, (size_t)s->nwalls * rs))))
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE,
+                                     st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
     if (e == DEM_ERR_ARG) { /* the run's own positions and rows back; the message stays the state's */

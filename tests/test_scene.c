@@ -1197,6 +1197,22 @@ static void test_series_average(void **st)
                 fail_msg("%s row %ld: %.17g, mean of the steps %.17g", cols[c], k, m[k], want);
         }
     }
+    /* a run that ends between rows (--stop-after 2995): its last row is the mean of the steps since the row before,
+     * 2991..2995, not of ten steps reaching back into that row's window */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/avg.yaml -o %s/avg3.h5 --quiet --stop-after 2995", DEM, tmp, tmp), 0);
+    snprintf(p, sizeof p, "%s/every.h5", tmp);
+    hid_t fa = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_int_equal(h5_read(fa, "series/kinetic", H5T_NATIVE_DOUBLE, a, 3001), 0);
+    H5Fclose(fa);
+    snprintf(p, sizeof p, "%s/avg3.h5", tmp);
+    hid_t f3 = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    long n3 = h5_count(f3, "series/kinetic");
+    assert_int_equal(n3, 301); /* the start, 299 rows of ten, the end's */
+    assert_int_equal(h5_read(f3, "series/kinetic", H5T_NATIVE_DOUBLE, m, (size_t)n3), 0);
+    H5Fclose(f3);
+    double tail = (a[2991] + a[2992] + a[2993] + a[2994] + a[2995]) / 5;
+    if (!(fabs(m[300] - tail) <= 1e-12 * fabs(tail)))
+        fail_msg("the end's row: %.17g, the mean of steps 2991..2995 %.17g", m[300], tail);
     free(a), free(m);
     assert_int_equal(sh(err, sizeof err, "sed 's/  series_average: 10/  series_average: 11/' %s/avg.yaml > %s/avg2.yaml "
                                           "&& %s check %s/avg2.yaml", tmp, tmp, DEM, tmp),

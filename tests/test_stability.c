@@ -118,6 +118,17 @@ static void test_size_ratio(void **st)
     }
 }
 
+/* The end of every builder here: the binning domain, and the time step as a fraction of the smallest Rayleigh time
+ * (0.2: the library's recommendation) */
+static dem_sim *finish(dem_sim *s, const double lo[3], const double hi[3], double dt_frac)
+{
+    dem_set_domain(s, lo, hi);
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, dt_frac * ts.rayleigh_time);
+    return s;
+}
+
 #define GEL_R 0.004
 #define BEAD_R 0.003
 #define DROP 0.002
@@ -139,11 +150,7 @@ static dem_sim *contrast_build(double *top_z)
                          glass);
     dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){L, L, 0.06}, glass);
     dem_set_gravity(s, (double[3]){0, 0, -9.81});
-    dem_set_domain(s, (double[3]){-0.005, -0.005, -0.005}, (double[3]){L + 0.005, L + 0.005, 0.065});
-    dem_time_scales ts;
-    dem_time_scales_get(s, 0, &ts);
-    dem_set_dt(s, ts.recommended_dt);
-    return s;
+    return finish(s, (double[3]){-0.005, -0.005, -0.005}, (double[3]){L + 0.005, L + 0.005, 0.065}, 0.2);
 }
 
 static void test_stiffness_contrast(void **st)
@@ -223,11 +230,7 @@ static dem_sim *gas_build(double dt_frac)
     }
     dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){L, L, L}, m);
     dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_WALLS);
-    dem_set_domain(s, (double[3]){-0.005, -0.005, -0.005}, (double[3]){L + 0.005, L + 0.005, L + 0.005});
-    dem_time_scales ts;
-    dem_time_scales_get(s, 0, &ts);
-    dem_set_dt(s, dt_frac * ts.rayleigh_time);
-    return s;
+    return finish(s, (double[3]){-0.005, -0.005, -0.005}, (double[3]){L + 0.005, L + 0.005, L + 0.005}, dt_frac);
 }
 
 static void test_elastic_gas(void **st)
@@ -309,11 +312,7 @@ static dem_sim *column_build(void)
         dem_add_particle(s, (double[3]){0, 0, 0.001 + 0.002 * k}, NULL, 0.001, m);
     dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}});
     dem_set_gravity(s, (double[3]){0, 0, -9.81});
-    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.11});
-    dem_time_scales ts;
-    dem_time_scales_get(s, 0, &ts);
-    dem_set_dt(s, ts.recommended_dt);
-    return s;
+    return finish(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.11}, 0.2);
 }
 
 static void test_resting_column(void **st)
