@@ -3,7 +3,7 @@
  * spent in each kernel. Prints markdown tables. Not a test: nothing here passes or fails on speed.
  *   DEM_BENCH_SIZES="8 17 37"   lattice sides (n = side^3 + (side-1)^3), default as shown
  *   DEM_BENCH_QUICK=1           fewer steps
- *   DEM_BENCH_ONLY=models       only the contact model cost table (or: bed, effects, series, membranes)
+ *   DEM_BENCH_ONLY=models       only the contact model cost table (or: bed, effects, series, sizes, membranes)
  *   DEM_BENCH_BED=FILE.csv      the poured bed of the bed table (default out/peer/bed.csv, made by make bench-peer)
  *   DEM_BENCH_JSON=FILE         where the bed table's figures go as JSON (default out/bench_bed.json)
  *   DEM_BENCH_TRIAXIAL_MS=2     simulated milliseconds of each triaxial run in the membrane cost table
@@ -238,6 +238,70 @@ static void series_cost_table(int quick)
     for (int k = 0; k < 3; k++)
         printf("| %s | %.2f | %+.0f %% | %.2f | %+.0f %% |\n", names[k], best[k], 100 * (best[k] / best[0] - 1),
                cbest[k], 100 * (cbest[k] / cbest[0] - 1));
+}
+
+/* Issue 13, hard case 2: a size ratio of 20:1 against equal spheres, particle-steps/s on OpenCL device 0 in fp64. The
+ * mix: 64 coarse spheres (r 2 mm) on a 5 mm lattice in a 20 mm box and 4000 fines (r 0.1 mm) on the free sites of
+ * a 0.5 mm lattice, taken in a scrambled order; the equal case: 4064 fines alone on those sites. Both fly at up to
+ * 0.5 m/s per component in the closed box, no gravity, for 2000 steps at the mix's own time step. The binning cells
+ * are sized by the largest spheres, so in the mix each fine looks at every fine within a coarse cell. */
+static double size_ratio_rate(int mixed, long *rebuilds)
+{
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    unsigned st = 7;
+    int nc = 0;
+    if (mixed)
+        for (int i = 0; i < 64; i++, nc++)
+            dem_add_particle(s, (double[3]){2.5e-3 + 5e-3 * (i % 4), 2.5e-3 + 5e-3 * (i / 4 % 4), 2.5e-3 + 5e-3 * (i / 16)},
+                             NULL, 2e-3, m);
+    int want = mixed ? 4000 : 4064, got = 0;
+    for (long k = 0; got < want && k < 40L * 40 * 40 * 8; k++) {
+        long site = (k * 40503L) % (40L * 40 * 40); /* a scrambled walk over the 0.5 mm lattice (40503 is odd) */
+        double x[3] = {0.25e-3 + 0.5e-3 * (double)(site % 40), 0.25e-3 + 0.5e-3 * (double)(site / 40 % 40),
+                       0.25e-3 + 0.5e-3 * (double)(site / 1600)};
+        int clear = 1;
+        for (int c = 0; mixed && clear && c < nc; c++) {
+            double dx = x[0] - (2.5e-3 + 5e-3 * (c % 4)), dy = x[1] - (2.5e-3 + 5e-3 * (c / 4 % 4)),
+                   dz = x[2] - (2.5e-3 + 5e-3 * (c / 16));
+            clear = dx * dx + dy * dy + dz * dz > 2.2e-3 * 2.2e-3;
+        }
+        if (!clear || k >= 40L * 40 * 40)
+            continue;
+        double v[3];
+        for (int d = 0; d < 3; d++) {
+            st = st * 1664525u + 1013904223u;
+            v[d] = 0.5 * ((double)(st >> 8) / 16777216.0 * 2 - 1);
+        }
+        dem_add_particle(s, x, v, 1e-4, m);
+        got++;
+    }
+    dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){0.02, 0.02, 0.02}, m);
+    dem_set_domain(s, (double[3]){-0.001, -0.001, -0.001}, (double[3]){0.021, 0.021, 0.021});
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    dem_set_dt(s, ts.recommended_dt);
+    dem_config c;
+    dem_config_default(&c);
+    double rate = NAN;
+    if (!dem_start(s, &c) && !dem_step(s, 10)) {
+        double t0 = now();
+        if (!dem_step(s, 2000))
+            rate = 2000.0 * dem_count(s) / (now() - t0);
+    }
+    *rebuilds = dem_rebuild_count(s);
+    dem_destroy(s);
+    return rate;
+}
+
+static void size_ratio_table(void)
+{
+    long rb[2];
+    double mix = size_ratio_rate(1, &rb[0]), equal = size_ratio_rate(0, &rb[1]);
+    printf("\n## Size ratio 20:1 (issue 13, hard case 2; 2000 steps on OpenCL device 0, fp64; target: within 2x of "
+           "equal spheres)\n\n| packing | particles | particle-steps/s | rebuilds |\n|---|---|---|---|\n"
+           "| 64 coarse (2 mm) + 4000 fines (0.1 mm) | 4064 | %.3g | %ld |\n| 4064 fines alone | 4064 | %.3g | %ld |\n"
+           "\nthe mix costs %.1fx per particle-step\n", mix, rb[0], equal, rb[1], equal / mix);
 }
 
 static void model_cost_table(int quick)
@@ -671,6 +735,10 @@ int main(void)
         series_cost_table(quick);
         return 0;
     }
+    if (only && !strcmp(only, "sizes")) {
+        size_ratio_table();
+        return 0;
+    }
     if (only && !strcmp(only, "membranes")) {
         membrane_cost_table(quick);
         return 0;
@@ -737,6 +805,7 @@ int main(void)
     effects_table(quick);
     model_cost_table(quick);
     series_cost_table(quick);
+    size_ratio_table();
     membrane_cost_table(quick);
     return 0;
 }
