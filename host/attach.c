@@ -29,6 +29,6 @@ void sim_attach_start(dem_sim *s)
 {
     for (int k = 0; k < s->natt; k++) {
         int i = s->att[2 * k], w = s->att[2 * k + 1];
-        sim_wall_velocity(s, w, s->step, s->v + 3 * i);
+        sim_wall_velocity(s, w, s->v + 3 * i);
     }
 }

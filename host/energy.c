@@ -136,9 +136,14 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
     int dev = device_rows(s), cap = DEM_CORE(s->be)->series_rows, held = 0, e = 0;
     size_t rs = (size_t)s->setup.real_size, tb = (size_t)cap * SE_STRIDE * (size_t)s->n * rs,
            wb = (size_t)cap * WP_STRIDE * (size_t)s->nwalls * (size_t)DEM_CORE(s->be)->nblocks_red * rs + 1;
-    unsigned char *terms = dev && nrows ? malloc(tb) : NULL, *walls = dev && nrows ? malloc(wb) : NULL;
-    if (dev && nrows && (!terms || !walls))
-        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if (dev && nrows && tb + wb > s->ring_copy_bytes) { /* kept: a stretch at a time asked for it anew */
+        free(s->ring_copy);
+        s->ring_copy = malloc(tb + wb);
+        s->ring_copy_bytes = s->ring_copy ? tb + wb : 0;
+        if (!s->ring_copy)
+            e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    unsigned char *terms = s->ring_copy, *walls = terms ? terms + tb : NULL;
     dem_sample *o = rows;
     for (long k = 0; !e && k < nsteps; k++) {
         int wk = want && want[k];
@@ -157,8 +162,6 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
         }
         o++;
     }
-    free(terms);
-    free(walls);
     return e;
 }
 

@@ -31,6 +31,7 @@ void dem_destroy(dem_sim *s)
         free(s->packed[k]);
     free(s->wall_real);
     free(s->scratch);
+    free(s->ring_copy);
     free(s->x);
     free(s->v);
     free(s->w);
@@ -383,10 +384,25 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
  * its end condition held after the step before (dem_stage.until_force, until_distance); a stage of no steps is
  * passed at once. Decided on the host from the device's wall force and the host's positions: the same step on
  * every backend. */
-static int stages_advance(dem_sim *s)
-{
+/* The normal force the particles exerted on plane wall k in the step before (pushing it back along -normal counts
+ * positive), from one read of the device's wall forces per step, shared by the stage ends and the servos below. */
+typedef struct {
     double f[3 * DEM_MAX_WALLS];
-    int read = 0;
+    int read;
+} wall_read;
+
+static int wall_normal_before(dem_sim *s, wall_read *wr, int k, double *fn)
+{
+    if (!wr->read && dem_get_field(s, DEM_FIELD_WALL_FORCE, wr->f))
+        return DEM_ERR_DEVICE;
+    wr->read = 1;
+    const double *n = s->walls[k].normal, *f = wr->f + 3 * k;
+    *fn = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
+    return 0;
+}
+
+static int stages_advance(dem_sim *s, wall_read *wr)
+{
     for (int k = 0; k < s->nwalls; k++) {
         const dem_wall *w = &s->walls[k];
         while (s->stage_cur[k] < w->nstages) {
@@ -400,11 +416,10 @@ static int stages_advance(dem_sim *s)
                 done = d >= g->until_distance;
             }
             if (!done && ran > 0 && g->until_force > 0) { /* the force the particles exerted in the step before */
-                if (!read && dem_get_field(s, DEM_FIELD_WALL_FORCE, f))
+                double fn;
+                if (wall_normal_before(s, wr, k, &fn))
                     return DEM_ERR_DEVICE;
-                read = 1;
-                const double *n = w->normal;
-                done = -(f[3 * k] * n[0] + f[3 * k + 1] * n[1] + f[3 * k + 2] * n[2]) >= g->until_force;
+                done = fn >= g->until_force;
             }
             if (!done)
                 break;
@@ -418,21 +433,19 @@ static int stages_advance(dem_sim *s)
 
 /* Servo stages: each such wall's velocity for this step from the force it received in the last (dem_stage), and
  * the record of how the stage goes (dem_servo_stats) */
-static int servo_update(dem_sim *s)
+static int servo_update(dem_sim *s, wall_read *wr)
 {
-    double f[3 * DEM_MAX_WALLS];
-    int read = 0;
     for (int k = 0; k < s->nwalls; k++) {
         long first;
         int st = sim_stage_now(s, k, &first);
         const dem_stage *g = st >= 0 ? &s->walls[k].stages[st] : NULL;
         if (!g || !(g->force > 0))
             continue;
-        if (!read && dem_get_field(s, DEM_FIELD_WALL_FORCE, f))
+        double fn;
+        if (wall_normal_before(s, wr, k, &fn))
             return DEM_ERR_DEVICE;
-        read = 1;
         const double *n = s->walls[k].normal;
-        double fn = -(f[3 * k] * n[0] + f[3 * k + 1] * n[1] + f[3 * k + 2] * n[2]), err = g->force - fn;
+        double err = g->force - fn;
         double u = g->gain * err;
         u = u > g->max_speed ? g->max_speed : u < -g->max_speed ? -g->max_speed : u;
         for (int d = 0; d < 3; d++)
@@ -912,12 +925,13 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
         return be_fail(s);
     /* walls move with the particles' drift: positions at t + dt, velocity of this step */
-    if (s->nwalls && ((e = stages_advance(s)) || (e = servo_update(s))))
+    wall_read wr = {.read = 0};
+    if (s->nwalls && ((e = stages_advance(s, &wr)) || (e = servo_update(s, &wr))))
         return e;
     if (s->nwalls) {
         for (int w = 0; w < s->nwalls; w++) {
             double v[3];
-            sim_wall_velocity(s, w, s->step, v);
+            sim_wall_velocity(s, w, v);
             for (int d = 0; d < 3; d++)
                 s->wall_pos[w][d] += v[d] * s->dt;
         }

@@ -82,6 +82,8 @@ struct dem_sim {
     int rebuild_at, rebuild_len; /* the current step's rebuild within the core's trace */
     void *scratch;               /* host scratch of dem_energy / dem_sample_get, kept between calls */
     size_t scratch_bytes;
+    void *ring_copy;             /* host copy of the series ring (dem_step_sampled), kept between calls */
+    size_t ring_copy_bytes;
 };
 
 /* sim.c: a particle's mass and moment of inertia (explicit, or a solid sphere of its material and radius) */
@@ -101,7 +103,7 @@ void sim_stages_from_step(dem_sim *s);
  * >= 0: a sampled step, whose series row goes to that row of the device's ring (common/series.h). */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row);
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
-void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3]);
+void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its stage of the current step [m/s] */
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
 int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what);
 /* A whole registry buffer read from the device (malloc'd; the patch rows have no field: their capacity is the

@@ -245,9 +245,8 @@ void sim_stages_from_step(dem_sim *s)
     }
 }
 
-void sim_wall_velocity(const dem_sim *s, int k, long step, double v[3])
+void sim_wall_velocity(const dem_sim *s, int k, double v[3])
 {
-    (void)step; /* always the current step: the stage state says where each wall is */
     long first;
     int st = sim_stage_now(s, k, &first);
     v[0] = v[1] = v[2] = 0;
@@ -263,7 +262,7 @@ void sim_pack_walls(dem_sim *s)
         const dem_wall *w = &s->walls[k];
         double *t = tab + k * W_STRIDE, v[3];
         /* velocity of the step being taken (step index s->step, moving the wall from t to t + dt) */
-        sim_wall_velocity(s, k, s->step, v);
+        sim_wall_velocity(s, k, v);
         for (int d = 0; d < 3; d++) {
             t[W_PX + d] = s->wall_pos[k][d];
             t[W_NX + d] = w->normal[d];
