@@ -44,8 +44,8 @@ HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability
-all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(TEST_BIN)
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability accuracy
+all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
 $(DEPS_STAMP): scripts/install-deps.sh
@@ -86,6 +86,8 @@ $(BUILD)/dem-membrane: examples/membrane.c $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-bench: bench/bench.c $(LIB) $(HEADERS)
 	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
+$(BUILD)/dem-accuracy: bench/accuracy.c $(APPLIB) $(LIB) $(HEADERS)
+	$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
 $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
@@ -153,6 +155,14 @@ test-fresh:
 # one Markdown table on stdout, runs in out/conventions/ (about 8 minutes on 2 cores).
 conventions: $(BUILD)/dem
 	/usr/bin/python3 tools/mc_stress_conventions.py
+
+# What accuracy costs in time (issue 13): a matrix of runs, error against closed forms and converged runs against
+# wall time, drawn in out/accuracy.png and tabled in docs/accuracy.md (bench/accuracy.c, tools/plot_accuracy.py).
+# About 11 minutes on 2 cores; ACCURACY_QUICK=1 about 3.
+accuracy: $(BUILD)/dem-accuracy
+	@mkdir -p out
+	./$(BUILD)/dem-accuracy out/accuracy.csv
+	/usr/bin/python3 tools/plot_accuracy.py out/accuracy.csv -o out/accuracy.png --doc docs/accuracy.md
 
 # issue 13's hard cases at the issue's lengths (tests/test_stability.c; the short versions are in make test)
 stability: $(BUILD)/tests/test_stability
