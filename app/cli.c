@@ -11,7 +11,8 @@ const char cli_usage[] =
     "                          [--progress | --quiet] [--stop-after STEPS]\n"
     "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated]\n"
     "       dem run --restart CHECKPOINT.h5 [-o OUT.h5] [options as above]\n"
-    "       dem check SCENE.yaml     validate a scene and print what it implies (time scales, memory, effects)\n"
+    "       dem check SCENE.yaml [--model M]   validate a scene and print what it implies (time scales, memory,\n"
+    "                                           effects), under contact model M if given\n"
     "       dem devices              list OpenCL devices (index for --device)\n"
     "       dem --help | --version\n"
     "\n"
@@ -89,8 +90,10 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
     }
     if (!strcmp(cmd, "check")) {
         c->cmd = CLI_CHECK;
-        if (argc != 3)
-            return usage_error(err, errlen, with_usage, 1, "check takes one scene file");
+        if (argc == 5 && !strcmp(argv[3], "--model"))
+            c->check_model = argv[4]; /* checked against the list by scene_apply_model */
+        else if (argc != 3)
+            return usage_error(err, errlen, with_usage, 1, "check takes one scene file (and --model M)");
         c->check_path = argv[2];
         return path_ok("the scene", argv[2], err, errlen) ? 0 : EXIT_USAGE;
     }

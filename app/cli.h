@@ -13,6 +13,7 @@ typedef enum { CLI_HELP, CLI_VERSION, CLI_DEVICES, CLI_CHECK, CLI_RUN } cli_comm
 typedef struct {
     cli_command cmd;
     const char *check_path; /* CLI_CHECK */
+    const char *check_model; /* CLI_CHECK: --model, NULL = the scene's */
     run_opts run;           /* CLI_RUN */
 } cli;
 

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int check(const char *path)
+static int check(const char *path, const char *model)
 {
     char err[8192];
     scene *sc = scene_load(path, err, sizeof err);
@@ -24,6 +24,12 @@ static int check(const char *path)
         fprintf(stderr, "dem: %s\n", err);
         scene_free(sc);
         return strstr(err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT;
+    }
+    if (model && scene_apply_model(sc, s, &run, model, err, sizeof err)) {
+        fprintf(stderr, "dem: %s\n", err);
+        dem_destroy(s);
+        scene_free(sc);
+        return EXIT_USAGE;
     }
     int n = dem_count(s);
     double rmin = INFINITY, rmax = 0;
@@ -57,6 +63,7 @@ static int check(const char *path)
         dem_mc_stress_convention_string(run.mcs_conv, conv, sizeof conv);
         printf("MC-stress      %s\n", conv);
     }
+    run_mc_lag_advice(s, sc, &run, 1, stdout);
     printf("Rayleigh time  %.4g s (smallest particle)\n", ts.rayleigh_time);
     printf("Hertz time     %.4g s (two smallest like spheres, head-on at 1 m/s)\n", ts.hertz_time);
     fflush(stdout);
@@ -127,7 +134,7 @@ int main(int argc, char **argv)
     case CLI_DEVICES:
         return devices();
     case CLI_CHECK:
-        return check(c.check_path);
+        return check(c.check_path, c.check_model);
     case CLI_RUN:
         break;
     }

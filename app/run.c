@@ -189,6 +189,62 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
                 DEM_MIN_STEPS_PER_CONTACT, a.contact_time / DEM_MIN_STEPS_PER_CONTACT, DEM_MIN_STEPS_PER_CONTACT);
 }
 
+/* Lagged MC-strain (issue 13, hard case 6; docs/multicontact.md "When lagged MC-strain rings"). The lagged scheme
+ * evaluates each contact force from the displacements the particle's other contacts induced with their forces of the
+ * previous step: one Jacobi iteration per step. A force change df_k comes back at contact c one step later as
+ *   df_c = (df/dd)_c d_k->c = 2 E* a_c K g_kc df_k / d_kc,   K = gamma (1 + nu) / (2 pi E)   (common/mc_strain.h),
+ * and where the sum of these gains over the contacts that feed c (the other contacts of both particles) exceeds 1, the
+ * lag amplifies every disturbance step by step: the forces ring, and only damping holds them. For like spheres
+ * (E* = E / (2 (1 - nu^2)), a = sqrt(r delta / 2)) with the largest factor, opposite contacts (g = 3 - 2 nu,
+ * d_kc = 2 r), and z contacts per sphere, the gain is
+ *   G = 2 (z - 1) gamma (3 - 2 nu) / (4 pi (1 - nu)) sqrt(delta / (2 r)),
+ * which reaches 1 at delta_1 / r = 2 (4 pi (1 - nu) / (2 (z - 1) gamma (3 - 2 nu)))^2, taken with z = 6 (a dense
+ * packing). The criterion: lagged MC-strain rings once the contacts' mean overlap passes delta_1. Measured
+ * (tests/test_stability.c, test_mc_lag and test_compaction_09; the mean over touching pairs of overlap / smaller
+ * radius): the glass die (gamma 4.5, nu 0.24: delta_1 1.42 %) reaches a mean of 2.4 % and rings - the kinetic energy
+ * 26x the classical run's as the piston turns - and is smooth iterated (1.05x); the 514 hydrogels at 13.4 % strain
+ * (gamma 1.12, nu 0.5: delta_1 15.7 %) reach 7 % and do not ring (0.8x); a compact of 300 spheres at relative
+ * density 0.9 (gamma 1.12, nu 0.3: delta_1 21.4 %) reaches 22 % and rings (28x, a pair overlap passing the smaller
+ * radius). dem check cannot know the mean overlap a scene will reach, so it warns when delta_1 is below
+ * MC_LAG_WARN_OVERLAP of a radius, the mean a compaction to relative density 0.9 reaches; the real network's gain
+ * differs (its geometric factors vary and partly cancel): a rule of thumb that separates the runs we measured. */
+#define MC_LAG_CONTACTS 6
+#define MC_LAG_WARN_OVERLAP 0.25
+double run_mc_lag_overlap(double gamma, double nu)
+{
+    if (!(gamma > 0))
+        return INFINITY;
+    double c = 4 * M_PI * (1 - nu) / (2 * (MC_LAG_CONTACTS - 1) * gamma * (3 - 2 * nu));
+    return 2 * c * c;
+}
+
+void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int info, FILE *out)
+{
+    if (!(run->effects & DEM_EFFECT_MC_STRAIN))
+        return;
+    for (unsigned q = 0; q < sc->f->materials_count; q++) {
+        const scene_material *m = &sc->f->materials[q];
+        int used = 0;
+        for (int i = 0; i < dem_count(s) && !used; i++)
+            used = dem_particle_material(s, i) == (int)q;
+        double d1 = run_mc_lag_overlap(m->gamma, m->poisson);
+        if (!used || !isfinite(d1))
+            continue;
+        if (info)
+            fprintf(out, "MC-strain      %s; material '%s' (gamma %g, nu %g): the lagged scheme's loop gain reaches 1 "
+                         "at a mean overlap of %.3g %% of a radius (%d contacts per sphere)\n",
+                    run->mc_cap > 0 ? "iterated" : "lagged", m->name, m->gamma, m->poisson, 100 * d1,
+                    MC_LAG_CONTACTS);
+        if (run->mc_cap == 0 && d1 < MC_LAG_WARN_OVERLAP)
+            fprintf(stderr, "dem: warning: %s: lagged MC-strain on material '%s' (gamma %g, nu %g) rings once the "
+                            "contacts' mean overlap passes %.3g %% of a radius (its loop gain passes 1 there): the "
+                            "kinetic energy rises tens of times above the classical run's and overlaps jump "
+                            "(docs/multicontact.md, \"When lagged MC-strain rings\"); if the scene compresses that "
+                            "far, iterate it (--model mc_strain_iterated, or mc_iterations in the scene)\n",
+                    sc->path, m->name, m->gamma, m->poisson, 100 * d1);
+    }
+}
+
 /* The particles' order in memory (dem_order_scatter): with info, one line for dem check; a note when the order is
  * scattered in a run large enough for it to matter (from about 1e4 particles: the bed of make bench ran 1.5x faster
  * sorted at 9 468 spheres, 2.3x at 1e5 in make bench and 1.8-2x in make bench-peer's whole runs; below, the arrays
@@ -354,6 +410,7 @@ static int phase_start(run_ctx *c)
     fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", c->sc->path, dem_count(c->s),
             dem_wall_count(c->s), run->dt, run->steps, dem_describe(c->s));
     run_contact_advice(c->s, c->sc, 0, stderr); /* a warning only, when dt is coarse for the fastest contact */
+    run_mc_lag_advice(c->s, c->sc, &c->run, 0, stderr); /* a warning only, lagged MC-strain where it rings */
     run_order_advice(c->s, c->sc, 0, stderr);   /* a note only, when the order is scattered */
     run_precision_advice(c->s, c->sc, run->cfg.precision, 0, stderr); /* a warning only, far from the origin */
     if (run->effects & DEM_EFFECT_MC_STRESS) {

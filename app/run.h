@@ -26,6 +26,10 @@ int run_scene(const run_opts *o);
  * unless --quiet). */
 void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* the same for the particles' order in memory (dem_order_scatter) */
+/* Lagged MC-strain: the mean overlap / radius at which its loop gain reaches 1 for a material (INFINITY for gamma 0),
+ * and the advice: a warning on stderr where that overlap is one compactions reach; info: a line for dem check */
+double run_mc_lag_overlap(double gamma, double nu);
+void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int info, FILE *out);
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* the same for the precision's position resolution far from the origin (dem_position_resolution) */
 void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info, FILE *out);

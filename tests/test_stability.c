@@ -25,9 +25,18 @@
  * A resting column (hard case 4): 50 spheres stacked on a floor under gravity settle; after that the top sphere's
  * height stays put to 1e-9 m (no creep), the kinetic energy decays below 1e-15 J, and no sphere leaves the axis.
  *
+ * Lagged MC-strain on stiff glass (hard case 6): the glass die's whole cycle under classical, lagged and iterated
+ * MC-strain: lagged rings (kinetic energy above 5x the classical run's), iterated does not (below 2x), and the
+ * contacts' mean overlap passed the overlap where the lag's loop gain reaches 1 (app/run.c); the 514 hydrogels stay
+ * below it and lagged does not ring; `dem check --model mc_strain` warns for the glass die, not when iterated. The
+ * ringing state runs 2000 steps on OpenCL with the reference's bits.
+ *
+ * Compaction to relative density 0.9 (hard case 7): 300 spheres in a die under each model (test_compaction_09).
+ *
  * Short versions here; DEM_STABILITY_LONG=1 (`make stability`) runs the issue's lengths: 1e5 steps each. */
 #include "test_util.h"
 #include "scene.h"
+#include "run.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -348,10 +357,263 @@ static void test_resting_column(void **st)
     dem_destroy(s);
 }
 
+/* Lagged MC-strain on stiff glass (hard case 6). A scene under a model, on the reference in fp64, stepped through its
+ * whole piston cycle (after the settling), sampled every 100 steps: the largest kinetic energy and when, and the
+ * largest particle-pair overlap / smaller radius at the end of the compression stage. */
+typedef struct {
+    double ke_max, t_max, overlap, mean_overlap, t_end_compress;
+    long steps;
+    dem_state mid; /* the state where the kinetic energy peaked (for the bitwise check on PoCL) */
+} lag_run;
+
+static dem_sim *scene_model(const char *file, const char *model, scene **sc_out, scene_run *run)
+{
+    char err[4096], path[1024];
+    snprintf(path, sizeof path, "%s/scenes/%s", DEM_DEFAULT_SOURCE_DIR, file);
+    scene *sc = scene_load(path, err, sizeof err);
+    if (!sc)
+        fail_msg("%s", err);
+    dem_sim *s = scene_build(sc, run, err, sizeof err);
+    if (!s || scene_apply_model(sc, s, run, model, err, sizeof err))
+        fail_msg("%s", err);
+    *sc_out = sc;
+    return s;
+}
+
+/* the largest pair overlap / smaller radius; *mean: its mean over the touching pairs */
+static double largest_overlap(dem_sim *s, double *mean)
+{
+    int n = dem_count(s);
+    double *x = malloc(sizeof(double) * 3 * (size_t)n), worst = 0, sum = 0;
+    long touching = 0;
+    assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++) {
+            double d[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
+            double ri = dem_particle_radius(s, i), rj = dem_particle_radius(s, j);
+            double ov = (ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / fmin(ri, rj);
+            worst = fmax(worst, ov);
+            if (ov > 0)
+                sum += ov, touching++;
+        }
+    free(x);
+    *mean = touching ? sum / touching : 0;
+    return worst;
+}
+
+static lag_run lag_measure(const char *file, const char *model, int keep_state)
+{
+    scene *sc;
+    scene_run run;
+    dem_sim *s = scene_model(file, model, &sc, &run);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(s, &c);
+    dem_wall w;
+    dem_wall_get(s, run.piston, &w);
+    long settle = lround(w.stages[0].duration / run.dt), compressed = settle + lround(w.stages[1].duration / run.dt);
+    step_or_fail(s, settle);
+    lag_run r = {0};
+    for (long k = settle; k < run.steps;) {
+        long n = k + 100 <= run.steps ? 100 : run.steps - k;
+        if (k < compressed && k + n > compressed)
+            n = compressed - k;
+        step_or_fail(s, n);
+        k += n;
+        if (k == compressed) {
+            r.overlap = largest_overlap(s, &r.mean_overlap);
+            r.t_end_compress = compressed * run.dt;
+        }
+        dem_energy_t e;
+        assert_int_equal(dem_energy(s, &e), 0);
+        assert_true(isfinite(e.kinetic) && isfinite(e.elastic));
+        if (e.kinetic > r.ke_max) {
+            r.ke_max = e.kinetic, r.t_max = k * run.dt;
+            if (keep_state) {
+                if (r.mid.n)
+                    dem_state_free(&r.mid);
+                assert_int_equal(dem_state_get(s, &r.mid), 0);
+            }
+        }
+    }
+    r.steps = run.steps;
+    dem_destroy(s);
+    scene_free(sc);
+    return r;
+}
+
+static void test_mc_lag(void **st)
+{
+    (void)st;
+    /* the glass die (17 beads, gamma 4.5): where dem check warns */
+    lag_run cl = lag_measure("glass_die.yaml", "classical", 0), lag = lag_measure("glass_die.yaml", "mc_strain", 1),
+            it = lag_measure("glass_die.yaml", "mc_strain_iterated", 0);
+    printf("  glass die, whole cycle (%ld steps, compression ends at %.4f s): largest kinetic energy classical %.3g J "
+           "(at %.4f s), MC-strain lagged %.3g J (%.1fx, at %.4f s), iterated %.3g J (%.2fx); largest overlap at the "
+           "end of the compression %.2f %% / %.2f %% / %.2f %% of a radius, mean %.2f %% / %.2f %% / %.2f %% (dem "
+           "check: the lag's gain reaches 1 at 1.42 %%)\n", cl.steps, cl.t_end_compress, cl.ke_max, cl.t_max,
+           lag.ke_max, lag.ke_max / cl.ke_max, lag.t_max, it.ke_max, it.ke_max / cl.ke_max, 100 * cl.overlap,
+           100 * lag.overlap, 100 * it.overlap, 100 * cl.mean_overlap, 100 * lag.mean_overlap, 100 * it.mean_overlap);
+    assert_true(lag.ke_max > 5 * cl.ke_max); /* lagged rings: what the warning says */
+    assert_true(it.ke_max < 2 * cl.ke_max);  /* iterated does not */
+    /* the criterion: the mean overlap passes the overlap where the lag's gain reaches 1 (run_mc_lag_advice) */
+    assert_true(lag.mean_overlap > 0.0142 && it.mean_overlap > 0.0142 && lag.overlap < 0.1 && it.overlap < 0.1);
+    /* the ringing state on PoCL: 2000 steps from the lagged run's mid-compression state, the reference's bits */
+    scene *sc;
+    scene_run run;
+    dem_sim *a = scene_model("glass_die.yaml", "mc_strain", &sc, &run), *b;
+    scene_free(sc);
+    b = scene_model("glass_die.yaml", "mc_strain", &sc, &run);
+    scene_free(sc);
+    dem_config ca = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64), cb = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(a, &ca);
+    start_or_fail(b, &cb);
+    assert_int_equal(dem_state_set(a, &lag.mid), 0);
+    assert_int_equal(dem_state_set(b, &lag.mid), 0);
+    step_or_fail(a, 2000);
+    step_or_fail(b, 2000);
+    char msg[512];
+    if (state_diff(a, b, msg, sizeof msg))
+        fail_msg("lagged MC-strain, glass die, OpenCL against the reference: %s", msg);
+    dem_destroy(a);
+    dem_destroy(b);
+    dem_state_free(&lag.mid);
+    /* the 514 hydrogels (gamma 1.12): no warning (the gain reaches 1 at 15.7 %), and lagged does not ring */
+    lag_run hc = lag_measure("hydrogel_514.yaml", "classical", 0), hl = lag_measure("hydrogel_514.yaml", "mc_strain", 0);
+    printf("  514 hydrogels, whole cycle (%ld steps): largest kinetic energy classical %.3g J, MC-strain lagged %.3g J "
+           "(%.2fx); at 13.4 %% strain largest overlap %.2f %% / %.2f %% of a radius, mean %.2f %% / %.2f %% (the "
+           "lag's gain reaches 1 at 15.7 %%)\n", hc.steps, hc.ke_max, hl.ke_max, hl.ke_max / hc.ke_max,
+           100 * hc.overlap, 100 * hl.overlap, 100 * hc.mean_overlap, 100 * hl.mean_overlap);
+    assert_true(hl.ke_max < 2 * hc.ke_max);
+    assert_true(hl.mean_overlap < 0.157);
+    /* dem check names delta_1 and warns for the glass die lagged, not iterated; an unknown model is a usage error */
+    char dir[256], err[8192];
+    assert_int_equal(test_tmpdir_make(dir, sizeof dir, "lag"), 0);
+    const char *dem = DEM_DEFAULT_SOURCE_DIR "/build/dem", *glass = DEM_DEFAULT_SOURCE_DIR "/scenes/glass_die.yaml";
+    assert_int_equal(test_sh(dir, err, sizeof err, "%s check %s --model mc_strain > %s/o.txt", dem, glass, dir), 0);
+    assert_non_null(strstr(err, "lagged MC-strain on material 'glass'"));
+    assert_non_null(strstr(err, "passes 1.42 % of a radius"));
+    assert_int_equal(test_sh(dir, err, sizeof err, "{ grep -q 'at a mean overlap of 1.42 %%' %s/o.txt && %s check %s "
+                                                   "--model mc_strain_iterated > /dev/null; }", dir, dem, glass), 0);
+    assert_null(strstr(err, "warning"));
+    assert_int_equal(test_sh(dir, err, sizeof err, "%s check %s --model lagged", dem, glass), 2);
+    assert_non_null(strstr(err, "unknown model 'lagged'"));
+    test_tmpdir_remove(dir);
+}
+
+/* Compaction to relative density 0.9 under each model (hard case 7). 300 soft spheres (r 0.3-0.4 mm, E 5 MPa,
+ * prefactors beta 1.65 and gamma 1.12: seed 000's hydrogel calibration) placed at random in a die of radius 3 mm,
+ * 32 % solid; the upper punch comes down at 0.1 m/s from the top of the fill without stopping. The run is stepped
+ * until the spheres' volume over the die's volume between the punches (overlaps counted twice, as a press reports it)
+ * passes 0.9. Every model must stay finite with every sphere inside the die between the punches and the kinetic
+ * energy below the stored elastic energy; OpenCL has the reference's bits. Classical, MC-stress and iterated MC-strain
+ * keep every pair overlap below the smaller radius all the way (no sphere's centre inside another); lagged MC-strain
+ * does not (a pair at 105 % on the way): its contacts' mean overlap passes the overlap at which its loop gain reaches
+ * 1, it rings, and dem check warns for this material (app/run.c, run_mc_lag_advice). */
+static const char compaction_scene[] =
+    "name: compaction to 0.9\n"
+    "precision: fp64\n"
+    "effects: [hertz, damping, friction, walls]\n"
+    "materials:\n"
+    "  - {name: powder, density: 1500, young: 5.0e6, poisson: 0.3, restitution: 0.2, friction: 0.3, beta: 1.65, "
+    "gamma: 1.12}\n"
+    "  - {name: steel, density: 7800, young: 2.0e11, poisson: 0.3, restitution: 0.5, friction: 0.3}\n"
+    "particles:\n"
+    "  - material: powder\n"
+    "    generate: {kind: random, shape: cylinder, region: {base: [0, 0, 0], axis: [0, 0, 1], radius: 0.003, "
+    "height: 0.006}, radius_min: 0.0003, radius_max: 0.0004, count: 300, seed: 5}\n"
+    "walls:\n"
+    "  - {type: cylinder, name: die, material: steel, point: [0, 0, -0.001], axis: [0, 0, 1], radius: 0.003}\n"
+    "  - {type: plane, name: lower, material: steel, point: [0, 0, 0], normal: [0, 0, 1]}\n"
+    "  - {type: plane, name: upper, material: steel, point: [0, 0, 0.006], normal: [0, 0, -1], "
+    "motion: [{velocity: [0, 0, -0.1], duration: 0.06}]}\n"
+    "domain: {lo: [-0.004, -0.004, -0.001], hi: [0.004, 0.004, 0.007]}\n"
+    "time: {dt_rayleigh: 0.2, duration: 0.06}\n";
+
+typedef struct {
+    double density, overlap, mean_overlap, ke, elastic;
+    long steps;
+    int escaped;
+} compaction_result;
+
+static dem_sim *compaction_build(const char *model, dem_precision p)
+{
+    char err[4096];
+    scene *sc = scene_load_text("compaction.yaml", compaction_scene, sizeof compaction_scene - 1, err, sizeof err);
+    if (!sc)
+        fail_msg("%s", err);
+    scene_run run;
+    dem_sim *s = scene_build(sc, &run, err, sizeof err);
+    if (!s || scene_apply_model(sc, s, &run, model, err, sizeof err))
+        fail_msg("%s", err);
+    scene_free(sc);
+    return s;
+}
+
+static compaction_result compaction_run(dem_sim *s, long max_steps)
+{
+    int n = dem_count(s);
+    double *x = malloc(sizeof(double) * 3 * (size_t)n), vs = 0;
+    for (int i = 0; i < n; i++)
+        vs += 4.0 / 3.0 * M_PI * pow(dem_particle_radius(s, i), 3);
+    compaction_result r = {0};
+    while (r.density < 0.9 && r.steps < max_steps) {
+        step_or_fail(s, 20);
+        r.steps += 20;
+        double up[3], lo[3];
+        dem_wall_position(s, 2, up);
+        dem_wall_position(s, 1, lo);
+        r.density = vs / (M_PI * 0.003 * 0.003 * (up[2] - lo[2]));
+        assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+        for (int i = 0; i < n; i++) {
+            double rho = hypot(x[3 * i], x[3 * i + 1]);
+            if (!isfinite(x[3 * i] + x[3 * i + 1] + x[3 * i + 2]) || rho > 0.003 || x[3 * i + 2] < lo[2] ||
+                x[3 * i + 2] > up[2])
+                r.escaped++;
+        }
+        r.overlap = fmax(r.overlap, largest_overlap(s, &r.mean_overlap));
+    }
+    dem_energy_t e;
+    assert_int_equal(dem_energy(s, &e), 0);
+    r.ke = e.kinetic, r.elastic = e.elastic;
+    free(x);
+    return r;
+}
+
+static void test_compaction_09(void **st)
+{
+    (void)st;
+    static const char *const models[] = {"classical", "mc_stress", "mc_strain", "mc_strain_iterated"};
+    for (int m = 0; m < 4; m++) {
+        dem_sim *ref = compaction_build(models[m], DEM_FP64), *cl = compaction_build(models[m], DEM_FP64);
+        dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64), c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+        start_or_fail(ref, &rc);
+        compaction_result r = compaction_run(ref, 12000);
+        printf("  compaction, %-18s: relative density %.3f after %ld steps; largest overlap %.1f %% of the smaller "
+               "radius (mean %.1f %% at the end); kinetic %.3g J, elastic %.3g J; %d outside the die\n", models[m],
+               r.density, r.steps, 100 * r.overlap, 100 * r.mean_overlap, r.ke, r.elastic, r.escaped);
+        assert_true(r.density >= 0.9);
+        assert_int_equal(r.escaped, 0);
+        if (m == 2) /* lagged MC-strain rings here: the contacts' mean overlap passed where its gain reaches 1, and
+                       dem check warns for this material (run_mc_lag_advice); its overlaps are not bounded */
+            assert_true(r.mean_overlap > run_mc_lag_overlap(1.12, 0.3) && run_mc_lag_overlap(1.12, 0.3) < 0.25);
+        else
+            assert_true(r.overlap < 1);
+        assert_true(isfinite(r.ke) && r.ke < r.elastic);
+        start_or_fail(cl, &c);
+        step_or_fail(cl, r.steps);
+        char msg[512];
+        if (state_diff(cl, ref, msg, sizeof msg))
+            fail_msg("compaction, %s, OpenCL against the reference: %s", models[m], msg);
+        dem_destroy(ref);
+        dem_destroy(cl);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_size_ratio), cmocka_unit_test(test_stiffness_contrast),
                                        cmocka_unit_test(test_elastic_gas), cmocka_unit_test(test_dt_at_bound),
-                                       cmocka_unit_test(test_resting_column)};
+                                       cmocka_unit_test(test_resting_column), cmocka_unit_test(test_mc_lag),
+                                       cmocka_unit_test(test_compaction_09)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
