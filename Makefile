@@ -158,7 +158,7 @@ conventions: $(BUILD)/dem
 
 # What accuracy costs in time (issue 13): a matrix of runs, error against closed forms and converged runs against
 # wall time, drawn in out/accuracy.png and tabled in docs/accuracy.md (bench/accuracy.c, tools/plot_accuracy.py).
-# About 11 minutes on 2 cores; ACCURACY_QUICK=1 about 3.
+# About 13 minutes on 2 cores; ACCURACY_QUICK=1 about 4.
 accuracy: $(BUILD)/dem-accuracy
 	@mkdir -p out
 	./$(BUILD)/dem-accuracy out/accuracy.csv

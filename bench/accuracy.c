@@ -22,15 +22,18 @@
  *                same model's converged run (fp64, the smallest time step, MC-strain iterated to 1e-10).
  *   rubber       the rubber sphere between two steel plates to d/r = 0.4 (scenes/validation/rubber_plates.yaml),
  *                the plate force there against the same model's converged run.
+ *   membrane     seed 001's triaxial test in miniature (tests/scenes/triaxial_small.yaml): the top platen's stress at
+ *                the end, MSS_patch and MSS_particle at several edge lengths, against MSS_patch on the finest mesh.
  * Settings: precision, dt as a fraction of the Rayleigh time, contact model (classical, mc_stress, mc_strain lagged,
- * mc_strain iterated with its tolerance) and, for cost only, the neighbour skin (whose results must be bit-identical:
- * the run stops if they are not).
+ * mc_strain iterated with its tolerance), the membrane's model and edge and, for cost only, the neighbour skin
+ * (whose results must be bit-identical: the run stops if they are not).
  *
  * The binary cases are Hertz's, so they run the classical law only (a multi-contact law is not Hertz's for one
  * contact). Timings are the steps alone (dem_start, which compiles kernels, is left out), on $ACCURACY_BACKEND
  * (opencl, the default, or reference); the errors are the same bits on either.
  *
- * usage: dem-accuracy OUT.csv      ACCURACY_QUICK=1: fewer time steps, the converged runs at 0.05 t_R */
+ * usage: dem-accuracy OUT.csv      ACCURACY_QUICK=1: fewer time steps, the converged runs at 0.05 t_R;
+ *                                   ACCURACY_ONLY=binary,rubber,hydrogel,membrane,skin: those groups only */
 #include "dem.h"
 #include "scene.h"
 #include <math.h>
@@ -60,6 +63,19 @@ typedef struct {
 } result;
 
 static dem_backend_kind backend = DEM_BACKEND_OPENCL;
+
+/* $ACCURACY_ONLY: a comma-separated list of the case groups to run (binary, rubber, hydrogel, membrane, skin) */
+static int only(const char *group)
+{
+    const char *o = getenv("ACCURACY_ONLY");
+    if (!o || !*o)
+        return 1;
+    size_t n = strlen(group);
+    for (const char *p = o; (p = strstr(p, group)); p += n)
+        if ((p == o || p[-1] == ',') && (p[n] == 0 || p[n] == ','))
+            return 1;
+    return 0;
+}
 static FILE *csv;
 
 static double now(void)
@@ -291,6 +307,88 @@ static result compression(const char *path, const setting *st, int cap, long lim
     return res;
 }
 
+/* ---- the membrane: seed 001's triaxial test in miniature (tests/scenes/triaxial_small.yaml) ---- */
+
+/* The scene's text with the membrane's model ("patch" or "particle") and edge [m]: MSS_particle's vertex spheres are
+ * 0.624 edges in radius on a tube that much wider (the proportions of scenes/seed001/triaxial_case1_particle.yaml,
+ * 0.83 mm spheres on 1.33 mm edges), so that their inner side starts at the packing's 12 mm. The time step: dtf
+ * Rayleigh times, or 0.9 of the library's bound where the hinges' damping sets a lower one. Measured: the top
+ * platen's normal stress at the end (8 ms: the 100 kPa confinement, then 4 ms of axial compression). */
+static result membrane(const char *model, double edge, double dtf)
+{
+    const char *path = DEM_DEFAULT_SOURCE_DIR "/tests/scenes/triaxial_small.yaml";
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        die(path, "cannot open");
+    static char text[16384], out[20000];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    int particle = !strcmp(model, "particle");
+    double vr = 0.624 * edge;
+    struct { const char *from; char to[160]; } subs[4];
+    snprintf(subs[0].to, sizeof subs[0].to, "radius: %.6g, height: 0.0518044, edge: %.6g}", particle ? 0.012 + vr : 0.012,
+             edge);
+    subs[0].from = "radius: 0.012, height: 0.0518044, edge: 0.004}";
+    subs[1].from = "model: patch";
+    snprintf(subs[1].to, sizeof subs[1].to, "model: %s", model);
+    subs[2].from = "kdiss: 1.0e-4}";
+    if (particle)
+        snprintf(subs[2].to, sizeof subs[2].to, "kdiss: 1.0e-4, vertex_radius: %.6g}", vr);
+    else
+        snprintf(subs[2].to, sizeof subs[2].to, "kdiss: 1.0e-4}");
+    subs[3].from = "time: {dt_rayleigh: 0.2,";
+    snprintf(subs[3].to, sizeof subs[3].to, "time: {dt_rayleigh: 0.01,"); /* the step is set below */
+    size_t o = 0;
+    for (const char *p = text; *p;) {
+        int k;
+        for (k = 0; k < 4; k++)
+            if (!strncmp(p, subs[k].from, strlen(subs[k].from)))
+                break;
+        if (k < 4) {
+            o += (size_t)snprintf(out + o, sizeof out - o, "%s", subs[k].to);
+            p += strlen(subs[k].from);
+        } else {
+            out[o++] = *p++;
+        }
+    }
+    out[o] = 0;
+    char err[2048];
+    scene *sc = scene_load_text(path, out, o, err, sizeof err);
+    if (!sc)
+        die("membrane scene", err);
+    scene_run run;
+    dem_sim *s = scene_build(sc, &run, err, sizeof err);
+    if (!s)
+        die("membrane scene", err);
+    double dt = fmin(dtf * run.ts.rayleigh_time, 0.9 * run.ts.max_dt);
+    dem_set_dt(s, dt);
+    dem_config c = run.cfg;
+    c.backend = backend;
+    c.precision = DEM_FP64;
+    if (dem_start(s, &c))
+        die("membrane start", dem_error(s));
+    result res = {0};
+    res.steps = lround(sc->f->time.duration / dt);
+    step(s, res.steps, &res.seconds);
+    double fn;
+    dem_wall_normal_force(s, run.piston >= 0 ? run.piston : 1, &fn);
+    res.value = fn / 0.00045239;
+    res.parts[0] = edge, res.parts[1] = dt / run.ts.rayleigh_time;
+    dem_destroy(s);
+    scene_free(sc);
+    return res;
+}
+
+static void emit_membrane(const char *model, const result *r, const char *role)
+{
+    fprintf(csv, "membrane,fp64,%.4g,%s,0,0,%s,%ld,%.6e,%.17g,%.6e,%.6e,%.6e,%.6e,0,0\n", r->parts[1], model, role,
+            r->steps, r->seconds, r->value, r->err, r->parts[0], r->parts[1], r->parts[2]);
+    fflush(csv);
+    fprintf(stderr, "membrane    fp64 dt %.2f t_R %-9s edge %.2f mm %-9s %7ld steps %8.3f s  value %-12.6g err %.3e\n",
+            r->parts[1], model, 1e3 * r->parts[0], role, r->steps, r->seconds, r->value, r->err);
+}
+
 static void emit(const char *cas, const setting *st, const result *r, const char *role)
 {
     fprintf(csv, "%s,%s,%g,%s,%g,%g,%s,%ld,%.6e,%.17g,%.6e,%.6e,%.6e,%.6e,%ld,%ld\n", cas,
@@ -326,7 +424,7 @@ int main(int argc, char **argv)
     const dem_precision precs[2] = {DEM_FP64, DEM_FP32};
 
     /* binary collisions: closed forms */
-    for (int pi = 0; pi < 2; pi++)
+    for (int pi = 0; pi < 2 && only("binary"); pi++)
         for (int k = 0; k < ndt; k++) {
             setting st = {precs[pi], dts[k], CLASSICAL, 0, 0};
             result r = head_on(&st, 1.0);
@@ -346,6 +444,8 @@ int main(int argc, char **argv)
         {"hydrogel", DEM_DEFAULT_SOURCE_DIR "/scenes/hydrogel_514.yaml"}};
     const double conv_dt = quick ? 0.05 : 0.02;
     for (int sc = 0; sc < 2; sc++) {
+        if (!only(scenes[sc].name))
+            continue;
         for (int m = 0; m < NMODELS; m++) {
             if (m == MC_LAGGED)
                 continue; /* shares the iterated scheme's converged run */
@@ -378,10 +478,26 @@ int main(int argc, char **argv)
             }
         }
     }
+    /* the membrane: MSS_patch and MSS_particle against the edge length, both against MSS_patch on the finest mesh */
+    if (only("membrane")) {
+        const double edges_full[] = {0.004, 0.003, 0.002}, edges_quick[] = {0.004, 0.003};
+        const double *edges = quick ? edges_quick : edges_full, fine = quick ? 0.002 : 0.0015;
+        int nedge = quick ? 2 : 3;
+        membrane("patch", 0.004, 0.2); /* warm-up */
+        result conv = membrane("patch", fine, 0.1);
+        emit_membrane("patch", &conv, "converged");
+        for (int m = 0; m < 2; m++)
+            for (int k = 0; k < nedge; k++) {
+                result r = membrane(m ? "particle" : "patch", edges[k], 0.2);
+                r.err = fabs(r.value / conv.value - 1);
+                emit_membrane(m ? "particle" : "patch", &r, "run");
+            }
+    }
+
     /* the neighbour skin: cost only, the stress must come out in the same bits */
     double same = NAN;
     const double skins[] = {0.3, 0.1, 1.0};
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3 && only("skin"); k++) {
         setting st = {DEM_FP64, 0.2, CLASSICAL, 0, skins[k]};
         result r = compression(scenes[1].path, &st, 20, 0);
         emit("hydrogel", &st, &r, "skin");

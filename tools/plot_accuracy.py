@@ -26,10 +26,12 @@ CASES = [
     ("oblique", "oblique impact, gross sliding: tangential and normal rebound"),
     ("rubber", "rubber sphere, d/r = 0.4: plate force vs converged run"),
     ("hydrogel", "514 hydrogels, 13.4 % strain: stress vs converged run"),
+    ("membrane", "small triaxial (200 grains): top platen stress vs MSS_patch, finest mesh"),
 ]
-MARKERS = {"classical": "o", "mc_stress": "s", "mc_strain": "^", "mc_strain_iterated": "D"}
+MARKERS = {"classical": "o", "mc_stress": "s", "mc_strain": "^", "mc_strain_iterated": "D",
+           "patch": "p", "particle": "h"}
 FAMILY = {"classical": "classical", "mc_stress": "mc_stress", "mc_strain": "mc_strain",
-          "mc_strain_iterated": "mc_strain"}
+          "mc_strain_iterated": "mc_strain", "patch": "MSS_patch", "particle": "MSS_particle"}
 FLOOR = 1e-9  # errors below this (bit-equal to the converged run) are drawn at it
 
 
@@ -45,6 +47,8 @@ def load(path):
 
 
 def label(r):
+    if r["case"] == "membrane":
+        return "MSS_%s edge %.3g mm, dt %.2g t_R" % (r["model"], 1e3 * r["part0"], r["dt_rayleigh"])
     s = "%s dt %.2g t_R %s" % (r["precision"], r["dt_rayleigh"], r["model"])
     if r["model"] == "mc_strain_iterated":
         s += " tol %.0e" % r["tolerance"]
@@ -82,7 +86,7 @@ def measured(rows, case):
 
 
 def draw(rows, out):
-    fig, axes = plt.subplots(2, 3, figsize=(16, 9.5))
+    fig, axes = plt.subplots(2, 4, figsize=(21, 9.5))
     cmap = plt.get_cmap("viridis")
     dts = sorted({r["dt_rayleigh"] for r in rows if r["role"] == "run"})
     colour = {d: cmap(i / max(1, len(dts) - 1)) for i, d in enumerate(dts)}
@@ -90,6 +94,8 @@ def draw(rows, out):
         runs = measured(rows, case)
         for r in runs:
             c = colour.get(r["dt_rayleigh"], "grey")
+            if case == "membrane":  # colour by edge: dark fine, light coarse
+                c = cmap(min(1.0, (r["part0"] - 0.0015) / 0.003))
             ax.scatter(max(r["seconds"], 1e-5), max(r["error"], FLOOR), marker=MARKERS[r["model"]], s=42,
                        facecolors=c if r["precision"] == "fp64" else "none", edgecolors=c, linewidths=1.3)
         for fam in sorted({FAMILY[r["model"]] for r in runs}):
@@ -106,12 +112,15 @@ def draw(rows, out):
         ax.set_xlabel("wall time of the steps [s]")
         ax.set_ylabel("relative error")
         ax.grid(True, which="both", alpha=0.25)
-    ax = axes.flat[5]
+    for ax in list(axes.flat)[len(CASES) + 1:]:
+        ax.axis("off")
+    ax = axes.flat[len(CASES)]
     ax.axis("off")
     from matplotlib.lines import Line2D
     handles = [Line2D([], [], marker=m, ls="", color="k", label=n) for n, m in MARKERS.items()]
     handles += [Line2D([], [], marker="o", ls="", color=colour[d], label="dt %.2g t_R" % d) for d in dts]
     handles += [Line2D([], [], marker="o", ls="", color="k", label="fp64 (filled)"),
+                Line2D([], [], ls="", label="membrane: colour = edge (dark 1.5 mm, light 4.5 mm)"),
                 Line2D([], [], marker="o", ls="", mfc="none", color="k", label="fp32 (open)"),
                 Line2D([], [], marker="o", ls="", mfc="none", mec="red", ms=12, label="knee of the Pareto front"),
                 Line2D([], [], ls="-", color="0.6", label="Pareto front, per model")]
@@ -151,6 +160,22 @@ def markdown(rows, csv_path):
     for case, title in CASES:
         runs = [r for r in rows if r["case"] == case and r["role"] == "run"]
         if not runs:
+            continue
+        if case == "membrane":
+            w("### %s: %s" % (case, title))
+            w("")
+            for c in conv:
+                if c["case"] == case:
+                    w("Converged run (%s): %.9g Pa in %.3g s, %d steps." % (label(c), c["value"], c["seconds"],
+                                                                            c["steps"]))
+            w("")
+            w("| model | edge [mm] | dt / t_R | steps | time [s] | top platen stress [Pa] | error |")
+            w("|---|---:|---:|---:|---:|---:|---:|")
+            for r in sorted(runs, key=lambda r: (r["model"], -r["part0"])):
+                w("| MSS_%s | %.3g | %.2g | %d | %.3g | %.6g | %s |" % (r["model"], 1e3 * r["part0"], r["dt_rayleigh"],
+                                                                       r["steps"], r["seconds"], r["value"],
+                                                                       fmt_e(r["error"])))
+            w("")
             continue
         cols = sorted({(r["model"], r["precision"]) for r in runs},
                       key=lambda c: (list(MARKERS).index(c[0]), c[1] != "fp64"))
