@@ -75,6 +75,7 @@ typedef struct {
     double until_force;           /* the stage ends early once the wall receives this normal force [N], or */
     double until_stress;          /* this stress [Pa] x area, and/or */
     double until_distance;        /* once it has moved this far [m] */
+    double until_density;         /* once the relative density in the die reached this (dem_stage.until_density) */
 } scene_stage;
 
 typedef struct {

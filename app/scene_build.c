@@ -291,15 +291,16 @@ static int servo_stage(const scene *sc, const char *base, const scene_stage *g, 
     return 0;
 }
 
-/* A stage's early end (dem_stage.until_force, until_distance): `until_force` [N] or `until_stress` [Pa] x `area`
- * [m^2], and/or `until_distance` [m]; its duration (or distance, strain) stays its longest. */
+/* A stage's early end (dem_stage.until_force, until_distance, until_density): `until_force` [N] or `until_stress`
+ * [Pa] x `area` [m^2], and/or `until_distance` [m], and/or `until_density` (relative density in the die, (0, 1]);
+ * its duration (or distance, strain) stays its longest. */
 static int until_stage(const scene *sc, const char *base, const scene_stage *g, dem_stage *st, char *err, size_t errlen)
 {
     char p[160];
-    int has[4];
-    static const char *const keys[4] = {"until_force", "until_stress", "until_distance", "area"};
+    int has[5];
+    static const char *const keys[5] = {"until_force", "until_stress", "until_distance", "area", "until_density"};
     const double v[3] = {g->until_force, g->until_stress, g->until_distance};
-    for (int q = 0; q < 4; q++) {
+    for (int q = 0; q < 5; q++) {
         snprintf(p, sizeof p, "%s.%s", base, keys[q]);
         has[q] = scene_has(sc->loc, p);
     }
@@ -312,6 +313,12 @@ static int until_stage(const scene *sc, const char *base, const scene_stage *g, 
     }
     if (has[1] && !(has[3] && g->area > 0 && isfinite(g->area)))
         return scene_fail(sc, err, errlen, base, "until_stress needs the area > 0 m^2 it acts on");
+    if (has[4] && !(g->until_density > 0 && g->until_density <= 1)) {
+        snprintf(p, sizeof p, "%s.until_density", base);
+        return scene_fail(sc, err, errlen, p, "a relative density in (0, 1]: the spheres' volume over the die's "
+                                              "between the punches");
+    }
+    st->until_density = has[4] ? g->until_density : 0;
     st->until_force = has[0] ? g->until_force : has[1] ? g->until_stress * g->area : 0;
     st->until_distance = has[2] ? g->until_distance : 0;
     return 0;

@@ -88,7 +88,8 @@ static const cyaml_schema_field_t stage_fields[] = {
     REAL("force", scene_stage, force), REAL("stress", scene_stage, stress), REAL("area", scene_stage, area),
     REAL("gain", scene_stage, gain), REAL("max_speed", scene_stage, max_speed),
     REAL("until_force", scene_stage, until_force), REAL("until_stress", scene_stage, until_stress),
-    REAL("until_distance", scene_stage, until_distance), CYAML_FIELD_END};
+    REAL("until_distance", scene_stage, until_distance), REAL("until_density", scene_stage, until_density),
+    CYAML_FIELD_END};
 static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_stage, stage_fields)};
 
 static const cyaml_schema_field_t wall_fields[] = {

@@ -355,6 +355,15 @@ int dem_set_particle_omega(dem_sim *s, int id, const double w[3])
     return 0;
 }
 
+/* The relative density seen by punch k (dem_stage.until_density): the particles' volume over the die's bore between
+ * k and the punch facing it, at their positions now; INFINITY once the punches meet. */
+double sim_relative_density(const dem_sim *s, int k)
+{
+    const double *n = s->walls[k].normal, *a = s->wall_pos[k], *b = s->wall_pos[s->density_other[k]];
+    double h = (b[0] - a[0]) * n[0] + (b[1] - a[1]) * n[1] + (b[2] - a[2]) * n[2], R = s->walls[s->density_die[k]].radius;
+    return h > 0 ? s->particle_volume / (M_PI * R * R * h) : INFINITY;
+}
+
 static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, const dem_stage *stages)
 {
     if (nstages < 0 || nstages > DEM_MAX_STAGES)
@@ -376,6 +385,11 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
         if (g->until_force > 0 && kind != DEM_WALL_PLANE)
             return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: until_force needs a plane wall (the force along its "
                             "normal)", wall, st);
+        if (!(g->until_density >= 0 && g->until_density <= 1))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: until_density is a relative density in [0, 1] (got %g)",
+                            wall, st, g->until_density);
+        if (g->until_density > 0 && kind != DEM_WALL_PLANE)
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: until_density needs a plane wall (a punch)", wall, st);
     }
     return 0;
 }
@@ -415,6 +429,8 @@ static int stages_advance(dem_sim *s, wall_read *wr)
                                 (p[2] - p0[2]) * (p[2] - p0[2]));
                 done = d >= g->until_distance;
             }
+            if (!done && ran > 0 && g->until_density > 0)
+                done = sim_relative_density(s, k) >= g->until_density;
             if (!done && ran > 0 && g->until_force > 0) { /* the force the particles exerted in the step before */
                 double fn;
                 if (wall_normal_before(s, wr, k, &fn))

@@ -71,6 +71,9 @@ struct dem_sim {
     int stage_cur[DEM_MAX_WALLS];          /* each wall's current motion stage (nstages: past the last) */
     long stage_first[DEM_MAX_WALLS];       /* the step it began */
     double stage_from[DEM_MAX_WALLS][3];   /* the wall's position then [m] */
+    int density_die[DEM_MAX_WALLS];        /* until_density: the die (cylinder) and the facing punch of each wall with */
+    int density_other[DEM_MAX_WALLS];      /* such a stage (sim_validate), -1 for the others */
+    double particle_volume;                /* sum of 4/3 pi r^3 [m^3] (sim_validate) */
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;
     char err[4096];
@@ -96,6 +99,7 @@ int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
 int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that ends at a force (both read every step's) */
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
+double sim_relative_density(const dem_sim *s, int k); /* punch k's relative density now (dem_stage.until_density) */
 /* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
  * checkpoint written before stages could end early). */
 void sim_stages_from_step(dem_sim *s);

@@ -199,6 +199,33 @@ int sim_validate(dem_sim *s)
     }
     if (s->nwalls && !(s->effects & DEM_EFFECT_WALLS))
         return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
+    s->particle_volume = 0;
+    for (int i = 0; i < s->n; i++)
+        s->particle_volume += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
+    for (int k = 0; k < s->nwalls; k++) { /* until_density: the die and the punch facing this one */
+        const dem_wall *w = &s->walls[k];
+        int wants = 0;
+        for (int st = 0; st < w->nstages; st++)
+            wants |= w->stages[st].until_density > 0;
+        s->density_die[k] = s->density_other[k] = -1;
+        if (!wants)
+            continue;
+        double best = INFINITY;
+        for (int j = 0; j < s->nwalls; j++) {
+            const dem_wall *o = &s->walls[j];
+            double c = o->normal[0] * w->normal[0] + o->normal[1] * w->normal[1] + o->normal[2] * w->normal[2];
+            double h = (o->point[0] - w->point[0]) * w->normal[0] + (o->point[1] - w->point[1]) * w->normal[1] +
+                       (o->point[2] - w->point[2]) * w->normal[2];
+            if (o->kind == DEM_WALL_CYLINDER && fabs(c) > 1 - 1e-9 && s->density_die[k] < 0)
+                s->density_die[k] = j;
+            if (j != k && o->kind == DEM_WALL_PLANE && c < -(1 - 1e-9) && h > 0 && h < best)
+                best = h, s->density_other[k] = j;
+        }
+        if (s->density_die[k] < 0 || s->density_other[k] < 0)
+            return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density (until_density), which needs "
+                            "a die (a cylinder wall along its normal) and a punch facing it on the particles' side: "
+                            "found %s", k, s->density_die[k] < 0 ? "no such cylinder" : "no facing plane wall");
+    }
     if (s->nsprings && !(s->effects & DEM_EFFECT_SPRINGS))
         return sim_fail(s, DEM_ERR_ARG, "%d springs are defined but the effect 'springs' is off", s->nsprings);
     if (s->nhinges && !(s->effects & DEM_EFFECT_BENDING))

@@ -60,11 +60,17 @@ typedef struct {
     double max_speed;   /* [m/s] */
     /* A stage may end before its duration (0: not this way; `duration` stays its longest): after the first step in
      * which the normal force the particles exerted on the wall reached until_force [N] (plane walls; a press stage
-     * "down until 5 kN"), or in which the wall got until_distance [m] or farther from where the stage began. The
-     * next stage begins with the next step. Checked on the host, from the device's wall force and the host's wall
-     * positions, so every backend ends a stage at the same step; the stage state is part of dem_state. */
+     * "down until 5 kN"), or in which the wall got until_distance [m] or farther from where the stage began, or
+     * after which the relative density reached until_density: the particles' volume (4/3 pi r^3 each, overlaps
+     * counted twice, as a press reports it) over the die's bore between this wall and the one facing it. For that
+     * the wall is a plane (a punch), the die the first cylinder wall whose axis is parallel to its normal, and the
+     * other punch the nearest plane wall facing it along that axis, on the particles' side (dem_start refuses a
+     * set-up without them). The next stage begins with the next step. Checked on the host, from the device's wall
+     * force and the host's wall positions, so every backend ends a stage at the same step; the stage state is part
+     * of dem_state. */
     double until_force;
     double until_distance;
+    double until_density;
 } dem_stage;
 
 typedef enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 } dem_wall_kind;

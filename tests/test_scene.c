@@ -325,6 +325,10 @@ static void test_membrane_scene(void **st)
          "bad.yaml:22: walls[1].motion[0]: give until_force [N] or until_stress [Pa] x area [m^2], not both"},
         {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_distance: -1}/",
          "bad.yaml:22: walls[1].motion[0].until_distance: must be > 0 and finite"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_density: 1.5}/",
+         "bad.yaml:22: walls[1].motion[0].until_density: a relative density in (0, 1]"},
+        {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_density: 0.5}/",
+         "a stage ends at a relative density (until_density), which needs a die (a cylinder wall along its normal)"},
     };
     for (size_t k = 0; k < sizeof servo / sizeof servo[0]; k++)
         bad_in("tests/scenes/restart_box.yaml", servo[k][0], servo[k][1]);

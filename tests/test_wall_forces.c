@@ -240,6 +240,78 @@ static void test_stage_ends(void **st)
     dem_destroy(s);
 }
 
+/* A stage that ends at a relative density (dem_stage.until_density): five spheres (r 1 mm) on the floor of a die
+ * (R 3 mm), the punch coming down from 10 mm at 1 m/s until their volume fills 20 % of the bore below it; it must stop
+ * after the first step at which the density it sees reached 0.2 (computed here from the positions), before touching
+ * a sphere, at the same step on every backend. */
+#define DENS_R 0.003
+static dem_sim *build_density(void *ctx)
+{
+    int with_die = ctx ? *(int *)ctx : 1;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    for (int k = 0; k < 5; k++)
+        dem_add_particle(s, (double[3]){0.0018 * cos(1.2566 * k), 0.0018 * sin(1.2566 * k), 0.00101}, NULL, 0.001,
+                         m);
+    if (with_die)
+        dem_add_wall(s, &(dem_wall){DEM_WALL_CYLINDER, m, {0, 0, 0}, {0, 0, 1}, DENS_R});
+    dem_add_wall(s, &(dem_wall){DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}});
+    dem_wall punch = {DEM_WALL_PLANE, m, {0, 0, 0.01}, {0, 0, -1}, 0, 2, {{0}}};
+    punch.stages[0] = (dem_stage){.duration = 0.01, .velocity = {0, 0, -1}, .until_density = 0.2};
+    punch.stages[1] = (dem_stage){.duration = 0.001};
+    assert_true(dem_add_wall(s, &punch) >= 0);
+    dem_set_domain(s, (double[3]){-0.005, -0.005, -0.001}, (double[3]){0.005, 0.005, 0.011});
+    dem_set_dt(s, 1e-6);
+    return s;
+}
+
+static void check_density(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    double vs = 5 * 4.0 / 3.0 * M_PI * 1e-9, z = 0.01, p[3];
+    long want = -1;
+    for (long k = 1; want < 0; k++) { /* the first step after which the punch sees 0.2 */
+        z = 0.01 - (double)k * 1e-6;
+        if (vs / (M_PI * DENS_R * DENS_R * z) >= 0.2)
+            want = k;
+    }
+    step_or_fail(s, 9000);
+    dem_wall_position(s, 2, p);
+    printf("  %s: the punch stopped at %.9f m (relative density %.5f), the first step at 0.2 is %ld (%.9f m)\n",
+           bc->name, p[2], vs / (M_PI * DENS_R * DENS_R * p[2]), want, z);
+    assert_true(fabs(p[2] - z) < 1e-12);
+    assert_true(p[2] > 0.002); /* above the spheres: geometry alone ended it */
+}
+
+static void test_stage_ends_density(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    backend_run(bc, build_density, 0, check_density, NULL);
+    FOR_EACH_BACKEND(bc)
+    { /* a restart in the middle of the density-ended stage, and one after it ended */
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        for (long at = 6000; at <= 6400; at += 400) {
+            dem_sim *a = build_density(NULL), *b = build_density(NULL);
+            restart_check(a, b, &c, at, 600, bc->name);
+            dem_destroy(a);
+            dem_destroy(b);
+        }
+    }
+    int no_die = 0; /* no die: refused at the start, naming what is missing */
+    dem_sim *s = build_density(&no_die);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    assert_int_equal(dem_start(s, &c), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "until_density"));
+    assert_non_null(strstr(dem_error(s), "no such cylinder"));
+    dem_destroy(s);
+    s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{.duration = 1e-3, .until_density = 1.5}}};
+    assert_int_equal(dem_add_wall(s, &pl), -1);
+    assert_non_null(strstr(dem_error(s), "until_density is a relative density in [0, 1]"));
+    dem_destroy(s);
+}
+
 /* The walls' sums two ways: a run that keeps each particle's wall forces (dem_config.contacts: the sums add what
  * contact_forces kept) and one that does not (the sums evaluate the wall contacts again, before contact_forces).
  * Same bits, every backend and precision and contact model (MC-stress and MC-strain feed the wall law their own
@@ -381,6 +453,7 @@ static void test_finite_die(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
+                                       cmocka_unit_test(test_stage_ends_density),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
