@@ -204,8 +204,8 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
  * radius): the glass die (gamma 4.5, nu 0.24: delta_1 1.42 %) reaches a mean of 2.4 % and rings - the kinetic energy
  * 26x the classical run's as the piston turns - and is smooth iterated (1.05x); the 514 hydrogels at 13.4 % strain
  * (gamma 1.12, nu 0.5: delta_1 15.7 %) reach 7 % and do not ring (0.8x); a compact of 300 spheres at relative
- * density 0.9 (gamma 1.12, nu 0.3: delta_1 21.4 %) reaches 22 % and rings (28x, a pair overlap passing the smaller
- * radius). dem check cannot know the mean overlap a scene will reach, so it warns when delta_1 is below
+ * density 0.9 (gamma 1.12, nu 0.3: delta_1 21.4 %) reaches 22 % and rings (kinetic energy 28x at 0.9, a pair overlap
+ * passing the smaller radius). dem check cannot know the mean overlap a scene will reach, so it warns when delta_1 is below
  * MC_LAG_WARN_OVERLAP of a radius, the mean a compaction to relative density 0.9 reaches; the real network's gain
  * differs (its geometric factors vary and partly cancel): a rule of thumb that separates the runs we measured. */
 #define MC_LAG_CONTACTS 6
@@ -322,6 +322,7 @@ typedef struct {
     char err[8192];
     dem_sample rows[RUN_SAMPLE_CHUNK]; /* the samples of one stretch */
     unsigned char want[RUN_STRETCH];   /* which of its steps are sampled */
+    overlap_watch ov;                  /* the overlaps at the frames (not with membranes: run_overlap.c) */
 } run_ctx;
 
 /* 1. The scene, from its file or from the checkpoint restarted from, built into a simulation (not started). */
@@ -509,8 +510,11 @@ static int phase_steps(run_ctx *c)
         st = dem_step_index(s);
         int io = 0;
         errno = 0;
-        if (st % run->frame_every == 0 || st == end)
+        if (st % run->frame_every == 0 || st == end) {
             io |= output_frame(c->out, s);
+            if (!c->sc->f->membranes_count)
+                overlap_watch_sample(&c->ov, s);
+        }
         for (long k = 0; !io && k < nrows; k++) {
             long t = c->rows[k].step, at = row_step(run, t, end);
             output_row_of(&c->rows[k], run, nw, &row);
@@ -608,6 +612,7 @@ static void phase_report(run_ctx *c)
                                   : "it had not settled: a longer stage, or a higher gain within gain x stiffness x dt "
                                     "< 1 (docs/scenes.md)");
     }
+    overlap_watch_report(&c->ov, c->sc, run, c->o->progress != 0 || c->show);
     if (iterated && mc.unconverged > 0)
         fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "
                         "every contact force settled to mc_tolerance %g; the series mc_capped counts them. Raise "
@@ -636,6 +641,7 @@ int run_scene(const run_opts *o)
     scene_free(c->sc);
     if (c->have_ck)
         checkpoint_free(&c->ck);
+    overlap_watch_free(&c->ov);
     free(c);
     return code;
 }

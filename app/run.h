@@ -25,14 +25,29 @@ int run_scene(const run_opts *o);
  * always, a warning on stderr when a contact spans fewer than DEM_MIN_STEPS_PER_CONTACT steps (`dem run` asks for it
  * unless --quiet). */
 void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
-/* the same for the particles' order in memory (dem_order_scatter) */
 /* Lagged MC-strain: the mean overlap / radius at which its loop gain reaches 1 for a material (INFINITY for gamma 0),
  * and the advice: a warning on stderr where that overlap is one compactions reach; info: a line for dem check */
 double run_mc_lag_overlap(double gamma, double nu);
 void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int info, FILE *out);
+/* the same for the particles' order in memory (dem_order_scatter) */
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* the same for the precision's position resolution far from the origin (dem_position_resolution) */
 void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info, FILE *out);
+
+/* The overlaps of a run, measured at its frames (run_overlap.c): the largest pair overlap / smaller radius and the
+ * largest mean over the touching pairs, with when; reported at the end with a warning where the contact model was
+ * used beyond its range. */
+typedef struct {
+    int sampled;
+    double largest, largest_t, mean, mean_t;
+    int largest_i, largest_j;
+    int *list, *count;
+    double *x;
+    size_t cap;
+} overlap_watch;
+void overlap_watch_sample(overlap_watch *w, dem_sim *s);
+void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_run *run, int info);
+void overlap_watch_free(overlap_watch *w);
 
 /* Buffer length for the paths run_output_paths returns (DEM_MAX_PATH characters and more), and for the names
  * derived from them. */

@@ -316,7 +316,7 @@ static int until_stage(const scene *sc, const char *base, const scene_stage *g, 
     if (has[4] && !(g->until_density > 0 && g->until_density <= 1)) {
         snprintf(p, sizeof p, "%s.until_density", base);
         return scene_fail(sc, err, errlen, p, "a relative density in (0, 1]: the spheres' volume over the die's "
-                                              "between the punches");
+                                              "bore between the punches");
     }
     st->until_density = has[4] ? g->until_density : 0;
     st->until_force = has[0] ? g->until_force : has[1] ? g->until_stress * g->area : 0;

@@ -180,6 +180,8 @@ static result head_on(const setting *st, double e)
     double tc0 = 2.868 * pow(ms * ms / (rs * es * es * vr), 0.2);
     double d0 = pow(15 * ms * vr * vr / (16 * es * sqrt(rs)), 0.4);
     double f0 = 4.0 / 3.0 * es * sqrt(rs) * d0 * sqrt(d0);
+    if (!isfinite(tc))
+        die("head_on", "the spheres did not separate");
     res.parts[0] = fabs(dmax / d0 - 1), res.parts[1] = fabs(fmax_ / f0 - 1), res.parts[2] = fabs(tc / tc0 - 1);
     res.err = fmax(res.parts[0], fmax(res.parts[1], res.parts[2]));
     res.value = tc;
@@ -258,7 +260,8 @@ static result compression(const char *path, const setting *st, int cap, long lim
     }
     int p = run.piston;
     dem_wall w;
-    dem_wall_get(s, p, &w);
+    if (p < 0 || dem_wall_get(s, p, &w))
+        die(path, "the scene names no piston (sample.piston)");
     long end = 0;
     double travel = 0;
     for (int k = 0; k < w.nstages; k++) {
@@ -323,10 +326,12 @@ static result membrane(const char *model, double edge, double dtf)
     static char text[16384], out[20000];
     size_t n = fread(text, 1, sizeof text - 1, f);
     fclose(f);
+    if (n == sizeof text - 1)
+        die(path, "longer than this driver reads");
     text[n] = 0;
     int particle = !strcmp(model, "particle");
     double vr = 0.624 * edge;
-    struct { const char *from; char to[160]; } subs[4];
+    struct { const char *from; char to[160]; int hits; } subs[4] = {{0}};
     snprintf(subs[0].to, sizeof subs[0].to, "radius: %.6g, height: 0.0518044, edge: %.6g}", particle ? 0.012 + vr : 0.012,
              edge);
     subs[0].from = "radius: 0.012, height: 0.0518044, edge: 0.004}";
@@ -345,14 +350,21 @@ static result membrane(const char *model, double edge, double dtf)
         for (k = 0; k < 4; k++)
             if (!strncmp(p, subs[k].from, strlen(subs[k].from)))
                 break;
-        if (k < 4) {
-            o += (size_t)snprintf(out + o, sizeof out - o, "%s", subs[k].to);
-            p += strlen(subs[k].from);
-        } else {
-            out[o++] = *p++;
-        }
+        const char *piece = k < 4 ? subs[k].to : p;
+        size_t len = k < 4 ? strlen(subs[k].to) : 1;
+        if (o + len >= sizeof out)
+            die(path, "the edited scene does not fit this driver's buffer");
+        memcpy(out + o, piece, len);
+        o += len;
+        if (k < 4)
+            p += strlen(subs[k].from), subs[k].hits++;
+        else
+            p++;
     }
     out[o] = 0;
+    for (int k = 0; k < 4; k++) /* the scene must still read as this driver expects, or every run would be one */
+        if (subs[k].hits != 1)
+            die(path, "the scene changed: a setting this driver edits is not there exactly once");
     char err[2048];
     scene *sc = scene_load_text(path, out, o, err, sizeof err);
     if (!sc)
@@ -404,7 +416,8 @@ static void emit(const char *cas, const setting *st, const result *r, const char
 int main(int argc, char **argv)
 {
     if (argc != 2) {
-        fprintf(stderr, "usage: dem-accuracy OUT.csv   (ACCURACY_QUICK=1: the short matrix)\n");
+        fprintf(stderr, "usage: dem-accuracy OUT.csv   (ACCURACY_QUICK=1: the short matrix; ACCURACY_ONLY=binary,rubber,"
+                        "hydrogel,membrane,skin: those groups; ACCURACY_BACKEND=opencl|reference)\n");
         return 2;
     }
     const char *b = getenv("ACCURACY_BACKEND");

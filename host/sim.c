@@ -395,9 +395,9 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
 }
 
 /* Each wall's stage for the step about to be taken: the next one once the current one has run its duration, or once
- * its end condition held after the step before (dem_stage.until_force, until_distance); a stage of no steps is
- * passed at once. Decided on the host from the device's wall force and the host's positions: the same step on
- * every backend. */
+ * its end condition held after the step before (dem_stage.until_force, until_distance, until_density); a stage of
+ * no steps is passed at once. Decided on the host from the device's wall force and the host's positions: the same
+ * step on every backend. */
 /* The normal force the particles exerted on plane wall k in the step before (pushing it back along -normal counts
  * positive), from one read of the device's wall forces per step, shared by the stage ends and the servos below. */
 typedef struct {

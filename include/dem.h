@@ -61,7 +61,7 @@ typedef struct {
     /* A stage may end before its duration (0: not this way; `duration` stays its longest): after the first step in
      * which the normal force the particles exerted on the wall reached until_force [N] (plane walls; a press stage
      * "down until 5 kN"), or in which the wall got until_distance [m] or farther from where the stage began, or
-     * after which the relative density reached until_density: the particles' volume (4/3 pi r^3 each, overlaps
+     * after which the relative density reached until_density (in [0, 1], 0 off): the particles' volume (4/3 pi r^3 each, overlaps
      * counted twice, as a press reports it) over the die's bore between this wall and the one facing it. For that
      * the wall is a plane (a punch), the die the first cylinder wall whose axis is parallel to its normal, and the
      * other punch the nearest plane wall facing it along that axis, on the particles' side (dem_start refuses a

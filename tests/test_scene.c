@@ -595,6 +595,53 @@ static void test_triaxial_fp32_bitwise(void **st)
 /* A servo stage's report (dem_servo_stats): tests/scenes/servo_lid.yaml holds a lid at 100 kPa on 200 grains. At its
  * gain (2e-3 m/(s N)) the run reports the force held over the stage's last tenth within 0.1 % of the target and no
  * chatter; at 50 times the gain the force error reverses nearly every step and the run warns, under --quiet too. */
+/* The overlaps a run reached, against the model's range (app/run_overlap.c): the 514 hydrogels compressed to 13.4 %
+ * (settling and compression only) reach 19 % of a radius - beyond Hertz's 10 %, within the multi-contact models'
+ * 25 % - and a mean of 7 %, below where lagged MC-strain rings on them (15.7 %); 300 soft spheres pressed to a
+ * relative density of 0.97 (test_stability.c's compaction scene, further) pass both under lagged MC-strain: a mean of
+ * 26 %, a pair at 122 %. */
+static void test_overlap_report(void **st)
+{
+    (void)st;
+    char err[16384];
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/duration: 2.65 .*/duration: 1.33/' -e 's|csv: data/|csv: %s/scenes/"
+                                          "data/|' %s/scenes/hydrogel_514.yaml > %s/h13.yaml", SRC, SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/h13.yaml -o %s/h13.h5 --progress", DEM, tmp, tmp), 0);
+    const char *line = strstr(err, "dem: overlaps at the frames: largest ");
+    double largest, mean;
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "dem: overlaps at the frames: largest %lf %% of the smaller radius (t = %*f s, "
+                                  "particles %*d and %*d), largest mean over the touching pairs %lf", &largest, &mean), 2);
+    printf("  514 hydrogels to 13.4 %%, classical: largest overlap %.3g %%, mean %.3g %%\n", largest, mean);
+    assert_true(largest > 15 && largest < 25 && mean > 5 && mean < 10);
+    assert_non_null(strstr(err, "beyond the 10 % within which Hertz's small-strain law holds"));
+    assert_int_equal(sh(err, sizeof err, "%s run %s/h13.yaml -o %s/h13.h5 --quiet --model mc_strain", DEM, tmp, tmp), 0);
+    assert_null(strstr(err, "warning")); /* within 25 %, and a mean below 15.7 % */
+    static const char press[] =
+        "name: press to 0.97\\n"
+        "effects: [hertz, damping, friction, walls]\\n"
+        "materials:\\n"
+        "  - {name: powder, density: 1500, young: 5.0e6, poisson: 0.3, restitution: 0.2, friction: 0.3, beta: 1.65, "
+        "gamma: 1.12}\\n"
+        "  - {name: steel, density: 7800, young: 2.0e11, poisson: 0.3, restitution: 0.5, friction: 0.3}\\n"
+        "particles:\\n"
+        "  - material: powder\\n"
+        "    generate: {kind: random, shape: cylinder, region: {base: [0, 0, 0], axis: [0, 0, 1], radius: 0.003, "
+        "height: 0.006}, radius_min: 0.0003, radius_max: 0.0004, count: 300, seed: 5}\\n"
+        "walls:\\n"
+        "  - {type: cylinder, material: steel, point: [0, 0, -0.001], axis: [0, 0, 1], radius: 0.003}\\n"
+        "  - {type: plane, material: steel, point: [0, 0, 0], normal: [0, 0, 1]}\\n"
+        "  - {type: plane, material: steel, point: [0, 0, 0.006], normal: [0, 0, -1], "
+        "motion: [{velocity: [0, 0, -0.1], duration: 0.06, until_density: 0.97}]}\\n"
+        "domain: {lo: [-0.004, -0.004, -0.001], hi: [0.004, 0.004, 0.007]}\\n"
+        "time: {dt_rayleigh: 0.2, duration: 0.042}\\n"
+        "output: {frame_every: 0.001, series_every: 0.001}\\n";
+    assert_int_equal(sh(err, sizeof err, "printf '%s' > %s/press.yaml && %s run %s/press.yaml -o %s/press.h5 --quiet "
+                                          "--model mc_strain", press, tmp, DEM, tmp, tmp), 0);
+    assert_non_null(strstr(err, "past the 21.4 % at which lagged MC-strain's loop gain reaches 1"));
+    assert_non_null(strstr(err, "beyond the 25 % up to which seed 000 validates the multi-contact models"));
+}
+
 static void test_servo_report(void **st)
 {
     (void)st;
@@ -1446,6 +1493,7 @@ int main(void)
         cmocka_unit_test(test_triaxial_small),
         cmocka_unit_test(test_triaxial_fp32_bitwise),
         cmocka_unit_test(test_servo_report),
+        cmocka_unit_test(test_overlap_report),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,0 +1,110 @@
+/* run_overlap.c - how deep the particles went into each other during a run, and whether that is beyond what the
+ * contact model is valid for (issue 12, item 5; issue 13, hard cases 6 and 7).
+ *
+ * At every frame `dem run` measures, over the particle pairs of the neighbour rows, the largest overlap / the
+ * smaller radius and the mean over the touching pairs, keeps the largest of each with when they happened, reports
+ * them at the end, and warns where a model was used beyond its range:
+ *   - classical Hertz-Mindlin beyond RUN_HERTZ_RANGE (10 %) of a radius: Hertz's law is a small-strain law (its
+ *     contact radius sqrt(r* delta) small against r; at 10 % it is a third of the smaller radius between like
+ *     spheres); dense compaction is what seed 000's multi-contact models are for;
+ *   - MC-stress and MC-strain beyond RUN_MC_RANGE (25 %): seed 000 validates them up to d/r = 0.4 between plates (20 %
+ *     at each contact) and in packings whose largest overlap reaches 19.5 % (the 514 hydrogels at 13.4 % strain);
+ *   - lagged MC-strain once the mean overlap passed the overlap at which its loop gain reaches 1 for a material of
+ *     the run (run_mc_lag_overlap; the smallest over the materials with gamma > 0): it rings there.
+ * Scenes with membranes are left out (their vertex spheres overlap each other by design, seed 001's MSS_particle). */
+#include "run.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define RUN_HERTZ_RANGE 0.10
+#define RUN_MC_RANGE 0.25
+
+void overlap_watch_sample(overlap_watch *w, dem_sim *s)
+{
+    int n = dem_count(s), maxn = dem_neighbor_capacity(s);
+    if (n < 2 || maxn <= 0)
+        return;
+    size_t need = (size_t)n * (size_t)maxn;
+    if (need > w->cap) {
+        int *l = realloc(w->list, need * sizeof(int));
+        double *x = realloc(w->x, 3 * (size_t)n * sizeof(double));
+        int *c = realloc(w->count, (size_t)n * sizeof(int));
+        if (l)
+            w->list = l;
+        if (x)
+            w->x = x;
+        if (c)
+            w->count = c;
+        if (!l || !x || !c)
+            return; /* out of host memory: this frame is not measured */
+        w->cap = need;
+    }
+    if (dem_get_raw(s, DEM_FIELD_NBR_COUNT, w->count, (size_t)n * sizeof(int)) ||
+        dem_get_raw(s, DEM_FIELD_NBR_LIST, w->list, need * sizeof(int)) || dem_get_field(s, DEM_FIELD_X, w->x))
+        return;
+    double worst = 0, sum = 0;
+    long touching = 0;
+    int wi = -1, wj = -1;
+    for (int i = 0; i < n; i++) {
+        double ri = dem_particle_radius(s, i);
+        for (int k = 0; k < w->count[i] && k < maxn; k++) {
+            int j = w->list[(size_t)i * (size_t)maxn + (size_t)k];
+            if (j <= i || j >= n)
+                continue;
+            double rj = dem_particle_radius(s, j), d[3];
+            for (int q = 0; q < 3; q++)
+                d[q] = w->x[3 * j + q] - w->x[3 * i + q];
+            double ov = (ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / (ri < rj ? ri : rj);
+            if (ov > 0) {
+                sum += ov, touching++;
+                if (ov > worst)
+                    worst = ov, wi = i, wj = j;
+            }
+        }
+    }
+    double mean = touching ? sum / touching : 0;
+    w->sampled = 1;
+    if (worst > w->largest)
+        w->largest = worst, w->largest_t = dem_time(s), w->largest_i = wi, w->largest_j = wj;
+    if (mean > w->mean)
+        w->mean = mean, w->mean_t = dem_time(s);
+}
+
+void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_run *run, int info)
+{
+    if (!w->sampled)
+        return;
+    if (info)
+        fprintf(stderr, "dem: overlaps at the frames: largest %.3g %% of the smaller radius (t = %.6g s, particles %d "
+                        "and %d), largest mean over the touching pairs %.3g %% (t = %.6g s)\n", 100 * w->largest,
+                w->largest_t, w->largest_i, w->largest_j, 100 * w->mean, w->mean_t);
+    int mc = (run->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN)) != 0;
+    double range = mc ? RUN_MC_RANGE : RUN_HERTZ_RANGE;
+    if (w->largest > range)
+        fprintf(stderr, "dem: warning: %s: particles overlapped by up to %.3g %% of the smaller radius (t = %.6g s), "
+                        "beyond the %.0f %% %s\n", sc->path, 100 * w->largest, w->largest_t, 100 * range,
+                mc ? "up to which seed 000 validates the multi-contact models (d/r = 0.4 between plates, 20 % at each "
+                     "contact): the results beyond are the model's extrapolation"
+                   : "within which Hertz's small-strain law holds (its contact radius small against the radius): "
+                     "for dense compaction use a multi-contact model (--model mc_stress or mc_strain_iterated)");
+    if ((run->effects & DEM_EFFECT_MC_STRAIN) && run->mc_cap == 0) {
+        double d1 = INFINITY;
+        for (unsigned q = 0; q < sc->f->materials_count; q++) {
+            double d = run_mc_lag_overlap(sc->f->materials[q].gamma, sc->f->materials[q].poisson);
+            d1 = d < d1 ? d : d1;
+        }
+        if (w->mean > d1)
+            fprintf(stderr, "dem: warning: %s: the contacts' mean overlap reached %.3g %% of a radius (t = %.6g s), "
+                            "past the %.3g %% at which lagged MC-strain's loop gain reaches 1: it rings there "
+                            "(docs/multicontact.md); iterate it (--model mc_strain_iterated)\n", sc->path,
+                    100 * w->mean, w->mean_t, 100 * d1);
+    }
+}
+
+void overlap_watch_free(overlap_watch *w)
+{
+    free(w->list);
+    free(w->x);
+    free(w->count);
+}
