@@ -108,6 +108,17 @@ static double rayleigh(dem_sim *s)
     return ts.rayleigh_time;
 }
 
+/* dt at the setting's fraction of the Rayleigh time, then dem_start; returns dt */
+static double start_at(dem_sim *s, const setting *st, const char *what)
+{
+    double dt = st->dtf * rayleigh(s);
+    dem_set_dt(s, dt);
+    dem_config c = config_of(st);
+    if (dem_start(s, &c))
+        die(what, dem_error(s));
+    return dt;
+}
+
 static void step(dem_sim *s, long n, double *secs)
 {
     double t0 = now();
@@ -139,11 +150,7 @@ static result head_on(const setting *st, double e)
     dem_add_particle(s, (double[3]){r, 0, 0}, (double[3]){-v, 0, 0}, r, m);
     dem_set_domain(s, (double[3]){-8 * r, -8 * r, -8 * r}, (double[3]){8 * r, 8 * r, 8 * r});
     dem_set_effects(s, e < 1 ? DEM_EFFECT_HERTZ | DEM_EFFECT_DAMPING : DEM_EFFECT_HERTZ);
-    double dt = st->dtf * rayleigh(s);
-    dem_set_dt(s, dt);
-    dem_config c = config_of(st);
-    if (dem_start(s, &c))
-        die("head_on start", dem_error(s));
+    double dt = start_at(s, st, "head_on start");
     result res = {0};
     double hist_d[3] = {0}, hist_f[3] = {0}, dmax = 0, fmax_ = 0, gap_prev = 0, tc = NAN;
     long k;
@@ -202,11 +209,7 @@ static result oblique(const setting *st)
     dem_add_wall(s, &w);
     dem_set_domain(s, (double[3]){-0.05, -0.05, -0.01}, (double[3]){0.05, 0.05, 0.05});
     dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_WALLS);
-    double dt = st->dtf * rayleigh(s);
-    dem_set_dt(s, dt);
-    dem_config c = config_of(st);
-    if (dem_start(s, &c))
-        die("oblique start", dem_error(s));
+    start_at(s, st, "oblique start");
     result res = {0};
     long k;
     for (k = 1; k < 100000; k++) {
