@@ -705,6 +705,24 @@ static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *
     return 0;
 }
 
+/* A punch stage that ends at a relative density needs a die and a facing punch (dem_density_walls): refused here,
+ * at the stage's line, rather than by dem_start with the library's wall numbers. */
+static int check_density_walls(const scene *sc, dem_sim *s, const int *first_wall, char *err, size_t errlen)
+{
+    for (unsigned k = 0; k < sc->f->walls_count; k++)
+        for (unsigned q = 0; q < sc->f->walls[k].motion_count; q++) {
+            char p[128];
+            snprintf(p, sizeof p, "walls[%u].motion[%u].until_density", k, q);
+            int die, other;
+            if (!scene_has(sc->loc, p) || !dem_density_walls(s, first_wall[k], &die, &other))
+                continue;
+            return scene_fail(sc, err, errlen, p, "needs the die (a cylinder wall along this punch's normal) and a "
+                              "punch facing it on the particles' side: %s", die < 0 ? "no such cylinder"
+                                                                                   : "no facing plane wall");
+        }
+    return 0;
+}
+
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
     memset(run, 0, sizeof *run);
@@ -717,7 +735,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
     }
     if (parse_effects(sc, run, err, errlen) || parse_materials(sc, s, err, errlen) ||
         scene_add_particles(sc, s, &origin, run->fill, sizeof run->fill, err, errlen) || (nspheres = dem_count(s), 0) ||
-        parse_walls(sc, s, run, first_wall, err, errlen) ||
+        parse_walls(sc, s, run, first_wall, err, errlen) || check_density_walls(sc, s, first_wall, err, errlen) ||
         scene_add_membranes(sc, s, run, first_wall, err, errlen) ||
         (run->effects |= dem_effects(s) & DEM_EFFECT_CONSTRAINTS, 0) ||
         parse_run_options(sc, s, run, err, errlen) || parse_time(sc, s, run, err, errlen) ||

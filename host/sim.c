@@ -355,6 +355,26 @@ int dem_set_particle_omega(dem_sim *s, int id, const double w[3])
     return 0;
 }
 
+int dem_density_walls(const dem_sim *s, int wall, int *die, int *other)
+{
+    *die = *other = -1;
+    if (wall < 0 || wall >= s->nwalls || s->walls[wall].kind != DEM_WALL_PLANE)
+        return DEM_ERR_ARG;
+    const dem_wall *w = &s->walls[wall];
+    double best = INFINITY;
+    for (int j = 0; j < s->nwalls; j++) {
+        const dem_wall *o = &s->walls[j];
+        double c = o->normal[0] * w->normal[0] + o->normal[1] * w->normal[1] + o->normal[2] * w->normal[2];
+        double h = (o->point[0] - w->point[0]) * w->normal[0] + (o->point[1] - w->point[1]) * w->normal[1] +
+                   (o->point[2] - w->point[2]) * w->normal[2];
+        if (o->kind == DEM_WALL_CYLINDER && fabs(c) > 1 - 1e-9 && *die < 0)
+            *die = j;
+        if (j != wall && o->kind == DEM_WALL_PLANE && c < -(1 - 1e-9) && h > 0 && h < best)
+            best = h, *other = j;
+    }
+    return *die >= 0 && *other >= 0 ? DEM_OK : DEM_ERR_ARG;
+}
+
 /* The relative density seen by punch k (dem_stage.until_density): the particles' volume over the die's bore between
  * k and the punch facing it, at their positions now; INFINITY once the punches meet. */
 double sim_relative_density(const dem_sim *s, int k)

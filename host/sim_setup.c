@@ -208,20 +208,7 @@ int sim_validate(dem_sim *s)
         for (int st = 0; st < w->nstages; st++)
             wants |= w->stages[st].until_density > 0;
         s->density_die[k] = s->density_other[k] = -1;
-        if (!wants)
-            continue;
-        double best = INFINITY;
-        for (int j = 0; j < s->nwalls; j++) {
-            const dem_wall *o = &s->walls[j];
-            double c = o->normal[0] * w->normal[0] + o->normal[1] * w->normal[1] + o->normal[2] * w->normal[2];
-            double h = (o->point[0] - w->point[0]) * w->normal[0] + (o->point[1] - w->point[1]) * w->normal[1] +
-                       (o->point[2] - w->point[2]) * w->normal[2];
-            if (o->kind == DEM_WALL_CYLINDER && fabs(c) > 1 - 1e-9 && s->density_die[k] < 0)
-                s->density_die[k] = j;
-            if (j != k && o->kind == DEM_WALL_PLANE && c < -(1 - 1e-9) && h > 0 && h < best)
-                best = h, s->density_other[k] = j;
-        }
-        if (s->density_die[k] < 0 || s->density_other[k] < 0)
+        if (wants && dem_density_walls(s, k, &s->density_die[k], &s->density_other[k]))
             return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density (until_density), which needs "
                             "a die (a cylinder wall along its normal) and a punch facing it on the particles' side: "
                             "found %s", k, s->density_die[k] < 0 ? "no such cylinder" : "no facing plane wall");

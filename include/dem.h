@@ -426,6 +426,10 @@ int dem_wall_force(dem_sim *s, int wall, double f[3]);     /* force the wall rec
 int dem_wall_normal_force(dem_sim *s, int wall, double *fn);
 int dem_wall_position(const dem_sim *s, int wall, double p[3]);
 int dem_wall_get(const dem_sim *s, int wall, dem_wall *w); /* the wall as added (its normal or axis normalised) */
+/* For a punch (plane wall): the die (the first cylinder wall whose axis is parallel to its normal) and the punch facing
+ * it (the nearest plane wall with the opposite normal, on the particles' side) that dem_stage.until_density measures
+ * between; -1 where there is none (then DEM_ERR_ARG). Valid as soon as the walls are added. */
+int dem_density_walls(const dem_sim *s, int wall, int *die, int *other);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* What a time-series row needs: the energies and contact counts (as dem_energy defines them) and every wall's force
  * and position, with the step, its time and the MC-strain iteration counts, all as they were after that step. */

@@ -328,7 +328,8 @@ static void test_membrane_scene(void **st)
         {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_density: 1.5}/",
          "bad.yaml:22: walls[1].motion[0].until_density: a relative density in (0, 1]"},
         {"s/{velocity: \\[0, 0, -0.3\\], duration: 0.03}/{velocity: [0, 0, -0.3], duration: 0.03, until_density: 0.5}/",
-         "a stage ends at a relative density (until_density), which needs a die (a cylinder wall along its normal)"},
+         "bad.yaml:22: walls[1].motion[0].until_density: needs the die (a cylinder wall along this punch's normal) and "
+         "a punch facing it on the particles' side: no such cylinder"},
     };
     for (size_t k = 0; k < sizeof servo / sizeof servo[0]; k++)
         bad_in("tests/scenes/restart_box.yaml", servo[k][0], servo[k][1]);
@@ -640,6 +641,9 @@ static void test_overlap_report(void **st)
                                           "--model mc_strain", press, tmp, DEM, tmp, tmp), 0);
     assert_non_null(strstr(err, "past the 21.4 % at which lagged MC-strain's loop gain reaches 1"));
     assert_non_null(strstr(err, "beyond the 25 % up to which seed 000 validates the multi-contact models"));
+    assert_int_equal(sh(err, sizeof err, "%s check %s/press.yaml | grep -q \"press          punch 'walls\\[2\\]' faces "
+                                          "'walls\\[1\\]' in die 'walls\\[0\\]' (radius 0.003 m): relative density "
+                                          "0.32\"", DEM, tmp), 0);
 }
 
 static void test_servo_report(void **st)
