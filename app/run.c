@@ -183,8 +183,8 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
     }
     if (a.steps < DEM_MIN_STEPS_PER_CONTACT)
         fprintf(stderr, "dem: warning: %s: the shortest contact (%s, %.3g s at %.3g m/s) spans %.1f steps of dt; below %d "
-                        "a collision is resolved badly (a restitution comes out 0.5 %% off at 20 steps, 1 %% at 10, "
-                        "6 %% at 5): dt <= %.3g s would give %d\n",
+                        "a collision is resolved badly (a restitution of 0.7 comes out 0.5 %% off at 20 steps, 1 %% at 10, "
+                        "6 %% at 5; one of 0.5 1.4 %% at 16): dt <= %.3g s would give %d\n",
                 sc->path, which, a.contact_time, a.wall_time <= a.pair_time ? a.wall_speed : a.pair_speed, a.steps,
                 DEM_MIN_STEPS_PER_CONTACT, a.contact_time / DEM_MIN_STEPS_PER_CONTACT, DEM_MIN_STEPS_PER_CONTACT);
 }
