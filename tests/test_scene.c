@@ -1203,6 +1203,11 @@ static void test_dt_advice(void **st)
     assert_int_equal(sh(err, sizeof err, "%s check %s/scenes/two_spheres.yaml > %s/adv2.txt && grep -q "
                                           "'1899.6 steps of dt' %s/adv2.txt", DEM, SRC, tmp, tmp), 0);
     assert_null(strstr(err, "warning"));
+    /* a step near the bound: stable, not accurate (docs/accuracy.md); none at the recommended one */
+    assert_int_equal(sh(err, sizeof err, "{ ! grep -q 'above 0.35 x Rayleigh time' %s/adv.txt && sed 's/dt_rayleigh: 0.2/"
+                                          "dt_rayleigh: 0.45/' %s/tests/scenes/restart_box.yaml > %s/b45.yaml && %s check "
+                                          "%s/b45.yaml | grep -q 'above 0.35 x Rayleigh time: stable, but make accuracy "
+                                          "measured'; }", tmp, SRC, tmp, DEM, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/adv.h5 --progress --stop-after 2",
                         DEM, SRC, tmp), 0);
     assert_non_null(strstr(err, "dem: warning: "));
