@@ -625,6 +625,7 @@ int run_scene(const run_opts *o)
     run_ctx *c = calloc(1, sizeof *c);
     if (!c)
         return fail_with(EXIT_IO, "out of memory");
+    c->ov.largest_i = c->ov.largest_j = -1; /* no overlap seen yet */
     c->o = o;
     int code = phase_load(c);
     if (!code)

@@ -75,7 +75,9 @@ void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_r
 {
     if (!w->sampled)
         return;
-    if (info)
+    if (info && w->largest_i < 0)
+        fprintf(stderr, "dem: overlaps at the frames: no two particles overlapped\n");
+    else if (info)
         fprintf(stderr, "dem: overlaps at the frames: largest %.3g %% of the smaller radius (t = %.6g s, particles %d "
                         "and %d), largest mean over the touching pairs %.3g %% (t = %.6g s)\n", 100 * w->largest,
                 w->largest_t, w->largest_i, w->largest_j, 100 * w->mean, w->mean_t);
