@@ -89,27 +89,21 @@ static int check(const char *path, const char *model)
         printf("sample         piston = wall %d, height %.6g m, area %.6g m^2\n", run.piston, run.sample_height,
                run.sample_area);
     for (int k = 0; k < dem_wall_count(s); k++) { /* punches whose stages end at a relative density */
-        dem_wall w, dw, ow;
+        dem_wall w, dw;
         int die, other, wants = 0;
         dem_wall_get(s, k, &w);
         for (int st = 0; st < w.nstages; st++)
             wants |= w.stages[st].until_density > 0;
-        if (!wants || dem_density_walls(s, k, &die, &other))
+        double rho;
+        if (!wants || dem_density_walls(s, k, &die, &other) || dem_relative_density(s, k, &rho))
             continue;
         dem_wall_get(s, die, &dw);
-        dem_wall_get(s, other, &ow);
-        double vs = 0, h = 0;
-        for (int i = 0; i < n; i++)
-            vs += 4.0 / 3.0 * M_PI * pow(dem_particle_radius(s, i), 3);
-        for (int d = 0; d < 3; d++)
-            h += (ow.point[d] - w.point[d]) * w.normal[d];
         char a[1100], b[1100], cyl[1100];
         scene_wall_label(sc, k, a, sizeof a);
         scene_wall_label(sc, other, b, sizeof b);
         scene_wall_label(sc, die, cyl, sizeof cyl);
         printf("press          punch '%s' faces '%s' in die '%s' (radius %.4g m): relative density %.4g at the start "
-               "(the spheres' volume over the bore between them)\n", a, b, cyl, dw.radius,
-               vs / (M_PI * dw.radius * dw.radius * h));
+               "(the spheres' volume over the bore between them)\n", a, b, cyl, dw.radius, rho);
     }
     if (run.fill[0])
         printf("fill           %s\n", run.fill);

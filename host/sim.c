@@ -375,13 +375,34 @@ int dem_density_walls(const dem_sim *s, int wall, int *die, int *other)
     return *die >= 0 && *other >= 0 ? DEM_OK : DEM_ERR_ARG;
 }
 
-/* The relative density seen by punch k (dem_stage.until_density): the particles' volume over the die's bore between
- * k and the punch facing it, at their positions now; INFINITY once the punches meet. */
+/* The particles' volume vol over die's bore between punch k at a and the punch facing it at b; INFINITY once the
+ * punches meet. */
+static double bore_density(const dem_sim *s, int k, int die, const double a[3], const double b[3], double vol)
+{
+    const double *n = s->walls[k].normal;
+    double h = (b[0] - a[0]) * n[0] + (b[1] - a[1]) * n[1] + (b[2] - a[2]) * n[2], R = s->walls[die].radius;
+    return h > 0 ? vol / (M_PI * R * R * h) : INFINITY;
+}
+
+/* The relative density seen by punch k in a run (dem_stage.until_density), from the volume sim_validate summed. */
 double sim_relative_density(const dem_sim *s, int k)
 {
-    const double *n = s->walls[k].normal, *a = s->wall_pos[k], *b = s->wall_pos[s->density_other[k]];
-    double h = (b[0] - a[0]) * n[0] + (b[1] - a[1]) * n[1] + (b[2] - a[2]) * n[2], R = s->walls[s->density_die[k]].radius;
-    return h > 0 ? s->particle_volume / (M_PI * R * R * h) : INFINITY;
+    return bore_density(s, k, s->density_die[k], s->wall_pos[k], s->wall_pos[s->density_other[k]],
+                        s->particle_volume);
+}
+
+int dem_relative_density(const dem_sim *s, int wall, double *rho)
+{
+    int die, other, e = dem_density_walls(s, wall, &die, &other);
+    if (e)
+        return e;
+    double vol = 0, a[3], b[3];
+    for (int i = 0; i < s->n; i++)
+        vol += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
+    dem_wall_position(s, wall, a);
+    dem_wall_position(s, other, b);
+    *rho = bore_density(s, wall, die, a, b, vol);
+    return DEM_OK;
 }
 
 static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, const dem_stage *stages)

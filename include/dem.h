@@ -430,6 +430,9 @@ int dem_wall_get(const dem_sim *s, int wall, dem_wall *w); /* the wall as added 
  * it (the nearest plane wall with the opposite normal, on the particles' side) that dem_stage.until_density measures
  * between; -1 where there is none (then DEM_ERR_ARG). Valid as soon as the walls are added. */
 int dem_density_walls(const dem_sim *s, int wall, int *die, int *other);
+/* The relative density punch `wall` sees now (before dem_start: where the walls were added), as until_density
+ * measures it; DEM_ERR_ARG without a die and a facing punch. */
+int dem_relative_density(const dem_sim *s, int wall, double *rho);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* What a time-series row needs: the energies and contact counts (as dem_energy defines them) and every wall's force
  * and position, with the step, its time and the MC-strain iteration counts, all as they were after that step. */
