@@ -125,6 +125,10 @@ typedef struct {
     /* blocking = 0 may return before the copy is done: the caller keeps src unchanged until its next blocking call */
     int (*write)(dem_backend *b, dem_bufref r, size_t offset, const void *src, size_t bytes, int blocking);
     int (*finish)(dem_backend *b); /* wait for queued work (timing) */
+    /* The first `bytes` of a buffer for the host to read where it lies (a CPU device's own memory: no copy), once the
+     * queued work is done (a synchronisation); unmap hands it back, before anything is queued that writes it. */
+    int (*map)(dem_backend *b, dem_bufref r, size_t bytes, const void **host);
+    int (*unmap)(dem_backend *b, dem_bufref r, const void *host);
 } dem_backend_ops;
 
 extern const dem_backend_ops dem_reference_ops_f32, dem_reference_ops_f64;
@@ -180,10 +184,12 @@ int dem_stage_contact_pairs(const dem_backend_ops *o, dem_backend *b); /* each l
 int dem_stage_contact_sums(const dem_backend_ops *o, dem_backend *b);  /* per-particle sums, walls included */
 int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b, int final); /* walls' block sums [and final] */
 /* Series rows (common/series.h): arm(1, row) has the next step write its terms to row `row` of the device's ring
- * (arm(0, 0) after it); series_read reads the first `rows` rows back (real[rows][n][SE_STRIDE] and
- * real[rows][nwalls][nblocks_red][3], the walls' block partial sums) with one synchronisation. */
+ * (arm(0, 0) after it); series_map maps the first `rows` rows for the host to read (real[rows][n][SE_STRIDE] and
+ * real[rows][nwalls][nblocks_red][WP_STRIDE], the walls' block partial sums; walls NULL without walls) with one
+ * synchronisation, series_unmap hands them back. */
 int dem_stage_series_arm(const dem_backend_ops *o, dem_backend *b, int on, int row);
-int dem_stage_series_read(const dem_backend_ops *o, dem_backend *b, int rows, void *sums, void *walls);
+int dem_stage_series_map(const dem_backend_ops *o, dem_backend *b, int rows, const void **terms, const void **walls);
+int dem_stage_series_unmap(const dem_backend_ops *o, dem_backend *b, const void *terms, const void *walls);
 int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b);   /* MC-stress pass 1 */
 int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_FIELD_STRESS from the positions */
 int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);

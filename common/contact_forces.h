@@ -144,6 +144,12 @@ DEM_ITEM(contact_pairs)
         pr[PR_CZ] = pc.c.z;
     }
     pr[PR_DELTA] = pc.delta; /* the torque's lever arm, and a sampled step's elastic energy (series.h) */
+    if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
+        pair_ela[i] = (fx & DEM_EFFECT_MC_STRAIN) /* the law's force is then at the induced overlap, not at delta */
+                          ? series_pair_energy(pairmat[PM_STRIDE * (mat[a] * nmat + mat[j]) + PM_ESTAR], radius[a],
+                                               radius[j], pc.delta)
+                          : hertz_energy_of_force(pc.fel, pc.delta); /* series_pair_energy's bits (its r* is
+                                                                        contact_geometry.h's), no division or root */
 }
 
 /* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
@@ -164,9 +170,13 @@ DEM_ITEM(contact_forces)
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
         if (sample && pr[PR_DELTA] > (real)0) { /* a sampled step: the pair's elastic energy, by its lower id */
-            int j = nbr_list[i * maxn + k];
-            ela += series_pair_energy(pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_ESTAR], ri, radius[j],
-                                      pr[PR_DELTA]);
+            if (fx & DEM_KEEP_PAIR_ENERGY) {
+                ela += pair_ela[p];
+            } else {
+                int j = nbr_list[i * maxn + k];
+                ela += series_pair_energy(pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_ESTAR], ri, radius[j],
+                                          pr[PR_DELTA]);
+            }
             con += (real)1;
         }
     }

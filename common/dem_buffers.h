@@ -64,6 +64,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(TOUCH, BYTE, PAIRS, 0, DEM_FIELD_TOUCH, NONE)                                                                  \
     ENTRY(TOUCH_OLD, BYTE, PAIRS, 0, -1, NONE)                                                                           \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE)                                                \
+    ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE)                                                         \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE)                                         \
     ENTRY(PAIR_HIST_OLD, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, -1, NONE)                                                 \
     ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE)                                                                        \

@@ -97,7 +97,8 @@
     A(BIN, int, pair_mirror, PAIR_MIRROR)                                                                            \
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
-    A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)
+    A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
+    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
@@ -107,7 +108,7 @@
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
     A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
-    A(BOUT, real, ring, SERIES_RING)
+    A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */

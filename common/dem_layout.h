@@ -99,6 +99,9 @@ enum { WP_FX = 0, WP_FY, WP_FZ, WP_FN, WP_STRIDE };
  * particles, in ascending id, then the partials in ascending block order. It is a constant, not the
  * work-group size, so the sum has the same bits on every device and launch configuration. */
 #define DEM_REDUCE_BLOCK 256
+/* A particle's wall mask holds one bit per wall: the most walls a kernel meets (dem.h's DEM_MAX_WALLS, checked
+ * against it in host/sim_setup.c) */
+#define DEM_WALL_MASK_BITS 32
 /* A time-series row's terms per particle (series.h), in the ring's slot of each particle and sampled step: kinetic
  * energy (translation and rotation) [J], gravitational potential energy [J], Hertz elastic energy of the contacts it
  * owns (pairs with higher ids, walls) [J], those touching pairs, those touching walls. */

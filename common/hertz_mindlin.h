@@ -65,10 +65,15 @@ DEM_INLINE real hm_elastic(real estar, real rstar, real delta)
 
 /* The elastic energy stored in a Hertz contact: the work of hm_elastic from 0 to delta, 2/5 F delta
  * = 8/15 E* sqrt(r*) delta^(5/2) [J]. The host's energies in double and the
- * series rows (series.h) use this function (reference/series.c exports it). */
+ * series rows (series.h) use this function (reference/series.c exports it); hertz_energy_of_force is the same from
+ * the elastic force at delta, for a caller that has it (contact_pairs in a sampled step). */
+DEM_INLINE real hertz_energy_of_force(real fel, real delta)
+{
+    return (real)2 / (real)5 * fel * delta;
+}
 DEM_INLINE real hertz_energy(real estar, real rstar, real delta)
 {
-    return (real)2 / (real)5 * hm_elastic(estar, rstar, delta) * delta;
+    return hertz_energy_of_force(hm_elastic(estar, rstar, delta), delta);
 }
 
 /* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */

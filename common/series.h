@@ -2,7 +2,8 @@
  * potential energy, the Hertz elastic energy of its contacts and its contact counts (dem_layout.h SE_*), written to
  * the particle's slot in one row of a ring of rows by the kernels that have them at hand - integrate_kick (the
  * velocities at the step's end; and at each block's first particle the walls' block partial sums), contact_forces
- * (the touching pairs it owns and its walls). So a sampled step launches no kernel more than another step (with the
+ * (the touching pairs it owns and its walls; with DEM_KEEP_PAIR_ENERGY each pair's energy comes from contact_pairs,
+ * which has the pair's elastic force at hand). So a sampled step launches no kernel more than another step (with the
  * wall forces kept; without, the walls' block sums) and needs no synchronisation; the host reads the ring when it is full or the steps end and adds each row's terms in ascending
  * particle order in double, and finishes the walls' sums with wall_reduce_final's own loop (host/energy.c): the same
  * bits on every backend.
@@ -54,16 +55,31 @@ DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nb
                                    DEM_CONST_GLOBAL unsigned *ride, DEM_CONST_GLOBAL real *partial,
                                    DEM_GLOBAL real *ring_wall)
 {
-    for (int k = 0; k < nwalls; k++) {
-        long at = ((long)row * nwalls + k) * nblocks + b;
-        if (fx & DEM_KEEP_WALL_FORCES) {
-            wall_part_store(ring_wall, at, wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int,
-                                                           wall_real, ride));
-        } else {
+    DEM_GLOBAL real *dst = ring_wall + (long)row * nwalls * nblocks * WP_STRIDE;
+    if (!(fx & DEM_KEEP_WALL_FORCES)) {
+        for (int k = 0; k < nwalls; k++)
             for (int q = 0; q < WP_STRIDE; q++)
-                ring_wall[at * WP_STRIDE + q] = partial[(k * nblocks + b) * WP_STRIDE + q];
-        }
+                dst[(k * nblocks + b) * WP_STRIDE + q] = partial[(k * nblocks + b) * WP_STRIDE + q];
+        return;
     }
+    /* wall_block_kept's sums for every wall in one pass over the block: a particle that touches no wall (most of
+     * them) costs one test, not one per wall; each wall's terms are still added in ascending id, the same bits */
+    wall_part p[DEM_WALL_MASK_BITS];
+    for (int k = 0; k < nwalls; k++) {
+        p[k].f = v3_zero();
+        p[k].fn = (real)0;
+    }
+    int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) {
+        unsigned m = wall_mask[j];
+        for (int k = 0; m != 0u; k++, m >>= 1)
+            if (m & 1u) {
+                wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
+                wall_part_take(&p[k], v3_load(wall_pf, k * n + j), g.n);
+            }
+    }
+    for (int k = 0; k < nwalls; k++)
+        wall_part_store(dst, k * nblocks + b, p[k]);
 }
 
 /* The elastic energy of a touching pair of radii ra, rb and overlap delta, as its lower id counts it */

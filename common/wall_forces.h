@@ -89,9 +89,13 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 mc_wall_fn[slot] = c.r.fel;
             if (fx & DEM_KEEP_WALL_FORCES)
                 v3_store(wall_pf, k * n + i, c.r.force);
-            if (ela && c.delta > (real)0) { /* a sampled step (series.h) */
-                *ela += hertz_energy(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR],
-                                     ri, c.delta);
+            if (ela && c.delta > (real)0) { /* a sampled step (series.h): hertz_energy's bits, from the force at hand
+                                               unless MC-strain evaluated it at the induced overlap */
+                *ela += (fx & DEM_EFFECT_MC_STRAIN)
+                            ? hertz_energy(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) +
+                                                   PM_ESTAR],
+                                           ri, c.delta)
+                            : hertz_energy_of_force(c.r.fel, c.delta);
                 *wcon += (real)1;
             }
             *fi = v3_add(*fi, c.r.force);
@@ -115,6 +119,14 @@ typedef struct {
     vec3 f;  /* the force the wall received [N] */
     real fn; /* the sum of the particles' normal force components [N] */
 } wall_part;
+
+/* A particle's kept force fj from a wall into the wall's partial sums (n: the contact normal): the one expression of
+ * every kept sum, so each gives the same bits */
+DEM_INLINE void wall_part_take(wall_part *p, vec3 fj, vec3 n)
+{
+    p->f = v3_sub(p->f, fj);
+    p->fn += v3_dot(fj, n);
+}
 
 DEM_INLINE void wall_part_store(DEM_GLOBAL real *p, long idx, wall_part w)
 {
@@ -140,10 +152,8 @@ DEM_INLINE wall_part wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
         if ((wall_mask[j] >> k) & 1u) {
-            vec3 fj = v3_load(wall_pf, k * n + j);
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
-            p.f = v3_sub(p.f, fj);
-            p.fn += v3_dot(fj, g.n);
+            wall_part_take(&p, v3_load(wall_pf, k * n + j), g.n);
         }
     return p;
 }

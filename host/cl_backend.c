@@ -191,6 +191,19 @@ static int cl_write(dem_backend *b, dem_bufref r, size_t offset, const void *src
 
 static int cl_finish(dem_backend *b) { return cl_check(clFinish(b->q), "clFinish", ERR(b)); }
 
+static int cl_map(dem_backend *b, dem_bufref r, size_t bytes, const void **host)
+{
+    cl_int e;
+    *host = clEnqueueMapBuffer(b->q, *slot(b, r), CL_TRUE, CL_MAP_READ, 0, bytes ? bytes : 1, 0, NULL, NULL, &e);
+    return cl_check(e, "clEnqueueMapBuffer", ERR(b));
+}
+
+static int cl_unmap(dem_backend *b, dem_bufref r, const void *host)
+{
+    return cl_check(clEnqueueUnmapMemObject(b->q, *slot(b, r), (void *)host, 0, NULL, NULL), "clEnqueueUnmapMemObject",
+                    ERR(b));
+}
+
 static void cl_destroy(dem_backend *b)
 {
     if (!b)
@@ -326,6 +339,8 @@ const dem_backend_ops dem_opencl_ops = {
     .read = cl_read,
     .write = cl_write,
     .finish = cl_finish,
+    .map = cl_map,
+    .unmap = cl_unmap,
 };
 
 /* the public device queries (dem.h): OpenCL's, so they live here and the driver (sim.c) holds no OpenCL call */

@@ -53,9 +53,10 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         /* 1/8 to spare: the pair arrays are two thirds of the memory, and growing them costs one allocation at a
          * rebuild (the history and flags are carried from their copies either way) */
         c->pair_cap = (size_t)total + (size_t)total / 8 + 16;
-        /* the pair-sized buffers (dem_buffers.h: PAIRS) that pair_index rewrites; the old copies follow at the next
-         * commit (above) */
-        static const int grown[] = {BUF_PAIR, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR, BUF_TOUCH, BUF_PAIR_HIST};
+        /* the pair-sized buffers (dem_buffers.h: PAIRS) that pair_index rewrites, and the sampled step's pair
+         * energies (written before they are read in that step); the old copies follow at the next commit (above) */
+        static const int grown[] = {BUF_PAIR, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR, BUF_TOUCH, BUF_PAIR_HIST,
+                                    BUF_PAIR_ELA};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;

@@ -31,7 +31,6 @@ void dem_destroy(dem_sim *s)
         free(s->packed[k]);
     free(s->wall_real);
     free(s->scratch);
-    free(s->ring_copy);
     free(s->x);
     free(s->v);
     free(s->w);

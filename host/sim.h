@@ -85,8 +85,6 @@ struct dem_sim {
     int rebuild_at, rebuild_len; /* the current step's rebuild within the core's trace */
     void *scratch;               /* host scratch of dem_energy / dem_sample_get, kept between calls */
     size_t scratch_bytes;
-    void *ring_copy;             /* host copy of the series ring (dem_step_sampled), kept between calls */
-    size_t ring_copy_bytes;
 };
 
 /* sim.c: a particle's mass and moment of inertia (explicit, or a solid sphere of its material and radius) */

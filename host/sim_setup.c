@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+_Static_assert(DEM_MAX_WALLS <= DEM_WALL_MASK_BITS, "a particle's wall mask (common/dem_layout.h) holds every wall");
+
 int sim_fail(dem_sim *s, int code, const char *fmt, ...)
 {
     va_list ap;
@@ -323,6 +325,8 @@ static void pack_effects(dem_sim *s, dem_setup *u)
     int sampled = s->cfg.sample_every > 0 && s->cfg.sample_every <= DEM_SAMPLE_KEEP;
     if ((s->cfg.contacts || sampled || sim_has_servo(s)) && s->nwalls > 0 && (s->effects & DEM_EFFECT_WALLS))
         u->effects |= DEM_KEEP_WALL_FORCES;
+    if (sampled)
+        u->effects |= DEM_KEEP_PAIR_ENERGY;
     u->n = s->n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;

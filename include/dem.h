@@ -109,7 +109,8 @@ typedef struct {
                             with walls that does not */
     long sample_every;   /* steps between the samples the caller will take (dem_step_sampled), 0 = rarely or never: at
                             DEM_SAMPLE_KEEP or fewer the device keeps the wall forces as for `contacts`, so each sample's
-                            wall sums add them up instead of evaluating the wall contacts again */
+                            wall sums add them up instead of evaluating the wall contacts again, and a sampled step's
+                            pair energies (1 real per pair, from the force law's own elastic force) */
 } dem_config;
 #define DEM_SAMPLE_KEEP 10
 

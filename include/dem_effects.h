@@ -77,6 +77,12 @@ enum { DEM_MC_REACH = 2048 };
  * the host, compiled in like the bits above. */
 enum { DEM_KEEP_WALL_FORCES = 262144 };
 
+/* A run that samples a series row every few steps (dem_config.sample_every <= DEM_SAMPLE_KEEP) keeps each touching
+ * pair's elastic energy of a sampled step (PAIR_ELA: 1 real per pair), computed by contact_pairs from the elastic
+ * force it already has; contact_forces adds them. Other runs hold no such buffer, and contact_forces computes each
+ * energy from the overlap (a division and a square root per pair): the same bits either way (common/series.h). */
+enum { DEM_KEEP_PAIR_ENERGY = 524288 };
+
 #ifndef DEM_EFFECTS
 #define DEM_EFFECTS DEM_EFFECT_CLASSICAL
 #endif

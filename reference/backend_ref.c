@@ -121,6 +121,19 @@ static int ref_write(dem_backend *b, dem_bufref r, size_t offset, const void *sr
 
 static int ref_finish(dem_backend *b) { (void)b; return 0; }
 
+static int ref_map(dem_backend *b, dem_bufref r, size_t bytes, const void **host)
+{
+    (void)bytes;
+    *host = ptr(b, r);
+    return 0;
+}
+
+static int ref_unmap(dem_backend *b, dem_bufref r, const void *host)
+{
+    (void)b, (void)r, (void)host;
+    return 0;
+}
+
 static const char *ref_describe(dem_backend *b)
 {
     (void)b;
@@ -141,6 +154,8 @@ const dem_backend_ops REF(dem_reference_ops) = {
     .read = ref_read,
     .write = ref_write,
     .finish = ref_finish,
+    .map = ref_map,
+    .unmap = ref_unmap,
 };
 
 static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t errlen)

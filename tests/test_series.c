@@ -8,7 +8,9 @@
  *   - each row's wall forces are bitwise those the device summed in that step, its step, time and wall positions equal;
  *   - contact counts equal, energies within a few roundoffs of the precision (the device sums each particle's terms
  *     in the run's precision, the host from positions widened to double);
- * and the rows of the OpenCL device are bitwise the reference's. */
+ * and the rows of the OpenCL device are bitwise the reference's. Sampled every step, the pairs' elastic energies come
+ * from contact_pairs (DEM_KEEP_PAIR_ENERGY), otherwise contact_forces computes them: the rows are bitwise the same,
+ * under the classical law and under MC-strain (whose force is at the induced overlap, not at the geometric one). */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -16,6 +18,8 @@
 #include <string.h>
 
 #define STEPS 300
+
+static int settling_mc_strain; /* 1: the same packing under lagged MC-strain with a contact reach of 1.1 */
 
 static dem_sim *settling(void)
 {
@@ -27,6 +31,12 @@ static dem_sim *settling(void)
     o.speed = 0.05;
     o.lid_speed = 0.05;
     o.effects = DEM_EFFECT_CLASSICAL | DEM_EFFECT_FRICTION | DEM_EFFECT_GRAVITY;
+    if (settling_mc_strain) {
+        o.effects |= DEM_EFFECT_MC_STRAIN;
+        o.mc_beta = 1.65;
+        o.mc_gamma = 1.12;
+        o.mc_reach = 1.1;
+    }
     return packing_build(&o);
 }
 
@@ -134,6 +144,40 @@ static void test_series_rows(void **st)
         }
 }
 
+/* Rows sampled every step (pair energies kept by contact_pairs) against the same rows sampled without keeping them
+ * (sample_every 0: contact_forces computes each pair's energy from its overlap), field for field, on every backend and
+ * precision, classical and MC-strain. */
+static void test_series_kept_energy(void **st)
+{
+    (void)st;
+    static dem_sample kept[STEPS], computed[STEPS];
+    for (int mc = 0; mc < 2; mc++) {
+        settling_mc_strain = mc;
+        FOR_EACH_BACKEND(bc) {
+            dem_config c = cfg_of(bc->backend, bc->precision);
+            long n0 = 0, n1 = 0;
+            c.sample_every = 0;
+            dem_sim *a = sampled_run(&c, computed, &n0);
+            c.sample_every = 1;
+            dem_sim *b = sampled_run(&c, kept, &n1);
+            assert_int_equal(n0, n1);
+            long touching = 0;
+            for (long k = 0; k < n0; k++) {
+                assert_memory_equal(&kept[k].energy.elastic, &computed[k].energy.elastic, sizeof(double));
+                assert_memory_equal(&kept[k].energy.kinetic, &computed[k].energy.kinetic, sizeof(double));
+                assert_int_equal(kept[k].energy.contacts, computed[k].energy.contacts);
+                touching += kept[k].energy.contacts;
+            }
+            printf("  %s%s: %ld rows, %ld pair contacts in them, kept and computed energies the same bits\n", bc->name,
+                   mc ? ", MC-strain" : "", n0, touching);
+            assert_true(touching > 2 * n0); /* the energies compared are those of hundreds of contacts */
+            dem_destroy(a);
+            dem_destroy(b);
+        }
+    }
+    settling_mc_strain = 0;
+}
+
 /* A call that samples nothing is dem_step; one that asks for rows without room for them is refused. */
 static void test_series_arguments(void **st)
 {
@@ -157,6 +201,7 @@ static void test_series_arguments(void **st)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_series_rows), cmocka_unit_test(test_series_arguments)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_series_rows), cmocka_unit_test(test_series_kept_energy),
+                                       cmocka_unit_test(test_series_arguments)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
