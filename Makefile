@@ -189,7 +189,8 @@ fuzz-scene: $(LIB)
 	  -DDEM_SCENE_MAX_GENERATED=20000 -DDEM_SCENE_MAX_RANDOM=2000 \
 	  -Icommon -Iapp tests/fuzz_scene.c app/scene_schema.c app/scene_locate.c app/scene_build.c \
 	  app/scene_particles.c app/scene_overlaps.c app/scene_membranes.c $(LIB) -o $(BUILD)/fuzz/fuzz_scene -lcyaml -lyaml -lOpenCL -lm
-	cp scenes/*.yaml tests/scenes/membrane_tube.yaml tests/scenes/size_distributions.yaml $(BUILD)/fuzz/corpus/
+	cp scenes/*.yaml tests/scenes/membrane_tube.yaml tests/scenes/size_distributions.yaml tests/scenes/tablet_concave.yaml \
+	    $(BUILD)/fuzz/corpus/
 	./$(BUILD)/fuzz/fuzz_scene -runs=$(FUZZ_RUNS) -max_len=4096 -timeout=20 -dict=tests/fuzz_scene.dict $(BUILD)/fuzz/corpus
 
 # libFuzzer on the checkpoint reader and the restore: edits of a real checkpoint through the HDF5 API

@@ -102,8 +102,19 @@ static int check(const char *path, const char *model)
         scene_wall_label(sc, k, a, sizeof a);
         scene_wall_label(sc, other, b, sizeof b);
         scene_wall_label(sc, die, cyl, sizeof cyl);
+        dem_wall ow;
+        dem_wall_get(s, other, &ow);
+        char cups[256] = "";
+        for (int q = 0; q < 2; q++) {
+            const dem_wall *p = q ? &ow : &w;
+            if (p->cup_depth > 0) {
+                size_t at = strlen(cups);
+                snprintf(cups + at, sizeof cups - at, "; '%.60s' concave (cup radius %.4g m, depth %.4g m)", q ? b : a,
+                         p->cup_radius, p->cup_depth);
+            }
+        }
         printf("press          punch '%s' faces '%s' in die '%s' (radius %.4g m): relative density %.4g at the start "
-               "(the spheres' volume over the bore between them)\n", a, b, cyl, dw.radius, rho);
+               "(the spheres' volume over the bore between them and their cups)%s\n", a, b, cyl, dw.radius, rho, cups);
     }
     if (run.fill[0])
         printf("fill           %s\n", run.fill);

@@ -182,17 +182,22 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
             rc = !names || h5_attr_string(o->series, "wall_names", names);
             free(names);
             /* each wall's shape, for tools that need it (tools/plot_tablet.py: the die's bore) */
-            double rad[DEM_MAX_WALLS], nrm[3 * DEM_MAX_WALLS], hgt[DEM_MAX_WALLS];
+            double rad[DEM_MAX_WALLS], nrm[3 * DEM_MAX_WALLS], hgt[DEM_MAX_WALLS], cupr[DEM_MAX_WALLS],
+                cupd[DEM_MAX_WALLS];
             for (int k = 0; k < nw; k++) {
                 dem_wall w;
                 dem_wall_get(s, k, &w);
                 rad[k] = w.kind == DEM_WALL_CYLINDER ? w.radius : 0;
                 hgt[k] = w.kind == DEM_WALL_CYLINDER ? w.height : 0;
+                cupr[k] = w.cup_radius;
+                cupd[k] = w.cup_depth;
                 memcpy(nrm + 3 * k, w.normal, sizeof(double) * 3);
             }
             hsize_t d1[1] = {(hsize_t)nw}, d3[2] = {(hsize_t)nw, 3};
             rc = rc || h5_write(o->series, "wall_radius", H5T_NATIVE_DOUBLE, 1, d1, rad, "m") ||
                  h5_write(o->series, "wall_height", H5T_NATIVE_DOUBLE, 1, d1, hgt, "m") ||
+                 h5_write(o->series, "wall_cup_radius", H5T_NATIVE_DOUBLE, 1, d1, cupr, "m") ||
+                 h5_write(o->series, "wall_cup_depth", H5T_NATIVE_DOUBLE, 1, d1, cupd, "m") ||
                  h5_write(o->series, "wall_normal", H5T_NATIVE_DOUBLE, 2, d3, nrm, NULL);
         }
         if (!rc && o->sample)

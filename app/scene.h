@@ -79,6 +79,10 @@ typedef struct {
 } scene_stage;
 
 typedef struct {
+    double radius, depth;         /* a concave punch face's cup: radius at the face, depth at its centre [m] */
+} scene_cup;
+
+typedef struct {
     char *name;
     char *material;
     double point[3], normal[3];   /* plane (normal towards the particles) */
@@ -90,6 +94,7 @@ typedef struct {
     unsigned motion_count;
     bool rigid;                   /* infinitely stiff: E* of a contact from the particle alone (dem.h) */
     unsigned repeat;              /* the motion list this many times (0 = given: once) */
+    scene_cup *cup;               /* plane: a concave face (dem_wall.cup_radius, cup_depth) */
 } scene_wall;
 
 /* membranes: [{name, mesh: {kind, center, radius, height, size, edge}, material: {...}, model, pressure,

@@ -489,6 +489,17 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
             return scene_fail(sc, err, errlen, p, "cylinder radius must be > 0 m");
         }
         dw.height = dw.kind == DEM_WALL_CYLINDER ? w->height : 0;
+        if (w->cup) {
+            snprintf(p, sizeof p, "%s.cup", base);
+            if (dw.kind != DEM_WALL_PLANE)
+                return scene_fail(sc, err, errlen, p, "only a plane wall (a punch) has a cup");
+            snprintf(p, sizeof p, "%s.cup.depth", base);
+            if (!(w->cup->depth > 0) || !(w->cup->radius >= w->cup->depth) || !isfinite(w->cup->radius))
+                return scene_fail(sc, err, errlen, p, "a cup needs 0 < depth <= radius (at most a hemisphere; got "
+                                  "radius %g m, depth %g m)", w->cup->radius, w->cup->depth);
+            dw.cup_radius = w->cup->radius;
+            dw.cup_depth = w->cup->depth;
+        }
         dw.nstages = nst;
         memcpy(dw.stages, st, sizeof(dem_stage) * (size_t)nst);
         int id = dem_add_wall(s, &dw);
@@ -714,11 +725,20 @@ static int check_density_walls(const scene *sc, dem_sim *s, const int *first_wal
             char p[128];
             snprintf(p, sizeof p, "walls[%u].motion[%u].until_density", k, q);
             int die, other;
-            if (!scene_has(sc->loc, p) || !dem_density_walls(s, first_wall[k], &die, &other))
+            if (!scene_has(sc->loc, p))
                 continue;
-            return scene_fail(sc, err, errlen, p, "needs the die (a cylinder wall along this punch's normal) and a "
-                              "punch facing it on the particles' side: %s", die < 0 ? "no such cylinder"
-                                                                                   : "no facing plane wall");
+            if (dem_density_walls(s, first_wall[k], &die, &other))
+                return scene_fail(sc, err, errlen, p, "needs the die (a cylinder wall along this punch's normal) and a "
+                                  "punch facing it on the particles' side: %s", die < 0 ? "no such cylinder"
+                                                                                       : "no facing plane wall");
+            dem_wall d, w;
+            dem_wall_get(s, die, &d);
+            for (int e = 0; e < 2; e++) { /* the cups' volumes count as the bore's (dem_relative_density) */
+                dem_wall_get(s, e ? other : first_wall[k], &w);
+                if (w.cup_radius > d.radius)
+                    return scene_fail(sc, err, errlen, p, "the %s punch's cup (radius %g m) is wider than the die's bore "
+                                      "(radius %g m)", e ? "facing" : "moving", w.cup_radius, d.radius);
+            }
         }
     return 0;
 }

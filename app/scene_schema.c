@@ -92,6 +92,10 @@ static const cyaml_schema_field_t stage_fields[] = {
     CYAML_FIELD_END};
 static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_stage, stage_fields)};
 
+static const cyaml_schema_field_t cup_fields[] = {
+    CYAML_FIELD_FLOAT("radius", CYAML_FLAG_DEFAULT, scene_cup, radius),
+    CYAML_FIELD_FLOAT("depth", CYAML_FLAG_DEFAULT, scene_cup, depth), CYAML_FIELD_END};
+
 static const cyaml_schema_field_t wall_fields[] = {
     CYAML_FIELD_STRING_PTR("type", CYAML_FLAG_POINTER, scene_wall, type, 1, 16),
     NAME("name", scene_wall, name),
@@ -101,6 +105,7 @@ static const cyaml_schema_field_t wall_fields[] = {
     VEC3("hi", scene_wall, hi),
     CYAML_FIELD_BOOL("rigid", CYAML_FLAG_OPTIONAL, scene_wall, rigid),
     CYAML_FIELD_UINT("repeat", CYAML_FLAG_OPTIONAL, scene_wall, repeat),
+    CYAML_FIELD_MAPPING_PTR("cup", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_wall, cup, cup_fields),
     CYAML_FIELD_SEQUENCE("motion", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_wall, motion, &stage_entry, 0,
                          DEM_MAX_STAGES - 1),
     CYAML_FIELD_END};

@@ -67,6 +67,44 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
         /* A centre behind the plane still gets pushed back out (d > r), rather than tunnelling silently. */
         g.delta = ri - v3_dot(d, nw);
         g.active = g.delta > (real)0;
+    } else if (type == WALL_PLANE_CUP) {
+        /* A concave punch: the plane (the land) with a spherical cup of radius rp at the face and depth c about the
+         * normal through the point, recessed away from the particles; its sphere has radius rc = (rp^2 + c^2) / 2c and
+         * its centre on that normal, rc - c above the land (c <= rp: at most a hemisphere). The nearest point of the
+         * face to the centre: over the land (rho >= rp) the plane below it; within the cup's radius the sphere's
+         * point on the line from its centre, when that point lies on the cup (at or below the land), else the rim
+         * (the circle where the cup meets the land, an edge). A centre behind the face is pushed back out, as a
+         * plane's. */
+        real h = v3_dot(d, nw), rp = wr[W_RADIUS], c = wr[W_HEIGHT];
+        vec3 radial = v3_sub(d, v3_scale(nw, h));
+        real rho2 = v3_dot(radial, radial);
+        if (!(rho2 < rp * rp)) { /* over the land */
+            g.delta = ri - h;
+            g.active = g.delta > (real)0;
+        } else {
+            real rc = (rp * rp + c * c) / ((real)2 * c), hc = rc - c;
+            vec3 to_c = v3_sub(v3_scale(nw, hc), d); /* from the particle's centre to the sphere's */
+            real dc2 = v3_dot(to_c, to_c);
+            real dc = dem_sqrt(dc2);
+            if (dc > (real)0 && rc * (h - hc) <= -(hc * dc)) { /* on the cup: hc + rc (h - hc) / dc <= 0 */
+                g.delta = ri + dc - rc;
+                g.active = g.delta > (real)0;
+                g.n = v3_scale(to_c, (real)1 / dc);
+            } else if (rho2 > (real)0) { /* the rim, touched as an edge */
+                real rho = dem_sqrt(rho2), q = rho - rp; /* q < 0: inside the rim's circle */
+                real dist2 = q * q + h * h;
+                if (dist2 < ri * ri) {
+                    real dist = dem_sqrt(dist2);
+                    g.delta = ri - dist;
+                    g.active = 1;
+                    g.n = v3_add(v3_scale(radial, q / (dist * rho)), v3_scale(nw, h / dist));
+                }
+            } else { /* on the axis, above the sphere's centre: every rim point as near; pushed along the normal */
+                real dist = dem_sqrt(rp * rp + h * h);
+                g.delta = ri - dist;
+                g.active = g.delta > (real)0;
+            }
+        }
     } else { /* WALL_CYLINDER_INSIDE */
         real h = v3_dot(d, nw), len = wr[W_HEIGHT];
         vec3 radial = v3_sub(d, v3_scale(nw, h));

@@ -48,14 +48,16 @@ enum {
 enum {
     W_PX = 0, W_PY, W_PZ, /* plane: a point on it; cylinder: a point on its axis [m] */
     W_NX, W_NY, W_NZ,     /* plane: unit normal pointing into the particle side; cylinder: unit axis */
-    W_RADIUS,             /* cylinder radius [m] (particles live inside) */
+    W_RADIUS,             /* cylinder radius [m] (particles live inside); cup plane: the cup's radius [m] */
     W_VX, W_VY, W_VZ,     /* wall velocity during the current step [m/s] */
-    W_HEIGHT,             /* cylinder length from the point along the axis [m]; 0: endless */
+    W_HEIGHT,             /* cylinder length from the point along the axis [m]; 0: endless; cup plane: its depth [m] */
     W_STRIDE
 };
 /* Wall integer part (index w*WI_STRIDE + ...). */
 enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
-enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1 };
+/* WALL_PLANE_CUP: a plane whose face has a spherical cup about the normal through its point, recessed away from the
+ * particles (a concave punch): W_RADIUS the cup's radius at the face, W_HEIGHT its depth at the centre */
+enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1, WALL_PLANE_CUP = 2 };
 
 /* Result of a touching pair, left by contact_pairs (one work item per listed pair) for contact_forces. Records are
  * numbered by pair in the lower ids' row order: particle i's owned pairs (partners j > i) are own_start[i] ...

@@ -374,20 +374,28 @@ int dem_density_walls(const dem_sim *s, int wall, int *die, int *other)
     return *die >= 0 && *other >= 0 ? DEM_OK : DEM_ERR_ARG;
 }
 
-/* The particles' volume vol over die's bore between punch k at a and the punch facing it at b; INFINITY once the
- * punches meet. */
-static double bore_density(const dem_sim *s, int k, int die, const double a[3], const double b[3], double vol)
+/* The volume of a punch's cup (a spherical cap of radius rp at the face and depth c): pi c (3 rp^2 + c^2) / 6 */
+static double cup_volume(const dem_wall *w)
+{
+    return w->cup_depth > 0 ? M_PI * w->cup_depth * (3 * w->cup_radius * w->cup_radius + w->cup_depth * w->cup_depth) / 6
+                            : 0;
+}
+
+/* The particles' volume vol over the space between punch k at a and the punch `other` facing it at b: die's bore
+ * between their lands and their cups; INFINITY once the lands meet. */
+static double bore_density(const dem_sim *s, int k, int other, int die, const double a[3], const double b[3],
+                           double vol)
 {
     const double *n = s->walls[k].normal;
     double h = (b[0] - a[0]) * n[0] + (b[1] - a[1]) * n[1] + (b[2] - a[2]) * n[2], R = s->walls[die].radius;
-    return h > 0 ? vol / (M_PI * R * R * h) : INFINITY;
+    return h > 0 ? vol / (M_PI * R * R * h + cup_volume(&s->walls[k]) + cup_volume(&s->walls[other])) : INFINITY;
 }
 
 /* The relative density seen by punch k in a run (dem_stage.until_density), from the volume sim_validate summed. */
 double sim_relative_density(const dem_sim *s, int k)
 {
-    return bore_density(s, k, s->density_die[k], s->wall_pos[k], s->wall_pos[s->density_other[k]],
-                        s->particle_volume);
+    return bore_density(s, k, s->density_other[k], s->density_die[k], s->wall_pos[k],
+                        s->wall_pos[s->density_other[k]], s->particle_volume);
 }
 
 int dem_relative_density(const dem_sim *s, int wall, double *rho)
@@ -400,7 +408,7 @@ int dem_relative_density(const dem_sim *s, int wall, double *rho)
         vol += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
     dem_wall_position(s, wall, a);
     dem_wall_position(s, other, b);
-    *rho = bore_density(s, wall, die, a, b, vol);
+    *rho = bore_density(s, wall, other, die, a, b, vol);
     return DEM_OK;
 }
 
@@ -551,6 +559,11 @@ int dem_add_wall(dem_sim *s, const dem_wall *w)
     if (w->kind == DEM_WALL_CYLINDER && !(w->height >= 0 && isfinite(w->height)))
         return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height),
                -1;
+    int flat = w->cup_radius == 0 && w->cup_depth == 0;
+    if (!flat && (w->kind != DEM_WALL_PLANE || !(w->cup_depth > 0) || !(w->cup_radius >= w->cup_depth) ||
+                  !isfinite(w->cup_radius)))
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: a cup is a plane's, with 0 < depth <= radius (at most a hemisphere; got "
+                        "radius %g m, depth %g m)", k, w->cup_radius, w->cup_depth), -1;
     if (check_stages(s, k, w->kind, w->nstages, w->stages))
         return -1;
     s->walls[k] = *w;

@@ -105,6 +105,8 @@ void sim_stages_from_step(dem_sim *s);
  * >= 0: a sampled step, whose series row goes to that row of the device's ring (common/series.h). */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row);
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
+/* The kernels' wall type of w (dem_layout.h WALL_*) and its W_RADIUS and W_HEIGHT (host/wall_overlap.c) */
+int sim_wall_table(const dem_wall *w, double *radius, double *height);
 void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its stage of the current step [m/s] */
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
 int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what);

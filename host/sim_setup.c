@@ -214,6 +214,13 @@ int sim_validate(dem_sim *s)
             return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density (until_density), which needs "
                             "a die (a cylinder wall along its normal) and a punch facing it on the particles' side: "
                             "found %s", k, s->density_die[k] < 0 ? "no such cylinder" : "no facing plane wall");
+        for (int q = 0; wants && q < 2; q++) { /* the cups' volumes count as the bore's (dem_relative_density) */
+            const dem_wall *p = &s->walls[q ? s->density_other[k] : k], *die = &s->walls[s->density_die[k]];
+            if (p->cup_radius > die->radius)
+                return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density, and punch %d's cup "
+                                "(radius %g m) is wider than the die's bore (radius %g m)", k,
+                                q ? s->density_other[k] : k, p->cup_radius, die->radius);
+        }
     }
     if (s->nsprings && !(s->effects & DEM_EFFECT_SPRINGS))
         return sim_fail(s, DEM_ERR_ARG, "%d springs are defined but the effect 'springs' is off", s->nsprings);
@@ -284,8 +291,7 @@ void sim_pack_walls(dem_sim *s)
             t[W_NX + d] = w->normal[d];
             t[W_VX + d] = v[d];
         }
-        t[W_RADIUS] = w->radius;
-        t[W_HEIGHT] = w->kind == DEM_WALL_CYLINDER ? w->height : 0;
+        sim_wall_table(w, &t[W_RADIUS], &t[W_HEIGHT]);
     }
     int rs = s->setup.real_size;
     for (int k = 0; k < W_STRIDE * s->nwalls; k++) {
@@ -466,7 +472,8 @@ static int pack_riders(dem_sim *s, dem_setup *u, int rs)
 static void pack_walls(dem_sim *s, int *wint)
 {
     for (int k = 0; k < s->nwalls; k++) {
-        wint[k * WI_STRIDE + WI_TYPE] = s->walls[k].kind == DEM_WALL_PLANE ? WALL_PLANE : WALL_CYLINDER_INSIDE;
+        double rad, hgt;
+        wint[k * WI_STRIDE + WI_TYPE] = sim_wall_table(&s->walls[k], &rad, &hgt);
         wint[k * WI_STRIDE + WI_MATERIAL] = s->walls[k].material;
         memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
     }

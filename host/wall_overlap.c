@@ -4,6 +4,18 @@
 #define DEM_REAL_SIZE 8
 #include "contact_geometry.h"
 #include "dem.h"
+#include "sim.h"
+
+int sim_wall_table(const dem_wall *w, double *radius, double *height)
+{
+    if (w->kind == DEM_WALL_CYLINDER) {
+        *radius = w->radius, *height = w->height;
+        return WALL_CYLINDER_INSIDE;
+    }
+    *radius = w->cup_depth > 0 ? w->cup_radius : 0;
+    *height = w->cup_depth > 0 ? w->cup_depth : 0;
+    return w->cup_depth > 0 ? WALL_PLANE_CUP : WALL_PLANE;
+}
 
 double dem_wall_overlap(const dem_wall *w, const double point[3], const double x[3], double r, double n[3])
 {
@@ -12,10 +24,11 @@ double dem_wall_overlap(const dem_wall *w, const double point[3], const double x
         wr[W_PX + d] = point[d];
         wr[W_NX + d] = w->normal[d];
     }
-    wr[W_RADIUS] = w->kind == DEM_WALL_CYLINDER ? w->radius : 0;
-    wr[W_HEIGHT] = w->kind == DEM_WALL_CYLINDER ? w->height : 0;
-    wall_geom g = wall_geometry(w->kind == DEM_WALL_PLANE ? WALL_PLANE : WALL_CYLINDER_INSIDE, wr,
-                                v3(x[0], x[1], x[2]), r);
+    double rad, hgt;
+    int type = sim_wall_table(w, &rad, &hgt);
+    wr[W_RADIUS] = rad;
+    wr[W_HEIGHT] = hgt;
+    wall_geom g = wall_geometry(type, wr, v3(x[0], x[1], x[2]), r);
     if (n) {
         n[0] = g.n.x;
         n[1] = g.n.y;

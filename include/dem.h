@@ -62,7 +62,8 @@ typedef struct {
      * which the normal force the particles exerted on the wall reached until_force [N] (plane walls; a press stage
      * "down until 5 kN"), or in which the wall got until_distance [m] or farther from where the stage began, or
      * after which the relative density reached until_density (in [0, 1], 0 off): the particles' volume (4/3 pi r^3 each, overlaps
-     * counted twice, as a press reports it) over the die's bore between this wall and the one facing it. For that
+     * counted twice, as a press reports it) over the die's bore between this wall and the one facing it, plus the
+     * volumes of their cups (dem_wall.cup_radius: pi c (3 r^2 + c^2) / 6 each; a cup lies within the bore). For that
      * the wall is a plane (a punch), the die the first cylinder wall whose axis is parallel to its normal, and the
      * other punch the nearest plane wall facing it along that axis, on the particles' side (dem_start refuses a
      * set-up without them). The next stage begins with the next step. Checked on the host, from the device's wall
@@ -85,6 +86,10 @@ typedef struct {
     double height;    /* cylinder: its length from `point` along the axis [m]: a die, a block with a bore a tablet can
                          leave at the top. In the bore beyond either end a sphere touches the rim (the end circle) as
                          an edge; outside the bore, the die's end faces (the die table). 0: endless */
+    double cup_radius; /* plane: a concave face (a punch's cup): a spherical cap about the normal through `point`,
+                          recessed away from the particles, this radius where it meets the plane [m]; 0: flat */
+    double cup_depth;  /* plane: the cup's depth at its centre [m], 0 < depth <= cup_radius (at most a hemisphere);
+                          the plane beyond the cup is the land, the circle where they meet an edge */
 } dem_wall;
 
 enum { DEM_PARTICLE_NO_ROTATION = 1, /* infinite moment of inertia */

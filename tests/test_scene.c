@@ -333,6 +333,21 @@ static void test_membrane_scene(void **st)
     };
     for (size_t k = 0; k < sizeof servo / sizeof servo[0]; k++)
         bad_in("tests/scenes/restart_box.yaml", servo[k][0], servo[k][1]);
+    /* concave punches (dem_wall.cup_radius, cup_depth) */
+    static const char *const cups[][2] = {
+        {"s/height: 0.012}/height: 0.012, cup: {radius: 0.004, depth: 0.0008}}/",
+         "bad.yaml:17: walls[0].cup: only a plane wall (a punch) has a cup"},
+        {"0,/depth: 0.0008}/s//depth: 0.005}/",
+         "bad.yaml:23: walls[1].cup.depth: a cup needs 0 < depth <= radius (at most a hemisphere; got radius 0.004 m, "
+         "depth 0.005 m)"},
+        {"s/cup: {radius: 0.004, depth: 0.0008}/cup: {radius: 0.004}/",
+         "bad.yaml:23: walls[1].cup.depth: Missing required mapping field: depth"},
+        {"0,/radius: 0.004, depth/s//radius: 0.005, depth/",
+         "bad.yaml:30: walls[2].motion[0].until_density: the facing punch's cup (radius 0.005 m) is wider than the die's "
+         "bore (radius 0.004 m)"},
+    };
+    for (size_t k = 0; k < sizeof cups / sizeof cups[0]; k++)
+        bad_in("tests/scenes/tablet_concave.yaml", cups[k][0], cups[k][1]);
     /* the same tube from an OBJ file (written here from the generated mesh, every digit kept) runs to the same bits;
      * a file's errors name its line */
     dem_mesh tube;

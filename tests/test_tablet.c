@@ -19,10 +19,10 @@ enum { DIE = 0, LOWER = 1, UPPER = 2 };
 #define R_DIE 0.004
 #define H_DIE 0.012
 
-static dem_sim *load(dem_backend_kind be, scene **sc, scene_run *run)
+static dem_sim *load_file(const char *path, dem_backend_kind be, scene **sc, scene_run *run)
 {
     char err[2048];
-    *sc = scene_load(SCENE, err, sizeof err);
+    *sc = scene_load(path, err, sizeof err);
     if (!*sc)
         fail_msg("%s", err);
     dem_sim *s = scene_build(*sc, run, err, sizeof err);
@@ -32,6 +32,8 @@ static dem_sim *load(dem_backend_kind be, scene **sc, scene_run *run)
     start_or_fail(s, &run->cfg);
     return s;
 }
+
+static dem_sim *load(dem_backend_kind be, scene **sc, scene_run *run) { return load_file(SCENE, be, sc, run); }
 
 static double zpos(dem_sim *s, int wall)
 {
@@ -152,6 +154,91 @@ static void test_press_cycle(void **st)
     scene_free(scr);
 }
 
+/* Concave punches (dem_wall.cup_radius, cup_depth; tests/scenes/tablet_concave.yaml): the powder settles into the
+ * lower punch's cup, which carries its weight with the die; no sphere gets behind either punch's face or out of the
+ * bore; the upper punch's stage ends at the relative density that counts both cups; PoCL has the reference's bits. */
+static dem_sim *concave_run(dem_backend_kind be, scene **sc, scene_run *run, int check)
+{
+    dem_sim *s = load_file(DEM_DEFAULT_SOURCE_DIR "/tests/scenes/tablet_concave.yaml", be, sc, run);
+    int n = dem_count(s);
+    double dt = dem_dt(s), weight = 0, f[3], fd[3];
+    long settle = lround(0.08 / dt);
+    step_or_fail(s, settle);
+    if (!check) {
+        for (long k = settle; k < run->steps; k += 100)
+            step_or_fail(s, k + 100 <= run->steps ? 100 : run->steps - k);
+        return s;
+    }
+    dem_wall lower, upper;
+    dem_wall_get(s, LOWER, &lower);
+    dem_wall_get(s, UPPER, &upper);
+    assert_true(lower.cup_depth == 0.0008 && upper.cup_radius == 0.004);
+    double *x = malloc(sizeof(double) * 3 * (size_t)n), pl[3], pu[3];
+    for (int i = 0; i < n; i++)
+        weight += 1500 * 4.0 / 3.0 * M_PI * pow(dem_particle_radius(s, i), 3) * 9.81;
+    dem_wall_force(s, LOWER, f);
+    dem_wall_force(s, DIE, fd);
+    dem_get_field(s, DEM_FIELD_X, x);
+    int in_cup = 0;
+    for (int i = 0; i < n; i++)
+        in_cup += x[3 * i + 2] < 0.002;
+    printf("  settled: lower punch and die carry %.6g N of the weight %.6g N; %d of %d spheres below the lower punch's "
+           "land, in its cup\n", -(f[2] + fd[2]), weight, in_cup, n);
+    assert_true(fabs(-(f[2] + fd[2]) / weight - 1) < 0.02);
+    assert_true(in_cup > 20);
+    double rho = 0, prev = 0, zu = zpos(s, UPPER);
+    long stopped = -1;
+    for (long k = settle; k < run->steps; k += 100) {
+        step_or_fail(s, k + 100 <= run->steps ? 100 : run->steps - k);
+        dem_get_field(s, DEM_FIELD_X, x);
+        dem_wall_position(s, LOWER, pl);
+        dem_wall_position(s, UPPER, pu);
+        for (int i = 0; i < n; i++) { /* every centre in the bore, in front of both faces */
+            double r = dem_particle_radius(s, i);
+            if (!(hypot(x[3 * i], x[3 * i + 1]) < R_DIE && dem_wall_overlap(&lower, pl, x + 3 * i, r, NULL) < r &&
+                  dem_wall_overlap(&upper, pu, x + 3 * i, r, NULL) < r))
+                fail_msg("sphere %d at (%g, %g, %g) m left the space between the punches", i, x[3 * i], x[3 * i + 1],
+                         x[3 * i + 2]);
+        }
+        assert_int_equal(dem_relative_density(s, UPPER, &rho), 0);
+        if (stopped < 0 && zpos(s, UPPER) == zu)
+            stopped = k;
+        if (stopped < 0)
+            assert_true(rho >= prev); /* compaction: it only rises */
+        prev = rho, zu = zpos(s, UPPER);
+    }
+    /* the bore between the lands and the two caps, pi c (3 r^2 + c^2) / 6 each */
+    double vs = 0, gap = zpos(s, UPPER) - zpos(s, LOWER);
+    double cup = M_PI * 0.0008 * (3 * 0.004 * 0.004 + 0.0008 * 0.0008) / 6;
+    for (int i = 0; i < n; i++)
+        vs += 4.0 / 3.0 * M_PI * pow(dem_particle_radius(s, i), 3);
+    dem_wall_force(s, UPPER, f);
+    printf("  pressed: the upper punch stopped at %.4f s, gap %.4f mm between the lands, relative density %.5f (hand: "
+           "%.5f), upper punch force %.4g N\n", stopped * dt, 1e3 * gap, rho, vs / (M_PI * R_DIE * R_DIE * gap + 2 * cup),
+           f[2]);
+    assert_true(stopped > 0);
+    assert_true(rho >= 0.62 && rho < 0.6205); /* the stage's step moves the punch 0.57 um: about 1.3e-4 of density */
+    assert_true(fabs(rho / (vs / (M_PI * R_DIE * R_DIE * gap + 2 * cup)) - 1) < 1e-12);
+    assert_true(f[2] > 0); /* the powder pushes the upper punch back up */
+    free(x);
+    return s;
+}
+
+static void test_concave_press(void **st)
+{
+    (void)st;
+    scene *sc, *scr;
+    scene_run run, runr;
+    dem_sim *s = concave_run(DEM_BACKEND_OPENCL, &sc, &run, 1), *r = concave_run(DEM_BACKEND_REFERENCE, &scr, &runr, 0);
+    char msg[256];
+    if (state_diff(s, r, msg, sizeof msg))
+        fail_msg("concave punches, PoCL vs reference: %s", msg);
+    dem_destroy(s);
+    dem_destroy(r);
+    scene_free(sc);
+    scene_free(scr);
+}
+
 /* The tablet report (tools/plot_tablet.py) of the same cycle run by `dem run`: it draws its PNG and its numbers are
  * the press's - the largest upper punch pressure is the servo's 1 N over the bore, the density there the dwell's,
  * the lower punch carries nearly what the upper one does, the die wall is pressed outwards, the compact springs back
@@ -197,6 +284,6 @@ static void test_tablet_report(void **st)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_press_cycle), cmocka_unit_test(test_tablet_report)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_press_cycle), cmocka_unit_test(test_concave_press), cmocka_unit_test(test_tablet_report)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -450,10 +450,83 @@ static void test_finite_die(void **st)
     dem_destroy(s);
 }
 
+/* The distance from x to a concave punch's face (normal +z through the origin; a cup of radius rp at the face and depth
+ * c), by brute force: the face is a surface of revolution, so its nearest point lies in the half-plane through the
+ * axis and x; there it is the land (z = 0, radial >= rp) and the cap's arc, sampled finely. */
+static double cup_distance_brute(const double x[3], double rp, double c)
+{
+    double rc = (rp * rp + c * c) / (2 * c), hc = rc - c, rho = hypot(x[0], x[1]), z = x[2];
+    double best = rho >= rp ? fabs(z) : hypot(rho - rp, z), amax = asin(rp / rc);
+    enum { N = 20000 };
+    for (int k = 0; k <= N; k++) { /* the arc: polar angle a from the cup's bottom */
+        double a = amax * k / N, pr = rc * sin(a), pz = hc - rc * cos(a);
+        best = fmin(best, hypot(rho - pr, z - pz));
+    }
+    return best;
+}
+
+/* A concave punch's face (dem_wall.cup_radius, cup_depth) as the kernels see it (dem_wall_overlap compiles their
+ * wall_geometry in double): against a brute-force distance at 6000 random centres over the cup, its rim and the land
+ * (r = 0.5 mm, a cup of radius 4 mm and depth 0.8 mm with a land beyond it): every contact found has the overlap r -
+ * distance, its normal is a unit vector whose contact point (at r - overlap along it) lies on the face, and no contact
+ * is missed. Then a plane
+ * is refused a cup deeper than a hemisphere, and a cylinder any cup. */
+static void test_cup_geometry(void **st)
+{
+    (void)st;
+    const double rp = 0.004, c = 0.0008, r = 0.0005;
+    dem_wall w = {.kind = DEM_WALL_PLANE, .normal = {0, 0, 1}, .cup_radius = rp, .cup_depth = c};
+    const double origin[3] = {0, 0, 0};
+    unsigned seed = 7;
+    int hits[3] = {0, 0, 0}, missed = 0;
+    double worst = 0, worst_n = 0;
+    for (int k = 0; k < 6000; k++) {
+        double x[3];
+        for (int d = 0; d < 3; d++)
+            x[d] = d < 2 ? -0.006 + 0.012 * rand_r(&seed) / (double)RAND_MAX
+                         : -0.0009 + 0.0016 * rand_r(&seed) / (double)RAND_MAX;
+        double rho = hypot(x[0], x[1]), rc = (rp * rp + c * c) / (2 * c);
+        if (rho < rp ? hypot(rho, x[2] - (rc - c)) > rc : x[2] < 0)
+            continue; /* behind the face: inside the punch */
+        double n[3], delta = dem_wall_overlap(&w, origin, x, r, n), dist = cup_distance_brute(x, rp, c);
+        if (!(delta > 0)) {
+            missed += dist < r - 1e-9;
+            continue;
+        }
+        hits[rho >= rp ? 0 : fabs(dist - hypot(rho - rp, x[2])) < 1e-12 ? 2 : 1]++;
+        /* the sampled arc's error: a chord of s = rc asin(rp / rc) / N seen from a centre at distance dist */
+        double s = rc * asin(rp / rc) / 20000;
+        worst = fmax(worst, fabs((r - delta) - dist) / (1e-12 + s * s / (4 * dist)));
+        double p[3] = {x[0] - n[0] * (r - delta), x[1] - n[1] * (r - delta), x[2] - n[2] * (r - delta)};
+        double prho = hypot(p[0], p[1]), off = prho >= rp ? fabs(p[2]) : fabs(hypot(prho, p[2] - (rc - c)) - rc);
+        assert_true(prho >= rp || p[2] <= 1e-12); /* on the cup, not on the rest of its sphere */
+        worst_n = fmax(worst_n, fmax(fabs(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1), off));
+    }
+    printf("  concave face: %d contacts over the land, %d in the cup, %d on the rim; largest |r - overlap - distance| "
+           "%.2g of the sampling's bound, contact point off the face by at most %.2g m; missed %d\n", hits[0], hits[1],
+           hits[2], worst, worst_n, missed);
+    assert_true(hits[0] > 50 && hits[1] > 200 && hits[2] > 20);
+    assert_true(worst < 1 && worst_n < 1e-15);
+    assert_int_equal(missed, 0);
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    w.material = m;
+    w.cup_depth = 0.005;
+    assert_int_equal(dem_add_wall(s, &w), -1);
+    assert_non_null(strstr(dem_error(s), "a cup is a plane's, with 0 < depth <= radius"));
+    dem_wall cyl = {.kind = DEM_WALL_CYLINDER, .material = m, .normal = {0, 0, 1}, .radius = 0.005, .cup_radius = 0.001,
+                    .cup_depth = 0.0005};
+    assert_int_equal(dem_add_wall(s, &cyl), -1);
+    w.cup_depth = c;
+    assert_int_equal(dem_add_wall(s, &w), 0);
+    dem_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
                                        cmocka_unit_test(test_stage_ends_density),
-                                       cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die)};
+                                       cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die),
+                                       cmocka_unit_test(test_cup_geometry)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -6,8 +6,9 @@ usage: tools/plot_tablet.py RUN.h5 [-o RUN_tablet.png] [--die NAME] [--upper NAM
 Reads the run's time series (/series: wall_position, wall_force, the walls' names and shapes) and the spheres' radii.
 The die is the cylinder wall (or --die), the punches the planes named upper and lower (or --upper, --lower).
   - punch pressure: the normal force the powder exerts on a punch over the bore's area pi R^2 [Pa];
-  - gap: the distance between the punch faces along the lower punch's normal; relative density D = the spheres'
-    volume / (pi R^2 gap), as if the compact filled the bore between the punches;
+  - gap: the distance between the punch faces (their lands) along the lower punch's normal; relative density D = the
+    spheres' volume / (pi R^2 gap + the punches' cups, pi c (3 r^2 + c^2) / 6 each), as if the compact filled the bore
+    between the punches (the elastic recovery below is the gap's: a concave tablet's band);
   - Heckel: ln(1 / (1 - D)) against the upper punch pressure over the loading (up to the largest pressure), a line
     fitted over its upper half; the mean yield pressure is 1 / slope;
   - transmission ratio: lower over upper punch pressure while the upper punch is loaded (above 10 % of its largest);
@@ -67,6 +68,9 @@ def main():
         force = s["wall_force"][:]
         radius = s["wall_radius"][:]
         normal = s["wall_normal"][:]
+        # concave punches (dem_wall.cup_radius, cup_depth): their cups add to the space between the punches
+        cup_r = s["wall_cup_radius"][:] if "wall_cup_radius" in s else np.zeros(len(radius))
+        cup_d = s["wall_cup_depth"][:] if "wall_cup_depth" in s else np.zeros(len(radius))
         fnorm = s["wall_normal_force"][:] if "wall_normal_force" in s else None
         r = f["particles/radius"][:]
     if a.die:
@@ -84,8 +88,9 @@ def main():
     p_up = -(force[:, up, :] @ n_up) / area
     p_lo = -(force[:, lo, :] @ n_lo) / area
     die_axial = force[:, die, :] @ axis
-    gap = (pos[:, up, :] - pos[:, lo, :]) @ n_lo
-    dens = solid / (area * gap)
+    gap = (pos[:, up, :] - pos[:, lo, :]) @ n_lo  # between the punches' lands
+    cups = sum(math.pi * cup_d[k] * (3 * cup_r[k] ** 2 + cup_d[k] ** 2) / 6 for k in (up, lo))
+    dens = solid / (area * gap + cups)
     p_rad = fnorm[:, die] / (2 * math.pi * radius[die] * gap) if fnorm is not None else np.full(len(t), np.nan)
     travel_up = (pos[0, up, :] - pos[:, up, :]) @ n_lo  # downwards travel of the upper punch
     k_max = int(np.argmax(p_up))
