@@ -448,6 +448,10 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
             snprintf(p, sizeof p, "%s.type", base);
             return scene_fail(sc, err, errlen, p, "unknown wall type '%s' (plane, cylinder or box)", w->type);
         }
+        if (w->cup && strcmp(w->type, "plane")) {
+            snprintf(p, sizeof p, "%s.cup", base);
+            return scene_fail(sc, err, errlen, p, "only a plane wall (a punch) has a cup");
+        }
         for (int q = 0; need[q]; q++) {
             snprintf(p, sizeof p, "%s.%s", base, need[q]);
             if (!scene_has(sc->loc, p))
@@ -490,13 +494,14 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
         }
         dw.height = dw.kind == DEM_WALL_CYLINDER ? w->height : 0;
         if (w->cup) {
-            snprintf(p, sizeof p, "%s.cup", base);
-            if (dw.kind != DEM_WALL_PLANE)
-                return scene_fail(sc, err, errlen, p, "only a plane wall (a punch) has a cup");
+            snprintf(p, sizeof p, "%s.cup.radius", base);
+            if (!(w->cup->radius > 0) || !isfinite(w->cup->radius))
+                return scene_fail(sc, err, errlen, p, "must be > 0 m and finite");
             snprintf(p, sizeof p, "%s.cup.depth", base);
-            if (!(w->cup->depth > 0) || !(w->cup->radius >= w->cup->depth) || !isfinite(w->cup->radius))
-                return scene_fail(sc, err, errlen, p, "a cup needs 0 < depth <= radius (at most a hemisphere; got "
-                                  "radius %g m, depth %g m)", w->cup->radius, w->cup->depth);
+            if (!(w->cup->depth >= 1e-3 * w->cup->radius) || !(w->cup->radius >= w->cup->depth))
+                return scene_fail(sc, err, errlen, p, "a cup needs radius / 1000 <= depth <= radius (at most a "
+                                  "hemisphere; a shallower one is a flat punch; got radius %g m, depth %g m)",
+                                  w->cup->radius, w->cup->depth);
             dw.cup_radius = w->cup->radius;
             dw.cup_depth = w->cup->depth;
         }
@@ -735,9 +740,9 @@ static int check_density_walls(const scene *sc, dem_sim *s, const int *first_wal
             dem_wall_get(s, die, &d);
             for (int e = 0; e < 2; e++) { /* the cups' volumes count as the bore's (dem_relative_density) */
                 dem_wall_get(s, e ? other : first_wall[k], &w);
-                if (w.cup_radius > d.radius)
-                    return scene_fail(sc, err, errlen, p, "the %s punch's cup (radius %g m) is wider than the die's bore "
-                                      "(radius %g m)", e ? "facing" : "moving", w.cup_radius, d.radius);
+                if (!dem_cup_in_bore(s, e ? other : first_wall[k], die))
+                    return scene_fail(sc, err, errlen, p, "the %s punch's cup (radius %g m) does not lie within the "
+                                      "die's bore (radius %g m)", e ? "facing" : "moving", w.cup_radius, d.radius);
             }
         }
     return 0;

@@ -32,6 +32,8 @@ static double wall_overlap(const scene_wall *w, const double *x, double r)
     double nn = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
     dem_wall dw = {.kind = !strcmp(w->type, "plane") ? DEM_WALL_PLANE : DEM_WALL_CYLINDER, .radius = w->radius,
                    .height = w->height};
+    if (w->cup && dw.kind == DEM_WALL_PLANE) /* a sphere sitting in a concave punch's cup, below its land */
+        dw.cup_radius = w->cup->radius, dw.cup_depth = w->cup->depth;
     for (int d = 0; d < 3; d++)
         dw.normal[d] = nr[d] / nn;
     return dem_wall_overlap(&dw, w->point, x, r, NULL); /* the kernels' geometry (a finite die's rim and faces) */

@@ -213,9 +213,11 @@ static double time_series_run(const char *series_every, const char *extra, doubl
     return rc == 0 ? now() - t0 : NAN;
 }
 
-static int cmp_double(const void *a, const void *b)
+static int cmp_double(const void *a, const void *b) /* a failed run's NaN sorts last */
 {
     double x = *(const double *)a, y = *(const double *)b;
+    if (isnan(x) || isnan(y))
+        return isnan(x) - isnan(y);
     return (x > y) - (x < y);
 }
 

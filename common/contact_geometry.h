@@ -4,8 +4,9 @@
  * pair_geometry(xa, ra, xb, rb): n is the unit vector from b to a (seed 000 Eq. 2). Swapping a and b negates d
  * exactly, so dist2, delta and rstar have the same bits either way (IEEE + and * commute): particle j's view of a
  * contact equals particle i's.
- * wall_geometry(type, wall, x, r): a plane of any orientation or the inside of a cylinder (dem_layout.h W_*); n points
- * from the wall towards the particle centre.
+ * wall_geometry(type, wall, x, r): a plane of any orientation (flat, or a concave punch's face with its cup), or the
+ * inside of a cylinder (a finite die with its rims and faces) (dem_layout.h W_*); n points from the wall towards the
+ * particle centre.
  */
 #ifndef DEM_CONTACT_GEOMETRY_H
 #define DEM_CONTACT_GEOMETRY_H
@@ -87,13 +88,16 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
             real dc2 = v3_dot(to_c, to_c);
             real dc = dem_sqrt(dc2);
             if (dc > (real)0 && rc * (h - hc) <= -(hc * dc)) { /* on the cup: hc + rc (h - hc) / dc <= 0 */
-                g.delta = ri + dc - rc;
+                /* the gap rc - dc as (rc^2 - dc^2) / (rc + dc), with e = h + c the height above the cup's bottom:
+                 * rc - dc itself cancels (rc 10-40 mm against overlaps of 1e-7 m: a 2-20 % error in fp32) */
+                real e = h + c;
+                g.delta = ri - (e * ((real)2 * rc - e) - rho2) / (rc + dc);
                 g.active = g.delta > (real)0;
                 g.n = v3_scale(to_c, (real)1 / dc);
             } else if (rho2 > (real)0) { /* the rim, touched as an edge */
                 real rho = dem_sqrt(rho2), q = rho - rp; /* q < 0: inside the rim's circle */
                 real dist2 = q * q + h * h;
-                if (dist2 < ri * ri) {
+                if (dist2 > (real)0 && dist2 < ri * ri) {
                     real dist = dem_sqrt(dist2);
                     g.delta = ri - dist;
                     g.active = 1;

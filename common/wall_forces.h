@@ -1,7 +1,8 @@
-/* wall_forces.h - particle-wall contacts (planes of any orientation, the inside of a cylinder, a finite die:
- * contact_geometry.h) and the canonical reduction of the force each wall receives.
+/* wall_forces.h - particle-wall contacts (planes of any orientation, flat or a concave punch's face, the inside of a
+ * cylinder, a finite die: contact_geometry.h) and the canonical reduction of the force each wall receives.
  *
- * A wall is a rigid body of infinite mass and radius: r* = r_i, m* = m_i, the contact point lies on the wall
+ * A wall is a rigid body of infinite mass and radius: r* = r_i, m* = m_i (also on a die's bore and in a punch's cup,
+ * which are curved: taken locally flat, as LIGGGHTS takes its walls; docs/tableting.md), the contact point lies on the wall
  * surface (lever arm r_i - d). The same Hertz-Mindlin law as between particles (hertz_mindlin.h) is used with the
  * wall's own material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
  * the summation order of every particle's force. The force each wall receives is summed over particles in fixed

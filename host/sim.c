@@ -374,6 +374,21 @@ int dem_density_walls(const dem_sim *s, int wall, int *die, int *other)
     return *die >= 0 && *other >= 0 ? DEM_OK : DEM_ERR_ARG;
 }
 
+int dem_cup_in_bore(const dem_sim *s, int wall, int die)
+{
+    if (wall < 0 || wall >= s->nwalls || die < 0 || die >= s->nwalls)
+        return 0;
+    const dem_wall *p = &s->walls[wall], *d = &s->walls[die];
+    if (!(p->cup_depth > 0))
+        return 1;
+    double r[3], along = 0, off2 = 0;
+    for (int k = 0; k < 3; k++)
+        r[k] = p->point[k] - d->point[k], along += r[k] * d->normal[k];
+    for (int k = 0; k < 3; k++)
+        off2 += (r[k] - along * d->normal[k]) * (r[k] - along * d->normal[k]);
+    return sqrt(off2) + p->cup_radius <= d->radius * (1 + 1e-12);
+}
+
 /* The volume of a punch's cup (a spherical cap of radius rp at the face and depth c): pi c (3 rp^2 + c^2) / 6 */
 static double cup_volume(const dem_wall *w)
 {
@@ -560,10 +575,11 @@ int dem_add_wall(dem_sim *s, const dem_wall *w)
         return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height),
                -1;
     int flat = w->cup_radius == 0 && w->cup_depth == 0;
-    if (!flat && (w->kind != DEM_WALL_PLANE || !(w->cup_depth > 0) || !(w->cup_radius >= w->cup_depth) ||
-                  !isfinite(w->cup_radius)))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: a cup is a plane's, with 0 < depth <= radius (at most a hemisphere; got "
-                        "radius %g m, depth %g m)", k, w->cup_radius, w->cup_depth), -1;
+    if (!flat && (w->kind != DEM_WALL_PLANE || !(w->cup_depth >= 1e-3 * w->cup_radius) || !(w->cup_radius >= w->cup_depth) ||
+                  !isfinite(w->cup_radius) || !(w->cup_depth > 0)))
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: a cup is a plane's, with radius / 1000 <= depth <= radius (at most a "
+                        "hemisphere; a shallower one is a flat punch; got radius %g m, depth %g m)", k, w->cup_radius,
+                        w->cup_depth), -1;
     if (check_stages(s, k, w->kind, w->nstages, w->stages))
         return -1;
     s->walls[k] = *w;

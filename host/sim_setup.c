@@ -215,11 +215,11 @@ int sim_validate(dem_sim *s)
                             "a die (a cylinder wall along its normal) and a punch facing it on the particles' side: "
                             "found %s", k, s->density_die[k] < 0 ? "no such cylinder" : "no facing plane wall");
         for (int q = 0; wants && q < 2; q++) { /* the cups' volumes count as the bore's (dem_relative_density) */
-            const dem_wall *p = &s->walls[q ? s->density_other[k] : k], *die = &s->walls[s->density_die[k]];
-            if (p->cup_radius > die->radius)
+            int p = q ? s->density_other[k] : k;
+            if (!dem_cup_in_bore(s, p, s->density_die[k]))
                 return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density, and punch %d's cup "
-                                "(radius %g m) is wider than the die's bore (radius %g m)", k,
-                                q ? s->density_other[k] : k, p->cup_radius, die->radius);
+                                "(radius %g m) does not lie within the die's bore (radius %g m)", k, p,
+                                s->walls[p].cup_radius, s->walls[s->density_die[k]].radius);
         }
     }
     if (s->nsprings && !(s->effects & DEM_EFFECT_SPRINGS))

@@ -436,6 +436,10 @@ int dem_wall_get(const dem_sim *s, int wall, dem_wall *w); /* the wall as added 
  * it (the nearest plane wall with the opposite normal, on the particles' side) that dem_stage.until_density measures
  * between; -1 where there is none (then DEM_ERR_ARG). Valid as soon as the walls are added. */
 int dem_density_walls(const dem_sim *s, int wall, int *die, int *other);
+/* Whether punch `wall`'s cup (dem_wall.cup_radius) lies within die `die`'s bore - the offset of the punch's point from
+ * the die's axis plus the cup's radius at most the bore's radius - as the relative density, which counts the cup's
+ * volume as the bore's, assumes: 1 (and 1 for a flat punch), else 0. */
+int dem_cup_in_bore(const dem_sim *s, int wall, int die);
 /* The relative density punch `wall` sees now (before dem_start: where the walls were added), as until_density
  * measures it; DEM_ERR_ARG without a die and a facing punch. */
 int dem_relative_density(const dem_sim *s, int wall, double *rho);

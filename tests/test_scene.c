@@ -338,13 +338,19 @@ static void test_membrane_scene(void **st)
         {"s/height: 0.012}/height: 0.012, cup: {radius: 0.004, depth: 0.0008}}/",
          "bad.yaml:17: walls[0].cup: only a plane wall (a punch) has a cup"},
         {"0,/depth: 0.0008}/s//depth: 0.005}/",
-         "bad.yaml:23: walls[1].cup.depth: a cup needs 0 < depth <= radius (at most a hemisphere; got radius 0.004 m, "
-         "depth 0.005 m)"},
+         "bad.yaml:23: walls[1].cup.depth: a cup needs radius / 1000 <= depth <= radius (at most a hemisphere; a "
+         "shallower one is a flat punch; got radius 0.004 m, depth 0.005 m)"},
+        {"0,/radius: 0.004, depth/s//radius: -1, depth/", "bad.yaml:23: walls[1].cup.radius: must be > 0 m and finite"},
+        {"s/height: 0.012}/height: 0.012}\\n  - {type: box, lo: [-1, -1, -1], hi: [1, 1, 1], material: steel, cup: "
+         "{radius: 0.004, depth: 0.0008}}/", "bad.yaml:18: walls[1].cup: only a plane wall (a punch) has a cup"},
         {"s/cup: {radius: 0.004, depth: 0.0008}/cup: {radius: 0.004}/",
          "bad.yaml:23: walls[1].cup.depth: Missing required mapping field: depth"},
         {"0,/radius: 0.004, depth/s//radius: 0.005, depth/",
-         "bad.yaml:30: walls[2].motion[0].until_density: the facing punch's cup (radius 0.005 m) is wider than the die's "
-         "bore (radius 0.004 m)"},
+         "bad.yaml:30: walls[2].motion[0].until_density: the facing punch's cup (radius 0.005 m) does not lie within the "
+         "die's bore (radius 0.004 m)"},
+        {"s/point: \\[0, 0, 0.0125\\]/point: [0.001, 0, 0.0125]/",
+         "bad.yaml:30: walls[2].motion[0].until_density: the moving punch's cup (radius 0.004 m) does not lie within the "
+         "die's bore (radius 0.004 m)"},
     };
     for (size_t k = 0; k < sizeof cups / sizeof cups[0]; k++)
         bad_in("tests/scenes/tablet_concave.yaml", cups[k][0], cups[k][1]);

@@ -513,7 +513,9 @@ static void test_cup_geometry(void **st)
     w.material = m;
     w.cup_depth = 0.005;
     assert_int_equal(dem_add_wall(s, &w), -1);
-    assert_non_null(strstr(dem_error(s), "a cup is a plane's, with 0 < depth <= radius"));
+    assert_non_null(strstr(dem_error(s), "a cup is a plane's, with radius / 1000 <= depth <= radius"));
+    w.cup_depth = 1e-7; /* shallower than a thousandth of its radius: a flat punch */
+    assert_int_equal(dem_add_wall(s, &w), -1);
     dem_wall cyl = {.kind = DEM_WALL_CYLINDER, .material = m, .normal = {0, 0, 1}, .radius = 0.005, .cup_radius = 0.001,
                     .cup_depth = 0.0005};
     assert_int_equal(dem_add_wall(s, &cyl), -1);
@@ -522,11 +524,67 @@ static void test_cup_geometry(void **st)
     dem_destroy(s);
 }
 
+/* A sphere (r = 1 mm) at rest against a concave punch face (cup radius 4 mm, depth 0.8 mm, normal +z) with an overlap
+ * of 2 um: on the axis at the cup's bottom, in the cup 0.2 rad off the axis (seen from the cup sphere's centre), and
+ * over the land. One step on every backend and precision (backend_run: PoCL bitwise = reference): the wall receives
+ * the Hertz force of that overlap (r* = r: walls are taken locally flat) along the face's normal there - in fp32
+ * too, where the overlap in the cup is a difference of lengths of 10 mm (contact_geometry.h computes it without
+ * the cancellation). */
+typedef struct {
+    double x[3], u[3]; /* centre; unit vector along which the wall receives the force */
+} cup_case;
+#define CUP_RP 0.004
+#define CUP_C 0.0008
+#define CUP_DELTA 2e-6
+static cup_case cup_cases[3];
+static void cup_cases_make(void)
+{
+    double rc = (CUP_RP * CUP_RP + CUP_C * CUP_C) / (2 * CUP_C), hc = rc - CUP_C, a = 0.2, r = 0.001;
+    cup_cases[0] = (cup_case){{0, 0, -CUP_C + r - CUP_DELTA}, {0, 0, -1}};
+    /* from the cup sphere's centre along u = (sin a, 0, -cos a): the face at rc, the centre at rc - r + delta */
+    double u[3] = {sin(a), 0, -cos(a)}, d = rc - r + CUP_DELTA;
+    cup_cases[1] = (cup_case){{d * u[0], 0, hc + d * u[2]}, {u[0], 0, u[2]}};
+    cup_cases[2] = (cup_case){{0.0045, 0.0002, r - CUP_DELTA}, {0, 0, -1}};
+}
+static dem_sim *build_cup_case(void *ctx)
+{
+    const cup_case *c = ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 1.0, 0.4}); /* e = 1: no damping, the bare law */
+    dem_add_particle(s, c->x, NULL, 0.001, m);
+    dem_wall punch = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1},
+                      .cup_radius = CUP_RP, .cup_depth = CUP_C};
+    assert_int_equal(dem_add_wall(s, &punch), 0);
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.01});
+    dem_set_dt(s, 1e-7);
+    return s;
+}
+static void check_cup_case(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    const cup_case *c = ctx;
+    double f[3];
+    dem_wall_force(s, 0, f);
+    double mag = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    double estar = 1e7 / (2 * (1 - 0.3 * 0.3)), fh = 4.0 / 3.0 * estar * sqrt(0.001) * CUP_DELTA * sqrt(CUP_DELTA);
+    printf("  %s: sphere at (%.4g, %.4g, %.4g) mm: wall receives (%.6g, %.6g, %.6g) N (Hertz %.6g N)\n", bc->name,
+           1e3 * c->x[0], 1e3 * c->x[1], 1e3 * c->x[2], f[0], f[1], f[2], fh);
+    assert_true(fabs(mag / fh - 1) < 1e-5 + 2000 * bc->eps);
+    assert_true(fabs((f[0] * c->u[0] + f[1] * c->u[1] + f[2] * c->u[2]) / mag - 1) < 1e-9 + 100 * bc->eps);
+}
+static void test_cup_forces(void **st)
+{
+    (void)st;
+    cup_cases_make();
+    FOR_EACH_BACKEND(bc)
+    for (size_t k = 0; k < sizeof cup_cases / sizeof cup_cases[0]; k++)
+        backend_run(bc, build_cup_case, 1, check_cup_case, &cup_cases[k]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
                                        cmocka_unit_test(test_stage_ends_density),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die),
-                                       cmocka_unit_test(test_cup_geometry)};
+                                       cmocka_unit_test(test_cup_geometry), cmocka_unit_test(test_cup_forces)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
