@@ -55,6 +55,19 @@ typedef struct {
     vec3 n;     /* unit normal from the wall towards the particle centre */
 } wall_geom;
 
+/* A circle about the wall's axis nw touched as an edge (a die's rim, a cup's rim): the centre lies q from it along the
+ * outward radial radial / rho and a from it along the axis; n from the circle to the centre. */
+DEM_INLINE void wall_edge_contact(wall_geom *g, vec3 radial, real rho, vec3 nw, real q, real a, real ri)
+{
+    real dist2 = a * a + q * q;
+    if (dist2 > (real)0 && dist2 < ri * ri) {
+        real dist = dem_sqrt(dist2);
+        g->delta = ri - dist;
+        g->active = 1;
+        g->n = v3_add(v3_scale(radial, q / (dist * rho)), v3_scale(nw, a / dist));
+    }
+}
+
 DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri)
 {
     wall_geom g;
@@ -94,15 +107,9 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
                 g.delta = ri - (e * ((real)2 * rc - e) - rho2) / (rc + dc);
                 g.active = g.delta > (real)0;
                 g.n = v3_scale(to_c, (real)1 / dc);
-            } else if (rho2 > (real)0) { /* the rim, touched as an edge */
-                real rho = dem_sqrt(rho2), q = rho - rp; /* q < 0: inside the rim's circle */
-                real dist2 = q * q + h * h;
-                if (dist2 > (real)0 && dist2 < ri * ri) {
-                    real dist = dem_sqrt(dist2);
-                    g.delta = ri - dist;
-                    g.active = 1;
-                    g.n = v3_add(v3_scale(radial, q / (dist * rho)), v3_scale(nw, h / dist));
-                }
+            } else if (rho2 > (real)0) { /* the rim, touched as an edge (q < 0: inside its circle) */
+                real rho = dem_sqrt(rho2);
+                wall_edge_contact(&g, radial, rho, nw, rho - rp, h, ri);
             } else { /* on the axis, above the sphere's centre: every rim point as near; pushed along the normal */
                 real dist = dem_sqrt(rp * rp + h * h);
                 g.delta = ri - dist;
@@ -121,15 +128,7 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
                 g.active = g.delta > (real)0;
                 g.n = v3_scale(radial, (real)-1 / rho);
             } else if (q <= (real)0) { /* in the bore beyond an end: the rim, a circle, touched as an edge */
-                real e = h > len ? h - len : h; /* axial distance past the end */
-                real dist2 = e * e + q * q;
-                if (dist2 > (real)0 && dist2 < ri * ri) {
-                    real dist = dem_sqrt(dist2);
-                    g.delta = ri - dist;
-                    g.active = 1;
-                    /* from the rim to the centre: q along the outward radial, e along the axis */
-                    g.n = v3_add(v3_scale(radial, q / (dist * rho)), v3_scale(nw, e / dist));
-                }
+                wall_edge_contact(&g, radial, rho, nw, q, h > len ? h - len : h, ri); /* a: the way past the end */
             } else if (h > len) { /* outside the bore, above: the die's top face (the die table) */
                 g.delta = ri - (h - len);
                 g.active = g.delta > (real)0;

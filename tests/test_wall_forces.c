@@ -379,18 +379,27 @@ static const die_case die_cases[] = {
     {{0.0060, 0, -0.0005}, 0.01, 4},   /* under the bottom face: 0.5 mm up */
     {{0.0052, 0, 0.006}, 0.01, 5},     /* a centre in the die's body, 0.2 mm from the bore: pushed back into it */
 };
-static dem_sim *build_die_case(void *ctx)
+/* One sphere (r = 1 mm, at rest) against wall w, material 0 (e = 1: no damping, the bare law), dt 1e-7 s */
+static dem_sim *one_sphere_against(const double x[3], dem_wall w)
 {
-    const die_case *c = ctx;
     dem_sim *s = dem_create();
-    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 1.0, 0.4}); /* e = 1: no damping, the bare law */
-    dem_add_particle(s, c->x, NULL, 0.001, m);
-    dem_wall die = {.kind = DEM_WALL_CYLINDER, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1},
-                    .radius = 0.005, .height = c->height};
-    assert_int_equal(dem_add_wall(s, &die), 0);
+    w.material = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 1.0, 0.4});
+    dem_add_particle(s, x, NULL, 0.001, w.material);
+    assert_int_equal(dem_add_wall(s, &w), 0);
     dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.03});
     dem_set_dt(s, 1e-7);
     return s;
+}
+/* the Hertz force of that sphere on a wall at overlap delta */
+static double bare_hertz(double delta)
+{
+    return 4.0 / 3.0 * (1e7 / (2 * (1 - 0.3 * 0.3))) * sqrt(0.001) * delta * sqrt(delta);
+}
+static dem_sim *build_die_case(void *ctx)
+{
+    const die_case *c = ctx;
+    return one_sphere_against(c->x, (dem_wall){.kind = DEM_WALL_CYLINDER, .normal = {0, 0, 1}, .radius = 0.005,
+                                               .height = c->height});
 }
 static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
 {
@@ -410,7 +419,7 @@ static void check_die_case(dem_sim *s, const backend_case *bc, void *ctx)
                    : c->expect == 2 ? 0.001 - sqrt(0.0003 * 0.0003 + 0.0005 * 0.0005)
                    : c->expect == 5 ? 0.0012
                                     : 0.0005;
-    double estar = 1e7 / (2 * (1 - 0.3 * 0.3)), fh = 4.0 / 3.0 * estar * sqrt(0.001) * delta * sqrt(delta);
+    double fh = bare_hertz(delta);
     printf("  %s: sphere at (%.4g, %.4g) mm, height %g mm: wall receives (%.6g, %.6g, %.6g) N (Hertz %.6g N)\n", bc->name,
            1e3 * c->x[0], 1e3 * c->x[2], 1e3 * c->height, f[0], f[1], f[2], fh);
     /* within the one step's drift (5e-6 at the rim) and the rounding of the side's overlap (3 digits cancel) */
@@ -549,15 +558,8 @@ static void cup_cases_make(void)
 static dem_sim *build_cup_case(void *ctx)
 {
     const cup_case *c = ctx;
-    dem_sim *s = dem_create();
-    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 1.0, 0.4}); /* e = 1: no damping, the bare law */
-    dem_add_particle(s, c->x, NULL, 0.001, m);
-    dem_wall punch = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1},
-                      .cup_radius = CUP_RP, .cup_depth = CUP_C};
-    assert_int_equal(dem_add_wall(s, &punch), 0);
-    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.01, 0.01, 0.01});
-    dem_set_dt(s, 1e-7);
-    return s;
+    return one_sphere_against(c->x, (dem_wall){.kind = DEM_WALL_PLANE, .normal = {0, 0, 1}, .cup_radius = CUP_RP,
+                                               .cup_depth = CUP_C});
 }
 static void check_cup_case(dem_sim *s, const backend_case *bc, void *ctx)
 {
@@ -565,7 +567,7 @@ static void check_cup_case(dem_sim *s, const backend_case *bc, void *ctx)
     double f[3];
     dem_wall_force(s, 0, f);
     double mag = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    double estar = 1e7 / (2 * (1 - 0.3 * 0.3)), fh = 4.0 / 3.0 * estar * sqrt(0.001) * CUP_DELTA * sqrt(CUP_DELTA);
+    double fh = bare_hertz(CUP_DELTA);
     printf("  %s: sphere at (%.4g, %.4g, %.4g) mm: wall receives (%.6g, %.6g, %.6g) N (Hertz %.6g N)\n", bc->name,
            1e3 * c->x[0], 1e3 * c->x[1], 1e3 * c->x[2], f[0], f[1], f[2], fh);
     assert_true(fabs(mag / fh - 1) < 1e-5 + 2000 * bc->eps);
