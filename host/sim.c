@@ -418,6 +418,8 @@ int dem_relative_density(const dem_sim *s, int wall, double *rho)
     int die, other, e = dem_density_walls(s, wall, &die, &other);
     if (e)
         return e;
+    if (!dem_cup_in_bore(s, wall, die) || !dem_cup_in_bore(s, other, die))
+        return DEM_ERR_ARG; /* the cup's volume would not be the bore's */
     double vol = 0, a[3], b[3];
     for (int i = 0; i < s->n; i++)
         vol += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];

@@ -441,7 +441,7 @@ int dem_density_walls(const dem_sim *s, int wall, int *die, int *other);
  * volume as the bore's, assumes: 1 (and 1 for a flat punch), else 0. */
 int dem_cup_in_bore(const dem_sim *s, int wall, int die);
 /* The relative density punch `wall` sees now (before dem_start: where the walls were added), as until_density
- * measures it; DEM_ERR_ARG without a die and a facing punch. */
+ * measures it; DEM_ERR_ARG without a die and a facing punch, or when a punch's cup does not lie within the bore. */
 int dem_relative_density(const dem_sim *s, int wall, double *rho);
 int dem_energy(dem_sim *s, dem_energy_t *e); /* energies and contact counts, on the host in double */
 /* What a time-series row needs: the energies and contact counts (as dem_energy defines them) and every wall's force

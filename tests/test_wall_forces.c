@@ -531,6 +531,26 @@ static void test_cup_geometry(void **st)
     w.cup_depth = c;
     assert_int_equal(dem_add_wall(s, &w), 0);
     dem_destroy(s);
+    /* the relative density between a concave lower punch and a flat upper one in a die counts the cup; a cup off
+     * the die's axis, reaching out of the bore, is refused */
+    for (int off = 0; off < 2; off++) {
+        s = dem_create();
+        m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+        dem_add_particle(s, (double[3]){0, 0, 0.006}, NULL, 0.001, m);
+        dem_wall die = {.kind = DEM_WALL_CYLINDER, .material = m, .normal = {0, 0, 1}, .radius = rp, .height = 0.012};
+        dem_wall lower = {.kind = DEM_WALL_PLANE, .material = m, .point = {off ? 0.0005 : 0, 0, 0.002},
+                          .normal = {0, 0, 1}, .cup_radius = rp, .cup_depth = c};
+        dem_wall upper = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0.0125}, .normal = {0, 0, -1}};
+        assert_int_equal(dem_add_wall(s, &die), 0);
+        assert_int_equal(dem_add_wall(s, &lower), 1);
+        assert_int_equal(dem_add_wall(s, &upper), 2);
+        double rho = -1, hand = 4.0 / 3.0 * M_PI * 1e-9 / (M_PI * rp * rp * 0.0105 + M_PI * c * (3 * rp * rp + c * c) / 6);
+        assert_int_equal(dem_cup_in_bore(s, 1, 0), !off);
+        assert_int_equal(dem_relative_density(s, 2, &rho), off ? DEM_ERR_ARG : DEM_OK);
+        if (!off)
+            assert_true(fabs(rho / hand - 1) < 1e-14);
+        dem_destroy(s);
+    }
 }
 
 /* A sphere (r = 1 mm) at rest against a concave punch face (cup radius 4 mm, depth 0.8 mm, normal +z) with an overlap
