@@ -498,7 +498,11 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     if (s->have_domain) {
         memcpy(lo, s->lo, sizeof lo);
         memcpy(hi, s->hi, sizeof hi);
-    } else { /* particle bounding box, padded by half its extent and 4 r_max on each side */
+    } else { /* particle bounding box, padded by half its extent, 4 r_max and the deepest punch cup on each side (a
+                fill settles into a concave punch's cup, below its land) */
+        double cup = 0;
+        for (int k = 0; k < s->nwalls; k++)
+            cup = fmax(cup, s->walls[k].cup_depth);
         for (int d = 0; d < 3; d++) {
             lo[d] = INFINITY;
             hi[d] = -INFINITY;
@@ -509,7 +513,7 @@ static double pack_grid(dem_sim *s, dem_setup *u)
                 hi[d] = fmax(hi[d], s->x[3 * i + d]);
             }
         for (int d = 0; d < 3; d++) {
-            double pad = 0.5 * (hi[d] - lo[d]) + 4 * s->rmax;
+            double pad = 0.5 * (hi[d] - lo[d]) + 4 * s->rmax + cup;
             lo[d] -= pad;
             hi[d] += pad;
         }
