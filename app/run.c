@@ -319,6 +319,7 @@ typedef struct {
     char outp[RUN_PATH_LEN], ckp[RUN_PATH_LEN];
     int show;     /* progress lines */
     double t0;    /* wall clock at the first step */
+    long step0;   /* the step it started from */
     char err[8192];
     dem_sample rows[RUN_SAMPLE_CHUNK]; /* the samples of one stretch */
     unsigned char want[RUN_STRETCH];   /* which of its steps are sampled */
@@ -455,6 +456,7 @@ static int phase_steps(run_ctx *c)
     double last;
     c->t0 = last = now();
     long step0 = dem_step_index(s), end = run->steps;
+    c->step0 = step0;
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
@@ -585,6 +587,19 @@ static void phase_report(run_ctx *c)
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
         if (dem_kernel_sequence(s, 1, seq, sizeof seq))
             fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all): %s\n", dem_rebuild_count(s), seq);
+        const char **kn;
+        const double *ks;
+        int kc = 0;
+        dem_kernel_times(s, &kn, &ks, &kc); /* DEM_PROFILE set: where the device time went */
+        long ksteps = dem_step_index(s) - c->step0;
+        for (int k = 0, first = 1; k < kc && ksteps > 0; k++)
+            if (1e6 * ks[k] / (double)ksteps >= 0.5) {
+                fprintf(stderr, "%s%s %.0f", first ? "dem: device time per step by kernel (DEM_PROFILE) [us]: " : ", ",
+                        kn[k], 1e6 * ks[k] / (double)ksteps);
+                first = 0;
+            }
+        if (kc > 0)
+            fprintf(stderr, "\n");
         fprintf(stderr, "dem: device memory held: %.3g MB (%.0f bytes per particle)\n", (double)dem_device_bytes(s) / 1e6,
                 dem_count(s) > 0 ? (double)dem_device_bytes(s) / dem_count(s) : 0.0);
         if (iterated)

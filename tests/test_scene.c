@@ -708,6 +708,16 @@ static void test_output_and_xdmf(void **st)
                                 "scan_block_sums, scan_apply, pair_index\n"));
     assert_non_null(strstr(err, "dem: device memory held: "));
     assert_non_null(strstr(err, "step 660/660 (100.0 %)"));
+    assert_null(strstr(err, "device time per step by kernel")); /* only when asked: */
+    assert_int_equal(sh(err, sizeof err, "{ DEM_PROFILE=1 %s run %s/tests/scenes/restart_box.yaml -o %s/prof.h5 "
+                        "--stop-after 40; }", DEM, SRC, tmp), 0);
+    const char *prof = strstr(err, "dem: device time per step by kernel (DEM_PROFILE) [us]: ");
+    assert_non_null(prof);
+    double us_pairs = -1, us_forces = -1;
+    const char *at = strstr(prof, "contact_pairs "), *bt = strstr(prof, "contact_forces ");
+    assert_true(at && bt && sscanf(at, "contact_pairs %lf", &us_pairs) == 1 &&
+                sscanf(bt, "contact_forces %lf", &us_forces) == 1);
+    assert_true(us_pairs >= 0.5 && us_forces >= 0.5 && us_pairs < 1e5 && us_forces < 1e5);
     assert_false(exists("%s/o.h5.part", tmp));
     snprintf(p, sizeof p, "%s/o.h5", tmp);
     hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
