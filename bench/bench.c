@@ -7,6 +7,7 @@
  *   DEM_BENCH_BED=FILE.csv      the poured bed of the bed table (default out/peer/bed.csv, made by make bench-peer)
  *   DEM_BENCH_JSON=FILE         where the bed table's figures go as JSON (default out/bench_bed.json)
  *   DEM_BENCH_TRIAXIAL_MS=2     simulated milliseconds of each triaxial run in the membrane cost table
+ *   DEM_BENCH_SKIN=1.8e-4       a fixed neighbour skin [m] for the bed table (default: the automatic one)
  * Then more tables: what an effect that is off costs (effects_table), what each contact model costs on seed 000's
  * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
  * each membrane model costs in seed 001's triaxial test (membrane_cost_table, the paper's Table 4). */
@@ -592,6 +593,8 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     dem_config_default(&c);
     c.backend = kind;
     c.precision = prec;
+    if (getenv("DEM_BENCH_SKIN"))
+        c.skin = atof(getenv("DEM_BENCH_SKIN"));
     memset(r, 0, sizeof *r);
     if (dem_start(s, &c) || dem_step(s, 5)) {
         fprintf(stderr, "bench bed: %s\n", dem_error(s));

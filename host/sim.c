@@ -822,9 +822,34 @@ static int patch_rows(dem_sim *s)
     }
 }
 
+/* The skin of the rows about to be built. Fixed by dem_config.skin, or chosen (docs/design.md "The neighbour skin"):
+ * a rebuild costs about as much as R steps, and each r_min of skin adds B of a step's cost (R / B =
+ * DEM_SKIN_COST_RATIO, measured); the particles moved up to s/2 in the n steps since the last rebuild (its trigger,
+ * or less when a probe rebuilds), so about u = s / (2 n) per step, and 1 + B s / r_min + R 2 u / s is least at
+ * s = sqrt(R / B r_min s_old / n). Any skin gives the same bits (rows list every pair within reach; one that does
+ * not touch adds nothing): this only moves the time between the steps and the rebuilds. */
+static void skin_choose(dem_sim *s)
+{
+    if (s->skin_lo < s->skin_hi && s->skin_built >= 0 && s->step > s->skin_built) {
+        double best = sqrt(DEM_SKIN_COST_RATIO * s->rmin * s->skin_now / (double)(s->step - s->skin_built));
+        s->skin_now = best < s->skin_lo ? s->skin_lo : best > s->skin_hi ? s->skin_hi : best;
+    }
+    s->skin_built = s->step;
+    dem_core *c = DEM_CORE(s->be);
+    c->sr[SR_SKIN] = s->skin_now + s->skin_extra;
+    c->sr[SR_HALF_SKIN2] = 0.25 * s->skin_now * s->skin_now;
+}
+
+/* An automatic skin above its lower end is tried smaller once the rows have lasted DEM_SKIN_PROBE steps. */
+static int skin_probe_due(const dem_sim *s)
+{
+    return s->skin_now > s->skin_lo && s->skin_built >= 0 && s->step - s->skin_built >= DEM_SKIN_PROBE;
+}
+
 static int sim_rebuild_traced(dem_sim *s)
 {
     int flags[FLAG_COUNT], e;
+    skin_choose(s);
     s->rebuild_at = DEM_CORE(s->be)->ntrace;
     if (dem_stage_bin(s->ops, s->be))
         return be_fail(s);
@@ -1028,7 +1053,7 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     }
     if (read_flags(s, flags))
         return DEM_ERR_DEVICE;
-    if (flags[FLAG_REBUILD] && (e = sim_rebuild(s)))
+    if ((flags[FLAG_REBUILD] || skin_probe_due(s)) && (e = sim_rebuild(s)))
         return e;
     s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
     s->wall_sums_due = wall_sums || s->servo_walls;
@@ -1061,6 +1086,7 @@ long dem_step_index(const dem_sim *s) { return s->step; }
 double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }
 double dem_dt(const dem_sim *s) { return s->dt; }
 int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
+double dem_neighbor_skin(const dem_sim *s) { return s->skin_now; }
 long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
 int dem_cell_count(const dem_sim *s) { return s->setup.ncell[0] * s->setup.ncell[1] * s->setup.ncell[2]; }
 int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3])

@@ -4,6 +4,15 @@
 #include "dem.h"
 #include "backend.h"
 
+/* The automatic neighbour skin (dem_config.skin 0; sim.c's skin_choose): between LO and HI x the smallest radius
+ * (HI sizes the cells); R / B of its cost model, measured on a settled bed of 1e5 spheres on PoCL (2 cores): a rebuild
+ * cost 4.5 steps, and 0.25 r_min less skin 13 % of a step (docs/design.md "The neighbour skin"); rows that lasted
+ * PROBE steps are rebuilt to try a smaller skin. */
+#define DEM_SKIN_AUTO_LO 0.05
+#define DEM_SKIN_AUTO_HI 0.3
+#define DEM_SKIN_COST_RATIO 8.7
+#define DEM_SKIN_PROBE 200
+
 struct dem_sim {
     /* description, double precision, as given */
     int n, cap;
@@ -76,6 +85,11 @@ struct dem_sim {
     double particle_volume;                /* sum of 4/3 pi r^3 [m^3] (sim_validate) */
     void *wall_real;        /* packed wall table uploaded each step */
     double rmin, rmax;
+    /* the neighbour skin (docs/design.md "The neighbour skin"): the range it is chosen in at each rebuild (equal ends
+     * when dem_config.skin fixes it), the current rows' skin, the step they were built (-1: none yet), and the rows'
+     * extra reach under MC-strain's contact distance [m] */
+    double skin_lo, skin_hi, skin_now, skin_extra;
+    long skin_built;
     char err[4096];
     char desc[1024];
     char build[4096];

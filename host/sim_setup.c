@@ -487,7 +487,7 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     int n = s->n;
     /* binning grid: cubic cells no smaller than 1.01 x the largest interaction range; the 1 % margin keeps a
      * rounding of (x - lo)/cell in fp32 from ever placing a neighbour two cells away */
-    double skin = s->cfg.skin > 0 ? s->cfg.skin : 0.3 * s->rmin;
+    double skin = s->cfg.skin > 0 ? s->cfg.skin : DEM_SKIN_AUTO_HI * s->rmin;
     /* rows are built to the interaction range plus the skin: with the MC-strain contact distance the range is
      * F (r_i + r_j) <= r_i + r_j + 2 (F - 1) r_max; the rebuild trigger stays at half the skin itself */
     double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc_reach - 1) * s->rmax : 0;
@@ -664,6 +664,10 @@ int sim_pack(dem_sim *s)
     memcpy(u->gravity, s->gravity, sizeof u->gravity);
     u->skin = skin + reach_extra;
     u->half_skin2 = 0.25 * skin * skin;
+    s->skin_hi = s->skin_now = skin; /* the cells fit the largest skin: sim.c's skin_choose stays below it */
+    s->skin_lo = s->cfg.skin > 0 ? skin : DEM_SKIN_AUTO_LO * s->rmin;
+    s->skin_extra = reach_extra;
+    s->skin_built = -1;
     u->maxn = DEM_INITIAL_ROW_CAPACITY;
     u->device = s->cfg.device;
     u->local_size = s->cfg.local_size;

@@ -316,6 +316,7 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     if (e)
         return e;
     s->step = st->step;
+    s->skin_built = s->step; /* the rows just built are this step's (sim.c skin_choose counts from it) */
     s->mc = st->mc;
     for (int k = 0; k < s->nwalls; k++)
         memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);

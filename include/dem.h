@@ -104,7 +104,9 @@ typedef struct {
     dem_precision precision;
     int device;          /* OpenCL device index over all platforms (see dem_device_count); default $DEM_DEVICE or 0 */
     size_t local_size;   /* work-group size; default 128; 0 = the runtime's choice */
-    double skin;         /* neighbour-list skin [m]; 0 = 0.3 x smallest radius */
+    double skin;         /* neighbour-list skin [m]; 0 = automatic: chosen at each rebuild between 0.05 and 0.3 x
+                            the smallest radius from how far the particles moved (dem_neighbor_skin; the bits do
+                            not depend on it) */
     double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum */
     int force_dt;        /* 1: accept a time step above the stability bound */
     const char *source_dir; /* folder with kernels/ and common/; NULL = $DEM_SOURCE_DIR or the build's */
@@ -413,6 +415,7 @@ long dem_step_index(const dem_sim *s);
 double dem_time(const dem_sim *s);
 double dem_dt(const dem_sim *s);
 int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
+double dem_neighbor_skin(const dem_sim *s);   /* the skin of the current rows [m] (dem_config.skin) */
 long dem_rebuild_count(const dem_sim *s);
 int dem_cell_count(const dem_sim *s);
 /* The binning grid of a started run: its lower corner [m], 1 / cell size [1/m] (as the kernels get it, before the

@@ -1,7 +1,9 @@
 /* test_neighbor.c - kernels/neighbor.cl against reference/neighbor.c and against a brute-force O(n^2) search:
  * row i holds exactly the j != i with |x_i - x_j| < r_i + r_j + skin at the last build (evaluated in the run
  * precision with the kernel's operation order), sorted ascending and symmetric. The packing starts with rows of
- * capacity 16, so the large skin also exercises the overflow-and-grow path. fp32 and fp64, two skins. */
+ * capacity 16, so the large skin also exercises the overflow-and-grow path. fp32 and fp64, two skins and the automatic
+ * one (dem_config.skin 0: chosen at each rebuild), which must also leave the bits of a run with a fixed skin, shrink
+ * on a packing at rest and stay larger where the particles move. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -17,15 +19,19 @@
         d0 * d0 + d1 * d1 + d2 * d2 < cut * cut;                                                                     \
     })
 
-static void check(dem_precision prec, double skin)
+static void check(dem_precision prec, double cfg_skin, long steps)
 {
     packing_opts o;
     packing_defaults(&o);
     o.side = 8;
     dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, prec), c = cfg_of(DEM_BACKEND_OPENCL, prec);
-    rc.skin = c.skin = skin;
+    rc.skin = c.skin = cfg_skin;
     dem_sim *ref, *cl;
-    packing_pair(&o, &rc, &c, 100, &ref, &cl);
+    packing_pair(&o, &rc, &c, steps, &ref, &cl);
+    double skin = dem_neighbor_skin(ref); /* the rows' skin: the one given, or the automatic one's choice */
+    assert_true(skin == dem_neighbor_skin(cl));
+    if (cfg_skin > 0)
+        assert_true(skin == cfg_skin);
     int n = dem_count(ref), m = dem_neighbor_capacity(ref);
     assert_int_equal(m, dem_neighbor_capacity(cl));
     int *c1 = malloc(sizeof(int) * n), *c2 = malloc(sizeof(int) * n);
@@ -68,7 +74,7 @@ static void check(dem_precision prec, double skin)
     /* the capacity starts at 16 and doubles when a build overflows (it never shrinks): with the large skin the rows
      * outgrew it, so it must have grown and the overflow-and-grow path has run */
     assert_true(widest <= m);
-    if (skin > 1e-3)
+    if (cfg_skin > 1e-3)
         assert_true(m > 16 && widest > 16);
     free(xb);
     free(c1), free(c2), free(l1), free(l2), free(rad);
@@ -76,16 +82,65 @@ static void check(dem_precision prec, double skin)
     dem_destroy(cl);
 }
 
-static void test_fp64_small_skin(void **st) { (void)st; check(DEM_FP64, 1e-4); }
-static void test_fp64_large_skin(void **st) { (void)st; check(DEM_FP64, 1.2e-3); }
-static void test_fp32_small_skin(void **st) { (void)st; check(DEM_FP32, 1e-4); }
-static void test_fp32_large_skin(void **st) { (void)st; check(DEM_FP32, 1.2e-3); }
+static void test_fp64_small_skin(void **st) { (void)st; check(DEM_FP64, 1e-4, 100); }
+static void test_fp64_large_skin(void **st) { (void)st; check(DEM_FP64, 1.2e-3, 100); }
+static void test_fp32_small_skin(void **st) { (void)st; check(DEM_FP32, 1e-4, 100); }
+static void test_fp32_large_skin(void **st) { (void)st; check(DEM_FP32, 1.2e-3, 100); }
+static void test_fp64_auto_skin(void **st) { (void)st; check(DEM_FP64, 0, 700); }
+
+/* The automatic skin on PoCL against a fixed skin (its largest) on the reference, 1000 steps in lockstep: the same
+ * bits at every step; returns the automatic run's skin at the end over its largest, and its rebuilds. */
+static double auto_against_fixed(dem_precision prec, double speed, double lid_speed, int gravity, long *rebuilds)
+{
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 6;
+    o.speed = speed;
+    o.lid_speed = lid_speed;
+    o.gravity = gravity;
+    dem_sim *a = packing_build(&o), *f = packing_build(&o);
+    dem_config ca = cfg_of(DEM_BACKEND_OPENCL, prec), cf = cfg_of(DEM_BACKEND_REFERENCE, prec);
+    start_or_fail(a, &ca);
+    double hi = dem_neighbor_skin(a), least = hi; /* 0.3 x the smallest radius */
+    cf.skin = hi;
+    start_or_fail(f, &cf);
+    char msg[512];
+    for (int k = 0; k < 10; k++) {
+        step_or_fail(a, 100);
+        step_or_fail(f, 100);
+        if (state_diff(f, a, msg, sizeof msg))
+            fail_msg("automatic skin against a fixed one, step %d: %s", 100 * (k + 1), msg);
+        least = dem_neighbor_skin(a) < least ? dem_neighbor_skin(a) : least;
+    }
+    double now = dem_neighbor_skin(a);
+    assert_true(least >= hi / 6 * (1 - 1e-12)); /* never below 0.05 x the smallest radius */
+    *rebuilds = dem_rebuild_count(a);
+    printf("  %s, speed %g m/s, lid %g m/s: skin %.3g of its largest at the end (least %.3g), %ld rebuilds (fixed: %ld)\n",
+           prec == DEM_FP64 ? "fp64" : "fp32", speed, lid_speed, now / hi, least / hi, *rebuilds,
+           dem_rebuild_count(f));
+    dem_destroy(a);
+    dem_destroy(f);
+    return now / hi;
+}
+
+static void test_auto_skin(void **st)
+{
+    (void)st;
+    long r_rest, r_moving;
+    /* at rest: no particle reaches the trigger, the rows are tried smaller every 200 steps down to 0.05 r_min */
+    double rest = auto_against_fixed(DEM_FP32, 0, 0, 0, &r_rest);
+    assert_true(rest < 1.0 / 6 * 1.2 && r_rest >= 4);
+    /* moving: the trigger fires every few tens of steps, and the chosen skin stays larger */
+    double moving = auto_against_fixed(DEM_FP64, 0.5, 0.2, 1, &r_moving);
+    assert_true(moving > 1.5 * rest && r_moving > r_rest);
+}
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fp64_small_skin), cmocka_unit_test(test_fp64_large_skin),
         cmocka_unit_test(test_fp32_small_skin), cmocka_unit_test(test_fp32_large_skin),
+        cmocka_unit_test(test_fp64_auto_skin),  cmocka_unit_test(test_auto_skin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
