@@ -50,7 +50,7 @@ typedef struct {
     double dtf;   /* dt / Rayleigh time */
     int model;
     double tol;   /* MC-strain iteration tolerance (iterated only) */
-    double skin;  /* neighbour skin as a fraction of the smallest radius (0: the default, 0.3) */
+    double skin;  /* neighbour skin as a fraction of the smallest radius (0: the default, chosen at each rebuild between 0.05 and 0.3) */
 } setting;
 
 typedef struct {

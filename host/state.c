@@ -259,6 +259,8 @@ int dem_state_set(dem_sim *s, const dem_state *st)
         free(old);
         return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     }
+    s->skin_now = s->skin_hi; /* how the restored particles move is not known yet: rows of the largest skin */
+    s->skin_built = -1;
     if ((e = sim_rebuild(s))) {
         free(old);
         return e;

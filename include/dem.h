@@ -107,7 +107,8 @@ typedef struct {
     double skin;         /* neighbour-list skin [m]; 0 = automatic: chosen at each rebuild between 0.05 and 0.3 x
                             the smallest radius from how far the particles moved (dem_neighbor_skin; the bits do
                             not depend on it) */
-    double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum */
+    double cell_size;    /* binning cell edge [m]; 0 or less than 1.01 (2 r_max + skin) = that minimum (the
+                            automatic skin: its largest, 0.3 x the smallest radius) */
     int force_dt;        /* 1: accept a time step above the stability bound */
     const char *source_dir; /* folder with kernels/ and common/; NULL = $DEM_SOURCE_DIR or the build's */
     int contacts;        /* 1: the run reads the contact network (dem_contacts_get), so the device keeps the force from
@@ -415,7 +416,8 @@ long dem_step_index(const dem_sim *s);
 double dem_time(const dem_sim *s);
 double dem_dt(const dem_sim *s);
 int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
-double dem_neighbor_skin(const dem_sim *s);   /* the skin of the current rows [m] (dem_config.skin) */
+double dem_neighbor_skin(const dem_sim *s);   /* the skin of the current rows [m] (dem_config.skin); with MC-strain's
+                                                 contact distance the rows reach 2 (F - 1) r_max further */
 long dem_rebuild_count(const dem_sim *s);
 int dem_cell_count(const dem_sim *s);
 /* The binning grid of a started run: its lower corner [m], 1 / cell size [1/m] (as the kernels get it, before the

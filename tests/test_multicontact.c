@@ -121,7 +121,7 @@ static void test_mc_reach(void **st)
         o2.mc_reach = on ? 1.05 : 1;
         dem_sim *p = run_ref(&o2, STEPS), *q = packing_build(&o2);
         dem_config c0 = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
-        c0.skin = 4e-4; /* default 0.3 x the smallest radius = 1.35e-4 m */
+        c0.skin = 4e-4; /* the default: at most 0.3 x the smallest radius = 1.35e-4 m */
         start_or_fail(q, &c0);
         step_or_fail(q, STEPS);
         if (state_hash(p) != state_hash(q))
