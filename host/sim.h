@@ -6,8 +6,8 @@
 
 /* The automatic neighbour skin (dem_config.skin 0; sim.c's skin_choose): between LO and HI x the smallest radius
  * (HI sizes the cells); R / B of its cost model, measured on a settled bed of 1e5 spheres on PoCL (2 cores): a rebuild
- * cost 4.5 steps, and 0.25 r_min less skin saved 13 % of the contact kernels' time (docs/design.md "The neighbour skin"); rows that lasted
- * PROBE steps are rebuilt to try a smaller skin. */
+ * cost 4.5 steps, and 0.25 r_min less skin saved 13 % of the contact kernels' time (docs/design.md "The neighbour
+ * skin"); rows that lasted PROBE steps are rebuilt to try a smaller skin. */
 #define DEM_SKIN_AUTO_LO 0.05
 #define DEM_SKIN_AUTO_HI 0.3
 #define DEM_SKIN_COST_RATIO 8.7
