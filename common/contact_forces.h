@@ -1,11 +1,12 @@
 /* contact_forces.h - particle-particle contact forces (one work item = one pair) and their per-particle accumulation
  * (one work item = one particle).
  *
- * Two passes, no atomics. Pass 1 evaluates each listed pair once, for its lower-id particle a, in canonical
- * orientation (n from b to a), and leaves the result in the pair's record. Pass 2 has every particle add the records
- * of the pairs it owns, then subtract those owned by lower ids (the exact negation of what they computed), then add
- * its walls. The canonical order of every particle's sum is therefore: partners j > i ascending, then partners j < i
- * ascending, then walls by index; f_ji = -f_ij bit for bit.
+ * Two passes, no atomics. Pass 1 evaluates each listed pair once, for its particle a of lower stable id (sid:
+ * neighbor.h), in canonical orientation (n from b to a), and leaves the result in the pair's record. Pass 2 has every
+ * particle add the records of the pairs it owns, then subtract those owned by particles of lower stable id (the exact
+ * negation of what they computed), then add its walls. The canonical order of every particle's sum is therefore:
+ * partners of higher stable id ascending, then partners of lower stable id ascending, then walls by index (below,
+ * "j > i" and "lower id" say stable ids); f_ji = -f_ij bit for bit. Where the particles are stored does not enter.
  * A listed pair that does not touch adds nothing at all (not even +0), which keeps results independent of the skin.
  * touch[p] says whether pair p touches (one byte per pair, like its history); the 24-byte history is read only when
  * it touched in the previous step and is zero otherwise, so a step reads one byte, not one history, per listed pair

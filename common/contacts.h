@@ -1,8 +1,9 @@
 /* contacts.h - the contacts of one particle in the one canonical order every per-particle sum uses (issue 18).
  *
  * Particle i's possible contacts are numbered c = 0 .. contact_count(cnt, nw) - 1:
- *   c <  cnt:  its neighbour row's slot c, partners in ascending id: OWNED when the partner's id is larger (the pair
- *              is evaluated by i: contact_pairs), MIRRORED when it is smaller (i reads the pair's record);
+ *   c <  cnt:  its neighbour row's slot c, partners in ascending stable id (neighbor.h): MIRRORED in the row's first
+ *              `lower` slots (in_count[i]: the partners of lower stable id; i reads the pair's record), OWNED after
+ *              them (the pair is evaluated by i: contact_pairs);
  *   c >= cnt:  wall c - cnt, in index order (nw: the walls when the walls effect is on, else none).
  * The stress sums (particle_stress.h) and MC-strain (mc_strain.h) run over every c; the force sum takes the OWNED
  * ones in pass 1 and the MIRRORED ones, then the walls, in pass 2 (contact_forces.h). A contact_ref also names where
@@ -25,14 +26,15 @@ typedef struct {
 
 DEM_INLINE int contact_count(int cnt, int nw) { return cnt + nw; }
 
-/* Contact number c of particle i (cnt = nbr_count[i]). */
-DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int maxn, int nwalls, DEM_CONST_GLOBAL int *nbr_list)
+/* Contact number c of particle i (cnt = nbr_count[i], lower = in_count[i]). */
+DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int lower, int maxn, int nwalls,
+                                  DEM_CONST_GLOBAL int *nbr_list)
 {
     contact_ref r;
     if (c < cnt) {
         r.slot = i * maxn + c;
         r.partner = nbr_list[r.slot];
-        r.kind = r.partner > i ? CONTACT_OWNED : CONTACT_MIRRORED;
+        r.kind = c >= lower ? CONTACT_OWNED : CONTACT_MIRRORED;
     } else {
         r.kind = CONTACT_WALL;
         r.partner = c - cnt;

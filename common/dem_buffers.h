@@ -34,6 +34,8 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol))                                                                         \
     ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x))                                                              \
     ENTRY(MAT, INT, N, 0, -1, SETUP(mat))                                                                                \
+    ENTRY(SID, INT, N, 0, -1, SETUP(sid))                                                                                \
+    ENTRY(ORDER, INT, N, 0, -1, SETUP(order))                                                                            \
     ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat))                                                 \
     ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int))                                                         \
     ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, DEM_FIELD_WALL_REAL, SETUP(wall_real))                                          \

@@ -67,13 +67,13 @@
     A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
     A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, own_count, OWN_COUNT)                \
     A(BOUT, int, flags, FLAGS) A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT) A(BIN, int, mat, MAT)       \
-    A(BIN, real, pairmat, PAIRMAT)
+    A(BIN, real, pairmat, PAIRMAT) A(BIN, int, sid, SID)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
     A(BIN, dem_byte, old_touch, TOUCH_OLD) A(BIN, int, old_own_start, OWN_START_OLD)                                 \
-    A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN)
+    A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN) A(BIN, int, sid, SID)
 #define DEM_ITEMS_nbr_carry n
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)             \
@@ -83,7 +83,7 @@
     A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(I, int, old_maxn, MAXN_NEW)            \
     A(NIN, int, old_count, COUNT)                                                                                    \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
-    A(BOUT, real, hist, PAIR_HIST)
+    A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID)
 #define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
@@ -118,7 +118,8 @@
     A(BIN, real, invmass, INVMASS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BIN, int, wall_int, WALL_INT) \
     A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
     A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
-    A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)
+    A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)                      \
+    A(BIN, int, order, ORDER)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \
@@ -141,7 +142,7 @@
     A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, unsigned, wall_mask, WALL_MASK)                 \
     A(BIN, real, wall_pf, WALL_PF) A(BIN, real, radius, RADIUS) A(BIN, int, wall_int, WALL_INT)                      \
     A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE) A(BIN, real, partial, PARTIAL)                   \
-    A(BOUT, real, ring_wall, SERIES_WALL)
+    A(BOUT, real, ring_wall, SERIES_WALL) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_integrate_kick n
 
 /* ---- particle_stress.h ---- */
@@ -150,7 +151,8 @@
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
     A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                                \
     A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                              \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE)
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE)                  \
+    A(BIN, int, in_count, IN_COUNT)
 #define DEM_ARGS_stress_trace(F, A)                                                                                  \
     DEM_ARGS_stress_head(F, A) A(BOUT, real, trace, TRACE)
 #define DEM_ITEMS_stress_trace n
@@ -164,7 +166,7 @@
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
     A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                           \
-    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE)
+    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, in_count, IN_COUNT)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
@@ -173,7 +175,7 @@
     A(I, int, nwalls, NWALLS)                                                                                        \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                   \
     A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
-    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE)
+    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, in_count, IN_COUNT)
 #define DEM_ITEMS_mc_strain_update n
 
 /* ---- springs.h ---- */

@@ -64,7 +64,7 @@ DEM_ITEM(integrate_kick)
                             series_slot(ring, row, n, i));
         if ((fx & DEM_EFFECT_WALLS) && i % DEM_REDUCE_BLOCK == 0)
             series_wall_blocks(fx, i / DEM_REDUCE_BLOCK, n, nwalls, nblocks, row, wall_mask, wall_pf, x, radius,
-                               wall_int, wall_real, ride, partial, ring_wall);
+                               wall_int, wall_real, ride, partial, ring_wall, order);
     }
 }
 #endif /* DEM_INTEGRATE_H */

@@ -1,7 +1,9 @@
 /* neighbor.h - Verlet neighbour rows from the cell grid, and contact history carried across rebuilds.
  *
- * Row i lists every j != i with |x_i - x_j| < r_i + r_j + skin, sorted by ascending j (the canonical summation
- * order of contact_forces.h), at nbr_list[i*maxn ...]. The test is symmetric in i and j bit for bit (IEEE + and *
+ * Row i lists every j != i with |x_i - x_j| < r_i + r_j + skin, sorted by ascending sid[j] (the canonical summation
+ * order of contact_forces.h), at nbr_list[i*maxn ...]. sid is each particle's stable id (its place in the input:
+ * dem_particle_source), so that every sum follows the stable ids, not the places the particles are stored at: a
+ * run whose particles are stored in another order (particle_order: spatial) gives the same bits. The test is symmetric in i and j bit for bit (IEEE + and *
  * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
  * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
  * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's
@@ -44,15 +46,15 @@ DEM_ITEM(nbr_build)
                     real cut = ri + radius[j] + skin;
                     if (!(v3_dot(d, d) < cut * cut))
                         continue;
-                    /* insert j keeping the stored part of the row sorted */
-                    int m = (cnt < maxn ? cnt : maxn) - 1;
-                    if (cnt >= maxn && row[m] < j) {
+                    /* insert j keeping the stored part of the row sorted by stable id */
+                    int m = (cnt < maxn ? cnt : maxn) - 1, sj = sid[j];
+                    if (cnt >= maxn && sid[row[m]] < sj) {
                         cnt++; /* beyond capacity and larger than all stored: only counted */
                         continue;
                     }
                     if (cnt >= maxn)
                         m--; /* drop the largest stored partner to make room */
-                    while (m >= 0 && row[m] > j) {
+                    while (m >= 0 && sid[row[m]] > sj) {
                         row[m + 1] = row[m];
                         m--;
                     }
@@ -61,19 +63,20 @@ DEM_ITEM(nbr_build)
                 }
             }
     nbr_count[i] = cnt < maxn ? cnt : maxn;
-    int lower = 0; /* partners j < i: the front of the sorted row, whose pair records this particle reads */
-    while (lower < nbr_count[i] && row[lower] < i)
+    int lower = 0, si = sid[i]; /* partners of lower stable id: the front of the row, whose records i reads */
+    while (lower < nbr_count[i] && sid[row[lower]] < si)
         lower++;
     in_count[i] = lower;
     own_count[i] = nbr_count[i] - lower;
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 
-/* The number of pair (a, b), a < b, in the old rows' pair list (its owner a's row), or -1 when it was not listed. */
+/* The number of pair (a, b), sid[a] < sid[b], in the old rows' pair list (its owner a's row), or -1 when it was not
+ * listed. */
 DEM_INLINE int old_pair_number(int a, int b, DEM_CONST_GLOBAL int *old_count, DEM_CONST_GLOBAL int *old_list,
-                               int old_maxn, DEM_CONST_GLOBAL int *old_own_start)
+                               int old_maxn, DEM_CONST_GLOBAL int *old_own_start, DEM_CONST_GLOBAL int *sid)
 {
-    int found = row_find(old_list + a * old_maxn, old_count[a], b);
+    int found = row_find_sid(old_list + a * old_maxn, old_count[a], sid, sid[b]);
     return found < 0 ? -1 : row_pair_number(old_own_start[a], old_own_start[a + 1], old_count[a], found);
 }
 
@@ -84,11 +87,11 @@ DEM_ITEM(nbr_carry)
     DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
     for (int k = 0; k < nbr_count[i]; k++) { /* the lagged MC-strain force of the same contact (mc_strain.h) */
         int j = nbr_list[i * maxn + k];
-        int found = row_find(orow, old_count[i], j);
+        int found = row_find_sid(orow, old_count[i], sid, sid[j]);
         real f = (real)0;
-        if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower id */
-            int q = j > i ? old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start)
-                          : old_pair_number(j, i, old_count, old_list, old_maxn, old_own_start);
+        if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower stable id */
+            int q = sid[j] > sid[i] ? old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, sid)
+                                    : old_pair_number(j, i, old_count, old_list, old_maxn, old_own_start, sid);
             if (q >= 0 && old_touch[q])
                 f = old_mc_fn[i * old_maxn + found];
         }
@@ -96,7 +99,7 @@ DEM_ITEM(nbr_carry)
     }
 }
 /* The flat pair list of the committed rows (contact_forces.h): pair p = own_start[i] + c - in_count[i] is the owned
- * pair in particle i's row slot c (partner j > i); pair_slot[p] names that slot. The partner j's incoming slot of
+ * pair in particle i's row slot c (partner j of higher stable id, sid[j] > sid[i]); pair_slot[p] names that slot. The partner j's incoming slot of
  * the same pair (row slot k < in_count[j]: the slot of i in row j, found by binary search) gets
  * in_pair[in_start[j] + k] = p, and with MC-strain pair_mirror[p] names that slot. Each entry has one writer: p's
  * owner writes them all. A pair whose partner row lacks it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC.
@@ -109,7 +112,7 @@ DEM_ITEM(pair_index)
     for (int c = lower; c < cnt; c++) {
         int slot = i * maxn + c, p = row_pair_number(own_start[i], own_start[i + 1], cnt, c);
         int j = nbr_list[slot];
-        int m = row_find(nbr_list + j * maxn, nbr_count[j], i);
+        int m = row_find_sid(nbr_list + j * maxn, nbr_count[j], sid, sid[i]);
         pair_slot[p] = slot;
         if (fx & DEM_EFFECT_MC_STRAIN)
             pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
@@ -117,7 +120,7 @@ DEM_ITEM(pair_index)
             in_pair[in_start[j] + m] = p;
         else
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
-        int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start); /* -1: a new pair */
+        int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, sid); /* -1: a new pair */
         int t = q >= 0 ? old_touch[q] : 0;
         touch[p] = (unsigned char)t;
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */

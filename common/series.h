@@ -53,7 +53,7 @@ DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nb
                                    DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *radius,
                                    DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
                                    DEM_CONST_GLOBAL unsigned *ride, DEM_CONST_GLOBAL real *partial,
-                                   DEM_GLOBAL real *ring_wall)
+                                   DEM_GLOBAL real *ring_wall, DEM_CONST_GLOBAL int *order)
 {
     DEM_GLOBAL real *dst = ring_wall + (long)row * nwalls * nblocks * WP_STRIDE;
     if (!(fx & DEM_KEEP_WALL_FORCES)) {
@@ -63,14 +63,15 @@ DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nb
         return;
     }
     /* wall_block_kept's sums for every wall in one pass over the block: a particle that touches no wall (most of
-     * them) costs one test, not one per wall; each wall's terms are still added in ascending id, the same bits */
+     * them) costs one test, not one per wall; each wall's terms are still added in ascending stable id, the same bits */
     wall_part p[DEM_WALL_MASK_BITS];
     for (int k = 0; k < nwalls; k++) {
         p[k].f = v3_zero();
         p[k].fn = (real)0;
     }
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) {
+    for (int q = b * DEM_REDUCE_BLOCK; q < end; q++) { /* ascending stable id, as wall_block_kept */
+        int j = order[q];
         unsigned m = wall_mask[j];
         for (int k = 0; m != 0u; k++, m >>= 1)
             if (m & 1u) {

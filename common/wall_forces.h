@@ -145,22 +145,25 @@ DEM_INLINE void wall_part_store(DEM_GLOBAL real *p, long idx, wall_part w)
 DEM_INLINE wall_part wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
                                      DEM_CONST_GLOBAL real *wall_pf, DEM_CONST_GLOBAL real *x,
                                      DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
-                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride)
+                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride,
+                                     DEM_CONST_GLOBAL int *order)
 {
     wall_part p;
     p.f = v3_zero();
     p.fn = (real)0;
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
+    for (int q = b * DEM_REDUCE_BLOCK; q < end; q++) {
+        int j = order[q];
         if ((wall_mask[j] >> k) & 1u) {
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
             wall_part_take(&p, v3_load(wall_pf, k * n + j), g.n);
         }
+    }
     return p;
 }
 
-/* Partial sums of the force that particles [b*B, (b+1)*B) exert on wall k, ascending id (B = DEM_REDUCE_BLOCK), and
- * of their normal parts. With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
+/* Partial sums of the force that particles of stable ids [b*B, (b+1)*B) exert on wall k, ascending stable id
+ * (B = DEM_REDUCE_BLOCK; order[q] is where the particle of stable id q is stored), and of their normal parts. With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
  * Without: each particle's force from the wall evaluated as contact_forces is about to (this kernel runs between
  * contact_pairs and contact_forces, on the same state), so nothing per particle and wall is stored. The same terms in
  * the same order: the same bits either way. */
@@ -172,9 +175,10 @@ DEM_ITEM(wall_reduce_block)
     p.fn = (real)0;
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     if (fx & DEM_KEEP_WALL_FORCES)
-        p = wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride);
+        p = wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride, order);
     else
-        for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) { /* the wall receives minus the force on the particle */
+        for (int q = b * DEM_REDUCE_BLOCK; q < end; q++) { /* the wall receives minus the force on the particle */
+            int j = order[q];
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
                                                dt, (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);

@@ -3,7 +3,8 @@
  * assembled on the host in double. Pairs come from the records contact_pairs leaves for the higher id
  * (common/contact_forces.h: the force on the lower id, at the higher id's incoming slot), walls from the per-particle
  * wall forces (common/wall_forces.h); geometry (overlap, normal, contact point) is recomputed from the positions as
- * the kernels define it. Order: pairs by (i, j), i < j, then particle-wall pairs by (particle, wall). */
+ * the kernels define it. Order: pairs by (i, j), i the pair's owner (the lower stable id: i < j unless the particles
+ * were sorted, dem_sort_particles), then particle-wall pairs by (particle, wall). */
 #include "sim.h"
 #include "dem_layout.h"
 #include <math.h>
@@ -71,8 +72,9 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     const unsigned char *touch = dst[FTOUCH];
     const unsigned *mask = dst[FMASK];
     long np = 0, nwc = 0;
+    const int *sid = s->setup.sid; /* a row's front: its partners of lower stable id, the pairs it does not own */
     for (int i = 0; i < n; i++) {
-        for (int k = 0; k < cnt[i] && list[i * maxn + k] < i; k++)
+        for (int k = 0; k < cnt[i] && sid[list[i * maxn + k]] < sid[i]; k++)
             np += touch[in_pair[start[i] + k]] != 0;
         for (int w = 0; w < nw; w++)
             nwc += (mask[i] >> w) & 1u;
@@ -82,7 +84,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
         free(raw);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
-    /* pairs: particle j's incoming slots name the pairs (i, j), i < j, in ascending i; gathered per j, then put in
+    /* pairs: particle j's incoming slots name the pairs (i, j), i its owner, in ascending i; gathered per j, then put in
      * (i, j) order by a counting pass over i */
     long *per_i = calloc((size_t)n + 1, sizeof(long));
     if (!per_i) {
@@ -90,13 +92,13 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (int j = 0; j < n; j++)
-        for (int k = 0; k < cnt[j] && list[j * maxn + k] < j; k++)
+        for (int k = 0; k < cnt[j] && sid[list[j * maxn + k]] < sid[j]; k++)
             if (touch[in_pair[start[j] + k]])
                 per_i[list[j * maxn + k] + 1]++;
     for (int i = 0; i < n; i++)
         per_i[i + 1] += per_i[i];
     for (int j = 0; j < n; j++) /* ascending j, so each i's pairs land in ascending j */
-        for (int k = 0; k < cnt[j] && list[j * maxn + k] < j; k++) {
+        for (int k = 0; k < cnt[j] && sid[list[j * maxn + k]] < sid[j]; k++) {
             int p = in_pair[start[j] + k];
             if (!touch[p])
                 continue;

@@ -89,24 +89,27 @@ void ref_wall_reduce_final_f32(unsigned fx, int nwalls, int nblocks, const float
 void ref_wall_reduce_final_f64(unsigned fx, int nwalls, int nblocks, const double *partial, double *wall_force,
                                double *wall_nforce);
 
-/* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending particle order, in
+/* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending stable id, in
  * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened. */
 static void rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
                            dem_sample *out)
 {
     int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nw = s->nwalls, n = s->n;
+    const int *order = s->setup.order; /* ascending stable id (neighbor.h): the same sums in any storage order */
     double one[SE_STRIDE];
     double wf[3 * DEM_MAX_WALLS], wn[DEM_MAX_WALLS]; /* the run's reals (float or double) in double-aligned room */
     for (int r = 0; r < count; r++) {
         double t[SE_STRIDE] = {0};
         if (rs == 8) { /* the same additions, without the copy through one[] (a row every step spent 3 us here) */
-            const double *p = (const double *)(terms + (size_t)r * n * SE_STRIDE * rs);
-            for (int i = 0; i < n; i++, p += SE_STRIDE)
+            const double *row = (const double *)(terms + (size_t)r * n * SE_STRIDE * rs);
+            for (int k = 0; k < n; k++) {
+                const double *p = row + (size_t)order[k] * SE_STRIDE;
                 for (int q = 0; q < SE_STRIDE; q++)
                     t[q] += p[q];
+            }
         } else {
-            for (int i = 0; i < n; i++) {
-                widen(terms + ((size_t)r * n + i) * SE_STRIDE * rs, one, SE_STRIDE, rs);
+            for (int k = 0; k < n; k++) {
+                widen(terms + ((size_t)r * n + order[k]) * SE_STRIDE * rs, one, SE_STRIDE, rs);
                 for (int q = 0; q < SE_STRIDE; q++)
                     t[q] += one[q];
             }
@@ -213,7 +216,9 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             widen(raw + 3 * n3 * rs + 3 * (size_t)s->nwalls * rs, wall_normal, (size_t)s->nwalls, rs);
     }
 
-    for (int i = 0; !e && i < n; i++) {
+    const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */
+    for (int q = 0; !e && q < n; q++) {
+        int i = s->setup.order[q];
         double m = sim_mass(s, i), r = s->radius[i], I = sim_inertia(s, i);
         unsigned fl = s->pflags[i];
         double v2 = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
@@ -227,7 +232,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             en->kinetic += 0.5 * I * w2;
         for (int k = 0; k < cnt[i]; k++) {
             int j = list[i * s->maxn + k];
-            if (j <= i)
+            if (sid[j] < sid[i])
                 continue;
             double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
             double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);

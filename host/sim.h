@@ -60,9 +60,10 @@ struct dem_sim {
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 22
+#define SIM_PACKED 24
     void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders;
-                                 18, 19: patch triangles per vertex; 20: the walls each particle rides on; 21: held velocity axes) */
+                                 18, 19: patch triangles per vertex; 20: the walls each particle rides on; 21: held velocity axes;
+                                 22, 23: each particle's stable id and where each stable id is stored) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */

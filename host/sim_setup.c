@@ -646,6 +646,21 @@ int sim_pack(dem_sim *s)
     for (int i = 0; i < n; i++)
         hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
     s->packed[21] = hold, u->hold = hold;
+    /* the stable ids every sum follows (neighbor.h): each particle's place in the input, so that a run stored in
+     * another order (dem_sort_particles) gives the same bits */
+    int *sid = malloc(sizeof(int) * (size_t)(n ? n : 1)), *order = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    s->packed[22] = sid, s->packed[23] = order;
+    if (!sid || !order)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int i = 0; i < n; i++)
+        order[i] = -1;
+    for (int i = 0; i < n; i++) {
+        int q = sid[i] = dem_particle_source(s, i);
+        if (q < 0 || q >= n || order[q] >= 0)
+            return sim_fail(s, DEM_ERR_STATE, "particle %d: its input place %d is not unique (a library bug)", i, q);
+        order[q] = i;
+    }
+    u->sid = sid, u->order = order;
     u->x = s->packed[0];
     u->v = s->packed[1];
     u->w = s->packed[2];

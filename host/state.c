@@ -105,8 +105,9 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
     return e;
 }
 
-/* Where each row's owned pairs start in the pair numbering (neighbor.h's pair_index: own_start), from the rows */
-static int *own_starts(const int *cnt, const int *list, int maxn, int n)
+/* Where each row's owned pairs (partners of higher stable id) start in the pair numbering (neighbor.h's
+ * pair_index: own_start), from the rows */
+static int *own_starts(const int *cnt, const int *list, int maxn, int n, const int *sid)
 {
     int *own = malloc(sizeof(int) * ((size_t)n + 1));
     if (!own)
@@ -114,7 +115,7 @@ static int *own_starts(const int *cnt, const int *list, int maxn, int n)
     own[0] = 0;
     for (int i = 0; i < n; i++) {
         int lower = 0;
-        while (lower < cnt[i] && list[i * maxn + lower] < i)
+        while (lower < cnt[i] && sid[list[i * maxn + lower]] < sid[i])
             lower++;
         own[i + 1] = own[i] + cnt[i] - lower;
     }
@@ -155,14 +156,16 @@ int dem_state_get(dem_sim *s, dem_state *st)
     unsigned char *mcf = get_all(s, DEM_FIELD_MC_FORCE, &fb, &e);
     int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = get_all(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_all(s, DEM_FIELD_HIST, &hb, &e);
-    /* touching pairs, once each (owner i < j), in row order: ascending i, then j */
+    /* touching pairs, once each (owner i: the lower stable id), in row order: ascending i, then the partners' stable
+     * ids */
     long np = 0;
-    int *own = e ? NULL : own_starts(cnt, list, maxn, n);
+    const int *sid = s->setup.sid;
+    int *own = e ? NULL : own_starts(cnt, list, maxn, n, sid);
     if (!e && !own)
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; !e && i < n; i++) /* the touching flags are kept per pair, numbered like the history */
         for (int k = 0; k < cnt[i]; k++)
-            np += list[i * maxn + k] > i && touch[row_pair_number(own[i], own[i + 1], cnt[i], k)];
+            np += sid[list[i * maxn + k]] > sid[i] && touch[row_pair_number(own[i], own[i + 1], cnt[i], k)];
     if (!e) {
         st->pair_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->pair_j = malloc(sizeof(int) * (size_t)(np ? np : 1));
@@ -175,7 +178,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             int slot = i * maxn + k, j = list[slot];
-            if (j <= i || !touch[row_pair_number(own[i], own[i + 1], cnt[i], k)])
+            if (sid[j] < sid[i] || !touch[row_pair_number(own[i], own[i + 1], cnt[i], k)])
                 continue;
             st->pair_i[np] = i;
             st->pair_j[np] = j;
@@ -198,9 +201,9 @@ int dem_state_get(dem_sim *s, dem_state *st)
 }
 
 /* slot of partner j in row i, or -1 */
-static int find_slot(const int *cnt, const int *list, int maxn, int i, int j)
+static int find_slot(const int *cnt, const int *list, int maxn, const int *sid, int i, int j)
 {
-    int k = row_find(list + i * maxn, cnt[i], j);
+    int k = row_find_sid(list + i * maxn, cnt[i], sid, sid[j]);
     return k < 0 ? -1 : i * maxn + k;
 }
 
@@ -238,10 +241,13 @@ int dem_state_set(dem_sim *s, const dem_state *st)
                             "does not fit this run", k, st->wall_stage[k], s->walls[k].nstages,
                             st->wall_stage_first[k], st->step);
     }
-    for (long p = 0; p < st->npairs; p++)
-        if (!(st->pair_i[p] >= 0 && st->pair_i[p] < st->pair_j[p] && st->pair_j[p] < n))
-            return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i < j < %d)", p,
-                            st->pair_i[p], st->pair_j[p], n);
+    const int *sid = s->setup.sid; /* a pair is saved from its owner, the lower stable id (neighbor.h) */
+    for (long p = 0; p < st->npairs; p++) {
+        int i = st->pair_i[p], j = st->pair_j[p];
+        if (!(i >= 0 && i < n && j >= 0 && j < n && sid[i] < sid[j]))
+            return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i, j < %d, i "
+                            "listed before j in the input)", p, i, j, n);
+    }
     /* Whether each saved contact is a neighbour pair needs the rows of the saved positions, so those are written
      * and the rows rebuilt first; when a contact then does not fit, the run's own positions go back (below) and
      * the state changes nothing. */
@@ -270,13 +276,13 @@ int dem_state_set(dem_sim *s, const dem_state *st)
               tb = dem_field_bytes(s, DEM_FIELD_TOUCH);
     int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
-    int *own = e ? NULL : own_starts(cnt, list, maxn, n);
+    int *own = e ? NULL : own_starts(cnt, list, maxn, n, sid);
     if (!e && (!touch || !hist || !mcf || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int i = st->pair_i[p], j = st->pair_j[p];
-        int a = i >= 0 && i < n && j >= 0 && j < n ? find_slot(cnt, list, maxn, i, j) : -1;
-        int m = a >= 0 ? find_slot(cnt, list, maxn, j, i) : -1;
+        int a = i >= 0 && i < n && j >= 0 && j < n ? find_slot(cnt, list, maxn, sid, i, j) : -1;
+        int m = a >= 0 ? find_slot(cnt, list, maxn, sid, j, i) : -1;
         if (a < 0 || m < 0) {
             e = sim_fail(s, DEM_ERR_ARG, "saved contact %d-%d is not a neighbour pair of the saved positions", i, j);
             break;

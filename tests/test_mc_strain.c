@@ -56,13 +56,16 @@ static void test_slow_path_equals_fast_path(void **st)
         wall_fn[k] = (real)(0.03 + 0.02 * (k % 3));
     real slow[N * MAXN], fast[N * MAXN], wslow[N * NW], wfast[N * NW];
     unsigned ride[N] = {0}; /* no riders (read only with DEM_EFFECT_RIDERS) */
+    int in_count[N]; /* partners of lower stable id: none for particle 0, particle 0 for the others */
+    for (int i = 0; i < N; i++)
+        in_count[i] = i > 0;
     memset(slow, 0xff, sizeof slow);
     memset(fast, 0xff, sizeof fast);
     for (int i = 0; i < N; i++)
         mc_strain_disp_item(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, i, N, MAXN, 2, x, radius, mat, pairmat, count,
-                            list, NW, wall_int, wall_real, fn, wall_fn, slow, wslow, ride);
+                            list, NW, wall_int, wall_real, fn, wall_fn, slow, wslow, ride, in_count);
     ref_mc_strain_disp_f64(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, N, MAXN, 2, x, radius, mat, pairmat, count,
-                           list, NW, wall_int, wall_real, fn, wall_fn, fast, wfast, ride);
+                           list, NW, wall_int, wall_real, fn, wall_fn, fast, wfast, ride, in_count);
     int touching = 0;
     for (int k = 0; k < 6; k++) {
         assert_memory_equal(&slow[k], &fast[k], sizeof(real));

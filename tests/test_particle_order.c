@@ -1,0 +1,207 @@
+/* test_particle_order.c - the storage order of the particles does not change a run's bits (issue 14).
+ *
+ * Every sum follows the particles' stable ids (their places in the input: common/neighbor.h), not the places they
+ * are stored at, so a packing stored in another order (dem_sort_particles, particle_order: spatial) runs bit for bit
+ * as the same packing in its input order. Checked on the polydisperse frictional packing of test_util (lattice order,
+ * which the Morton order of dem_sort_particles moves almost entirely) under every contact model, in fp32 and fp64,
+ * on the reference and on PoCL: after 300 steps with a moving lid (several rebuilds) each particle's position,
+ * velocity, spin, force and torque, each wall's force, the energies, a sampled series, the contact network and the
+ * saved contact memory are the same bits, particle by particle through dem_particle_source. */
+#include "test_util.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define STEPS 300
+
+typedef struct {
+    const char *name;
+    unsigned mc;
+    double beta, gamma;
+    int iterations;
+    int contacts; /* dem_config.contacts: the wall forces kept per particle (the other wall-sum path) */
+} model;
+
+static const model models[] = {
+    {"classical", 0, 0, 0, 0, 0},
+    {"classical, contact network", 0, 0, 0, 0, 1},
+    {"MC-stress", DEM_EFFECT_MC_STRESS, 1.65, 0, 0, 0},
+    {"MC-strain lagged", DEM_EFFECT_MC_STRAIN, 0, 1.12, 0, 0},
+    {"MC-strain iterated", DEM_EFFECT_MC_STRAIN, 0, 1.12, 8, 1},
+};
+
+static packing_opts opts_of(const model *m)
+{
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 6; /* 216 + 125 = 341 spheres */
+    o.lid_speed = 2.0;
+    o.speed = 0.3;
+    o.effects = DEM_EFFECT_CLASSICAL | m->mc;
+    o.mc_beta = m->beta;
+    o.mc_gamma = m->gamma;
+    o.mc_iterations = m->iterations;
+    return o;
+}
+
+/* a per-particle field of both runs, particle by particle (b stored in another order) */
+static void same_field(dem_sim *a, dem_sim *b, dem_field f, int width, const char *what, const char *where)
+{
+    int n = dem_count(a);
+    double *fa = malloc(sizeof(double) * (size_t)(width * n)), *fb = malloc(sizeof(double) * (size_t)(width * n));
+    assert_non_null(fa);
+    assert_non_null(fb);
+    assert_int_equal(dem_get_field(a, f, fa), 0);
+    assert_int_equal(dem_get_field(b, f, fb), 0);
+    for (int i = 0; i < n; i++) {
+        int src = dem_particle_source(b, i);
+        if (memcmp(fb + width * i, fa + width * src, sizeof(double) * (size_t)width))
+            fail_msg("%s: %s of particle %d (stored at %d): %.17g against %.17g", where, what, src, i,
+                     fa[width * src], fb[width * i]);
+    }
+    free(fa), free(fb);
+}
+
+typedef struct {
+    int a, b; /* input places, a < b */
+    const unsigned char *hist, *fn;
+} saved_pair;
+
+static int by_places(const void *p, const void *q)
+{
+    const saved_pair *x = p, *y = q;
+    return x->a != y->a ? (x->a > y->a) - (x->a < y->a) : (x->b > y->b) - (x->b < y->b);
+}
+
+/* the saved contacts (dem_state_get) as sets of input places with their memory */
+static void same_saved_contacts(dem_sim *a, dem_sim *b, const char *where)
+{
+    dem_state sa, sb;
+    assert_int_equal(dem_state_get(a, &sa), 0);
+    assert_int_equal(dem_state_get(b, &sb), 0);
+    assert_int_equal(sa.npairs, sb.npairs);
+    assert_true(sa.npairs > 100);
+    long np = sa.npairs;
+    int rs = sa.real_size;
+    saved_pair *pa = calloc((size_t)np, sizeof *pa), *pb = calloc((size_t)np, sizeof *pb);
+    assert_non_null(pa);
+    assert_non_null(pb);
+    for (long p = 0; p < np; p++) {
+        pa[p] = (saved_pair){sa.pair_i[p], sa.pair_j[p], (unsigned char *)sa.pair_hist + 3 * rs * p,
+                             sa.has_mc ? (unsigned char *)sa.pair_mc_fn + rs * p : NULL};
+        int i = dem_particle_source(b, sb.pair_i[p]), j = dem_particle_source(b, sb.pair_j[p]);
+        assert_true(i < j); /* saved by its owner, the lower input place */
+        pb[p] = (saved_pair){i, j, (unsigned char *)sb.pair_hist + 3 * rs * p,
+                             sb.has_mc ? (unsigned char *)sb.pair_mc_fn + rs * p : NULL};
+    }
+    qsort(pb, (size_t)np, sizeof *pb, by_places); /* a's are in its row order: ascending i, then j */
+    for (long p = 0; p < np; p++) {
+        if (pa[p].a != pb[p].a || pa[p].b != pb[p].b)
+            fail_msg("%s: saved contact %ld: %d-%d against %d-%d", where, p, pa[p].a, pa[p].b, pb[p].a, pb[p].b);
+        if (memcmp(pa[p].hist, pb[p].hist, 3 * (size_t)rs) || (pa[p].fn && memcmp(pa[p].fn, pb[p].fn, (size_t)rs)))
+            fail_msg("%s: the memory of contact %d-%d differs", where, pa[p].a, pa[p].b);
+    }
+    free(pa), free(pb);
+    dem_state_free(&sa), dem_state_free(&sb);
+}
+
+static int by_contact(const void *p, const void *q)
+{
+    const dem_contact *x = p, *y = q;
+    return x->i != y->i ? (x->i > y->i) - (x->i < y->i) : (x->j > y->j) - (x->j < y->j);
+}
+
+/* the contact network, with b's particles named by their input places */
+static void same_network(dem_sim *a, dem_sim *b, const char *where)
+{
+    dem_contact *ca, *cb;
+    long na, nb, pa, pb;
+    assert_int_equal(dem_contacts_get(a, &ca, &na, &pa), 0);
+    assert_int_equal(dem_contacts_get(b, &cb, &nb, &pb), 0);
+    assert_int_equal(na, nb);
+    assert_int_equal(pa, pb);
+    assert_true(pa > 100 && na > pa);
+    for (long k = 0; k < nb; k++) {
+        cb[k].i = dem_particle_source(b, cb[k].i);
+        if (cb[k].j >= 0)
+            cb[k].j = dem_particle_source(b, cb[k].j);
+        assert_true(cb[k].j < 0 || cb[k].i < cb[k].j);
+    }
+    qsort(cb, (size_t)pb, sizeof *cb, by_contact);
+    qsort(cb + pb, (size_t)(nb - pb), sizeof *cb, by_contact);
+    qsort(ca + pa, (size_t)(na - pa), sizeof *ca, by_contact);
+    for (long k = 0; k < na; k++)
+        if (memcmp(&ca[k], &cb[k], sizeof *ca))
+            fail_msg("%s: contact %ld (%d-%d) differs", where, k, ca[k].i, ca[k].j);
+    free(ca), free(cb);
+}
+
+static void one_case(const backend_case *bc, const model *m)
+{
+    char where[200];
+    snprintf(where, sizeof where, "%s, %s", bc->name, m->name);
+    packing_opts o = opts_of(m);
+    dem_sim *a = packing_build(&o), *b = packing_build(&o);
+    assert_int_equal(dem_sort_particles(b), 0);
+    int n = dem_count(a), moved = 0;
+    for (int i = 0; i < n; i++)
+        moved += dem_particle_source(b, i) != i;
+    assert_true(moved > n / 2);
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.contacts = m->contacts;
+    start_or_fail(a, &c);
+    start_or_fail(b, &c);
+    step_or_fail(a, STEPS);
+    step_or_fail(b, STEPS);
+    /* a sampled stretch: the series' sums over particles and over the walls' blocks */
+    enum { ROWS = 4 };
+    unsigned char want[ROWS] = {1, 0, 1, 1};
+    dem_sample ra[ROWS], rb[ROWS];
+    assert_int_equal(dem_step_sampled(a, ROWS, want, ra), 0);
+    assert_int_equal(dem_step_sampled(b, ROWS, want, rb), 0);
+    same_field(a, b, DEM_FIELD_X, 3, "position", where);
+    same_field(a, b, DEM_FIELD_V, 3, "velocity", where);
+    same_field(a, b, DEM_FIELD_W, 3, "spin", where);
+    same_field(a, b, DEM_FIELD_FORCE, 3, "force", where);
+    same_field(a, b, DEM_FIELD_TORQUE, 3, "torque", where);
+    double fa[3], fb[3];
+    for (int k = 0; k < 6; k++) {
+        assert_int_equal(dem_wall_force(a, k, fa), 0);
+        assert_int_equal(dem_wall_force(b, k, fb), 0);
+        if (memcmp(fa, fb, sizeof fa))
+            fail_msg("%s: the force on wall %d: %.17g against %.17g", where, k, fa[2], fb[2]);
+    }
+    for (int r = 0; r < 3; r++) /* the sampled rows */
+        if (memcmp(&ra[r].energy, &rb[r].energy, sizeof ra[r].energy) ||
+            memcmp(ra[r].wall_force, rb[r].wall_force, sizeof ra[r].wall_force))
+            fail_msg("%s: sampled row %d differs (kinetic energy %.17g against %.17g)", where, r, ra[r].energy.kinetic,
+                     rb[r].energy.kinetic);
+    dem_energy_t ea, eb;
+    assert_int_equal(dem_energy(a, &ea), 0);
+    assert_int_equal(dem_energy(b, &eb), 0);
+    assert_true(ea.contacts > 100);
+    if (memcmp(&ea, &eb, sizeof ea))
+        fail_msg("%s: energies differ (elastic %.17g against %.17g)", where, ea.elastic, eb.elastic);
+    same_saved_contacts(a, b, where);
+    assert_true(dem_rebuild_count(a) > 3);
+    if (dem_rebuild_count(a) != dem_rebuild_count(b))
+        fail_msg("%s: %ld rebuilds against %ld", where, dem_rebuild_count(a), dem_rebuild_count(b));
+    if (m->contacts)
+        same_network(a, b, where);
+    dem_destroy(a);
+    dem_destroy(b);
+}
+
+static void test_storage_order_keeps_bits(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    for (size_t k = 0; k < sizeof models / sizeof models[0]; k++)
+        one_case(bc, &models[k]);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_storage_order_keeps_bits)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
