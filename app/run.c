@@ -586,8 +586,8 @@ static void phase_report(run_ctx *c)
         if (dem_kernel_sequence(s, 0, seq, sizeof seq))
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
         if (dem_kernel_sequence(s, 1, seq, sizeof seq))
-            fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all; skin now %.3g m): %s\n", dem_rebuild_count(s),
-                    dem_neighbor_skin(s), seq);
+            fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all, %ld storing the particles anew; skin now "
+                            "%.3g m): %s\n", dem_rebuild_count(s), dem_reorder_count(s), dem_neighbor_skin(s), seq);
         const char **kn;
         const double *ks;
         int kc = 0;

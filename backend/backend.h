@@ -46,6 +46,7 @@ typedef struct {
     const unsigned *hold;   /* unsigned[n]: bits 0, 1, 2: the particle keeps its velocity along x, y, z */
     const int *sid;         /* int[n]: each particle's stable id (its place in the input), the order of every sum */
     const int *order;       /* int[n]: where the particle of each stable id is stored (the inverse of sid) */
+    const int *identity;    /* int[n]: 0, 1, ..., n - 1 (OLD_SLOT: where each particle was when the rows were built) */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
     int ncell[3];

@@ -2,7 +2,7 @@
  *
  * Particle i's possible contacts are numbered c = 0 .. contact_count(cnt, nw) - 1:
  *   c <  cnt:  its neighbour row's slot c, partners in ascending stable id (neighbor.h): MIRRORED in the row's first
- *              `lower` slots (in_count[i]: the partners of lower stable id; i reads the pair's record), OWNED after
+ *              `lower` slots (nbr_lower[i]: the partners of lower stable id; i reads the pair's record), OWNED after
  *              them (the pair is evaluated by i: contact_pairs);
  *   c >= cnt:  wall c - cnt, in index order (nw: the walls when the walls effect is on, else none).
  * The stress sums (particle_stress.h) and MC-strain (mc_strain.h) run over every c; the force sum takes the OWNED
@@ -26,7 +26,7 @@ typedef struct {
 
 DEM_INLINE int contact_count(int cnt, int nw) { return cnt + nw; }
 
-/* Contact number c of particle i (cnt = nbr_count[i], lower = in_count[i]). */
+/* Contact number c of particle i (cnt = nbr_count[i], lower = nbr_lower[i]). */
 DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int lower, int maxn, int nwalls,
                                   DEM_CONST_GLOBAL int *nbr_list)
 {

@@ -36,6 +36,8 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(MAT, INT, N, 0, -1, SETUP(mat))                                                                                \
     ENTRY(SID, INT, N, 0, -1, SETUP(sid))                                                                                \
     ENTRY(ORDER, INT, N, 0, -1, SETUP(order))                                                                            \
+    ENTRY(LOWER, INT, N, 0, -1, NONE)                                                                                    \
+    ENTRY(OLD_SLOT, INT, N, 0, -1, SETUP(identity))                                                                      \
     ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat))                                                 \
     ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int))                                                         \
     ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, DEM_FIELD_WALL_REAL, SETUP(wall_real))                                          \

@@ -67,23 +67,23 @@
     A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
     A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, own_count, OWN_COUNT)                \
     A(BOUT, int, flags, FLAGS) A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT) A(BIN, int, mat, MAT)       \
-    A(BIN, real, pairmat, PAIRMAT) A(BIN, int, sid, SID)
+    A(BIN, real, pairmat, PAIRMAT) A(BIN, int, sid, SID) A(BOUT, int, nbr_lower, LOWER)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
     A(BIN, dem_byte, old_touch, TOUCH_OLD) A(BIN, int, old_own_start, OWN_START_OLD)                                 \
-    A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN) A(BIN, int, sid, SID)
+    A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN) A(BIN, int, sid, SID)                               \
+    A(BIN, int, old_slot, OLD_SLOT)
 #define DEM_ITEMS_nbr_carry n
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)             \
-    A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_count, IN_COUNT)                \
-    A(BIN, int, in_start, IN_START)                                                                                  \
+    A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_start, IN_START)                \
     A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)              \
     A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(I, int, old_maxn, MAXN_NEW)            \
     A(NIN, int, old_count, COUNT)                                                                                    \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
-    A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID)
+    A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)
 #define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
@@ -98,7 +98,7 @@
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
-    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA)
+    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BIN, int, sid, SID)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
@@ -108,7 +108,7 @@
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
     A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
-    A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA)
+    A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */
@@ -152,7 +152,7 @@
     A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                                \
     A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                              \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE)                  \
-    A(BIN, int, in_count, IN_COUNT)
+    A(BIN, int, nbr_lower, LOWER)
 #define DEM_ARGS_stress_trace(F, A)                                                                                  \
     DEM_ARGS_stress_head(F, A) A(BOUT, real, trace, TRACE)
 #define DEM_ITEMS_stress_trace n
@@ -166,16 +166,15 @@
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
     A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                           \
-    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, in_count, IN_COUNT)
+    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
     A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT)  \
-    A(CIN, int, nbr_list, LIST) A(BIN, int, own_start, OWN_START) A(BIN, int, pair_mirror, PAIR_MIRROR)             \
-    A(I, int, nwalls, NWALLS)                                                                                        \
+    A(CIN, int, nbr_list, LIST) A(BIN, int, sid, SID) A(I, int, nwalls, NWALLS)                                      \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                   \
     A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
-    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, in_count, IN_COUNT)
+    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
 #define DEM_ITEMS_mc_strain_update n
 
 /* ---- springs.h ---- */

@@ -59,9 +59,10 @@ enum { WI_TYPE = 0, WI_MATERIAL = 1, WI_STRIDE = 2 };
  * particles (a concave punch): W_RADIUS the cup's radius at the face, W_HEIGHT its depth at the centre */
 enum { WALL_PLANE = 0, WALL_CYLINDER_INSIDE = 1, WALL_PLANE_CUP = 2 };
 
-/* Result of a touching pair, left by contact_pairs (one work item per listed pair) for contact_forces. Records are
- * numbered by pair in the lower ids' row order: particle i's owned pairs (partners j > i) are own_start[i] ...
- * own_start[i + 1] - 1; its incoming pairs (partners j < i) are in_pair[in_start[i] ...]. 7 reals per pair. */
+/* Result of a touching pair, left by contact_pairs (one work item per listed pair) for contact_forces: the force on
+ * the pair's particle of lower stable id. Records are numbered by the pair's host, the particle stored first
+ * (neighbor.h): particle i's hosted pairs (partners stored after it) are own_start[i] ... own_start[i + 1] - 1, the
+ * others are in_pair[in_start[i] ...]. 7 reals per pair. */
 enum {
     PR_FX = 0, PR_FY, PR_FZ, /* force on the lower id [N] */
     PR_CX, PR_CY, PR_CZ,     /* n x f_t [N] */

@@ -63,21 +63,35 @@ DEM_ITEM(nbr_build)
                 }
             }
     nbr_count[i] = cnt < maxn ? cnt : maxn;
-    int lower = 0, si = sid[i]; /* partners of lower stable id: the front of the row, whose records i reads */
-    while (lower < nbr_count[i] && sid[row[lower]] < si)
-        lower++;
-    in_count[i] = lower;
-    own_count[i] = nbr_count[i] - lower;
+    int lower = 0, guests = 0, si = sid[i];
+    for (int k = 0; k < nbr_count[i]; k++) {
+        lower += sid[row[k]] < si; /* partners of lower stable id: the row's front (the sums' split) */
+        guests += row[k] < i;      /* partners stored before i: their pairs are numbered by them */
+    }
+    nbr_lower[i] = lower;
+    in_count[i] = guests;
+    own_count[i] = nbr_count[i] - guests;
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
 }
 
-/* The number of pair (a, b), sid[a] < sid[b], in the old rows' pair list (its owner a's row), or -1 when it was not
- * listed. */
+/* The number of pair (a, b) in the old rows' pair list, or -1 when it was not listed. A pair is numbered by its host,
+ * the one of its particles stored first (old_slot: where each particle was stored when the old rows were numbered;
+ * host reorder.c, the identity unless the particles were stored anew since): the host's first pair,
+ * old_own_start[host], plus the partners the host hosted before this one in its row. The old rows' partners and
+ * old_own_start are already in the current places. */
 DEM_INLINE int old_pair_number(int a, int b, DEM_CONST_GLOBAL int *old_count, DEM_CONST_GLOBAL int *old_list,
-                               int old_maxn, DEM_CONST_GLOBAL int *old_own_start, DEM_CONST_GLOBAL int *sid)
+                               int old_maxn, DEM_CONST_GLOBAL int *old_own_start, DEM_CONST_GLOBAL int *old_slot,
+                               DEM_CONST_GLOBAL int *sid)
 {
-    int found = row_find_sid(old_list + a * old_maxn, old_count[a], sid, sid[b]);
-    return found < 0 ? -1 : row_pair_number(old_own_start[a], old_own_start[a + 1], old_count[a], found);
+    int h = old_slot[a] < old_slot[b] ? a : b, g = h == a ? b : a, oh = old_slot[h];
+    DEM_CONST_GLOBAL int *row = old_list + h * old_maxn;
+    int found = row_find_sid(row, old_count[h], sid, sid[g]);
+    if (found < 0)
+        return -1;
+    int p = old_own_start[h];
+    for (int k = 0; k < found; k++)
+        p += old_slot[row[k]] > oh;
+    return p;
 }
 
 DEM_ITEM(nbr_carry)
@@ -90,41 +104,49 @@ DEM_ITEM(nbr_carry)
         int found = row_find_sid(orow, old_count[i], sid, sid[j]);
         real f = (real)0;
         if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower stable id */
-            int q = sid[j] > sid[i] ? old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, sid)
-                                    : old_pair_number(j, i, old_count, old_list, old_maxn, old_own_start, sid);
+            int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, old_slot, sid);
             if (q >= 0 && old_touch[q])
                 f = old_mc_fn[i * old_maxn + found];
         }
         mc_fn[i * maxn + k] = f;
     }
 }
-/* The flat pair list of the committed rows (contact_forces.h): pair p = own_start[i] + c - in_count[i] is the owned
- * pair in particle i's row slot c (partner j of higher stable id, sid[j] > sid[i]); pair_slot[p] names that slot. The partner j's incoming slot of
- * the same pair (row slot k < in_count[j]: the slot of i in row j, found by binary search) gets
- * in_pair[in_start[j] + k] = p, and with MC-strain pair_mirror[p] names that slot. Each entry has one writer: p's
- * owner writes them all. A pair whose partner row lacks it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC.
- * The touching flag (touch[p]) and tangential history (hist[3 p]) are kept per pair: a pair takes them from its
- * number in the old rows (old_own_start[i] + its old slot - the old row's partners below i), a new one starts
- * untouched, from zero. Per pair, not per row slot, they are dense arrays read in order by contact_pairs. */
+/* The flat pair list of the committed rows (contact_forces.h). A pair is numbered by its host, the one of its two
+ * particles stored first (whichever has the lower stable id evaluates it: contact_pairs), so that the pairs follow
+ * the storage order: pair p = own_start[i] + h is the h-th partner j > i (stored after i) in particle i's row, and
+ * pair_slot[p] names that row slot. The partner j's slot of the same pair (the slot of i in row j, found by binary
+ * search; it is the g-th of j's partners stored before j) gets in_pair[in_start[j] + g] = p, and with MC-strain
+ * pair_mirror[p] names that slot. Each entry has one writer: p's host writes them all. A pair whose partner row lacks
+ * it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC. The touching flag (touch[p]) and tangential history
+ * (hist[3 p], in the orientation of the lower stable id) are kept per pair: a pair takes them from its number in the
+ * old rows (old_pair_number), a new one starts untouched, from zero. Per pair, not per row slot, they are dense
+ * arrays read in order by contact_pairs. */
 DEM_ITEM(pair_index)
 {
-    int cnt = nbr_count[i], lower = in_count[i];
-    for (int c = lower; c < cnt; c++) {
-        int slot = i * maxn + c, p = row_pair_number(own_start[i], own_start[i + 1], cnt, c);
-        int j = nbr_list[slot];
-        int m = row_find_sid(nbr_list + j * maxn, nbr_count[j], sid, sid[i]);
-        pair_slot[p] = slot;
+    int cnt = nbr_count[i], p = own_start[i];
+    DEM_CONST_GLOBAL int *row = nbr_list + i * maxn;
+    for (int c = 0; c < cnt; c++) {
+        int j = row[c];
+        if (j < i)
+            continue; /* hosted by j */
+        DEM_CONST_GLOBAL int *rj = nbr_list + j * maxn;
+        int m = row_find_sid(rj, nbr_count[j], sid, sid[i]);
+        pair_slot[p] = i * maxn + c;
         if (fx & DEM_EFFECT_MC_STRAIN)
             pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
-        if (m >= 0)
-            in_pair[in_start[j] + m] = p;
-        else
+        if (m >= 0) {
+            int g = 0; /* i's place among j's partners stored before j */
+            for (int k = 0; k < m; k++)
+                g += rj[k] < j;
+            in_pair[in_start[j] + g] = p;
+        } else
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
-        int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, sid); /* -1: a new pair */
+        int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, old_slot, sid); /* -1: new */
         int t = q >= 0 ? old_touch[q] : 0;
         touch[p] = (unsigned char)t;
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
             v3_store(hist, p, t ? v3_load(old_hist, q) : v3_zero());
+        p++;
     }
 }
 #endif /* DEM_NEIGHBOR_H */

@@ -1,6 +1,6 @@
 /* sorted_row.h - binary search in a row of ids in ascending order (patch rows), or in a neighbour row, whose partners
- * are in ascending order of their stable ids (row_find_sid), integers only, so that the kernels (neighbor.h) and the
- * host (host/state.c, restoring a checkpoint) use the same code. */
+ * are in ascending order of their stable ids (row_find_sid), and a pair's number; integers only, so that the kernels
+ * (neighbor.h) and the host (host/state.c, restoring a checkpoint) use the same code. */
 #ifndef DEM_SORTED_ROW_H
 #define DEM_SORTED_ROW_H
 #ifndef DEM_INLINE /* host code that does not include dem_real.h: the same definitions as its C branch */
@@ -41,10 +41,18 @@ DEM_INLINE int row_find_sid(DEM_CONST_GLOBAL int *row, int count, DEM_CONST_GLOB
     return -1;
 }
 
-/* The number of the pair in row slot k of a row of count partners, whose owned pairs (partners above the row's own
- * stable id: the back of the row) are numbered from own_first to own_end - 1 (neighbor.h's pair_index; host/state.c). */
-DEM_INLINE int row_pair_number(int own_first, int own_end, int count, int k)
+/* The number of the pair in row slot k of particle a (partner b = list[a * maxn + k]) in the pair list of the rows
+ * (neighbor.h's pair_index): numbered by its host, the one stored first, from own[host] in the host's row order.
+ * -1 when the partner's row lacks the pair (host/state.c, host/contacts.c). */
+DEM_INLINE int row_pair_of(DEM_CONST_GLOBAL int *count, DEM_CONST_GLOBAL int *list, int maxn,
+                           DEM_CONST_GLOBAL int *own, DEM_CONST_GLOBAL int *sid, int a, int k)
 {
-    return own_first + k - (count - (own_end - own_first));
+    int b = list[a * maxn + k], h = a < b ? a : b, c = k;
+    if (h == b && (c = row_find_sid(list + b * maxn, count[b], sid, sid[a])) < 0)
+        return -1;
+    int p = own[h];
+    for (int q = 0; q < c; q++)
+        p += list[h * maxn + q] > h;
+    return p;
 }
 #endif /* DEM_SORTED_ROW_H */

@@ -7,6 +7,7 @@
  * were sorted, dem_sort_particles), then particle-wall pairs by (particle, wall). */
 #include "sim.h"
 #include "dem_layout.h"
+#include "sorted_row.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +27,15 @@ static void split(const double *f, const double *n, double *fn, double *ft)
     }
 }
 
+/* ascending i, then j (a wall's -1 - w: ascending w among the walls, which are sorted apart) */
+static int by_particles(const void *a, const void *b)
+{
+    const dem_contact *p = a, *q = b;
+    if (p->i != q->i)
+        return (p->i > q->i) - (p->i < q->i);
+    return p->j < 0 ? (p->j < q->j) - (p->j > q->j) : (p->j > q->j) - (p->j < q->j);
+}
+
 int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
 {
     *out = NULL, *count = 0, *npairs = 0;
@@ -38,10 +48,10 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     int n = s->n, nw = s->nwalls, rs = s->setup.real_size, maxn = c->maxn[c->cur];
     unsigned fx = s->setup.effects;
     int mcs = (fx & DEM_EFFECT_MC_STRESS) != 0, mce = (fx & DEM_EFFECT_MC_STRAIN) != 0;
-    enum { FX_, FCNT, FLIST, FTOUCH, FREC, FSTART, FMASK, FPF, FTRACE, FDISP, FWDISP, FINPAIR, NF };
+    enum { FX_, FCNT, FLIST, FTOUCH, FREC, FMASK, FPF, FTRACE, FDISP, FWDISP, NF };
     dem_field f[NF] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST, DEM_FIELD_TOUCH, DEM_FIELD_PAIR_RECORDS,
-                       DEM_FIELD_IN_START, DEM_FIELD_WALL_MASK, DEM_FIELD_WALL_PF, DEM_FIELD_STRESS_TRACE,
-                       DEM_FIELD_MC_DISP, DEM_FIELD_MC_WALL_DISP, DEM_FIELD_IN_PAIR};
+                       DEM_FIELD_WALL_MASK, DEM_FIELD_WALL_PF, DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_DISP,
+                       DEM_FIELD_MC_WALL_DISP};
     size_t bytes[NF], total = 0;
     void *dst[NF];
     for (int k = 0; k < NF; k++) {
@@ -68,42 +78,37 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     }
     const unsigned char *x = dst[FX_], *rec = dst[FREC], *pf = dst[FPF], *tr = dst[FTRACE], *disp = dst[FDISP],
                         *wdisp = dst[FWDISP];
-    const int *cnt = dst[FCNT], *list = dst[FLIST], *start = dst[FSTART], *in_pair = dst[FINPAIR];
+    const int *cnt = dst[FCNT], *list = dst[FLIST];
     const unsigned char *touch = dst[FTOUCH];
     const unsigned *mask = dst[FMASK];
+    const int *sid = s->setup.sid; /* a pair is listed by its owner, the lower stable id (neighbor.h) */
+    int *own = sim_own_starts(cnt, list, maxn, n);
+    if (!own) {
+        free(raw);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
     long np = 0, nwc = 0;
-    const int *sid = s->setup.sid; /* a row's front: its partners of lower stable id, the pairs it does not own */
     for (int i = 0; i < n; i++) {
-        for (int k = 0; k < cnt[i] && sid[list[i * maxn + k]] < sid[i]; k++)
-            np += touch[in_pair[start[i] + k]] != 0;
+        for (int k = 0; k < cnt[i]; k++)
+            if (sid[list[i * maxn + k]] > sid[i]) {
+                int p = row_pair_of(cnt, list, maxn, own, sid, i, k);
+                np += p >= 0 && touch[p];
+            }
         for (int w = 0; w < nw; w++)
             nwc += (mask[i] >> w) & 1u;
     }
     dem_contact *cs = calloc((size_t)(np + nwc) + 1, sizeof *cs);
     if (!cs) {
-        free(raw);
+        free(raw), free(own);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
-    /* pairs: particle j's incoming slots name the pairs (i, j), i its owner, in ascending i; gathered per j, then put in
-     * (i, j) order by a counting pass over i */
-    long *per_i = calloc((size_t)n + 1, sizeof(long));
-    if (!per_i) {
-        free(raw), free(cs);
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    }
-    for (int j = 0; j < n; j++)
-        for (int k = 0; k < cnt[j] && sid[list[j * maxn + k]] < sid[j]; k++)
-            if (touch[in_pair[start[j] + k]])
-                per_i[list[j * maxn + k] + 1]++;
-    for (int i = 0; i < n; i++)
-        per_i[i + 1] += per_i[i];
-    for (int j = 0; j < n; j++) /* ascending j, so each i's pairs land in ascending j */
-        for (int k = 0; k < cnt[j] && sid[list[j * maxn + k]] < sid[j]; k++) {
-            int p = in_pair[start[j] + k];
-            if (!touch[p])
+    long m = 0;
+    for (int i = 0; i < n; i++) /* each owner's touching pairs; put in (i, j) order below */
+        for (int k = 0; k < cnt[i]; k++) {
+            int j = list[i * maxn + k], p = sid[j] > sid[i] ? row_pair_of(cnt, list, maxn, own, sid, i, k) : -1;
+            if (p < 0 || !touch[p])
                 continue;
-            int i = list[j * maxn + k];
-            dem_contact *e = &cs[per_i[i]++];
+            dem_contact *e = &cs[m++];
             size_t r0 = (size_t)p * PR_STRIDE;
             double F[3] = {real_at(rec, r0 + PR_FX, rs), real_at(rec, r0 + PR_FY, rs), real_at(rec, r0 + PR_FZ, rs)};
             double xi[3], xj[3], d2 = 0;
@@ -122,14 +127,12 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             if (mcs)
                 e->extra[0] = real_at(tr, (size_t)i, rs), e->extra[1] = real_at(tr, (size_t)j, rs);
             if (mce) { /* D at i's slot of j and at j's slot of i */
-                int ki = 0;
-                while (ki < cnt[i] && list[i * maxn + ki] != j)
-                    ki++;
-                e->extra[0] = ki < cnt[i] ? real_at(disp, (size_t)i * maxn + ki, rs) : 0;
-                e->extra[1] = real_at(disp, (size_t)j * maxn + k, rs);
+                int kj = row_find_sid(list + (size_t)j * maxn, cnt[j], sid, sid[i]);
+                e->extra[0] = real_at(disp, (size_t)i * maxn + k, rs);
+                e->extra[1] = kj >= 0 ? real_at(disp, (size_t)j * maxn + kj, rs) : 0;
             }
         }
-    long m = np;
+    free(own);
     for (int i = 0; i < n; i++)
         for (int w = 0; w < nw; w++) {
             if (!((mask[i] >> w) & 1u))
@@ -153,8 +156,14 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             if (mce)
                 e->extra[0] = real_at(wdisp, (size_t)i * nw + w, rs);
         }
-    free(per_i);
     free(raw);
+    for (long k = 0; s->api_of && k < np + nwc; k++) { /* stored anew (host/reorder.c): the callers' ids */
+        cs[k].i = sim_api(s, cs[k].i);
+        if (cs[k].j >= 0)
+            cs[k].j = sim_api(s, cs[k].j);
+    }
+    qsort(cs, (size_t)np, sizeof *cs, by_particles); /* whatever the storage order */
+    qsort(cs + np, (size_t)nwc, sizeof *cs, by_particles);
     *out = cs, *count = np + nwc, *npairs = np;
     return 0;
 }

@@ -46,6 +46,40 @@ static void permute(void *base, size_t size, const keyed *o, int n, unsigned cha
     memcpy(b, tmp, size * (size_t)n);
 }
 
+/* The order of n positions x (3 doubles each) along a Morton curve through their bounding box (21 bits per axis,
+ * ties by the earlier index), into o[k].id: the index of the k-th. */
+static void morton_keys(const double *x, int n, keyed *o)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) {
+            lo[d] = fmin(lo[d], x[3 * i + d]);
+            hi[d] = fmax(hi[d], x[3 * i + d]);
+        }
+    for (int i = 0; i < n; i++) {
+        uint64_t key = 0;
+        for (int d = 0; d < 3; d++) {
+            double span = hi[d] - lo[d], u = span > 0 ? (x[3 * i + d] - lo[d]) / span : 0;
+            uint64_t q = (uint64_t)(u * 2097151.0); /* 0 .. 2^21 - 1 */
+            key |= spread21(q) << d;
+        }
+        o[i] = (keyed){key, i};
+    }
+    qsort(o, (size_t)n, sizeof *o, by_key);
+}
+
+int sim_morton_order(const double *x, int n, int *perm)
+{
+    keyed *o = malloc(sizeof *o * (size_t)(n ? n : 1));
+    if (!o)
+        return -1;
+    morton_keys(x, n, o);
+    for (int k = 0; k < n; k++)
+        perm[k] = o[k].id;
+    free(o);
+    return 0;
+}
+
 int dem_sort_particles(dem_sim *s)
 {
     if (s->started)
@@ -56,12 +90,6 @@ int dem_sort_particles(dem_sim *s)
     int n = s->n;
     if (n < 2)
         return 0;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < n; i++)
-        for (int d = 0; d < 3; d++) {
-            lo[d] = fmin(lo[d], s->x[3 * i + d]);
-            hi[d] = fmax(hi[d], s->x[3 * i + d]);
-        }
     keyed *o = malloc(sizeof *o * (size_t)n);
     int *src = malloc(sizeof(int) * (size_t)n);
     unsigned char *tmp = malloc(3 * sizeof(double) * (size_t)n); /* every allocation first: nothing moves unless all */
@@ -69,16 +97,7 @@ int dem_sort_particles(dem_sim *s)
         free(o), free(src), free(tmp);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
-    for (int i = 0; i < n; i++) {
-        uint64_t key = 0;
-        for (int d = 0; d < 3; d++) {
-            double span = hi[d] - lo[d], u = span > 0 ? (s->x[3 * i + d] - lo[d]) / span : 0;
-            uint64_t q = (uint64_t)(u * 2097151.0); /* 0 .. 2^21 - 1 */
-            key |= spread21(q) << d;
-        }
-        o[i] = (keyed){key, i};
-    }
-    qsort(o, (size_t)n, sizeof *o, by_key);
+    morton_keys(s->x, n, o);
     for (int k = 0; k < n; k++) /* where each particle came from, through earlier sorts too */
         src[k] = s->source && o[k].id < s->source_n ? s->source[o[k].id] : o[k].id;
     permute(s->x, 3 * sizeof(double), o, n, tmp);

@@ -39,6 +39,7 @@ void dem_destroy(dem_sim *s)
     free(s->pflags);
     free(s->body);
     free(s->source);
+    free(s->api_of), free(s->dev_of);
     free(s->spring_ij);
     free(s->spring_kr);
     free(s->tri);
@@ -758,14 +759,15 @@ static int read_flags(dem_sim *s, int *flags)
     return dem_stage_read_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? be_fail(s) : 0;
 }
 
-static int report_out_of_domain(dem_sim *s, int id)
+static int report_out_of_domain(dem_sim *s, int slot)
 {
+    int id = sim_api(s, slot); /* the caller's id of the particle stored there (host/reorder.c) */
     int rs = s->setup.real_size;
     double p[3] = {NAN, NAN, NAN};
     unsigned char *buf = malloc((size_t)3 * s->n * rs);
     if (buf && dem_stage_read_field(s->ops, s->be, DEM_FIELD_X, buf, (size_t)3 * s->n * rs) == 0)
         for (int d = 0; d < 3; d++)
-            p[d] = rs == 8 ? ((double *)buf)[3 * id + d] : ((float *)buf)[3 * id + d];
+            p[d] = rs == 8 ? ((double *)buf)[3 * slot + d] : ((float *)buf)[3 * slot + d];
     free(buf);
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) /* a value that overflowed or was never a number */
         return sim_fail(s, DEM_ERR_DOMAIN,
@@ -849,6 +851,8 @@ static int skin_probe_due(const dem_sim *s)
 static int sim_rebuild_traced(dem_sim *s)
 {
     int flags[FLAG_COUNT], e;
+    if (sim_reorder_due(s) && (e = sim_reorder(s)))
+        return e;
     skin_choose(s);
     s->rebuild_at = DEM_CORE(s->be)->ntrace;
     if (dem_stage_bin(s->ops, s->be))
@@ -881,6 +885,12 @@ static int sim_rebuild_traced(dem_sim *s)
                         s->step);
     if ((s->effects & DEM_EFFECT_PATCHES) && s->npatch && (e = patch_rows(s)))
         return e;
+    if (s->reordered) { /* the rows are numbered in the new places: where the particles were no longer matters */
+        dem_bufref r = {TABLE_ONE, BUF_OLD_SLOT};
+        if (s->ops->write(s->be, r, 0, s->setup.identity, sizeof(int) * (size_t)s->n, 1))
+            return be_fail(s);
+        s->reordered = 0;
+    }
     s->rebuilds++;
     return 0;
 }
@@ -1078,9 +1088,9 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
 /* ---- queries ---- */
 
 int dem_count(const dem_sim *s) { return s->n; }
-double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[i] : NAN; }
-int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[i] : -1; }
-double dem_particle_mass(const dem_sim *s, int i) { return i >= 0 && i < s->n ? sim_mass(s, i) : NAN; }
+double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[sim_dev(s, i)] : NAN; }
+int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[sim_dev(s, i)] : -1; }
+double dem_particle_mass(const dem_sim *s, int i) { return i >= 0 && i < s->n ? sim_mass(s, sim_dev(s, i)) : NAN; }
 int dem_wall_count(const dem_sim *s) { return s->nwalls; }
 long dem_step_index(const dem_sim *s) { return s->step; }
 double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }
@@ -1088,6 +1098,7 @@ double dem_dt(const dem_sim *s) { return s->dt; }
 int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
 double dem_neighbor_skin(const dem_sim *s) { return s->skin_now; }
 long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
+long dem_reorder_count(const dem_sim *s) { return s->reorders; }
 int dem_cell_count(const dem_sim *s) { return s->setup.ncell[0] * s->setup.ncell[1] * s->setup.ncell[2]; }
 int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3])
 {
@@ -1125,7 +1136,19 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return be_fail(s);
-    return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? be_fail(s) : 0;
+    if (!s->api_of || !bytes)
+        return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? be_fail(s) : 0;
+    /* stored anew (dem_config.reorder): the whole field read, then put in the callers' order */
+    size_t all = dem_field_bytes(s, f);
+    unsigned char *buf = malloc(all > bytes ? all : bytes);
+    if (!buf)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    int e = dem_stage_read_field(s->ops, s->be, f, buf, all > bytes ? all : bytes) ? be_fail(s)
+                                                                                   : sim_field_to_api(s, f, buf, all);
+    if (!e)
+        memcpy(dst, buf, bytes);
+    free(buf);
+    return e;
 }
 
 int dem_get_field(dem_sim *s, dem_field f, double *dst)

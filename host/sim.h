@@ -22,6 +22,14 @@ struct dem_sim {
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     int *source, source_n; /* after dem_sort_particles: each particle's id before it (the first source_n) */
+    /* dem_config.reorder (host/reorder.c): once the particles are stored anew, the id of dem_start of the particle
+     * stored at each place (api_of) and where each id is stored (dev_of); NULL: stored in id order. The host's
+     * per-particle arrays above follow the storage order after the start. */
+    int *api_of, *dev_of;
+    long reorders;
+    int reorder_hold; /* 1: rebuilds keep the storage order (dem_state_set) */
+    int reordered;    /* the particles were stored anew since the rows were built: OLD_SLOT holds where they were */
+    double reorder_ref; /* the storage's mean spacing of neighbours in memory when last looked at (reorder.c) [m] */
     int nsprings, spring_cap;
     int *spring_ij;      /* [2 * nsprings] */
     double *spring_kr;   /* [3 * nsprings]: k, rest (< 0: at the start), gamma */
@@ -60,10 +68,10 @@ struct dem_sim {
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 24
+#define SIM_PACKED 25
     void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders;
                                  18, 19: patch triangles per vertex; 20: the walls each particle rides on; 21: held velocity axes;
-                                 22, 23: each particle's stable id and where each stable id is stored) */
+                                 22, 23: each particle's stable id and where each stable id is stored; 24: 0..n-1) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
@@ -128,6 +136,22 @@ int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals
 /* A whole registry buffer read from the device (malloc'd; the patch rows have no field: their capacity is the
  * driver's). Sets *e (a dem_status) on failure unless it is set already; the caller frees the result. */
 void *sim_buffer_get(dem_sim *s, int id, int *e);
+/* particle_order.c: the order of n positions (3 doubles each) along a Morton curve: perm[k] is the index of the
+ * k-th; -1 when out of memory */
+int sim_morton_order(const double *x, int n, int *perm);
+/* reorder.c: whether this rebuild stores the particles anew (dem_config.reorder), and doing it */
+int sim_reorder_due(const dem_sim *s);
+int sim_reorder(dem_sim *s);
+/* A caller's particle id (the order of dem_start) and where that particle is stored, both ways */
+static inline int sim_dev(const dem_sim *s, int id) { return s->dev_of ? s->dev_of[id] : id; }
+static inline int sim_api(const dem_sim *s, int slot) { return s->api_of ? s->api_of[slot] : slot; }
+/* reorder.c: a field read from the device in storage order put in the callers' order (particles by their ids,
+ * the rows' partners renamed) in place; fields not sized by particles are left as they are */
+int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes);
+int sim_field_from_api(dem_sim *s, dem_field f, const void *src, void *dst, size_t bytes);
+/* state.c: where each particle's hosted pairs (partners stored after it) start in the pair list of rows cnt, list
+ * (neighbor.h's own_start; malloc'd, n + 1 entries) */
+int *sim_own_starts(const int *cnt, const int *list, int maxn, int n);
 /* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */

@@ -228,6 +228,10 @@ int sim_validate(dem_sim *s)
         return sim_fail(s, DEM_ERR_ARG, "%d hinges are defined but the effect 'bending' is off", s->nhinges);
     if (s->cfg.skin < 0 || !isfinite(s->cfg.skin))
         return sim_fail(s, DEM_ERR_ARG, "skin must be >= 0 (got %g)", s->cfg.skin);
+    if (s->cfg.reorder < 0)
+        return sim_fail(s, DEM_ERR_ARG, "reorder must be >= 0 rebuilds (got %d)", s->cfg.reorder);
+    if (!(s->cfg.reorder_gain >= 0) || !isfinite(s->cfg.reorder_gain))
+        return sim_fail(s, DEM_ERR_ARG, "reorder_gain must be >= 0 (got %g)", s->cfg.reorder_gain);
     if (s->cfg.precision != DEM_FP32 && s->cfg.precision != DEM_FP64)
         return sim_fail(s, DEM_ERR_ARG, "precision must be DEM_FP32 or DEM_FP64");
     return 0;
@@ -646,20 +650,20 @@ int sim_pack(dem_sim *s)
     for (int i = 0; i < n; i++)
         hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
     s->packed[21] = hold, u->hold = hold;
-    /* the stable ids every sum follows (neighbor.h): each particle's place in the input, so that a run stored in
-     * another order (dem_sort_particles) gives the same bits */
+    /* the stable ids every sum follows (neighbor.h): the particles' ids at the start, so that the bits do not depend
+     * on where the particles are stored later (host/reorder.c). (Their places in the input instead, which would make
+     * a sorted packing (dem_sort_particles) run the bits of the unsorted one, cost that sorted run a third of its
+     * speed: docs/design.md "Every sum follows the stable ids".) */
     int *sid = malloc(sizeof(int) * (size_t)(n ? n : 1)), *order = malloc(sizeof(int) * (size_t)(n ? n : 1));
-    s->packed[22] = sid, s->packed[23] = order;
-    if (!sid || !order)
+    int *identity = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    s->packed[22] = sid, s->packed[23] = order, s->packed[24] = identity;
+    if (!sid || !order || !identity)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; i < n; i++)
-        order[i] = -1;
-    for (int i = 0; i < n; i++) {
-        int q = sid[i] = dem_particle_source(s, i);
-        if (q < 0 || q >= n || order[q] >= 0)
-            return sim_fail(s, DEM_ERR_STATE, "particle %d: its input place %d is not unique (a library bug)", i, q);
-        order[q] = i;
-    }
+        identity[i] = i;
+    u->identity = identity;
+    for (int i = 0; i < n; i++)
+        sid[i] = order[i] = i;
     u->sid = sid, u->order = order;
     u->x = s->packed[0];
     u->v = s->packed[1];

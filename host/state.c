@@ -26,6 +26,8 @@ void dem_state_free(dem_state *st)
     memset(st, 0, sizeof *st);
 }
 
+/* A whole field as stored on the device (storage order: host/reorder.c; sim_field_to_api puts a particle field in
+ * the callers' order) */
 static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
 {
     *bytes = dem_field_bytes(s, f);
@@ -34,9 +36,45 @@ static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
         *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         return NULL;
     }
-    if (!*e)
-        *e = dem_get_raw(s, f, p, *bytes);
+    if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
+        *e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     return p;
+}
+
+/* The saved pairs, named by the callers' ids, in the order of a run never stored anew: ascending owner, then the
+ * partners' stable ids (a reordered run's rows list the owners in storage order) */
+typedef struct {
+    int i, j, key, at;
+} pair_key;
+static int by_owner(const void *a, const void *b)
+{
+    const pair_key *p = a, *q = b;
+    return p->i != q->i ? (p->i > q->i) - (p->i < q->i) : (p->key > q->key) - (p->key < q->key);
+}
+static int pairs_to_api(dem_sim *s, dem_state *st)
+{
+    long np = st->npairs;
+    int rs = st->real_size;
+    if (!s->api_of || np == 0)
+        return 0;
+    pair_key *k = malloc(sizeof *k * (size_t)np);
+    unsigned char *h = malloc(3 * (size_t)rs * (size_t)np), *f = malloc((size_t)rs * (size_t)np);
+    if (!k || !h || !f) {
+        free(k), free(h), free(f);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    for (long p = 0; p < np; p++)
+        k[p] = (pair_key){sim_api(s, st->pair_i[p]), sim_api(s, st->pair_j[p]), s->setup.sid[st->pair_j[p]], (int)p};
+    qsort(k, (size_t)np, sizeof *k, by_owner);
+    for (long p = 0; p < np; p++) {
+        st->pair_i[p] = k[p].i, st->pair_j[p] = k[p].j;
+        memcpy(h + 3 * (size_t)rs * p, (unsigned char *)st->pair_hist + 3 * (size_t)rs * k[p].at, 3 * (size_t)rs);
+        memcpy(f + (size_t)rs * p, (unsigned char *)st->pair_mc_fn + (size_t)rs * k[p].at, (size_t)rs);
+    }
+    memcpy(st->pair_hist, h, 3 * (size_t)rs * np);
+    memcpy(st->pair_mc_fn, f, (size_t)rs * np);
+    free(k), free(h), free(f);
+    return 0;
 }
 
 /* The touching sphere-patch contacts of the current rows, in row order (common/patch_contacts.h) */
@@ -105,19 +143,19 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
     return e;
 }
 
-/* Where each row's owned pairs (partners of higher stable id) start in the pair numbering (neighbor.h's
+/* Where each particle's hosted pairs (partners stored after it) start in the pair numbering (neighbor.h's
  * pair_index: own_start), from the rows */
-static int *own_starts(const int *cnt, const int *list, int maxn, int n, const int *sid)
+int *sim_own_starts(const int *cnt, const int *list, int maxn, int n)
 {
     int *own = malloc(sizeof(int) * ((size_t)n + 1));
     if (!own)
         return NULL;
     own[0] = 0;
     for (int i = 0; i < n; i++) {
-        int lower = 0;
-        while (lower < cnt[i] && sid[list[i * maxn + lower]] < sid[i])
-            lower++;
-        own[i + 1] = own[i] + cnt[i] - lower;
+        int hosted = 0;
+        for (int k = 0; k < cnt[i]; k++)
+            hosted += list[i * maxn + k] > i;
+        own[i + 1] = own[i] + hosted;
     }
     return own;
 }
@@ -160,12 +198,15 @@ int dem_state_get(dem_sim *s, dem_state *st)
      * ids */
     long np = 0;
     const int *sid = s->setup.sid;
-    int *own = e ? NULL : own_starts(cnt, list, maxn, n, sid);
+    int *own = e ? NULL : sim_own_starts(cnt, list, maxn, n);
     if (!e && !own)
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; !e && i < n; i++) /* the touching flags are kept per pair, numbered like the history */
         for (int k = 0; k < cnt[i]; k++)
-            np += sid[list[i * maxn + k]] > sid[i] && touch[row_pair_number(own[i], own[i + 1], cnt[i], k)];
+            if (sid[list[i * maxn + k]] > sid[i]) {
+                int p = row_pair_of(cnt, list, maxn, own, sid, i, k);
+                np += p >= 0 && touch[p];
+            }
     if (!e) {
         st->pair_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->pair_j = malloc(sizeof(int) * (size_t)(np ? np : 1));
@@ -178,13 +219,14 @@ int dem_state_get(dem_sim *s, dem_state *st)
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
             int slot = i * maxn + k, j = list[slot];
-            if (sid[j] < sid[i] || !touch[row_pair_number(own[i], own[i + 1], cnt[i], k)])
+            int pn = sid[j] > sid[i] ? row_pair_of(cnt, list, maxn, own, sid, i, k) : -1;
+            if (pn < 0 || !touch[pn])
                 continue;
             st->pair_i[np] = i;
             st->pair_j[np] = j;
             if (hb) /* no tangential history without friction; it is kept per pair (neighbor.h) */
                 memcpy((char *)st->pair_hist + (size_t)np * 3 * rs,
-                       hist + (size_t)row_pair_number(own[i], own[i + 1], cnt[i], k) * 3 * rs, 3 * (size_t)rs);
+                       hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) /* MC-strain: the force the next step's induced displacements start from */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)slot * rs, (size_t)rs);
             np++;
@@ -195,6 +237,14 @@ int dem_state_get(dem_sim *s, dem_state *st)
     free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
     if (!e)
         e = patch_contacts_get(s, st);
+    /* in the callers' order (a run stored anew: host/reorder.c) */
+    if (!e)
+        e = pairs_to_api(s, st);
+    const dem_field pf[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE,
+                            DEM_FIELD_WALL_HIST, DEM_FIELD_WALL_MASK, DEM_FIELD_MC_WALL_FORCE};
+    void *const pa[] = {st->x, st->v, st->w, st->force, st->torque, st->wall_hist, st->wall_mask, st->wall_mc_fn};
+    for (int k = 0; !e && k < 8; k++)
+        e = sim_field_to_api(s, pf[k], pa[k], dem_field_bytes(s, pf[k]));
     if (e)
         dem_state_free(st);
     return e;
@@ -209,7 +259,33 @@ static int find_slot(const int *cnt, const int *list, int maxn, const int *sid, 
 
 int sim_rebuild(dem_sim *s); /* sim.c */
 
+/* A particle field from the callers' order into the device's (host/reorder.c) */
+static int write_api(dem_sim *s, dem_field f, const void *src, size_t bytes)
+{
+    if (!s->api_of)
+        return dem_stage_write_field(s->ops, s->be, f, src, bytes);
+    void *buf = malloc(bytes ? bytes : 1);
+    if (!buf)
+        return dem_core_fail(DEM_CORE(s->be), "out of host memory");
+    int e = sim_field_from_api(s, f, src, buf, bytes) || dem_stage_write_field(s->ops, s->be, f, buf, bytes);
+    free(buf); /* (the write blocks) */
+    return e;
+}
+
+static int state_set(dem_sim *s, const dem_state *st);
+
+/* The rebuilds within keep the storage order (host/reorder.c), so that the run's own positions, read in storage
+ * order, can go back when the state does not fit. */
 int dem_state_set(dem_sim *s, const dem_state *st)
+{
+    int hold = s->reorder_hold;
+    s->reorder_hold = 1;
+    int e = state_set(s, st);
+    s->reorder_hold = hold;
+    return e;
+}
+
+static int state_set(dem_sim *s, const dem_state *st)
 {
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
@@ -244,7 +320,7 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     const int *sid = s->setup.sid; /* a pair is saved from its owner, the lower stable id (neighbor.h) */
     for (long p = 0; p < st->npairs; p++) {
         int i = st->pair_i[p], j = st->pair_j[p];
-        if (!(i >= 0 && i < n && j >= 0 && j < n && sid[i] < sid[j]))
+        if (!(i >= 0 && i < n && j >= 0 && j < n && sid[sim_dev(s, i)] < sid[sim_dev(s, j)]))
             return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i, j < %d, i "
                             "listed before j in the input)", p, i, j, n);
     }
@@ -259,9 +335,9 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     if (dem_stage_read_field(s->ops, s->be, DEM_FIELD_X, old, v3b) ||
         dem_stage_read_field(s->ops, s->be, DEM_FIELD_V, old + v3b, v3b) ||
         dem_stage_read_field(s->ops, s->be, DEM_FIELD_W, old + 2 * v3b, v3b) ||
-        dem_stage_write_field(s->ops, s->be, DEM_FIELD_X, st->x, v3b) ||
-        dem_stage_write_field(s->ops, s->be, DEM_FIELD_V, st->v, v3b) ||
-        dem_stage_write_field(s->ops, s->be, DEM_FIELD_W, st->w, v3b)) {
+        write_api(s, DEM_FIELD_X, st->x, v3b) ||
+        write_api(s, DEM_FIELD_V, st->v, v3b) ||
+        write_api(s, DEM_FIELD_W, st->w, v3b)) {
         free(old);
         return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     }
@@ -276,18 +352,18 @@ int dem_state_set(dem_sim *s, const dem_state *st)
               tb = dem_field_bytes(s, DEM_FIELD_TOUCH);
     int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
-    int *own = e ? NULL : own_starts(cnt, list, maxn, n, sid);
+    int *own = e ? NULL : sim_own_starts(cnt, list, maxn, n);
     if (!e && (!touch || !hist || !mcf || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
-        int i = st->pair_i[p], j = st->pair_j[p];
-        int a = i >= 0 && i < n && j >= 0 && j < n ? find_slot(cnt, list, maxn, sid, i, j) : -1;
+        int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
+        int a = find_slot(cnt, list, maxn, sid, i, j);
         int m = a >= 0 ? find_slot(cnt, list, maxn, sid, j, i) : -1;
         if (a < 0 || m < 0) {
-            e = sim_fail(s, DEM_ERR_ARG, "saved contact %d-%d is not a neighbour pair of the saved positions", i, j);
+            e = sim_fail(s, DEM_ERR_ARG, "saved contact %d-%d is not a neighbour pair of the saved positions", ci, cj);
             break;
         }
-        size_t pn = (size_t)row_pair_number(own[i], own[i + 1], cnt[i], a - i * maxn);
+        size_t pn = (size_t)row_pair_of(cnt, list, maxn, own, sid, i, a - i * maxn); /* >= 0: m was found */
         touch[pn] = 1; /* flag and history are kept per pair (neighbor.h) */
         if (hb && st->has_hist)
             memcpy(hist + pn * 3 * rs,
@@ -302,10 +378,10 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     static const double zero_nforce[DEM_MAX_WALLS]; /* a state without the walls' normal forces: zero until summed */
     if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, tb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_FORCE, st->force, v3b) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_TORQUE, st->torque, v3b) ||
+               write_api(s, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
+               write_api(s, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
+               write_api(s, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
+               write_api(s, DEM_FIELD_FORCE, st->force, v3b) || write_api(s, DEM_FIELD_TORQUE, st->torque, v3b) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE,
                                      st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))

@@ -119,7 +119,20 @@ typedef struct {
                             DEM_SAMPLE_KEEP or fewer the device keeps the wall forces as for `contacts`, so each sample's
                             wall sums add them up instead of evaluating the wall contacts again, and a sampled step's
                             pair energies (1 real per pair, from the force law's own elastic force) */
+    int reorder;         /* N > 0: at every N-th neighbour rebuild (the first at dem_start) the particles are stored
+                            anew along a Morton curve through their current positions when their storage has
+                            become scattered (reorder_gain), so that neighbours in space stay neighbours in memory as
+                            the packing flows (host/reorder.c); 0 (default): they stay where they are. The bits do
+                            not depend on it (every sum follows the particle ids), and every particle id the library
+                            takes or returns stays that of dem_start. A run with springs, triangles, hinges, patches
+                            or attachments is not reordered. */
+    double reorder_gain; /* stored anew when the mean distance between particles stored next to each other is more
+                            than this many times the new order's; 0 = DEM_REORDER_GAIN (2); at most 1: whenever the
+                            order changes */
 } dem_config;
+/* The dem_config.reorder dem run uses with particle_order: spatial (docs/design.md "Stored anew at rebuilds") */
+#define DEM_REORDER_PERIOD 8
+#define DEM_REORDER_GAIN 2.0 /* dem_config.reorder_gain 0 */
 #define DEM_SAMPLE_KEEP 10
 
 /* Fields that can be read back (dem_get_raw, dem_get_field). */
@@ -128,9 +141,11 @@ typedef enum {
     DEM_FIELD_FORCE, DEM_FIELD_TORQUE,  /* [N], [N m]: real[3n] */
     DEM_FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
     DEM_FIELD_NBR_COUNT,            /* int[n] */
-    DEM_FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id */
+    DEM_FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id (ids of dem_start) */
     DEM_FIELD_HIST,                 /* real[3*pairs]: elastic tangential force per listed pair [N], pairs numbered in the
-                                       lower ids' row order (partners j > i, ascending i then j); empty without friction */
+                                       order of the particles' storage (each pair by the one stored first, in its row
+                                       order: host/reorder.c; the ids' order unless dem_config.reorder moved them);
+                                       empty without friction */
     DEM_FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
     DEM_FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
     DEM_FIELD_CELL_START,           /* int[ncells+1] */
@@ -138,7 +153,7 @@ typedef enum {
     DEM_FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
     DEM_FIELD_WALL_REAL,            /* real[11*nwalls] (common/dem_layout.h W_*) */
     DEM_FIELD_TOUCH,                /* unsigned char[pairs]: 1 where the pair touched in the last step, one byte per
-                                       listed pair in the lower ids' row order (like PAIR_RECORDS and HIST) */
+                                       listed pair, numbered like PAIR_RECORDS and HIST */
     DEM_FIELD_WALL_MASK,            /* unsigned[n]: bit k set where the particle touched wall k in the last step */
     DEM_FIELD_STRESS,               /* real[6n]: stress tensor xx,yy,zz,xy,xz,yz of each particle [Pa] (seed 000 Eq. 9,
                                    elastic normal forces; negative in compression), computed when read */
@@ -148,13 +163,15 @@ typedef enum {
     DEM_FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
     DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
     DEM_FIELD_PAIR_RECORDS,         /* real[7*pairs]: each touching pair's force on its lower id (common/dem_layout.h
-                                       PR_*), one record per listed pair in the lower ids' row order (dem_contacts_get
+                                       PR_*), one record per listed pair, numbered like HIST (dem_contacts_get
                                        reads them) */
-    DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming pairs (partners with lower ids) start
+    DEM_FIELD_IN_START,             /* int[n+1]: where each particle's incoming pairs (partners stored before it) start
                                        in DEM_FIELD_IN_PAIR */
     DEM_FIELD_WALL_PF,              /* real[3*n*nwalls]: the force wall k exerts on particle i at [k*n + i] [N];
                                        kept only by runs with dem_config.contacts or a servo wall, else empty */
-    DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair, in_start[i] + k for row slot k.
+    DEM_FIELD_IN_PAIR,              /* int[pairs]: the pair record of each incoming pair: in_start[i] + g for the g-th
+                                       partner stored before i in its row. IN_START and the pair-sized fields are in
+                                       storage order (the ids' unless dem_config.reorder moved the particles).
                                        The pair-sized fields (HIST, TOUCH, PAIR_RECORDS, IN_PAIR) hold the pairs allocated, which
                                        grow at rebuilds: take dem_field_bytes just before each read; entries beyond the
                                        pairs listed (in_start[n]) hold nothing meaningful */
@@ -419,6 +436,7 @@ int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
 double dem_neighbor_skin(const dem_sim *s);   /* the skin of the current rows [m] (dem_config.skin); with MC-strain's
                                                  contact distance the rows reach 2 (F - 1) r_max further */
 long dem_rebuild_count(const dem_sim *s);
+long dem_reorder_count(const dem_sim *s); /* times the particles were stored anew (dem_config.reorder) */
 int dem_cell_count(const dem_sim *s);
 /* The binning grid of a started run: its lower corner [m], 1 / cell size [1/m] (as the kernels get it, before the
  * cast to the run's precision) and cells per axis. Cell of a position x: floor((x - lo) * inv_cell) per axis, in the

@@ -1,12 +1,13 @@
-/* test_particle_order.c - the storage order of the particles does not change a run's bits (issue 14).
+/* test_particle_order.c - where the particles are stored does not change a run's bits (issue 14).
  *
- * Every sum follows the particles' stable ids (their places in the input: common/neighbor.h), not the places they
- * are stored at, so a packing stored in another order (dem_sort_particles, particle_order: spatial) runs bit for bit
- * as the same packing in its input order. Checked on the polydisperse frictional packing of test_util (lattice order,
- * which the Morton order of dem_sort_particles moves almost entirely) under every contact model, in fp32 and fp64,
- * on the reference and on PoCL: after 300 steps with a moving lid (several rebuilds) each particle's position,
- * velocity, spin, force and torque, each wall's force, the energies, a sampled series, the contact network and the
- * saved contact memory are the same bits, particle by particle through dem_particle_source. */
+ * Every sum follows the particles' stable ids (their ids at dem_start: common/neighbor.h), not the places they are
+ * stored at, so a run whose particles are stored anew along a Morton curve at its rebuilds (dem_config.reorder) is
+ * bit for bit the run that never moves them. Checked on the polydisperse frictional packing of test_util (lattice
+ * order, which the Morton order moves almost entirely) under every contact model, in fp32 and fp64, on the
+ * reference and on PoCL: after 300 steps with a moving lid (several rebuilds) each particle's position, velocity,
+ * spin, force and torque, each wall's force, the energies, a sampled series, the contact network and the saved
+ * contact memory are the same bits, particle by particle. And a saved state is the same whether or when the run was
+ * reordered, and continues bit for bit in a run stored either way. */
 #include "test_util.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -44,7 +45,7 @@ static packing_opts opts_of(const model *m)
     return o;
 }
 
-/* a per-particle field of both runs, particle by particle (b stored in another order) */
+/* a per-particle field of both runs, particle by particle (by the ids of dem_start, however b is stored) */
 static void same_field(dem_sim *a, dem_sim *b, dem_field f, int width, const char *what, const char *where)
 {
     int n = dem_count(a);
@@ -53,17 +54,14 @@ static void same_field(dem_sim *a, dem_sim *b, dem_field f, int width, const cha
     assert_non_null(fb);
     assert_int_equal(dem_get_field(a, f, fa), 0);
     assert_int_equal(dem_get_field(b, f, fb), 0);
-    for (int i = 0; i < n; i++) {
-        int src = dem_particle_source(b, i);
-        if (memcmp(fb + width * i, fa + width * src, sizeof(double) * (size_t)width))
-            fail_msg("%s: %s of particle %d (stored at %d): %.17g against %.17g", where, what, src, i,
-                     fa[width * src], fb[width * i]);
-    }
+    for (int i = 0; i < n; i++)
+        if (memcmp(fb + width * i, fa + width * i, sizeof(double) * (size_t)width))
+            fail_msg("%s: %s of particle %d: %.17g against %.17g", where, what, i, fa[width * i], fb[width * i]);
     free(fa), free(fb);
 }
 
 typedef struct {
-    int a, b; /* input places, a < b */
+    int a, b; /* ids, a < b */
     const unsigned char *hist, *fn;
 } saved_pair;
 
@@ -73,7 +71,7 @@ static int by_places(const void *p, const void *q)
     return x->a != y->a ? (x->a > y->a) - (x->a < y->a) : (x->b > y->b) - (x->b < y->b);
 }
 
-/* the saved contacts (dem_state_get) as sets of input places with their memory */
+/* the saved contacts (dem_state_get) as sets of pairs with their memory */
 static void same_saved_contacts(dem_sim *a, dem_sim *b, const char *where)
 {
     dem_state sa, sb;
@@ -89,8 +87,8 @@ static void same_saved_contacts(dem_sim *a, dem_sim *b, const char *where)
     for (long p = 0; p < np; p++) {
         pa[p] = (saved_pair){sa.pair_i[p], sa.pair_j[p], (unsigned char *)sa.pair_hist + 3 * rs * p,
                              sa.has_mc ? (unsigned char *)sa.pair_mc_fn + rs * p : NULL};
-        int i = dem_particle_source(b, sb.pair_i[p]), j = dem_particle_source(b, sb.pair_j[p]);
-        assert_true(i < j); /* saved by its owner, the lower input place */
+        int i = sb.pair_i[p], j = sb.pair_j[p];
+        assert_true(i < j); /* saved by its owner, the lower id */
         pb[p] = (saved_pair){i, j, (unsigned char *)sb.pair_hist + 3 * rs * p,
                              sb.has_mc ? (unsigned char *)sb.pair_mc_fn + rs * p : NULL};
     }
@@ -111,7 +109,7 @@ static int by_contact(const void *p, const void *q)
     return x->i != y->i ? (x->i > y->i) - (x->i < y->i) : (x->j > y->j) - (x->j < y->j);
 }
 
-/* the contact network, with b's particles named by their input places */
+/* the contact network of both runs, as sets */
 static void same_network(dem_sim *a, dem_sim *b, const char *where)
 {
     dem_contact *ca, *cb;
@@ -121,12 +119,8 @@ static void same_network(dem_sim *a, dem_sim *b, const char *where)
     assert_int_equal(na, nb);
     assert_int_equal(pa, pb);
     assert_true(pa > 100 && na > pa);
-    for (long k = 0; k < nb; k++) {
-        cb[k].i = dem_particle_source(b, cb[k].i);
-        if (cb[k].j >= 0)
-            cb[k].j = dem_particle_source(b, cb[k].j);
+    for (long k = 0; k < nb; k++)
         assert_true(cb[k].j < 0 || cb[k].i < cb[k].j);
-    }
     qsort(cb, (size_t)pb, sizeof *cb, by_contact);
     qsort(cb + pb, (size_t)(nb - pb), sizeof *cb, by_contact);
     qsort(ca + pa, (size_t)(na - pa), sizeof *ca, by_contact);
@@ -136,20 +130,30 @@ static void same_network(dem_sim *a, dem_sim *b, const char *where)
     free(ca), free(cb);
 }
 
-static void one_case(const backend_case *bc, const model *m)
+/* How run b is stored against run a: both sorted before the start or not (dem_sort_particles: ids renumbered, and
+ * so the sums' order), b stored anew at every `reorder`-th rebuild (dem_config.reorder: ids kept) */
+typedef struct {
+    const char *name;
+    int sort, reorder;
+} storage;
+static const storage storages[] = {{"stored anew at every rebuild", 0, 1},
+                                   {"both sorted at load, stored anew at every 3rd rebuild", 1, 3}};
+
+static void one_case(const backend_case *bc, const model *m, const storage *st)
 {
-    char where[200];
-    snprintf(where, sizeof where, "%s, %s", bc->name, m->name);
+    char where[300];
+    snprintf(where, sizeof where, "%s, %s, %s", bc->name, m->name, st->name);
     packing_opts o = opts_of(m);
     dem_sim *a = packing_build(&o), *b = packing_build(&o);
-    assert_int_equal(dem_sort_particles(b), 0);
-    int n = dem_count(a), moved = 0;
-    for (int i = 0; i < n; i++)
-        moved += dem_particle_source(b, i) != i;
-    assert_true(moved > n / 2);
+    if (st->sort) {
+        assert_int_equal(dem_sort_particles(a), 0);
+        assert_int_equal(dem_sort_particles(b), 0);
+    }
     dem_config c = cfg_of(bc->backend, bc->precision);
     c.contacts = m->contacts;
     start_or_fail(a, &c);
+    c.reorder = st->reorder;
+    c.reorder_gain = 1; /* whenever the order changes: as often as possible */
     start_or_fail(b, &c);
     step_or_fail(a, STEPS);
     step_or_fail(b, STEPS);
@@ -186,6 +190,12 @@ static void one_case(const backend_case *bc, const model *m)
     assert_true(dem_rebuild_count(a) > 3);
     if (dem_rebuild_count(a) != dem_rebuild_count(b))
         fail_msg("%s: %ld rebuilds against %ld", where, dem_rebuild_count(a), dem_rebuild_count(b));
+    if (st->reorder) { /* at every reorder-th rebuild, the first at the start, when the order changed */
+        long due = (dem_rebuild_count(b) + st->reorder - 1) / st->reorder, done = dem_reorder_count(b);
+        if (!(done > 1 && done <= due))
+            fail_msg("%s: stored anew %ld times at %ld rebuilds", where, done, dem_rebuild_count(b));
+    }
+    assert_int_equal(dem_reorder_count(a), 0);
     if (m->contacts)
         same_network(a, b, where);
     dem_destroy(a);
@@ -197,11 +207,71 @@ static void test_storage_order_keeps_bits(void **st)
     (void)st;
     FOR_EACH_BACKEND(bc)
     for (size_t k = 0; k < sizeof models / sizeof models[0]; k++)
-        one_case(bc, &models[k]);
+        for (size_t q = 0; q < sizeof storages / sizeof storages[0]; q++)
+            one_case(bc, &models[k], &storages[q]);
+}
+
+/* The saved state of a run stored anew is the saved state of the run that was not, byte for byte (particles by their
+ * ids, contacts in the same order), and it continues bit for bit in a run stored either way. */
+static void same_state_bytes(const dem_state *x, const dem_state *y, const char *where)
+{
+    size_t v3 = 3 * (size_t)x->n * (size_t)x->real_size;
+    assert_int_equal(x->npairs, y->npairs);
+    if (memcmp(x->x, y->x, v3) || memcmp(x->v, y->v, v3) || memcmp(x->w, y->w, v3) || memcmp(x->force, y->force, v3) ||
+        memcmp(x->torque, y->torque, v3) || memcmp(x->wall_hist, y->wall_hist, x->wall_hist_bytes) ||
+        memcmp(x->wall_mask, y->wall_mask, sizeof(unsigned) * (size_t)x->n))
+        fail_msg("%s: the saved particles differ", where);
+    if (memcmp(x->pair_i, y->pair_i, sizeof(int) * (size_t)x->npairs) ||
+        memcmp(x->pair_j, y->pair_j, sizeof(int) * (size_t)x->npairs) ||
+        memcmp(x->pair_hist, y->pair_hist, 3 * (size_t)x->real_size * (size_t)x->npairs))
+        fail_msg("%s: the saved contacts differ", where);
+}
+
+static void test_saved_state(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        packing_opts o = opts_of(&models[0]);
+        dem_sim *plain = packing_build(&o), *anew = packing_build(&o);
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        start_or_fail(plain, &c);
+        c.reorder = 1;
+        c.reorder_gain = 1;
+        start_or_fail(anew, &c);
+        step_or_fail(plain, STEPS / 2);
+        step_or_fail(anew, STEPS / 2);
+        dem_state sp, sa;
+        assert_int_equal(dem_state_get(plain, &sp), 0);
+        assert_int_equal(dem_state_get(anew, &sa), 0);
+        assert_true(dem_reorder_count(anew) > 1);
+        same_state_bytes(&sp, &sa, bc->name);
+        /* the saved state of the reordered run, continued in a run stored in id order and in one stored anew */
+        for (int reorder = 0; reorder <= 2; reorder += 2) {
+            dem_sim *r = packing_build(&o);
+            c.reorder = reorder;
+            start_or_fail(r, &c);
+            assert_int_equal(dem_state_set(r, &sa), 0);
+            step_or_fail(r, STEPS / 2);
+            if (reorder == 0) {
+                step_or_fail(plain, STEPS / 2);
+                step_or_fail(anew, STEPS / 2);
+            }
+            char where[200];
+            snprintf(where, sizeof where, "%s, restored into a run with reorder %d", bc->name, reorder);
+            same_field(plain, r, DEM_FIELD_X, 3, "position", where);
+            same_field(plain, r, DEM_FIELD_V, 3, "velocity", where);
+            same_field(anew, r, DEM_FIELD_FORCE, 3, "force", where);
+            dem_destroy(r);
+        }
+        dem_state_free(&sp), dem_state_free(&sa);
+        dem_destroy(plain), dem_destroy(anew);
+    }
 }
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_storage_order_keeps_bits)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_storage_order_keeps_bits),
+                                       cmocka_unit_test(test_saved_state)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1379,7 +1379,8 @@ static void test_contact_network(void **st)
 static int setup(void **st) { (void)st; return test_tmpdir_make(tmp, sizeof tmp, "dem-test-scene"); }
 static int teardown(void **st) { (void)st; return test_tmpdir_remove(tmp); }
 
-/* particle_order: spatial (dem_sort_particles): the scene's particles sorted along a Morton curve at load. The first
+/* particle_order: spatial (dem_sort_particles, then dem_config.reorder): the scene's particles sorted along a Morton
+ * curve at load, and stored anew as they move (the same bits: test_particle_order.c). The first
  * frame holds the scene's own particles, moved (/particles/input_index says from where), the reference and PoCL
  * agree bit for bit, a restart continues bit for bit (the sort is a function of the scene), and a bad value is
  * refused with its line. */
@@ -1460,7 +1461,8 @@ static void test_particle_order(void **st)
                         "%s/tests/scenes/restart_box.yaml > %s/sp.yaml && sed 's/^precision: fp64/precision: fp64\\n"
                         "particle_order: spatial\\nbackend: reference/' %s/tests/scenes/restart_box.yaml > %s/spr.yaml",
                         SRC, tmp, SRC, tmp), 0);
-    assert_int_equal(sh(err, sizeof err, "%s run %s/sp.yaml -o %s/sp.h5 --quiet --stop-after 300", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/sp.yaml -o %s/sp.h5 --stop-after 300", DEM, tmp, tmp), 0);
+    assert_non_null(strstr(err, " storing the particles anew; skin now")); /* dem run says how often (reorder.c) */
     assert_int_equal(sh(err, sizeof err, "%s run %s/spr.yaml -o %s/spr.h5 --quiet --stop-after 300", DEM, tmp, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/in.h5 --quiet --stop-after 1",
                         DEM, SRC, tmp), 0);

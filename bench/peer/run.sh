@@ -85,7 +85,8 @@ for order in input spatial; do
 # make bench-peer's timed run (written by bench/peer/run.sh): the bed of bed.csv, $STEPS steps of dt = $DT s
 name: bench-peer bed
 precision: fp64
-# input: the particles in bed.csv's order (as poured: random); spatial: sorted along a Morton curve at load
+# input: the particles in bed.csv's order (as poured: random); spatial: sorted along a Morton curve at load, and
+# stored anew as they move (dem_config.reorder)
 particle_order: $order
 effects: [hertz, damping, friction, gravity, walls]
 materials:
