@@ -113,7 +113,8 @@ int sim_reorder(dem_sim *s)
     }
     /* Worth it only when the storage has become scattered: the mean distance between particles stored next to each
      * other (one pass over the positions) more than `gain` times what it was after the last look; then, more than
-     * `gain` times what the new order gives (a Morton sort). A move costs about two rebuilds (docs/design.md). */
+     * `gain` times what the new order gives (a Morton sort). A move cost 0.12 s at 1e5 particles on this project's
+     * VM, some six rebuilds (docs/design.md). */
     double gain = s->cfg.reorder_gain > 0 ? s->cfg.reorder_gain : DEM_REORDER_GAIN, now = 0, anew = 0;
     for (int k = 0; !e && k + 1 < n; k++)
         now += spacing(x, k, k + 1);

@@ -130,7 +130,7 @@ typedef struct {
                             than this many times the new order's; 0 = DEM_REORDER_GAIN (2); at most 1: whenever the
                             order changes */
 } dem_config;
-/* The dem_config.reorder dem run uses with particle_order: spatial (docs/design.md "Stored anew at rebuilds") */
+/* The dem_config.reorder dem run uses with particle_order: spatial (docs/design.md "Every sum follows the particle ids") */
 #define DEM_REORDER_PERIOD 8
 #define DEM_REORDER_GAIN 2.0 /* dem_config.reorder_gain 0 */
 #define DEM_SAMPLE_KEEP 10
