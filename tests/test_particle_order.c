@@ -269,9 +269,42 @@ static void test_saved_state(void **st)
     }
 }
 
+/* A run with a spring (a membrane's kind of particle table) names particles by their places: it is never reordered,
+ * and runs as without dem_config.reorder. A negative reorder or reorder_gain is refused by dem_start. */
+static void test_not_reordered(void **st)
+{
+    (void)st;
+    packing_opts o = opts_of(&models[0]);
+    dem_sim *a = packing_build(&o), *b = packing_build(&o);
+    assert_int_equal(dem_add_spring(a, 0, 1, 10.0, -1, 0), 0);
+    assert_int_equal(dem_add_spring(b, 0, 1, 10.0, -1, 0), 0);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(a, &c);
+    c.reorder = 1;
+    c.reorder_gain = 1;
+    start_or_fail(b, &c);
+    step_or_fail(a, STEPS / 3);
+    step_or_fail(b, STEPS / 3);
+    assert_true(dem_rebuild_count(b) > 1);
+    assert_int_equal(dem_reorder_count(b), 0);
+    same_field(a, b, DEM_FIELD_X, 3, "position", "a run with a spring");
+    dem_destroy(a), dem_destroy(b);
+    dem_sim *bad = packing_build(&o);
+    c.reorder = -1;
+    assert_int_equal(dem_start(bad, &c), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(bad), "reorder must be >= 0 rebuilds (got -1)"));
+    dem_destroy(bad);
+    bad = packing_build(&o);
+    c.reorder = 1;
+    c.reorder_gain = -2;
+    assert_int_equal(dem_start(bad, &c), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(bad), "reorder_gain must be >= 0 (got -2)"));
+    dem_destroy(bad);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_storage_order_keeps_bits),
-                                       cmocka_unit_test(test_saved_state)};
+                                       cmocka_unit_test(test_saved_state), cmocka_unit_test(test_not_reordered)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
