@@ -272,20 +272,20 @@ static int write_api(dem_sim *s, dem_field f, const void *src, size_t bytes)
     return e;
 }
 
-static int state_set(dem_sim *s, const dem_state *st);
+static int state_set(dem_sim *s, const dem_state *st, int keep);
 
-/* The rebuilds within keep the storage order (host/reorder.c), so that the run's own positions, read in storage
- * order, can go back when the state does not fit. */
+/* The rebuilds within keep the storage order (host/reorder.c). */
 int dem_state_set(dem_sim *s, const dem_state *st)
 {
     int hold = s->reorder_hold;
     s->reorder_hold = 1;
-    int e = state_set(s, st);
+    int e = state_set(s, st, 1);
     s->reorder_hold = hold;
     return e;
 }
 
-static int state_set(dem_sim *s, const dem_state *st)
+/* keep: the run's own state is saved before the first write and put back when the state turns out not to fit */
+static int state_set(dem_sim *s, const dem_state *st, int keep)
 {
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
@@ -325,26 +325,25 @@ static int state_set(dem_sim *s, const dem_state *st)
                             "listed before j in the input)", p, i, j, n);
     }
     /* Whether each saved contact is a neighbour pair needs the rows of the saved positions, so those are written
-     * and the rows rebuilt first; when a contact then does not fit, the run's own positions go back (below) and
-     * the state changes nothing. */
+     * and the rows rebuilt first; when a contact then does not fit, the run's own state goes back (below) and the
+     * state changes nothing. Its own state, not only its positions: the rows of the saved positions carry only the
+     * contact memory of the pairs they list, so rows rebuilt from the run's positions after them would have lost
+     * the rest (a refused state changed the run that way until 2026-12-03). */
     size_t v3b = 3 * (size_t)n * rs;
     int e = 0;
-    unsigned char *old = malloc(3 * v3b + 1);
-    if (!old)
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    if (dem_stage_read_field(s->ops, s->be, DEM_FIELD_X, old, v3b) ||
-        dem_stage_read_field(s->ops, s->be, DEM_FIELD_V, old + v3b, v3b) ||
-        dem_stage_read_field(s->ops, s->be, DEM_FIELD_W, old + 2 * v3b, v3b) ||
-        write_api(s, DEM_FIELD_X, st->x, v3b) ||
-        write_api(s, DEM_FIELD_V, st->v, v3b) ||
+    dem_state mine;
+    memset(&mine, 0, sizeof mine);
+    if (keep && (e = dem_state_get(s, &mine)))
+        return e;
+    if (write_api(s, DEM_FIELD_X, st->x, v3b) || write_api(s, DEM_FIELD_V, st->v, v3b) ||
         write_api(s, DEM_FIELD_W, st->w, v3b)) {
-        free(old);
+        dem_state_free(&mine);
         return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     }
     s->skin_now = s->skin_hi; /* how the restored particles move is not known yet: rows of the largest skin */
     s->skin_built = -1;
     if ((e = sim_rebuild(s))) {
-        free(old);
+        dem_state_free(&mine);
         return e;
     }
     int maxn = s->maxn;
@@ -387,16 +386,14 @@ static int state_set(dem_sim *s, const dem_state *st)
                                      st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
-    if (e == DEM_ERR_ARG) { /* the run's own positions and rows back; the message stays the state's */
+    if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);
-        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_X, old, v3b) ||
-            dem_stage_write_field(s->ops, s->be, DEM_FIELD_V, old + v3b, v3b) ||
-            dem_stage_write_field(s->ops, s->be, DEM_FIELD_W, old + 2 * v3b, v3b) || sim_rebuild(s))
+        if (state_set(s, &mine, 0))
             e = DEM_ERR_DEVICE;
         snprintf(s->err, sizeof s->err, "%s", why);
     }
-    free(old);
+    dem_state_free(&mine);
     if (e)
         return e;
     s->step = st->step;
