@@ -211,6 +211,17 @@ static void test_storage_order_keeps_bits(void **st)
             one_case(bc, &models[k], &storages[q]);
 }
 
+/* plain started with c as it is, anew with c stored anew whenever the order changes (c keeps that), both stepped */
+static void start_twins(dem_sim *plain, dem_sim *anew, dem_config *c, long steps)
+{
+    start_or_fail(plain, c);
+    c->reorder = 1;
+    c->reorder_gain = 1;
+    start_or_fail(anew, c);
+    step_or_fail(plain, steps);
+    step_or_fail(anew, steps);
+}
+
 /* The saved state of a run stored anew is the saved state of the run that was not, byte for byte (particles by their
  * ids, contacts in the same order), and it continues bit for bit in a run stored either way. */
 static void same_state_bytes(const dem_state *x, const dem_state *y, const char *where)
@@ -235,12 +246,7 @@ static void test_saved_state(void **st)
         packing_opts o = opts_of(&models[0]);
         dem_sim *plain = packing_build(&o), *anew = packing_build(&o);
         dem_config c = cfg_of(bc->backend, bc->precision);
-        start_or_fail(plain, &c);
-        c.reorder = 1;
-        c.reorder_gain = 1;
-        start_or_fail(anew, &c);
-        step_or_fail(plain, STEPS / 2);
-        step_or_fail(anew, STEPS / 2);
+        start_twins(plain, anew, &c, STEPS / 2);
         dem_state sp, sa;
         assert_int_equal(dem_state_get(plain, &sp), 0);
         assert_int_equal(dem_state_get(anew, &sa), 0);
@@ -297,12 +303,7 @@ static void test_not_reordered(void **st)
     assert_int_equal(dem_add_spring(a, 0, 1, 10.0, -1, 0), 0);
     assert_int_equal(dem_add_spring(b, 0, 1, 10.0, -1, 0), 0);
     dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
-    start_or_fail(a, &c);
-    c.reorder = 1;
-    c.reorder_gain = 1;
-    start_or_fail(b, &c);
-    step_or_fail(a, STEPS / 3);
-    step_or_fail(b, STEPS / 3);
+    start_twins(a, b, &c, STEPS / 3);
     assert_true(dem_rebuild_count(b) > 1);
     assert_int_equal(dem_reorder_count(b), 0);
     same_field(a, b, DEM_FIELD_X, 3, "position", "a run with a spring");
