@@ -44,7 +44,8 @@ typedef struct {
     const void *rider_off;  /* real[3*nriders]: the particle's place relative to its wall's point */
     const unsigned *ride;   /* unsigned[n]: bit k set when the particle rides on wall k (it does not touch it) */
     const unsigned *hold;   /* unsigned[n]: bits 0, 1, 2: the particle keeps its velocity along x, y, z */
-    const int *sid;         /* int[n]: each particle's stable id (its place in the input), the order of every sum */
+    const int *sid;         /* int[n]: the stable id (the id of dem_start) of the particle at each place: every sum's
+                               order */
     const int *order;       /* int[n]: where the particle of each stable id is stored (the inverse of sid) */
     const int *identity;    /* int[n]: 0, 1, ..., n - 1 (OLD_SLOT: where each particle was when the rows were built) */
     /* binning grid, computed by the driver */

@@ -104,10 +104,9 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
  * for SIMD lanes (PoCL) can run neighbouring pairs side by side. */
 DEM_ITEM(contact_pairs)
 {
-    int slot = pair_slot[i];
+    int ps = pair_slot[i], host_lower = ps >= 0, slot = host_lower ? ps : ~ps; /* neighbor.h's pair_index */
     int h = slot / maxn, g = nbr_list[slot]; /* the pair's host (stored first) and its partner */
-    int host_lower = sid[h] < sid[g];         /* evaluated for the lower stable id, a */
-    int a = host_lower ? h : g, j = host_lower ? g : h;
+    int a = host_lower ? h : g, j = host_lower ? g : h; /* evaluated for the lower stable id, a */
     int touching = touch[i], m = -1;
     real da = (real)0, db = (real)0;
     if (fx & DEM_EFFECT_MC_STRAIN) {
@@ -155,35 +154,24 @@ DEM_ITEM(contact_pairs)
                                                                         contact_geometry.h's), no division or root */
 }
 
-/* The record of row slot k of particle i: a pair i hosts (partner stored after i) is numbered own + h, h counting the
- * hosted slots before k; one its partner hosts is in_pair[in + g], g counting the others. Without a branch (whether
- * a slot is hosted follows the storage order, the row the stable ids': a branch on it is a coin toss when the two
- * differ): in_pair[in + g] is read either way, within the array (it has room past the last pair). */
-DEM_INLINE int contact_record(DEM_CONST_GLOBAL int *row, int k, int i, int own, int in, int *h, int *g,
-                              DEM_CONST_GLOBAL int *in_pair)
-{
-    int hosted = row[k] > i, guest = in_pair[in + *g], p = hosted ? own + *h : guest;
-    *h += hosted;
-    *g += 1 - hosted;
-    return p;
-}
-#define CONTACT_RECORD(row, k, i, own, in, h, g) contact_record(row, k, i, own, in, &(h), &(g), in_pair)
-
 /* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
  * of higher stable id, ascending: the back of its row), then those owned by partners of lower stable id (ascending:
- * the front of its row, nbr_lower[i] of them, subtracted), then its walls. The records are found by storage order
- * (CONTACT_RECORD), the order of the sum is the stable ids'. */
+ * the front of its row, nbr_lower[i] of them, subtracted), then its walls. The records are found by storage order -
+ * a pair i hosts (partner stored after i) is own + h, h counting the hosted slots before it; one its partner hosts is
+ * in_pair[in + g], g counting the others - and added in the stable ids' order. */
 DEM_ITEM(contact_forces)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i], ela = (real)0, con = (real)0, wcon = (real)0;
-    int cnt = nbr_count[i], lower = nbr_lower[i], own = own_start[i], in = in_start[i], h = 0, g = 0;
+    int cnt = nbr_count[i], lv = nbr_lower[i], lower = row_lower(lv), own = own_start[i], in = in_start[i];
+    int h = 0, g = 0;
     DEM_CONST_GLOBAL int *nrow = nbr_list + i * maxn; /* the row (row: the series' row) */
-    for (int k = 0; k < lower; k++) /* the records of the front come after the back's in the sum */
+    for (int k = 0; lv < 0 && k < lower; k++) /* the records of the front come after the back's in the sum */
         h += nrow[k] > i;
     g = lower - h;
     for (int k = lower; k < cnt; k++) { /* owned: partners of higher stable id */
-        int p = CONTACT_RECORD(nrow, k, i, own, in, h, g);
+        /* the row read only when its storage split is not its id split (lv < 0: stored anew) */
+        int p = lv >= 0 ? own + k - lower : nrow[k] > i ? own + h++ : in_pair[in + g++];
         if (!touch[p])
             continue;
         DEM_CONST_GLOBAL real *pr = pair + p * PR_STRIDE;
@@ -203,7 +191,7 @@ DEM_ITEM(contact_forces)
     }
     h = g = 0;
     for (int k = 0; k < lower; k++) { /* mirrored: partners of lower stable id */
-        int p = CONTACT_RECORD(nrow, k, i, own, in, h, g);
+        int p = lv >= 0 ? in_pair[in + k] : nrow[k] > i ? own + h++ : in_pair[in + g++];
         if (!touch[p])
             continue;
         DEM_CONST_GLOBAL real *pr = pair + p * PR_STRIDE;

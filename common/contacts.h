@@ -26,6 +26,10 @@ typedef struct {
 
 DEM_INLINE int contact_count(int cnt, int nw) { return cnt + nw; }
 
+/* The row's count of partners of lower stable id from nbr_lower[i], which holds ~count (negative) when the partners
+ * stored before i are not exactly those (the particles were stored anew: neighbor.h, contact_forces.h) */
+DEM_INLINE int row_lower(int v) { return v < 0 ? ~v : v; }
+
 /* Contact number c of particle i (cnt = nbr_count[i], lower = nbr_lower[i]). */
 DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int lower, int maxn, int nwalls,
                                   DEM_CONST_GLOBAL int *nbr_list)

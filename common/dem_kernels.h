@@ -98,7 +98,7 @@
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
-    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BIN, int, sid, SID)
+    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \

@@ -131,7 +131,7 @@ DEM_ITEM(mc_strain_disp)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
-    int cnt = nbr_count[i], lower = nbr_lower[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
+    int cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
     int total = contact_count(cnt, nw);
     DEM_CONST_GLOBAL real *pmi = pairmat + PM_STRIDE * (mat[i] * nmat + mat[i]);
     /* fast path: the touching contacts, gathered once (in canonical order), then each unordered pair once */
@@ -216,7 +216,7 @@ DEM_ITEM(mc_strain_update)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
-    int mi = mat[i], cnt = nbr_count[i], lower = nbr_lower[i], changed = 0;
+    int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), changed = 0;
     int nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
     for (int c = 0; c < contact_count(cnt, nw); c++) { /* the pairs i owns (both slots), then its walls */
         contact_ref r = contact_at(i, c, cnt, lower, maxn, nwalls, nbr_list);

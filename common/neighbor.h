@@ -1,11 +1,11 @@
 /* neighbor.h - Verlet neighbour rows from the cell grid, and contact history carried across rebuilds.
  *
  * Row i lists every j != i with |x_i - x_j| < r_i + r_j + skin, sorted by ascending sid[j] (the canonical summation
- * order of contact_forces.h), at nbr_list[i*maxn ...]. sid is each particle's stable id (its place in the input:
- * dem_particle_source), so that every sum follows the stable ids, not the places the particles are stored at: a
- * run whose particles are stored in another order (particle_order: spatial) gives the same bits. The test is symmetric in i and j bit for bit (IEEE + and *
- * commute), so j is in row i exactly when i is in row j. A row longer than maxn stores its first maxn partners in
- * order and reports the full count in FLAG_NBR_NEEDED; the host then grows maxn and builds again.
+ * order of contact_forces.h), at nbr_list[i*maxn ...]. sid is each particle's stable id (its id at dem_start), so
+ * that every sum follows the ids, not the places the particles are stored at (host/reorder.c moves them). The test
+ * is symmetric in i and j bit for bit (IEEE + and * commute), so j is in row i exactly when i is in row j. A row
+ * longer than maxn stores its first maxn partners in order and reports the full count in FLAG_NBR_NEEDED; the host
+ * then grows maxn and builds again.
  * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's
  * touching flag and tangential history follow in pair_index, once the new pairs are numbered.
  * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
@@ -68,7 +68,10 @@ DEM_ITEM(nbr_build)
         lower += sid[row[k]] < si; /* partners of lower stable id: the row's front (the sums' split) */
         guests += row[k] < i;      /* partners stored before i: their pairs are numbered by them */
     }
-    nbr_lower[i] = lower;
+    int alike = guests == lower; /* the partners stored before i are the row's front: contact_forces reads no row */
+    for (int k = 0; alike && k < lower; k++)
+        alike = row[k] < i;
+    nbr_lower[i] = alike ? lower : ~lower; /* contacts.h's row_lower */
     in_count[i] = guests;
     own_count[i] = nbr_count[i] - guests;
     DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
@@ -114,7 +117,8 @@ DEM_ITEM(nbr_carry)
 /* The flat pair list of the committed rows (contact_forces.h). A pair is numbered by its host, the one of its two
  * particles stored first (whichever has the lower stable id evaluates it: contact_pairs), so that the pairs follow
  * the storage order: pair p = own_start[i] + h is the h-th partner j > i (stored after i) in particle i's row, and
- * pair_slot[p] names that row slot. The partner j's slot of the same pair (the slot of i in row j, found by binary
+ * pair_slot[p] names that row slot (as ~slot, negative, when j has the lower stable id: contact_pairs then
+ * evaluates the pair for j without reading the stable ids each step). The partner j's slot of the same pair (the slot of i in row j, found by binary
  * search; it is the g-th of j's partners stored before j) gets in_pair[in_start[j] + g] = p, and with MC-strain
  * pair_mirror[p] names that slot. Each entry has one writer: p's host writes them all. A pair whose partner row lacks
  * it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC. The touching flag (touch[p]) and tangential history
@@ -131,7 +135,7 @@ DEM_ITEM(pair_index)
             continue; /* hosted by j */
         DEM_CONST_GLOBAL int *rj = nbr_list + j * maxn;
         int m = row_find_sid(rj, nbr_count[j], sid, sid[i]);
-        pair_slot[p] = i * maxn + c;
+        pair_slot[p] = sid[i] < sid[j] ? i * maxn + c : ~(i * maxn + c);
         if (fx & DEM_EFFECT_MC_STRAIN)
             pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
         if (m >= 0) {

@@ -71,7 +71,8 @@ DEM_INLINE void stress_add(real *st, real c, vec3 n)
 DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GLOBAL real *x,
                             DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL int *mat,
                             DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
-                            DEM_CONST_GLOBAL int *nbr_lower, DEM_CONST_GLOBAL int *nbr_list, int nwalls, DEM_CONST_GLOBAL int *wall_int,
+                            DEM_CONST_GLOBAL int *nbr_lower, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
+                            DEM_CONST_GLOBAL int *wall_int,
                             DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride, DEM_GLOBAL real *out)
 {
     vec3 xi = v3_load(x, i);
@@ -79,7 +80,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GL
     real st[ST_STRIDE];
     for (int c = 0; c < ST_STRIDE; c++)
         st[c] = (real)0;
-    int mi = mat[i], cnt = nbr_count[i], lower = nbr_lower[i], nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
+    int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
     for (int k = 0; k < contact_count(cnt, nw); k++) { /* the canonical order (contacts.h): the row, then the walls */
         contact_ref r = contact_at(i, k, cnt, lower, maxn, nwalls, nbr_list);
         real delta, rstar, arm;

@@ -63,7 +63,8 @@ DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nb
         return;
     }
     /* wall_block_kept's sums for every wall in one pass over the block: a particle that touches no wall (most of
-     * them) costs one test, not one per wall; each wall's terms are still added in ascending stable id, the same bits */
+     * them) costs one test, not one per wall; each wall's terms are still added in ascending stable id, the same
+     * bits */
     wall_part p[DEM_WALL_MASK_BITS];
     for (int k = 0; k < nwalls; k++) {
         p[k].f = v3_zero();

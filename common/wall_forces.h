@@ -163,7 +163,8 @@ DEM_INLINE wall_part wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST
 }
 
 /* Partial sums of the force that particles of stable ids [b*B, (b+1)*B) exert on wall k, ascending stable id
- * (B = DEM_REDUCE_BLOCK; order[q] is where the particle of stable id q is stored), and of their normal parts. With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
+ * (B = DEM_REDUCE_BLOCK; order[q] is where the particle of stable id q is stored), and of their normal parts. With
+ * DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
  * Without: each particle's force from the wall evaluated as contact_forces is about to (this kernel runs between
  * contact_pairs and contact_forces, on the same state), so nothing per particle and wall is stored. The same terms in
  * the same order: the same bits either way. */

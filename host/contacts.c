@@ -1,10 +1,10 @@
 /* contacts.c - the contact network of the current state (dem_contacts_get): every touching particle pair and
  * particle-wall pair with the force the kernels computed, read from the device with one synchronisation and
- * assembled on the host in double. Pairs come from the records contact_pairs leaves for the higher id
- * (common/contact_forces.h: the force on the lower id, at the higher id's incoming slot), walls from the per-particle
- * wall forces (common/wall_forces.h); geometry (overlap, normal, contact point) is recomputed from the positions as
- * the kernels define it. Order: pairs by (i, j), i the pair's owner (the lower stable id: i < j unless the particles
- * were sorted, dem_sort_particles), then particle-wall pairs by (particle, wall). */
+ * assembled on the host in double. Pairs come from the records contact_pairs leaves (common/contact_forces.h: the
+ * force on the lower id, numbered by the particle stored first: row_pair_of), walls from the per-particle wall forces
+ * (common/wall_forces.h); geometry (overlap, normal, contact point) is recomputed from the positions as the kernels
+ * define it. Order: pairs by (i, j), i < j, then particle-wall pairs by (particle, wall), in the ids of dem_start
+ * however the particles are stored (host/reorder.c). */
 #include "sim.h"
 #include "dem_layout.h"
 #include "sorted_row.h"
@@ -157,7 +157,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
                 e->extra[0] = real_at(wdisp, (size_t)i * nw + w, rs);
         }
     free(raw);
-    for (long k = 0; s->api_of && k < np + nwc; k++) { /* stored anew (host/reorder.c): the callers' ids */
+    for (long k = 0; s->reorders && k < np + nwc; k++) { /* stored anew (host/reorder.c): the callers' ids */
         cs[k].i = sim_api(s, cs[k].i);
         if (cs[k].j >= 0)
             cs[k].j = sim_api(s, cs[k].j);

@@ -15,7 +15,8 @@
  * pair list (old_pair_number reads the old pairs through it; the pair-sized arrays themselves stay where they are,
  * numbered as before, until pair_index carries them into the new rows). The host's own per-particle arrays follow,
  * so the host code that reads device buffers by storage place needs no map; the calls that take or return
- * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through api_of / dev_of.
+ * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through sid / order (sim_api,
+ * sim_dev): the stable id of the particle at each place is its id of dem_start.
  * Membranes, patches and riders name particles in their own tables: a run with them keeps its storage order. */
 #include "sim.h"
 #include <math.h>
@@ -31,13 +32,13 @@ typedef struct {
 
 /* Every DEM_BUFFERS entry sized by particles; tests/test_particle_order.c reorders at every rebuild, so a buffer
  * missing here changes the bits there. Not here: what a rebuild or a step rewrites before reading it (cells, in/own
- * counts and starts, the pair arrays, the walls' partial sums), ORDER and OWN_START (renamed below), and the membrane,
+ * counts and starts, the pair arrays, the walls' partial sums), OWN_START, SID and ORDER (below), and the membrane,
  * patch and rider tables (a run with them is not reordered). */
 static const moved_buffer moved[] = {
     {BUF_X, LAYOUT_PARTICLE, 0},          {BUF_V, LAYOUT_PARTICLE, 0},         {BUF_W, LAYOUT_PARTICLE, 0},
     {BUF_FORCE, LAYOUT_PARTICLE, 0},      {BUF_TORQUE, LAYOUT_PARTICLE, 0},    {BUF_RADIUS, LAYOUT_PARTICLE, 0},
     {BUF_INVMASS, LAYOUT_PARTICLE, 0},    {BUF_INVINERTIA, LAYOUT_PARTICLE, 0}, {BUF_INVVOL, LAYOUT_PARTICLE, 0},
-    {BUF_X_BUILD, LAYOUT_PARTICLE, 0},    {BUF_MAT, LAYOUT_PARTICLE, 0},       {BUF_SID, LAYOUT_PARTICLE, 0},
+    {BUF_X_BUILD, LAYOUT_PARTICLE, 0},    {BUF_MAT, LAYOUT_PARTICLE, 0},
     {BUF_WALL_HIST, LAYOUT_PARTICLE, 0},  {BUF_WALL_MASK, LAYOUT_PARTICLE, 0}, {BUF_TRACE, LAYOUT_PARTICLE, 0},
     {BUF_STRESS, LAYOUT_PARTICLE, 0},     {BUF_MC_WALL_FN, LAYOUT_PARTICLE, 0}, {BUF_MC_WALL_DISP, LAYOUT_PARTICLE, 0},
     {BUF_RIDE, LAYOUT_PARTICLE, 0},       {BUF_HOLD, LAYOUT_PARTICLE, 0},      {BUF_WALL_PF, LAYOUT_GROUPS, 3},
@@ -92,9 +93,8 @@ int sim_reorder(dem_sim *s)
     most = most > sizeof(int) * ((size_t)n + 1) ? most : sizeof(int) * ((size_t)n + 1);
     unsigned char *buf = malloc(most), *tmp = malloc(most);
     int *from = malloc(sizeof(int) * (size_t)n), *to = malloc(sizeof(int) * (size_t)n);
-    int *api = malloc(sizeof(int) * (size_t)n);
-    if (!buf || !tmp || !from || !to || !api) {
-        free(buf), free(tmp), free(from), free(to), free(api);
+    if (!buf || !tmp || !from || !to) {
+        free(buf), free(tmp), free(from), free(to);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     int e = 0;
@@ -108,7 +108,7 @@ int sim_reorder(dem_sim *s)
         finite &= isfinite(x[k]) != 0;
     }
     if (!e && !finite) { /* left as stored: the binning that follows reports the particle */
-        free(buf), free(tmp), free(from), free(to), free(api);
+        free(buf), free(tmp), free(from), free(to);
         return 0;
     }
     /* Worth it only when the storage has become scattered: the mean distance between particles stored next to each
@@ -119,7 +119,7 @@ int sim_reorder(dem_sim *s)
     for (int k = 0; !e && k + 1 < n; k++)
         now += spacing(x, k, k + 1);
     if (!e && gain > 1 && s->reorder_ref > 0 && !(now > gain * s->reorder_ref)) {
-        free(buf), free(tmp), free(from), free(to), free(api);
+        free(buf), free(tmp), free(from), free(to);
         return 0;
     }
     if (!e && sim_morton_order(x, n, from))
@@ -184,22 +184,16 @@ int sim_reorder(dem_sim *s)
             e = device_fail(s);
         s->reordered = 1;
     }
-    /* each particle's first hosted pair in the (unmoved) pair list; and where each stable id is stored now */
-    static const int renamed[] = {BUF_OWN_START, BUF_ORDER};
-    for (int k = 0; !e && !same && k < 2; k++) {
-        dem_bufref r = {TABLE_ONE, renamed[k]};
-        if (s->ops->read(s->be, r, 0, buf, sizeof(int) * (size_t)n, 1)) {
+    /* each particle's first hosted pair in the (unmoved) pair list moves with it */
+    if (!e && !same) {
+        dem_bufref r = {TABLE_ONE, BUF_OWN_START};
+        if (s->ops->read(s->be, r, 0, buf, sizeof(int) * (size_t)n, 1))
             e = device_fail(s);
-            break;
-        }
-        int *v = (int *)buf;
-        if (renamed[k] == BUF_OWN_START)
+        else {
             move_items(buf, tmp, sizeof(int) * (size_t)n, from, n, sizeof(int));
-        else
-            for (int q = 0; q < n; q++)
-                v[q] = to[v[q]];
-        if (s->ops->write(s->be, r, 0, buf, sizeof(int) * (size_t)n, 1))
-            e = device_fail(s);
+            if (s->ops->write(s->be, r, 0, buf, sizeof(int) * (size_t)n, 1))
+                e = device_fail(s);
+        }
     }
     if (!e && !same) {
         /* the host's per-particle arrays, in the device's order */
@@ -215,28 +209,18 @@ int sim_reorder(dem_sim *s)
             move_items(s->packed[packed3[k]], tmp, 3 * (size_t)rs * (size_t)n, from, n, 3 * (size_t)rs);
         for (int k = 0; k < 4; k++)
             move_items(s->packed[packed1[k]], tmp, (size_t)rs * (size_t)n, from, n, (size_t)rs);
-        for (int k = 20; k <= 22; k++) /* ride, hold, sid */
+        for (int k = 20; k <= 22; k++) /* ride, hold, sid: the id of dem_start of the particle at each place */
             if (s->packed[k])
                 move_items(s->packed[k], tmp, sizeof(int) * (size_t)n, from, n, sizeof(int));
-        int *order = s->packed[23];
-        for (int q = 0; q < n; q++)
-            order[q] = to[order[q]];
-        /* the callers' ids: the particle stored at k is the one stored at from[k] before */
+        int *sid = s->packed[22], *order = s->packed[23]; /* order: where each id is stored */
         for (int k = 0; k < n; k++)
-            api[k] = s->api_of ? s->api_of[from[k]] : from[k];
-        if (!s->api_of) {
-            s->api_of = malloc(sizeof(int) * (size_t)n);
-            s->dev_of = malloc(sizeof(int) * (size_t)n);
-            if (!s->api_of || !s->dev_of)
-                e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-        }
-        for (int k = 0; !e && k < n; k++) {
-            s->api_of[k] = api[k];
-            s->dev_of[api[k]] = k;
-        }
+            order[sid[k]] = k;
+        if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_SID}, 0, sid, sizeof(int) * (size_t)n, 1) ||
+            s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_ORDER}, 0, order, sizeof(int) * (size_t)n, 1))
+            e = device_fail(s);
         s->reorders++;
     }
-    free(buf), free(tmp), free(from), free(to), free(api);
+    free(buf), free(tmp), free(from), free(to);
     return e;
 }
 
@@ -279,22 +263,22 @@ static int field_move(dem_sim *s, dem_field f, const unsigned char *src, unsigne
 
 int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes)
 {
-    if (!s->api_of)
+    if (!s->reorders)
         return 0;
     unsigned char *tmp = malloc(bytes ? bytes : 1);
     if (!tmp)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     memcpy(tmp, buf, bytes);
-    field_move(s, f, tmp, buf, bytes, s->dev_of, s->api_of);
+    field_move(s, f, tmp, buf, bytes, s->setup.order, s->setup.sid);
     free(tmp);
     return 0;
 }
 
 int sim_field_from_api(dem_sim *s, dem_field f, const void *src, void *dst, size_t bytes)
 {
-    if (!s->api_of) {
+    if (!s->reorders) {
         memcpy(dst, src, bytes);
         return 0;
     }
-    return field_move(s, f, src, dst, bytes, s->api_of, s->dev_of);
+    return field_move(s, f, src, dst, bytes, s->setup.sid, s->setup.order);
 }

@@ -39,7 +39,6 @@ void dem_destroy(dem_sim *s)
     free(s->pflags);
     free(s->body);
     free(s->source);
-    free(s->api_of), free(s->dev_of);
     free(s->spring_ij);
     free(s->spring_kr);
     free(s->tri);
@@ -1136,7 +1135,7 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return be_fail(s);
-    if (!s->api_of || !bytes)
+    if (!s->reorders || !bytes)
         return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? be_fail(s) : 0;
     /* stored anew (dem_config.reorder): the whole field read, then put in the callers' order */
     size_t all = dem_field_bytes(s, f);

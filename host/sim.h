@@ -22,10 +22,9 @@ struct dem_sim {
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     int *source, source_n; /* after dem_sort_particles: each particle's id before it (the first source_n) */
-    /* dem_config.reorder (host/reorder.c): once the particles are stored anew, the id of dem_start of the particle
-     * stored at each place (api_of) and where each id is stored (dev_of); NULL: stored in id order. The host's
-     * per-particle arrays above follow the storage order after the start. */
-    int *api_of, *dev_of;
+    /* dem_config.reorder (host/reorder.c): times the particles were stored anew. Once they were, the host's
+     * per-particle arrays above follow the storage order, and setup.sid / setup.order map places to the ids of
+     * dem_start and back (sim_api, sim_dev). */
     long reorders;
     int reorder_hold; /* 1: rebuilds keep the storage order (dem_state_set) */
     int reordered;    /* the particles were stored anew since the rows were built: OLD_SLOT holds where they were */
@@ -70,8 +69,9 @@ struct dem_sim {
     dem_setup setup;
 #define SIM_PACKED 25
     void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders;
-                                 18, 19: patch triangles per vertex; 20: the walls each particle rides on; 21: held velocity axes;
-                                 22, 23: each particle's stable id and where each stable id is stored; 24: 0..n-1) */
+                                 18, 19: patch triangles per vertex; 20: the walls each particle rides on; 21: held
+                                 velocity axes; 22, 23: the stable id (id of dem_start) of the particle at each place,
+                                 and where each stable id is stored; 24: 0..n-1) */
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
@@ -142,9 +142,9 @@ int sim_morton_order(const double *x, int n, int *perm);
 /* reorder.c: whether this rebuild stores the particles anew (dem_config.reorder), and doing it */
 int sim_reorder_due(const dem_sim *s);
 int sim_reorder(dem_sim *s);
-/* A caller's particle id (the order of dem_start) and where that particle is stored, both ways */
-static inline int sim_dev(const dem_sim *s, int id) { return s->dev_of ? s->dev_of[id] : id; }
-static inline int sim_api(const dem_sim *s, int slot) { return s->api_of ? s->api_of[slot] : slot; }
+/* A caller's particle id (the order of dem_start: the stable id) and where that particle is stored, both ways */
+static inline int sim_dev(const dem_sim *s, int id) { return s->reorders ? s->setup.order[id] : id; }
+static inline int sim_api(const dem_sim *s, int slot) { return s->reorders ? s->setup.sid[slot] : slot; }
 /* reorder.c: a field read from the device in storage order put in the callers' order (particles by their ids,
  * the rows' partners renamed) in place; fields not sized by particles are left as they are */
 int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes);

@@ -653,18 +653,15 @@ int sim_pack(dem_sim *s)
     /* the stable ids every sum follows (neighbor.h): the particles' ids at the start, so that the bits do not depend
      * on where the particles are stored later (host/reorder.c). (Their places in the input instead, which would make
      * a sorted packing (dem_sort_particles) run the bits of the unsorted one, cost that sorted run a third of its
-     * speed: docs/design.md "Every sum follows the stable ids".) */
+     * speed: docs/design.md "Every sum follows the particle ids".) */
     int *sid = malloc(sizeof(int) * (size_t)(n ? n : 1)), *order = malloc(sizeof(int) * (size_t)(n ? n : 1));
     int *identity = malloc(sizeof(int) * (size_t)(n ? n : 1));
     s->packed[22] = sid, s->packed[23] = order, s->packed[24] = identity;
     if (!sid || !order || !identity)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; i < n; i++)
-        identity[i] = i;
-    u->identity = identity;
-    for (int i = 0; i < n; i++)
-        sid[i] = order[i] = i;
-    u->sid = sid, u->order = order;
+        sid[i] = order[i] = identity[i] = i;
+    u->sid = sid, u->order = order, u->identity = identity;
     u->x = s->packed[0];
     u->v = s->packed[1];
     u->w = s->packed[2];

@@ -26,9 +26,9 @@ void dem_state_free(dem_state *st)
     memset(st, 0, sizeof *st);
 }
 
-/* A whole field as stored on the device (storage order: host/reorder.c; sim_field_to_api puts a particle field in
- * the callers' order) */
-static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
+/* A whole field: in the callers' order (dem_get_raw), or as stored (stored: the rows and the pair-sized fields,
+ * read together in storage order; host/reorder.c) */
+static void *get_field(dem_sim *s, dem_field f, size_t *bytes, int *e, int stored)
 {
     *bytes = dem_field_bytes(s, f);
     void *p = malloc(*bytes ? *bytes : 1);
@@ -36,26 +36,30 @@ static void *get_all(dem_sim *s, dem_field f, size_t *bytes, int *e)
         *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         return NULL;
     }
-    if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
+    if (!*e && !stored)
+        *e = dem_get_raw(s, f, p, *bytes);
+    else if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
         *e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     return p;
 }
+#define get_all(s, f, bytes, e) get_field(s, f, bytes, e, 0)
+#define get_stored(s, f, bytes, e) get_field(s, f, bytes, e, 1)
 
-/* The saved pairs, named by the callers' ids, in the order of a run never stored anew: ascending owner, then the
- * partners' stable ids (a reordered run's rows list the owners in storage order) */
+/* The saved pairs, named by the callers' ids, in the order of a run never stored anew: ascending i, then j (a
+ * reordered run's rows list the owners in storage order) */
 typedef struct {
-    int i, j, key, at;
+    int i, j, at;
 } pair_key;
 static int by_owner(const void *a, const void *b)
 {
     const pair_key *p = a, *q = b;
-    return p->i != q->i ? (p->i > q->i) - (p->i < q->i) : (p->key > q->key) - (p->key < q->key);
+    return p->i != q->i ? (p->i > q->i) - (p->i < q->i) : (p->j > q->j) - (p->j < q->j);
 }
 static int pairs_to_api(dem_sim *s, dem_state *st)
 {
     long np = st->npairs;
     int rs = st->real_size;
-    if (!s->api_of || np == 0)
+    if (!s->reorders || np == 0)
         return 0;
     pair_key *k = malloc(sizeof *k * (size_t)np);
     unsigned char *h = malloc(3 * (size_t)rs * (size_t)np), *f = malloc((size_t)rs * (size_t)np);
@@ -64,7 +68,7 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (long p = 0; p < np; p++)
-        k[p] = (pair_key){sim_api(s, st->pair_i[p]), sim_api(s, st->pair_j[p]), s->setup.sid[st->pair_j[p]], (int)p};
+        k[p] = (pair_key){sim_api(s, st->pair_i[p]), sim_api(s, st->pair_j[p]), (int)p};
     qsort(k, (size_t)np, sizeof *k, by_owner);
     for (long p = 0; p < np; p++) {
         st->pair_i[p] = k[p].i, st->pair_j[p] = k[p].j;
@@ -191,9 +195,9 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->wall_mc_fn = get_all(s, DEM_FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
     st->mc = s->mc;
     size_t hb, fb;
-    unsigned char *mcf = get_all(s, DEM_FIELD_MC_FORCE, &fb, &e);
-    int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
-    unsigned char *touch = get_all(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_all(s, DEM_FIELD_HIST, &hb, &e);
+    unsigned char *mcf = get_stored(s, DEM_FIELD_MC_FORCE, &fb, &e);
+    int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
     /* touching pairs, once each (owner i: the lower stable id), in row order: ascending i, then the partners' stable
      * ids */
     long np = 0;
@@ -237,14 +241,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
     free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
     if (!e)
         e = patch_contacts_get(s, st);
-    /* in the callers' order (a run stored anew: host/reorder.c) */
-    if (!e)
+    if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/reorder.c) */
         e = pairs_to_api(s, st);
-    const dem_field pf[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE,
-                            DEM_FIELD_WALL_HIST, DEM_FIELD_WALL_MASK, DEM_FIELD_MC_WALL_FORCE};
-    void *const pa[] = {st->x, st->v, st->w, st->force, st->torque, st->wall_hist, st->wall_mask, st->wall_mc_fn};
-    for (int k = 0; !e && k < 8; k++)
-        e = sim_field_to_api(s, pf[k], pa[k], dem_field_bytes(s, pf[k]));
     if (e)
         dem_state_free(st);
     return e;
@@ -262,7 +260,7 @@ int sim_rebuild(dem_sim *s); /* sim.c */
 /* A particle field from the callers' order into the device's (host/reorder.c) */
 static int write_api(dem_sim *s, dem_field f, const void *src, size_t bytes)
 {
-    if (!s->api_of)
+    if (!s->reorders)
         return dem_stage_write_field(s->ops, s->be, f, src, bytes);
     void *buf = malloc(bytes ? bytes : 1);
     if (!buf)
@@ -317,13 +315,11 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                             "does not fit this run", k, st->wall_stage[k], s->walls[k].nstages,
                             st->wall_stage_first[k], st->step);
     }
-    const int *sid = s->setup.sid; /* a pair is saved from its owner, the lower stable id (neighbor.h) */
-    for (long p = 0; p < st->npairs; p++) {
-        int i = st->pair_i[p], j = st->pair_j[p];
-        if (!(i >= 0 && i < n && j >= 0 && j < n && sid[sim_dev(s, i)] < sid[sim_dev(s, j)]))
-            return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i, j < %d, i "
-                            "listed before j in the input)", p, i, j, n);
-    }
+    for (long p = 0; p < st->npairs; p++) /* saved from its owner, the lower id (neighbor.h) */
+        if (!(st->pair_i[p] >= 0 && st->pair_i[p] < st->pair_j[p] && st->pair_j[p] < n))
+            return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i < j < %d)", p,
+                            st->pair_i[p], st->pair_j[p], n);
+    const int *sid = s->setup.sid;
     /* Whether each saved contact is a neighbour pair needs the rows of the saved positions, so those are written
      * and the rows rebuilt first; when a contact then does not fit, the run's own state goes back (below) and the
      * state changes nothing. Its own state, not only its positions: the rows of the saved positions carry only the
@@ -349,7 +345,7 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     int maxn = s->maxn;
     size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE),
               tb = dem_field_bytes(s, DEM_FIELD_TOUCH);
-    int *cnt = get_all(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_all(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     int *own = e ? NULL : sim_own_starts(cnt, list, maxn, n);
     if (!e && (!touch || !hist || !mcf || !own))

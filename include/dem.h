@@ -126,11 +126,12 @@ typedef struct {
                             not depend on it (every sum follows the particle ids), and every particle id the library
                             takes or returns stays that of dem_start. A run with springs, triangles, hinges, patches
                             or attachments is not reordered. */
-    double reorder_gain; /* stored anew when the mean distance between particles stored next to each other is more
-                            than this many times the new order's; 0 = DEM_REORDER_GAIN (2); at most 1: whenever the
-                            order changes */
+    double reorder_gain; /* stored anew when the mean distance between particles stored next to each other has grown
+                            this many times since the last look and is this many times the new order's; 0 =
+                            DEM_REORDER_GAIN (2); at most 1: whenever the order changes */
 } dem_config;
-/* The dem_config.reorder dem run uses with particle_order: spatial (docs/design.md "Every sum follows the particle ids") */
+/* The dem_config.reorder dem run uses with particle_order: spatial (docs/design.md "Every sum follows the particle
+ * ids") */
 #define DEM_REORDER_PERIOD 8
 #define DEM_REORDER_GAIN 2.0 /* dem_config.reorder_gain 0 */
 #define DEM_SAMPLE_KEEP 10

@@ -1094,7 +1094,7 @@ static void test_crafted_checkpoints(void **st)
         {"text_varlen", "incomplete or damaged checkpoint"},
         {"hist_dropped", "the saved state has no tangential history but this run has friction"},
         {"scene_frictionless", "the saved state has tangential history but this run has no friction"},
-        {"pairs_out_of_range", "joins particles 1000000 and 2 (want 0 <= i, j < 64, i listed before j in the input)"},
+        {"pairs_out_of_range", "joins particles 1000000 and 2 (want 0 <= i < j < 64)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         int rc = sh(err, sizeof err, "/usr/bin/python3 %s/tests/craft_checkpoint.py %s/good.ckpt.h5 %s/bad.ckpt.h5 %s && "

@@ -54,7 +54,7 @@ static void test_unfit_state_changes_nothing(void **st)
     int keep_i = saved.pair_i[0], keep_j = saved.pair_j[0];
     saved.pair_j[0] = n + 5;
     assert_int_equal(dem_state_set(a, &saved), DEM_ERR_ARG);
-    assert_non_null(strstr(dem_error(a), "want 0 <= i, j <"));
+    assert_non_null(strstr(dem_error(a), "want 0 <= i < j <"));
     /* 2: a contact between particles that are far apart in the saved positions (found only after the rows of those
      * positions are built: the run's own come back). The saved positions are moved so that the state differs from
      * the run's in every particle. */
