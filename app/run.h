@@ -36,11 +36,14 @@ void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info
 
 /* The overlaps of a run, measured at its frames (run_overlap.c): the largest pair overlap / smaller radius and the
  * largest mean over the touching pairs, with when; reported at the end with a warning where the contact model was
- * used beyond its range. */
+ * used beyond its range. With them the step's stability at those overlaps (dem_stability_get): the frame where it
+ * came closest to the bound, warned about above DEM_STABILITY_LIMIT. */
 typedef struct {
     int sampled;
     double largest, largest_t, mean, mean_t;
     int largest_i, largest_j;
+    dem_stability stab; /* the frame of the largest ratio */
+    double stab_t;
     int *list, *count;
     double *x;
     size_t cap;

@@ -11,6 +11,8 @@
  *     at each contact) and in packings whose largest overlap reaches 19.5 % (the 514 hydrogels at 13.4 % strain);
  *   - lagged MC-strain once the mean overlap passed the overlap at which its loop gain reaches 1 for a material of
  *     the run (run_mc_lag_overlap; the smallest over the materials with gamma > 0): it rings there.
+ * At the same frames, how close dt came to the explicit step's stability bound at those overlaps (dem_stability_get:
+ * contacts stiffen as they go deeper), reported at the end and warned about above DEM_STABILITY_LIMIT.
  * Scenes with membranes are left out (their vertex spheres overlap each other by design, seed 001's MSS_particle). */
 #include "run.h"
 #include <math.h>
@@ -69,6 +71,9 @@ void overlap_watch_sample(overlap_watch *w, dem_sim *s)
         w->largest = worst, w->largest_t = dem_time(s), w->largest_i = wi, w->largest_j = wj;
     if (mean > w->mean)
         w->mean = mean, w->mean_t = dem_time(s);
+    dem_stability st;
+    if (!dem_stability_get(s, &st) && st.ratio > w->stab.ratio)
+        w->stab = st, w->stab_t = dem_time(s);
 }
 
 void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_run *run, int info)
@@ -81,6 +86,17 @@ void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_r
         fprintf(stderr, "dem: overlaps at the frames: largest %.3g %% of the smaller radius (t = %.6g s, particles %d "
                         "and %d), largest mean over the touching pairs %.3g %% (t = %.6g s)\n", 100 * w->largest,
                 w->largest_t, w->largest_i, w->largest_j, 100 * w->mean, w->mean_t);
+    const dem_stability *st = &w->stab;
+    if (info && st->particle >= 0)
+        fprintf(stderr, "dem: time step at the frames' overlaps: at most %.3g of the estimated stability bound (t = %.6g s, "
+                        "particle %d, %d contacts, its %s mode: omega dt %.3g, damping ratio %.3g)\n", st->ratio,
+                w->stab_t, st->particle, st->contacts, st->tangential ? "tangential-rotational" : "normal", st->omega_dt,
+                st->zeta);
+    if (st->ratio > DEM_STABILITY_LIMIT)
+        fprintf(stderr, "dem: warning: %s: at t = %.6g s the contacts had stiffened to %.3g of the estimated stability bound of the step, above %.3g, beyond which pressed packings "
+                        "were measured to stay stirred instead of coming to rest: the results there may carry "
+                        "numerical heat (see the kinetic energy in the series); dt = %.3g s (%.2g of this one) keeps it at "
+                        "%.2g (docs/design.md \"The time step under compaction\")\n", sc->path, w->stab_t, st->ratio, DEM_STABILITY_LIMIT, st->dt_advice, DEM_STABILITY_TARGET / st->ratio, DEM_STABILITY_TARGET);
     int mc = (run->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN)) != 0;
     double range = mc ? RUN_MC_RANGE : RUN_HERTZ_RANGE;
     if (w->largest > range)

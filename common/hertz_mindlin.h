@@ -76,6 +76,18 @@ DEM_INLINE real hertz_energy(real estar, real rstar, real delta)
     return hertz_energy_of_force(hm_elastic(estar, rstar, delta), delta);
 }
 
+/* The law's stiffnesses at an overlap, given srd = sqrt(r* delta): normal dF/d(delta) = 2 E* sqrt(r* d) (S_n of Eq. 3's
+ * damping) and tangential k_t = 8 G* sqrt(r* d) (Eq. 4). hm_contact uses the tangential one; the host's stability
+ * estimate (host/stability.c) both. */
+DEM_INLINE real hm_normal_stiffness(real estar, real srd)
+{
+    return (real)2 * estar * srd;
+}
+DEM_INLINE real hm_tangential_stiffness(real gstar, real srd)
+{
+    return (real)8 * gstar * srd;
+}
+
 /* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */
 DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
                                 DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
@@ -106,7 +118,7 @@ DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real 
     }
     const real gstar = pm[PM_GSTAR], mu = pm[PM_MU];
     vec3 vt = v3_sub(vrel, v3_scale(n, vn));
-    real kt = (real)8 * gstar * srd;
+    real kt = hm_tangential_stiffness(gstar, srd);
     vec3 ft_el = v3_sub(hm_rotate_history(hist, n), v3_scale(vt, kt * dt));
     vec3 ft = ft_el;
     if (fx & DEM_EFFECT_DAMPING)

@@ -16,12 +16,6 @@ static double pair_estar(const dem_sim *s, int a, int b)
 }
 
 /* raw reals of the run's precision to double */
-/* whether particle i rides on wall k (the packed table the kernels get) */
-static int rides_on(const dem_sim *s, int i, int k)
-{
-    return (s->setup.effects & DEM_EFFECT_RIDERS) && s->setup.ride && ((s->setup.ride[i] >> k) & 1u);
-}
-
 static void widen(const void *raw, double *dst, size_t count, int rs)
 {
     for (size_t k = 0; k < count; k++)
@@ -243,7 +237,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             }
         }
         for (int k = 0; k < s->nwalls; k++) {
-            if (rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
+            if (sim_rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
                 continue;
             const dem_wall *wl = &s->walls[k];
             double delta = dem_wall_overlap(wl, s->wall_pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */

@@ -145,6 +145,11 @@ int sim_reorder(dem_sim *s);
 /* A caller's particle id (the order of dem_start: the stable id) and where that particle is stored, both ways */
 static inline int sim_dev(const dem_sim *s, int id) { return s->reorders ? s->setup.order[id] : id; }
 static inline int sim_api(const dem_sim *s, int slot) { return s->reorders ? s->setup.sid[slot] : slot; }
+/* whether particle i (stored at i) rides on wall k: the packed table the kernels get (contact_geometry.h, wall_met) */
+static inline int sim_rides_on(const dem_sim *s, int i, int k)
+{
+    return (s->setup.effects & DEM_EFFECT_RIDERS) && s->setup.ride && ((s->setup.ride[i] >> k) & 1u);
+}
 /* reorder.c: a field read from the device in storage order put in the callers' order (particles by their ids,
  * the rows' partners renamed) in place; fields not sized by particles are left as they are */
 int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes);

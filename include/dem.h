@@ -412,6 +412,27 @@ typedef struct {
     int wall;                        /* the wall of wall_time (-1: none) */
 } dem_contact_advice;
 int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a);
+/* How close dt is to the explicit step's stability bound at the current overlaps (host/stability.c): a Hertz contact
+ * stiffens as sqrt(overlap), so a packing pressed hard can outgrow a dt chosen by the Rayleigh time (a 50 MPa
+ * compact heated up at 0.2 Rayleigh times: docs/design.md "The time step under compaction"). Per particle, each
+ * contact's normal and tangential-rotational two-body frequencies at the law's stiffness at its overlap, summed over
+ * the particle's contacts and walls; ratio = the largest omega dt over the damped bound 2 (sqrt(1 + zeta^2) - zeta),
+ * 1 at the bound if the estimate were exact. Measured on a 50 MPa compact and a pressed lattice (docs/design.md): at
+ * restitution 0.1 stirred - the kinetic energy not decaying - from 1.2, creeping up at 1, at rest at 0.7; at 0.5
+ * stirred from 1.35; at 0.9 at rest up to 1.5. Hence the warning above DEM_STABILITY_LIMIT, and dt_advice for
+ * DEM_STABILITY_TARGET. Springs, patches and membranes are not counted. */
+#define DEM_STABILITY_LIMIT 1.0
+#define DEM_STABILITY_TARGET 0.7
+typedef struct {
+    double ratio;     /* the largest omega dt / damped bound over the particles (0: no contact) */
+    double omega_dt;  /* omega dt of that particle's mode (the undamped bound is 2) */
+    double zeta;      /* the damping ratio the bound took there */
+    int tangential;   /* 1: its tangential-rotational mode, 0: its normal one */
+    int particle;     /* its id (-1: no contact) */
+    int contacts;     /* its contacts, walls included */
+    double dt_advice; /* the dt at which the ratio would be DEM_STABILITY_TARGET [s] (INFINITY: no contact) */
+} dem_stability;
+int dem_stability_get(dem_sim *s, dem_stability *st);
 /* Closed forms of the undamped Hertz collision (relative speed v): duration and largest overlap. */
 double dem_hertz_contact_time(double mstar, double rstar, double estar, double v);
 double dem_hertz_max_overlap(double mstar, double rstar, double estar, double v);

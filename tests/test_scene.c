@@ -637,6 +637,14 @@ static void test_overlap_report(void **st)
     printf("  514 hydrogels to 13.4 %%, classical: largest overlap %.3g %%, mean %.3g %%\n", largest, mean);
     assert_true(largest > 15 && largest < 25 && mean > 5 && mean < 10);
     assert_non_null(strstr(err, "beyond the 10 % within which Hertz's small-strain law holds"));
+    /* the step's stability at those overlaps (dem_stability_get): the paper's scene stays within the estimate */
+    line = strstr(err, "dem: time step at the frames' overlaps: at most ");
+    double ratio;
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "dem: time step at the frames' overlaps: at most %lf", &ratio), 1);
+    printf("  and at most %.3g of the estimated stability bound of the step\n", ratio);
+    assert_true(ratio > 0.5 && ratio < DEM_STABILITY_LIMIT);
+    assert_null(strstr(err, "stability bound of the step, above"));
     assert_int_equal(sh(err, sizeof err, "%s run %s/h13.yaml -o %s/h13.h5 --quiet --model mc_strain", DEM, tmp, tmp), 0);
     assert_null(strstr(err, "warning")); /* within 25 %, and a mean below 15.7 % */
     static const char press[] =
@@ -662,6 +670,8 @@ static void test_overlap_report(void **st)
                                           "--model mc_strain", press, tmp, DEM, tmp, tmp), 0);
     assert_non_null(strstr(err, "past the 21.4 % at which lagged MC-strain's loop gain reaches 1"));
     assert_non_null(strstr(err, "beyond the 25 % up to which seed 000 validates the multi-contact models"));
+    /* pressed to 0.97 at 0.2 Rayleigh times, the contacts outgrow the step (2.9 of the estimated bound) */
+    assert_non_null(strstr(err, "of the estimated stability bound of the step, above 1, beyond which pressed"));
     assert_int_equal(sh(err, sizeof err, "%s check %s/press.yaml | grep -q \"press          punch 'walls\\[2\\]' faces "
                                           "'walls\\[1\\]' in die 'walls\\[0\\]' (radius 0.003 m): relative density "
                                           "0.32\"", DEM, tmp), 0);

@@ -34,6 +34,13 @@
  *
  * Compaction to relative density 0.9 (hard case 7): 300 spheres in a die under each model (test_compaction_09).
  *
+ * The step's stability at the overlaps reached (dem_stability_get, host/stability.c): 64 MCC-like spheres on a
+ * simple cubic lattice pressed 10 % into each other and into a box, nudged off their places. The estimate matches
+ * its closed form for an inner sphere (six like contacts), is the same on every backend, and it tells apart a step
+ * at which the lattice comes to rest (0.7 of the advice) from one at which it stays stirred (2x): the kinetic energy
+ * falls below 1e-20 of the elastic one at the first and stays above 1e-9 of it at the second. A lone sphere has no
+ * contact, so no estimate.
+ *
  * Every case is checked bit for bit between OpenCL and the reference: the whole run, or (the resting column's first
  * 20 000 steps, the glass die's ringing 2000) a stretch of it.
  *
@@ -645,11 +652,110 @@ static void test_compaction_09(void **st)
     }
 }
 
+#define LAT_R 5e-5
+#define LAT_N 4
+/* The lattice of the stability estimate: spacing 2 r (1 - ov / 2), the box 2^(-1/3) of that overlap from the outer
+ * spheres (a Hertz wall contact, r* = r, carries the pairs' force there), positions nudged by 1e-3 ov r at random */
+static dem_sim *lattice_build(double ov, double restitution, double *spacing)
+{
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){1540, 2.87e9, 0.381, restitution, 0.719, 0, 0});
+    double a = 2 * LAT_R * (1 - ov / 2), edge = LAT_R * (1 - ov / 2 * cbrt(0.5)), L = (LAT_N - 1) * a + 2 * edge;
+    unsigned st = 7;
+    for (int k = 0; k < LAT_N; k++)
+        for (int j = 0; j < LAT_N; j++)
+            for (int i = 0; i < LAT_N; i++) {
+                double x[3] = {edge + i * a, edge + j * a, edge + k * a};
+                for (int q = 0; q < 3; q++)
+                    x[q] += 1e-3 * ov * LAT_R * (uniform01(&st) - 0.5);
+                dem_add_particle(s, x, NULL, LAT_R, m);
+            }
+    dem_add_box(s, (double[3]){0, 0, 0}, (double[3]){L, L, L}, m);
+    dem_set_domain(s, (double[3]){-LAT_R, -LAT_R, -LAT_R}, (double[3]){L + LAT_R, L + LAT_R, L + LAT_R});
+    *spacing = a;
+    return s;
+}
+
+/* kinetic over elastic energy after `steps` steps of dt */
+static double lattice_heat(double dt, long steps)
+{
+    double a;
+    dem_sim *s = lattice_build(0.1, 0.1, &a);
+    assert_int_equal(dem_set_dt(s, dt), 0);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(s, &c);
+    step_or_fail(s, steps);
+    dem_energy_t e;
+    assert_int_equal(dem_energy(s, &e), 0);
+    dem_destroy(s);
+    return e.kinetic / e.elastic;
+}
+
+static void test_stability_estimate(void **st)
+{
+    (void)st;
+    double a, ratio = 0;
+    for (int b = 0; b < BACKEND_CASES; b++) {
+        const backend_case *bc = &backend_cases[b];
+        dem_sim *s = lattice_build(0.1, 0.1, &a);
+        dem_time_scales ts;
+        dem_time_scales_get(s, 0, &ts);
+        assert_int_equal(dem_set_dt(s, 0.05 * ts.rayleigh_time), 0);
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        start_or_fail(s, &c);
+        step_or_fail(s, 1);
+        dem_stability sb;
+        assert_int_equal(dem_stability_get(s, &sb), 0);
+        /* an inner sphere: six contacts at overlap 2 r - a, each of r* = r/2, m* = m/2, lever r - d/2 */
+        double m = 1540 * 4.0 / 3 * M_PI * pow(LAT_R, 3), I = 0.4 * m * LAT_R * LAT_R, d = 2 * LAT_R - a;
+        double gstar = 2.87e9 / (2 * 1.381) / (2 * (2 - 0.381));
+        double srd = sqrt(LAT_R / 2 * d), kt = 8 * gstar * srd, arm = LAT_R - d / 2;
+        double inv = 2 / m + 2 * arm * arm / I, w = sqrt(6 * kt * inv) * dem_dt(s);
+        double zeta = dem_damping_for_restitution(0.1) / 2 * sqrt(inv / (2 / m));
+        double want = w / (2 * (sqrt(1 + zeta * zeta) - zeta));
+        printf("  lattice of %d spheres at 10 %% overlap, %s, 0.05 Rayleigh times: ratio %.4g (closed form %.4g), "
+               "particle %d, %d contacts, omega dt %.4g, zeta %.4g; advice %.3g s\n", dem_count(s), bc->name,
+               sb.ratio, want, sb.particle, sb.contacts, sb.omega_dt, sb.zeta, sb.dt_advice);
+        assert_int_equal(sb.contacts, 6);
+        assert_int_equal(sb.tangential, 1);
+        assert_true(fabs(sb.ratio / want - 1) < 1e-2); /* the nudge moves it by about 1e-4 */
+        assert_true(fabs(sb.dt_advice - dem_dt(s) * DEM_STABILITY_TARGET / sb.ratio) < 1e-12 * sb.dt_advice);
+        if (b == 0)
+            ratio = sb.ratio;
+        else /* the same positions, so in fp64 the same estimate; fp32's positions differ by their rounding */
+            assert_true(fabs(sb.ratio / ratio - 1) < (bc->precision == DEM_FP64 ? 1e-15 : 1e-5));
+        dem_destroy(s);
+    }
+    dem_sim *s = lattice_build(0.1, 0.1, &a);
+    dem_time_scales ts;
+    dem_time_scales_get(s, 0, &ts);
+    double advice = 0.05 * ts.rayleigh_time * DEM_STABILITY_TARGET / ratio;
+    dem_destroy(s);
+    double calm = lattice_heat(0.7 * advice, 3000), stirred = lattice_heat(2 * advice, 3000);
+    printf("  kinetic / elastic energy after 3000 steps: %.3g at 0.7 of the advice, %.3g at twice it\n", calm, stirred);
+    assert_true(calm < 1e-20);
+    assert_true(stirred > 1e-9);
+
+    s = dem_create(); /* a lone sphere: nothing to estimate */
+    int mat = dem_add_material(s, &(dem_material){1540, 2.87e9, 0.381, 0.1, 0.719, 0, 0});
+    dem_add_particle(s, (double[3]){0, 0, 0}, NULL, LAT_R, mat);
+    dem_set_domain(s, (double[3]){-1e-3, -1e-3, -1e-3}, (double[3]){1e-3, 1e-3, 1e-3});
+    dem_set_dt(s, 1e-8);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(s, &c);
+    step_or_fail(s, 1);
+    dem_stability sb;
+    assert_int_equal(dem_stability_get(s, &sb), 0);
+    assert_int_equal(sb.particle, -1);
+    assert_true(sb.ratio == 0 && isinf(sb.dt_advice));
+    dem_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_size_ratio), cmocka_unit_test(test_stiffness_contrast),
                                        cmocka_unit_test(test_elastic_gas), cmocka_unit_test(test_dt_at_bound),
                                        cmocka_unit_test(test_resting_column), cmocka_unit_test(test_mc_lag),
-                                       cmocka_unit_test(test_compaction_09)};
+                                       cmocka_unit_test(test_compaction_09), cmocka_unit_test(test_stability_estimate)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,154 @@
+/* stability.c - how close the time step is to the explicit integration's stability bound at the current overlaps
+ * (dem_stability_get; issue 12 item 5, issue 13).
+ *
+ * The Rayleigh time the scenes size dt by does not depend on how far the particles overlap, but a Hertz contact's
+ * stiffness grows as sqrt(delta): a compact pressed to 50 MPa (scenes/tablet_3k.yaml, docs/tableting.md) heated up
+ * at 0.2 Rayleigh times - its kinetic energy rose from rest to 3 % of its elastic energy within 50 us and stayed -
+ * and came to rest at 0.05 and 0.07.
+ *
+ * The estimate, per particle i (fixed particles left out): each of its contacts c is a two-body oscillator with
+ *   normal      omega_n,c^2 = k_n,c (1/m_i + 1/m_j)
+ *   tangential  omega_t,c^2 = k_t,c (1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j)   (the contact point's sliding and
+ *                                                                           both spheres' rolling: a the lever arm)
+ * with k_n = 2 E* sqrt(r* d), k_t = 8 G* sqrt(r* d) the law's stiffnesses at the current overlap (hertz_mindlin.h;
+ * a wall is immovable, 1/m_j = a_j^2/I_j = 0, r* = r_i). The particle's frequency of each kind is the root of the
+ * sum over its contacts (Gershgorin's bound for the particle's row of the stiffness matrix). The damping,
+ * c sqrt(k m*) per contact (hertz_mindlin.h), is a damping ratio zeta = c/2 in the normal mode and c/2 sqrt(kappa)
+ * in the tangential one (kappa: the tangential mode's inverse mass over 1/m_i + 1/m_j, 3.5 for like spheres); the
+ * largest of a particle's contacts counts. An explicit step of a damped oscillator is stable for
+ * omega dt < 2 (sqrt(1 + zeta^2) - zeta) (2 undamped; 0.45 for the tangential mode at e = 0.1, whose c is 2.27). The
+ * ratio reported is the largest omega dt over that bound, over the particles and both kinds: 1 at the bound, if the
+ * estimate were exact.
+ *
+ * It is an estimate: the true highest mode of the packing lies below the Gershgorin sum, sliding contacts are
+ * softer than k_t, and the multi-contact laws' normal stiffness is not Hertz's at the geometric overlap (taken here
+ * as if it were). Measured against it (docs/design.md "The time step under compaction"): how the kinetic energy of a
+ * packing at rest moved over the following steps, at several dt and restitutions -
+ *   the 50 MPa compact of MCC (tablet_3k's, held still 0.4 ms): e = 0.1: ratio 3.06 and 2.47 heated up (kinetic 2.5 %
+ *            of the elastic energy), 1.61 stayed stirred (2e-4, not decaying), 1.09 and 0.78 came to rest (4e-9);
+ *            e = 0.5: 1.58 stirred (1e-5), 1.33 and 1.07 at rest; e = 0.9: 1.22 and 0.82 at rest;
+ *   64 spheres of MCC on a simple cubic lattice pressed 10 % into each other (tests/test_stability.c): e = 0.1:
+ *            stirred from 1.2, creeping up at 1.0 (1e-13 to 1e-11 J), at rest at 0.7; e = 0.5: stirred from 1.35,
+ *            at rest to 1.2; e = 0.9: stirred at 2, at rest to 1.5.
+ * The damped bound brings the restitutions closer together but not onto one line: strong damping is estimated a
+ * little too kindly. Hence DEM_STABILITY_LIMIT 1 for the warning and DEM_STABILITY_TARGET 0.7 for the advice.
+ * Springs, patches and membranes are not counted. */
+#include "sim.h"
+#include "dem_layout.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void dem_hertz_stiffness_f64(double estar, double gstar, double rstar, double delta, double *kn, double *kt);
+
+/* the bound on omega dt of an explicit step with damping ratio zeta */
+static double damped_bound(double zeta) { return 2 * (sqrt(1 + zeta * zeta) - zeta); }
+
+typedef struct {
+    double wn2, wt2, zn, zt; /* sums of the contacts' squared frequencies, largest damping ratios */
+    int contacts;
+} particle_modes;
+
+/* adds contact c of particle i (mass terms: inverse masses and arm^2/I of both ends, j's zero for a wall) */
+static void add_contact(particle_modes *pm, double kn, double kt, double inv_m, double inv_rot, double c)
+{
+    pm->wn2 += kn * inv_m;
+    pm->wt2 += kt * (inv_m + inv_rot);
+    double zn = 0.5 * c, zt = 0.5 * c * sqrt((inv_m + inv_rot) / inv_m);
+    pm->zn = zn > pm->zn ? zn : pm->zn;
+    pm->zt = zt > pm->zt ? zt : pm->zt;
+    pm->contacts++;
+}
+
+static double inv_of(double v) { return isfinite(v) && v > 0 ? 1 / v : 0; }
+
+int dem_stability_get(dem_sim *s, dem_stability *st)
+{
+    memset(st, 0, sizeof *st);
+    st->particle = -1;
+    st->dt_advice = INFINITY;
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int n = s->n, rs = s->setup.real_size, nm = s->nmat;
+    unsigned fx = s->setup.effects;
+    size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
+    unsigned char *raw = malloc(n3 * (size_t)rs + sizeof(int) * (size_t)n + lb);
+    double *x = malloc(sizeof(double) * n3);
+    particle_modes *pm = calloc((size_t)n, sizeof *pm);
+    if (!raw || !x || !pm) {
+        free(raw), free(x), free(pm);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    int *cnt = (int *)(raw + n3 * (size_t)rs), *list = cnt + n, e = 0;
+    dem_field f[3] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST};
+    void *dst[3] = {raw, cnt, list};
+    size_t bytes[3] = {n3 * (size_t)rs, sizeof(int) * (size_t)n, lb};
+    if (dem_stage_read_fields(s->ops, s->be, 3, f, dst, bytes))
+        e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
+    for (size_t k = 0; !e && k < n3; k++)
+        x[k] = rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
+    /* the run's pair table (as the kernels have it): E*, G* and the damping c = PM_DAMP_N / sqrt(2 E*) */
+    const void *pt = s->setup.pairmat;
+#define PAIR(a, b, q) (rs == 8 ? ((const double *)pt)[PM_STRIDE * ((a) * nm + (b)) + (q)] \
+                               : (double)((const float *)pt)[PM_STRIDE * ((a) * nm + (b)) + (q)])
+    int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
+    for (int i = 0; !e && i < n; i++) {
+        if (s->pflags[i] & DEM_PARTICLE_FIXED)
+            continue;
+        double mi = inv_of(sim_mass(s, i)), ri = s->radius[i];
+        double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
+        for (int k = 0; k < cnt[i]; k++) { /* each pair from both ends: every particle sums all of its contacts */
+            int j = list[(size_t)i * s->maxn + k];
+            double rj = s->radius[j], d[3];
+            for (int q = 0; q < 3; q++)
+                d[q] = x[3 * i + q] - x[3 * j + q];
+            double delta = ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (!(delta > 0))
+                continue;
+            int a = s->mat[i], b = s->mat[j];
+            double estar = PAIR(a, b, PM_ESTAR), gstar = PAIR(a, b, PM_GSTAR), kn, kt;
+            dem_hertz_stiffness_f64(estar, gstar, ri * rj / (ri + rj), delta, &kn, &kt);
+            int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
+            double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
+            double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
+            double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;
+            double c = damping ? PAIR(a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
+            add_contact(&pm[i], kn, friction ? kt : 0, mi + mj, ai * ai * roti + aj * aj * rotj, c);
+        }
+        for (int w = 0; (fx & DEM_EFFECT_WALLS) && w < s->nwalls; w++) {
+            if (sim_rides_on(s, i, w)) /* a rider does not touch its wall */
+                continue;
+            const dem_wall *wl = &s->walls[w];
+            double delta = dem_wall_overlap(wl, s->wall_pos[w], x + 3 * i, ri, NULL); /* the kernels' geometry */
+            if (!(delta > 0))
+                continue;
+            int a = s->mat[i], b = wl->material;
+            double estar = PAIR(a, b, PM_ESTAR), gstar = PAIR(a, b, PM_GSTAR), kn, kt;
+            dem_hertz_stiffness_f64(estar, gstar, ri, delta, &kn, &kt);
+            double ai = ri - delta; /* a wall contact's lever arm (wall_forces.h) */
+            double c = damping ? PAIR(a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
+            add_contact(&pm[i], kn, friction ? kt : 0, mi, ai * ai * roti, c);
+        }
+    }
+#undef PAIR
+    double dt = s->dt;
+    for (int i = 0; !e && i < n; i++) {
+        if (!pm[i].contacts)
+            continue;
+        double rn = dt * sqrt(pm[i].wn2) / damped_bound(pm[i].zn);
+        double rt = friction ? dt * sqrt(pm[i].wt2) / damped_bound(pm[i].zt) : 0;
+        double r = rn > rt ? rn : rt;
+        if (r > st->ratio) {
+            st->ratio = r;
+            st->tangential = rt > rn;
+            st->omega_dt = dt * sqrt(rt > rn ? pm[i].wt2 : pm[i].wn2);
+            st->zeta = rt > rn ? pm[i].zt : pm[i].zn;
+            st->particle = sim_api(s, i);
+            st->contacts = pm[i].contacts;
+        }
+    }
+    if (!e && st->ratio > 0)
+        st->dt_advice = dt * DEM_STABILITY_TARGET / st->ratio;
+    free(raw), free(x), free(pm);
+    return e;
+}
