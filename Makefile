@@ -44,7 +44,7 @@ HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability accuracy
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability accuracy tablet-models
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -165,6 +165,11 @@ accuracy: $(BUILD)/dem-accuracy
 	./$(BUILD)/dem-accuracy out/accuracy.csv
 	/usr/bin/python3 tools/plot_accuracy.py out/accuracy.csv -o out/accuracy.png \
 	  $(if $(ACCURACY_QUICK)$(ACCURACY_ONLY),> out/accuracy.md,--doc docs/accuracy.md)
+
+# issue 12 item 5: one press scene under the four contact models and their compaction curves side by side
+# (tools/tablet_models.sh; TABLET_SCENE=scenes/tablet_100k.yaml for the issue's, a GPU job)
+tablet-models: $(BUILD)/dem
+	bash tools/tablet_models.sh
 
 # issue 13's hard cases at the issue's lengths (tests/test_stability.c; the short versions are in make test)
 stability: $(BUILD)/tests/test_stability

@@ -248,8 +248,8 @@ static void test_tablet_report(void **st)
     (void)st;
     char dir[256], err[8192], line[1024] = {0};
     assert_int_equal(test_tmpdir_make(dir, sizeof dir, "dem-test-tablet"), 0);
-    assert_int_equal(test_sh(dir, err, sizeof err, "%s/build/dem run %s -o %s/t.h5 --quiet", DEM_DEFAULT_SOURCE_DIR,
-                             SCENE, dir), 0);
+    assert_int_equal(test_sh(dir, err, sizeof err, "%s/build/dem run %s -o %s/t.h5 > %s/t.log 2>&1 || { cat %s/t.log "
+                             ">&2; exit 1; }", DEM_DEFAULT_SOURCE_DIR, SCENE, dir, dir, dir), 0);
     if (test_sh(dir, err, sizeof err, "{ /usr/bin/python3 %s/tools/plot_tablet.py %s/t.h5 > %s/report.txt; }",
                 DEM_DEFAULT_SOURCE_DIR, dir, dir))
         fail_msg("plot_tablet.py: %s", err);
@@ -270,12 +270,38 @@ static void test_tablet_report(void **st)
     assert_true(prad > 0 && rrad > 0.2 && rrad < 1);
     double target = 1.0 / (M_PI * R_DIE * R_DIE);
     assert_true(fabs(pmax / target - 1) < 0.05);
-    assert_true(dens > 0.6 && dens < 0.72);
-    assert_true(ratio > 0.9 && ratio < 1.1);
+    assert_true(dens > 0.55 && dens < 0.72);
+    /* friction in the die carries part of the load: the lower punch feels less (a compact stirred by too long a step
+     * did not: 1.00, docs/tableting.md) */
+    assert_true(ratio > 0.7 && ratio < 0.95);
     assert_true(rec > 0 && rec < 0.5);
     assert_true(yld > 0 && isfinite(yld));
     assert_true(ej > 0);
     snprintf(path, sizeof path, "%s/t_tablet.png", dir);
+    fp = fopen(path, "rb");
+    assert_non_null(fp);
+    fclose(fp);
+    /* the models' comparison (tools/plot_tablet_models.py, make tablet-models) of this one run: its PNG, and a table
+     * row with the report's density and dem run's own numbers from the log beside the run */
+    if (test_sh(dir, err, sizeof err, "echo 't 0 12.5' > %s/times.txt && /usr/bin/python3 %s/tools/plot_tablet_models.py "
+                "%s/t.h5 --times %s/times.txt -o %s/m.png --table %s/m.md > /dev/null", dir, DEM_DEFAULT_SOURCE_DIR, dir,
+                dir, dir, dir))
+        fail_msg("plot_tablet_models.py: %s", err);
+    snprintf(path, sizeof path, "%s/m.md", dir);
+    fp = fopen(path, "r");
+    assert_non_null(fp);
+    char row[1024] = {0};
+    for (int k = 0; k < 3 && fgets(row, sizeof row, fp); k++) /* the header, its rule, the run */
+        ;
+    fclose(fp);
+    printf("  %s", row);
+    double wall, d_max, p_mpa, largest, mean, stab;
+    assert_int_equal(sscanf(row, "| t | %lf | %*s | %lf | %lf | %*s | %*s | %*s | %*s %% | %*s | %lf %% | %lf %% | %lf |",
+                            &wall, &d_max, &p_mpa, &largest, &mean, &stab), 6);
+    assert_true(wall == 12.5 && fabs(d_max - dens) < 1e-4 && fabs(p_mpa - 1e-6 * pmax) < 0.01);
+    assert_true(largest > 0 && mean > 0 && largest > mean);
+    assert_true(stab > 0 && stab < DEM_STABILITY_LIMIT); /* at 0.07 Rayleigh times (at 0.2 it was 2.3: stirred) */
+    snprintf(path, sizeof path, "%s/m.png", dir);
     fp = fopen(path, "rb");
     assert_non_null(fp);
     fclose(fp);

@@ -44,23 +44,16 @@ def wall_index(names, want, what):
     fail(f"no wall named '{want}' for the {what} (walls: {', '.join(names)}; name it with --{what})")
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("run", help="HDF5 file written by dem run")
-    ap.add_argument("-o", "--output", help="PNG file (default: RUN_tablet.png)")
-    ap.add_argument("--die", help="the die's wall name (default: the first cylinder)")
-    ap.add_argument("--upper", default="upper", help="the upper punch's wall name")
-    ap.add_argument("--lower", default="lower", help="the lower punch's wall name")
-    a = ap.parse_args()
-    out = a.output or (a.run[:-3] if a.run.endswith(".h5") else a.run) + "_tablet.png"
+def analyse(run, die_name=None, upper="upper", lower="lower"):
+    """The press cycle of one run: a dict of the series (arrays over the rows) and the report's numbers."""
     try:
-        f = h5py.File(a.run, "r")
+        f = h5py.File(run, "r")
     except OSError as e:
-        fail(f"cannot open {a.run}: {e}")
+        fail(f"cannot open {run}: {e}")
     with f:
         s = f.get("series")
         if s is None or "wall_force" not in s or "wall_radius" not in s:
-            fail(f"{a.run}: no wall series with the walls' shapes (a run of a scene with walls, libdem >= issue 12)")
+            fail(f"{run}: no wall series with the walls' shapes (a run of a scene with walls, libdem >= issue 12)")
         raw = s.attrs["wall_names"]
         names = (raw.decode() if isinstance(raw, bytes) else str(raw)).split("\n")
         t = s["time"][:]
@@ -72,15 +65,19 @@ def main():
         cup_r = s["wall_cup_radius"][:] if "wall_cup_radius" in s else np.zeros(len(radius))
         cup_d = s["wall_cup_depth"][:] if "wall_cup_depth" in s else np.zeros(len(radius))
         fnorm = s["wall_normal_force"][:] if "wall_normal_force" in s else None
+        kinetic = s["kinetic"][:] if "kinetic" in s else np.full(len(t), np.nan)
+        elastic = s["elastic"][:] if "elastic" in s else np.full(len(t), np.nan)
         r = f["particles/radius"][:]
-    if a.die:
-        die = wall_index(names, a.die, "die")
+        model = f.attrs.get("model", b"")
+        model = model.decode() if isinstance(model, bytes) else str(model)
+    if die_name:
+        die = wall_index(names, die_name, "die")
     else:
         cyl = [k for k in range(len(names)) if radius[k] > 0]
         if not cyl:
             fail("no cylinder wall (the die); name it with --die")
         die = cyl[0]
-    up, lo = wall_index(names, a.upper, "upper"), wall_index(names, a.lower, "lower")
+    up, lo = wall_index(names, upper, "upper"), wall_index(names, lower, "lower")
     area = math.pi * radius[die] ** 2
     solid = float(np.sum(4.0 / 3.0 * math.pi * r**3))
     n_up, n_lo, axis = normal[up], normal[lo], normal[die]
@@ -118,6 +115,28 @@ def main():
         ej = np.nonzero((np.arange(len(t)) >= k_rel) & (z_lo > z_lo[k_rel] + 1e-12))[0]
     eject_travel = (pos[ej, lo, :] - pos[k_rel, lo, :]) @ n_lo if len(ej) else np.array([])
     eject_force = -(force[ej, lo, :] @ n_lo) if len(ej) else np.array([])
+    return dict(t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
+                gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
+                heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, ratio=ratio, recovery=recovery,
+                radial_ratio=radial_ratio, ej=ej, eject_travel=eject_travel, eject_force=eject_force,
+                kinetic=kinetic, elastic=elastic)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run", help="HDF5 file written by dem run")
+    ap.add_argument("-o", "--output", help="PNG file (default: RUN_tablet.png)")
+    ap.add_argument("--die", help="the die's wall name (default: the first cylinder)")
+    ap.add_argument("--upper", default="upper", help="the upper punch's wall name")
+    ap.add_argument("--lower", default="lower", help="the lower punch's wall name")
+    a = ap.parse_args()
+    out = a.output or (a.run[:-3] if a.run.endswith(".h5") else a.run) + "_tablet.png"
+    c = analyse(a.run, a.die, a.upper, a.lower)
+    t, p_up, p_lo, p_rad, die_axial, area = c["t"], c["p_up"], c["p_lo"], c["p_rad"], c["die_axial"], c["area"]
+    dens, travel_up, k_max, p_max, k_rel = c["dens"], c["travel_up"], c["k_max"], c["p_max"], c["k_rel"]
+    load, heckel, slope, intercept, yield_p = c["load"], c["heckel"], c["slope"], c["intercept"], c["yield_p"]
+    ratio, recovery, radial_ratio = c["ratio"], c["recovery"], c["radial_ratio"]
+    ej, eject_travel, eject_force, solid = c["ej"], c["eject_travel"], c["eject_force"], c["solid"]
 
     fig, ax = plt.subplots(2, 2, figsize=(11, 8.5))
     cyc = slice(0, (k_rel if k_rel is not None else len(t) - 1) + 1)  # loading and unloading, before the punch leaves
