@@ -671,7 +671,7 @@ static void test_overlap_report(void **st)
     assert_non_null(strstr(err, "past the 21.4 % at which lagged MC-strain's loop gain reaches 1"));
     assert_non_null(strstr(err, "beyond the 25 % up to which seed 000 validates the multi-contact models"));
     /* pressed to 0.97 at 0.2 Rayleigh times, the contacts outgrow the step (2.9 of the estimated bound) */
-    assert_non_null(strstr(err, "of the estimated stability bound of the step, above 1, beyond which pressed"));
+    assert_non_null(strstr(err, "of the estimated stability bound of the step, above 1.2, beyond which pressed"));
     assert_int_equal(sh(err, sizeof err, "%s check %s/press.yaml | grep -q \"press          punch 'walls\\[2\\]' faces "
                                           "'walls\\[1\\]' in die 'walls\\[0\\]' (radius 0.003 m): relative density "
                                           "0.32\"", DEM, tmp), 0);
