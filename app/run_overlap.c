@@ -87,7 +87,7 @@ void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_r
                         "and %d), largest mean over the touching pairs %.3g %% (t = %.6g s)\n", 100 * w->largest,
                 w->largest_t, w->largest_i, w->largest_j, 100 * w->mean, w->mean_t);
     const dem_stability *st = &w->stab;
-    if (info && st->particle >= 0)
+    if (info && st->ratio > 0) /* a frame with contacts (the watch starts zeroed) */
         fprintf(stderr, "dem: time step at the frames' overlaps: at most %.3g of the estimated stability bound (t = %.6g s, "
                         "particle %d, %d contacts, its %s mode: omega dt %.3g, damping ratio %.3g)\n", st->ratio,
                 w->stab_t, st->particle, st->contacts, st->tangential ? "tangential-rotational" : "normal", st->omega_dt,
