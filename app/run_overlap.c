@@ -88,15 +88,18 @@ void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_r
                 w->largest_t, w->largest_i, w->largest_j, 100 * w->mean, w->mean_t);
     const dem_stability *st = &w->stab;
     if (info && st->ratio > 0) /* a frame with contacts (the watch starts zeroed) */
-        fprintf(stderr, "dem: time step at the frames' overlaps: at most %.3g of the estimated stability bound (t = %.6g s, "
-                        "particle %d, %d contacts, its %s mode: omega dt %.3g, damping ratio %.3g)\n", st->ratio,
-                w->stab_t, st->particle, st->contacts, st->tangential ? "tangential-rotational" : "normal", st->omega_dt,
-                st->zeta);
+        fprintf(stderr, "dem: time step at the frames' overlaps: at most %.3g of the estimated stability bound "
+                        "(t = %.6g s, particle %d, %d contacts, its %s mode: omega dt %.3g, damping ratio %.3g)\n",
+                st->ratio, w->stab_t, st->particle, st->contacts, st->tangential ? "tangential-rotational" : "normal",
+                st->omega_dt, st->zeta);
     if (st->ratio > DEM_STABILITY_LIMIT)
-        fprintf(stderr, "dem: warning: %s: at t = %.6g s the contacts had stiffened to %.3g of the estimated stability bound of the step, above %.3g, beyond which pressed packings "
-                        "were measured to stay stirred instead of coming to rest: the results there may carry "
-                        "numerical heat (see the kinetic energy in the series); dt = %.3g s (%.2g of this one) keeps it at "
-                        "%.2g (docs/design.md \"The time step under compaction\")\n", sc->path, w->stab_t, st->ratio, DEM_STABILITY_LIMIT, st->dt_advice, DEM_STABILITY_TARGET / st->ratio, DEM_STABILITY_TARGET);
+        fprintf(stderr, "dem: warning: %s: at t = %.6g s the contacts had stiffened to %.3g of the estimated stability "
+                        "bound of the step, above %.3g, beyond which pressed packings were measured to stay stirred "
+                        "instead of coming to rest: the results there may carry numerical heat (see the kinetic energy "
+                        "in the series); dt = %.3g s (%.2g of this one) keeps it at %.2g (docs/design.md \"The time "
+                        "step under compaction\")\n",
+                sc->path, w->stab_t, st->ratio, DEM_STABILITY_LIMIT, st->dt_advice, DEM_STABILITY_TARGET / st->ratio,
+                DEM_STABILITY_TARGET);
     int mc = (run->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN)) != 0;
     double range = mc ? RUN_MC_RANGE : RUN_HERTZ_RANGE;
     if (w->largest > range)

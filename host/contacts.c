@@ -12,10 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double real_at(const unsigned char *raw, size_t k, int rs)
-{
-    return rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
-}
 
 /* splits f into its part along the unit n and the rest */
 static void split(const double *f, const double *n, double *fn, double *ft)
@@ -110,10 +106,11 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
                 continue;
             dem_contact *e = &cs[m++];
             size_t r0 = (size_t)p * PR_STRIDE;
-            double F[3] = {real_at(rec, r0 + PR_FX, rs), real_at(rec, r0 + PR_FY, rs), real_at(rec, r0 + PR_FZ, rs)};
+            double F[3] = {sim_real_at(rec, r0 + PR_FX, rs), sim_real_at(rec, r0 + PR_FY, rs),
+                           sim_real_at(rec, r0 + PR_FZ, rs)};
             double xi[3], xj[3], d2 = 0;
             for (int q = 0; q < 3; q++) {
-                xi[q] = real_at(x, 3 * (size_t)i + q, rs), xj[q] = real_at(x, 3 * (size_t)j + q, rs);
+                xi[q] = sim_real_at(x, 3 * (size_t)i + q, rs), xj[q] = sim_real_at(x, 3 * (size_t)j + q, rs);
                 d2 += (xi[q] - xj[q]) * (xi[q] - xj[q]);
             }
             double dist = sqrt(d2), nrm[3];
@@ -125,11 +122,11 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             for (int q = 0; q < 3; q++)
                 e->point[q] = xi[q] - nrm[q] * (s->radius[i] - 0.5 * e->overlap);
             if (mcs)
-                e->extra[0] = real_at(tr, (size_t)i, rs), e->extra[1] = real_at(tr, (size_t)j, rs);
+                e->extra[0] = sim_real_at(tr, (size_t)i, rs), e->extra[1] = sim_real_at(tr, (size_t)j, rs);
             if (mce) { /* D at i's slot of j and at j's slot of i */
                 int kj = row_find_sid(list + (size_t)j * maxn, cnt[j], sid, sid[i]);
-                e->extra[0] = real_at(disp, (size_t)i * maxn + k, rs);
-                e->extra[1] = kj >= 0 ? real_at(disp, (size_t)j * maxn + kj, rs) : 0;
+                e->extra[0] = sim_real_at(disp, (size_t)i * maxn + k, rs);
+                e->extra[1] = kj >= 0 ? sim_real_at(disp, (size_t)j * maxn + kj, rs) : 0;
             }
         }
     free(own);
@@ -142,8 +139,8 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             const double *p = s->wall_pos[w];
             double xi[3], F[3], nrm[3];
             for (int q = 0; q < 3; q++) {
-                xi[q] = real_at(x, 3 * (size_t)i + q, rs);
-                F[q] = real_at(pf, 3 * ((size_t)w * n + i) + q, rs);
+                xi[q] = sim_real_at(x, 3 * (size_t)i + q, rs);
+                F[q] = sim_real_at(pf, 3 * ((size_t)w * n + i) + q, rs);
             }
             /* the kernels' geometry: a plane, a cylinder's side, a finite die's rim or faces; n into the particle */
             e->overlap = dem_wall_overlap(wl, p, xi, s->radius[i], nrm);
@@ -152,9 +149,9 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             for (int q = 0; q < 3; q++)
                 e->point[q] = xi[q] - nrm[q] * (s->radius[i] - e->overlap);
             if (mcs)
-                e->extra[0] = e->extra[1] = real_at(tr, (size_t)i, rs);
+                e->extra[0] = e->extra[1] = sim_real_at(tr, (size_t)i, rs);
             if (mce)
-                e->extra[0] = real_at(wdisp, (size_t)i * nw + w, rs);
+                e->extra[0] = sim_real_at(wdisp, (size_t)i * nw + w, rs);
         }
     free(raw);
     for (long k = 0; s->reorders && k < np + nwc; k++) { /* stored anew (host/reorder.c): the callers' ids */

@@ -15,12 +15,6 @@ static double pair_estar(const dem_sim *s, int a, int b)
     return 1 / ((1 - p->poisson * p->poisson) / p->young + (1 - q->poisson * q->poisson) / q->young);
 }
 
-/* raw reals of the run's precision to double */
-static void widen(const void *raw, double *dst, size_t count, int rs)
-{
-    for (size_t k = 0; k < count; k++)
-        dst[k] = rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
-}
 
 /* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
@@ -103,7 +97,7 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
             }
         } else {
             for (int k = 0; k < n; k++) {
-                widen(terms + ((size_t)r * n + order[k]) * SE_STRIDE * rs, one, SE_STRIDE, rs);
+                sim_widen(terms + ((size_t)r * n + order[k]) * SE_STRIDE * rs, one, SE_STRIDE, rs);
                 for (int q = 0; q < SE_STRIDE; q++)
                     t[q] += one[q];
             }
@@ -122,8 +116,8 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
             ref_wall_reduce_final_f64(s->setup.effects, nw, nb, (const double *)part, (double *)wf, (double *)wn);
         else
             ref_wall_reduce_final_f32(s->setup.effects, nw, nb, (const float *)part, (float *)wf, (float *)wn);
-        widen(wf, out[r].wall_force, 3 * (size_t)nw, rs);
-        widen(wn, out[r].wall_normal, (size_t)nw, rs);
+        sim_widen(wf, out[r].wall_force, 3 * (size_t)nw, rs);
+        sim_widen(wn, out[r].wall_normal, (size_t)nw, rs);
     }
 }
 
@@ -201,13 +195,13 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     }
     if (!e) {
-        widen(raw, x, n3, rs);
-        widen(raw + n3 * rs, v, n3, rs);
-        widen(raw + 2 * n3 * rs, w, n3, rs);
+        sim_widen(raw, x, n3, rs);
+        sim_widen(raw + n3 * rs, v, n3, rs);
+        sim_widen(raw + 2 * n3 * rs, w, n3, rs);
         if (wall_force)
-            widen(raw + 3 * n3 * rs, wall_force, 3 * (size_t)s->nwalls, rs);
+            sim_widen(raw + 3 * n3 * rs, wall_force, 3 * (size_t)s->nwalls, rs);
         if (wall_normal)
-            widen(raw + 3 * n3 * rs + 3 * (size_t)s->nwalls * rs, wall_normal, (size_t)s->nwalls, rs);
+            sim_widen(raw + 3 * n3 * rs + 3 * (size_t)s->nwalls * rs, wall_normal, (size_t)s->nwalls, rs);
     }
 
     const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */

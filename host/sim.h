@@ -145,6 +145,16 @@ int sim_reorder(dem_sim *s);
 /* A caller's particle id (the order of dem_start: the stable id) and where that particle is stored, both ways */
 static inline int sim_dev(const dem_sim *s, int id) { return s->reorders ? s->setup.order[id] : id; }
 static inline int sim_api(const dem_sim *s, int slot) { return s->reorders ? s->setup.sid[slot] : slot; }
+/* element k of an array of the run's reals (float or double, rs bytes each) in double; count of them into dst */
+static inline double sim_real_at(const void *raw, size_t k, int rs)
+{
+    return rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
+}
+static inline void sim_widen(const void *raw, double *dst, size_t count, int rs)
+{
+    for (size_t k = 0; k < count; k++)
+        dst[k] = sim_real_at(raw, k, rs);
+}
 /* whether particle i (stored at i) rides on wall k: the packed table the kernels get (contact_geometry.h, wall_met) */
 static inline int sim_rides_on(const dem_sim *s, int i, int k)
 {

@@ -88,12 +88,11 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     size_t bytes[3] = {n3 * (size_t)rs, sizeof(int) * (size_t)n, lb};
     if (dem_stage_read_fields(s->ops, s->be, 3, f, dst, bytes))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
-    for (size_t k = 0; !e && k < n3; k++)
-        x[k] = rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
+    if (!e)
+        sim_widen(raw, x, n3, rs);
     /* the run's pair table (as the kernels have it): E*, G* and the damping c = PM_DAMP_N / sqrt(2 E*) */
     const void *pt = s->setup.pairmat;
-#define PAIR(a, b, q) (rs == 8 ? ((const double *)pt)[PM_STRIDE * ((a) * nm + (b)) + (q)] \
-                               : (double)((const float *)pt)[PM_STRIDE * ((a) * nm + (b)) + (q)])
+#define PAIR(a, b, q) sim_real_at(pt, PM_STRIDE * (size_t)((a) * nm + (b)) + (q), rs)
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
     for (int i = 0; !e && i < n; i++) {
         if (s->pflags[i] & DEM_PARTICLE_FIXED)
