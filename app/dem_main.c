@@ -75,6 +75,12 @@ static int check(const char *path, const char *model)
     if (run.dt > 0.35 * ts.rayleigh_time) /* docs/accuracy.md: stable up to the bound, not accurate */
         printf("               above 0.35 x Rayleigh time: stable, but make accuracy measured the 514-hydrogel "
                "compression 10-19 %% off at 0.5 under every model, within 0.6 %% at 0.35 (docs/accuracy.md)\n");
+    if (scene_mass_scale(sc) != 1) {
+        double S = scene_mass_scale(sc);
+        printf("mass scale     x %g (time.mass_scale): every mass %g times its density's, gravity / %g (the weights stay "
+               "real); the time scales above and the step are %.3g times the real ones, inertia %g times too strong "
+               "(docs/scenes.md \"Mass scaling\")\n", S, S, S, sqrt(S), S);
+    }
     printf("duration       %.6g s = %ld steps (%.3g particle-steps)\n", sc->f->time.duration, run.steps,
            (double)run.steps * n);
     printf("output         frame every %ld steps (%ld frames, %d vector fields), series every %ld steps, "

@@ -145,6 +145,7 @@ typedef struct {
     double dt_rayleigh;           /* fraction of the Rayleigh time */
     double duration;              /* [s] */
     double settle;                /* [s] at the start during which walls hold still (their stages start after) */
+    double mass_scale;            /* every mass x this (>= 1; 1 when absent): scene_mass_scale, docs/scenes.md */
 } scene_time;
 
 typedef struct {
@@ -248,6 +249,8 @@ void scene_file_path(const scene *sc, const char *name, char *buf, size_t len);
 void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
 /* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
+/* time.mass_scale, or 1 where the scene gives none (scene_build has checked it: finite, >= 1) */
+double scene_mass_scale(const scene *sc);
 /* Replaces the scene's normal law (after scene_build, before dem_start): "classical", "mc_stress", "mc_strain"
  * (lagged) or "mc_strain_iterated" (the scene's mc_iterations, or 20). Records it in run->model. */
 int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *model, char *err, size_t errlen);

@@ -159,9 +159,23 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
     return parse_mcs_convention(sc, run, err, errlen);
 }
 
+/* Mass scaling (time.mass_scale S): every particle and membrane vertex is S times heavier than its density says and
+ * gravity is S times weaker, so weights and every force law stay real and only inertia grows. Time scales (Rayleigh,
+ * Hertz, the stability bound) grow by sqrt(S), so a step of dt_rayleigh covers sqrt(S) times more simulated time;
+ * the price is that inertial effects are S times too strong: fine where they are small (a slow, dense press), wrong
+ * for impacts, pours and flows. docs/scenes.md "Mass scaling"; on a press: docs/tableting.md "Mass scaling". */
+double scene_mass_scale(const scene *sc)
+{
+    return scene_has(sc->loc, "time.mass_scale") ? sc->f->time.mass_scale : 1.0;
+}
+
 static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen)
 {
     const scene_file *f = sc->f;
+    const double scale = scene_mass_scale(sc);
+    if (!(scale >= 1 && scale <= 1e12))
+        return scene_fail(sc, err, errlen, "time.mass_scale", "must be in [1, 1e12] (every mass is multiplied by it "
+                          "to allow a longer time step; 1 is the real mass), got %g", scale);
     for (unsigned k = 0; k < f->materials_count; k++) {
         const scene_material *m = &f->materials[k];
         char p[128];
@@ -191,7 +205,7 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
                 return scene_fail(sc, err, errlen, p, "material '%s' is defined twice", m->name);
             }
         /* a wall-only material without a density gets a placeholder the library accepts; no mass is made from it */
-        dem_material dm = {used || m->density > 0 ? m->density : 1.0, m->young, m->poisson, m->restitution,
+        dem_material dm = {used || m->density > 0 ? m->density * scale : 1.0, m->young, m->poisson, m->restitution,
                            m->friction, m->beta, m->gamma};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
@@ -651,7 +665,9 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
         return scene_fail(sc, err, errlen, "gravity", "must be finite");
     if (norm3(f->gravity) > 0 && !(run->effects & DEM_EFFECT_GRAVITY))
         return scene_fail(sc, err, errlen, "gravity", "gravity is set but the effect 'gravity' is not listed");
-    dem_set_gravity(s, f->gravity);
+    const double scale = scene_mass_scale(sc), g[3] = {f->gravity[0] / scale, f->gravity[1] / scale,
+                                                       f->gravity[2] / scale}; /* the weights stay real */
+    dem_set_gravity(s, g);
     if (scene_has(sc->loc, "domain") && dem_set_domain(s, f->domain_lo, f->domain_hi))
         return scene_fail(sc, err, errlen, "domain", "%s", dem_error(s));
     if (dem_set_effects(s, run->effects))

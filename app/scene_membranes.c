@@ -234,8 +234,8 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
         }
         snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
         double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * shortest_edge(&mesh);
-        dem_membrane dm = {mt->young, mt->poisson, mt->thickness, mt->density, mt->restitution, mt->friction,
-                           mt->damping, mt->kel, mt->kdiss, vr, model};
+        dem_membrane dm = {mt->young, mt->poisson, mt->thickness, mt->density * scene_mass_scale(sc),
+                           mt->restitution, mt->friction, mt->damping, mt->kel, mt->kdiss, vr, model};
         dem_membrane_info info;
         snprintf(p, sizeof p, "membranes[%u]", k);
         if (dem_add_membrane(s, &mesh, &dm, &info)) {

@@ -1122,6 +1122,64 @@ static void test_crafted_checkpoints(void **st)
  * keep every sphere clear of every other (the build's overlap check would refuse the scene) and give the same
  * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by an attempt
  * budget (per sphere and per group) that counts attempts, not time. */
+/* time.mass_scale S (docs/scenes.md "Mass scaling"): the same bits as the scene with every density x S and gravity / S
+ * written out; the time step at dt_rayleigh grows by sqrt(S); dem check, dem run and the output say so; and a factor
+ * outside [1, 1e12] is refused with its line. */
+static void test_mass_scale(void **st)
+{
+    (void)st;
+    char err[8192];
+    const char *box = SRC "/tests/scenes/restart_box.yaml";
+    assert_int_equal(sh(err, sizeof err, "sed 's/duration: 0.04}/duration: 0.04, mass_scale: 4}/' %s > %s/ms4.yaml && "
+                                          "sed 's/density: 2500,/density: 10000,/; s/-9.81]/-2.4525]/' %s > %s/msd.yaml",
+                        box, tmp, box, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "grep -c 'mass_scale: 4}' %s/ms4.yaml && grep -c 'density: 10000' %s/msd.yaml "
+                                          "&& grep -c -- '-2.4525]' %s/msd.yaml", tmp, tmp, tmp), 0);
+    const char *name[3] = {"ms4", "msd", "ms1"};
+    char path[3][300];
+    for (int k = 0; k < 3; k++) {
+        snprintf(path[k], sizeof path[k], "%s/%s.yaml", tmp, name[k]);
+        if (k == 2)
+            snprintf(path[k], sizeof path[k], "%s", box);
+        assert_int_equal(sh(err, sizeof err, "%s run %s -o %s/%s.h5 --progress --stop-after 300", DEM, path[k], tmp,
+                            name[k]), 0);
+        assert_true(!strstr(err, "masses scaled x 4 (time.mass_scale; gravity / 4)") == (k != 0));
+    }
+    double dt[3], S[3];
+    for (int k = 0; k < 3; k++) {
+        char h5[300];
+        snprintf(h5, sizeof h5, "%s/%s.h5", tmp, name[k]);
+        hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+        assert_true(f >= 0);
+        assert_int_equal(h5_read_attr_double(f, "dt", &dt[k]), 0);
+        assert_int_equal(h5_read_attr_double(f, "mass_scale", &S[k]), 0);
+        H5Fclose(f);
+    }
+    assert_true(S[0] == 4 && S[1] == 1 && S[2] == 1);
+    assert_true(dt[0] == dt[1]);
+    assert_true(fabs(dt[0] / dt[2] - 2) < 1e-12);
+    /* scaled and written out: the same state, bit for bit; the real masses move differently */
+    assert_int_equal(sh(err, sizeof err, "for d in x v w force torque; do h5diff %s/ms4.ckpt.h5 %s/msd.ckpt.h5 /state/$d "
+                                          "|| exit 1; done", tmp, tmp), 0);
+    assert_int_not_equal(sh(err, sizeof err, "h5diff -q %s/ms4.ckpt.h5 %s/ms1.ckpt.h5 /state/x", tmp, tmp), 0);
+    /* a membrane's vertices are scaled too (a triaxial cell: its grains, sleeve and gravity) */
+    const char *tri = SRC "/tests/scenes/triaxial_small.yaml";
+    assert_int_equal(sh(err, sizeof err, "sed 's/duration: 0.008}/duration: 0.008, mass_scale: 4}/' %s > %s/mt4.yaml && "
+                                          "sed 's/density: 2500,/density: 10000,/; s/density: 1000,/density: 4000,/; "
+                                          "s/-9.81]/-2.4525]/' %s > %s/mtd.yaml && grep -q 'mass_scale: 4}' %s/mt4.yaml "
+                                          "&& grep -q 'density: 4000,' %s/mtd.yaml && for m in mt4 mtd; do %s run "
+                                          "%s/$m.yaml -o %s/$m.h5 --quiet --stop-after 60 || exit 1; done && h5diff "
+                                          "%s/mt4.ckpt.h5 %s/mtd.ckpt.h5 /state/x && h5diff %s/mt4.ckpt.h5 "
+                                          "%s/mtd.ckpt.h5 /state/v", tri, tmp, tri, tmp, tmp, tmp, DEM, tmp, tmp, tmp,
+                        tmp, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s check %s/ms4.yaml | grep -q 'mass scale     x 4 (time.mass_scale): every "
+                                          "mass 4 times its density.s, gravity / 4' && ! %s check %s | grep -q 'mass "
+                                          "scale'", DEM, tmp, DEM, box), 0);
+    bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 0.5/", "bad.yaml:17: time.mass_scale: must be in "
+        "[1, 1e12] (every mass is multiplied by it to allow a longer time step; 1 is the real mass), got 0.5");
+    bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 1e13/", "time.mass_scale: must be in [1, 1e12]");
+}
+
 static void test_random_packing(void **st)
 {
     (void)st;
@@ -1547,6 +1605,7 @@ int main(void)
         cmocka_unit_test(test_triaxial_fp32_bitwise),
         cmocka_unit_test(test_servo_report),
         cmocka_unit_test(test_overlap_report),
+        cmocka_unit_test(test_mass_scale),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
