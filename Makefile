@@ -44,7 +44,7 @@ HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability accuracy tablet-models
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability accuracy tablet-models tablet-mass-scale
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -170,6 +170,12 @@ accuracy: $(BUILD)/dem-accuracy
 # (tools/tablet_models.sh; TABLET_SCENE=scenes/tablet_100k.yaml for the issue's, a GPU job)
 tablet-models: $(BUILD)/dem
 	bash tools/tablet_models.sh
+
+# What mass scaling (time.mass_scale) does to the same press: scenes/tablet_3k.yaml at scales 1-6400, three fills each,
+# under the classical law; out/tablet_mass_scale/mass_scale.png and .md (tools/tablet_mass_scale.sh; about 15 minutes
+# on 2 cores, 12 of them at S = 1; docs/tableting.md "Mass scaling")
+tablet-mass-scale: $(BUILD)/dem
+	bash tools/tablet_mass_scale.sh
 
 # issue 13's hard cases at the issue's lengths (tests/test_stability.c; the short versions are in make test)
 stability: $(BUILD)/tests/test_stability
