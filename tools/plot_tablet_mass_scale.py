@@ -29,7 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_tablet import analyse  # noqa: E402
-from plot_tablet_models import dwell_end  # noqa: E402
+from plot_tablet_models import dwell_end, read_times  # noqa: E402
 
 PRESSURES = (10e6, 25e6, 45e6)  # 45, not 50: a stage that ends at 50 MPa may peak just below it between rows
 
@@ -57,6 +57,12 @@ def one(run, times):
                 wall=times.get(name, math.nan))
 
 
+def finite_mean(values):
+    """mean of the finite values, nan if there are none (S = 6400's recovery: the compact never let go)"""
+    v = [x for x in values if np.isfinite(x)]
+    return float(np.mean(v)) if v else math.nan
+
+
 def stat(values, fmt):
     v = np.array([x for x in values if np.isfinite(x)])
     if not len(v):
@@ -73,16 +79,11 @@ def main():
     ap.add_argument("--table", help="Markdown table to write")
     ap.add_argument("--times", help="lines 'name status seconds' (tools/tablet_mass_scale.sh)")
     a = ap.parse_args()
-    times = {}
-    if a.times and os.path.exists(a.times):
-        for line in open(a.times):
-            w = line.split()
-            if len(w) == 3 and w[1] == "0":
-                times[w[0]] = float(w[2])
+    times = read_times(a.times)
     rows = [one(r, times) for r in a.runs]
     scales = sorted({r["scale"] for r in rows})
     by = {s: [r for r in rows if r["scale"] == s] for s in scales}
-    ref = [np.nanmean([r["dens"][j] for r in by[scales[0]]]) for j in (0, 2)]
+    ref = [finite_mean([r["dens"][j] for r in by[scales[0]]]) for j in (0, 2)]
 
     head = ("| mass scale | fills | D at 10 MPa | D at 25 MPa | D at 45 MPa | Heckel yield [MPa] | lower / upper | "
             "radial / axial | elastic recovery [%%] | kinetic / elastic, end of dwell | wall time [s] | "
@@ -90,7 +91,7 @@ def main():
     lines = [head, "|" + "---|" * 2 + "---:|" * 11]
     for s in scales:
         g = by[s]
-        d = [np.nanmean([r["dens"][j] for r in g]) for j in (0, 2)]
+        d = [finite_mean([r["dens"][j] for r in g]) for j in (0, 2)]
         lines.append("| %g | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %+.4f | %+.4f |" % (
             s, len(g), stat([r["dens"][0] for r in g], "{:.4f}"), stat([r["dens"][1] for r in g], "{:.4f}"),
             stat([r["dens"][2] for r in g], "{:.4f}"), stat([r["yield_p"] / 1e6 for r in g], "{:.0f}"),
@@ -122,13 +123,13 @@ def main():
         ax[1, 0].plot(x, [r["recovery"] for r in by[s]], "s", color="C3", alpha=0.6)
         ax[1, 1].plot(x, [r["wall"] for r in by[s]], "o", color="k", alpha=0.6)
     for j, col, lab in ((2, "k", "45 MPa"), (0, "C2", "10 MPa")):
-        ax[0, 1].plot(scales, [np.nanmean([r["dens"][j] for r in by[s]]) for s in scales], "-", color=col, label=lab)
+        ax[0, 1].plot(scales, [finite_mean([r["dens"][j] for r in by[s]]) for s in scales], "-", color=col, label=lab)
     ax[0, 1].set(xscale="log", xlabel="mass scale S", ylabel="relative density",
                  title="density at 10 and 45 MPa: every fill a point, the line their mean")
     ax[0, 1].legend()
-    ax[1, 0].plot(scales, [np.nanmean([r["radial"] for r in by[s]]) for s in scales], "-", color="C0",
+    ax[1, 0].plot(scales, [finite_mean([r["radial"] for r in by[s]]) for s in scales], "-", color="C0",
                   label="radial / axial pressure at the largest")
-    ax[1, 0].plot(scales, [np.nanmean([r["recovery"] for r in by[s]]) for s in scales], "-", color="C3",
+    ax[1, 0].plot(scales, [finite_mean([r["recovery"] for r in by[s]]) for s in scales], "-", color="C3",
                   label="elastic recovery of the gap")
     ax[1, 0].set(xscale="log", xlabel="mass scale S", ylabel="ratio", title="die wall and spring-back")
     ax[1, 0].legend()

@@ -60,6 +60,17 @@ def dwell_end(c):
     return int(rows[-1]) if len(rows) else k
 
 
+def read_times(path):
+    """wall times of the runs that succeeded: lines 'name exit-status seconds' -> {name: seconds}"""
+    times = {}
+    if path and os.path.exists(path):
+        for line in open(path):
+            w = line.split()
+            if len(w) == 3 and w[1] == "0":
+                times[w[0]] = float(w[2])
+    return times
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="+", help="HDF5 files written by dem run, one per model")
@@ -67,12 +78,7 @@ def main():
     ap.add_argument("--table", help="Markdown table to write")
     ap.add_argument("--times", help="wall times: lines 'model exit-status seconds' (tools/tablet_models.sh)")
     a = ap.parse_args()
-    times = {}
-    if a.times and os.path.exists(a.times):
-        for line in open(a.times):
-            p = line.split()
-            if len(p) == 3 and p[1] == "0":
-                times[p[0]] = float(p[2])
+    times = read_times(a.times)
     fig, ax = plt.subplots(2, 2, figsize=(11, 8.5))
     rows = []
     for run in a.runs:

@@ -15,7 +15,7 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 for s in "$ROOT"/scenes/*.yaml "$ROOT"/scenes/validation/*.yaml "$ROOT"/tests/scenes/restart_box.yaml; do
     b=$(basename "$s" .yaml)
-    case "$b" in tablet_100k | tablet_1m) continue ;; esac # GPU-sized scenes: 1e5-1e6 spheres x 16 runs (docs/tableting.md)
+    case "$b" in tablet_100k | tablet_1m) continue ;; esac # 1e5-1e6 spheres: 16 runs with the fill, the reference among them
     rm -rf "$T/data" && { cp -r "$(dirname "$s")/data" "$T/" 2>/dev/null || true; }
     for be in opencl reference; do
         for model in scene mc_stress mc_strain mc_strain_iterated; do

@@ -16,6 +16,7 @@
 # out; the others go on.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+. tools/timed_run.sh
 SCENE=${TABLET_SCENE:-scenes/tablet_3k.yaml}
 OUT=${MASS_OUT:-out/tablet_mass_scale}
 SCALES=${MASS_SCALES:-1 100 400 1600 6400}
@@ -32,13 +33,7 @@ for S in $SCALES; do
     sed -e "s/^time: {\(.*\)}$/time: {\1, mass_scale: $S}/" -e "s/seed: [0-9]*}/seed: $seed}/" \
         -e "s/until_force: 0.05}/until_distance: 1.1586e-3}/" "$SCENE" > "$OUT/$name.yaml"
     echo "tablet-mass-scale: $SCENE at mass scale $S, fill seed $seed (log: $OUT/$name.log)" >&2
-    start=$(date +%s.%N)
-    "$DEM" run "$OUT/$name.yaml" -o "$OUT/$name.h5" > "$OUT/$name.log" 2>&1
-    rc=$?
-    end=$(date +%s.%N)
-    wall=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", b - a }')
-    echo "$name $rc $wall" >> "$OUT/times.txt"
-    if [ "$rc" -eq 0 ]; then runs+=("$OUT/$name.h5"); else echo "tablet-mass-scale: $name failed (exit $rc)" >&2; fi
+    timed_run tablet-mass-scale "$OUT" "$name" "$OUT/$name.yaml"
   done
 done
 [ ${#runs[@]} -gt 0 ] || { echo "tablet-mass-scale: no run completed" >&2; exit 1; }
