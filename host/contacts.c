@@ -12,7 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 /* splits f into its part along the unit n and the rest */
 static void split(const double *f, const double *n, double *fn, double *ft)
 {

@@ -8,13 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 static double pair_estar(const dem_sim *s, int a, int b)
 {
     const dem_material *p = &s->mats[a], *q = &s->mats[b];
     return 1 / ((1 - p->poisson * p->poisson) / p->young + (1 - q->poisson * q->poisson) / q->young);
 }
-
 
 /* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */

@@ -1118,10 +1118,6 @@ static void test_crafted_checkpoints(void **st)
     }
 }
 
-/* Random packings (issue 17, class 6): placement looks only at nearby spheres (a spatial hash), which must still
- * keep every sphere clear of every other (the build's overlap check would refuse the scene) and give the same
- * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by an attempt
- * budget (per sphere and per group) that counts attempts, not time. */
 /* time.mass_scale S (docs/scenes.md "Mass scaling"): the same bits as the scene with every density x S and gravity / S
  * written out; the time step at dt_rayleigh grows by sqrt(S); dem check, dem run and the output say so; and a factor
  * outside [1, 1e12] is refused with its line. */
@@ -1180,6 +1176,10 @@ static void test_mass_scale(void **st)
     bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 1e13/", "time.mass_scale: must be in [1, 1e12]");
 }
 
+/* Random packings (issue 17, class 6): placement looks only at nearby spheres (a spatial hash), which must still
+ * keep every sphere clear of every other (the build's overlap check would refuse the scene) and give the same
+ * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by an attempt
+ * budget (per sphere and per group) that counts attempts, not time. */
 static void test_random_packing(void **st)
 {
     (void)st;
