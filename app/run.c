@@ -573,6 +573,30 @@ static int phase_steps(run_ctx *c)
     return rc ? fail_with(EXIT_IO, c->err) : 0;
 }
 
+/* The device memory held at the end (the pair arrays and rows only grow: the run's largest), per particle by part,
+ * largest first. */
+static void print_memory(dem_sim *s)
+{
+    double n = dem_count(s) > 0 ? (double)dem_count(s) : 1.0, per[DEM_MEM__COUNT];
+    int order[DEM_MEM__COUNT];
+    for (int k = 0; k < DEM_MEM__COUNT; k++) {
+        per[k] = (double)dem_device_bytes_part(s, (dem_memory_part)k) / n;
+        int m = k;
+        for (; m > 0 && per[order[m - 1]] < per[k]; m--)
+            order[m] = order[m - 1];
+        order[m] = k;
+    }
+    fprintf(stderr, "dem: device memory held: %.3g MB (%.0f bytes per particle:", (double)dem_device_bytes(s) / 1e6,
+            (double)dem_device_bytes(s) / n);
+    for (int k = 0, first = 1; k < DEM_MEM__COUNT; k++)
+        if (per[order[k]] >= 0.5) {
+            fprintf(stderr, "%s %s %.0f", first ? "" : ",", dem_memory_part_name((dem_memory_part)order[k]),
+                    per[order[k]]);
+            first = 0;
+        }
+    fprintf(stderr, ")\n");
+}
+
 /* 5. What the run did: files, kernels, memory, MC-strain iterations (and a warning, even with --quiet, for steps
  * whose forces did not converge to the tolerance). */
 static void phase_report(run_ctx *c)
@@ -605,8 +629,7 @@ static void phase_report(run_ctx *c)
             }
         if (!first)
             fprintf(stderr, "\n");
-        fprintf(stderr, "dem: device memory held: %.3g MB (%.0f bytes per particle)\n", (double)dem_device_bytes(s) / 1e6,
-                dem_count(s) > 0 ? (double)dem_device_bytes(s) / dem_count(s) : 0.0);
+        print_memory(s);
         if (iterated)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
                             "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),

@@ -11,7 +11,7 @@ const char *const dem_kernel_names[K__COUNT] = {DEM_KERNEL_LIST(DEM_NAME_KERNEL)
 #undef DEM_NAME_KERNEL
 
 /* ---- element types: each kernel argument's against its registry entry, at compile time ---- */
-#define ELEM_BUF(id, elem, count, gate, field, init) BUFELEM_##id = DEM_ELEM_##elem,
+#define ELEM_BUF(id, elem, count, gate, field, init, part) BUFELEM_##id = DEM_ELEM_##elem,
 #define ELEM_ROW(id, elem, count, gate, field) ROWELEM_##id = DEM_ELEM_##elem,
 enum { DEM_BUFFERS(ELEM_BUF) BUFELEM__END };
 enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
@@ -111,7 +111,7 @@ size_t dem_buffer_bytes(const dem_core *c, int id)
 {
     SIZE_NAMES(c, 0);
     switch (id) {
-#define SIZE_BUF(id_, elem, count, gate, field, init)                                                                \
+#define SIZE_BUF(id_, elem, count, gate, field, init, part)                                                          \
     case BUF_##id_:                                                                                                  \
         return gate_open(c->fx, gate) ? (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs) : 0;
         DEM_BUFFERS(SIZE_BUF)
@@ -120,12 +120,24 @@ size_t dem_buffer_bytes(const dem_core *c, int id)
     return 0;
 }
 
+int dem_buffer_part(int id)
+{
+    switch (id) {
+#define PART_BUF(id_, elem, count, gate, field, init, part)                                                          \
+    case BUF_##id_:                                                                                                  \
+        return DEM_MEM_##part;
+        DEM_BUFFERS(PART_BUF)
+#undef PART_BUF
+    }
+    return DEM_MEM_PARTICLES;
+}
+
 /* the lazy buffers' size once they are made */
 static size_t lazy_bytes(const dem_core *c, int id)
 {
     SIZE_NAMES(c, 0);
     switch (id) {
-#define SIZE_LAZY(id_, elem, count, gate, field, init)                                                               \
+#define SIZE_LAZY(id_, elem, count, gate, field, init, part)                                                         \
     case BUF_##id_:                                                                                                  \
         return (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs);
         DEM_BUFFERS(SIZE_LAZY)
@@ -152,7 +164,7 @@ int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_set
     dem_core *c = DEM_CORE(b);
 #define SETUP(member) ((const void *)s->member)
 #define NONE NULL
-#define CREATE_BUF(id, elem, count, gate, field, init)                                                               \
+#define CREATE_BUF(id, elem, count, gate, field, init, part)                                                         \
     if (ops->alloc(b, TABLE_ONE, 0, BUF_##id, dem_buffer_bytes(c, BUF_##id), dem_buffer_bytes(c, BUF_##id) ? init : NULL)) \
         return 1;
     DEM_BUFFERS(CREATE_BUF)
@@ -177,7 +189,7 @@ int dem_buffer_ensure(const dem_backend_ops *ops, dem_backend *b, int id)
 int dem_field_ref(const dem_core *c, dem_field f, dem_bufref *r, size_t *bytes)
 {
     int fi = (int)f;
-#define FIELD_BUF(id_, elem, count, gate, field, init)                                                               \
+#define FIELD_BUF(id_, elem, count, gate, field, init, part)                                                         \
     if (field >= 0 && fi == field) {                                                                                 \
         r->table = TABLE_ONE, r->id = BUF_##id_;                                                                     \
         *bytes = gate == DEM_GATE_LAZY ? lazy_bytes(c, BUF_##id_) : dem_buffer_bytes(c, BUF_##id_);                  \

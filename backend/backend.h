@@ -80,7 +80,7 @@ typedef struct {
 } dem_bufref;
 
 #define DEM_TRACE_MAX 256 /* launches recorded per step (dem_kernel_sequence) */
-/* Slots per neighbour row to start with; a build that needs more doubles it and builds again (host/sim.c). */
+/* Slots per neighbour row to start with; a build that needs more grows it (host/sim.c row_capacity) and builds again. */
 #define DEM_INITIAL_ROW_CAPACITY 16
 /* Pair records per particle assumed by dem_memory_estimate (a dense packing has about 3 partners of higher id). */
 #define DEM_ESTIMATE_PAIRS_PER_PARTICLE 3
@@ -147,6 +147,8 @@ void dem_core_sync(dem_core *c);
 size_t dem_elem_size(int elem, int rs);
 size_t dem_buffer_bytes(const dem_core *c, int id);
 size_t dem_row_bytes(const dem_core *c, int id, int maxn);
+/* The part of the memory report (dem_memory_part) a DEM_BUFFERS id belongs to. */
+int dem_buffer_part(int id);
 /* Every buffer of the registry, at the setup's sizes, uploaded from the setup where the registry says so. */
 int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_setup *s);
 /* The current buffer behind a field, and its size. -1 when the field has none. */

@@ -847,6 +847,16 @@ static int skin_probe_due(const dem_sim *s)
     return s->skin_now > s->skin_lo && s->skin_built >= 0 && s->step - s->skin_built >= DEM_SKIN_PROBE;
 }
 
+/* The rows' capacity for a build whose longest row has `need` partners: 1/8 to spare, a multiple of 4. Each row set
+ * holds n * capacity slots (an int, and two reals more with MC-strain), and one particle's row sets it for all: a
+ * compact in the press lists 17-23 partners in its longest row and about 8 in its mean one, and doubling from 16 gave
+ * 32 (tablet_3k: 3757 -> 3661 device bytes per sphere, series ring included). Growing again costs one more build of
+ * the rows at that rebuild. */
+static int row_capacity(int need)
+{
+    return (need + need / 8 + 3) / 4 * 4;
+}
+
 static int sim_rebuild_traced(dem_sim *s)
 {
     int flags[FLAG_COUNT], e;
@@ -868,8 +878,7 @@ static int sim_rebuild_traced(dem_sim *s)
             return DEM_ERR_DEVICE;
         if (flags[FLAG_NBR_NEEDED] <= maxn)
             break;
-        while (maxn < flags[FLAG_NBR_NEEDED])
-            maxn *= 2;
+        maxn = row_capacity(flags[FLAG_NBR_NEEDED]);
         flags[FLAG_NBR_NEEDED] = 0;
         if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags))
             return be_fail(s);
@@ -1260,6 +1269,28 @@ size_t dem_device_bytes(const dem_sim *s)
         for (int id = 0; id < ROW__COUNT; id++)
             sum += c->row_bytes[set][id];
     return sum;
+}
+
+size_t dem_device_bytes_part(const dem_sim *s, dem_memory_part part)
+{
+    if (!s->be)
+        return 0;
+    const dem_core *c = DEM_CORE(s->be);
+    size_t sum = 0;
+    for (int id = 0; id < BUF__COUNT; id++)
+        if (dem_buffer_part(id) == (int)part)
+            sum += c->bytes[id];
+    for (int set = 0; set < 2 && part == DEM_MEM_ROWS; set++)
+        for (int id = 0; id < ROW__COUNT; id++)
+            sum += c->row_bytes[set][id];
+    return sum;
+}
+
+const char *dem_memory_part_name(dem_memory_part part)
+{
+    static const char *const names[DEM_MEM__COUNT] = {"particles", "pairs", "neighbour rows", "walls",
+                                                      "cells",     "output", "membranes and riders"};
+    return (int)part >= 0 && part < DEM_MEM__COUNT ? names[part] : "?";
 }
 
 int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)

@@ -539,8 +539,25 @@ int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len);
 const char *dem_build_info(dem_sim *s);
 /* Bytes the backend holds now for the run (every buffer of the registry, both neighbour-row sets). */
 size_t dem_device_bytes(const dem_sim *s);
+/* What the device's bytes hold (common/dem_buffers.h names each buffer's part): per-particle state and pair indices
+ * (PARTICLES), the pair records with their history, flags and its copy (PAIRS), both neighbour-row sets (ROWS), the
+ * walls' records and per-particle wall contacts (WALLS), the cell grid (CELLS), the sampled series, wall partial sums
+ * and output stress (OUTPUT), membranes, patches and riders (MESH). */
+typedef enum {
+    DEM_MEM_PARTICLES,
+    DEM_MEM_PAIRS,
+    DEM_MEM_ROWS,
+    DEM_MEM_WALLS,
+    DEM_MEM_CELLS,
+    DEM_MEM_OUTPUT,
+    DEM_MEM_MESH,
+    DEM_MEM__COUNT
+} dem_memory_part;
+/* Bytes held now in one part (their sum over the parts is dem_device_bytes), and its name ("pairs", ...). */
+size_t dem_device_bytes_part(const dem_sim *s, dem_memory_part part);
+const char *dem_memory_part_name(dem_memory_part part);
 /* Before dem_start: the bytes the run would hold on the device at the start, from the same registry (rows at their
- * initial capacity, three pair records per particle; rows double when a packing needs more). Validates and packs
+ * initial capacity, three pair records per particle; rows grow when a packing needs more). Validates and packs
  * the description as dem_start does. */
 int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes);
 
