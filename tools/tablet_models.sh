@@ -9,6 +9,8 @@
 #   TABLET_OUT    where the runs go (default out/tablet_models): MODEL.h5, MODEL.log, times.txt, models.png, models.md
 #   TABLET_MODELS the models (default: classical mc_stress mc_strain mc_strain_iterated)
 #   DEM           the dem binary (default build/dem)
+#   TABLET_ARGS   more `dem run` options for every model, e.g. "--stop-after 201300" (tablet_100k to 41 ms: the
+#                 compaction, dwell and decompression, the first of the ejection)
 # A run that fails is reported and left out of the plot; the others go on.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -23,7 +25,8 @@ mkdir -p "$OUT"
 runs=()
 for m in $MODELS; do
   echo "tablet-models: $SCENE under $m (log: $OUT/$m.log)" >&2
-  timed_run tablet-models "$OUT" "$m" "$SCENE" --model "$m"
+  # shellcheck disable=SC2086 # TABLET_ARGS is a list of options
+  timed_run tablet-models "$OUT" "$m" "$SCENE" --model "$m" ${TABLET_ARGS:-}
 done
 [ ${#runs[@]} -gt 0 ] || { echo "tablet-models: no run completed" >&2; exit 1; }
 /usr/bin/python3 tools/plot_tablet_models.py --times "$OUT/times.txt" -o "$OUT/models.png" --table "$OUT/models.md" \
