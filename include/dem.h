@@ -541,8 +541,8 @@ const char *dem_build_info(dem_sim *s);
 size_t dem_device_bytes(const dem_sim *s);
 /* What the device's bytes hold (common/dem_buffers.h names each buffer's part): per-particle state and pair indices
  * (PARTICLES), the pair records with their history, flags and its copy (PAIRS), both neighbour-row sets (ROWS), the
- * walls' records and per-particle wall contacts (WALLS), the cell grid (CELLS), the sampled series, wall partial sums
- * and output stress (OUTPUT), membranes, patches and riders (MESH). */
+ * walls' records, per-particle wall contacts and sums (WALLS), the cell grid (CELLS), the sampled series' rows of
+ * particles and walls and the output stress tensor (OUTPUT), membranes, patches and riders (MESH). */
 typedef enum {
     DEM_MEM_PARTICLES,
     DEM_MEM_PAIRS,
