@@ -80,7 +80,7 @@ typedef struct {
 } dem_bufref;
 
 #define DEM_TRACE_MAX 256 /* launches recorded per step (dem_kernel_sequence) */
-/* Slots per neighbour row to start with; a build that needs more grows it (host/sim.c row_capacity), then again. */
+/* Slots per neighbour row to start with; a build that needs more grows it and builds again (sim.c row_capacity). */
 #define DEM_INITIAL_ROW_CAPACITY 16
 /* Pair records per particle assumed by dem_memory_estimate (a dense packing has about 3 partners of higher id). */
 #define DEM_ESTIMATE_PAIRS_PER_PARTICLE 3
