@@ -101,9 +101,10 @@ size_t dem_elem_size(int elem, int rs)
            NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
            NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
-           MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows;                  \
+           MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows,                  \
+           MAXC = (size_t)(c)->maxn[(c)->cur];                                                                       \
     (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
-        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR
+        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR, (void)MAXC
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 

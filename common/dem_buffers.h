@@ -5,9 +5,11 @@
  *
  * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
  * blocks of the cells), NBR (reduction blocks of the particles), MAXN (capacity of the row set the buffer belongs
- * to), PAIRS (pair records allocated), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV
- * (capacity of the sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows:
- * patch_contacts.h), in elements.
+ * to), MAXC (capacity of the current row set: for a buffer laid out like the rows but written before it is read
+ * after each rebuild, so held once and not in both sets; host/neighbor.c grows it with the current set), PAIRS (pair
+ * records allocated), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV (capacity of the
+ * sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows: patch_contacts.h), in
+ * elements.
  * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
  * made when first needed (the output stress tensor).
  * Init: what create uploads: SETUP(member) of dem_setup, or NONE (zero-filled).
@@ -77,6 +79,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT)                                   \
     ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE, WALLS)                         \
     ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE, WALLS)                        \
+    ENTRY(MC_DISP, REAL, N * MAXC, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS)                                 \
     ENTRY(SPRING_INT, INT, 2 * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_int), MESH)                                     \
     ENTRY(SPRING_REAL, REAL, SP_STRIDE * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_real), MESH)                          \
     ENTRY(TRI, INT, 3 * NT, (DEM_EFFECT_PRESSURE | DEM_EFFECT_PATCHES), -1, SETUP(tri), MESH)                           \
@@ -108,8 +111,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 #define DEM_ROWS(ENTRY)                                                                                                  \
     ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
     ENTRY(LIST, INT, N * MAXN, 0, DEM_FIELD_NBR_LIST)                                                                        \
-    ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)                                                   \
-    ENTRY(MC_DISP, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP)
+    ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)
 
 /* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
 #define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)

@@ -97,7 +97,7 @@
     A(BIN, int, pair_mirror, PAIR_MIRROR)                                                                            \
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
-    A(BIN, real, invvol, INVVOL) A(CIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
+    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
     A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
@@ -165,14 +165,14 @@
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
-    A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(COUT, real, disp, MC_DISP)                           \
+    A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(BOUT, real, disp, MC_DISP)                           \
     A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
     F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
     A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT)  \
     A(CIN, int, nbr_list, LIST) A(BIN, int, sid, SID) A(I, int, nwalls, NWALLS)                                      \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(CIN, real, disp, MC_DISP)                   \
+    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, real, disp, MC_DISP)                   \
     A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
     A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
 #define DEM_ITEMS_mc_strain_update n

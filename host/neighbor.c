@@ -39,6 +39,11 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         return 1;
     c->cur = 1 - c->cur;
     dem_core_sync(c);
+    /* the buffers laid out like the current rows but written before they are read (dem_buffers.h: MAXC, MC-strain's
+     * displacements) follow the new rows' capacity; grown only, as the two sets' capacities may alternate */
+    if (dem_buffer_bytes(c, BUF_MC_DISP) > c->bytes[BUF_MC_DISP] &&
+        o->alloc(b, TABLE_ONE, 0, BUF_MC_DISP, dem_buffer_bytes(c, BUF_MC_DISP), NULL))
+        return 1;
     int total = 0, owned = 0;
     dem_bufref start = {TABLE_ONE, BUF_IN_START};
     if (dem_stage_scan(o, b, BUF_IN_COUNT, BUF_IN_START, BUF_IN_BLOCK_SUM, c->n) ||
