@@ -54,10 +54,15 @@ def label_of(c, run):
 
 
 def dwell_end(c):
-    """the last row at which the upper punch still stands where it reached the largest pressure"""
+    """the last row of the dwell: from the largest pressure on, the first row where the upper punch stands (the
+    same travel as the next row's: the peak may come at the punch's last moving row) and the last it stands there"""
     k, tr = c["k_max"], c["travel_up"]
-    rows = np.nonzero((np.arange(len(tr)) >= k) & (np.abs(tr - tr[k]) <= 1e-12))[0]
-    return int(rows[-1]) if len(rows) else k
+    still = np.nonzero((np.arange(len(tr) - 1) >= k) & (np.abs(np.diff(tr)) <= 1e-12))[0]
+    if not len(still):
+        return k
+    j = int(still[0])
+    moved = np.nonzero((np.arange(len(tr)) > j) & (np.abs(tr - tr[j]) > 1e-12))[0]
+    return int(moved[0]) - 1 if len(moved) else len(tr) - 1
 
 
 def read_times(path):
