@@ -848,7 +848,8 @@ static int skin_probe_due(const dem_sim *s)
 }
 
 /* The rows' capacity for a build whose longest row has `need` partners: 1/8 to spare, a multiple of 4. Each row set
- * holds n * capacity slots (an int, and two reals more with MC-strain), and one particle's row sets it for all: a
+ * holds n * capacity slots (an int, and with MC-strain a force; its displacements are held for the current set
+ * only: dem_buffers.h MAXC), and one particle's row sets it for all: a
  * compact in the press lists 17-23 partners in its longest row and about 8 in its mean one, and doubling from 16 gave
  * 32 (tablet_3k: 3757 -> 3661 device bytes per sphere, series ring included). Growing again costs one more build of
  * the rows at that rebuild. */
