@@ -24,14 +24,14 @@
 
 void overlap_watch_sample(overlap_watch *w, dem_sim *s)
 {
-    int n = dem_count(s), maxn = dem_neighbor_capacity(s);
-    if (n < 2 || maxn <= 0)
+    int n = dem_count(s), slots = dem_neighbor_capacity(s);
+    if (n < 2 || slots <= 0)
         return;
-    size_t need = (size_t)n * (size_t)maxn;
+    size_t need = (size_t)slots > (size_t)n ? (size_t)slots : (size_t)n; /* the rows packed (DEM_FIELD_NBR_START) */
     if (need > w->cap) {
         int *l = realloc(w->list, need * sizeof(int));
-        double *x = realloc(w->x, 3 * (size_t)n * sizeof(double));
-        int *c = realloc(w->count, (size_t)n * sizeof(int));
+        double *x = realloc(w->x, 3 * need * sizeof(double));
+        int *c = realloc(w->count, (2 * need + 1) * sizeof(int)); /* the counts, then the starts */
         if (l)
             w->list = l;
         if (x)
@@ -42,16 +42,18 @@ void overlap_watch_sample(overlap_watch *w, dem_sim *s)
             return; /* out of host memory: this frame is not measured */
         w->cap = need;
     }
+    int *start = w->count + n;
     if (dem_get_raw(s, DEM_FIELD_NBR_COUNT, w->count, (size_t)n * sizeof(int)) ||
-        dem_get_raw(s, DEM_FIELD_NBR_LIST, w->list, need * sizeof(int)) || dem_get_field(s, DEM_FIELD_X, w->x))
+        dem_get_raw(s, DEM_FIELD_NBR_START, start, ((size_t)n + 1) * sizeof(int)) ||
+        dem_get_raw(s, DEM_FIELD_NBR_LIST, w->list, (size_t)slots * sizeof(int)) || dem_get_field(s, DEM_FIELD_X, w->x))
         return;
     double worst = 0, sum = 0;
     long touching = 0;
     int wi = -1, wj = -1;
     for (int i = 0; i < n; i++) {
         double ri = dem_particle_radius(s, i);
-        for (int k = 0; k < w->count[i] && k < maxn; k++) {
-            int j = w->list[(size_t)i * (size_t)maxn + (size_t)k];
+        for (int k = 0; k < w->count[i] && start[i] + k < slots; k++) {
+            int j = w->list[start[i] + k];
             if (j <= i || j >= n)
                 continue;
             double rj = dem_particle_radius(s, j), d[3];

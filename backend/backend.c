@@ -46,12 +46,6 @@ int dem_core_fail(dem_core *c, const char *fmt, ...)
     return 1;
 }
 
-void dem_core_sync(dem_core *c)
-{
-    c->si[SI_MAXN_CUR] = c->maxn[c->cur];
-    c->si[SI_MAXN_NEW] = c->maxn[1 - c->cur];
-}
-
 void dem_core_init(dem_core *c, const dem_setup *s)
 {
     memset(c, 0, sizeof *c);
@@ -87,7 +81,6 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     sr[SR_PRESSURE] = s->pressure;
     sr[SR_REACH] = s->reach, sr[SR_RMAX] = s->rmax;
     si[SI_MAXP] = c->maxp, si[SI_MAXPO] = c->maxp_old, si[SI_MAXV] = c->maxv;
-    dem_core_sync(c);
 }
 
 size_t dem_elem_size(int elem, int rs)
@@ -246,6 +239,11 @@ size_t dem_kernel_items(const dem_core *c, dem_kernel_id k)
     }
 }
 
+size_t dem_ref_bytes(const dem_core *c, dem_bufref r)
+{
+    return r.table == TABLE_ONE ? c->bytes[r.id] : c->row_bytes[r.table == TABLE_CUR ? c->cur : 1 - c->cur][r.id];
+}
+
 /* The bytes of every buffer kernel k is given (its argument list), as bound now: what it could move if it touched
  * each byte once - the traffic model of make bench's bandwidth column. */
 size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
@@ -259,7 +257,7 @@ size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
 #define BB_COUT BB_CIN
 #define BB_NIN(type, name, src) total += c->row_bytes[1 - c->cur][ROW_##src];
 #define BB_NOUT BB_NIN
-#define BB_AIN(type, name, src) total += c->bytes[c->alias[ALIAS_##src]];
+#define BB_AIN(type, name, src) total += dem_ref_bytes(c, c->alias[ALIAS_##src]);
 #define BB_AOUT BB_AIN
 #define BB_ARG(kind, type, name, src) BB_##kind(type, name, src)
 #define BB_CASE(name)                                                                                                \

@@ -53,7 +53,7 @@ typedef struct {
     int ncell[3];
     /* per-step scalars (converted to real by the backend with a plain C cast) */
     double dt, gravity[3], skin, half_skin2;
-    int maxn; /* initial neighbour-row capacity */
+    int maxn; /* slots each neighbour-row set starts with (its rows packed together) */
     /* patch contacts (patch_contacts.h) */
     const int *vtri_start;  /* int[n+1]: each particle's patch triangles at vtri_list[vtri_start[p] ..] */
     const int *vtri_list;   /* int[3*ntriangles]: ascending triangle ids per particle (the tail unused) */
@@ -80,8 +80,9 @@ typedef struct {
 } dem_bufref;
 
 #define DEM_TRACE_MAX 256 /* launches recorded per step (dem_kernel_sequence) */
-/* Slots per neighbour row to start with; a build that needs more grows it and builds again (sim.c row_capacity). */
-#define DEM_INITIAL_ROW_CAPACITY 16
+/* Slots per particle the packed neighbour rows start with (all rows together: DEM_ROWS); a build that needs more
+ * grows them before it fills them (sim.c row_capacity). */
+#define DEM_INITIAL_ROW_CAPACITY 8
 /* Pair records per particle assumed by dem_memory_estimate (a dense packing has about 3 partners of higher id). */
 #define DEM_ESTIMATE_PAIRS_PER_PARTICLE 3
 
@@ -92,12 +93,12 @@ typedef struct {
     int rs;
     int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges, nriders;
     int series_rows; /* rows of the series ring (common/series.h) */
-    int maxn[2], cur;  /* capacity of each row set; the set in use (1 - cur is built into) */
+    int maxn[2], cur;  /* slots of each row set (its rows packed together); the set in use (1 - cur is built into) */
     int maxp, maxp_old, maxv; /* patch rows' capacities (patch_contacts.h) */
     size_t pair_cap;   /* pair records allocated */
     int si[SI__COUNT];
     double sr[SR__COUNT];
-    int alias[ALIAS__COUNT];               /* a DEM_BUFFERS id per alias */
+    dem_bufref alias[ALIAS__COUNT];        /* the buffer each alias names */
     size_t bytes[BUF__COUNT];              /* bytes held */
     size_t row_bytes[2][ROW__COUNT];
     double ktime[K__COUNT]; /* seconds per kernel, when timed (OpenCL: DEM_PROFILE set; reference: always) */
@@ -141,8 +142,6 @@ extern const dem_backend_ops dem_opencl_ops;
 /* ---- backend/backend.c: the registry walked ---- */
 /* Fills the core's dimensions and scalars from the setup. */
 void dem_core_init(dem_core *c, const dem_setup *s);
-/* The scalars that follow the row sets (MAXN_CUR, MAXN_NEW), after cur or maxn changed. */
-void dem_core_sync(dem_core *c);
 /* Element size and the bytes a buffer needs now. */
 size_t dem_elem_size(int elem, int rs);
 size_t dem_buffer_bytes(const dem_core *c, int id);
@@ -167,8 +166,10 @@ int dem_core_fail(dem_core *c, const char *fmt, ...);
 #define DEM_REF_COUT DEM_REF_CIN
 #define DEM_REF_NIN(c, src) ((dem_bufref){TABLE_NEW, ROW_##src})
 #define DEM_REF_NOUT DEM_REF_NIN
-#define DEM_REF_AIN(c, src) ((dem_bufref){TABLE_ONE, (c)->alias[ALIAS_##src]})
+#define DEM_REF_AIN(c, src) ((c)->alias[ALIAS_##src])
 #define DEM_REF_AOUT DEM_REF_AIN
+/* The bytes a buffer reference holds now. */
+size_t dem_ref_bytes(const dem_core *c, dem_bufref r);
 /* Number of work items of kernel k with the core's current scalars. */
 size_t dem_kernel_items(const dem_core *c, dem_kernel_id k);
 size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k);
@@ -181,9 +182,15 @@ int dem_stage_reset_flags(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_kick_drift(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_kick(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_bin(const dem_backend_ops *o, dem_backend *b);
-/* Exclusive prefix sum of count[0..items) into start[0..items] (fixed blocks of DEM_SCAN_BLOCK, integers). */
-int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, int count, int start, int block_sum, int items);
-int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int maxn); /* capacity of the rows being built */
+/* Exclusive prefix sum of count[0..items) into start[0..items] (fixed blocks of DEM_SCAN_BLOCK, integers; block_sum
+ * holds a sum per block). */
+int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, dem_bufref count, dem_bufref start, dem_bufref block_sum,
+                   int items);
+/* A build of the rows (common/neighbor.h) in two steps: count counts each row's partners and scans the counts into
+ * the rows' starts, returning the slots they need in *slots; build fills the rows, once reserve has given the set
+ * being built at least those slots. */
+int dem_stage_nbr_count(const dem_backend_ops *o, dem_backend *b, int *slots);
+int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int slots); /* slots of the rows being built */
 int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry history, swap, offsets, x_build */
 int dem_stage_contact_pairs(const dem_backend_ops *o, dem_backend *b); /* each listed pair once */

@@ -104,12 +104,13 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
  * for SIMD lanes (PoCL) can run neighbouring pairs side by side. */
 DEM_ITEM(contact_pairs)
 {
-    int ps = pair_slot[i], host_lower = ps >= 0, slot = host_lower ? ps : ~ps; /* neighbor.h's pair_index */
-    int h = slot / maxn, g = nbr_list[slot]; /* the pair's host (stored first) and its partner */
+    int ph = pair_host[i], host_lower = ph >= 0, slot = -1; /* neighbor.h's pair_index */
+    int h = host_lower ? ph : ~ph, g = pair_guest[i]; /* the pair's host (stored first) and its partner */
     int a = host_lower ? h : g, j = host_lower ? g : h; /* evaluated for the lower stable id, a */
     int touching = touch[i], m = -1;
     real da = (real)0, db = (real)0;
     if (fx & DEM_EFFECT_MC_STRAIN) {
+        slot = pair_slot[i];
         m = pair_mirror[i];
         if (m < 0) /* cannot happen (rows are symmetric; pair_index reports it): never write out of bounds */
             return;
@@ -165,7 +166,7 @@ DEM_ITEM(contact_forces)
     real ri = radius[i], ela = (real)0, con = (real)0, wcon = (real)0;
     int cnt = nbr_count[i], lv = nbr_lower[i], lower = row_lower(lv), own = own_start[i], in = in_start[i];
     int h = 0, g = 0;
-    DEM_CONST_GLOBAL int *nrow = nbr_list + i * maxn; /* the row (row: the series' row) */
+    DEM_CONST_GLOBAL int *nrow = nbr_list + nbr_start[i]; /* the row (row: the series' row) */
     for (int k = 0; lv < 0 && k < lower; k++) /* the records of the front come after the back's in the sum */
         h += nrow[k] > i;
     g = lower - h;

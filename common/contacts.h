@@ -7,7 +7,7 @@
  *   c >= cnt:  wall c - cnt, in index order (nw: the walls when the walls effect is on, else none).
  * The stress sums (particle_stress.h) and MC-strain (mc_strain.h) run over every c; the force sum takes the OWNED
  * ones in pass 1 and the MIRRORED ones, then the walls, in pass 2 (contact_forces.h). A contact_ref also names where
- * its per-contact values live: a row slot (i * maxn + c) or a wall slot (i * nwalls + w), so that arrays kept per
+ * its per-contact values live: a row slot (start[i] + c: dem_buffers.h DEM_ROWS) or a wall slot (i * nwalls + w), so that arrays kept per
  * row slot and per wall slot (forces, displacements) are read and written through one pair of helpers.
  * The membrane's patch contacts are not a range here: they have rows of their own (patch_contacts.h), are summed
  * after everything above, and enter neither the stress sums nor MC-strain.
@@ -21,7 +21,7 @@ enum { CONTACT_OWNED = 0, CONTACT_MIRRORED = 1, CONTACT_WALL = 2 };
 typedef struct {
     int kind;    /* CONTACT_* */
     int partner; /* the partner particle's id, or the wall's index */
-    int slot;    /* i * maxn + c for a pair, i * nwalls + wall for a wall */
+    int slot;    /* start[i] + c for a pair, i * nwalls + wall for a wall */
 } contact_ref;
 
 DEM_INLINE int contact_count(int cnt, int nw) { return cnt + nw; }
@@ -30,13 +30,13 @@ DEM_INLINE int contact_count(int cnt, int nw) { return cnt + nw; }
  * stored before i are not exactly those (the particles were stored anew: neighbor.h, contact_forces.h) */
 DEM_INLINE int row_lower(int v) { return v < 0 ? ~v : v; }
 
-/* Contact number c of particle i (cnt = nbr_count[i], lower = nbr_lower[i]). */
-DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int lower, int maxn, int nwalls,
+/* Contact number c of particle i (cnt = nbr_count[i], lower = nbr_lower[i], row0 = nbr_start[i]). */
+DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int lower, int row0, int nwalls,
                                   DEM_CONST_GLOBAL int *nbr_list)
 {
     contact_ref r;
     if (c < cnt) {
-        r.slot = i * maxn + c;
+        r.slot = row0 + c;
         r.partner = nbr_list[r.slot];
         r.kind = c >= lower ? CONTACT_OWNED : CONTACT_MIRRORED;
     } else {

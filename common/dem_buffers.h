@@ -4,9 +4,11 @@
  * sources here. Host only: the kernels see plain pointers.
  *
  * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
- * blocks of the cells), NBR (reduction blocks of the particles), MAXN (capacity of the row set the buffer belongs
- * to), MAXC (capacity of the current row set: for a buffer laid out like the rows but written before it is read
- * after each rebuild, so held once and not in both sets; host/neighbor.c grows it with the current set), PAIRS (pair
+ * blocks of the cells), NBR (reduction blocks of the particles), MAXN (slots of the row set the buffer belongs to:
+ * its rows are packed one after the other, row i from start[i], so MAXN is what all its rows hold together, with
+ * room to spare: host/sim.c row_capacity), MAXC (slots of the current row set: for a buffer laid out like the rows
+ * but written before it is read after each rebuild, so held once and not in both sets; host/neighbor.c grows it with
+ * the current set), PAIRS (pair
  * records allocated), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV (capacity of the
  * sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows: patch_contacts.h), in
  * elements.
@@ -65,7 +67,9 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(OWN_COUNT, INT, N, 0, -1, NONE, PARTICLES)                                                                    \
     ENTRY(OWN_START, INT, N + 1, 0, -1, NONE, PARTICLES)                                                                \
     ENTRY(OWN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE, PARTICLES)                        \
-    ENTRY(PAIR_SLOT, INT, PAIRS, 0, -1, NONE, PAIRS)                                                                    \
+    ENTRY(PAIR_HOST, INT, PAIRS, 0, -1, NONE, PAIRS)                                                                    \
+    ENTRY(PAIR_GUEST, INT, PAIRS, 0, -1, NONE, PAIRS)                                                                   \
+    ENTRY(PAIR_SLOT, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS)                                                 \
     ENTRY(IN_PAIR, INT, PAIRS, 0, DEM_FIELD_IN_PAIR, NONE, PAIRS)                                                       \
     ENTRY(PAIR_MIRROR, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS)                                               \
     ENTRY(TOUCH, BYTE, PAIRS, 0, DEM_FIELD_TOUCH, NONE, PAIRS)                                                          \
@@ -79,7 +83,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT)                                   \
     ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE, WALLS)                         \
     ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE, WALLS)                        \
-    ENTRY(MC_DISP, REAL, N * MAXC, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS)                                 \
+    ENTRY(MC_DISP, REAL, MAXC, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS)                                 \
     ENTRY(SPRING_INT, INT, 2 * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_int), MESH)                                     \
     ENTRY(SPRING_REAL, REAL, SP_STRIDE * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_real), MESH)                          \
     ENTRY(TRI, INT, 3 * NT, (DEM_EFFECT_PRESSURE | DEM_EFFECT_PATCHES), -1, SETUP(tri), MESH)                           \
@@ -107,11 +111,14 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(VLIST, INT, N * MAXV, DEM_EFFECT_PATCHES, -1, NONE, MESH)
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
- * (swapped at each rebuild); the field names the current set's */
+ * (swapped at each rebuild); the field names the current set's. Row i is list[start[i] .. start[i] + count[i]),
+ * start the exclusive prefix sum of count (start[n]: the slots in use); a value kept per row slot (MC_FN) is at the
+ * same index. */
 #define DEM_ROWS(ENTRY)                                                                                                  \
     ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
-    ENTRY(LIST, INT, N * MAXN, 0, DEM_FIELD_NBR_LIST)                                                                        \
-    ENTRY(MC_FN, REAL, N * MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)
+    ENTRY(START, INT, N + 1, 0, DEM_FIELD_NBR_START)                                                                         \
+    ENTRY(LIST, INT, MAXN, 0, DEM_FIELD_NBR_LIST)                                                                            \
+    ENTRY(MC_FN, REAL, MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)
 
 /* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
 #define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)
@@ -120,7 +127,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
     ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(NSPRINGS) \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                            \
-    ENTRY(MAXN_CUR) ENTRY(MAXN_NEW) ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                  \
+    ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                  \
     ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \

@@ -29,7 +29,7 @@
 
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
-    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_build)          \
+    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build)          \
     K(nbr_carry) K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
@@ -61,26 +61,32 @@
 #define DEM_ITEMS_bin_sort ncells
 
 /* ---- neighbor.h ---- */
+/* the partners' test, shared by the count and the fill */
+#define DEM_ARGS_nbr_walk(F, A)                                                                                      \
+    F(I, int, n, N) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ)               \
+    A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF) A(BIN, int, cell_start, CELL_START) \
+    A(BIN, int, cell_particles, CELL_PARTICLES) A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT)            \
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BOUT, int, flags, FLAGS)
+#define DEM_ARGS_nbr_count(F, A) DEM_ARGS_nbr_walk(F, A) A(NOUT, int, nbr_count, COUNT)
+#define DEM_ITEMS_nbr_count n
 #define DEM_ARGS_nbr_build(F, A)                                                                                     \
-    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY)         \
-    A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF)                \
-    A(BIN, int, cell_start, CELL_START) A(BIN, int, cell_particles, CELL_PARTICLES) A(NOUT, int, nbr_count, COUNT)   \
+    DEM_ARGS_nbr_walk(F, A) A(NIN, int, nbr_count, COUNT) A(NIN, int, nbr_start, START)                              \
     A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, own_count, OWN_COUNT)                \
-    A(BOUT, int, flags, FLAGS) A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT) A(BIN, int, mat, MAT)       \
-    A(BIN, real, pairmat, PAIRMAT) A(BIN, int, sid, SID) A(BOUT, int, nbr_lower, LOWER)
+    A(BIN, int, sid, SID) A(BOUT, int, nbr_lower, LOWER)
 #define DEM_ITEMS_nbr_build n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
-    F(I, int, n, N) A(I, int, maxn, MAXN_NEW) A(I, int, old_maxn, MAXN_CUR) A(NIN, int, nbr_count, COUNT)            \
+    F(I, int, n, N) A(NIN, int, nbr_start, START) A(CIN, int, old_start, START) A(NIN, int, nbr_count, COUNT)        \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
     A(BIN, dem_byte, old_touch, TOUCH_OLD) A(BIN, int, old_own_start, OWN_START_OLD)                                 \
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN) A(BIN, int, sid, SID)                               \
     A(BIN, int, old_slot, OLD_SLOT)
 #define DEM_ITEMS_nbr_carry n
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)             \
+    F(I, int, n, N) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)         \
     A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_start, IN_START)                \
-    A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)              \
-    A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(I, int, old_maxn, MAXN_NEW)            \
+    A(BIN, int, own_start, OWN_START) A(BOUT, int, pair_host, PAIR_HOST) A(BOUT, int, pair_guest, PAIR_GUEST)        \
+    A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)                                                \
+    A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(NIN, int, old_start, START)            \
     A(NIN, int, old_count, COUNT)                                                                                    \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
     A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)
@@ -89,12 +95,12 @@
 /* ---- contact_forces.h ---- */
 /* the two contact kernels' common head */
 #define DEM_ARGS_contact_head(F, A)                                                                                  \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)            \
+    F(I, int, n, N) A(CIN, int, nbr_start, START) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)        \
     A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)                \
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)
 #define DEM_ARGS_contact_pairs(F, A)                                                                                 \
-    DEM_ARGS_contact_head(F, A) A(I, int, npairs, NPAIRS) A(BIN, int, pair_slot, PAIR_SLOT)                          \
-    A(BIN, int, pair_mirror, PAIR_MIRROR)                                                                            \
+    DEM_ARGS_contact_head(F, A) A(I, int, npairs, NPAIRS) A(BIN, int, pair_host, PAIR_HOST)                          \
+    A(BIN, int, pair_guest, PAIR_GUEST) A(BIN, int, pair_slot, PAIR_SLOT) A(BIN, int, pair_mirror, PAIR_MIRROR)      \
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
@@ -148,7 +154,7 @@
 /* ---- particle_stress.h ---- */
 /* the two stress kernels' common head: they differ only in what they write */
 #define DEM_ARGS_stress_head(F, A)                                                                                   \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
+    F(I, int, n, N) A(CIN, int, nbr_start, START) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
     A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                                \
     A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                              \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE)                  \
@@ -162,14 +168,14 @@
 
 /* ---- mc_strain.h ---- */
 #define DEM_ARGS_mc_strain_disp(F, A)                                                                                \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
+    F(I, int, n, N) A(CIN, int, nbr_start, START) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
     A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(BOUT, real, disp, MC_DISP)                           \
     A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
-    F(I, int, n, N) A(I, int, maxn, MAXN_CUR) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
+    F(I, int, n, N) A(CIN, int, nbr_start, START) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
     A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT)  \
     A(CIN, int, nbr_list, LIST) A(BIN, int, sid, SID) A(I, int, nwalls, NWALLS)                                      \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, real, disp, MC_DISP)                   \
@@ -241,6 +247,7 @@
 #define DEM_PARAM_AOUT DEM_PARAM_BOUT
 #define DEM_P_FIRST(kind, type, name, src) DEM_PARAM_##kind(type, name)
 #define DEM_P_NEXT(kind, type, name, src) , DEM_PARAM_##kind(type, name)
+#define DEM_N_FIRST(kind, type, name, src) name
 #define DEM_N_NEXT(kind, type, name, src) , name
 
 /* The work-item function's signature: DEM_ITEM(name) { body using the list's names, fx and i } */

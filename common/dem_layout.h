@@ -82,8 +82,9 @@ enum {
 enum {
     FLAG_REBUILD = 0,       /* set to 1 when some particle moved more than skin/2 since the last build */
     FLAG_OUT_OF_DOMAIN = 1, /* smallest id of a particle outside the binning domain (or non-finite); INT_MAX if none */
-    FLAG_NBR_NEEDED = 2,    /* largest neighbour count found; > capacity means the build overflowed */
-    FLAG_ASYMMETRIC = 3,    /* 1 when some row lacks its partner's mirror slot (a bug: rows are symmetric) */
+    FLAG_NBR_WIDEST = 2,    /* the longest neighbour row counted since the flags were last reset */
+    FLAG_ASYMMETRIC = 3,    /* a bug: 1 when some row lacks its partner's mirror slot (rows are symmetric), 2 when a
+                               row's fill found other partners than its count (neighbor.h) */
     FLAG_MC_PENDING = 4,    /* MC-strain iteration: 1 when some contact force changed by more than the tolerance */
     FLAG_PATCH_NEEDED = 5,  /* largest sphere patch row found (patch_contacts.h); > capacity: overflowed */
     FLAG_VROW_NEEDED = 6,   /* largest vertex row found; > capacity: overflowed */

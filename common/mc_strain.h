@@ -124,7 +124,7 @@ DEM_INLINE vec3 mc_direction(vec3 pk, vec3 pc, real *d, real *inv_d)
     return v3_scale(dp, *inv_d);
 }
 
-/* D_i,c for every contact c of particle i: row slots into disp[i*maxn + c], walls into wall_disp[i*nwalls + k];
+/* D_i,c for every contact c of particle i: row slots into disp[nbr_start[i] + c], walls into wall_disp[i*nwalls + k];
  * zero where c does not touch. f_k is read from fn (row slots) and wall_fn (walls). Each D_i,c sums k in canonical
  * order (ascending contact number), whichever path computes it. */
 DEM_ITEM(mc_strain_disp)
@@ -139,7 +139,7 @@ DEM_ITEM(mc_strain_disp)
     real fc[MC_CACHE], ac[MC_CACHE], sum[MC_CACHE];
     int where[MC_CACHE], nc = 0;
     for (int c = 0; c < total && nc <= MC_CACHE; c++) {
-        contact_ref r = contact_at(i, c, cnt, lower, maxn, nwalls, nbr_list);
+        contact_ref r = contact_at(i, c, cnt, lower, nbr_start[i], nwalls, nbr_list);
         mc_contact cc = mc_contact_get(fx, i, r, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         contact_set(r, disp, wall_disp, (real)0);
         if (!cc.active)
@@ -171,16 +171,16 @@ DEM_ITEM(mc_strain_disp)
                     sum[a] = sum[a] + mc_strain_term(pmi, -nbu, -nau, nab, ac[b], fc[b], d, inv_d);
             }
         for (int a = 0; a < nc; a++)
-            contact_set(contact_at(i, where[a], cnt, lower, maxn, nwalls, nbr_list), disp, wall_disp, sum[a]);
+            contact_set(contact_at(i, where[a], cnt, lower, nbr_start[i], nwalls, nbr_list), disp, wall_disp, sum[a]);
         return;
     }
     for (int c = 0; c < total; c++) { /* slow path: recompute each contact's geometry where needed */
-        contact_ref rc = contact_at(i, c, cnt, lower, maxn, nwalls, nbr_list);
+        contact_ref rc = contact_at(i, c, cnt, lower, nbr_start[i], nwalls, nbr_list);
         mc_contact cc = mc_contact_get(fx, i, rc, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         real s = (real)0;
         if (cc.active)
             for (int k = 0; k < total; k++) {
-                contact_ref rk = contact_at(i, k, cnt, lower, maxn, nwalls, nbr_list);
+                contact_ref rk = contact_at(i, k, cnt, lower, nbr_start[i], nwalls, nbr_list);
                 real fk = contact_get(rk, fn, wall_fn);
                 if (k == c || !(fk > (real)0))
                     continue;
@@ -219,13 +219,13 @@ DEM_ITEM(mc_strain_update)
     int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), changed = 0;
     int nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
     for (int c = 0; c < contact_count(cnt, nw); c++) { /* the pairs i owns (both slots), then its walls */
-        contact_ref r = contact_at(i, c, cnt, lower, maxn, nwalls, nbr_list);
+        contact_ref r = contact_at(i, c, cnt, lower, nbr_start[i], nwalls, nbr_list);
         real f = (real)0;
         if (r.kind == CONTACT_OWNED) {
-            int slot = r.slot, j = r.partner, m = row_find_sid(nbr_list + j * maxn, nbr_count[j], sid, sid[i]);
+            int slot = r.slot, j = r.partner, m = row_find_sid(nbr_list + nbr_start[j], nbr_count[j], sid, sid[i]);
             if (m < 0)
                 continue;
-            m += j * maxn; /* the partner's slot of the pair */
+            m += nbr_start[j]; /* the partner's slot of the pair */
             pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
             if (g.active)
                 f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,

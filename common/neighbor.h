@@ -1,11 +1,15 @@
 /* neighbor.h - Verlet neighbour rows from the cell grid, and contact history carried across rebuilds.
  *
  * Row i lists every j != i with |x_i - x_j| < r_i + r_j + skin, sorted by ascending sid[j] (the canonical summation
- * order of contact_forces.h), at nbr_list[i*maxn ...]. sid is each particle's stable id (its id at dem_start), so
- * that every sum follows the ids, not the places the particles are stored at (host/reorder.c moves them). The test
- * is symmetric in i and j bit for bit (IEEE + and * commute), so j is in row i exactly when i is in row j. A row
- * longer than maxn stores its first maxn partners in order and reports the full count in FLAG_NBR_NEEDED; the host
- * then grows maxn and builds again.
+ * order of contact_forces.h). sid is each particle's stable id (its id at dem_start), so that every sum follows the
+ * ids, not the places the particles are stored at (host/reorder.c moves them). The test is symmetric in i and j bit
+ * for bit (IEEE + and * commute), so j is in row i exactly when i is in row j.
+ * The rows are packed (dem_buffers.h DEM_ROWS): a build is a count (nbr_count), a scan of the counts into each row's
+ * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/sim.c) and a fill (nbr_build),
+ * which walks the same cells with the same test and so finds exactly the partners counted (FLAG_ASYMMETRIC 2, a
+ * library bug, when it does not). Every row is as long as it needs to be: a compact's rows hold
+ * 7 to 8 partners on the mean and 20 at the most, and no row is padded to the longest (docs/design.md "Memory in a
+ * compact").
  * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's
  * touching flag and tangential history follow in pair_index, once the new pairs are numbered.
  * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
@@ -19,24 +23,28 @@
 #include "dem_effects.h"
 #include "sorted_row.h"
 
-DEM_ITEM(nbr_build)
+/* Particle i's partners, walked cell by cell: counted (row 0), or also stored in row[0 .. cap) kept sorted by stable
+ * id. Returns the partners found. The count and the fill call it alike, so both find the same partners. */
+DEM_INLINE int nbr_walk(unsigned fx, int i, DEM_GLOBAL int *row, int cap, DEM_CONST_GLOBAL int *sid,
+                        DEM_ARGS_nbr_walk(DEM_P_FIRST, DEM_P_NEXT))
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
     int c = cell_of[i];
     int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
     int cnt = 0;
-    DEM_GLOBAL int *row = nbr_list + i * maxn;
+    (void)n, (void)flags;
     /* a membrane's patch vertex touches no particle as a sphere (patch_contacts.h): its row stays empty, and it is
      * in no other row */
-    int patch_vertex = (fx & DEM_EFFECT_PATCHES) && vtri_start[i + 1] > vtri_start[i];
+    if ((fx & DEM_EFFECT_PATCHES) && vtri_start[i + 1] > vtri_start[i])
+        return 0;
     for (int z = cz > 0 ? cz - 1 : 0; z <= (cz + 1 < ncz ? cz + 1 : cz); z++)
         for (int y = cy > 0 ? cy - 1 : 0; y <= (cy + 1 < ncy ? cy + 1 : cy); y++)
             for (int xx = cx > 0 ? cx - 1 : 0; xx <= (cx + 1 < ncx ? cx + 1 : cx); xx++) {
                 int cc = (z * ncy + y) * ncx + xx;
                 for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
                     int j = cell_particles[s];
-                    if (j == i || patch_vertex)
+                    if (j == i)
                         continue;
                     if ((fx & DEM_EFFECT_PATCHES) && vtri_start[j + 1] > vtri_start[j])
                         continue;
@@ -46,13 +54,18 @@ DEM_ITEM(nbr_build)
                     real cut = ri + radius[j] + skin;
                     if (!(v3_dot(d, d) < cut * cut))
                         continue;
-                    /* insert j keeping the stored part of the row sorted by stable id */
-                    int m = (cnt < maxn ? cnt : maxn) - 1, sj = sid[j];
-                    if (cnt >= maxn && sid[row[m]] < sj) {
-                        cnt++; /* beyond capacity and larger than all stored: only counted */
+                    if (!row) {
+                        cnt++;
                         continue;
                     }
-                    if (cnt >= maxn)
+                    /* insert j keeping the stored part of the row sorted by stable id (a row found longer than
+                     * counted - a bug, reported by nbr_build - keeps its cap smallest partners and writes no further) */
+                    int m = (cnt < cap ? cnt : cap) - 1, sj = sid[j];
+                    if (cnt >= cap && (m < 0 || sid[row[m]] < sj)) {
+                        cnt++;
+                        continue;
+                    }
+                    if (cnt >= cap)
                         m--; /* drop the largest stored partner to make room */
                     while (m >= 0 && sid[row[m]] > sj) {
                         row[m + 1] = row[m];
@@ -62,9 +75,28 @@ DEM_ITEM(nbr_build)
                     cnt++;
                 }
             }
-    nbr_count[i] = cnt < maxn ? cnt : maxn;
+    return cnt;
+}
+
+/* Pass 1 of a build: the length of each row, and the longest (FLAG_NBR_WIDEST) */
+DEM_ITEM(nbr_count)
+{
+    int cnt = nbr_walk(fx, i, 0, 0, 0, DEM_ARGS_nbr_walk(DEM_N_FIRST, DEM_N_NEXT));
+    nbr_count[i] = cnt;
+    DEM_ATOMIC_MAX(&flags[FLAG_NBR_WIDEST], cnt);
+}
+
+/* Pass 2: row i written at nbr_start[i], as long as counted; the split of the row for the sums (nbr_lower) and the
+ * counts of the pairs i hosts and is a guest in, which the commit scans (host/neighbor.c) */
+DEM_ITEM(nbr_build)
+{
+    int cap = nbr_count[i];
+    DEM_GLOBAL int *row = nbr_list + nbr_start[i];
+    int cnt = nbr_walk(fx, i, row, cap, sid, DEM_ARGS_nbr_walk(DEM_N_FIRST, DEM_N_NEXT));
+    if (cnt != cap)
+        DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 2);
     int lower = 0, guests = 0, si = sid[i];
-    for (int k = 0; k < nbr_count[i]; k++) {
+    for (int k = 0; k < cap; k++) {
         lower += sid[row[k]] < si; /* partners of lower stable id: the row's front (the sums' split) */
         guests += row[k] < i;      /* partners stored before i: their pairs are numbered by them */
     }
@@ -73,8 +105,7 @@ DEM_ITEM(nbr_build)
         alike = row[k] < i;
     nbr_lower[i] = alike ? lower : ~lower; /* contacts.h's row_lower */
     in_count[i] = guests;
-    own_count[i] = nbr_count[i] - guests;
-    DEM_ATOMIC_MAX(&flags[FLAG_NBR_NEEDED], cnt);
+    own_count[i] = cap - guests;
 }
 
 /* The number of pair (a, b) in the old rows' pair list, or -1 when it was not listed. A pair is numbered by its host,
@@ -83,11 +114,11 @@ DEM_ITEM(nbr_build)
  * old_own_start[host], plus the partners the host hosted before this one in its row. The old rows' partners and
  * old_own_start are already in the current places. */
 DEM_INLINE int old_pair_number(int a, int b, DEM_CONST_GLOBAL int *old_count, DEM_CONST_GLOBAL int *old_list,
-                               int old_maxn, DEM_CONST_GLOBAL int *old_own_start, DEM_CONST_GLOBAL int *old_slot,
-                               DEM_CONST_GLOBAL int *sid)
+                               DEM_CONST_GLOBAL int *old_start, DEM_CONST_GLOBAL int *old_own_start,
+                               DEM_CONST_GLOBAL int *old_slot, DEM_CONST_GLOBAL int *sid)
 {
     int h = old_slot[a] < old_slot[b] ? a : b, g = h == a ? b : a, oh = old_slot[h];
-    DEM_CONST_GLOBAL int *row = old_list + h * old_maxn;
+    DEM_CONST_GLOBAL int *row = old_list + old_start[h];
     int found = row_find_sid(row, old_count[h], sid, sid[g]);
     if (found < 0)
         return -1;
@@ -101,43 +132,47 @@ DEM_ITEM(nbr_carry)
 {
     if (!(fx & DEM_EFFECT_MC_STRAIN))
         return;
-    DEM_CONST_GLOBAL int *orow = old_list + i * old_maxn;
+    DEM_CONST_GLOBAL int *orow = old_list + old_start[i];
+    int row0 = nbr_start[i];
     for (int k = 0; k < nbr_count[i]; k++) { /* the lagged MC-strain force of the same contact (mc_strain.h) */
-        int j = nbr_list[i * maxn + k];
+        int j = nbr_list[row0 + k];
         int found = row_find_sid(orow, old_count[i], sid, sid[j]);
         real f = (real)0;
         if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower stable id */
-            int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, old_slot, sid);
+            int q = old_pair_number(i, j, old_count, old_list, old_start, old_own_start, old_slot, sid);
             if (q >= 0 && old_touch[q])
-                f = old_mc_fn[i * old_maxn + found];
+                f = old_mc_fn[old_start[i] + found];
         }
-        mc_fn[i * maxn + k] = f;
+        mc_fn[row0 + k] = f;
     }
 }
 /* The flat pair list of the committed rows (contact_forces.h). A pair is numbered by its host, the one of its two
  * particles stored first (whichever has the lower stable id evaluates it: contact_pairs), so that the pairs follow
- * the storage order: pair p = own_start[i] + h is the h-th partner j > i (stored after i) in particle i's row, and
- * pair_slot[p] names that row slot (as ~slot, negative, when j has the lower stable id: contact_pairs then
- * evaluates the pair for j without reading the stable ids each step). The partner j's slot of the same pair (the slot of i in row j, found by binary
- * search; it is the g-th of j's partners stored before j) gets in_pair[in_start[j] + g] = p, and with MC-strain
- * pair_mirror[p] names that slot. Each entry has one writer: p's host writes them all. A pair whose partner row lacks
+ * the storage order: pair p = own_start[i] + h is the h-th partner j > i (stored after i) in particle i's row;
+ * pair_host[p] = i (as ~i, negative, when j has the lower stable id: contact_pairs then evaluates the pair for j
+ * without reading the stable ids each step) and pair_guest[p] = j. The partner j's slot of the same pair (the slot
+ * of i in row j, found by binary search; it is the g-th of j's partners stored before j) gets
+ * in_pair[in_start[j] + g] = p. With MC-strain, pair_slot[p] names i's row slot of the pair and pair_mirror[p] j's. Each entry has one writer: p's host writes them all. A pair whose partner row lacks
  * it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC. The touching flag (touch[p]) and tangential history
  * (hist[3 p], in the orientation of the lower stable id) are kept per pair: a pair takes them from its number in the
  * old rows (old_pair_number), a new one starts untouched, from zero. Per pair, not per row slot, they are dense
  * arrays read in order by contact_pairs. */
 DEM_ITEM(pair_index)
 {
-    int cnt = nbr_count[i], p = own_start[i];
-    DEM_CONST_GLOBAL int *row = nbr_list + i * maxn;
+    int cnt = nbr_count[i], p = own_start[i], row0 = nbr_start[i];
+    DEM_CONST_GLOBAL int *row = nbr_list + row0;
     for (int c = 0; c < cnt; c++) {
         int j = row[c];
         if (j < i)
             continue; /* hosted by j */
-        DEM_CONST_GLOBAL int *rj = nbr_list + j * maxn;
+        DEM_CONST_GLOBAL int *rj = nbr_list + nbr_start[j];
         int m = row_find_sid(rj, nbr_count[j], sid, sid[i]);
-        pair_slot[p] = sid[i] < sid[j] ? i * maxn + c : ~(i * maxn + c);
-        if (fx & DEM_EFFECT_MC_STRAIN)
-            pair_mirror[p] = m >= 0 ? j * maxn + m : -1;
+        pair_host[p] = sid[i] < sid[j] ? i : ~i;
+        pair_guest[p] = j;
+        if (fx & DEM_EFFECT_MC_STRAIN) {
+            pair_slot[p] = row0 + c;
+            pair_mirror[p] = m >= 0 ? nbr_start[j] + m : -1;
+        }
         if (m >= 0) {
             int g = 0; /* i's place among j's partners stored before j */
             for (int k = 0; k < m; k++)
@@ -145,7 +180,7 @@ DEM_ITEM(pair_index)
             in_pair[in_start[j] + g] = p;
         } else
             DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 1);
-        int q = old_pair_number(i, j, old_count, old_list, old_maxn, old_own_start, old_slot, sid); /* -1: new */
+        int q = old_pair_number(i, j, old_count, old_list, old_start, old_own_start, old_slot, sid); /* -1: new */
         int t = q >= 0 ? old_touch[q] : 0;
         touch[p] = (unsigned char)t;
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */

@@ -68,7 +68,7 @@ DEM_INLINE void stress_add(real *st, real c, vec3 n)
 /* Particle i's stress, one work item per particle: tensor = 0 writes the trace into out[i] (MC-stress pass 1, every
  * step), tensor = 1 the six components into out[6i...] (output, when DEM_FIELD_STRESS is read). The kernels pass a
  * constant, so each compiles only its own sums. Same terms, same order either way. */
-DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GLOBAL real *x,
+DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *nbr_start, DEM_CONST_GLOBAL real *x,
                             DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL int *mat,
                             DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                             DEM_CONST_GLOBAL int *nbr_lower, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
@@ -82,7 +82,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, int maxn, DEM_CONST_GL
         st[c] = (real)0;
     int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
     for (int k = 0; k < contact_count(cnt, nw); k++) { /* the canonical order (contacts.h): the row, then the walls */
-        contact_ref r = contact_at(i, k, cnt, lower, maxn, nwalls, nbr_list);
+        contact_ref r = contact_at(i, k, cnt, lower, nbr_start[i], nwalls, nbr_list);
         real delta, rstar, arm;
         vec3 n;
         int other;
@@ -138,13 +138,13 @@ DEM_INLINE real mc_stress_wall(unsigned fx, DEM_CONST_GLOBAL real *pmi, DEM_CONS
 }
 DEM_ITEM(stress_trace)
 {
-    stress_at(fx, 0, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,
+    stress_at(fx, 0, i, nbr_start, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,
               wall_real, ride, trace);
 }
 
 DEM_ITEM(stress_tensor)
 {
-    stress_at(fx, 1, i, maxn, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,
+    stress_at(fx, 1, i, nbr_start, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,
               wall_real, ride, stress);
 }
 #endif /* DEM_PARTICLE_STRESS_H */

@@ -41,18 +41,18 @@ DEM_INLINE int row_find_sid(DEM_CONST_GLOBAL int *row, int count, DEM_CONST_GLOB
     return -1;
 }
 
-/* The number of the pair in row slot k of particle a (partner b = list[a * maxn + k]) in the pair list of the rows
+/* The number of the pair in row slot k of particle a (partner b = list[start[a] + k]) in the pair list of the rows
  * (neighbor.h's pair_index): numbered by its host, the one stored first, from own[host] in the host's row order.
  * -1 when the partner's row lacks the pair (host/state.c, host/contacts.c). */
-DEM_INLINE int row_pair_of(DEM_CONST_GLOBAL int *count, DEM_CONST_GLOBAL int *list, int maxn,
+DEM_INLINE int row_pair_of(DEM_CONST_GLOBAL int *count, DEM_CONST_GLOBAL int *list, DEM_CONST_GLOBAL int *start,
                            DEM_CONST_GLOBAL int *own, DEM_CONST_GLOBAL int *sid, int a, int k)
 {
-    int b = list[a * maxn + k], h = a < b ? a : b, c = k;
-    if (h == b && (c = row_find_sid(list + b * maxn, count[b], sid, sid[a])) < 0)
+    int b = list[start[a] + k], h = a < b ? a : b, c = k;
+    if (h == b && (c = row_find_sid(list + start[b], count[b], sid, sid[a])) < 0)
         return -1;
     int p = own[h];
     for (int q = 0; q < c; q++)
-        p += list[h * maxn + q] > h;
+        p += list[start[h] + q] > h;
     return p;
 }
 #endif /* DEM_SORTED_ROW_H */

@@ -2,7 +2,8 @@
  * and the scan alone, which also makes the pair-record offsets (neighbor.c). Written once for every backend. */
 #include "backend.h"
 
-int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, int count, int start, int block_sum, int items)
+int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, dem_bufref count, dem_bufref start, dem_bufref block_sum,
+                   int items)
 {
     dem_core *c = DEM_CORE(b);
     c->alias[ALIAS_SCAN_COUNT] = count;
@@ -19,6 +20,7 @@ int dem_stage_bin(const dem_backend_ops *o, dem_backend *b)
     dem_bufref count = {TABLE_ONE, BUF_CELL_COUNT}, fill = {TABLE_ONE, BUF_CELL_FILL};
     return o->fill_int(b, count, 0, (size_t)c->ncells) || o->fill_int(b, fill, 0, (size_t)c->ncells) ||
            dem_launch(o, b, K_bin_index) ||
-           dem_stage_scan(o, b, BUF_CELL_COUNT, BUF_CELL_START, BUF_BLOCK_SUM, c->ncells) ||
+           dem_stage_scan(o, b, count, (dem_bufref){TABLE_ONE, BUF_CELL_START}, (dem_bufref){TABLE_ONE, BUF_BLOCK_SUM},
+                          c->ncells) ||
            dem_launch(o, b, K_bin_scatter) || dem_launch(o, b, K_bin_sort);
 }

@@ -40,13 +40,13 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
         return sim_fail(s, DEM_ERR_STATE, "the contact network of a run with walls needs dem_config.contacts = 1 at "
                                           "dem_start (the wall forces per particle are kept only then)");
     dem_core *c = DEM_CORE(s->be);
-    int n = s->n, nw = s->nwalls, rs = s->setup.real_size, maxn = c->maxn[c->cur];
+    int n = s->n, nw = s->nwalls, rs = s->setup.real_size;
     unsigned fx = s->setup.effects;
     int mcs = (fx & DEM_EFFECT_MC_STRESS) != 0, mce = (fx & DEM_EFFECT_MC_STRAIN) != 0;
-    enum { FX_, FCNT, FLIST, FTOUCH, FREC, FMASK, FPF, FTRACE, FDISP, FWDISP, NF };
-    dem_field f[NF] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST, DEM_FIELD_TOUCH, DEM_FIELD_PAIR_RECORDS,
-                       DEM_FIELD_WALL_MASK, DEM_FIELD_WALL_PF, DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_DISP,
-                       DEM_FIELD_MC_WALL_DISP};
+    enum { FX_, FCNT, FLIST, FSTART, FTOUCH, FREC, FMASK, FPF, FTRACE, FDISP, FWDISP, NF };
+    dem_field f[NF] = {DEM_FIELD_X,          DEM_FIELD_NBR_COUNT,    DEM_FIELD_NBR_LIST,  DEM_FIELD_NBR_START,
+                       DEM_FIELD_TOUCH,      DEM_FIELD_PAIR_RECORDS, DEM_FIELD_WALL_MASK, DEM_FIELD_WALL_PF,
+                       DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_DISP,    DEM_FIELD_MC_WALL_DISP};
     size_t bytes[NF], total = 0;
     void *dst[NF];
     for (int k = 0; k < NF; k++) {
@@ -73,11 +73,11 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     }
     const unsigned char *x = dst[FX_], *rec = dst[FREC], *pf = dst[FPF], *tr = dst[FTRACE], *disp = dst[FDISP],
                         *wdisp = dst[FWDISP];
-    const int *cnt = dst[FCNT], *list = dst[FLIST];
+    const int *cnt = dst[FCNT], *list = dst[FLIST], *start = dst[FSTART];
     const unsigned char *touch = dst[FTOUCH];
     const unsigned *mask = dst[FMASK];
     const int *sid = s->setup.sid; /* a pair is listed by its owner, the lower stable id (neighbor.h) */
-    int *own = sim_own_starts(cnt, list, maxn, n);
+    int *own = sim_own_starts(cnt, list, start, n);
     if (!own) {
         free(raw);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -85,8 +85,8 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     long np = 0, nwc = 0;
     for (int i = 0; i < n; i++) {
         for (int k = 0; k < cnt[i]; k++)
-            if (sid[list[i * maxn + k]] > sid[i]) {
-                int p = row_pair_of(cnt, list, maxn, own, sid, i, k);
+            if (sid[list[start[i] + k]] > sid[i]) {
+                int p = row_pair_of(cnt, list, start, own, sid, i, k);
                 np += p >= 0 && touch[p];
             }
         for (int w = 0; w < nw; w++)
@@ -100,7 +100,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
     long m = 0;
     for (int i = 0; i < n; i++) /* each owner's touching pairs; put in (i, j) order below */
         for (int k = 0; k < cnt[i]; k++) {
-            int j = list[i * maxn + k], p = sid[j] > sid[i] ? row_pair_of(cnt, list, maxn, own, sid, i, k) : -1;
+            int j = list[start[i] + k], p = sid[j] > sid[i] ? row_pair_of(cnt, list, start, own, sid, i, k) : -1;
             if (p < 0 || !touch[p])
                 continue;
             dem_contact *e = &cs[m++];
@@ -123,9 +123,9 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             if (mcs)
                 e->extra[0] = sim_real_at(tr, (size_t)i, rs), e->extra[1] = sim_real_at(tr, (size_t)j, rs);
             if (mce) { /* D at i's slot of j and at j's slot of i */
-                int kj = row_find_sid(list + (size_t)j * maxn, cnt[j], sid, sid[i]);
-                e->extra[0] = sim_real_at(disp, (size_t)i * maxn + k, rs);
-                e->extra[1] = kj >= 0 ? sim_real_at(disp, (size_t)j * maxn + kj, rs) : 0;
+                int kj = row_find_sid(list + start[j], cnt[j], sid, sid[i]);
+                e->extra[0] = sim_real_at(disp, (size_t)start[i] + k, rs);
+                e->extra[1] = kj >= 0 ? sim_real_at(disp, (size_t)start[j] + kj, rs) : 0;
             }
         }
     free(own);

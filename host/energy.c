@@ -169,7 +169,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
     int n = s->n, rs = s->setup.real_size;
     size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
     /* one scratch block kept in the simulation (a series every step allocated and freed it every step) */
-    size_t need = 3 * n3 * sizeof(double) + sizeof(int) * (size_t)n + lb + 3 * n3 * (size_t)rs +
+    size_t need = 3 * n3 * sizeof(double) + sizeof(int) * (2 * (size_t)n + 1) + lb + 8 + 3 * n3 * (size_t)rs +
                   4 * DEM_MAX_WALLS * (size_t)rs + 64;
     if (need > s->scratch_bytes) {
         free(s->scratch);
@@ -179,17 +179,19 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
     if (!s->scratch)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     double *x = (double *)s->scratch, *v = x + n3, *w = v + n3;
-    int *cnt = (int *)(w + n3), *list = cnt + n;
-    unsigned char *raw = (unsigned char *)list + lb;
+    int *cnt = (int *)(w + n3), *start = cnt + n, *list = start + n + 1;
+    size_t off = (size_t)((unsigned char *)list + lb - (unsigned char *)s->scratch);
+    unsigned char *raw = (unsigned char *)s->scratch + (off + 7) / 8 * 8; /* the reals aligned */
     int e = 0;
     if (!e) {
         unsigned char *wraw = raw + 3 * n3 * rs;
-        dem_field f[7] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST,
-                          DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE};
-        void *dst[7] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, cnt, list, wraw, wraw + 3 * (size_t)s->nwalls * rs};
-        size_t bytes[7] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, dem_field_bytes(s, DEM_FIELD_NBR_LIST),
+        dem_field f[8] = {DEM_FIELD_X,        DEM_FIELD_V,        DEM_FIELD_W,          DEM_FIELD_NBR_COUNT,
+                          DEM_FIELD_NBR_START, DEM_FIELD_NBR_LIST, DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE};
+        void *dst[8] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, cnt, start, list, wraw,
+                        wraw + 3 * (size_t)s->nwalls * rs};
+        size_t bytes[8] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, sizeof(int) * (n + 1), lb,
                            3 * (size_t)s->nwalls * rs, (size_t)s->nwalls * rs};
-        if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 7 : 5, f, dst, bytes))
+        if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 8 : 6, f, dst, bytes))
             e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     }
     if (!e) {
@@ -217,7 +219,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
         if (!(fl & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)))
             en->kinetic += 0.5 * I * w2;
         for (int k = 0; k < cnt[i]; k++) {
-            int j = list[i * s->maxn + k];
+            int j = list[start[i] + k];
             if (sid[j] < sid[i])
                 continue;
             double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};

@@ -1,21 +1,29 @@
-/* neighbor.c - the neighbour-row steps (kernels/neighbor.cl): capacity of the rows being built, the build, and the
- * commit (history carried into the new rows, which become current; pair-record offsets; x_build). Written once for
- * every backend. */
+/* neighbor.c - the neighbour-row steps (kernels/neighbor.cl): the rows' lengths and starts, the slots of the rows
+ * being built, the fill, and the commit (history carried into the new rows, which become current; pair-record
+ * offsets; x_build). Written once for every backend. */
 #include "backend.h"
 
-int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int maxn)
+int dem_stage_nbr_count(const dem_backend_ops *o, dem_backend *b, int *slots)
+{
+    dem_core *c = DEM_CORE(b);
+    /* the scan's block sums in the incoming pairs' (free until the commit scans them) */
+    dem_bufref count = {TABLE_NEW, ROW_COUNT}, start = {TABLE_NEW, ROW_START}, sums = {TABLE_ONE, BUF_IN_BLOCK_SUM};
+    return dem_launch(o, b, K_nbr_count) || dem_stage_scan(o, b, count, start, sums, c->n) ||
+           o->read(b, start, (size_t)c->n * sizeof(int), slots, sizeof *slots, 1);
+}
+
+int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int slots)
 {
     dem_core *c = DEM_CORE(b);
     int set = 1 - c->cur;
-    if (c->maxn[set] == maxn)
+    if (c->maxn[set] == slots)
         return 0;
-    for (int id = 0; id < ROW__COUNT; id++) {
-        size_t bytes = dem_row_bytes(c, id, maxn);
+    for (int id = 0; id < ROW__COUNT; id++) { /* the lists; the counts and starts keep their size (and contents) */
+        size_t bytes = dem_row_bytes(c, id, slots);
         if (bytes != c->row_bytes[set][id] && o->alloc(b, TABLE_NEW, set, id, bytes, NULL))
             return 1;
     }
-    c->maxn[set] = maxn;
-    dem_core_sync(c);
+    c->maxn[set] = slots;
     return 0;
 }
 
@@ -38,7 +46,6 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     if (o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
         return 1;
     c->cur = 1 - c->cur;
-    dem_core_sync(c);
     /* the buffers laid out like the current rows but written before they are read (dem_buffers.h: MAXC, MC-strain's
      * displacements) follow the new rows' capacity; grown only, as the two sets' capacities may alternate */
     if (dem_buffer_bytes(c, BUF_MC_DISP) > c->bytes[BUF_MC_DISP] &&
@@ -46,8 +53,9 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         return 1;
     int total = 0, owned = 0;
     dem_bufref start = {TABLE_ONE, BUF_IN_START};
-    if (dem_stage_scan(o, b, BUF_IN_COUNT, BUF_IN_START, BUF_IN_BLOCK_SUM, c->n) ||
-        dem_stage_scan(o, b, BUF_OWN_COUNT, BUF_OWN_START, BUF_OWN_BLOCK_SUM, c->n) ||
+    dem_bufref in_count = {TABLE_ONE, BUF_IN_COUNT}, in_sums = {TABLE_ONE, BUF_IN_BLOCK_SUM};
+    dem_bufref own_count = {TABLE_ONE, BUF_OWN_COUNT}, own_sums = {TABLE_ONE, BUF_OWN_BLOCK_SUM};
+    if (dem_stage_scan(o, b, in_count, start, in_sums, c->n) || dem_stage_scan(o, b, own_count, own, own_sums, c->n) ||
         o->read(b, start, (size_t)c->n * sizeof(int), &total, sizeof total, 1) ||
         o->read(b, own, (size_t)c->n * sizeof(int), &owned, sizeof owned, 1))
         return 1;
@@ -60,8 +68,8 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         c->pair_cap = (size_t)total + (size_t)total / 8 + 16;
         /* the pair-sized buffers (dem_buffers.h: PAIRS) that pair_index rewrites, and the sampled step's pair
          * energies (written before they are read in that step); the old copies follow at the next commit (above) */
-        static const int grown[] = {BUF_PAIR, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR, BUF_TOUCH, BUF_PAIR_HIST,
-                                    BUF_PAIR_ELA};
+        static const int grown[] = {BUF_PAIR,        BUF_PAIR_HOST, BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR,
+                                    BUF_PAIR_MIRROR, BUF_TOUCH,     BUF_PAIR_HIST,  BUF_PAIR_ELA};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;

@@ -80,10 +80,59 @@ int sim_reorder_due(const dem_sim *s)
 
 static int device_fail(dem_sim *s) { return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err); }
 
+/* The current rows (dem_buffers.h DEM_ROWS: packed, row i at start[i]) in the new order: row k is the old row of
+ * from[k], its partners renamed by to[], and the values kept per slot (MC-strain's forces) moved with them. buf and
+ * tmp hold at least the largest row buffer. */
+static int move_rows(dem_sim *s, const int *from, const int *to, unsigned char *buf, unsigned char *tmp)
+{
+    dem_core *c = DEM_CORE(s->be);
+    int n = s->n, e = 0;
+    int *cnt = malloc(sizeof(int) * (size_t)n), *start = malloc(sizeof(int) * ((size_t)n + 1));
+    int *nstart = malloc(sizeof(int) * ((size_t)n + 1));
+    dem_bufref rc = {TABLE_CUR, ROW_COUNT}, rst = {TABLE_CUR, ROW_START};
+    if (!cnt || !start || !nstart)
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    else if (s->ops->read(s->be, rc, 0, cnt, sizeof(int) * (size_t)n, 1) ||
+             s->ops->read(s->be, rst, 0, start, sizeof(int) * ((size_t)n + 1), 1))
+        e = device_fail(s);
+    if (!e) {
+        nstart[0] = 0;
+        for (int k = 0; k < n; k++)
+            nstart[k + 1] = nstart[k] + cnt[from[k]];
+    }
+    for (int id = 0; !e && id < ROW__COUNT; id++) {
+        size_t bytes = c->row_bytes[c->cur][id];
+        if (!bytes || id == ROW_START)
+            continue;
+        dem_bufref r = {TABLE_CUR, id};
+        if (s->ops->read(s->be, r, 0, buf, bytes, 1)) {
+            e = device_fail(s);
+            break;
+        }
+        if (id == ROW_COUNT)
+            move_items(buf, tmp, bytes, from, n, sizeof(int));
+        else { /* a value per slot: each row's run of slots to its new start */
+            size_t item = id == ROW_LIST ? sizeof(int) : (size_t)s->setup.real_size;
+            for (int k = 0; k < n; k++)
+                memcpy(tmp + item * (size_t)nstart[k], buf + item * (size_t)start[from[k]], item * (size_t)cnt[from[k]]);
+            memcpy(buf, tmp, item * (size_t)nstart[n]);
+            if (id == ROW_LIST)
+                for (int q = 0; q < nstart[n]; q++)
+                    ((int *)buf)[q] = to[((int *)buf)[q]];
+        }
+        if (s->ops->write(s->be, r, 0, buf, bytes, 1))
+            e = device_fail(s);
+    }
+    if (!e && s->ops->write(s->be, rst, 0, nstart, sizeof(int) * ((size_t)n + 1), 1))
+        e = device_fail(s);
+    free(cnt), free(start), free(nstart);
+    return e;
+}
+
 int sim_reorder(dem_sim *s)
 {
     dem_core *c = DEM_CORE(s->be);
-    int n = s->n, rs = s->setup.real_size, maxn = c->maxn[c->cur];
+    int n = s->n, rs = s->setup.real_size;
     size_t most = 0;
     for (size_t k = 0; k < sizeof moved / sizeof moved[0]; k++)
         most = c->bytes[moved[k].id] > most ? c->bytes[moved[k].id] : most;
@@ -152,26 +201,9 @@ int sim_reorder(dem_sim *s)
                 e = device_fail(s);
         }
     }
-    /* the current rows: moved with their particles, their partners renamed */
-    for (int id = 0; !e && !same && id < ROW__COUNT; id++) {
-        size_t bytes = c->row_bytes[c->cur][id];
-        if (!bytes)
-            continue;
-        dem_bufref r = {TABLE_CUR, id};
-        if (s->ops->read(s->be, r, 0, buf, bytes, 1)) {
-            e = device_fail(s);
-            break;
-        }
-        move_items(buf, tmp, bytes, from, n, bytes / (size_t)n);
-        if (id == ROW_LIST)
-            for (size_t q = 0; q < (size_t)n * (size_t)maxn; q++) {
-                int *v = (int *)buf + q; /* slots past a row's count hold nothing meaningful: renamed alike */
-                if (*v >= 0 && *v < n)
-                    *v = to[*v];
-            }
-        if (s->ops->write(s->be, r, 0, buf, bytes, 1))
-            e = device_fail(s);
-    }
+    /* the current rows: moved with their particles (packed anew in the new order), their partners renamed */
+    if (!e && !same)
+        e = move_rows(s, from, to, buf, tmp);
     /* where each particle was stored when the current rows were built (old_pair_number finds the pairs' old hosts) */
     if (!e && !same) {
         int *old = (int *)buf;

@@ -3,6 +3,7 @@
 #include "sim.h"
 #include "dem_layout.h"
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -847,15 +848,14 @@ static int skin_probe_due(const dem_sim *s)
     return s->skin_now > s->skin_lo && s->skin_built >= 0 && s->step - s->skin_built >= DEM_SKIN_PROBE;
 }
 
-/* The rows' capacity for a build whose longest row has `need` partners: 1/8 to spare, a multiple of 4. Each row set
- * holds n * capacity slots (an int, and with MC-strain a force; its displacements are held for the current set
- * only: dem_buffers.h MAXC), and one particle's row sets it for all: a
- * compact in the press lists 17-23 partners in its longest row and about 8 in its mean one, and doubling from 16 gave
- * 32 (tablet_3k: 3757 -> 3661 device bytes per sphere, series ring included). Growing again costs one more build of
- * the rows at that rebuild. */
+/* The slots of a row set for a build whose rows need `need` together: 1/8 to spare, so that a packing that
+ * tightens grows them at one rebuild in several, not at each. The rows are packed (dem_buffers.h DEM_ROWS): each
+ * slot is an int, and with MC-strain a force (its displacements are held for the current set only: MAXC). Until
+ * 2026-12-03 every row had the longest row's capacity: a compact in the press lists 17-23 partners in its longest row
+ * and about 8 in its mean one (docs/design.md "Memory in a compact"). */
 static int row_capacity(int need)
 {
-    return (need + need / 8 + 3) / 4 * 4;
+    return need + need / 8 + 16;
 }
 
 static int sim_rebuild_traced(dem_sim *s)
@@ -871,19 +871,23 @@ static int sim_rebuild_traced(dem_sim *s)
         return DEM_ERR_DEVICE;
     if (flags[FLAG_OUT_OF_DOMAIN] != DEM_NO_PARTICLE)
         return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
-    int maxn = s->maxn; /* s->maxn is the current rows' capacity: it changes only once new rows are committed */
-    for (;;) {
-        if (dem_stage_nbr_reserve(s->ops, s->be, maxn) || dem_stage_nbr_build(s->ops, s->be))
-            return be_fail(s);
-        if (read_flags(s, flags))
-            return DEM_ERR_DEVICE;
-        if (flags[FLAG_NBR_NEEDED] <= maxn)
-            break;
-        maxn = row_capacity(flags[FLAG_NBR_NEEDED]);
-        flags[FLAG_NBR_NEEDED] = 0;
-        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags))
-            return be_fail(s);
-    }
+    /* s->maxn is the current rows' slots: it changes only once new rows are committed */
+    int maxn = s->maxn, need = 0;
+    if (dem_stage_nbr_count(s->ops, s->be, &need))
+        return be_fail(s);
+    if (need < 0 || need > INT_MAX / 9 * 8 - 16)
+        return sim_fail(s, DEM_ERR_NOMEM, "step %ld: the neighbour rows need %d slots, more than an int counts",
+                        s->step, need);
+    if (need > maxn)
+        maxn = row_capacity(need);
+    if (dem_stage_nbr_reserve(s->ops, s->be, maxn) || dem_stage_nbr_build(s->ops, s->be))
+        return be_fail(s);
+    /* checked before the commit reads the rows: a row filled short of its count would hand it stale partners */
+    if (read_flags(s, flags))
+        return DEM_ERR_DEVICE;
+    if (flags[FLAG_ASYMMETRIC])
+        return sim_fail(s, DEM_ERR_STATE, "step %ld: neighbour rows are not as counted (a library bug; please report)",
+                        s->step);
     if (dem_stage_nbr_commit(s->ops, s->be))
         return be_fail(s);
     s->maxn = maxn;

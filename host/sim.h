@@ -166,7 +166,7 @@ int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes);
 int sim_field_from_api(dem_sim *s, dem_field f, const void *src, void *dst, size_t bytes);
 /* state.c: where each particle's hosted pairs (partners stored after it) start in the pair list of rows cnt, list
  * (neighbor.h's own_start; malloc'd, n + 1 entries) */
-int *sim_own_starts(const int *cnt, const int *list, int maxn, int n);
+int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);
 /* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */

@@ -1,6 +1,7 @@
 /* sim_setup.c - parameter validation, time scales, the material-pair table, and packing into the run precision. */
 #include "sim.h"
 #include "dem_layout.h"
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -684,7 +685,7 @@ int sim_pack(dem_sim *s)
     s->skin_lo = s->cfg.skin > 0 ? skin : DEM_SKIN_AUTO_LO * s->rmin;
     s->skin_extra = reach_extra;
     s->skin_built = -1;
-    u->maxn = DEM_INITIAL_ROW_CAPACITY;
+    u->maxn = s->n > INT_MAX / DEM_INITIAL_ROW_CAPACITY ? INT_MAX : DEM_INITIAL_ROW_CAPACITY * s->n;
     u->device = s->cfg.device;
     u->local_size = s->cfg.local_size;
     u->source_dir = s->cfg.source_dir;

@@ -75,18 +75,18 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     int n = s->n, rs = s->setup.real_size, nm = s->nmat;
     unsigned fx = s->setup.effects;
     size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
-    unsigned char *raw = malloc(n3 * (size_t)rs + sizeof(int) * (size_t)n + lb);
+    unsigned char *raw = malloc(n3 * (size_t)rs + sizeof(int) * (2 * (size_t)n + 1) + lb);
     double *x = malloc(sizeof(double) * n3);
     particle_modes *pm = calloc((size_t)n, sizeof *pm);
     if (!raw || !x || !pm) {
         free(raw), free(x), free(pm);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
-    int *cnt = (int *)(raw + n3 * (size_t)rs), *list = cnt + n, e = 0;
-    dem_field f[3] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_LIST};
-    void *dst[3] = {raw, cnt, list};
-    size_t bytes[3] = {n3 * (size_t)rs, sizeof(int) * (size_t)n, lb};
-    if (dem_stage_read_fields(s->ops, s->be, 3, f, dst, bytes))
+    int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1, e = 0;
+    dem_field f[4] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_START, DEM_FIELD_NBR_LIST};
+    void *dst[4] = {raw, cnt, start, list};
+    size_t bytes[4] = {n3 * (size_t)rs, sizeof(int) * (size_t)n, sizeof(int) * ((size_t)n + 1), lb};
+    if (dem_stage_read_fields(s->ops, s->be, 4, f, dst, bytes))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     if (!e)
         sim_widen(raw, x, n3, rs);
@@ -100,7 +100,7 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
         double mi = inv_of(sim_mass(s, i)), ri = s->radius[i];
         double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
         for (int k = 0; k < cnt[i]; k++) { /* each pair from both ends: every particle sums all of its contacts */
-            int j = list[(size_t)i * s->maxn + k];
+            int j = list[start[i] + k];
             double rj = s->radius[j], d[3];
             for (int q = 0; q < 3; q++)
                 d[q] = x[3 * i + q] - x[3 * j + q];

@@ -149,7 +149,7 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
 
 /* Where each particle's hosted pairs (partners stored after it) start in the pair numbering (neighbor.h's
  * pair_index: own_start), from the rows */
-int *sim_own_starts(const int *cnt, const int *list, int maxn, int n)
+int *sim_own_starts(const int *cnt, const int *list, const int *start, int n)
 {
     int *own = malloc(sizeof(int) * ((size_t)n + 1));
     if (!own)
@@ -158,7 +158,7 @@ int *sim_own_starts(const int *cnt, const int *list, int maxn, int n)
     for (int i = 0; i < n; i++) {
         int hosted = 0;
         for (int k = 0; k < cnt[i]; k++)
-            hosted += list[i * maxn + k] > i;
+            hosted += list[start[i] + k] > i;
         own[i + 1] = own[i] + hosted;
     }
     return own;
@@ -169,7 +169,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     memset(st, 0, sizeof *st);
     if (!s->started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    int e = 0, n = s->n, maxn = s->maxn, rs = s->setup.real_size;
+    int e = 0, n = s->n, rs = s->setup.real_size;
     size_t b;
     st->step = s->step;
     st->n = n;
@@ -197,18 +197,19 @@ int dem_state_get(dem_sim *s, dem_state *st)
     size_t hb, fb;
     unsigned char *mcf = get_stored(s, DEM_FIELD_MC_FORCE, &fb, &e);
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
     /* touching pairs, once each (owner i: the lower stable id), in row order: ascending i, then the partners' stable
      * ids */
     long np = 0;
     const int *sid = s->setup.sid;
-    int *own = e ? NULL : sim_own_starts(cnt, list, maxn, n);
+    int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
     if (!e && !own)
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int i = 0; !e && i < n; i++) /* the touching flags are kept per pair, numbered like the history */
         for (int k = 0; k < cnt[i]; k++)
-            if (sid[list[i * maxn + k]] > sid[i]) {
-                int p = row_pair_of(cnt, list, maxn, own, sid, i, k);
+            if (sid[list[start[i] + k]] > sid[i]) {
+                int p = row_pair_of(cnt, list, start, own, sid, i, k);
                 np += p >= 0 && touch[p];
             }
     if (!e) {
@@ -222,8 +223,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
     np = 0;
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
-            int slot = i * maxn + k, j = list[slot];
-            int pn = sid[j] > sid[i] ? row_pair_of(cnt, list, maxn, own, sid, i, k) : -1;
+            int slot = start[i] + k, j = list[slot];
+            int pn = sid[j] > sid[i] ? row_pair_of(cnt, list, start, own, sid, i, k) : -1;
             if (pn < 0 || !touch[pn])
                 continue;
             st->pair_i[np] = i;
@@ -238,7 +239,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->npairs = np;
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
-    free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own);
     if (!e)
         e = patch_contacts_get(s, st);
     if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/reorder.c) */
@@ -249,10 +250,10 @@ int dem_state_get(dem_sim *s, dem_state *st)
 }
 
 /* slot of partner j in row i, or -1 */
-static int find_slot(const int *cnt, const int *list, int maxn, const int *sid, int i, int j)
+static int find_slot(const int *cnt, const int *list, const int *start, const int *sid, int i, int j)
 {
-    int k = row_find_sid(list + i * maxn, cnt[i], sid, sid[j]);
-    return k < 0 ? -1 : i * maxn + k;
+    int k = row_find_sid(list + start[i], cnt[i], sid, sid[j]);
+    return k < 0 ? -1 : start[i] + k;
 }
 
 int sim_rebuild(dem_sim *s); /* sim.c */
@@ -342,23 +343,23 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         dem_state_free(&mine);
         return e;
     }
-    int maxn = s->maxn;
     size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE),
               tb = dem_field_bytes(s, DEM_FIELD_TOUCH);
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
-    int *own = e ? NULL : sim_own_starts(cnt, list, maxn, n);
+    int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
     if (!e && (!touch || !hist || !mcf || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
-        int a = find_slot(cnt, list, maxn, sid, i, j);
-        int m = a >= 0 ? find_slot(cnt, list, maxn, sid, j, i) : -1;
+        int a = find_slot(cnt, list, start, sid, i, j);
+        int m = a >= 0 ? find_slot(cnt, list, start, sid, j, i) : -1;
         if (a < 0 || m < 0) {
             e = sim_fail(s, DEM_ERR_ARG, "saved contact %d-%d is not a neighbour pair of the saved positions", ci, cj);
             break;
         }
-        size_t pn = (size_t)row_pair_of(cnt, list, maxn, own, sid, i, a - i * maxn); /* >= 0: m was found */
+        size_t pn = (size_t)row_pair_of(cnt, list, start, own, sid, i, a - start[i]); /* >= 0: m was found */
         touch[pn] = 1; /* flag and history are kept per pair (neighbor.h) */
         if (hb && st->has_hist)
             memcpy(hist + pn * 3 * rs,
@@ -381,7 +382,7 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE,
                                      st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    free(cnt), free(list), free(touch), free(hist), free(mcf), free(own);
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own);
     if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);

@@ -142,7 +142,9 @@ typedef enum {
     DEM_FIELD_FORCE, DEM_FIELD_TORQUE,  /* [N], [N m]: real[3n] */
     DEM_FIELD_X_BUILD,              /* positions at the last neighbour build: real[3n] */
     DEM_FIELD_NBR_COUNT,            /* int[n] */
-    DEM_FIELD_NBR_LIST,             /* int[n*maxn], row i sorted by partner id (ids of dem_start) */
+    DEM_FIELD_NBR_LIST,             /* int[slots]: the rows packed one after the other, row i at
+                                       [start[i], start[i] + count[i]) (DEM_FIELD_NBR_START), sorted by partner id
+                                       (ids of dem_start); slots (dem_neighbor_capacity) >= start[n] */
     DEM_FIELD_HIST,                 /* real[3*pairs]: elastic tangential force per listed pair [N], pairs numbered in the
                                        order of the particles' storage (each pair by the one stored first, in its row
                                        order: host/reorder.c; the ids' order unless dem_config.reorder moved them);
@@ -159,9 +161,10 @@ typedef enum {
     DEM_FIELD_STRESS,               /* real[6n]: stress tensor xx,yy,zz,xy,xz,yz of each particle [Pa] (seed 000 Eq. 9,
                                    elastic normal forces; negative in compression), computed when read */
     DEM_FIELD_STRESS_TRACE,         /* real[n]: the trace MC-stress used in the last step [Pa]; empty without mc_stress */
-    DEM_FIELD_MC_FORCE,             /* real[n*maxn]: MC-strain elastic normal force per row slot [N]; mc_strain only */
+    DEM_FIELD_MC_FORCE,             /* real[slots]: MC-strain elastic normal force per row slot (indexed like
+                                       NBR_LIST) [N]; mc_strain only */
     DEM_FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
-    DEM_FIELD_MC_DISP,              /* real[n*maxn]: MC-strain displacement induced at each row slot's contact [m] */
+    DEM_FIELD_MC_DISP,              /* real[>= slots]: MC-strain displacement induced at each row slot's contact [m] */
     DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */
     DEM_FIELD_PAIR_RECORDS,         /* real[7*pairs]: each touching pair's force on its lower id (common/dem_layout.h
                                        PR_*), one record per listed pair, numbered like HIST (dem_contacts_get
@@ -178,6 +181,8 @@ typedef enum {
                                        pairs listed (in_start[n]) hold nothing meaningful */
     DEM_FIELD_WALL_NORMAL_FORCE,    /* real[nwalls]: each wall's normal force, the sum of the particles' force components
                                        along their contact normals [N] (a die's radial force; a plane's normal force) */
+    DEM_FIELD_NBR_START,            /* int[n+1]: where each particle's row starts in NBR_LIST (the exclusive prefix sum
+                                       of NBR_COUNT; start[n] the slots in use) */
     DEM_FIELD__COUNT
 } dem_field;
 
@@ -454,7 +459,7 @@ int dem_wall_count(const dem_sim *s);
 long dem_step_index(const dem_sim *s);
 double dem_time(const dem_sim *s);
 double dem_dt(const dem_sim *s);
-int dem_neighbor_capacity(const dem_sim *s);  /* maxn of the current rows */
+int dem_neighbor_capacity(const dem_sim *s);  /* slots held by the current rows, all rows together (NBR_LIST) */
 double dem_neighbor_skin(const dem_sim *s);   /* the skin of the current rows [m] (dem_config.skin); with MC-strain's
                                                  contact distance the rows reach 2 (F - 1) r_max further */
 long dem_rebuild_count(const dem_sim *s);

@@ -2,6 +2,7 @@
  * Arguments: common/dem_kernels.h. */
 #include "neighbor.h"
 
+DEM_KERNEL(nbr_count)
 DEM_KERNEL(nbr_build)
 DEM_KERNEL(nbr_carry)
 DEM_KERNEL(pair_index)

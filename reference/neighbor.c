@@ -3,6 +3,7 @@
 #include "ref_kernels.h"
 #include "neighbor.h"
 
+DEM_REF_LOOP(nbr_count)
 DEM_REF_LOOP(nbr_build)
 DEM_REF_LOOP(nbr_carry)
 DEM_REF_LOOP(pair_index)

@@ -59,12 +59,15 @@ static void test_slow_path_equals_fast_path(void **st)
     int in_count[N]; /* partners of lower stable id: none for particle 0, particle 0 for the others */
     for (int i = 0; i < N; i++)
         in_count[i] = i > 0;
+    int start[N + 1]; /* each row at i * MAXN: the kernels read a row from its start, wherever it lies */
+    for (int i = 0; i <= N; i++)
+        start[i] = i * MAXN;
     memset(slow, 0xff, sizeof slow);
     memset(fast, 0xff, sizeof fast);
     for (int i = 0; i < N; i++)
-        mc_strain_disp_item(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, i, N, MAXN, 2, x, radius, mat, pairmat, count,
+        mc_strain_disp_item(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, i, N, start, 2, x, radius, mat, pairmat, count,
                             list, NW, wall_int, wall_real, fn, wall_fn, slow, wslow, ride, in_count);
-    ref_mc_strain_disp_f64(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, N, MAXN, 2, x, radius, mat, pairmat, count,
+    ref_mc_strain_disp_f64(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, N, start, 2, x, radius, mat, pairmat, count,
                            list, NW, wall_int, wall_real, fn, wall_fn, fast, wfast, ride, in_count);
     int touching = 0;
     for (int k = 0; k < 6; k++) {

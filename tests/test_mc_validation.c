@@ -60,18 +60,19 @@ static collision spheres(const dem_material *m, int n, int model, double dt)
                                 (x[5] - x[2]) * (x[5] - x[2]));
         double d = g;
         if (model >= MC_STRAIN && g > 0) { /* MC-strain adds the induced displacements of both particles (Eq. 8) */
-            int cnt[5], list[5 * 64], maxn = dem_neighbor_capacity(s);
-            double disp[5 * 64];
-            assert_true(maxn <= 64);
+            int cnt[5], start[6], list[64], slots = dem_neighbor_capacity(s); /* the rows packed */
+            double disp[64];
+            assert_true(slots <= 64 && dem_field_bytes(s, DEM_FIELD_MC_DISP) <= sizeof disp);
             assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * n), 0);
-            assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_LIST, list, sizeof(int) * n * maxn), 0);
+            assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_START, start, sizeof(int) * (n + 1)), 0);
+            assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_LIST, list, sizeof(int) * slots), 0);
             assert_int_equal(dem_get_field(s, DEM_FIELD_MC_DISP, disp), 0);
             for (int k = 0; k < cnt[0]; k++)
-                if (list[k] == 1)
-                    d += disp[k];
+                if (list[start[0] + k] == 1)
+                    d += disp[start[0] + k];
             for (int k = 0; k < cnt[1]; k++)
-                if (list[maxn + k] == 0)
-                    d += disp[maxn + k];
+                if (list[start[1] + k] == 0)
+                    d += disp[start[1] + k];
         }
         col.max_geometric = fmax(col.max_geometric, g);
         if (d > col.max_overlap) {

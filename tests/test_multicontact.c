@@ -78,18 +78,19 @@ static int gap_contacts(dem_sim *s)
 {
     int n = dem_count(s);
     size_t bl = dem_field_bytes(s, DEM_FIELD_NBR_LIST), bt = dem_field_bytes(s, DEM_FIELD_TOUCH);
-    int maxn = (int)(bl / sizeof(int) / (size_t)n), found = 0;
+    int found = 0;
     double *x = malloc(sizeof(double) * 3 * (size_t)n);
-    int *cnt = malloc(sizeof(int) * (size_t)n), *list = malloc(bl);
+    int *cnt = malloc(sizeof(int) * (size_t)n), *list = malloc(bl), *start = malloc(sizeof(int) * ((size_t)n + 1));
     unsigned char *touch = malloc(bt);
     assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
     assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * (size_t)n), 0);
     assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_LIST, list, bl), 0);
+    assert_int_equal(dem_get_raw(s, DEM_FIELD_NBR_START, start, sizeof(int) * ((size_t)n + 1)), 0);
     assert_int_equal(dem_get_raw(s, DEM_FIELD_TOUCH, touch, bt), 0);
     size_t p = 0; /* touching flags are kept per pair: the owned slots (partner above) in row order */
     for (int i = 0; i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
-            int j = list[i * maxn + k];
+            int j = list[start[i] + k];
             if (j < i)
                 continue;
             double d2 = 0;
@@ -99,7 +100,7 @@ static int gap_contacts(dem_sim *s)
             assert_true(p < bt);
             found += touch[p++] && d2 >= rs * rs;
         }
-    free(x), free(cnt), free(list), free(touch);
+    free(x), free(cnt), free(list), free(start), free(touch);
     return found;
 }
 

@@ -32,23 +32,29 @@ static void check(dem_precision prec, double cfg_skin, long steps)
     assert_true(skin == dem_neighbor_skin(cl));
     if (cfg_skin > 0)
         assert_true(skin == cfg_skin);
-    int n = dem_count(ref), m = dem_neighbor_capacity(ref);
+    int n = dem_count(ref), m = dem_neighbor_capacity(ref); /* slots of all rows together: they are packed */
     assert_int_equal(m, dem_neighbor_capacity(cl));
     int *c1 = malloc(sizeof(int) * n), *c2 = malloc(sizeof(int) * n);
-    int *l1 = malloc(sizeof(int) * n * m), *l2 = malloc(sizeof(int) * n * m);
+    int *s1 = malloc(sizeof(int) * (n + 1)), *s2 = malloc(sizeof(int) * (n + 1));
+    int *l1 = malloc(sizeof(int) * m), *l2 = malloc(sizeof(int) * m);
     double *rad = malloc(sizeof(double) * n);
     size_t bytes = dem_field_bytes(ref, DEM_FIELD_X_BUILD);
     void *xb = malloc(bytes);
     assert_int_equal(dem_get_raw(ref, DEM_FIELD_NBR_COUNT, c1, sizeof(int) * n), 0);
     assert_int_equal(dem_get_raw(cl, DEM_FIELD_NBR_COUNT, c2, sizeof(int) * n), 0);
-    assert_int_equal(dem_get_raw(ref, DEM_FIELD_NBR_LIST, l1, sizeof(int) * n * m), 0);
-    assert_int_equal(dem_get_raw(cl, DEM_FIELD_NBR_LIST, l2, sizeof(int) * n * m), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_NBR_START, s1, sizeof(int) * (n + 1)), 0);
+    assert_int_equal(dem_get_raw(cl, DEM_FIELD_NBR_START, s2, sizeof(int) * (n + 1)), 0);
+    assert_int_equal(dem_get_raw(ref, DEM_FIELD_NBR_LIST, l1, sizeof(int) * m), 0);
+    assert_int_equal(dem_get_raw(cl, DEM_FIELD_NBR_LIST, l2, sizeof(int) * m), 0);
     assert_int_equal(dem_get_raw(ref, DEM_FIELD_X_BUILD, xb, bytes), 0);
     assert_memory_equal(c1, c2, sizeof(int) * n);
+    assert_memory_equal(s1, s2, sizeof(int) * (n + 1));
+    assert_true(s1[0] == 0 && s1[n] <= m);
     for (int i = 0; i < n; i++) {
-        assert_memory_equal(l1 + i * m, l2 + i * m, sizeof(int) * c1[i]);
+        assert_int_equal(s1[i + 1] - s1[i], c1[i]); /* packed: each row right after the one before */
         rad[i] = dem_particle_radius(ref, i);
     }
+    assert_memory_equal(l1, l2, sizeof(int) * s1[n]);
     long total = 0;
     int widest = 0;
     for (int i = 0; i < n; i++) {
@@ -59,7 +65,7 @@ static void check(dem_precision prec, double cfg_skin, long steps)
             int in = prec == DEM_FP64 ? IN_RANGE(double, xb, rad, skin, i, j) : IN_RANGE(float, xb, rad, skin, i, j);
             if (!in)
                 continue;
-            if (k >= c1[i] || l1[i * m + k] != j)
+            if (k >= c1[i] || l1[s1[i] + k] != j)
                 fail_msg("row %d: partner %d missing or out of order (slot %d)", i, j, k);
             k++;
         }
@@ -71,27 +77,26 @@ static void check(dem_precision prec, double cfg_skin, long steps)
     printf("  %s, skin %g m: %ld row entries, widest row %d, capacity %d\n", prec == DEM_FP64 ? "fp64" : "fp32", skin,
            total, widest, m);
     assert_true(total > 2 * n); /* a dense packing */
-    /* the capacity starts at 16 and grows when a build overflows (it never shrinks): with the large skins the rows
-     * outgrew it, so it must have grown and the overflow-and-grow path has run. It grows to 1/8 over the widest row of
-     * that build, rounded up to 4 (host/sim.c row_capacity), not by doubling: 17 partners take 20 slots, not 32
-     * (each slot is an int per particle in each of the two row sets). The widest row now may be a little narrower
-     * than when it grew: 4 slots of slack. */
-    assert_true(widest <= m);
+    /* the rows are packed: their slots start at 8 per particle and grow when a build's count needs more (they never
+     * shrink): with the large skins the rows outgrew them, so the count-and-grow path has run. They grow to 1/8 over
+     * what that build needed, plus 16 (host/sim.c row_capacity), not by doubling, and not to the widest row for every
+     * particle. The rows now may be a little shorter than when they grew: 1/8 of slack. */
+    assert_true(total <= m);
     if (cfg_skin > 5e-4)
-        assert_true(m > 16 && widest > 16);
-    assert_true(m <= widest + widest / 8 + 3 + 4);
+        assert_true(m > 8 * n && widest > 16);
+    assert_true(m == 8 * n || m <= total + total / 4 + 16);
     /* the memory report by part (dem_memory_part) adds up to the whole, and holds at least the current row set (a
-     * count and m partners per particle) and a 7-real record for each listed pair */
+     * count and a start per particle, m slots) and a 7-real record for each listed pair */
     size_t parts = 0, rs = prec == DEM_FP64 ? 8 : 4;
     for (int k = 0; k < DEM_MEM__COUNT; k++)
         parts += dem_device_bytes_part(cl, (dem_memory_part)k);
     assert_true(parts == dem_device_bytes(cl) && parts > 0);
-    assert_true(dem_device_bytes_part(cl, DEM_MEM_ROWS) >= (size_t)n * sizeof(int) * (size_t)(1 + m));
+    assert_true(dem_device_bytes_part(cl, DEM_MEM_ROWS) >= sizeof(int) * (2 * (size_t)n + 1 + (size_t)m));
     assert_true(dem_device_bytes_part(cl, DEM_MEM_PAIRS) >= (size_t)(total / 2) * 7 * rs);
     assert_true(dem_device_bytes_part(cl, DEM_MEM_MESH) <= dem_device_bytes(cl) / 100); /* no membranes: empty ones */
     assert_string_equal(dem_memory_part_name(DEM_MEM_PAIRS), "pairs");
     free(xb);
-    free(c1), free(c2), free(l1), free(l2), free(rad);
+    free(c1), free(c2), free(s1), free(s2), free(l1), free(l2), free(rad);
     dem_destroy(ref);
     dem_destroy(cl);
 }

@@ -263,20 +263,22 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
     size_t n1, n2, l1, l2, h1, h2;
     int *c1 = get(a, DEM_FIELD_NBR_COUNT, &n1), *c2 = get(b, DEM_FIELD_NBR_COUNT, &n2);
     int *r1 = get(a, DEM_FIELD_NBR_LIST, &l1), *r2 = get(b, DEM_FIELD_NBR_LIST, &l2);
+    size_t t1, t2; /* the rows are packed: row i from start[i] */
+    int *s1 = get(a, DEM_FIELD_NBR_START, &t1), *s2 = get(b, DEM_FIELD_NBR_START, &t2);
     unsigned char *g1 = get(a, DEM_FIELD_HIST, &h1), *g2 = get(b, DEM_FIELD_HIST, &h2);
-    int m1 = dem_neighbor_capacity(a), m2 = dem_neighbor_capacity(b), bad = h1 != h2 && (h1 == 0 || h2 == 0);
+    int bad = h1 != h2 && (h1 == 0 || h2 == 0);
     if (bad)
         snprintf(msg, len, "one run has tangential history and the other none");
     int own1 = 0, own2 = 0; /* where row i's owned pairs start in each run's numbering */
     for (int i = 0; i < dem_count(a) && !bad && h1 > 0; i++) {
         int lo1 = 0, lo2 = 0;
-        while (lo1 < c1[i] && r1[i * m1 + lo1] < i)
+        while (lo1 < c1[i] && r1[s1[i] + lo1] < i)
             lo1++;
-        while (lo2 < c2[i] && r2[i * m2 + lo2] < i)
+        while (lo2 < c2[i] && r2[s2[i] + lo2] < i)
             lo2++;
         int p = lo1, q = lo2;
         while ((p < c1[i] || q < c2[i]) && !bad) {
-            int j1 = p < c1[i] ? r1[i * m1 + p] : 1 << 30, j2 = q < c2[i] ? r2[i * m2 + q] : 1 << 30;
+            int j1 = p < c1[i] ? r1[s1[i] + p] : 1 << 30, j2 = q < c2[i] ? r2[s2[i] + q] : 1 << 30;
             const unsigned char *ha = g1 + (size_t)(own1 + p - lo1) * 3 * rs, *hb = g2 + (size_t)(own2 + q - lo2) * 3 * rs;
             if (j1 == j2) {
                 bad = memcmp(ha, hb, 3 * rs) != 0;
@@ -293,7 +295,7 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
         }
         own1 += c1[i] - lo1, own2 += c2[i] - lo2;
     }
-    free(c1), free(c2), free(r1), free(r2), free(g1), free(g2);
+    free(c1), free(c2), free(r1), free(r2), free(s1), free(s2), free(g1), free(g2);
     return bad;
 }
 
