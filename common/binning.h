@@ -7,7 +7,8 @@
  *               non-finite position is reported through FLAG_OUT_OF_DOMAIN (smallest such id) and clamped into
  *               the grid so that no memory outside the arrays is touched; the host then stops with an error.
  *   scan:       exclusive prefix sum of the counts -> cell_start (integer, so any order gives the same result).
- *   bin_scatter: each particle takes a slot in its cell (the order of slots depends on thread timing) ...
+ *   bin_scatter: each particle takes a slot in its cell, counting its cell's count back down to zero (the order of
+ *               slots depends on thread timing; no second per-cell array) ...
  *   bin_sort:   ... which this step makes canonical: each cell's particles sorted by ascending id.
  */
 #ifndef DEM_BINNING_H
@@ -77,7 +78,7 @@ DEM_ITEM(scan_apply)
 DEM_ITEM(bin_scatter)
 {
     int c = cell_of[i];
-    cell_particles[start[c] + DEM_ATOMIC_INC(&fill[c])] = i;
+    cell_particles[start[c] + DEM_ATOMIC_DEC(&cell_count[c]) - 1] = i;
 }
 
 DEM_ITEM(bin_sort)

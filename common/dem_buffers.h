@@ -42,6 +42,7 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(SID, INT, N, 0, -1, SETUP(sid), PARTICLES)                                                                    \
     ENTRY(ORDER, INT, N, 0, -1, SETUP(order), PARTICLES)                                                                \
     ENTRY(LOWER, INT, N, 0, -1, NONE, PARTICLES)                                                                        \
+    ENTRY(NBR_FILL, INT, N, 0, -1, NONE, ROWS)                                                                          \
     ENTRY(OLD_SLOT, INT, N, 0, -1, SETUP(identity), PARTICLES)                                                          \
     ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat), PARTICLES)                                     \
     ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int), WALLS)                                                 \
@@ -57,7 +58,6 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(CELL_OF, INT, N, 0, -1, NONE, CELLS)                                                                          \
     ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE, CELLS)                                                                      \
     ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE, CELLS)                                                \
-    ENTRY(CELL_FILL, INT, NC, 0, -1, NONE, CELLS)                                                                       \
     ENTRY(CELL_PARTICLES, INT, N, 0, DEM_FIELD_CELL_PARTICLES, NONE, CELLS)                                             \
     ENTRY(BLOCK_SUM, INT, NBS, 0, -1, NONE, CELLS)                                                                      \
     ENTRY(FLAGS, INT, FLAG_COUNT, 0, DEM_FIELD_FLAGS, NONE, PARTICLES)                                                  \

@@ -29,7 +29,7 @@
 
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
-    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build)          \
+    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
     K(nbr_carry) K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
@@ -53,7 +53,7 @@
     A(AIN, int, block_sum, SCAN_BLOCK_SUM) A(AOUT, int, start, SCAN_START)
 #define DEM_ITEMS_scan_apply nblocks
 #define DEM_ARGS_bin_scatter(F, A)                                                                                   \
-    F(I, int, n, N) A(BIN, int, cell_of, CELL_OF) A(BIN, int, start, CELL_START) A(BOUT, int, fill, CELL_FILL)       \
+    F(I, int, n, N) A(BIN, int, cell_of, CELL_OF) A(BIN, int, start, CELL_START) A(BOUT, int, cell_count, CELL_COUNT) \
     A(BOUT, int, cell_particles, CELL_PARTICLES)
 #define DEM_ITEMS_bin_scatter n
 #define DEM_ARGS_bin_sort(F, A)                                                                                      \
@@ -71,9 +71,13 @@
 #define DEM_ITEMS_nbr_count n
 #define DEM_ARGS_nbr_build(F, A)                                                                                     \
     DEM_ARGS_nbr_walk(F, A) A(NIN, int, nbr_count, COUNT) A(NIN, int, nbr_start, START)                              \
-    A(NOUT, int, nbr_list, LIST) A(BOUT, int, in_count, IN_COUNT) A(BOUT, int, own_count, OWN_COUNT)                \
-    A(BIN, int, sid, SID) A(BOUT, int, nbr_lower, LOWER)
+    A(NOUT, int, nbr_list, LIST) A(BOUT, int, nbr_fill, NBR_FILL)
 #define DEM_ITEMS_nbr_build n
+#define DEM_ARGS_nbr_sort(F, A)                                                                                      \
+    F(I, int, n, N) A(NIN, int, nbr_count, COUNT) A(NIN, int, nbr_start, START) A(NOUT, int, nbr_list, LIST)         \
+    A(BIN, int, nbr_fill, NBR_FILL) A(BIN, int, sid, SID) A(BOUT, int, in_count, IN_COUNT)                           \
+    A(BOUT, int, own_count, OWN_COUNT) A(BOUT, int, nbr_lower, LOWER) A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_nbr_sort n
 #define DEM_ARGS_nbr_carry(F, A)                                                                                     \
     F(I, int, n, N) A(NIN, int, nbr_start, START) A(CIN, int, old_start, START) A(NIN, int, nbr_count, COUNT)        \
     A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \

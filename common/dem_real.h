@@ -29,6 +29,8 @@ typedef float real;
 #define dem_sqrt(x) sqrt(x)
 /* Integer atomics only: counts and flags, never floating-point sums. */
 #define DEM_ATOMIC_INC(p) atomic_inc(p)
+#define DEM_ATOMIC_DEC(p) atomic_dec(p)
+#define DEM_ATOMIC_ADD(p, v) atomic_add((p), (v))
 #define DEM_ATOMIC_MAX(p, v) atomic_max((p), (v))
 #define DEM_ATOMIC_MIN(p, v) atomic_min((p), (v))
 #else
@@ -46,9 +48,13 @@ typedef float real;
 #define DEM_CONST_GLOBAL const
 /* The reference runs serially: the "atomics" are plain updates that return the old value. */
 static inline int dem_serial_inc(int *p) { return (*p)++; }
+static inline int dem_serial_dec(int *p) { return (*p)--; }
+static inline int dem_serial_add(int *p, int v) { int o = *p; *p += v; return o; }
 static inline int dem_serial_max(int *p, int v) { int o = *p; if (v > o) *p = v; return o; }
 static inline int dem_serial_min(int *p, int v) { int o = *p; if (v < o) *p = v; return o; }
 #define DEM_ATOMIC_INC(p) dem_serial_inc(p)
+#define DEM_ATOMIC_DEC(p) dem_serial_dec(p)
+#define DEM_ATOMIC_ADD(p, v) dem_serial_add((p), (v))
 #define DEM_ATOMIC_MAX(p, v) dem_serial_max((p), (v))
 #define DEM_ATOMIC_MIN(p, v) dem_serial_min((p), (v))
 #endif

@@ -5,11 +5,12 @@
  * ids, not the places the particles are stored at (host/reorder.c moves them). The test is symmetric in i and j bit
  * for bit (IEEE + and * commute), so j is in row i exactly when i is in row j.
  * The rows are packed (dem_buffers.h DEM_ROWS): a build is a count (nbr_count), a scan of the counts into each row's
- * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/sim.c) and a fill (nbr_build),
- * which walks the same cells with the same test and so finds exactly the partners counted (FLAG_ASYMMETRIC 2, a
- * library bug, when it does not). Every row is as long as it needs to be: a compact's rows hold
- * 7 to 8 partners on the mean and 20 at the most, and no row is padded to the longest (docs/design.md "Memory in a
- * compact").
+ * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/sim.c), a fill (nbr_build), which
+ * walks the same cells with the same test and so finds exactly the pairs counted (FLAG_ASYMMETRIC 2, a library bug,
+ * when it does not), and a sort of each row (nbr_sort). Count and fill each test every pair once, from the particle
+ * stored first, so together they cost one walk of the rows in full. Every row is as long as it needs to be: a
+ * compact's rows hold 7 to 8 partners on the mean and 20 at the most, and no row is padded to the longest
+ * (docs/design.md "Memory in a compact").
  * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's
  * touching flag and tangential history follow in pair_index, once the new pairs are numbered.
  * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
@@ -23,78 +24,93 @@
 #include "dem_effects.h"
 #include "sorted_row.h"
 
-/* Particle i's partners, walked cell by cell: counted (row 0), or also stored in row[0 .. cap) kept sorted by stable
- * id. Returns the partners found. The count and the fill call it alike, so both find the same partners. */
-DEM_INLINE int nbr_walk(unsigned fx, int i, DEM_GLOBAL int *row, int cap, DEM_CONST_GLOBAL int *sid,
-                        DEM_ARGS_nbr_walk(DEM_P_FIRST, DEM_P_NEXT))
+/* The pairs of particle i walked from i's side: its own cell's particles stored after it (j > i) and the particles
+ * of the 13 neighbouring cells that come after its own in the grid's order (half of the 26: each pair of particles
+ * in two cells is walked from the lower cell only). So every pair is walked once, by one particle, with one test
+ * for the count and the fill (symmetric in i and j bit for bit): count and fill together cost one walk of the full
+ * rows. Count (list 0): each pair adds one to count[j]; returns the pairs found, for i to add to its own count
+ * (integers: any order of the additions gives the same counts). Fill: each pair takes the next free slot of both
+ * rows (fill[]: the slots taken so far; the order depends on thread timing, nbr_sort makes it canonical), never past
+ * a row's count (cap); a row found longer than counted - a bug - raises FLAG_ASYMMETRIC 2. */
+DEM_INLINE int nbr_walk(unsigned fx, int i, DEM_GLOBAL int *count, DEM_GLOBAL int *list, DEM_CONST_GLOBAL int *cap,
+                        DEM_CONST_GLOBAL int *start, DEM_GLOBAL int *fill, DEM_ARGS_nbr_walk(DEM_P_FIRST, DEM_P_NEXT))
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
     int c = cell_of[i];
     int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
     int cnt = 0;
-    (void)n, (void)flags;
+    (void)n;
     /* a membrane's patch vertex touches no particle as a sphere (patch_contacts.h): its row stays empty, and it is
      * in no other row */
     if ((fx & DEM_EFFECT_PATCHES) && vtri_start[i + 1] > vtri_start[i])
         return 0;
-    for (int z = cz > 0 ? cz - 1 : 0; z <= (cz + 1 < ncz ? cz + 1 : cz); z++)
-        for (int y = cy > 0 ? cy - 1 : 0; y <= (cy + 1 < ncy ? cy + 1 : cy); y++)
-            for (int xx = cx > 0 ? cx - 1 : 0; xx <= (cx + 1 < ncx ? cx + 1 : cx); xx++) {
-                int cc = (z * ncy + y) * ncx + xx;
-                for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
-                    int j = cell_particles[s];
-                    if (j == i)
-                        continue;
-                    if ((fx & DEM_EFFECT_PATCHES) && vtri_start[j + 1] > vtri_start[j])
-                        continue;
-                    if ((fx & DEM_EFFECT_SPRINGS) && pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_APART] != (real)0)
-                        continue; /* two vertices of one membrane */
-                    vec3 d = v3_sub(xi, v3_load(x, j));
-                    real cut = ri + radius[j] + skin;
-                    if (!(v3_dot(d, d) < cut * cut))
-                        continue;
-                    if (!row) {
-                        cnt++;
-                        continue;
-                    }
-                    /* insert j keeping the stored part of the row sorted by stable id (a row found longer than
-                     * counted - a bug, reported by nbr_build - keeps its cap smallest partners and writes no further) */
-                    int m = (cnt < cap ? cnt : cap) - 1, sj = sid[j];
-                    if (cnt >= cap && (m < 0 || sid[row[m]] < sj)) {
-                        cnt++;
-                        continue;
-                    }
-                    if (cnt >= cap)
-                        m--; /* drop the largest stored partner to make room */
-                    while (m >= 0 && sid[row[m]] > sj) {
-                        row[m + 1] = row[m];
-                        m--;
-                    }
-                    row[m + 1] = j;
-                    cnt++;
-                }
+    for (int k = 13; k < 27; k++) { /* offsets (dz, dy, dx) from (0, 0, 0) on, in the grid's order */
+        int z = cz + k / 9 - 1, y = cy + (k / 3) % 3 - 1, xx = cx + k % 3 - 1;
+        if (z < 0 || z >= ncz || y < 0 || y >= ncy || xx < 0 || xx >= ncx)
+            continue;
+        int cc = (z * ncy + y) * ncx + xx;
+        for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
+            int j = cell_particles[s];
+            if (k == 13 && j <= i)
+                continue; /* i's own cell: the pair is walked by the one stored first */
+            if ((fx & DEM_EFFECT_PATCHES) && vtri_start[j + 1] > vtri_start[j])
+                continue;
+            if ((fx & DEM_EFFECT_SPRINGS) && pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_APART] != (real)0)
+                continue; /* two vertices of one membrane */
+            vec3 d = v3_sub(xi, v3_load(x, j));
+            real cut = ri + radius[j] + skin;
+            if (!(v3_dot(d, d) < cut * cut))
+                continue;
+            cnt++;
+            if (!list) {
+                DEM_ATOMIC_INC(&count[j]);
+                continue;
             }
+            int a = DEM_ATOMIC_INC(&fill[i]), b = DEM_ATOMIC_INC(&fill[j]);
+            if (a < cap[i] && b < cap[j]) {
+                list[start[i] + a] = j;
+                list[start[j] + b] = i;
+            } else
+                DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 2);
+        }
+    }
     return cnt;
 }
 
-/* Pass 1 of a build: the length of each row, and the longest (FLAG_NBR_WIDEST) */
+/* Pass 1 of a build: the length of each row (nbr_count zeroed before) */
 DEM_ITEM(nbr_count)
 {
-    int cnt = nbr_walk(fx, i, 0, 0, 0, DEM_ARGS_nbr_walk(DEM_N_FIRST, DEM_N_NEXT));
-    nbr_count[i] = cnt;
-    DEM_ATOMIC_MAX(&flags[FLAG_NBR_WIDEST], cnt);
+    int cnt = nbr_walk(fx, i, nbr_count, 0, 0, 0, 0, DEM_ARGS_nbr_walk(DEM_N_FIRST, DEM_N_NEXT));
+    if (cnt)
+        DEM_ATOMIC_ADD(&nbr_count[i], cnt);
 }
 
-/* Pass 2: row i written at nbr_start[i], as long as counted; the split of the row for the sums (nbr_lower) and the
- * counts of the pairs i hosts and is a guest in, which the commit scans (host/neighbor.c) */
+/* Pass 2: each pair into both rows, at nbr_start[i] on (nbr_fill zeroed before) */
 DEM_ITEM(nbr_build)
+{
+    nbr_walk(fx, i, 0, nbr_list, nbr_count, nbr_start, nbr_fill, DEM_ARGS_nbr_walk(DEM_N_FIRST, DEM_N_NEXT));
+}
+
+/* Pass 3: row i sorted by stable id (the canonical order); the split of the row for the sums (nbr_lower) and the
+ * counts of the pairs i hosts and is a guest in, which the commit scans (host/neighbor.c) */
+DEM_ITEM(nbr_sort)
 {
     int cap = nbr_count[i];
     DEM_GLOBAL int *row = nbr_list + nbr_start[i];
-    int cnt = nbr_walk(fx, i, row, cap, sid, DEM_ARGS_nbr_walk(DEM_N_FIRST, DEM_N_NEXT));
-    if (cnt != cap)
+    if (nbr_fill[i] != cap) { /* filled short of its count: a bug; the host stops before anything reads the rows */
         DEM_ATOMIC_MAX(&flags[FLAG_ASYMMETRIC], 2);
+        return;
+    }
+    DEM_ATOMIC_MAX(&flags[FLAG_NBR_WIDEST], cap);
+    for (int k = 1; k < cap; k++) { /* insertion sort: rows hold a handful of partners */
+        int j = row[k], sj = sid[j], m = k - 1;
+        while (m >= 0 && sid[row[m]] > sj) {
+            row[m + 1] = row[m];
+            m--;
+        }
+        row[m + 1] = j;
+    }
     int lower = 0, guests = 0, si = sid[i];
     for (int k = 0; k < cap; k++) {
         lower += sid[row[k]] < si; /* partners of lower stable id: the row's front (the sums' split) */

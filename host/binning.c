@@ -17,8 +17,8 @@ int dem_stage_scan(const dem_backend_ops *o, dem_backend *b, dem_bufref count, d
 int dem_stage_bin(const dem_backend_ops *o, dem_backend *b)
 {
     dem_core *c = DEM_CORE(b);
-    dem_bufref count = {TABLE_ONE, BUF_CELL_COUNT}, fill = {TABLE_ONE, BUF_CELL_FILL};
-    return o->fill_int(b, count, 0, (size_t)c->ncells) || o->fill_int(b, fill, 0, (size_t)c->ncells) ||
+    dem_bufref count = {TABLE_ONE, BUF_CELL_COUNT}; /* bin_scatter leaves it zero again; zeroed here all the same */
+    return o->fill_int(b, count, 0, (size_t)c->ncells) ||
            dem_launch(o, b, K_bin_index) ||
            dem_stage_scan(o, b, count, (dem_bufref){TABLE_ONE, BUF_CELL_START}, (dem_bufref){TABLE_ONE, BUF_BLOCK_SUM},
                           c->ncells) ||

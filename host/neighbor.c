@@ -8,7 +8,8 @@ int dem_stage_nbr_count(const dem_backend_ops *o, dem_backend *b, int *slots)
     dem_core *c = DEM_CORE(b);
     /* the scan's block sums in the incoming pairs' (free until the commit scans them) */
     dem_bufref count = {TABLE_NEW, ROW_COUNT}, start = {TABLE_NEW, ROW_START}, sums = {TABLE_ONE, BUF_IN_BLOCK_SUM};
-    return dem_launch(o, b, K_nbr_count) || dem_stage_scan(o, b, count, start, sums, c->n) ||
+    return o->fill_int(b, count, 0, (size_t)c->n) || dem_launch(o, b, K_nbr_count) ||
+           dem_stage_scan(o, b, count, start, sums, c->n) ||
            o->read(b, start, (size_t)c->n * sizeof(int), slots, sizeof *slots, 1);
 }
 
@@ -27,7 +28,12 @@ int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int slots)
     return 0;
 }
 
-int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_nbr_build); }
+int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b)
+{
+    dem_bufref fill = {TABLE_ONE, BUF_NBR_FILL};
+    return o->fill_int(b, fill, 0, (size_t)DEM_CORE(b)->n) || dem_launch(o, b, K_nbr_build) ||
+           dem_launch(o, b, K_nbr_sort);
+}
 
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
 {
