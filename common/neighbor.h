@@ -8,7 +8,8 @@
  * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/sim.c), a fill (nbr_build), which
  * walks the same cells with the same test and so finds exactly the pairs counted (FLAG_ASYMMETRIC 2, a library bug,
  * when it does not), and a sort of each row (nbr_sort). Count and fill each test every pair once, from the particle
- * stored first, so together they cost one walk of the rows in full. Every row is as long as it needs to be: a
+ * whose cell comes first in the grid's order (in one cell: the one stored first), so together they cost one walk of
+ * the rows in full. Every row is as long as it needs to be: a
  * compact's rows hold 7 to 8 partners on the mean and 20 at the most, and no row is padded to the longest
  * (docs/design.md "Memory in a compact").
  * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's

@@ -262,9 +262,9 @@ static int field_layout(dem_field f)
 {
     switch (f) {
     case DEM_FIELD_X: case DEM_FIELD_V: case DEM_FIELD_W: case DEM_FIELD_FORCE: case DEM_FIELD_TORQUE:
-    case DEM_FIELD_X_BUILD: case DEM_FIELD_NBR_COUNT: case DEM_FIELD_NBR_LIST: case DEM_FIELD_WALL_HIST:
-    case DEM_FIELD_WALL_MASK: case DEM_FIELD_STRESS: case DEM_FIELD_STRESS_TRACE: case DEM_FIELD_MC_FORCE:
-    case DEM_FIELD_MC_WALL_FORCE: case DEM_FIELD_MC_DISP: case DEM_FIELD_MC_WALL_DISP:
+    case DEM_FIELD_X_BUILD: case DEM_FIELD_NBR_COUNT: case DEM_FIELD_WALL_HIST:
+    case DEM_FIELD_WALL_MASK: case DEM_FIELD_STRESS: case DEM_FIELD_STRESS_TRACE:
+    case DEM_FIELD_MC_WALL_FORCE: case DEM_FIELD_MC_WALL_DISP:
         return 1;
     case DEM_FIELD_WALL_PF:
         return 2;
@@ -284,19 +284,57 @@ static int field_move(dem_sim *s, dem_field f, const unsigned char *src, unsigne
             gather(dst + g, src + g, from, n, item);
     } else
         memcpy(dst, src, bytes);
-    if (f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_CELL_PARTICLES)
+    if (f == DEM_FIELD_CELL_PARTICLES)
         for (size_t q = 0; q < bytes / sizeof(int); q++) {
-            int *v = (int *)dst + q; /* a row's slots past its count hold nothing meaningful: renamed alike */
+            int *v = (int *)dst + q;
             if (*v >= 0 && *v < n)
                 *v = to[*v];
         }
     return 0;
 }
 
+/* A field laid out like the current rows (packed: row i at start[i], dem_buffers.h DEM_ROWS) in the callers' order:
+ * their row k is the stored row of particle order[k], packed anew from 0 (NBR_START: the starts of that packing),
+ * partners renamed to the callers' ids (NBR_LIST), the values kept per slot moved with them (MC_FORCE, MC_DISP).
+ * Slots past the rows hold nothing meaningful. */
+static int rows_to_api(dem_sim *s, dem_field f, unsigned char *buf, size_t bytes)
+{
+    int n = s->n, e = 0;
+    const int *order = s->setup.order, *sid = s->setup.sid;
+    int *cnt = malloc(sizeof(int) * (size_t)n), *start = malloc(sizeof(int) * ((size_t)n + 1));
+    int *api = malloc(sizeof(int) * ((size_t)n + 1));
+    unsigned char *tmp = malloc(bytes ? bytes : 1);
+    if (!cnt || !start || !api || !tmp)
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    else if (dem_stage_read_field(s->ops, s->be, DEM_FIELD_NBR_COUNT, cnt, sizeof(int) * (size_t)n) ||
+             dem_stage_read_field(s->ops, s->be, DEM_FIELD_NBR_START, start, sizeof(int) * ((size_t)n + 1)))
+        e = device_fail(s);
+    if (!e) {
+        api[0] = 0;
+        for (int k = 0; k < n; k++)
+            api[k + 1] = api[k] + cnt[order[k]];
+        size_t item = f == DEM_FIELD_MC_FORCE || f == DEM_FIELD_MC_DISP ? (size_t)s->setup.real_size : sizeof(int);
+        if (f == DEM_FIELD_NBR_START)
+            memcpy(buf, api, bytes < sizeof(int) * ((size_t)n + 1) ? bytes : sizeof(int) * ((size_t)n + 1));
+        else if (item * (size_t)api[n] <= bytes) {
+            memcpy(tmp, buf, bytes);
+            for (int k = 0; k < n; k++)
+                memcpy(buf + item * (size_t)api[k], tmp + item * (size_t)start[order[k]], item * (size_t)cnt[order[k]]);
+            if (f == DEM_FIELD_NBR_LIST)
+                for (int q = 0; q < api[n]; q++)
+                    ((int *)buf)[q] = sid[((int *)buf)[q]];
+        }
+    }
+    free(cnt), free(start), free(api), free(tmp);
+    return e;
+}
+
 int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes)
 {
     if (!s->reorders)
         return 0;
+    if (f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_NBR_START || f == DEM_FIELD_MC_FORCE || f == DEM_FIELD_MC_DISP)
+        return rows_to_api(s, f, buf, bytes);
     unsigned char *tmp = malloc(bytes ? bytes : 1);
     if (!tmp)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");

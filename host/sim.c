@@ -1166,7 +1166,8 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 
 int dem_get_field(dem_sim *s, dem_field f, double *dst)
 {
-    if (f == DEM_FIELD_NBR_COUNT || f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_CELL_START || f == DEM_FIELD_CELL_PARTICLES ||
+    if (f == DEM_FIELD_NBR_COUNT || f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_NBR_START || f == DEM_FIELD_CELL_START ||
+        f == DEM_FIELD_CELL_PARTICLES ||
         f == DEM_FIELD_FLAGS || f == DEM_FIELD_TOUCH || f == DEM_FIELD_WALL_MASK || f == DEM_FIELD_IN_START ||
         f == DEM_FIELD_IN_PAIR)
         return sim_fail(s, DEM_ERR_ARG, "field %d holds integers: use dem_get_raw", (int)f);

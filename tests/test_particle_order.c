@@ -103,6 +103,40 @@ static void same_saved_contacts(dem_sim *a, dem_sim *b, const char *where)
     dem_state_free(&sa), dem_state_free(&sb);
 }
 
+static void *raw(dem_sim *s, dem_field f, size_t *bytes)
+{
+    *bytes = dem_field_bytes(s, f);
+    void *p = malloc(*bytes ? *bytes : 1);
+    assert_non_null(p);
+    assert_int_equal(dem_get_raw(s, f, p, *bytes), 0);
+    return p;
+}
+
+/* the neighbour rows as the callers read them (dem_get_raw: packed from NBR_START, partners by id, MC-strain's force
+ * per slot), the same in both runs */
+static void same_rows(dem_sim *a, dem_sim *b, const char *where)
+{
+    int n = dem_count(a);
+    size_t bytes[2][4];
+    static const dem_field f[4] = {DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_START, DEM_FIELD_NBR_LIST, DEM_FIELD_MC_FORCE};
+    void *v[2][4];
+    for (int r = 0; r < 2; r++)
+        for (int k = 0; k < 4; k++)
+            v[r][k] = raw(r ? b : a, f[k], &bytes[r][k]);
+    const int *start = v[0][1];
+    if (memcmp(v[0][0], v[1][0], sizeof(int) * (size_t)n) || memcmp(v[0][1], v[1][1], sizeof(int) * ((size_t)n + 1)))
+        fail_msg("%s: the rows' counts or starts differ", where);
+    assert_true(start[n] > 2 * n && sizeof(int) * (size_t)start[n] <= bytes[0][2]);
+    if (memcmp(v[0][2], v[1][2], sizeof(int) * (size_t)start[n]))
+        fail_msg("%s: the rows' partners differ", where);
+    size_t rs = dem_field_bytes(a, DEM_FIELD_X) / (3 * (size_t)n);
+    if (bytes[0][3] && memcmp(v[0][3], v[1][3], rs * (size_t)start[n]))
+        fail_msg("%s: MC-strain's forces per row slot differ", where);
+    for (int r = 0; r < 2; r++)
+        for (int k = 0; k < 4; k++)
+            free(v[r][k]);
+}
+
 static int by_contact(const void *p, const void *q)
 {
     const dem_contact *x = p, *y = q;
@@ -187,6 +221,7 @@ static void one_case(const backend_case *bc, const model *m, const storage *st)
     if (memcmp(&ea, &eb, sizeof ea))
         fail_msg("%s: energies differ (elastic %.17g against %.17g)", where, ea.elastic, eb.elastic);
     same_saved_contacts(a, b, where);
+    same_rows(a, b, where);
     assert_true(dem_rebuild_count(a) > 3);
     if (dem_rebuild_count(a) != dem_rebuild_count(b))
         fail_msg("%s: %ld rebuilds against %ld", where, dem_rebuild_count(a), dem_rebuild_count(b));
