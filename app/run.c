@@ -208,15 +208,7 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
  * passing the smaller radius). dem check cannot know the mean overlap a scene will reach, so it warns when delta_1 is below
  * MC_LAG_WARN_OVERLAP of a radius, the mean a compaction to relative density 0.9 reaches; the real network's gain
  * differs (its geometric factors vary and partly cancel): a rule of thumb that separates the runs we measured. */
-#define MC_LAG_CONTACTS 6
-#define MC_LAG_WARN_OVERLAP 0.25
-double run_mc_lag_overlap(double gamma, double nu)
-{
-    if (!(gamma > 0))
-        return INFINITY;
-    double c = 4 * M_PI * (1 - nu) / (2 * (MC_LAG_CONTACTS - 1) * gamma * (3 - 2 * nu));
-    return 2 * c * c;
-}
+#define MC_LAG_WARN_OVERLAP 0.25 /* (run_mc_lag_overlap is in run_overlap.c, which the checkpoint fuzzer links alone) */
 
 void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int info, FILE *out)
 {

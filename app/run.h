@@ -27,7 +27,8 @@ int run_scene(const run_opts *o);
 void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* Lagged MC-strain: the mean overlap / radius at which its loop gain reaches 1 for a material (INFINITY for gamma 0),
  * and the advice: a warning on stderr where that overlap is one compactions reach; info: a line for dem check */
-double run_mc_lag_overlap(double gamma, double nu);
+#define MC_LAG_CONTACTS 6 /* contacts per sphere of the estimate (a dense packing: app/run.c's derivation) */
+double run_mc_lag_overlap(double gamma, double nu); /* app/run_overlap.c */
 void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int info, FILE *out);
 /* the same for the particles' order in memory (dem_order_scatter) */
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);

@@ -19,6 +19,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+/* app/run.c derives it ("Lagged MC-strain"): delta_1 / r = 2 (4 pi (1 - nu) / (2 (z - 1) gamma (3 - 2 nu)))^2 */
+double run_mc_lag_overlap(double gamma, double nu)
+{
+    if (!(gamma > 0))
+        return INFINITY;
+    double c = 4 * M_PI * (1 - nu) / (2 * (MC_LAG_CONTACTS - 1) * gamma * (3 - 2 * nu));
+    return 2 * c * c;
+}
+
 #define RUN_HERTZ_RANGE 0.10
 #define RUN_MC_RANGE 0.25
 
