@@ -36,11 +36,11 @@ void overlap_watch_sample(overlap_watch *w, dem_sim *s)
     int n = dem_count(s), slots = dem_neighbor_capacity(s);
     if (n < 2 || slots <= 0)
         return;
-    size_t need = (size_t)slots > (size_t)n ? (size_t)slots : (size_t)n; /* the rows packed (DEM_FIELD_NBR_START) */
+    size_t need = (size_t)slots; /* the rows packed: all of them together (DEM_FIELD_NBR_START) */
     if (need > w->cap) {
         int *l = realloc(w->list, need * sizeof(int));
-        double *x = realloc(w->x, 3 * need * sizeof(double));
-        int *c = realloc(w->count, (2 * need + 1) * sizeof(int)); /* the counts, then the starts */
+        double *x = realloc(w->x, 3 * (size_t)n * sizeof(double));
+        int *c = realloc(w->count, (2 * (size_t)n + 1) * sizeof(int)); /* the counts, then the starts */
         if (l)
             w->list = l;
         if (x)

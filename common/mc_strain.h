@@ -132,6 +132,7 @@ DEM_ITEM(mc_strain_disp)
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
     int cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
+    int row0 = nbr_start[i]; /* read once: the loops below write disp, which the compiler cannot tell apart */
     int total = contact_count(cnt, nw);
     DEM_CONST_GLOBAL real *pmi = pairmat + PM_STRIDE * (mat[i] * nmat + mat[i]);
     /* fast path: the touching contacts, gathered once (in canonical order), then each unordered pair once */
@@ -139,7 +140,7 @@ DEM_ITEM(mc_strain_disp)
     real fc[MC_CACHE], ac[MC_CACHE], sum[MC_CACHE];
     int where[MC_CACHE], nc = 0;
     for (int c = 0; c < total && nc <= MC_CACHE; c++) {
-        contact_ref r = contact_at(i, c, cnt, lower, nbr_start[i], nwalls, nbr_list);
+        contact_ref r = contact_at(i, c, cnt, lower, row0, nwalls, nbr_list);
         mc_contact cc = mc_contact_get(fx, i, r, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         contact_set(r, disp, wall_disp, (real)0);
         if (!cc.active)
@@ -171,16 +172,16 @@ DEM_ITEM(mc_strain_disp)
                     sum[a] = sum[a] + mc_strain_term(pmi, -nbu, -nau, nab, ac[b], fc[b], d, inv_d);
             }
         for (int a = 0; a < nc; a++)
-            contact_set(contact_at(i, where[a], cnt, lower, nbr_start[i], nwalls, nbr_list), disp, wall_disp, sum[a]);
+            contact_set(contact_at(i, where[a], cnt, lower, row0, nwalls, nbr_list), disp, wall_disp, sum[a]);
         return;
     }
     for (int c = 0; c < total; c++) { /* slow path: recompute each contact's geometry where needed */
-        contact_ref rc = contact_at(i, c, cnt, lower, nbr_start[i], nwalls, nbr_list);
+        contact_ref rc = contact_at(i, c, cnt, lower, row0, nwalls, nbr_list);
         mc_contact cc = mc_contact_get(fx, i, rc, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         real s = (real)0;
         if (cc.active)
             for (int k = 0; k < total; k++) {
-                contact_ref rk = contact_at(i, k, cnt, lower, nbr_start[i], nwalls, nbr_list);
+                contact_ref rk = contact_at(i, k, cnt, lower, row0, nwalls, nbr_list);
                 real fk = contact_get(rk, fn, wall_fn);
                 if (k == c || !(fk > (real)0))
                     continue;
@@ -216,10 +217,10 @@ DEM_ITEM(mc_strain_update)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
-    int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), changed = 0;
+    int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), changed = 0, row0 = nbr_start[i];
     int nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
     for (int c = 0; c < contact_count(cnt, nw); c++) { /* the pairs i owns (both slots), then its walls */
-        contact_ref r = contact_at(i, c, cnt, lower, nbr_start[i], nwalls, nbr_list);
+        contact_ref r = contact_at(i, c, cnt, lower, row0, nwalls, nbr_list);
         real f = (real)0;
         if (r.kind == CONTACT_OWNED) {
             int slot = r.slot, j = r.partner, m = row_find_sid(nbr_list + nbr_start[j], nbr_count[j], sid, sid[i]);

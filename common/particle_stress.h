@@ -81,8 +81,9 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
     for (int c = 0; c < ST_STRIDE; c++)
         st[c] = (real)0;
     int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
+    int row0 = nbr_start[i];
     for (int k = 0; k < contact_count(cnt, nw); k++) { /* the canonical order (contacts.h): the row, then the walls */
-        contact_ref r = contact_at(i, k, cnt, lower, nbr_start[i], nwalls, nbr_list);
+        contact_ref r = contact_at(i, k, cnt, lower, row0, nwalls, nbr_list);
         real delta, rstar, arm;
         vec3 n;
         int other;

@@ -80,6 +80,22 @@ int sim_reorder_due(const dem_sim *s)
 
 static int device_fail(dem_sim *s) { return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err); }
 
+/* Rows packed anew (dem_buffers.h DEM_ROWS: row i at start[i], cnt[i] long): row k of dst is row from[k] of src,
+ * at nstart[k] (nstart: the scan of cnt in the new order, filled here); items of `item` bytes; with rename (ints: the
+ * partners), each item x becomes rename[x]. Used to store the rows anew (move_rows) and to hand them to the callers
+ * in their order (rows_to_api). */
+static void pack_rows(unsigned char *dst, const unsigned char *src, size_t item, const int *cnt, const int *start,
+                      const int *from, int n, int *nstart, const int *rename)
+{
+    nstart[0] = 0;
+    for (int k = 0; k < n; k++) {
+        nstart[k + 1] = nstart[k] + cnt[from[k]];
+        memcpy(dst + item * (size_t)nstart[k], src + item * (size_t)start[from[k]], item * (size_t)cnt[from[k]]);
+    }
+    for (int q = 0; rename && q < nstart[n]; q++)
+        ((int *)dst)[q] = rename[((int *)dst)[q]];
+}
+
 /* The current rows (dem_buffers.h DEM_ROWS: packed, row i at start[i]) in the new order: row k is the old row of
  * from[k], its partners renamed by to[], and the values kept per slot (MC-strain's forces) moved with them. buf and
  * tmp hold at least the largest row buffer. */
@@ -95,11 +111,6 @@ static int move_rows(dem_sim *s, const int *from, const int *to, unsigned char *
     else if (s->ops->read(s->be, rc, 0, cnt, sizeof(int) * (size_t)n, 1) ||
              s->ops->read(s->be, rst, 0, start, sizeof(int) * ((size_t)n + 1), 1))
         e = device_fail(s);
-    if (!e) {
-        nstart[0] = 0;
-        for (int k = 0; k < n; k++)
-            nstart[k + 1] = nstart[k] + cnt[from[k]];
-    }
     for (int id = 0; !e && id < ROW__COUNT; id++) {
         size_t bytes = c->row_bytes[c->cur][id];
         if (!bytes || id == ROW_START)
@@ -112,13 +123,10 @@ static int move_rows(dem_sim *s, const int *from, const int *to, unsigned char *
         if (id == ROW_COUNT)
             move_items(buf, tmp, bytes, from, n, sizeof(int));
         else { /* a value per slot: each row's run of slots to its new start */
-            size_t item = id == ROW_LIST ? sizeof(int) : (size_t)s->setup.real_size;
-            for (int k = 0; k < n; k++)
-                memcpy(tmp + item * (size_t)nstart[k], buf + item * (size_t)start[from[k]], item * (size_t)cnt[from[k]]);
+            int list = id == ROW_LIST;
+            size_t item = list ? sizeof(int) : (size_t)s->setup.real_size;
+            pack_rows(tmp, buf, item, cnt, start, from, n, nstart, list ? to : NULL);
             memcpy(buf, tmp, item * (size_t)nstart[n]);
-            if (id == ROW_LIST)
-                for (int q = 0; q < nstart[n]; q++)
-                    ((int *)buf)[q] = to[((int *)buf)[q]];
         }
         if (s->ops->write(s->be, r, 0, buf, bytes, 1))
             e = device_fail(s);
@@ -310,20 +318,12 @@ static int rows_to_api(dem_sim *s, dem_field f, unsigned char *buf, size_t bytes
              dem_stage_read_field(s->ops, s->be, DEM_FIELD_NBR_START, start, sizeof(int) * ((size_t)n + 1)))
         e = device_fail(s);
     if (!e) {
-        api[0] = 0;
-        for (int k = 0; k < n; k++)
-            api[k + 1] = api[k] + cnt[order[k]];
         size_t item = f == DEM_FIELD_MC_FORCE || f == DEM_FIELD_MC_DISP ? (size_t)s->setup.real_size : sizeof(int);
+        memcpy(tmp, buf, bytes);
+        pack_rows(buf, tmp, f == DEM_FIELD_NBR_START ? 0 : item, cnt, start, order, n, api,
+                  f == DEM_FIELD_NBR_LIST ? sid : NULL);
         if (f == DEM_FIELD_NBR_START)
             memcpy(buf, api, bytes < sizeof(int) * ((size_t)n + 1) ? bytes : sizeof(int) * ((size_t)n + 1));
-        else if (item * (size_t)api[n] <= bytes) {
-            memcpy(tmp, buf, bytes);
-            for (int k = 0; k < n; k++)
-                memcpy(buf + item * (size_t)api[k], tmp + item * (size_t)start[order[k]], item * (size_t)cnt[order[k]]);
-            if (f == DEM_FIELD_NBR_LIST)
-                for (int q = 0; q < api[n]; q++)
-                    ((int *)buf)[q] = sid[((int *)buf)[q]];
-        }
     }
     free(cnt), free(start), free(api), free(tmp);
     return e;
