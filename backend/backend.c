@@ -33,7 +33,7 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 DEM_KERNEL_LIST(CHECK_KERNEL)
 _Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 11 && ST_STRIDE == 6,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
-_Static_assert(FLAG_COUNT == 8, "flags (dem_layout.h)");
+_Static_assert(FLAG_COUNT == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/binning.c resets the cell bounds");
 _Static_assert(K__COUNT <= 256, "kernel ids fit the trace's bytes");
 _Static_assert(DEM_MAX_WALLS <= 8 * sizeof(unsigned), "a particle's wall mask is one unsigned (WALL_MASK)");
 
@@ -54,8 +54,7 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->n = s->n;
     c->nmat = s->nmat;
     c->nwalls = s->nwalls;
-    c->ncells = s->ncell[0] * s->ncell[1] * s->ncell[2];
-    c->nblocks_scan = (c->ncells + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK;
+    c->ncells = c->cell_cap = s->cells[0] * s->cells[1] * s->cells[2];
     c->nblocks_red = (s->n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
     size_t row_bytes = (size_t)s->n * SE_STRIDE * (size_t)s->real_size; /* a sampled step's terms (series.h) */
     c->series_rows = row_bytes ? (int)(DEM_SERIES_RING_BYTES / row_bytes) : DEM_SERIES_RING;
@@ -73,7 +72,9 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     si[SI_NTRIANGLES] = c->ntriangles;
     si[SI_NHINGES] = c->nhinges;
     si[SI_NRIDERS] = c->nriders;
-    si[SI_NCX] = s->ncell[0], si[SI_NCY] = s->ncell[1], si[SI_NCZ] = s->ncell[2];
+    si[SI_NCX] = s->cells[0], si[SI_NCY] = s->cells[1], si[SI_NCZ] = s->cells[2];
+    si[SI_CX0] = s->cell0[0], si[SI_CY0] = s->cell0[1], si[SI_CZ0] = s->cell0[2];
+    si[SI_DCX] = s->ncell[0], si[SI_DCY] = s->ncell[1], si[SI_DCZ] = s->ncell[2];
     double *sr = c->sr;
     sr[SR_DT] = s->dt, sr[SR_SKIN] = s->skin, sr[SR_HALF_SKIN2] = s->half_skin2, sr[SR_INV_CELL] = s->inv_cell;
     sr[SR_LOX] = s->lo[0], sr[SR_LOY] = s->lo[1], sr[SR_LOZ] = s->lo[2];
@@ -90,8 +91,8 @@ size_t dem_elem_size(int elem, int rs)
 
 /* the size rules' names, bound to a core */
 #define SIZE_NAMES(c, maxn_)                                                                                         \
-    size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->ncells,         \
-           NBS = (size_t)(c)->nblocks_scan, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
+    size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->cell_cap,         \
+           NBS = ((size_t)(c)->cell_cap + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
            NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
            MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows,                  \

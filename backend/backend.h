@@ -50,7 +50,9 @@ typedef struct {
     const int *identity;    /* int[n]: 0, 1, ..., n - 1 (OLD_SLOT: where each particle was when the rows were built) */
     /* binning grid, computed by the driver */
     double lo[3], inv_cell;
-    int ncell[3];
+    int ncell[3];           /* the domain's cells per axis */
+    int cell0[3], cells[3]; /* the cells the particles hold at set-up (first, count per axis): what the cell buffers
+                               start at (the device finds the cells of each build: binning.h) */
     /* per-step scalars (converted to real by the backend with a plain C cast) */
     double dt, gravity[3], skin, half_skin2;
     int maxn; /* slots each neighbour-row set starts with (its rows packed together) */
@@ -91,7 +93,8 @@ typedef struct {
 typedef struct {
     unsigned fx;
     int rs;
-    int n, nmat, nwalls, ncells, nblocks_scan, nblocks_red, nsprings, ntriangles, nhinges, nriders;
+    int n, nmat, nwalls, ncells, nblocks_red, nsprings, ntriangles, nhinges, nriders;
+    int cell_cap;    /* cells the cell buffers hold (ncells: in use; host/binning.c) */
     int series_rows; /* rows of the series ring (common/series.h) */
     int maxn[2], cur;  /* slots of each row set (its rows packed together); the set in use (1 - cur is built into) */
     int maxp, maxp_old, maxv; /* patch rows' capacities (patch_contacts.h) */
@@ -181,6 +184,11 @@ int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k);
 int dem_stage_reset_flags(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_kick_drift(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_kick(const dem_backend_ops *o, dem_backend *b);
+/* The binning (common/binning.h) in two steps, for the host to read the flags between them: bin_bounds finds the
+ * cells the particles hold (and any particle outside the domain); bin_cells takes those cells for the build (from
+ * the flags read after bin_bounds), growing the cell buffers when they hold fewer; bin sorts the particles into them. */
+int dem_stage_bin_bounds(const dem_backend_ops *o, dem_backend *b);
+int dem_stage_bin_cells(const dem_backend_ops *o, dem_backend *b, const int *flags);
 int dem_stage_bin(const dem_backend_ops *o, dem_backend *b);
 /* Exclusive prefix sum of count[0..items) into start[0..items] (fixed blocks of DEM_SCAN_BLOCK, integers; block_sum
  * holds a sum per block). */

@@ -1,15 +1,22 @@
 /* binning.h - cell index, counting sort into cells, and the canonical order inside each cell.
  *
  * The binning domain [lo, lo + ncell*cell] is cut into cubes no smaller than the largest interaction range
- * (2 r_max + skin), so every neighbour of a particle lies in its own or one of the 26 adjacent cells.
+ * (2 r_max + skin), so every neighbour of a particle lies in its own or one of the 26 adjacent cells. The cells a
+ * build uses are only those of the particles' bounding box in that grid (its first cell c0 and its cells per axis
+ * nc): a domain with room for a pour, a punch's travel or an ejection costs no memory until particles fill it
+ * (docs/design.md "Cells over the particles").
  * Steps (each a kernel, each with its reference loop):
- *   bin_index:  cell of each particle; counts per cell (integer atomics); a particle outside the domain or with a
- *               non-finite position is reported through FLAG_OUT_OF_DOMAIN (smallest such id) and clamped into
- *               the grid so that no memory outside the arrays is touched; the host then stops with an error.
+ *   bin_bounds: the lowest and highest cell of the domain's grid holding a particle, per axis (integer atomics:
+ *               a minimum and a maximum, the same in any order); a particle outside the domain or with a
+ *               non-finite position is reported through FLAG_OUT_OF_DOMAIN (smallest such id) instead, and the
+ *               host stops with an error before the cells are used.
+ *   bin_index:  cell of each particle among the cells in use (clamped into them, so that no memory outside the
+ *               arrays is touched whatever the positions); counts per cell (integer atomics).
  *   scan:       exclusive prefix sum of the counts -> cell_start (integer, so any order gives the same result).
  *   bin_scatter: each particle takes a slot in its cell, counting its cell's count back down to zero (the order of
  *               slots depends on thread timing; no second per-cell array) ...
  *   bin_sort:   ... which this step makes canonical: each cell's particles sorted by ascending id.
+ * Which cells a build uses changes no bit of a result: the rows are sorted by stable id (neighbor.h).
  */
 #ifndef DEM_BINNING_H
 #define DEM_BINNING_H
@@ -27,16 +34,47 @@ DEM_INLINE int bin_axis(real xc, real lo, real inv_cell, int nc, int *outside)
     return (int)s;
 }
 
-DEM_ITEM(bin_index)
+/* The bound k (FLAG_CELL_LO + axis) lowered to c and bound k + 3 raised to c. Each is read first and updated only when
+ * c lies beyond it, so that most particles make no atomic operation; a stale read costs one more atomic, never a
+ * wrong bound (the bounds only move outwards, and the atomics decide). */
+DEM_INLINE void bin_widen(DEM_GLOBAL int *flags, int k, int c)
 {
-    vec3 lo = v3(lox, loy, loz);
+    if (c < flags[k])
+        DEM_ATOMIC_MIN(&flags[k], c);
+    if (c > flags[k + 3])
+        DEM_ATOMIC_MAX(&flags[k + 3], c);
+}
+
+DEM_ITEM(bin_bounds)
+{
     vec3 xi = v3_load(x, i);
     int outside = 0;
-    int cx = bin_axis(xi.x, lo.x, inv_cell, ncx, &outside);
-    int cy = bin_axis(xi.y, lo.y, inv_cell, ncy, &outside);
-    int cz = bin_axis(xi.z, lo.z, inv_cell, ncz, &outside);
-    if (outside)
+    int cx = bin_axis(xi.x, lox, inv_cell, dcx, &outside);
+    int cy = bin_axis(xi.y, loy, inv_cell, dcy, &outside);
+    int cz = bin_axis(xi.z, loz, inv_cell, dcz, &outside);
+    if (outside) {
         DEM_ATOMIC_MIN(&flags[FLAG_OUT_OF_DOMAIN], i);
+        return;
+    }
+    bin_widen(flags, FLAG_CELL_LO, cx);
+    bin_widen(flags, FLAG_CELL_LO + 1, cy);
+    bin_widen(flags, FLAG_CELL_LO + 2, cz);
+}
+
+/* Cell c of the domain's grid along one axis, as a cell in use: c - c0, clamped into [0, nc) */
+DEM_INLINE int bin_in_use(int c, int c0, int nc)
+{
+    c -= c0;
+    return c < 0 ? 0 : c >= nc ? nc - 1 : c;
+}
+
+DEM_ITEM(bin_index)
+{
+    vec3 xi = v3_load(x, i);
+    int outside = 0; /* reported by bin_bounds */
+    int cx = bin_in_use(bin_axis(xi.x, lox, inv_cell, dcx, &outside), cx0, ncx);
+    int cy = bin_in_use(bin_axis(xi.y, loy, inv_cell, dcy, &outside), cy0, ncy);
+    int cz = bin_in_use(bin_axis(xi.z, loz, inv_cell, dcz, &outside), cz0, ncz);
     int c = (cz * ncy + cy) * ncx + cx;
     cell_of[i] = c;
     DEM_ATOMIC_INC(&cell_count[c]);

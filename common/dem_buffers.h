@@ -3,7 +3,8 @@
  * look up and destroy buffers by walking it (backend/backend.c); the kernels' argument lists (dem_kernels.h) name their
  * sources here. Host only: the kernels see plain pointers.
  *
- * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells), NBS (scan
+ * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells held: those of
+ * the particles' bounding box at a build, binning.h, with room to spare; host/binning.c), NBS (scan
  * blocks of the cells), NBR (reduction blocks of the particles), MAXN (slots of the row set the buffer belongs to:
  * its rows are packed one after the other, row i from start[i], so MAXN is what all its rows hold together, with
  * room to spare: host/sim.c row_capacity), MAXC (slots of the current row set: for a buffer laid out like the rows
@@ -123,9 +124,11 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 /* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
 #define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)
 
-/* ENTRY(ID) - scalar kernel arguments */
+/* ENTRY(ID) - scalar kernel arguments (the cells: NCELLS in use, NCX..NCZ in use per axis from the domain's cell
+ * CX0..CZ0 on, DCX..DCZ the domain's per axis: binning.h) */
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
-    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(NSPRINGS) \
+    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(DCX)      \
+    ENTRY(DCY) ENTRY(DCZ) ENTRY(CX0) ENTRY(CY0) ENTRY(CZ0) ENTRY(NSPRINGS) \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                            \
     ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                  \
     ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE)

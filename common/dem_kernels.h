@@ -29,17 +29,22 @@
 
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
-    K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
+    K(bin_bounds) K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
     K(nbr_carry) K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather)
 
 /* ---- binning.h ---- */
+#define DEM_ARGS_bin_bounds(F, A)                                                                                    \
+    F(I, int, n, N) A(R, real, lox, LOX) A(R, real, loy, LOY) A(R, real, loz, LOZ) A(R, real, inv_cell, INV_CELL)    \
+    A(I, int, dcx, DCX) A(I, int, dcy, DCY) A(I, int, dcz, DCZ) A(BIN, real, x, X) A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_bin_bounds n
 #define DEM_ARGS_bin_index(F, A)                                                                                     \
     F(I, int, n, N) A(R, real, lox, LOX) A(R, real, loy, LOY) A(R, real, loz, LOZ) A(R, real, inv_cell, INV_CELL)    \
-    A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ) A(BIN, real, x, X) A(BOUT, int, cell_of, CELL_OF)    \
-    A(BOUT, int, cell_count, CELL_COUNT) A(BOUT, int, flags, FLAGS)
+    A(I, int, dcx, DCX) A(I, int, dcy, DCY) A(I, int, dcz, DCZ) A(I, int, cx0, CX0) A(I, int, cy0, CY0)              \
+    A(I, int, cz0, CZ0) A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ) A(BIN, real, x, X)               \
+    A(BOUT, int, cell_of, CELL_OF) A(BOUT, int, cell_count, CELL_COUNT)
 #define DEM_ITEMS_bin_index n
 /* the scan (exclusive prefix sum of count into start) works on the buffers its aliases name */
 #define DEM_ARGS_scan_block_sum(F, A)                                                                                \

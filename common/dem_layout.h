@@ -89,7 +89,10 @@ enum {
     FLAG_PATCH_NEEDED = 5,  /* largest sphere patch row found (patch_contacts.h); > capacity: overflowed */
     FLAG_VROW_NEEDED = 6,   /* largest vertex row found; > capacity: overflowed */
     FLAG_PATCH_REACH = 7,   /* 1 when a patch edge is not shorter than the search reach */
-    FLAG_COUNT = 8
+    FLAG_CELL_LO = 8,       /* 8, 9, 10: the lowest cell along x, y, z of the domain's grid that holds a particle
+                               (bin_bounds; INT_MAX when none) ... */
+    FLAG_CELL_HI = 11,      /* 11, 12, 13: ... and the highest (-1 when none): the cells the binning uses */
+    FLAG_COUNT = 14
 };
 #define DEM_NO_PARTICLE 2147483647
 /* Per-particle symmetric stress tensor (DEM_FIELD_STRESS): 6 reals per particle in this order [Pa]. */

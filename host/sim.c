@@ -865,12 +865,14 @@ static int sim_rebuild_traced(dem_sim *s)
         return e;
     skin_choose(s);
     s->rebuild_at = DEM_CORE(s->be)->ntrace;
-    if (dem_stage_bin(s->ops, s->be))
+    if (dem_stage_bin_bounds(s->ops, s->be))
         return be_fail(s);
     if (read_flags(s, flags))
         return DEM_ERR_DEVICE;
     if (flags[FLAG_OUT_OF_DOMAIN] != DEM_NO_PARTICLE)
         return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
+    if (dem_stage_bin_cells(s->ops, s->be, flags) || dem_stage_bin(s->ops, s->be))
+        return be_fail(s);
     /* s->maxn is the current rows' slots: it changes only once new rows are committed */
     int maxn = s->maxn, need = 0;
     if (dem_stage_nbr_count(s->ops, s->be, &need))
@@ -1112,7 +1114,19 @@ int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
 double dem_neighbor_skin(const dem_sim *s) { return s->skin_now; }
 long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
 long dem_reorder_count(const dem_sim *s) { return s->reorders; }
-int dem_cell_count(const dem_sim *s) { return s->setup.ncell[0] * s->setup.ncell[1] * s->setup.ncell[2]; }
+int dem_cell_count(const dem_sim *s)
+{
+    return s->be ? DEM_CORE(s->be)->ncells : s->setup.cells[0] * s->setup.cells[1] * s->setup.cells[2];
+}
+int dem_grid_cells(const dem_sim *s, int first[3], int count[3])
+{
+    if (!s->started)
+        return DEM_ERR_STATE;
+    const int *si = DEM_CORE(s->be)->si;
+    first[0] = si[SI_CX0], first[1] = si[SI_CY0], first[2] = si[SI_CZ0];
+    count[0] = si[SI_NCX], count[1] = si[SI_NCY], count[2] = si[SI_NCZ];
+    return 0;
+}
 int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3])
 {
     if (!s->started)

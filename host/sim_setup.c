@@ -543,6 +543,20 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     }
     s->grid_cell = cell;
     u->inv_cell = 1 / cell;
+    /* the cells the particles hold now (binning.h bin_bounds finds them on the device at each build, in the run's
+     * precision; a cell more or less here only moves when the buffers grow) */
+    int clo[3] = {INT_MAX, INT_MAX, INT_MAX}, chi[3] = {-1, -1, -1};
+    for (int i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) {
+            double t = (s->x[3 * i + d] - lo[d]) * u->inv_cell;
+            int k = t >= 0 ? (t < u->ncell[d] ? (int)t : u->ncell[d] - 1) : 0; /* NaN: 0 */
+            clo[d] = k < clo[d] ? k : clo[d];
+            chi[d] = k > chi[d] ? k : chi[d];
+        }
+    for (int d = 0; d < 3; d++) {
+        u->cell0[d] = chi[d] < clo[d] ? 0 : clo[d];
+        u->cells[d] = chi[d] < clo[d] ? 1 : chi[d] - clo[d] + 1;
+    }
     return skin;
 }
 

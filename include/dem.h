@@ -151,7 +151,7 @@ typedef enum {
                                        empty without friction */
     DEM_FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
     DEM_FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
-    DEM_FIELD_CELL_START,           /* int[ncells+1] */
+    DEM_FIELD_CELL_START,           /* int[dem_cell_count() + 1] */
     DEM_FIELD_CELL_PARTICLES,       /* int[n] */
     DEM_FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
     DEM_FIELD_WALL_REAL,            /* real[11*nwalls] (common/dem_layout.h W_*) */
@@ -464,11 +464,17 @@ double dem_neighbor_skin(const dem_sim *s);   /* the skin of the current rows [m
                                                  contact distance the rows reach 2 (F - 1) r_max further */
 long dem_rebuild_count(const dem_sim *s);
 long dem_reorder_count(const dem_sim *s); /* times the particles were stored anew (dem_config.reorder) */
+/* Cells the last binning used (DEM_FIELD_CELL_START holds one more entry); before dem_start, those the particles'
+ * positions hold. */
 int dem_cell_count(const dem_sim *s);
 /* The binning grid of a started run: its lower corner [m], 1 / cell size [1/m] (as the kernels get it, before the
- * cast to the run's precision) and cells per axis. Cell of a position x: floor((x - lo) * inv_cell) per axis, in the
- * run's precision, cell index (cz * ncy + cy) * ncx + cx (common/binning.h). */
+ * cast to the run's precision) and the domain's cells per axis. Cell of a position x along an axis:
+ * floor((x - lo) * inv_cell), in the run's precision. */
 int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3]);
+/* The cells the last binning used: along each axis count[d] cells of that grid from first[d] on, the particles'
+ * bounding box (common/binning.h); cell (cx, cy, cz) of the grid is cell index
+ * ((cz - first[2]) * count[1] + cy - first[1]) * count[0] + cx - first[0] of DEM_FIELD_CELL_START. */
+int dem_grid_cells(const dem_sim *s, int first[3], int count[3]);
 const char *dem_describe(dem_sim *s);   /* backend, device and active effects */
 
 /* Raw bytes of a field in the run's precision (bit comparisons); bytes must not exceed the field's size. */

@@ -2,6 +2,7 @@
  * Arguments: common/dem_kernels.h. */
 #include "binning.h"
 
+DEM_KERNEL(bin_bounds)
 DEM_KERNEL(bin_index)
 DEM_KERNEL(scan_block_sum)
 DEM_KERNEL(scan_block_sums)

@@ -3,6 +3,7 @@
 #include "ref_kernels.h"
 #include "binning.h"
 
+DEM_REF_LOOP(bin_bounds)
 DEM_REF_LOOP(bin_index)
 DEM_REF_LOOP(scan_block_sum)
 DEM_REF_LOOP(scan_block_sums)
