@@ -78,7 +78,6 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE, PAIRS)                                        \
     ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS)                                                 \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS)                                 \
-    ENTRY(PAIR_HIST_OLD, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, -1, NONE, PAIRS)                                         \
     ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES)                                                            \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE, PARTICLES)                                \
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT)                                   \

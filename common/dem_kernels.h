@@ -90,6 +90,7 @@
     A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN) A(BIN, int, sid, SID)                               \
     A(BIN, int, old_slot, OLD_SLOT)
 #define DEM_ITEMS_nbr_carry n
+/* old_hist: the history as the last rows numbered it, copied into the pair records' space (host/neighbor.c) */
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)         \
     A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_start, IN_START)                \
@@ -97,7 +98,7 @@
     A(BOUT, int, pair_slot, PAIR_SLOT) A(BOUT, int, in_pair, IN_PAIR)                                                \
     A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(NIN, int, old_start, START)            \
     A(NIN, int, old_count, COUNT)                                                                                    \
-    A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR_HIST_OLD)      \
+    A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR)               \
     A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)
 #define DEM_ITEMS_pair_index n
 

@@ -38,16 +38,18 @@ int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b)
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
 {
     dem_core *c = DEM_CORE(b);
-    /* the old pair numbering and history, which pair_index carries into the new (neighbor.h); the copy of the history
-     * is grown here to the capacity of the history itself (which may have grown at the last commit) */
-    static const int carried[][2] = {{BUF_PAIR_HIST, BUF_PAIR_HIST_OLD}, {BUF_TOUCH, BUF_TOUCH_OLD}};
-    for (size_t k = 0; k < sizeof carried / sizeof carried[0]; k++) {
-        int from = carried[k][0], to = carried[k][1];
-        dem_bufref src = {TABLE_ONE, from}, dst = {TABLE_ONE, to};
-        if ((c->bytes[to] != c->bytes[from] && o->alloc(b, TABLE_ONE, 0, to, c->bytes[from], NULL)) ||
-            (c->bytes[from] && o->copy(b, src, dst, c->bytes[from])))
-            return 1;
-    }
+    /* The old pair numbering, touching flags and history, which pair_index carries into the new (neighbor.h). The
+     * history's copy goes into the pair records' space: contact_pairs writes every record before anything reads one,
+     * so between a build and the next force pass the records hold nothing (and 3 reals of history per pair fit in 7
+     * of a record's); a buffer of its own held 24 bytes per pair in fp64 all the run for this moment (2026-12-03). The
+     * touching flags' copy is grown here to the flags' capacity (which may have grown at the last commit). */
+    dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, rec = {TABLE_ONE, BUF_PAIR};
+    dem_bufref touch = {TABLE_ONE, BUF_TOUCH}, old_touch = {TABLE_ONE, BUF_TOUCH_OLD};
+    if ((c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
+         o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)) ||
+        (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
+        (c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, rec, c->bytes[BUF_PAIR_HIST])))
+        return 1;
     dem_bufref own = {TABLE_ONE, BUF_OWN_START}, old_own = {TABLE_ONE, BUF_OWN_START_OLD};
     if (o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
         return 1;
@@ -68,19 +70,23 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     if (owned != total) /* every pair is owned by one row and mirrored in one other (pair_index checks symmetry) */
         return dem_core_fail(c, "neighbour rows list %d owned and %d incoming pairs (a library bug; please report)",
                              owned, total);
-    if ((size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0) { /* rewritten every step before being read */
-        /* 1/8 to spare: the pair arrays are two thirds of the memory, and growing them costs one allocation at a
-         * rebuild (the history and flags are carried from their copies either way) */
+    /* 1/8 to spare: the pair arrays are two thirds of the memory, and growing them costs one allocation at a rebuild
+     * (the history and flags are carried from their copies either way) */
+    int grow = (size_t)total > c->pair_cap || c->bytes[BUF_PAIR] == 0;
+    if (grow) {
         c->pair_cap = (size_t)total + (size_t)total / 8 + 16;
         /* the pair-sized buffers (dem_buffers.h: PAIRS) that pair_index rewrites, and the sampled step's pair
-         * energies (written before they are read in that step); the old copies follow at the next commit (above) */
-        static const int grown[] = {BUF_PAIR,        BUF_PAIR_HOST, BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR,
-                                    BUF_PAIR_MIRROR, BUF_TOUCH,     BUF_PAIR_HIST,  BUF_PAIR_ELA};
+         * energies (written before they are read in that step); the records after pair_index has read the history's
+         * copy from them, the flags' copy at the next commit (above) */
+        static const int grown[] = {BUF_PAIR_HOST, BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR,
+                                    BUF_PAIR_MIRROR, BUF_TOUCH, BUF_PAIR_HIST, BUF_PAIR_ELA};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;
     }
     c->si[SI_NPAIRS] = total;
     dem_bufref x = {TABLE_ONE, BUF_X}, xb = {TABLE_ONE, BUF_X_BUILD};
-    return dem_launch(o, b, K_pair_index) || o->copy(b, x, xb, c->bytes[BUF_X]);
+    return dem_launch(o, b, K_pair_index) ||
+           (grow && o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL)) ||
+           o->copy(b, x, xb, c->bytes[BUF_X]);
 }
