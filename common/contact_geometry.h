@@ -12,7 +12,7 @@
 #define DEM_CONTACT_GEOMETRY_H
 #include "vec3.h"
 #include "dem_layout.h"
-#include "dem_effects.h"
+#include "../include/dem_effects.h"
 
 typedef struct {
     int active;  /* 1 when the spheres overlap */

@@ -30,7 +30,7 @@
 #define DEM_HERTZ_MINDLIN_H
 #include "vec3.h"
 #include "dem_layout.h"
-#include "dem_effects.h"
+#include "../include/dem_effects.h"
 
 typedef struct {
     real fel;   /* elastic Hertz normal force 4/3 E* sqrt(r*) d^(3/2) of the overlap given [N] */

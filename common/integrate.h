@@ -15,7 +15,7 @@
 #include "dem_kernels.h"
 #include "vec3.h"
 #include "dem_layout.h"
-#include "dem_effects.h"
+#include "../include/dem_effects.h"
 #include "series.h"
 
 DEM_INLINE void integrate_kick_velocity(unsigned fx, int i, real half_dt, vec3 g, DEM_GLOBAL real *v, DEM_GLOBAL real *w,

@@ -22,7 +22,7 @@
 #include "dem_kernels.h"
 #include "vec3.h"
 #include "dem_layout.h"
-#include "dem_effects.h"
+#include "../include/dem_effects.h"
 #include "sorted_row.h"
 
 /* The pairs of particle i walked from i's side: its own cell's particles stored after it (j > i) and the particles

@@ -37,7 +37,7 @@
 #include "dem_kernels.h"
 #include "vec3.h"
 #include "dem_layout.h"
-#include "dem_effects.h"
+#include "../include/dem_effects.h"
 #include "sorted_row.h"
 #include "patch.h"
 #include "hertz_mindlin.h"

@@ -299,9 +299,25 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
              s->real_size, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir, s->source_dir,
              s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
              s->extra_build_options ? s->extra_build_options : "");
-    char src[1024] = ""; /* the program: every kernel file of the list above, included in order */
-    for (size_t k = 0; k < sizeof kernel_files / sizeof *kernel_files; k++)
-        snprintf(src + strlen(src), sizeof src - strlen(src), "#include \"%s\"\n", strrchr(kernel_files[k], '/') + 1);
+    /* the program: every kernel file of the list above, included in order by its full path. The compiler looks a
+     * file up in the working directory before the -I folders whatever the brackets (PoCL 3.1: a binning.cl where dem
+     * ran was built instead of ours), and for a header a kernel file includes, there before the -I folders too; so
+     * the kernel files name every header by its path from their own folder (../common/), where it is looked up
+     * first (docs/design.md "Kernel sources are read at run time") */
+    char src[16384] = "";
+    if (strpbrk(s->source_dir, "\"\n\\ ")) {
+        snprintf(err, errlen, "the kernel source folder '%s' holds a space, quote, backslash or line break, which the "
+                 "OpenCL build options and #include cannot name (set DEM_SOURCE_DIR to a plain path)", s->source_dir);
+        goto fail;
+    }
+    for (size_t k = 0, len = 0; k < sizeof kernel_files / sizeof *kernel_files; k++) {
+        int w = snprintf(src + len, sizeof src - len, "#include \"%s/%s\"\n", s->source_dir, kernel_files[k]);
+        if (w < 0 || (size_t)w >= sizeof src - len) {
+            snprintf(err, errlen, "the kernel source folder '%s' is too long a path", s->source_dir);
+            goto fail;
+        }
+        len += (size_t)w;
+    }
     if (cl_build(b->ctx, b->dev.device, src, options, &b->prog, err, errlen))
         goto fail;
     snprintf(b->core.build, sizeof b->core.build, "OpenCL C built by %s (driver %s) with: %s",

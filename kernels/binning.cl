@@ -1,6 +1,6 @@
 /* binning.cl - cell index + counting sort + canonical in-cell order (common/binning.h). Twin: reference/binning.c
  * Arguments: common/dem_kernels.h. */
-#include "binning.h"
+#include "../common/binning.h"
 
 DEM_KERNEL(bin_bounds)
 DEM_KERNEL(bin_index)

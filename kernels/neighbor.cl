@@ -1,6 +1,6 @@
 /* neighbor.cl - Verlet rows from cells, history carried across rebuilds (common/neighbor.h). Twin: reference/neighbor.c
  * Arguments: common/dem_kernels.h. */
-#include "neighbor.h"
+#include "../common/neighbor.h"
 
 DEM_KERNEL(nbr_count)
 DEM_KERNEL(nbr_build)

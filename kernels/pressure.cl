@@ -1,5 +1,5 @@
 /* pressure.cl - a pressure on triangles of particles into the contribution channel (common/pressure.h).
  * Twin: reference/pressure.c. Arguments: common/dem_kernels.h. */
-#include "pressure.h"
+#include "../common/pressure.h"
 
 DEM_KERNEL(pressure_forces)

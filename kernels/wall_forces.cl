@@ -2,7 +2,7 @@
  * applied per particle inside kernels/contact_forces.cl (and evaluated again here when their forces are not kept).
  * Twin: reference/wall_forces.c
  * Arguments: common/dem_kernels.h. */
-#include "wall_forces.h"
+#include "../common/wall_forces.h"
 
 DEM_KERNEL(wall_reduce_block)
 DEM_KERNEL(wall_reduce_final)

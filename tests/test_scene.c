@@ -1578,6 +1578,30 @@ static void test_particle_order(void **st)
            "bad.yaml:4: particle_order: particle_order must be input or spatial (got 'random')");
 }
 
+/* The kernels are built from the project's sources in whatever folder dem runs: a working folder holding files named
+ * like every kernel source and header (a C programmer's vec3.h; binning.cl) must not be compiled instead, as it was
+ * until 2026-12-03 (the OpenCL compiler looked there before the -I folders). The sources are copied to a fresh
+ * folder, so that no compiler cache (keyed on the program's text, which names that folder) answers for a build. A
+ * source folder whose path the build options cannot carry is refused by name. */
+static void test_kernels_ignore_working_folder(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err,
+                        "mkdir -p %s/src %s/cwd && cp -r %s/kernels %s/common %s/include %s/src/ && "
+                        "for f in %s/kernels/* %s/common/* %s/include/*; do "
+                        "echo '#error a file of the working folder was compiled' > %s/cwd/$(basename $f); done && "
+                        "cd %s/cwd && DEM_SOURCE_DIR=%s/src %s run %s/tests/scenes/restart_box.yaml -o %s/wf.h5 "
+                        "--stop-after 2",
+                        tmp, tmp, SRC, SRC, SRC, tmp, SRC, SRC, SRC, tmp, tmp, tmp, DEM, SRC, tmp),
+                     0);
+    assert_true(exists("%s/wf.ckpt.h5", tmp));
+    int rc = sh(err, sizeof err, "cp -r %s/src '%s/a b' && DEM_SOURCE_DIR='%s/a b' %s run %s/tests/scenes/restart_box.yaml "
+                "-o %s/ab.h5 --stop-after 2", tmp, tmp, tmp, DEM, SRC, tmp);
+    if (rc == 0 || !strstr(err, "b' holds a space, quote, backslash or line break"))
+        fail_msg("a source folder with a space: status %d, message: %s", rc, err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1595,6 +1619,7 @@ int main(void)
         cmocka_unit_test(test_random_packing),
         cmocka_unit_test(test_size_distributions),
         cmocka_unit_test(test_particle_order),
+        cmocka_unit_test(test_kernels_ignore_working_folder),
         cmocka_unit_test(test_wall_repeat),
         cmocka_unit_test(test_dt_advice),
         cmocka_unit_test(test_position_resolution),
