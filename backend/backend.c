@@ -208,7 +208,7 @@ size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size
 {
     dem_core c;
     memset(&c, 0, sizeof c);
-    c.fx = effects, c.rs = (int)rs, c.n = (int)n, c.nwalls = (int)nwalls, c.ncells = (int)ncells;
+    c.fx = effects, c.rs = (int)rs, c.n = (int)n, c.nwalls = (int)nwalls, c.ncells = c.cell_cap = (int)ncells;
     c.maxn[0] = c.maxn[1] = (int)maxn;
     dem_bufref r;
     size_t bytes;

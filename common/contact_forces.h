@@ -119,12 +119,10 @@ DEM_ITEM(contact_pairs)
     }
     pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, i,
                                         touching, trace, invvol, da, db);
-    /* both slots: the partner's mc_strain_disp reads its own row. A pair that neither touched nor touches holds
-     * 0 already (mc_strain_update zeroes what it set for a pair that does not touch now) */
-    if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching)) {
-        mc_fn[slot] = pc.fel;
-        mc_fn[m] = pc.fel;
-    }
+    /* per pair (both particles' mc_strain_disp read it). A pair that neither touched nor touches holds 0 already
+     * (mc_strain_update zeroes what it set for a pair that does not touch now) */
+    if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching))
+        mc_fn[i] = pc.fel;
     if (!pc.active) {
         if (touching) { /* the contact ended: so does its history */
             if (fx & DEM_EFFECT_FRICTION)

@@ -8,7 +8,8 @@
  * The stress sums (particle_stress.h) and MC-strain (mc_strain.h) run over every c; the force sum takes the OWNED
  * ones in pass 1 and the MIRRORED ones, then the walls, in pass 2 (contact_forces.h). A contact_ref also names where
  * its per-contact values live: a row slot (start[i] + c: dem_buffers.h DEM_ROWS) or a wall slot (i * nwalls + w), so that arrays kept per
- * row slot and per wall slot (forces, displacements) are read and written through one pair of helpers.
+ * row slot and per wall slot (MC-strain's displacements) are written through one helper; a value kept per pair is
+ * found by row_pair.
  * The membrane's patch contacts are not a range here: they have rows of their own (patch_contacts.h), are summed
  * after everything above, and enter neither the stress sums nor MC-strain.
  */
@@ -47,11 +48,16 @@ DEM_INLINE contact_ref contact_at(int i, int c, int cnt, int lower, int row0, in
     return r;
 }
 
-/* A per-contact value kept per row slot (row) and per wall slot (wall). */
-DEM_INLINE real contact_get(contact_ref r, DEM_CONST_GLOBAL real *row, DEM_CONST_GLOBAL real *wall)
+/* The pair number (neighbor.h pair_index: the pair records' and the per-pair arrays' index) of row slot c of
+ * particle i, partner j, given h: how many of the row's slots before c hold a partner stored after i. A partner
+ * stored after i makes the pair i's own, own + h (own = own_start[i]); one stored before makes it the partner's,
+ * listed at in_pair[in + c - h] (in = in_start[i]). A reader that walks the row in order counts h as it goes. */
+DEM_INLINE int row_pair(int i, int j, int c, int h, int own, int in, DEM_CONST_GLOBAL int *in_pair)
 {
-    return r.kind == CONTACT_WALL ? wall[r.slot] : row[r.slot];
+    return j > i ? own + h : in_pair[in + c - h];
 }
+
+/* A per-contact value kept per row slot (row) and per wall slot (wall). */
 DEM_INLINE void contact_set(contact_ref r, DEM_GLOBAL real *row, DEM_GLOBAL real *wall, real v)
 {
     if (r.kind == CONTACT_WALL)

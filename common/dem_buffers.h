@@ -77,13 +77,14 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
     ENTRY(TOUCH_OLD, BYTE, PAIRS, 0, -1, NONE, PAIRS)                                                                   \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE, PAIRS)                                        \
     ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS)                                                 \
+    ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS)                               \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS)                                 \
     ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES)                                                            \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE, PARTICLES)                                \
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT)                                   \
     ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE, WALLS)                         \
     ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE, WALLS)                        \
-    ENTRY(MC_DISP, REAL, MAXC, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS)                                 \
+    ENTRY(MC_DISP, REAL, MAXC > PAIRS ? MAXC : PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS)                                 \
     ENTRY(SPRING_INT, INT, 2 * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_int), MESH)                                     \
     ENTRY(SPRING_REAL, REAL, SP_STRIDE * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_real), MESH)                          \
     ENTRY(TRI, INT, 3 * NT, (DEM_EFFECT_PRESSURE | DEM_EFFECT_PATCHES), -1, SETUP(tri), MESH)                           \
@@ -112,13 +113,12 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
  * (swapped at each rebuild); the field names the current set's. Row i is list[start[i] .. start[i] + count[i]),
- * start the exclusive prefix sum of count (start[n]: the slots in use); a value kept per row slot (MC_FN) is at the
- * same index. */
+ * start the exclusive prefix sum of count (start[n]: the slots in use); a value kept per row slot (MC_DISP, held for
+ * the current set only) is at the same index. */
 #define DEM_ROWS(ENTRY)                                                                                                  \
     ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
     ENTRY(START, INT, N + 1, 0, DEM_FIELD_NBR_START)                                                                         \
-    ENTRY(LIST, INT, MAXN, 0, DEM_FIELD_NBR_LIST)                                                                            \
-    ENTRY(MC_FN, REAL, MAXN, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE)
+    ENTRY(LIST, INT, MAXN, 0, DEM_FIELD_NBR_LIST)
 
 /* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
 #define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)

@@ -30,7 +30,7 @@
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
     K(bin_bounds) K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
-    K(nbr_carry) K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
+    K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather)
@@ -83,14 +83,8 @@
     A(BIN, int, nbr_fill, NBR_FILL) A(BIN, int, sid, SID) A(BOUT, int, in_count, IN_COUNT)                           \
     A(BOUT, int, own_count, OWN_COUNT) A(BOUT, int, nbr_lower, LOWER) A(BOUT, int, flags, FLAGS)
 #define DEM_ITEMS_nbr_sort n
-#define DEM_ARGS_nbr_carry(F, A)                                                                                     \
-    F(I, int, n, N) A(NIN, int, nbr_start, START) A(CIN, int, old_start, START) A(NIN, int, nbr_count, COUNT)        \
-    A(NIN, int, nbr_list, LIST) A(CIN, int, old_count, COUNT) A(CIN, int, old_list, LIST)                            \
-    A(BIN, dem_byte, old_touch, TOUCH_OLD) A(BIN, int, old_own_start, OWN_START_OLD)                                 \
-    A(CIN, real, old_mc_fn, MC_FN) A(NOUT, real, mc_fn, MC_FN) A(BIN, int, sid, SID)                               \
-    A(BIN, int, old_slot, OLD_SLOT)
-#define DEM_ITEMS_nbr_carry n
-/* old_hist: the history as the last rows numbered it, copied into the pair records' space (host/neighbor.c) */
+/* old_hist, old_mc_fn: the history and MC-strain's forces as the last rows numbered their pairs, copied into the
+ * pair records' and the displacements' space (host/neighbor.c) */
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)         \
     A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_start, IN_START)                \
@@ -99,7 +93,8 @@
     A(BOUT, dem_byte, touch, TOUCH) A(BIN, dem_byte, old_touch, TOUCH_OLD) A(NIN, int, old_start, START)            \
     A(NIN, int, old_count, COUNT)                                                                                    \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR)               \
-    A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)
+    A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)                             \
+    A(BIN, real, old_mc_fn, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)
 #define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
@@ -113,7 +108,7 @@
     A(BIN, int, pair_guest, PAIR_GUEST) A(BIN, int, pair_slot, PAIR_SLOT) A(BIN, int, pair_mirror, PAIR_MIRROR)      \
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
-    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(COUT, real, mc_fn, MC_FN)                          \
+    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)                     \
     A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
@@ -181,16 +176,18 @@
     F(I, int, n, N) A(CIN, int, nbr_start, START) A(I, int, nmat, NMAT) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)  \
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)   \
     A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
-    A(CIN, real, fn, MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(BOUT, real, disp, MC_DISP)                           \
-    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
+    A(BIN, real, fn, PAIR_MC_FN) A(BIN, real, wall_fn, MC_WALL_FN) A(BOUT, real, disp, MC_DISP)                      \
+    A(BOUT, real, wall_disp, MC_WALL_DISP) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)                \
+    A(BIN, int, own_start, OWN_START) A(BIN, int, in_start, IN_START) A(BIN, int, in_pair, IN_PAIR)
 #define DEM_ITEMS_mc_strain_disp n
 #define DEM_ARGS_mc_strain_update(F, A)                                                                              \
     F(I, int, n, N) A(CIN, int, nbr_start, START) A(I, int, nmat, NMAT) A(R, real, tol, MC_TOL) A(BIN, real, x, X)       \
     A(BIN, real, radius, RADIUS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(CIN, int, nbr_count, COUNT)  \
     A(CIN, int, nbr_list, LIST) A(BIN, int, sid, SID) A(I, int, nwalls, NWALLS)                                      \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, real, disp, MC_DISP)                   \
-    A(BIN, real, wall_disp, MC_WALL_DISP) A(COUT, real, fn, MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)                \
-    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)
+    A(BIN, real, wall_disp, MC_WALL_DISP) A(BOUT, real, fn, PAIR_MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)           \
+    A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)                            \
+    A(BIN, int, own_start, OWN_START) A(BIN, int, in_start, IN_START) A(BIN, int, in_pair, IN_PAIR)
 #define DEM_ITEMS_mc_strain_update n
 
 /* ---- springs.h ---- */

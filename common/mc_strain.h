@@ -21,9 +21,9 @@
  *
  * f_k comes from the previous evaluation: the previous time step in the lagged scheme (published, one pass), or
  * the previous iteration when iterating (host/sim.c repeats mc_strain_disp + mc_strain_update until no force changes
- * by more than the relative tolerance, or the iteration cap). It is stored per row slot (both slots of a pair hold
- * the same value, written by the pair's owner, like the touch flags) and per particle-wall slot, carried across
- * neighbour rebuilds and saved in checkpoints.
+ * by more than the relative tolerance, or the iteration cap). It is stored per pair (numbered like the records:
+ * contacts.h row_pair; until 2026-12-03 per row slot, in both slots of a pair and in both row sets) and per
+ * particle-wall slot, carried across neighbour rebuilds and saved in checkpoints.
  *
  * Guards (the singular cases stay finite): d_kc is raised to the Hertz contact radius a_k = sqrt(r*_k d_k) of the
  * loading contact (the point-load field is meaningless inside the contact patch, and f_k / a_k ~ E* d_k stays
@@ -124,8 +124,16 @@ DEM_INLINE vec3 mc_direction(vec3 pk, vec3 pc, real *d, real *inv_d)
     return v3_scale(dp, *inv_d);
 }
 
+/* f_k of contact r, number c of particle i: per pair from fn (h: the row's slots before c whose partner is stored
+ * after i, contacts.h row_pair) or per wall slot from wall_fn */
+DEM_INLINE real mc_fn_of(int i, contact_ref r, int c, int h, int own, int in, DEM_CONST_GLOBAL int *in_pair,
+                         DEM_CONST_GLOBAL real *fn, DEM_CONST_GLOBAL real *wall_fn)
+{
+    return r.kind == CONTACT_WALL ? wall_fn[r.slot] : fn[row_pair(i, r.partner, c, h, own, in, in_pair)];
+}
+
 /* D_i,c for every contact c of particle i: row slots into disp[nbr_start[i] + c], walls into wall_disp[i*nwalls + k];
- * zero where c does not touch. f_k is read from fn (row slots) and wall_fn (walls). Each D_i,c sums k in canonical
+ * zero where c does not touch. f_k is read from fn (per pair) and wall_fn (walls). Each D_i,c sums k in canonical
  * order (ascending contact number), whichever path computes it. */
 DEM_ITEM(mc_strain_disp)
 {
@@ -138,9 +146,11 @@ DEM_ITEM(mc_strain_disp)
     /* fast path: the touching contacts, gathered once (in canonical order), then each unordered pair once */
     vec3 cp[MC_CACHE], cn[MC_CACHE];
     real fc[MC_CACHE], ac[MC_CACHE], sum[MC_CACHE];
-    int where[MC_CACHE], nc = 0;
+    int where[MC_CACHE], nc = 0, own = own_start[i], in = in_start[i], h = 0;
     for (int c = 0; c < total && nc <= MC_CACHE; c++) {
         contact_ref r = contact_at(i, c, cnt, lower, row0, nwalls, nbr_list);
+        int hc = h; /* h as row_pair takes it for c, then counted on past c */
+        h += r.kind != CONTACT_WALL && r.partner > i;
         mc_contact cc = mc_contact_get(fx, i, r, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         contact_set(r, disp, wall_disp, (real)0);
         if (!cc.active)
@@ -151,7 +161,7 @@ DEM_ITEM(mc_strain_disp)
         }
         cp[nc] = cc.p;
         cn[nc] = cc.n;
-        fc[nc] = contact_get(r, fn, wall_fn);
+        fc[nc] = mc_fn_of(i, r, c, hc, own, in, in_pair, fn, wall_fn);
         ac[nc] = mc_contact_radius(cc);
         sum[nc] = (real)0;
         where[nc++] = c;
@@ -180,9 +190,10 @@ DEM_ITEM(mc_strain_disp)
         mc_contact cc = mc_contact_get(fx, i, rc, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
         real s = (real)0;
         if (cc.active)
-            for (int k = 0; k < total; k++) {
+            for (int k = 0, hk = 0; k < total; k++) {
                 contact_ref rk = contact_at(i, k, cnt, lower, row0, nwalls, nbr_list);
-                real fk = contact_get(rk, fn, wall_fn);
+                real fk = mc_fn_of(i, rk, k, hk, own, in, in_pair, fn, wall_fn);
+                hk += rk.kind != CONTACT_WALL && rk.partner > i;
                 if (k == c || !(fk > (real)0))
                     continue;
                 mc_contact kk = mc_contact_get(fx, i, rk, xi, ri, x, radius, wall_int, wall_real, ride, pairmat);
@@ -205,7 +216,7 @@ DEM_INLINE real mc_strain_overlap(real delta, real da, real db)
 }
 
 /* One iteration: the elastic normal force of every contact of particle i from the current displacements, into
- * fn (owned pairs, both slots) and wall_fn; raises FLAG_MC_PENDING if one moved by more than tol (relative). */
+ * fn (the pairs i owns) and wall_fn; raises FLAG_MC_PENDING if one moved by more than tol (relative). */
 DEM_INLINE int mc_changed(real fnew, real fold, real tol)
 {
     real d = fnew > fold ? fnew - fold : fold - fnew;
@@ -218,9 +229,11 @@ DEM_ITEM(mc_strain_update)
     vec3 xi = v3_load(x, i);
     real ri = radius[i];
     int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), changed = 0, row0 = nbr_start[i];
-    int nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
-    for (int c = 0; c < contact_count(cnt, nw); c++) { /* the pairs i owns (both slots), then its walls */
+    int nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0, own = own_start[i], in = in_start[i], h = 0;
+    for (int c = 0; c < contact_count(cnt, nw); c++) { /* the pairs i owns, then its walls */
         contact_ref r = contact_at(i, c, cnt, lower, row0, nwalls, nbr_list);
+        int hc = h;
+        h += r.kind != CONTACT_WALL && r.partner > i;
         real f = (real)0;
         if (r.kind == CONTACT_OWNED) {
             int slot = r.slot, j = r.partner, m = row_find_sid(nbr_list + nbr_start[j], nbr_count[j], sid, sid[i]);
@@ -231,9 +244,9 @@ DEM_ITEM(mc_strain_update)
             if (g.active)
                 f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,
                                mc_strain_overlap(g.delta, disp[slot], disp[m]));
-            changed |= mc_changed(f, fn[slot], tol);
-            fn[slot] = f;
-            fn[m] = f;
+            int p = row_pair(i, j, c, hc, own, in, in_pair);
+            changed |= mc_changed(f, fn[p], tol);
+            fn[p] = f;
         } else if (r.kind == CONTACT_WALL) {
             int k = r.partner;
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);

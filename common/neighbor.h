@@ -145,24 +145,6 @@ DEM_INLINE int old_pair_number(int a, int b, DEM_CONST_GLOBAL int *old_count, DE
     return p;
 }
 
-DEM_ITEM(nbr_carry)
-{
-    if (!(fx & DEM_EFFECT_MC_STRAIN))
-        return;
-    DEM_CONST_GLOBAL int *orow = old_list + old_start[i];
-    int row0 = nbr_start[i];
-    for (int k = 0; k < nbr_count[i]; k++) { /* the lagged MC-strain force of the same contact (mc_strain.h) */
-        int j = nbr_list[row0 + k];
-        int found = row_find_sid(orow, old_count[i], sid, sid[j]);
-        real f = (real)0;
-        if (found >= 0) { /* whether the pair touched: its flag is kept by its owner, the lower stable id */
-            int q = old_pair_number(i, j, old_count, old_list, old_start, old_own_start, old_slot, sid);
-            if (q >= 0 && old_touch[q])
-                f = old_mc_fn[old_start[i] + found];
-        }
-        mc_fn[row0 + k] = f;
-    }
-}
 /* The flat pair list of the committed rows (contact_forces.h). A pair is numbered by its host, the one of its two
  * particles stored first (whichever has the lower stable id evaluates it: contact_pairs), so that the pairs follow
  * the storage order: pair p = own_start[i] + h is the h-th partner j > i (stored after i) in particle i's row;
@@ -170,9 +152,9 @@ DEM_ITEM(nbr_carry)
  * without reading the stable ids each step) and pair_guest[p] = j. The partner j's slot of the same pair (the slot
  * of i in row j, found by binary search; it is the g-th of j's partners stored before j) gets
  * in_pair[in_start[j] + g] = p. With MC-strain, pair_slot[p] names i's row slot of the pair and pair_mirror[p] j's. Each entry has one writer: p's host writes them all. A pair whose partner row lacks
- * it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC. The touching flag (touch[p]) and tangential history
- * (hist[3 p], in the orientation of the lower stable id) are kept per pair: a pair takes them from its number in the
- * old rows (old_pair_number), a new one starts untouched, from zero. Per pair, not per row slot, they are dense
+ * it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC. The touching flag (touch[p]), tangential history
+ * (hist[3 p], in the orientation of the lower stable id) and MC-strain force (mc_fn[p]) are kept per pair: a pair
+ * takes them from its number in the old rows (old_pair_number), a new one starts untouched, from zero. Per pair, not per row slot, they are dense
  * arrays read in order by contact_pairs. */
 DEM_ITEM(pair_index)
 {
@@ -202,6 +184,8 @@ DEM_ITEM(pair_index)
         touch[p] = (unsigned char)t;
         if (fx & DEM_EFFECT_FRICTION) /* no history exists without friction */
             v3_store(hist, p, t ? v3_load(old_hist, q) : v3_zero());
+        if (fx & DEM_EFFECT_MC_STRAIN) /* the lagged MC-strain force of the same contact (mc_strain.h) */
+            mc_fn[p] = t ? old_mc_fn[q] : (real)0;
         p++;
     }
 }

@@ -38,27 +38,30 @@ int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b)
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
 {
     dem_core *c = DEM_CORE(b);
-    /* The old pair numbering, touching flags and history, which pair_index carries into the new (neighbor.h). The
-     * history's copy goes into the pair records' space: contact_pairs writes every record before anything reads one,
-     * so between a build and the next force pass the records hold nothing (and 3 reals of history per pair fit in 7
-     * of a record's); a buffer of its own held 24 bytes per pair in fp64 all the run for this moment (2026-12-03). The
-     * touching flags' copy is grown here to the flags' capacity (which may have grown at the last commit). */
+    /* The old pair numbering, touching flags, history and MC-strain forces, which pair_index carries into the new
+     * (neighbor.h). The copies of the history and the forces go into buffers that hold nothing between a build and
+     * the next force pass: the pair records (contact_pairs writes every record before anything reads one; 3 reals of
+     * history per pair fit in 7 of a record's) and MC-strain's displacements per row slot (mc_strain_disp writes each
+     * before anything reads it; a row set has two slots per pair); both grow only after pair_index has read them.
+     * Until 2026-12-03 the history's copy held a buffer of its own (24 bytes per pair in fp64) all the run for this
+     * moment, and the forces were kept per row slot in both row sets. The touching flags' copy is grown here to the
+     * flags' capacity (which may have grown at the last commit). */
     dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, rec = {TABLE_ONE, BUF_PAIR};
+    dem_bufref fn = {TABLE_ONE, BUF_PAIR_MC_FN}, disp = {TABLE_ONE, BUF_MC_DISP};
     dem_bufref touch = {TABLE_ONE, BUF_TOUCH}, old_touch = {TABLE_ONE, BUF_TOUCH_OLD};
+    if (c->bytes[BUF_PAIR_HIST] > c->bytes[BUF_PAIR] || c->bytes[BUF_PAIR_MC_FN] > c->bytes[BUF_MC_DISP])
+        return dem_core_fail(c, "the pairs' copies do not fit where they are kept for a rebuild (a library bug; please "
+                                "report)");
     if ((c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
          o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)) ||
         (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
-        (c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, rec, c->bytes[BUF_PAIR_HIST])))
+        (c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, rec, c->bytes[BUF_PAIR_HIST])) ||
+        (c->bytes[BUF_PAIR_MC_FN] && o->copy(b, fn, disp, c->bytes[BUF_PAIR_MC_FN])))
         return 1;
     dem_bufref own = {TABLE_ONE, BUF_OWN_START}, old_own = {TABLE_ONE, BUF_OWN_START_OLD};
-    if (o->copy(b, own, old_own, c->bytes[BUF_OWN_START]) || dem_launch(o, b, K_nbr_carry))
+    if (o->copy(b, own, old_own, c->bytes[BUF_OWN_START]))
         return 1;
     c->cur = 1 - c->cur;
-    /* the buffers laid out like the current rows but written before they are read (dem_buffers.h: MAXC, MC-strain's
-     * displacements) follow the new rows' capacity; grown only, as the two sets' capacities may alternate */
-    if (dem_buffer_bytes(c, BUF_MC_DISP) > c->bytes[BUF_MC_DISP] &&
-        o->alloc(b, TABLE_ONE, 0, BUF_MC_DISP, dem_buffer_bytes(c, BUF_MC_DISP), NULL))
-        return 1;
     int total = 0, owned = 0;
     dem_bufref start = {TABLE_ONE, BUF_IN_START};
     dem_bufref in_count = {TABLE_ONE, BUF_IN_COUNT}, in_sums = {TABLE_ONE, BUF_IN_BLOCK_SUM};
@@ -78,15 +81,19 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
         /* the pair-sized buffers (dem_buffers.h: PAIRS) that pair_index rewrites, and the sampled step's pair
          * energies (written before they are read in that step); the records after pair_index has read the history's
          * copy from them, the flags' copy at the next commit (above) */
-        static const int grown[] = {BUF_PAIR_HOST, BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR,
-                                    BUF_PAIR_MIRROR, BUF_TOUCH, BUF_PAIR_HIST, BUF_PAIR_ELA};
+        static const int grown[] = {BUF_PAIR_HOST,   BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR,
+                                    BUF_TOUCH,       BUF_PAIR_HIST,  BUF_PAIR_ELA,  BUF_PAIR_MC_FN};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;
     }
     c->si[SI_NPAIRS] = total;
     dem_bufref x = {TABLE_ONE, BUF_X}, xb = {TABLE_ONE, BUF_X_BUILD};
+    /* the buffers laid out like the current rows but written before they are read (dem_buffers.h: MAXC, MC-strain's
+     * displacements) follow the new rows' capacity; grown only, as the two sets' capacities may alternate */
     return dem_launch(o, b, K_pair_index) ||
            (grow && o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL)) ||
+           (dem_buffer_bytes(c, BUF_MC_DISP) > c->bytes[BUF_MC_DISP] &&
+            o->alloc(b, TABLE_ONE, 0, BUF_MC_DISP, dem_buffer_bytes(c, BUF_MC_DISP), NULL)) ||
            o->copy(b, x, xb, c->bytes[BUF_X]);
 }

@@ -1146,13 +1146,21 @@ const char *dem_describe(dem_sim *s)
     return s->desc;
 }
 
+size_t sim_stored_bytes(const dem_sim *s, dem_field f)
+{
+    dem_bufref r;
+    size_t bytes;
+    return s->be && !dem_field_ref(DEM_CORE(s->be), f, &r, &bytes) ? bytes : 0;
+}
+
 size_t dem_field_bytes(const dem_sim *s, dem_field f)
 {
-    if (s->started) { /* the run's own sizes: the pair-sized fields follow the pairs allocated */
-        dem_bufref r;
-        size_t bytes;
-        return dem_field_ref(DEM_CORE(s->be), f, &r, &bytes) ? 0 : bytes;
-    }
+    if (f == DEM_FIELD_MC_FORCE) /* kept per pair, handed out per row slot (dem_get_raw) */
+        return (s->setup.effects & DEM_EFFECT_MC_STRAIN)
+                   ? (size_t)s->setup.real_size * (size_t)(s->be ? DEM_CORE(s->be)->maxn[DEM_CORE(s->be)->cur] : s->maxn)
+                   : 0;
+    if (s->started) /* the run's own sizes: the pair-sized fields follow the pairs allocated */
+        return sim_stored_bytes(s, f);
     return dem_field_size(f, s->setup.effects, (size_t)s->n, (size_t)s->maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
                           (size_t)s->setup.real_size);
 }
@@ -1163,15 +1171,20 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return be_fail(s);
-    if (!s->reorders || !bytes)
+    int slots = f == DEM_FIELD_MC_FORCE; /* kept per pair, handed out per row slot */
+    if (!bytes || (!slots && !s->reorders))
         return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? be_fail(s) : 0;
     /* stored anew (dem_config.reorder): the whole field read, then put in the callers' order */
     size_t all = dem_field_bytes(s, f);
-    unsigned char *buf = malloc(all > bytes ? all : bytes);
+    if (bytes > all)
+        return sim_fail(s, DEM_ERR_ARG, "field %d holds %zu bytes, %zu asked", (int)f, all, bytes);
+    unsigned char *buf = malloc(all ? all : 1);
     if (!buf)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    int e = dem_stage_read_field(s->ops, s->be, f, buf, all > bytes ? all : bytes) ? be_fail(s)
-                                                                                   : sim_field_to_api(s, f, buf, all);
+    int e = slots ? sim_mc_force_slots(s, buf, all)
+                  : dem_stage_read_field(s->ops, s->be, f, buf, all) ? be_fail(s) : 0;
+    if (!e && s->reorders)
+        e = sim_field_to_api(s, f, buf, all);
     if (!e)
         memcpy(dst, buf, bytes);
     free(buf);

@@ -167,6 +167,8 @@ int sim_field_from_api(dem_sim *s, dem_field f, const void *src, void *dst, size
 /* state.c: where each particle's hosted pairs (partners stored after it) start in the pair list of rows cnt, list
  * (neighbor.h's own_start; malloc'd, n + 1 entries) */
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);
+int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all); /* state.c */
+size_t sim_stored_bytes(const dem_sim *s, dem_field f);          /* sim.c: a field's bytes as the device holds it */
 /* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
 double dem_hinge_rest_shalf(const double *x, const int *p);
 /* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */

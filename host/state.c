@@ -30,7 +30,7 @@ void dem_state_free(dem_state *st)
  * read together in storage order; host/reorder.c) */
 static void *get_field(dem_sim *s, dem_field f, size_t *bytes, int *e, int stored)
 {
-    *bytes = dem_field_bytes(s, f);
+    *bytes = stored ? sim_stored_bytes(s, f) : dem_field_bytes(s, f);
     void *p = malloc(*bytes ? *bytes : 1);
     if (!p) {
         *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -149,6 +149,30 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
 
 /* Where each particle's hosted pairs (partners stored after it) start in the pair numbering (neighbor.h's
  * pair_index: own_start), from the rows */
+/* MC-strain's force of every row slot, as stored (the device keeps it per pair: mc_strain.h); `all` bytes, the
+ * field's size (dem_field_bytes), slots past the rows zero. */
+int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all)
+{
+    int n = s->n, rs = s->setup.real_size, e = 0;
+    size_t b, pb;
+    memset(buf, 0, all);
+    int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *pf = get_stored(s, DEM_FIELD_MC_FORCE, &pb, &e);
+    int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
+    if (!e && !own)
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int i = 0; !e && i < n; i++)
+        for (int k = 0; k < cnt[i]; k++) {
+            size_t slot = (size_t)start[i] + (size_t)k;
+            int p = row_pair_of(cnt, list, start, own, s->setup.sid, i, k);
+            if (p >= 0 && (size_t)(p + 1) * rs <= pb && (slot + 1) * rs <= all)
+                memcpy(buf + slot * rs, pf + (size_t)p * rs, (size_t)rs);
+        }
+    free(cnt), free(list), free(start), free(pf), free(own);
+    return e;
+}
+
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n)
 {
     int *own = malloc(sizeof(int) * ((size_t)n + 1));
@@ -232,8 +256,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
             if (hb) /* no tangential history without friction; it is kept per pair (neighbor.h) */
                 memcpy((char *)st->pair_hist + (size_t)np * 3 * rs,
                        hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
-            if (fb) /* MC-strain: the force the next step's induced displacements start from */
-                memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)slot * rs, (size_t)rs);
+            if (fb) /* MC-strain: the force the next step's induced displacements start from (kept per pair) */
+                memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
             np++;
         }
     st->npairs = np;
@@ -343,8 +367,8 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         dem_state_free(&mine);
         return e;
     }
-    size_t b, hb = dem_field_bytes(s, DEM_FIELD_HIST), fb = dem_field_bytes(s, DEM_FIELD_MC_FORCE),
-              tb = dem_field_bytes(s, DEM_FIELD_TOUCH);
+    size_t b, hb = sim_stored_bytes(s, DEM_FIELD_HIST), fb = sim_stored_bytes(s, DEM_FIELD_MC_FORCE),
+              tb = sim_stored_bytes(s, DEM_FIELD_TOUCH);
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
@@ -364,10 +388,8 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         if (hb && st->has_hist)
             memcpy(hist + pn * 3 * rs,
                    (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
-        if (fb) { /* both slots of the pair hold the force (mc_strain.h) */
-            memcpy(mcf + (size_t)a * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
-            memcpy(mcf + (size_t)m * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
-        }
+        if (fb) /* kept per pair, like the history (mc_strain.h) */
+            memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
     }
     if (!e)
         e = patch_contacts_set(s, st);

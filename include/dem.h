@@ -162,7 +162,8 @@ typedef enum {
                                    elastic normal forces; negative in compression), computed when read */
     DEM_FIELD_STRESS_TRACE,         /* real[n]: the trace MC-stress used in the last step [Pa]; empty without mc_stress */
     DEM_FIELD_MC_FORCE,             /* real[slots]: MC-strain elastic normal force per row slot (indexed like
-                                       NBR_LIST) [N]; mc_strain only */
+                                       NBR_LIST; the device keeps one per pair, spread over both slots when read)
+                                       [N]; mc_strain only */
     DEM_FIELD_MC_WALL_FORCE,        /* real[n*nwalls]: the same per particle-wall slot [N]; mc_strain only */
     DEM_FIELD_MC_DISP,              /* real[>= slots]: MC-strain displacement induced at each row slot's contact [m] */
     DEM_FIELD_MC_WALL_DISP,         /* real[n*nwalls]: the same per particle-wall slot [m] */

@@ -5,5 +5,4 @@
 DEM_KERNEL(nbr_count)
 DEM_KERNEL(nbr_build)
 DEM_KERNEL(nbr_sort)
-DEM_KERNEL(nbr_carry)
 DEM_KERNEL(pair_index)

@@ -6,5 +6,4 @@
 DEM_REF_LOOP(nbr_count)
 DEM_REF_LOOP(nbr_build)
 DEM_REF_LOOP(nbr_sort)
-DEM_REF_LOOP(nbr_carry)
 DEM_REF_LOOP(pair_index)

@@ -49,9 +49,18 @@ static void test_slow_path_equals_fast_path(void **st)
     wall_real[W_NZ] = 1;
     wall_real[W_STRIDE + W_PY] = (real)0.0099; /* side y = 9.9 mm, normal -y */
     wall_real[W_STRIDE + W_NY] = -1;
-    real fn[N * MAXN], wall_fn[N * NW];
-    for (int k = 0; k < N * MAXN; k++)
-        fn[k] = (real)(0.05 + 0.01 * (k % 7));
+    /* the six pairs, numbered by their host, particle 0 (neighbor.h pair_index): pair p joins 0 and p + 1; each
+     * other particle finds its one pair, stored before it, through in_pair */
+    real fn[6], wall_fn[N * NW];
+    for (int k = 0; k < 6; k++)
+        fn[k] = (real)(0.05 + 0.01 * k);
+    int own_start[N + 1], in_start[N + 1], in_pair[6];
+    for (int i = 0; i <= N; i++) {
+        own_start[i] = i == 0 ? 0 : 6;
+        in_start[i] = i == 0 ? 0 : i - 1;
+    }
+    for (int k = 0; k < 6; k++)
+        in_pair[k] = k;
     for (int k = 0; k < N * NW; k++)
         wall_fn[k] = (real)(0.03 + 0.02 * (k % 3));
     real slow[N * MAXN], fast[N * MAXN], wslow[N * NW], wfast[N * NW];
@@ -66,9 +75,11 @@ static void test_slow_path_equals_fast_path(void **st)
     memset(fast, 0xff, sizeof fast);
     for (int i = 0; i < N; i++)
         mc_strain_disp_item(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, i, N, start, 2, x, radius, mat, pairmat, count,
-                            list, NW, wall_int, wall_real, fn, wall_fn, slow, wslow, ride, in_count);
+                            list, NW, wall_int, wall_real, fn, wall_fn, slow, wslow, ride, in_count, own_start,
+                            in_start, in_pair);
     ref_mc_strain_disp_f64(DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN, N, start, 2, x, radius, mat, pairmat, count,
-                           list, NW, wall_int, wall_real, fn, wall_fn, fast, wfast, ride, in_count);
+                           list, NW, wall_int, wall_real, fn, wall_fn, fast, wfast, ride, in_count, own_start, in_start,
+                           in_pair);
     int touching = 0;
     for (int k = 0; k < 6; k++) {
         assert_memory_equal(&slow[k], &fast[k], sizeof(real));
