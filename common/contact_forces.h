@@ -17,7 +17,7 @@
  * Effects: without friction no history, torque, n x f_t or lever arm is read or written (the torque array is left
  * as it is: zero); walls are visited only with DEM_EFFECT_WALLS. With MC-stress the normal law reads both particles'
  * stress traces (particle_stress.h); with MC-strain it sees the overlap plus both particles' induced displacements
- * of this contact's slots, and the owner stores the resulting elastic force in both slots (mc_strain.h).
+ * of this contact's slots, and stores the resulting elastic force once per pair (mc_strain.h).
  *
  * Torque: the contact point lies a distance (r - d/2) from each centre along the line of centres, so the torque on
  * either particle g is -(r_g - d/2) (n x f_t) with n from b to a (seed 000, Eq. 1 branch vector).

@@ -12,8 +12,8 @@
  * the rows in full. Every row is as long as it needs to be: a
  * compact's rows hold 7 to 8 partners on the mean and 20 at the most, and no row is padded to the longest
  * (docs/design.md "Memory in a compact").
- * A new row takes the MC-strain force of the same partner from the old row (binary search), or zero; the pair's
- * touching flag and tangential history follow in pair_index, once the new pairs are numbered.
+ * The pair's touching flag, tangential history and MC-strain force follow in pair_index, once the new pairs are
+ * numbered (from the same pair in the old rows, or zero).
  * With DEM_EFFECT_PATCHES the vertices of patch triangles are in no row (they touch spheres as patches); with
  * DEM_EFFECT_SPRINGS two vertices of one membrane are not partners (PM_APART: their spheres may overlap).
  */

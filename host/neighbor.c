@@ -40,8 +40,9 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     dem_core *c = DEM_CORE(b);
     /* The old pair numbering, touching flags, history and MC-strain forces, which pair_index carries into the new
      * (neighbor.h). The copies of the history and the forces go into buffers that hold nothing between a build and
-     * the next force pass: the pair records (contact_pairs writes every record before anything reads one; 3 reals of
-     * history per pair fit in 7 of a record's) and MC-strain's displacements per row slot (mc_strain_disp writes each
+     * the next force pass: the pair records (contact_pairs writes the record of every pair it finds touching, and
+     * every reader reads a record only where the touching flag says so; 3 reals of history per pair fit in 7 of a
+     * record's) and MC-strain's displacements per row slot (mc_strain_disp writes each
      * before anything reads it; a row set has two slots per pair); both grow only after pair_index has read them.
      * Until 2026-12-03 the history's copy held a buffer of its own (24 bytes per pair in fp64) all the run for this
      * moment, and the forces were kept per row slot in both row sets. The touching flags' copy is grown here to the

@@ -97,8 +97,8 @@ static void pack_rows(unsigned char *dst, const unsigned char *src, size_t item,
 }
 
 /* The current rows (dem_buffers.h DEM_ROWS: packed, row i at start[i]) in the new order: row k is the old row of
- * from[k], its partners renamed by to[], and the values kept per slot (MC-strain's forces) moved with them. buf and
- * tmp hold at least the largest row buffer. */
+ * from[k], its partners renamed by to[]. buf and tmp hold at least the largest row buffer. (The values kept per pair
+ * follow at the rebuild that comes next: pair_index finds each pair's old number through OLD_SLOT.) */
 static int move_rows(dem_sim *s, const int *from, const int *to, unsigned char *buf, unsigned char *tmp)
 {
     dem_core *c = DEM_CORE(s->be);
@@ -122,11 +122,9 @@ static int move_rows(dem_sim *s, const int *from, const int *to, unsigned char *
         }
         if (id == ROW_COUNT)
             move_items(buf, tmp, bytes, from, n, sizeof(int));
-        else { /* a value per slot: each row's run of slots to its new start */
-            int list = id == ROW_LIST;
-            size_t item = list ? sizeof(int) : (size_t)s->setup.real_size;
-            pack_rows(tmp, buf, item, cnt, start, from, n, nstart, list ? to : NULL);
-            memcpy(buf, tmp, item * (size_t)nstart[n]);
+        else { /* the partners: each row's run of slots to its new start, renamed */
+            pack_rows(tmp, buf, sizeof(int), cnt, start, from, n, nstart, to);
+            memcpy(buf, tmp, sizeof(int) * (size_t)nstart[n]);
         }
         if (s->ops->write(s->be, r, 0, buf, bytes, 1))
             e = device_fail(s);

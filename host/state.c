@@ -147,8 +147,6 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
     return e;
 }
 
-/* Where each particle's hosted pairs (partners stored after it) start in the pair numbering (neighbor.h's
- * pair_index: own_start), from the rows */
 /* MC-strain's force of every row slot, as stored (the device keeps it per pair: mc_strain.h); `all` bytes, the
  * field's size (dem_field_bytes), slots past the rows zero. */
 int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all)
@@ -173,6 +171,8 @@ int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all)
     return e;
 }
 
+/* Where each particle's hosted pairs (partners stored after it) start in the pair numbering (neighbor.h's
+ * pair_index: own_start), from the rows */
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n)
 {
     int *own = malloc(sizeof(int) * ((size_t)n + 1));

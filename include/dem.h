@@ -151,7 +151,7 @@ typedef enum {
                                        empty without friction */
     DEM_FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
     DEM_FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
-    DEM_FIELD_CELL_START,           /* int[dem_cell_count() + 1] */
+    DEM_FIELD_CELL_START,           /* int[dem_cell_count() + 1] (the buffer may hold more, which mean nothing) */
     DEM_FIELD_CELL_PARTICLES,       /* int[n] */
     DEM_FIELD_FLAGS,                /* int[FLAG_COUNT] (common/dem_layout.h) */
     DEM_FIELD_WALL_REAL,            /* real[11*nwalls] (common/dem_layout.h W_*) */
@@ -552,7 +552,7 @@ const char *dem_build_info(dem_sim *s);
 /* Bytes the backend holds now for the run (every buffer of the registry, both neighbour-row sets). */
 size_t dem_device_bytes(const dem_sim *s);
 /* What the device's bytes hold (common/dem_buffers.h names each buffer's part): per-particle state and pair indices
- * (PARTICLES), the pair records with their history, flags and its copy (PAIRS), both neighbour-row sets (ROWS), the
+ * (PARTICLES), the pair records with their history, flags, MC-strain forces and the flags' copy (PAIRS), both neighbour-row sets (ROWS), the
  * walls' records, per-particle wall contacts and sums (WALLS), the cell grid (CELLS), the sampled series' rows of
  * particles and walls and the output stress tensor (OUTPUT), membranes, patches and riders (MESH). */
 typedef enum {
