@@ -1,6 +1,6 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_normal_force,wall_pos,wall_stage,
- * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,
- * wall_hist,wall_mask,radius,pair_mc_fn,wall_mc_fn,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
+ * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,
+ * wall_hist,wall_pf,wall_mask,radius,pair_mc_fn,wall_mc_fn,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 /* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
@@ -38,6 +38,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     int rc = f < 0;
     hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
     hsize_t n3[2] = {(hsize_t)st.n, 3}, w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
+    hsize_t p7[2] = {(hsize_t)st.npairs, DEM_PAIR_RECORD_REALS}, wp[1] = {st.wall_pf_bytes / (size_t)st.real_size};
     hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs}, w1[1] = {(hsize_t)st.nwalls};
     hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size}, wm[1] = {st.wall_mc_fn_bytes / (size_t)st.real_size};
     hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0};
@@ -63,7 +64,9 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_write(g, "pair_i", H5T_NATIVE_INT, 1, p1, st.pair_i, NULL) ||
              h5_write(g, "pair_j", H5T_NATIVE_INT, 1, p1, st.pair_j, NULL) ||
              h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
+             (st.pair_rec && h5_write(g, "pair_rec", real_t, 2, p7, st.pair_rec, "N, N m, m")) ||
              h5_write(g, "wall_hist", real_t, 1, wh, st.wall_hist, "N") ||
+             (st.wall_pf && h5_write(g, "wall_pf", real_t, 1, wp, st.wall_pf, "N")) ||
              h5_write(g, "wall_mask", H5T_NATIVE_UINT, 1, n1, st.wall_mask, NULL) ||
              h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, n1, radius, "m") ||
              h5_attr_long(g, "has_mc", st.has_mc) || h5_attr_long(g, "mc_last", st.mc.last) ||
@@ -174,6 +177,21 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
                                         h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
+        /* each touching pair's force record of the last step (common/dem_layout.h PR_*; absent from checkpoints of
+         * libdem before 2026-12-03: the contact network's pair forces are then zero until the next step) */
+        if (!rc && H5Lexists(g, "pair_rec", H5P_DEFAULT) > 0) {
+            st->pair_rec = h5_count(g, "pair_rec") == DEM_PAIR_RECORD_REALS * npairs ? malloc(DEM_PAIR_RECORD_REALS * (size_t)(npairs + 1) * rs)
+                                                                         : NULL;
+            rc = !st->pair_rec || h5_read(g, "pair_rec", real_t, st->pair_rec, DEM_PAIR_RECORD_REALS * (size_t)npairs);
+        }
+        /* each wall's force on each particle in the last step, in runs that keep them (absent from checkpoints of
+         * libdem before 2026-12-03, and empty in runs that do not keep them: zero until the next step) */
+        long npf = !rc && H5Lexists(g, "wall_pf", H5P_DEFAULT) > 0 ? h5_count(g, "wall_pf") : 0;
+        if (!rc && npf) {
+            st->wall_pf = npf == (long)n3 * nw ? malloc((size_t)npf * rs) : NULL;
+            st->wall_pf_bytes = (size_t)npf * rs;
+            rc = !st->wall_pf || h5_read(g, "wall_pf", real_t, st->wall_pf, (size_t)npf);
+        }
         /* each wall's normal force (absent from checkpoints of libdem before it: zero until the next sum) */
         if (!rc && H5Lexists(g, "wall_normal_force", H5P_DEFAULT) > 0) {
             st->wall_nforce = malloc((size_t)(nw + 1) * rs);

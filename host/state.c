@@ -20,7 +20,8 @@ void dem_state_free(dem_state *st)
     if (!st)
         return;
     free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force), free(st->wall_nforce);
-    free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->wall_hist), free(st->wall_mask);
+    free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->wall_hist);
+    free(st->wall_pf), free(st->wall_mask);
     free(st->pair_mc_fn), free(st->wall_mc_fn);
     free(st->patch_i), free(st->patch_t), free(st->patch_hist);
     memset(st, 0, sizeof *st);
@@ -63,8 +64,9 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
         return 0;
     pair_key *k = malloc(sizeof *k * (size_t)np);
     unsigned char *h = malloc(3 * (size_t)rs * (size_t)np), *f = malloc((size_t)rs * (size_t)np);
-    if (!k || !h || !f) {
-        free(k), free(h), free(f);
+    unsigned char *r = malloc(PR_STRIDE * (size_t)rs * (size_t)np);
+    if (!k || !h || !f || !r) {
+        free(k), free(h), free(f), free(r);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (long p = 0; p < np; p++)
@@ -74,10 +76,13 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
         st->pair_i[p] = k[p].i, st->pair_j[p] = k[p].j;
         memcpy(h + 3 * (size_t)rs * p, (unsigned char *)st->pair_hist + 3 * (size_t)rs * k[p].at, 3 * (size_t)rs);
         memcpy(f + (size_t)rs * p, (unsigned char *)st->pair_mc_fn + (size_t)rs * k[p].at, (size_t)rs);
+        memcpy(r + PR_STRIDE * (size_t)rs * p, (unsigned char *)st->pair_rec + PR_STRIDE * (size_t)rs * k[p].at,
+               PR_STRIDE * (size_t)rs);
     }
     memcpy(st->pair_hist, h, 3 * (size_t)rs * np);
     memcpy(st->pair_mc_fn, f, (size_t)rs * np);
-    free(k), free(h), free(f);
+    memcpy(st->pair_rec, r, PR_STRIDE * (size_t)rs * np);
+    free(k), free(h), free(f), free(r);
     return 0;
 }
 
@@ -215,6 +220,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->wall_force = get_all(s, DEM_FIELD_WALL_FORCE, &b, &e);
     st->wall_nforce = get_all(s, DEM_FIELD_WALL_NORMAL_FORCE, &b, &e);
     st->wall_hist = get_all(s, DEM_FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
+    st->wall_pf = get_all(s, DEM_FIELD_WALL_PF, &st->wall_pf_bytes, &e); /* the contact network's wall forces */
     st->wall_mask = get_all(s, DEM_FIELD_WALL_MASK, &b, &e);
     st->wall_mc_fn = get_all(s, DEM_FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
     st->mc = s->mc;
@@ -223,6 +229,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
+    unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e);
     /* touching pairs, once each (owner i: the lower stable id), in row order: ascending i, then the partners' stable
      * ids */
     long np = 0;
@@ -241,7 +248,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
         st->pair_j = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->pair_hist = calloc((size_t)(np ? np : 1), 3 * (size_t)rs);
         st->pair_mc_fn = calloc((size_t)(np ? np : 1), (size_t)rs);
-        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn)
+        st->pair_rec = calloc((size_t)(np ? np : 1), PR_STRIDE * (size_t)rs);
+        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
@@ -258,12 +266,15 @@ int dem_state_get(dem_sim *s, dem_state *st)
                        hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) /* MC-strain: the force the next step's induced displacements start from (kept per pair) */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
+            /* the force record of the last step: what the contact network reads (the restore runs no force pass) */
+            memcpy((char *)st->pair_rec + (size_t)np * PR_STRIDE * rs, rec + (size_t)pn * PR_STRIDE * rs,
+                   PR_STRIDE * (size_t)rs);
             np++;
         }
     st->npairs = np;
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
-    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own);
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec);
     if (!e)
         e = patch_contacts_get(s, st);
     if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/reorder.c) */
@@ -368,12 +379,15 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         return e;
     }
     size_t b, hb = sim_stored_bytes(s, DEM_FIELD_HIST), fb = sim_stored_bytes(s, DEM_FIELD_MC_FORCE),
-              tb = sim_stored_bytes(s, DEM_FIELD_TOUCH);
+              tb = sim_stored_bytes(s, DEM_FIELD_TOUCH), rb = sim_stored_bytes(s, DEM_FIELD_PAIR_RECORDS);
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
+    unsigned char *rec = calloc(rb + 1, 1); /* the records too: the restore runs no force pass that would write them */
+    size_t pfb = dem_field_bytes(s, DEM_FIELD_WALL_PF); /* likewise each wall's force on each particle, when kept */
+    unsigned char *pf0 = calloc(pfb + 1, 1);            /* (zero when the state does not know them) */
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
-    if (!e && (!touch || !hist || !mcf || !own))
+    if (!e && (!touch || !hist || !mcf || !rec || !pf0 || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
@@ -390,21 +404,26 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                    (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) /* kept per pair, like the history (mc_strain.h) */
             memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
+        if (st->pair_rec && (pn + 1) * PR_STRIDE * rs <= rb)
+            memcpy(rec + pn * PR_STRIDE * rs, (const char *)st->pair_rec + (size_t)p * PR_STRIDE * rs,
+                   PR_STRIDE * (size_t)rs);
     }
     if (!e)
         e = patch_contacts_set(s, st);
     static const double zero_nforce[DEM_MAX_WALLS]; /* a state without the walls' normal forces: zero until summed */
     if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, tb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
                write_api(s, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
                write_api(s, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
+               (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : pf0, pfb)) ||
                write_api(s, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
                write_api(s, DEM_FIELD_FORCE, st->force, v3b) || write_api(s, DEM_FIELD_TORQUE, st->torque, v3b) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE,
                                      st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own);
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(pf0);
     if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);

@@ -576,6 +576,7 @@ int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes);
 /* The dynamic state of a run, enough to continue it bit for bit (a checkpoint). Real arrays are raw bytes in the
  * run's precision (real_size 4 or 8). Contacts: the touching pairs (i < j) and, with friction, their tangential
  * spring; walls: the touch mask per particle and the springs. Neighbour rows are rebuilt on restore. */
+#define DEM_PAIR_RECORD_REALS 7 /* reals per pair record (DEM_FIELD_PAIR_RECORDS, dem_state.pair_rec) */
 typedef struct {
     long step, rebuilds;
     int n, nwalls, real_size;
@@ -590,9 +591,16 @@ typedef struct {
     long npairs;
     int *pair_i, *pair_j;
     void *pair_hist;                  /* real[3 npairs] */
+    void *pair_rec;                   /* real[DEM_PAIR_RECORD_REALS npairs]: each pair's force record of the last step (dem_layout.h
+                                         PR_*: the contact network's forces); NULL: not known (a checkpoint from
+                                         before 2026-12-03), zero until the next step */
     int has_hist;                     /* 1 when the run has friction */
     void *wall_hist;                  /* real[3 n nwalls] with friction, else empty */
     size_t wall_hist_bytes;
+    void *wall_pf;                    /* real[3 n nwalls]: each wall's force on each particle in the last step, as
+                                         DEM_FIELD_WALL_PF (runs that keep them: dem_config.contacts, servos), else
+                                         empty; NULL: not known (a checkpoint from before 2026-12-03) */
+    size_t wall_pf_bytes;
     unsigned *wall_mask;              /* [n] */
     int has_mc;                       /* 1 when the run has MC-strain: its stored forces follow */
     void *pair_mc_fn;                 /* real[npairs]: MC-strain force of each touching pair */

@@ -36,6 +36,45 @@ static void test_restore_bitwise(void **st)
     dem_destroy(b);
 }
 
+/* The contact network right after a restore is the saved run's at that step, bit for bit, on every backend: the
+ * restore runs no force pass (it would advance the springs), so the pairs' force records travel in the state. Until
+ * 2026-12-03 they did not, and the network read records of another pair numbering (a --restart run's first frame). */
+static void test_restore_keeps_contact_network(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        c.contacts = 1;
+        dem_sim *a = frictional_box(), *b = frictional_box();
+        start_or_fail(a, &c);
+        start_or_fail(b, &c);
+        step_or_fail(a, 40);
+        step_or_fail(b, 7); /* b's own records and rows are of another state */
+        dem_state saved;
+        assert_int_equal(dem_state_get(a, &saved), 0);
+        assert_non_null(saved.pair_rec);
+        assert_int_equal(dem_state_set(b, &saved), 0);
+        dem_contact *ca, *cb;
+        long na, nb, pa, pb;
+        assert_int_equal(dem_contacts_get(a, &ca, &na, &pa), 0);
+        assert_int_equal(dem_contacts_get(b, &cb, &nb, &pb), 0);
+        assert_true(pa > 10);
+        assert_int_equal(na, nb);
+        assert_int_equal(pa, pb);
+        for (long k = 0; k < na; k++)
+            if (ca[k].i != cb[k].i || ca[k].j != cb[k].j || memcmp(&ca[k].overlap, &cb[k].overlap, sizeof(double)) ||
+                memcmp(ca[k].fn, cb[k].fn, sizeof ca[k].fn) || memcmp(ca[k].ft, cb[k].ft, sizeof ca[k].ft) ||
+                memcmp(ca[k].point, cb[k].point, sizeof ca[k].point))
+                fail_msg("%s: contact %ld (%d-%d) differs after the restore: normal force %.17g against %.17g",
+                         bc->name, k, ca[k].i, ca[k].j, ca[k].fn[2], cb[k].fn[2]);
+        free(ca), free(cb);
+        dem_state_free(&saved);
+        dem_destroy(a);
+        dem_destroy(b);
+    }
+}
+
 /* Saved states that cannot belong to the run: refused with DEM_ERR_ARG, and the run goes on exactly as a twin that
  * was never offered them. */
 static void test_unfit_state_changes_nothing(void **st)
@@ -89,6 +128,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_restore_bitwise),
+        cmocka_unit_test(test_restore_keeps_contact_network),
         cmocka_unit_test(test_unfit_state_changes_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
