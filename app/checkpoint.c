@@ -64,7 +64,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_write(g, "pair_i", H5T_NATIVE_INT, 1, p1, st.pair_i, NULL) ||
              h5_write(g, "pair_j", H5T_NATIVE_INT, 1, p1, st.pair_j, NULL) ||
              h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
-             (st.pair_rec && h5_write(g, "pair_rec", real_t, 2, p7, st.pair_rec, "N, N m, m")) ||
+             (st.pair_rec &&
+              h5_write(g, "pair_rec", real_t, 2, p7, st.pair_rec, "N (force, n x f_t), m (overlap)")) ||
              h5_write(g, "wall_hist", real_t, 1, wh, st.wall_hist, "N") ||
              (st.wall_pf && h5_write(g, "wall_pf", real_t, 1, wp, st.wall_pf, "N")) ||
              h5_write(g, "wall_mask", H5T_NATIVE_UINT, 1, n1, st.wall_mask, NULL) ||
@@ -180,9 +181,9 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         /* each touching pair's force record of the last step (common/dem_layout.h PR_*; absent from checkpoints of
          * libdem before 2026-12-03: the contact network's pair forces are then zero until the next step) */
         if (!rc && H5Lexists(g, "pair_rec", H5P_DEFAULT) > 0) {
-            st->pair_rec = h5_count(g, "pair_rec") == DEM_PAIR_RECORD_REALS * npairs ? malloc(DEM_PAIR_RECORD_REALS * (size_t)(npairs + 1) * rs)
-                                                                         : NULL;
-            rc = !st->pair_rec || h5_read(g, "pair_rec", real_t, st->pair_rec, DEM_PAIR_RECORD_REALS * (size_t)npairs);
+            size_t want = DEM_PAIR_RECORD_REALS * (size_t)npairs;
+            st->pair_rec = h5_count(g, "pair_rec") == (long)want ? malloc((want + 1) * rs) : NULL;
+            rc = !st->pair_rec || h5_read(g, "pair_rec", real_t, st->pair_rec, want);
         }
         /* each wall's force on each particle in the last step, in runs that keep them (absent from checkpoints of
          * libdem before 2026-12-03, and empty in runs that do not keep them: zero until the next step) */

@@ -416,7 +416,8 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
                write_api(s, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
                write_api(s, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
-               (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : pf0, pfb)) ||
+               (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : pf0,
+                                 pfb)) ||
                write_api(s, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
                write_api(s, DEM_FIELD_FORCE, st->force, v3b) || write_api(s, DEM_FIELD_TORQUE, st->torque, v3b) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs) ||
