@@ -1,6 +1,6 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_normal_force,wall_pos,wall_stage,
  * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,
- * wall_hist,wall_pf,wall_mask,radius,pair_mc_fn,wall_mc_fn,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
+ * wall_hist,wall_pf,wall_mask,radius,pair_mc_fn,wall_mc_fn,pair_mc_disp,wall_mc_disp,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 /* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
@@ -41,7 +41,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     hsize_t p7[2] = {(hsize_t)st.npairs, DEM_PAIR_RECORD_REALS}, wp[1] = {st.wall_pf_bytes / (size_t)st.real_size};
     hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs}, w1[1] = {(hsize_t)st.nwalls};
     hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size}, wm[1] = {st.wall_mc_fn_bytes / (size_t)st.real_size};
-    hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0};
+    hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0}, pd[2] = {st.has_mc ? (hsize_t)st.npairs : 0, 2};
+    hsize_t wd[1] = {st.wall_mc_disp_bytes / (size_t)st.real_size};
     hsize_t q1[1] = {(hsize_t)st.npatch}, q3[2] = {(hsize_t)st.npatch, 3};
     double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
     if (!rc) {
@@ -75,6 +76,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
              h5_write(g, "wall_mc_fn", real_t, 1, wm, st.wall_mc_fn, "N") ||
+             (st.pair_mc_disp && h5_write(g, "pair_mc_disp", real_t, 2, pd, st.pair_mc_disp, "m")) ||
+             (st.wall_mc_disp && h5_write(g, "wall_mc_disp", real_t, 1, wd, st.wall_mc_disp, "m")) ||
              h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
              h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
              h5_write(g, "patch_hist", real_t, 2, q3, st.patch_hist, "N");
@@ -192,6 +195,19 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
             st->wall_pf = npf == (long)n3 * nw ? malloc((size_t)npf * rs) : NULL;
             st->wall_pf_bytes = (size_t)npf * rs;
             rc = !st->wall_pf || h5_read(g, "wall_pf", real_t, st->wall_pf, (size_t)npf);
+        }
+        /* MC-strain's induced displacements of the last step at both ends of each pair and at each wall contact (the
+         * contact network's extra; absent from checkpoints of libdem before 2026-12-03: zero until the next step) */
+        if (!rc && hm && H5Lexists(g, "pair_mc_disp", H5P_DEFAULT) > 0) {
+            size_t want = 2 * (size_t)npairs;
+            st->pair_mc_disp = h5_count(g, "pair_mc_disp") == (long)want ? malloc((want + 1) * rs) : NULL;
+            rc = !st->pair_mc_disp || h5_read(g, "pair_mc_disp", real_t, st->pair_mc_disp, want);
+        }
+        if (!rc && hm && H5Lexists(g, "wall_mc_disp", H5P_DEFAULT) > 0) {
+            size_t want = (size_t)n * (size_t)nw;
+            st->wall_mc_disp = h5_count(g, "wall_mc_disp") == (long)want ? malloc((want + 1) * rs) : NULL;
+            st->wall_mc_disp_bytes = want * rs;
+            rc = !st->wall_mc_disp || h5_read(g, "wall_mc_disp", real_t, st->wall_mc_disp, want);
         }
         /* each wall's normal force (absent from checkpoints of libdem before it: zero until the next sum) */
         if (!rc && H5Lexists(g, "wall_normal_force", H5P_DEFAULT) > 0) {

@@ -21,7 +21,7 @@ void dem_state_free(dem_state *st)
         return;
     free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force), free(st->wall_nforce);
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->wall_hist);
-    free(st->wall_pf), free(st->wall_mask);
+    free(st->wall_pf), free(st->wall_mask), free(st->pair_mc_disp), free(st->wall_mc_disp);
     free(st->pair_mc_fn), free(st->wall_mc_fn);
     free(st->patch_i), free(st->patch_t), free(st->patch_hist);
     memset(st, 0, sizeof *st);
@@ -64,9 +64,9 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
         return 0;
     pair_key *k = malloc(sizeof *k * (size_t)np);
     unsigned char *h = malloc(3 * (size_t)rs * (size_t)np), *f = malloc((size_t)rs * (size_t)np);
-    unsigned char *r = malloc(PR_STRIDE * (size_t)rs * (size_t)np);
-    if (!k || !h || !f || !r) {
-        free(k), free(h), free(f), free(r);
+    unsigned char *r = malloc(PR_STRIDE * (size_t)rs * (size_t)np), *d = malloc(2 * (size_t)rs * (size_t)np);
+    if (!k || !h || !f || !r || !d) {
+        free(k), free(h), free(f), free(r), free(d);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (long p = 0; p < np; p++)
@@ -78,11 +78,13 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
         memcpy(f + (size_t)rs * p, (unsigned char *)st->pair_mc_fn + (size_t)rs * k[p].at, (size_t)rs);
         memcpy(r + PR_STRIDE * (size_t)rs * p, (unsigned char *)st->pair_rec + PR_STRIDE * (size_t)rs * k[p].at,
                PR_STRIDE * (size_t)rs);
+        memcpy(d + 2 * (size_t)rs * p, (unsigned char *)st->pair_mc_disp + 2 * (size_t)rs * k[p].at, 2 * (size_t)rs);
     }
     memcpy(st->pair_hist, h, 3 * (size_t)rs * np);
     memcpy(st->pair_mc_fn, f, (size_t)rs * np);
     memcpy(st->pair_rec, r, PR_STRIDE * (size_t)rs * np);
-    free(k), free(h), free(f), free(r);
+    memcpy(st->pair_mc_disp, d, 2 * (size_t)rs * np);
+    free(k), free(h), free(f), free(r), free(d);
     return 0;
 }
 
@@ -150,6 +152,13 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", c->err);
     free(cnt), free(list), free(touch), free(hist);
     return e;
+}
+
+/* The row slot of partner j in particle i's row, or -1 (as stored) */
+static int find_slot(const int *cnt, const int *list, const int *start, const int *sid, int i, int j)
+{
+    int k = row_find_sid(list + start[i], cnt[i], sid, sid[j]);
+    return k < 0 ? -1 : start[i] + k;
 }
 
 /* MC-strain's force of every row slot, as stored (the device keeps it per pair: mc_strain.h); `all` bytes, the
@@ -229,7 +238,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
-    unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e);
+    unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = get_stored(s, DEM_FIELD_MC_DISP, &b, &e);
+    st->wall_mc_disp = get_all(s, DEM_FIELD_MC_WALL_DISP, &st->wall_mc_disp_bytes, &e);
     /* touching pairs, once each (owner i: the lower stable id), in row order: ascending i, then the partners' stable
      * ids */
     long np = 0;
@@ -249,7 +259,8 @@ int dem_state_get(dem_sim *s, dem_state *st)
         st->pair_hist = calloc((size_t)(np ? np : 1), 3 * (size_t)rs);
         st->pair_mc_fn = calloc((size_t)(np ? np : 1), (size_t)rs);
         st->pair_rec = calloc((size_t)(np ? np : 1), PR_STRIDE * (size_t)rs);
-        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec)
+        st->pair_mc_disp = calloc((size_t)(np ? np : 1), 2 * (size_t)rs);
+        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec || !st->pair_mc_disp)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
@@ -266,6 +277,12 @@ int dem_state_get(dem_sim *s, dem_state *st)
                        hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) /* MC-strain: the force the next step's induced displacements start from (kept per pair) */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
+            if (fb) { /* the displacements at both ends in the last step: the network's extra (mc_strain.h) */
+                int m = find_slot(cnt, list, start, sid, j, i);
+                memcpy((char *)st->pair_mc_disp + (size_t)np * 2 * rs, mcd + (size_t)slot * rs, (size_t)rs);
+                if (m >= 0)
+                    memcpy((char *)st->pair_mc_disp + ((size_t)np * 2 + 1) * rs, mcd + (size_t)m * rs, (size_t)rs);
+            }
             /* the force record of the last step: what the contact network reads (the restore runs no force pass) */
             memcpy((char *)st->pair_rec + (size_t)np * PR_STRIDE * rs, rec + (size_t)pn * PR_STRIDE * rs,
                    PR_STRIDE * (size_t)rs);
@@ -274,7 +291,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->npairs = np;
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
-    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec);
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(mcd);
     if (!e)
         e = patch_contacts_get(s, st);
     if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/reorder.c) */
@@ -282,13 +299,6 @@ int dem_state_get(dem_sim *s, dem_state *st)
     if (e)
         dem_state_free(st);
     return e;
-}
-
-/* slot of partner j in row i, or -1 */
-static int find_slot(const int *cnt, const int *list, const int *start, const int *sid, int i, int j)
-{
-    int k = row_find_sid(list + start[i], cnt[i], sid, sid[j]);
-    return k < 0 ? -1 : start[i] + k;
 }
 
 int sim_rebuild(dem_sim *s); /* sim.c */
@@ -385,9 +395,11 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     unsigned char *rec = calloc(rb + 1, 1); /* the records too: the restore runs no force pass that would write them */
     size_t pfb = dem_field_bytes(s, DEM_FIELD_WALL_PF); /* likewise each wall's force on each particle, when kept */
+    size_t db = sim_stored_bytes(s, DEM_FIELD_MC_DISP), wdb = dem_field_bytes(s, DEM_FIELD_MC_WALL_DISP);
+    unsigned char *disp = calloc(db + 1, 1), *wd0 = calloc(wdb + 1, 1); /* and MC-strain's displacements */
     unsigned char *pf0 = calloc(pfb + 1, 1);            /* (zero when the state does not know them) */
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
-    if (!e && (!touch || !hist || !mcf || !rec || !pf0 || !own))
+    if (!e && (!touch || !hist || !mcf || !rec || !pf0 || !disp || !wd0 || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
@@ -404,6 +416,10 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                    (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) /* kept per pair, like the history (mc_strain.h) */
             memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
+        if (fb && st->pair_mc_disp && ((size_t)a + 1) * rs <= db && ((size_t)m + 1) * rs <= db) {
+            memcpy(disp + (size_t)a * rs, (const char *)st->pair_mc_disp + (size_t)p * 2 * rs, (size_t)rs);
+            memcpy(disp + (size_t)m * rs, (const char *)st->pair_mc_disp + ((size_t)p * 2 + 1) * rs, (size_t)rs);
+        }
         if (st->pair_rec && (pn + 1) * PR_STRIDE * rs <= rb)
             memcpy(rec + pn * PR_STRIDE * rs, (const char *)st->pair_rec + (size_t)p * PR_STRIDE * rs,
                    PR_STRIDE * (size_t)rs);
@@ -414,6 +430,9 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, tb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
+               (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db)) ||
+               (wdb && write_api(s, DEM_FIELD_MC_WALL_DISP,
+                                 st->wall_mc_disp && st->wall_mc_disp_bytes == wdb ? st->wall_mc_disp : wd0, wdb)) ||
                write_api(s, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
                write_api(s, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
                (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : pf0,
@@ -425,6 +444,7 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                                      st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(pf0);
+    free(disp), free(wd0);
     if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);

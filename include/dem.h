@@ -606,6 +606,10 @@ typedef struct {
     void *pair_mc_fn;                 /* real[npairs]: MC-strain force of each touching pair */
     void *wall_mc_fn;                 /* real[n nwalls] with MC-strain, else empty */
     size_t wall_mc_fn_bytes;
+    void *pair_mc_disp;               /* real[2 npairs] with MC-strain: the induced displacement at i's and at j's
+                                         end in the last step (the contact network's extra); NULL: not known */
+    void *wall_mc_disp;               /* real[n nwalls] with MC-strain: the same at each particle's wall contacts */
+    size_t wall_mc_disp_bytes;
     dem_mc_stats mc;                  /* iteration counts so far */
     long npatch;                      /* touching sphere-patch contacts (dem_add_patches), by sphere then triangle */
     int *patch_i, *patch_t;           /* the sphere, the triangle */

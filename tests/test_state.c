@@ -36,43 +36,70 @@ static void test_restore_bitwise(void **st)
     dem_destroy(b);
 }
 
-/* The contact network right after a restore is the saved run's at that step, bit for bit, on every backend: the
- * restore runs no force pass (it would advance the springs), so the pairs' force records travel in the state. Until
- * 2026-12-03 they did not, and the network read records of another pair numbering (a --restart run's first frame). */
+/* The frictional box under lagged MC-strain (mc: 1) or the classical law */
+static dem_sim *box_of(int mc)
+{
+    if (!mc)
+        return frictional_box();
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 4;
+    o.lid_speed = 0.2;
+    o.effects = DEM_EFFECT_CLASSICAL | DEM_EFFECT_MC_STRAIN;
+    o.mc_beta = 1.65;
+    o.mc_gamma = 1.12;
+    return packing_build(&o);
+}
+
+/* The contact network right after a restore is the saved run's at that step, bit for bit, on every backend and
+ * under MC-strain (its induced displacements are the network's extra): the restore runs no force pass (it would
+ * advance the springs), so the pairs' force records, the kept wall forces and MC-strain's displacements travel in
+ * the state. Until 2026-12-03 they did not, and the network read records of another pair numbering (a --restart
+ * run's first frame). */
+static void network_after_restore(const backend_case *bc, int mc)
+{
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.contacts = 1;
+    dem_sim *a = box_of(mc), *b = box_of(mc);
+    start_or_fail(a, &c);
+    start_or_fail(b, &c);
+    step_or_fail(a, 40);
+    step_or_fail(b, 7); /* b's own records and rows are of another state */
+    dem_state saved;
+    assert_int_equal(dem_state_get(a, &saved), 0);
+    assert_non_null(saved.pair_rec);
+    assert_int_equal(dem_state_set(b, &saved), 0);
+    dem_contact *ca, *cb;
+    long na, nb, pa, pb;
+    assert_int_equal(dem_contacts_get(a, &ca, &na, &pa), 0);
+    assert_int_equal(dem_contacts_get(b, &cb, &nb, &pb), 0);
+    assert_true(pa > 10);
+    assert_int_equal(na, nb);
+    assert_int_equal(pa, pb);
+    int moved = 0;
+    for (long k = 0; k < na; k++) {
+        if (ca[k].i != cb[k].i || ca[k].j != cb[k].j || memcmp(&ca[k].overlap, &cb[k].overlap, sizeof(double)) ||
+            memcmp(ca[k].fn, cb[k].fn, sizeof ca[k].fn) || memcmp(ca[k].ft, cb[k].ft, sizeof ca[k].ft) ||
+            memcmp(ca[k].point, cb[k].point, sizeof ca[k].point) ||
+            memcmp(ca[k].extra, cb[k].extra, sizeof ca[k].extra))
+            fail_msg("%s%s: contact %ld (%d-%d) differs after the restore: normal force %.17g against %.17g, extra "
+                     "%.17g against %.17g",
+                     bc->name, mc ? ", MC-strain" : "", k, ca[k].i, ca[k].j, ca[k].fn[2], cb[k].fn[2], ca[k].extra[0],
+                     cb[k].extra[0]);
+        moved |= ca[k].extra[0] != 0;
+    }
+    assert_true(moved == mc); /* MC-strain's displacements were at work, and only there */
+    free(ca), free(cb);
+    dem_state_free(&saved);
+    dem_destroy(a);
+    dem_destroy(b);
+}
+
 static void test_restore_keeps_contact_network(void **st)
 {
     (void)st;
-    FOR_EACH_BACKEND(bc)
-    {
-        dem_config c = cfg_of(bc->backend, bc->precision);
-        c.contacts = 1;
-        dem_sim *a = frictional_box(), *b = frictional_box();
-        start_or_fail(a, &c);
-        start_or_fail(b, &c);
-        step_or_fail(a, 40);
-        step_or_fail(b, 7); /* b's own records and rows are of another state */
-        dem_state saved;
-        assert_int_equal(dem_state_get(a, &saved), 0);
-        assert_non_null(saved.pair_rec);
-        assert_int_equal(dem_state_set(b, &saved), 0);
-        dem_contact *ca, *cb;
-        long na, nb, pa, pb;
-        assert_int_equal(dem_contacts_get(a, &ca, &na, &pa), 0);
-        assert_int_equal(dem_contacts_get(b, &cb, &nb, &pb), 0);
-        assert_true(pa > 10);
-        assert_int_equal(na, nb);
-        assert_int_equal(pa, pb);
-        for (long k = 0; k < na; k++)
-            if (ca[k].i != cb[k].i || ca[k].j != cb[k].j || memcmp(&ca[k].overlap, &cb[k].overlap, sizeof(double)) ||
-                memcmp(ca[k].fn, cb[k].fn, sizeof ca[k].fn) || memcmp(ca[k].ft, cb[k].ft, sizeof ca[k].ft) ||
-                memcmp(ca[k].point, cb[k].point, sizeof ca[k].point))
-                fail_msg("%s: contact %ld (%d-%d) differs after the restore: normal force %.17g against %.17g",
-                         bc->name, k, ca[k].i, ca[k].j, ca[k].fn[2], cb[k].fn[2]);
-        free(ca), free(cb);
-        dem_state_free(&saved);
-        dem_destroy(a);
-        dem_destroy(b);
-    }
+    for (int mc = 0; mc < 2; mc++)
+        FOR_EACH_BACKEND(bc) network_after_restore(bc, mc);
 }
 
 /* Saved states that cannot belong to the run: refused with DEM_ERR_ARG, and the run goes on exactly as a twin that
