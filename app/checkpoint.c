@@ -106,6 +106,18 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     return 0;
 }
 
+/* An optional dataset of `want` reals of rs bytes into *out: absent or empty, *out stays NULL; any other count than
+ * want is a damaged checkpoint (1), checked before anything is allocated */
+static int read_optional(hid_t g, const char *name, hid_t real_t, size_t want, long rs, void **out)
+{
+    long have = H5Lexists(g, name, H5P_DEFAULT) > 0 ? h5_count(g, name) : 0;
+    if (have <= 0)
+        return have < 0;
+    if ((size_t)have != want || !(*out = malloc((want + 1) * (size_t)rs)))
+        return 1;
+    return h5_read(g, name, real_t, *out, want);
+}
+
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
 {
     memset(ck, 0, sizeof *ck);
@@ -181,34 +193,16 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
                                         h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
-        /* each touching pair's force record of the last step (common/dem_layout.h PR_*; absent from checkpoints of
-         * libdem before 2026-12-03: the contact network's pair forces are then zero until the next step) */
-        if (!rc && H5Lexists(g, "pair_rec", H5P_DEFAULT) > 0) {
-            size_t want = DEM_PAIR_RECORD_REALS * (size_t)npairs;
-            st->pair_rec = h5_count(g, "pair_rec") == (long)want ? malloc((want + 1) * rs) : NULL;
-            rc = !st->pair_rec || h5_read(g, "pair_rec", real_t, st->pair_rec, want);
-        }
-        /* each wall's force on each particle in the last step, in runs that keep them (absent from checkpoints of
-         * libdem before 2026-12-03, and empty in runs that do not keep them: zero until the next step) */
-        long npf = !rc && H5Lexists(g, "wall_pf", H5P_DEFAULT) > 0 ? h5_count(g, "wall_pf") : 0;
-        if (!rc && npf) {
-            st->wall_pf = npf == (long)n3 * nw ? malloc((size_t)npf * rs) : NULL;
-            st->wall_pf_bytes = (size_t)npf * rs;
-            rc = !st->wall_pf || h5_read(g, "wall_pf", real_t, st->wall_pf, (size_t)npf);
-        }
-        /* MC-strain's induced displacements of the last step at both ends of each pair and at each wall contact (the
-         * contact network's extra; absent from checkpoints of libdem before 2026-12-03: zero until the next step) */
-        if (!rc && hm && H5Lexists(g, "pair_mc_disp", H5P_DEFAULT) > 0) {
-            size_t want = 2 * (size_t)npairs;
-            st->pair_mc_disp = h5_count(g, "pair_mc_disp") == (long)want ? malloc((want + 1) * rs) : NULL;
-            rc = !st->pair_mc_disp || h5_read(g, "pair_mc_disp", real_t, st->pair_mc_disp, want);
-        }
-        if (!rc && hm && H5Lexists(g, "wall_mc_disp", H5P_DEFAULT) > 0) {
-            size_t want = (size_t)n * (size_t)nw;
-            st->wall_mc_disp = h5_count(g, "wall_mc_disp") == (long)want ? malloc((want + 1) * rs) : NULL;
-            st->wall_mc_disp_bytes = want * rs;
-            rc = !st->wall_mc_disp || h5_read(g, "wall_mc_disp", real_t, st->wall_mc_disp, want);
-        }
+        /* what the contact network reads right after a restore (absent from checkpoints of libdem before
+         * 2026-12-03, empty in runs that keep none of it: those values zero until the next step): each touching
+         * pair's force record of the last step (common/dem_layout.h PR_*), each wall's force on each particle (runs
+         * that keep them), MC-strain's induced displacements at both ends of each pair and at each wall contact */
+        rc = rc || read_optional(g, "pair_rec", real_t, DEM_PAIR_RECORD_REALS * (size_t)npairs, rs, &st->pair_rec) ||
+             read_optional(g, "wall_pf", real_t, n3 * (size_t)nw, rs, &st->wall_pf) ||
+             read_optional(g, "pair_mc_disp", real_t, 2 * (size_t)npairs, rs, &st->pair_mc_disp) ||
+             read_optional(g, "wall_mc_disp", real_t, (size_t)n * (size_t)nw, rs, &st->wall_mc_disp);
+        st->wall_pf_bytes = st->wall_pf ? n3 * (size_t)nw * rs : 0;
+        st->wall_mc_disp_bytes = st->wall_mc_disp ? (size_t)n * (size_t)nw * rs : 0;
         /* each wall's normal force (absent from checkpoints of libdem before it: zero until the next sum) */
         if (!rc && H5Lexists(g, "wall_normal_force", H5P_DEFAULT) > 0) {
             st->wall_nforce = malloc((size_t)(nw + 1) * rs);

@@ -499,28 +499,24 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     double cell = 1.01 * (2 * s->rmax + skin + reach_extra);
     if (s->cfg.cell_size > cell)
         cell = s->cfg.cell_size;
-    double lo[3], hi[3];
+    double lo[3], hi[3], pmin[3] = {INFINITY, INFINITY, INFINITY}, pmax[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < n; i++) /* the particles' bounding box */
+        for (int d = 0; d < 3; d++) {
+            pmin[d] = fmin(pmin[d], s->x[3 * i + d]);
+            pmax[d] = fmax(pmax[d], s->x[3 * i + d]);
+        }
     if (s->have_domain) {
         memcpy(lo, s->lo, sizeof lo);
         memcpy(hi, s->hi, sizeof hi);
-    } else { /* particle bounding box, padded by half its extent, 4 r_max and the deepest punch cup on each side (a
-                fill settles into a concave punch's cup, below its land) */
+    } else { /* the particles' bounding box, padded by half its extent, 4 r_max and the deepest punch cup on each side
+                (a fill settles into a concave punch's cup, below its land) */
         double cup = 0;
         for (int k = 0; k < s->nwalls; k++)
             cup = fmax(cup, s->walls[k].cup_depth);
         for (int d = 0; d < 3; d++) {
-            lo[d] = INFINITY;
-            hi[d] = -INFINITY;
-        }
-        for (int i = 0; i < n; i++)
-            for (int d = 0; d < 3; d++) {
-                lo[d] = fmin(lo[d], s->x[3 * i + d]);
-                hi[d] = fmax(hi[d], s->x[3 * i + d]);
-            }
-        for (int d = 0; d < 3; d++) {
-            double pad = 0.5 * (hi[d] - lo[d]) + 4 * s->rmax + cup;
-            lo[d] -= pad;
-            hi[d] += pad;
+            double pad = 0.5 * (pmax[d] - pmin[d]) + 4 * s->rmax + cup;
+            lo[d] = pmin[d] - pad;
+            hi[d] = pmax[d] + pad;
         }
     }
     for (;;) {
@@ -543,19 +539,16 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     }
     s->grid_cell = cell;
     u->inv_cell = 1 / cell;
-    /* the cells the particles hold now (binning.h bin_bounds finds them on the device at each build, in the run's
-     * precision; a cell more or less here only moves when the buffers grow) */
-    int clo[3] = {INT_MAX, INT_MAX, INT_MAX}, chi[3] = {-1, -1, -1};
-    for (int i = 0; i < n; i++)
-        for (int d = 0; d < 3; d++) {
-            double t = (s->x[3 * i + d] - lo[d]) * u->inv_cell;
-            int k = t >= 0 ? (t < u->ncell[d] ? (int)t : u->ncell[d] - 1) : 0; /* NaN: 0 */
-            clo[d] = k < clo[d] ? k : clo[d];
-            chi[d] = k > chi[d] ? k : chi[d];
-        }
+    /* the cells of the particles' bounding box now (binning.h bin_bounds finds them on the device at each build, in
+     * the run's precision; a cell more or less here only moves when the buffers grow) */
     for (int d = 0; d < 3; d++) {
-        u->cell0[d] = chi[d] < clo[d] ? 0 : clo[d];
-        u->cells[d] = chi[d] < clo[d] ? 1 : chi[d] - clo[d] + 1;
+        int c[2];
+        for (int e = 0; e < 2; e++) {
+            double t = ((e ? pmax[d] : pmin[d]) - lo[d]) * u->inv_cell;
+            c[e] = t >= 0 ? (t < u->ncell[d] ? (int)t : u->ncell[d] - 1) : 0; /* none, or NaN: 0 */
+        }
+        u->cell0[d] = c[0] <= c[1] ? c[0] : 0;
+        u->cells[d] = c[0] <= c[1] ? c[1] - c[0] + 1 : 1;
     }
     return skin;
 }

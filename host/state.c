@@ -56,35 +56,36 @@ static int by_owner(const void *a, const void *b)
     const pair_key *p = a, *q = b;
     return p->i != q->i ? (p->i > q->i) - (p->i < q->i) : (p->j > q->j) - (p->j < q->j);
 }
+/* A per-pair array of `item` bytes per pair put in the order of k (tmp holds item * np bytes) */
+static void pairs_permute(void *arr, size_t item, const pair_key *k, long np, unsigned char *tmp)
+{
+    for (long p = 0; p < np; p++)
+        memcpy(tmp + item * (size_t)p, (unsigned char *)arr + item * (size_t)k[p].at, item);
+    memcpy(arr, tmp, item * (size_t)np);
+}
+
 static int pairs_to_api(dem_sim *s, dem_state *st)
 {
     long np = st->npairs;
-    int rs = st->real_size;
+    size_t rs = (size_t)st->real_size;
     if (!s->reorders || np == 0)
         return 0;
     pair_key *k = malloc(sizeof *k * (size_t)np);
-    unsigned char *h = malloc(3 * (size_t)rs * (size_t)np), *f = malloc((size_t)rs * (size_t)np);
-    unsigned char *r = malloc(PR_STRIDE * (size_t)rs * (size_t)np), *d = malloc(2 * (size_t)rs * (size_t)np);
-    if (!k || !h || !f || !r || !d) {
-        free(k), free(h), free(f), free(r), free(d);
+    unsigned char *tmp = malloc(PR_STRIDE * rs * (size_t)np); /* the widest item: a record */
+    if (!k || !tmp) {
+        free(k), free(tmp);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (long p = 0; p < np; p++)
         k[p] = (pair_key){sim_api(s, st->pair_i[p]), sim_api(s, st->pair_j[p]), (int)p};
     qsort(k, (size_t)np, sizeof *k, by_owner);
-    for (long p = 0; p < np; p++) {
+    for (long p = 0; p < np; p++)
         st->pair_i[p] = k[p].i, st->pair_j[p] = k[p].j;
-        memcpy(h + 3 * (size_t)rs * p, (unsigned char *)st->pair_hist + 3 * (size_t)rs * k[p].at, 3 * (size_t)rs);
-        memcpy(f + (size_t)rs * p, (unsigned char *)st->pair_mc_fn + (size_t)rs * k[p].at, (size_t)rs);
-        memcpy(r + PR_STRIDE * (size_t)rs * p, (unsigned char *)st->pair_rec + PR_STRIDE * (size_t)rs * k[p].at,
-               PR_STRIDE * (size_t)rs);
-        memcpy(d + 2 * (size_t)rs * p, (unsigned char *)st->pair_mc_disp + 2 * (size_t)rs * k[p].at, 2 * (size_t)rs);
-    }
-    memcpy(st->pair_hist, h, 3 * (size_t)rs * np);
-    memcpy(st->pair_mc_fn, f, (size_t)rs * np);
-    memcpy(st->pair_rec, r, PR_STRIDE * (size_t)rs * np);
-    memcpy(st->pair_mc_disp, d, 2 * (size_t)rs * np);
-    free(k), free(h), free(f), free(r), free(d);
+    pairs_permute(st->pair_hist, 3 * rs, k, np, tmp);
+    pairs_permute(st->pair_mc_fn, rs, k, np, tmp);
+    pairs_permute(st->pair_rec, PR_STRIDE * rs, k, np, tmp);
+    pairs_permute(st->pair_mc_disp, 2 * rs, k, np, tmp);
+    free(k), free(tmp);
     return 0;
 }
 
@@ -396,10 +397,10 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     unsigned char *rec = calloc(rb + 1, 1); /* the records too: the restore runs no force pass that would write them */
     size_t pfb = dem_field_bytes(s, DEM_FIELD_WALL_PF); /* likewise each wall's force on each particle, when kept */
     size_t db = sim_stored_bytes(s, DEM_FIELD_MC_DISP), wdb = dem_field_bytes(s, DEM_FIELD_MC_WALL_DISP);
-    unsigned char *disp = calloc(db + 1, 1), *wd0 = calloc(wdb + 1, 1); /* and MC-strain's displacements */
-    unsigned char *pf0 = calloc(pfb + 1, 1);            /* (zero when the state does not know them) */
+    unsigned char *disp = calloc(db + 1, 1);                             /* and MC-strain's displacements */
+    unsigned char *zero = calloc((pfb > wdb ? pfb : wdb) + 1, 1);       /* (zero when the state does not know them) */
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
-    if (!e && (!touch || !hist || !mcf || !rec || !pf0 || !disp || !wd0 || !own))
+    if (!e && (!touch || !hist || !mcf || !rec || !zero || !disp || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
@@ -432,10 +433,10 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
                (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db)) ||
                (wdb && write_api(s, DEM_FIELD_MC_WALL_DISP,
-                                 st->wall_mc_disp && st->wall_mc_disp_bytes == wdb ? st->wall_mc_disp : wd0, wdb)) ||
+                                 st->wall_mc_disp && st->wall_mc_disp_bytes == wdb ? st->wall_mc_disp : zero, wdb)) ||
                write_api(s, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
                write_api(s, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
-               (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : pf0,
+               (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : zero,
                                  pfb)) ||
                write_api(s, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
                write_api(s, DEM_FIELD_FORCE, st->force, v3b) || write_api(s, DEM_FIELD_TORQUE, st->torque, v3b) ||
@@ -443,8 +444,8 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE,
                                      st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(pf0);
-    free(disp), free(wd0);
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(zero);
+    free(disp);
     if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
         char why[sizeof s->err];
         snprintf(why, sizeof why, "%s", s->err);
