@@ -305,6 +305,47 @@ static void test_tablet_report(void **st)
     fp = fopen(path, "rb");
     assert_non_null(fp);
     fclose(fp);
+    /* the same cycle run in three parts, each a --restart of the one before (a long press continued across
+     * sittings): the report of the parts, given in order, is the whole run's, number for number - the series are
+     * joined by step, the restart's first row repeating the part before's last - and a missing part or parts out of
+     * order are refused by name */
+    assert_int_equal(test_sh(dir, err, sizeof err, "cd %s && %s/build/dem run %s --stop-after 70001 -o p1.h5 --quiet "
+                             "2>/dev/null && %s/build/dem run --restart p1.ckpt.h5 --stop-after 60000 -o p2.h5 --quiet "
+                             "2>/dev/null && %s/build/dem run --restart p2.ckpt.h5 -o p3.h5 --quiet 2>/dev/null", dir,
+                             DEM_DEFAULT_SOURCE_DIR, SCENE, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR), 0);
+    if (test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet.py p1.h5 p2.h5 p3.h5 -o p.png "
+                "> parts.txt", dir, DEM_DEFAULT_SOURCE_DIR))
+        fail_msg("plot_tablet.py of the parts: %s", err);
+    char parts[1024] = {0};
+    snprintf(path, sizeof path, "%s/parts.txt", dir);
+    fp = fopen(path, "r");
+    assert_non_null(fp);
+    assert_non_null(fgets(parts, sizeof parts, fp));
+    fclose(fp);
+    const char *numbers = strstr(parts, " bore_area_m2="), *whole = strstr(line, " bore_area_m2=");
+    assert_non_null(numbers);
+    assert_non_null(whole);
+    if (strcmp(numbers, whole))
+        fail_msg("the report of the run in parts differs from the whole run's:\n%s%s", parts, line);
+    assert_int_not_equal(test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet.py p1.h5 p3.h5 "
+                                 "-o p.png", dir, DEM_DEFAULT_SOURCE_DIR), 0);
+    assert_non_null(strstr(err, "missing"));
+    assert_int_not_equal(test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet.py p2.h5 p1.h5 "
+                                 "-o p.png", dir, DEM_DEFAULT_SOURCE_DIR), 0);
+    assert_non_null(strstr(err, "order they ran"));
+    /* the models' comparison takes such a run as its parts joined by '+' */
+    if (test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet_models.py p1.h5+p2.h5+p3.h5 "
+                "-o pm.png --table pm.md > /dev/null", dir, DEM_DEFAULT_SOURCE_DIR))
+        fail_msg("plot_tablet_models.py of the parts: %s", err);
+    snprintf(path, sizeof path, "%s/pm.md", dir);
+    fp = fopen(path, "r");
+    assert_non_null(fp);
+    for (int k = 0; k < 3 && fgets(row, sizeof row, fp); k++) /* the header, its rule, the run */
+        ;
+    fclose(fp);
+    double d_parts;
+    assert_int_equal(sscanf(row, "| p1 | %*s | %*s | %lf |", &d_parts), 1);
+    assert_true(fabs(d_parts - dens) < 1e-4);
     test_tmpdir_remove(dir);
 }
 

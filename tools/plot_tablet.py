@@ -1,8 +1,11 @@
 #!/usr/bin/python3
 """The tablet report of a press cycle run by dem run (issue 12): one PNG and a few numbers.
 
-usage: tools/plot_tablet.py RUN.h5 [-o RUN_tablet.png] [--die NAME] [--upper NAME] [--lower NAME]
+usage: tools/plot_tablet.py RUN.h5 [MORE.h5 ...] [-o RUN_tablet.png] [--die NAME] [--upper NAME] [--lower NAME]
 
+A run continued with `dem run --restart` (each output file holds the steps from its restart on) is given as its
+files in order: their series are joined by step number, a later file's rows replacing the earlier's from its first
+step on (a restart from an earlier checkpoint repeats steps), and a gap between them is refused.
 Reads the run's time series (/series: wall_position, wall_force, the walls' names and shapes) and the spheres' radii.
 The die is the cylinder wall (or --die), the punches the planes named upper and lower (or --upper, --lower).
   - punch pressure: the normal force the powder exerts on a punch over the bore's area pi R^2 [Pa];
@@ -44,32 +47,71 @@ def wall_index(names, want, what):
     fail(f"no wall named '{want}' for the {what} (walls: {', '.join(names)}; name it with --{what})")
 
 
-def analyse(run, die_name=None, upper="upper", lower="lower"):
-    """The press cycle of one run: a dict of the series (arrays over the rows) and the report's numbers."""
+SERIES_ROWS = ("time", "step", "wall_position", "wall_force", "wall_normal_force", "kinetic", "elastic")
+
+
+def read_part(path):
+    """one output file of dem run: its per-row series, the walls' names and shapes, the radii and the model"""
     try:
-        f = h5py.File(run, "r")
+        f = h5py.File(path, "r")
     except OSError as e:
-        fail(f"cannot open {run}: {e}")
+        fail(f"cannot open {path}: {e}")
     with f:
         s = f.get("series")
         if s is None or "wall_force" not in s or "wall_radius" not in s:
-            fail(f"{run}: no wall series with the walls' shapes (a run of a scene with walls, libdem >= issue 12)")
+            fail(f"{path}: no wall series with the walls' shapes (a run of a scene with walls, libdem >= issue 12)")
         raw = s.attrs["wall_names"]
-        names = (raw.decode() if isinstance(raw, bytes) else str(raw)).split("\n")
-        t = s["time"][:]
-        pos = s["wall_position"][:]
-        force = s["wall_force"][:]
-        radius = s["wall_radius"][:]
-        normal = s["wall_normal"][:]
+        p = dict(names=(raw.decode() if isinstance(raw, bytes) else str(raw)).split("\n"),
+                 radius=s["wall_radius"][:], normal=s["wall_normal"][:], r=f["particles/radius"][:])
+        n = len(s["time"])
+        p["step"] = s["step"][:] if "step" in s else np.arange(n, dtype=float)
+        for k in SERIES_ROWS:
+            if k != "step":
+                p[k] = s[k][:] if k in s else None
         # concave punches (dem_wall.cup_radius, cup_depth): their cups add to the space between the punches
-        cup_r = s["wall_cup_radius"][:] if "wall_cup_radius" in s else np.zeros(len(radius))
-        cup_d = s["wall_cup_depth"][:] if "wall_cup_depth" in s else np.zeros(len(radius))
-        fnorm = s["wall_normal_force"][:] if "wall_normal_force" in s else None
-        kinetic = s["kinetic"][:] if "kinetic" in s else np.full(len(t), np.nan)
-        elastic = s["elastic"][:] if "elastic" in s else np.full(len(t), np.nan)
-        r = f["particles/radius"][:]
+        for k in ("wall_cup_radius", "wall_cup_depth"):
+            p[k] = s[k][:] if k in s else np.zeros(len(p["radius"]))
         model = f.attrs.get("model", b"")
-        model = model.decode() if isinstance(model, bytes) else str(model)
+        p["model"] = model.decode() if isinstance(model, bytes) else str(model)
+    return p
+
+
+def read_run(paths):
+    """a run's parts (a str: one file) joined by step: each later part replaces the rows from its first step on"""
+    paths = [paths] if isinstance(paths, str) else list(paths)
+    run = read_part(paths[0])
+    start = run["step"][0] if len(run["step"]) else -math.inf  # the previous part's first step
+    for prev, path in zip(paths, paths[1:]):
+        p = read_part(path)
+        if p["names"] != run["names"] or not np.array_equal(p["r"], run["r"]) or p["model"] != run["model"]:
+            fail(f"{path} does not continue {prev}: other walls, spheres or contact model (not a --restart of the "
+                 "same run)")
+        if not len(p["step"]):
+            continue
+        first = p["step"][0]
+        if first <= start:
+            fail(f"{path} starts at step {first:.0f}, not after {prev} does (step {start:.0f}): give the parts in the "
+                 "order they ran")
+        if first > run["step"][-1]:
+            fail(f"{path} starts at step {first:.0f}, after {prev} ends (step {run['step'][-1]:.0f}): a part between "
+                 "them is missing")
+        keep, start = run["step"] < first, first
+        for k in SERIES_ROWS:
+            both = run[k] is not None and p[k] is not None
+            run[k] = np.concatenate([run[k][keep], p[k]]) if both else None
+    return run
+
+
+def analyse(run, die_name=None, upper="upper", lower="lower"):
+    """The press cycle of one run (a file, or the files of a run continued by --restart, in order): a dict of the
+    series (arrays over the rows) and the report's numbers."""
+    d = read_run(run)
+    names, t, pos, force, radius, normal = d["names"], d["time"], d["wall_position"], d["wall_force"], d["radius"], \
+        d["normal"]
+    cup_r, cup_d, fnorm, r, model = d["wall_cup_radius"], d["wall_cup_depth"], d["wall_normal_force"], d["r"], \
+        d["model"]
+    kinetic = d["kinetic"] if d["kinetic"] is not None else np.full(len(t), np.nan)
+    elastic = d["elastic"] if d["elastic"] is not None else np.full(len(t), np.nan)
     if die_name:
         die = wall_index(names, die_name, "die")
     else:
@@ -124,13 +166,15 @@ def analyse(run, die_name=None, upper="upper", lower="lower"):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("run", help="HDF5 file written by dem run")
+    ap.add_argument("run", nargs="+", help="HDF5 file written by dem run (several: a run and its --restart "
+                    "continuations, in order)")
     ap.add_argument("-o", "--output", help="PNG file (default: RUN_tablet.png)")
     ap.add_argument("--die", help="the die's wall name (default: the first cylinder)")
     ap.add_argument("--upper", default="upper", help="the upper punch's wall name")
     ap.add_argument("--lower", default="lower", help="the lower punch's wall name")
     a = ap.parse_args()
-    out = a.output or (a.run[:-3] if a.run.endswith(".h5") else a.run) + "_tablet.png"
+    first = a.run[0]
+    out = a.output or (first[:-3] if first.endswith(".h5") else first) + "_tablet.png"
     c = analyse(a.run, a.die, a.upper, a.lower)
     t, p_up, p_lo, p_rad, die_axial, area = c["t"], c["p_up"], c["p_lo"], c["p_rad"], c["die_axial"], c["area"]
     dens, travel_up, k_max, p_max, k_rel = c["dens"], c["travel_up"], c["k_max"], c["p_max"], c["k_rel"]
@@ -162,7 +206,7 @@ def main():
     if len(ej):
         ax[1, 1].plot(1e3 * eject_travel, eject_force)
     ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="lower punch force [N]", title="ejection")
-    fig.suptitle(f"{a.run}: transmission {ratio:.3f}, radial/axial {radial_ratio:.3f}, elastic recovery "
+    fig.suptitle(f"{' + '.join(a.run)}: transmission {ratio:.3f}, radial/axial {radial_ratio:.3f}, elastic recovery "
                  f"{100 * recovery:.2f} %", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)

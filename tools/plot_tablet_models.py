@@ -3,7 +3,9 @@
 
 usage: tools/plot_tablet_models.py RUN.h5 [RUN.h5 ...] [-o models.png] [--table models.md] [--times times.txt]
 
-Each RUN.h5 is a `dem run SCENE --model M` of the same press (tools/tablet_models.sh, `make tablet-models`); the
+Each RUN.h5 is a `dem run SCENE --model M` of the same press (tools/tablet_models.sh, `make tablet-models`); a run
+continued with `dem run --restart` is its files joined by '+' in the order they ran (A.h5+B.h5: plot_tablet.py joins
+their series by step, and the log numbers below are the largest over the parts' logs); the
 press quantities are tools/plot_tablet.py's (analyse): upper punch pressure over the bore, relative density between
 the punches, the Heckel line fitted over the upper half of the loading. Panels: pressure against relative density
 (loading and unloading), the Heckel plot, pressure against the upper punch's travel, and the kinetic over the
@@ -32,7 +34,14 @@ from plot_tablet import analyse  # noqa: E402
 
 
 def log_numbers(run):
-    """dem run's end-of-run report in RUN.log: largest overlap, largest mean overlap [%], stability ratio."""
+    """dem run's end-of-run report in RUN.log: largest overlap, largest mean overlap [%], stability ratio; for a run
+    in parts (a list of files), the largest of each over the parts' logs and their warnings together."""
+    if not isinstance(run, str):
+        parts = [log_numbers(p) for p in run]
+        out = {k: max((p[k] for p in parts if math.isfinite(p[k])), default=math.nan)
+               for k in ("largest", "mean", "stability")}
+        out["warnings"] = sum(p["warnings"] for p in parts)
+        return out
     path = (run[:-3] if run.endswith(".h5") else run) + ".log"
     out = dict(largest=math.nan, mean=math.nan, stability=math.nan, warnings=0)
     if not os.path.exists(path):
@@ -50,7 +59,7 @@ def log_numbers(run):
 
 
 def label_of(c, run):
-    return c["model"] if c["model"] and c["model"] != "as in the scene" else os.path.basename(run)[:-3]
+    return c["model"] if c["model"] and c["model"] != "as in the scene" else os.path.basename(run[0])[:-3]
 
 
 def dwell_end(c):
@@ -78,7 +87,8 @@ def read_times(path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("runs", nargs="+", help="HDF5 files written by dem run, one per model")
+    ap.add_argument("runs", nargs="+", help="HDF5 files written by dem run, one per model (a run continued by "
+                    "--restart: its files joined by '+')")
     ap.add_argument("-o", "--output", default="models.png", help="PNG file")
     ap.add_argument("--table", help="Markdown table to write")
     ap.add_argument("--times", help="wall times: lines 'model exit-status seconds' (tools/tablet_models.sh)")
@@ -86,7 +96,9 @@ def main():
     times = read_times(a.times)
     fig, ax = plt.subplots(2, 2, figsize=(11, 8.5))
     rows = []
-    for run in a.runs:
+    for arg in a.runs:
+        # a file whose name holds '+' is taken whole
+        run = [arg] if os.path.exists(arg) else arg.split("+")
         c = analyse(run)
         name = label_of(c, run)
         k, r = c["k_max"], c["k_rel"]
