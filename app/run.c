@@ -11,8 +11,34 @@
 #include <time.h>
 #include <errno.h>
 #include <libgen.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+/* A run asked to stop (SIGINT, SIGTERM, SIGHUP: Ctrl-C, `timeout`, a batch system's notice before it kills) ends
+ * after the step under way as if its scene ended there: the last frame, series row and checkpoint at that step, the
+ * output file completed, and exit status 128 + the signal; a second signal kills at once (SA_RESETHAND). A kill that
+ * cannot be caught (SIGKILL, a power cut) loses the output file, whose HDF5 metadata is then incomplete: only the
+ * last checkpoint survives - which is why a run longer than a sitting is better run in parts (--stop-after, then
+ * --restart; tools/plot_tablet.py joins the parts). */
+static volatile sig_atomic_t run_signal;
+static void run_on_signal(int sig) { run_signal = sig; }
+static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP};
+static void run_catch_signals(int on)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on ? run_on_signal : SIG_DFL;
+    sa.sa_flags = on ? SA_RESETHAND : 0;
+    sigemptyset(&sa.sa_mask);
+    for (size_t k = 0; k < sizeof run_signals / sizeof run_signals[0]; k++) {
+        struct sigaction old;
+        /* a signal the caller ignores (nohup's SIGHUP) stays ignored */
+        if (sigaction(run_signals[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+            continue;
+        sigaction(run_signals[k], &sa, NULL);
+    }
+}
 
 static double now(void)
 {
@@ -310,6 +336,7 @@ typedef struct {
     output *out;
     char outp[RUN_PATH_LEN], ckp[RUN_PATH_LEN];
     int show;     /* progress lines */
+    int stopped;  /* the signal that ended the run before its scene's end (run_on_signal), or 0 */
     double t0;    /* wall clock at the first step */
     long step0;   /* the step it started from */
     char err[8192];
@@ -445,6 +472,10 @@ static int phase_steps(run_ctx *c)
     const run_opts *o = c->o;
     const scene_run *run = &c->run;
     dem_sim *s = c->s;
+    if (run_signal) { /* asked to stop while the run was being set up: nothing is written */
+        c->stopped = run_signal;
+        return 0;
+    }
     c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
     if (!c->out)
         return fail_with(EXIT_IO, c->err);
@@ -471,17 +502,32 @@ static int phase_steps(run_ctx *c)
     const char *poison = getenv("DEM_TEST_POISON");
     if (poison && sscanf(poison, "%ld %ld", &poison_step, &poison_id) != 2)
         poison_step = -1;
+    /* Another (tests/test_tablet.c): DEM_TEST_SIGNAL="STEP SIGNAL" raises that signal once STEP is reached, so a
+     * test can stop a run at a step of its choosing through the real handler. */
+    long signal_step = -1, signal_no = 0;
+    const char *sigtest = getenv("DEM_TEST_SIGNAL");
+    if (sigtest && sscanf(sigtest, "%ld %ld", &signal_step, &signal_no) != 2)
+        signal_step = -1;
     while (dem_step_index(s) < end) {
-        long st = dem_step_index(s), next = end;
+        long st = dem_step_index(s), next;
+        if (st == signal_step)
+            raise((int)signal_no);
+        if (run_signal && st + 1 < end) { /* stop: one more step, which ends the run as the scene's last would */
+            end = st + 1;
+            c->stopped = run_signal;
+        }
+        next = end;
         if (st == poison_step && poison_hook(s, poison_id))
             return fail_with(EXIT_RUN_FAILED, "DEM_TEST_POISON: cannot poison that particle");
         if (poison_step > st && poison_step < next)
             next = poison_step;
+        if (signal_step > st && signal_step < next)
+            next = signal_step;
         long evs[2] = {run->frame_every, run->checkpoint_every}; /* the series rows are sampled within a stretch */
         for (int k = 0; k < 2; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
                 next = (st / evs[k] + 1) * evs[k];
-        if (c->show) { /* at most ~1 s between progress lines */
+        { /* at most ~1 s between progress lines, and between looks at run_signal */
             double rate = (double)(st - step0 + 1) / (now() - c->t0 + 1e-9);
             long cap = st + (long)(rate > 1 ? rate : 1) + 1;
             if (cap < next)
@@ -662,6 +708,8 @@ int run_scene(const run_opts *o)
         return fail_with(EXIT_IO, "out of memory");
     c->ov.largest_i = c->ov.largest_j = -1; /* no overlap seen yet */
     c->o = o;
+    run_signal = 0;
+    run_catch_signals(1);
     int code = phase_load(c);
     if (!code)
         code = phase_configure(c);
@@ -669,8 +717,20 @@ int run_scene(const run_opts *o)
         code = phase_start(c);
     if (!code)
         code = phase_steps(c);
-    if (!code)
+    if (!code && c->stopped) {
+        if (!c->t0) /* stopped before the first step */
+            fprintf(stderr, "dem: stopped by signal %d (%s) before the first step: nothing written\n", c->stopped,
+                    strsignal(c->stopped));
+        else {
+            phase_report(c);
+            fprintf(stderr, "dem: stopped by signal %d (%s) at step %ld of %ld (t = %.9g s): %s holds the run to "
+                            "there and %s its state; continue with: dem run --restart %s -o MORE.h5\n", c->stopped,
+                    strsignal(c->stopped), dem_step_index(c->s), c->run.steps, dem_time(c->s), c->outp, c->ckp, c->ckp);
+        }
+        code = 128 + c->stopped;
+    } else if (!code)
         phase_report(c);
+    run_catch_signals(0);
     if (c->out)
         output_abort(c->out);
     dem_destroy(c->s);
