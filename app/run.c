@@ -29,7 +29,8 @@ static void run_catch_signals(int on)
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on ? run_on_signal : SIG_DFL;
-    sa.sa_flags = on ? SA_RESETHAND : 0;
+    sa.sa_flags = on ? SA_RESETHAND | SA_RESTART : 0; /* SA_RESTART: no read or write of ours, HDF5's or the
+                                                          OpenCL runtime's fails with EINTR because of it */
     sigemptyset(&sa.sa_mask);
     for (size_t k = 0; k < sizeof run_signals / sizeof run_signals[0]; k++) {
         struct sigaction old;
