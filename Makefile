@@ -168,7 +168,8 @@ accuracy: $(BUILD)/dem-accuracy
 
 # issue 12 item 5: one press scene under the four contact models and their compaction curves side by side
 # (tools/tablet_models.sh; TABLET_SCENE=scenes/tablet_100k.yaml for the issue's: on 2 cores 54 minutes classical, by
-# tablet_3k's ratios about 1.5 hours lagged MC-strain and 9 iterated)
+# tablet_3k's ratios about 1.5 hours lagged MC-strain and 9 iterated; TABLET_TIME=2h runs each model at most two hours
+# a sitting and continues the stopped ones at the next call)
 tablet-models: $(BUILD)/dem
 	bash tools/tablet_models.sh
 

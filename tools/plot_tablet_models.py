@@ -58,6 +58,14 @@ def log_numbers(run):
     return out
 
 
+def stopped_note(last, c):
+    """' (to t ms)' for a run whose last part dem run stopped on a signal (make tablet-models TABLET_TIME): not done"""
+    path = (last[:-3] if last.endswith(".h5") else last) + ".log"
+    if os.path.exists(path) and re.search(r"^dem: stopped by signal", open(path, errors="replace").read(), re.M):
+        return f" (to {1e3 * c['t'][-1]:.3g} ms)"
+    return ""
+
+
 def label_of(c, run):
     return c["model"] if c["model"] and c["model"] != "as in the scene" else os.path.basename(run[0])[:-3]
 
@@ -99,8 +107,12 @@ def main():
     for arg in a.runs:
         # a file whose name holds '+' is taken whole
         run = [arg] if os.path.exists(arg) else arg.split("+")
-        c = analyse(run)
-        name = label_of(c, run)
+        try:
+            c = analyse(run)
+        except SystemExit as e:  # a run stopped before its punch pressed (make tablet-models TABLET_TIME)
+            print(f"plot_tablet_models: {arg} left out: {e}", file=sys.stderr)
+            continue
+        name = label_of(c, run) + stopped_note(run[-1], c)
         k, r = c["k_max"], c["k_rel"]
         end = r if r is not None else len(c["t"]) - 1
         line, = ax[0, 0].plot(c["dens"][: k + 1], 1e-6 * c["p_up"][: k + 1], label=name)
@@ -122,6 +134,8 @@ def main():
                          heat=heat[d] if math.isfinite(heat[d]) else math.nan,
                          d_press=c["dens"][c["load"]] if len(c["load"]) else c["dens"][k: k + 1],
                          t_press=1e3 * (c["travel_up"][c["load"][0]] if len(c["load"]) else 0.0), **lg))
+    if not rows:
+        sys.exit("plot_tablet_models: no run to draw")
     # the curves from where the first run's punch begins to press (the loose fill before it says nothing)
     d0 = min(float(np.min(r["d_press"])) for r in rows)
     ax[0, 0].set_xlim(left=max(0.0, d0 - 0.02))
