@@ -20,7 +20,7 @@ const char cli_usage[] =
     "checkpoints to OUT.ckpt.h5 (the scene's output.checkpoint_every, and at the end). A progress line goes to\n"
     "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI. --model replaces the\n"
     "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart).\n"
-    "SIGINT, SIGTERM or SIGHUP ends a run after the step under way, its output and checkpoint complete.\n"
+    "SIGINT, SIGTERM or SIGHUP ends a run within about a second, its output and checkpoint complete.\n"
     "\n"
     "exit status: 0 done; 1 the simulation failed while running; 2 bad command line; 65 invalid scene or\n"
     "checkpoint; 66 a file could not be opened; 69 no usable OpenCL device; 74 output could not be written;\n"

@@ -16,27 +16,50 @@
 #include <unistd.h>
 
 /* A run asked to stop (SIGINT, SIGTERM, SIGHUP: Ctrl-C, `timeout`, a batch system's notice before it kills) ends
- * after the step under way as if its scene ended there: the last frame, series row and checkpoint at that step, the
- * output file completed, and exit status 128 + the signal; a second signal kills at once (SA_RESETHAND). A kill that
- * cannot be caught (SIGKILL, a power cut) loses the output file, whose HDF5 metadata is then incomplete: only the
- * last checkpoint survives - which is why a run longer than a sitting is better run in parts (--stop-after, then
- * --restart; tools/plot_tablet.py joins the parts). */
+ * within about a second (the stretch of steps under way, capped at about a second, then one step) as if its scene
+ * ended there: the last frame, series row and checkpoint at that step, the output file completed, and exit status
+ * 128 + the signal - for SIGINT by dying of it once all is written, so that a shell script or make running dem stops
+ * too. A signal that comes while the last stretch, the output's completion or the report is under way finds the run
+ * done: exit status 0. Another signal a second or more after the first kills at once; one sooner is the same
+ * request delivered twice (`timeout` signals its child and then its process group; launchers forward a terminal's
+ * Ctrl-C). A kill that cannot be caught (SIGKILL, a power cut) loses the output file, whose HDF5 metadata is then
+ * incomplete: only the last checkpoint survives - which is why a run longer than a sitting is better run in parts
+ * (--stop-after, then --restart; tools/plot_tablet.py joins the parts). SIGPIPE is ignored while a run goes (a
+ * progress line to a pipe whose reader died - `| tee` after a hang-up - would kill it before its output is done). */
 static volatile sig_atomic_t run_signal;
-static void run_on_signal(int sig) { run_signal = sig; }
-static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP};
+static struct timespec run_signal_at; /* when the first came (written and read by the handler only) */
+static void run_on_signal(int sig)
+{
+    int e = errno;
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t); /* async-signal-safe */
+    if (!run_signal) {
+        run_signal_at = t;
+        run_signal = sig;
+    } else if ((double)(t.tv_sec - run_signal_at.tv_sec) + 1e-9 * (double)(t.tv_nsec - run_signal_at.tv_nsec) >= 1) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
+    errno = e;
+}
+static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+#define RUN_NSIG (sizeof run_signals / sizeof run_signals[0])
+static struct sigaction run_signal_old[RUN_NSIG];
 static void run_catch_signals(int on)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on ? run_on_signal : SIG_DFL;
-    sa.sa_flags = on ? SA_RESETHAND | SA_RESTART : 0; /* SA_RESTART: no read or write of ours, HDF5's or the
-                                                          OpenCL runtime's fails with EINTR because of it */
+    sa.sa_flags = SA_RESTART; /* reads and writes of ours, HDF5's or the OpenCL runtime's do not fail with EINTR */
     sigemptyset(&sa.sa_mask);
-    for (size_t k = 0; k < sizeof run_signals / sizeof run_signals[0]; k++) {
-        struct sigaction old;
-        /* a signal the caller ignores (nohup's SIGHUP) stays ignored */
-        if (sigaction(run_signals[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+    for (size_t k = 0; k < RUN_NSIG; k++) {
+        if (!on) { /* as the caller had them */
+            sigaction(run_signals[k], &run_signal_old[k], NULL);
             continue;
+        }
+        sigaction(run_signals[k], NULL, &run_signal_old[k]);
+        if (run_signal_old[k].sa_handler == SIG_IGN) /* a signal the caller ignores (nohup's SIGHUP) stays ignored */
+            continue;
+        sa.sa_handler = run_signals[k] == SIGPIPE ? SIG_IGN : run_on_signal;
         sigaction(run_signals[k], &sa, NULL);
     }
 }
@@ -488,6 +511,7 @@ static int phase_steps(run_ctx *c)
         end = step0 + o->stop_after;
     int tty = isatty(2);
     series_row row, sum;
+    int nsum = 0; /* samples in sum since its last row (a stop shortens the last window: it averages those taken) */
     int nw = dem_wall_count(s);
     errno = 0;
     if (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row)) {
@@ -509,6 +533,8 @@ static int phase_steps(run_ctx *c)
     const char *sigtest = getenv("DEM_TEST_SIGNAL");
     if (sigtest && sscanf(sigtest, "%ld %ld", &signal_step, &signal_no) != 2)
         signal_step = -1;
+    long prev_st = step0; /* the last stretch: its first step and when it began */
+    double prev_t = 0;
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next;
         if (st == signal_step)
@@ -528,9 +554,12 @@ static int phase_steps(run_ctx *c)
         for (int k = 0; k < 2; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
                 next = (st / evs[k] + 1) * evs[k];
-        { /* at most ~1 s between progress lines, and between looks at run_signal */
-            double rate = (double)(st - step0 + 1) / (now() - c->t0 + 1e-9);
-            long cap = st + (long)(rate > 1 ? rate : 1) + 1;
+        { /* at most ~1 s between progress lines, and between looks at run_signal: a stretch as long as the last
+             one's steps took a second (steps slow down as a powder is pressed); the first, 8 steps */
+            double tn = now();
+            long cap = st + (prev_t > 0 && tn > prev_t ? (long)((double)(st - prev_st) / (tn - prev_t)) : 7) + 1;
+            prev_st = st;
+            prev_t = tn;
             if (cap < next)
                 next = cap;
         }
@@ -564,12 +593,16 @@ static int phase_steps(run_ctx *c)
             output_row_of(&c->rows[k], run, nw, &row);
             if (run->series_average > 1) { /* a step of the averaging window: into the sum, a row at its end */
                 long win0 = row_window(run, t, end, step0);
-                if (t == win0)
+                if (t == win0 || !nsum) {
                     memset(&sum, 0, sizeof sum);
+                    nsum = 0;
+                }
                 output_row_add(&sum, &row, nw);
+                nsum++;
                 if (t == at) {
-                    output_row_mean(&sum, (int)(t - win0 + 1), nw);
+                    output_row_mean(&sum, nsum, nw); /* nsum = t - win0 + 1 unless a stop shortened the window */
                     io = output_series(c->out, &sum);
+                    nsum = 0;
                 }
             } else if (t == at) {
                 io = output_series(c->out, &row);
@@ -731,7 +764,6 @@ int run_scene(const run_opts *o)
         code = 128 + c->stopped;
     } else if (!code)
         phase_report(c);
-    run_catch_signals(0);
     if (c->out)
         output_abort(c->out);
     dem_destroy(c->s);
@@ -739,6 +771,13 @@ int run_scene(const run_opts *o)
     if (c->have_ck)
         checkpoint_free(&c->ck);
     overlap_watch_free(&c->ov);
+    int stopped = c->stopped;
     free(c);
+    run_catch_signals(0);
+    if (stopped == SIGINT) { /* everything written: die of it, so that a script or make running dem stops too */
+        fflush(NULL);
+        signal(SIGINT, SIG_DFL);
+        raise(SIGINT);
+    }
     return code;
 }

@@ -1374,6 +1374,26 @@ static void test_series_average(void **st)
     double tail = (a[2991] + a[2992] + a[2993] + a[2994] + a[2995]) / 5;
     if (!(fabs(m[300] - tail) <= 1e-12 * fabs(tail)))
         fail_msg("the end's row: %.17g, the mean of steps 2991..2995 %.17g", m[300], tail);
+    /* a run stopped by a signal (app/run.c) with series_average 4 < the 10 steps between rows: stopped at 2998 (one
+     * more step after the signal at 2997), its last row is the mean of 2997..2998, the steps of row 3000's window it
+     * had sampled and the stop's; stopped at 2994, before that window, the stop step's alone - not what the sum held
+     * from the row before */
+    const int stops[2] = {2997, 2993};
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(sh(err, sizeof err, "sed 's/  series_average: 10/  series_average: 4/' %s/avg.yaml > "
+                                              "%s/avg4.yaml && DEM_TEST_SIGNAL='%d 15' %s run %s/avg4.yaml -o %s/avg4.h5 "
+                                              "--quiet", tmp, tmp, stops[k], DEM, tmp, tmp),
+                         128 + 15);
+        snprintf(p, sizeof p, "%s/avg4.h5", tmp);
+        hid_t f4 = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+        long n4 = h5_count(f4, "series/kinetic");
+        assert_int_equal(n4, 301); /* the start, 299 rows, the stop's */
+        assert_int_equal(h5_read(f4, "series/kinetic", H5T_NATIVE_DOUBLE, m, (size_t)n4), 0);
+        H5Fclose(f4);
+        double want = k == 0 ? (a[2997] + a[2998]) / 2 : a[2994];
+        if (!(fabs(m[300] - want) <= 1e-12 * fabs(want)))
+            fail_msg("stopped at %d: the last row %.17g, want %.17g", stops[k] + 1, m[300], want);
+    }
     free(a), free(m);
     assert_int_equal(sh(err, sizeof err, "sed 's/  series_average: 10/  series_average: 11/' %s/avg.yaml > %s/avg2.yaml "
                                           "&& %s check %s/avg2.yaml", tmp, tmp, DEM, tmp),

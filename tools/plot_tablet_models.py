@@ -109,7 +109,10 @@ def main():
         run = [arg] if os.path.exists(arg) else arg.split("+")
         try:
             c = analyse(run)
-        except SystemExit as e:  # a run stopped before its punch pressed (make tablet-models TABLET_TIME)
+        except SystemExit as e:
+            if "never pressed" not in str(e):  # a missing file, parts out of order, ...: an error
+                raise
+            # a run stopped before its punch pressed (make tablet-models TABLET_TIME): nothing to draw yet
             print(f"plot_tablet_models: {arg} left out: {e}", file=sys.stderr)
             continue
         name = label_of(c, run) + stopped_note(run[-1], c)

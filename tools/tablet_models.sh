@@ -12,13 +12,14 @@
 #   TABLET_ARGS   more `dem run` options for every model, e.g. "--stop-after 201300" (tablet_100k to 41 ms: the
 #                 compaction, dwell and decompression, the first of the ejection)
 #   TABLET_TIME   a wall-time limit per model and sitting (`timeout`'s form: 90m, 2h): a run still going then is
-#                 stopped by SIGTERM (dem run ends it cleanly: output complete, checkpoint, exit status 143; a
-#                 Ctrl-C's 130 likewise), and
+#                 stopped by SIGTERM (dem run ends it cleanly: output complete, checkpoint, exit status 143), and
 #                 the next `make tablet-models` with TABLET_TIME set continues it from its checkpoint into
 #                 MODEL.2.h5, MODEL.3.h5, ... (MODEL.parts lists them: "file exit-status seconds"), keeping the
 #                 models already done. The plot joins the parts; a run not yet done is drawn as far as it got.
 #                 Without TABLET_TIME every model runs anew, whole.
-# A run that fails is reported and left out of the plot; the others go on.
+# A run that fails is reported and left out of the plot; the others go on. Ctrl-C stops the run under way cleanly and
+# this script with it (that part is not listed in MODEL.parts: the next call with TABLET_TIME runs it again from the
+# checkpoint before it).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SCENE=${TABLET_SCENE:-scenes/tablet_3k.yaml}
@@ -37,7 +38,8 @@ run_part() {
   local m=$1 file=$2 start end rc
   shift 2
   local lim=()
-  [ -n "$TIME" ] && lim=(timeout --preserve-status -s TERM "$TIME")
+  # --foreground: timeout stays in the terminal's process group (Ctrl-C reaches dem) and signals dem alone, once
+  [ -n "$TIME" ] && lim=(timeout --foreground --preserve-status -s TERM "$TIME")
   start=$(date +%s.%N)
   "${lim[@]}" "$DEM" run "$@" -o "$file" > "${file%.h5}.log" 2>&1
   rc=$?
@@ -52,7 +54,7 @@ for m in $MODELS; do
     read -r file rc _ <<< "$last"
     case "$rc" in
       0) echo "tablet-models: $m is done ($parts)" >&2 ;;
-      129 | 130 | 143) # stopped by SIGHUP, SIGINT or TERM (TABLET_TIME): resumable
+      129 | 143) # stopped by SIGHUP or SIGTERM (TABLET_TIME): resumable
         k=$(wc -l < "$parts")
         echo "tablet-models: $m continues from ${file%.h5}.ckpt.h5 (log: $OUT/$m.$((k + 1)).log)" >&2
         # shellcheck disable=SC2086 # TABLET_ARGS is a list of options
@@ -70,10 +72,10 @@ for m in $MODELS; do
   read -r rc secs <<< "$(awk '{ s += $3; r = $2 } END { printf "%s %.1f", r, s }' "$parts")"
   echo "$m $rc $secs" >> "$OUT/times.txt"
   case "$rc" in
-    0 | 129 | 130 | 143) runs+=("$files") ;;
+    0 | 129 | 143) runs+=("$files") ;;
     *) echo "tablet-models: $m failed (exit $rc): $(tail -n 1 "$parts" | cut -d' ' -f1 | sed 's/\.h5$/.log/')" >&2 ;;
   esac
-  case "$rc" in 129 | 130 | 143) echo "tablet-models: $m stopped (exit $rc) before its end; make tablet-models with \
+  case "$rc" in 129 | 143) echo "tablet-models: $m stopped (exit $rc) before its end; make tablet-models with \
 TABLET_TIME set continues it" >&2 ;; esac
 done
 [ ${#runs[@]} -gt 0 ] || { echo "tablet-models: no run completed" >&2; exit 1; }
