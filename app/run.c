@@ -473,6 +473,16 @@ static int phase_start(run_ctx *c)
     return 0;
 }
 
+/* A test hook "STEP ARG" from the environment variable name: STEP -1 when unset or malformed */
+static void test_hook(const char *name, long *step, long *arg)
+{
+    const char *v = getenv(name);
+    *step = -1;
+    *arg = 0;
+    if (v && sscanf(v, "%ld %ld", step, arg) != 2)
+        *step = -1;
+}
+
 /* DEM_TEST_POISON's act: particle id's velocity becomes NAN in the run's own state */
 static int poison_hook(dem_sim *s, long id)
 {
@@ -512,6 +522,7 @@ static int phase_steps(run_ctx *c)
     int tty = isatty(2);
     series_row row, sum;
     int nsum = 0; /* samples in sum since its last row (a stop shortens the last window: it averages those taken) */
+    memset(&sum, 0, sizeof sum);
     int nw = dem_wall_count(s);
     errno = 0;
     if (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row)) {
@@ -523,16 +534,11 @@ static int phase_steps(run_ctx *c)
     long ck_step = -1; /* step of the last checkpoint this run wrote */
     /* A test-only hook (tests/test_scene.c, issue 13): DEM_TEST_POISON="STEP PARTICLE" makes that particle's velocity
      * not a number once STEP is reached, to show how a run that goes non-finite stops and what it keeps. */
-    long poison_step = -1, poison_id = -1;
-    const char *poison = getenv("DEM_TEST_POISON");
-    if (poison && sscanf(poison, "%ld %ld", &poison_step, &poison_id) != 2)
-        poison_step = -1;
+    long poison_step, poison_id, signal_step, signal_no;
+    test_hook("DEM_TEST_POISON", &poison_step, &poison_id);
     /* Another (tests/test_tablet.c): DEM_TEST_SIGNAL="STEP SIGNAL" raises that signal once STEP is reached, so a
      * test can stop a run at a step of its choosing through the real handler. */
-    long signal_step = -1, signal_no = 0;
-    const char *sigtest = getenv("DEM_TEST_SIGNAL");
-    if (sigtest && sscanf(sigtest, "%ld %ld", &signal_step, &signal_no) != 2)
-        signal_step = -1;
+    test_hook("DEM_TEST_SIGNAL", &signal_step, &signal_no);
     long prev_st = step0; /* the last stretch: its first step and when it began */
     double prev_t = 0;
     while (dem_step_index(s) < end) {
@@ -546,10 +552,10 @@ static int phase_steps(run_ctx *c)
         next = end;
         if (st == poison_step && poison_hook(s, poison_id))
             return fail_with(EXIT_RUN_FAILED, "DEM_TEST_POISON: cannot poison that particle");
-        if (poison_step > st && poison_step < next)
-            next = poison_step;
-        if (signal_step > st && signal_step < next)
-            next = signal_step;
+        long hooks[2] = {poison_step, signal_step}; /* a stretch ends where a test hook acts */
+        for (int k = 0; k < 2; k++)
+            if (hooks[k] > st && hooks[k] < next)
+                next = hooks[k];
         long evs[2] = {run->frame_every, run->checkpoint_every}; /* the series rows are sampled within a stretch */
         for (int k = 0; k < 2; k++)
             if (evs[k] > 0 && (st / evs[k] + 1) * evs[k] < next)
@@ -592,16 +598,12 @@ static int phase_steps(run_ctx *c)
             long t = c->rows[k].step, at = row_step(run, t, end);
             output_row_of(&c->rows[k], run, nw, &row);
             if (run->series_average > 1) { /* a step of the averaging window: into the sum, a row at its end */
-                long win0 = row_window(run, t, end, step0);
-                if (t == win0 || !nsum) {
-                    memset(&sum, 0, sizeof sum);
-                    nsum = 0;
-                }
                 output_row_add(&sum, &row, nw);
                 nsum++;
-                if (t == at) {
-                    output_row_mean(&sum, nsum, nw); /* nsum = t - win0 + 1 unless a stop shortened the window */
+                if (t == at) { /* nsum: the window's steps (row_window), fewer where a stop shortened it */
+                    output_row_mean(&sum, nsum, nw);
                     io = output_series(c->out, &sum);
+                    memset(&sum, 0, sizeof sum);
                     nsum = 0;
                 }
             } else if (t == at) {

@@ -32,19 +32,17 @@ mkdir -p "$OUT"
 : > "$OUT/times.txt"
 runs=()
 
+. tools/timed_run.sh
+# --foreground: timeout stays in the terminal's process group (Ctrl-C reaches dem) and signals dem alone, once
+[ -n "$TIME" ] && TIMED_PREFIX=(timeout --foreground --preserve-status -s TERM "$TIME")
+
 # one part of model $1's run into file $2 (log beside it), `dem run` arguments after; appends "file status seconds"
 # to OUT/MODEL.parts
 run_part() {
-  local m=$1 file=$2 start end rc
+  local m=$1 file=$2
   shift 2
-  local lim=()
-  # --foreground: timeout stays in the terminal's process group (Ctrl-C reaches dem) and signals dem alone, once
-  [ -n "$TIME" ] && lim=(timeout --foreground --preserve-status -s TERM "$TIME")
-  start=$(date +%s.%N)
-  "${lim[@]}" "$DEM" run "$@" -o "$file" > "${file%.h5}.log" 2>&1
-  rc=$?
-  end=$(date +%s.%N)
-  echo "$file $rc $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", b - a }')" >> "$OUT/$m.parts"
+  timed_dem "${file%.h5}.log" "$@" -o "$file"
+  echo "$file $TIMED_RC $TIMED_SECS" >> "$OUT/$m.parts"
 }
 
 for m in $MODELS; do
