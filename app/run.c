@@ -20,27 +20,17 @@
  * ended there: the last frame, series row and checkpoint at that step, the output file completed, and exit status
  * 128 + the signal - for SIGINT by dying of it once all is written, so that a shell script or make running dem stops
  * too. A signal that comes while the last stretch, the output's completion or the report is under way finds the run
- * done: exit status 0. Another signal a second or more after the first kills at once; one sooner is the same
- * request delivered twice (`timeout` signals its child and then its process group; launchers forward a terminal's
- * Ctrl-C). A kill that cannot be caught (SIGKILL, a power cut) loses the output file, whose HDF5 metadata is then
- * incomplete: only the last checkpoint survives - which is why a run longer than a sitting is better run in parts
- * (--stop-after, then --restart; tools/plot_tablet.py joins the parts). SIGPIPE is ignored while a run goes (a
+ * done: exit status 0. Further signals change nothing (`timeout` signals its child and then its process group,
+ * launchers forward a terminal's Ctrl-C: the same request twice); Ctrl-\ (SIGQUIT) or SIGKILL kills at once. A
+ * kill that cannot be caught (SIGKILL, a power cut) loses the output file, whose HDF5 metadata is then incomplete:
+ * only the last checkpoint survives - which is why a run longer than a sitting is better run in parts (--stop-after,
+ * then --restart; tools/plot_tablet.py joins the parts). SIGPIPE is ignored while a run goes (a
  * progress line to a pipe whose reader died - `| tee` after a hang-up - would kill it before its output is done). */
 static volatile sig_atomic_t run_signal;
-static struct timespec run_signal_at; /* when the first came (written and read by the handler only) */
 static void run_on_signal(int sig)
 {
-    int e = errno;
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t); /* async-signal-safe */
-    if (!run_signal) {
-        run_signal_at = t;
+    if (!run_signal)
         run_signal = sig;
-    } else if ((double)(t.tv_sec - run_signal_at.tv_sec) + 1e-9 * (double)(t.tv_nsec - run_signal_at.tv_nsec) >= 1) {
-        signal(sig, SIG_DFL);
-        raise(sig);
-    }
-    errno = e;
 }
 static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 #define RUN_NSIG (sizeof run_signals / sizeof run_signals[0])
