@@ -14,61 +14,110 @@
 # order, after those with one. A clone that has not run the tests yet takes the times committed in
 # tests/test-times.txt (measured 2026-12-04; only the order depends on them).
 #
-# Started from a script, a background job inherits SIGINT and SIGQUIT ignored, and dem run leaves a signal ignored
-# that its caller ignores (nohup's SIGHUP): `env --default-signal` gives the programs the dispositions they would
-# have in the foreground (test_tablet checks dem's answer to a real SIGINT). Ctrl-C reaches them all: they stay in
-# make's process group.
+# Each program runs in a subshell that writes its exit status to a file: a program that dies of a signal outside a
+# `wait` would otherwise leave bash's job table unseen (a non-interactive bash reports and forgets it) and be lost.
+# Its standard output is line-buffered (stdbuf -oL), so a crash loses none of it and its lines keep their order
+# with its standard error in the log.
+#
+# Signals: started from a script, a background job inherits SIGINT and SIGQUIT ignored, and dem run leaves a signal
+# ignored that its caller ignores (nohup's SIGHUP): `env --default-signal` gives the programs the dispositions they
+# would have in the foreground (test_tablet checks dem's answer to a real SIGINT). Ctrl-C reaches them all (they stay
+# in make's process group), but a program waiting in system() ignores it and would go on alone: on SIGINT or SIGTERM
+# this script starts nothing more, sends SIGTERM to each running program and its children, waits for them, and dies
+# of the same signal, so make stops too.
 set -u
 jobs_max=${TEST_JOBS:-$(nproc)}
-case "$jobs_max" in '' | *[!0-9]* | 0) echo "run-tests: TEST_JOBS must be a positive integer, not '$jobs_max'" >&2; exit 2 ;; esac
+case "$jobs_max" in '' | *[!0-9]*) jobs_max=0 ;; *) jobs_max=$((10#$jobs_max)) ;; esac
+[ "$jobs_max" -gt 0 ] || { echo "run-tests: TEST_JOBS must be a positive integer, not '${TEST_JOBS-}'" >&2; exit 2; }
 times_file=${TEST_TIMES:-build/test-times.txt}
-order_file=$times_file
-[ -r "$order_file" ] || order_file=tests/test-times.txt
 logdir=$(mktemp -d "${TMPDIR:-/tmp}/dem-tests.XXXXXX") || exit 1
 trap 'rm -rf "$logdir"' EXIT
 
-# the programs, longest first by the last run's times (a stable sort keeps the given order among equals)
+# the last wall time of program $1: the last run's, else the committed one
+last_secs() {
+  local f
+  for f in "$times_file" tests/test-times.txt; do
+    [ -r "$f" ] && awk -v n="$1" '$1 == n { s = $2 } END { if (s != "") print s; else exit 1 }' "$f" && return
+  done
+  echo 0
+}
+
+# the programs, longest first (a stable sort keeps the given order among equals)
 order=()
 while read -r _ t; do order+=("$t"); done < <(
   i=0
   for t in "$@"; do
-    secs=$( [ -r "$order_file" ] && awk -v n="$(basename "$t")" '$1 == n { print $2 }' "$order_file" | tail -n 1 )
-    printf '%s %06d %s\n' "${secs:-0}" "$i" "$t"
+    printf '%s %06d %s\n' "$(last_secs "$(basename "$t")")" "$i" "$t"
     i=$((i + 1))
   done | sort -k1,1nr -k2,2n | cut -d' ' -f2-)
 
 pass=0; fail=0; failed=(); times=()
-declare -A pid_of start_of
+declare -A name_of start_of
 running=()
+signal=
+trap 'signal=INT' INT
+trap 'signal=TERM' TERM
 
-# waits for one running program to end, then reports it
+# waits for one running program to end, then reports it; returns at once when a signal ended the wait
 reap() {
-  local done_pid t rc
+  local done_pid='' n rc
   wait -n -p done_pid "${running[@]}"
-  rc=$?
-  for t in "${!pid_of[@]}"; do [ "${pid_of[$t]}" = "$done_pid" ] && break; done
-  local secs=$(( $(date +%s) - start_of[$t] ))
-  echo "=== $t"
-  cat "$logdir/$(basename "$t").log"
-  echo "--- $(basename "$t"): $secs s"
-  times+=("$(basename "$t") $secs")
-  if [ "$rc" -eq 0 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); failed+=("$t"); fi
-  unset "pid_of[$t]"
+  [ -n "${done_pid-}" ] || return 0
+  n=${name_of[$done_pid]}
+  rc=$(cat "$logdir/$n.rc" 2>/dev/null) || rc=255
+  local secs=$(( $(date +%s) - start_of[$done_pid] ))
+  echo "=== $n"
+  cat "$logdir/$n.log"
+  if [ "$rc" -eq 0 ]; then
+    pass=$((pass + 1))
+    echo "--- $n: $secs s"
+  else
+    fail=$((fail + 1)); failed+=("$n")
+    echo "--- $n: $secs s, FAILED (exit status $rc)"
+  fi
+  times+=("$n $secs")
+  unset "name_of[$done_pid]" "start_of[$done_pid]"
   local keep=() p
   for p in "${running[@]}"; do [ "$p" != "$done_pid" ] && keep+=("$p"); done
   running=("${keep[@]}")
 }
 
+# SIGTERM to process $1 and its descendants, the children first
+kill_tree() {
+  local c
+  for c in $(pgrep -P "$1"); do kill_tree "$c"; done
+  kill -TERM "$1" 2> /dev/null
+}
+
 for t in "${order[@]}"; do
-  while [ "${#running[@]}" -ge "$jobs_max" ]; do reap; done
-  start_of[$t]=$(date +%s)
-  env --default-signal=INT,QUIT "$t" > "$logdir/$(basename "$t").log" 2>&1 < /dev/null &
-  pid_of[$t]=$!
+  while [ -z "$signal" ] && [ "${#running[@]}" -ge "$jobs_max" ]; do reap; done
+  [ -z "$signal" ] || break
+  n=$(basename "$t")
+  ( env --default-signal=INT,QUIT stdbuf -oL "$t" > "$logdir/$n.log" 2>&1 < /dev/null
+    echo "$?" > "$logdir/$n.rc" ) &
+  name_of[$!]=$n
+  start_of[$!]=$(date +%s)
   running+=("$!")
 done
-while [ "${#running[@]}" -gt 0 ]; do reap; done
+while [ -z "$signal" ] && [ "${#running[@]}" -gt 0 ]; do reap; done
 
-if [ -d "$(dirname "$times_file")" ]; then printf '%s\n' "${times[@]}" > "$times_file"; fi
+if [ -n "$signal" ]; then
+  echo "run-tests: SIG$signal: stopping ${#running[@]} running program(s); $pass passed, $fail failed before" >&2
+  for p in "${running[@]}"; do kill_tree "$p"; done
+  wait
+  rm -rf "$logdir"
+  trap - "$signal" EXIT
+  kill -s "$signal" $$
+fi
+
+# this run's times, then the earlier ones of the programs it did not run
+if [ -d "$(dirname "$times_file")" ] && [ ${#times[@]} -gt 0 ]; then
+  { printf '%s\n' "${times[@]}"
+    if [ -r "$times_file" ]; then
+      awk 'NR == FNR { ran[$1] = 1; next } !($1 in ran)' <(printf '%s\n' "${times[@]}") "$times_file"
+    fi
+  } > "$logdir/times" && mv "$logdir/times" "$times_file"
+fi
 [ ${#failed[@]} -gt 0 ] && echo "failed programs: ${failed[*]}"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
