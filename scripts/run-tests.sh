@@ -82,10 +82,11 @@ reap() {
   running=("${keep[@]}")
 }
 
-# SIGTERM to process $1 and its descendants, the children first
+# SIGTERM to process $1 and its descendants, the children first (from /proc: a minimal Debian has no pgrep)
 kill_tree() {
   local c
-  for c in $(pgrep -P "$1"); do kill_tree "$c"; done
+  # shellcheck disable=SC2013 # the files hold pids separated by spaces
+  for c in $(cat /proc/"$1"/task/*/children 2> /dev/null); do kill_tree "$c"; done
   kill -TERM "$1" 2> /dev/null
 }
 
