@@ -1,6 +1,6 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_normal_force,wall_pos,wall_stage,
  * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,
- * wall_hist,wall_pf,wall_mask,radius,pair_mc_fn,wall_mc_fn,pair_mc_disp,wall_mc_disp,patch_i,patch_t,patch_hist} with attributes step, n, nwalls, real_size (4 or 8: the arrays
+ * wall_hist,wall_pf,wall_mask,radius,pair_mc_fn,wall_mc_fn,pair_mc_disp,wall_mc_disp,patch_i,patch_t,patch_hist,patch_side} with attributes step, n, nwalls, real_size (4 or 8: the arrays
  * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 /* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
@@ -80,7 +80,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              (st.wall_mc_disp && h5_write(g, "wall_mc_disp", real_t, 1, wd, st.wall_mc_disp, "m")) ||
              h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
              h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
-             h5_write(g, "patch_hist", real_t, 2, q3, st.patch_hist, "N");
+             h5_write(g, "patch_hist", real_t, 2, q3, st.patch_hist, "N") ||
+             (st.patch_side && h5_write(g, "patch_side", H5T_NATIVE_INT, 1, q1, st.patch_side, NULL));
         if (g >= 0)
             H5Gclose(g);
         hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -229,6 +230,11 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
                  h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
                  h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
                  h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
+            if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent before 2026-12-04: not known */
+                st->patch_side = malloc(sizeof(int) * (size_t)npatch);
+                rc = !st->patch_side || h5_count(g, "patch_side") != npatch ||
+                     h5_read(g, "patch_side", H5T_NATIVE_INT, st->patch_side, (size_t)npatch);
+            }
         }
     }
     if (g >= 0)

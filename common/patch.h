@@ -4,9 +4,11 @@
  * patch contacts are kept. The force pass that uses them is common/patch_contacts.h.
  *
  * Closest point: the Voronoi regions of the triangle's features, tested in order (Ericson, Real-Time Collision
- * Detection, section 5.1.5), with only + - * /. Edge k joins vertices k and k+1 (mod 3). The classification is
- * exact by construction - a vertex contact has the weights (1, 0, 0) exactly, an edge contact a zero weight for the
- * vertex off the edge - where Eq. 17 would test a cross product for zero in floating point.
+ * Detection, section 5.1.5), with only + - * /. Edge k joins vertices k and k+1 (mod 3). Within one triangle the
+ * weights follow the kind exactly - a vertex contact has the weights (1, 0, 0), an edge contact a zero weight for the
+ * vertex off the edge - where Eq. 17 would test a cross product for zero in floating point. Between triangles it is
+ * not exact: a point on the edge two triangles share may come out as a face point of both (each rounds its own
+ * region tests); the selection treats such a point as the edge's (patch_rank).
  *
  * Selection (Table 1). The table orders the contacts of a sphere with two patches that share an edge: face over edge
  * over vertex, two faces both stay, and "rand" for two edges or two vertices; the text adds that of vertex contacts at
@@ -20,7 +22,9 @@
  * (faces, then distance, kind, id), so the best contact of a sphere always stays. Deterministic and independent of
  * the order the contacts are listed in, so the same on every device and after a restart; a random pick would need
  * a counter-based hash for that and would buy nothing physical (the candidates are at the same point). An edge
- * point computed from two triangles may differ in its last bit; then the nearer by that bit stays.
+ * point computed from two triangles may differ in its last bit; then the nearer by that bit stays. A face point
+ * within rounding of an edge or a vertex ranks as that edge or vertex (patch_rank): on a shared edge the two faces'
+ * region tests round independently, and by rank the point is then one contact, not two.
  */
 #ifndef DEM_PATCH_H
 #define DEM_PATCH_H
@@ -81,6 +85,29 @@ DEM_INLINE patch_point patch_closest(vec3 p, vec3 a, vec3 b, vec3 c)
     return patch_feature(PATCH_FACE, 0, (real)1 - v - w, v, w, v3_add(a, v3_add(v3_scale(ab, v), v3_scale(ac, w))));
 }
 
+/* The rank of a contact in the selection (patch_beats): its kind, except that a face point within PATCH_TIE of an
+ * edge (one weight at most PATCH_TIE) ranks as an edge point and one within it of a vertex (two weights) as a vertex
+ * point. A point on the edge two triangles share is a face point of either, both or neither of them by the rounding
+ * of their region tests (patch_closest computes them from each triangle's own vertices, in its own order): two face
+ * contacts would both stay, twice the force (a sphere sliding along a vertex row of a flat sheet felt up to 1.88x its
+ * weight). Ranked as edge points they compete, and one stays: the nearer by the bits of their distances, then the
+ * lower patch id (patch_beats). Each contact's rank is a function of its own triangle and point alone, so every
+ * contact of a sphere is judged on the same numbers whichever contact asks: the decisions are consistent and one
+ * contact always stays. PATCH_TIE (2^-40 in fp64, 2^-17 in fp32) is some thousand times the rounding of a weight and
+ * a distance of 1e-12 (fp64) of the edge's length: a face contact that near an edge is at the edge's point. */
+#if DEM_REAL_SIZE == 8
+#define PATCH_TIE ((real)9.094947017729282e-13)
+#else
+#define PATCH_TIE ((real)7.62939453125e-6)
+#endif
+DEM_INLINE int patch_rank(patch_point pp)
+{
+    if (pp.kind != PATCH_FACE)
+        return pp.kind;
+    int small = (pp.w[0] <= PATCH_TIE) + (pp.w[1] <= PATCH_TIE) + (pp.w[2] <= PATCH_TIE);
+    return small == 0 ? PATCH_FACE : small == 1 ? PATCH_EDGE : PATCH_VERTEX;
+}
+
 /* The number of vertices two triangles (three vertex ids each) have in common */
 DEM_INLINE int patch_common(const int *t, const int *u)
 {
@@ -92,7 +119,7 @@ DEM_INLINE int patch_common(const int *t, const int *u)
 }
 
 /* Whether contact j removes contact i of the same sphere (Table 1, extended; see the head of this file): ti, tj the
- * triangles' vertex ids, k their kinds (patch_closest), d2 the squared distances from the sphere's centre to their
+ * triangles' vertex ids, k their ranks (patch_rank; a contact through its patch is a face: patch_contacts.h), d2 the squared distances from the sphere's centre to their
  * closest points. Only a triangle with a vertex in common competes; a face contact is never removed and removes
  * every edge or vertex contact; of two edge or vertex contacts the nearer stays, at the same distance the edge,
  * then the lower patch id. */
@@ -110,7 +137,7 @@ DEM_INLINE int patch_beats(int idj, const int *tj, int kj, real d2j, int idi, co
 }
 
 /* Whether contact i of a sphere stays, among its n patch contacts: patch ids id[k], vertex ids tri[3k..3k+2],
- * kinds kind[k] (patch_closest) and squared distances d2[k]. */
+ * ranks kind[k] (patch_rank) and squared distances d2[k]. */
 DEM_INLINE int patch_keep(int i, int n, const int *id, const int *tri, const int *kind, const real *d2)
 {
     for (int j = 0; j < n; j++)

@@ -6,22 +6,27 @@
  * out of every row); spheres touch its triangles instead. Vertices still touch walls with their own radius.
  *
  * Rows, rebuilt with the neighbour rows (the same skin and trigger), from the same cell grid:
- *   - sphere i: the patch triangles t with dist(x_i, t) < r_i + skin, ascending t (plist[i*maxp ...]). Found
- *     through the vertices in the grid: a point of t lies within the longest edge of t from each of t's vertices, so
- *     with every patch edge shorter than `reach` each vertex of a listed triangle is within r_i + skin + reach of
- *     x_i, and the search looks at the cells within that distance. Between rebuilds no particle moves more than skin/2,
- *     so a triangle left out stays farther than r_i: it cannot touch (as for the neighbour rows).
- *   - patch vertex v: the spheres s with |x_s - x_v| < r_s + skin + reach, ascending s (vlist[v*maxv ...]): a
+ *   - sphere i: the patch triangles t with dist(x_i, t) < 2 r_i + skin, ascending t (plist[i*maxp ...]): twice
+ *     the radius, because a contact whose sphere has crossed the patch's plane holds until the centre is r_i past it
+ *     and r_i from the triangle along it (patch_geometry), within sqrt(2) r_i. Found through the vertices in the
+ *     grid: a point of t lies within the longest edge of t from each of t's vertices, so with every patch edge
+ *     shorter than `reach` each vertex of a listed triangle is within 2 r_i + skin + reach of x_i, and the search
+ *     looks at the cells within that distance. Between rebuilds no particle moves more than skin/2, so a triangle
+ *     left out stays farther than 2 r_i: it cannot touch (as for the neighbour rows). The candidates that do not
+ *     touch add nothing to any sum.
+ *   - patch vertex v: the spheres s with |x_s - x_v| < 2 r_s + skin + reach, ascending s (vlist[v*maxv ...]): a
  *     superset of the spheres whose rows hold one of v's triangles (same argument), the ones whose forces v gathers.
  *   A patch vertex also checks its triangles' edges against `reach` (FLAG_PATCH_REACH); the host then widens the
  *   reach and builds again, as it grows a row that overflowed (FLAG_PATCH_NEEDED, FLAG_VROW_NEEDED).
  *   A sphere's new row takes each triangle's tangential history and touching flag from the old row (binary search).
  *
  * Forces (patch_forces, one sphere per item): for each listed triangle the closest point p (patch.h) and, where
- * |x_i - p| < r_i, a contact with normal n = (x_i - p)/|x_i - p| and overlap d = r_i - |x_i - p|, unless another
+ * |x_i - p| < r_i, a contact with normal n = (x_i - p)/|x_i - p| and overlap d = r_i - |x_i - p| (or, once the
+ * centre has crossed the patch's plane, along the patch's normal: patch_forces), unless another
  * touching triangle of the same sphere removes it (Table 1 as patch.h extends it, patch_beats; the sphere's touching
- * triangles are all in its row). The law is the project's Hertz-Mindlin (hertz_mindlin.h) with the pair table entry of the sphere's and
- * the triangle's first vertex's materials, r* = r_i (a flat patch), the patch's inverse mass the barycentric mean of
+ * triangles are all in its row). The law is the project's Hertz-Mindlin (hertz_mindlin.h), its overlap through the
+ * barrier of patch_law_overlap, with the pair table entry of the sphere's and the triangle's first vertex's
+ * materials, r* = r_i (a flat patch), the patch's inverse mass the barycentric mean of
  * its vertices' (w0/m_a + w1/m_b + w2/m_c: a pinned patch is a wall), the contact point's velocity on the patch
  * w0 v_a + w1 v_b + w2 v_c (Fig. 3), and the sphere's contact point at the lever r_i - d, as for walls. The sphere
  * adds its contacts in ascending triangle id after its particle and wall contacts; each contact leaves its force F
@@ -75,8 +80,8 @@ DEM_ITEM(patch_build)
     int c = cell_of[i];
     int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
     int vertex = patch_is_vertex(vtri_start, i);
-    real ri = radius[i], near = ri + skin;
-    real range = (vertex ? rmax : ri) + skin + reach; /* the cells to look at */
+    real ri = radius[i], near = (real)2 * ri + skin; /* twice the radius: crossed contacts stay listed */
+    real range = (real)2 * (vertex ? rmax : ri) + skin + reach; /* the cells to look at */
     int m = (int)(range * inv_cell) + 1, cnt = 0;
     if (vertex) { /* the triangles' edges against the reach */
         for (int q = vtri_start[i]; q < vtri_start[i + 1]; q++) {
@@ -100,7 +105,7 @@ DEM_ITEM(patch_build)
                         continue; /* spheres look for vertices, vertices for spheres */
                     int sph = vertex ? j : i, vtx = vertex ? i : j;
                     vec3 d = v3_sub(v3_load(x, sph), v3_load(x, vtx));
-                    real cut = radius[sph] + skin + reach; /* the same expression from either side */
+                    real cut = (real)2 * radius[sph] + skin + reach; /* the same expression from either side */
                     if (!(v3_dot(d, d) < cut * cut))
                         continue;
                     if (vertex) {
@@ -135,47 +140,126 @@ DEM_ITEM(patch_build)
     }
 }
 
-/* Whether the sphere at p touches triangle t (r2 = r_i^2), where, and the squared distance */
-DEM_INLINE int patch_touches(vec3 p, real r2, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t,
-                             patch_point *pp, real *e2)
+DEM_INLINE vec3 patch_normal(DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t)
 {
-    *pp = patch_of(p, x, tri, t);
-    vec3 e = v3_sub(p, pp->point);
-    *e2 = v3_dot(e, e);
-    return *e2 < r2 && *e2 > (real)0;
+    vec3 a = v3_load(x, tri[3 * t]);
+    return v3_cross(v3_sub(v3_load(x, tri[3 * t + 1]), a), v3_sub(v3_load(x, tri[3 * t + 2]), a));
 }
 
-/* Whether contact k of sphere i stays this step: it touches, and no other touching triangle of the sphere removes it
- * (Table 1 as patch.h extends it; the sphere's touching triangles are all in its row) */
-DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real r2, DEM_CONST_GLOBAL real *x,
-                          DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *plist, patch_point *pk)
+/* The side of the patch a contact's sphere was on in the previous step (flags: ptouch): 1 below, 0 above, -1 not
+ * known (a new contact: it starts on the side its centre is on). Only the contact itself remembers it: a side taken
+ * over from a neighbouring patch's contact threw spheres through crumpled membranes, whose folds put neighbours'
+ * fronts on opposite sides of a sphere (a sphere in a fold of seed 001's rubber membrane at 200 kPa). */
+DEM_INLINE int patch_side(unsigned flags)
+{
+    return (flags & (PATCH_TOUCHED | PATCH_KNOWN)) == (PATCH_TOUCHED | PATCH_KNOWN) ? (flags & PATCH_BELOW) != 0 : -1;
+}
+
+/* A sphere of radius ri at xi against triangle t */
+typedef struct {
+    patch_point pp; /* the closest point of the triangle (patch.h) */
+    vec3 e;         /* xi - pp.point */
+    real e2;        /* |e|^2: the distance patch_beats compares */
+    vec3 nrm;       /* N */
+    real h;         /* e . N, positive on the side the sphere was on */
+    int below;      /* that side (patch_side) */
+    int crossed;    /* the centre is on the patch's plane or past it: the contact pushes along +-N */
+    int touch;      /* the sphere touches */
+    int rank;       /* in the selection (patch_beats): patch_rank */
+} patch_geom;
+
+/* Crossed: the sphere was on one side of the patch in the previous step and its centre is now on the plane or past
+ * it, over the face (or over its rim to the tie's precision: patch.h PATCH_TIE; a sphere pressed through the edge two
+ * patches share is in neither's face by rounding) - or over an edge or a vertex if it had crossed already
+ * (flags & PATCH_CROSSED: a sphere that crossed by a valley fold may leave the face's prism before it comes back).
+ * A crossed contact touches while the centre is less than ri past the plane and less than ri from the triangle
+ * along it. Its rank in the selection is its point's (patch_rank), as for any contact. */
+DEM_INLINE patch_geom patch_geometry(vec3 xi, real ri, unsigned flags, DEM_CONST_GLOBAL real *x,
+                                     DEM_CONST_GLOBAL int *tri, int t)
+{
+    patch_geom g;
+    g.pp = patch_of(xi, x, tri, t);
+    g.e = v3_sub(xi, g.pp.point);
+    g.e2 = v3_dot(g.e, g.e);
+    g.nrm = patch_normal(x, tri, t);
+    g.below = patch_side(flags);
+    g.h = g.below == 1 ? -v3_dot(g.e, g.nrm) : v3_dot(g.e, g.nrm);
+    g.rank = patch_rank(g.pp);
+    g.crossed = 0;
+    real n2 = v3_dot(g.nrm, g.nrm), lat2 = (real)0;
+    if (g.below >= 0 && (g.h < (real)0 || g.e2 == (real)0) && n2 > (real)0) {
+        vec3 lat = v3_sub(g.e, v3_scale(g.nrm, v3_dot(g.e, g.nrm) / n2));
+        lat2 = v3_dot(lat, lat);
+        real tie2 = PATCH_TIE * PATCH_TIE;
+        g.crossed = g.pp.kind == PATCH_FACE || (flags & PATCH_CROSSED) || lat2 * lat2 <= tie2 * tie2 * n2;
+    }
+    if (!g.crossed)
+        g.touch = g.e2 < ri * ri && g.e2 > (real)0;
+    else
+        g.touch = lat2 < ri * ri && -g.h < ri * dem_sqrt(n2);
+    return g;
+}
+
+/* The overlap the Hertz law is given for a geometric overlap d of a sphere of radius r on a patch: d itself up to
+ * 0.8 r; beyond, a barrier that grows as 0.8 r + 0.2 r u / (1 - u), u = (d - 0.8 r) / (0.2 r), until u = 0.95
+ * (d = 0.99 r, 4.6 r for the law), then on along its tangent (slope 400), so that the force and its slope are
+ * continuous and the force grows without end. Hertz's law alone lets the centre reach the patch's plane at a
+ * pressure of about 0.2 E* (seed 001's rubber membrane: ~300 kPa); with the barrier the centre stays about 2.5 % of
+ * r short of it at 1 MPa there (2.2 r for the law), and a sphere pressed further still is pushed back (crossed
+ * contacts, patch_geometry). The barrier's stiffest, at 4.6 r and slope 400, is about twice a glass-glass contact's
+ * of the same spheres, within the Rayleigh step. Runs whose overlaps stay below 0.8 r have Hertz's bits (seed 001's
+ * triaxial tests at 100 kPa reach about 0.35 r). With u = 0.9 (slope 100) a grain came 0.01 r outside a membrane
+ * at 1 MPa (tests/test_patch_contacts.c, test_one_megapascal). */
+DEM_INLINE real patch_law_overlap(real d, real r)
+{
+    real db = (real)0.8 * r, span = r - db;
+    if (!(d > db))
+        return d;
+    real u = (d - db) / span;
+    if (u < (real)0.95)
+        return db + span * u / ((real)1 - u);
+    return db + span * (real)19 + (d - db - (real)0.95 * span) * (real)400;
+}
+
+/* Whether contact k of sphere i stays this step, and its geometry: it touches, and no other touching triangle of the
+ * sphere removes it (Table 1 as patch.h extends it; the sphere's touching triangles are all in its row) */
+DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real ri, DEM_CONST_GLOBAL real *x,
+                          DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *plist, DEM_GLOBAL dem_byte *ptouch,
+                          patch_geom *gk)
 {
     int t = plist[i * maxp + k];
-    real dk;
-    if (!patch_touches(xi, r2, x, tri, t, pk, &dk))
+    *gk = patch_geometry(xi, ri, ptouch[i * maxp + k], x, tri, t);
+    if (!gk->touch)
         return 0;
-    if (pk->kind == PATCH_FACE)
+    if (gk->rank == PATCH_FACE)
         return 1;
     int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
     for (int j = 0; j < cnt; j++) {
+        if (j == k)
+            continue;
         int u = plist[i * maxp + j];
-        patch_point pj;
-        real dj;
-        if (j == k || !patch_touches(xi, r2, x, tri, u, &pj, &dj))
+        patch_geom gj = patch_geometry(xi, ri, ptouch[i * maxp + j], x, tri, u);
+        if (!gj.touch)
             continue;
         int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
-        if (patch_beats(u, tj, pj.kind, dj, t, tk, pk->kind, dk))
+        if (patch_beats(u, tj, gj.rank, gj.e2, t, tk, gk->rank, gk->e2))
             return 0;
     }
     return 1;
 }
 
-/* Three passes over the sphere's row; ptouch holds bit 0 = touched in the previous step, bit 1 = kept now (between
- * the passes only). 1: which contacts stay. 2: their forces; a contact that starts on a triangle sharing a vertex
- * with one that ended in this step (the sphere slid across an edge or a vertex) takes that one's tangential spring -
- * the first such in row order - so that the tangential spring of a sphere moving across a membrane does not restart
- * from zero at every crossing (it fell from 1.2 N to 0 where a dragged sphere passed onto the next patch:
- * tests/test_patch_contacts.c, test_spring_across_edges). 3: the flags become 0/1, ended contacts lose their history. */
+/* Three passes over the sphere's row; ptouch holds the flags of dem_layout.h (PATCH_*). 1: which contacts stay.
+ * 2: their forces; a contact that starts on a triangle sharing a vertex with one that ended in this step (the sphere
+ * slid across an edge or a vertex) takes that one's tangential spring - the first such in row order - so that the
+ * tangential spring of a sphere moving across a membrane does not restart from zero at every crossing (it fell from
+ * 1.2 N to 0 where a dragged sphere passed onto the next patch: tests/test_patch_contacts.c,
+ * test_spring_across_edges). 3: the flags of the next step; ended contacts lose their history and their side.
+ * The normal: from the closest point to the centre, n = e/|e| with overlap r - |e|, while the centre is on the side
+ * it was on; once it is on the plane or past it (crossed, patch_geometry), n = +-N/|N| towards the side it came
+ * from, overlap r + its depth past the plane: the contact never flips and pushes the sphere back however deep it is
+ * (Hertz's law alone let spheres through seed 001's rubber membrane from ~270 kPa: issue 39). A contact that is not
+ * crossed takes the side its centre is on (a sphere may go round a membrane's rim or over a ridge); a crossed one
+ * keeps it. The law is Hertz's with the barrier of patch_law_overlap. */
 DEM_ITEM(patch_forces)
 {
     int cnt = pcount[i];
@@ -184,68 +268,82 @@ DEM_ITEM(patch_forces)
     vec3 xi = v3_load(x, i), vi = v3_load(v, i), wi = v3_zero();
     if (fx & DEM_EFFECT_FRICTION)
         wi = v3_load(w, i);
-    real ri = radius[i], r2 = ri * ri;
+    real ri = radius[i];
     vec3 fi = v3_load(force, i), ti = v3_zero();
     if (fx & DEM_EFFECT_FRICTION)
         ti = v3_load(torque, i);
     for (int k = 0; k < cnt; k++) { /* pass 1 */
-        patch_point pk;
-        if (patch_kept(i, k, cnt, maxp, xi, r2, x, tri, plist, &pk))
-            ptouch[i * maxp + k] = (unsigned char)(ptouch[i * maxp + k] | 2u);
+        patch_geom gk;
+        if (patch_kept(i, k, cnt, maxp, xi, ri, x, tri, plist, ptouch, &gk))
+            ptouch[i * maxp + k] = (unsigned char)(ptouch[i * maxp + k] | PATCH_KEPT);
     }
     for (int k = 0; k < cnt; k++) { /* pass 2 */
         int slot = i * maxp + k, t = plist[slot];
         unsigned state = ptouch[slot];
-        if (!(state & 2u))
+        if (!(state & PATCH_KEPT))
             continue;
-        patch_point pk;
-        real dk;
-        patch_touches(xi, r2, x, tri, t, &pk, &dk);
+        patch_geom g = patch_geometry(xi, ri, state, x, tri, t);
         int a = tri[3 * t], b = tri[3 * t + 1], cc = tri[3 * t + 2];
-        vec3 e = v3_sub(xi, pk.point);
-        real dist = dem_sqrt(dk);
-        vec3 n = v3_scale(e, (real)1 / dist);
-        real delta = ri - dist;
+        vec3 n;
+        real delta;
+        int side = g.below; /* the side of the next step: a crossed contact keeps it */
+        if (!g.crossed) {
+            real dist = dem_sqrt(g.e2);
+            n = v3_scale(g.e, (real)1 / dist);
+            delta = ri - dist;
+            real hraw = v3_dot(g.e, g.nrm); /* else the side its centre is on, unless on the plane */
+            side = hraw < (real)0 ? 1 : hraw > (real)0 ? 0 : side;
+        } else { /* back towards the side it came from */
+            real len = dem_sqrt(v3_dot(g.nrm, g.nrm));
+            n = v3_scale(g.nrm, (g.below == 1 ? (real)-1 : (real)1) / len);
+            delta = ri - g.h / len;
+        }
+        unsigned next = (side >= 0 ? PATCH_NEXT_KNOWN : 0u) | (side == 1 ? PATCH_NEXT_BELOW : 0u) |
+                        (g.crossed ? PATCH_NEXT_CROSSED : 0u);
+        ptouch[slot] = (unsigned char)(state | next);
+        real law = patch_law_overlap(delta, ri);
         DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + mat[a]);
-        real invm_p = pk.w[0] * invmass[a] + pk.w[1] * invmass[b] + pk.w[2] * invmass[cc];
+        real invm_p = g.pp.w[0] * invmass[a] + g.pp.w[1] * invmass[b] + g.pp.w[2] * invmass[cc];
         real mstar = hm_effective_mass(invmass[i], invm_p);
         real arm = ri - delta;
-        vec3 vp = v3_add(v3_add(v3_scale(v3_load(v, a), pk.w[0]), v3_scale(v3_load(v, b), pk.w[1])),
-                         v3_scale(v3_load(v, cc), pk.w[2]));
+        vec3 vp = v3_add(v3_add(v3_scale(v3_load(v, a), g.pp.w[0]), v3_scale(v3_load(v, b), g.pp.w[1])),
+                         v3_scale(v3_load(v, cc), g.pp.w[2]));
         vec3 vc = vi, h = v3_zero();
         if (fx & DEM_EFFECT_FRICTION) {
             vc = v3_add(vi, v3_cross(wi, v3_scale(n, -arm)));
-            if (state & 1u) {
+            if (state & PATCH_TOUCHED) {
                 h = v3_load(phist, slot);
             } else { /* a new contact: the spring of a neighbour that ended now, if any */
                 int tk[3] = {a, b, cc};
                 for (int j = 0; j < cnt; j++) {
                     int u = plist[i * maxp + j];
                     int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
-                    if (ptouch[i * maxp + j] == 1u && patch_common(tk, tj) > 0) {
+                    if ((ptouch[i * maxp + j] & (PATCH_TOUCHED | PATCH_KEPT)) == PATCH_TOUCHED &&
+                        patch_common(tk, tj) > 0) {
                         h = v3_load(phist, i * maxp + j);
                         break;
                     }
                 }
             }
         }
-        hm_result r = hm_contact(fx, n, delta, dem_sqrt(ri * delta), mstar, v3_sub(vc, vp), pm, dt, h, (real)0);
+        hm_result r = hm_contact(fx, n, law, dem_sqrt(ri * law), mstar, v3_sub(vc, vp), pm, dt, h, (real)0);
         if (fx & DEM_EFFECT_FRICTION) {
             v3_store(phist, slot, r.hist);
             ti = v3_sub(ti, v3_scale(v3_cross(n, r.ft), arm));
         }
         DEM_GLOBAL real *rec = prec + slot * PK_STRIDE;
         rec[PK_FX] = r.force.x, rec[PK_FY] = r.force.y, rec[PK_FZ] = r.force.z;
-        rec[PK_W0] = pk.w[0], rec[PK_W1] = pk.w[1], rec[PK_W2] = pk.w[2];
+        rec[PK_W0] = g.pp.w[0], rec[PK_W1] = g.pp.w[1], rec[PK_W2] = g.pp.w[2];
         fi = v3_add(fi, r.force);
     }
     for (int k = 0; k < cnt; k++) { /* pass 3 */
         int slot = i * maxp + k;
         unsigned state = ptouch[slot];
-        if (state == 1u && (fx & DEM_EFFECT_FRICTION)) /* the contact ended: so does its history */
-            v3_store(phist, slot, v3_zero());
-        if (state)
-            ptouch[slot] = (unsigned char)(state >> 1);
+        if (!(state & PATCH_KEPT) && (state & PATCH_TOUCHED) && (fx & DEM_EFFECT_FRICTION))
+            v3_store(phist, slot, v3_zero()); /* the contact ended: so does its history */
+        unsigned next = PATCH_TOUCHED | (state & PATCH_NEXT_KNOWN ? PATCH_KNOWN : 0u) |
+                        (state & PATCH_NEXT_BELOW ? PATCH_BELOW : 0u) | (state & PATCH_NEXT_CROSSED ? PATCH_CROSSED : 0u);
+        ptouch[slot] = (unsigned char)(state & PATCH_KEPT ? next : 0u);
     }
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)

@@ -21,11 +21,32 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
 /* the Hertz contact energy of common/series.h, as the reference computes it in double */
 double dem_hertz_energy_f64(double estar, double rstar, double delta);
 
-/* the closest point of a triangle, as the kernels compute it (common/patch.h through reference/patch.c, in double) */
-void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind, int *index, double *w, double *point);
+
+/* a sphere's overlap on a patch, as the kernels compute it (common/patch_contacts.h through reference/patch.c) */
+double dem_patch_overlap_f64(const double *p, const double *tri_x, unsigned flags, double r, double *law);
+
+/* The elastic energy of a patch contact of overlap d (radius r): the work of the force F(d) = Hertz(law(d)) of
+ * common/patch_contacts.h from 0 to d. Hertz's 8/15 E* sqrt(r) d^(5/2) up to the barrier (0.8 r), then Simpson's rule
+ * on 256 intervals over the rest. */
+static double patch_contact_energy(double estar, double r, double d)
+{
+    double db = 0.8 * r;
+    if (!(d > db))
+        return dem_hertz_energy_f64(estar, r, d);
+    const int m = 256;
+    double sum = 0, step = (d - db) / m, q[3] = {db, db, db}, tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, law;
+    for (int k = 0; k <= m; k++) {
+        double s = db + k * step; /* a centre at overlap s over the unit triangle's face, from above */
+        q[0] = 0.25, q[1] = 0.25, q[2] = r - s;
+        dem_patch_overlap_f64(q, tri, PATCH_TOUCHED | PATCH_KNOWN, r, &law);
+        double f = 4.0 / 3 * estar * sqrt(r) * law * sqrt(law);
+        sum += f * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
+    }
+    return dem_hertz_energy_f64(estar, r, db) + sum * step / 3;
+}
 
 /* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
- * positions x, 8/15 E* sqrt(r) d^(5/2) as for a wall (r* = the sphere's radius) */
+ * positions x and its side, and the work of its normal law (patch_contact_energy) */
 static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
 {
     int n = s->n, maxp = DEM_CORE(s->be)->maxp, e = 0;
@@ -35,15 +56,13 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
         for (int k = 0; k < cnt[i]; k++) {
             if (!touch[(size_t)i * maxp + k])
                 continue;
-            int t = list[(size_t)i * maxp + k], kind, index;
-            double tx[9], wgt[3], q[3];
+            int t = list[(size_t)i * maxp + k];
+            double tx[9], law;
             for (int v = 0; v < 3; v++)
                 memcpy(tx + 3 * v, x + 3 * s->tri[3 * t + v], sizeof(double) * 3);
-            dem_patch_probe_f64(1, x + 3 * i, tx, &kind, &index, wgt, q);
-            double d = s->radius[i] - sqrt((x[3 * i] - q[0]) * (x[3 * i] - q[0]) + (x[3 * i + 1] - q[1]) *
-                                           (x[3 * i + 1] - q[1]) + (x[3 * i + 2] - q[2]) * (x[3 * i + 2] - q[2]));
+            double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i], &law);
             if (d > 0)
-                en->elastic += dem_hertz_energy_f64(pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]), s->radius[i], d);
+                en->elastic += patch_contact_energy(pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]), s->radius[i], d);
             en->patch_contacts++;
         }
     free(cnt), free(list), free(touch);

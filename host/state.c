@@ -23,7 +23,7 @@ void dem_state_free(dem_state *st)
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->wall_hist);
     free(st->wall_pf), free(st->wall_mask), free(st->pair_mc_disp), free(st->wall_mc_disp);
     free(st->pair_mc_fn), free(st->wall_mc_fn);
-    free(st->patch_i), free(st->patch_t), free(st->patch_hist);
+    free(st->patch_i), free(st->patch_t), free(st->patch_hist), free(st->patch_side);
     memset(st, 0, sizeof *st);
 }
 
@@ -100,12 +100,13 @@ static int patch_contacts_get(dem_sim *s, dem_state *st)
     long np = 0;
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++)
-            np += touch[i * maxp + k];
+            np += touch[i * maxp + k] != 0;
     if (!e) {
         st->patch_i = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->patch_t = malloc(sizeof(int) * (size_t)(np ? np : 1));
         st->patch_hist = calloc((size_t)(np ? np : 1), 3 * (size_t)rs);
-        if (!st->patch_i || !st->patch_t || !st->patch_hist)
+        st->patch_side = malloc(sizeof(int) * (size_t)(np ? np : 1));
+        if (!st->patch_i || !st->patch_t || !st->patch_hist || !st->patch_side)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
@@ -115,6 +116,7 @@ static int patch_contacts_get(dem_sim *s, dem_state *st)
             if (!touch[slot])
                 continue;
             st->patch_i[np] = i, st->patch_t[np] = list[slot];
+            st->patch_side[np] = touch[slot] & PATCH_SAVED;
             memcpy((char *)st->patch_hist + (size_t)np * 3 * rs, hist + (size_t)slot * 3 * rs, 3 * (size_t)rs);
             np++;
         }
@@ -144,7 +146,13 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
                          "of the saved positions", i, t);
             break;
         }
-        touch[(size_t)i * maxp + k] = 1;
+        int side = st->patch_side ? st->patch_side[p] : 0;
+        if (side & ~(int)PATCH_SAVED) {
+            e = sim_fail(s, DEM_ERR_ARG, "saved patch contact %ld has side flags %d (not a combination of %u, %u and %u)",
+                         p, side, PATCH_BELOW, PATCH_KNOWN, PATCH_CROSSED);
+            break;
+        }
+        touch[(size_t)i * maxp + k] = (unsigned char)(PATCH_TOUCHED | (unsigned)side);
         memcpy(hist + ((size_t)i * maxp + k) * 3 * rs, (const char *)st->patch_hist + (size_t)p * 3 * rs,
                3 * (size_t)rs);
     }

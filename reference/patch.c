@@ -1,8 +1,8 @@
-/* patch.c - reference twin of the patch geometry (common/patch.h) as tests/test_patch.c probes it, until the patch
- * contact pass (common/patch_contacts.h) runs it in full: the closest feature of point i to triangle i, and which of a list of
- * contacts stay. The test runs the same items in an OpenCL program and compares the bits. */
+/* patch.c - reference twin of the patch geometry (common/patch.h, common/patch_contacts.h) as tests/test_patch.c and
+ * the energy probe it: the closest feature of point i to triangle i, which of a list of contacts stay, and a sphere's
+ * overlap on a patch. The test runs the same items in an OpenCL program and compares the bits. */
 #include "ref_kernels.h"
-#include "patch.h"
+#include "patch_contacts.h"
 
 void REF(dem_patch_probe)(int n, const real *p, const real *tri_x, int *kind, int *index, real *w, real *point)
 {
@@ -18,4 +18,18 @@ void REF(dem_patch_probe)(int n, const real *p, const real *tri_x, int *kind, in
 int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *kind, const real *d2)
 {
     return patch_keep(i, n, id, tri, kind, d2);
+}
+
+/* The overlap of a sphere of radius r at p on triangle tri_x, in a contact with flags `flags` (PATCH_* of
+ * dem_layout.h), as patch_forces computes it (common/patch_contacts.h); 0 where it does not touch. *law: the overlap
+ * its Hertz law is given (patch_law_overlap). For the energy (host/energy.c). */
+real REF(dem_patch_overlap)(const real *p, const real *tri_x, unsigned flags, real r, real *law)
+{
+    static const int tri[3] = {0, 1, 2};
+    patch_geom g = patch_geometry(v3_load(p, 0), r, flags, tri_x, tri, 0);
+    real d = (real)0;
+    if (g.touch)
+        d = g.crossed ? r - g.h / dem_sqrt(v3_dot(g.nrm, g.nrm)) : r - dem_sqrt(g.e2);
+    *law = patch_law_overlap(d, r);
+    return d;
 }

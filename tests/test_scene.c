@@ -441,7 +441,9 @@ static void test_membrane_scene(void **st)
 
 /* Seed 001's friction slide (scenes/seed001/friction_slide_*.yaml, cut to 0.03 s: 1.5 mm of sliding): after the
  * first half millimetre the friction force on a sphere pushed across patches is constant within 1 % and its height
- * within 0.1 um; across vertex particles both oscillate (Fig. 6). */
+ * within 0.1 um, also along an edge line (patch_edge: over the vertices of a row and the edges between them, where
+ * two face contacts at one point gave 1.88 times the weight before); across vertex particles both oscillate
+ * (Fig. 6). */
 static void slide_stats(const char *h5, double *mean, double *spread, double *height)
 {
     long n, nf;
@@ -468,10 +470,10 @@ static void slide_stats(const char *h5, double *mean, double *spread, double *he
 static void test_friction_slide(void **st)
 {
     (void)st;
-    char err[8192], h5[2][300];
-    static const char *const model[2] = {"patch", "particle"};
-    double mean[2], spread[2], height[2];
-    for (int m = 0; m < 2; m++) {
+    char err[8192], h5[3][300];
+    static const char *const model[3] = {"patch", "particle", "patch_edge"};
+    double mean[3], spread[3], height[3];
+    for (int m = 0; m < 3; m++) {
         snprintf(h5[m], sizeof h5[m], "%s/slide_%s.h5", tmp, model[m]);
         assert_int_equal(sh(err, sizeof err, "sed 's/duration: 0.2}/duration: 0.03}/' "
                             "%s/scenes/seed001/friction_slide_%s.yaml > %s/slide_%s.yaml && %s run %s/slide_%s.yaml "
@@ -482,6 +484,8 @@ static void test_friction_slide(void **st)
     }
     assert_true(spread[0] < 0.01 && height[0] < 1e-7);   /* patches: an even plane */
     assert_true(spread[1] > 0.5 && height[1] > 1e-5);    /* vertex particles: bumps */
+    assert_true(spread[2] < 0.01 && height[2] < 1e-7);   /* along an edge line: as even */
+    assert_true(fabs(mean[2] / mean[0] - 1) < 0.01);
 }
 
 /* A small triaxial test (tests/scenes/triaxial_small.yaml: 200 grains in a patch membrane, 100 kPa, the platens
