@@ -357,7 +357,27 @@ typedef struct {
     dem_sample rows[RUN_SAMPLE_CHUNK]; /* the samples of one stretch */
     unsigned char want[RUN_STRETCH];   /* which of its steps are sampled */
     overlap_watch ov;                  /* the overlaps at the frames (not with membranes: run_overlap.c) */
+    dem_mc_stats mc0;                  /* the MC-strain counts at the run's first step (a restart's earlier ones) */
 } run_ctx;
+
+/* What preceded a run's failure, said after its error (issue 39: a hydrogel run hit the MC-strain cap in 1777 steps
+ * before it diverged, and its log held only the error): the steps of this run that hit the iteration cap, from the
+ * first to the failure. */
+static void failure_preceded(const run_ctx *c)
+{
+    dem_mc_stats mc;
+    dem_mc_stats_get(c->s, &mc);
+    long capped = mc.unconverged - c->mc0.unconverged, at = dem_step_index(c->s);
+    if (!(c->run.effects & DEM_EFFECT_MC_STRAIN) || c->run.mc_cap <= 0 || capped <= 0 || mc.first_capped < 0)
+        return;
+    long to = mc.last_capped > at ? mc.last_capped : at;
+    fprintf(stderr, "dem: before it stopped, iterated MC-strain hit its cap of %d iterations (mc_iterations) in %ld of "
+                    "the %ld steps from step %ld (t = %.9g s, the first that did) to step %ld, the last at step %ld: "
+                    "their forces had not settled to mc_tolerance %g (the series mc_capped in %s.part counts them); "
+                    "a higher cap or a smaller time step may carry the run further\n",
+            c->run.mc_cap, capped, to - mc.first_capped + 1, mc.first_capped, (double)mc.first_capped * dem_dt(c->s),
+            to, mc.last_capped, c->run.mc_tol, c->outp);
+}
 
 /* 1. The scene, from its file or from the checkpoint restarted from, built into a simulation (not started). */
 static int phase_load(run_ctx *c)
@@ -507,6 +527,7 @@ static int phase_steps(run_ctx *c)
     c->t0 = last = now();
     long step0 = dem_step_index(s), end = run->steps;
     c->step0 = step0;
+    dem_mc_stats_get(s, &c->mc0);
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
@@ -574,7 +595,9 @@ static int phase_steps(run_ctx *c)
             checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
             snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
                      c->sc->path, dem_step_index(s), dem_error(s), c->outp, cknote);
-            return fail_with(EXIT_RUN_FAILED, c->err);
+            fail_with(EXIT_RUN_FAILED, c->err);
+            failure_preceded(c);
+            return EXIT_RUN_FAILED;
         }
         st = dem_step_index(s);
         int io = 0;

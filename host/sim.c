@@ -18,6 +18,7 @@ dem_sim *dem_create(void)
         s->mc_tol = 1e-6;
         s->mc_reach = 1;
         s->sample_row = -1; /* no step is sampled until dem_step_sampled says so */
+        s->mc.first_capped = s->mc.last_capped = -1;
     }
     return s;
 }
@@ -933,9 +934,16 @@ static int mc_strain(dem_sim *s)
             break;
         }
     }
-    if (s->mc_max_iter && !converged)
-        s->mc.unconverged++;
     s->mc.last = it;
+    if (s->force_step == s->step) /* dem_start's forces, before any step: no step to count (a cap hit there made
+                                   * the count one more than the steps, "6001 of 6000") */
+        return 0;
+    if (s->mc_max_iter && !converged) {
+        s->mc.unconverged++;
+        if (s->mc.first_capped < 0)
+            s->mc.first_capped = s->force_step;
+        s->mc.last_capped = s->force_step;
+    }
     s->mc.total += it;
     if (it > s->mc.max)
         s->mc.max = it;

@@ -386,6 +386,10 @@ typedef struct {
     long max;         /* most iterations of any step */
     long total;       /* all iterations so far */
     long unconverged; /* steps that hit the iteration cap */
+    /* The first and the last step that hit the cap in this process (from dem_start; -1: none): not part of the
+     * state (dem_state_set keeps them), so that a failing run can say where its capped steps began. The force
+     * evaluation of dem_start is not a step: it counts in none of these (only in last). */
+    long first_capped, last_capped;
 } dem_mc_stats;
 void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st);
 /* How wall k's latest servo stage went (a P controller: it settles when gain x the stiffness of the wall's contacts

@@ -847,6 +847,76 @@ static void test_mc_cap_reported(void **st)
     assert_null(strstr(err, "warning"));
 }
 
+/* Issue 39: three spheres stacked on a floor, touching from the start, under iterated MC-strain with a cap of 2 that
+ * no step meets (tolerance 1e-12). The cap count is of steps: the series mc_capped is 0 at step 0 (dem_start's
+ * forces are not a step; it was 1 there, and a run whose every step was capped reported "6001 of 6000") and never
+ * above the step. A run that then fails (DEM_TEST_POISON at step 30) says, after its error, that every one of its
+ * 30 steps hit the cap, from step 1. */
+static void test_mc_cap_before_failure(void **st)
+{
+    (void)st;
+    char err[16384], p[300];
+    snprintf(p, sizeof p, "%s/stack.yaml", tmp);
+    FILE *fp = fopen(p, "w");
+    assert_non_null(fp);
+    fputs("name: stack capped from the first step\n"
+          "effects: [hertz, damping, gravity, walls, mc_strain]\n"
+          "mc_iterations: 2\n"
+          "mc_tolerance: 1.0e-12\n"
+          "materials:\n"
+          "  - {name: grain, density: 2500, young: 1.0e7, poisson: 0.3, restitution: 0.6, gamma: 1.0}\n"
+          "particles:\n"
+          "  - material: grain\n"
+          "    spheres:\n"
+          "      - {x: [0, 0, 0.00498], radius: 0.005}\n"
+          "      - {x: [0, 0, 0.01494], radius: 0.005}\n"
+          "      - {x: [0, 0, 0.0249], radius: 0.005}\n"
+          "gravity: [0, 0, -9.81]\n"
+          "walls:\n"
+          "  - {type: plane, name: floor, material: grain, point: [0, 0, 0], normal: [0, 0, 1]}\n"
+          "time: {dt_rayleigh: 0.2, duration: 0.02}\n"
+          "output: {frame_every: 0.01, series_every: 0.001}\n",
+          fp);
+    fclose(fp);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/stack.yaml -o %s/stack.h5 --quiet", DEM, tmp, tmp), 0);
+    long capped = 0, steps = 0;
+    const char *w = strstr(err, "dem: warning: ");
+    while (w && sscanf(w, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of 2", &capped, &steps) != 2)
+        w = strstr(w + 1, "dem: warning: ");
+    assert_non_null(w);
+    assert_true(capped > 30 && capped <= steps);
+    snprintf(p, sizeof p, "%s/stack.h5", tmp);
+    hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    long rows = h5_count(f, "series/mc_capped");
+    assert_true(rows > 2 && rows <= 100);
+    double v[100], stp[100];
+    hid_t d = H5Dopen2(f, "series/mc_capped", H5P_DEFAULT);
+    assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0);
+    H5Dclose(d);
+    d = H5Dopen2(f, "series/step", H5P_DEFAULT);
+    assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, stp) >= 0);
+    H5Dclose(d), H5Fclose(f);
+    assert_true(stp[0] == 0 && v[0] == 0);
+    assert_true(stp[1] > 0 && v[1] == stp[1]); /* every step capped up to the first row */
+    for (long k = 0; k < rows; k++)
+        if (v[k] > stp[k])
+            fail_msg("series row %ld: %g capped steps at step %g", k, v[k], stp[k]);
+    assert_true(v[rows - 1] == (double)capped);
+    /* the failing run says what preceded its error */
+    int rc = sh(err, sizeof err, "DEM_TEST_POISON='30 1' %s run %s/stack.yaml -o %s/sp.h5 --quiet", DEM, tmp, tmp);
+    const char *e = strstr(err, "particle 1: its position became non-finite");
+    const char *n = strstr(err, "dem: before it stopped, iterated MC-strain hit its cap of 2 iterations (mc_iterations)"
+                                " in 30 of the 30 steps from step 1 (t = ");
+    if (rc != 1 || !e || !n || n < e || !strstr(n, "to step 30, the last at step 30") || !strstr(n, "sp.h5.part"))
+        fail_msg("status %d; expected the error, then what preceded it, in: %s", rc, err);
+    /* without the cap in force nothing of the kind */
+    rc = sh(err, sizeof err, "sed 's/^mc_iterations: 2/mc_iterations: 0/' %s/stack.yaml > %s/stack0.yaml && "
+            "DEM_TEST_POISON='30 1' %s run %s/stack0.yaml -o %s/sp0.h5 --quiet", tmp, tmp, DEM, tmp, tmp);
+    assert_int_equal(rc, 1);
+    assert_null(strstr(err, "before it stopped"));
+}
+
 /* Integer options and variables: whole numbers in range or a clear refusal, never a wrapped or truncated value
  * (issue 17, class 7). Table-driven: every bad spelling of every integer input. */
 static void test_integer_arguments(void **st)
@@ -1629,6 +1699,7 @@ int main(void)
         cmocka_unit_test(test_restart_bitwise),
         cmocka_unit_test(test_output_and_xdmf),
         cmocka_unit_test(test_mc_cap_reported),
+        cmocka_unit_test(test_mc_cap_before_failure),
         cmocka_unit_test(test_integer_arguments),
         cmocka_unit_test(test_run_failure_names_checkpoint),
         cmocka_unit_test(test_nonfinite_stops),
