@@ -318,6 +318,35 @@ void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info
                 sc->path, pn, res, far, res / rmin, 1e-3 * rmin / res);
 }
 
+/* A membrane's springs and hinges recommend a step of their own (dem_time_scales: 50 steps per spring or hinge period,
+ * half the hinges' damping time), which can be below the 0.2 Rayleigh times that dt_rayleigh: 0.2 gives: issue 39's
+ * membrane took 1.03e-6 s where its hinge damping recommends 6.8e-7 s, silently. Stable up to the bound, but a
+ * spring's period is then resolved by fewer than 50 steps (its frequency 0.07 % off at 50, 1.6 % at 10) or the
+ * hinges' damping removes more than half of a fold's speed in one step. A warning (the grains' is the contact
+ * time's, run_contact_advice), for dt given either way. */
+void run_dt_advice(const scene *sc, const scene_run *run)
+{
+    const dem_time_scales *ts = &run->ts;
+    if (!(ts->recommended_dt < 0.2 * ts->rayleigh_time) || !(run->dt > ts->recommended_dt * (1 + 1e-9)))
+        return; /* the grains' recommendation, or met */
+    char why[200];
+    if (ts->recommended_dt == 0.5 * ts->hinge_damping_time)
+        snprintf(why, sizeof why, "the membrane hinges' damping recommends (half their damping time %.4g s: kdiss)",
+                 ts->hinge_damping_time);
+    else if (ts->recommended_dt == ts->spring_period / 50)
+        snprintf(why, sizeof why, "the membrane's edge springs recommend (50 steps per shortest period, %.4g s)",
+                 ts->spring_period);
+    else
+        snprintf(why, sizeof why, "the membrane hinges recommend (50 steps per shortest fold period, %.4g s)",
+                 ts->hinge_period);
+    int fr = scene_has(sc->loc, "time.dt_rayleigh");
+    fprintf(stderr, "dem: warning: %s: %s: the time step %.4g s is above the %.4g s that %s, below the stability bound "
+                    "%.4g s: stable, but the membrane's motion is resolved coarsely; %s <= %.3g%s would meet it\n",
+            sc->path, fr ? "time.dt_rayleigh" : "time.dt", run->dt, ts->recommended_dt, why, ts->max_dt,
+            fr ? "dt_rayleigh" : "dt", fr ? ts->recommended_dt / ts->rayleigh_time : ts->recommended_dt,
+            fr ? "" : " s");
+}
+
 /* Steps one call of dem_step_sampled takes at most, and the samples it holds at most. */
 #define RUN_STRETCH 65536
 #define RUN_SAMPLE_CHUNK 1024
@@ -465,6 +494,7 @@ static int phase_start(run_ctx *c)
     fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", c->sc->path, dem_count(c->s),
             dem_wall_count(c->s), run->dt, run->steps, dem_describe(c->s));
     run_contact_advice(c->s, c->sc, 0, stderr); /* a warning only, when dt is coarse for the fastest contact */
+    run_dt_advice(c->sc, &c->run);              /* a warning only, when dt is coarse for a membrane */
     run_mc_lag_advice(c->s, c->sc, &c->run, 0, stderr); /* a warning only, lagged MC-strain where it rings */
     run_order_advice(c->s, c->sc, 0, stderr);   /* a note only, when the order is scattered */
     run_precision_advice(c->s, c->sc, run->cfg.precision, 0, stderr); /* a warning only, far from the origin */
