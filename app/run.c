@@ -387,7 +387,83 @@ typedef struct {
     unsigned char want[RUN_STRETCH];   /* which of its steps are sampled */
     overlap_watch ov;                  /* the overlaps at the frames (not with membranes: run_overlap.c) */
     dem_mc_stats mc0;                  /* the MC-strain counts at the run's first step (a restart's earlier ones) */
+    double *x0;                        /* the positions at the run's first step, with a closed membrane (else NULL) */
+    int *tri;                          /* the triangles' particles then (dem_triangles_get) */
 } run_ctx;
+
+/* A membrane is closed when each of its edges (springs) borders two triangles: 2 edges = 3 triangles */
+static int membrane_closed(const dem_membrane_info *m) { return m->ntriangles > 0 && 2 * m->nsprings == 3 * m->ntriangles; }
+
+/* The winding number of the closed surface of triangles tri (particle ids into x) about point p: the solid angles
+ * the triangles subtend (Van Oosterom and Strackee) over 4 pi; +-1 inside (the sign follows the orientation), 0
+ * outside. */
+static double winding_number(const double *x, const int *tri, int ntri, const double p[3])
+{
+    double sum = 0;
+    for (int t = 0; t < ntri; t++) {
+        double v[3][3], l[3];
+        for (int k = 0; k < 3; k++) {
+            for (int d = 0; d < 3; d++)
+                v[k][d] = x[3 * (size_t)tri[3 * t + k] + d] - p[d];
+            l[k] = sqrt(v[k][0] * v[k][0] + v[k][1] * v[k][1] + v[k][2] * v[k][2]);
+        }
+        double cr[3] = {v[1][1] * v[2][2] - v[1][2] * v[2][1], v[1][2] * v[2][0] - v[1][0] * v[2][2],
+                        v[1][0] * v[2][1] - v[1][1] * v[2][0]};
+        double det = v[0][0] * cr[0] + v[0][1] * cr[1] + v[0][2] * cr[2];
+#define DOT(a, b) (v[a][0] * v[b][0] + v[a][1] * v[b][1] + v[a][2] * v[b][2])
+        double den = l[0] * l[1] * l[2] + DOT(0, 1) * l[2] + DOT(0, 2) * l[1] + DOT(1, 2) * l[0];
+#undef DOT
+        sum += 2 * atan2(det, den);
+    }
+    return sum / (4 * M_PI);
+}
+
+/* With a closed membrane: the positions and triangles at the run's first step, for membrane_left */
+static void membrane_watch(run_ctx *c)
+{
+    int closed = 0, n = dem_count(c->s), nt = dem_triangle_count(c->s);
+    for (unsigned k = 0; k < c->sc->f->membranes_count && k < 16; k++)
+        closed |= membrane_closed(&c->run.membrane[k]);
+    if (!closed || !(c->x0 = malloc(sizeof(double) * 3 * (size_t)n)) || !(c->tri = malloc(sizeof(int) * 3 * (size_t)nt))
+        || dem_get_field(c->s, DEM_FIELD_X, c->x0)) {
+        free(c->x0), free(c->tri);
+        c->x0 = NULL, c->tri = NULL;
+        return;
+    }
+    dem_triangles_get(c->s, c->tri);
+}
+
+/* A particle that left the domain or went non-finite (dem_error_particle): when it is not a membrane's vertex, was
+ * inside a closed membrane at the run's first step and its centre is outside it now, say that it left through that
+ * membrane (issue 39: such a run said only "outside the binning domain"). On the host, at the failure only. */
+static void membrane_left(const run_ctx *c)
+{
+    int id = dem_error_particle(c->s), n = dem_count(c->s);
+    if (!c->x0 || id < 0 || id >= n)
+        return;
+    double *x = malloc(sizeof(double) * 3 * (size_t)n);
+    if (!x || dem_get_field(c->s, DEM_FIELD_X, x)) {
+        free(x);
+        return;
+    }
+    const double *p = x + 3 * (size_t)id, *p0 = c->x0 + 3 * (size_t)id;
+    for (unsigned k = 0; k < c->sc->f->membranes_count && k < 16 && isfinite(p[0] + p[1] + p[2]); k++) {
+        const dem_membrane_info *m = &c->run.membrane[k];
+        if (!membrane_closed(m) || (id >= m->first_particle && id < m->first_particle + m->nvertices))
+            continue;
+        const int *tri = c->tri + 3 * (size_t)m->first_triangle;
+        double w0 = winding_number(c->x0, tri, m->ntriangles, p0), w = winding_number(x, tri, m->ntriangles, p);
+        if (fabs(w0) > 0.5 && fabs(w) < 0.5)
+            fprintf(stderr, "dem: particle %d left through the membrane '%s' (membranes[%u]): inside it when the run "
+                            "began at step %ld (%.6g, %.6g, %.6g) m, its centre is outside it now (the winding number of "
+                            "the membrane's triangles about it %.0f then, %.0f now): it passed between or through them - a time step too "
+                            "coarse for the contact, a pressure that pushed the membrane apart, or a vertex_radius "
+                            "(MSS_particle) that leaves gaps between the vertices\n",
+                    id, c->sc->f->membranes[k].name ? c->sc->f->membranes[k].name : "", k, c->step0, p0[0], p0[1],
+                    p0[2], fabs(w0), fabs(w));
+    }
+    free(x);
+}
 
 /* What preceded a run's failure, said after its error (issue 39: a hydrogel run hit the MC-strain cap in 1777 steps
  * before it diverged, and its log held only the error): the steps of this run that hit the iteration cap, from the
@@ -558,6 +634,7 @@ static int phase_steps(run_ctx *c)
     long step0 = dem_step_index(s), end = run->steps;
     c->step0 = step0;
     dem_mc_stats_get(s, &c->mc0);
+    membrane_watch(c);
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
@@ -626,6 +703,7 @@ static int phase_steps(run_ctx *c)
             snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
                      c->sc->path, dem_step_index(s), dem_error(s), c->outp, cknote);
             fail_with(EXIT_RUN_FAILED, c->err);
+            membrane_left(c);
             failure_preceded(c);
             return EXIT_RUN_FAILED;
         }
@@ -816,6 +894,7 @@ int run_scene(const run_opts *o)
     if (c->have_ck)
         checkpoint_free(&c->ck);
     overlap_watch_free(&c->ov);
+    free(c->x0), free(c->tri);
     int stopped = c->stopped;
     free(c);
     run_catch_signals(0);

@@ -220,6 +220,9 @@ typedef struct dem_sim dem_sim;
 dem_sim *dem_create(void);
 void dem_destroy(dem_sim *s);
 const char *dem_error(const dem_sim *s);
+/* The particle (caller's id) that a step's DEM_ERR_DOMAIN error named - outside the binning domain or not finite -
+ * or -1 (issue 39: `dem run` then says which closed membrane a grain left through). */
+int dem_error_particle(const dem_sim *s);
 void dem_config_default(dem_config *c);
 
 int dem_add_material(dem_sim *s, const dem_material *m); /* returns the material id, or -1 (see dem_error) */
