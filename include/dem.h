@@ -277,7 +277,8 @@ typedef struct {
     int *tri;
 } dem_mesh;
 typedef enum { DEM_MESH_SHEET = 0, DEM_MESH_TUBE = 1, DEM_MESH_SPHERE = 2 } dem_mesh_kind;
-/* A generated mesh (host/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z; a
+/* A generated mesh (host/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z
+ * (equilateral: a kept and cut into whole edges, the rows as many as come nearest to b); a
  * tube around the axis through center along z, radius a, height b, pushed inward (open ends); a sphere of radius a
  * about center, pushed inward (the icosahedron split until its edges are nearest `edge`, smoothed). Near-equilateral
  * triangles with edges near `edge` [m]. */
