@@ -392,7 +392,10 @@ typedef struct {
 } run_ctx;
 
 /* A membrane is closed when each of its edges (springs) borders two triangles: 2 edges = 3 triangles */
-static int membrane_closed(const dem_membrane_info *m) { return m->ntriangles > 0 && 2 * m->nsprings == 3 * m->ntriangles; }
+static int membrane_closed(const dem_membrane_info *m)
+{
+    return m->ntriangles > 0 && 2 * m->nsprings == 3 * m->ntriangles;
+}
 
 /* The winding number of the closed surface of triangles tri (particle ids into x) about point p: the solid angles
  * the triangles subtend (Van Oosterom and Strackee) over 4 pi; +-1 inside (the sign follows the orientation), 0
@@ -424,8 +427,8 @@ static void membrane_watch(run_ctx *c)
     int closed = 0, n = dem_count(c->s), nt = dem_triangle_count(c->s);
     for (unsigned k = 0; k < c->sc->f->membranes_count && k < 16; k++)
         closed |= membrane_closed(&c->run.membrane[k]);
-    if (!closed || !(c->x0 = malloc(sizeof(double) * 3 * (size_t)n)) || !(c->tri = malloc(sizeof(int) * 3 * (size_t)nt))
-        || dem_get_field(c->s, DEM_FIELD_X, c->x0)) {
+    if (!closed || !(c->x0 = malloc(sizeof(double) * 3 * (size_t)n)) ||
+        !(c->tri = malloc(sizeof(int) * 3 * (size_t)nt)) || dem_get_field(c->s, DEM_FIELD_X, c->x0)) {
         free(c->x0), free(c->tri);
         c->x0 = NULL, c->tri = NULL;
         return;
@@ -455,10 +458,10 @@ static void membrane_left(const run_ctx *c)
         double w0 = winding_number(c->x0, tri, m->ntriangles, p0), w = winding_number(x, tri, m->ntriangles, p);
         if (fabs(w0) > 0.5 && fabs(w) < 0.5)
             fprintf(stderr, "dem: particle %d left through the membrane '%s' (membranes[%u]): inside it when the run "
-                            "began at step %ld (%.6g, %.6g, %.6g) m, its centre is outside it now (the winding number of "
-                            "the membrane's triangles about it %.0f then, %.0f now): it passed between or through them - a time step too "
-                            "coarse for the contact, a pressure that pushed the membrane apart, or a vertex_radius "
-                            "(MSS_particle) that leaves gaps between the vertices\n",
+                            "began at step %ld (%.6g, %.6g, %.6g) m, its centre is outside it now (the winding number "
+                            "of the membrane's triangles about it %.0f then, %.0f now): it passed between or through "
+                            "them - a time step too coarse for the contact, a pressure that pushed the membrane apart, "
+                            "or a vertex_radius (MSS_particle) that leaves gaps between the vertices\n",
                     id, c->sc->f->membranes[k].name ? c->sc->f->membranes[k].name : "", k, c->step0, p0[0], p0[1],
                     p0[2], fabs(w0), fabs(w));
     }
