@@ -72,6 +72,8 @@ static int check(const char *path, const char *model)
     run_precision_advice(s, sc, run.cfg.precision, 1, stdout);
     printf("time step      %.4g s = %.3g x Rayleigh time (recommended %.4g s, bound %.4g s)\n", run.dt,
            run.dt / ts.rayleigh_time, ts.recommended_dt, ts.max_dt);
+    fflush(stdout);
+    run_dt_advice(sc, &run); /* a warning, above a membrane's recommendation */
     if (run.dt > 0.35 * ts.rayleigh_time) /* docs/accuracy.md: stable up to the bound, not accurate */
         printf("               above 0.35 x Rayleigh time: stable, but make accuracy measured the 514-hydrogel "
                "compression 10-19 %% off at 0.5 under every model, within 0.6 %% at 0.35 (docs/accuracy.md)\n");

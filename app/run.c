@@ -318,6 +318,35 @@ void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info
                 sc->path, pn, res, far, res / rmin, 1e-3 * rmin / res);
 }
 
+/* A membrane's springs and hinges recommend a step of their own (dem_time_scales: 50 steps per spring or hinge period,
+ * half the hinges' damping time), which can be below the 0.2 Rayleigh times that dt_rayleigh: 0.2 gives: issue 39's
+ * membrane took 1.03e-6 s where its hinge damping recommends 6.8e-7 s, silently. Stable up to the bound, but a
+ * spring's period is then resolved by fewer than 50 steps (its frequency 0.07 % off at 50, 1.6 % at 10) or the
+ * hinges' damping removes more than half of a fold's speed in one step. A warning (the grains' is the contact
+ * time's, run_contact_advice), for dt given either way. */
+void run_dt_advice(const scene *sc, const scene_run *run)
+{
+    const dem_time_scales *ts = &run->ts;
+    if (!(ts->recommended_dt < 0.2 * ts->rayleigh_time) || !(run->dt > ts->recommended_dt * (1 + 1e-9)))
+        return; /* the grains' recommendation, or met */
+    char why[200];
+    if (ts->recommended_dt == 0.5 * ts->hinge_damping_time)
+        snprintf(why, sizeof why, "the membrane hinges' damping recommends (half their damping time %.4g s: kdiss)",
+                 ts->hinge_damping_time);
+    else if (ts->recommended_dt == ts->spring_period / 50)
+        snprintf(why, sizeof why, "the membrane's edge springs recommend (50 steps per shortest period, %.4g s)",
+                 ts->spring_period);
+    else
+        snprintf(why, sizeof why, "the membrane hinges recommend (50 steps per shortest fold period, %.4g s)",
+                 ts->hinge_period);
+    int fr = scene_has(sc->loc, "time.dt_rayleigh");
+    fprintf(stderr, "dem: warning: %s: %s: the time step %.4g s is above the %.4g s that %s, below the stability bound "
+                    "%.4g s: stable, but the membrane's motion is resolved coarsely; %s <= %.3g%s would meet it\n",
+            sc->path, fr ? "time.dt_rayleigh" : "time.dt", run->dt, ts->recommended_dt, why, ts->max_dt,
+            fr ? "dt_rayleigh" : "dt", fr ? ts->recommended_dt / ts->rayleigh_time : ts->recommended_dt,
+            fr ? "" : " s");
+}
+
 /* Steps one call of dem_step_sampled takes at most, and the samples it holds at most. */
 #define RUN_STRETCH 65536
 #define RUN_SAMPLE_CHUNK 1024
@@ -357,7 +386,106 @@ typedef struct {
     dem_sample rows[RUN_SAMPLE_CHUNK]; /* the samples of one stretch */
     unsigned char want[RUN_STRETCH];   /* which of its steps are sampled */
     overlap_watch ov;                  /* the overlaps at the frames (not with membranes: run_overlap.c) */
+    dem_mc_stats mc0;                  /* the MC-strain counts at the run's first step (a restart's earlier ones) */
+    double *x0;                        /* the positions at the run's first step, with a closed membrane (else NULL) */
+    int *tri;                          /* the triangles' particles then (dem_triangles_get) */
 } run_ctx;
+
+/* A membrane is closed when each of its edges (springs) borders two triangles: 2 edges = 3 triangles */
+static int membrane_closed(const dem_membrane_info *m)
+{
+    return m->ntriangles > 0 && 2 * m->nsprings == 3 * m->ntriangles;
+}
+
+/* The winding number of the closed surface of triangles tri (particle ids into x) about point p: the solid angles
+ * the triangles subtend (Van Oosterom and Strackee) over 4 pi; +-1 inside (the sign follows the orientation), 0
+ * outside. */
+static double winding_number(const double *x, const int *tri, int ntri, const double p[3])
+{
+    double sum = 0;
+    for (int t = 0; t < ntri; t++) {
+        double v[3][3], l[3];
+        for (int k = 0; k < 3; k++) {
+            for (int d = 0; d < 3; d++)
+                v[k][d] = x[3 * (size_t)tri[3 * t + k] + d] - p[d];
+            l[k] = sqrt(v[k][0] * v[k][0] + v[k][1] * v[k][1] + v[k][2] * v[k][2]);
+        }
+        double cr[3] = {v[1][1] * v[2][2] - v[1][2] * v[2][1], v[1][2] * v[2][0] - v[1][0] * v[2][2],
+                        v[1][0] * v[2][1] - v[1][1] * v[2][0]};
+        double det = v[0][0] * cr[0] + v[0][1] * cr[1] + v[0][2] * cr[2];
+#define DOT(a, b) (v[a][0] * v[b][0] + v[a][1] * v[b][1] + v[a][2] * v[b][2])
+        double den = l[0] * l[1] * l[2] + DOT(0, 1) * l[2] + DOT(0, 2) * l[1] + DOT(1, 2) * l[0];
+#undef DOT
+        sum += 2 * atan2(det, den);
+    }
+    return sum / (4 * M_PI);
+}
+
+/* With a closed membrane: the positions and triangles at the run's first step, for membrane_left */
+static void membrane_watch(run_ctx *c)
+{
+    int closed = 0, n = dem_count(c->s), nt = dem_triangle_count(c->s);
+    for (unsigned k = 0; k < c->sc->f->membranes_count && k < 16; k++)
+        closed |= membrane_closed(&c->run.membrane[k]);
+    if (!closed || !(c->x0 = malloc(sizeof(double) * 3 * (size_t)n)) ||
+        !(c->tri = malloc(sizeof(int) * 3 * (size_t)nt)) || dem_get_field(c->s, DEM_FIELD_X, c->x0)) {
+        free(c->x0), free(c->tri);
+        c->x0 = NULL, c->tri = NULL;
+        return;
+    }
+    dem_triangles_get(c->s, c->tri);
+}
+
+/* A particle that left the domain or went non-finite (dem_error_particle): when it is not a membrane's vertex, was
+ * inside a closed membrane at the run's first step and its centre is outside it now, say that it left through that
+ * membrane (issue 39: such a run said only "outside the binning domain"). On the host, at the failure only. */
+static void membrane_left(const run_ctx *c)
+{
+    int id = dem_error_particle(c->s), n = dem_count(c->s);
+    if (!c->x0 || id < 0 || id >= n)
+        return;
+    double *x = malloc(sizeof(double) * 3 * (size_t)n);
+    if (!x || dem_get_field(c->s, DEM_FIELD_X, x)) {
+        free(x);
+        return;
+    }
+    const double *p = x + 3 * (size_t)id, *p0 = c->x0 + 3 * (size_t)id;
+    for (unsigned k = 0; k < c->sc->f->membranes_count && k < 16 && isfinite(p[0] + p[1] + p[2]); k++) {
+        const dem_membrane_info *m = &c->run.membrane[k];
+        if (!membrane_closed(m) || (id >= m->first_particle && id < m->first_particle + m->nvertices))
+            continue;
+        const int *tri = c->tri + 3 * (size_t)m->first_triangle;
+        double w0 = winding_number(c->x0, tri, m->ntriangles, p0), w = winding_number(x, tri, m->ntriangles, p);
+        if (fabs(w0) > 0.5 && fabs(w) < 0.5)
+            fprintf(stderr, "dem: particle %d left through the membrane '%s' (membranes[%u]): inside it when the run "
+                            "began at step %ld (%.6g, %.6g, %.6g) m, its centre is outside it now (the winding number "
+                            "of the membrane's triangles about it %.0f then, %.0f now): it passed between or through "
+                            "them - a time step too coarse for the contact, a pressure that pushed the membrane apart, "
+                            "or a vertex_radius (MSS_particle) that leaves gaps between the vertices\n",
+                    id, c->sc->f->membranes[k].name ? c->sc->f->membranes[k].name : "", k, c->step0, p0[0], p0[1],
+                    p0[2], fabs(w0), fabs(w));
+    }
+    free(x);
+}
+
+/* What preceded a run's failure, said after its error (issue 39: a hydrogel run hit the MC-strain cap in 1777 steps
+ * before it diverged, and its log held only the error): the steps of this run that hit the iteration cap, from the
+ * first to the failure. */
+static void failure_preceded(const run_ctx *c)
+{
+    dem_mc_stats mc;
+    dem_mc_stats_get(c->s, &mc);
+    long capped = mc.unconverged - c->mc0.unconverged, at = dem_step_index(c->s);
+    if (!(c->run.effects & DEM_EFFECT_MC_STRAIN) || c->run.mc_cap <= 0 || capped <= 0 || mc.first_capped < 0)
+        return;
+    long to = mc.last_capped > at ? mc.last_capped : at;
+    fprintf(stderr, "dem: before it stopped, iterated MC-strain hit its cap of %d iterations (mc_iterations) in %ld of "
+                    "the %ld steps from step %ld (t = %.9g s, the first that did) to step %ld, the last at step %ld: "
+                    "their forces had not settled to mc_tolerance %g (the series mc_capped in %s.part counts them); "
+                    "a higher cap or a smaller time step may carry the run further\n",
+            c->run.mc_cap, capped, to - mc.first_capped + 1, mc.first_capped, (double)mc.first_capped * dem_dt(c->s),
+            to, mc.last_capped, c->run.mc_tol, c->outp);
+}
 
 /* 1. The scene, from its file or from the checkpoint restarted from, built into a simulation (not started). */
 static int phase_load(run_ctx *c)
@@ -445,6 +573,7 @@ static int phase_start(run_ctx *c)
     fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", c->sc->path, dem_count(c->s),
             dem_wall_count(c->s), run->dt, run->steps, dem_describe(c->s));
     run_contact_advice(c->s, c->sc, 0, stderr); /* a warning only, when dt is coarse for the fastest contact */
+    run_dt_advice(c->sc, &c->run);              /* a warning only, when dt is coarse for a membrane */
     run_mc_lag_advice(c->s, c->sc, &c->run, 0, stderr); /* a warning only, lagged MC-strain where it rings */
     run_order_advice(c->s, c->sc, 0, stderr);   /* a note only, when the order is scattered */
     run_precision_advice(c->s, c->sc, run->cfg.precision, 0, stderr); /* a warning only, far from the origin */
@@ -507,6 +636,8 @@ static int phase_steps(run_ctx *c)
     c->t0 = last = now();
     long step0 = dem_step_index(s), end = run->steps;
     c->step0 = step0;
+    dem_mc_stats_get(s, &c->mc0);
+    membrane_watch(c);
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
@@ -574,7 +705,10 @@ static int phase_steps(run_ctx *c)
             checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
             snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
                      c->sc->path, dem_step_index(s), dem_error(s), c->outp, cknote);
-            return fail_with(EXIT_RUN_FAILED, c->err);
+            fail_with(EXIT_RUN_FAILED, c->err);
+            membrane_left(c);
+            failure_preceded(c);
+            return EXIT_RUN_FAILED;
         }
         st = dem_step_index(s);
         int io = 0;
@@ -763,6 +897,7 @@ int run_scene(const run_opts *o)
     if (c->have_ck)
         checkpoint_free(&c->ck);
     overlap_watch_free(&c->ov);
+    free(c->x0), free(c->tri);
     int stopped = c->stopped;
     free(c);
     run_catch_signals(0);

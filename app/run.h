@@ -34,6 +34,8 @@ void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int in
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* the same for the precision's position resolution far from the origin (dem_position_resolution) */
 void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info, FILE *out);
+/* A warning on stderr when the time step is above what a membrane's springs or hinges recommend (run->ts) */
+void run_dt_advice(const scene *sc, const scene_run *run);
 
 /* The overlaps of a run, measured at its frames (run_overlap.c): the largest pair overlap / smaller radius and the
  * largest mean over the touching pairs, with when; reported at the end with a warning where the contact model was

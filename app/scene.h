@@ -237,6 +237,7 @@ typedef struct {
     unsigned mcs_conv;      /* DEM_MCS_* bits (used when MC-stress runs) */
     int mc_cap;             /* MC-strain iteration cap in force (0: lagged) and its tolerance */
     double mc_tol;
+    dem_membrane_info membrane[16]; /* where each of the scene's membranes went (scene_add_membranes) */
 } scene_run;
 
 /* Loads and parses; on failure returns NULL and writes "file:line: field: reason" into err. */

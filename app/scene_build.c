@@ -685,7 +685,7 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
 
 /* The sample a piston compresses: its height and cross-section, for strain and stress. */
 static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *first_wall,
-                        const scene_origin *origin, char *err, size_t errlen)
+                        const scene_origin *origin, int nspheres, char *err, size_t errlen)
 {
     const scene_file *f = sc->f;
     run->piston = -1;
@@ -708,7 +708,7 @@ static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *
         return scene_fail(sc, err, errlen, "sample.contact_travel", "must be >= 0 m");
     if (!(run->sample_height > 0)) { /* piston to the lowest particle bottom along the normal */
         double far = 0;
-        for (int i = 0; i < dem_count(s); i++) {
+        for (int i = 0; i < nspheres; i++) { /* the spheres (origin holds no membrane vertex) */
             const double *x = origin[i].x;
             double dd = (x[0] - p[0]) * n[0] + (x[1] - p[1]) * n[1] + (x[2] - p[2]) * n[2] + origin[i].r;
             if (dd > far)
@@ -774,6 +774,12 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
         snprintf(err, errlen, "%s: out of memory", sc->path);
         return NULL;
     }
+    if (!sc->f->particles_count && !sc->f->membranes_count) { /* a membrane alone is a scene: its vertices move */
+        snprintf(err, errlen, "%s:1: particles: a scene needs particles, or a membrane (whose vertices are "
+                 "particles)", sc->path); /* line 1, as libcyaml names a missing key */
+        dem_destroy(s);
+        return NULL;
+    }
     if (parse_effects(sc, run, err, errlen) || parse_materials(sc, s, err, errlen) ||
         scene_add_particles(sc, s, &origin, run->fill, sizeof run->fill, err, errlen) || (nspheres = dem_count(s), 0) ||
         parse_walls(sc, s, run, first_wall, err, errlen) || check_density_walls(sc, s, first_wall, err, errlen) ||
@@ -782,7 +788,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
         parse_run_options(sc, s, run, err, errlen) || parse_time(sc, s, run, err, errlen) ||
         parse_output(sc, run, err, errlen) ||
         scene_check_overlaps(sc, s, origin, nspheres, err, errlen) ||
-        parse_sample(sc, s, run, first_wall, origin, err, errlen)) {
+        parse_sample(sc, s, run, first_wall, origin, nspheres, err, errlen)) {
         free(origin);
         dem_destroy(s);
         return NULL;

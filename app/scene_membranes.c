@@ -244,6 +244,7 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
         }
         for (int i = 0; m->fixed && i < info.nvertices; i++)
             dem_set_particle_flags(s, info.first_particle + i, DEM_PARTICLE_FIXED);
+        run->membrane[k] = info; /* k < 16: the schema's limit */
         for (unsigned a = 0; a < m->attach_count; a++)
             if (attach(sc, s, k, a, mesh.x, info.first_particle, info.nvertices, first_wall, err, errlen)) {
                 dem_mesh_free(&mesh);

@@ -192,7 +192,7 @@ static const cyaml_schema_field_t scene_fields[] = {
     TEXT("particle_order", scene_file, particle_order),
     CYAML_FIELD_SEQUENCE("effects", CYAML_FLAG_POINTER, scene_file, effects, &string_entry, 1, 16),
     CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_file, materials, &material_entry, 1, 64),
-    CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 1, 64),
+    CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 0, 64),
     CYAML_FIELD_SEQUENCE("walls", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, walls, &wall_entry, 0, DEM_MAX_WALLS),
     CYAML_FIELD_SEQUENCE("membranes", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, membranes,
                          &membrane_entry, 0, 16),

@@ -4,8 +4,11 @@
  * Orientation: (x_b - x_a) x (x_c - x_a) of every triangle points where a confining pressure pushes (dem.h,
  * dem_add_triangle): into a tube or a sphere (towards the granulate they hold), along -z for a sheet (onto what lies
  * below it). The generators build the triangles, then turn each one that points the other way.
- * Sizes: the edges come out near the requested length s: a sheet's and a tube's rows are s sqrt(3)/2 apart and
- * their vertices s apart along a row (rounded to whole counts), so that the triangles are near equilateral; a
+ * Sizes: the edges come out near the requested length s. A sheet's triangles are equilateral: its length a along x
+ * is kept and cut into whole edges e = a / round(a / s), its rows lie e sqrt(3)/2 apart, as many as come nearest to
+ * its width b (so the width is b within half a row spacing, centred); its odd rows end in half steps, for straight
+ * sides. A tube's rows are s sqrt(3)/2 apart and its vertices s apart around it (both rounded to whole counts: the
+ * circumference and the height are kept), so that its triangles are near equilateral; a
  * sphere is the icosahedron split until its mean edge is nearest s, projected on the sphere and smoothed (20
  * Laplacian passes on the sphere). Why smoothed: the split icosphere of 642 vertices alone, inflated to 1 % strain,
  * settled 2.5 % past the membrane law, non-affinely (its radii spread as much as the strain); smoothed, 0.6 %, radii
@@ -84,16 +87,21 @@ static void zip_rows(dem_mesh *m, int l0, int nl, const double *sl, int u0, int 
 
 static int make_sheet(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
-    double s = sp->edge, lx = sp->a, ly = sp->b;
-    long nx = lround(lx / s) + 1, ny = lround(ly / (s * sqrt(3.0) / 2)) + 1;
-    nx = nx < 2 ? 2 : nx, ny = ny < 2 ? 2 : ny;
+    /* equilateral (issue 39: both spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm): the length a is kept,
+     * the edge is a over a whole number of steps, the rows edge sqrt(3)/2 apart, as many as come nearest to b */
+    double s = sp->edge, lx = sp->a;
+    long nx = lround(lx / s) + 1;
+    nx = nx < 2 ? 2 : nx;
+    double dx = lx / (double)(nx - 1), dy = dx * sqrt(3.0) / 2;
+    long ny = lround(sp->b / dy) + 1;
+    ny = ny < 2 ? 2 : ny;
+    double ly = dy * (double)(ny - 1); /* within dy / 2 of b */
     if (nx * ny + ny > MESH_MAX_VERTICES)
         return snprintf(err, errlen, "a sheet of %g x %g m with edges of %g m has more than %d vertices", lx, ly, s,
                         MESH_MAX_VERTICES), -1;
     if (mesh_alloc(m, nx * ny + ny, 2 * (nx + 1) * ny))
         return snprintf(err, errlen, "out of host memory"), -1;
-    double dx = lx / (double)(nx - 1), dy = ly / (double)(ny - 1), x0 = sp->center[0] - lx / 2;
-    double y0 = sp->center[1] - ly / 2;
+    double x0 = sp->center[0] - lx / 2, y0 = sp->center[1] - ly / 2;
     double *sprev = malloc(sizeof(double) * (size_t)(nx + 1)), *scur = malloc(sizeof(double) * (size_t)(nx + 1));
     if (!sprev || !scur)
         return free(sprev), free(scur), snprintf(err, errlen, "out of host memory"), -1;

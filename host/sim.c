@@ -18,6 +18,8 @@ dem_sim *dem_create(void)
         s->mc_tol = 1e-6;
         s->mc_reach = 1;
         s->sample_row = -1; /* no step is sampled until dem_step_sampled says so */
+        s->mc.first_capped = s->mc.last_capped = -1;
+        s->err_particle = -1;
     }
     return s;
 }
@@ -51,6 +53,7 @@ void dem_destroy(dem_sim *s)
 }
 
 const char *dem_error(const dem_sim *s) { return s ? s->err : "no simulation (out of memory?)"; }
+int dem_error_particle(const dem_sim *s) { return s ? s->err_particle : -1; }
 
 void dem_config_default(dem_config *c)
 {
@@ -769,6 +772,7 @@ static int report_out_of_domain(dem_sim *s, int slot)
         for (int d = 0; d < 3; d++)
             p[d] = rs == 8 ? ((double *)buf)[3 * slot + d] : ((float *)buf)[3 * slot + d];
     free(buf);
+    s->err_particle = id;
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) /* a value that overflowed or was never a number */
         return sim_fail(s, DEM_ERR_DOMAIN,
                         "step %ld: particle %d: its position became non-finite (%g, %g, %g): a velocity or force "
@@ -933,9 +937,16 @@ static int mc_strain(dem_sim *s)
             break;
         }
     }
-    if (s->mc_max_iter && !converged)
-        s->mc.unconverged++;
     s->mc.last = it;
+    if (s->force_step == s->step) /* dem_start's forces, before any step: no step to count (a cap hit there made
+                                   * the count one more than the steps, "6001 of 6000") */
+        return 0;
+    if (s->mc_max_iter && !converged) {
+        s->mc.unconverged++;
+        if (s->mc.first_capped < 0)
+            s->mc.first_capped = s->force_step;
+        s->mc.last_capped = s->force_step;
+    }
     s->mc.total += it;
     if (it > s->mc.max)
         s->mc.max = it;

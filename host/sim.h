@@ -100,6 +100,7 @@ struct dem_sim {
     double skin_lo, skin_hi, skin_now, skin_extra;
     long skin_built;
     char err[4096];
+    int err_particle; /* the particle a DEM_ERR_DOMAIN error named (dem_error_particle), -1 none */
     char desc[1024];
     char build[4096];
     /* the kernels launched (ids, dem_kernel_names): by the last step, without a rebuild's, and by the last rebuild */

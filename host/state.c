@@ -466,7 +466,9 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         return e;
     s->step = st->step;
     s->skin_built = s->step; /* the rows just built are this step's (sim.c skin_choose counts from it) */
+    long first_capped = s->mc.first_capped, last_capped = s->mc.last_capped; /* this process's, not the state's */
     s->mc = st->mc;
+    s->mc.first_capped = first_capped, s->mc.last_capped = last_capped;
     for (int k = 0; k < s->nwalls; k++)
         memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);
     if (!st->has_stages) /* a state from before stages could end early: every stage ran its duration */

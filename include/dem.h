@@ -220,6 +220,9 @@ typedef struct dem_sim dem_sim;
 dem_sim *dem_create(void);
 void dem_destroy(dem_sim *s);
 const char *dem_error(const dem_sim *s);
+/* The particle (caller's id) that a step's DEM_ERR_DOMAIN error named - outside the binning domain or not finite -
+ * or -1 (issue 39: `dem run` then says which closed membrane a grain left through). */
+int dem_error_particle(const dem_sim *s);
 void dem_config_default(dem_config *c);
 
 int dem_add_material(dem_sim *s, const dem_material *m); /* returns the material id, or -1 (see dem_error) */
@@ -274,7 +277,8 @@ typedef struct {
     int *tri;
 } dem_mesh;
 typedef enum { DEM_MESH_SHEET = 0, DEM_MESH_TUBE = 1, DEM_MESH_SPHERE = 2 } dem_mesh_kind;
-/* A generated mesh (host/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z; a
+/* A generated mesh (host/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z
+ * (equilateral: a kept and cut into whole edges, the rows as many as come nearest to b); a
  * tube around the axis through center along z, radius a, height b, pushed inward (open ends); a sphere of radius a
  * about center, pushed inward (the icosahedron split until its edges are nearest `edge`, smoothed). Near-equilateral
  * triangles with edges near `edge` [m]. */
@@ -386,6 +390,10 @@ typedef struct {
     long max;         /* most iterations of any step */
     long total;       /* all iterations so far */
     long unconverged; /* steps that hit the iteration cap */
+    /* The first and the last step that hit the cap in this process (from dem_start; -1: none): not part of the
+     * state (dem_state_set keeps them), so that a failing run can say where its capped steps began. The force
+     * evaluation of dem_start is not a step: it counts in none of these (only in last). */
+    long first_capped, last_capped;
 } dem_mc_stats;
 void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st);
 /* How wall k's latest servo stage went (a P controller: it settles when gain x the stiffness of the wall's contacts

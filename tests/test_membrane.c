@@ -80,10 +80,13 @@ static void check_mesh(const dem_mesh_spec *sp, int chi, double area, double are
 static void test_generated_meshes(void **st)
 {
     (void)st;
-    /* a sheet: a disc (chi 1), its area exactly a x b; boundary = the rim */
+    /* a sheet: a disc (chi 1), its area exactly a x its width, the rows (ny - 1) e sqrt(3)/2 wide (issue 39: the
+     * width is b within half a row spacing, 0.0606 m for b = 0.06 m; it was b exactly, the triangles then not
+     * equilateral); boundary = the rim */
     dem_mesh_spec sheet = {DEM_MESH_SHEET, {0.01, -0.02, 0.003}, 0.1, 0.06, 0.01};
     int nx = 11, ny = (int)lround(0.06 / (0.01 * sqrt(3) / 2)) + 1; /* rows of 11 and (odd rows) 12 vertices */
-    check_mesh(&sheet, 1, 0.1 * 0.06, 1e-12, (nx - 1) + ((ny - 1) % 2 ? nx : nx - 1) + 2 * (ny - 1));
+    check_mesh(&sheet, 1, 0.1 * (ny - 1) * 0.01 * sqrt(3) / 2, 1e-12,
+               (nx - 1) + ((ny - 1) % 2 ? nx : nx - 1) + 2 * (ny - 1));
     /* a tube: an annulus (chi 0), two rims of na edges; its area a polygon's, below 2 pi r h by (1 - sinc) */
     double r = 0.025, h = 0.1, s = 0.005;
     int na = (int)lround(2 * M_PI * r / s);
@@ -92,6 +95,57 @@ static void test_generated_meshes(void **st)
     /* a sphere: chi 2, closed; inscribed polyhedron within 1 % of 4 pi r^2 */
     dem_mesh_spec sphere = {DEM_MESH_SPHERE, {0.1, 0.2, 0.3}, 0.05, 0, 0.008};
     check_mesh(&sphere, 2, 4 * M_PI * 0.05 * 0.05, 0.01, 0);
+}
+
+/* Issue 39: a sheet's triangles are equilateral - every angle 60 deg, but the half triangles that end the odd rows
+ * (30, 60, 90) - and its length a is kept, its width within half a row spacing of b, about the centre. The sheets
+ * of seed 001's friction slide, test_patch_contacts and the issue (6 x 6 cm at 1 cm: 59.74 deg before). */
+static void test_sheet_angles(void **st)
+{
+    (void)st;
+    static const double cases[][3] = {{0.06, 0.06, 0.01}, {0.024, 0.012, 0.00133}, {0.03, 0.03, 0.001},
+                                      {0.1, 0.06, 0.01}, {0.05, 0.02, 0.007}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        dem_mesh_spec sp = {DEM_MESH_SHEET, {0.01, -0.02, 0.003}, cases[c][0], cases[c][1], cases[c][2]};
+        dem_mesh m;
+        char err[256];
+        assert_int_equal(dem_mesh_make(&sp, &m, err, sizeof err), 0);
+        double worst = 0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        int halves = 0;
+        for (int i = 0; i < m.nv; i++)
+            for (int d = 0; d < 3; d++)
+                lo[d] = fmin(lo[d], m.x[3 * i + d]), hi[d] = fmax(hi[d], m.x[3 * i + d]);
+        for (int k = 0; k < m.nt; k++) {
+            double ang[3];
+            for (int r = 0; r < 3; r++) { /* the angle at vertex r */
+                const double *a = m.x + 3 * m.tri[3 * k + r], *b = m.x + 3 * m.tri[3 * k + (r + 1) % 3],
+                             *q = m.x + 3 * m.tri[3 * k + (r + 2) % 3];
+                double u[3], v[3];
+                for (int d = 0; d < 3; d++)
+                    u[d] = b[d] - a[d], v[d] = q[d] - a[d];
+                ang[r] = acos((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) /
+                              sqrt((u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))) *
+                         180 / M_PI;
+            }
+            double amax = fmax(ang[0], fmax(ang[1], ang[2]));
+            int half = amax > 75; /* a right triangle at a side: 30, 60, 90 */
+            halves += half;
+            for (int r = 0; r < 3; r++) {
+                double want = !half ? 60 : ang[r] > 75 ? 90 : ang[r] > 45 ? 60 : 30;
+                worst = fmax(worst, fabs(ang[r] - want));
+            }
+        }
+        double e = cases[c][0] / (double)lround(cases[c][0] / cases[c][2]), dy = e * sqrt(3) / 2;
+        printf("  sheet %g x %g m, edge %g m: %d triangles (%d halves at the sides), angles within %.2g deg of 60 (30, "
+               "90); %g x %g m\n", cases[c][0], cases[c][1], cases[c][2], m.nt, halves, worst, hi[0] - lo[0],
+               hi[1] - lo[1]);
+        assert_true(worst < 1e-9);
+        assert_true(fabs(hi[0] - lo[0] - cases[c][0]) < 1e-12);          /* the length kept */
+        assert_true(fabs(hi[1] - lo[1] - cases[c][1]) <= 0.5 * dy + 1e-12); /* the width nearest b */
+        assert_true(fabs(fmod((hi[1] - lo[1]) / dy + 0.5, 1.0) - 0.5) < 1e-9); /* whole rows */
+        assert_true(fabs(0.5 * (lo[1] + hi[1]) - sp.center[1]) < 1e-12 && fabs(0.5 * (lo[0] + hi[0]) - sp.center[0]) < 1e-12);
+        dem_mesh_free(&m);
+    }
 }
 
 static const dem_membrane rubber = {1.25e6, 1.0 / 3, 3e-4, 1000, 0.5, 1.2, 0.3, 1e-4, 1e-6, 0.001};
@@ -418,6 +472,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_generated_meshes),
+        cmocka_unit_test(test_sheet_angles),
         cmocka_unit_test(test_membrane_at_rest),
         cmocka_unit_test(test_membrane_parameters),
         cmocka_unit_test(test_balloon),

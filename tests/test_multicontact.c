@@ -306,12 +306,16 @@ static void test_iteration_reporting(void **st)
     assert_true(a.total >= STEPS); /* at least one iteration per step */
     assert_true(a.max >= 2 && a.max < 50);
     assert_int_equal(a.unconverged, 0);
+    assert_true(a.first_capped == -1 && a.last_capped == -1);
     dem_destroy(s);
     o.mc_iterations = 1;
     s = run_ref(&o, STEPS);
     dem_mc_stats_get(s, &a);
     assert_int_equal(a.max, 1);
-    assert_true(a.unconverged > 0);
+    /* steps, not force evaluations: dem_start's forces are none of them (issue 39: "6001 of 6000 steps") */
+    assert_true(a.unconverged > 0 && a.unconverged <= STEPS);
+    assert_true(a.first_capped >= 1 && a.first_capped <= a.last_capped && a.last_capped <= STEPS);
+    assert_true(a.last_capped - a.first_capped + 1 >= a.unconverged);
     dem_destroy(s);
     o.mc_iterations = 0; /* lagged: no iteration at all */
     s = run_ref(&o, STEPS);
