@@ -48,19 +48,9 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
         if (!scene_has(sc->loc, p))
             return scene_fail(sc, err, errlen, p, "a %s mesh needs '%s'", ms->kind, kinds[q].need[j]);
     }
-    /* the vertices it would have, roughly (area over that of an equilateral triangle's share of a vertex), before
-     * anything is made: the cap of generated particle groups (scene_particles.c) holds for meshes too */
-    double area = q == 0 ? 2 * M_PI * ms->radius * ms->height : q == 1 ? ms->size[0] * ms->size[1]
-                                                                       : 4 * M_PI * ms->radius * ms->radius;
-    double nv = area / (0.433 * ms->edge * ms->edge);
     if (!(ms->edge > 0) || !isfinite(ms->edge)) {
         snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
         return scene_fail(sc, err, errlen, p, "must be > 0 m and finite");
-    }
-    if (isfinite(nv) && nv > DEM_SCENE_MAX_GENERATED) {
-        snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
-        return scene_fail(sc, err, errlen, p, "edges of %g m make about %.3g vertices (at most %d): use longer edges",
-                          ms->edge, nv, DEM_SCENE_MAX_GENERATED);
     }
     memset(sp, 0, sizeof *sp);
     sp->kind = kinds[q].id;
@@ -68,7 +58,79 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
     sp->a = q == 1 ? ms->size[0] : ms->radius;
     sp->b = q == 1 ? ms->size[1] : ms->height;
     sp->edge = ms->edge;
+    const char *bad = NULL; /* the centre and the sizes, refused at their own keys */
+    for (int j = 0; j < 3; j++)
+        bad = !isfinite(sp->center[j]) ? "center" : bad;
+    if (!bad && !(sp->a > 0 && isfinite(sp->a)))
+        bad = q == 1 ? "size" : "radius";
+    if (!bad && q != 2 && !(sp->b > 0 && isfinite(sp->b)))
+        bad = q == 1 ? "size" : "height";
+    if (bad) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.%s", k, bad);
+        return scene_fail(sc, err, errlen, p, strcmp(bad, "center") ? "must be > 0 m and finite" : "must be finite [m]");
+    }
+    /* the vertices it will have, counted exactly (dem_mesh_vertices) before anything is made: the cap of generated
+     * particle groups (scene_particles.c) holds for meshes too */
+    double nv = dem_mesh_vertices(sp);
+    if (!(nv <= DEM_SCENE_MAX_GENERATED)) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
+        return scene_fail(sc, err, errlen, p, "edges of %g m make %.3g vertices (at most %d): use longer edges",
+                          ms->edge, nv, DEM_SCENE_MAX_GENERATED);
+    }
     return 0;
+}
+
+/* A generated mesh whose springs would make the time step fail, refused before it is made (a tube of 1.9e6 vertices
+ * took 17.6 s and 1.35 GB in dem check to be refused by parse_time). Only a sure refusal: an upper bound on the
+ * stability bound that parse_time computes, from what is known before the mesh exists. Its lightest vertex weighs at
+ * most the mean, density x thickness x area / vertices (the area over-estimated: the polygon lies inside the tube or
+ * sphere), so a spring at it has a period of at most 2 pi sqrt(mean / k), k = sqrt(3)/2 E t, and the bound (a tenth
+ * of the shortest period) is at most a tenth of that. time.dt above it: refused. With dt_rayleigh, dt follows the
+ * Rayleigh times of all particles, the vertices' included, pi sqrt(3 m / (4 pi r G)) / (0.1631 nu + 0.8766) at mass m
+ * and radius r (host/sim_setup.c): the lightest vertex's Rayleigh time over its spring period is known without its
+ * mass, and the spheres' is known; both above the bound, and the scene's one membrane (no other adds vertices of
+ * unknown weight), the step is sure to be refused too. A fixed membrane has no spring period: never refused here. */
+static int mesh_dt_check(const scene *sc, dem_sim *s, unsigned k, const dem_mesh_spec *sp, char *err, size_t errlen)
+{
+    const scene_membrane *m = &sc->f->membranes[k];
+    const scene_membrane_material *mt = &m->material;
+    const scene_time *t = &sc->f->time;
+    int has_dt = scene_has(sc->loc, "time.dt"), has_fr = scene_has(sc->loc, "time.dt_rayleigh");
+    double nv = dem_mesh_vertices(sp), S = scene_mass_scale(sc), E = mt->young, th = mt->thickness;
+    double area = sp->kind == DEM_MESH_TUBE ? 2 * M_PI * sp->a * sp->b : sp->kind == DEM_MESH_SHEET ? sp->a * sp->b
+                                                                       : 4 * M_PI * sp->a * sp->a;
+    double kspring = sqrt(3.0) / 2 * E * th, mean = mt->density * S * th * area / nv;
+    double bound = 2 * M_PI * sqrt(mean / kspring) / 10 * 1.001; /* a margin for rounding */
+    if (m->fixed || has_dt == has_fr || !(bound > 0) || !isfinite(bound) || !(mt->poisson > -1))
+        return 0; /* nothing sure to say: parse_time decides (and names what is wrong) */
+    char p[128];
+    snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
+    double r = scene_has(sc->loc, p) ? mt->vertex_radius /* else a quarter of the shortest edge, at most of one edge */
+               : sp->kind == DEM_MESH_TUBE ? 0.25 * 2 * sp->a * sin(M_PI / round(fmax(3, 2 * M_PI * sp->a / sp->edge)))
+               : sp->kind == DEM_MESH_SHEET ? 0.25 * sp->a / round(fmax(1, sp->a / sp->edge)) : NAN;
+    double G = E / (2 * (1 + mt->poisson)), c = 0.1631 * mt->poisson + 0.8766;
+    double rayleigh_per_period = M_PI * sqrt(3 / (4 * M_PI * r * G)) / c / (2 * M_PI / 10 / sqrt(kspring));
+    double dt = t->dt, spheres = INFINITY;
+    if (has_fr) {
+        dem_time_scales ts; /* the particles so far: spheres only (one membrane), so no spring or hinge to weigh */
+        if (sc->f->membranes_count != 1 || !(t->dt_rayleigh > 0) || !(t->dt_rayleigh * rayleigh_per_period > 1.001) ||
+            (dem_count(s) > 0 && dem_time_scales_get(s, 0, &ts)))
+            return 0;
+        spheres = dem_count(s) > 0 ? ts.rayleigh_time : INFINITY;
+        dt = t->dt_rayleigh * spheres;
+    }
+    if (!(dt > bound) || !isfinite(bound))
+        return 0;
+    snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
+    char given[96];
+    if (has_dt)
+        snprintf(given, sizeof given, "time.dt gives %.3g s", dt);
+    else
+        snprintf(given, sizeof given, "time.dt_rayleigh (%g of the Rayleigh time) gives more", t->dt_rayleigh);
+    return scene_fail(sc, err, errlen, p, "edges of %g m make %.0f vertices of %.3g kg or less (the lightest), whose "
+                      "springs (%.3g N/m) need a time step below %.3g s (a tenth of their period); the scene's %s: "
+                      "refused before the mesh is made. Use longer edges, a smaller time step, or mass scaling",
+                      sp->edge, nv, mean, kspring, bound, given);
 }
 
 static int find_wall(const scene *sc, const char *name, const int *first_wall)
@@ -172,6 +234,11 @@ static int read_mesh(const scene *sc, unsigned k, dem_mesh *mesh, char *err, siz
         dem_mesh_free(mesh);
         return scene_fail(sc, err, errlen, p, "must be > 0 and finite [m per unit of the file]");
     }
+    snprintf(p, sizeof p, "membranes[%u].mesh.translate", k);
+    if (!isfinite(ms->translate[0]) || !isfinite(ms->translate[1]) || !isfinite(ms->translate[2])) {
+        dem_mesh_free(mesh);
+        return scene_fail(sc, err, errlen, p, "must be finite [m]");
+    }
     for (int i = 0; i < mesh->nv; i++)
         for (int d = 0; d < 3; d++)
             mesh->x[3 * i + d] = mesh->x[3 * i + d] * scale + ms->translate[d];
@@ -219,6 +286,8 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
         dem_mesh mesh;
         char why[4600];
         snprintf(p, sizeof p, "membranes[%u].mesh", k);
+        if (e == 0 && mesh_dt_check(sc, s, k, &sp, err, errlen))
+            return 1;
         if (e == 0 && dem_mesh_make(&sp, &mesh, why, sizeof why))
             return scene_fail(sc, err, errlen, p, "%s", why);
         if (e < 0 && read_mesh(sc, k, &mesh, err, errlen))
@@ -232,8 +301,17 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
             snprintf(p, sizeof p, "membranes[%u].model", k);
             return scene_fail(sc, err, errlen, p, "unknown model '%s' (patch or particle)", m->model);
         }
+        /* the mesh itself before its material: a vertex out of range or two corners at one point would otherwise
+         * show as a vertex_radius (a quarter of the shortest edge) of nan or 0 */
+        double se = shortest_edge(&mesh);
+        if (!(se > 0) || !isfinite(se)) {
+            dem_mesh_free(&mesh);
+            return scene_fail(sc, err, errlen, p, "its shortest edge comes out %g m: %s", se,
+                              se == 0 ? "two corners of a triangle coincide" : "its coordinates are too large (their "
+                              "squares overflow) or not finite");
+        }
         snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
-        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * shortest_edge(&mesh);
+        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * se;
         dem_membrane dm = {mt->young, mt->poisson, mt->thickness, mt->density * scene_mass_scale(sc),
                            mt->restitution, mt->friction, mt->damping, mt->kel, mt->kdiss, vr, model};
         dem_membrane_info info;
