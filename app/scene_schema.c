@@ -10,6 +10,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 static const cyaml_schema_value_t real_entry = {CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, double)};
 static const cyaml_schema_value_t string_entry = {CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 0, CYAML_UNLIMITED)};
@@ -436,11 +439,36 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
     return sc;
 }
 
+FILE *scene_open_regular(const char *path, char *why, size_t len)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC); /* O_NONBLOCK: a pipe with no writer does not block */
+    struct stat sb;
+    if (fd < 0 || fstat(fd, &sb) != 0) {
+        snprintf(why, len, "%s", strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return NULL;
+    }
+    if (!S_ISREG(sb.st_mode)) {
+        snprintf(why, len, "not a regular file (%s)", S_ISDIR(sb.st_mode) ? "a folder" : S_ISFIFO(sb.st_mode) ? "a pipe"
+                           : S_ISSOCK(sb.st_mode) ? "a socket" : "a device");
+        close(fd);
+        return NULL;
+    }
+    FILE *fp = fcntl(fd, F_SETFL, 0) == 0 ? fdopen(fd, "rb") : NULL;
+    if (!fp) {
+        snprintf(why, len, "%s", strerror(errno));
+        close(fd);
+    }
+    return fp;
+}
+
 scene *scene_load(const char *path, char *err, size_t errlen)
 {
-    FILE *fp = fopen(path, "rb");
+    char why[256];
+    FILE *fp = scene_open_regular(path, why, sizeof why);
     if (!fp) {
-        snprintf(err, errlen, "%s:0: cannot open the scene file: %s", path, strerror(errno));
+        snprintf(err, errlen, "%s:0: cannot open the scene file: %s", path, why);
         return NULL;
     }
     size_t cap = 1 << 16, len = 0;
