@@ -295,6 +295,7 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
     }
     if (g >= 0)
         H5Gclose(g);
+    const char *what = NULL;
     if (!rc) {
         hid_t sg = H5Lexists(f, "scene", H5P_DEFAULT) > 0 ? H5Gopen2(f, "scene", H5P_DEFAULT) : -1;
         ck->scene_text = sg >= 0 ? h5_read_text(sg, "text") : NULL;
@@ -307,10 +308,15 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         if (sg >= 0)
             H5Gclose(sg);
         rc = !ck->scene_text || !ck->scene_path || !model_ok; /* a model that cannot be read: damaged */
+        what = !ck->scene_text ? "/scene/text" : !ck->scene_path ? "/scene/path" : !model_ok ? "/scene model" : NULL;
     }
     H5Fclose(f);
     if (rc) {
-        snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
+        if (what) /* the scene's text, path or model: not one fixed-length string */
+            snprintf(err, errlen, "%s: incomplete or damaged checkpoint: %s is missing or not one fixed-length string",
+                     path, what);
+        else
+            snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
         checkpoint_free(ck);
         return 1;
     }
