@@ -270,4 +270,7 @@ int scene_has(const scene_locator *l, const char *path);
 int scene_scalar(const scene_locator *l, size_t k, const char **path, const char **value, int *line);
 /* The first key given twice in one mapping: returns its second line (0 if none), with its path and first line. */
 int scene_duplicate(const scene_locator *l, const char **path, int *first);
+/* A YAML syntax error: libyaml's reason and the line where it stopped (the last line when it ran off the end), or
+ * NULL when the text parsed. */
+const char *scene_syntax_error(const scene_locator *l, int *line);
 #endif
