@@ -230,6 +230,7 @@ fuzz-cli: $(LIB)
 	  $(LIB) -o $(BUILD)/fuzz/fuzz_cli $(PKG_LIBS) -lOpenCL -lm
 	printf '%s\0' run scene.yaml -o out.h5 > $(BUILD)/fuzz/cli-corpus/seed1
 	printf '%s\0' run --restart ck.ckpt.h5 --checkpoint ck.h5 --device 1 > $(BUILD)/fuzz/cli-corpus/seed2
+	printf '%s\0' run scene.yaml -o out.h5 --checkpoint out.xmf.part > $(BUILD)/fuzz/cli-corpus/seed3
 	./$(BUILD)/fuzz/fuzz_cli -runs=$(FUZZ_RUNS) -max_len=8400 -timeout=20 -artifact_prefix=$(CURDIR)/$(BUILD)/fuzz/ -dict=$(CURDIR)/tests/fuzz_cli.dict \
 	  $(CURDIR)/$(BUILD)/fuzz/cli-corpus
 
