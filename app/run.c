@@ -220,8 +220,8 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
                 return EXIT_USAGE;
             }
         if (stat(outs[q], &st) == 0 && S_ISDIR(st.st_mode)) { /* cannot be written as a file: exit 74 */
-            snprintf(err, errlen, "%s: cannot write it: is a directory; -o names the HDF5 file to write (e.g. "
-                                  "%s/run.h5)", shown, shown);
+            snprintf(err, errlen, "%s: cannot write it: is a directory; %s names the file to write (e.g. %s/run.h5)",
+                     shown, q >= 4 ? "--checkpoint" : "-o", shown);
             return EXIT_IO;
         }
         /* a device, pipe or socket would be replaced by a regular file when the run renames its output into place
