@@ -81,56 +81,60 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
 }
 
 /* A generated mesh whose springs would make the time step fail, refused before it is made (a tube of 1.9e6 vertices
- * took 17.6 s and 1.35 GB in dem check to be refused by parse_time). Only a sure refusal: an upper bound on the
- * stability bound that parse_time computes, from what is known before the mesh exists. Its lightest vertex weighs at
- * most the mean, density x thickness x area / vertices (the area over-estimated: the polygon lies inside the tube or
- * sphere), so a spring at it has a period of at most 2 pi sqrt(mean / k), k = sqrt(3)/2 E t, and the bound (a tenth
- * of the shortest period) is at most a tenth of that. time.dt above it: refused. With dt_rayleigh, dt follows the
- * Rayleigh times of all particles, the vertices' included, pi sqrt(3 m / (4 pi r G)) / (0.1631 nu + 0.8766) at mass m
- * and radius r (host/sim_setup.c): the lightest vertex's Rayleigh time over its spring period is known without its
- * mass, and the spheres' is known; both above the bound, and the scene's one membrane (no other adds vertices of
- * unknown weight), the step is sure to be refused too. A fixed membrane has no spring period: never refused here. */
+ * took 17.6 s and 1.35 GB in dem check to be refused by parse_time once made). Only a sure refusal, with margins: the
+ * stability bound parse_time will compute is at most a tenth of the shortest spring period, 2 pi sqrt(mu / k) with
+ * k = sqrt(3)/2 E t and mu at most the mass of the spring's free end; no vertex of a generated sheet or tube weighs
+ * more than an inner one, density x thickness x the area of its six triangles / 3 = rho t dx dy (dx the spacing along
+ * a row or ring, dy between rows), taken 1.5 times for the triangles' slant. A time.dt above that bound: refused.
+ * With dt_rayleigh, dt = f x the smallest Rayleigh time of all particles, pi sqrt(3 m / (4 pi r G)) / (0.1631 nu +
+ * 0.8766) for a vertex of mass m and radius r (host/sim_setup.c): at least the lightest vertex's - a tube's rims
+ * weigh half an inner vertex, a sheet's corners a twelfth (taken a third and a sixteenth) - with r at most a quarter
+ * of one edge (the default vertex_radius is a quarter of the shortest), and the spheres' own; only the scene's one
+ * membrane, so that no other adds vertices of unknown weight. Spheres (irregular vertex areas) and fixed membranes
+ * (no spring period) are left to parse_time, which checks every scene exactly once the mesh exists. */
 static int mesh_dt_check(const scene *sc, dem_sim *s, unsigned k, const dem_mesh_spec *sp, char *err, size_t errlen)
 {
     const scene_membrane *m = &sc->f->membranes[k];
     const scene_membrane_material *mt = &m->material;
     const scene_time *t = &sc->f->time;
     int has_dt = scene_has(sc->loc, "time.dt"), has_fr = scene_has(sc->loc, "time.dt_rayleigh");
-    double nv = dem_mesh_vertices(sp), S = scene_mass_scale(sc), E = mt->young, th = mt->thickness;
-    double area = sp->kind == DEM_MESH_TUBE ? 2 * M_PI * sp->a * sp->b : sp->kind == DEM_MESH_SHEET ? sp->a * sp->b
-                                                                       : 4 * M_PI * sp->a * sp->a;
-    double kspring = sqrt(3.0) / 2 * E * th, mean = mt->density * S * th * area / nv;
-    double bound = 2 * M_PI * sqrt(mean / kspring) / 10 * 1.001; /* a margin for rounding */
-    if (m->fixed || has_dt == has_fr || !(bound > 0) || !isfinite(bound) || !(mt->poisson > -1))
+    if (m->fixed || has_dt == has_fr || sp->kind == DEM_MESH_SPHERE || !(mt->poisson > -1) || !(mt->poisson <= 0.5))
         return 0; /* nothing sure to say: parse_time decides (and names what is wrong) */
-    char p[128];
-    snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
-    double r = scene_has(sc->loc, p) ? mt->vertex_radius /* else a quarter of the shortest edge, at most of one edge */
-               : sp->kind == DEM_MESH_TUBE ? 0.25 * 2 * sp->a * sin(M_PI / round(fmax(3, 2 * M_PI * sp->a / sp->edge)))
-               : sp->kind == DEM_MESH_SHEET ? 0.25 * sp->a / round(fmax(1, sp->a / sp->edge)) : NAN;
-    double G = E / (2 * (1 + mt->poisson)), c = 0.1631 * mt->poisson + 0.8766;
-    double rayleigh_per_period = M_PI * sqrt(3 / (4 * M_PI * r * G)) / c / (2 * M_PI / 10 / sqrt(kspring));
-    double dt = t->dt, spheres = INFINITY;
+    int tube = sp->kind == DEM_MESH_TUBE;
+    double s_ = sp->edge, row = s_ * sqrt(3.0) / 2; /* the grid of host/mesh.c (grid_counts) */
+    double n1 = tube ? fmax(3, round(2 * M_PI * sp->a / s_)) : fmax(2, round(sp->a / s_) + 1);
+    double n2 = fmax(2, round(sp->b / row) + 1);
+    double dx = tube ? 2 * sp->a * sin(M_PI / n1) : sp->a / (n1 - 1), dy = sp->b / (n2 - 1);
+    double inner = mt->density * scene_mass_scale(sc) * mt->thickness * dx * dy, E = mt->young;
+    double kspring = sqrt(3.0) / 2 * E * mt->thickness;
+    double bound = 2 * M_PI * sqrt(1.5 * inner / kspring) / 10; /* at least parse_time's stability bound */
+    if (!(bound > 0) || !isfinite(bound))
+        return 0;
+    double dt = t->dt;
+    char p[128], given[128];
+    snprintf(given, sizeof given, "time.dt gives %.3g s", dt);
     if (has_fr) {
+        snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
+        double r = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * dx;
+        double G = E / (2 * (1 + mt->poisson)), c = 0.1631 * mt->poisson + 0.8766, light = (tube ? 1.0 / 3 : 1.0 / 16);
+        double vertex = M_PI * sqrt(3 * light * inner / (4 * M_PI * r * G)) / c, spheres = INFINITY;
         dem_time_scales ts; /* the particles so far: spheres only (one membrane), so no spring or hinge to weigh */
-        if (sc->f->membranes_count != 1 || !(t->dt_rayleigh > 0) || !(t->dt_rayleigh * rayleigh_per_period > 1.001) ||
+        if (sc->f->membranes_count != 1 || !(t->dt_rayleigh > 0) || !(r > 0) || !isfinite(vertex) ||
             (dem_count(s) > 0 && dem_time_scales_get(s, 0, &ts)))
             return 0;
-        spheres = dem_count(s) > 0 ? ts.rayleigh_time : INFINITY;
-        dt = t->dt_rayleigh * spheres;
+        if (dem_count(s) > 0)
+            spheres = ts.rayleigh_time;
+        dt = t->dt_rayleigh * fmin(spheres, vertex); /* at most what parse_time will take */
+        snprintf(given, sizeof given, "time.dt_rayleigh %g gives at least %.3g s (its lightest vertex's Rayleigh "
+                                      "time %.3g s)", t->dt_rayleigh, dt, vertex);
     }
-    if (!(dt > bound) || !isfinite(bound))
+    if (!(dt > bound))
         return 0;
     snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
-    char given[96];
-    if (has_dt)
-        snprintf(given, sizeof given, "time.dt gives %.3g s", dt);
-    else
-        snprintf(given, sizeof given, "time.dt_rayleigh (%g of the Rayleigh time) gives more", t->dt_rayleigh);
-    return scene_fail(sc, err, errlen, p, "edges of %g m make %.0f vertices of %.3g kg or less (the lightest), whose "
-                      "springs (%.3g N/m) need a time step below %.3g s (a tenth of their period); the scene's %s: "
-                      "refused before the mesh is made. Use longer edges, a smaller time step, or mass scaling",
-                      sp->edge, nv, mean, kspring, bound, given);
+    return scene_fail(sc, err, errlen, p, "edges of %g m make %.0f vertices of at most %.3g kg, whose springs (%.3g "
+                      "N/m) need a time step below %.3g s (a tenth of their shortest period); the scene's %s: refused "
+                      "before the mesh is made. Use longer edges, a smaller time step, or mass scaling", sp->edge,
+                      dem_mesh_vertices(sp), 1.5 * inner, kspring, bound, given);
 }
 
 static int find_wall(const scene *sc, const char *name, const int *first_wall)
