@@ -44,7 +44,7 @@ HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli bench bench-peer clean validate conventions stability accuracy tablet-models tablet-mass-scale
+.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer clean validate conventions stability accuracy tablet-models tablet-mass-scale
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -192,7 +192,7 @@ test-paraview: $(BUILD)/dem
 # reader, the command line and output paths. The harnesses are instrumented; the library they call (libdem.a) is
 # linked as built.
 FUZZ_RUNS ?= 1000000
-fuzz: fuzz-scene fuzz-checkpoint fuzz-cli
+fuzz: fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5
 
 # libFuzzer on the scene loader (the corpus starts from scenes/).
 fuzz-scene: $(LIB)
@@ -230,8 +230,33 @@ fuzz-cli: $(LIB)
 	  $(LIB) -o $(BUILD)/fuzz/fuzz_cli $(PKG_LIBS) -lOpenCL -lm
 	printf '%s\0' run scene.yaml -o out.h5 > $(BUILD)/fuzz/cli-corpus/seed1
 	printf '%s\0' run --restart ck.ckpt.h5 --checkpoint ck.h5 --device 1 > $(BUILD)/fuzz/cli-corpus/seed2
+	printf '%s\0' run scene.yaml -o out.h5 --checkpoint out.xmf.part > $(BUILD)/fuzz/cli-corpus/seed3
 	./$(BUILD)/fuzz/fuzz_cli -runs=$(FUZZ_RUNS) -max_len=8400 -timeout=20 -artifact_prefix=$(CURDIR)/$(BUILD)/fuzz/ -dict=$(CURDIR)/tests/fuzz_cli.dict \
 	  $(CURDIR)/$(BUILD)/fuzz/cli-corpus
+
+# libFuzzer on the meshes (tests/fuzz_mesh.c): the generated specs (sheet, tube, sphere from any sizes) and the mesh
+# file readers (OBJ, ASCII and binary STL), FUZZ_RUNS executions. The mesh sources are compiled in, instrumented.
+fuzz-mesh: $(LIB)
+	@bash scripts/install-deps.sh --fuzz
+	@mkdir -p $(BUILD)/fuzz/mesh-corpus
+	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
+	  -DCL_TARGET_OPENCL_VERSION=120 -Icommon -Ibackend -Ihost tests/fuzz_mesh.c host/mesh.c host/mesh_file.c \
+	  -o $(BUILD)/fuzz/fuzz_mesh -lm
+	printf '\001v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > $(BUILD)/fuzz/mesh-corpus/obj
+	printf '\003solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n' \
+	  > $(BUILD)/fuzz/mesh-corpus/stl
+	./$(BUILD)/fuzz/fuzz_mesh -runs=$(FUZZ_RUNS) -max_len=2048 -timeout=20 -artifact_prefix=$(BUILD)/fuzz/ \
+	  $(BUILD)/fuzz/mesh-corpus
+
+# libFuzzer on every HDF5 text and array reader (tests/fuzz_h5.c: app/h5util.c's readers on datasets and attributes
+# of any type and shape, in a file held in memory), FUZZ_RUNS executions.
+fuzz-h5: $(DEPS_STAMP)
+	@bash scripts/install-deps.sh --fuzz
+	@mkdir -p $(BUILD)/fuzz/h5-corpus
+	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iapp \
+	  $(PKG_CFLAGS) tests/fuzz_h5.c app/h5util.c -o $(BUILD)/fuzz/fuzz_h5 $(PKG_LIBS)
+	./$(BUILD)/fuzz/fuzz_h5 -runs=$(FUZZ_RUNS) -max_len=512 -timeout=20 -artifact_prefix=$(BUILD)/fuzz/ \
+	  $(BUILD)/fuzz/h5-corpus
 
 # make install [PREFIX=/usr/local] [DESTDIR=]: the library, its public headers, the kernel sources it reads at run
 # time (PREFIX/share/libdem, compiled into the installed library as its default source folder: that one object is

@@ -11,7 +11,9 @@
 #include <stdio.h>
 #include <errno.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static int sync_file(const char *path)
@@ -119,11 +121,71 @@ static int read_optional(hid_t g, const char *name, hid_t real_t, size_t want, l
     return h5_read(g, name, real_t, *out, want);
 }
 
+/* The first element of a[count] (reals of rs bytes) that is not finite, or -1 */
+static long first_nonfinite(const void *a, size_t count, int rs, double *value)
+{
+    for (size_t k = 0; a && k < count; k++) {
+        double v = rs == 8 ? ((const double *)a)[k] : (double)((const float *)a)[k];
+        if (!isfinite(v))
+            return *value = v, (long)k;
+    }
+    return -1;
+}
+
+/* Every number restored is finite and every radius > 0: a nan wall position would silently stop the wall acting (and
+ * be written to the next checkpoint), a nan velocity fail the run steps later, an infinite spin run on. Refused here
+ * with the dataset's name (exit 65), before anything reaches the device. */
+static int check_finite(const checkpoint *ck, const char *path, char *err, size_t errlen)
+{
+    const dem_state *st = &ck->st;
+    size_t n = (size_t)st->n, nw = (size_t)st->nwalls, np = (size_t)st->npairs, rs = (size_t)st->real_size;
+    const struct {
+        const char *name;
+        const void *a;
+        size_t count;
+        int size; /* 8 for the doubles the file holds whatever the run's precision */
+    } arrays[] = {
+        {"x", st->x, 3 * n, st->real_size}, {"v", st->v, 3 * n, st->real_size}, {"w", st->w, 3 * n, st->real_size},
+        {"force", st->force, 3 * n, st->real_size}, {"torque", st->torque, 3 * n, st->real_size},
+        {"wall_force", st->wall_force, 3 * nw, st->real_size}, {"wall_pos", st->wall_pos, 3 * nw, 8},
+        {"wall_normal_force", st->wall_nforce, nw, st->real_size},
+        {"wall_stage_from", st->has_stages ? st->wall_stage_from : NULL, 3 * nw, 8},
+        {"pair_hist", st->pair_hist, 3 * np, st->real_size}, {"wall_hist", st->wall_hist, st->wall_hist_bytes / rs,
+                                                                st->real_size},
+        {"pair_rec", st->pair_rec, DEM_PAIR_RECORD_REALS * np, st->real_size},
+        {"wall_pf", st->wall_pf, st->wall_pf_bytes / rs, st->real_size},
+        {"pair_mc_fn", st->has_mc ? st->pair_mc_fn : NULL, np, st->real_size},
+        {"wall_mc_fn", st->has_mc ? st->wall_mc_fn : NULL, st->wall_mc_fn_bytes / rs, st->real_size},
+        {"pair_mc_disp", st->pair_mc_disp, 2 * np, st->real_size},
+        {"wall_mc_disp", st->wall_mc_disp, st->wall_mc_disp_bytes / rs, st->real_size},
+        {"patch_hist", st->patch_hist, 3 * (size_t)st->npatch, st->real_size}, {"radius", ck->radius, n, 8},
+    };
+    for (size_t q = 0; q < sizeof arrays / sizeof arrays[0]; q++) {
+        double v = 0;
+        long k = first_nonfinite(arrays[q].a, arrays[q].count, arrays[q].size, &v);
+        if (k >= 0)
+            return snprintf(err, errlen, "%s: /state/%s: element %ld is %g: a checkpoint holds finite numbers only "
+                            "(damaged or edited)", path, arrays[q].name, k, v), 1;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (!(ck->radius[i] > 0))
+            return snprintf(err, errlen, "%s: /state/radius: element %zu is %g: radii are > 0 (damaged or edited)",
+                            path, i, ck->radius[i]), 1;
+    return 0;
+}
+
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
 {
     memset(ck, 0, sizeof *ck);
     if (access(path, R_OK) != 0) { /* missing or unreadable: exit 66, unlike a damaged file (65) */
         snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path, strerror(errno));
+        return 1;
+    }
+    struct stat sb; /* a pipe would block the open forever, a device be read without end: regular files only */
+    int found = stat(path, &sb) == 0;
+    if (!found || !S_ISREG(sb.st_mode)) {
+        snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path,
+                 found ? "not a regular file (a folder, pipe, socket or device)" : strerror(errno));
         return 1;
     }
     H5E_auto2_t old;
@@ -239,6 +301,7 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
     }
     if (g >= 0)
         H5Gclose(g);
+    const char *what = NULL;
     if (!rc) {
         hid_t sg = H5Lexists(f, "scene", H5P_DEFAULT) > 0 ? H5Gopen2(f, "scene", H5P_DEFAULT) : -1;
         ck->scene_text = sg >= 0 ? h5_read_text(sg, "text") : NULL;
@@ -251,10 +314,19 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         if (sg >= 0)
             H5Gclose(sg);
         rc = !ck->scene_text || !ck->scene_path || !model_ok; /* a model that cannot be read: damaged */
+        what = !ck->scene_text ? "/scene/text" : !ck->scene_path ? "/scene/path" : !model_ok ? "/scene model" : NULL;
     }
     H5Fclose(f);
     if (rc) {
-        snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
+        if (what) /* the scene's text, path or model: not one fixed-length string */
+            snprintf(err, errlen, "%s: incomplete or damaged checkpoint: %s is missing or not one fixed-length string",
+                     path, what);
+        else
+            snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
+        checkpoint_free(ck);
+        return 1;
+    }
+    if (check_finite(ck, path, err, errlen)) {
         checkpoint_free(ck);
         return 1;
     }

@@ -231,8 +231,11 @@ char *h5_read_text(hid_t parent, const char *name)
     if (H5Lexists(parent, name, H5P_DEFAULT) <= 0)
         return NULL;
     hid_t d = H5Dopen2(parent, name, H5P_DEFAULT), t = d >= 0 ? H5Dget_type(d) : -1;
-    /* a fixed-length string, as h5_write_text writes it; a variable-length one would read as a pointer */
-    size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) == 0 ? H5Tget_size(t) : 0;
+    /* one fixed-length string, as h5_write_text writes it: a variable-length one would read as a pointer, and an
+     * array of them would be read whole into the buffer sized for one (a crafted /scene/text overwrote the heap) */
+    size_t n = t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) == 0 && h5_count(parent, name) == 1
+                   ? H5Tget_size(t)
+                   : 0;
     char *buf = n ? calloc(n + 1, 1) : NULL;
     if (buf && H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
         free(buf);

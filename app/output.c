@@ -374,13 +374,32 @@ static void close_all(output *o)
     o->frames = o->series = o->contacts = 0;
 }
 
+/* s with XML's five special characters as entities (&amp; &lt; &gt; &quot; &apos;), malloc'd: the HDF5 file's name
+ * goes into the XDMF sidecar as element text, and -o '<&"x>.h5' made it invalid XML. (Control characters and invalid
+ * UTF-8, which XML cannot hold at all, are refused with the output path: run_output_paths.) */
+static char *xml_escaped(const char *s)
+{
+    char *e = malloc(6 * strlen(s) + 1), *q = e;
+    for (; e && *s; s++) {
+        const char *ent = *s == '&' ? "&amp;" : *s == '<' ? "&lt;" : *s == '>' ? "&gt;" : *s == '"' ? "&quot;"
+                          : *s == '\'' ? "&apos;" : NULL;
+        if (ent)
+            q += sprintf(q, "%s", ent);
+        else
+            *q++ = *s;
+    }
+    if (e)
+        *q = 0;
+    return e;
+}
+
 /* XDMF 2: a temporal collection of point sets; every attribute is a hyperslab of the frame arrays. */
 static int write_xdmf(const output *o, const char *xmf_path, const double *times)
 {
-    FILE *fp = fopen(xmf_path, "w");
+    char *h5name = xml_escaped(strrchr(o->path, '/') ? strrchr(o->path, '/') + 1 : o->path);
+    FILE *fp = h5name ? fopen(xmf_path, "w") : NULL;
     if (!fp)
-        return -1;
-    const char *h5name = strrchr(o->path, '/') ? strrchr(o->path, '/') + 1 : o->path;
+        return free(h5name), -1;
     long F = o->nframes;
     fprintf(fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n<Domain>\n"
                 "<Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
@@ -474,6 +493,7 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
         fprintf(fp, "</Grid>\n");
     }
     fprintf(fp, "</Domain>\n</Xdmf>\n");
+    free(h5name);
     return fclose(fp) ? -1 : 0;
 }
 

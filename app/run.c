@@ -104,6 +104,39 @@ static int same_file(const char *a, const char *b)
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
+/* path with its folder resolved (links, "..", "./"), so that two spellings of a file not yet there compare equal;
+ * path itself when its folder cannot be resolved */
+static void resolved(const char *path, char *buf, size_t len)
+{
+    char dir[RUN_PATH_LEN + 16], base[RUN_PATH_LEN + 16], *real;
+    snprintf(dir, sizeof dir, "%s", path);
+    snprintf(base, sizeof base, "%s", path);
+    if ((real = realpath(dirname(dir), NULL)))
+        snprintf(buf, len, "%s/%s", real, basename(base));
+    else
+        snprintf(buf, len, "%s", path);
+    free(real);
+}
+
+/* Can s stand in XML text (the XDMF sidecar names the HDF5 file)? Valid UTF-8 (no overlong forms or surrogates) and
+ * no control character: XML 1.0 has no way to write those. */
+static int xml_text_ok(const char *s)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    while (*u) {
+        int n = *u < 0x80 ? 0 : (*u & 0xe0) == 0xc0 ? 1 : (*u & 0xf0) == 0xe0 ? 2 : (*u & 0xf8) == 0xf0 ? 3 : -1;
+        if (n < 0 || (n == 0 && (*u < 0x20 || *u == 0x7f)) || (n == 1 && *u < 0xc2) ||
+            (n == 2 && *u == 0xe0 && u[1] < 0xa0) || (n == 2 && *u == 0xed && u[1] >= 0xa0) ||
+            (n == 3 && ((*u == 0xf0 && u[1] < 0x90) || (*u == 0xf4 && u[1] >= 0x90) || *u > 0xf4)))
+            return 0;
+        for (int k = 1; k <= n; k++)
+            if ((u[k] & 0xc0) != 0x80)
+                return 0;
+        u += n + 1;
+    }
+    return 1;
+}
+
 void run_output_files(const char *outp, const char *ckp, char outs[6][RUN_OUT_LEN])
 {
     snprintf(outs[0], RUN_OUT_LEN, "%s", outp);
@@ -128,6 +161,13 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
         char shown[CLI_SHOW_LEN];
         snprintf(err, errlen, "%s: the output path has %d characters; at most %d are accepted",
                  cli_show(outp, shown, 200), l, DEM_MAX_PATH);
+        return EXIT_USAGE;
+    }
+    const char *base = strrchr(outp, '/') ? strrchr(outp, '/') + 1 : outp;
+    if (!xml_text_ok(base)) {
+        char shown[CLI_SHOW_LEN];
+        snprintf(err, errlen, "%s: the output's name has a control character or is not UTF-8; the XDMF sidecar (XML) "
+                              "names it and cannot hold that: choose another -o", cli_show(outp, shown, 200));
         return EXIT_USAGE;
     }
     if (o->checkpoint)
@@ -162,13 +202,27 @@ int run_output_paths(const scene *sc, const run_opts *o, char outp[RUN_PATH_LEN]
             scene_file_path(sc, sc->f->membranes[k].mesh.path, mesh[k], sizeof mesh[k]);
             in[nin] = mesh[k], what[nin++] = "a mesh file the scene reads";
         }
+    static const char *const role[6] = {"the output", "the output's .part", "the XDMF sidecar",
+                                        "the XDMF sidecar's .part", "the checkpoint", "the checkpoint's .tmp"};
+    char real[6][RUN_OUT_LEN + 16];
+    for (int q = 0; q < 6; q++)
+        resolved(outs[q], real[q], sizeof real[q]);
     for (int q = 0; q < 6; q++) {
         struct stat st;
         char shown[CLI_SHOW_LEN], shown2[CLI_SHOW_LEN];
         cli_show(outs[q], shown, sizeof shown);
-        if (stat(outs[q], &st) == 0 && S_ISDIR(st.st_mode)) {
-            snprintf(err, errlen, "%s: is a directory; -o names the HDF5 file to write (e.g. %s/run.h5)", shown, shown);
-            return EXIT_USAGE;
+        /* one file for two of the run's outputs (--checkpoint naming OUT.h5, OUT.xmf or OUT.h5.part): the later one
+         * would replace the earlier, and the run end with one of them lost */
+        for (int r = 0; r < q; r++)
+            if (!strcmp(real[q], real[r]) || same_file(outs[q], outs[r])) {
+                snprintf(err, errlen, "%s: the run would write %s and %s to this one file; choose another %s", shown,
+                         role[r], role[q], q >= 4 && r < 4 ? "--checkpoint" : "-o");
+                return EXIT_USAGE;
+            }
+        if (stat(outs[q], &st) == 0 && S_ISDIR(st.st_mode)) { /* cannot be written as a file: exit 74 */
+            snprintf(err, errlen, "%s: cannot write it: is a directory; %s names the file to write (e.g. %s/run.h5)",
+                     shown, q >= 4 ? "--checkpoint" : "-o", shown);
+            return EXIT_IO;
         }
         /* a device, pipe or socket would be replaced by a regular file when the run renames its output into place
          * (as root, -o /dev/null would remove /dev/null) */
@@ -533,6 +587,14 @@ static int phase_configure(run_ctx *c)
         return fail_with(pc, c->err);
     if (!c->have_ck)
         return 0;
+    /* a finished run's checkpoint has nothing left to run: refused, not a run of no steps that exits 0 and writes
+     * neither output nor checkpoint */
+    if (c->ck.st.step >= run->steps) {
+        snprintf(c->err, sizeof c->err, "%s: the checkpoint is at step %ld, %s of the scene (%ld steps of %g s): "
+                 "nothing is left to run", o->restart, c->ck.st.step, c->ck.st.step > run->steps ? "past the end"
+                 : "the end", run->steps, run->dt);
+        return fail_with(EXIT_BAD_INPUT, c->err);
+    }
     if (c->ck.st.n != dem_count(c->s) || c->ck.st.real_size != (int)run->cfg.precision) {
         snprintf(c->err, sizeof c->err, "%s: the checkpoint has %d particles in %s; the scene gives %d in %s",
                  o->restart, c->ck.st.n, c->ck.st.real_size == 8 ? "fp64" : "fp32", dem_count(c->s),
@@ -557,11 +619,6 @@ static int phase_start(run_ctx *c)
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
-    }
-    if (c->have_ck && c->ck.st.step > run->steps) {
-        snprintf(c->err, sizeof c->err, "%s: the checkpoint is at step %ld, past the end of the scene (%ld steps of "
-                 "%g s)", o->restart, c->ck.st.step, run->steps, run->dt);
-        return fail_with(EXIT_BAD_INPUT, c->err);
     }
     if (c->have_ck && dem_state_set(c->s, &c->ck.st)) {
         snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));

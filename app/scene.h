@@ -9,6 +9,7 @@
 #define DEM_SCENE_H
 #include <stdbool.h>
 #include "dem.h"
+#include <stdio.h>
 #include <stddef.h>
 
 typedef struct {
@@ -246,6 +247,10 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
 void scene_free(scene *sc);
 /* A file the scene names (a CSV, a mesh): an absolute path as it is, else relative to the scene file's folder */
 void scene_file_path(const scene *sc, const char *name, char *buf, size_t len);
+/* path opened for reading ("rb") when it is a regular file; else NULL with the reason in why (strerror, or "not a
+ * regular file ..."): a named pipe would block the open and the read forever, a device (/dev/zero) be read without
+ * end. The scene, its CSV files and its mesh files are opened this way. */
+FILE *scene_open_regular(const char *path, char *why, size_t len);
 /* Library wall k's name, as the output's wall_names lists it (a box's faces "NAME x-" ...) */
 void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
 /* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */
@@ -266,4 +271,7 @@ int scene_has(const scene_locator *l, const char *path);
 int scene_scalar(const scene_locator *l, size_t k, const char **path, const char **value, int *line);
 /* The first key given twice in one mapping: returns its second line (0 if none), with its path and first line. */
 int scene_duplicate(const scene_locator *l, const char **path, int *first);
+/* A YAML syntax error: libyaml's reason and the line where it stopped (the last line when it ran off the end), or
+ * NULL when the text parsed. */
+const char *scene_syntax_error(const scene_locator *l, int *line);
 #endif

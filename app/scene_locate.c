@@ -19,6 +19,7 @@ struct scene_locator {
     size_t n, cap;
     int dup_line, dup_first; /* a key given twice in one mapping: its second line and its first */
     char dup_path[512];
+    char problem[256]; /* libyaml's reason for a syntax error ("" when none) */
 };
 
 static void add(scene_locator *l, const char *path, int line)
@@ -84,7 +85,12 @@ scene_locator *scene_locate(const char *text, size_t len)
                 for (size_t k = 0; k < p.problem_offset && k < len; k++)
                     at += text[k] == '\n';
             }
-            add(l, "#error", at);
+            /* an error at the end of the text (a truncated file) is the last line's, not the line after it */
+            int last = 1;
+            for (size_t k = 0; k + 1 < len; k++)
+                last += text[k] == '\n';
+            add(l, "#error", at < last ? at : last);
+            snprintf(l->problem, sizeof l->problem, "%s", p.problem ? p.problem : "invalid YAML");
             break;
         }
         int line = (int)ev.start_mark.line + 1;
@@ -197,3 +203,9 @@ int scene_line(const scene_locator *l, const char *path)
 }
 
 int scene_has(const scene_locator *l, const char *path) { return scene_line(l, path) > 0; }
+
+const char *scene_syntax_error(const scene_locator *l, int *line)
+{
+    *line = scene_line(l, "#error");
+    return *line > 0 ? l->problem : NULL;
+}

@@ -48,19 +48,9 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
         if (!scene_has(sc->loc, p))
             return scene_fail(sc, err, errlen, p, "a %s mesh needs '%s'", ms->kind, kinds[q].need[j]);
     }
-    /* the vertices it would have, roughly (area over that of an equilateral triangle's share of a vertex), before
-     * anything is made: the cap of generated particle groups (scene_particles.c) holds for meshes too */
-    double area = q == 0 ? 2 * M_PI * ms->radius * ms->height : q == 1 ? ms->size[0] * ms->size[1]
-                                                                       : 4 * M_PI * ms->radius * ms->radius;
-    double nv = area / (0.433 * ms->edge * ms->edge);
     if (!(ms->edge > 0) || !isfinite(ms->edge)) {
         snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
         return scene_fail(sc, err, errlen, p, "must be > 0 m and finite");
-    }
-    if (isfinite(nv) && nv > DEM_SCENE_MAX_GENERATED) {
-        snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
-        return scene_fail(sc, err, errlen, p, "edges of %g m make about %.3g vertices (at most %d): use longer edges",
-                          ms->edge, nv, DEM_SCENE_MAX_GENERATED);
     }
     memset(sp, 0, sizeof *sp);
     sp->kind = kinds[q].id;
@@ -68,7 +58,84 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
     sp->a = q == 1 ? ms->size[0] : ms->radius;
     sp->b = q == 1 ? ms->size[1] : ms->height;
     sp->edge = ms->edge;
+    const char *bad = NULL; /* the centre and the sizes, refused at their own keys */
+    for (int j = 0; j < 3; j++)
+        bad = !isfinite(sp->center[j]) ? "center" : bad;
+    if (!bad && !(sp->a > 0 && isfinite(sp->a)))
+        bad = q == 1 ? "size" : "radius";
+    if (!bad && q != 2 && !(sp->b > 0 && isfinite(sp->b)))
+        bad = q == 1 ? "size" : "height";
+    if (bad) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.%s", k, bad);
+        return scene_fail(sc, err, errlen, p, strcmp(bad, "center") ? "must be > 0 m and finite" : "must be finite [m]");
+    }
+    /* the vertices it will have, counted exactly (dem_mesh_vertices) before anything is made: the cap of generated
+     * particle groups (scene_particles.c) holds for meshes too */
+    double nv = dem_mesh_vertices(sp);
+    if (!(nv <= DEM_SCENE_MAX_GENERATED)) {
+        snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
+        return scene_fail(sc, err, errlen, p, "edges of %g m make %.3g vertices (at most %d): use longer edges",
+                          ms->edge, nv, DEM_SCENE_MAX_GENERATED);
+    }
     return 0;
+}
+
+/* A generated mesh whose springs would make the time step fail, refused before it is made (a tube of 1.9e6 vertices
+ * took 17.6 s and 1.35 GB in dem check to be refused by parse_time once made). Only a sure refusal, with margins: the
+ * stability bound parse_time will compute is at most a tenth of the shortest spring period, 2 pi sqrt(mu / k) with
+ * k = sqrt(3)/2 E t and mu at most the mass of the spring's free end; no vertex of a generated sheet or tube weighs
+ * more than an inner one, density x thickness x the area of its six triangles / 3 = rho t dx dy (dx the spacing along
+ * a row or ring, dy between rows), taken 1.5 times for the triangles' slant. A time.dt above that bound: refused.
+ * With dt_rayleigh, dt = f x the smallest Rayleigh time of all particles, pi sqrt(3 m / (4 pi r G)) / (0.1631 nu +
+ * 0.8766) for a vertex of mass m and radius r (host/sim_setup.c): at least the lightest vertex's - a tube's rims
+ * weigh half an inner vertex, a sheet's corners a twelfth (taken a third and a sixteenth) - with r at most a quarter
+ * of one edge (the default vertex_radius is a quarter of the shortest), and the spheres' own; only the scene's one
+ * membrane, so that no other adds vertices of unknown weight. Spheres (irregular vertex areas) and fixed membranes
+ * (no spring period) are left to parse_time, which checks every scene exactly once the mesh exists. */
+static int mesh_dt_check(const scene *sc, dem_sim *s, unsigned k, const dem_mesh_spec *sp, char *err, size_t errlen)
+{
+    const scene_membrane *m = &sc->f->membranes[k];
+    const scene_membrane_material *mt = &m->material;
+    const scene_time *t = &sc->f->time;
+    int has_dt = scene_has(sc->loc, "time.dt"), has_fr = scene_has(sc->loc, "time.dt_rayleigh");
+    if (m->fixed || has_dt == has_fr || sp->kind == DEM_MESH_SPHERE || !(mt->poisson > -1) || !(mt->poisson <= 0.5))
+        return 0; /* nothing sure to say: parse_time decides (and names what is wrong) */
+    int tube = sp->kind == DEM_MESH_TUBE;
+    double s_ = sp->edge, row = s_ * sqrt(3.0) / 2; /* the grid of host/mesh.c (grid_counts) */
+    double n1 = tube ? fmax(3, round(2 * M_PI * sp->a / s_)) : fmax(2, round(sp->a / s_) + 1);
+    double e = tube ? s_ : sp->a / (n1 - 1); /* a sheet's edge: a over whole steps, its rows e sqrt(3)/2 apart */
+    double n2 = fmax(2, round(sp->b / (tube ? row : e * sqrt(3.0) / 2)) + 1);
+    double dx = tube ? 2 * sp->a * sin(M_PI / n1) : e, dy = tube ? sp->b / (n2 - 1) : e * sqrt(3.0) / 2;
+    double inner = mt->density * scene_mass_scale(sc) * mt->thickness * dx * dy, E = mt->young;
+    double kspring = sqrt(3.0) / 2 * E * mt->thickness;
+    double bound = 2 * M_PI * sqrt(1.5 * inner / kspring) / 10; /* at least parse_time's stability bound */
+    if (!(bound > 0) || !isfinite(bound))
+        return 0;
+    double dt = t->dt;
+    char p[128], given[128];
+    snprintf(given, sizeof given, "time.dt gives %.3g s", dt);
+    if (has_fr) {
+        snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
+        double r = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * dx;
+        double G = E / (2 * (1 + mt->poisson)), c = 0.1631 * mt->poisson + 0.8766, light = (tube ? 1.0 / 3 : 1.0 / 16);
+        double vertex = M_PI * sqrt(3 * light * inner / (4 * M_PI * r * G)) / c, spheres = INFINITY;
+        dem_time_scales ts; /* the particles so far: spheres only (one membrane), so no spring or hinge to weigh */
+        if (sc->f->membranes_count != 1 || !(t->dt_rayleigh > 0) || !(r > 0) || !isfinite(vertex) ||
+            (dem_count(s) > 0 && dem_time_scales_get(s, 0, &ts)))
+            return 0;
+        if (dem_count(s) > 0)
+            spheres = ts.rayleigh_time;
+        dt = t->dt_rayleigh * fmin(spheres, vertex); /* at most what parse_time will take */
+        snprintf(given, sizeof given, "time.dt_rayleigh %g gives at least %.3g s (its lightest vertex's Rayleigh "
+                                      "time %.3g s)", t->dt_rayleigh, dt, vertex);
+    }
+    if (!(dt > bound))
+        return 0;
+    snprintf(p, sizeof p, "membranes[%u].mesh.edge", k);
+    return scene_fail(sc, err, errlen, p, "edges of %g m make %.0f vertices of at most %.3g kg, whose springs (%.3g "
+                      "N/m) need a time step below %.3g s (a tenth of their shortest period); the scene's %s: refused "
+                      "before the mesh is made. Use longer edges, a smaller time step, or mass scaling", sp->edge,
+                      dem_mesh_vertices(sp), 1.5 * inner, kspring, bound, given);
 }
 
 static int find_wall(const scene *sc, const char *name, const int *first_wall)
@@ -172,6 +239,11 @@ static int read_mesh(const scene *sc, unsigned k, dem_mesh *mesh, char *err, siz
         dem_mesh_free(mesh);
         return scene_fail(sc, err, errlen, p, "must be > 0 and finite [m per unit of the file]");
     }
+    snprintf(p, sizeof p, "membranes[%u].mesh.translate", k);
+    if (!isfinite(ms->translate[0]) || !isfinite(ms->translate[1]) || !isfinite(ms->translate[2])) {
+        dem_mesh_free(mesh);
+        return scene_fail(sc, err, errlen, p, "must be finite [m]");
+    }
     for (int i = 0; i < mesh->nv; i++)
         for (int d = 0; d < 3; d++)
             mesh->x[3 * i + d] = mesh->x[3 * i + d] * scale + ms->translate[d];
@@ -219,6 +291,8 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
         dem_mesh mesh;
         char why[4600];
         snprintf(p, sizeof p, "membranes[%u].mesh", k);
+        if (e == 0 && mesh_dt_check(sc, s, k, &sp, err, errlen))
+            return 1;
         if (e == 0 && dem_mesh_make(&sp, &mesh, why, sizeof why))
             return scene_fail(sc, err, errlen, p, "%s", why);
         if (e < 0 && read_mesh(sc, k, &mesh, err, errlen))
@@ -232,8 +306,17 @@ int scene_add_membranes(const scene *sc, dem_sim *s, scene_run *run, const int *
             snprintf(p, sizeof p, "membranes[%u].model", k);
             return scene_fail(sc, err, errlen, p, "unknown model '%s' (patch or particle)", m->model);
         }
+        /* the mesh itself before its material: a vertex out of range or two corners at one point would otherwise
+         * show as a vertex_radius (a quarter of the shortest edge) of nan or 0 */
+        double se = shortest_edge(&mesh);
+        if (!(se > 0) || !isfinite(se)) {
+            dem_mesh_free(&mesh);
+            return scene_fail(sc, err, errlen, p, "its shortest edge comes out %g m: %s", se,
+                              se == 0 ? "two corners of a triangle coincide" : "its coordinates are too large (their "
+                              "squares overflow) or not finite");
+        }
         snprintf(p, sizeof p, "membranes[%u].material.vertex_radius", k);
-        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * shortest_edge(&mesh);
+        double vr = scene_has(sc->loc, p) ? mt->vertex_radius : 0.25 * se;
         dem_membrane dm = {mt->young, mt->poisson, mt->thickness, mt->density * scene_mass_scale(sc),
                            mt->restitution, mt->friction, mt->damping, mt->kel, mt->kdiss, vr, model};
         dem_membrane_info info;

@@ -59,12 +59,20 @@ int scene_check_overlaps(const scene *sc, dem_sim *s, const scene_origin *o, int
     for (unsigned k = 0; k < sc->f->walls_count; k++)
         for (int i = 0; i < n; i++) {
             double ov = wall_overlap(&sc->f->walls[k], o[i].x, o[i].r);
-            if (ov > tol * o[i].r) {
+            if (ov > tol * o[i].r) { /* at the sphere's line (a listed sphere's own, else its group's): the wall's
+                                         * is named in the message */
                 describe(sc, &o[i], who, sizeof who);
-                snprintf(p, sizeof p, "walls[%u]", k);
+                if (sc->f->particles[o[i].group].spheres_count)
+                    snprintf(p, sizeof p, "particles[%d].spheres[%d]", o[i].group, o[i].index);
+                else
+                    snprintf(p, sizeof p, "particles[%d]", o[i].group);
+                char wall[64];
+                snprintf(wall, sizeof wall, "walls[%u]", k);
+                const char *name = sc->f->walls[k].name;
                 return scene_fail(sc, err, errlen, p,
-                                  "%s (radius %g m at %g, %g, %g) overlaps this wall by %.3g %% of its radius "
-                                  "(tolerance %g %%)", who, o[i].r, o[i].x[0], o[i].x[1], o[i].x[2],
+                                  "%s (radius %g m at %g, %g, %g) overlaps wall %s%s%s%s (line %d) by %.3g %% of its "
+                                  "radius (tolerance %g %%)", who, o[i].r, o[i].x[0], o[i].x[1], o[i].x[2], wall,
+                                  name ? " '" : "", name ? name : "", name ? "'" : "", scene_line(sc->loc, wall),
                                   100 * ov / o[i].r, 100 * tol);
             }
         }

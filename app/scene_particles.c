@@ -49,11 +49,12 @@ static int load_csv(const scene *sc, dem_sim *s, origin_list *ol, int g, int mat
     const scene_particles *pg = &sc->f->particles[g];
     char file[4096];
     scene_file_path(sc, pg->csv, file, sizeof file);
-    FILE *fp = fopen(file, "r");
+    char why[256];
+    FILE *fp = scene_open_regular(file, why, sizeof why);
     if (!fp) {
         char p[64];
         snprintf(p, sizeof p, "particles[%d].csv", g);
-        return scene_fail(sc, err, errlen, p, "cannot open '%s': %s", file, strerror(errno));
+        return scene_fail(sc, err, errlen, p, "cannot open '%s': %s", file, why);
     }
     enum { C_X, C_Y, C_Z, C_R, C_D, C_VX, C_VY, C_VZ, C_RHO, C__N };
     static const char *names[C__N] = {"x", "y", "z", "radius", "diameter", "vx", "vy", "vz", "density"};
@@ -206,6 +207,8 @@ typedef struct {
 static long long cell_of(double v, double cell)
 {
     double c = floor(v / cell);
+    if (c != c) /* nan (regions are finite, so only from a bug): one cell, never an undefined conversion */
+        return 0;
     return c < -1e9 ? -1000000000LL : c > 1e9 ? 1000000000LL : (long long)c;
 }
 
@@ -289,9 +292,10 @@ static int make_region(const scene *sc, int g, const scene_generate *gen, region
     memset(rg, 0, sizeof *rg);
     if (!strcmp(gen->shape, "box")) {
         for (int d = 0; d < 3; d++)
-            if (!(gen->region.hi[d] > gen->region.lo[d])) {
+            if (!(gen->region.hi[d] > gen->region.lo[d]) || !isfinite(gen->region.lo[d]) ||
+                !isfinite(gen->region.hi[d])) { /* an infinite bound puts spheres at inf or nan */
                 snprintf(p, sizeof p, "particles[%d].generate.region", g);
-                return scene_fail(sc, err, errlen, p, "a box region needs lo < hi on every axis");
+                return scene_fail(sc, err, errlen, p, "a box region needs finite lo < hi on every axis");
             }
         memcpy(rg->lo, gen->region.lo, sizeof rg->lo);
         memcpy(rg->hi, gen->region.hi, sizeof rg->hi);
@@ -303,9 +307,12 @@ static int make_region(const scene *sc, int g, const scene_generate *gen, region
     }
     const double *a = gen->region.axis;
     double an = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    if (!(an > 0) || !(gen->region.radius > 0) || !(gen->region.height > 0)) {
+    const double *b = gen->region.base;
+    if (!(an > 0) || !isfinite(an) || !(gen->region.radius > 0) || !(gen->region.height > 0) ||
+        !isfinite(gen->region.radius) || !isfinite(gen->region.height) || !isfinite(b[0] + b[1] + b[2])) {
         snprintf(p, sizeof p, "particles[%d].generate.region", g);
-        return scene_fail(sc, err, errlen, p, "a cylinder region needs base, axis (non-zero), radius > 0, height > 0");
+        return scene_fail(sc, err, errlen, p, "a cylinder region needs a finite base, a finite non-zero axis, and "
+                                              "finite radius > 0 and height > 0");
     }
     rg->cyl = 1;
     rg->R = gen->region.radius;

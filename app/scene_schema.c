@@ -4,12 +4,16 @@
  * line is the key's own line from scene_locate.c (libyaml events), else the backtrace's innermost line. */
 #include "scene.h"
 #include <cyaml/cyaml.h>
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 static const cyaml_schema_value_t real_entry = {CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, double)};
 static const cyaml_schema_value_t string_entry = {CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 0, CYAML_UNLIMITED)};
@@ -270,7 +274,8 @@ static int check_numbers(const scene *sc, const char *path, char *err, size_t er
             snprintf(err, errlen, "%s:%d: %s: '%s' is out of range", path, line, fp, val);
             return 1;
         }
-        if (end == val || *end) {
+        const char *digits = val + (*val == '-' || *val == '+');
+        if (end == val || *end || (digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X'))) { /* strtod reads hex */
             snprintf(err, errlen, "%s:%d: %s: '%s' is not %s%s", path, line, fp, val,
                      t == CYAML_FLOAT ? "a number" : "a whole number",
                      t == CYAML_FLOAT ? " (values are plain SI numbers: write 0.004 for 4 mm, no units or '_')" : "");
@@ -336,6 +341,21 @@ static void capture_log(cyaml_log_t level, void *ctx, const char *fmt, va_list a
         snprintf(c->msg, sizeof c->msg, "%s", body);
 }
 
+/* The key written on line `line` of text ("  - key: value" or "key:"), into buf; "" when the line has none */
+static void key_on_line(const char *text, size_t len, int line, char *buf, size_t blen)
+{
+    size_t at = 0;
+    for (int l = 1; l < line && at < len; at++)
+        l += text[at] == '\n';
+    while (at < len && (text[at] == ' ' || text[at] == '-'))
+        at++;
+    size_t k = 0;
+    while (at + k < len && k + 1 < blen && (isalnum((unsigned char)text[at + k]) || text[at + k] == '_'))
+        k++;
+    int is_key = k > 0 && at + k < len && text[at + k] == ':';
+    snprintf(buf, blen, "%.*s", is_key ? (int)k : 0, text + at);
+}
+
 static char *dup_str(const char *s, size_t n)
 {
     char *d = malloc(n + 1);
@@ -364,6 +384,19 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         return NULL;
     }
     sc->loc = scene_locate(text, len);
+    int sline;
+    const char *syntax = scene_syntax_error(sc->loc, &sline);
+    if (syntax) {
+        /* a syntax error first, from libyaml's own reason and line, named by the key written on that line (the
+         * path libcyaml was in is the key before it when an indent is wrong, and the values it met before the error
+         * are half-read) */
+        char key[128];
+        key_on_line(text, len, sline, key, sizeof key);
+        snprintf(err, errlen, "%s:%d: %s%sYAML syntax error: %s (check this line's indentation, brackets and quotes, "
+                              "and the line before)", path, sline, key, key[0] ? ": " : "", syntax);
+        scene_free(sc);
+        return NULL;
+    }
     const char *dpath;
     int dfirst, dline = scene_duplicate(sc->loc, &dpath, &dfirst);
     if (dline > 0 && scene_line(sc->loc, "#error") == 0) {
@@ -429,18 +462,44 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         return NULL;
     }
     if (!sc->f) { /* an empty document loads as nothing */
-        snprintf(err, errlen, "%s:1: the scene is empty (it needs effects, materials, particles and time)", path);
+        snprintf(err, errlen, "%s:1: effects: missing: the scene is empty (it needs effects, materials, particles and "
+                              "time)", path);
         scene_free(sc);
         return NULL;
     }
     return sc;
 }
 
+FILE *scene_open_regular(const char *path, char *why, size_t len)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC); /* O_NONBLOCK: a pipe with no writer does not block */
+    struct stat sb;
+    if (fd < 0 || fstat(fd, &sb) != 0) {
+        snprintf(why, len, "%s", strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return NULL;
+    }
+    if (!S_ISREG(sb.st_mode)) {
+        snprintf(why, len, "not a regular file (%s)", S_ISDIR(sb.st_mode) ? "a folder" : S_ISFIFO(sb.st_mode) ? "a pipe"
+                           : S_ISSOCK(sb.st_mode) ? "a socket" : "a device");
+        close(fd);
+        return NULL;
+    }
+    FILE *fp = fcntl(fd, F_SETFL, 0) == 0 ? fdopen(fd, "rb") : NULL;
+    if (!fp) {
+        snprintf(why, len, "%s", strerror(errno));
+        close(fd);
+    }
+    return fp;
+}
+
 scene *scene_load(const char *path, char *err, size_t errlen)
 {
-    FILE *fp = fopen(path, "rb");
+    char why[256];
+    FILE *fp = scene_open_regular(path, why, sizeof why);
     if (!fp) {
-        snprintf(err, errlen, "%s:0: cannot open the scene file: %s", path, strerror(errno));
+        snprintf(err, errlen, "%s:0: cannot open the scene file: %s", path, why);
         return NULL;
     }
     size_t cap = 1 << 16, len = 0;

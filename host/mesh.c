@@ -85,20 +85,57 @@ static void zip_rows(dem_mesh *m, int l0, int nl, const double *sl, int u0, int 
     }
 }
 
+/* The grid a generated sheet or tube is made of, in double: n1 vertices along a row (a sheet's even rows; a tube's
+ * rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products overflowed:
+ * a tube of radius 1e-30 m and height 5.3e18 m with edges of 1 m came out 2051 vertices). round() as lround. */
+static void grid_counts(const dem_mesh_spec *sp, double *n1, double *n2)
+{
+    double s = sp->edge, row = s * sqrt(3.0) / 2;
+    if (sp->kind == DEM_MESH_SHEET) { /* equilateral: the rows one whole edge's height apart (make_sheet) */
+        *n1 = fmax(2, round(sp->a / s) + 1);
+        double e = sp->a / (*n1 - 1);
+        *n2 = fmax(2, round(sp->b / (e * sqrt(3.0) / 2)) + 1);
+    } else
+        *n1 = fmax(3, round(2 * M_PI * sp->a / s)), *n2 = fmax(2, round(sp->b / row) + 1);
+}
+
+/* The split level of a generated sphere: the one whose mean edge (about 1.05 r / 2^level, the icosahedron's 1.0515 r
+ * halved per split) is nearest s; in double (an infinite ratio has no level) */
+static double sphere_level(const dem_mesh_spec *sp) { return fmax(0, round(log2(1.0515 * sp->a / sp->edge))); }
+
+double dem_mesh_vertices(const dem_mesh_spec *sp)
+{
+    int sized = sp->edge > 0 && isfinite(sp->edge) && sp->a > 0 && isfinite(sp->a) &&
+                (sp->kind == DEM_MESH_SPHERE || (sp->b > 0 && isfinite(sp->b)));
+    if (!sized)
+        return NAN;
+    double n1, n2;
+    switch (sp->kind) {
+    case DEM_MESH_SHEET: /* even rows n1 vertices, odd rows n1 + 1 */
+        grid_counts(sp, &n1, &n2);
+        return n1 * n2 + floor(n2 / 2);
+    case DEM_MESH_TUBE:
+        grid_counts(sp, &n1, &n2);
+        return n1 * n2;
+    case DEM_MESH_SPHERE:
+        return 10 * pow(4, sphere_level(sp)) + 2;
+    }
+    return NAN;
+}
+
 static int make_sheet(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
     /* equilateral (issue 39: both spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm): the length a is kept,
-     * the edge is a over a whole number of steps, the rows edge sqrt(3)/2 apart, as many as come nearest to b */
-    double s = sp->edge, lx = sp->a;
-    long nx = lround(lx / s) + 1;
-    nx = nx < 2 ? 2 : nx;
-    double dx = lx / (double)(nx - 1), dy = dx * sqrt(3.0) / 2;
-    long ny = lround(sp->b / dy) + 1;
-    ny = ny < 2 ? 2 : ny;
-    double ly = dy * (double)(ny - 1); /* within dy / 2 of b */
-    if (nx * ny + ny > MESH_MAX_VERTICES)
-        return snprintf(err, errlen, "a sheet of %g x %g m with edges of %g m has more than %d vertices", lx, ly, s,
+     * the edge is a over a whole number of steps, the rows edge sqrt(3)/2 apart, as many as come nearest to b
+     * (grid_counts) */
+    double s = sp->edge, lx = sp->a, n1, n2;
+    grid_counts(sp, &n1, &n2);
+    if (!(n1 * n2 + n2 <= MESH_MAX_VERTICES)) /* counted in double before anything becomes an integer */
+        return snprintf(err, errlen, "a sheet of %g x %g m with edges of %g m has more than %d vertices", lx, sp->b, s,
                         MESH_MAX_VERTICES), -1;
+    long nx = (long)n1, ny = (long)n2;
+    double dx = lx / (double)(nx - 1), dy = dx * sqrt(3.0) / 2;
+    double ly = dy * (double)(ny - 1); /* within dy / 2 of b */
     if (mesh_alloc(m, nx * ny + ny, 2 * (nx + 1) * ny))
         return snprintf(err, errlen, "out of host memory"), -1;
     double x0 = sp->center[0] - lx / 2, y0 = sp->center[1] - ly / 2;
@@ -131,12 +168,12 @@ static int make_sheet(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t er
 
 static int make_tube(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
-    double s = sp->edge, r = sp->a, h = sp->b;
-    long na = lround(2 * M_PI * r / s), nr = lround(h / (s * sqrt(3.0) / 2)) + 1;
-    na = na < 3 ? 3 : na, nr = nr < 2 ? 2 : nr;
-    if (na * nr > MESH_MAX_VERTICES)
+    double s = sp->edge, r = sp->a, h = sp->b, n1, n2;
+    grid_counts(sp, &n1, &n2);
+    if (!(n1 * n2 <= MESH_MAX_VERTICES)) /* counted in double before anything becomes an integer */
         return snprintf(err, errlen, "a tube of radius %g m and height %g m with edges of %g m has more than %d "
                         "vertices", r, h, s, MESH_MAX_VERTICES), -1;
+    long na = (long)n1, nr = (long)n2;
     if (mesh_alloc(m, na * nr, 2 * na * (nr - 1)))
         return snprintf(err, errlen, "out of host memory"), -1;
     for (long j = 0; j < nr; j++) /* ring j: na vertices, odd rings turned by half a step */
@@ -171,12 +208,11 @@ static int cmp_edge_mid(const void *p, const void *q)
 static int make_sphere(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
     double r = sp->a, s = sp->edge, t = (1 + sqrt(5.0)) / 2;
-    /* the level whose mean edge (about 1.05 r / 2^level, the icosahedron's 1.0515 r halved per split) is nearest s */
-    int level = (int)lround(log2(1.0515 * r / s));
-    level = level < 0 ? 0 : level;
-    if (level > 8)
+    double lv = sphere_level(sp);
+    if (!(lv <= 8))
         return snprintf(err, errlen, "a sphere of radius %g m with edges of %g m needs more than %d vertices (8 "
                         "splits of the icosahedron)", r, s, 10 * (1 << 16) + 2), -1;
+    int level = (int)lv;
     long nv = 10L * (1L << (2 * level)) + 2, nt = 20L * (1L << (2 * level));
     if (mesh_alloc(m, nv, nt))
         return snprintf(err, errlen, "out of host memory"), -1;

@@ -17,6 +17,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define MESH_FILE_MAX 2000000 /* vertices and triangles, as host/mesh.c's generated meshes */
 
@@ -254,12 +257,32 @@ static int read_stl_ascii(FILE *fp, const char *path, grow_mesh *g, char *err, s
     return rc;
 }
 
+/* path for reading when it is a regular file (as app/scene_schema.c's scene_open_regular): a named pipe would block
+ * the open forever, a device be read without end. NULL with errno set, or with *odd = 1 for another kind of file. */
+static FILE *open_regular(const char *path, int *odd)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat sb;
+    *odd = 0;
+    if (fd >= 0 && fstat(fd, &sb) == 0 && !S_ISREG(sb.st_mode))
+        *odd = 1;
+    FILE *fp = fd >= 0 && !*odd && fcntl(fd, F_SETFL, 0) == 0 ? fdopen(fd, "rb") : NULL;
+    if (!fp && fd >= 0) {
+        int e = errno;
+        close(fd);
+        errno = e;
+    }
+    return fp;
+}
+
 int dem_mesh_read(const char *path, dem_mesh *m, char *err, size_t errlen)
 {
     memset(m, 0, sizeof *m);
-    FILE *fp = fopen(path, "rb");
+    int odd;
+    FILE *fp = open_regular(path, &odd); /* "cannot open": the dem command's exit status 66 */
     if (!fp)
-        return snprintf(err, errlen, "%s: %s", path, strerror(errno)), -1;
+        return snprintf(err, errlen, "%s: cannot open the mesh file: %s", path,
+                        odd ? "not a regular file (a folder, pipe, socket or device)" : strerror(errno)), -1;
     grow_mesh g = {0};
     size_t len = strlen(path);
     int rc;

@@ -290,6 +290,9 @@ typedef struct {
 } dem_mesh_spec;
 /* Fills m (free it with dem_mesh_free); 0, or -1 with the reason in err. */
 int dem_mesh_make(const dem_mesh_spec *spec, dem_mesh *m, char *err, size_t errlen);
+/* The vertices dem_mesh_make would make of spec, counted in double before anything is made (a caller's cap on a
+ * mesh's size, which must see huge counts as huge); NAN for an edge or sizes it refuses (not > 0 and finite). */
+double dem_mesh_vertices(const dem_mesh_spec *spec);
 void dem_mesh_free(dem_mesh *m);
 /* Reads a mesh from a Wavefront OBJ (v and triangular f) or an STL file (ASCII or binary; equal coordinates become one
  * vertex), strictly: anything it cannot take is refused with "path:line: reason" in err (host/mesh_file.c). The

@@ -3,7 +3,8 @@
 
 usage: tests/craft_checkpoint.py GOOD.ckpt.h5 OUT.ckpt.h5 VARIANT
 VARIANT: step_negative, step_past_end, step_huge, n_huge, n_mismatch, hist_dropped, scene_frictionless, pairs_out_of_range,
-pairs_huge, text_varlen, step_array, model_array. Each one is a file a careless reader would act on: allocate on its claims, restart at a time the scene
+pairs_huge, text_varlen, step_array, model_array, text_array, path_array, wall_pos_nan, spin_inf, v_nan,
+radius_zero. Each one is a file a careless reader would act on: allocate on its claims, restart at a time the scene
 never reaches, or write saved memory that does not fit the run.
 """
 import shutil
@@ -54,6 +55,27 @@ def main():
             text = f["scene/text"][()]
             del f["scene/text"]
             f["scene"].create_dataset("text", data=text.decode(), dtype=h5py.string_dtype())
+        elif variant in ("text_array", "path_array"):  # an array of strings where one is read (heap overrun before)
+            name = variant.split("_")[0]
+            one = f["scene/" + name][()]
+            del f["scene/" + name]
+            f["scene"].create_dataset(name, data=np.array([one] * 1000))
+        elif variant == "wall_pos_nan":  # a wall that would silently stop acting
+            p = st["wall_pos"][:]
+            p[0, 2] = np.nan
+            st["wall_pos"][:] = p
+        elif variant == "spin_inf":
+            w = st["w"][:]
+            w[3, 1] = np.inf
+            st["w"][:] = w
+        elif variant == "v_nan":  # failed at step 10 with exit 1 before
+            v = st["v"][:]
+            v[5, 0] = np.nan
+            st["v"][:] = v
+        elif variant == "radius_zero":
+            r = st["radius"][:]
+            r[2] = 0
+            st["radius"][:] = r
         else:
             sys.exit(f"craft_checkpoint: unknown variant {variant}")
 

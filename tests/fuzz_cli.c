@@ -122,6 +122,20 @@ static void check_accepted(const run_opts *o, const char *outp, const char *ckp)
         if (stat(dirname(d), &st) || !S_ISDIR(st.st_mode))
             __builtin_trap();
     }
+    /* six different files (issue 40: --checkpoint OUT.h5.part made the finished output the checkpoint): the same
+     * folder, resolved, and the same name is one file */
+    char real[6][RUN_OUT_LEN + 16];
+    for (int q = 0; q < 6; q++) {
+        char d[RUN_OUT_LEN + 16], b[RUN_OUT_LEN + 16], *r;
+        snprintf(d, sizeof d, "%s", outs[q]);
+        snprintf(b, sizeof b, "%s", outs[q]);
+        r = realpath(dirname(d), NULL);
+        snprintf(real[q], sizeof real[q], "%s/%s", r ? r : "?", basename(b));
+        free(r);
+        for (int k = 0; k < q; k++)
+            if (!strcmp(real[q], real[k]))
+                __builtin_trap();
+    }
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

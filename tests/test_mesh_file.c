@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "test_util.h"
 
 static char dir[256];
@@ -171,7 +172,44 @@ static void test_refusals(void **st)
     dem_mesh m;
     char err[512];
     assert_int_equal(dem_mesh_read("/nonexistent/x.obj", &m, err, sizeof err), -1);
-    assert_non_null(strstr(err, "/nonexistent/x.obj: No such file or directory"));
+    assert_non_null(strstr(err, "/nonexistent/x.obj: cannot open the mesh file: No such file or directory"));
+    /* what is not a regular file is refused without being read (issue 40): a named pipe blocked the open for ever */
+    char fifo[512];
+    snprintf(fifo, sizeof fifo, "%s/pipe.obj", dir);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(dem_mesh_read(fifo, &m, err, sizeof err), -1);
+    assert_non_null(strstr(err, "pipe.obj: cannot open the mesh file: not a regular file"));
+    assert_int_equal(dem_mesh_read("/dev/zero", &m, err, sizeof err), -1);
+    assert_non_null(strstr(err, "/dev/zero: cannot open the mesh file: not a regular file"));
+    assert_int_equal(dem_mesh_read(dir, &m, err, sizeof err), -1);
+    assert_non_null(strstr(err, "cannot open the mesh file: not a regular file"));
+}
+
+/* The vertex count of a generated mesh is counted before anything is made, in double (issue 40): sizes whose grid
+ * overflowed a long (a tube of radius 1e-30 m and height 5.3e18 m came out 2051 vertices and crashed) are refused,
+ * and the count is the one dem_mesh_make makes. */
+static void test_generated_counts(void **st)
+{
+    (void)st;
+    dem_mesh m;
+    char err[512];
+    dem_mesh_spec huge[] = {{DEM_MESH_TUBE, {0, 0, 0}, 1e-30, 5.3e18, 1}, {DEM_MESH_SHEET, {0, 0, 0}, 1e18, 1e18, 1e-3},
+                            {DEM_MESH_SHEET, {0, 0, 0}, 4e9, 1, 1}, {DEM_MESH_SPHERE, {0, 0, 0}, 1e300, 0, 1e-300}};
+    for (size_t k = 0; k < sizeof huge / sizeof huge[0]; k++) {
+        assert_false(dem_mesh_vertices(&huge[k]) <= 2e6);
+        if (dem_mesh_make(&huge[k], &m, err, sizeof err) == 0)
+            fail_msg("spec %zu: made %d vertices of a mesh of %g", k, m.nv, dem_mesh_vertices(&huge[k]));
+        assert_non_null(strstr(err, "vertices"));
+    }
+    dem_mesh_spec fine[] = {{DEM_MESH_TUBE, {0, 0, 0.02}, 0.02, 0.04, 0.006}, {DEM_MESH_SHEET, {0, 0, 0}, 0.1, 0.05, 0.01},
+                            {DEM_MESH_SHEET, {0, 0, 0}, 0.1, 0.06, 0.01}, {DEM_MESH_SPHERE, {0, 0, 0}, 0.05, 0, 0.01}};
+    for (size_t k = 0; k < sizeof fine / sizeof fine[0]; k++) {
+        assert_int_equal(dem_mesh_make(&fine[k], &m, err, sizeof err), 0);
+        assert_true(dem_mesh_vertices(&fine[k]) == m.nv);
+        dem_mesh_free(&m);
+    }
+    dem_mesh_spec bad = {DEM_MESH_TUBE, {0, 0, 0}, INFINITY, 1, 1};
+    assert_true(isnan(dem_mesh_vertices(&bad)));
 }
 
 int main(void)
@@ -182,6 +220,7 @@ int main(void)
         cmocka_unit_test(test_octahedron),
         cmocka_unit_test(test_round_trip),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_generated_counts),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     test_tmpdir_remove(dir);
