@@ -78,10 +78,12 @@ enum {
     PK_STRIDE = 6
 };
 
-/* A sphere-patch contact's flags (BUF_PTOUCH, common/patch_contacts.h): touched in the previous step; the side of the
- * patch the sphere is on is known, and it is below (where the triangle's normal N = (x_b - x_a) x (x_c - x_a) points
- * away from); the sphere's centre has crossed the patch's plane (the contact pushes it back); kept now and the next
- * step's side and crossing (only between patch_forces' passes). PATCH_SAVED: the bits a checkpoint keeps. */
+/* A sphere-patch contact's flags (BUF_PTOUCH, common/patch_contacts.h): kept in the previous step (a contact: its
+ * force, its tangential history); the side of the patch the sphere is on is known, and it is below (where the
+ * triangle's normal N = (x_b - x_a) x (x_c - x_a) points away from); the sphere's centre has crossed the patch's plane
+ * (the contact pushes it back). The side is kept for every slot whose sphere touches the patch, kept by the selection
+ * or not. PATCH_KEPT and PATCH_NEXT_*: kept now and the next step's side, only between patch_forces' passes.
+ * PATCH_SAVED: the bits a state and a checkpoint keep. */
 #define PATCH_TOUCHED 1u
 #define PATCH_KEPT 2u
 #define PATCH_BELOW 4u
@@ -90,7 +92,7 @@ enum {
 #define PATCH_NEXT_BELOW 32u
 #define PATCH_NEXT_KNOWN 64u
 #define PATCH_NEXT_CROSSED 128u
-#define PATCH_SAVED (PATCH_BELOW | PATCH_KNOWN | PATCH_CROSSED)
+#define PATCH_SAVED (PATCH_TOUCHED | PATCH_BELOW | PATCH_KNOWN | PATCH_CROSSED)
 
 /* Integer status flags written by kernels (integer atomics only), read by the host. */
 enum {

@@ -93,8 +93,8 @@ DEM_INLINE patch_point patch_closest(vec3 p, vec3 a, vec3 b, vec3 c)
  * weight). Ranked as edge points they compete, and one stays: the nearer by the bits of their distances, then the
  * lower patch id (patch_beats). Each contact's rank is a function of its own triangle and point alone, so every
  * contact of a sphere is judged on the same numbers whichever contact asks: the decisions are consistent and one
- * contact always stays. PATCH_TIE (2^-40 in fp64, 2^-17 in fp32) is some thousand times the rounding of a weight and
- * a distance of 1e-12 (fp64) of the edge's length: a face contact that near an edge is at the edge's point. */
+ * contact always stays. PATCH_TIE (2^-40 in fp64, 2^-17 in fp32: 8192 and 128 times the unit roundoff) is above the
+ * rounding of a weight: a face contact that near an edge (1e-12 of its length in fp64) is at the edge's point. */
 #if DEM_REAL_SIZE == 8
 #define PATCH_TIE ((real)9.094947017729282e-13)
 #else
@@ -119,7 +119,7 @@ DEM_INLINE int patch_common(const int *t, const int *u)
 }
 
 /* Whether contact j removes contact i of the same sphere (Table 1, extended; see the head of this file): ti, tj the
- * triangles' vertex ids, k their ranks (patch_rank; a contact through its patch is a face: patch_contacts.h), d2 the squared distances from the sphere's centre to their
+ * triangles' vertex ids, k their ranks (patch_rank), d2 the squared distances from the sphere's centre to their
  * closest points. Only a triangle with a vertex in common competes; a face contact is never removed and removes
  * every edge or vertex contact; of two edge or vertex contacts the nearer stays, at the same distance the edge,
  * then the lower patch id. */

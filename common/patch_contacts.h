@@ -146,13 +146,22 @@ DEM_INLINE vec3 patch_normal(DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri
     return v3_cross(v3_sub(v3_load(x, tri[3 * t + 1]), a), v3_sub(v3_load(x, tri[3 * t + 2]), a));
 }
 
-/* The side of the patch a contact's sphere was on in the previous step (flags: ptouch): 1 below, 0 above, -1 not
- * known (a new contact: it starts on the side its centre is on). Only the contact itself remembers it: a side taken
- * over from a neighbouring patch's contact threw spheres through crumpled membranes, whose folds put neighbours'
- * fronts on opposite sides of a sphere (a sphere in a fold of seed 001's rubber membrane at 200 kPa). */
-DEM_INLINE int patch_side(unsigned flags)
+/* The side of the patch a contact's sphere is on (1 below, 0 above, -1 not known: a new contact starts on the side its
+ * centre is on), from its flags (ptouch) of the previous step - kept while it touches, whether the selection kept it
+ * or not - except next to a contact of the same sphere that had crossed its patch's plane (ref: that patch's normal
+ * towards the side its sphere came from, the first such contact in the row; zero: none): a patch sharing a vertex
+ * with it whose normal is within 60 degrees of ref's line takes the side ref points to, so that a sphere that crossed
+ * one patch is on the same side of the next one it slides over (it was thrown through the next). Farther turned
+ * patches (a fold) keep their own sides: taken over blindly, a neighbour's side threw spheres through the folds of a
+ * crumpled membrane. */
+DEM_INLINE int patch_side(unsigned flags, vec3 nrm, vec3 ref, int near_ref)
 {
-    return (flags & (PATCH_TOUCHED | PATCH_KNOWN)) == (PATCH_TOUCHED | PATCH_KNOWN) ? (flags & PATCH_BELOW) != 0 : -1;
+    if ((flags & (PATCH_CROSSED | PATCH_KNOWN)) != (PATCH_CROSSED | PATCH_KNOWN) && near_ref) {
+        real c = v3_dot(nrm, ref);
+        if ((real)4 * c * c >= v3_dot(nrm, nrm) * v3_dot(ref, ref) && c != (real)0)
+            return c < (real)0;
+    }
+    return flags & PATCH_KNOWN ? (flags & PATCH_BELOW) != 0 : -1;
 }
 
 /* A sphere of radius ri at xi against triangle t */
@@ -161,43 +170,76 @@ typedef struct {
     vec3 e;         /* xi - pp.point */
     real e2;        /* |e|^2: the distance patch_beats compares */
     vec3 nrm;       /* N */
-    real h;         /* e . N, positive on the side the sphere was on */
+    real h;         /* e . N, positive on the sphere's side */
     int below;      /* that side (patch_side) */
     int crossed;    /* the centre is on the patch's plane or past it: the contact pushes along +-N */
     int touch;      /* the sphere touches */
     int rank;       /* in the selection (patch_beats): patch_rank */
 } patch_geom;
 
-/* Crossed: the sphere was on one side of the patch in the previous step and its centre is now on the plane or past
- * it, over the face (or over its rim to the tie's precision: patch.h PATCH_TIE; a sphere pressed through the edge two
- * patches share is in neither's face by rounding) - or over an edge or a vertex if it had crossed already
- * (flags & PATCH_CROSSED: a sphere that crossed by a valley fold may leave the face's prism before it comes back).
- * A crossed contact touches while the centre is less than ri past the plane and less than ri from the triangle
- * along it. Its rank in the selection is its point's (patch_rank), as for any contact. */
-DEM_INLINE patch_geom patch_geometry(vec3 xi, real ri, unsigned flags, DEM_CONST_GLOBAL real *x,
-                                     DEM_CONST_GLOBAL int *tri, int t)
+/* The sphere's crossed contact that orients its other contacts (patch_side), from the flags of the previous step:
+ * *ref its patch's normal towards the side its sphere came from, its triangle's vertices in tref; 0 if none */
+DEM_INLINE int patch_ref(int i, int cnt, int maxp, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri,
+                         DEM_CONST_GLOBAL int *plist, DEM_GLOBAL dem_byte *ptouch, vec3 *ref, int *tref)
+{
+    for (int k = 0; k < cnt; k++) {
+        unsigned f = ptouch[i * maxp + k];
+        if ((f & (PATCH_CROSSED | PATCH_KNOWN)) == (PATCH_CROSSED | PATCH_KNOWN)) {
+            int t = plist[i * maxp + k];
+            *ref = v3_scale(patch_normal(x, tri, t), f & PATCH_BELOW ? (real)-1 : (real)1);
+            tref[0] = tri[3 * t], tref[1] = tri[3 * t + 1], tref[2] = tri[3 * t + 2];
+            return 1;
+        }
+    }
+    *ref = v3_zero();
+    tref[0] = tref[1] = tref[2] = -1;
+    return 0;
+}
+
+/* Crossed: the sphere was on one side of the patch and its centre is now on the plane or past it, over the face (or
+ * over its rim to the tie's precision: patch.h PATCH_TIE; a sphere pressed through the edge two patches share is in
+ * neither's face by rounding) - or over an edge or a vertex if it had crossed already (flags & PATCH_CROSSED: a
+ * sphere that crossed may leave the face's prism before it comes back). A crossed contact touches while the centre
+ * is less than ri past the plane and less than ri from the triangle along it. Its rank in the selection is its
+ * point's (patch_rank), as for any contact. ref, tref: patch_ref. */
+DEM_INLINE patch_geom patch_geometry(vec3 xi, real ri, unsigned flags, vec3 ref, const int *tref,
+                                     DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t)
 {
     patch_geom g;
     g.pp = patch_of(xi, x, tri, t);
     g.e = v3_sub(xi, g.pp.point);
     g.e2 = v3_dot(g.e, g.e);
     g.nrm = patch_normal(x, tri, t);
-    g.below = patch_side(flags);
+    int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
+    g.below = patch_side(flags, g.nrm, ref, tref[0] >= 0 && patch_common(tk, tref) > 0);
     g.h = g.below == 1 ? -v3_dot(g.e, g.nrm) : v3_dot(g.e, g.nrm);
     g.rank = patch_rank(g.pp);
     g.crossed = 0;
     real n2 = v3_dot(g.nrm, g.nrm), lat2 = (real)0;
-    if (g.below >= 0 && (g.h < (real)0 || g.e2 == (real)0) && n2 > (real)0) {
+    if (g.below >= 0 && g.h <= (real)0 && n2 > (real)0) {
         vec3 lat = v3_sub(g.e, v3_scale(g.nrm, v3_dot(g.e, g.nrm) / n2));
         lat2 = v3_dot(lat, lat);
-        real tie2 = PATCH_TIE * PATCH_TIE;
-        g.crossed = g.pp.kind == PATCH_FACE || (flags & PATCH_CROSSED) || lat2 * lat2 <= tie2 * tie2 * n2;
+        g.crossed = g.pp.kind == PATCH_FACE || (flags & PATCH_CROSSED) ||
+                    lat2 <= PATCH_TIE * PATCH_TIE * dem_sqrt(n2);
     }
     if (!g.crossed)
         g.touch = g.e2 < ri * ri && g.e2 > (real)0;
     else
         g.touch = lat2 < ri * ri && -g.h < ri * dem_sqrt(n2);
     return g;
+}
+
+/* The flags a touching contact leaves for the next step (PATCH_NEXT_*): a crossed one keeps its side; any other takes
+ * the side its centre is on (a sphere may go round a membrane's rim or over a ridge), unless on the plane */
+DEM_INLINE unsigned patch_next(patch_geom g)
+{
+    int side = g.below;
+    if (!g.crossed) {
+        real hraw = v3_dot(g.e, g.nrm);
+        side = hraw < (real)0 ? 1 : hraw > (real)0 ? 0 : side;
+    }
+    return (side >= 0 ? PATCH_NEXT_KNOWN : 0u) | (side == 1 ? PATCH_NEXT_BELOW : 0u) |
+           (g.crossed ? PATCH_NEXT_CROSSED : 0u);
 }
 
 /* The overlap the Hertz law is given for a geometric overlap d of a sphere of radius r on a patch: d itself up to
@@ -222,13 +264,16 @@ DEM_INLINE real patch_law_overlap(real d, real r)
 }
 
 /* Whether contact k of sphere i stays this step, and its geometry: it touches, and no other touching triangle of the
- * sphere removes it (Table 1 as patch.h extends it; the sphere's touching triangles are all in its row) */
+ * sphere removes it (Table 1 as patch.h extends it; the sphere's touching triangles are all in its row). A contact
+ * that has crossed its patch's plane is removed only by another that has; it removes the edge and vertex contacts
+ * of the patches around it that have not (their normal, from the edge to the centre, would push the sphere on
+ * through). */
 DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real ri, DEM_CONST_GLOBAL real *x,
                           DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *plist, DEM_GLOBAL dem_byte *ptouch,
-                          patch_geom *gk)
+                          vec3 ref, const int *tref, patch_geom *gk)
 {
     int t = plist[i * maxp + k];
-    *gk = patch_geometry(xi, ri, ptouch[i * maxp + k], x, tri, t);
+    *gk = patch_geometry(xi, ri, ptouch[i * maxp + k], ref, tref, x, tri, t);
     if (!gk->touch)
         return 0;
     if (gk->rank == PATCH_FACE)
@@ -238,28 +283,30 @@ DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real ri, DEM
         if (j == k)
             continue;
         int u = plist[i * maxp + j];
-        patch_geom gj = patch_geometry(xi, ri, ptouch[i * maxp + j], x, tri, u);
-        if (!gj.touch)
-            continue;
+        patch_geom gj = patch_geometry(xi, ri, ptouch[i * maxp + j], ref, tref, x, tri, u);
+        if (!gj.touch || (gk->crossed && !gj.crossed))
+            continue; /* a crossed contact is removed only by a crossed one */
         int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
+        if (gj.crossed && !gk->crossed && patch_common(tk, tj) > 0)
+            return 0; /* at an edge or a vertex next to a crossed patch, its push alone */
         if (patch_beats(u, tj, gj.rank, gj.e2, t, tk, gk->rank, gk->e2))
             return 0;
     }
     return 1;
 }
 
-/* Three passes over the sphere's row; ptouch holds the flags of dem_layout.h (PATCH_*). 1: which contacts stay.
- * 2: their forces; a contact that starts on a triangle sharing a vertex with one that ended in this step (the sphere
- * slid across an edge or a vertex) takes that one's tangential spring - the first such in row order - so that the
- * tangential spring of a sphere moving across a membrane does not restart from zero at every crossing (it fell from
- * 1.2 N to 0 where a dragged sphere passed onto the next patch: tests/test_patch_contacts.c,
- * test_spring_across_edges). 3: the flags of the next step; ended contacts lose their history and their side.
- * The normal: from the closest point to the centre, n = e/|e| with overlap r - |e|, while the centre is on the side
- * it was on; once it is on the plane or past it (crossed, patch_geometry), n = +-N/|N| towards the side it came
- * from, overlap r + its depth past the plane: the contact never flips and pushes the sphere back however deep it is
- * (Hertz's law alone let spheres through seed 001's rubber membrane from ~270 kPa: issue 39). A contact that is not
- * crossed takes the side its centre is on (a sphere may go round a membrane's rim or over a ridge); a crossed one
- * keeps it. The law is Hertz's with the barrier of patch_law_overlap. */
+/* Three passes over the sphere's row; ptouch holds the flags of dem_layout.h (PATCH_*). 1: which contacts stay, and
+ * every touching contact's side for the next step (patch_next). 2: the forces of those that stay; a contact that
+ * starts on a triangle sharing a vertex with one that ended in this step (the sphere slid across an edge or a
+ * vertex) takes that one's tangential spring - the first such in row order - so that the tangential spring of a
+ * sphere moving across a membrane does not restart from zero at every crossing (it fell from 1.2 N to 0 where a
+ * dragged sphere passed onto the next patch: tests/test_patch_contacts.c, test_spring_across_edges). 3: the flags of
+ * the next step; ended contacts lose their history, and contacts that no longer touch their side.
+ * The normal: from the closest point to the centre, n = e/|e| with overlap r - |e|, while the centre is on its side;
+ * once it is on the plane or past it (crossed, patch_geometry), n = +-N/|N| towards the side it came from, overlap
+ * r + its depth past the plane: the contact does not flip, and pushes the sphere back until it is wholly through or
+ * has left the triangle's prism by a radius (Hertz's law alone let spheres through seed 001's rubber membrane from
+ * ~270 kPa: issue 39). The law is Hertz's with the barrier of patch_law_overlap. */
 DEM_ITEM(patch_forces)
 {
     int cnt = pcount[i];
@@ -269,38 +316,35 @@ DEM_ITEM(patch_forces)
     if (fx & DEM_EFFECT_FRICTION)
         wi = v3_load(w, i);
     real ri = radius[i];
-    vec3 fi = v3_load(force, i), ti = v3_zero();
+    vec3 fi = v3_load(force, i), ti = v3_zero(), ref;
     if (fx & DEM_EFFECT_FRICTION)
         ti = v3_load(torque, i);
+    int tref[3];
+    patch_ref(i, cnt, maxp, x, tri, plist, ptouch, &ref, tref);
     for (int k = 0; k < cnt; k++) { /* pass 1 */
         patch_geom gk;
-        if (patch_kept(i, k, cnt, maxp, xi, ri, x, tri, plist, ptouch, &gk))
-            ptouch[i * maxp + k] = (unsigned char)(ptouch[i * maxp + k] | PATCH_KEPT);
+        unsigned kept = patch_kept(i, k, cnt, maxp, xi, ri, x, tri, plist, ptouch, ref, tref, &gk) ? PATCH_KEPT : 0u;
+        if (gk.touch)
+            ptouch[i * maxp + k] = (unsigned char)(ptouch[i * maxp + k] | kept | patch_next(gk));
     }
     for (int k = 0; k < cnt; k++) { /* pass 2 */
         int slot = i * maxp + k, t = plist[slot];
         unsigned state = ptouch[slot];
         if (!(state & PATCH_KEPT))
             continue;
-        patch_geom g = patch_geometry(xi, ri, state, x, tri, t);
+        patch_geom g = patch_geometry(xi, ri, state, ref, tref, x, tri, t);
         int a = tri[3 * t], b = tri[3 * t + 1], cc = tri[3 * t + 2];
         vec3 n;
         real delta;
-        int side = g.below; /* the side of the next step: a crossed contact keeps it */
         if (!g.crossed) {
             real dist = dem_sqrt(g.e2);
             n = v3_scale(g.e, (real)1 / dist);
             delta = ri - dist;
-            real hraw = v3_dot(g.e, g.nrm); /* else the side its centre is on, unless on the plane */
-            side = hraw < (real)0 ? 1 : hraw > (real)0 ? 0 : side;
         } else { /* back towards the side it came from */
             real len = dem_sqrt(v3_dot(g.nrm, g.nrm));
             n = v3_scale(g.nrm, (g.below == 1 ? (real)-1 : (real)1) / len);
             delta = ri - g.h / len;
         }
-        unsigned next = (side >= 0 ? PATCH_NEXT_KNOWN : 0u) | (side == 1 ? PATCH_NEXT_BELOW : 0u) |
-                        (g.crossed ? PATCH_NEXT_CROSSED : 0u);
-        ptouch[slot] = (unsigned char)(state | next);
         real law = patch_law_overlap(delta, ri);
         DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + mat[a]);
         real invm_p = g.pp.w[0] * invmass[a] + g.pp.w[1] * invmass[b] + g.pp.w[2] * invmass[cc];
@@ -341,9 +385,9 @@ DEM_ITEM(patch_forces)
         unsigned state = ptouch[slot];
         if (!(state & PATCH_KEPT) && (state & PATCH_TOUCHED) && (fx & DEM_EFFECT_FRICTION))
             v3_store(phist, slot, v3_zero()); /* the contact ended: so does its history */
-        unsigned next = PATCH_TOUCHED | (state & PATCH_NEXT_KNOWN ? PATCH_KNOWN : 0u) |
+        unsigned next = (state & PATCH_KEPT ? PATCH_TOUCHED : 0u) | (state & PATCH_NEXT_KNOWN ? PATCH_KNOWN : 0u) |
                         (state & PATCH_NEXT_BELOW ? PATCH_BELOW : 0u) | (state & PATCH_NEXT_CROSSED ? PATCH_CROSSED : 0u);
-        ptouch[slot] = (unsigned char)(state & PATCH_KEPT ? next : 0u);
+        ptouch[slot] = (unsigned char)next;
     }
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)
@@ -361,7 +405,7 @@ DEM_ITEM(patch_gather)
         for (int p = vtri_start[i]; p < vtri_start[i + 1]; p++) {
             int t = vtri_list[p];
             int k = row_find(plist + s * maxp, pcount[s], t);
-            if (k < 0 || !ptouch[s * maxp + k])
+            if (k < 0 || !(ptouch[s * maxp + k] & PATCH_TOUCHED))
                 continue;
             DEM_CONST_GLOBAL real *rec = prec + (s * maxp + k) * PK_STRIDE;
             int corner = tri[3 * t] == i ? 0 : tri[3 * t + 1] == i ? 1 : 2;

@@ -21,7 +21,6 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
 /* the Hertz contact energy of common/series.h, as the reference computes it in double */
 double dem_hertz_energy_f64(double estar, double rstar, double delta);
 
-
 /* a sphere's overlap on a patch, as the kernels compute it (common/patch_contacts.h through reference/patch.c) */
 double dem_patch_overlap_f64(const double *p, const double *tri_x, unsigned flags, double r, double *law);
 
@@ -54,7 +53,7 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
     unsigned char *touch = sim_buffer_get(s, BUF_PTOUCH, &e);
     for (int i = 0; !e && i < n; i++)
         for (int k = 0; k < cnt[i]; k++) {
-            if (!touch[(size_t)i * maxp + k])
+            if (!(touch[(size_t)i * maxp + k] & PATCH_TOUCHED))
                 continue;
             int t = list[(size_t)i * maxp + k];
             double tx[9], law;

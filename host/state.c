@@ -146,13 +146,13 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
                          "of the saved positions", i, t);
             break;
         }
-        int side = st->patch_side ? st->patch_side[p] : 0;
-        if (side & ~(int)PATCH_SAVED) {
-            e = sim_fail(s, DEM_ERR_ARG, "saved patch contact %ld has side flags %d (not a combination of %u, %u and %u)",
-                         p, side, PATCH_BELOW, PATCH_KNOWN, PATCH_CROSSED);
+        int flags = st->patch_side ? st->patch_side[p] : (int)PATCH_TOUCHED;
+        if ((flags & ~(int)PATCH_SAVED) || !flags) {
+            e = sim_fail(s, DEM_ERR_ARG, "saved patch contact %ld has flags %d (not a nonzero combination of %u, %u, "
+                         "%u and %u)", p, flags, PATCH_TOUCHED, PATCH_BELOW, PATCH_KNOWN, PATCH_CROSSED);
             break;
         }
-        touch[(size_t)i * maxp + k] = (unsigned char)(PATCH_TOUCHED | (unsigned)side);
+        touch[(size_t)i * maxp + k] = (unsigned char)flags;
         memcpy(hist + ((size_t)i * maxp + k) * 3 * rs, (const char *)st->patch_hist + (size_t)p * 3 * rs,
                3 * (size_t)rs);
     }

@@ -622,13 +622,15 @@ typedef struct {
     void *wall_mc_disp;               /* real[n nwalls] with MC-strain: the same at each particle's wall contacts */
     size_t wall_mc_disp_bytes;
     dem_mc_stats mc;                  /* iteration counts so far */
-    long npatch;                      /* touching sphere-patch contacts (dem_add_patches), by sphere then triangle */
+    long npatch;                      /* sphere-patch row slots with flags: the touching contacts, and the spheres
+                                         touching a patch whose side is remembered (common/patch_contacts.h), by
+                                         sphere then triangle */
     int *patch_i, *patch_t;           /* the sphere, the triangle */
     void *patch_hist;                 /* real[3 npatch]: their tangential springs (zero without friction) */
-    int *patch_side;                  /* [npatch]: the side of the patch each sphere is on, as PATCH_SAVED bits of
-                                         common/dem_layout.h (4: below the triangle's normal (x_b - x_a) x (x_c - x_a),
-                                         8: the side is known, 16: the centre has crossed the patch's plane); NULL:
-                                         not known (a checkpoint from before 2026-12-04: each side starts anew) */
+    int *patch_side;                  /* [npatch]: their flags, PATCH_SAVED bits of common/dem_layout.h (1: a contact,
+                                         4: the sphere is below the triangle's normal (x_b - x_a) x (x_c - x_a), 8: the
+                                         side is known, 16: the centre has crossed the patch's plane); NULL: not known
+                                         (a checkpoint from before 2026-12-04: contacts, each side taken anew) */
 } dem_state;
 int dem_state_get(dem_sim *s, dem_state *st); /* allocates; free with dem_state_free */
 /* After dem_start of the same set-up: continue from st (replaces positions, velocities, contacts, step). */

@@ -26,7 +26,8 @@ int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *
 real REF(dem_patch_overlap)(const real *p, const real *tri_x, unsigned flags, real r, real *law)
 {
     static const int tri[3] = {0, 1, 2};
-    patch_geom g = patch_geometry(v3_load(p, 0), r, flags, tri_x, tri, 0);
+    static const int none[3] = {-1, -1, -1};
+    patch_geom g = patch_geometry(v3_load(p, 0), r, flags, v3_zero(), none, tri_x, tri, 0);
     real d = (real)0;
     if (g.touch)
         d = g.crossed ? r - g.h / dem_sqrt(v3_dot(g.nrm, g.nrm)) : r - dem_sqrt(g.e2);
