@@ -165,7 +165,10 @@ static void turn(const double r[3][3], const double *p, double *q)
         q[d] = r[d][0] * p[0] + r[d][1] * p[1] + r[d][2] * p[2];
 }
 
-static dem_sim *build_turned(const turned_case *tc, int *nv)
+/* A pinned sheet turned by rot, and a pinned sphere at rot p moving at rot v (v: NULL, at rest), the effects `off`
+ * turned off; *nv: the sheet's vertices, *dt: the recommended step it runs at */
+static dem_sim *turned_sheet(const double rot[3][3], const double *p, const double *v, unsigned off, int *nv,
+                             double *dt)
 {
     dem_mesh_spec sp = {DEM_MESH_SHEET, {0, 0, 0}, 0.06, 0.06, SHEET_EDGE};
     dem_mesh m;
@@ -173,7 +176,7 @@ static dem_sim *build_turned(const turned_case *tc, int *nv)
     assert_int_equal(dem_mesh_make(&sp, &m, err, sizeof err), 0);
     for (int i = 0; i < m.nv; i++) {
         double q[3];
-        turn(tc->rot, m.x + 3 * i, q);
+        turn(rot, m.x + 3 * i, q);
         memcpy(m.x + 3 * i, q, sizeof q);
     }
     dem_membrane mm = rubber;
@@ -185,15 +188,25 @@ static dem_sim *build_turned(const turned_case *tc, int *nv)
     dem_mesh_free(&m);
     for (int i = 0; i < *nv; i++)
         assert_int_equal(dem_set_particle_flags(s, i, DEM_PARTICLE_FIXED), 0);
-    double c[3];
-    turn(tc->rot, tc->p, c);
-    int id = dem_add_particle(s, c, NULL, SPHERE_R, dem_add_material(s, &glass));
+    double c[3], u[3] = {0, 0, 0};
+    turn(rot, p, c);
+    if (v)
+        turn(rot, v, u);
+    int id = dem_add_particle(s, c, u, SPHERE_R, dem_add_material(s, &glass));
     assert_int_equal(dem_set_particle_flags(s, id, DEM_PARTICLE_FIXED), 0);
+    dem_set_effects(s, dem_effects(s) & ~off);
     dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
     dem_time_scales ts;
     dem_time_scales_get(s, 0, &ts);
-    dem_set_dt(s, ts.recommended_dt);
+    *dt = ts.recommended_dt;
+    dem_set_dt(s, *dt);
     return s;
+}
+
+static dem_sim *build_turned(const turned_case *tc, int *nv)
+{
+    double dt;
+    return turned_sheet(tc->rot, tc->p, NULL, 0, nv, &dt);
 }
 
 static void rotation(double ax, double ay, double az, double r[3][3]) /* z(az) y(ay) x(ax) */
@@ -308,35 +321,7 @@ typedef struct {
 static dem_sim *build_push(void *ctx)
 {
     push_case *pc = ctx;
-    dem_mesh_spec sp = {DEM_MESH_SHEET, {0, 0, 0}, 0.06, 0.06, SHEET_EDGE};
-    dem_mesh m;
-    char err[256];
-    assert_int_equal(dem_mesh_make(&sp, &m, err, sizeof err), 0);
-    for (int i = 0; i < m.nv; i++) {
-        double q[3];
-        turn(pc->rot, m.x + 3 * i, q);
-        memcpy(m.x + 3 * i, q, sizeof q);
-    }
-    dem_membrane mm = rubber;
-    mm.vertex_radius = 0.2 * SHEET_EDGE;
-    dem_sim *s = dem_create();
-    if (dem_add_membrane(s, &m, &mm, NULL))
-        fail_msg("%s", dem_error(s));
-    pc->nv = m.nv;
-    dem_mesh_free(&m);
-    for (int i = 0; i < pc->nv; i++)
-        assert_int_equal(dem_set_particle_flags(s, i, DEM_PARTICLE_FIXED), 0);
-    double c[3], v[3];
-    turn(pc->rot, pc->p, c);
-    turn(pc->rot, pc->v, v);
-    int id = dem_add_particle(s, c, v, SPHERE_R, dem_add_material(s, &glass));
-    assert_int_equal(dem_set_particle_flags(s, id, DEM_PARTICLE_FIXED), 0);
-    dem_set_effects(s, dem_effects(s) & ~(unsigned)(DEM_EFFECT_DAMPING | DEM_EFFECT_FRICTION));
-    dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){0.05, 0.05, 0.05});
-    dem_time_scales ts;
-    dem_time_scales_get(s, 0, &ts);
-    pc->dt = ts.recommended_dt;
-    dem_set_dt(s, pc->dt);
+    dem_sim *s = turned_sheet(pc->rot, pc->p, pc->v, DEM_EFFECT_DAMPING | DEM_EFFECT_FRICTION, &pc->nv, &pc->dt);
     pc->steps = (long)((pc->p[2] + SPHERE_R + 1e-4) / (-pc->v[2] * pc->dt));
     return s;
 }
