@@ -101,11 +101,8 @@ static int mesh_dt_check(const scene *sc, dem_sim *s, unsigned k, const dem_mesh
     if (m->fixed || has_dt == has_fr || sp->kind == DEM_MESH_SPHERE || !(mt->poisson > -1) || !(mt->poisson <= 0.5))
         return 0; /* nothing sure to say: parse_time decides (and names what is wrong) */
     int tube = sp->kind == DEM_MESH_TUBE;
-    double s_ = sp->edge, row = s_ * sqrt(3.0) / 2; /* the grid of host/mesh.c (grid_counts) */
-    double n1 = tube ? fmax(3, round(2 * M_PI * sp->a / s_)) : fmax(2, round(sp->a / s_) + 1);
-    double e = tube ? s_ : sp->a / (n1 - 1); /* a sheet's edge: a over whole steps, its rows e sqrt(3)/2 apart */
-    double n2 = fmax(2, round(sp->b / (tube ? row : e * sqrt(3.0) / 2)) + 1);
-    double dx = tube ? 2 * sp->a * sin(M_PI / n1) : e, dy = tube ? sp->b / (n2 - 1) : e * sqrt(3.0) / 2;
+    double n1, n2, dx, dy; /* the grid the generator will make */
+    dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
     double inner = mt->density * scene_mass_scale(sc) * mt->thickness * dx * dy, E = mt->young;
     double kspring = sqrt(3.0) / 2 * E * mt->thickness;
     double bound = 2 * M_PI * sqrt(1.5 * inner / kspring) / 10; /* at least parse_time's stability bound */

@@ -85,18 +85,27 @@ static void zip_rows(dem_mesh *m, int l0, int nl, const double *sl, int u0, int 
     }
 }
 
-/* The grid a generated sheet or tube is made of, in double: n1 vertices along a row (a sheet's even rows; a tube's
- * rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products overflowed:
- * a tube of radius 1e-30 m and height 5.3e18 m with edges of 1 m came out 2051 vertices). round() as lround. */
-static void grid_counts(const dem_mesh_spec *sp, double *n1, double *n2)
+/* The grid a generated sheet or tube is made of, in double (dem.h): n1 vertices along a row (a sheet's even rows; a
+ * tube's rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products
+ * overflowed: a tube of radius 1e-30 m and height 5.3e18 m with edges of 1 m came out 2051 vertices); round() as
+ * lround. A sheet is equilateral: its length a cut into whole edges dx, its rows dx sqrt(3)/2 apart (issue 39: both
+ * spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm). A tube keeps its circumference and height: dx the
+ * chord between neighbours on a ring, dy the height over whole rows. */
+int dem_mesh_grid(const dem_mesh_spec *sp, double *n1, double *n2, double *dx, double *dy)
 {
-    double s = sp->edge, row = s * sqrt(3.0) / 2;
-    if (sp->kind == DEM_MESH_SHEET) { /* equilateral: the rows one whole edge's height apart (make_sheet) */
+    double s = sp->edge;
+    if (sp->kind == DEM_MESH_SHEET) {
         *n1 = fmax(2, round(sp->a / s) + 1);
-        double e = sp->a / (*n1 - 1);
-        *n2 = fmax(2, round(sp->b / (e * sqrt(3.0) / 2)) + 1);
-    } else
-        *n1 = fmax(3, round(2 * M_PI * sp->a / s)), *n2 = fmax(2, round(sp->b / row) + 1);
+        *dx = sp->a / (*n1 - 1), *dy = *dx * sqrt(3.0) / 2;
+        *n2 = fmax(2, round(sp->b / *dy) + 1);
+        return 0;
+    }
+    if (sp->kind == DEM_MESH_TUBE) {
+        *n1 = fmax(3, round(2 * M_PI * sp->a / s)), *n2 = fmax(2, round(sp->b / (s * sqrt(3.0) / 2)) + 1);
+        *dx = 2 * sp->a * sin(M_PI / *n1), *dy = sp->b / (*n2 - 1);
+        return 0;
+    }
+    return -1;
 }
 
 /* The split level of a generated sphere: the one whose mean edge (about 1.05 r / 2^level, the icosahedron's 1.0515 r
@@ -109,13 +118,13 @@ double dem_mesh_vertices(const dem_mesh_spec *sp)
                 (sp->kind == DEM_MESH_SPHERE || (sp->b > 0 && isfinite(sp->b)));
     if (!sized)
         return NAN;
-    double n1, n2;
+    double n1, n2, dx, dy;
     switch (sp->kind) {
     case DEM_MESH_SHEET: /* even rows n1 vertices, odd rows n1 + 1 */
-        grid_counts(sp, &n1, &n2);
+        dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
         return n1 * n2 + floor(n2 / 2);
     case DEM_MESH_TUBE:
-        grid_counts(sp, &n1, &n2);
+        dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
         return n1 * n2;
     case DEM_MESH_SPHERE:
         return 10 * pow(4, sphere_level(sp)) + 2;
@@ -125,16 +134,12 @@ double dem_mesh_vertices(const dem_mesh_spec *sp)
 
 static int make_sheet(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
-    /* equilateral (issue 39: both spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm): the length a is kept,
-     * the edge is a over a whole number of steps, the rows edge sqrt(3)/2 apart, as many as come nearest to b
-     * (grid_counts) */
-    double s = sp->edge, lx = sp->a, n1, n2;
-    grid_counts(sp, &n1, &n2);
+    double s = sp->edge, lx = sp->a, n1, n2, dx, dy; /* equilateral (dem_mesh_grid) */
+    dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
     if (!(n1 * n2 + n2 <= MESH_MAX_VERTICES)) /* counted in double before anything becomes an integer */
         return snprintf(err, errlen, "a sheet of %g x %g m with edges of %g m has more than %d vertices", lx, sp->b, s,
                         MESH_MAX_VERTICES), -1;
     long nx = (long)n1, ny = (long)n2;
-    double dx = lx / (double)(nx - 1), dy = dx * sqrt(3.0) / 2;
     double ly = dy * (double)(ny - 1); /* within dy / 2 of b */
     if (mesh_alloc(m, nx * ny + ny, 2 * (nx + 1) * ny))
         return snprintf(err, errlen, "out of host memory"), -1;
@@ -168,8 +173,8 @@ static int make_sheet(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t er
 
 static int make_tube(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
-    double s = sp->edge, r = sp->a, h = sp->b, n1, n2;
-    grid_counts(sp, &n1, &n2);
+    double s = sp->edge, r = sp->a, h = sp->b, n1, n2, dx, dy;
+    dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
     if (!(n1 * n2 <= MESH_MAX_VERTICES)) /* counted in double before anything becomes an integer */
         return snprintf(err, errlen, "a tube of radius %g m and height %g m with edges of %g m has more than %d "
                         "vertices", r, h, s, MESH_MAX_VERTICES), -1;

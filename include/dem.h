@@ -293,6 +293,9 @@ int dem_mesh_make(const dem_mesh_spec *spec, dem_mesh *m, char *err, size_t errl
 /* The vertices dem_mesh_make would make of spec, counted in double before anything is made (a caller's cap on a
  * mesh's size, which must see huge counts as huge); NAN for an edge or sizes it refuses (not > 0 and finite). */
 double dem_mesh_vertices(const dem_mesh_spec *spec);
+/* The grid of a generated sheet or tube, in double: n1 vertices along a row (a tube's rings), n2 rows, dx the spacing
+ * along a row (a tube's chord), dy between rows (a sheet's equilateral: dx sqrt(3)/2). 0, or -1 for other kinds. */
+int dem_mesh_grid(const dem_mesh_spec *spec, double *n1, double *n2, double *dx, double *dy);
 void dem_mesh_free(dem_mesh *m);
 /* Reads a mesh from a Wavefront OBJ (v and triangular f) or an STL file (ASCII or binary; equal coordinates become one
  * vertex), strictly: anything it cannot take is refused with "path:line: reason" in err (host/mesh_file.c). The
