@@ -6,15 +6,17 @@
  * out of every row); spheres touch its triangles instead. Vertices still touch walls with their own radius.
  *
  * Rows, rebuilt with the neighbour rows (the same skin and trigger), from the same cell grid:
- *   - sphere i: the patch triangles t with dist(x_i, t) < 2 r_i + skin, ascending t (plist[i*maxp ...]): twice
- *     the radius, because a contact whose sphere has crossed the patch's plane holds until the centre is r_i past it
- *     and r_i from the triangle along it (patch_geometry), within sqrt(2) r_i. Found through the vertices in the
- *     grid: a point of t lies within the longest edge of t from each of t's vertices, so with every patch edge
- *     shorter than `reach` each vertex of a listed triangle is within 2 r_i + skin + reach of x_i, and the search
- *     looks at the cells within that distance. Between rebuilds no particle moves more than skin/2, so a triangle
- *     left out stays farther than 2 r_i: it cannot touch (as for the neighbour rows). The candidates that do not
- *     touch add nothing to any sum.
- *   - patch vertex v: the spheres s with |x_s - x_v| < 2 r_s + skin + reach, ascending s (vlist[v*maxv ...]): a
+ *   - sphere i: the patch triangles t with dist(x_i, t) < 1.5 r_i + skin, ascending t (plist[i*maxp ...]): more
+ *     than the radius, because a contact whose sphere has crossed the patch's plane holds until the centre is r_i
+ *     past it and r_i from the triangle along it (patch_geometry), within sqrt(2) r_i < 1.5 r_i. (Issue 39's sphere
+ *     squeezed to 100 kPa on the reference took 1.26 times as long as before the sides (rows of r_i + skin); with
+ *     2 r_i, 1.66 times, most of it in the vertices' sums.) Found through the
+ *     vertices in the grid: a point of t lies within the longest edge of t from each of t's vertices, so with every
+ *     patch edge shorter than `reach` each vertex of a listed triangle is within 1.5 r_i + skin + reach of x_i, and
+ *     the search looks at the cells within that distance. Between rebuilds no particle moves more than skin/2, so a
+ *     triangle left out stays farther than 1.5 r_i: it cannot touch (as for the neighbour rows). The candidates
+ *     that do not touch add nothing to any sum.
+ *   - patch vertex v: the spheres s with |x_s - x_v| < 1.5 r_s + skin + reach, ascending s (vlist[v*maxv ...]): a
  *     superset of the spheres whose rows hold one of v's triangles (same argument), the ones whose forces v gathers.
  *   A patch vertex also checks its triangles' edges against `reach` (FLAG_PATCH_REACH); the host then widens the
  *   reach and builds again, as it grows a row that overflowed (FLAG_PATCH_NEEDED, FLAG_VROW_NEEDED).
@@ -80,8 +82,8 @@ DEM_ITEM(patch_build)
     int c = cell_of[i];
     int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
     int vertex = patch_is_vertex(vtri_start, i);
-    real ri = radius[i], near = (real)2 * ri + skin; /* twice the radius: crossed contacts stay listed */
-    real range = (real)2 * (vertex ? rmax : ri) + skin + reach; /* the cells to look at */
+    real ri = radius[i], near = (real)1.5 * ri + skin; /* crossed contacts stay listed */
+    real range = (real)1.5 * (vertex ? rmax : ri) + skin + reach; /* the cells to look at */
     int m = (int)(range * inv_cell) + 1, cnt = 0;
     if (vertex) { /* the triangles' edges against the reach */
         for (int q = vtri_start[i]; q < vtri_start[i + 1]; q++) {
@@ -105,7 +107,7 @@ DEM_ITEM(patch_build)
                         continue; /* spheres look for vertices, vertices for spheres */
                     int sph = vertex ? j : i, vtx = vertex ? i : j;
                     vec3 d = v3_sub(v3_load(x, sph), v3_load(x, vtx));
-                    real cut = (real)2 * radius[sph] + skin + reach; /* the same expression from either side */
+                    real cut = (real)1.5 * radius[sph] + skin + reach; /* the same expression from either side */
                     if (!(v3_dot(d, d) < cut * cut))
                         continue;
                     if (vertex) {
@@ -209,11 +211,11 @@ DEM_INLINE patch_geom patch_geometry(vec3 xi, real ri, unsigned flags, vec3 ref,
     g.pp = patch_of(xi, x, tri, t);
     g.e = v3_sub(xi, g.pp.point);
     g.e2 = v3_dot(g.e, g.e);
+    g.rank = patch_rank(g.pp);
     g.nrm = patch_normal(x, tri, t);
     int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
     g.below = patch_side(flags, g.nrm, ref, tref[0] >= 0 && patch_common(tk, tref) > 0);
     g.h = g.below == 1 ? -v3_dot(g.e, g.nrm) : v3_dot(g.e, g.nrm);
-    g.rank = patch_rank(g.pp);
     g.crossed = 0;
     real n2 = v3_dot(g.nrm, g.nrm), lat2 = (real)0;
     if (g.below >= 0 && g.h <= (real)0 && n2 > (real)0) {
