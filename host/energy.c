@@ -22,24 +22,22 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
 double dem_hertz_energy_f64(double estar, double rstar, double delta);
 
 /* a sphere's overlap on a patch, as the kernels compute it (common/patch_contacts.h through reference/patch.c) */
-double dem_patch_overlap_f64(const double *p, const double *tri_x, unsigned flags, double r, double *law);
+double dem_patch_overlap_f64(const double *p, const double *tri_x, unsigned flags, double r);
+double dem_patch_law_f64(double d, double r);
 
 /* The elastic energy of a patch contact of overlap d (radius r): the work of the force F(d) = Hertz(law(d)) of
- * common/patch_contacts.h from 0 to d. Hertz's 8/15 E* sqrt(r) d^(5/2) up to the barrier (0.8 r), then Simpson's rule
- * on 256 intervals over the rest. */
+ * common/patch_contacts.h from 0 to d. Hertz's 8/15 E* sqrt(r) d^(5/2) up to the barrier (0.8 r, as there), then
+ * Simpson's rule on 256 intervals over the rest. */
 static double patch_contact_energy(double estar, double r, double d)
 {
     double db = 0.8 * r;
     if (!(d > db))
         return dem_hertz_energy_f64(estar, r, d);
     const int m = 256;
-    double sum = 0, step = (d - db) / m, q[3] = {db, db, db}, tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, law;
+    double sum = 0, step = (d - db) / m;
     for (int k = 0; k <= m; k++) {
-        double s = db + k * step; /* a centre at overlap s over the unit triangle's face, from above */
-        q[0] = 0.25, q[1] = 0.25, q[2] = r - s;
-        dem_patch_overlap_f64(q, tri, PATCH_TOUCHED | PATCH_KNOWN, r, &law);
-        double f = 4.0 / 3 * estar * sqrt(r) * law * sqrt(law);
-        sum += f * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
+        double law = dem_patch_law_f64(db + k * step, r);
+        sum += 4.0 / 3 * estar * sqrt(r) * law * sqrt(law) * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
     }
     return dem_hertz_energy_f64(estar, r, db) + sum * step / 3;
 }
@@ -56,10 +54,10 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
             if (!(touch[(size_t)i * maxp + k] & PATCH_TOUCHED))
                 continue;
             int t = list[(size_t)i * maxp + k];
-            double tx[9], law;
+            double tx[9];
             for (int v = 0; v < 3; v++)
                 memcpy(tx + 3 * v, x + 3 * s->tri[3 * t + v], sizeof(double) * 3);
-            double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i], &law);
+            double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i]);
             if (d > 0)
                 en->elastic += patch_contact_energy(pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]), s->radius[i], d);
             en->patch_contacts++;

@@ -21,16 +21,17 @@ int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *
 }
 
 /* The overlap of a sphere of radius r at p on triangle tri_x, in a contact with flags `flags` (PATCH_* of
- * dem_layout.h), as patch_forces computes it (common/patch_contacts.h); 0 where it does not touch. *law: the overlap
- * its Hertz law is given (patch_law_overlap). For the energy (host/energy.c). */
-real REF(dem_patch_overlap)(const real *p, const real *tri_x, unsigned flags, real r, real *law)
+ * dem_layout.h), as patch_forces computes it (common/patch_contacts.h); 0 where it does not touch. For the energy
+ * (host/energy.c). */
+real REF(dem_patch_overlap)(const real *p, const real *tri_x, unsigned flags, real r)
 {
     static const int tri[3] = {0, 1, 2};
     static const int none[3] = {-1, -1, -1};
     patch_geom g = patch_geometry(v3_load(p, 0), r, flags, v3_zero(), none, tri_x, tri, 0);
-    real d = (real)0;
-    if (g.touch)
-        d = g.crossed ? r - g.h / dem_sqrt(v3_dot(g.nrm, g.nrm)) : r - dem_sqrt(g.e2);
-    *law = patch_law_overlap(d, r);
-    return d;
+    if (!g.touch)
+        return (real)0;
+    return g.crossed ? r - g.h / dem_sqrt(v3_dot(g.nrm, g.nrm)) : r - dem_sqrt(g.e2);
 }
+
+/* The overlap the Hertz law of a patch contact is given for an overlap d (patch_law_overlap), for the energy */
+real REF(dem_patch_law)(real d, real r) { return patch_law_overlap(d, r); }
