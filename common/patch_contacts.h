@@ -248,12 +248,13 @@ DEM_INLINE unsigned patch_next(patch_geom g)
  * 0.8 r; beyond, a barrier that grows as 0.8 r + 0.2 r u / (1 - u), u = (d - 0.8 r) / (0.2 r), until u = 0.95
  * (d = 0.99 r, 4.6 r for the law), then on along its tangent (slope 400), so that the force and its slope are
  * continuous and the force grows without end. Hertz's law alone lets the centre reach the patch's plane at a
- * pressure of about 0.2 E* (seed 001's rubber membrane: ~300 kPa); with the barrier the centre stays about 2.5 % of
- * r short of it at 1 MPa there (2.2 r for the law), and a sphere pressed further still is pushed back (crossed
- * contacts, patch_geometry). The barrier's stiffest, at 4.6 r and slope 400, is about twice a glass-glass contact's
- * of the same spheres, within the Rayleigh step. Runs whose overlaps stay below 0.8 r have Hertz's bits (seed 001's
- * triaxial tests at 100 kPa reach about 0.35 r). With u = 0.9 (slope 100) a grain came 0.01 r outside a membrane
- * at 1 MPa (tests/test_patch_contacts.c, test_one_megapascal). */
+ * pressure of about 0.2 E* (issue 39's estimate for seed 001's rubber membrane: ~300 kPa; grains got out from ~270
+ * kPa). With the barrier, issue 39's closed sphere at 1 MPa kept every centre inside, the nearest 0.012 r from the
+ * membrane (tests/test_patch_contacts.c, test_one_megapascal; with u = 0.9 and slope 100 one came 0.01 r outside);
+ * a sphere pressed further still is pushed back (crossed contacts, patch_geometry). Runs whose overlaps stay below
+ * 0.8 r have Hertz's bits (seed 001's triaxial case 1, 3000 steps: the same state hash as before). By a hand estimate
+ * the barrier's stiffest, at 4.6 r and slope 400, is about twice a glass-glass contact of the same spheres, within
+ * the Rayleigh step. */
 DEM_INLINE real patch_law_overlap(real d, real r)
 {
     real db = (real)0.8 * r, span = r - db;
