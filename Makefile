@@ -22,14 +22,16 @@ NUM_FLAGS := -std=c11 -O2 -ffp-contract=off -fno-fast-math -fno-math-errno
 CFLAGS  := $(NUM_FLAGS) -g -Wall -Wextra -Wno-unused-parameter -Wno-format-truncation -Wno-missing-field-initializers \
            -D_GNU_SOURCE -DDEM_BUILD_FLAGS='"$(NUM_FLAGS)"' \
            -DCL_TARGET_OPENCL_VERSION=120 -DDEM_DEFAULT_SOURCE_DIR='"$(CURDIR)"' \
-           -Iinclude -Icommon -Ibackend -Ihost -Ireference -Iapp $(PKG_CFLAGS)
+           -Iinclude -Icommon -Ibackend -Ihost/core -Ihost/opencl -Ireference -Iapp $(PKG_CFLAGS)
 LDLIBS  := -lOpenCL -lm
 APP_LDLIBS := $(PKG_LIBS) $(LDLIBS)
 TEST_LDLIBS := $(APP_LDLIBS) -lcmocka
 
-# backend/: what a backend is (the interface and the registry walked for every backend); host/: the driver, the
-# steps written once, the OpenCL backend; reference/: the plain C backend
-HOST_SRC := $(wildcard backend/*.c host/*.c)
+# backend/: what a backend is (the interface and the registry walked for every backend); host/: the driver, by role
+# (core/: the simulation, its set-up, state and storage order; steps/: the steps written once for every backend;
+# physics/: the host's double-precision views (energy, stability, contacts); mesh/: membranes' meshes; opencl/: the
+# OpenCL backend); reference/: the plain C backend
+HOST_SRC := $(wildcard backend/*.c host/*/*.c)
 REF_SRC  := $(wildcard reference/*.c)
 HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/%.o)
 REF32_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref32/%.o)
@@ -39,7 +41,7 @@ LIB      := $(BUILD)/libdem.a
 APP_SRC  := $(filter-out app/dem_main.c,$(wildcard app/*.c))
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
 APPLIB   := $(BUILD)/libdemapp.a
-HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*.h reference/*.h tests/*.h app/*.h)
+HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
 
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -240,7 +242,7 @@ fuzz-mesh: $(LIB)
 	@bash scripts/install-deps.sh --fuzz
 	@mkdir -p $(BUILD)/fuzz/mesh-corpus
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -D_GNU_SOURCE -Iinclude \
-	  -DCL_TARGET_OPENCL_VERSION=120 -Icommon -Ibackend -Ihost tests/fuzz_mesh.c host/mesh.c host/mesh_file.c \
+	  -DCL_TARGET_OPENCL_VERSION=120 -Icommon -Ibackend -Ihost/core tests/fuzz_mesh.c host/mesh/mesh.c host/mesh/mesh_file.c \
 	  -o $(BUILD)/fuzz/fuzz_mesh -lm
 	printf '\001v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > $(BUILD)/fuzz/mesh-corpus/obj
 	printf '\003solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n' \
@@ -265,10 +267,10 @@ fuzz-h5: $(DEPS_STAMP)
 PREFIX ?= /usr/local
 DATADIR = $(PREFIX)/share/libdem
 INSTALL_LIB := $(BUILD)/install/libdem.a
-$(BUILD)/install/sim_setup.o: host/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)
+$(BUILD)/install/sim_setup.o: host/core/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(filter-out -DDEM_DEFAULT_SOURCE_DIR=%,$(CFLAGS)) -DDEM_DEFAULT_SOURCE_DIR='"$(DATADIR)"' -c $< -o $@
-$(INSTALL_LIB): $(filter-out $(BUILD)/host/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ) FORCE
+$(INSTALL_LIB): $(filter-out $(BUILD)/host/core/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ) FORCE
 	@rm -f $@
 	ar rcs $@ $(filter-out FORCE,$^)
 install: $(INSTALL_LIB)

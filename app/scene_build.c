@@ -796,7 +796,7 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
     free(origin);
     run->cfg.contacts = (run->fields & OUT_CONTACTS) != 0; /* frames carry the contact network: keep wall forces */
     /* particle_order: spatial sorts the particles at load (scene_particles.c) and stores them anew every
-     * DEM_REORDER_PERIOD rebuilds as they move (host/reorder.c: the same bits and ids) */
+     * DEM_REORDER_PERIOD rebuilds as they move (host/core/reorder.c: the same bits and ids) */
     run->cfg.reorder = sc->f->particle_order && !strcmp(sc->f->particle_order, "spatial") ? DEM_REORDER_PERIOD : 0;
     run->cfg.sample_every = run->series_average > 1 ? 1 : run->series_every; /* steps between the series' samples */
     if (!(run->effects & DEM_EFFECT_FRICTION))

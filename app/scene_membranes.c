@@ -87,7 +87,7 @@ static int mesh_spec(const scene *sc, unsigned k, const scene_mesh *ms, dem_mesh
  * more than an inner one, density x thickness x the area of its six triangles / 3 = rho t dx dy (dx the spacing along
  * a row or ring, dy between rows), taken 1.5 times for the triangles' slant. A time.dt above that bound: refused.
  * With dt_rayleigh, dt = f x the smallest Rayleigh time of all particles, pi sqrt(3 m / (4 pi r G)) / (0.1631 nu +
- * 0.8766) for a vertex of mass m and radius r (host/sim_setup.c): at least the lightest vertex's - a tube's rims
+ * 0.8766) for a vertex of mass m and radius r (host/core/sim_setup.c): at least the lightest vertex's - a tube's rims
  * weigh half an inner vertex, a sheet's corners a twelfth (taken a third and a sixteenth) - with r at most a quarter
  * of one edge (the default vertex_radius is a quarter of the shortest), and the spheres' own; only the scene's one
  * membrane, so that no other adds vertices of unknown weight. Spheres (irregular vertex areas) and fixed membranes

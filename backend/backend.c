@@ -33,7 +33,7 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 DEM_KERNEL_LIST(CHECK_KERNEL)
 _Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 11 && ST_STRIDE == 6,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
-_Static_assert(FLAG_COUNT == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/binning.c resets the cell bounds");
+_Static_assert(FLAG_COUNT == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/steps/binning.c resets the cell bounds");
 _Static_assert(K__COUNT <= 256, "kernel ids fit the trace's bytes");
 _Static_assert(DEM_PAIR_RECORD_REALS == PR_STRIDE, "the pair records' size in dem.h (checkpoints)");
 _Static_assert(DEM_MAX_WALLS <= 8 * sizeof(unsigned), "a particle's wall mask is one unsigned (WALL_MASK)");

@@ -1,10 +1,10 @@
-/* backend.h - what a backend is: the plain C reference (reference/) and OpenCL (host/cl_backend.c).
+/* backend.h - what a backend is: the plain C reference (reference/) and OpenCL (host/opencl/cl_backend.c).
  *
  * A backend owns buffers and runs kernels; it makes no decisions. It implements a handful of primitives (allocate a
  * registry buffer, launch a kernel of common/dem_kernels.h with its arguments looked up by their sources, fill,
  * copy, read, write); everything else is written once on top of them: the buffers a run needs (walking the registry,
  * common/dem_buffers.h, in backend/backend.c), and the steps of a time step (host/<family>.c: binning, neighbour rows,
- * contact forces, wall forces, integration, stress, MC-strain). The driver (host/sim.c) decides when to rebuild,
+ * contact forces, wall forces, integration, stress, MC-strain). The driver (host/core/sim.c) decides when to rebuild,
  * grows capacities, moves walls and checks flags, identically for every backend, so two backends given the same
  * setup execute the same sequence of launches.
  * Arrays cross this interface as raw bytes in the backend's precision (real_size 4 or 8).
@@ -94,7 +94,7 @@ typedef struct {
     unsigned fx;
     int rs;
     int n, nmat, nwalls, ncells, nblocks_red, nsprings, ntriangles, nhinges, nriders;
-    int cell_cap;    /* cells the cell buffers hold (ncells: in use; host/binning.c) */
+    int cell_cap;    /* cells the cell buffers hold (ncells: in use; host/steps/binning.c) */
     int series_rows; /* rows of the series ring (common/series.h) */
     int maxn[2], cur;  /* slots of each row set (its rows packed together); the set in use (1 - cur is built into) */
     int maxp, maxp_old, maxv; /* patch rows' capacities (patch_contacts.h) */

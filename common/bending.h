@@ -26,7 +26,7 @@
  * k_diss in N s. Seed 001 gives k_el = 1e-3 N/m and k_diss = 1e-4 N s/m, units no reading of its equations yields
  * (unit vectors u_i would make k_diss N s/m but k_el N). Decision: the printed equations rule, and the printed
  * numbers are taken in N m and N s. The damping is then strong - on 1.33 mm edges it bounds the time step at
- * 1.64e-7 s (host/sim_setup.c) - but the paper's triaxial sets no time step to hold it against.
+ * 1.64e-7 s (host/core/sim_setup.c) - but the paper's triaxial sets no time step to hold it against.
  * A degenerate hinge (an edge or a triangle of zero size) exerts nothing. The four forces go to the contribution
  * channel (springs.h) at chan_slot[2 nsprings + 3 ntriangles + 4h + k].
  */

@@ -4,7 +4,7 @@
  *   - the OpenCL kernel (kernels/<family>.cl: one DEM_KERNEL(name) line),
  *   - the work-item function's signature (common/<family>.h: DEM_ITEM(name) { body }),
  *   - the reference loop and its prototype (reference/<family>.c: one DEM_REF_LOOP(name) line),
- *   - the host's argument setting (host/cl_backend.c) and the reference backend's call (reference/backend_ref.c),
+ *   - the host's argument setting (host/opencl/cl_backend.c) and the reference backend's call (reference/backend_ref.c),
  *     which look each argument's value up by its source (the last field) in the buffer and scalar registries
  *     (common/dem_buffers.h).
  * Adding an argument is one line here (and its use in the item's body); an argument whose source is not in a
@@ -84,7 +84,7 @@
     A(BOUT, int, own_count, OWN_COUNT) A(BOUT, int, nbr_lower, LOWER) A(BOUT, int, flags, FLAGS)
 #define DEM_ITEMS_nbr_sort n
 /* old_hist, old_mc_fn: the history and MC-strain's forces as the last rows numbered their pairs, copied into the
- * pair records' and the displacements' space (host/neighbor.c) */
+ * pair records' and the displacements' space (host/steps/neighbor.c) */
 #define DEM_ARGS_pair_index(F, A)                                                                                    \
     F(I, int, n, N) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)         \
     A(BOUT, int, pair_mirror, PAIR_MIRROR) A(BOUT, int, flags, FLAGS) A(BIN, int, in_start, IN_START)                \

@@ -14,7 +14,7 @@ enum {
     PM_MU = 2,    /* Coulomb friction coefficient  [-] */
     PM_DAMP_N = 3, /* c sqrt(2 E*): normal damping is -PM_DAMP_N sqrt(sqrt(r* d) m*) v_n   [sqrt(Pa)] */
     PM_DAMP_T = 4, /* c sqrt(8 G*): tangential damping is -PM_DAMP_T sqrt(sqrt(r* d) m*) v_t [sqrt(Pa)] */
-                   /* c: damping factor calibrated from restitution (host/restitution.c) */
+                   /* c: damping factor calibrated from restitution (host/physics/restitution.c) */
     PM_MC_STRESS = 5, /* pi beta nu, mean of the two materials' beta nu (seed 000 Eq. 10: A = pi r* d) [-] */
     /* MC-strain constants of ONE material (Eq. 7); meaningful on the diagonal entry m*nmat+m of material m, which
      * is where a particle of material m looks them up (the deformation field is that of its own material). */
@@ -32,7 +32,7 @@ enum {
 enum {
     SP_K = 0,    /* spring constant k [N/m] */
     SP_REST = 1, /* rest length rho^0 [m] */
-    SP_DAMP = 2, /* 2 gamma sqrt(k m_eff) [kg/s], m_eff of the two particles (host/sim_setup.c) */
+    SP_DAMP = 2, /* 2 gamma sqrt(k m_eff) [kg/s], m_eff of the two particles (host/core/sim_setup.c) */
     SP_STRIDE = 3
 };
 
@@ -123,7 +123,7 @@ enum { WP_FX = 0, WP_FY, WP_FZ, WP_FN, WP_STRIDE };
  * work-group size, so the sum has the same bits on every device and launch configuration. */
 #define DEM_REDUCE_BLOCK 256
 /* A particle's wall mask holds one bit per wall: the most walls a kernel meets (dem.h's DEM_MAX_WALLS, checked
- * against it in host/sim_setup.c) */
+ * against it in host/core/sim_setup.c) */
 #define DEM_WALL_MASK_BITS 32
 /* A time-series row's terms per particle (series.h), in the ring's slot of each particle and sampled step: kinetic
  * energy (translation and rotation) [J], gravitational potential energy [J], Hertz elastic energy of the contacts it

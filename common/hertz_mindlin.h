@@ -10,7 +10,7 @@
  *                   scaled onto the cone and the stored spring force is set to it (spring rescaled).
  * Damping: the form is LIGGGHTS' (c = 2 sqrt(5/6) beta). The coefficient c is NOT beta = ln e/sqrt(ln^2 e + pi^2)
  *          (that is exact only for a linear spring); the host solves the dimensionless Hertz collision for the c
- *          that gives the requested restitution e (host/restitution.c). c depends on e alone, so e is velocity
+ *          that gives the requested restitution e (host/physics/restitution.c). c depends on e alone, so e is velocity
  *          independent. Since S_n = 2 E* sqrt(r* d) and k_t = 8 G* sqrt(r* d), both damping terms share
  *          q = sqrt(sqrt(r* d) m*); the pair table holds c sqrt(2 E*) and c sqrt(8 G*) (host-computed), so one
  *          square root serves both and no transcendental function is evaluated on the device.
@@ -78,7 +78,7 @@ DEM_INLINE real hertz_energy(real estar, real rstar, real delta)
 
 /* The law's stiffnesses at an overlap, given srd = sqrt(r* delta): normal dF/d(delta) = 2 E* sqrt(r* d) (S_n of Eq. 3's
  * damping) and tangential k_t = 8 G* sqrt(r* d) (Eq. 4). hm_contact uses the tangential one; the host's stability
- * estimate (host/stability.c) both. */
+ * estimate (host/physics/stability.c) both. */
 DEM_INLINE real hm_normal_stiffness(real estar, real srd)
 {
     return (real)2 * estar * srd;

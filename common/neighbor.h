@@ -2,10 +2,10 @@
  *
  * Row i lists every j != i with |x_i - x_j| < r_i + r_j + skin, sorted by ascending sid[j] (the canonical summation
  * order of contact_forces.h). sid is each particle's stable id (its id at dem_start), so that every sum follows the
- * ids, not the places the particles are stored at (host/reorder.c moves them). The test is symmetric in i and j bit
+ * ids, not the places the particles are stored at (host/core/reorder.c moves them). The test is symmetric in i and j bit
  * for bit (IEEE + and * commute), so j is in row i exactly when i is in row j.
  * The rows are packed (dem_buffers.h DEM_ROWS): a build is a count (nbr_count), a scan of the counts into each row's
- * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/sim.c), a fill (nbr_build), which
+ * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/core/sim.c), a fill (nbr_build), which
  * walks the same cells with the same test and so finds exactly the pairs counted (FLAG_ASYMMETRIC 2, a library bug,
  * when it does not), and a sort of each row (nbr_sort). Count and fill each test every pair once, from the particle
  * whose cell comes first in the grid's order (in one cell: the one stored first), so together they cost one walk of
@@ -94,7 +94,7 @@ DEM_ITEM(nbr_build)
 }
 
 /* Pass 3: row i sorted by stable id (the canonical order); the split of the row for the sums (nbr_lower) and the
- * counts of the pairs i hosts and is a guest in, which the commit scans (host/neighbor.c) */
+ * counts of the pairs i hosts and is a guest in, which the commit scans (host/steps/neighbor.c) */
 DEM_ITEM(nbr_sort)
 {
     int cap = nbr_count[i];

@@ -1,4 +1,4 @@
-/* riders.h - particles that ride on walls (dem_attach_to_wall; host/attach.c): each step, after the walls have
+/* riders.h - particles that ride on walls (dem_attach_to_wall; host/mesh/attach.c): each step, after the walls have
  * moved, rider i is put at its wall's point plus its offset from it at the start and given its wall's velocity of the
  * step. Placed, not integrated: in fp32 an integrated rider drifted from its wall by half an ulp per step (1.6e-9 m
  * per step at z = 0.08 m); placed, it is one rounding away from the wall's double position, whatever the step. */

@@ -5,13 +5,13 @@
  * (the touching pairs it owns and its walls; with DEM_KEEP_PAIR_ENERGY each pair's energy comes from contact_pairs,
  * which has the pair's elastic force at hand). So a sampled step launches no kernel more than another step (with the
  * wall forces kept; without, the walls' block sums) and needs no synchronisation; the host reads the ring when it is full or the steps end and adds each row's terms in ascending
- * particle order in double, and finishes the walls' sums with wall_reduce_final's own loop (host/energy.c): the same
+ * particle order in double, and finishes the walls' sums with wall_reduce_final's own loop (host/physics/energy.c): the same
  * bits on every backend.
  *
  * A pair's contact is counted by its lower id when the overlap the contact law computed (PR_DELTA) is positive, a wall
- * when the particle overlaps it (a rider never touches its wall); host/energy.c counts the same from whole rows. A
+ * when the particle overlaps it (a rider never touches its wall); host/physics/energy.c counts the same from whole rows. A
  * fixed particle has neither kinetic nor potential energy, one that does not rotate no rotational energy (its inverse
- * mass or inertia is 0: host/sim_setup.c). The membrane's springs and patches are not counted: a run with them samples
+ * mass or inertia is 0: host/core/sim_setup.c). The membrane's springs and patches are not counted: a run with them samples
  * on the host.
  */
 #ifndef DEM_SERIES_H

@@ -1,6 +1,6 @@
 /* sorted_row.h - binary search in a row of ids in ascending order (patch rows), or in a neighbour row, whose partners
  * are in ascending order of their stable ids (row_find_sid), and a pair's number; integers only, so that the kernels
- * (neighbor.h) and the host (host/state.c, restoring a checkpoint) use the same code. */
+ * (neighbor.h) and the host (host/core/state.c, restoring a checkpoint) use the same code. */
 #ifndef DEM_SORTED_ROW_H
 #define DEM_SORTED_ROW_H
 #ifndef DEM_INLINE /* host code that does not include dem_real.h: the same definitions as its C branch */
@@ -43,7 +43,7 @@ DEM_INLINE int row_find_sid(DEM_CONST_GLOBAL int *row, int count, DEM_CONST_GLOB
 
 /* The number of the pair in row slot k of particle a (partner b = list[start[a] + k]) in the pair list of the rows
  * (neighbor.h's pair_index): numbered by its host, the one stored first, from own[host] in the host's row order.
- * -1 when the partner's row lacks the pair (host/state.c, host/contacts.c). */
+ * -1 when the partner's row lacks the pair (host/core/state.c, host/physics/contacts.c). */
 DEM_INLINE int row_pair_of(DEM_CONST_GLOBAL int *count, DEM_CONST_GLOBAL int *list, DEM_CONST_GLOBAL int *start,
                            DEM_CONST_GLOBAL int *own, DEM_CONST_GLOBAL int *sid, int a, int k)
 {

@@ -122,7 +122,7 @@ typedef struct {
     int reorder;         /* N > 0: at every N-th neighbour rebuild (the first at dem_start) the particles are stored
                             anew along a Morton curve through their current positions when their storage has
                             become scattered (reorder_gain), so that neighbours in space stay neighbours in memory as
-                            the packing flows (host/reorder.c); 0 (default): they stay where they are. The bits do
+                            the packing flows (host/core/reorder.c); 0 (default): they stay where they are. The bits do
                             not depend on it (every sum follows the particle ids), and every particle id the library
                             takes or returns stays that of dem_start. A run with springs, triangles, hinges, patches
                             or attachments is not reordered. */
@@ -147,7 +147,7 @@ typedef enum {
                                        (ids of dem_start); slots (dem_neighbor_capacity) >= start[n] */
     DEM_FIELD_HIST,                 /* real[3*pairs]: elastic tangential force per listed pair [N], pairs numbered in the
                                        order of the particles' storage (each pair by the one stored first, in its row
-                                       order: host/reorder.c; the ids' order unless dem_config.reorder moved them);
+                                       order: host/core/reorder.c; the ids' order unless dem_config.reorder moved them);
                                        empty without friction */
     DEM_FIELD_WALL_HIST,            /* real[3*n*nwalls]; empty without friction */
     DEM_FIELD_WALL_FORCE,           /* real[3*nwalls]: force each wall receives [N] */
@@ -277,7 +277,7 @@ typedef struct {
     int *tri;
 } dem_mesh;
 typedef enum { DEM_MESH_SHEET = 0, DEM_MESH_TUBE = 1, DEM_MESH_SPHERE = 2 } dem_mesh_kind;
-/* A generated mesh (host/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z
+/* A generated mesh (host/mesh/mesh.c): a sheet in the plane z = center[2], a x b [m] along x and y, pushed along -z
  * (equilateral: a kept and cut into whole edges, the rows as many as come nearest to b); a
  * tube around the axis through center along z, radius a, height b, pushed inward (open ends); a sphere of radius a
  * about center, pushed inward (the icosahedron split until its edges are nearest `edge`, smoothed). Near-equilateral
@@ -298,7 +298,7 @@ double dem_mesh_vertices(const dem_mesh_spec *spec);
 int dem_mesh_grid(const dem_mesh_spec *spec, double *n1, double *n2, double *dx, double *dy);
 void dem_mesh_free(dem_mesh *m);
 /* Reads a mesh from a Wavefront OBJ (v and triangular f) or an STL file (ASCII or binary; equal coordinates become one
- * vertex), strictly: anything it cannot take is refused with "path:line: reason" in err (host/mesh_file.c). The
+ * vertex), strictly: anything it cannot take is refused with "path:line: reason" in err (host/mesh/mesh_file.c). The
  * triangles keep the file's order and orientation. Free with dem_mesh_free. 0, or -1. */
 int dem_mesh_read(const char *path, dem_mesh *m, char *err, size_t errlen);
 /* A mesh's edges (each once, edge[2 ne], in the order of their (lower, higher) vertex) and hinges (one per edge
@@ -336,7 +336,7 @@ typedef struct {
 int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info);
 int dem_set_particle_omega(dem_sim *s, int id, const double w[3]);
 /* Orders all particles added so far along a Morton (Z-order) curve through their positions, for memory locality
- * (host/particle_order.c: a bed of 1e5 spheres in random order ran 2.4x faster sorted). Before dem_start and before
+ * (host/core/particle_order.c: a bed of 1e5 spheres in random order ran 2.4x faster sorted). Before dem_start and before
  * any spring, triangle, hinge, patch or attachment refers to particles. Particle ids change: dem_particle_source(s,
  * i) is the id particle i had when it was added (i itself when nothing was sorted). Returns 0 or a dem_status. */
 int dem_sort_particles(dem_sim *s);
@@ -432,7 +432,7 @@ typedef struct {
     int wall;                        /* the wall of wall_time (-1: none) */
 } dem_contact_advice;
 int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a);
-/* How close dt is to the explicit step's stability bound at the current overlaps (host/stability.c): a Hertz contact
+/* How close dt is to the explicit step's stability bound at the current overlaps (host/physics/stability.c): a Hertz contact
  * stiffens as sqrt(overlap), so a packing pressed hard can outgrow a dt chosen by the Rayleigh time (a 50 MPa
  * compact heated up at 0.2 Rayleigh times: docs/design.md "The time step under compaction"). Per particle, each
  * contact's normal and tangential-rotational two-body frequencies at the law's stiffness at its overlap, summed over
@@ -539,7 +539,7 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
 
 /* The contact network of the current state: every touching particle pair (by i < j, ascending) and then every
  * touching particle-wall pair (by particle, then wall), with the force the step computed on particle i split along
- * the contact normal and across it, the overlap and the contact point (host/contacts.c). */
+ * the contact normal and across it, the overlap and the contact point (host/physics/contacts.c). */
 typedef struct {
     int i, j;            /* particles, i < j; for a wall contact j = -1 - wall */
     double overlap;      /* [m] */

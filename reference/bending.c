@@ -10,7 +10,7 @@ DEM_REF_LOOP(hinge_forces)
 
 #if DEM_REAL_SIZE == 8
 /* sin(theta0 / 2) of a hinge at the positions x (fp64), for the host's rest angle of a hinge added with theta0 NAN:
- * the item's own expressions (host/sim_setup.c, pack_channel) */
+ * the item's own expressions (host/core/sim_setup.c, pack_channel) */
 double dem_hinge_rest_shalf(const double *x, const int *p)
 {
     return hinge_geometry(v3_load(x, p[0]), v3_load(x, p[1]), v3_load(x, p[2]), v3_load(x, p[3])).shalf;
@@ -21,7 +21,7 @@ double dem_hinge_rest_shalf(const double *x, const int *p)
 /* The period 2 pi / omega of hinge p[0..3]'s fold at the positions x, linearised about its rest angle: the angle's
  * stiffness k_el |E|^2 / (|N1| + |N2|) / 2 (d s / d theta = cos(theta / 2) / 2 <= 1/2) over its mass
  * 1 / sum_i |u_i|^2 / m_i, so omega^2 = stiffness / 2 * sum_i |u_i|^2 / m_i. INFINITY for k_el 0 or a degenerate
- * hinge. (host/sim_setup.c: the time-step bound.) */
+ * hinge. (host/core/sim_setup.c: the time-step bound.) */
 double dem_hinge_period(const double *x, const int *p, double kel, const double *mass)
 {
     vec3 x1 = v3_load(x, p[0]), x2 = v3_load(x, p[1]), x3 = v3_load(x, p[2]), x4 = v3_load(x, p[3]), u[4];

@@ -22,7 +22,7 @@ int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *
 
 /* The overlap of a sphere of radius r at p on triangle tri_x, in a contact with flags `flags` (PATCH_* of
  * dem_layout.h), as patch_forces computes it (common/patch_contacts.h); 0 where it does not touch. For the energy
- * (host/energy.c). */
+ * (host/physics/energy.c). */
 real REF(dem_patch_overlap)(const real *p, const real *tri_x, unsigned flags, real r)
 {
     static const int tri[3] = {0, 1, 2};

@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #define FUZZ_MESH_MAKE 20000
-#define MESH_CAP 2000000 /* host/mesh.c MESH_MAX_VERTICES */
+#define MESH_CAP 2000000 /* host/mesh/mesh.c MESH_MAX_VERTICES */
 
 static void check_mesh(const dem_mesh *m)
 {

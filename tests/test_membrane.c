@@ -1,4 +1,4 @@
-/* test_membrane.c - host/mesh.c (generated sheet, tube, sphere; edges and hinges) and host/membrane.c
+/* test_membrane.c - host/mesh/mesh.c (generated sheet, tube, sphere; edges and hinges) and host/mesh/membrane.c
  * (dem_add_membrane): the meshes have the topology of their surface (Euler characteristic, boundary, one hinge per
  * interior edge), near-equilateral triangles of about the requested edge, the documented orientation and the
  * surface's area; a membrane gets the vertex masses of its area, a spring period of k = (sqrt(3)/2) E d, no force

@@ -1,4 +1,4 @@
-/* test_mesh_file.c - dem_mesh_read (host/mesh_file.c): OBJ and STL (ASCII, binary) give the same octahedron; a
+/* test_mesh_file.c - dem_mesh_read (host/mesh/mesh_file.c): OBJ and STL (ASCII, binary) give the same octahedron; a
  * generated sphere written as OBJ comes back bit for bit and makes the same membrane; every refusal names the file's
  * line and the reason. */
 #include <math.h>

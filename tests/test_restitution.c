@@ -1,4 +1,4 @@
-/* test_restitution.c - the damping calibrated from e (host/restitution.c):
+/* test_restitution.c - the damping calibrated from e (host/physics/restitution.c):
  *   - gives that e in a simulated head-on collision on PoCL, within 0.05 % (measured: 0.033 % at worst), for e in
  *     {0.3, 0.5, 0.7, 0.9, 0.95}, at two impact speeds, which agree to 1e-6 (it must not depend on speed);
  *   - agrees with an independent integration written here: the physical collision m* d'' = -max(0, k d^(3/2) +

@@ -34,7 +34,7 @@
  *
  * Compaction to relative density 0.9 (hard case 7): 300 spheres in a die under each model (test_compaction_09).
  *
- * The step's stability at the overlaps reached (dem_stability_get, host/stability.c): 64 MCC-like spheres on a
+ * The step's stability at the overlaps reached (dem_stability_get, host/physics/stability.c): 64 MCC-like spheres on a
  * simple cubic lattice pressed 10 % into each other and into a box, nudged off their places. The estimate matches
  * its closed form for an inner sphere (six like contacts), is the same on every backend, and it tells apart a step
  * at which the lattice comes to rest (0.7 of the advice) from one at which it stays stirred (2x): the kinetic energy

@@ -1,4 +1,4 @@
-/* test_state.c - the checkpoint state (host/state.c): a saved state restores bit for bit, and one that does not fit
+/* test_state.c - the checkpoint state (host/core/state.c): a saved state restores bit for bit, and one that does not fit
  * the run is refused and changes nothing (issue 18, item 7: checked before any device state is kept). */
 #include "test_util.h"
 #include <stdlib.h>

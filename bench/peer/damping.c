@@ -3,7 +3,7 @@
  *
  * Both codes damp a Hertz contact as f_d = -c sqrt(S m*) v (S = 2 E* sqrt(r* d), normal; k_t, tangential). LIGGGHTS
  * takes c = 2 sqrt(5/6) |beta| with beta = ln e / sqrt(ln^2 e + pi^2), the linear-spring formula; libdem solves the
- * Hertz collision for the c that rebounds at e (host/restitution.c, docs/design.md). Handed the same e the two codes
+ * Hertz collision for the c that rebounds at e (host/physics/restitution.c, docs/design.md). Handed the same e the two codes
  * damp differently; handed e_liggghts below, LIGGGHTS computes our c and both integrate the same equations.
  *
  * usage: damping E   prints one line of key=value pairs:

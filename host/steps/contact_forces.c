@@ -1,5 +1,5 @@
 /* contact_forces.c - the contact step (kernels/contact_forces.cl): contact_pairs (each pair once), then
- * contact_forces (per-particle sums in canonical order, walls); the walls' sums (host/wall_forces.c) may run between
+ * contact_forces (per-particle sums in canonical order, walls); the walls' sums (host/steps/wall_forces.c) may run between
  * them. Written once for every backend. */
 #include "backend.h"
 

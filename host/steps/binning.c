@@ -48,7 +48,7 @@ int dem_stage_bin_cells(const dem_backend_ops *o, dem_backend *b, const int *fla
         int lo = flags[FLAG_CELL_LO + d], hi = flags[FLAG_CELL_HI + d];
         first[d] = hi < lo ? 0 : lo; /* no particles: one cell */
         count[d] = hi < lo ? 1 : hi - lo + 1;
-        cells *= count[d];                /* at most the domain's cells, which fit an int (host/sim_setup.c) */
+        cells *= count[d];                /* at most the domain's cells, which fit an int (host/core/sim_setup.c) */
         domain *= c->si[SI_DCX + d];
     }
     if (cells_reserve(o, b, cells, domain))

@@ -1,4 +1,4 @@
-/* sim.h - internal state of a simulation (host/sim.c drives; host/sim_setup.c validates and packs). */
+/* sim.h - internal state of a simulation (host/core/sim.c drives; host/core/sim_setup.c validates and packs). */
 #ifndef DEM_SIM_H
 #define DEM_SIM_H
 #include "dem.h"
@@ -22,7 +22,7 @@ struct dem_sim {
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     int *source, source_n; /* after dem_sort_particles: each particle's id before it (the first source_n) */
-    /* dem_config.reorder (host/reorder.c): times the particles were stored anew. Once they were, the host's
+    /* dem_config.reorder (host/core/reorder.c): times the particles were stored anew. Once they were, the host's
      * per-particle arrays above follow the storage order, and setup.sid / setup.order map places to the ids of
      * dem_start and back (sim_api, sim_dev). */
     long reorders;
@@ -46,7 +46,7 @@ struct dem_sim {
     int maxp, maxv;      /* capacities of the patch rows (patch_contacts.h), grown on overflow */
     double reach;        /* patch search reach [m], widened when an edge reaches it */
     int natt, att_cap;
-    int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/attach.c) */
+    int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/mesh/attach.c) */
     int nmat;
     dem_material mats[64];
     unsigned char mat_apart[64]; /* 1: a membrane's material, whose particles do not touch each other (PM_APART) */
@@ -129,7 +129,7 @@ void sim_stages_from_step(dem_sim *s);
  * >= 0: a sampled step, whose series row goes to that row of the device's ring (common/series.h). */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row);
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
-/* The kernels' wall type of w (dem_layout.h WALL_*) and its W_RADIUS and W_HEIGHT (host/wall_overlap.c) */
+/* The kernels' wall type of w (dem_layout.h WALL_*) and its W_RADIUS and W_HEIGHT (host/physics/wall_overlap.c) */
 int sim_wall_table(const dem_wall *w, double *radius, double *height);
 void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its stage of the current step [m/s] */
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
@@ -177,7 +177,7 @@ double dem_hinge_period(const double *x, const int *p, double kel, const double 
 double dem_hinge_damping_rate(const double *x, const int *hinge, const double *hinge_k, int nh, const double *sqrt_im,
                               int n);
 
-/* host/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
+/* host/mesh/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
  * lengths are known; the device places them each step: common/riders.h) */
 void sim_attach_start(dem_sim *s);
 

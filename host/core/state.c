@@ -28,7 +28,7 @@ void dem_state_free(dem_state *st)
 }
 
 /* A whole field: in the callers' order (dem_get_raw), or as stored (stored: the rows and the pair-sized fields,
- * read together in storage order; host/reorder.c) */
+ * read together in storage order; host/core/reorder.c) */
 static void *get_field(dem_sim *s, dem_field f, size_t *bytes, int *e, int stored)
 {
     *bytes = stored ? sim_stored_bytes(s, f) : dem_field_bytes(s, f);
@@ -303,7 +303,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(mcd);
     if (!e)
         e = patch_contacts_get(s, st);
-    if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/reorder.c) */
+    if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/core/reorder.c) */
         e = pairs_to_api(s, st);
     if (e)
         dem_state_free(st);
@@ -312,7 +312,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
 
 int sim_rebuild(dem_sim *s); /* sim.c */
 
-/* A particle field from the callers' order into the device's (host/reorder.c) */
+/* A particle field from the callers' order into the device's (host/core/reorder.c) */
 static int write_api(dem_sim *s, dem_field f, const void *src, size_t bytes)
 {
     if (!s->reorders)
@@ -327,7 +327,7 @@ static int write_api(dem_sim *s, dem_field f, const void *src, size_t bytes)
 
 static int state_set(dem_sim *s, const dem_state *st, int keep);
 
-/* The rebuilds within keep the storage order (host/reorder.c). */
+/* The rebuilds within keep the storage order (host/core/reorder.c). */
 int dem_state_set(dem_sim *s, const dem_state *st)
 {
     int hold = s->reorder_hold;

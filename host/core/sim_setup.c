@@ -659,7 +659,7 @@ int sim_pack(dem_sim *s)
         hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
     s->packed[21] = hold, u->hold = hold;
     /* the stable ids every sum follows (neighbor.h): the particles' ids at the start, so that the bits do not depend
-     * on where the particles are stored later (host/reorder.c). (Their places in the input instead, which would make
+     * on where the particles are stored later (host/core/reorder.c). (Their places in the input instead, which would make
      * a sorted packing (dem_sort_particles) run the bits of the unsorted one, cost that sorted run a third of its
      * speed: docs/design.md "Every sum follows the particle ids".) */
     int *sid = malloc(sizeof(int) * (size_t)(n ? n : 1)), *order = malloc(sizeof(int) * (size_t)(n ? n : 1));

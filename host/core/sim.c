@@ -764,7 +764,7 @@ static int read_flags(dem_sim *s, int *flags)
 
 static int report_out_of_domain(dem_sim *s, int slot)
 {
-    int id = sim_api(s, slot); /* the caller's id of the particle stored there (host/reorder.c) */
+    int id = sim_api(s, slot); /* the caller's id of the particle stored there (host/core/reorder.c) */
     int rs = s->setup.real_size;
     double p[3] = {NAN, NAN, NAN};
     unsigned char *buf = malloc((size_t)3 * s->n * rs);

@@ -4,7 +4,7 @@
  * force on the lower id, numbered by the particle stored first: row_pair_of), walls from the per-particle wall forces
  * (common/wall_forces.h); geometry (overlap, normal, contact point) is recomputed from the positions as the kernels
  * define it. Order: pairs by (i, j), i < j, then particle-wall pairs by (particle, wall), in the ids of dem_start
- * however the particles are stored (host/reorder.c). */
+ * however the particles are stored (host/core/reorder.c). */
 #include "sim.h"
 #include "dem_layout.h"
 #include "sorted_row.h"
@@ -153,7 +153,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
                 e->extra[0] = sim_real_at(wdisp, (size_t)i * nw + w, rs);
         }
     free(raw);
-    for (long k = 0; s->reorders && k < np + nwc; k++) { /* stored anew (host/reorder.c): the callers' ids */
+    for (long k = 0; s->reorders && k < np + nwc; k++) { /* stored anew (host/core/reorder.c): the callers' ids */
         cs[k].i = sim_api(s, cs[k].i);
         if (cs[k].j >= 0)
             cs[k].j = sim_api(s, cs[k].j);

@@ -1,4 +1,4 @@
-/* membrane.c - dem_add_membrane: a mesh (host/mesh.c) becomes particles, springs, triangles and hinges with the
+/* membrane.c - dem_add_membrane: a mesh (host/mesh/mesh.c) becomes particles, springs, triangles and hinges with the
  * membrane's material (seed 001 section 2.2; the parameters are documented at dem_membrane in dem.h). */
 #include "sim.h"
 #include <math.h>

@@ -21,7 +21,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define MESH_FILE_MAX 2000000 /* vertices and triangles, as host/mesh.c's generated meshes */
+#define MESH_FILE_MAX 2000000 /* vertices and triangles, as host/mesh/mesh.c's generated meshes */
 
 typedef struct {
     double *x;
