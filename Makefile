@@ -10,8 +10,8 @@ BUILD   := build
 DEPS_STAMP := $(BUILD)/config.mk
 # Packages first, flags second. build/config.mk is made by installing the missing Debian packages and only then
 # asking pkg-config for HDF5's and libcyaml's flags; make includes it, so it remakes it before anything else and
-# restarts with the flags in place. (Asking pkg-config while make reads this file, as before, gave empty flags on a
-# fresh machine: the first build failed on hdf5.h and the second worked - issue 9.) clean and test-fresh need none.
+# restarts with the flags in place. (Asking pkg-config while make reads this file gives empty flags on a fresh
+# machine: the first build would fail on hdf5.h and the second work.) clean and test-fresh need none.
 ifneq ($(filter-out clean test-fresh,$(or $(MAKECMDGOALS),all)),)
 include $(DEPS_STAMP)
 endif
@@ -158,7 +158,7 @@ test-fresh:
 conventions: $(BUILD)/dem
 	/usr/bin/python3 tools/mc_stress_conventions.py
 
-# What accuracy costs in time (issue 13): a matrix of runs, error against closed forms and converged runs against
+# What accuracy costs in time: a matrix of runs, error against closed forms and converged runs against
 # wall time, drawn in out/accuracy.png and tabled in docs/accuracy.md (bench/accuracy.c, tools/plot_accuracy.py).
 # About 13 minutes on 2 cores; ACCURACY_QUICK=1 about 4. Only the whole matrix rewrites docs/accuracy.md's measured
 # block; a quick or partial one (ACCURACY_ONLY=binary,rubber,hydrogel,membrane,skin) writes out/accuracy.md.
@@ -168,10 +168,10 @@ accuracy: $(BUILD)/dem-accuracy
 	/usr/bin/python3 tools/plot_accuracy.py out/accuracy.csv -o out/accuracy.png \
 	  $(if $(ACCURACY_QUICK)$(ACCURACY_ONLY),> out/accuracy.md,--doc docs/accuracy.md)
 
-# issue 12 item 5: one press scene under the four contact models and their compaction curves side by side
-# (tools/tablet_models.sh; TABLET_SCENE=scenes/tablet_100k.yaml for the issue's: on 2 cores 54 minutes classical, by
-# tablet_3k's ratios about 1.5 hours lagged MC-strain and 9 iterated; TABLET_TIME=2h runs each model at most two hours
-# a sitting and continues the stopped ones at the next call)
+# One press scene under the four contact models and their compaction curves side by side
+# (tools/tablet_models.sh; TABLET_SCENE=scenes/tablet_100k.yaml for the 1e5-sphere press: on 2 cores 54 minutes
+# classical, by tablet_3k's ratios about 1.5 hours lagged MC-strain and 9 iterated; TABLET_TIME=2h runs each model at
+# most two hours a sitting and continues the stopped ones at the next call)
 tablet-models: $(BUILD)/dem
 	bash tools/tablet_models.sh
 
@@ -181,7 +181,7 @@ tablet-models: $(BUILD)/dem
 tablet-mass-scale: $(BUILD)/dem
 	bash tools/tablet_mass_scale.sh
 
-# issue 13's hard cases at the issue's lengths (tests/test_stability.c; the short versions are in make test)
+# The hard cases at full length (tests/test_stability.c; the short versions are in make test)
 stability: $(BUILD)/tests/test_stability
 	DEM_STABILITY_LONG=1 ./$(BUILD)/tests/test_stability
 
@@ -296,7 +296,7 @@ bench: $(BUILD)/dem-bench $(BUILD)/dem
 	bash bench/peer/run.sh --bed
 	./$(BUILD)/dem-bench
 
-# Against a peer code (issue 14): Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
+# Against a peer code: Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
 # 100 000 spheres, poured once and cached in out/peer/bed.csv; 2000 steps each; the floor forces must agree within
 # 2 %; one Markdown table on stdout and out/peer/peer.json. bench/peer/run.sh says how; about 5 minutes on 2 cores,
 # the first time 15-30 more for the pour.

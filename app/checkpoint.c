@@ -256,17 +256,17 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
                                         h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
-        /* what the contact network reads right after a restore (absent from checkpoints of libdem before
-         * 2026-12-03, empty in runs that keep none of it: those values zero until the next step): each touching
-         * pair's force record of the last step (common/dem_layout.h PR_*), each wall's force on each particle (runs
-         * that keep them), MC-strain's induced displacements at both ends of each pair and at each wall contact */
+        /* what the contact network reads right after a restore (absent from older checkpoints, empty in runs that keep
+         * none of it: those values zero until the next step): each touching pair's force record of the last step
+         * (common/dem_layout.h PR_*), each wall's force on each particle (runs that keep them), MC-strain's induced
+         * displacements at both ends of each pair and at each wall contact */
         rc = rc || read_optional(g, "pair_rec", real_t, DEM_PAIR_RECORD_REALS * (size_t)npairs, rs, &st->pair_rec) ||
              read_optional(g, "wall_pf", real_t, n3 * (size_t)nw, rs, &st->wall_pf) ||
              read_optional(g, "pair_mc_disp", real_t, 2 * (size_t)npairs, rs, &st->pair_mc_disp) ||
              read_optional(g, "wall_mc_disp", real_t, (size_t)n * (size_t)nw, rs, &st->wall_mc_disp);
         st->wall_pf_bytes = st->wall_pf ? n3 * (size_t)nw * rs : 0;
         st->wall_mc_disp_bytes = st->wall_mc_disp ? (size_t)n * (size_t)nw * rs : 0;
-        /* each wall's normal force (absent from checkpoints of libdem before it: zero until the next sum) */
+        /* each wall's normal force (absent from older checkpoints: zero until the next sum) */
         if (!rc && H5Lexists(g, "wall_normal_force", H5P_DEFAULT) > 0) {
             st->wall_nforce = malloc((size_t)(nw + 1) * rs);
             rc = !st->wall_nforce || h5_read(g, "wall_normal_force", real_t, st->wall_nforce, (size_t)nw);
@@ -292,7 +292,7 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
                  h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
                  h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
                  h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
-            if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent before 2026-12-04: not known */
+            if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent from older checkpoints: not known */
                 st->patch_side = malloc(sizeof(int) * (size_t)npatch);
                 rc = !st->patch_side || h5_count(g, "patch_side") != npatch ||
                      h5_read(g, "patch_side", H5T_NATIVE_INT, st->patch_side, (size_t)npatch);

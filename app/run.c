@@ -283,7 +283,7 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
                 DEM_MIN_STEPS_PER_CONTACT, a.contact_time / DEM_MIN_STEPS_PER_CONTACT, DEM_MIN_STEPS_PER_CONTACT);
 }
 
-/* Lagged MC-strain (issue 13, hard case 6; docs/multicontact.md "When lagged MC-strain rings"). The lagged scheme
+/* Lagged MC-strain (docs/multicontact.md "When lagged MC-strain rings"). The lagged scheme
  * evaluates each contact force from the displacements the particle's other contacts induced with their forces of the
  * previous step: one Jacobi iteration per step. A force change df_k comes back at contact c one step later as
  *   df_c = (df/dd)_c d_k->c = 2 E* a_c K g_kc df_k / d_kc,   K = gamma (1 + nu) / (2 pi E)   (common/mc_strain.h),
@@ -353,7 +353,7 @@ void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out)
 
 /* Position resolution (dem_position_resolution): with info, one line for dem check; a warning when the run's
  * precision resolves positions more coarsely than DEM_RESOLUTION_WARN of the smallest radius - an overlap of 1e-3
- * of a radius (stiff grains) then spans fewer than 10 steps of the grid (issue 13: fp32 far from the origin). */
+ * of a radius (stiff grains) then spans fewer than 10 steps of the grid (fp32 far from the origin). */
 void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info, FILE *out)
 {
     double far = 0, res = dem_position_resolution(s, p, &far), rmin = INFINITY;
@@ -373,11 +373,11 @@ void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info
 }
 
 /* A membrane's springs and hinges recommend a step of their own (dem_time_scales: 50 steps per spring or hinge period,
- * half the hinges' damping time), which can be below the 0.2 Rayleigh times that dt_rayleigh: 0.2 gives: issue 39's
- * membrane took 1.03e-6 s where its hinge damping recommends 6.8e-7 s, silently. Stable up to the bound, but a
- * spring's period is then resolved by fewer than 50 steps (its frequency 0.07 % off at 50, 1.6 % at 10) or the
- * hinges' damping removes more than half of a fold's speed in one step. A warning (the grains' is the contact
- * time's, run_contact_advice), for dt given either way. */
+ * half the hinges' damping time), which can be below the 0.2 Rayleigh times that dt_rayleigh: 0.2 gives: a closed
+ * membrane sphere's run took 1.03e-6 s where its hinge damping recommends 6.8e-7 s, and nothing said so. Stable up to
+ * the bound, but a spring's period is then resolved by fewer than 50 steps (its frequency 0.07 % off at 50, 1.6 % at
+ * 10) or the hinges' damping removes more than half of a fold's speed in one step. A warning (the grains' is the
+ * contact time's, run_contact_advice), for dt given either way. */
 void run_dt_advice(const scene *sc, const scene_run *run)
 {
     const dem_time_scales *ts = &run->ts;
@@ -492,7 +492,7 @@ static void membrane_watch(run_ctx *c)
 
 /* A particle that left the domain or went non-finite (dem_error_particle): when it is not a membrane's vertex, was
  * inside a closed membrane at the run's first step and its centre is outside it now, say that it left through that
- * membrane (issue 39: such a run said only "outside the binning domain"). On the host, at the failure only. */
+ * membrane (the bare error says only "outside the binning domain"). On the host, at the failure only. */
 static void membrane_left(const run_ctx *c)
 {
     int id = dem_error_particle(c->s), n = dem_count(c->s);
@@ -522,8 +522,8 @@ static void membrane_left(const run_ctx *c)
     free(x);
 }
 
-/* What preceded a run's failure, said after its error (issue 39: a hydrogel run hit the MC-strain cap in 1777 steps
- * before it diverged, and its log held only the error): the steps of this run that hit the iteration cap, from the
+/* What preceded a run's failure, said after its error (a hydrogel run can hit the MC-strain cap in 1777 steps before
+ * it diverges, and the error alone would not say so): the steps of this run that hit the iteration cap, from the
  * first to the failure. */
 static void failure_preceded(const run_ctx *c)
 {
@@ -710,7 +710,7 @@ static int phase_steps(run_ctx *c)
         return fail_with(EXIT_IO, c->err);
     }
     long ck_step = -1; /* step of the last checkpoint this run wrote */
-    /* A test-only hook (tests/test_scene.c, issue 13): DEM_TEST_POISON="STEP PARTICLE" makes that particle's velocity
+    /* A test-only hook (tests/test_scene.c): DEM_TEST_POISON="STEP PARTICLE" makes that particle's velocity
      * not a number once STEP is reached, to show how a run that goes non-finite stops and what it keeps. */
     long poison_step, poison_id, signal_step, signal_no;
     test_hook("DEM_TEST_POISON", &poison_step, &poison_id);

@@ -1,5 +1,5 @@
 /* run_overlap.c - how deep the particles went into each other during a run, and whether that is beyond what the
- * contact model is valid for (issue 12, item 5; issue 13, hard cases 6 and 7).
+ * contact model is valid for (pressed compacts; docs/design.md "Lagged MC-strain rings").
  *
  * At every frame `dem run` measures, over the particle pairs of the neighbour rows, the largest overlap / the
  * smaller radius and the mean over the touching pairs, keeps the largest of each with when they happened, reports

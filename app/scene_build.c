@@ -563,7 +563,7 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
         if (!(v >= 0) || !isfinite(v))
             return scene_fail(sc, err, errlen, iv[q].key, "must be >= 0 s");
         /* in steps, computed in double and capped at the run's length before it becomes an integer: an interval longer
-         * than the run means the first and last frames only (1e300 s used to overflow into "every step") */
+         * than the run means the first and last frames only (in integers, 1e300 s would overflow into "every step") */
         double r = v / dt;
         long st = r >= (double)run->steps ? run->steps : (long)llround(r);
         *iv[q].steps = st < 1 ? (q == 2 && v == 0 ? 0 : 1) : st;
@@ -627,7 +627,7 @@ static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, si
         return scene_fail(sc, err, errlen, "time.duration", "duration must be > 0 s");
     if (!(t->settle >= 0) || !(t->settle < t->duration))
         return scene_fail(sc, err, errlen, "time.settle", "settling time must be in [0, duration)");
-    double ns = t->duration / run->dt; /* in double first: 1e-300 s used to overflow into "1 steps" */
+    double ns = t->duration / run->dt; /* in double first: in integers 1e-300 s would overflow into "1 steps" */
     if (!(ns <= DEM_SCENE_MAX_STEPS))
         return scene_fail(sc, err, errlen, has_dt ? "time.dt" : "time.dt_rayleigh",
                           "duration %g s / time step %g s = %.3g steps, more than %.0e: use a larger time step or a "

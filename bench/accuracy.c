@@ -1,4 +1,4 @@
-/* accuracy.c - what accuracy costs in time (issue 13; `make accuracy`).
+/* accuracy.c - what accuracy costs in time (`make accuracy`).
  *
  * A matrix of runs, each with an error against a reference no one tuned to and the wall time its steps took, written
  * as CSV (one row per run) for tools/plot_accuracy.py, which draws error against time and writes docs/accuracy.md.

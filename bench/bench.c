@@ -189,7 +189,7 @@ static double scene_dt(const char *yaml, long *n)
     return dt;
 }
 
-/* The cost of the time series (issue 15): 514 hydrogel spheres, 5000 steps of their compression, a row every 100
+/* The cost of the time series: 514 hydrogel spheres, 5000 steps of their compression, a row every 100
  * steps against a row every step, and a row every 100 steps each the mean of those 100 (series_average). */
 /* the CPU seconds of the children waited for so far (user + system) */
 static double children_cpu(void)
@@ -262,7 +262,7 @@ static void series_cost_table(int quick)
     }
 }
 
-/* Issue 13, hard case 2: a size ratio of 20:1 against equal spheres, particle-steps/s on OpenCL device 0 in fp64. The
+/* Hard case: a size ratio of 20:1 against equal spheres, particle-steps/s on OpenCL device 0 in fp64. The
  * mix: 64 coarse spheres (r 2 mm) on a 5 mm lattice in a 20 mm box and 4000 fines (r 0.1 mm) on the free sites of
  * a 0.5 mm lattice, taken in a scrambled order; the equal case: 4064 fines alone on those sites. Both fly at up to
  * 0.5 m/s per component in the closed box, no gravity, for 2000 steps at the mix's own time step. The binning cells
@@ -411,7 +411,7 @@ static void membrane_cost_table(int quick)
                t[c][0][1] / t[c][1][1], paper[0][c] / paper[1][c]);
 }
 
-/* ---- Issue 14: throughput on a poured polydisperse bed, the input users have ----
+/* ---- Throughput on a poured polydisperse bed, the input users have ----
  * make bench-peer pours 100 000 spheres (r 0.6 / 0.8 / 1.0 mm at 30 / 40 / 30 %) into a 0.1 x 0.1 m box and saves
  * them as out/peer/bed.csv in the order the pour generated them (random placement: spatially random, as data from
  * another code arrives). The sizes below are that bed cut to a smaller square (the spheres wholly inside it, walls on

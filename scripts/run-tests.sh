@@ -12,7 +12,7 @@
 # Order: the longest first, by the wall times of the last run (build/test-times.txt, written at the end; TEST_TIMES
 # names another file), so that a long program does not start last and run alone; programs without a time keep their
 # order, after those with one. A clone that has not run the tests yet takes the times committed in
-# tests/test-times.txt (measured 2026-12-04; only the order depends on them).
+# tests/test-times.txt (measured on the 2-core development VM; only the order depends on them).
 #
 # Each program runs in a subshell that writes its exit status to a file: a program that dies of a signal outside a
 # `wait` would otherwise leave bash's job table unseen (a non-interactive bash reports and forgets it) and be lost.

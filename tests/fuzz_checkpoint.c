@@ -5,7 +5,7 @@
  * each 10-byte record is [op][target][value: 8 bytes] and sets an attribute of /state to any 64-bit value, replaces
  * a dataset with one of another length, type or rank, deletes a dataset or an attribute, writes one element of
  * the contact pair lists, replaces the scene's text, path or model with an array, a string of another kind or a
- * number, or makes one element of a real dataset nan or infinite (issue 40). The result must be refused with a message or restored (checkpoint_read, the scene it
+ * number, or makes one element of a real dataset nan or infinite. The result must be refused with a message or restored (checkpoint_read, the scene it
  * carries, dem_start on the reference, dem_state_set), never crash, leak or overrun (ASan, UBSan). */
 #include "checkpoint.h"
 #include "scene.h"
@@ -63,7 +63,7 @@ static int copy_file(const char *from, const char *to)
 }
 
 /* /scene/text or /scene/path (or the model attribute) replaced: an array of strings, a variable-length string, a
- * number, a string of another size (issue 40: an array there was read whole into a buffer for one) */
+ * number, a string of another size (an array there must not be read whole into a buffer for one) */
 static void edit_scene(hid_t f, uint8_t target, int64_t value)
 {
     hid_t sg = H5Lexists(f, "scene", H5P_DEFAULT) > 0 ? H5Gopen2(f, "scene", H5P_DEFAULT) : -1;
@@ -102,7 +102,8 @@ static void edit_scene(hid_t f, uint8_t target, int64_t value)
     H5Sclose(sp), H5Tclose(t), H5Gclose(sg);
 }
 
-/* One element of a real dataset made nan, inf or -inf (issue 40: a nan wall position was restored and acted on) */
+/* One element of a real dataset made nan, inf or -inf (a nan wall position must be refused, not restored and acted on)
+ */
 static void edit_nonfinite(hid_t st, uint8_t target, int64_t value)
 {
     const char *name = sets[target % NS];

@@ -122,7 +122,7 @@ static void check_accepted(const run_opts *o, const char *outp, const char *ckp)
         if (stat(dirname(d), &st) || !S_ISDIR(st.st_mode))
             __builtin_trap();
     }
-    /* six different files (issue 40: --checkpoint OUT.h5.part made the finished output the checkpoint): the same
+    /* six different files (--checkpoint OUT.h5.part would make the finished output the checkpoint): the same
      * folder, resolved, and the same name is one file */
     char real[6][RUN_OUT_LEN + 16];
     for (int q = 0; q < 6; q++) {

@@ -5,8 +5,8 @@
  * "d" and an attribute "a" of that type and shape are made in a file held in memory (the core driver: no disk),
  * filled from the rest of the input. Types: fixed-length string (ASCII or UTF-8, null- or space-padded), variable-
  * length string, int, long long, float, double, a compound, an array of doubles, an enum, opaque bytes. Every reader
- * is then called on them with a buffer of exactly the size it is told (so ASan sees any write past it: issue 40, a
- * checkpoint's /scene/text as an array of strings was read whole into a buffer for one). Oracles: h5_read_text and
+ * is then called on them with a buffer of exactly the size it is told (so ASan sees any write past it, e.g. a
+ * checkpoint's /scene/text as an array of strings read whole into a buffer for one). Oracles: h5_read_text and
  * h5_read_attr_string return a string only for one fixed-length string, and no longer than its size; h5_read fills
  * what it is asked for only when the count is the dataset's; the number readers read one value or refuse. */
 #include "h5util.h"

@@ -4,8 +4,8 @@
  *
  * Input: byte 0 chooses. Even: a spec - byte 1 the kind (3 of 4 valid), then centre x, y, z, a, b, edge as 8-byte
  * doubles (missing bytes are 0). Odd: the rest of the input is a file, .obj when byte 0 & 2 is 0, else .stl.
- * Oracles, besides ASan and UBSan: a spec's vertex count is computed without overflow (issue 40: a tube of radius
- * 1e-30 m and height 5.3e18 m wrapped to 2051 vertices); one above the library's cap is refused before anything is
+ * Oracles, besides ASan and UBSan: a spec's vertex count is computed without overflow (in integers a tube of radius
+ * 1e-30 m and height 5.3e18 m wraps to 2051 vertices); one above the library's cap is refused before anything is
  * made; one made has exactly the count announced, finite vertices and triangles of three different vertices in
  * range; a file read gives the same, or a refusal that names the file. Counts above FUZZ_MESH_MAKE are counted but
  * not made (one input must not take seconds). */

@@ -1,4 +1,4 @@
-/* test_bad_input.c - issue 40, "Bad input, third round": one test per class of the held-out cases that failed, each
+/* test_bad_input.c - bad input, third round: one test per class of held-out bad inputs, each
  * through the dem command as a user meets it (status, message, and what is left on disk). Classes: 1 memory safety
  * (sizes from user numbers counted before any allocation), 2 one output silently replacing another, 3 restored state
  * checked, 4 inputs that hang or cost before they are refused, 5 exit codes and messages against the docs, 6 the

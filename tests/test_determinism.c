@@ -1,4 +1,4 @@
-/* test_determinism.c - the determinism contract (issue: deterministic classical DEM core).
+/* test_determinism.c - the determinism contract of the classical DEM core.
  * A dense (solid fraction 0.58), polydisperse (radius ratio > 2), frictional packing of 2331 particles in a box with a moving lid runs
  * 1000 steps on the reference and on PoCL; after every step positions, velocities, angular velocities, forces,
  * torques, wall forces and contact history must be bitwise identical. Variants of work-group size, cell size and

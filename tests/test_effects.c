@@ -1,4 +1,4 @@
-/* test_effects.c - effects on demand (issue: scenes, effects on demand ...).
+/* test_effects.c - effects on demand.
  * An effect that is off allocates nothing, launches nothing and is compiled out of the kernels; the reference and
  * PoCL stay bitwise identical for every effect mask; an effect on at zero strength (mu = 0, e = 1, g = 0) gives the
  * same trajectories as leaving it out. */

@@ -1,5 +1,5 @@
 /* test_mc_compression.c - the multi-contact models on seed 000's compression scenes, end to end through `dem run
- * --model` (issue: multi-contact DEM ...):
+ * --model`:
  *  - 514 hydrogel spheres to 13.4 % and back (Fig. 11), 514 rubber spheres to 28 % and back (Fig. 15), 17 glass beads
  *    to 2.64 % and back (Fig. 16), 348 + 1573 generated hydrogel spheres to 10.2 % and back (Fig. 14, the bed settled
  *    under gravity: scenes/hydrogel_1921.yaml says why it is higher than the paper's box): both multi-contact models are stiffer than classical DEM at peak strain, and the
@@ -119,7 +119,7 @@ static void bounded_overlap(loop_result r)
                  100 * r.max_overlap, 100 * r.peak_strain, 100 * OVERLAP_MARGIN);
 }
 
-/* mc_stress / mc_strain: the peak stress over classical as docs/multicontact.md's table settles it (issue 16:
+/* mc_stress / mc_strain: the peak stress over classical as docs/multicontact.md's table settles it (the
  * default MC-stress reading, the paper's beta and gamma). The runs are bitwise reproducible on every device; the
  * tolerance covers the table's rounding. Changing the physics means changing both. */
 static void stiffer_and_closed(const char *scene, double mc_stress_ratio, double mc_strain_ratio)

@@ -80,9 +80,9 @@ static void check_mesh(const dem_mesh_spec *sp, int chi, double area, double are
 static void test_generated_meshes(void **st)
 {
     (void)st;
-    /* a sheet: a disc (chi 1), its area exactly a x its width, the rows (ny - 1) e sqrt(3)/2 wide (issue 39: the
-     * width is b within half a row spacing, 0.0606 m for b = 0.06 m; it was b exactly, the triangles then not
-     * equilateral); boundary = the rim */
+    /* a sheet: a disc (chi 1), its area exactly a x its width, the rows (ny - 1) e sqrt(3)/2 wide (the
+     * width is b within half a row spacing, 0.0606 m for b = 0.06 m, so that the triangles are equilateral; a width
+     * of b exactly would not keep them so); boundary = the rim */
     dem_mesh_spec sheet = {DEM_MESH_SHEET, {0.01, -0.02, 0.003}, 0.1, 0.06, 0.01};
     int nx = 11, ny = (int)lround(0.06 / (0.01 * sqrt(3) / 2)) + 1; /* rows of 11 and (odd rows) 12 vertices */
     check_mesh(&sheet, 1, 0.1 * (ny - 1) * 0.01 * sqrt(3) / 2, 1e-12,
@@ -97,9 +97,10 @@ static void test_generated_meshes(void **st)
     check_mesh(&sphere, 2, 4 * M_PI * 0.05 * 0.05, 0.01, 0);
 }
 
-/* Issue 39: a sheet's triangles are equilateral - every angle 60 deg, but the half triangles that end the odd rows
+/* A sheet's triangles are equilateral - every angle 60 deg, but the half triangles that end the odd rows
  * (30, 60, 90) - and its length a is kept, its width within half a row spacing of b, about the centre. The sheets
- * of seed 001's friction slide, test_patch_contacts and the issue (6 x 6 cm at 1 cm: 59.74 deg before). */
+ * of seed 001's friction slide, test_patch_contacts and a 6 x 6 cm sheet at 1 cm (its angles 59.74 deg when the
+ * width is b exactly). */
 static void test_sheet_angles(void **st)
 {
     (void)st;
@@ -250,8 +251,8 @@ static void test_membrane_parameters(void **st)
     dem_destroy(s);
 }
 
-/* The generated sphere as a balloon: under the internal pressure p (a negative confining pressure: the triangles
- * point inward) it settles at the membrane law's strain p R (1 - 1/3) / (2 E d) (issue 10, test 3, here through the
+/* The generated sphere as a balloon: under the internal pressure p (a negative confining pressure: the triangles point
+ * inward) it settles at the membrane law's strain p R (1 - 1/3) / (2 E d) (seed 001's balloon check, here through the
  * library's mesh and dem_add_membrane; no hinges, so that only the stretching law is measured). */
 #define BALLOON_R 0.03
 #define BALLOON_STRAIN 0.01

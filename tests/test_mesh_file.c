@@ -173,7 +173,7 @@ static void test_refusals(void **st)
     char err[512];
     assert_int_equal(dem_mesh_read("/nonexistent/x.obj", &m, err, sizeof err), -1);
     assert_non_null(strstr(err, "/nonexistent/x.obj: cannot open the mesh file: No such file or directory"));
-    /* what is not a regular file is refused without being read (issue 40): a named pipe blocked the open for ever */
+    /* what is not a regular file is refused without being read: a named pipe would block the open for ever */
     char fifo[512];
     snprintf(fifo, sizeof fifo, "%s/pipe.obj", dir);
     assert_int_equal(mkfifo(fifo, 0600), 0);
@@ -185,9 +185,9 @@ static void test_refusals(void **st)
     assert_non_null(strstr(err, "cannot open the mesh file: not a regular file"));
 }
 
-/* The vertex count of a generated mesh is counted before anything is made, in double (issue 40): sizes whose grid
- * overflowed a long (a tube of radius 1e-30 m and height 5.3e18 m came out 2051 vertices and crashed) are refused,
- * and the count is the one dem_mesh_make makes. */
+/* The vertex count of a generated mesh is counted before anything is made, in double: sizes whose grid would overflow a
+ * long (a tube of radius 1e-30 m and height 5.3e18 m would come out 2051 vertices and crash) are refused, and the count
+ * is the one dem_mesh_make makes. */
 static void test_generated_counts(void **st)
 {
     (void)st;

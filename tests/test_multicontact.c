@@ -1,4 +1,4 @@
-/* test_multicontact.c - stress trace, MC-stress and MC-strain kernels (issue: multi-contact DEM ...).
+/* test_multicontact.c - stress trace, MC-stress and MC-strain kernels.
  * Reference and PoCL bitwise identical for every model in fp32 and fp64 (stress tensor, traces and stored MC-strain
  * forces included), and every MC-stress pressure convention; zero prefactors reproduce classical DEM bit for bit;
  * two spheres are exactly classical under MC-strain and the own-term-out MC-stress readings (not under the default,
@@ -312,7 +312,7 @@ static void test_iteration_reporting(void **st)
     s = run_ref(&o, STEPS);
     dem_mc_stats_get(s, &a);
     assert_int_equal(a.max, 1);
-    /* steps, not force evaluations: dem_start's forces are none of them (issue 39: "6001 of 6000 steps") */
+    /* steps, not force evaluations: dem_start's forces are none of them (else: "6001 of 6000 steps") */
     assert_true(a.unconverged > 0 && a.unconverged <= STEPS);
     assert_true(a.first_capped >= 1 && a.first_capped <= a.last_capped && a.last_capped <= STEPS);
     assert_true(a.last_capped - a.first_capped + 1 >= a.unconverged);

@@ -1,4 +1,4 @@
-/* test_particle_order.c - where the particles are stored does not change a run's bits (issue 14).
+/* test_particle_order.c - where the particles are stored does not change a run's bits.
  *
  * Every sum follows the particles' stable ids (their ids at dem_start: common/neighbor.h), not the places they are
  * stored at, so a run whose particles are stored anew along a Morton curve at its rebuilds (dem_config.reorder) is
@@ -306,8 +306,8 @@ static void test_saved_state(void **st)
             dem_destroy(r);
         }
         /* a state that does not fit (a contact between particles far apart in its positions, found only after the
-         * rows of those positions are built) changes nothing: the run goes on as its twin. (Until 2026-12-03 only
-         * the positions went back, and the contacts the saved positions' rows did not list lost their memory.) */
+         * rows of those positions are built) changes nothing: the run goes on as its twin. (Were only
+         * the positions put back, the contacts the saved positions' rows did not list would lose their memory.) */
         double *x = (double *)sa.x, *y = (double *)sa.x + 3;
         int far = -1, rs = sa.real_size;
         for (int j = 1; rs == 8 && j < sa.n && far < 0; j++, y += 3)

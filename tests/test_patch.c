@@ -140,7 +140,7 @@ static void opencl_probe(int rs, const void *p, const void *tri, int *kind, int 
     cl_program prog = clCreateProgramWithSource(ctx, 1, &probe_src, NULL, &e);
     char opts[4096];
     /* the library's arithmetic options (host/opencl/cl_backend.c): without correctly rounded fp32 divide and sqrt NVIDIA's
-     * OpenCL gave other fp32 bits than the reference (issue 42) */
+     * OpenCL gives other fp32 bits than the reference */
     snprintf(opts, sizeof opts, "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d %s -I %s/common -I %s/include", rs,
              rs == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR);
     if (clBuildProgram(prog, 1, &dev, opts, NULL, NULL) != CL_SUCCESS) {

@@ -1,8 +1,8 @@
 /* test_patch_contacts.c - spheres touching a membrane's patches (common/patch_contacts.h; seed 001 section 2.5):
- * issue 10's tests 5 (a sphere held at a fixed overlap against a pinned patched sheet feels the Hertz force of that
- * overlap wherever it is: face, edge or vertex; the MSS_particle model does not), 6 (no sphere passes through a
- * closed patched membrane under a high pressure with edges of twice the spheres' diameter; the same membrane as
- * vertex particles lets them out) and 7 (OpenCL equals the reference bit for bit; a restart continues bit for bit). */
+ * a sphere held at a fixed overlap against a pinned patched sheet feels the Hertz force of that overlap wherever it
+ * is: face, edge or vertex (the MSS_particle model does not); no sphere passes through a closed patched membrane
+ * under a high pressure with edges of twice the spheres' diameter (the same membrane as vertex particles lets them
+ * out); OpenCL equals the reference bit for bit, and a restart continues bit for bit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -147,7 +147,7 @@ static void test_hertz_across_sheet(void **st)
     }
 }
 
-/* Points exactly on shared edges and vertices, in every orientation (issue 39): a sphere centred over a vertex, over
+/* Points exactly on shared edges and vertices, in every orientation: a sphere centred over a vertex, over
  * the midpoint of each of the six edges at it and a third of the way along them, at the overlap OVERLAP, against a
  * pinned sheet turned by each of seven rotations (the vertices and the centre rounded in the turned frame, so that
  * the two faces at an edge classify the point each by its own rounding). Each position is one contact of the Hertz
@@ -288,7 +288,7 @@ static void test_edge_points(void **st)
     }
 }
 
-/* Pressed through (issue 39): a sphere driven at constant speed through a pinned sheet - straight down over a face's
+/* Pressed through: a sphere driven at constant speed through a pinned sheet - straight down over a face's
  * centre, an edge's midpoint and a vertex of the sheet and of the sheet turned three ways (the two faces at an edge
  * then round apart), and down and sideways from a face's centre across an edge into the next face, reached 0.3 r
  * below the plane. The contact never flips: the force on the sphere points back to the side it came from all the
@@ -643,7 +643,7 @@ static void test_no_tunnelling(void **st)
     dem_destroy(s);
 }
 
-/* Issue 39's closed membrane at 1 MPa: a sphere of R 10 mm (162 vertices, edges 2.5-3.1 mm) of seed 001's rubber
+/* A closed membrane at 1 MPa: a sphere of R 10 mm (162 vertices, edges 2.5-3.1 mm) of seed 001's rubber
  * around 627 glass grains of radii 0.6-0.9 mm (Table 2) on an FCC lattice, the pressure ramped to 1 MPa over 3 ms and
  * held 1 ms. Every 0.5 ms no grain is outside the membrane by the winding number of its triangles (Van Oosterom and
  * Strackee, above), and at the end the grains lie against it: the nearest centre is closer to the membrane than

@@ -85,7 +85,7 @@ static void test_errors(void **st)
         "-0.005], normal: [0, 0, 1]}]\\nparticles:/", "bad.yaml:12: particles[0].spheres[0]: particles[0].spheres[0] "
         "(radius 0.01 m at -0.0101, 0, 0) overlaps wall walls[0] (line 8) by");
     bad("s/name: two-sphere collision/name: [unclosed/", "bad.yaml:");
-    /* every number whole or refused: libcyaml alone reads "0.004 mm" as 0.004 (issue 17, class 10) */
+    /* every number whole or refused: libcyaml alone reads "0.004 mm" as 0.004 */
     static const struct {
         const char *sed, *expect;
     } numbers[] = {
@@ -101,14 +101,14 @@ static void test_errors(void **st)
     };
     for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; k++)
         bad(numbers[k].sed, numbers[k].expect);
-    /* what the output could not hold is refused by check, not by a failing run (issue 17, class 4) */
+    /* what the output could not hold is refused by check, not by a failing run */
     {
         char sed[1200], many[1002];
         memset(many, 'x', 1001), many[1001] = 0;
         snprintf(sed, sizeof sed, "s/^name: two-sphere collision/name: %s/", many);
         bad(sed, "bad.yaml:3: name: STRING length > 1000");
     }
-    /* derived values checked in range, blamed on the input that made them impossible (issue 17, class 1) */
+    /* derived values checked in range, blamed on the input that made them impossible */
     bad("s/dt: 1.0e-6 /dt: 1.0e-300 /", "bad.yaml:15: time.dt: duration 0.003 s / time step 1e-300 s = 3e+297 steps");
     bad("s/density: 2000/density: 1e-320/", "bad.yaml:7: materials[0].density: particle 0 (radius 0.01 m) would weigh");
     bad("s/radius: 0.01}/radius: 1e-200}/", "materials[0].density: particle 0 (radius 1e-200 m) would weigh 0 kg");
@@ -120,7 +120,7 @@ static void test_errors(void **st)
                          0);
         assert_int_equal(sh(e2, sizeof e2, "grep -q 'frame every 3000 steps (2 frames' %s/fe.txt", tmp), 0);
     }
-    /* errors at the offending line (issue 17, class 3): a tab, invalid UTF-8, a key given twice */
+    /* errors at the offending line: a tab, invalid UTF-8, a key given twice */
     bad("7s/^  - /\\t- /", "bad.yaml:7: YAML syntax error: found character that cannot start any token");
     bad("s/duration: 0.003 /duration: 0.003 \\xff/", "bad.yaml:16: duration: YAML syntax error: invalid");
     bad("s/^name: two-sphere collision/name: caf\\xe9/", "bad.yaml:3: name: YAML syntax error: invalid");
@@ -128,7 +128,7 @@ static void test_errors(void **st)
         "bad.yaml:5: precision: the key is given twice (first at line 4)");
     bad("s/restitution: 0.7,/restitution: 0.7, restitution: 0.8,/",
         "bad.yaml:7: materials[0].restitution: the key is given twice (first at line 7)");
-    /* a second YAML document is refused where it starts, not silently dropped (issue 17, class 11) */
+    /* a second YAML document is refused where it starts, not silently dropped */
     bad("$a ---", "bad.yaml:21: a second YAML document starts here");
     bad("$a ---\\nname: second", "bad.yaml:21: a second YAML document starts here");
     /* a multi-contact law without the prefactor that makes it act is refused, by the scene as by --model */
@@ -367,7 +367,7 @@ static void test_membrane_scene(void **st)
     const char *file_mesh = "s/mesh: {kind: tube.*/mesh: {kind: file, path: tube.obj}/";
     bad_in("tests/scenes/membrane_tube.yaml", "s/mesh: {kind: tube, /mesh: {kind: file, path: tube.obj, /",
            "bad.yaml:23: membranes[0].mesh.center: not a key of a file mesh");
-    char err0[8192]; /* a mesh file that is not there: 66, as every input that cannot be opened (issue 40) */
+    char err0[8192]; /* a mesh file that is not there: 66, as every input that cannot be opened */
     assert_int_equal(sh(err0, sizeof err0, "sed 's/mesh: {kind: tube.*/mesh: {kind: file, path: none.obj}/' "
                         "%s/tests/scenes/membrane_tube.yaml > %s/nm.yaml && %s run %s/nm.yaml -o %s/nm.h5", SRC, tmp,
                         DEM, tmp, tmp), 66);
@@ -444,7 +444,7 @@ static void test_membrane_scene(void **st)
     free(pa), free(pb);
 }
 
-/* Issue 39, item 4: a membrane alone is a scene (no dummy particle): a closed sphere of R = 0.02 m under a pressure
+/* A membrane alone is a scene (no dummy particle): a closed sphere of R = 0.02 m under a pressure
  * of -2000 Pa, which pushes outward, inflates to the radius where its tension balances it: the spring lattice has
  * the in-plane modulus E d and Poisson's ratio 1/3, so T = E d eps / (1 - 1/3) = p R (1 + eps) / 2 gives
  * eps ~ p R (1 + eps) / (3 E d) = 3.7 % (measured 3.76 %; within 10 % asked); +2000 Pa pulls it in. The time
@@ -520,7 +520,7 @@ static void test_membrane_alone(void **st)
     assert_non_null(strstr(err, "none.yaml:1: particles: a scene needs particles, or a membrane"));
 }
 
-/* Issue 39, item 4: a grain that leaves through a closed membrane is named with it. A grain at the centre of a
+/* A grain that leaves through a closed membrane is named with it. A grain at the centre of a
  * balloon (R = 0.02 m) shot at 400 m/s crosses the membrane in a step of 1e-5 s and leaves the domain: the error
  * says "outside the binning domain", and then which membrane it left through (inside it at the start, its centre
  * outside now, by the winding number of the membrane's triangles). A grain that started outside the balloon and
@@ -713,7 +713,7 @@ static int same_state(const char *a, const char *b, const char *what)
     return k;
 }
 
-/* Seed 001's triaxial scenes in fp32 (issue 11): the small triaxial with patches and its twin with vertex particles
+/* Seed 001's triaxial scenes in fp32: the small triaxial with patches and its twin with vertex particles
  * (edges 2 mm, vertex spheres of 1 mm outside the grains) run 1000 steps - the confining pressure ramping, the top
  * platen servo-held, grains pressed into the membrane - to the same bits on PoCL and on the reference: every dataset
  * of the checkpoint's state. */
@@ -977,7 +977,7 @@ static void test_mc_cap_reported(void **st)
     assert_null(strstr(err, "warning"));
 }
 
-/* Issue 39: three spheres stacked on a floor, touching from the start, under iterated MC-strain with a cap of 2 that
+/* Three spheres stacked on a floor, touching from the start, under iterated MC-strain with a cap of 2 that
  * no step meets (tolerance 1e-12). The cap count is of steps: the series mc_capped is 0 at step 0 (dem_start's
  * forces are not a step; it was 1 there, and a run whose every step was capped reported "6001 of 6000") and never
  * above the step. A run that then fails (DEM_TEST_POISON at step 30) says, after its error, that every one of its
@@ -1048,7 +1048,7 @@ static void test_mc_cap_before_failure(void **st)
 }
 
 /* Integer options and variables: whole numbers in range or a clear refusal, never a wrapped or truncated value
- * (issue 17, class 7). Table-driven: every bad spelling of every integer input. */
+ * Table-driven: every bad spelling of every integer input. */
 static void test_integer_arguments(void **st)
 {
     (void)st;
@@ -1079,7 +1079,7 @@ static void test_integer_arguments(void **st)
     }
 }
 
-/* A run that fails names the checkpoint it really has: none yet, or the last one with its step (issue 17, class 9).
+/* A run that fails names the checkpoint it really has: none yet, or the last one with its step.
  * The two spheres rebound out of a narrowed domain after about 4160 steps. */
 static void test_run_failure_names_checkpoint(void **st)
 {
@@ -1106,7 +1106,7 @@ static void test_run_failure_names_checkpoint(void **st)
     assert_true(exists("%s/dom2.ckpt.h5", tmp));
 }
 
-/* A run whose state goes non-finite (issue 13, hard case 8): the test-only hook DEM_TEST_POISON makes particle 7's
+/* A run whose state goes non-finite: the test-only hook DEM_TEST_POISON makes particle 7's
  * velocity not a number at step 300. The run stops with status 1, naming the step, the particle and the field, and
  * the checkpoint of step 165 before it; that checkpoint stays whole, and a restart from it runs to the end with the
  * bits of a run that was never poisoned. */
@@ -1145,7 +1145,7 @@ static void test_nonfinite_stops(void **st)
     }
 }
 
-/* A write that fails part way (issue 17, class 13; here a file-size limit, as a full disk would): the one-line
+/* A write that fails part way (here a file-size limit, as a full disk would): the one-line
  * message names the file and the operating system's reason, exit 74, the output so far stays in .part, the previous
  * checkpoint is kept whole, and nothing crashes on the way out (HDF5's exit handler did, after a failed close).
  * The limit is above what PoCL writes to its kernel cache on each run (~0.9 MB), and an unlimited run of the same
@@ -1189,7 +1189,7 @@ static void test_io_failure_reasons(void **st)
     assert_true(exists("%s/io8r.h5", tmp)); /* the run goes on from the kept checkpoint */
 }
 
-/* Exit codes as the README's table says (issue 17, class 8): a file that cannot be opened (scene, CSV, checkpoint)
+/* Exit codes as the README's table says: a file that cannot be opened (scene, CSV, checkpoint)
  * is 66; a file that opens but is wrong (scene, CSV content, damaged checkpoint) is 65; and no HDF5 error stack. */
 static void test_exit_codes(void **st)
 {
@@ -1228,7 +1228,7 @@ static void md5_of(const char *name, char *out)
     fclose(fp);
 }
 
-/* Output paths are checked before the run (issue 17, class 5): a directory, an input (the scene, a CSV it reads, the
+/* Output paths are checked before the run: a directory, an input (the scene, a CSV it reads, the
  * checkpoint restarted from) or a missing folder is refused at once, every input survives byte for byte, and nothing
  * is written. */
 static void test_output_paths(void **st)
@@ -1282,7 +1282,7 @@ static void test_output_paths(void **st)
     assert_false(exists("%s/op/s.yaml.h5", tmp));
 }
 
-/* Checkpoints are not trusted (issue 17, class 12): each crafted variant (tests/craft_checkpoint.py) is refused with
+/* Checkpoints are not trusted: each crafted variant (tests/craft_checkpoint.py) is refused with
  * status 65 and a reason, before anything is allocated on its claims or written to the device, and leaves no output. */
 static void test_crafted_checkpoints(void **st)
 {
@@ -1377,7 +1377,7 @@ static void test_mass_scale(void **st)
     bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 1e13/", "time.mass_scale: must be in [1, 1e12]");
 }
 
-/* Random packings (issue 17, class 6): placement looks only at nearby spheres (a spatial hash), which must still
+/* Random packings: placement looks only at nearby spheres (a spatial hash), which must still
  * keep every sphere clear of every other (the build's overlap check would refuse the scene) and give the same
  * packing on every run; a region the spheres cannot fill is refused at once by volume, one that jams by an attempt
  * budget (per sphere and per group) that counts attempts, not time. */
@@ -1429,7 +1429,7 @@ static void test_random_packing(void **st)
     assert_non_null(strstr(err, "no place for sphere 2 in 20000 tries"));
 }
 
-/* Motion stages: repeat: N plays a wall's list N times (issue 15, item 5), here 40 load-unload cycles, 80 stages: the
+/* Motion stages: repeat: N plays a wall's list N times, here 40 load-unload cycles, 80 stages: the
  * piston goes 0.1 mm down and back 40 times and ends where it started; past the limit, the error names the field. */
 static void test_wall_repeat(void **st)
 {
@@ -1466,9 +1466,9 @@ static void test_wall_repeat(void **st)
     assert_non_null(strstr(err, "cyc2.yaml:20: walls[1].repeat: 200 x 2 stages make 400; at most 256"));
 }
 
-/* dt advice for the scene at hand (issue 15, item 4): `dem check` names the fastest approach and the shortest
+/* dt advice for the scene at hand: `dem check` names the fastest approach and the shortest
  * contact in steps of dt, and warns below 20 steps; `dem run` warns too (not with --quiet). */
-/* fp32 far from the origin (issue 13): two spheres of 1 cm 100 m away resolve positions to 7.6e-6 m, 7.6e-4 of a
+/* fp32 far from the origin: two spheres of 1 cm 100 m away resolve positions to 7.6e-6 m, 7.6e-4 of a
  * radius; dem check and dem run warn, and not for the same spheres at the origin */
 static void test_position_resolution(void **st)
 {
@@ -1517,7 +1517,7 @@ static void test_dt_advice(void **st)
     assert_null(strstr(err, "warning"));
 }
 
-/* series_average N (issue 15, item 2): each row is the mean of the N steps that end at it. Checked against a run of
+/* series_average N: each row is the mean of the N steps that end at it. Checked against a run of
  * the same scene with a row every step: row k of the averaged run (step 10 k) is the mean of that run's rows
  * 10 k - 9 .. 10 k, column by column (time, step: the last step's). Also: the buffered series hold every row. */
 static void test_series_average(void **st)
@@ -1601,7 +1601,7 @@ static void test_series_average(void **st)
     assert_non_null(strstr(err, "output.series_average: must be 1 .. 10 (steps between series rows"));
 }
 
-/* The contact network (issue 15, item 1): field `contacts` writes each frame's touching pairs and particle-wall
+/* The contact network: field `contacts` writes each frame's touching pairs and particle-wall
  * pairs; per frame, the contact forces add up to every particle's force (the frames' `force`, a sum in another
  * order: 1e-12 of the largest), the pairs come by (i, j) with i < j, then walls; the XDMF's networks point at
  * datasets of the right shapes; tools/contacts.py draws P(f/<f>). */
@@ -1799,9 +1799,9 @@ static void test_particle_order(void **st)
 }
 
 /* The kernels are built from the project's sources in whatever folder dem runs: a working folder holding files named
- * like every kernel source and header (a C programmer's vec3.h; binning.cl) must not be compiled instead, as it was
- * until 2026-12-03 (the OpenCL compiler looked there before the -I folders). The sources are copied to a fresh
- * folder, so that no compiler cache (keyed on the program's text, which names that folder) answers for a build. A
+ * like every kernel source and header (a C programmer's vec3.h; binning.cl) must not be compiled instead (the OpenCL
+ * compiler looks there before the -I folders, so the sources name their headers by path). The sources are copied to a
+ * fresh folder, so that no compiler cache (keyed on the program's text, which names that folder) answers for a build. A
  * source folder whose path the build options cannot carry is refused by name. */
 static void test_kernels_ignore_working_folder(void **st)
 {

@@ -1,4 +1,4 @@
-/* test_series.c - series rows taken on the device (dem_step_sampled, common/series.h; issue 15).
+/* test_series.c - series rows taken on the device (dem_step_sampled, common/series.h).
  *
  * A settling polydisperse packing with gravity, friction and a moving lid in a box of six walls, sampled every step
  * for 100 steps, then every 7th, with more rows than the device's ring holds (so it wraps), on every backend and

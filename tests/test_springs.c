@@ -1,9 +1,9 @@
 /* test_springs.c - kernels/springs.cl (spring_forces, channel_gather) and its reference twin, on every backend x
  * precision: two particles on a spring oscillate with the period 2 pi sqrt(m_eff / k) (undamped, energy kept to the
- * integrator's error) and, damped with ratio gamma, lose amplitude by exp(-2 pi gamma / sqrt(1 - gamma^2)) per
- * period (seed 001 Eq. 6 read as a damped oscillator: common/springs.h); the two ends' forces are exact negations;
- * a particle on three springs gets them added in spring order (bitwise equal to the reference); a flat equilateral
- * sheet of springs has the 2D Young's modulus 2k/sqrt(3) and Poisson's ratio 1/3 (issue 10, test 2). The time-step bound
+ * integrator's error) and, damped with ratio gamma, lose amplitude by exp(-2 pi gamma / sqrt(1 - gamma^2)) per period
+ * (seed 001 Eq. 6 read as a damped oscillator: common/springs.h); the two ends' forces are exact negations; a particle
+ * on three springs gets them added in spring order (bitwise equal to the reference); a flat equilateral sheet of
+ * springs has the 2D Young's modulus 2k/sqrt(3) and Poisson's ratio 1/3 (seed 001's sheet). The time-step bound
  * includes the spring period; springs need their effect. */
 #include "test_util.h"
 #include <math.h>
@@ -143,7 +143,7 @@ static void test_star_order(void **st)
     backend_run(bc, build_star, 300, check_star, NULL);
 }
 
-/* Seed 001's stretching law on a flat equilateral sheet (issue 10, test 2): springs of stiffness k on the edges of a
+/* Seed 001's stretching law on a flat equilateral sheet: springs of stiffness k on the edges of a
  * triangular lattice of spacing a make a 2D elastic sheet of Young's modulus 2k/sqrt(3) (= E d for the paper's
  * k = (sqrt(3)/2) E d) and Poisson's ratio 1/3. The sheet is given the affine strain (ex, ey); the force across a cut
  * is the sum of the forces on the vertices on one side of it (the springs inside a side cancel), which is exact for

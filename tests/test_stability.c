@@ -1,4 +1,4 @@
-/* test_stability.c - hard cases of issue 13 that need a whole packing (the short versions; test_hard_cases.c has the
+/* test_stability.c - hard cases that need a whole packing (the short versions; test_hard_cases.c has the
  * two-particle ones).
  *
  * Size ratio 20:1 (hard case 2): 60 coarse spheres (r 2 mm) and 4000 fines (r 0.1 mm) placed at random in a box and
@@ -44,7 +44,7 @@
  * Every case is checked bit for bit between OpenCL and the reference: the whole run, or (the resting column's first
  * 20 000 steps, the glass die's ringing 2000) a stretch of it.
  *
- * Short versions here; DEM_STABILITY_LONG=1 (`make stability`) runs the issue's lengths: 1e5 steps each. */
+ * Short versions here; DEM_STABILITY_LONG=1 (`make stability`) runs the full lengths: 1e5 steps each. */
 #include "test_util.h"
 #include "scene.h"
 #include "run.h"

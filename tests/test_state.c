@@ -1,5 +1,5 @@
 /* test_state.c - the checkpoint state (host/core/state.c): a saved state restores bit for bit, and one that does not fit
- * the run is refused and changes nothing (issue 18, item 7: checked before any device state is kept). */
+ * the run is refused and changes nothing (checked before any device state is kept). */
 #include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
@@ -54,8 +54,8 @@ static dem_sim *box_of(int mc)
 /* The contact network right after a restore is the saved run's at that step, bit for bit, on every backend and
  * under MC-strain (its induced displacements are the network's extra): the restore runs no force pass (it would
  * advance the springs), so the pairs' force records, the kept wall forces and MC-strain's displacements travel in
- * the state. Until 2026-12-03 they did not, and the network read records of another pair numbering (a --restart
- * run's first frame). */
+ * the state. Without them the network would read records of another pair numbering (a --restart run's first
+ * frame). */
 static void network_after_restore(const backend_case *bc, int mc)
 {
     dem_config c = cfg_of(bc->backend, bc->precision);

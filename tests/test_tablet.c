@@ -1,4 +1,4 @@
-/* test_tablet.c - a tablet press cycle at small scale (tests/scenes/tablet_small.yaml; issue 12): 600 spheres poured
+/* test_tablet.c - a tablet press cycle at small scale (tests/scenes/tablet_small.yaml): 600 spheres poured
  * into a finite die (dem_wall.height), compacted by the upper punch under a servo to 1 N, held, decompressed, and
  * ejected by the lower punch. Checks the signs and balances a press must show, and that PoCL has the reference's
  * bits after the whole cycle:

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# device_check.sh - the checks a lent GPU machine is for, in one call of the device tool (issue 14 item 5: the test
-# suite and make bench's bed table on the GPU; issue 12: tablet_1m's speed and memory), from what
+# device_check.sh - the checks a lent GPU machine is for, in one call of the device tool (the test
+# suite and make bench's bed table on the GPU; tablet_1m's speed and memory), from what
 # tools/device_pack.sh packed into .device/ here:
 #   run(command="bash tools/device_check.sh", carry=[".device"], timeout_s=600)
 #   run(command="bash tools/device_check.sh bench tablet", ...)     some stages only (a second call)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""plot_accuracy.py - what accuracy costs in time (issue 13): draws bench/accuracy.c's CSV and writes its tables.
+"""plot_accuracy.py - what accuracy costs in time (`make accuracy`): draws bench/accuracy.c's CSV and writes its tables.
 
   tools/plot_accuracy.py out/accuracy.csv -o out/accuracy.png [--doc docs/accuracy.md]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The tablet report of a press cycle run by dem run (issue 12): one PNG and a few numbers.
+"""The tablet report of a press cycle run by dem run: one PNG and a few numbers.
 
 usage: tools/plot_tablet.py RUN.h5 [MORE.h5 ...] [-o RUN_tablet.png] [--die NAME] [--upper NAME] [--lower NAME]
 

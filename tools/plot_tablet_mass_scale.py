@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A press at several mass scales, several fills each: what mass scaling changes (issue 12).
+"""A press at several mass scales, several fills each: what mass scaling changes (`make tablet-mass-scale`).
 
 usage: tools/plot_tablet_mass_scale.py RUN.h5 [RUN.h5 ...] [-o mass_scale.png] [--table mass_scale.md]
                                        [--times times.txt]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Compaction curves of one press scene under several contact models, side by side (issue 12, item 5).
+"""Compaction curves of one press scene under several contact models, side by side (`make tablet-models`).
 
 usage: tools/plot_tablet_models.py RUN.h5 [RUN.h5 ...] [-o models.png] [--table models.md] [--times times.txt]
 

@@ -2,11 +2,11 @@
 # state_hashes.sh - a hash of the dynamic state of every shipped scene (scenes/, scenes/validation/, the restart test
 # scene) after 150 steps, under every contact model, on both backends, in fp64 and fp32: one line per run,
 # "scene backend model precision hash". A refactor that claims bit-identity compares this table before and after
-# (docs/design.md, issue 18):
+# (docs/design.md "One description per kernel and buffer"):
 #   tools/state_hashes.sh OLD_BUILD/dem > before.txt; tools/state_hashes.sh build/dem > after.txt; diff before.txt after.txt
 # The hash covers positions, velocities, spins, forces, contact histories, wall forces and MC-strain forces of the
 # checkpoint. A model a scene cannot take (MC-strain without gamma) is listed as refused. docs/state_hashes.txt is
-# the table of the last refactor (issue 18): a change that is meant to keep the bits compares against it directly,
+# the reference table: a change that is meant to keep the bits compares against it directly,
 #   tools/state_hashes.sh build/dem | diff <(grep -v '^#' docs/state_hashes.txt) -
 set -u
 DEM=$(readlink -f "${1:-build/dem}")

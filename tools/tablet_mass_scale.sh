@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make tablet-mass-scale (issue 12): what mass scaling (time.mass_scale, docs/scenes.md "Mass scaling") does to a
+# make tablet-mass-scale: what mass scaling (time.mass_scale, docs/scenes.md "Mass scaling") does to a
 # press. One press scene under the classical law at several mass scales S, each with several random fills (the fill's
 # seed), then tools/plot_tablet_mass_scale.py: the compaction curves and the press's numbers against S, with the
 # spread between fills beside them (one PNG and a Markdown table with the wall times).

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# make tablet-models (issue 12, item 5): one press scene under the four contact models - classical Hertz-Mindlin,
+# make tablet-models: one press scene under the four contact models - classical Hertz-Mindlin,
 # MC-stress, MC-strain lagged and iterated - one after the other, then their compaction curves side by side
 # (tools/plot_tablet_models.py: one PNG and a Markdown table with each run's wall time).
 #
 #   TABLET_SCENE  the scene (default scenes/tablet_3k.yaml: 3000 spheres, minutes per model on 2 cores;
-#                 scenes/tablet_100k.yaml is the issue's: on 2 cores 54 minutes classical, by tablet_3k's
+#                 scenes/tablet_100k.yaml is the 1e5-sphere press: on 2 cores 54 minutes classical, by tablet_3k's
 #                 ratios about 1.5 hours lagged MC-strain and 9 iterated)
 #   TABLET_OUT    where the runs go (default out/tablet_models): MODEL.h5, MODEL.log, times.txt, models.png, models.md
 #   TABLET_MODELS the models (default: classical mc_stress mc_strain mc_strain_iterated)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make bench-peer (issue 14): the same settled bed of 100 000 spheres, the same 2000 steps, in LIGGGHTS (Debian's
+# make bench-peer: the same settled bed of 100 000 spheres, the same 2000 steps, in LIGGGHTS (Debian's
 # 3.8.0, 1 and 2 MPI ranks) and in libdem (PoCL, fp64 and fp32). The floor forces after the steps must agree within
 # 2 % before the timings count; then one Markdown table of particle-steps per second (also out/peer/peer.json).
 #
