@@ -1,8 +1,7 @@
-/* test_bad_input.c - bad input, third round: one test per class of held-out bad inputs, each
- * through the dem command as a user meets it (status, message, and what is left on disk). Classes: 1 memory safety
- * (sizes from user numbers counted before any allocation), 2 one output silently replacing another, 3 restored state
- * checked, 4 inputs that hang or cost before they are refused, 5 exit codes and messages against the docs, 6 the
- * output's name escaped in the XDMF sidecar. */
+/* test_bad_input.c - bad input: one test per class of held-out bad inputs, each through the dem command as a user meets
+ * it (status, message, and what is left on disk). Classes: 1 memory safety (sizes from user numbers counted before any
+ * allocation), 2 one output silently replacing another, 3 restored state checked, 4 inputs that hang or cost before
+ * they are refused, 5 exit codes and messages against the docs, 6 the output's name escaped in the XDMF sidecar. */
 #include "test_util.h"
 #include <stdarg.h>
 #include <stdio.h>
