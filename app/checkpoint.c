@@ -206,32 +206,36 @@ static int check_finite(const checkpoint *ck, const char *path, char *err, size_
     return 0;
 }
 
-int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
+/* The sphere-patch contacts (membranes; absent from older checkpoints: none) */
+static int read_patches(hid_t g, dem_state *st, hid_t real_t)
 {
-    memset(ck, 0, sizeof *ck);
-    if (access(path, R_OK) != 0) { /* missing or unreadable: exit 66, unlike a damaged file (65) */
-        snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path, strerror(errno));
-        return 1;
+    int rc = 0;
+    long n = st->n, rs = st->real_size;
+    long npatch = H5Lexists(g, "patch_i", H5P_DEFAULT) > 0 ? h5_count(g, "patch_i") : 0;
+    if (!rc && (npatch < 0 || npatch > 64 * n || (npatch && (h5_count(g, "patch_t") != npatch ||
+                                                             h5_count(g, "patch_hist") != 3 * npatch))))
+        rc = 1;
+    if (!rc && npatch) {
+        st->patch_i = malloc(sizeof(int) * (size_t)npatch), st->patch_t = malloc(sizeof(int) * (size_t)npatch);
+        st->patch_hist = malloc(3 * (size_t)npatch * rs);
+        st->npatch = npatch;
+        rc = !st->patch_i || !st->patch_t || !st->patch_hist ||
+             h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
+             h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
+             h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
+        if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent from older ones: not known */
+            st->patch_side = malloc(sizeof(int) * (size_t)npatch);
+            rc = !st->patch_side || h5_count(g, "patch_side") != npatch ||
+                 h5_read(g, "patch_side", H5T_NATIVE_INT, st->patch_side, (size_t)npatch);
+        }
     }
-    struct stat sb; /* a pipe would block the open forever, a device be read without end: regular files only */
-    int found = stat(path, &sb) == 0;
-    if (!found || !S_ISREG(sb.st_mode)) {
-        snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path,
-                 found ? "not a regular file (a folder, pipe, socket or device)" : strerror(errno));
-        return 1;
-    }
-    H5E_auto2_t old;
-    void *old_data;
-    H5Eget_auto2(H5E_DEFAULT, &old, &old_data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    H5Eset_auto2(H5E_DEFAULT, old, old_data);
-    if (f < 0) {
-        snprintf(err, errlen, "%s: not a readable HDF5 checkpoint", path);
-        return 1;
-    }
+    return rc;
+}
+
+/* /state: its attributes, arrays and contacts into ck (1: missing or damaged) */
+static int read_state(hid_t g, checkpoint *ck)
+{
     dem_state *st = &ck->st;
-    hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
     long n = 0, nw = 0, rs = 0, hh = 0, hm = 0;
     int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
              h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
@@ -284,26 +288,37 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
                                                (size_t)nw) ||
                                        h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from,
                                                3 * (size_t)nw)));
-        /* sphere-patch contacts (membranes; absent from checkpoints of libdem before them: none) */
-        long npatch = H5Lexists(g, "patch_i", H5P_DEFAULT) > 0 ? h5_count(g, "patch_i") : 0;
-        if (!rc && (npatch < 0 || npatch > 64 * n || (npatch && (h5_count(g, "patch_t") != npatch ||
-                                                                 h5_count(g, "patch_hist") != 3 * npatch))))
-            rc = 1;
-        if (!rc && npatch) {
-            st->patch_i = malloc(sizeof(int) * (size_t)npatch), st->patch_t = malloc(sizeof(int) * (size_t)npatch);
-            st->patch_hist = malloc(3 * (size_t)npatch * rs);
-            st->npatch = npatch;
-            rc = !st->patch_i || !st->patch_t || !st->patch_hist ||
-                 h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
-                 h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
-                 h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
-            if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent before 2026-12-04: not known */
-                st->patch_side = malloc(sizeof(int) * (size_t)npatch);
-                rc = !st->patch_side || h5_count(g, "patch_side") != npatch ||
-                     h5_read(g, "patch_side", H5T_NATIVE_INT, st->patch_side, (size_t)npatch);
-            }
-        }
+        rc = rc || read_patches(g, st, real_t);
     }
+    return rc;
+}
+
+int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
+{
+    memset(ck, 0, sizeof *ck);
+    if (access(path, R_OK) != 0) { /* missing or unreadable: exit 66, unlike a damaged file (65) */
+        snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path, strerror(errno));
+        return 1;
+    }
+    struct stat sb; /* a pipe would block the open forever, a device be read without end: regular files only */
+    int found = stat(path, &sb) == 0;
+    if (!found || !S_ISREG(sb.st_mode)) {
+        snprintf(err, errlen, "%s: cannot open the checkpoint: %s", path,
+                 found ? "not a regular file (a folder, pipe, socket or device)" : strerror(errno));
+        return 1;
+    }
+    H5E_auto2_t old;
+    void *old_data;
+    H5Eget_auto2(H5E_DEFAULT, &old, &old_data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    H5Eset_auto2(H5E_DEFAULT, old, old_data);
+    if (f < 0) {
+        snprintf(err, errlen, "%s: not a readable HDF5 checkpoint", path);
+        return 1;
+    }
+    hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
+    int rc = g < 0 || read_state(g, ck);
     if (g >= 0)
         H5Gclose(g);
     const char *what = NULL;

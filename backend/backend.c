@@ -107,7 +107,7 @@ size_t dem_buffer_bytes(const dem_core *c, int id)
 {
     SIZE_NAMES(c, 0);
     switch (id) {
-#define SIZE_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                          \
+#define SIZE_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                \
     case BUF_##id_:                                                                                                  \
         return gate_open(c->fx, gate) ? (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs) : 0;
         DEM_BUFFERS(SIZE_BUF)
@@ -119,7 +119,7 @@ size_t dem_buffer_bytes(const dem_core *c, int id)
 int dem_buffer_part(int id)
 {
     switch (id) {
-#define PART_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                          \
+#define PART_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                \
     case BUF_##id_:                                                                                                  \
         return DEM_MEM_##part;
         DEM_BUFFERS(PART_BUF)
@@ -133,7 +133,7 @@ static size_t lazy_bytes(const dem_core *c, int id)
 {
     SIZE_NAMES(c, 0);
     switch (id) {
-#define SIZE_LAZY(id_, elem, count, gate, field, init, part, move, ckpt)                                                         \
+#define SIZE_LAZY(id_, elem, count, gate, field, init, part, move, ckpt)                                               \
     case BUF_##id_:                                                                                                  \
         return (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs);
         DEM_BUFFERS(SIZE_LAZY)
@@ -160,7 +160,7 @@ int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_set
     dem_core *c = DEM_CORE(b);
 #define SETUP(member) ((const void *)s->member)
 #define NONE NULL
-#define CREATE_BUF(id, elem, count, gate, field, init, part, move, ckpt)                                                         \
+#define CREATE_BUF(id, elem, count, gate, field, init, part, move, ckpt)                                               \
     if (ops->alloc(b, TABLE_ONE, 0, BUF_##id, dem_buffer_bytes(c, BUF_##id), dem_buffer_bytes(c, BUF_##id) ? init : NULL)) \
         return 1;
     DEM_BUFFERS(CREATE_BUF)
@@ -185,7 +185,7 @@ int dem_buffer_ensure(const dem_backend_ops *ops, dem_backend *b, int id)
 int dem_field_ref(const dem_core *c, dem_field f, dem_bufref *r, size_t *bytes)
 {
     int fi = (int)f;
-#define FIELD_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                         \
+#define FIELD_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                               \
     if (field >= 0 && fi == field) {                                                                                 \
         r->table = TABLE_ONE, r->id = BUF_##id_;                                                                     \
         *bytes = gate == DEM_GATE_LAZY ? lazy_bytes(c, BUF_##id_) : dem_buffer_bytes(c, BUF_##id_);                  \

@@ -44,7 +44,8 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
 /* A checkpointed per-particle buffer of the test build only (tests/test_extra_buffer.c): it proves that such a
  * buffer is its registry line plus where it is first computed (here the setup's 0, 1, ..., n - 1). */
 #ifdef DEM_TEST_EXTRA_BUFFER
-#define DEM_BUFFERS_TEST(ENTRY) ENTRY(TEST_EXTRA, INT, N, 0, -1, SETUP(identity), PARTICLES, P(1), CK(test_extra, 1, NULL))
+#define DEM_BUFFERS_TEST(ENTRY)                                                                                         \
+    ENTRY(TEST_EXTRA, INT, N, 0, -1, SETUP(identity), PARTICLES, P(1), CK(test_extra, 1, NULL))
 #else
 #define DEM_BUFFERS_TEST(ENTRY)
 #endif
