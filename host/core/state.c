@@ -3,9 +3,11 @@
  *
  * What continues a run exactly: positions, velocities, angular velocities, the forces and torques of the last step
  * (velocity Verlet's first half kick uses them), the force on each wall, the wall positions, the step index, and the
- * contact memory: which pairs and walls touch, their tangential springs and (MC-strain) their stored normal forces. Neighbour rows are not part of it:
- * results do not depend on the rows (any skin or cell size gives the same bits), so restoring rebuilds them from the
- * positions and puts each touching pair's history back into the new rows.
+ * contact memory: which pairs and walls touch, their tangential springs and (MC-strain) their stored normal forces.
+ * The per-particle and per-wall part is every buffer the registry marks as saved (common/dem_buffers.h, its
+ * checkpoint column), read and written whole by walking it; the pairs are a list of the touching ones. Neighbour rows
+ * are not part of it: results do not depend on the rows (any skin or cell size gives the same bits), so restoring
+ * rebuilds them from the positions and puts each touching pair's history back into the new rows.
  */
 #include "sim.h"
 #include <math.h>
@@ -27,24 +29,19 @@ void dem_state_free(dem_state *st)
     memset(st, 0, sizeof *st);
 }
 
-/* A whole field: in the callers' order (dem_get_raw), or as stored (stored: the rows and the pair-sized fields,
- * read together in storage order; host/core/reorder.c) */
-static void *get_field(dem_sim *s, dem_field f, size_t *bytes, int *e, int stored)
+/* A whole field as stored (the rows and the pair-sized fields, read together in storage order; host/core/reorder.c) */
+static void *get_stored(dem_sim *s, dem_field f, size_t *bytes, int *e)
 {
-    *bytes = stored ? sim_stored_bytes(s, f) : dem_field_bytes(s, f);
+    *bytes = sim_stored_bytes(s, f);
     void *p = malloc(*bytes ? *bytes : 1);
     if (!p) {
         *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         return NULL;
     }
-    if (!*e && !stored)
-        *e = dem_get_raw(s, f, p, *bytes);
-    else if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
+    if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
         *e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     return p;
 }
-#define get_all(s, f, bytes, e) get_field(s, f, bytes, e, 0)
-#define get_stored(s, f, bytes, e) get_field(s, f, bytes, e, 1)
 
 /* The saved pairs, named by the callers' ids, in the order of a run never stored anew: ascending i, then j (a
  * reordered run's rows list the owners in storage order) */
