@@ -11,9 +11,9 @@
  * order. So a run gives the same bits whether, when and how often it is reordered (tests/test_particle_order.c).
  *
  * What moves, at the start of a rebuild (before the binning): every buffer the registry says moves with its particle
- * (common/dem_buffers.h, the move column) to the new places, the current rows with their partners renamed, and so
- * each particle's start of its owned pairs in the old pair list (OWN_START: old_pair_number reads the old pairs
- * through it) and where each was stored when the rows were built (OLD_SLOT); the pair-sized arrays stay where they are,
+ * (common/dem_buffers.h, the move column) to the new places, among them each particle's start of its owned pairs in
+ * the old pair list (OWN_START: old_pair_number reads the old pairs through it) and where it was stored when the rows
+ * were built (OLD_SLOT), and the current rows with their partners renamed; the pair-sized arrays stay where they are,
  * numbered as before, until pair_index carries them into the new rows. The host's own per-particle arrays follow,
  * so the host code that reads device buffers by storage place needs no map; the calls that take or return
  * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through sid / order (sim_api,
