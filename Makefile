@@ -94,6 +94,29 @@ $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HE
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
 
+# The test build of one more checkpointed per-particle buffer (common/dem_buffers.h, DEM_TEST_EXTRA_BUFFER): the
+# library compiled again with it, in build/extra/, for tests/test_extra_buffer.c only
+EXTRA_OBJ := $(HOST_SRC:%.c=$(BUILD)/extra/%.o) $(REF_SRC:reference/%.c=$(BUILD)/extra/ref32/%.o) \
+             $(REF_SRC:reference/%.c=$(BUILD)/extra/ref64/%.o)
+$(BUILD)/extra/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -c $< -o $@
+$(BUILD)/extra/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -c $< -o $@
+$(BUILD)/extra/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=4 -c $< -o $@
+$(BUILD)/extra/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=8 -c $< -o $@
+$(BUILD)/extra/libdem.a: $(EXTRA_OBJ)
+	ar rcs $@ $^
+$(BUILD)/tests/test_extra_buffer: tests/test_extra_buffer.c tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -Itests $< tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a \
+	  $(TEST_LDLIBS) -o $@
+
 # The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
 SCENE ?= scenes/hydrogel_514.yaml
 RUN_OUT = out/$(basename $(notdir $(SCENE)))

@@ -1,7 +1,9 @@
-/* checkpoint.c - see checkpoint.h. Layout: /state/{x,v,w,force,torque,wall_force,wall_normal_force,wall_pos,wall_stage,
- * wall_stage_first,wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,
- * wall_hist,wall_pf,wall_mask,radius,pair_mc_fn,wall_mc_fn,pair_mc_disp,wall_mc_disp,patch_i,patch_t,patch_hist,patch_side} with attributes step, n, nwalls, real_size (4 or 8: the arrays
- * hold the run's own bits), has_hist, has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
+/* checkpoint.c - see checkpoint.h. Layout: /state/<name> for each array of the state (dem_state_arrays: the library's
+ * saved buffers, common/dem_buffers.h's checkpoint column: x, v, w, force, torque, wall_force, wall_normal_force,
+ * wall_hist, wall_pf, wall_mask, wall_mc_fn, wall_mc_disp), /state/{wall_pos,wall_stage,wall_stage_first,
+ * wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,radius,pair_mc_fn,pair_mc_disp,patch_i,patch_t,patch_hist,
+ * patch_side} with attributes step, n, nwalls, real_size (4 or 8: the arrays hold the run's own bits), has_hist,
+ * has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 /* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
 #define CHECKPOINT_MAX_PARTICLES 100000000L
@@ -15,6 +17,24 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+/* The HDF5 type of a state array's elements */
+static hid_t array_type(const dem_state_array *a, hid_t real_t)
+{
+    return a->elem == DEM_STATE_REAL ? real_t : a->elem == DEM_STATE_UINT ? H5T_NATIVE_UINT : H5T_NATIVE_INT;
+}
+
+/* Every array of the state, as /state/<name>: rows of `width` elements */
+static int write_arrays(hid_t g, const dem_state *st, hid_t real_t)
+{
+    for (int k = 0; k < st->narrays; k++) {
+        const dem_state_array *a = &st->arrays[k];
+        hsize_t d[2] = {a->width > 1 ? a->count / (size_t)a->width : a->count, (hsize_t)a->width};
+        if (a->data && h5_write(g, a->name, array_type(a, real_t), a->width > 1 ? 2 : 1, d, a->data, a->unit))
+            return 1;
+    }
+    return 0;
+}
 
 static int sync_file(const char *path)
 {
@@ -39,12 +59,10 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     int rc = f < 0;
     hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
-    hsize_t n3[2] = {(hsize_t)st.n, 3}, w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
-    hsize_t p7[2] = {(hsize_t)st.npairs, DEM_PAIR_RECORD_REALS}, wp[1] = {st.wall_pf_bytes / (size_t)st.real_size};
+    hsize_t w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
+    hsize_t p7[2] = {(hsize_t)st.npairs, DEM_PAIR_RECORD_REALS};
     hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs}, w1[1] = {(hsize_t)st.nwalls};
-    hsize_t wh[1] = {st.wall_hist_bytes / (size_t)st.real_size}, wm[1] = {st.wall_mc_fn_bytes / (size_t)st.real_size};
     hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0}, pd[2] = {st.has_mc ? (hsize_t)st.npairs : 0, 2};
-    hsize_t wd[1] = {st.wall_mc_disp_bytes / (size_t)st.real_size};
     hsize_t q1[1] = {(hsize_t)st.npatch}, q3[2] = {(hsize_t)st.npatch, 3};
     double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
     if (!rc) {
@@ -55,11 +73,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_attr_long(g, "nwalls", st.nwalls) || h5_attr_long(g, "real_size", st.real_size) ||
              h5_attr_long(g, "has_hist", st.has_hist) || h5_attr_long(g, "rebuilds", st.rebuilds) ||
              h5_attr_double(g, "time", dem_time(s)) ||
-             h5_write(g, "x", real_t, 2, n3, st.x, "m") || h5_write(g, "v", real_t, 2, n3, st.v, "m/s") ||
-             h5_write(g, "w", real_t, 2, n3, st.w, "rad/s") || h5_write(g, "force", real_t, 2, n3, st.force, "N") ||
-             h5_write(g, "torque", real_t, 2, n3, st.torque, "N m") ||
-             h5_write(g, "wall_force", real_t, 2, w3, st.wall_force, "N") ||
-             h5_write(g, "wall_normal_force", real_t, 1, w1, st.wall_nforce, "N") ||
+             write_arrays(g, &st, real_t) ||
              h5_write(g, "wall_pos", H5T_NATIVE_DOUBLE, 2, w3, st.wall_pos, "m") ||
              h5_write(g, "wall_stage", H5T_NATIVE_INT, 1, w1, st.wall_stage, NULL) ||
              h5_write(g, "wall_stage_first", H5T_NATIVE_LONG, 1, w1, st.wall_stage_first, NULL) ||
@@ -69,17 +83,12 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
              (st.pair_rec &&
               h5_write(g, "pair_rec", real_t, 2, p7, st.pair_rec, "N (force, n x f_t), m (overlap)")) ||
-             h5_write(g, "wall_hist", real_t, 1, wh, st.wall_hist, "N") ||
-             (st.wall_pf && h5_write(g, "wall_pf", real_t, 1, wp, st.wall_pf, "N")) ||
-             h5_write(g, "wall_mask", H5T_NATIVE_UINT, 1, n1, st.wall_mask, NULL) ||
              h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, n1, radius, "m") ||
              h5_attr_long(g, "has_mc", st.has_mc) || h5_attr_long(g, "mc_last", st.mc.last) ||
              h5_attr_long(g, "mc_max", st.mc.max) || h5_attr_long(g, "mc_total", st.mc.total) ||
              h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
-             h5_write(g, "wall_mc_fn", real_t, 1, wm, st.wall_mc_fn, "N") ||
              (st.pair_mc_disp && h5_write(g, "pair_mc_disp", real_t, 2, pd, st.pair_mc_disp, "m")) ||
-             (st.wall_mc_disp && h5_write(g, "wall_mc_disp", real_t, 1, wd, st.wall_mc_disp, "m")) ||
              h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
              h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
              h5_write(g, "patch_hist", real_t, 2, q3, st.patch_hist, "N") ||
@@ -121,6 +130,28 @@ static int read_optional(hid_t g, const char *name, hid_t real_t, size_t want, l
     return h5_read(g, name, real_t, *out, want);
 }
 
+/* The state's arrays (dem_state_arrays: those of st's header) from /state/<name>: one a state must hold is there at
+ * its count; another is missing, empty (NULL: zero until computed) or at its count; any other count is a damaged
+ * checkpoint (1), checked before anything is allocated */
+static int read_arrays(hid_t g, dem_state *st, hid_t real_t)
+{
+    dem_state_arrays(st);
+    for (int k = 0; k < st->narrays; k++) {
+        dem_state_array *a = &st->arrays[k];
+        long have = a->count && H5Lexists(g, a->name, H5P_DEFAULT) > 0 ? h5_count(g, a->name) : 0;
+        size_t size = a->elem == DEM_STATE_REAL ? (size_t)st->real_size : sizeof(int);
+        if (have < 0 || (have == 0 && a->required && a->count) || (have > 0 && (size_t)have != a->count))
+            return 1;
+        if (have == 0) {
+            a->count = 0;
+            continue;
+        }
+        if (!(a->data = malloc(a->count * size + 1)) || h5_read(g, a->name, array_type(a, real_t), a->data, a->count))
+            return 1;
+    }
+    return 0;
+}
+
 /* The first element of a[count] (reals of rs bytes) that is not finite, or -1 */
 static long first_nonfinite(const void *a, size_t count, int rs, double *value)
 {
@@ -138,28 +169,29 @@ static long first_nonfinite(const void *a, size_t count, int rs, double *value)
 static int check_finite(const checkpoint *ck, const char *path, char *err, size_t errlen)
 {
     const dem_state *st = &ck->st;
-    size_t n = (size_t)st->n, nw = (size_t)st->nwalls, np = (size_t)st->npairs, rs = (size_t)st->real_size;
+    size_t n = (size_t)st->n, nw = (size_t)st->nwalls, np = (size_t)st->npairs;
     const struct {
         const char *name;
         const void *a;
         size_t count;
         int size; /* 8 for the doubles the file holds whatever the run's precision */
     } arrays[] = {
-        {"x", st->x, 3 * n, st->real_size}, {"v", st->v, 3 * n, st->real_size}, {"w", st->w, 3 * n, st->real_size},
-        {"force", st->force, 3 * n, st->real_size}, {"torque", st->torque, 3 * n, st->real_size},
-        {"wall_force", st->wall_force, 3 * nw, st->real_size}, {"wall_pos", st->wall_pos, 3 * nw, 8},
-        {"wall_normal_force", st->wall_nforce, nw, st->real_size},
+        {"wall_pos", st->wall_pos, 3 * nw, 8},
         {"wall_stage_from", st->has_stages ? st->wall_stage_from : NULL, 3 * nw, 8},
-        {"pair_hist", st->pair_hist, 3 * np, st->real_size}, {"wall_hist", st->wall_hist, st->wall_hist_bytes / rs,
-                                                                st->real_size},
+        {"pair_hist", st->pair_hist, 3 * np, st->real_size},
         {"pair_rec", st->pair_rec, DEM_PAIR_RECORD_REALS * np, st->real_size},
-        {"wall_pf", st->wall_pf, st->wall_pf_bytes / rs, st->real_size},
         {"pair_mc_fn", st->has_mc ? st->pair_mc_fn : NULL, np, st->real_size},
-        {"wall_mc_fn", st->has_mc ? st->wall_mc_fn : NULL, st->wall_mc_fn_bytes / rs, st->real_size},
         {"pair_mc_disp", st->pair_mc_disp, 2 * np, st->real_size},
-        {"wall_mc_disp", st->wall_mc_disp, st->wall_mc_disp_bytes / rs, st->real_size},
         {"patch_hist", st->patch_hist, 3 * (size_t)st->npatch, st->real_size}, {"radius", ck->radius, n, 8},
     };
+    for (int k = 0; k < st->narrays; k++) { /* the arrays of reals */
+        const dem_state_array *a = &st->arrays[k];
+        double v = 0;
+        long at = a->elem == DEM_STATE_REAL ? first_nonfinite(a->data, a->count, st->real_size, &v) : -1;
+        if (at >= 0)
+            return snprintf(err, errlen, "%s: /state/%s: element %ld is %g: a checkpoint holds finite numbers only "
+                            "(damaged or edited)", path, a->name, at, v), 1;
+    }
     for (size_t q = 0; q < sizeof arrays / sizeof arrays[0]; q++) {
         double v = 0;
         long k = first_nonfinite(arrays[q].a, arrays[q].count, arrays[q].size, &v);
@@ -172,6 +204,93 @@ static int check_finite(const checkpoint *ck, const char *path, char *err, size_
             return snprintf(err, errlen, "%s: /state/radius: element %zu is %g: radii are > 0 (damaged or edited)",
                             path, i, ck->radius[i]), 1;
     return 0;
+}
+
+/* The sphere-patch contacts (membranes; absent from older checkpoints: none) */
+static int read_patches(hid_t g, dem_state *st, hid_t real_t)
+{
+    int rc = 0;
+    long n = st->n, rs = st->real_size;
+    long npatch = H5Lexists(g, "patch_i", H5P_DEFAULT) > 0 ? h5_count(g, "patch_i") : 0;
+    if (!rc && (npatch < 0 || npatch > 64 * n || (npatch && (h5_count(g, "patch_t") != npatch ||
+                                                             h5_count(g, "patch_hist") != 3 * npatch))))
+        rc = 1;
+    if (!rc && npatch) {
+        st->patch_i = malloc(sizeof(int) * (size_t)npatch), st->patch_t = malloc(sizeof(int) * (size_t)npatch);
+        st->patch_hist = malloc(3 * (size_t)npatch * rs);
+        st->npatch = npatch;
+        rc = !st->patch_i || !st->patch_t || !st->patch_hist ||
+             h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
+             h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
+             h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
+        if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent from older ones: not known */
+            st->patch_side = malloc(sizeof(int) * (size_t)npatch);
+            rc = !st->patch_side || h5_count(g, "patch_side") != npatch ||
+                 h5_read(g, "patch_side", H5T_NATIVE_INT, st->patch_side, (size_t)npatch);
+        }
+    }
+    return rc;
+}
+
+/* /state: its attributes, arrays and contacts into ck (1: missing or damaged) */
+static int read_state(hid_t g, checkpoint *ck)
+{
+    dem_state *st = &ck->st;
+    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0;
+    int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
+             h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
+             h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > DEM_MAX_WALLS;
+    /* nothing is allocated on a size the file merely claims: the counts must agree with the datasets actually
+     * there, within the library's limits, before any memory is asked for */
+    if (!rc && (n > CHECKPOINT_MAX_PARTICLES || h5_count(g, "x") != 3 * n || h5_count(g, "radius") != n ||
+                st->step < 0 || st->step > CHECKPOINT_MAX_STEP || (hh != 0 && hh != 1)))
+        rc = 1;
+    if (!rc) {
+        h5_read_attr_long(g, "rebuilds", &st->rebuilds);
+        h5_read_attr_long(g, "has_mc", &hm);
+        h5_read_attr_long(g, "mc_last", &st->mc.last);
+        h5_read_attr_long(g, "mc_max", &st->mc.max);
+        h5_read_attr_long(g, "mc_total", &st->mc.total);
+        h5_read_attr_long(g, "mc_unconverged", &st->mc.unconverged);
+        st->has_mc = (int)hm;
+        st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
+        hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+        long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist, has_mc */
+        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1))
+            rc = 1, npairs = 0;
+        if (npairs < 0)
+            rc = 1, npairs = 0;
+        st->pair_i = malloc(sizeof(int) * (size_t)(npairs + 1));
+        st->pair_j = malloc(sizeof(int) * (size_t)(npairs + 1));
+        st->pair_hist = malloc(3 * (size_t)(npairs + 1) * rs);
+        size_t want_pm = hm ? (size_t)npairs : 0;
+        st->pair_mc_fn = malloc((want_pm + 1) * rs);
+        ck->radius = malloc(sizeof(double) * (size_t)n);
+        rc = rc || !st->pair_i || !st->pair_j || !st->pair_hist || !ck->radius || read_arrays(g, st, real_t) ||
+             h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
+             h5_read(g, "radius", H5T_NATIVE_DOUBLE, ck->radius, (size_t)n);
+        st->npairs = npairs;
+        rc = rc || h5_read(g, "pair_i", H5T_NATIVE_INT, st->pair_i, (size_t)npairs) ||
+             h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
+             h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
+             (hm && h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs));
+        /* what the contact network reads right after a restore (absent from older checkpoints, empty in runs that
+         * keep none of it: those values zero until the next step): each touching pair's force record of the last
+         * step (common/dem_layout.h PR_*) and MC-strain's induced displacements at both ends of each pair (the
+         * per-particle ones are arrays of the state, read above) */
+        rc = rc || read_optional(g, "pair_rec", real_t, DEM_PAIR_RECORD_REALS * (size_t)npairs, rs, &st->pair_rec) ||
+             read_optional(g, "pair_mc_disp", real_t, 2 * (size_t)npairs, rs, &st->pair_mc_disp);
+        /* each wall's motion stage (absent from checkpoints of libdem before stages could end early: derived from
+         * the step by dem_state_set) */
+        st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
+        rc = rc || (st->has_stages && (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
+                                       h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first,
+                                               (size_t)nw) ||
+                                       h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from,
+                                               3 * (size_t)nw)));
+        rc = rc || read_patches(g, st, real_t);
+    }
+    return rc;
 }
 
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
@@ -198,107 +317,8 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         snprintf(err, errlen, "%s: not a readable HDF5 checkpoint", path);
         return 1;
     }
-    dem_state *st = &ck->st;
     hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
-    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0;
-    int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
-             h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
-             h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > DEM_MAX_WALLS;
-    /* nothing is allocated on a size the file merely claims: the counts must agree with the datasets actually
-     * there, within the library's limits, before any memory is asked for */
-    if (!rc && (n > CHECKPOINT_MAX_PARTICLES || h5_count(g, "x") != 3 * n || h5_count(g, "radius") != n ||
-                st->step < 0 || st->step > CHECKPOINT_MAX_STEP || (hh != 0 && hh != 1)))
-        rc = 1;
-    if (!rc) {
-        h5_read_attr_long(g, "rebuilds", &st->rebuilds);
-        h5_read_attr_long(g, "has_mc", &hm);
-        h5_read_attr_long(g, "mc_last", &st->mc.last);
-        h5_read_attr_long(g, "mc_max", &st->mc.max);
-        h5_read_attr_long(g, "mc_total", &st->mc.total);
-        h5_read_attr_long(g, "mc_unconverged", &st->mc.unconverged);
-        st->has_mc = (int)hm;
-        st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
-        hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
-        size_t n3 = 3 * (size_t)n;
-        long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist */
-        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1))
-            rc = 1, npairs = 0;
-        size_t want_wh = hh ? n3 * (size_t)nw : 0;
-        if (npairs < 0)
-            rc = 1, npairs = 0;
-        st->x = malloc(n3 * rs), st->v = malloc(n3 * rs), st->w = malloc(n3 * rs);
-        st->force = malloc(n3 * rs), st->torque = malloc(n3 * rs);
-        st->wall_force = malloc(3 * (size_t)(nw + 1) * rs);
-        st->pair_i = malloc(sizeof(int) * (size_t)(npairs + 1));
-        st->pair_j = malloc(sizeof(int) * (size_t)(npairs + 1));
-        st->pair_hist = malloc(3 * (size_t)(npairs + 1) * rs);
-        st->wall_hist = malloc((want_wh + 1) * rs);
-        st->wall_hist_bytes = want_wh * rs;
-        st->wall_mask = malloc(sizeof(unsigned) * (size_t)n);
-        size_t want_wm = hm ? (size_t)n * (size_t)nw : 0, want_pm = hm ? (size_t)npairs : 0;
-        st->pair_mc_fn = malloc((want_pm + 1) * rs);
-        st->wall_mc_fn = malloc((want_wm + 1) * rs);
-        st->wall_mc_fn_bytes = want_wm * rs;
-        ck->radius = malloc(sizeof(double) * (size_t)n);
-        rc = rc || !st->x || !st->v || !st->w || !st->force || !st->torque || !st->wall_force || !st->pair_i ||
-             !st->pair_j || !st->pair_hist || !st->wall_hist || !st->wall_mask || !ck->radius ||
-             h5_read(g, "x", real_t, st->x, n3) || h5_read(g, "v", real_t, st->v, n3) ||
-             h5_read(g, "w", real_t, st->w, n3) || h5_read(g, "force", real_t, st->force, n3) ||
-             h5_read(g, "torque", real_t, st->torque, n3) ||
-             h5_read(g, "wall_force", real_t, st->wall_force, 3 * (size_t)nw) ||
-             h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
-             h5_read(g, "wall_hist", real_t, st->wall_hist, want_wh) ||
-             h5_read(g, "wall_mask", H5T_NATIVE_UINT, st->wall_mask, (size_t)n) ||
-             h5_read(g, "radius", H5T_NATIVE_DOUBLE, ck->radius, (size_t)n);
-        st->npairs = npairs;
-        rc = rc || h5_read(g, "pair_i", H5T_NATIVE_INT, st->pair_i, (size_t)npairs) ||
-             h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
-             h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
-             !st->wall_mc_fn || (hm && (h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs) ||
-                                        h5_read(g, "wall_mc_fn", real_t, st->wall_mc_fn, (size_t)n * nw)));
-        /* what the contact network reads right after a restore (absent from older checkpoints, empty in runs that keep
-         * none of it: those values zero until the next step): each touching pair's force record of the last step
-         * (common/dem_layout.h PR_*), each wall's force on each particle (runs that keep them), MC-strain's induced
-         * displacements at both ends of each pair and at each wall contact */
-        rc = rc || read_optional(g, "pair_rec", real_t, DEM_PAIR_RECORD_REALS * (size_t)npairs, rs, &st->pair_rec) ||
-             read_optional(g, "wall_pf", real_t, n3 * (size_t)nw, rs, &st->wall_pf) ||
-             read_optional(g, "pair_mc_disp", real_t, 2 * (size_t)npairs, rs, &st->pair_mc_disp) ||
-             read_optional(g, "wall_mc_disp", real_t, (size_t)n * (size_t)nw, rs, &st->wall_mc_disp);
-        st->wall_pf_bytes = st->wall_pf ? n3 * (size_t)nw * rs : 0;
-        st->wall_mc_disp_bytes = st->wall_mc_disp ? (size_t)n * (size_t)nw * rs : 0;
-        /* each wall's normal force (absent from older checkpoints: zero until the next sum) */
-        if (!rc && H5Lexists(g, "wall_normal_force", H5P_DEFAULT) > 0) {
-            st->wall_nforce = malloc((size_t)(nw + 1) * rs);
-            rc = !st->wall_nforce || h5_read(g, "wall_normal_force", real_t, st->wall_nforce, (size_t)nw);
-        }
-        /* each wall's motion stage (absent from checkpoints of libdem before stages could end early: derived from
-         * the step by dem_state_set) */
-        st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
-        rc = rc || (st->has_stages && (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
-                                       h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first,
-                                               (size_t)nw) ||
-                                       h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from,
-                                               3 * (size_t)nw)));
-        /* sphere-patch contacts (membranes; absent from checkpoints of libdem before them: none) */
-        long npatch = H5Lexists(g, "patch_i", H5P_DEFAULT) > 0 ? h5_count(g, "patch_i") : 0;
-        if (!rc && (npatch < 0 || npatch > 64 * n || (npatch && (h5_count(g, "patch_t") != npatch ||
-                                                                 h5_count(g, "patch_hist") != 3 * npatch))))
-            rc = 1;
-        if (!rc && npatch) {
-            st->patch_i = malloc(sizeof(int) * (size_t)npatch), st->patch_t = malloc(sizeof(int) * (size_t)npatch);
-            st->patch_hist = malloc(3 * (size_t)npatch * rs);
-            st->npatch = npatch;
-            rc = !st->patch_i || !st->patch_t || !st->patch_hist ||
-                 h5_read(g, "patch_i", H5T_NATIVE_INT, st->patch_i, (size_t)npatch) ||
-                 h5_read(g, "patch_t", H5T_NATIVE_INT, st->patch_t, (size_t)npatch) ||
-                 h5_read(g, "patch_hist", real_t, st->patch_hist, 3 * (size_t)npatch);
-            if (!rc && H5Lexists(g, "patch_side", H5P_DEFAULT) > 0) { /* absent from older checkpoints: not known */
-                st->patch_side = malloc(sizeof(int) * (size_t)npatch);
-                rc = !st->patch_side || h5_count(g, "patch_side") != npatch ||
-                     h5_read(g, "patch_side", H5T_NATIVE_INT, st->patch_side, (size_t)npatch);
-            }
-        }
-    }
+    int rc = g < 0 || read_state(g, ck);
     if (g >= 0)
         H5Gclose(g);
     const char *what = NULL;

@@ -665,11 +665,12 @@ static int poison_hook(dem_sim *s, long id)
     dem_state st;
     if (id < 0 || id >= dem_count(s) || dem_state_get(s, &st))
         return -1;
+    void *v = dem_state_find(&st, "v")->data;
     for (int d = 0; d < 3; d++) {
         if (st.real_size == 8)
-            ((double *)st.v)[3 * id + d] = NAN;
+            ((double *)v)[3 * id + d] = NAN;
         else
-            ((float *)st.v)[3 * id + d] = NAN;
+            ((float *)v)[3 * id + d] = NAN;
     }
     int e = dem_state_set(s, &st);
     dem_state_free(&st);

@@ -11,7 +11,7 @@ const char *const dem_kernel_names[K__COUNT] = {DEM_KERNEL_LIST(DEM_NAME_KERNEL)
 #undef DEM_NAME_KERNEL
 
 /* ---- element types: each kernel argument's against its registry entry, at compile time ---- */
-#define ELEM_BUF(id, elem, count, gate, field, init, part) BUFELEM_##id = DEM_ELEM_##elem,
+#define ELEM_BUF(id, elem, count, gate, field, init, part, move, ckpt) BUFELEM_##id = DEM_ELEM_##elem,
 #define ELEM_ROW(id, elem, count, gate, field) ROWELEM_##id = DEM_ELEM_##elem,
 enum { DEM_BUFFERS(ELEM_BUF) BUFELEM__END };
 enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
@@ -107,7 +107,7 @@ size_t dem_buffer_bytes(const dem_core *c, int id)
 {
     SIZE_NAMES(c, 0);
     switch (id) {
-#define SIZE_BUF(id_, elem, count, gate, field, init, part)                                                          \
+#define SIZE_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                \
     case BUF_##id_:                                                                                                  \
         return gate_open(c->fx, gate) ? (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs) : 0;
         DEM_BUFFERS(SIZE_BUF)
@@ -119,7 +119,7 @@ size_t dem_buffer_bytes(const dem_core *c, int id)
 int dem_buffer_part(int id)
 {
     switch (id) {
-#define PART_BUF(id_, elem, count, gate, field, init, part)                                                          \
+#define PART_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                                \
     case BUF_##id_:                                                                                                  \
         return DEM_MEM_##part;
         DEM_BUFFERS(PART_BUF)
@@ -133,7 +133,7 @@ static size_t lazy_bytes(const dem_core *c, int id)
 {
     SIZE_NAMES(c, 0);
     switch (id) {
-#define SIZE_LAZY(id_, elem, count, gate, field, init, part)                                                         \
+#define SIZE_LAZY(id_, elem, count, gate, field, init, part, move, ckpt)                                               \
     case BUF_##id_:                                                                                                  \
         return (size_t)(count) * dem_elem_size(DEM_ELEM_##elem, c->rs);
         DEM_BUFFERS(SIZE_LAZY)
@@ -160,7 +160,7 @@ int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_set
     dem_core *c = DEM_CORE(b);
 #define SETUP(member) ((const void *)s->member)
 #define NONE NULL
-#define CREATE_BUF(id, elem, count, gate, field, init, part)                                                         \
+#define CREATE_BUF(id, elem, count, gate, field, init, part, move, ckpt)                                               \
     if (ops->alloc(b, TABLE_ONE, 0, BUF_##id, dem_buffer_bytes(c, BUF_##id), dem_buffer_bytes(c, BUF_##id) ? init : NULL)) \
         return 1;
     DEM_BUFFERS(CREATE_BUF)
@@ -185,7 +185,7 @@ int dem_buffer_ensure(const dem_backend_ops *ops, dem_backend *b, int id)
 int dem_field_ref(const dem_core *c, dem_field f, dem_bufref *r, size_t *bytes)
 {
     int fi = (int)f;
-#define FIELD_BUF(id_, elem, count, gate, field, init, part)                                                         \
+#define FIELD_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                               \
     if (field >= 0 && fi == field) {                                                                                 \
         r->table = TABLE_ONE, r->id = BUF_##id_;                                                                     \
         *bytes = gate == DEM_GATE_LAZY ? lazy_bytes(c, BUF_##id_) : dem_buffer_bytes(c, BUF_##id_);                  \
@@ -204,6 +204,77 @@ int dem_field_ref(const dem_core *c, dem_field f, dem_bufref *r, size_t *bytes)
     *bytes = 0;
     return -1;
 }
+
+/* ---- each buffer's life beyond its creation: how it follows its particles, and what a checkpoint calls it ---- */
+/* The setup member of an integer buffer is of the buffer's element type (a real one is raw bytes of either
+ * precision): a SETUP init that does not fit stops the build. */
+typedef struct dem_no_init dem_no_init;
+#define SETUP(member) (((const dem_setup *)0)->member)
+#define NONE ((const dem_no_init *)0)
+#define INIT_OK_REAL(init) _Generic((init), const void *: 1, const dem_no_init *: 1, default: 0)
+#define INIT_OK_INT(init) _Generic((init), const int *: 1, const dem_no_init *: 1, default: 0)
+#define INIT_OK_UINT(init) _Generic((init), const unsigned *: 1, const dem_no_init *: 1, default: 0)
+#define INIT_OK_BYTE(init) _Generic((init), const dem_no_init *: 1, default: 0)
+#define CHECK_INIT(id_, elem, count, gate, field, init, part, move, ckpt)                                           \
+    _Static_assert(INIT_OK_##elem(init), #id_ ": its SETUP member is not of its element type");
+DEM_BUFFERS(CHECK_INIT)
+#undef CHECK_INIT
+#undef SETUP
+#undef NONE
+
+const void *dem_buffer_init(const dem_setup *s, int id)
+{
+#define SETUP(member) ((const void *)s->member)
+#define NONE NULL
+#define INIT_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                             \
+    case BUF_##id_:                                                                                                  \
+        return init;
+    switch (id) {
+        DEM_BUFFERS(INIT_BUF)
+    }
+#undef INIT_BUF
+#undef SETUP
+#undef NONE
+    return NULL;
+}
+
+static int move_of(size_t *item, size_t elem_bytes, int kind, size_t per)
+{
+    *item = elem_bytes * per;
+    return kind;
+}
+
+int dem_buffer_move(const dem_core *c, int id, size_t *item)
+{
+    SIZE_NAMES(c, 0);
+#define STAY DEM_MOVE_STAY, 0
+#define P(per) DEM_MOVE_P, (size_t)(per)
+#define G(per) DEM_MOVE_G, (size_t)(per)
+#define MOVE_BUF(id_, elem, count, gate, field, init, part, move, ckpt)                                             \
+    case BUF_##id_:                                                                                                  \
+        return move_of(item, dem_elem_size(DEM_ELEM_##elem, c->rs), move);
+    switch (id) {
+        DEM_BUFFERS(MOVE_BUF)
+    }
+#undef MOVE_BUF
+#undef STAY
+#undef P
+#undef G
+    *item = 0;
+    return DEM_MOVE_STAY;
+}
+
+#define NO NULL, NULL, 0, 0
+#define CK(name, width, unit) #name, unit, width, 1
+#define CK_OPT(name, width, unit) #name, unit, width, 0
+#define CKPT_BUF(id_, elem, count, gate, field, init, part, move, ckpt) {BUF_##id_, DEM_ELEM_##elem, gate, ckpt},
+static const dem_saved_buffer saved_all[] = {DEM_BUFFERS(CKPT_BUF)};
+#undef CKPT_BUF
+#undef NO
+#undef CK
+#undef CK_OPT
+
+const dem_saved_buffer *dem_saved_buffers(void) { return saved_all; }
 
 size_t dem_field_size(dem_field f, unsigned effects, size_t n, size_t maxn, size_t nwalls, size_t ncells, size_t rs)
 {

@@ -151,6 +151,21 @@ size_t dem_buffer_bytes(const dem_core *c, int id);
 size_t dem_row_bytes(const dem_core *c, int id, int maxn);
 /* The part of the memory report (dem_memory_part) a DEM_BUFFERS id belongs to. */
 int dem_buffer_part(int id);
+/* The setup's host copy a buffer is created from (the registry's init column), NULL for a zero-filled one. */
+const void *dem_buffer_init(const dem_setup *s, int id);
+/* How a buffer follows its particles (the registry's move column): DEM_MOVE_STAY, DEM_MOVE_P (particle-major: the
+ * first n items of *item bytes), DEM_MOVE_G (groups of n items of *item bytes). */
+int dem_buffer_move(const dem_core *c, int id, size_t *item);
+/* A buffer a state saves whole (the registry's checkpoint column): its id, element type and gate, its name (the
+ * checkpoint's dataset under /state/), unit (NULL: none), elements per dataset row, and whether a state must hold
+ * it. dem_saved_buffers: one per registry buffer (BUF__COUNT, by id), name NULL where it is not saved. */
+typedef struct {
+    int id, elem;
+    unsigned gate;
+    const char *name, *unit;
+    int width, required;
+} dem_saved_buffer;
+const dem_saved_buffer *dem_saved_buffers(void);
 /* Every buffer of the registry, at the setup's sizes, uploaded from the setup where the registry says so. */
 int dem_buffers_create(const dem_backend_ops *ops, dem_backend *b, const dem_setup *s);
 /* The current buffer behind a field, and its size. -1 when the field has none. */

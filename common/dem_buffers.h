@@ -15,7 +15,20 @@
  * elements.
  * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
  * made when first needed (the output stress tensor).
- * Init: what create uploads: SETUP(member) of dem_setup, or NONE (zero-filled).
+ * Init: what create uploads: SETUP(member) of dem_setup (the host's copy in the run's precision, made by sim_pack;
+ * an int or unsigned buffer's member is checked to be of its element type: backend/backend.c), or NONE (zero-filled).
+ * Move: how the buffer follows its particles when they are stored anew (host/core/reorder.c) and, next, when they
+ * migrate between ranks: STAY (not by particle, or rewritten before it is read after a rebuild: cells, in/own counts,
+ * the pair-sized arrays, the walls' partial sums, the membrane, patch and rider tables of runs that never reorder),
+ * P(per) (particle-major: `per` elements per particle, the first N * per elements; a tail past them stays), or
+ * G(per) (groups of N items of `per` elements each, e.g. one group per wall or per ring row). ORDER (where each stable
+ * id is stored) stays: reorder.c makes it anew from the moved SID. A buffer sized by particles that is read before it
+ * is written after a rebuild and says STAY changes the bits of tests/test_particle_order.c.
+ * Checkpoint: NO, or CK(name, width, unit) / CK_OPT(name, width, unit): saved whole, in the callers' particle order,
+ * by dem_state_get and put back by dem_state_set (host/core/state.c), as the dataset /state/<name> of a checkpoint
+ * (app/checkpoint.c; width: elements per row of the dataset, unit its attribute). A state must hold a CK array at the
+ * run's size; a CK_OPT one may be missing (older checkpoints: zero until it is computed). The name is the dataset's:
+ * renaming one breaks the loading of older checkpoints.
  */
 #ifndef DEM_BUFFERS_H
 #define DEM_BUFFERS_H
@@ -24,100 +37,113 @@
 
 /* element types */
 enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
+/* how a buffer follows its particles (the registry's move column) */
+enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
 #define DEM_GATE_LAZY 0x80000000u
 
-/* ENTRY(ID, element, count, gate, field, init, part) - buffers that exist once; part: what they hold, for the memory
- * report (dem_memory_part in dem.h: PARTICLES, PAIRS, WALLS, CELLS, OUTPUT, MESH; the row sets are ROWS) */
-#define DEM_BUFFERS(ENTRY)                                                                                               \
-    ENTRY(X, REAL, 3 * N, 0, DEM_FIELD_X, SETUP(x), PARTICLES)                                                          \
-    ENTRY(V, REAL, 3 * N, 0, DEM_FIELD_V, SETUP(v), PARTICLES)                                                          \
-    ENTRY(W, REAL, 3 * N, 0, DEM_FIELD_W, SETUP(w), PARTICLES)                                                          \
-    ENTRY(FORCE, REAL, 3 * N, 0, DEM_FIELD_FORCE, NONE, PARTICLES)                                                      \
-    ENTRY(TORQUE, REAL, 3 * N, 0, DEM_FIELD_TORQUE, NONE, PARTICLES)                                                    \
-    ENTRY(RADIUS, REAL, N, 0, -1, SETUP(radius), PARTICLES)                                                             \
-    ENTRY(INVMASS, REAL, N, 0, -1, SETUP(invmass), PARTICLES)                                                           \
-    ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia), PARTICLES)                                                     \
-    ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol), PARTICLES)                                                             \
-    ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x), PARTICLES)                                              \
-    ENTRY(MAT, INT, N, 0, -1, SETUP(mat), PARTICLES)                                                                    \
-    ENTRY(SID, INT, N, 0, -1, SETUP(sid), PARTICLES)                                                                    \
-    ENTRY(ORDER, INT, N, 0, -1, SETUP(order), PARTICLES)                                                                \
-    ENTRY(LOWER, INT, N, 0, -1, NONE, PARTICLES)                                                                        \
-    ENTRY(NBR_FILL, INT, N, 0, -1, NONE, ROWS)                                                                          \
-    ENTRY(OLD_SLOT, INT, N, 0, -1, SETUP(identity), PARTICLES)                                                          \
-    ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat), PARTICLES)                                     \
-    ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int), WALLS)                                                 \
-    ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, DEM_FIELD_WALL_REAL, SETUP(wall_real), WALLS)                              \
-    ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, DEM_FIELD_WALL_HIST, NONE, WALLS)                           \
-    ENTRY(WALL_PF, REAL, 3 * N * NW, DEM_KEEP_WALL_FORCES, DEM_FIELD_WALL_PF, NONE, WALLS)                              \
-    ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE, WALLS)                                                      \
-    ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS)                                                      \
-    ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE, WALLS)                                               \
-    ENTRY(WALL_NFORCE, REAL, NW, 0, DEM_FIELD_WALL_NORMAL_FORCE, NONE, WALLS)                                           \
-    ENTRY(SERIES_RING, REAL, SE_STRIDE * N * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT)                                      \
-    ENTRY(SERIES_WALL, REAL, WP_STRIDE * NW * NBR * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT)                               \
-    ENTRY(CELL_OF, INT, N, 0, -1, NONE, CELLS)                                                                          \
-    ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE, CELLS)                                                                      \
-    ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE, CELLS)                                                \
-    ENTRY(CELL_PARTICLES, INT, N, 0, DEM_FIELD_CELL_PARTICLES, NONE, CELLS)                                             \
-    ENTRY(BLOCK_SUM, INT, NBS, 0, -1, NONE, CELLS)                                                                      \
-    ENTRY(FLAGS, INT, FLAG_COUNT, 0, DEM_FIELD_FLAGS, NONE, PARTICLES)                                                  \
-    ENTRY(IN_COUNT, INT, N, 0, -1, NONE, PARTICLES)                                                                     \
-    ENTRY(IN_START, INT, N + 1, 0, DEM_FIELD_IN_START, NONE, PARTICLES)                                                 \
-    ENTRY(IN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE, PARTICLES)                         \
-    ENTRY(OWN_COUNT, INT, N, 0, -1, NONE, PARTICLES)                                                                    \
-    ENTRY(OWN_START, INT, N + 1, 0, -1, NONE, PARTICLES)                                                                \
-    ENTRY(OWN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE, PARTICLES)                        \
-    ENTRY(PAIR_HOST, INT, PAIRS, 0, -1, NONE, PAIRS)                                                                    \
-    ENTRY(PAIR_GUEST, INT, PAIRS, 0, -1, NONE, PAIRS)                                                                   \
-    ENTRY(PAIR_SLOT, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS)                                                 \
-    ENTRY(IN_PAIR, INT, PAIRS, 0, DEM_FIELD_IN_PAIR, NONE, PAIRS)                                                       \
-    ENTRY(PAIR_MIRROR, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS)                                               \
-    ENTRY(TOUCH, BYTE, PAIRS, 0, DEM_FIELD_TOUCH, NONE, PAIRS)                                                          \
-    ENTRY(TOUCH_OLD, BYTE, PAIRS, 0, -1, NONE, PAIRS)                                                                   \
-    ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE, PAIRS)                                        \
-    ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS)                                                 \
-    ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS)                               \
-    ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS)                                 \
-    ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES)                                                            \
-    ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE, PARTICLES)                                \
-    ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT)                                   \
-    ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE, WALLS)                         \
-    ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE, WALLS)                        \
-    ENTRY(MC_DISP, REAL, MAXC > PAIRS ? MAXC : PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS)                                 \
-    ENTRY(SPRING_INT, INT, 2 * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_int), MESH)                                     \
-    ENTRY(SPRING_REAL, REAL, SP_STRIDE * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_real), MESH)                          \
-    ENTRY(TRI, INT, 3 * NT, (DEM_EFFECT_PRESSURE | DEM_EFFECT_PATCHES), -1, SETUP(tri), MESH)                           \
-    ENTRY(HINGE_INT, INT, 4 * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_int), MESH)                                       \
-    ENTRY(HINGE_REAL, REAL, HG_STRIDE * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_real), MESH)                            \
-    ENTRY(CHAN_SLOT, INT, 2 * NS + 3 * NT + 4 * NH, DEM_EFFECT_CHANNEL, -1, SETUP(chan_slot), MESH)                     \
-    ENTRY(CHAN_START, INT, N + 1, DEM_EFFECT_CHANNEL, -1, SETUP(chan_start), MESH)                                      \
-    ENTRY(CHAN_REC, REAL, 3 * (2 * NS + 3 * NT + 4 * NH), DEM_EFFECT_CHANNEL, -1, NONE, MESH)                           \
-    ENTRY(RIDER_INT, INT, 2 * NR, 0, -1, SETUP(rider_int), MESH)                                                        \
-    ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off), MESH)                                                       \
-    ENTRY(RIDE, UINT, N, DEM_EFFECT_RIDERS, -1, SETUP(ride), MESH)                                                      \
-    ENTRY(HOLD, UINT, N, DEM_EFFECT_CONSTRAINTS, -1, SETUP(hold), MESH)                                                 \
-    ENTRY(VTRI_START, INT, N + 1, DEM_EFFECT_PATCHES, -1, SETUP(vtri_start), MESH)                                      \
-    ENTRY(VTRI_LIST, INT, 3 * NT, DEM_EFFECT_PATCHES, -1, SETUP(vtri_list), MESH)                                       \
-    ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                           \
-    ENTRY(PLIST, INT, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                     \
-    ENTRY(PHIST, REAL, 3 * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                \
-    ENTRY(PTOUCH, BYTE, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                   \
-    ENTRY(PREC, REAL, PK_STRIDE * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                         \
-    ENTRY(OLD_PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                       \
-    ENTRY(OLD_PLIST, INT, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                \
-    ENTRY(OLD_PHIST, REAL, 3 * N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                           \
-    ENTRY(OLD_PTOUCH, BYTE, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                              \
-    ENTRY(VCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH)                                                           \
-    ENTRY(VLIST, INT, N * MAXV, DEM_EFFECT_PATCHES, -1, NONE, MESH)
+/* A checkpointed per-particle buffer of the test build only (tests/test_extra_buffer.c): it proves that such a
+ * buffer is its registry line plus where it is first computed (here the setup's 0, 1, ..., n - 1). */
+#ifdef DEM_TEST_EXTRA_BUFFER
+#define DEM_BUFFERS_TEST(ENTRY)                                                                                         \
+    ENTRY(TEST_EXTRA, INT, N, 0, -1, SETUP(identity), PARTICLES, P(1), CK(test_extra, 1, NULL))
+#else
+#define DEM_BUFFERS_TEST(ENTRY)
+#endif
+
+/* ENTRY(ID, element, count, gate, field, init, part, move, checkpoint) - buffers that exist once; part: what they
+ * hold, for the memory report (dem_memory_part in dem.h: PARTICLES, PAIRS, WALLS, CELLS, OUTPUT, MESH; the row sets
+ * are ROWS) */
+#define DEM_BUFFERS(ENTRY)                                                                                              \
+    ENTRY(X, REAL, 3 * N, 0, DEM_FIELD_X, SETUP(x), PARTICLES, P(3), CK(x, 3, "m"))                                     \
+    ENTRY(V, REAL, 3 * N, 0, DEM_FIELD_V, SETUP(v), PARTICLES, P(3), CK(v, 3, "m/s"))                                   \
+    ENTRY(W, REAL, 3 * N, 0, DEM_FIELD_W, SETUP(w), PARTICLES, P(3), CK(w, 3, "rad/s"))                                 \
+    ENTRY(FORCE, REAL, 3 * N, 0, DEM_FIELD_FORCE, NONE, PARTICLES, P(3), CK(force, 3, "N"))                             \
+    ENTRY(TORQUE, REAL, 3 * N, 0, DEM_FIELD_TORQUE, NONE, PARTICLES, P(3), CK(torque, 3, "N m"))                        \
+    ENTRY(RADIUS, REAL, N, 0, -1, SETUP(radius), PARTICLES, P(1), NO)                                                   \
+    ENTRY(INVMASS, REAL, N, 0, -1, SETUP(invmass), PARTICLES, P(1), NO)                                                 \
+    ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia), PARTICLES, P(1), NO)                                           \
+    ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol), PARTICLES, P(1), NO)                                                   \
+    ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x), PARTICLES, P(3), NO)                                    \
+    ENTRY(MAT, INT, N, 0, -1, SETUP(mat), PARTICLES, P(1), NO)                                                          \
+    ENTRY(SID, INT, N, 0, -1, SETUP(sid), PARTICLES, P(1), NO)                                                          \
+    ENTRY(ORDER, INT, N, 0, -1, SETUP(order), PARTICLES, STAY, NO)                                                      \
+    ENTRY(LOWER, INT, N, 0, -1, NONE, PARTICLES, STAY, NO)                                                              \
+    ENTRY(NBR_FILL, INT, N, 0, -1, NONE, ROWS, STAY, NO)                                                                \
+    ENTRY(OLD_SLOT, INT, N, 0, -1, SETUP(identity), PARTICLES, P(1), NO)                                                \
+    ENTRY(PAIRMAT, REAL, PM_STRIDE * NMAT * NMAT, 0, -1, SETUP(pairmat), PARTICLES, STAY, NO)                           \
+    ENTRY(WALL_INT, INT, WI_STRIDE * NW, 0, -1, SETUP(wall_int), WALLS, STAY, NO)                                       \
+    ENTRY(WALL_REAL, REAL, W_STRIDE * NW, 0, DEM_FIELD_WALL_REAL, SETUP(wall_real), WALLS, STAY, NO)                    \
+    ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, DEM_FIELD_WALL_HIST, NONE, WALLS, P(3 * NW), CK(wall_hist, 1, "N")) \
+    ENTRY(WALL_PF, REAL, 3 * N * NW, DEM_KEEP_WALL_FORCES, DEM_FIELD_WALL_PF, NONE, WALLS, G(3), CK_OPT(wall_pf, 1, "N")) \
+    ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE, WALLS, P(1), CK(wall_mask, 1, NULL))                        \
+    ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS, STAY, NO)                                            \
+    ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE, WALLS, STAY, CK(wall_force, 3, "N"))                 \
+    ENTRY(WALL_NFORCE, REAL, NW, 0, DEM_FIELD_WALL_NORMAL_FORCE, NONE, WALLS, STAY, CK_OPT(wall_normal_force, 1, "N"))  \
+    ENTRY(SERIES_RING, REAL, SE_STRIDE * N * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT, G(SE_STRIDE), NO)                    \
+    ENTRY(SERIES_WALL, REAL, WP_STRIDE * NW * NBR * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT, STAY, NO)                     \
+    ENTRY(CELL_OF, INT, N, 0, -1, NONE, CELLS, STAY, NO)                                                                \
+    ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE, CELLS, STAY, NO)                                                            \
+    ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE, CELLS, STAY, NO)                                      \
+    ENTRY(CELL_PARTICLES, INT, N, 0, DEM_FIELD_CELL_PARTICLES, NONE, CELLS, STAY, NO)                                   \
+    ENTRY(BLOCK_SUM, INT, NBS, 0, -1, NONE, CELLS, STAY, NO)                                                            \
+    ENTRY(FLAGS, INT, FLAG_COUNT, 0, DEM_FIELD_FLAGS, NONE, PARTICLES, STAY, NO)                                        \
+    ENTRY(IN_COUNT, INT, N, 0, -1, NONE, PARTICLES, STAY, NO)                                                           \
+    ENTRY(IN_START, INT, N + 1, 0, DEM_FIELD_IN_START, NONE, PARTICLES, STAY, NO)                                       \
+    ENTRY(IN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE, PARTICLES, STAY, NO)               \
+    ENTRY(OWN_COUNT, INT, N, 0, -1, NONE, PARTICLES, STAY, NO)                                                          \
+    ENTRY(OWN_START, INT, N + 1, 0, -1, NONE, PARTICLES, P(1), NO)                                                      \
+    ENTRY(OWN_BLOCK_SUM, INT, (N + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, 0, -1, NONE, PARTICLES, STAY, NO)              \
+    ENTRY(PAIR_HOST, INT, PAIRS, 0, -1, NONE, PAIRS, STAY, NO)                                                          \
+    ENTRY(PAIR_GUEST, INT, PAIRS, 0, -1, NONE, PAIRS, STAY, NO)                                                         \
+    ENTRY(PAIR_SLOT, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS, STAY, NO)                                       \
+    ENTRY(IN_PAIR, INT, PAIRS, 0, DEM_FIELD_IN_PAIR, NONE, PAIRS, STAY, NO)                                             \
+    ENTRY(PAIR_MIRROR, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS, STAY, NO)                                     \
+    ENTRY(TOUCH, BYTE, PAIRS, 0, DEM_FIELD_TOUCH, NONE, PAIRS, STAY, NO)                                                \
+    ENTRY(TOUCH_OLD, BYTE, PAIRS, 0, -1, NONE, PAIRS, STAY, NO)                                                         \
+    ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE, PAIRS, STAY, NO)                              \
+    ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS, STAY, NO)                                       \
+    ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS, STAY, NO)                     \
+    ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS, STAY, NO)                       \
+    ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES, STAY, NO)                                                  \
+    ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE, PARTICLES, P(1), NO)                      \
+    ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT, P(ST_STRIDE), NO)                 \
+    ENTRY(MC_WALL_FN, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_FORCE, NONE, WALLS, P(NW), CK(wall_mc_fn, 1, "N")) \
+    ENTRY(MC_WALL_DISP, REAL, N * NW, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_WALL_DISP, NONE, WALLS, P(NW), CK_OPT(wall_mc_disp, 1, "m")) \
+    ENTRY(MC_DISP, REAL, MAXC > PAIRS ? MAXC : PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_DISP, NONE, ROWS, STAY, NO)    \
+    ENTRY(SPRING_INT, INT, 2 * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_int), MESH, STAY, NO)                           \
+    ENTRY(SPRING_REAL, REAL, SP_STRIDE * NS, DEM_EFFECT_SPRINGS, -1, SETUP(spring_real), MESH, STAY, NO)                \
+    ENTRY(TRI, INT, 3 * NT, (DEM_EFFECT_PRESSURE | DEM_EFFECT_PATCHES), -1, SETUP(tri), MESH, STAY, NO)                 \
+    ENTRY(HINGE_INT, INT, 4 * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_int), MESH, STAY, NO)                             \
+    ENTRY(HINGE_REAL, REAL, HG_STRIDE * NH, DEM_EFFECT_BENDING, -1, SETUP(hinge_real), MESH, STAY, NO)                  \
+    ENTRY(CHAN_SLOT, INT, 2 * NS + 3 * NT + 4 * NH, DEM_EFFECT_CHANNEL, -1, SETUP(chan_slot), MESH, STAY, NO)           \
+    ENTRY(CHAN_START, INT, N + 1, DEM_EFFECT_CHANNEL, -1, SETUP(chan_start), MESH, STAY, NO)                            \
+    ENTRY(CHAN_REC, REAL, 3 * (2 * NS + 3 * NT + 4 * NH), DEM_EFFECT_CHANNEL, -1, NONE, MESH, STAY, NO)                 \
+    ENTRY(RIDER_INT, INT, 2 * NR, 0, -1, SETUP(rider_int), MESH, STAY, NO)                                              \
+    ENTRY(RIDER_OFF, REAL, 3 * NR, 0, -1, SETUP(rider_off), MESH, STAY, NO)                                             \
+    ENTRY(RIDE, UINT, N, DEM_EFFECT_RIDERS, -1, SETUP(ride), MESH, P(1), NO)                                            \
+    ENTRY(HOLD, UINT, N, DEM_EFFECT_CONSTRAINTS, -1, SETUP(hold), MESH, P(1), NO)                                       \
+    ENTRY(VTRI_START, INT, N + 1, DEM_EFFECT_PATCHES, -1, SETUP(vtri_start), MESH, STAY, NO)                            \
+    ENTRY(VTRI_LIST, INT, 3 * NT, DEM_EFFECT_PATCHES, -1, SETUP(vtri_list), MESH, STAY, NO)                             \
+    ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                                 \
+    ENTRY(PLIST, INT, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                           \
+    ENTRY(PHIST, REAL, 3 * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                      \
+    ENTRY(PTOUCH, BYTE, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                         \
+    ENTRY(PREC, REAL, PK_STRIDE * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                               \
+    ENTRY(OLD_PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                             \
+    ENTRY(OLD_PLIST, INT, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                      \
+    ENTRY(OLD_PHIST, REAL, 3 * N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                 \
+    ENTRY(OLD_PTOUCH, BYTE, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                    \
+    ENTRY(VCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                                 \
+    ENTRY(VLIST, INT, N * MAXV, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                           \
+    DEM_BUFFERS_TEST(ENTRY)
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
  * (swapped at each rebuild); the field names the current set's. Row i is list[start[i] .. start[i] + count[i]),
  * start the exclusive prefix sum of count (start[n]: the slots in use); a value kept per row slot (MC_DISP, held for
  * the current set only) is at the same index. */
 #define DEM_ROWS(ENTRY)                                                                                                  \
-    ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                             \
-    ENTRY(START, INT, N + 1, 0, DEM_FIELD_NBR_START)                                                                         \
+    ENTRY(COUNT, INT, N, 0, DEM_FIELD_NBR_COUNT)                                                                        \
+    ENTRY(START, INT, N + 1, 0, DEM_FIELD_NBR_START)                                                                    \
     ENTRY(LIST, INT, MAXN, 0, DEM_FIELD_NBR_LIST)
 
 /* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
@@ -126,16 +152,16 @@ enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
 /* ENTRY(ID) - scalar kernel arguments (the cells: NCELLS in use, NCX..NCZ in use per axis from the domain's cell
  * CX0..CZ0 on, DCX..DCZ the domain's per axis: binning.h) */
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
-    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(DCX)      \
-    ENTRY(DCY) ENTRY(DCZ) ENTRY(CX0) ENTRY(CY0) ENTRY(CZ0) ENTRY(NSPRINGS) \
-    ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                            \
-    ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                  \
+    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(DCX)     \
+    ENTRY(DCY) ENTRY(DCZ) ENTRY(CX0) ENTRY(CY0) ENTRY(CZ0) ENTRY(NSPRINGS)                                              \
+    ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                                \
+    ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                                                                 \
     ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
-    ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)       \
+    ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)        \
     ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE) ENTRY(REACH) ENTRY(RMAX)
 
-#define DEM_ENUM_BUF(id, elem, count, gate, field, init, part) BUF_##id,
+#define DEM_ENUM_BUF(id, elem, count, gate, field, init, part, move, ckpt) BUF_##id,
 #define DEM_ENUM_ROW(id, elem, count, gate, field) ROW_##id,
 #define DEM_ENUM_ID(id) id,
 enum { DEM_BUFFERS(DEM_ENUM_BUF) BUF__COUNT };

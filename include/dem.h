@@ -588,15 +588,28 @@ const char *dem_memory_part_name(dem_memory_part part);
 int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes);
 
 /* The dynamic state of a run, enough to continue it bit for bit (a checkpoint). Real arrays are raw bytes in the
- * run's precision (real_size 4 or 8). Contacts: the touching pairs (i < j) and, with friction, their tangential
- * spring; walls: the touch mask per particle and the springs. Neighbour rows are rebuilt on restore. */
+ * run's precision (real_size 4 or 8). Per particle (and per wall): the arrays, each a buffer of the library saved
+ * whole, particles by their ids (x, v, w, force, torque, the walls' forces and each particle's wall contact memory:
+ * dem_state_arrays lists them). Contacts: the touching pairs (i < j) and, with friction, their tangential spring.
+ * Neighbour rows are rebuilt on restore. */
 #define DEM_PAIR_RECORD_REALS 7 /* reals per pair record (DEM_FIELD_PAIR_RECORDS, dem_state.pair_rec) */
+typedef enum { DEM_STATE_REAL, DEM_STATE_INT, DEM_STATE_UINT } dem_state_elem;
+/* One array of a state: name (a checkpoint's dataset /state/<name>), unit (NULL: none), element type, elements per
+ * dataset row (3 for x), whether a state must hold it (else missing: zero until computed), and count elements at
+ * data (malloc'd; NULL: missing). */
+typedef struct {
+    const char *name, *unit;
+    dem_state_elem elem;
+    int width, required;
+    size_t count;
+    void *data;
+} dem_state_array;
+#define DEM_STATE_MAX_ARRAYS 32
 typedef struct {
     long step, rebuilds;
     int n, nwalls, real_size;
-    void *x, *v, *w, *force, *torque; /* real[3n] */
-    void *wall_force;                 /* real[3 nwalls] */
-    void *wall_nforce;                /* real[nwalls]: DEM_FIELD_WALL_NORMAL_FORCE (NULL: zero) */
+    int narrays;                       /* the per-particle and per-wall arrays (dem_state_arrays) */
+    dem_state_array arrays[DEM_STATE_MAX_ARRAYS];
     double wall_pos[DEM_MAX_WALLS][3]; /* [m] */
     int has_stages;                       /* 1: the three below hold (0: derive them from the step) */
     int wall_stage[DEM_MAX_WALLS];        /* each wall's motion stage (nstages: past the last) */
@@ -606,24 +619,13 @@ typedef struct {
     int *pair_i, *pair_j;
     void *pair_hist;                  /* real[3 npairs] */
     void *pair_rec;                   /* real[DEM_PAIR_RECORD_REALS npairs]: each pair's force record of the last step (dem_layout.h
-                                         PR_*: the contact network's forces); NULL: not known (a checkpoint from
-                                         before 2026-12-03), zero until the next step */
+                                         PR_*: the contact network's forces); NULL: not known (an older checkpoint),
+                                         zero until the next step */
     int has_hist;                     /* 1 when the run has friction */
-    void *wall_hist;                  /* real[3 n nwalls] with friction, else empty */
-    size_t wall_hist_bytes;
-    void *wall_pf;                    /* real[3 n nwalls]: each wall's force on each particle in the last step, as
-                                         DEM_FIELD_WALL_PF (runs that keep them: dem_config.contacts, servos), else
-                                         empty; NULL: not known (a checkpoint from before 2026-12-03) */
-    size_t wall_pf_bytes;
-    unsigned *wall_mask;              /* [n] */
     int has_mc;                       /* 1 when the run has MC-strain: its stored forces follow */
     void *pair_mc_fn;                 /* real[npairs]: MC-strain force of each touching pair */
-    void *wall_mc_fn;                 /* real[n nwalls] with MC-strain, else empty */
-    size_t wall_mc_fn_bytes;
     void *pair_mc_disp;               /* real[2 npairs] with MC-strain: the induced displacement at i's and at j's
                                          end in the last step (the contact network's extra); NULL: not known */
-    void *wall_mc_disp;               /* real[n nwalls] with MC-strain: the same at each particle's wall contacts */
-    size_t wall_mc_disp_bytes;
     dem_mc_stats mc;                  /* iteration counts so far */
     long npatch;                      /* sphere-patch row slots with flags: the touching contacts, and the spheres
                                          touching a patch whose side is remembered (common/patch_contacts.h), by
@@ -633,8 +635,14 @@ typedef struct {
     int *patch_side;                  /* [npatch]: their flags, PATCH_SAVED bits of common/dem_layout.h (1: a contact,
                                          4: the sphere is below the triangle's normal (x_b - x_a) x (x_c - x_a), 8: the
                                          side is known, 16: the centre has crossed the patch's plane); NULL: not known
-                                         (a checkpoint from before 2026-12-04: contacts, each side taken anew) */
+                                         (an older checkpoint: contacts, each side taken anew) */
 } dem_state;
+/* The arrays a state of st's n, nwalls, real_size, has_hist and has_mc holds, without data: names, types, and the
+ * count each has (an array whose size only the run knows, e.g. wall_pf: its full size, not required); what a reader
+ * of a saved state fills before dem_state_set. Sets st->narrays and returns it. */
+int dem_state_arrays(dem_state *st);
+/* The array called name (NULL: none), e.g. (double *)dem_state_find(&st, "x")->data in an fp64 run */
+dem_state_array *dem_state_find(const dem_state *st, const char *name);
 int dem_state_get(dem_sim *s, dem_state *st); /* allocates; free with dem_state_free */
 /* After dem_start of the same set-up: continue from st (replaces positions, velocities, contacts, step). */
 int dem_state_set(dem_sim *s, const dem_state *st);

@@ -232,9 +232,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     /* what is restored is finite (checkpoint_read refuses the rest with the dataset's name) */
+    const void *cx = dem_state_find(&ck.st, "x")->data, *cw = dem_state_find(&ck.st, "w")->data;
     for (size_t k = 0; k < 3 * (size_t)ck.st.n; k++) {
-        double x = ck.st.real_size == 8 ? ((double *)ck.st.x)[k] : ((float *)ck.st.x)[k];
-        double w = ck.st.real_size == 8 ? ((double *)ck.st.w)[k] : ((float *)ck.st.w)[k];
+        double x = ck.st.real_size == 8 ? ((const double *)cx)[k] : ((const float *)cx)[k];
+        double w = ck.st.real_size == 8 ? ((const double *)cw)[k] : ((const float *)cw)[k];
         if (!isfinite(x) || !isfinite(w))
             __builtin_trap();
     }

@@ -261,12 +261,15 @@ static void start_twins(dem_sim *plain, dem_sim *anew, dem_config *c, long steps
  * ids, contacts in the same order), and it continues bit for bit in a run stored either way. */
 static void same_state_bytes(const dem_state *x, const dem_state *y, const char *where)
 {
-    size_t v3 = 3 * (size_t)x->n * (size_t)x->real_size;
     assert_int_equal(x->npairs, y->npairs);
-    if (memcmp(x->x, y->x, v3) || memcmp(x->v, y->v, v3) || memcmp(x->w, y->w, v3) || memcmp(x->force, y->force, v3) ||
-        memcmp(x->torque, y->torque, v3) || memcmp(x->wall_hist, y->wall_hist, x->wall_hist_bytes) ||
-        memcmp(x->wall_mask, y->wall_mask, sizeof(unsigned) * (size_t)x->n))
-        fail_msg("%s: the saved particles differ", where);
+    assert_int_equal(x->narrays, y->narrays);
+    assert_non_null(dem_state_find(x, "x")); /* x, v, w, force, torque, the walls' forces and memory, ... */
+    for (int k = 0; k < x->narrays; k++) {
+        const dem_state_array *a = &x->arrays[k], *b = &y->arrays[k];
+        size_t bytes = a->count * (a->elem == DEM_STATE_REAL ? (size_t)x->real_size : sizeof(int));
+        if (strcmp(a->name, b->name) || a->count != b->count || memcmp(a->data, b->data, bytes))
+            fail_msg("%s: the saved particles' %s differ", where, a->name);
+    }
     if (memcmp(x->pair_i, y->pair_i, sizeof(int) * (size_t)x->npairs) ||
         memcmp(x->pair_j, y->pair_j, sizeof(int) * (size_t)x->npairs) ||
         memcmp(x->pair_hist, y->pair_hist, 3 * (size_t)x->real_size * (size_t)x->npairs))
@@ -308,7 +311,7 @@ static void test_saved_state(void **st)
         /* a state that does not fit (a contact between particles far apart in its positions, found only after the
          * rows of those positions are built) changes nothing: the run goes on as its twin. (Were only
          * the positions put back, the contacts the saved positions' rows did not list would lose their memory.) */
-        double *x = (double *)sa.x, *y = (double *)sa.x + 3;
+        double *x = dem_state_find(&sa, "x")->data, *y = x + 3;
         int far = -1, rs = sa.real_size;
         for (int j = 1; rs == 8 && j < sa.n && far < 0; j++, y += 3)
             if ((y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) + (y[2] - x[2]) * (y[2] - x[2]) > 4e-6)

@@ -125,7 +125,7 @@ static void test_unfit_state_changes_nothing(void **st)
      * positions are built: the run's own come back). The saved positions are moved so that the state differs from
      * the run's in every particle. */
     saved.pair_i[0] = keep_i, saved.pair_j[0] = keep_j;
-    double *x = saved.x; /* fp64 */
+    double *x = dem_state_find(&saved, "x")->data; /* fp64 */
     for (int i = 0; i < n; i++)
         x[3 * i] += 1e-5;
     int far = -1;

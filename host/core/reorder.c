@@ -10,10 +10,11 @@
  * each pair owned by the lower, the walls' and the host's sums over particles in their order), never the storage
  * order. So a run gives the same bits whether, when and how often it is reordered (tests/test_particle_order.c).
  *
- * What moves, at the start of a rebuild (before the binning): every per-particle buffer (its rows' values included)
- * to the new places, the current rows' partners renamed, and each particle's start of its owned pairs in the old
- * pair list (old_pair_number reads the old pairs through it; the pair-sized arrays themselves stay where they are,
- * numbered as before, until pair_index carries them into the new rows). The host's own per-particle arrays follow,
+ * What moves, at the start of a rebuild (before the binning): every buffer the registry says moves with its particle
+ * (common/dem_buffers.h, the move column) to the new places, among them each particle's start of its owned pairs in
+ * the old pair list (OWN_START: old_pair_number reads the old pairs through it) and where it was stored when the rows
+ * were built (OLD_SLOT), and the current rows with their partners renamed; the pair-sized arrays stay where they are,
+ * numbered as before, until pair_index carries them into the new rows. The host's own per-particle arrays follow,
  * so the host code that reads device buffers by storage place needs no map; the calls that take or return
  * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through sid / order (sim_api,
  * sim_dev): the stable id of the particle at each place is its id of dem_start.
@@ -22,28 +23,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* A buffer sized by particles: particle-major (bytes / n per particle: its reals, or its reals per wall), or in
- * groups of n particles (WALL_PF: one group per wall; the series ring: one per row) of `per` reals each. */
-enum { LAYOUT_PARTICLE, LAYOUT_GROUPS };
-typedef struct {
-    int id, layout, per;
-} moved_buffer;
-
-/* Every DEM_BUFFERS entry sized by particles; tests/test_particle_order.c reorders at every rebuild, so a buffer
- * missing here changes the bits there. Not here: what a rebuild or a step rewrites before reading it (cells, in/own
- * counts and starts, the pair arrays, the walls' partial sums), OWN_START, SID and ORDER (below), and the membrane,
- * patch and rider tables (a run with them is not reordered). */
-static const moved_buffer moved[] = {
-    {BUF_X, LAYOUT_PARTICLE, 0},          {BUF_V, LAYOUT_PARTICLE, 0},         {BUF_W, LAYOUT_PARTICLE, 0},
-    {BUF_FORCE, LAYOUT_PARTICLE, 0},      {BUF_TORQUE, LAYOUT_PARTICLE, 0},    {BUF_RADIUS, LAYOUT_PARTICLE, 0},
-    {BUF_INVMASS, LAYOUT_PARTICLE, 0},    {BUF_INVINERTIA, LAYOUT_PARTICLE, 0}, {BUF_INVVOL, LAYOUT_PARTICLE, 0},
-    {BUF_X_BUILD, LAYOUT_PARTICLE, 0},    {BUF_MAT, LAYOUT_PARTICLE, 0},
-    {BUF_WALL_HIST, LAYOUT_PARTICLE, 0},  {BUF_WALL_MASK, LAYOUT_PARTICLE, 0}, {BUF_TRACE, LAYOUT_PARTICLE, 0},
-    {BUF_STRESS, LAYOUT_PARTICLE, 0},     {BUF_MC_WALL_FN, LAYOUT_PARTICLE, 0}, {BUF_MC_WALL_DISP, LAYOUT_PARTICLE, 0},
-    {BUF_RIDE, LAYOUT_PARTICLE, 0},       {BUF_HOLD, LAYOUT_PARTICLE, 0},      {BUF_WALL_PF, LAYOUT_GROUPS, 3},
-    {BUF_SERIES_RING, LAYOUT_GROUPS, SE_STRIDE},
-};
 
 /* dst[k] = src[from[k]] for n items of `item` bytes */
 static void gather(unsigned char *dst, const unsigned char *src, const int *from, int n, size_t item)
@@ -135,126 +114,123 @@ static int move_rows(dem_sim *s, const int *from, const int *to, unsigned char *
     return e;
 }
 
-int sim_reorder(dem_sim *s)
+/* The new order: a Morton curve through the current positions (x, filled here from buf), from[k] the particle
+ * that goes to place k and to[] its inverse; *same when the particles stay where they are. */
+static int order_anew(dem_sim *s, unsigned char *buf, double *x, int *from, int *to, int *same)
 {
-    dem_core *c = DEM_CORE(s->be);
-    int n = s->n, rs = s->setup.real_size;
-    size_t most = 0;
-    for (size_t k = 0; k < sizeof moved / sizeof moved[0]; k++)
-        most = c->bytes[moved[k].id] > most ? c->bytes[moved[k].id] : most;
-    for (int id = 0; id < ROW__COUNT; id++)
-        most = c->row_bytes[c->cur][id] > most ? c->row_bytes[c->cur][id] : most;
-    most = most > 3 * sizeof(double) * (size_t)n ? most : 3 * sizeof(double) * (size_t)n;
-    most = most > sizeof(int) * ((size_t)n + 1) ? most : sizeof(int) * ((size_t)n + 1);
-    unsigned char *buf = malloc(most), *tmp = malloc(most);
-    int *from = malloc(sizeof(int) * (size_t)n), *to = malloc(sizeof(int) * (size_t)n);
-    if (!buf || !tmp || !from || !to) {
-        free(buf), free(tmp), free(from), free(to);
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    }
-    int e = 0;
-    /* the new order: a Morton curve through the current positions */
-    double *x = (double *)tmp;
+    int n = s->n, rs = s->setup.real_size, finite = 1;
+    *same = 1;
     if (s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_X}, 0, buf, 3 * (size_t)n * rs, 1))
-        e = device_fail(s);
-    int finite = 1;
-    for (int k = 0; !e && k < 3 * n; k++) {
+        return device_fail(s);
+    for (int k = 0; k < 3 * n; k++) {
         x[k] = rs == 8 ? ((double *)buf)[k] : ((float *)buf)[k];
         finite &= isfinite(x[k]) != 0;
     }
-    if (!e && !finite) { /* left as stored: the binning that follows reports the particle */
-        free(buf), free(tmp), free(from), free(to);
+    if (!finite) /* left as stored: the binning that follows reports the particle */
         return 0;
-    }
     /* Worth it only when the storage has become scattered: the mean distance between particles stored next to each
      * other (one pass over the positions) more than `gain` times what it was after the last look; then, more than
      * `gain` times what the new order gives (a Morton sort). A move cost 0.12 s at 1e5 particles on this project's
      * VM, some six rebuilds (docs/design.md). */
     double gain = s->cfg.reorder_gain > 0 ? s->cfg.reorder_gain : DEM_REORDER_GAIN, now = 0, anew = 0;
-    for (int k = 0; !e && k + 1 < n; k++)
+    for (int k = 0; k + 1 < n; k++)
         now += spacing(x, k, k + 1);
-    if (!e && gain > 1 && s->reorder_ref > 0 && !(now > gain * s->reorder_ref)) {
-        free(buf), free(tmp), free(from), free(to);
+    if (gain > 1 && s->reorder_ref > 0 && !(now > gain * s->reorder_ref))
         return 0;
-    }
-    if (!e && sim_morton_order(x, n, from))
-        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    int same = 1;
-    for (int k = 0; !e && k < n; k++) {
+    if (sim_morton_order(x, n, from))
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int k = 0; k < n; k++) {
         to[from[k]] = k;
-        same &= from[k] == k;
+        *same &= from[k] == k;
     }
-    for (int k = 0; !e && k + 1 < n; k++)
+    for (int k = 0; k + 1 < n; k++)
         anew += spacing(x, from[k], from[k + 1]);
     if (gain > 1 && !(now > gain * anew)) {
-        same = 1;
+        *same = 1;
         s->reorder_ref = now; /* close enough: looked at again when it has spread `gain` times this */
     } else
         s->reorder_ref = anew;
-    /* the device's buffers */
-    for (size_t k = 0; !e && !same && k < sizeof moved / sizeof moved[0]; k++) {
-        const moved_buffer *m = &moved[k];
-        size_t bytes = c->bytes[m->id];
-        if (!bytes)
+    return 0;
+}
+
+/* Every device buffer the registry moves with its particles (common/dem_buffers.h, the move column) */
+static int move_buffers(dem_sim *s, const int *from, unsigned char *buf, unsigned char *tmp)
+{
+    dem_core *c = DEM_CORE(s->be);
+    for (int id = 0; id < BUF__COUNT; id++) {
+        size_t item, bytes = c->bytes[id];
+        if (dem_buffer_move(c, id, &item) == DEM_MOVE_STAY || !bytes || !item)
             continue;
-        size_t item = m->layout == LAYOUT_PARTICLE ? bytes / (size_t)n : (size_t)m->per * (size_t)rs;
-        dem_bufref r = {TABLE_ONE, m->id};
+        dem_bufref r = {TABLE_ONE, id};
         if (s->ops->read(s->be, r, 0, buf, bytes, 1))
-            e = device_fail(s);
-        else {
-            move_items(buf, tmp, bytes, from, n, item);
-            if (s->ops->write(s->be, r, 0, buf, bytes, 1))
-                e = device_fail(s);
-        }
+            return device_fail(s);
+        move_items(buf, tmp, bytes, from, s->n, item);
+        if (s->ops->write(s->be, r, 0, buf, bytes, 1))
+            return device_fail(s);
     }
+    return 0;
+}
+
+/* The host's per-particle arrays, in the device's order: its own description in double as the caller gave it (not
+ * registry buffers: another precision, and body and flags have no device twin), then the setup's copy of every
+ * buffer that moves (what the host reads by place after the start: ride, sid), each array once; the setup's identity
+ * (OLD_SLOT's value after a rebuild) means places, not particles, and stays. */
+static void move_host(dem_sim *s, const int *from, unsigned char *tmp)
+{
+    int n = s->n;
+    dem_core *c = DEM_CORE(s->be);
+    struct {
+        void *a;
+        size_t item;
+    } own[] = {{s->x, 3 * sizeof(double)}, {s->v, 3 * sizeof(double)}, {s->w, 3 * sizeof(double)},
+               {s->radius, sizeof(double)}, {s->body, 2 * sizeof(double)}, {s->mat, sizeof(int)},
+               {s->pflags, sizeof(unsigned)}};
+    const void *done[BUF__COUNT + 2] = {s->setup.identity, s->mat};
+    int ndone = 2;
+    for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+        move_items(own[k].a, tmp, own[k].item * (size_t)n, from, n, own[k].item);
+    for (int id = 0; id < BUF__COUNT; id++) {
+        size_t item;
+        const void *p = dem_buffer_init(&s->setup, id);
+        int seen = p == NULL;
+        for (int q = 0; q < ndone && !seen; q++)
+            seen = done[q] == p;
+        if (seen || dem_buffer_move(c, id, &item) == DEM_MOVE_STAY || !c->bytes[id] || !item)
+            continue;
+        move_items((unsigned char *)p, tmp, c->bytes[id], from, n, item); /* the setup's own copy (sim_pack) */
+        done[ndone++] = p;
+    }
+}
+
+int sim_reorder(dem_sim *s)
+{
+    dem_core *c = DEM_CORE(s->be);
+    int n = s->n, e = 0, same = 1;
+    size_t most = 3 * sizeof(double) * (size_t)n, item;
+    most = most > sizeof(int) * ((size_t)n + 1) ? most : sizeof(int) * ((size_t)n + 1);
+    for (int id = 0; id < BUF__COUNT; id++)
+        if (dem_buffer_move(c, id, &item) != DEM_MOVE_STAY)
+            most = c->bytes[id] > most ? c->bytes[id] : most;
+    for (int id = 0; id < ROW__COUNT; id++)
+        most = c->row_bytes[c->cur][id] > most ? c->row_bytes[c->cur][id] : most;
+    unsigned char *buf = malloc(most), *tmp = malloc(most);
+    int *from = malloc(sizeof(int) * (size_t)n), *to = malloc(sizeof(int) * (size_t)n);
+    if (!buf || !tmp || !from || !to)
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if (!e)
+        e = order_anew(s, buf, (double *)tmp, from, to, &same);
+    if (!e && !same)
+        e = move_buffers(s, from, buf, tmp);
     /* the current rows: moved with their particles (packed anew in the new order), their partners renamed */
     if (!e && !same)
         e = move_rows(s, from, to, buf, tmp);
-    /* where each particle was stored when the current rows were built (old_pair_number finds the pairs' old hosts) */
     if (!e && !same) {
-        int *old = (int *)buf;
-        dem_bufref r = {TABLE_ONE, BUF_OLD_SLOT};
-        if (s->ops->read(s->be, r, 0, tmp, sizeof(int) * (size_t)n, 1))
-            e = device_fail(s);
-        for (int k = 0; !e && k < n; k++)
-            old[k] = ((int *)tmp)[from[k]];
-        if (!e && s->ops->write(s->be, r, 0, old, sizeof(int) * (size_t)n, 1))
-            e = device_fail(s);
-        s->reordered = 1;
-    }
-    /* each particle's first hosted pair in the (unmoved) pair list moves with it */
-    if (!e && !same) {
-        dem_bufref r = {TABLE_ONE, BUF_OWN_START};
-        if (s->ops->read(s->be, r, 0, buf, sizeof(int) * (size_t)n, 1))
-            e = device_fail(s);
-        else {
-            move_items(buf, tmp, sizeof(int) * (size_t)n, from, n, sizeof(int));
-            if (s->ops->write(s->be, r, 0, buf, sizeof(int) * (size_t)n, 1))
-                e = device_fail(s);
-        }
-    }
-    if (!e && !same) {
-        /* the host's per-particle arrays, in the device's order */
-        move_items((unsigned char *)s->x, tmp, 3 * sizeof(double) * (size_t)n, from, n, 3 * sizeof(double));
-        move_items((unsigned char *)s->v, tmp, 3 * sizeof(double) * (size_t)n, from, n, 3 * sizeof(double));
-        move_items((unsigned char *)s->w, tmp, 3 * sizeof(double) * (size_t)n, from, n, 3 * sizeof(double));
-        move_items((unsigned char *)s->radius, tmp, sizeof(double) * (size_t)n, from, n, sizeof(double));
-        move_items((unsigned char *)s->body, tmp, 2 * sizeof(double) * (size_t)n, from, n, 2 * sizeof(double));
-        move_items((unsigned char *)s->mat, tmp, sizeof(int) * (size_t)n, from, n, sizeof(int));
-        move_items((unsigned char *)s->pflags, tmp, sizeof(unsigned) * (size_t)n, from, n, sizeof(unsigned));
-        static const int packed3[] = {0, 1, 2}, packed1[] = {3, 4, 5, 8};
-        for (int k = 0; k < 3; k++)
-            move_items(s->packed[packed3[k]], tmp, 3 * (size_t)rs * (size_t)n, from, n, 3 * (size_t)rs);
-        for (int k = 0; k < 4; k++)
-            move_items(s->packed[packed1[k]], tmp, (size_t)rs * (size_t)n, from, n, (size_t)rs);
-        for (int k = 20; k <= 22; k++) /* ride, hold, sid: the id of dem_start of the particle at each place */
-            if (s->packed[k])
-                move_items(s->packed[k], tmp, sizeof(int) * (size_t)n, from, n, sizeof(int));
-        int *sid = s->packed[22], *order = s->packed[23]; /* order: where each id is stored */
-        for (int k = 0; k < n; k++)
+        s->reordered = 1; /* OLD_SLOT (moved) holds where each particle was stored when the rows were built */
+        move_host(s, from, tmp);
+        int *sid = (int *)s->setup.sid, *order = (int *)s->setup.order; /* the setup's (sim_pack) */
+        for (int k = 0; k < n; k++) /* where each stable id is stored now */
             order[sid[k]] = k;
-        if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_SID}, 0, sid, sizeof(int) * (size_t)n, 1) ||
-            s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_ORDER}, 0, order, sizeof(int) * (size_t)n, 1))
+        if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_ORDER}, 0, order, sizeof(int) * (size_t)n, 1))
             e = device_fail(s);
         s->reorders++;
     }
@@ -262,34 +238,40 @@ int sim_reorder(dem_sim *s)
     return e;
 }
 
-/* How a field is laid out by particle: 1 particle-major (bytes / n each), 2 in groups of n (WALL_PF: per wall), 0 not
- * by particle (walls, cells, flags, the pair-sized fields: those stay in storage order). */
-static int field_layout(dem_field f)
+/* How a field follows its particles (the registry's move column of its buffer; the rows' counts are one int per
+ * particle): DEM_MOVE_STAY for what is not by particle (walls, cells, flags, the pair-sized fields: those stay in
+ * storage order) */
+static int field_move_kind(dem_sim *s, dem_field f, size_t *item)
 {
-    switch (f) {
-    case DEM_FIELD_X: case DEM_FIELD_V: case DEM_FIELD_W: case DEM_FIELD_FORCE: case DEM_FIELD_TORQUE:
-    case DEM_FIELD_X_BUILD: case DEM_FIELD_NBR_COUNT: case DEM_FIELD_WALL_HIST:
-    case DEM_FIELD_WALL_MASK: case DEM_FIELD_STRESS: case DEM_FIELD_STRESS_TRACE:
-    case DEM_FIELD_MC_WALL_FORCE: case DEM_FIELD_MC_WALL_DISP:
-        return 1;
-    case DEM_FIELD_WALL_PF:
-        return 2;
-    default:
-        return 0;
-    }
+    dem_bufref r;
+    size_t bytes;
+    *item = sizeof(int);
+    if (f == DEM_FIELD_NBR_COUNT)
+        return DEM_MOVE_P;
+    if (dem_field_ref(DEM_CORE(s->be), f, &r, &bytes) || r.table != TABLE_ONE)
+        return DEM_MOVE_STAY;
+    return dem_buffer_move(DEM_CORE(s->be), r.id, item);
+}
+
+/* dst: src (bytes) with item k (of `item` bytes; each group of n items alike) taken from item from[k]; what is not
+ * by particle, or a tail past the groups (OWN_START's n-th entry), copied as it is */
+static void items_move(int kind, size_t item, int n, const unsigned char *src, unsigned char *dst, size_t bytes,
+                       const int *from)
+{
+    size_t group = kind == DEM_MOVE_STAY ? 0 : item * (size_t)n, done = 0;
+    for (; group && done + group <= bytes; done += group)
+        gather(dst + done, src + done, from, n, item);
+    memcpy(dst + done, src + done, bytes - done);
 }
 
 /* buf (the whole field, bytes) with item k taken from item from[k]; names in the rows and cells renamed by to[] */
 static int field_move(dem_sim *s, dem_field f, const unsigned char *src, unsigned char *dst, size_t bytes,
                       const int *from, const int *to)
 {
-    int n = s->n, layout = field_layout(f);
-    if (layout && bytes) {
-        size_t item = layout == 1 ? bytes / (size_t)n : 3 * (size_t)s->setup.real_size, group = item * (size_t)n;
-        for (size_t g = 0; g + group <= bytes; g += group)
-            gather(dst + g, src + g, from, n, item);
-    } else
-        memcpy(dst, src, bytes);
+    int n = s->n;
+    size_t item;
+    int kind = field_move_kind(s, f, &item);
+    items_move(kind, item, n, src, dst, bytes, from);
     if (f == DEM_FIELD_CELL_PARTICLES)
         for (size_t q = 0; q < bytes / sizeof(int); q++) {
             int *v = (int *)dst + q;
@@ -297,6 +279,29 @@ static int field_move(dem_sim *s, dem_field f, const unsigned char *src, unsigne
                 *v = to[*v];
         }
     return 0;
+}
+
+/* A registry buffer (bytes) read as stored put in the callers' order, and back (dem_state_get / dem_state_set) */
+int sim_buffer_to_api(dem_sim *s, int id, void *buf, size_t bytes)
+{
+    size_t item;
+    int kind = dem_buffer_move(DEM_CORE(s->be), id, &item);
+    if (!s->reorders || kind == DEM_MOVE_STAY)
+        return 0;
+    unsigned char *tmp = malloc(bytes ? bytes : 1);
+    if (!tmp)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    memcpy(tmp, buf, bytes);
+    items_move(kind, item, s->n, tmp, buf, bytes, s->setup.order);
+    free(tmp);
+    return 0;
+}
+
+void sim_buffer_from_api(dem_sim *s, int id, const void *src, void *dst, size_t bytes)
+{
+    size_t item;
+    int kind = dem_buffer_move(DEM_CORE(s->be), id, &item);
+    items_move(s->reorders ? kind : DEM_MOVE_STAY, item, s->n, src, dst, bytes, s->setup.sid);
 }
 
 /* A field laid out like the current rows (packed: row i at start[i], dem_buffers.h DEM_ROWS) in the callers' order:

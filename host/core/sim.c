@@ -30,8 +30,8 @@ void dem_destroy(dem_sim *s)
         return;
     if (s->be)
         s->ops->destroy(s->be);
-    for (int k = 0; k < SIM_PACKED; k++)
-        free(s->packed[k]);
+    sim_setup_free(s);
+    free(s->setup_mem);
     free(s->wall_real);
     free(s->scratch);
     free(s->x);

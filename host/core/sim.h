@@ -67,11 +67,8 @@ struct dem_sim {
     long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
     dem_config cfg;
     dem_setup setup;
-#define SIM_PACKED 25
-    void *packed[SIM_PACKED]; /* packed setup arrays, freed at destroy (9..15: springs, channel, triangles, hinges; 16, 17: riders;
-                                 18, 19: patch triangles per vertex; 20: the walls each particle rides on; 21: held
-                                 velocity axes; 22, 23: the stable id (id of dem_start) of the particle at each place,
-                                 and where each stable id is stored; 24: 0..n-1) */
+    void **setup_mem; /* the host arrays setup points to (sim_pack), freed when packed again or destroyed */
+    int nsetup_mem, setup_mem_cap;
     int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
     double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
     double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
@@ -117,7 +114,8 @@ double sim_inertia(const dem_sim *s, int i);
 
 /* sim_setup.c */
 int sim_validate(dem_sim *s);
-int sim_pack(dem_sim *s);            /* fills s->setup and the packed arrays */
+int sim_pack(dem_sim *s);            /* fills s->setup and the host arrays it points to */
+void sim_setup_free(dem_sim *s);     /* frees those arrays */
 int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that ends at a force (both read every step's) */
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
@@ -165,6 +163,9 @@ static inline int sim_rides_on(const dem_sim *s, int i, int k)
  * the rows' partners renamed) in place; fields not sized by particles are left as they are */
 int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes);
 int sim_field_from_api(dem_sim *s, dem_field f, const void *src, void *dst, size_t bytes);
+/* the same for a registry buffer, by its move column (common/dem_buffers.h): sim_buffer_to_api in place */
+int sim_buffer_to_api(dem_sim *s, int id, void *buf, size_t bytes);
+void sim_buffer_from_api(dem_sim *s, int id, const void *src, void *dst, size_t bytes);
 /* state.c: where each particle's hosted pairs (partners stored after it) start in the pair list of rows cnt, list
  * (neighbor.h's own_start; malloc'd, n + 1 entries) */
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);

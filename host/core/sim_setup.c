@@ -253,6 +253,32 @@ static void *pack_real(const double *src, size_t n, int rs)
     return p;
 }
 
+/* The setup's host arrays (what create uploads; a few the host reads by place after the start: ride, sid, order)
+ * are owned by the simulation, listed here to be freed when packed again or destroyed. keep(s, p) lists p and returns
+ * it; NULL (out of memory) sets the simulation's error and stays NULL. */
+static void *keep(dem_sim *s, void *p)
+{
+    void **grown = p && s->nsetup_mem == s->setup_mem_cap
+                       ? realloc(s->setup_mem, sizeof(void *) * (size_t)(s->setup_mem_cap * 2 + 16))
+                       : NULL;
+    if (grown)
+        s->setup_mem = grown, s->setup_mem_cap = s->setup_mem_cap * 2 + 16;
+    if (p && s->nsetup_mem < s->setup_mem_cap) {
+        s->setup_mem[s->nsetup_mem++] = p;
+        return p;
+    }
+    free(p);
+    sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    return NULL;
+}
+
+void sim_setup_free(dem_sim *s)
+{
+    for (int k = 0; k < s->nsetup_mem; k++)
+        free(s->setup_mem[k]);
+    s->nsetup_mem = 0;
+}
+
 int sim_stage_now(const dem_sim *s, int k, long *first)
 {
     int st = s->stage_cur[k];
@@ -437,16 +463,13 @@ static int pack_channel(dem_sim *s, dem_setup *u, int rs)
         hk[HG_STRIDE * h + HG_KDISS] = s->hinge_k[3 * h + 1];
         hk[HG_STRIDE * h + HG_SIN0] = isnan(th0) ? dem_hinge_rest_shalf(s->x, hg + 4 * h) : sin(0.5 * th0);
     }
-    s->packed[9] = ij, s->packed[10] = pack_real(kr, SP_STRIDE * (size_t)ns, rs), s->packed[11] = slot;
-    s->packed[12] = start, s->packed[13] = tri, s->packed[14] = hg;
-    s->packed[15] = pack_real(hk, HG_STRIDE * (size_t)nh, rs);
+    u->nsprings = ns, u->spring_int = keep(s, ij), u->chan_slot = keep(s, slot), u->chan_start = keep(s, start);
+    u->spring_real = keep(s, pack_real(kr, SP_STRIDE * (size_t)ns, rs));
+    u->ntriangles = nt, u->tri = keep(s, tri), u->pressure = s->pressure;
+    u->nhinges = nh, u->hinge_int = keep(s, hg), u->hinge_real = keep(s, pack_real(hk, HG_STRIDE * (size_t)nh, rs));
     free(fill), free(kr), free(hk);
-    u->nhinges = nh, u->hinge_int = hg, u->hinge_real = s->packed[15];
-    if (!s->packed[15])
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    u->nsprings = ns, u->spring_int = ij, u->spring_real = s->packed[10], u->chan_slot = slot, u->chan_start = start;
-    u->ntriangles = nt, u->tri = tri, u->pressure = s->pressure;
-    return s->packed[10] ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    return u->spring_int && u->chan_slot && u->chan_start && u->spring_real && u->tri && u->hinge_int && u->hinge_real
+               ? 0 : DEM_ERR_NOMEM;
 }
 
 /* The riders' table (common/riders.h): particle and wall, and the particle's offset from the wall's point at the
@@ -467,10 +490,10 @@ static int pack_riders(dem_sim *s, dem_setup *u, int rs)
     unsigned *ride = calloc((size_t)s->n, sizeof(unsigned));
     for (int k = 0; ride && k < nr; k++)
         ride[ri[2 * k]] |= 1u << ri[2 * k + 1];
-    s->packed[16] = ri, s->packed[17] = pack_real(off, 3 * (size_t)nr, rs), s->packed[20] = ride;
+    u->nriders = nr, u->rider_int = keep(s, ri), u->rider_off = keep(s, pack_real(off, 3 * (size_t)nr, rs));
+    u->ride = keep(s, ride);
     free(off);
-    u->nriders = nr, u->rider_int = ri, u->rider_off = s->packed[17], u->ride = ride;
-    return s->packed[17] && ride ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    return u->rider_int && u->rider_off && u->ride ? 0 : DEM_ERR_NOMEM;
 }
 
 /* The walls' integer table and start positions, and the real table of step 0. */
@@ -586,41 +609,64 @@ static int pack_patches(dem_sim *s, dem_setup *u)
         if (start[p + 1] == start[p] && s->radius[p] > u->rmax)
             u->rmax = s->radius[p];
     free(fill), free(mark);
-    s->packed[18] = start, s->packed[19] = list;
-    u->vtri_start = start, u->vtri_list = list;
+    u->vtri_start = keep(s, start), u->vtri_list = keep(s, list);
+    if (!u->vtri_start || !u->vtri_list)
+        return DEM_ERR_NOMEM;
     s->reach = u->reach = longest > 0 ? 1.5 * longest : s->rmax;
     s->maxp = u->maxp = 16;
     s->maxv = u->maxv = 32;
     return 0;
 }
 
+/* Per particle, in the run's precision: the state of the start, the bodies, the held axes, and the stable ids every
+ * sum follows (neighbor.h): the particles' ids at the start, so that the bits do not depend on where the particles
+ * are stored later (host/core/reorder.c). (Their places in the input instead, which would make a sorted packing
+ * (dem_sort_particles) run the bits of the unsorted one, cost that sorted run a third of its speed: docs/design.md
+ * "Every sum follows the particle ids".) */
+static int pack_particles(dem_sim *s, dem_setup *u, int rs)
+{
+    size_t n = (size_t)s->n;
+    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n), *invv = malloc(sizeof(double) * n);
+    unsigned *hold = calloc(n, sizeof(unsigned)); /* DEM_PARTICLE_HOLD_V{X,Y,Z} as bits 0, 1, 2 */
+    int *sid = malloc(sizeof(int) * (n ? n : 1)), *order = malloc(sizeof(int) * (n ? n : 1));
+    int *identity = malloc(sizeof(int) * (n ? n : 1));
+    if (invm && invi && invv)
+        pack_bodies(s, invm, invi, invv);
+    for (size_t i = 0; hold && i < n; i++)
+        hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
+    for (size_t i = 0; sid && order && identity && i < n; i++)
+        sid[i] = order[i] = identity[i] = (int)i;
+    u->hold = keep(s, hold), u->sid = keep(s, sid), u->order = keep(s, order), u->identity = keep(s, identity);
+    u->x = keep(s, pack_real(s->x, 3 * n, rs));
+    u->v = keep(s, pack_real(s->v, 3 * n, rs));
+    u->w = keep(s, pack_real(s->w, 3 * n, rs));
+    u->radius = keep(s, pack_real(s->radius, n, rs));
+    u->invmass = invm ? keep(s, pack_real(invm, n, rs)) : NULL;
+    u->invinertia = invi ? keep(s, pack_real(invi, n, rs)) : NULL;
+    u->invvol = invv ? keep(s, pack_real(invv, n, rs)) : NULL;
+    u->mat = s->mat;
+    free(invm), free(invi), free(invv);
+    return u->hold && u->sid && u->order && u->identity && u->x && u->v && u->w && u->radius && u->invmass &&
+                   u->invinertia && u->invvol
+               ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+}
+
 int sim_pack(dem_sim *s)
 {
     dem_setup *u = &s->setup;
-    int e;
-    int n = s->n, rs = (int)s->cfg.precision;
-    for (int k = 0; k < SIM_PACKED; k++) { /* packed again (dem_memory_estimate, then dem_start): the last packing holds */
-        free(s->packed[k]);
-        s->packed[k] = NULL;
-    }
+    int e, rs = (int)s->cfg.precision;
+    sim_setup_free(s); /* packed again (dem_memory_estimate, then dem_start): the last packing holds */
     free(s->wall_real);
     s->wall_real = NULL;
     memset(u, 0, sizeof *u);
     u->real_size = rs;
     pack_effects(s, u);
-    double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n), *invv = malloc(sizeof(double) * n);
     double *pm = malloc(sizeof(double) * PM_STRIDE * s->nmat * s->nmat);
     double *damp = malloc(sizeof(double) * s->nmat * s->nmat);
-    if (!invm || !invi || !invv || !pm || !damp) {
-        free(invv);
-        free(invm);
-        free(invi);
-        free(pm);
-        free(damp);
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    }
-    pack_bodies(s, invm, invi, invv);
-    pack_pairs(s, pm, damp);
+    if (pm && damp)
+        pack_pairs(s, pm, damp);
+    u->pairmat = pm && damp ? keep(s, pack_real(pm, (size_t)PM_STRIDE * s->nmat * s->nmat, rs)) : NULL;
+    free(pm), free(damp);
     for (int k = 0; k < s->nwalls; k++) /* the walls' stage lengths in steps, then the riders' velocities of step 0 */
         for (int st = 0; st < s->walls[k].nstages; st++)
             s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
@@ -628,60 +674,17 @@ int sim_pack(dem_sim *s)
         memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
     sim_stages_from_step(s);
     sim_attach_start(s);
-    s->packed[0] = pack_real(s->x, 3 * (size_t)n, rs);
-    s->packed[1] = pack_real(s->v, 3 * (size_t)n, rs);
-    s->packed[2] = pack_real(s->w, 3 * (size_t)n, rs);
-    s->packed[3] = pack_real(s->radius, (size_t)n, rs);
-    s->packed[4] = pack_real(invm, (size_t)n, rs);
-    s->packed[5] = pack_real(invi, (size_t)n, rs);
-    s->packed[6] = pack_real(pm, (size_t)PM_STRIDE * s->nmat * s->nmat, rs);
-    int *wint = calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int));
-    s->packed[7] = wint;
-    s->packed[8] = pack_real(invv, (size_t)n, rs);
+    int *wint = keep(s, calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int)));
     s->wall_real = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
-    free(invm);
-    free(invi);
-    free(invv);
-    free(pm);
-    free(damp);
-    for (int k = 0; k < 9; k++) /* the springs' four (9..12) are checked by pack_springs */
-        if (!s->packed[k])
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    if (!s->wall_real)
+    if (!u->pairmat || !wint || !s->wall_real)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if ((e = pack_particles(s, u, rs)))
+        return e;
     pack_walls(s, wint);
     if ((e = pack_channel(s, u, rs)) || (e = pack_riders(s, u, rs)) || (e = pack_patches(s, u)))
         return e;
-    unsigned *hold = calloc((size_t)n, sizeof(unsigned)); /* DEM_PARTICLE_HOLD_V{X,Y,Z} as bits 0, 1, 2 */
-    if (!hold)
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    for (int i = 0; i < n; i++)
-        hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
-    s->packed[21] = hold, u->hold = hold;
-    /* the stable ids every sum follows (neighbor.h): the particles' ids at the start, so that the bits do not depend
-     * on where the particles are stored later (host/core/reorder.c). (Their places in the input instead, which would make
-     * a sorted packing (dem_sort_particles) run the bits of the unsorted one, cost that sorted run a third of its
-     * speed: docs/design.md "Every sum follows the particle ids".) */
-    int *sid = malloc(sizeof(int) * (size_t)(n ? n : 1)), *order = malloc(sizeof(int) * (size_t)(n ? n : 1));
-    int *identity = malloc(sizeof(int) * (size_t)(n ? n : 1));
-    s->packed[22] = sid, s->packed[23] = order, s->packed[24] = identity;
-    if (!sid || !order || !identity)
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    for (int i = 0; i < n; i++)
-        sid[i] = order[i] = identity[i] = i;
-    u->sid = sid, u->order = order, u->identity = identity;
-    u->x = s->packed[0];
-    u->v = s->packed[1];
-    u->w = s->packed[2];
-    u->radius = s->packed[3];
-    u->invmass = s->packed[4];
-    u->invinertia = s->packed[5];
-    u->pairmat = s->packed[6];
-    u->invvol = s->packed[8];
     u->wall_int = wint;
     u->wall_real = s->wall_real;
-    u->mat = s->mat;
-
     double skin = pack_grid(s, u);
     double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc_reach - 1) * s->rmax : 0;
     u->dt = s->dt;

@@ -3,9 +3,11 @@
  *
  * What continues a run exactly: positions, velocities, angular velocities, the forces and torques of the last step
  * (velocity Verlet's first half kick uses them), the force on each wall, the wall positions, the step index, and the
- * contact memory: which pairs and walls touch, their tangential springs and (MC-strain) their stored normal forces. Neighbour rows are not part of it:
- * results do not depend on the rows (any skin or cell size gives the same bits), so restoring rebuilds them from the
- * positions and puts each touching pair's history back into the new rows.
+ * contact memory: which pairs and walls touch, their tangential springs and (MC-strain) their stored normal forces.
+ * The per-particle and per-wall part is every buffer the registry marks as saved (common/dem_buffers.h, its
+ * checkpoint column), read and written whole by walking it; the pairs are a list of the touching ones. Neighbour rows
+ * are not part of it: results do not depend on the rows (any skin or cell size gives the same bits), so restoring
+ * rebuilds them from the positions and puts each touching pair's history back into the new rows.
  */
 #include "sim.h"
 #include <math.h>
@@ -19,32 +21,27 @@ void dem_state_free(dem_state *st)
 {
     if (!st)
         return;
-    free(st->x), free(st->v), free(st->w), free(st->force), free(st->torque), free(st->wall_force), free(st->wall_nforce);
-    free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->wall_hist);
-    free(st->wall_pf), free(st->wall_mask), free(st->pair_mc_disp), free(st->wall_mc_disp);
-    free(st->pair_mc_fn), free(st->wall_mc_fn);
+    for (int k = 0; k < st->narrays && k < DEM_STATE_MAX_ARRAYS; k++)
+        free(st->arrays[k].data);
+    free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->pair_mc_disp);
+    free(st->pair_mc_fn);
     free(st->patch_i), free(st->patch_t), free(st->patch_hist), free(st->patch_side);
     memset(st, 0, sizeof *st);
 }
 
-/* A whole field: in the callers' order (dem_get_raw), or as stored (stored: the rows and the pair-sized fields,
- * read together in storage order; host/core/reorder.c) */
-static void *get_field(dem_sim *s, dem_field f, size_t *bytes, int *e, int stored)
+/* A whole field as stored (the rows and the pair-sized fields, read together in storage order; host/core/reorder.c) */
+static void *get_stored(dem_sim *s, dem_field f, size_t *bytes, int *e)
 {
-    *bytes = stored ? sim_stored_bytes(s, f) : dem_field_bytes(s, f);
+    *bytes = sim_stored_bytes(s, f);
     void *p = malloc(*bytes ? *bytes : 1);
     if (!p) {
         *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         return NULL;
     }
-    if (!*e && !stored)
-        *e = dem_get_raw(s, f, p, *bytes);
-    else if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
+    if (!*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
         *e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     return p;
 }
-#define get_all(s, f, bytes, e) get_field(s, f, bytes, e, 0)
-#define get_stored(s, f, bytes, e) get_field(s, f, bytes, e, 1)
 
 /* The saved pairs, named by the callers' ids, in the order of a run never stored anew: ascending i, then j (a
  * reordered run's rows list the owners in storage order) */
@@ -211,46 +208,129 @@ int *sim_own_starts(const int *cnt, const int *list, const int *start, int n)
     return own;
 }
 
-int dem_state_get(dem_sim *s, dem_state *st)
+/* ---- the arrays saved whole: the registry's checkpoint column (common/dem_buffers.h) ---- */
+
+static dem_state_elem state_elem(int elem)
 {
-    memset(st, 0, sizeof *st);
-    if (!s->started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    int e = 0, n = s->n, rs = s->setup.real_size;
-    size_t b;
-    st->step = s->step;
-    st->n = n;
-    st->nwalls = s->nwalls;
-    st->real_size = rs;
-    st->rebuilds = s->rebuilds;
-    st->has_stages = 1;
-    for (int k = 0; k < s->nwalls; k++) {
-        memcpy(st->wall_pos[k], s->wall_pos[k], sizeof st->wall_pos[k]);
-        st->wall_stage[k] = s->stage_cur[k];
-        st->wall_stage_first[k] = s->stage_first[k];
-        memcpy(st->wall_stage_from[k], s->stage_from[k], sizeof st->wall_stage_from[k]);
+    return elem == DEM_ELEM_REAL ? DEM_STATE_REAL : elem == DEM_ELEM_UINT ? DEM_STATE_UINT : DEM_STATE_INT;
+}
+static size_t state_elem_bytes(dem_state_elem elem, int rs) { return elem == DEM_STATE_REAL ? (size_t)rs : sizeof(int); }
+
+dem_state_array *dem_state_find(const dem_state *st, const char *name)
+{
+    for (int k = 0; k < st->narrays && k < DEM_STATE_MAX_ARRAYS; k++)
+        if (st->arrays[k].name && !strcmp(st->arrays[k].name, name))
+            return (dem_state_array *)&st->arrays[k];
+    return NULL;
+}
+
+int dem_state_arrays(dem_state *st)
+{
+    const dem_saved_buffer *sb = dem_saved_buffers();
+    dem_core c; /* the sizes of st's header: friction and MC-strain as it says; another gate (wall_pf's): full size */
+    memset(&c, 0, sizeof c);
+    c.n = st->n, c.nwalls = st->nwalls, c.rs = st->real_size;
+    unsigned known = DEM_EFFECT_FRICTION | DEM_EFFECT_MC_STRAIN;
+    unsigned fx = (st->has_hist ? DEM_EFFECT_FRICTION : 0u) | (st->has_mc ? DEM_EFFECT_MC_STRAIN : 0u);
+    st->narrays = 0;
+    for (int id = 0; id < BUF__COUNT && st->narrays < DEM_STATE_MAX_ARRAYS; id++) {
+        if (!sb[id].name)
+            continue;
+        int told = !(sb[id].gate & ~known); /* whether st's header says if the buffer is there */
+        c.fx = told ? fx : sb[id].gate;
+        dem_state_elem elem = state_elem(sb[id].elem);
+        st->arrays[st->narrays++] = (dem_state_array){sb[id].name, sb[id].unit, elem, sb[id].width,
+                                                       sb[id].required && told,
+                                                       dem_buffer_bytes(&c, id) / state_elem_bytes(elem, c.rs), NULL};
     }
-    st->x = get_all(s, DEM_FIELD_X, &b, &e);
-    st->v = get_all(s, DEM_FIELD_V, &b, &e);
-    st->w = get_all(s, DEM_FIELD_W, &b, &e);
-    st->force = get_all(s, DEM_FIELD_FORCE, &b, &e);
-    st->torque = get_all(s, DEM_FIELD_TORQUE, &b, &e);
-    st->wall_force = get_all(s, DEM_FIELD_WALL_FORCE, &b, &e);
-    st->wall_nforce = get_all(s, DEM_FIELD_WALL_NORMAL_FORCE, &b, &e);
-    st->wall_hist = get_all(s, DEM_FIELD_WALL_HIST, &st->wall_hist_bytes, &e);
-    st->wall_pf = get_all(s, DEM_FIELD_WALL_PF, &st->wall_pf_bytes, &e); /* the contact network's wall forces */
-    st->wall_mask = get_all(s, DEM_FIELD_WALL_MASK, &b, &e);
-    st->wall_mc_fn = get_all(s, DEM_FIELD_MC_WALL_FORCE, &st->wall_mc_fn_bytes, &e);
-    st->mc = s->mc;
-    size_t hb, fb;
+    return st->narrays;
+}
+
+/* Every saved buffer into st, particles in the callers' order */
+static int arrays_get(dem_sim *s, dem_state *st)
+{
+    dem_core *c = DEM_CORE(s->be);
+    const dem_saved_buffer *sb = dem_saved_buffers();
+    for (int id = 0; id < BUF__COUNT; id++) {
+        if (!sb[id].name)
+            continue;
+        if (st->narrays == DEM_STATE_MAX_ARRAYS)
+            return sim_fail(s, DEM_ERR_STATE, "more than %d saved buffers (DEM_STATE_MAX_ARRAYS)", DEM_STATE_MAX_ARRAYS);
+        size_t bytes = c->bytes[id];
+        dem_state_elem elem = state_elem(sb[id].elem);
+        void *p = malloc(bytes ? bytes : 1);
+        st->arrays[st->narrays++] = (dem_state_array){sb[id].name, sb[id].unit, elem, sb[id].width,
+                                                       sb[id].required, bytes / state_elem_bytes(elem, c->rs), p};
+        if (!p)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        if (bytes && s->ops->read(s->be, (dem_bufref){TABLE_ONE, id}, 0, p, bytes, 1))
+            return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, c->err);
+        if (sim_buffer_to_api(s, id, p, bytes))
+            return DEM_ERR_NOMEM;
+    }
+    return 0;
+}
+
+/* Whether st's arrays fit this run: each one the registry saves, at the run's size (one a state may lack: missing,
+ * or of another size, is zero) */
+static int arrays_check(dem_sim *s, const dem_state *st)
+{
+    dem_core *c = DEM_CORE(s->be);
+    const dem_saved_buffer *sb = dem_saved_buffers();
+    for (int k = 0; k < st->narrays; k++) {
+        const char *name = st->arrays[k].name;
+        int id = 0;
+        while (id < BUF__COUNT && !(sb[id].name && name && !strcmp(sb[id].name, name)))
+            id++;
+        if (id == BUF__COUNT || k >= DEM_STATE_MAX_ARRAYS)
+            return sim_fail(s, DEM_ERR_ARG, "the saved state has an array '%s' this library does not keep",
+                            name ? name : "(unnamed)");
+    }
+    for (int id = 0; id < BUF__COUNT; id++) {
+        const dem_state_array *a = sb[id].name ? dem_state_find(st, sb[id].name) : NULL;
+        size_t have = a && a->data ? a->count * state_elem_bytes(a->elem, c->rs) : 0, need = c->bytes[id];
+        if (sb[id].name && sb[id].required && have != need)
+            return sim_fail(s, DEM_ERR_ARG, "the saved %s has %zu bytes; this run needs %zu", sb[id].name, have, need);
+    }
+    return 0;
+}
+
+/* Every saved buffer from st (particles from the callers' order), zero where st lacks one it may lack */
+static int arrays_set(dem_sim *s, const dem_state *st)
+{
+    dem_core *c = DEM_CORE(s->be);
+    const dem_saved_buffer *sb = dem_saved_buffers();
+    int e = 0;
+    for (int id = 0; !e && id < BUF__COUNT; id++) {
+        size_t need = c->bytes[id];
+        if (!sb[id].name || !need)
+            continue;
+        const dem_state_array *a = dem_state_find(st, sb[id].name);
+        unsigned char *buf = calloc(need, 1);
+        if (!buf)
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        if (a && a->data && a->count * state_elem_bytes(a->elem, c->rs) == need)
+            sim_buffer_from_api(s, id, a->data, buf, need);
+        if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, id}, 0, buf, need, 1))
+            e = sim_fail(s, DEM_ERR_DEVICE, "%s", c->err);
+        free(buf);
+    }
+    return e;
+}
+
+/* ---- the contacts: the touching pairs, found in the rows ---- */
+
+/* The touching pairs of the current rows, once each (owner i: the lower stable id), in row order: ascending i, then
+ * the partners' stable ids; their history, MC-strain force and displacements, and force records */
+static int pairs_get(dem_sim *s, dem_state *st)
+{
+    int e = 0, n = s->n, rs = s->setup.real_size;
+    size_t b, hb, fb;
     unsigned char *mcf = get_stored(s, DEM_FIELD_MC_FORCE, &fb, &e);
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
     unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = get_stored(s, DEM_FIELD_MC_DISP, &b, &e);
-    st->wall_mc_disp = get_all(s, DEM_FIELD_MC_WALL_DISP, &st->wall_mc_disp_bytes, &e);
-    /* touching pairs, once each (owner i: the lower stable id), in row order: ascending i, then the partners' stable
-     * ids */
     long np = 0;
     const int *sid = s->setup.sid;
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
@@ -282,8 +362,7 @@ int dem_state_get(dem_sim *s, dem_state *st)
             st->pair_i[np] = i;
             st->pair_j[np] = j;
             if (hb) /* no tangential history without friction; it is kept per pair (neighbor.h) */
-                memcpy((char *)st->pair_hist + (size_t)np * 3 * rs,
-                       hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
+                memcpy((char *)st->pair_hist + (size_t)np * 3 * rs, hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) /* MC-strain: the force the next step's induced displacements start from (kept per pair) */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
             if (fb) { /* the displacements at both ends in the last step: the network's extra (mc_strain.h) */
@@ -301,6 +380,30 @@ int dem_state_get(dem_sim *s, dem_state *st)
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(mcd);
+    return e;
+}
+
+int dem_state_get(dem_sim *s, dem_state *st)
+{
+    memset(st, 0, sizeof *st);
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    st->step = s->step;
+    st->n = s->n;
+    st->nwalls = s->nwalls;
+    st->real_size = s->setup.real_size;
+    st->rebuilds = s->rebuilds;
+    st->has_stages = 1;
+    for (int k = 0; k < s->nwalls; k++) {
+        memcpy(st->wall_pos[k], s->wall_pos[k], sizeof st->wall_pos[k]);
+        st->wall_stage[k] = s->stage_cur[k];
+        st->wall_stage_first[k] = s->stage_first[k];
+        memcpy(st->wall_stage_from[k], s->stage_from[k], sizeof st->wall_stage_from[k]);
+    }
+    st->mc = s->mc;
+    int e = arrays_get(s, st);
+    if (!e)
+        e = pairs_get(s, st);
     if (!e)
         e = patch_contacts_get(s, st);
     if (!e) /* the pairs named by the callers' ids, like the particle fields (a run stored anew: host/core/reorder.c) */
@@ -311,19 +414,6 @@ int dem_state_get(dem_sim *s, dem_state *st)
 }
 
 int sim_rebuild(dem_sim *s); /* sim.c */
-
-/* A particle field from the callers' order into the device's (host/core/reorder.c) */
-static int write_api(dem_sim *s, dem_field f, const void *src, size_t bytes)
-{
-    if (!s->reorders)
-        return dem_stage_write_field(s->ops, s->be, f, src, bytes);
-    void *buf = malloc(bytes ? bytes : 1);
-    if (!buf)
-        return dem_core_fail(DEM_CORE(s->be), "out of host memory");
-    int e = sim_field_from_api(s, f, src, buf, bytes) || dem_stage_write_field(s->ops, s->be, f, buf, bytes);
-    free(buf); /* (the write blocks) */
-    return e;
-}
 
 static int state_set(dem_sim *s, const dem_state *st, int keep);
 
@@ -337,16 +427,13 @@ int dem_state_set(dem_sim *s, const dem_state *st)
     return e;
 }
 
-/* keep: the run's own state is saved before the first write and put back when the state turns out not to fit */
-static int state_set(dem_sim *s, const dem_state *st, int keep)
+/* Every check before the first write: a state that does not fit this run changes nothing */
+static int state_check(dem_sim *s, const dem_state *st)
 {
-    if (!s->started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     int n = s->n, rs = s->setup.real_size;
     if (st->n != n || st->nwalls != s->nwalls || st->real_size != rs)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has %d particles, %d walls, %d-byte reals; this run has %d, "
                         "%d, %d", st->n, st->nwalls, st->real_size, n, s->nwalls, rs);
-    /* every check before the first write: a state that does not fit this run changes nothing */
     unsigned fx = s->setup.effects;
     int fric = (fx & DEM_EFFECT_FRICTION) != 0, mce = (fx & DEM_EFFECT_MC_STRAIN) != 0;
     if (!!st->has_hist != fric)
@@ -355,13 +442,9 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     if (!!st->has_mc != mce)
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
                         st->has_mc ? "has" : "has no", mce ? "has" : "has no");
-    if (st->wall_hist_bytes != dem_field_bytes(s, DEM_FIELD_WALL_HIST) ||
-        st->wall_mc_fn_bytes != dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE))
-        return sim_fail(s, DEM_ERR_ARG, "the saved wall contact memory has %zu + %zu bytes; this run needs %zu + %zu",
-                        st->wall_hist_bytes, st->wall_mc_fn_bytes, dem_field_bytes(s, DEM_FIELD_WALL_HIST),
-                        dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE));
-    if (st->step < 0 || st->npairs < 0)
-        return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld and %ld contacts", st->step, st->npairs);
+    if (st->step < 0 || st->npairs < 0 || st->narrays < 0)
+        return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld, %ld contacts and %d arrays", st->step,
+                        st->npairs, st->narrays);
     for (int k = 0; st->has_stages && k < s->nwalls; k++) {
         const double *p = st->wall_stage_from[k];
         if (st->wall_stage[k] < 0 || st->wall_stage[k] > s->walls[k].nstages || st->wall_stage_first[k] < 0 ||
@@ -374,41 +457,24 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         if (!(st->pair_i[p] >= 0 && st->pair_i[p] < st->pair_j[p] && st->pair_j[p] < n))
             return sim_fail(s, DEM_ERR_ARG, "saved contact %ld joins particles %d and %d (want 0 <= i < j < %d)", p,
                             st->pair_i[p], st->pair_j[p], n);
+    return arrays_check(s, st);
+}
+
+/* The saved contacts into the rows just rebuilt from the saved positions; DEM_ERR_ARG when one is not there */
+static int pairs_set(dem_sim *s, const dem_state *st)
+{
+    int e = 0, n = s->n, rs = s->setup.real_size;
     const int *sid = s->setup.sid;
-    /* Whether each saved contact is a neighbour pair needs the rows of the saved positions, so those are written
-     * and the rows rebuilt first; when a contact then does not fit, the run's own state goes back (below) and the
-     * state changes nothing. Its own state, not only its positions: the rows of the saved positions carry only the
-     * contact memory of the pairs they list, so rows rebuilt from the run's positions after them would have lost
-     * the rest (a refused state changed the run that way until 2026-12-03). */
-    size_t v3b = 3 * (size_t)n * rs;
-    int e = 0;
-    dem_state mine;
-    memset(&mine, 0, sizeof mine);
-    if (keep && (e = dem_state_get(s, &mine)))
-        return e;
-    if (write_api(s, DEM_FIELD_X, st->x, v3b) || write_api(s, DEM_FIELD_V, st->v, v3b) ||
-        write_api(s, DEM_FIELD_W, st->w, v3b)) {
-        dem_state_free(&mine);
-        return sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    }
-    s->skin_now = s->skin_hi; /* how the restored particles move is not known yet: rows of the largest skin */
-    s->skin_built = -1;
-    if ((e = sim_rebuild(s))) {
-        dem_state_free(&mine);
-        return e;
-    }
     size_t b, hb = sim_stored_bytes(s, DEM_FIELD_HIST), fb = sim_stored_bytes(s, DEM_FIELD_MC_FORCE),
               tb = sim_stored_bytes(s, DEM_FIELD_TOUCH), rb = sim_stored_bytes(s, DEM_FIELD_PAIR_RECORDS);
+    size_t db = sim_stored_bytes(s, DEM_FIELD_MC_DISP);
     int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     unsigned char *rec = calloc(rb + 1, 1); /* the records too: the restore runs no force pass that would write them */
-    size_t pfb = dem_field_bytes(s, DEM_FIELD_WALL_PF); /* likewise each wall's force on each particle, when kept */
-    size_t db = sim_stored_bytes(s, DEM_FIELD_MC_DISP), wdb = dem_field_bytes(s, DEM_FIELD_MC_WALL_DISP);
-    unsigned char *disp = calloc(db + 1, 1);                             /* and MC-strain's displacements */
-    unsigned char *zero = calloc((pfb > wdb ? pfb : wdb) + 1, 1);       /* (zero when the state does not know them) */
+    unsigned char *disp = calloc(db + 1, 1); /* and MC-strain's displacements */
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
-    if (!e && (!touch || !hist || !mcf || !rec || !zero || !disp || !own))
+    if (!e && (!touch || !hist || !mcf || !rec || !disp || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
@@ -421,8 +487,7 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         size_t pn = (size_t)row_pair_of(cnt, list, start, own, sid, i, a - start[i]); /* >= 0: m was found */
         touch[pn] = 1; /* flag and history are kept per pair (neighbor.h) */
         if (hb && st->has_hist)
-            memcpy(hist + pn * 3 * rs,
-                   (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
+            memcpy(hist + pn * 3 * rs, (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) /* kept per pair, like the history (mc_strain.h) */
             memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
         if (fb && st->pair_mc_disp && ((size_t)a + 1) * rs <= db && ((size_t)m + 1) * rs <= db) {
@@ -435,35 +500,19 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     }
     if (!e)
         e = patch_contacts_set(s, st);
-    static const double zero_nforce[DEM_MAX_WALLS]; /* a state without the walls' normal forces: zero until summed */
     if (!e && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_TOUCH, touch, tb) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) || dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
-               (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db)) ||
-               (wdb && write_api(s, DEM_FIELD_MC_WALL_DISP,
-                                 st->wall_mc_disp && st->wall_mc_disp_bytes == wdb ? st->wall_mc_disp : zero, wdb)) ||
-               write_api(s, DEM_FIELD_MC_WALL_FORCE, st->wall_mc_fn, dem_field_bytes(s, DEM_FIELD_MC_WALL_FORCE)) ||
-               write_api(s, DEM_FIELD_WALL_HIST, st->wall_hist, dem_field_bytes(s, DEM_FIELD_WALL_HIST)) ||
-               (pfb && write_api(s, DEM_FIELD_WALL_PF, st->wall_pf && st->wall_pf_bytes == pfb ? st->wall_pf : zero,
-                                 pfb)) ||
-               write_api(s, DEM_FIELD_WALL_MASK, st->wall_mask, sizeof(unsigned) * (size_t)n) ||
-               write_api(s, DEM_FIELD_FORCE, st->force, v3b) || write_api(s, DEM_FIELD_TORQUE, st->torque, v3b) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, st->wall_force, 3 * (size_t)s->nwalls * rs) ||
-               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE,
-                                     st->wall_nforce ? st->wall_nforce : (const void *)zero_nforce, (size_t)s->nwalls * rs)))
+               (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db))))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
-    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(zero);
-    free(disp);
-    if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
-        char why[sizeof s->err];
-        snprintf(why, sizeof why, "%s", s->err);
-        if (state_set(s, &mine, 0))
-            e = DEM_ERR_DEVICE;
-        snprintf(s->err, sizeof s->err, "%s", why);
-    }
-    dem_state_free(&mine);
-    if (e)
-        return e;
+    free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(disp);
+    return e;
+}
+
+/* The run takes st's step, iteration counts, wall positions and stages */
+static void state_adopt(dem_sim *s, const dem_state *st)
+{
     s->step = st->step;
     s->skin_built = s->step; /* the rows just built are this step's (sim.c skin_choose counts from it) */
     long first_capped = s->mc.first_capped, last_capped = s->mc.last_capped; /* this process's, not the state's */
@@ -478,5 +527,45 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         s->stage_first[k] = st->wall_stage_first[k];
         memcpy(s->stage_from[k], st->wall_stage_from[k], sizeof s->stage_from[k]);
     }
-    return 0;
+}
+
+/* keep: the run's own state is saved before the first write and put back when the state turns out not to fit.
+ * Whether each saved contact is a neighbour pair needs the rows of the saved positions, so the arrays are written and
+ * the rows rebuilt first; when a contact then does not fit, the run's own state goes back and the state changes
+ * nothing. Its own state, not only its positions: the rows of the saved positions carry only the contact memory of
+ * the pairs they list, so rows rebuilt from the run's positions after them would have lost the rest. The arrays are
+ * written again after the rebuild, so that what they hold does not depend on what a rebuild touches. */
+static int state_set(dem_sim *s, const dem_state *st, int keep)
+{
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int e = state_check(s, st);
+    dem_state mine;
+    memset(&mine, 0, sizeof mine);
+    if (e || (keep && (e = dem_state_get(s, &mine))))
+        return e;
+    if ((e = arrays_set(s, st))) {
+        dem_state_free(&mine);
+        return e;
+    }
+    s->skin_now = s->skin_hi; /* how the restored particles move is not known yet: rows of the largest skin */
+    s->skin_built = -1;
+    if ((e = sim_rebuild(s))) {
+        dem_state_free(&mine);
+        return e;
+    }
+    e = pairs_set(s, st);
+    if (!e)
+        e = arrays_set(s, st);
+    if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
+        char why[sizeof s->err];
+        snprintf(why, sizeof why, "%s", s->err);
+        if (state_set(s, &mine, 0))
+            e = DEM_ERR_DEVICE;
+        snprintf(s->err, sizeof s->err, "%s", why);
+    }
+    dem_state_free(&mine);
+    if (!e)
+        state_adopt(s, st);
+    return e;
 }
