@@ -180,7 +180,7 @@ static void test_kernel_build_log(void **st)
     char dir[] = "/tmp/dem-kernels-XXXXXX", cmd[512];
     assert_non_null(mkdtemp(dir));
     snprintf(cmd, sizeof cmd, "cp -r '%s/kernels' '%s/common' '%s/include' '%s/' && echo 'this is not OpenCL C;' >> "
-             "'%s/kernels/integrate.cl'", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir,
+             "'%s/kernels/program.cl'", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir,
              dir);
     assert_int_equal(system(cmd), 0);
     dem_sim *s = glass_box(1.0);
@@ -189,7 +189,7 @@ static void test_kernel_build_log(void **st)
     assert_int_equal(dem_start(s, &c), DEM_ERR_DEVICE);
     printf("  %.300s...\n", dem_error(s));
     assert_non_null(strstr(dem_error(s), "build log"));
-    assert_non_null(strstr(dem_error(s), "integrate.cl"));
+    assert_non_null(strstr(dem_error(s), "program.cl"));
     dem_destroy(s);
     /* and a folder without kernels says where it looked */
     s = glass_box(1.0);
