@@ -74,7 +74,9 @@ $(BUILD)/app/%.o: app/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
+# made afresh: ar would keep the members of source files since removed
 $(LIB): $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
+	@rm -f $@
 	ar rcs $@ $^
 $(APPLIB): $(APP_OBJ)
 	ar rcs $@ $^

@@ -3,7 +3,7 @@
  * A backend owns buffers and runs kernels; it makes no decisions. It implements a handful of primitives (allocate a
  * registry buffer, launch a kernel of common/dem_kernels.h with its arguments looked up by their sources, fill,
  * copy, read, write); everything else is written once on top of them: the buffers a run needs (walking the registry,
- * common/dem_buffers.h, in backend/backend.c), and the steps of a time step (host/<family>.c: binning, neighbour rows,
+ * common/dem_buffers.h, in backend/backend.c), and the steps of a time step (host/steps/: binning, neighbour rows,
  * contact forces, wall forces, integration, stress, MC-strain). The driver (host/core/sim.c) decides when to rebuild,
  * grows capacities, moves walls and checks flags, identically for every backend, so two backends given the same
  * setup execute the same sequence of launches.
@@ -192,13 +192,12 @@ size_t dem_ref_bytes(const dem_core *c, dem_bufref r);
 size_t dem_kernel_items(const dem_core *c, dem_kernel_id k);
 size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k);
 
-/* Launches kernel k (o->launch), recording it in the core's trace. The steps launch through it. */
+/* Launches kernel k (o->launch), recording it in the core's trace. The steps launch through it; a step that is one
+ * launch has no wrapper: the driver calls dem_launch(o, b, K_<kernel>) itself. */
 int dem_launch(const dem_backend_ops *o, dem_backend *b, dem_kernel_id k);
 
-/* ---- the steps, written once for every backend (host/<family>.c) ---- */
+/* ---- the steps of more than one launch, written once for every backend (host/steps/) ---- */
 int dem_stage_reset_flags(const dem_backend_ops *o, dem_backend *b);
-int dem_stage_kick_drift(const dem_backend_ops *o, dem_backend *b);
-int dem_stage_kick(const dem_backend_ops *o, dem_backend *b);
 /* The binning (common/binning.h) in two steps, for the host to read the flags between them: bin_bounds finds the
  * cells the particles hold (and any particle outside the domain); bin_cells takes those cells for the build (from
  * the flags read after bin_bounds), growing the cell buffers when they hold fewer; bin sorts the particles into them. */
@@ -216,8 +215,6 @@ int dem_stage_nbr_count(const dem_backend_ops *o, dem_backend *b, int *slots);
 int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int slots); /* slots of the rows being built */
 int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry history, swap, offsets, x_build */
-int dem_stage_contact_pairs(const dem_backend_ops *o, dem_backend *b); /* each listed pair once */
-int dem_stage_contact_sums(const dem_backend_ops *o, dem_backend *b);  /* per-particle sums, walls included */
 int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b, int final); /* walls' block sums [and final] */
 /* Series rows (common/series.h): arm(1, row) has the next step write its terms to row `row` of the device's ring
  * (arm(0, 0) after it); series_map maps the first `rows` rows for the host to read (real[rows][n][SE_STRIDE] and
@@ -226,21 +223,12 @@ int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b, int final); 
 int dem_stage_series_arm(const dem_backend_ops *o, dem_backend *b, int on, int row);
 int dem_stage_series_map(const dem_backend_ops *o, dem_backend *b, int rows, const void **terms, const void **walls);
 int dem_stage_series_unmap(const dem_backend_ops *o, dem_backend *b, const void *terms, const void *walls);
-int dem_stage_stress_trace(const dem_backend_ops *o, dem_backend *b);   /* MC-stress pass 1 */
 int dem_stage_stress_tensor(const dem_backend_ops *o, dem_backend *b);  /* DEM_FIELD_STRESS from the positions */
-int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_mc_strain_update(const dem_backend_ops *o, dem_backend *b, double tol); /* sets FLAG_MC_PENDING */
 int dem_stage_set_walls(const dem_backend_ops *o, dem_backend *b, const void *src); /* non-blocking */
-int dem_stage_springs(const dem_backend_ops *o, dem_backend *b);  /* spring forces into the channel */
-int dem_stage_pressure(const dem_backend_ops *o, dem_backend *b); /* triangle loads into the channel */
-int dem_stage_bending(const dem_backend_ops *o, dem_backend *b);  /* hinge forces into the channel */
-int dem_stage_riders(const dem_backend_ops *o, dem_backend *b);   /* riders to their walls' places and velocities */
-int dem_stage_channel_gather(const dem_backend_ops *o, dem_backend *b); /* the channel into the particles' forces */
-/* Patch rows (first: the current sphere rows become the old ones first; a retry after growth passes 0), the
- * spheres' patch forces, the vertices' sums of them (patch_contacts.h). */
+/* Patch rows (first: the current sphere rows become the old ones first; a retry after growth passes 0;
+ * patch_contacts.h). */
 int dem_stage_patch_build(const dem_backend_ops *o, dem_backend *b, int first, int maxp, int maxv, double reach);
-int dem_stage_patch_forces(const dem_backend_ops *o, dem_backend *b);
-int dem_stage_patch_gather(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_read_field(const dem_backend_ops *o, dem_backend *b, dem_field f, void *dst, size_t bytes);
 /* Several fields with one synchronisation (the series of a step read everything at once). */
 int dem_stage_read_fields(const dem_backend_ops *o, dem_backend *b, int count, const dem_field *f, void *const *dst,

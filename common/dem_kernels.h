@@ -1,9 +1,11 @@
 /* dem_kernels.h - every kernel's argument list, written once (issue 18).
  *
  * From each list below come, by the macros at the end of this file:
- *   - the OpenCL kernel (kernels/<family>.cl: one DEM_KERNEL(name) line),
- *   - the work-item function's signature (common/<family>.h: DEM_ITEM(name) { body }),
- *   - the reference loop and its prototype (reference/<family>.c: one DEM_REF_LOOP(name) line),
+ *   - the OpenCL kernel (kernels/program.cl makes every kernel of DEM_KERNEL_LIST with DEM_KERNEL),
+ *   - the work-item function's signature (common/<family>.h: DEM_ITEM(name) { body }; the family headers are listed
+ *     once, in common/dem_families.h),
+ *   - the reference loop (reference/loops.c: DEM_REF_LOOP of every kernel) and its declarations in both precisions
+ *     (reference/ref_kernels.h),
  *   - the host's argument setting (host/opencl/cl_backend.c) and the reference backend's call (reference/backend_ref.c),
  *     which look each argument's value up by its source (the last field) in the buffer and scalar registries
  *     (common/dem_buffers.h).

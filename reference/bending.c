@@ -1,12 +1,11 @@
-/* bending.c - reference twin of kernels/bending.cl: the same items in one serial loop (common/bending.h; arguments:
- * common/dem_kernels.h). */
+/* bending.c - the host's fp64 helpers for hinges, from the item's own geometry (common/bending.h; declared in
+ * ref_kernels.h): the rest angle, the fold period and the damping rate of the time-step bound. The loop
+ * ref_hinge_forces is in loops.c. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include "ref_kernels.h"
 #include "bending.h"
-
-DEM_REF_LOOP(hinge_forces)
 
 #if DEM_REAL_SIZE == 8
 /* sin(theta0 / 2) of a hinge at the positions x (fp64), for the host's rest angle of a hinge added with theta0 NAN:

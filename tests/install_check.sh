@@ -22,7 +22,7 @@ env -u DEM_SOURCE_DIR "$T/example" > "$T/out.log" 2>&1 || { cat "$T/out.log"; ec
 [ ! -s "$T/out.log" ] || { cat "$T/out.log"; echo "install_check: the example reported an error"; exit 1; }
 # DESTDIR: everything under the staging root, nothing elsewhere
 make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
-for f in lib/libdem.a lib/pkgconfig/libdem.pc include/dem.h include/dem_effects.h share/libdem/kernels/contact_forces.cl \
+for f in lib/libdem.a lib/pkgconfig/libdem.pc include/dem.h include/dem_effects.h share/libdem/kernels/program.cl \
          share/libdem/common/dem_kernels.h share/libdem/include/dem_effects.h; do
     [ -f "$T/stage/opt/libdem-check/$f" ] || { echo "install_check: DESTDIR install lacks $f"; exit 1; }
 done

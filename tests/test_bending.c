@@ -1,4 +1,4 @@
-/* test_bending.c - kernels/bending.cl (hinge_forces, through the contribution channel of kernels/springs.cl) and
+/* test_bending.c - the kernel hinge_forces (through the contribution channel, channel_gather) and
  * its reference twin, on every backend x precision:
  *  - the four forces of a hinge are -K (s(theta) - s(theta0)) d theta / d x_i, with theta = atan2((N1 x N2).E_hat,
  *    N1.N2) computed here independently and differentiated by central differences (this fixes the signs that

@@ -1,6 +1,7 @@
-/* test_binning.c - kernels/binning.cl against reference/binning.c, and both against the definition:
- * cell_start is the exclusive scan of the cell counts, every particle sits in the cell of its position, the cells in
- * use are the particles' bounding box in the grid, and each cell lists its particles in ascending id. fp32 and fp64, work-group sizes auto, 1, 7 and 128. */
+/* test_binning.c - the binning kernels (common/binning.h) against their reference twins, and both against the
+ * definition: cell_start is the exclusive scan of the cell counts, every particle sits in the cell of its position, the
+ * cells in use are the particles' bounding box in the grid, and each cell lists its particles in ascending id. fp32 and
+ * fp64, work-group sizes auto, 1, 7 and 128. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* test_contact_forces.c - kernels/contact_forces.cl (contact_pairs, contact_forces) and its reference twin, on every
+/* test_contact_forces.c - the kernels contact_pairs, contact_forces and their reference twins, on every
  * backend x precision (tests/test_util.h: FOR_EACH_BACKEND): static contacts at a known overlap give the Hertz
  * force of seed 000 Eq. 3, F = 4/3 E* sqrt(r*) delta^(3/2) with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2, computed
  * here: between two spheres (equal, and unequal along a diagonal), a sphere on a plane, a sphere inside a cylinder

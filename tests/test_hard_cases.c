@@ -180,7 +180,7 @@ static void test_kernel_build_log(void **st)
     char dir[] = "/tmp/dem-kernels-XXXXXX", cmd[512];
     assert_non_null(mkdtemp(dir));
     snprintf(cmd, sizeof cmd, "cp -r '%s/kernels' '%s/common' '%s/include' '%s/' && echo 'this is not OpenCL C;' >> "
-             "'%s/kernels/integrate.cl'", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir,
+             "'%s/kernels/program.cl'", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir,
              dir);
     assert_int_equal(system(cmd), 0);
     dem_sim *s = glass_box(1.0);
@@ -189,7 +189,7 @@ static void test_kernel_build_log(void **st)
     assert_int_equal(dem_start(s, &c), DEM_ERR_DEVICE);
     printf("  %.300s...\n", dem_error(s));
     assert_non_null(strstr(dem_error(s), "build log"));
-    assert_non_null(strstr(dem_error(s), "integrate.cl"));
+    assert_non_null(strstr(dem_error(s), "program.cl"));
     dem_destroy(s);
     /* and a folder without kernels says where it looked */
     s = glass_box(1.0);
@@ -201,12 +201,55 @@ static void test_kernel_build_log(void **st)
     assert_int_equal(system(cmd), 0);
 }
 
+/* The source hash the program is built with (-DDEM_SOURCE_HASH, which keys PoCL's compiler cache) covers every file of
+ * the source folders: a header added in a new subfolder of common/ changes it, and so does an edit of it; an unchanged
+ * folder gives the same hash again. The copy's program stops at its first line (#error), so that each start fails at
+ * once with the build options, hash included, in its message, instead of compiling a program for each hash. */
+static unsigned long long source_hash_of(const char *dir)
+{
+    dem_sim *s = glass_box(1.0);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64);
+    c.source_dir = dir;
+    assert_int_equal(dem_start(s, &c), DEM_ERR_DEVICE);
+    assert_non_null(strstr(dem_error(s), "hash probe"));
+    const char *h = strstr(dem_error(s), "-DDEM_SOURCE_HASH=0x");
+    assert_non_null(h);
+    unsigned long long v = strtoull(h + strlen("-DDEM_SOURCE_HASH=0x"), NULL, 16);
+    dem_destroy(s);
+    return v;
+}
+
+static void test_source_hash_covers_folders(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/dem-hash-XXXXXX", cmd[512];
+    assert_non_null(mkdtemp(dir));
+    snprintf(cmd, sizeof cmd, "cp -r '%s/kernels' '%s/common' '%s/include' '%s/' && sed -i '1i #error hash probe' "
+             "'%s/kernels/program.cl'", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR, dir, dir);
+    assert_int_equal(system(cmd), 0);
+    unsigned long long h0 = source_hash_of(dir), h1 = source_hash_of(dir);
+    snprintf(cmd, sizeof cmd, "mkdir '%s/common/sub' && echo '#define DEM_UNUSED 1' > '%s/common/sub/new.h'", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    unsigned long long h2 = source_hash_of(dir);
+    snprintf(cmd, sizeof cmd, "echo '#define DEM_UNUSED 2' > '%s/common/sub/new.h'", dir);
+    assert_int_equal(system(cmd), 0);
+    unsigned long long h3 = source_hash_of(dir);
+    printf("  source hashes: %016llx, again %016llx, a new header in common/sub/ %016llx, edited %016llx\n", h0, h1,
+           h2, h3);
+    assert_true(h0 == h1);
+    assert_true(h2 != h1);
+    assert_true(h3 != h2 && h3 != h1);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coincident_centres), cmocka_unit_test(test_leaves_domain),
         cmocka_unit_test(test_nonfinite_rejected), cmocka_unit_test(test_glass_recommended_dt),
         cmocka_unit_test(test_dt_bound), cmocka_unit_test(test_kernel_build_log),
+        cmocka_unit_test(test_source_hash_covers_folders),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,4 +1,4 @@
-/* test_integrate.c - kernels/integrate.cl (integrate_kick_drift, integrate_kick) and its reference twin, on every
+/* test_integrate.c - the kernels integrate_kick_drift, integrate_kick and their reference twins, on every
  * backend x precision: a free particle under gravity follows x0 + v0 t + g t^2 / 2 and v0 + g t (velocity Verlet
  * is exact for a constant force, so only rounding remains: checked to 4 eps per step of the motion's scale), spins
  * at its initial angular velocity (no torque), and a fixed particle stays exactly where it is. With the gravity

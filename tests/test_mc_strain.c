@@ -1,4 +1,4 @@
-/* test_mc_strain.c - kernels/mc_strain.cl's two code paths give the same bits. mc_strain_disp keeps the geometry of up to
+/* test_mc_strain.c - mc_strain_disp's two code paths give the same bits. mc_strain_disp keeps the geometry of up to
  * MC_CACHE contacts in private memory (fast path) and recomputes it for particles with more (slow path). This file
  * compiles common/mc_strain.h with MC_CACHE 2, so every particle with more than two contacts takes the slow path,
  * and compares its induced displacements with libdem's reference twin (MC_CACHE 16: the fast path) on the same

@@ -1,9 +1,9 @@
-/* test_neighbor.c - kernels/neighbor.cl against reference/neighbor.c and against a brute-force O(n^2) search:
- * row i holds exactly the j != i with |x_i - x_j| < r_i + r_j + skin at the last build (evaluated in the run
- * precision with the kernel's operation order), sorted ascending and symmetric. The packing starts with rows of
- * capacity 16, so the large skins also exercise the overflow-and-grow path. fp32 and fp64, a small and a large skin
- * each, and the automatic one (dem_config.skin 0: chosen at each rebuild), which must also leave the bits of a run
- * with a fixed skin, shrink on a packing at rest and stay larger where the particles move. */
+/* test_neighbor.c - the neighbour-row kernels (common/neighbor.h) against their reference twins and against a
+ * brute-force O(n^2) search: row i holds exactly the j != i with |x_i - x_j| < r_i + r_j + skin at the last build
+ * (evaluated in the run precision with the kernel's operation order), sorted ascending and symmetric. The packing
+ * starts with rows of capacity 16, so the large skins also exercise the overflow-and-grow path. fp32 and fp64, a small
+ * and a large skin each, and the automatic one (dem_config.skin 0: chosen at each rebuild), which must also leave the
+ * bits of a run with a fixed skin, shrink on a packing at rest and stay larger where the particles move. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* test_particle_stress.c - kernels/particle_stress.cl (stress_tensor; stress_trace is the same sum's trace, used by
+/* test_particle_stress.c - the kernel stress_tensor (stress_trace is the same sum's trace, used by
  * MC-stress and checked in tests/test_multicontact.c) and its reference twin, on every backend x precision: the
  * particle stress of seed 000 Eq. 9, sigma_p = -(1/V_p) sum_c (r_p - a_c) f_H,c n_c (x) n_c (a_c = delta/2 for a
  * particle, delta for a wall; common/particle_stress.h), computed here for static contacts of known overlap: a

@@ -16,10 +16,7 @@
 #include <string.h>
 #define DEM_REAL_SIZE 8 /* for the constants (PATCH_FACE, ...); the items run through reference/patch.c */
 #include "patch.h"
-
-void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind, int *index, double *w, double *pt);
-void dem_patch_probe_f32(int n, const float *p, const float *tri_x, int *kind, int *index, float *w, float *pt);
-int dem_patch_keep_f64(int i, int n, const int *id, const int *tri, const int *kind, const double *d2);
+#include "ref_kernels.h" /* dem_patch_probe_f32/_f64, dem_patch_keep_f64 */
 
 #define NPROBE 4000
 

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "test_util.h"
+#include "ref_kernels.h" /* dem_patch_probe_f64 */
 
 /* the membrane of test_membrane.c (Table 2 of seed 001: rubber) */
 static const dem_membrane rubber = {1.25e6, 1.0 / 3, 3e-4, 1000, 0.5, 1.2, 0.3, 1e-4, 1e-6, 0.001, DEM_MEMBRANE_PATCH};
@@ -650,7 +651,6 @@ static void test_no_tunnelling(void **st)
  * 0.2 r (the law's barrier at work). Hertz's law with a two-sided normal let the first grains through at about
  * 300 kPa here (docs/design.md). The hinges keep seed 001's k_el but no k_diss: their damping needs a step five times
  * shorter at this mesh size (dem check warns), and the test is about the contact. */
-void dem_patch_probe_f64(int n, const double *p, const double *tri_x, int *kind, int *index, double *w, double *point);
 
 static double lcg_unit(unsigned long long *q)
 {

@@ -1,4 +1,4 @@
-/* test_pressure.c - kernels/pressure.cl (pressure_forces, through the contribution channel of kernels/springs.cl)
+/* test_pressure.c - the kernel pressure_forces (through the contribution channel, channel_gather)
  * and its reference twin, on every backend x precision: a triangle under the pressure sigma gives each vertex
  * sigma A n_hat / 3 (seed 001 Eq. 18, current area and normal); a closed octahedron of springs under an inward
  * pressure settles where the springs carry it, at the edge length L of sigma L^2 / 3 = 2 sqrt(2) k (L0 - L) (each

@@ -1,4 +1,4 @@
-/* test_springs.c - kernels/springs.cl (spring_forces, channel_gather) and its reference twin, on every backend x
+/* test_springs.c - the kernels spring_forces, channel_gather and their reference twins, on every backend x
  * precision: two particles on a spring oscillate with the period 2 pi sqrt(m_eff / k) (undamped, energy kept to the
  * integrator's error) and, damped with ratio gamma, lose amplitude by exp(-2 pi gamma / sqrt(1 - gamma^2)) per period
  * (seed 001 Eq. 6 read as a damped oscillator: common/springs.h); the two ends' forces are exact negations; a particle

@@ -171,12 +171,6 @@ void sim_buffer_from_api(dem_sim *s, int id, const void *src, void *dst, size_t 
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);
 int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all); /* state.c */
 size_t sim_stored_bytes(const dem_sim *s, dem_field f);          /* sim.c: a field's bytes as the device holds it */
-/* reference/bending.c (fp64 build): sin(theta / 2) of hinge p[0..3] at the positions x, as the item computes it */
-double dem_hinge_rest_shalf(const double *x, const int *p);
-/* reference/bending.c: the fold period of hinge p[0..3] of elastic constant kel, vertex masses mass[0..3] */
-double dem_hinge_period(const double *x, const int *p, double kel, const double *mass);
-double dem_hinge_damping_rate(const double *x, const int *hinge, const double *hinge_k, int nh, const double *sqrt_im,
-                              int n);
 
 /* host/mesh/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
  * lengths are known; the device places them each step: common/riders.h) */

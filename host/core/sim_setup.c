@@ -1,6 +1,7 @@
 /* sim_setup.c - parameter validation, time scales, the material-pair table, and packing into the run precision. */
 #include "sim.h"
 #include "dem_layout.h"
+#include "ref_kernels.h" /* the hinges' rest angle, period and damping rate */
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>

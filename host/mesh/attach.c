@@ -1,6 +1,6 @@
 /* attach.c - particles that ride on a wall (dem_attach_to_wall): a membrane's end rings on the platens of a triaxial
  * cell (seed 001 section 3.1). A rider is a fixed particle (DEM_PARTICLE_FIXED: infinite mass) that the device puts
- * at its wall's place and velocity every step after the walls move (common/riders.h, kernels/riders.cl); here it
+ * at its wall's place and velocity every step after the walls move (common/riders.h, kernel rider_place); here it
  * gets its wall's velocity of the first step on the host, for the forces at the start. Placed rather than
  * integrated: integrated in fp32, a rider drifted from its wall by half an ulp per step (1.6e-9 m per step of 1e-6
  * m at z = 0.08 m, 0.3 mm over 2e5 steps); placed, it stays one rounding from the wall's double position. */

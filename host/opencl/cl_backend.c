@@ -1,12 +1,14 @@
 /* cl_backend.c - the OpenCL backend: device set-up, the one program holding every kernel, buffers by the registry
  * (common/dem_buffers.h), launches with arguments set from the kernels' lists (common/dem_kernels.h), transfers.
- * The steps themselves are written once for every backend (host/<family>.c). */
+ * The steps themselves are written once for every backend (host/steps/). */
 #include "backend.h"
 #include "cl_util.h"
+#include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 struct dem_backend {
     dem_core core; /* first: DEM_CORE */
@@ -24,21 +26,9 @@ struct dem_backend {
 
 #define ERR(b) (b)->core.err, sizeof (b)->core.err
 
-static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighbor.cl", "kernels/contact_forces.cl",
-                                           "kernels/wall_forces.cl", "kernels/integrate.cl",
-                                           "kernels/particle_stress.cl", "kernels/mc_strain.cl",
-                                           "kernels/springs.cl", "kernels/pressure.cl",
-                                           "kernels/bending.cl", "kernels/riders.cl",
-                                           "kernels/patch_contacts.cl"};
-static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
-                                           "common/hertz_mindlin.h", "common/contact_forces.h",
-                                           "common/wall_forces.h", "common/integrate.h", "common/binning.h",
-                                           "common/neighbor.h", "include/dem_effects.h",
-                                           "common/contact_geometry.h", "common/particle_stress.h",
-                                           "common/mc_strain.h", "common/sorted_row.h",
-                                           "common/dem_kernels.h", "common/contacts.h", "common/springs.h",
-                                           "common/pressure.h", "common/bending.h", "common/riders.h",
-                                           "common/patch.h", "common/patch_contacts.h", "common/series.h"};
+/* the program: one file, which makes every kernel of the list; the folders the source hash walks */
+#define PROGRAM_FILE "kernels/program.cl"
+static const char *const source_folders[] = {"kernels", "common", "include"};
 
 static cl_mem *slot(dem_backend *b, dem_bufref r)
 {
@@ -229,27 +219,112 @@ static void cl_destroy(dem_backend *b)
     free(b);
 }
 
-/* FNV-1a over the kernel sources and headers: passed as -DDEM_SOURCE_HASH so that a compiler cache keyed on the
- * main source text and options (PoCL's is) never serves a program built from older headers. */
-static int source_hash(const char *root, uint64_t *h, char *err, size_t errlen)
+static void fnv1a(uint64_t *h, const unsigned char *p, size_t n)
 {
-    *h = 1469598103934665603ull;
-    const char *const *lists[2] = {kernel_files, header_files};
-    size_t counts[2] = {sizeof kernel_files / sizeof *kernel_files, sizeof header_files / sizeof *header_files};
-    for (int l = 0; l < 2; l++)
-        for (size_t k = 0; k < counts[l]; k++) {
-            char path[4096];
-            snprintf(path, sizeof path, "%s/%s", root, lists[l][k]);
-            FILE *fp = fopen(path, "rb");
-            if (!fp) {
-                snprintf(err, errlen, "cannot open kernel source %s (set DEM_SOURCE_DIR to the project folder)", path);
-                return 1;
-            }
-            int c;
-            while ((c = fgetc(fp)) != EOF)
-                *h = (*h ^ (unsigned char)c) * 1099511628211ull;
-            fclose(fp);
+    for (size_t k = 0; k < n; k++)
+        *h = (*h ^ p[k]) * 1099511628211ull;
+}
+
+static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* FNV-1a over every file under the source folder's rel, in name order (subfolders walked, at most 8 deep: a link
+ * to a folder above would never end), each as its path from the source folder and its bytes. */
+static int hash_folder(const char *root, const char *rel, int depth, uint64_t *h, char *err, size_t errlen)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", root, rel);
+    DIR *d = depth <= 8 ? opendir(path) : NULL;
+    if (!d) {
+        snprintf(err, errlen, "cannot open the kernel source folder %s/ (%s)", path,
+                 depth <= 8 ? "set DEM_SOURCE_DIR to the project folder" : "folders nested too deep");
+        return 1;
+    }
+    char **names = NULL;
+    size_t count = 0;
+    int rc = 0;
+    for (struct dirent *e; !rc && (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+            continue;
+        char **grown = realloc(names, (count + 1) * sizeof *names);
+        if (grown)
+            names = grown;
+        if (grown && (names[count] = strdup(e->d_name)))
+            count++;
+        else
+            rc = snprintf(err, errlen, "out of host memory reading %s", path) > 0;
+    }
+    closedir(d);
+    if (!rc && count)
+        qsort(names, count, sizeof *names, by_name);
+    for (size_t k = 0; !rc && k < count; k++) {
+        char sub[4096];
+        struct stat st;
+        snprintf(sub, sizeof sub, "%s/%s", rel, names[k]);
+        snprintf(path, sizeof path, "%s/%s", root, sub);
+        if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+            rc = hash_folder(root, sub, depth + 1, h, err, errlen);
+            continue;
         }
+        FILE *fp = fopen(path, "rb");
+        if (!fp) {
+            rc = snprintf(err, errlen, "cannot read kernel source %s", path) > 0;
+            continue;
+        }
+        unsigned char buf[16384];
+        fnv1a(h, (const unsigned char *)sub, strlen(sub) + 1);
+        for (size_t got; (got = fread(buf, 1, sizeof buf, fp)) > 0;)
+            fnv1a(h, buf, got);
+        fclose(fp);
+    }
+    for (size_t k = 0; k < count; k++)
+        free(names[k]);
+    free(names);
+    return rc;
+}
+
+/* The program is built from kernels/program.cl with -DDEM_SOURCE_HASH=<hash of every file of its folders> appended to
+ * the options: a compiler cache keyed on the main source text and options (PoCL's is) never serves a program built
+ * from older headers. Every folder, not a list of headers: the program can include only what they hold (they are its
+ * -I folders and the kernel file's own), so a new header cannot be left out of the hash (docs/design.md "The OpenCL
+ * program is made from the kernel list"). The program's one line includes the file by its full path: the compiler
+ * looks a file up in the working directory before the -I folders whatever the brackets (PoCL 3.1: a binning.cl where
+ * dem ran was built instead of ours), and for a header a kernel file includes, there before the -I folders too; so
+ * the kernel file names every header by its path from its own folder (../common/), where it is looked up first
+ * (docs/design.md "Kernel sources are read at run time"). */
+static int cl_program_build(dem_backend *b, const dem_setup *s, char *err, size_t errlen)
+{
+    const char *dir = s->source_dir;
+    if (strpbrk(dir, "\"\n\\ ")) {
+        snprintf(err, errlen, "the kernel source folder '%s' holds a space, quote, backslash or line break, which the "
+                 "OpenCL build options and #include cannot name (set DEM_SOURCE_DIR to a plain path)", dir);
+        return 1;
+    }
+    uint64_t hash = 1469598103934665603ull;
+    for (size_t k = 0; k < sizeof source_folders / sizeof *source_folders; k++)
+        if (hash_folder(dir, source_folders[k], 0, &hash, err, errlen))
+            return 1;
+    char options[8192], src[4200];
+    snprintf(options, sizeof options,
+             "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
+             "-I%s/common -I%s/include %s %s",
+             s->real_size, s->effects, (unsigned long long)hash, dir, dir, dir,
+             s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
+             s->extra_build_options ? s->extra_build_options : "");
+    int w = snprintf(src, sizeof src, "#include \"%s/%s\"\n", dir, PROGRAM_FILE);
+    if (w < 0 || (size_t)w >= sizeof src) {
+        snprintf(err, errlen, "the kernel source folder '%s' is too long a path", dir);
+        return 1;
+    }
+    if (cl_build(b->ctx, b->dev.device, src, options, &b->prog, err, errlen))
+        return 1;
+    snprintf(b->core.build, sizeof b->core.build, "OpenCL C built by %s (driver %s) with: %s", b->dev.device_name,
+             b->dev.driver_version, options);
+    cl_int e;
+    for (int k = 0; k < K__COUNT; k++) {
+        b->k[k] = clCreateKernel(b->prog, dem_kernel_names[k], &e);
+        if (cl_check(e, dem_kernel_names[k], err, errlen))
+            return 1;
+    }
     return 0;
 }
 
@@ -286,47 +361,8 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
     if (cl_check(e, "clCreateContext", err, errlen))
         goto fail;
     b->q = clCreateCommandQueue(b->ctx, b->dev.device, b->profile ? CL_QUEUE_PROFILING_ENABLE : 0, &e);
-    if (cl_check(e, "clCreateCommandQueue", err, errlen))
+    if (cl_check(e, "clCreateCommandQueue", err, errlen) || cl_program_build(b, s, err, errlen))
         goto fail;
-
-    uint64_t hash;
-    if (source_hash(s->source_dir, &hash, err, errlen))
-        goto fail;
-    char options[8192];
-    snprintf(options, sizeof options,
-             "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
-             "-I%s/common -I%s/include %s %s",
-             s->real_size, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir, s->source_dir,
-             s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
-             s->extra_build_options ? s->extra_build_options : "");
-    /* the program: every kernel file of the list above, included in order by its full path. The compiler looks a
-     * file up in the working directory before the -I folders whatever the brackets (PoCL 3.1: a binning.cl where dem
-     * ran was built instead of ours), and for a header a kernel file includes, there before the -I folders too; so
-     * the kernel files name every header by its path from their own folder (../common/), where it is looked up
-     * first (docs/design.md "Kernel sources are read at run time") */
-    char src[16384] = "";
-    if (strpbrk(s->source_dir, "\"\n\\ ")) {
-        snprintf(err, errlen, "the kernel source folder '%s' holds a space, quote, backslash or line break, which the "
-                 "OpenCL build options and #include cannot name (set DEM_SOURCE_DIR to a plain path)", s->source_dir);
-        goto fail;
-    }
-    for (size_t k = 0, len = 0; k < sizeof kernel_files / sizeof *kernel_files; k++) {
-        int w = snprintf(src + len, sizeof src - len, "#include \"%s/%s\"\n", s->source_dir, kernel_files[k]);
-        if (w < 0 || (size_t)w >= sizeof src - len) {
-            snprintf(err, errlen, "the kernel source folder '%s' is too long a path", s->source_dir);
-            goto fail;
-        }
-        len += (size_t)w;
-    }
-    if (cl_build(b->ctx, b->dev.device, src, options, &b->prog, err, errlen))
-        goto fail;
-    snprintf(b->core.build, sizeof b->core.build, "OpenCL C built by %s (driver %s) with: %s",
-             b->dev.device_name, b->dev.driver_version, options);
-    for (int k = 0; k < K__COUNT; k++) {
-        b->k[k] = clCreateKernel(b->prog, dem_kernel_names[k], &e);
-        if (cl_check(e, dem_kernel_names[k], err, errlen))
-            goto fail;
-    }
     snprintf(b->desc, sizeof b->desc, "OpenCL %s / %s (%s, driver %s), %s, work-group %s%zu", b->dev.platform_name,
              b->dev.device_name, b->dev.device_version, b->dev.driver_version, s->real_size == 8 ? "fp64" : "fp32",
              b->local ? "" : "auto", b->local);

@@ -4,6 +4,7 @@
  * when mu = 0). */
 #include "sim.h"
 #include "dem_layout.h"
+#include "ref_kernels.h" /* the reference's Hertz energy, patch overlaps and final wall sum, both precisions */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,13 +18,6 @@ static double pair_estar(const dem_sim *s, int a, int b)
 /* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
 static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal);
-
-/* the Hertz contact energy of common/series.h, as the reference computes it in double */
-double dem_hertz_energy_f64(double estar, double rstar, double delta);
-
-/* a sphere's overlap on a patch, as the kernels compute it (common/patch_contacts.h through reference/patch.c) */
-double dem_patch_overlap_f64(const double *p, const double *tri_x, unsigned flags, double r);
-double dem_patch_law_f64(double d, double r);
 
 /* The elastic energy of a patch contact of overlap d (radius r): the work of the force F(d) = Hertz(law(d)) of
  * common/patch_contacts.h from 0 to d. Hertz's 8/15 E* sqrt(r) d^(5/2) up to the barrier (0.8 r, as there), then
@@ -84,12 +78,6 @@ static void sample_begin(const dem_sim *s, dem_sample *o)
     for (int w = 0; w < s->nwalls; w++)
         memcpy(o->wall_pos + 3 * w, s->wall_pos[w], sizeof(double) * 3);
 }
-
-/* the reference's final wall sum (common/wall_forces.h), which the device runs as wall_reduce_final */
-void ref_wall_reduce_final_f32(unsigned fx, int nwalls, int nblocks, const float *partial, float *wall_force,
-                               float *wall_nforce);
-void ref_wall_reduce_final_f64(unsigned fx, int nwalls, int nblocks, const double *partial, double *wall_force,
-                               double *wall_nforce);
 
 /* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending stable id, in
  * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened. */

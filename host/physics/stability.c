@@ -38,11 +38,10 @@
  * Springs, patches and membranes are not counted. */
 #include "sim.h"
 #include "dem_layout.h"
+#include "ref_kernels.h" /* dem_hertz_stiffness_f64 */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-void dem_hertz_stiffness_f64(double estar, double gstar, double rstar, double delta, double *kn, double *kt);
 
 /* the bound on omega dt of an explicit step with damping ratio zeta */
 static double damped_bound(double zeta) { return 2 * (sqrt(1 + zeta * zeta) - zeta); }

@@ -1,4 +1,4 @@
-/* binning.c - the binning step (kernels/binning.cl): the cells in use, cell index and counts, scan, scatter, canonical
+/* binning.c - the binning step (common/binning.h): the cells in use, cell index and counts, scan, scatter, canonical
  * in-cell order; and the scan alone, which also makes the pair-record offsets (neighbor.c). Written once for every
  * backend. */
 #include "backend.h"

@@ -1,9 +1,6 @@
-/* integrate.c - the velocity Verlet half steps (kernels/integrate.cl), and the flags each step starts from.
- * Written once for every backend. */
+/* integrate.c - the flags each step starts from (the half steps themselves are one launch each: integrate_kick_drift,
+ * integrate_kick of common/integrate.h). Written once for every backend. */
 #include "backend.h"
-
-int dem_stage_kick_drift(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_integrate_kick_drift); }
-int dem_stage_kick(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_integrate_kick); }
 
 /* Non-blocking: the source is static, and the driver's next flag read waits for the queue anyway. */
 int dem_stage_reset_flags(const dem_backend_ops *o, dem_backend *b)

@@ -1,4 +1,4 @@
-/* neighbor.c - the neighbour-row steps (kernels/neighbor.cl): the rows' lengths and starts, the slots of the rows
+/* neighbor.c - the neighbour-row steps (common/neighbor.h): the rows' lengths and starts, the slots of the rows
  * being built, the fill, and the commit (history carried into the new rows, which become current; pair-record
  * offsets; x_build). Written once for every backend. */
 #include "backend.h"

@@ -1,6 +1,6 @@
-/* patch_contacts.c - the patch-contact steps (kernels/patch_contacts.cl): the rows' build at each neighbour rebuild
- * (the current sphere rows become the old ones the history is carried from; capacities and reach as the driver
- * asks), the forces, and the vertices' sums. Written once for every backend. */
+/* patch_contacts.c - the patch rows' build at each neighbour rebuild (common/patch_contacts.h): the current sphere rows
+ * become the old ones the history is carried from; capacities and reach as the driver asks (the forces and the
+ * vertices' sums are one launch each, patch_forces and patch_gather). Written once for every backend. */
 #include "backend.h"
 
 static int patch_alloc(const dem_backend_ops *o, dem_backend *b, int id)
@@ -32,6 +32,3 @@ int dem_stage_patch_build(const dem_backend_ops *o, dem_backend *b, int first, i
             return 1;
     return dem_launch(o, b, K_patch_build);
 }
-
-int dem_stage_patch_forces(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_patch_forces); }
-int dem_stage_patch_gather(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_patch_gather); }

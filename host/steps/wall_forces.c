@@ -1,4 +1,4 @@
-/* wall_forces.c - the wall-force step (kernels/wall_forces.cl): the fixed-block sum of the force each wall
+/* wall_forces.c - the wall-force step (common/wall_forces.h): the fixed-block sum of the force each wall
  * receives. Written once for every backend. */
 #include "backend.h"
 
