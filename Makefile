@@ -79,6 +79,7 @@ $(LIB): $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 $(APPLIB): $(APP_OBJ)
+	@rm -f $@
 	ar rcs $@ $^
 
 $(BUILD)/dem: app/dem_main.c $(APPLIB) $(LIB) $(HEADERS)
@@ -113,6 +114,7 @@ $(BUILD)/extra/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=8 -c $< -o $@
 $(BUILD)/extra/libdem.a: $(EXTRA_OBJ)
+	@rm -f $@
 	ar rcs $@ $^
 $(BUILD)/tests/test_extra_buffer: tests/test_extra_buffer.c tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
