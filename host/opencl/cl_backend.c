@@ -33,7 +33,7 @@ static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighb
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
                                            "common/hertz_mindlin.h", "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
-                                           "common/neighbor.h", "include/dem_effects.h",
+                                           "common/neighbor.h", "include/dem_effects.h", "common/dem_internal_bits.h",
                                            "common/contact_geometry.h", "common/particle_stress.h",
                                            "common/mc_strain.h", "common/sorted_row.h",
                                            "common/dem_kernels.h", "common/contacts.h", "common/springs.h",
