@@ -288,7 +288,7 @@ $(BUILD)/install/libdem.so.$(VERSION): $(INSTALL_OBJ) FORCE
 	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined $(filter-out FORCE,$^) $(LDLIBS) -o $@
 $(BUILD)/install/libdem.a: $(INSTALL_OBJ) FORCE
 	@rm -f $@ $(BUILD)/install/libdem.o
-	ld -r $(filter-out FORCE,$^) -o $(BUILD)/install/libdem.o
+	$(LD) -r $(filter-out FORCE,$^) -o $(BUILD)/install/libdem.o
 	objcopy --localize-hidden $(BUILD)/install/libdem.o
 	ar rcs $@ $(BUILD)/install/libdem.o
 INSTALL_LIBS := $(BUILD)/pic/install/libdem.so.$(VERSION) $(BUILD)/pic/install/libdem.a
