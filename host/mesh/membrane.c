@@ -1,5 +1,5 @@
 /* membrane.c - dem_add_membrane: a mesh (host/mesh/mesh.c) becomes particles, springs, triangles and hinges with the
- * membrane's material (seed 001 section 2.2; the parameters are documented at dem_membrane in dem.h). */
+ * membrane's material (seed 001 section 2.2; the parameters are documented at dem_membrane in dem_membrane.h). */
 #include "sim.h"
 #include <math.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
 /* mesh.c - triangulated surfaces for membranes (seed 001 section 2.2): the generated sheet, tube and sphere, and the
  * topology every membrane is built from (its edges, the springs, and its interior edges, the hinges).
  *
- * Orientation: (x_b - x_a) x (x_c - x_a) of every triangle points where a confining pressure pushes (dem.h,
+ * Orientation: (x_b - x_a) x (x_c - x_a) of every triangle points where a confining pressure pushes (dem_membrane.h,
  * dem_add_triangle): into a tube or a sphere (towards the granulate they hold), along -z for a sheet (onto what lies
  * below it). The generators build the triangles, then turn each one that points the other way.
  * Sizes: the edges come out near the requested length s. A sheet's triangles are equilateral: its length a along x
@@ -85,8 +85,8 @@ static void zip_rows(dem_mesh *m, int l0, int nl, const double *sl, int u0, int 
     }
 }
 
-/* The grid a generated sheet or tube is made of, in double (dem.h): n1 vertices along a row (a sheet's even rows; a
- * tube's rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products
+/* The grid a generated sheet or tube is made of, in double (dem_membrane.h): n1 vertices along a row (a sheet's even
+ * rows; a tube's rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products
  * overflowed: a tube of radius 1e-30 m and height 5.3e18 m with edges of 1 m came out 2051 vertices); round() as
  * lround. A sheet is equilateral: its length a cut into whole edges dx, its rows dx sqrt(3)/2 apart (issue 39: both
  * spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm). A tube keeps its circumference and height: dx the
