@@ -287,30 +287,53 @@ fuzz-h5: $(DEPS_STAMP)
 	./$(BUILD)/fuzz/fuzz_h5 -runs=$(FUZZ_RUNS) -max_len=512 -timeout=20 -artifact_prefix=$(BUILD)/fuzz/ \
 	  $(BUILD)/fuzz/h5-corpus
 
-# make install [PREFIX=/usr/local] [DESTDIR=]: the library, its public headers, the kernel sources it reads at run
-# time (PREFIX/share/libdem, compiled into the installed library as its default source folder: that one object is
-# remade at every install, for the PREFIX given) and a pkg-config
-# file; tests/install_check.sh compiles and runs the README's example against an installed copy.
+# make install [PREFIX=/usr/local] [DESTDIR=]: the libraries (shared and static), the public headers, the kernel
+# sources the library reads at run time (PREFIX/share/libdem, compiled into the installed library as its default
+# source folder: that one object is remade at every install, for the PREFIX given) and a pkg-config file (libdem.pc:
+# the shared library by default, `pkg-config --static` adds what the static one needs); tests/install_check.sh builds
+# the README's example and a C++ program against an installed copy, shared and static, and checks what it exports.
 PREFIX ?= /usr/local
 DATADIR = $(PREFIX)/share/libdem
-INSTALL_LIB := $(BUILD)/install/libdem.a
+VERSION := $(shell sed -n 's/^\#define DEM_VERSION "\(.*\)"/\1/p' include/dem.h)
+SONAME := libdem.so.$(firstword $(subst ., ,$(VERSION)))
+# dem_debug.h (the internals the tests and tools read) is not installed; common/dem_internal_bits.h neither
+PUBLIC_HEADERS := include/dem.h include/dem_effects.h include/dem_membrane.h include/dem_press.h
+# The installed libraries come from a second run of this Makefile into $(BUILD)/pic with PIC=1: the library's own
+# sources and rules, compiled -fPIC (a shared library; the static one then links into other shared libraries too)
+# and -fvisibility=hidden, so that only what the public headers declare with DEM_API is exported. The shared one
+# carries the soname libdem.so.MAJOR; the static one is the same objects linked into one (ld -r) whose hidden
+# symbols objcopy makes local, so that it too defines no global symbol but the public functions (a program linking
+# it may have its own sim_fail or ref_bin). The programs built in this tree link $(LIB), compiled as before.
+ifeq ($(PIC),1)
+CFLAGS += -fPIC -fvisibility=hidden
+endif
+INSTALL_OBJ = $(filter-out $(BUILD)/host/core/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ)
 $(BUILD)/install/sim_setup.o: host/core/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(filter-out -DDEM_DEFAULT_SOURCE_DIR=%,$(CFLAGS)) -DDEM_DEFAULT_SOURCE_DIR='"$(DATADIR)"' -c $< -o $@
-$(INSTALL_LIB): $(filter-out $(BUILD)/host/core/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ) FORCE
-	@rm -f $@
-	ar rcs $@ $(filter-out FORCE,$^)
-install: $(INSTALL_LIB)
+$(BUILD)/install/libdem.so.$(VERSION): $(INSTALL_OBJ) FORCE
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined $(filter-out FORCE,$^) $(LDLIBS) -o $@
+$(BUILD)/install/libdem.a: $(INSTALL_OBJ) FORCE
+	@rm -f $@ $(BUILD)/install/libdem.o
+	$(LD) -r $(filter-out FORCE,$^) -o $(BUILD)/install/libdem.o
+	objcopy --localize-hidden $(BUILD)/install/libdem.o
+	ar rcs $@ $(BUILD)/install/libdem.o
+INSTALL_LIBS := $(BUILD)/pic/install/libdem.so.$(VERSION) $(BUILD)/pic/install/libdem.a
+install-libs:
+	+$(MAKE) --no-print-directory BUILD=$(BUILD)/pic PIC=1 DEPS_STAMP=$(DEPS_STAMP) PREFIX=$(PREFIX) $(INSTALL_LIBS)
+install: install-libs
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(DATADIR)/kernels \
 	  $(DESTDIR)$(DATADIR)/common $(DESTDIR)$(DATADIR)/include
-	install -m 644 $(INSTALL_LIB) $(DESTDIR)$(PREFIX)/lib/libdem.a
-	install -m 644 include/dem.h include/dem_effects.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(BUILD)/pic/install/libdem.a $(DESTDIR)$(PREFIX)/lib/libdem.a
+	install -m 755 $(BUILD)/pic/install/libdem.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf libdem.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libdem.so
+	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/
 	install -m 644 kernels/*.cl $(DESTDIR)$(DATADIR)/kernels/
 	install -m 644 common/*.h $(DESTDIR)$(DATADIR)/common/
 	install -m 644 include/dem_effects.h $(DESTDIR)$(DATADIR)/include/
-	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|'"$$(sed -n 's/^#define DEM_VERSION "\(.*\)"/\1/p' include/dem.h)"'|' \
-	  scripts/libdem.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem.pc
-.PHONY: install FORCE
+	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|$(VERSION)|' scripts/libdem.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem.pc
+.PHONY: install install-libs FORCE
 FORCE:
 
 demo: $(BUILD)/dem-demo

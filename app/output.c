@@ -1,6 +1,7 @@
 /* output.c - see output.h. */
 #include "output.h"
 #include "h5util.h"
+#include "dem_debug.h" /* dem_build_info */
 #include <math.h>
 #include <errno.h>
 #include <stdio.h>

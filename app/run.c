@@ -3,6 +3,7 @@
 #include "checkpoint.h"
 #include "output.h"
 #include "h5util.h"
+#include "dem_debug.h" /* dem_kernel_sequence, dem_kernel_times */
 #include "cli.h"
 #include <math.h>
 #include <stdio.h>

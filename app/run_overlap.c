@@ -15,6 +15,7 @@
  * contacts stiffen as they go deeper), reported at the end and warned about above DEM_STABILITY_LIMIT.
  * Scenes with membranes are left out (their vertex spheres overlap each other by design, seed 001's MSS_particle). */
 #include "run.h"
+#include "dem_debug.h" /* the neighbour rows */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* scene_membranes.c - the scene's `membranes:` (seed 001): each a generated mesh made a membrane of its material and
  * model, the confining pressure (one for all membranes: the library loads every triangle with it), and the vertices
- * near a plane wall riding on it. Keys in docs/scenes.md; the library calls in include/dem.h (dem_mesh_make,
+ * near a plane wall riding on it. Keys in docs/scenes.md; the library calls in include/dem_membrane.h (dem_mesh_make,
  * dem_add_membrane, dem_set_pressure_stages, dem_attach_to_wall). */
 #include "scene.h"
 #include "scene_particles.h"

@@ -13,6 +13,7 @@
 #define DEM_BACKEND_H
 #include <stddef.h>
 #include "dem.h" /* dem_field */
+#include "dem_debug.h" /* the fields the backends keep for the driver */
 #include "dem_buffers.h"
 #include "dem_kernels.h"
 

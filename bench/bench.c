@@ -12,6 +12,7 @@
  * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
  * each membrane model costs in seed 001's triaxial test (membrane_cost_table, the paper's Table 4). */
 #include "dem.h"
+#include "dem_debug.h" /* kernel times, sequence, bytes, build info */
 #include "cl_util.h"
 #include <math.h>
 #include <stdio.h>

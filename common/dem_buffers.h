@@ -33,7 +33,7 @@
 #ifndef DEM_BUFFERS_H
 #define DEM_BUFFERS_H
 #include "dem_layout.h"
-#include "../include/dem_effects.h"
+#include "dem_internal_bits.h" /* the effect bits, DEM_KEEP_* among them */
 
 /* element types */
 enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };

@@ -27,6 +27,7 @@
 #define DEM_KERNELS_H
 #ifdef DEM_REAL_SIZE /* the host, which has no precision, uses the lists only */
 #include "dem_real.h"
+#include "dem_internal_bits.h" /* DEM_EFFECTS, the host-only bits */
 #endif
 
 /* ---- the kernels, in the order of their families ---- */

@@ -1,14 +1,20 @@
 /* dem_effects.h - the effect mask: which physics a run simulates ("simulate only the effects a scene calls for").
  *
  * Declared once for the public API (include/dem.h, which it completes: both are installed), the host, the
- * reference and the kernels (the program is built with -I<source dir>/include). In kernels the mask
- * is the compile-time constant DEM_EFFECTS (the host passes -DDEM_EFFECTS=<mask> when it builds the program), so
- * every `if (fx & DEM_EFFECT_...)` on an effect that is off is folded away and its code does not exist in the
- * binary. The reference receives the same mask at run time and takes the same branches, so the two stay
- * bit-identical for every mask.
+ * reference and the kernels (the program is built with -I<source dir>/include). In kernels the mask is the
+ * compile-time constant DEM_EFFECTS (the host passes -DDEM_EFFECTS=<mask> when it builds the program), so every
+ * `if (fx & DEM_EFFECT_...)` on an effect that is off is folded away and its code does not exist in the binary. The
+ * reference receives the same mask at run time and takes the same branches, so the two stay bit-identical for every
+ * mask. This header holds the bits a caller sets (effects and the MC-stress convention); the bits the host alone
+ * sets in the same mask (what a run keeps, MC-strain's reach) and DEM_EFFECTS's default are in
+ * common/dem_internal_bits.h, which is not installed.
  */
 #ifndef DEM_EFFECTS_H
 #define DEM_EFFECTS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 enum {
     DEM_EFFECT_HERTZ = 1,    /* Hertz normal elasticity (always on: the contact law itself) */
@@ -23,7 +29,7 @@ enum {
                                   common/mc_strain.h; excludes mc_stress */
     DEM_EFFECT_SPRINGS = 4096, /* damped linear springs between particles (seed 001 Eq. 6-7, the membrane's
                                   stretching): common/springs.h. Above the convention bits below, which sit at
-                                  128..2048 */
+                                  128..1024, and the host's 2048 (common/dem_internal_bits.h) */
     DEM_EFFECT_PRESSURE = 8192, /* a pressure on triangles of particles (seed 001 Eq. 18, the membrane's confining
                                    stress): common/pressure.h */
     DEM_EFFECT_BENDING = 16384, /* hinges between pairs of triangles (seed 001 Eq. 8-16, the membrane's bending):
@@ -65,25 +71,7 @@ enum {
     DEM_MCS_APPENDIX_OWN_OUT = 0
 };
 
-/* MC-strain contact distance (LIGGGHTS' option, seed 000 section 3: enlarged radii can make new contacts): a pair
- * whose centres are closer than PM_MC_REACH (r_i + r_j) is an MC-strain contact as soon as its overlap plus the
- * induced displacements is positive, even with a gap. Set by the host when mc_strain runs with a reach above 1
- * (dem_set_mc_strain_reach); compiled in with the effects like the bits above. Off: only geometric overlaps. */
-enum { DEM_MC_REACH = 2048 };
-
-/* A run that reads the contact network (dem_config.contacts, dem_contacts_get) or sums the walls' forces every step
- * (a servo stage) keeps the force from every wall on every particle (WALL_PF: 3 reals per particle and wall); other
- * runs do not hold that buffer (the walls' sums evaluate the wall contacts themselves: common/wall_forces.h). Set by
- * the host, compiled in like the bits above. */
-enum { DEM_KEEP_WALL_FORCES = 262144 };
-
-/* A run that samples a series row every few steps (dem_config.sample_every <= DEM_SAMPLE_KEEP) keeps each touching
- * pair's elastic energy of a sampled step (PAIR_ELA: 1 real per pair), computed by contact_pairs from the elastic
- * force it already has; contact_forces adds them. Other runs hold no such buffer, and contact_forces computes each
- * energy from the overlap (a division and a square root per pair): the same bits either way (common/series.h). */
-enum { DEM_KEEP_PAIR_ENERGY = 524288 };
-
-#ifndef DEM_EFFECTS
-#define DEM_EFFECTS DEM_EFFECT_CLASSICAL
+#ifdef __cplusplus
+}
 #endif
 #endif /* DEM_EFFECTS_H */

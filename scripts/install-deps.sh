@@ -5,7 +5,8 @@
 set -euo pipefail
 
 PKGS=(
-  build-essential pkg-config
+  build-essential pkg-config g++ binutils                    # g++: tests/install_check.sh's C++ program;
+                                                             # binutils: ld -r, objcopy, nm (the installed libs)
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo   # OpenCL: PoCL CPU device + ICD loader
   libhdf5-dev hdf5-tools                                      # HDF5 output
   libcmocka-dev                                               # test framework

@@ -1,31 +1,94 @@
 #!/usr/bin/env bash
-# install_check.sh - `make install` into a scratch prefix, then the README's library example ("Using the library"),
-# compiled with nothing but `pkg-config --cflags --libs libdem` against that copy and run from another folder: it
-# must build, and run silently (it prints only when dem_start or dem_step fails, e.g. when the installed library
-# cannot find its kernel sources). Also checks that DESTDIR stages every file under it. Run by `make test`.
+# install_check.sh - `make install` into a scratch prefix, then, against that copy and from another folder:
+#  - the README's library example ("Using the library"), compiled with nothing but `pkg-config --cflags --libs libdem`
+#    (the shared library), must build and run silently (it prints only when dem_start or dem_step fails, e.g. when the
+#    installed library cannot find its kernel sources);
+#  - tests/install_check.cpp, compiled by g++ with the shared library and again with the static one
+#    (`pkg-config --static`), must build with -Wall -Wextra -pedantic -Werror and run; the first must need
+#    libdem.so.MAJOR (the soname), the second no libdem.so at all;
+#  - each library must define, as global symbols, exactly the functions the installed headers declare (the shared
+#    one as its dynamic symbols, nm -D); dem_debug.h and the internal bits' header must not be installed.
+# Also checks that DESTDIR stages every file under it. Run by `make test`.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-make -s -C "$ROOT" install PREFIX="$T/prefix" > "$T/install.log" 2>&1 || { cat "$T/install.log"; exit 1; }
-# the example: the first C block after the "Using the library" heading
+P="$T/prefix"
+make -s -C "$ROOT" install PREFIX="$P" > "$T/install.log" 2>&1 || { cat "$T/install.log"; exit 1; }
+fail() { echo "install_check: $*"; exit 1; }
+
+# the installed files: both libraries, the soname's links, the public headers and only those
+VERSION=$(sed -n 's/^#define DEM_VERSION "\(.*\)"/\1/p' "$ROOT/include/dem.h")
+SONAME=libdem.so.${VERSION%%.*}
+for f in lib/libdem.a "lib/libdem.so.$VERSION" lib/pkgconfig/libdem.pc include/dem.h include/dem_effects.h \
+         include/dem_membrane.h include/dem_press.h; do
+    [ -f "$P/$f" ] || fail "the install lacks $f"
+done
+[ "$(readlink "$P/lib/$SONAME")" = "libdem.so.$VERSION" ] || fail "lib/$SONAME does not link to libdem.so.$VERSION"
+[ "$(readlink "$P/lib/libdem.so")" = "$SONAME" ] || fail "lib/libdem.so does not link to $SONAME"
+readelf -d "$P/lib/libdem.so.$VERSION" | grep -q "(SONAME).*\[$SONAME\]" || fail "libdem.so.$VERSION has no soname $SONAME"
+for f in include/dem_debug.h include/dem_internal_bits.h; do
+    [ ! -e "$P/$f" ] || fail "$f is installed: it is internal"
+done
+
+# what the libraries export: the functions the installed headers declare, no more and no fewer (gcc's -aux-info
+# writes every declaration with the header it came from)
+echo '#include <dem.h>' | cc -std=c11 -fsyntax-only -aux-info "$T/decl.txt" -I"$P/include" -x c -
+grep -F "/* $P/include/" "$T/decl.txt" | sed -n 's/.*[ *]\(dem_[a-z0-9_]*\) (.*/\1/p' | sort -u > "$T/declared.txt"
+[ "$(wc -l < "$T/declared.txt")" -ge 90 ] || fail "only $(wc -l < "$T/declared.txt") functions found in the headers"
+nm -D --defined-only "$P/lib/libdem.so.$VERSION" | awk '{print $NF}' | sort -u > "$T/shared.txt"
+nm -g --defined-only "$P/lib/libdem.a" | awk 'NF == 3 {print $3}' | sort -u > "$T/static.txt"
+for lib in shared static; do
+    if ! diff "$T/declared.txt" "$T/$lib.txt" > "$T/$lib.diff"; then
+        sed -n 's/^> /  exported, not declared: /p; s/^< /  declared, not exported: /p' "$T/$lib.diff" | head -20
+        fail "the $lib library's global symbols are not the public headers' functions"
+    fi
+done
+nexp=$(wc -l < "$T/shared.txt")
+
+export PKG_CONFIG_PATH="$P/lib/pkgconfig"
+cflags=$(pkg-config --cflags libdem)
+libs=$(pkg-config --libs libdem)
+slibs=$(pkg-config --static --libs libdem)
+case " $slibs " in *" -lOpenCL "*) ;; *) fail "pkg-config --static --libs gives no -lOpenCL: $slibs" ;; esac
+mkdir "$T/elsewhere"
+
+# the README example (C, the shared library; run from another folder, without DEM_SOURCE_DIR)
 awk '/^## Using the library/ {f = 1} f && /^```c$/ {c = 1; next} c && /^```$/ {exit} c {print}' "$ROOT/README.md" \
     > "$T/example_body.c"
-[ -s "$T/example_body.c" ] || { echo "install_check: no C example found in README.md"; exit 1; }
+[ -s "$T/example_body.c" ] || fail "no C example found in README.md"
 { echo '#include <stdio.h>'; grep '^#include' "$T/example_body.c"; echo 'int main(void) {';
   grep -v '^#include' "$T/example_body.c"; echo 'return 0; }'; } > "$T/example.c"
-export PKG_CONFIG_PATH="$T/prefix/lib/pkgconfig"
-flags=$(pkg-config --cflags --libs libdem)
-cc -std=c11 "$T/example.c" $flags -o "$T/example" 2> "$T/cc.log" || { cat "$T/cc.log"; echo "install_check: the README example does not compile with: $flags"; exit 1; }
-mkdir "$T/elsewhere" && cd "$T/elsewhere"
-env -u DEM_SOURCE_DIR "$T/example" > "$T/out.log" 2>&1 || { cat "$T/out.log"; echo "install_check: the example failed"; exit 1; }
-[ ! -s "$T/out.log" ] || { cat "$T/out.log"; echo "install_check: the example reported an error"; exit 1; }
+cc -std=c11 "$T/example.c" $cflags $libs -Wl,-rpath,"$P/lib" -o "$T/example" 2> "$T/cc.log" ||
+    { cat "$T/cc.log"; fail "the README example does not compile with: $cflags $libs"; }
+(cd "$T/elsewhere" && env -u DEM_SOURCE_DIR "$T/example" > "$T/out.log" 2>&1) ||
+    { cat "$T/out.log"; fail "the README example failed"; }
+[ ! -s "$T/out.log" ] || { cat "$T/out.log"; fail "the README example reported an error"; }
+
+# the C++ program, shared and static
+CXXFLAGS="-std=c++11 -Wall -Wextra -pedantic -Werror"
+g++ $CXXFLAGS "$ROOT/tests/install_check.cpp" $cflags $libs -Wl,-rpath,"$P/lib" -o "$T/cpp_shared" 2> "$T/cxx.log" ||
+    { cat "$T/cxx.log"; fail "the C++ program does not build against the shared library ($cflags $libs)"; }
+g++ $CXXFLAGS "$ROOT/tests/install_check.cpp" $cflags ${slibs/-ldem/-Wl,-Bstatic -ldem -Wl,-Bdynamic} \
+    -o "$T/cpp_static" 2> "$T/cxx.log" ||
+    { cat "$T/cxx.log"; fail "the C++ program does not build against the static library ($cflags $slibs)"; }
+readelf -d "$T/cpp_shared" | grep -q "(NEEDED).*\[$SONAME\]" || fail "the shared build does not need $SONAME"
+! readelf -d "$T/cpp_static" | grep -q "(NEEDED).*libdem" || fail "the static build needs a shared libdem"
+for v in shared static; do
+    (cd "$T/elsewhere" && env -u DEM_SOURCE_DIR "$T/cpp_$v" > "$T/cpp_$v.log" 2>&1) ||
+        { cat "$T/cpp_$v.log"; fail "the C++ program ($v) failed"; }
+done
+cmp -s "$T/cpp_shared.log" "$T/cpp_static.log" || { cat "$T"/cpp_*.log; fail "the two C++ builds printed differently"; }
+
 # DESTDIR: everything under the staging root, nothing elsewhere
 make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
-for f in lib/libdem.a lib/pkgconfig/libdem.pc include/dem.h include/dem_effects.h share/libdem/kernels/program.cl \
-         share/libdem/common/dem_kernels.h share/libdem/include/dem_effects.h; do
-    [ -f "$T/stage/opt/libdem-check/$f" ] || { echo "install_check: DESTDIR install lacks $f"; exit 1; }
+for f in lib/libdem.a "lib/libdem.so.$VERSION" "lib/$SONAME" lib/libdem.so lib/pkgconfig/libdem.pc include/dem.h \
+         include/dem_effects.h include/dem_membrane.h include/dem_press.h share/libdem/kernels/program.cl \
+         share/libdem/common/dem_kernels.h share/libdem/common/dem_internal_bits.h share/libdem/include/dem_effects.h; do
+    [ -e "$T/stage/opt/libdem-check/$f" ] || fail "DESTDIR install lacks $f"
 done
-[ ! -e /opt/libdem-check ] || { echo "install_check: DESTDIR install wrote outside the staging root"; exit 1; }
+[ ! -e /opt/libdem-check ] || fail "DESTDIR install wrote outside the staging root"
 grep -q '^prefix=/opt/libdem-check$' "$T/stage/opt/libdem-check/lib/pkgconfig/libdem.pc"
-echo "install_check: the README example builds with pkg-config and runs against the installed copy ($flags)"
+echo "install_check: the README example (C, shared) and a C++ program (shared and static) build with pkg-config and"
+echo "  run against the installed copy; both libraries export exactly the $nexp functions of the public headers"
+cat "$T/cpp_shared.log"

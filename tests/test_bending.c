@@ -247,11 +247,11 @@ static void test_effect_and_arguments(void **st)
     assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ), 0);
     assert_int_equal(dem_start(s, &c), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "hinges are defined but the effect 'bending' is off"));
-    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 2, 1, 0, 0), -1);
-    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 7, 1, 0, 0), -1);
-    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 3, -1, 0, 0), -1);
-    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 3, 1, -1, 0), -1);
-    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 3, 1, 0, INFINITY), -1);
+    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 2, 1, 0, 0), DEM_ERR_ARG);
+    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 7, 1, 0, 0), DEM_ERR_ARG);
+    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 3, -1, 0, 0), DEM_ERR_ARG);
+    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 3, 1, -1, 0), DEM_ERR_ARG);
+    assert_int_equal(dem_add_hinge(s, 0, 1, 2, 3, 1, 0, INFINITY), DEM_ERR_ARG);
     assert_int_equal(dem_hinge_count(s), 1);
     dem_destroy(s);
     s = dem_create();

@@ -143,10 +143,10 @@ static void test_rigid_is_for_walls(void **st)
     rigid.young = INFINITY, rigid.density = 0;
     int m = dem_add_material(s, &rigid);
     assert_true(m >= 0);
-    assert_int_equal(dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.001, m), -1);
+    assert_int_equal(dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.001, m), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "rigid"));
     rigid.young = -INFINITY;
-    assert_int_equal(dem_add_material(s, &rigid), -1);
+    assert_int_equal(dem_add_material(s, &rigid), DEM_ERR_ARG);
     dem_destroy(s);
 }
 

@@ -160,7 +160,7 @@ static void test_mask_validation(void **st)
     assert_int_equal(dem_set_effects(s, DEM_EFFECT_DAMPING), DEM_ERR_ARG);
     assert_int_equal(dem_set_effects(s, 1u << 20), DEM_ERR_ARG);
     assert_int_equal(dem_effect_bit("friction"), 2);
-    assert_int_equal(dem_effect_bit("viscosity"), -1);
+    assert_int_equal(dem_effect_bit("viscosity"), DEM_ERR_ARG);
     assert_string_equal(dem_effect_name(4), "walls");
     dem_destroy(s);
 }

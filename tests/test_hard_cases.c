@@ -90,15 +90,15 @@ static void test_nonfinite_rejected(void **st)
     (void)st;
     dem_sim *s = dem_create();
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.3});
-    assert_int_equal(dem_add_particle(s, (double[3]){NAN, 0, 0}, NULL, 0.001, m), -1);
+    assert_int_equal(dem_add_particle(s, (double[3]){NAN, 0, 0}, NULL, 0.001, m), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "finite"));
-    assert_int_equal(dem_add_particle(s, (double[3]){0, 0, 0}, NULL, -0.001, m), -1);
+    assert_int_equal(dem_add_particle(s, (double[3]){0, 0, 0}, NULL, -0.001, m), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "radius"));
-    assert_int_equal(dem_add_material(s, &(dem_material){2500, 1e7, 0.6, 0.5, 0.3}), -1);
+    assert_int_equal(dem_add_material(s, &(dem_material){2500, 1e7, 0.6, 0.5, 0.3}), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "Poisson"));
-    assert_int_equal(dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.0, 0.3}), -1);
+    assert_int_equal(dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.0, 0.3}), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "restitution"));
-    assert_int_equal(dem_add_material(s, &(dem_material){-1, 1e7, 0.3, 0.5, 0.3}), -1);
+    assert_int_equal(dem_add_material(s, &(dem_material){-1, 1e7, 0.3, 0.5, 0.3}), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "density"));
     dem_destroy(s);
 }

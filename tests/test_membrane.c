@@ -445,18 +445,18 @@ static void test_membrane_refusals(void **st)
     assert_int_equal(dem_mesh_make(&sp, &m, err, sizeof err), 0);
     dem_membrane bad = rubber;
     bad.vertex_radius = 0.006; /* more than half the edge */
-    assert_int_equal(dem_add_membrane(s, &m, &bad, NULL), -1);
+    assert_int_equal(dem_add_membrane(s, &m, &bad, NULL), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "vertex_radius"));
     bad = rubber, bad.thickness = 0;
-    assert_int_equal(dem_add_membrane(s, &m, &bad, NULL), -1);
+    assert_int_equal(dem_add_membrane(s, &m, &bad, NULL), DEM_ERR_ARG);
     bad = rubber, bad.kel = -1;
-    assert_int_equal(dem_add_membrane(s, &m, &bad, NULL), -1);
+    assert_int_equal(dem_add_membrane(s, &m, &bad, NULL), DEM_ERR_ARG);
     int t = m.tri[1]; /* one triangle turned the other way */
     m.tri[1] = m.tri[2], m.tri[2] = t;
-    assert_int_equal(dem_add_membrane(s, &m, &rubber, NULL), -1);
+    assert_int_equal(dem_add_membrane(s, &m, &rubber, NULL), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "turned opposite ways"));
     m.tri[2] = m.tri[1]; /* a degenerate triangle */
-    assert_int_equal(dem_add_membrane(s, &m, &rubber, NULL), -1);
+    assert_int_equal(dem_add_membrane(s, &m, &rubber, NULL), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "three different vertices"));
     assert_int_equal(dem_count(s), 1);
     assert_int_equal(dem_spring_count(s) + dem_triangle_count(s) + dem_hinge_count(s), 0);

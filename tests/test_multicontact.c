@@ -333,7 +333,7 @@ static void test_mask_validation(void **st)
     assert_int_equal(dem_set_mc_strain(s, -1, 1e-6), DEM_ERR_ARG);
     assert_int_equal(dem_set_mc_strain(s, 5, 0), DEM_ERR_ARG);
     dem_material bad = {1000, 1e6, 0.3, 0.5, 0.1, -1, 0};
-    assert_int_equal(dem_add_material(s, &bad), -1);
+    assert_int_equal(dem_add_material(s, &bad), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "beta and gamma"));
     assert_int_equal(dem_effect_bit("mc_stress"), 5);
     assert_int_equal(dem_effect_bit("mc_strain"), 6);

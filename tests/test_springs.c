@@ -242,8 +242,8 @@ static void test_bound_and_effect(void **st)
     assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ), 0);
     assert_int_equal(dem_start(s, &c), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "springs are defined but the effect 'springs' is off"));
-    assert_int_equal(dem_add_spring(s, 0, 0, 1, 0, 0), -1);
-    assert_int_equal(dem_add_spring(s, 0, 1, -1, 0, 0), -1);
+    assert_int_equal(dem_add_spring(s, 0, 0, 1, 0, 0), DEM_ERR_ARG);
+    assert_int_equal(dem_add_spring(s, 0, 1, -1, 0, 0), DEM_ERR_ARG);
     dem_destroy(s);
     /* particles a spring joins by id are not sorted (dem_sort_particles): refused, nothing moved */
     s = build(&o);

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include "dem.h"
+#include "dem_debug.h" /* the tests read the internals too */
 
 typedef struct {
     int side;           /* large spheres on a side^3 cubic lattice of spacing 2 rmax, small ones in the

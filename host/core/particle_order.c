@@ -117,7 +117,7 @@ int dem_sort_particles(dem_sim *s)
 int dem_particle_source(const dem_sim *s, int i)
 {
     if (i < 0 || i >= s->n)
-        return -1;
+        return DEM_ERR_ARG;
     return s->source && i < s->source_n ? s->source[i] : i;
 }
 

@@ -78,28 +78,28 @@ static int not_started(dem_sim *s)
 int dem_add_material(dem_sim *s, const dem_material *m)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (s->nmat >= (int)(sizeof s->mats / sizeof s->mats[0]))
-        return sim_fail(s, DEM_ERR_ARG, "too many materials (at most 64)"), -1;
+        return sim_fail(s, DEM_ERR_ARG, "too many materials (at most 64)");
     /* young = +inf: a rigid material, for walls only (E* and G* of a contact then come from the particle alone,
      * exactly: (1 - nu^2) / inf = 0); its density is never used and may be 0 */
     int rigid = m->young == INFINITY;
     if (!rigid && (!(m->density > 0) || !isfinite(m->density)))
-        return sim_fail(s, DEM_ERR_ARG, "material %d: density must be > 0 kg/m^3 (got %g)", s->nmat, m->density), -1;
+        return sim_fail(s, DEM_ERR_ARG, "material %d: density must be > 0 kg/m^3 (got %g)", s->nmat, m->density);
     if (!(m->young > 0) || !(isfinite(m->young) || rigid))
         return sim_fail(s, DEM_ERR_ARG, "material %d: Young's modulus must be > 0 Pa, or infinite for a rigid wall "
-                        "material (got %g)", s->nmat, m->young), -1;
+                        "material (got %g)", s->nmat, m->young);
     if (!(m->poisson > -1 && m->poisson <= 0.5))
         return sim_fail(s, DEM_ERR_ARG, "material %d: Poisson's ratio must be in (-1, 0.5] (got %g)", s->nmat,
-                        m->poisson), -1;
+                        m->poisson);
     if (!(m->restitution > 0 && m->restitution <= 1))
         return sim_fail(s, DEM_ERR_ARG, "material %d: restitution must be in (0, 1] (got %g)", s->nmat,
-                        m->restitution), -1;
+                        m->restitution);
     if (!(m->friction >= 0) || !isfinite(m->friction))
-        return sim_fail(s, DEM_ERR_ARG, "material %d: friction must be >= 0 (got %g)", s->nmat, m->friction), -1;
+        return sim_fail(s, DEM_ERR_ARG, "material %d: friction must be >= 0 (got %g)", s->nmat, m->friction);
     if (!(m->mc_beta >= 0) || !isfinite(m->mc_beta) || !(m->mc_gamma >= 0) || !isfinite(m->mc_gamma))
         return sim_fail(s, DEM_ERR_ARG, "material %d: multi-contact prefactors beta and gamma must be >= 0 (got %g, %g)",
-                        s->nmat, m->mc_beta, m->mc_gamma), -1;
+                        s->nmat, m->mc_beta, m->mc_gamma);
     s->mats[s->nmat] = *m;
     return s->nmat++;
 }
@@ -109,16 +109,16 @@ static int finite3(const double *a) { return isfinite(a[0]) && isfinite(a[1]) &&
 int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double radius, int material)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (!(radius > 0) || !isfinite(radius))
-        return sim_fail(s, DEM_ERR_ARG, "particle %d: radius must be > 0 m (got %g)", s->n, radius), -1;
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: radius must be > 0 m (got %g)", s->n, radius);
     if (material < 0 || material >= s->nmat)
-        return sim_fail(s, DEM_ERR_ARG, "particle %d: unknown material %d", s->n, material), -1;
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: unknown material %d", s->n, material);
     if (s->mats[material].young == INFINITY)
         return sim_fail(s, DEM_ERR_ARG, "particle %d: material %d is rigid (Young's modulus infinite): for walls only",
-                        s->n, material), -1;
+                        s->n, material);
     if (!finite3(x) || (v && !finite3(v)))
-        return sim_fail(s, DEM_ERR_ARG, "particle %d: position and velocity must be finite", s->n), -1;
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: position and velocity must be finite", s->n);
     if (s->n == s->cap) {
         int cap = s->cap ? 2 * s->cap : 1024;
         double *nx = realloc(s->x, sizeof(double) * 3 * cap);
@@ -136,7 +136,7 @@ int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double ra
         double *nb = realloc(s->body, sizeof(double) * 2 * cap);
         if (nb) s->body = nb;
         if (!nx || !nv || !nw || !nr || !nm || !nf || !nb)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d particles", s->n), -1;
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d particles", s->n);
         s->cap = cap;
     }
     int i = s->n++;
@@ -168,7 +168,7 @@ int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia)
 }
 
 /* Room for one more row of a table of `count` rows (ni ints and nr doubles each; reals may be NULL), doubling its
- * capacity; 0, or -1 with DEM_ERR_NOMEM and the table's name. */
+ * capacity; 0, or DEM_ERR_NOMEM with the table's name. */
 int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what)
 {
     if (count < *cap)
@@ -181,7 +181,7 @@ int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals
     if (r)
         *reals = r;
     if (!a || (reals && !r))
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d %s", count, what), -1;
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d %s", count, what);
     *cap = c;
     return 0;
 }
@@ -203,15 +203,15 @@ void *sim_buffer_get(dem_sim *s, int id, int *e)
 int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (i < 0 || i >= s->n || j < 0 || j >= s->n || i == j)
         return sim_fail(s, DEM_ERR_ARG, "spring %d: particles %d and %d (two different particles of 0..%d)",
-                        s->nsprings, i, j, s->n - 1), -1;
+                        s->nsprings, i, j, s->n - 1);
     if (!(k > 0) || !isfinite(k) || !isfinite(rest) || !(gamma >= 0) || !isfinite(gamma))
         return sim_fail(s, DEM_ERR_ARG, "spring %d: k must be > 0 N/m, rest finite, gamma >= 0 (got %g, %g, %g)",
-                        s->nsprings, k, rest, gamma), -1;
+                        s->nsprings, k, rest, gamma);
     if (sim_grow(s, s->nsprings, &s->spring_cap, &s->spring_ij, 2, &s->spring_kr, 3, "springs"))
-        return -1;
+        return DEM_ERR_NOMEM;
     int id = s->nsprings++;
     s->spring_ij[2 * id] = i, s->spring_ij[2 * id + 1] = j;
     s->spring_kr[3 * id] = k, s->spring_kr[3 * id + 1] = rest, s->spring_kr[3 * id + 2] = gamma;
@@ -224,12 +224,12 @@ int dem_spring_count(const dem_sim *s) { return s->nsprings; }
 int dem_add_triangle(dem_sim *s, int a, int b, int c)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (a < 0 || a >= s->n || b < 0 || b >= s->n || c < 0 || c >= s->n || a == b || b == c || a == c)
         return sim_fail(s, DEM_ERR_ARG, "triangle %d: particles %d, %d, %d (three different particles of 0..%d)",
-                        s->ntri, a, b, c, s->n - 1), -1;
+                        s->ntri, a, b, c, s->n - 1);
     if (sim_grow(s, s->ntri, &s->tri_cap, &s->tri, 3, NULL, 0, "triangles"))
-        return -1;
+        return DEM_ERR_NOMEM;
     int id = s->ntri++;
     s->tri[3 * id] = a, s->tri[3 * id + 1] = b, s->tri[3 * id + 2] = c;
     return id;
@@ -241,7 +241,7 @@ void dem_triangles_get(const dem_sim *s, int *tri) { memcpy(tri, s->tri, sizeof(
 int dem_add_patches(dem_sim *s, int first, int count)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (first < 0 || count < 1 || first > s->ntri - count)
         return sim_fail(s, DEM_ERR_ARG, "patches: triangles %d..%d (of 0..%d)", first, first + count - 1, s->ntri - 1);
     for (int k = 0; k < s->npatch; k++)
@@ -249,7 +249,7 @@ int dem_add_patches(dem_sim *s, int first, int count)
             return sim_fail(s, DEM_ERR_ARG, "patches: triangle %d is a patch already", s->patch[k]);
     for (int t = first; t < first + count; t++) {
         if (sim_grow(s, s->npatch, &s->patch_cap, &s->patch, 1, NULL, 0, "patches"))
-            return -1;
+            return DEM_ERR_NOMEM;
         s->patch[s->npatch++] = t;
     }
     s->effects |= DEM_EFFECT_PATCHES;
@@ -259,20 +259,20 @@ int dem_add_patches(dem_sim *s, int first, int count)
 int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double kdiss, double theta0)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     int p[4] = {p1, p2, p3, p4};
     for (int a = 0; a < 4; a++) {
         if (p[a] < 0 || p[a] >= s->n)
-            return sim_fail(s, DEM_ERR_ARG, "hinge %d: no particle %d", s->nhinges, p[a]), -1;
+            return sim_fail(s, DEM_ERR_ARG, "hinge %d: no particle %d", s->nhinges, p[a]);
         for (int b = 0; b < a; b++)
             if (p[a] == p[b])
-                return sim_fail(s, DEM_ERR_ARG, "hinge %d: particle %d twice", s->nhinges, p[a]), -1;
+                return sim_fail(s, DEM_ERR_ARG, "hinge %d: particle %d twice", s->nhinges, p[a]);
     }
     if (!(kel >= 0) || !isfinite(kel) || !(kdiss >= 0) || !isfinite(kdiss) || isinf(theta0))
         return sim_fail(s, DEM_ERR_ARG, "hinge %d: kel and kdiss must be >= 0, theta0 finite or NAN (got %g, %g, %g)",
-                        s->nhinges, kel, kdiss, theta0), -1;
+                        s->nhinges, kel, kdiss, theta0);
     if (sim_grow(s, s->nhinges, &s->hinge_cap, &s->hinge, 4, &s->hinge_k, 3, "hinges"))
-        return -1;
+        return DEM_ERR_NOMEM;
     int id = s->nhinges++;
     memcpy(s->hinge + 4 * id, p, sizeof p);
     s->hinge_k[3 * id] = kel, s->hinge_k[3 * id + 1] = kdiss, s->hinge_k[3 * id + 2] = theta0;
@@ -381,7 +381,7 @@ int dem_density_walls(const dem_sim *s, int wall, int *die, int *other)
 int dem_cup_in_bore(const dem_sim *s, int wall, int die)
 {
     if (wall < 0 || wall >= s->nwalls || die < 0 || die >= s->nwalls)
-        return 0;
+        return DEM_ERR_ARG;
     const dem_wall *p = &s->walls[wall], *d = &s->walls[die];
     if (!(p->cup_depth > 0))
         return 1;
@@ -422,7 +422,7 @@ int dem_relative_density(const dem_sim *s, int wall, double *rho)
     int die, other, e = dem_density_walls(s, wall, &die, &other);
     if (e)
         return e;
-    if (!dem_cup_in_bore(s, wall, die) || !dem_cup_in_bore(s, other, die))
+    if (dem_cup_in_bore(s, wall, die) != 1 || dem_cup_in_bore(s, other, die) != 1)
         return DEM_ERR_ARG; /* the cup's volume would not be the bore's */
     double vol = 0, a[3], b[3];
     for (int i = 0; i < s->n; i++)
@@ -564,30 +564,30 @@ int dem_servo_stats_get(const dem_sim *s, int wall, dem_servo_stats *st)
 int dem_add_wall(dem_sim *s, const dem_wall *w)
 {
     if (not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     int k = s->nwalls;
     if (k >= DEM_MAX_WALLS)
-        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most %d)", DEM_MAX_WALLS), -1;
+        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most %d)", DEM_MAX_WALLS);
     if (w->kind != DEM_WALL_PLANE && w->kind != DEM_WALL_CYLINDER)
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown kind %d", k, (int)w->kind), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown kind %d", k, (int)w->kind);
     if (w->material < 0 || w->material >= s->nmat)
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown material %d", k, w->material), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown material %d", k, w->material);
     double len = sqrt(w->normal[0] * w->normal[0] + w->normal[1] * w->normal[1] + w->normal[2] * w->normal[2]);
     if (!(len > 0) || !isfinite(len) || !finite3(w->point))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k);
     if (w->kind == DEM_WALL_CYLINDER && !(w->radius > 0 && isfinite(w->radius)))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius);
     if (w->kind == DEM_WALL_CYLINDER && !(w->height >= 0 && isfinite(w->height)))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height),
-               -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height);
     int flat = w->cup_radius == 0 && w->cup_depth == 0;
     if (!flat && (w->kind != DEM_WALL_PLANE || !(w->cup_depth >= 1e-3 * w->cup_radius) || !(w->cup_radius >= w->cup_depth) ||
                   !isfinite(w->cup_radius) || !(w->cup_depth > 0)))
         return sim_fail(s, DEM_ERR_ARG, "wall %d: a cup is a plane's, with radius / 1000 <= depth <= radius (at most a "
                         "hemisphere; a shallower one is a flat punch; got radius %g m, depth %g m)", k, w->cup_radius,
-                        w->cup_depth), -1;
-    if (check_stages(s, k, w->kind, w->nstages, w->stages))
-        return -1;
+                        w->cup_depth);
+    int e = check_stages(s, k, w->kind, w->nstages, w->stages);
+    if (e)
+        return e;
     s->walls[k] = *w;
     for (int d = 0; d < 3; d++)
         s->walls[k].normal[d] = w->normal[d] / len;
@@ -608,7 +608,7 @@ int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material
         w.normal[axis] = upper ? -1 : 1;
         int id = dem_add_wall(s, &w);
         if (id < 0)
-            return -1;
+            return id;
         if (k == 0)
             first = id;
     }
@@ -745,7 +745,7 @@ int dem_effect_bit(const char *name)
     for (int k = 0; k < DEM_EFFECT_COUNT; k++)
         if (effect_names[k] && !strcmp(name, effect_names[k]))
             return k;
-    return -1;
+    return DEM_ERR_ARG;
 }
 
 /* ---- stepping ---- */
@@ -1117,7 +1117,7 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
 
 int dem_count(const dem_sim *s) { return s->n; }
 double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[sim_dev(s, i)] : NAN; }
-int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[sim_dev(s, i)] : -1; }
+int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[sim_dev(s, i)] : DEM_ERR_ARG; }
 double dem_particle_mass(const dem_sim *s, int i) { return i >= 0 && i < s->n ? sim_mass(s, sim_dev(s, i)) : NAN; }
 int dem_wall_count(const dem_sim *s) { return s->nwalls; }
 long dem_step_index(const dem_sim *s) { return s->step; }

@@ -1,5 +1,5 @@
 /* membrane.c - dem_add_membrane: a mesh (host/mesh/mesh.c) becomes particles, springs, triangles and hinges with the
- * membrane's material (seed 001 section 2.2; the parameters are documented at dem_membrane in dem.h). */
+ * membrane's material (seed 001 section 2.2; the parameters are documented at dem_membrane in dem_membrane.h). */
 #include "sim.h"
 #include <math.h>
 #include <stdio.h>
@@ -35,27 +35,28 @@ static int check_material(dem_sim *s, const dem_membrane *mm)
 int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info)
 {
     if (s->started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_add_membrane after dem_start"), -1;
+        return sim_fail(s, DEM_ERR_STATE, "dem_add_membrane after dem_start");
     if (!m || !mm || m->nv < 3 || m->nt < 1 || !m->x || !m->tri)
-        return sim_fail(s, DEM_ERR_ARG, "membrane: a mesh of at least 3 vertices and one triangle is needed"), -1;
-    if (check_material(s, mm))
-        return -1;
+        return sim_fail(s, DEM_ERR_ARG, "membrane: a mesh of at least 3 vertices and one triangle is needed");
+    int rc = check_material(s, mm);
+    if (rc)
+        return rc;
     for (int i = 0; i < 3 * m->nv; i++)
         if (!isfinite(m->x[i]))
-            return sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d is not finite", i / 3), -1;
+            return sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d is not finite", i / 3);
     char err[256];
     dem_mesh_topo t;
-    if (dem_mesh_topology(m, &t, err, sizeof err))
-        return sim_fail(s, DEM_ERR_ARG, "membrane: %s", err), -1;
+    if ((rc = dem_mesh_topology(m, &t, err, sizeof err)))
+        return sim_fail(s, rc, "membrane: %s", err);
     double *vmass = calloc((size_t)m->nv, sizeof(double)), area = 0, shortest = INFINITY;
     if (!vmass)
-        return dem_mesh_topo_free(&t), sim_fail(s, DEM_ERR_NOMEM, "out of host memory"), -1;
+        return dem_mesh_topo_free(&t), sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int k = 0; k < m->nt; k++) {
         double a = tri_area(m->x, m->tri + 3 * k);
         if (!(a > 0)) {
             free(vmass), dem_mesh_topo_free(&t);
             return sim_fail(s, DEM_ERR_ARG, "membrane: triangle %d (vertices %d, %d, %d) has no area", k,
-                            m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2]), -1;
+                            m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2]);
         }
         area += a;
         for (int j = 0; j < 3; j++) /* a third of each triangle's mass to each of its vertices */
@@ -73,9 +74,9 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     if (bad >= 0 || mm->vertex_radius > shortest) {
         free(vmass), dem_mesh_topo_free(&t);
         if (bad >= 0)
-            return sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d belongs to no triangle", bad), -1;
+            return sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d belongs to no triangle", bad);
         return sim_fail(s, DEM_ERR_ARG, "membrane: vertex_radius %g m is more than the shortest edge, %g m (a vertex "
-                        "would reach past its neighbours)", mm->vertex_radius, shortest), -1;
+                        "would reach past its neighbours)", mm->vertex_radius, shortest);
     }
     /* everything checked; what follows fails only for memory, and then is undone */
     int n0 = s->n, ns0 = s->nsprings, nt0 = s->ntri, nh0 = s->nhinges, nm0 = s->nmat, np0 = s->npatch;
@@ -84,22 +85,23 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     int mat = dem_add_material(s, &(dem_material){mm->density, mm->young, mm->poisson, mm->restitution,
                                                   mm->friction, 0, 0});
     int ok = mat >= 0;
+    rc = mat; /* each call's return: when !ok, the failed call's dem_status */
     if (ok) /* its vertices do not touch each other: their spheres may overlap (neighbor.h) */
         s->mat_apart[mat] = 1;
     for (int i = 0; ok && i < m->nv; i++)
-        ok = dem_add_particle(s, m->x + 3 * i, NULL, mm->vertex_radius, mat) >= 0 &&
-             dem_set_particle_mass(s, n0 + i, vmass[i], 0) == 0;
+        ok = (rc = dem_add_particle(s, m->x + 3 * i, NULL, mm->vertex_radius, mat)) >= 0 &&
+             (rc = dem_set_particle_mass(s, n0 + i, vmass[i], 0)) == 0;
     for (int e = 0; ok && e < t.ne; e++)
-        ok = dem_add_spring(s, n0 + t.edge[2 * e], n0 + t.edge[2 * e + 1], k, -1, mm->damping) >= 0;
+        ok = (rc = dem_add_spring(s, n0 + t.edge[2 * e], n0 + t.edge[2 * e + 1], k, -1, mm->damping)) >= 0;
     for (int j = 0; ok && j < m->nt; j++)
-        ok = dem_add_triangle(s, n0 + m->tri[3 * j], n0 + m->tri[3 * j + 1], n0 + m->tri[3 * j + 2]) >= 0;
+        ok = (rc = dem_add_triangle(s, n0 + m->tri[3 * j], n0 + m->tri[3 * j + 1], n0 + m->tri[3 * j + 2])) >= 0;
     int hinges = mm->kel > 0 || mm->kdiss > 0;
     for (int h = 0; ok && hinges && h < t.nhinges; h++) {
         const int *g = t.hinge + 4 * h;
-        ok = dem_add_hinge(s, n0 + g[0], n0 + g[1], n0 + g[2], n0 + g[3], mm->kel, mm->kdiss, NAN) >= 0;
+        ok = (rc = dem_add_hinge(s, n0 + g[0], n0 + g[1], n0 + g[2], n0 + g[3], mm->kel, mm->kdiss, NAN)) >= 0;
     }
     if (ok && mm->model == DEM_MEMBRANE_PATCH)
-        ok = dem_add_patches(s, nt0, m->nt) == 0;
+        ok = (rc = dem_add_patches(s, nt0, m->nt)) == 0;
     if (ok && info)
         *info = (dem_membrane_info){n0, m->nv, ns0, t.ne, nt0, m->nt, nh0, hinges ? t.nhinges : 0, area,
                                     mm->density * mm->thickness * area};
@@ -109,7 +111,7 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
         if (mat >= 0)
             s->mat_apart[mat] = 0;
         s->npatch = np0;
-        return -1;
+        return rc;
     }
     return 0;
 }

@@ -1,7 +1,7 @@
 /* mesh.c - triangulated surfaces for membranes (seed 001 section 2.2): the generated sheet, tube and sphere, and the
  * topology every membrane is built from (its edges, the springs, and its interior edges, the hinges).
  *
- * Orientation: (x_b - x_a) x (x_c - x_a) of every triangle points where a confining pressure pushes (dem.h,
+ * Orientation: (x_b - x_a) x (x_c - x_a) of every triangle points where a confining pressure pushes (dem_membrane.h,
  * dem_add_triangle): into a tube or a sphere (towards the granulate they hold), along -z for a sheet (onto what lies
  * below it). The generators build the triangles, then turn each one that points the other way.
  * Sizes: the edges come out near the requested length s. A sheet's triangles are equilateral: its length a along x
@@ -85,8 +85,8 @@ static void zip_rows(dem_mesh *m, int l0, int nl, const double *sl, int u0, int 
     }
 }
 
-/* The grid a generated sheet or tube is made of, in double (dem.h): n1 vertices along a row (a sheet's even rows; a
- * tube's rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products
+/* The grid a generated sheet or tube is made of, in double (dem_membrane.h): n1 vertices along a row (a sheet's even
+ * rows; a tube's rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products
  * overflowed: a tube of radius 1e-30 m and height 5.3e18 m with edges of 1 m came out 2051 vertices); round() as
  * lround. A sheet is equilateral: its length a cut into whole edges dx, its rows dx sqrt(3)/2 apart (issue 39: both
  * spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm). A tube keeps its circumference and height: dx the
@@ -105,7 +105,7 @@ int dem_mesh_grid(const dem_mesh_spec *sp, double *n1, double *n2, double *dx, d
         *dx = 2 * sp->a * sin(M_PI / *n1), *dy = sp->b / (*n2 - 1);
         return 0;
     }
-    return -1;
+    return DEM_ERR_ARG;
 }
 
 /* The split level of a generated sphere: the one whose mean edge (about 1.05 r / 2^level, the icosahedron's 1.0515 r
@@ -138,15 +138,15 @@ static int make_sheet(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t er
     dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
     if (!(n1 * n2 + n2 <= MESH_MAX_VERTICES)) /* counted in double before anything becomes an integer */
         return snprintf(err, errlen, "a sheet of %g x %g m with edges of %g m has more than %d vertices", lx, sp->b, s,
-                        MESH_MAX_VERTICES), -1;
+                        MESH_MAX_VERTICES), DEM_ERR_ARG;
     long nx = (long)n1, ny = (long)n2;
     double ly = dy * (double)(ny - 1); /* within dy / 2 of b */
     if (mesh_alloc(m, nx * ny + ny, 2 * (nx + 1) * ny))
-        return snprintf(err, errlen, "out of host memory"), -1;
+        return snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     double x0 = sp->center[0] - lx / 2, y0 = sp->center[1] - ly / 2;
     double *sprev = malloc(sizeof(double) * (size_t)(nx + 1)), *scur = malloc(sizeof(double) * (size_t)(nx + 1));
     if (!sprev || !scur)
-        return free(sprev), free(scur), snprintf(err, errlen, "out of host memory"), -1;
+        return free(sprev), free(scur), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     int prev0 = 0, nprev = 0;
     for (long j = 0; j < ny; j++) { /* even rows: nx vertices dx apart; odd rows: the ends and the midpoints */
         int first = m->nv, count = 0;
@@ -177,10 +177,10 @@ static int make_tube(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t err
     dem_mesh_grid(sp, &n1, &n2, &dx, &dy);
     if (!(n1 * n2 <= MESH_MAX_VERTICES)) /* counted in double before anything becomes an integer */
         return snprintf(err, errlen, "a tube of radius %g m and height %g m with edges of %g m has more than %d "
-                        "vertices", r, h, s, MESH_MAX_VERTICES), -1;
+                        "vertices", r, h, s, MESH_MAX_VERTICES), DEM_ERR_ARG;
     long na = (long)n1, nr = (long)n2;
     if (mesh_alloc(m, na * nr, 2 * na * (nr - 1)))
-        return snprintf(err, errlen, "out of host memory"), -1;
+        return snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     for (long j = 0; j < nr; j++) /* ring j: na vertices, odd rings turned by half a step */
         for (long k = 0; k < na; k++) {
             double phi = 2 * M_PI * ((double)k + 0.5 * (double)(j % 2)) / (double)na;
@@ -216,11 +216,11 @@ static int make_sphere(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t e
     double lv = sphere_level(sp);
     if (!(lv <= 8))
         return snprintf(err, errlen, "a sphere of radius %g m with edges of %g m needs more than %d vertices (8 "
-                        "splits of the icosahedron)", r, s, 10 * (1 << 16) + 2), -1;
+                        "splits of the icosahedron)", r, s, 10 * (1 << 16) + 2), DEM_ERR_ARG;
     int level = (int)lv;
     long nv = 10L * (1L << (2 * level)) + 2, nt = 20L * (1L << (2 * level));
     if (mesh_alloc(m, nv, nt))
-        return snprintf(err, errlen, "out of host memory"), -1;
+        return snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     const double ico[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     static const int f0[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
@@ -233,7 +233,7 @@ static int make_sphere(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t e
     int *ft = malloc(sizeof(int) * 3 * (size_t)nt);
     edge_mid *em = malloc(sizeof(edge_mid) * 3 * (size_t)nt);
     if (!ft || !em)
-        return free(ft), free(em), dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), -1;
+        return free(ft), free(em), dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     for (int l = 0; l < level; l++) {
         int ne = 0; /* every edge once, with a new vertex at its midpoint on the sphere */
         for (int k = 0; k < m->nt; k++)
@@ -272,7 +272,7 @@ static int make_sphere(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t e
     double *acc = malloc(sizeof(double) * 3 * (size_t)m->nv);
     int *deg = malloc(sizeof(int) * (size_t)m->nv);
     if (!acc || !deg)
-        return free(acc), free(deg), dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), -1;
+        return free(acc), free(deg), dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     for (int it = 0; it < SPHERE_SMOOTHING && level > 0; it++) {
         memset(acc, 0, sizeof(double) * 3 * (size_t)m->nv), memset(deg, 0, sizeof(int) * (size_t)m->nv);
         for (int k = 0; k < m->nt; k++)
@@ -302,18 +302,19 @@ int dem_mesh_make(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen
     memset(m, 0, sizeof *m);
     int finite = isfinite(sp->center[0]) && isfinite(sp->center[1]) && isfinite(sp->center[2]);
     if (!finite || !(sp->edge > 0) || !isfinite(sp->edge))
-        return snprintf(err, errlen, "edge length must be > 0 and the centre finite (got edge %g m)", sp->edge), -1;
+        return snprintf(err, errlen, "edge length must be > 0 and the centre finite (got edge %g m)", sp->edge),
+               DEM_ERR_ARG;
     if (!(sp->a > 0) || !isfinite(sp->a) || (sp->kind != DEM_MESH_SPHERE && (!(sp->b > 0) || !isfinite(sp->b))))
-        return snprintf(err, errlen, "the sizes must be > 0 and finite (got %g m, %g m)", sp->a, sp->b), -1;
+        return snprintf(err, errlen, "the sizes must be > 0 and finite (got %g m, %g m)", sp->a, sp->b), DEM_ERR_ARG;
     int rc;
     switch (sp->kind) {
     case DEM_MESH_SHEET: rc = make_sheet(sp, m, err, errlen); break;
     case DEM_MESH_TUBE: rc = make_tube(sp, m, err, errlen); break;
     case DEM_MESH_SPHERE: rc = make_sphere(sp, m, err, errlen); break;
-    default: return snprintf(err, errlen, "unknown mesh kind %d", (int)sp->kind), -1;
+    default: return snprintf(err, errlen, "unknown mesh kind %d", (int)sp->kind), DEM_ERR_ARG;
     }
     if (rc)
-        return dem_mesh_free(m), -1;
+        return dem_mesh_free(m), rc;
     orient(m, sp);
     return 0;
 }
@@ -340,14 +341,14 @@ int dem_mesh_topology(const dem_mesh *m, dem_mesh_topo *t, char *err, size_t err
             int a = m->tri[3 * k + j], b = m->tri[3 * k + (j + 1) % 3];
             if (a < 0 || a >= m->nv || a == b || a == m->tri[3 * k + (j + 2) % 3])
                 return snprintf(err, errlen, "triangle %d: vertices %d, %d, %d (three different vertices of 0..%d)",
-                                k, m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2], m->nv - 1), -1;
+                                k, m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2], m->nv - 1), DEM_ERR_ARG;
         }
     size_t nh = 3 * (size_t)m->nt;
     half_edge *h = malloc(sizeof *h * (nh ? nh : 1));
     t->edge = malloc(sizeof(int) * 2 * (nh ? nh : 1));
     t->hinge = malloc(sizeof(int) * 4 * (nh ? nh : 1));
     if (!h || !t->edge || !t->hinge)
-        return free(h), dem_mesh_topo_free(t), snprintf(err, errlen, "out of host memory"), -1;
+        return free(h), dem_mesh_topo_free(t), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     for (int k = 0; k < m->nt; k++)
         for (int j = 0; j < 3; j++) {
             half_edge *e = h + 3 * k + j;
@@ -361,13 +362,13 @@ int dem_mesh_topology(const dem_mesh *m, dem_mesh_topo *t, char *err, size_t err
             j++;
         if (j - i > 2)
             return snprintf(err, errlen, "edge %d-%d is shared by %d triangles (a membrane is a surface: two at most)",
-                            h[i].lo, h[i].hi, (int)(j - i)), free(h), dem_mesh_topo_free(t), -1;
+                            h[i].lo, h[i].hi, (int)(j - i)), free(h), dem_mesh_topo_free(t), DEM_ERR_ARG;
         t->edge[2 * t->ne] = h[i].lo, t->edge[2 * t->ne + 1] = h[i].hi, t->ne++;
         if (j - i == 2) {
             if (h[i].a == h[i + 1].a)
                 return snprintf(err, errlen, "triangles %d and %d are turned opposite ways across their edge %d-%d "
                                 "(a membrane's triangles must all be ordered the same way round)", h[i].tri,
-                                h[i + 1].tri, h[i].lo, h[i].hi), free(h), dem_mesh_topo_free(t), -1;
+                                h[i + 1].tri, h[i].lo, h[i].hi), free(h), dem_mesh_topo_free(t), DEM_ERR_ARG;
             int *g = t->hinge + 4 * t->nhinges++; /* (p1, p3, p4) = (c, a, b) is triangle i turned; (p2, p4, p3) */
             g[0] = h[i].c, g[1] = h[i + 1].c, g[2] = h[i].a, g[3] = h[i].b;
         } else

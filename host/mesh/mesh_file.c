@@ -142,7 +142,7 @@ static int stl_finish(const double *c, int ncorners, grow_mesh *g, const char *p
     corner *s = malloc(sizeof(corner) * (size_t)(ncorners ? ncorners : 1));
     int *id = malloc(sizeof(int) * (size_t)(ncorners ? ncorners : 1));
     if (!s || !id)
-        return free(s), free(id), snprintf(err, errlen, "%s: out of memory", path), -1;
+        return free(s), free(id), snprintf(err, errlen, "%s: out of memory", path), DEM_ERR_NOMEM;
     for (int k = 0; k < ncorners; k++) {
         memcpy(s[k].p, c + 3 * k, sizeof s[k].p);
         s[k].p[0] += 0.0, s[k].p[1] += 0.0, s[k].p[2] += 0.0; /* -0 and +0 alike */
@@ -172,7 +172,7 @@ static int stl_finish(const double *c, int ncorners, grow_mesh *g, const char *p
     if (rc == -1)
         snprintf(err, errlen, "%s: out of memory", path);
     free(s), free(id), free(owner);
-    return rc ? -1 : 0;
+    return rc == -1 ? DEM_ERR_NOMEM : rc ? -1 : 0;
 }
 
 static int read_stl_binary(FILE *fp, long size, const char *path, grow_mesh *g, char *err, size_t errlen)
@@ -186,7 +186,7 @@ static int read_stl_binary(FILE *fp, long size, const char *path, grow_mesh *g, 
                         "triangles)", path, size, n, 84 + 50 * n, MESH_FILE_MAX), -1;
     double *c = malloc(sizeof(double) * 9 * (n ? n : 1));
     if (!c)
-        return snprintf(err, errlen, "%s: out of memory", path), -1;
+        return snprintf(err, errlen, "%s: out of memory", path), DEM_ERR_NOMEM;
     for (unsigned long f = 0; f < n; f++) {
         unsigned char rec[50];
         if (fread(rec, 1, 50, fp) != 50)
@@ -311,9 +311,9 @@ int dem_mesh_read(const char *path, dem_mesh *m, char *err, size_t errlen)
     fclose(fp);
     if (!rc && (g.nv < 3 || g.nt < 1))
         rc = -1, snprintf(err, errlen, "%s: %d vertices and %d triangles (a mesh needs a triangle)", path, g.nv, g.nt);
-    if (rc) {
+    if (rc) { /* the readers' -1: the file refused */
         free(g.x), free(g.tri);
-        return -1;
+        return rc == DEM_ERR_NOMEM ? DEM_ERR_NOMEM : DEM_ERR_ARG;
     }
     m->nv = g.nv, m->nt = g.nt, m->x = g.x, m->tri = g.tri;
     return 0;

@@ -1,0 +1,40 @@
+/* dem_internal_bits.h - the bits of the effect mask that the host alone sets: what a run keeps on the device and
+ * MC-strain's reach. They travel in the same mask as the public DEM_EFFECT_* and DEM_MCS_* bits of
+ * include/dem_effects.h (the kernels get the whole mask as DEM_EFFECTS, the reference at run time), so they are
+ * declared for the host, the reference and the kernels alike, but a caller never sets them (dem_set_effects and
+ * dem_set_mc_stress_convention refuse them): this header is not installed. Compiles as C and as OpenCL C.
+ */
+#ifndef DEM_INTERNAL_BITS_H
+#define DEM_INTERNAL_BITS_H
+#include "../include/dem_effects.h"
+
+/* MC-strain contact distance (LIGGGHTS' option, seed 000 section 3: enlarged radii can make new contacts): a pair
+ * whose centres are closer than PM_MC_REACH (r_i + r_j) is an MC-strain contact as soon as its overlap plus the
+ * induced displacements is positive, even with a gap. Set by the host when mc_strain runs with a reach above 1
+ * (dem_set_mc_strain_reach); compiled in with the effects. Off: only geometric overlaps. */
+enum { DEM_MC_REACH = 2048 };
+
+/* A run that reads the contact network (dem_config.contacts, dem_contacts_get) or sums the walls' forces every step
+ * (a servo stage) keeps the force from every wall on every particle (WALL_PF: 3 reals per particle and wall); other
+ * runs do not hold that buffer (the walls' sums evaluate the wall contacts themselves: common/wall_forces.h). Set by
+ * the host, compiled in with the effects. */
+enum { DEM_KEEP_WALL_FORCES = 262144 };
+
+/* A run that samples a series row every few steps (dem_config.sample_every <= DEM_SAMPLE_KEEP) keeps each touching
+ * pair's elastic energy of a sampled step (PAIR_ELA: 1 real per pair), computed by contact_pairs from the elastic
+ * force it already has; contact_forces adds them. Other runs hold no such buffer, and contact_forces computes each
+ * energy from the overlap (a division and a square root per pair): the same bits either way (common/series.h). */
+enum { DEM_KEEP_PAIR_ENERGY = 524288 };
+
+/* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
+#define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY)
+#ifndef __OPENCL_VERSION__
+_Static_assert((DEM_INTERNAL_BITS & (DEM_EFFECT_ALL | DEM_MCS_MASK)) == 0,
+               "a host-only bit of the effect mask overlaps a caller's effect or convention bit");
+#endif
+
+/* The mask a kernel is compiled with (the host passes -DDEM_EFFECTS=<mask>) */
+#ifndef DEM_EFFECTS
+#define DEM_EFFECTS DEM_EFFECT_CLASSICAL
+#endif
+#endif /* DEM_INTERNAL_BITS_H */
