@@ -41,7 +41,7 @@ LIB      := $(BUILD)/libdem.a
 APP_SRC  := $(filter-out app/dem_main.c,$(wildcard app/*.c))
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
 APPLIB   := $(BUILD)/libdemapp.a
-HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
+HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
 
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -93,6 +93,29 @@ $(BUILD)/dem-accuracy: bench/accuracy.c $(APPLIB) $(LIB) $(HEADERS)
 $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
+
+# tests/test_law_toy.c links the library built again with -DDEM_TEST_LAWS: the test-only contact laws of
+# common/laws/laws.h, their effect bits (include/dem_effects.h) and their kernels (host/opencl/cl_backend.c)
+TL_DIR := $(BUILD)/testlaws
+TL_OBJ := $(HOST_SRC:%.c=$(TL_DIR)/%.o) $(REF_SRC:reference/%.c=$(TL_DIR)/ref32/%.o) \
+          $(REF_SRC:reference/%.c=$(TL_DIR)/ref64/%.o)
+$(TL_DIR)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
+$(TL_DIR)/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
+$(TL_DIR)/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=4 -c $< -o $@
+$(TL_DIR)/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=8 -c $< -o $@
+$(TL_DIR)/libdem.a: $(TL_OBJ)
+	ar rcs $@ $^
+$(BUILD)/tests/test_law_toy: tests/test_law_toy.c tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -Itests $< tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(TEST_LDLIBS) -o $@
 
 # The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
 SCENE ?= scenes/hydrogel_514.yaml

@@ -83,6 +83,15 @@ enum { DEM_KEEP_WALL_FORCES = 262144 };
  * energy from the overlap (a division and a square root per pair): the same bits either way (common/series.h). */
 enum { DEM_KEEP_PAIR_ENERGY = 524288 };
 
+/* Test-only contact laws (common/laws/laws.h), compiled in a test build (-DDEM_TEST_LAWS: tests/test_law_toy.c) and
+ * nowhere else: their effect bits, above every other. */
+#ifdef DEM_TEST_LAWS
+enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
+#define DEM_EFFECT_TEST_LAWS DEM_EFFECT_TEST_SPRING
+#else
+#define DEM_EFFECT_TEST_LAWS 0
+#endif
+
 #ifndef DEM_EFFECTS
 #define DEM_EFFECTS DEM_EFFECT_CLASSICAL
 #endif

@@ -31,7 +31,10 @@ static const char *const kernel_files[] = {"kernels/binning.cl", "kernels/neighb
                                            "kernels/bending.cl", "kernels/riders.cl",
                                            "kernels/patch_contacts.cl"};
 static const char *const header_files[] = {"common/dem_real.h", "common/dem_layout.h", "common/vec3.h",
-                                           "common/hertz_mindlin.h", "common/contact_forces.h",
+                                           "common/laws/law.h", "common/laws/laws.h",
+                                           "common/laws/hertz_mindlin.h", "common/laws/mc_stress.h",
+                                           "common/laws/mc_strain.h", "common/laws/linear_spring.h",
+                                           "common/contact_forces.h",
                                            "common/wall_forces.h", "common/integrate.h", "common/binning.h",
                                            "common/neighbor.h", "include/dem_effects.h",
                                            "common/contact_geometry.h", "common/particle_stress.h",
@@ -229,6 +232,13 @@ static void cl_destroy(dem_backend *b)
     free(b);
 }
 
+/* A test build (-DDEM_TEST_LAWS) builds its kernels with the test-only laws too (common/laws/laws.h) */
+#ifdef DEM_TEST_LAWS
+#define DEM_TEST_LAW_OPTION " -DDEM_TEST_LAWS"
+#else
+#define DEM_TEST_LAW_OPTION ""
+#endif
+
 /* FNV-1a over the kernel sources and headers: passed as -DDEM_SOURCE_HASH so that a compiler cache keyed on the
  * main source text and options (PoCL's is) never serves a program built from older headers. */
 static int source_hash(const char *root, uint64_t *h, char *err, size_t errlen)
@@ -295,10 +305,10 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
     char options[8192];
     snprintf(options, sizeof options,
              "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
-             "-I%s/common -I%s/include %s %s",
+             "-I%s/common -I%s/include %s %s%s",
              s->real_size, s->effects, (unsigned long long)hash, s->source_dir, s->source_dir, s->source_dir,
              s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
-             s->extra_build_options ? s->extra_build_options : "");
+             s->extra_build_options ? s->extra_build_options : "", DEM_TEST_LAW_OPTION);
     /* the program: every kernel file of the list above, included in order by its full path. The compiler looks a
      * file up in the working directory before the -I folders whatever the brackets (PoCL 3.1: a binning.cl where dem
      * ran was built instead of ours), and for a header a kernel file includes, there before the -I folders too; so
