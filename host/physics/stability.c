@@ -13,7 +13,8 @@
  * with k_n, k_t the run's law's stiffnesses at the current overlap (common/laws/laws.h, law_stiffness, compiled here
  * in double; Hertz-Mindlin's k_n = 2 E* sqrt(r* d), k_t = 8 G* sqrt(r* d): laws/hertz_mindlin.h; a wall is immovable,
  * 1/m_j = a_j^2/I_j = 0, r* = r_i). The particle's frequency of each kind is the root of the sum over its contacts
- * (Gershgorin's bound for the particle's row of the stiffness matrix). The damping, c sqrt(k m*) per contact (hertz_mindlin.h), is a damping ratio zeta = c/2 in the normal mode and c/2 sqrt(kappa)
+ * (Gershgorin's bound for the particle's row of the stiffness matrix). The damping, c sqrt(k m*) per contact
+ * (laws/hertz_mindlin.h), is a damping ratio zeta = c/2 in the normal mode and c/2 sqrt(kappa)
  * in the tangential one (kappa: the tangential mode's inverse mass over 1/m_i + 1/m_j, 3.5 for like spheres); the
  * largest of a particle's contacts counts. An explicit step of a damped oscillator is stable for
  * omega dt < 2 (sqrt(1 + zeta^2) - zeta) (2 undamped; 0.45 for the tangential mode at e = 0.1, whose c is 2.27). The
