@@ -41,7 +41,7 @@ LIB      := $(BUILD)/libdem.a
 APP_SRC  := $(filter-out app/dem_main.c,$(wildcard app/*.c))
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
 APPLIB   := $(BUILD)/libdemapp.a
-HEADERS  := $(wildcard include/*.h common/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
+HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
 
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -120,6 +120,29 @@ $(BUILD)/tests/test_extra_buffer: tests/test_extra_buffer.c tests/test_util.c $(
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -Itests $< tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a \
 	  $(TEST_LDLIBS) -o $@
+# tests/test_law_toy.c links the library built again with -DDEM_TEST_LAWS: the test-only contact laws of
+# common/laws/laws.h, their effect bits (common/dem_internal_bits.h) and their kernels (host/opencl/cl_backend.c)
+TL_DIR := $(BUILD)/testlaws
+TL_OBJ := $(HOST_SRC:%.c=$(TL_DIR)/%.o) $(REF_SRC:reference/%.c=$(TL_DIR)/ref32/%.o) \
+          $(REF_SRC:reference/%.c=$(TL_DIR)/ref64/%.o)
+$(TL_DIR)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
+$(TL_DIR)/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
+$(TL_DIR)/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=4 -c $< -o $@
+$(TL_DIR)/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=8 -c $< -o $@
+$(TL_DIR)/libdem.a: $(TL_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+$(BUILD)/tests/test_law_toy: tests/test_law_toy.c tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -Itests $< tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(TEST_LDLIBS) -o $@
 
 # The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
 SCENE ?= scenes/hydrogel_514.yaml
@@ -323,7 +346,7 @@ install-libs:
 	+$(MAKE) --no-print-directory BUILD=$(BUILD)/pic PIC=1 DEPS_STAMP=$(DEPS_STAMP) PREFIX=$(PREFIX) $(INSTALL_LIBS)
 install: install-libs
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(DATADIR)/kernels \
-	  $(DESTDIR)$(DATADIR)/common $(DESTDIR)$(DATADIR)/include
+	  $(DESTDIR)$(DATADIR)/common/laws $(DESTDIR)$(DATADIR)/include
 	install -m 644 $(BUILD)/pic/install/libdem.a $(DESTDIR)$(PREFIX)/lib/libdem.a
 	install -m 755 $(BUILD)/pic/install/libdem.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/
 	ln -sf libdem.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
@@ -331,6 +354,7 @@ install: install-libs
 	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/
 	install -m 644 kernels/*.cl $(DESTDIR)$(DATADIR)/kernels/
 	install -m 644 common/*.h $(DESTDIR)$(DATADIR)/common/
+	install -m 644 common/laws/*.h $(DESTDIR)$(DATADIR)/common/laws/
 	install -m 644 include/dem_effects.h $(DESTDIR)$(DATADIR)/include/
 	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|$(VERSION)|' scripts/libdem.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem.pc
 .PHONY: install install-libs FORCE

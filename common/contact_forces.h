@@ -15,9 +15,10 @@
  * Walls (wall_forces.h) follow the particle contacts, in wall index order.
  *
  * Effects: without friction no history, torque, n x f_t or lever arm is read or written (the torque array is left
- * as it is: zero); walls are visited only with DEM_EFFECT_WALLS. With MC-stress the normal law reads both particles'
- * stress traces (particle_stress.h); with MC-strain it sees the overlap plus both particles' induced displacements
- * of this contact's slots, and stores the resulting elastic force once per pair (mc_strain.h).
+ * as it is: zero); walls are visited only with DEM_EFFECT_WALLS. The force is the run's law's (laws/laws.h): the
+ * context it gets holds both particles' stress traces (read by MC-stress, laws/mc_stress.h) and both particles'
+ * induced displacements of this contact's slots (MC-strain, laws/mc_strain.h, which also has the resulting elastic
+ * force stored once per pair: mc_strain.h).
  *
  * Torque: the contact point lies a distance (r - d/2) from each centre along the line of centres, so the torque on
  * either particle g is -(r_g - d/2) (n x f_t) with n from b to a (seed 000, Eq. 1 branch vector).
@@ -26,7 +27,7 @@
 #define DEM_CONTACT_FORCES_H
 #include "dem_kernels.h"
 #include "contacts.h"
-#include "hertz_mindlin.h"
+#include "laws/laws.h"
 #include "wall_forces.h"
 #include "particle_stress.h"
 #include "mc_strain.h"
@@ -41,15 +42,12 @@ typedef struct {
     vec3 hist;   /* new tangential history */
 } pair_contact;
 
-/* The multi-contact inputs of a pair (unused arrays may be any valid buffer: the effect test folds them away):
- * MC-stress reads trace and invvol per particle, MC-strain the induced displacements of the pair's two slots. */
+/* Pair (a, b) through the run's law (laws.h: law_force); ctx: what the law reads beyond the two particles. */
 DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *v,
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
-                                          DEM_CONST_GLOBAL real *hist, int hp, int touching,
-                                          DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol, real disp_a,
-                                          real disp_b)
+                                          DEM_CONST_GLOBAL real *hist, int hp, int touching, law_ctx ctx)
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
@@ -63,16 +61,13 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     if (!g.active)
         return pc;
     vec3 n = g.n;
-    real delta = g.delta, rstar = g.rstar;
-    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
-    real extra = (real)0, law_delta = delta;
-    if (fx & DEM_EFFECT_MC_STRAIN)
-        law_delta = mc_strain_overlap(delta, disp_a, disp_b);
-    if ((fx & DEM_MC_REACH) && !(delta > (real)0) && !(law_delta > (real)0)) {
-        pc.active = 0; /* a neighbour within the contact distance whose induced overlap does not close the gap */
-        return pc;
-    }
-    real mstar = hm_effective_mass(invmass[a], invmass[b]);
+    real delta = g.delta;
+    law_in c;
+    c.site = LAW_AT_PAIR;
+    c.a = a, c.b = b, c.ra = ra, c.rb = rb;
+    c.n = n, c.delta = delta, c.rstar = g.rstar, c.dt = dt;
+    c.pm = c.pmi = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
+    c.mstar = law_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */
     vec3 vca = v3_load(v, a), vcb = v3_load(v, b), h = v3_zero();
@@ -83,10 +78,13 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         if (touching)
             h = v3_load(hist, hp);
     }
-    real srd = dem_sqrt(rstar * law_delta);
-    if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is delta) */
-        extra = mc_stress_pair(fx, pm, trace, invvol, a, b, ra, rb, delta, rstar, hm_elastic_srd(pm[PM_ESTAR], srd, delta));
-    hm_result r = hm_contact(fx, n, law_delta, srd, mstar, v3_sub(vca, vcb), pm, dt, h, extra);
+    c.vrel = v3_sub(vca, vcb);
+    c.hist = h;
+    law_result r = law_force(fx, c, ctx);
+    if (!r.active) {
+        pc.active = 0;
+        return pc;
+    }
     pc.delta = delta;
     pc.fel = r.fel;
     pc.force = r.force;
@@ -117,8 +115,10 @@ DEM_ITEM(contact_pairs)
         da = mc_disp[host_lower ? slot : m]; /* D at a's slot of the pair, then at j's */
         db = mc_disp[host_lower ? m : slot];
     }
+    law_ctx ctx;
+    ctx.trace = trace, ctx.invvol = invvol, ctx.disp_a = da, ctx.disp_b = db;
     pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, i,
-                                        touching, trace, invvol, da, db);
+                                        touching, ctx);
     /* per pair (both particles' mc_strain_disp read it). A pair that neither touched nor touches holds 0 already
      * (mc_strain_update zeroes what it set for a pair that does not touch now) */
     if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching))
@@ -146,11 +146,8 @@ DEM_ITEM(contact_pairs)
     }
     pr[PR_DELTA] = pc.delta; /* the torque's lever arm, and a sampled step's elastic energy (series.h) */
     if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
-        pair_ela[i] = (fx & DEM_EFFECT_MC_STRAIN) /* the law's force is then at the induced overlap, not at delta */
-                          ? series_pair_energy(pairmat[PM_STRIDE * (mat[a] * nmat + mat[j]) + PM_ESTAR], radius[a],
-                                               radius[j], pc.delta)
-                          : hertz_energy_of_force(pc.fel, pc.delta); /* series_pair_energy's bits (its r* is
-                                                                        contact_geometry.h's), no division or root */
+        pair_ela[i] = series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
+                                              pc.delta, pc.fel); /* series_pair_energy's bits */
 }
 
 /* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
@@ -182,7 +179,7 @@ DEM_ITEM(contact_forces)
                 ela += pair_ela[p];
             } else {
                 int j = nrow[k];
-                ela += series_pair_energy(pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_ESTAR], ri, radius[j],
+                ela += series_pair_energy(fx, pairmat + PM_STRIDE * (mat[i] * nmat + mat[j]), ri, radius[j],
                                           pr[PR_DELTA]);
             }
             con += (real)1;

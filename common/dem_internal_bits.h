@@ -26,11 +26,22 @@ enum { DEM_KEEP_WALL_FORCES = 262144 };
  * energy from the overlap (a division and a square root per pair): the same bits either way (common/series.h). */
 enum { DEM_KEEP_PAIR_ENERGY = 524288 };
 
+/* Test-only contact laws (common/laws/laws.h), compiled in a test build (-DDEM_TEST_LAWS: tests/test_law_toy.c) and
+ * nowhere else: their effect bits, above every other. */
+#ifdef DEM_TEST_LAWS
+enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
+#define DEM_EFFECT_TEST_LAWS DEM_EFFECT_TEST_SPRING
+#else
+#define DEM_EFFECT_TEST_LAWS 0
+#endif
+
 /* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
 #define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY)
 #ifndef __OPENCL_VERSION__
 _Static_assert((DEM_INTERNAL_BITS & (DEM_EFFECT_ALL | DEM_MCS_MASK)) == 0,
                "a host-only bit of the effect mask overlaps a caller's effect or convention bit");
+_Static_assert((DEM_EFFECT_TEST_LAWS & (DEM_INTERNAL_BITS | DEM_EFFECT_ALL | DEM_MCS_MASK)) == 0,
+               "a test law's effect bit overlaps another bit of the mask");
 #endif
 
 /* The mask a kernel is compiled with (the host passes -DDEM_EFFECTS=<mask>) */

@@ -1,4 +1,5 @@
-/* mc_strain.h - the strain-based multi-contact model of Brodu et al. (seed 000 section 3.1, Eq. 7-8).
+/* mc_strain.h - the strain-based multi-contact model of Brodu et al. (seed 000 section 3.1, Eq. 7-8): the field of
+ * induced displacements (Eq. 7) and its iteration; the law itself (Eq. 8) is laws/mc_strain.h.
  *
  * Contact c of particle i sees, besides its own overlap d_c, the normal displacement that every other contact k of
  * the same particle induces at c (Eq. 7):
@@ -38,7 +39,7 @@
 #include "contacts.h"
 #include "sorted_row.h"
 #include "contact_geometry.h"
-#include "hertz_mindlin.h"
+#include "laws/laws.h"
 
 #define MC_DENOM_MIN ((real)0.1)
 /* Contacts of one particle whose geometry mc_strain_disp keeps in private memory (computed once, not once per pair);
@@ -208,12 +209,7 @@ DEM_ITEM(mc_strain_disp)
     }
 }
 
-/* The overlap the Hertz law sees (Eq. 8), never negative. */
-DEM_INLINE real mc_strain_overlap(real delta, real da, real db)
-{
-    real d = delta + da + db;
-    return d > (real)0 ? d : (real)0;
-}
+/* The overlap the law sees (Eq. 8): mc_strain_overlap, laws/mc_strain.h */
 
 /* One iteration: the elastic normal force of every contact of particle i from the current displacements, into
  * fn (the pairs i owns) and wall_fn; raises FLAG_MC_PENDING if one moved by more than tol (relative). */
@@ -242,8 +238,8 @@ DEM_ITEM(mc_strain_update)
             m += nbr_start[j]; /* the partner's slot of the pair */
             pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
             if (g.active)
-                f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + mat[j]) + PM_ESTAR], g.rstar,
-                               mc_strain_overlap(g.delta, disp[slot], disp[m]));
+                f = mc_strain_elastic(pairmat + PM_STRIDE * (mi * nmat + mat[j]), g.rstar,
+                                      mc_strain_overlap(g.delta, disp[slot], disp[m]));
             int p = row_pair(i, j, c, hc, own, in, in_pair);
             changed |= mc_changed(f, fn[p], tol);
             fn[p] = f;
@@ -251,8 +247,8 @@ DEM_ITEM(mc_strain_update)
             int k = r.partner;
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
             if (g.active)
-                f = hm_elastic(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_ESTAR], ri,
-                               mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0));
+                f = mc_strain_elastic(pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]), ri,
+                                      mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0));
             changed |= mc_changed(f, wall_fn[r.slot], tol);
             wall_fn[r.slot] = f;
         }

@@ -1,11 +1,12 @@
-/* particle_stress.h - per-particle stress tensor and its trace (seed 000 Eq. 9), and the MC-stress correction
- * (Eq. 10) that uses the trace.
+/* particle_stress.h - per-particle stress tensor and its trace (seed 000 Eq. 9); the trace is what the MC-stress law
+ * (laws/mc_stress.h, Eq. 10) reads.
  *
  *   sigma_p = (1/V_p) sum_c l_c (x) f_c,   l_c = -(r_p - a_c) n_c,  f_c = f_H,c n_c
  * n_c is the unit normal pointing into particle p at contact c (from the partner, or from the wall), l_c the branch
  * vector from the centre to the contact point (a_c = d/2 for a particle pair, d for a wall: the same contact points
- * as the torques of contact_forces.h), and f_H the elastic Hertz force of the overlap (hm_elastic, Eq. 3: the
- * appendix's "ForcesLocal = Forces(Overlap)"). Damping is left out: the stress is that of the elastic state, and
+ * as the torques of contact_forces.h), and f_H the elastic normal force of the overlap (the run's law: law_elastic,
+ * laws/laws.h; Hertz's Eq. 3 for Hertz-Mindlin and the multi-contact laws: the appendix's "ForcesLocal =
+ * Forces(Overlap)"). Damping is left out: the stress is that of the elastic state, and
  * tangential forces have no trace (l_c is parallel to n_c). The tensor is therefore symmetric,
  *   sigma_p = -(1/V_p) sum_c (r_p - a_c) f_H,c n_c (x) n_c,
  * negative (compressive) under load; its trace is -(1/V_p) sum_c (r_p - a_c) f_H,c.
@@ -13,46 +14,17 @@
  * Canonical order: partners in ascending id (the whole sorted neighbour row), then walls in index order. Each term
  * is rounded as t_c = -((r_p - a_c) f_H,c) * (1/V_p) and added in that order, so every device gets the same bits.
  *
- * MC-stress (Eq. 10 with the appendix's two passes): pass 1 (stress_trace) sums each particle's trace; pass 2 (the
- * contact kernels) adds to the elastic normal force of a pair
- *   f_extra = beta nu A_ij P_ij,  A_ij = pi r* d,  P_ij = -(T_i + T_j) / K
- * and to a particle-wall contact the same with the particle's own trace for both (the wall has none):
- * f_extra = beta_i nu_i pi r_i d (-(T_i + T_i) / K). Sign: the trace is negative in compression while the correction
- * must stiffen, so P is minus a trace. beta nu = 0 makes f_extra an exact zero (classical DEM bit for bit).
- * The convention bits of dem_effects.h (compiled in with the effects) choose the reading of seed 000:
- *   T    = tr (DEM_MCS_OWN_IN) or tr - t_c (contact c's own term out: then one contact gives tr - t = 0 exactly and a
- *          two-sphere collision is bit-identical to classical DEM);
- *   t_c  = -(lever f_H) / V_p with lever = d = r_i + r_j - delta, a wall 2 (r - delta) (DEM_MCS_LEVER_CENTRES), or the
- *          contact point's r - delta/2, a wall r - delta (the tensor output always uses the contact point: Eq. 9);
- *   K    = 2 (DEM_MCS_SCALE_TRACE, Eq. 11), 3 (DEM_MCS_SCALE_TEXT, Eq. 10's text) or 6 (the appendix's 1/6).
- * The decisions and their measurements are in docs/multicontact.md; tests in tests/test_multicontact.c and
- * tests/test_mc_validation.c (Eq. 11 on the octahedron).
+ * MC-stress (Eq. 10 with the appendix's two passes): pass 1 (stress_trace) sums each particle's trace with the
+ * lever its convention bits choose (laws/mc_stress.h: mcs_lever_*); pass 2 is the law's force (laws/mc_stress.h).
  */
 #ifndef DEM_PARTICLE_STRESS_H
 #define DEM_PARTICLE_STRESS_H
 #include "dem_kernels.h"
 #include "contacts.h"
 #include "contact_geometry.h"
-#include "hertz_mindlin.h"
+#include "laws/laws.h"
 
-/* One contact's trace term: arm = r_p - a_c, fh the elastic force, invvol = 1/V_p. */
-DEM_INLINE real stress_term(real arm, real fh, real invvol) { return -(arm * fh) * invvol; }
-
-/* The lever of a pair's term in the MC-stress trace of the particle of radius ra (partner rb), and of a wall's. */
-DEM_INLINE real mcs_lever_pair(unsigned fx, real ra, real rb, real delta)
-{
-    return (fx & DEM_MCS_LEVER_CENTRES) ? (ra + rb) - delta : ra - (real)0.5 * delta;
-}
-DEM_INLINE real mcs_lever_wall(unsigned fx, real ri, real delta)
-{
-    return (fx & DEM_MCS_LEVER_CENTRES) ? (real)2 * (ri - delta) : ri - delta;
-}
-
-/* K of P = -(T_i + T_j) / K */
-DEM_INLINE real mcs_divisor(unsigned fx)
-{
-    return (fx & DEM_MCS_SCALE_TRACE) ? (real)2 : (fx & DEM_MCS_SCALE_TEXT) ? (real)3 : (real)6;
-}
+/* stress_term, the MC-stress levers and divisor: laws/mc_stress.h */
 
 /* Adds one contact to a tensor sum: c * n (x) n with c = stress_term(...). */
 DEM_INLINE void stress_add(real *st, real c, vec3 n)
@@ -102,7 +74,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
             delta = g.delta, rstar = ri, n = g.n, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
             arm = tensor ? ri - g.delta : mcs_lever_wall(fx, ri, g.delta);
         }
-        real c = stress_term(arm, hm_elastic(pairmat[PM_STRIDE * (mi * nmat + other) + PM_ESTAR], rstar, delta), iv);
+        real c = stress_term(arm, law_elastic(fx, pairmat + PM_STRIDE * (mi * nmat + other), rstar, delta), iv);
         if (tensor)
             stress_add(st, c, n);
         else
@@ -115,28 +87,6 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
         out[i] = tr;
 }
 
-/* MC-stress extra normal force of a pair (a, b) with overlap delta, effective radius rstar, elastic force fh. */
-DEM_INLINE real mc_stress_pair(unsigned fx, DEM_CONST_GLOBAL real *pm, DEM_CONST_GLOBAL real *trace,
-                               DEM_CONST_GLOBAL real *invvol, int a, int b, real ra, real rb, real delta, real rstar,
-                               real fh)
-{
-    real ta = trace[a], tb = trace[b];
-    if (!(fx & DEM_MCS_OWN_IN)) {
-        ta = ta - stress_term(mcs_lever_pair(fx, ra, rb, delta), fh, invvol[a]);
-        tb = tb - stress_term(mcs_lever_pair(fx, rb, ra, delta), fh, invvol[b]);
-    }
-    return -(pm[PM_MC_STRESS] * rstar * delta) * ((ta + tb) / mcs_divisor(fx));
-}
-
-/* MC-stress extra normal force of particle i on a wall (pmi: the pair-table row of i's own material). */
-DEM_INLINE real mc_stress_wall(unsigned fx, DEM_CONST_GLOBAL real *pmi, DEM_CONST_GLOBAL real *trace,
-                               DEM_CONST_GLOBAL real *invvol, int i, real ri, real delta, real fh)
-{
-    real ti = trace[i];
-    if (!(fx & DEM_MCS_OWN_IN))
-        ti = ti - stress_term(mcs_lever_wall(fx, ri, delta), fh, invvol[i]);
-    return -(pmi[PM_MC_STRESS] * ri * delta) * ((ti + ti) / mcs_divisor(fx));
-}
 DEM_ITEM(stress_trace)
 {
     stress_at(fx, 0, i, nbr_start, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,

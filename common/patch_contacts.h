@@ -26,8 +26,8 @@
  * |x_i - p| < r_i, a contact with normal n = (x_i - p)/|x_i - p| and overlap d = r_i - |x_i - p| (or, once the
  * centre has crossed the patch's plane, along the patch's normal: patch_forces), unless another
  * touching triangle of the same sphere removes it (Table 1 as patch.h extends it, patch_beats; the sphere's touching
- * triangles are all in its row). The law is the project's Hertz-Mindlin (hertz_mindlin.h), its overlap through the
- * barrier of patch_law_overlap, with the pair table entry of the sphere's and the triangle's first vertex's
+ * triangles are all in its row). The law is the run's (laws/laws.h: law_force; the multi-contact laws act there as
+ * Hertz-Mindlin), its overlap through the barrier of patch_law_overlap, with the pair table entry of the sphere's and the triangle's first vertex's
  * materials, r* = r_i (a flat patch), the patch's inverse mass the barycentric mean of
  * its vertices' (w0/m_a + w1/m_b + w2/m_c: a pinned patch is a wall), the contact point's velocity on the patch
  * w0 v_a + w1 v_b + w2 v_c (Fig. 3), and the sphere's contact point at the lever r_i - d, as for walls. The sphere
@@ -47,7 +47,7 @@
 #include "../include/dem_effects.h"
 #include "sorted_row.h"
 #include "patch.h"
-#include "hertz_mindlin.h"
+#include "laws/laws.h"
 
 DEM_INLINE int patch_is_vertex(DEM_CONST_GLOBAL int *vtri_start, int p) { return vtri_start[p + 1] > vtri_start[p]; }
 
@@ -351,7 +351,7 @@ DEM_ITEM(patch_forces)
         real law = patch_law_overlap(delta, ri);
         DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[i] * nmat + mat[a]);
         real invm_p = g.pp.w[0] * invmass[a] + g.pp.w[1] * invmass[b] + g.pp.w[2] * invmass[cc];
-        real mstar = hm_effective_mass(invmass[i], invm_p);
+        real mstar = law_effective_mass(invmass[i], invm_p);
         real arm = ri - delta;
         vec3 vp = v3_add(v3_add(v3_scale(v3_load(v, a), g.pp.w[0]), v3_scale(v3_load(v, b), g.pp.w[1])),
                          v3_scale(v3_load(v, cc), g.pp.w[2]));
@@ -373,7 +373,14 @@ DEM_ITEM(patch_forces)
                 }
             }
         }
-        hm_result r = hm_contact(fx, n, law, dem_sqrt(ri * law), mstar, v3_sub(vc, vp), pm, dt, h, (real)0);
+        law_in lc; /* the run's law at the patch's overlap (laws/laws.h); r* = r_i, as at a wall */
+        lc.site = LAW_AT_PATCH;
+        lc.a = lc.b = i, lc.ra = lc.rb = ri;
+        lc.n = n, lc.delta = law, lc.rstar = ri, lc.mstar = mstar, lc.vrel = v3_sub(vc, vp), lc.hist = h, lc.dt = dt;
+        lc.pm = lc.pmi = pm;
+        law_ctx none;
+        none.trace = none.invvol = pm, none.disp_a = none.disp_b = (real)0;
+        law_result r = law_force(fx, lc, none);
         if (fx & DEM_EFFECT_FRICTION) {
             v3_store(phist, slot, r.hist);
             ti = v3_sub(ti, v3_scale(v3_cross(n, r.ft), arm));

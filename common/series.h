@@ -18,7 +18,7 @@
 #define DEM_SERIES_H
 #include "vec3.h"
 #include "dem_layout.h"
-#include "hertz_mindlin.h"
+#include "laws/laws.h"
 #include "wall_forces.h"
 
 /* particle i's slot in row `row` of the ring */
@@ -84,9 +84,15 @@ DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nb
         wall_part_store(dst, k * nblocks + b, p[k]);
 }
 
-/* The elastic energy of a touching pair of radii ra, rb and overlap delta, as its lower id counts it */
-DEM_INLINE real series_pair_energy(real estar, real ra, real rb, real delta)
+/* The elastic energy of a touching pair of radii ra, rb and overlap delta, as its lower id counts it (pm: the pair's
+ * row of the pair table; the run's law: laws/laws.h) */
+DEM_INLINE real series_pair_energy(unsigned fx, DEM_CONST_GLOBAL real *pm, real ra, real rb, real delta)
 {
-    return hertz_energy(estar, ra * rb / (ra + rb), delta);
+    return law_energy(fx, pm, ra * rb / (ra + rb), delta);
+}
+/* The same given the elastic force fel the law returned for the pair (law_energy_kept: Hertz's needs no root) */
+DEM_INLINE real series_pair_energy_kept(unsigned fx, DEM_CONST_GLOBAL real *pm, real ra, real rb, real delta, real fel)
+{
+    return law_energy_kept(fx, pm, ra * rb / (ra + rb), delta, fel);
 }
 #endif /* DEM_SERIES_H */

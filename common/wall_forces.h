@@ -3,8 +3,8 @@
  *
  * A wall is a rigid body of infinite mass and radius: r* = r_i, m* = m_i (also on a die's bore and in a punch's cup,
  * which are curved: taken locally flat, as LIGGGHTS takes its walls; docs/tableting.md), the contact point lies on the wall
- * surface (lever arm r_i - d). The same Hertz-Mindlin law as between particles (hertz_mindlin.h) is used with the
- * wall's own material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
+ * surface (lever arm r_i - d). The same law as between particles (laws/laws.h: law_force) is used with the wall's own
+ * material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
  * the summation order of every particle's force. The force each wall receives is summed over particles in fixed
  * blocks (wall_reduce_*), the same way on every device: after contact_forces from the forces it kept
  * (DEM_KEEP_WALL_FORCES), or before it by evaluating the same contacts (wall_reduce_block).
@@ -12,7 +12,7 @@
 #ifndef DEM_WALL_FORCES_H
 #define DEM_WALL_FORCES_H
 #include "dem_kernels.h"
-#include "hertz_mindlin.h"
+#include "laws/laws.h"
 #include "contact_geometry.h"
 #include "particle_stress.h"
 #include "mc_strain.h"
@@ -26,15 +26,26 @@ typedef struct {
     vec3 n;     /* unit normal from the wall to the particle centre */
     real delta; /* overlap [m] */
     real arm;   /* lever arm of the contact point, r_i - delta [m] */
-    hm_result r;
+    law_result r;
 } wall_contact;
+
+/* The law's context of particle i's contact in wall slot `slot` (i * nwalls + k): the traces (MC-stress) and the
+ * displacement induced at the slot (MC-strain; the wall has none) */
+DEM_INLINE law_ctx wall_law_ctx(unsigned fx, int i, int slot, DEM_CONST_GLOBAL real *trace,
+                                DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_wall_disp)
+{
+    law_ctx ctx;
+    ctx.trace = trace, ctx.invvol = invvol;
+    ctx.disp_a = (fx & DEM_EFFECT_MC_STRAIN) ? mc_wall_disp[slot] : (real)0;
+    ctx.disp_b = (real)0;
+    return ctx;
+}
 
 DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                           DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri,
                                           real invm, int mi, DEM_CONST_GLOBAL real *pairmat, int nmat,
-                                          DEM_CONST_GLOBAL real *wall_hist, real dt, int old_touch,
-                                          DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
-                                          DEM_CONST_GLOBAL real *mc_wall_disp, DEM_CONST_GLOBAL unsigned *ride)
+                                          DEM_CONST_GLOBAL real *wall_hist, real dt, int old_touch, law_ctx ctx,
+                                          DEM_CONST_GLOBAL unsigned *ride)
 {
     wall_contact c;
     DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
@@ -46,23 +57,22 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     c.arm = ri - g.delta;
     if (!g.active)
         return c;
-    real mstar = hm_effective_mass(invm, (real)0);
+    law_in lc;
+    lc.site = LAW_AT_WALL;
+    lc.a = lc.b = i, lc.ra = lc.rb = ri;
+    lc.n = g.n, lc.delta = g.delta, lc.rstar = ri, lc.dt = dt;
+    lc.mstar = law_effective_mass(invm, (real)0);
     vec3 vc = vi, h = v3_zero();
     if (fx & DEM_EFFECT_FRICTION) {
         vc = v3_add(vi, v3_cross(wi, v3_scale(g.n, -c.arm)));
         if (old_touch)
             h = v3_load(wall_hist, slot);
     }
-    vec3 vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
-    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
-    real extra = (real)0, law_delta = g.delta;
-    if (fx & DEM_EFFECT_MC_STRAIN)
-        law_delta = mc_strain_overlap(g.delta, mc_wall_disp[slot], (real)0);
-    real srd = dem_sqrt(ri * law_delta);
-    if (fx & DEM_EFFECT_MC_STRESS) /* (mc_strain is off: law_delta is g.delta) */
-        extra = mc_stress_wall(fx, pairmat + PM_STRIDE * (mi * nmat + mi), trace, invvol, i, ri, g.delta,
-                               hm_elastic_srd(pm[PM_ESTAR], srd, g.delta));
-    c.r = hm_contact(fx, g.n, law_delta, srd, mstar, vrel, pm, dt, h, extra);
+    lc.vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
+    lc.hist = h;
+    lc.pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
+    lc.pmi = pairmat + PM_STRIDE * (mi * nmat + mi);
+    c.r = law_force(fx, lc, ctx);
     return c;
 }
 
@@ -84,19 +94,16 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     for (int k = 0; k < nwalls; k++) {
         int slot = i * nwalls + k, old_touch = (old_mask >> k) & 1u;
         wall_contact c = wall_contact_eval(fx, i, k, nwalls, wall_int, wall_real, xi, vi, wi, ri, invm, mi, pairmat,
-                                           nmat, wall_hist, dt, old_touch, trace, invvol, mc_wall_disp, ride);
+                                           nmat, wall_hist, dt, old_touch, wall_law_ctx(fx, i, slot, trace, invvol,
+                                                                                        mc_wall_disp), ride);
         if (c.active) {
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = c.r.fel;
             if (fx & DEM_KEEP_WALL_FORCES)
                 v3_store(wall_pf, k * n + i, c.r.force);
-            if (ela && c.delta > (real)0) { /* a sampled step (series.h): hertz_energy's bits, from the force at hand
-                                               unless MC-strain evaluated it at the induced overlap */
-                *ela += (fx & DEM_EFFECT_MC_STRAIN)
-                            ? hertz_energy(pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) +
-                                                   PM_ESTAR],
-                                           ri, c.delta)
-                            : hertz_energy_of_force(c.r.fel, c.delta);
+            if (ela && c.delta > (real)0) { /* a sampled step (series.h): the law's energy, from the force at hand */
+                *ela += law_energy_kept(fx, pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]),
+                                        ri, c.delta, c.r.fel);
                 *wcon += (real)1;
             }
             *fi = v3_add(*fi, c.r.force);
@@ -182,7 +189,8 @@ DEM_ITEM(wall_reduce_block)
             int j = order[q];
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
-                                               dt, (wall_mask[j] >> k) & 1u, trace, invvol, mc_wall_disp, ride);
+                                               dt, (wall_mask[j] >> k) & 1u,
+                                               wall_law_ctx(fx, j, j * nwalls + k, trace, invvol, mc_wall_disp), ride);
             if (c.active) {
                 p.f = v3_sub(p.f, c.r.force);
                 p.fn += v3_dot(c.r.force, c.n);

@@ -44,12 +44,9 @@
 DEM_KERNEL_LIST(DEM_REF_DECLARE)
 #undef DEM_REF_DECLARE
 
-/* The helpers of both precisions (suffix S): hertz_energy and the law's stiffnesses (kn, kt) at overlap delta
- * (common/series.h, hertz_mindlin.h); the closest feature of point i to triangle i, which of a list of contacts stay,
+/* The helpers of both precisions (suffix S): the closest feature of point i to triangle i, which of a list of contacts stay,
  * a sphere's overlap on a patch and the overlap the patch law is given (common/patch.h, patch_contacts.h). */
 #define DEM_REF_HELPERS(T, S)                                                                                        \
-    T dem_hertz_energy##S(T estar, T rstar, T delta);                                                                \
-    void dem_hertz_stiffness##S(T estar, T gstar, T rstar, T delta, T *kn, T *kt);                                   \
     void dem_patch_probe##S(int n, const T *p, const T *tri_x, int *kind, int *index, T *w, T *point);               \
     int dem_patch_keep##S(int i, int n, const int *id, const int *tri, const int *kind, const T *d2);                \
     T dem_patch_overlap##S(const T *p, const T *tri_x, unsigned flags, T radius);                                    \

@@ -84,7 +84,7 @@ cmp -s "$T/cpp_shared.log" "$T/cpp_static.log" || { cat "$T"/cpp_*.log; fail "th
 make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
 for f in lib/libdem.a "lib/libdem.so.$VERSION" "lib/$SONAME" lib/libdem.so lib/pkgconfig/libdem.pc include/dem.h \
          include/dem_effects.h include/dem_membrane.h include/dem_press.h share/libdem/kernels/program.cl \
-         share/libdem/common/dem_kernels.h share/libdem/common/dem_internal_bits.h share/libdem/include/dem_effects.h; do
+         share/libdem/common/dem_kernels.h share/libdem/common/laws/laws.h share/libdem/common/dem_internal_bits.h share/libdem/include/dem_effects.h; do
     [ -e "$T/stage/opt/libdem-check/$f" ] || fail "DESTDIR install lacks $f"
 done
 [ ! -e /opt/libdem-check ] || fail "DESTDIR install wrote outside the staging root"

@@ -2,7 +2,7 @@
  *   - gives that e in a simulated head-on collision on PoCL, within 0.05 % (measured: 0.033 % at worst), for e in
  *     {0.3, 0.5, 0.7, 0.9, 0.95}, at two impact speeds, which agree to 1e-6 (it must not depend on speed);
  *   - agrees with an independent integration written here: the physical collision m* d'' = -max(0, k d^(3/2) +
- *     c sqrt(1.5 k m*) d^(1/4) d') (the law of common/hertz_mindlin.h, k = 4/3 E* sqrt(r*)) with Heun's method
+ *     c sqrt(1.5 k m*) d^(1/4) d') (the law of common/laws/hertz_mindlin.h, k = 4/3 E* sqrt(r*)) with Heun's method
  *     at t_c / 200000, in SI units, not the library's scaled RK4 - to 1e-5 in e. */
 #include "test_util.h"
 #include <math.h>

@@ -667,7 +667,7 @@ int dem_set_effects(dem_sim *s, unsigned effects)
 {
     if (not_started(s))
         return DEM_ERR_STATE;
-    if (effects & ~(unsigned)DEM_EFFECT_ALL)
+    if (effects & ~(unsigned)(DEM_EFFECT_ALL | DEM_EFFECT_TEST_LAWS))
         return sim_fail(s, DEM_ERR_ARG, "effect mask 0x%x has bits of effects this version does not have", effects);
     if ((effects & DEM_EFFECT_MC_STRESS) && (effects & DEM_EFFECT_MC_STRAIN))
         return sim_fail(s, DEM_ERR_ARG, "mc_stress and mc_strain are two alternative normal laws: choose one");

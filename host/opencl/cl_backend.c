@@ -219,6 +219,13 @@ static void cl_destroy(dem_backend *b)
     free(b);
 }
 
+/* A test build (-DDEM_TEST_LAWS) builds its kernels with the test-only laws too (common/laws/laws.h) */
+#ifdef DEM_TEST_LAWS
+#define DEM_TEST_LAW_OPTION " -DDEM_TEST_LAWS"
+#else
+#define DEM_TEST_LAW_OPTION ""
+#endif
+
 static void fnv1a(uint64_t *h, const unsigned char *p, size_t n)
 {
     for (size_t k = 0; k < n; k++)
@@ -306,10 +313,10 @@ static int cl_program_build(dem_backend *b, const dem_setup *s, char *err, size_
     char options[8192], src[4200];
     snprintf(options, sizeof options,
              "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
-             "-I%s/common -I%s/include %s %s",
+             "-I%s/common -I%s/include %s %s%s",
              s->real_size, s->effects, (unsigned long long)hash, dir, dir, dir,
              s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
-             s->extra_build_options ? s->extra_build_options : "");
+             s->extra_build_options ? s->extra_build_options : "", DEM_TEST_LAW_OPTION);
     int w = snprintf(src, sizeof src, "#include \"%s/%s\"\n", dir, PROGRAM_FILE);
     if (w < 0 || (size_t)w >= sizeof src) {
         snprintf(err, errlen, "the kernel source folder '%s' is too long a path", dir);

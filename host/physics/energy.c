@@ -1,10 +1,13 @@
 /* energy.c - energy bookkeeping on the host, in double precision, from the backend's current state.
- * Elastic: Hertz normal energy 8/15 E* sqrt(r*) d^(5/2) per contact (the integral of Eq. 3's elastic part), walls
- * included, and k e^2 / 2 per spring (e its extension); the Mindlin tangential spring's energy is not counted (zero
- * when mu = 0). */
+ * Elastic: the run's contact law's energy per contact (common/laws/laws.h, law_energy, compiled here in double: for
+ * Hertz-Mindlin and the multi-contact laws Hertz's 8/15 E* sqrt(r*) d^(5/2), the integral of Eq. 3's elastic part),
+ * walls included, and k e^2 / 2 per spring (e its extension); the Mindlin tangential spring's energy is not counted
+ * (zero when mu = 0). */
+#define DEM_REAL_SIZE 8
+#include "laws/laws.h"
 #include "sim.h"
 #include "dem_layout.h"
-#include "ref_kernels.h" /* the reference's Hertz energy, patch overlaps and final wall sum, both precisions */
+#include "ref_kernels.h" /* the reference's patch overlaps and final wall sum */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,25 +18,34 @@ static double pair_estar(const dem_sim *s, int a, int b)
     return 1 / ((1 - p->poisson * p->poisson) / p->young + (1 - q->poisson * q->poisson) / q->young);
 }
 
+/* The pair-table row of materials a and b as the law reads it, in double: the run's row widened, E* from the
+ * materials in double (an fp32 run's energies are not rounded through its float table) */
+static void pair_row(const dem_sim *s, int a, int b, double *row)
+{
+    for (int q = 0; q < PM_STRIDE; q++)
+        row[q] = sim_real_at(s->setup.pairmat, PM_STRIDE * (size_t)(a * s->nmat + b) + q, s->setup.real_size);
+    row[PM_ESTAR] = pair_estar(s, a, b);
+}
+
 /* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
 static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal);
 
-/* The elastic energy of a patch contact of overlap d (radius r): the work of the force F(d) = Hertz(law(d)) of
- * common/patch_contacts.h from 0 to d. Hertz's 8/15 E* sqrt(r) d^(5/2) up to the barrier (0.8 r, as there), then
- * Simpson's rule on 256 intervals over the rest. */
-static double patch_contact_energy(double estar, double r, double d)
+/* The elastic energy of a patch contact of overlap d (radius r): the work of the force F(d) = law(barrier(d)) of
+ * common/patch_contacts.h from 0 to d. The law's energy up to the barrier (0.8 r, as there), then Simpson's rule on
+ * 256 intervals over the rest. */
+static double patch_contact_energy(unsigned fx, const double *row, double r, double d)
 {
     double db = 0.8 * r;
     if (!(d > db))
-        return dem_hertz_energy_f64(estar, r, d);
+        return law_energy(fx, row, r, d);
     const int m = 256;
     double sum = 0, step = (d - db) / m;
     for (int k = 0; k <= m; k++) {
         double law = dem_patch_law_f64(db + k * step, r);
-        sum += 4.0 / 3 * estar * sqrt(r) * law * sqrt(law) * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
+        sum += law_elastic(fx, row, r, law) * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
     }
-    return dem_hertz_energy_f64(estar, r, db) + sum * step / 3;
+    return law_energy(fx, row, r, db) + sum * step / 3;
 }
 
 /* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
@@ -51,9 +63,11 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
             double tx[9];
             for (int v = 0; v < 3; v++)
                 memcpy(tx + 3 * v, x + 3 * s->tri[3 * t + v], sizeof(double) * 3);
-            double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i]);
-            if (d > 0)
-                en->elastic += patch_contact_energy(pair_estar(s, s->mat[i], s->mat[s->tri[3 * t]]), s->radius[i], d);
+            double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i]), row[PM_STRIDE];
+            if (d > 0) {
+                pair_row(s, s->mat[i], s->mat[s->tri[3 * t]], row);
+                en->elastic += patch_contact_energy(s->setup.effects, row, s->radius[i], d);
+            }
             en->patch_contacts++;
         }
     free(cnt), free(list), free(touch);
@@ -229,8 +243,9 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
             double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             if (delta > 0) {
-                double rs = r * s->radius[j] / (r + s->radius[j]);
-                en->elastic += dem_hertz_energy_f64(pair_estar(s, s->mat[i], s->mat[j]), rs, delta);
+                double rs = r * s->radius[j] / (r + s->radius[j]), row[PM_STRIDE];
+                pair_row(s, s->mat[i], s->mat[j], row);
+                en->elastic += law_energy(s->setup.effects, row, rs, delta);
                 en->contacts++;
             }
         }
@@ -240,7 +255,9 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             const dem_wall *wl = &s->walls[k];
             double delta = dem_wall_overlap(wl, s->wall_pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
             if (delta > 0) {
-                en->elastic += dem_hertz_energy_f64(pair_estar(s, s->mat[i], wl->material), r, delta);
+                double row[PM_STRIDE];
+                pair_row(s, s->mat[i], wl->material, row);
+                en->elastic += law_energy(s->setup.effects, row, r, delta);
                 en->wall_contacts++;
             }
         }

@@ -1,4 +1,4 @@
-/* restitution.c - the damping factor c of hertz_mindlin.h for a requested coefficient of restitution e.
+/* restitution.c - the damping factor c of common/laws/hertz_mindlin.h for a requested coefficient of restitution e.
  *
  * With f_n = k d^(3/2) + c sqrt(1.5 k m*) d^(1/4) d' (clamped at zero; k = 4/3 E* sqrt(r*)), scaling
  * d = d0 x, t = t0 s with t0^2 = m* / (k d0^(1/2)) and d0 = v t0 turns the collision into

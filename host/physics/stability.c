@@ -10,10 +10,11 @@
  *   normal      omega_n,c^2 = k_n,c (1/m_i + 1/m_j)
  *   tangential  omega_t,c^2 = k_t,c (1/m_i + 1/m_j + a_i^2/I_i + a_j^2/I_j)   (the contact point's sliding and
  *                                                                           both spheres' rolling: a the lever arm)
- * with k_n = 2 E* sqrt(r* d), k_t = 8 G* sqrt(r* d) the law's stiffnesses at the current overlap (hertz_mindlin.h;
- * a wall is immovable, 1/m_j = a_j^2/I_j = 0, r* = r_i). The particle's frequency of each kind is the root of the
- * sum over its contacts (Gershgorin's bound for the particle's row of the stiffness matrix). The damping,
- * c sqrt(k m*) per contact (hertz_mindlin.h), is a damping ratio zeta = c/2 in the normal mode and c/2 sqrt(kappa)
+ * with k_n, k_t the run's law's stiffnesses at the current overlap (common/laws/laws.h, law_stiffness, compiled here
+ * in double; Hertz-Mindlin's k_n = 2 E* sqrt(r* d), k_t = 8 G* sqrt(r* d): laws/hertz_mindlin.h; a wall is immovable,
+ * 1/m_j = a_j^2/I_j = 0, r* = r_i). The particle's frequency of each kind is the root of the sum over its contacts
+ * (Gershgorin's bound for the particle's row of the stiffness matrix). The damping, c sqrt(k m*) per contact
+ * (laws/hertz_mindlin.h), is a damping ratio zeta = c/2 in the normal mode and c/2 sqrt(kappa)
  * in the tangential one (kappa: the tangential mode's inverse mass over 1/m_i + 1/m_j, 3.5 for like spheres); the
  * largest of a particle's contacts counts. An explicit step of a damped oscillator is stable for
  * omega dt < 2 (sqrt(1 + zeta^2) - zeta) (2 undamped; 0.45 for the tangential mode at e = 0.1, whose c is 2.27). The
@@ -36,9 +37,10 @@
  * adds up; summing it instead spread the onsets over 1.5-5). Hence DEM_STABILITY_LIMIT 1.2 for the warning - a
  * heavily damped packing between 1 and 1.2 may creep up slowly - and DEM_STABILITY_TARGET 0.7 for the advice.
  * Springs, patches and membranes are not counted. */
+#define DEM_REAL_SIZE 8
+#include "laws/laws.h"
 #include "sim.h"
 #include "dem_layout.h"
-#include "ref_kernels.h" /* dem_hertz_stiffness_f64 */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -89,9 +91,14 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
         e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     if (!e)
         sim_widen(raw, x, n3, rs);
-    /* the run's pair table (as the kernels have it): E*, G* and the damping c = PM_DAMP_N / sqrt(2 E*) */
+    /* the run's pair table (as the kernels have it), a row widened to double for the law; the damping
+     * c = PM_DAMP_N / sqrt(2 E*) */
     const void *pt = s->setup.pairmat;
+    double row[PM_STRIDE];
 #define PAIR(a, b, q) sim_real_at(pt, PM_STRIDE * (size_t)((a) * nm + (b)) + (q), rs)
+#define ROW(a, b)                                                                                                    \
+    for (int q = 0; q < PM_STRIDE; q++)                                                                              \
+        row[q] = PAIR(a, b, q);
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
     for (int i = 0; !e && i < n; i++) {
         if (s->pflags[i] & DEM_PARTICLE_FIXED)
@@ -107,8 +114,9 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
             if (!(delta > 0))
                 continue;
             int a = s->mat[i], b = s->mat[j];
-            double estar = PAIR(a, b, PM_ESTAR), gstar = PAIR(a, b, PM_GSTAR), kn, kt;
-            dem_hertz_stiffness_f64(estar, gstar, ri * rj / (ri + rj), delta, &kn, &kt);
+            double estar = PAIR(a, b, PM_ESTAR), kn, kt;
+            ROW(a, b)
+            law_stiffness(fx, row, ri * rj / (ri + rj), delta, &kn, &kt);
             int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
             double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
             double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
@@ -124,13 +132,15 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
             if (!(delta > 0))
                 continue;
             int a = s->mat[i], b = wl->material;
-            double estar = PAIR(a, b, PM_ESTAR), gstar = PAIR(a, b, PM_GSTAR), kn, kt;
-            dem_hertz_stiffness_f64(estar, gstar, ri, delta, &kn, &kt);
+            double estar = PAIR(a, b, PM_ESTAR), kn, kt;
+            ROW(a, b)
+            law_stiffness(fx, row, ri, delta, &kn, &kt);
             double ai = ri - delta; /* a wall contact's lever arm (wall_forces.h) */
             double c = damping ? PAIR(a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
             add_contact(&pm[i], kn, friction ? kt : 0, mi, ai * ai * roti, c);
         }
     }
+#undef ROW
 #undef PAIR
     double dt = s->dt;
     for (int i = 0; !e && i < n; i++) {

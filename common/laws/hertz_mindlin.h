@@ -1,4 +1,5 @@
-/* hertz_mindlin.h - the Hertz-Mindlin contact law of seed 000 section 2 (Eq. 2-6), written once.
+/* hertz_mindlin.h - the Hertz-Mindlin contact law of seed 000 section 2 (Eq. 2-6), written once: a law unit
+ * (law.h; listed in laws.h with DEM_EFFECT_HERTZ, the law every run has unless another law of the list is on).
  *
  * Normal (Eq. 3):   f_n = 4/3 E* sqrt(r*) d^(3/2) - c sqrt(S_n m*) v_n,   S_n = 2 E* sqrt(r* d)
  *                   d^(3/2) sqrt(r*) is evaluated as sqrt(r* d) * d (only + - * / sqrt, see dem_real.h).
@@ -15,10 +16,13 @@
  *          q = sqrt(sqrt(r* d) m*); the pair table holds c sqrt(2 E*) and c sqrt(8 G*) (host-computed), so one
  *          square root serves both and no transcendental function is evaluated on the device.
  *
- * Multi-contact models enter through two arguments and leave the law itself alone: `delta` is the overlap the law
- *          sees (MC-strain passes the geometric overlap plus the displacements induced by the other contacts, Eq. 8)
- *          and `fn_extra` is added to the elastic normal force before damping and the clamp (MC-stress, Eq. 10;
- *          only with DEM_EFFECT_MC_STRESS, so other runs compile exactly the classical law).
+ * Multi-contact laws (mc_stress.h, mc_strain.h) are Hertz-Mindlin with another normal force and reach hm_contact
+ *          through two arguments: `delta` is the overlap the law sees (MC-strain passes the geometric overlap plus
+ *          the displacements induced by the other contacts, Eq. 8) and `fn_extra` is added to the elastic normal
+ *          force before damping and the clamp (MC-stress, Eq. 10; only with DEM_EFFECT_MC_STRESS, so other runs
+ *          compile exactly the classical law).
+ *
+ * Pair-table columns (dem_layout.h): E*, G*, mu and the two damping factors.
  *
  * Effects (dem_effects.h): without DEM_EFFECT_DAMPING the damping terms and their square root are left out; without
  *          DEM_EFFECT_FRICTION the whole tangential part is (no history, no torque).
@@ -28,16 +32,9 @@
  */
 #ifndef DEM_HERTZ_MINDLIN_H
 #define DEM_HERTZ_MINDLIN_H
-#include "vec3.h"
-#include "dem_layout.h"
-#include "../include/dem_effects.h"
+#include "law.h"
 
-typedef struct {
-    real fel;   /* elastic Hertz normal force 4/3 E* sqrt(r*) d^(3/2) of the overlap given [N] */
-    vec3 force; /* total contact force on a [N] */
-    vec3 ft;    /* its tangential part [N] (torques) */
-    vec3 hist;  /* new elastic tangential force to store [N] */
-} hm_result;
+#define LAW_COLUMNS_hertz_mindlin(C) C(PM_ESTAR) C(PM_GSTAR) C(PM_MU) C(PM_DAMP_N) C(PM_DAMP_T)
 
 /* Rotate the stored tangential force into the plane normal to n, keeping its magnitude. */
 DEM_INLINE vec3 hm_rotate_history(vec3 h, vec3 n)
@@ -64,9 +61,9 @@ DEM_INLINE real hm_elastic(real estar, real rstar, real delta)
 }
 
 /* The elastic energy stored in a Hertz contact: the work of hm_elastic from 0 to delta, 2/5 F delta
- * = 8/15 E* sqrt(r*) delta^(5/2) [J]. The host's energies in double and the
- * series rows (series.h) use this function (reference/series.c exports it); hertz_energy_of_force is the same from
- * the elastic force at delta, for a caller that has it (contact_pairs in a sampled step). */
+ * = 8/15 E* sqrt(r*) delta^(5/2) [J]. The host's energies in double (host/physics/energy.c) and the series rows
+ * (series.h) reach it through law_energy; hertz_energy_of_force is the same from the elastic force at delta, for a
+ * caller that has it (contact_pairs in a sampled step). */
 DEM_INLINE real hertz_energy_of_force(real fel, real delta)
 {
     return (real)2 / (real)5 * fel * delta;
@@ -78,7 +75,7 @@ DEM_INLINE real hertz_energy(real estar, real rstar, real delta)
 
 /* The law's stiffnesses at an overlap, given srd = sqrt(r* delta): normal dF/d(delta) = 2 E* sqrt(r* d) (S_n of Eq. 3's
  * damping) and tangential k_t = 8 G* sqrt(r* d) (Eq. 4). hm_contact uses the tangential one; the host's stability
- * estimate (host/physics/stability.c) both. */
+ * estimate (host/physics/stability.c) both, through law_stiffness. */
 DEM_INLINE real hm_normal_stiffness(real estar, real srd)
 {
     return (real)2 * estar * srd;
@@ -89,14 +86,15 @@ DEM_INLINE real hm_tangential_stiffness(real gstar, real srd)
 }
 
 /* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */
-DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
+DEM_INLINE law_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
                                 DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
 {
     const real estar = pm[PM_ESTAR];
-    hm_result r;
+    law_result r;
     real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
     real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
 
+    r.active = 1;
     /* normal */
     r.fel = hm_elastic_srd(estar, srd, delta);
     real fn = r.fel;
@@ -136,10 +134,27 @@ DEM_INLINE hm_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real 
     return r;
 }
 
-/* Effective mass of two bodies given inverse masses; 0 when both are immovable (no damping then). */
-DEM_INLINE real hm_effective_mass(real invm_a, real invm_b)
+/* ---- the law unit (law.h) ---- */
+DEM_INLINE law_result hertz_mindlin_force(unsigned fx, law_in c, law_ctx ctx)
 {
-    real s = invm_a + invm_b;
-    return s > (real)0 ? (real)1 / s : (real)0;
+    return hm_contact(fx, c.n, c.delta, dem_sqrt(c.rstar * c.delta), c.mstar, c.vrel, c.pm, c.dt, c.hist, (real)0);
+}
+DEM_INLINE real hertz_mindlin_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+{
+    return hm_elastic(pm[PM_ESTAR], rstar, delta);
+}
+DEM_INLINE real hertz_mindlin_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+{
+    return hertz_energy(pm[PM_ESTAR], rstar, delta);
+}
+DEM_INLINE real hertz_mindlin_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel)
+{
+    return hertz_energy_of_force(fel, delta);
+}
+DEM_INLINE void hertz_mindlin_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real *kn, real *kt)
+{
+    real srd = dem_sqrt(rstar * delta);
+    *kn = hm_normal_stiffness(pm[PM_ESTAR], srd);
+    *kt = hm_tangential_stiffness(pm[PM_GSTAR], srd);
 }
 #endif /* DEM_HERTZ_MINDLIN_H */
