@@ -17,7 +17,12 @@
  * so the host code that reads device buffers by storage place needs no map; the calls that take or return
  * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through sid / order (sim_api,
  * sim_dev): the stable id of the particle at each place is its id of dem_start.
- * Membranes, patches and riders name particles in their own tables: a run with them keeps its storage order. */
+ * Membranes, patches and riders name particles by stable id in their tables (springs, triangles, hinges, the channel's
+ * starts, the vertices' triangles, riders: common/springs.h, patch_contacts.h), which therefore stay as they are; the
+ * kernels find a particle's place through ORDER. What is kept per particle for them moves here like any other
+ * per-particle buffer: RIDE, HOLD and the spheres' patch rows with their history (PCOUNT, PLIST, PHIST, PTOUCH; the
+ * patch build that follows in this rebuild carries them over). The vertex rows (VCOUNT, VLIST: stable ids) and the
+ * patch records (PREC) are rewritten before they are read: the build, the forces of the next step. */
 #include "sim.h"
 #include <math.h>
 #include <stdlib.h>
@@ -32,8 +37,8 @@ typedef struct {
 
 /* Every DEM_BUFFERS entry sized by particles; tests/test_particle_order.c reorders at every rebuild, so a buffer
  * missing here changes the bits there. Not here: what a rebuild or a step rewrites before reading it (cells, in/own
- * counts and starts, the pair arrays, the walls' partial sums), OWN_START, SID and ORDER (below), and the membrane,
- * patch and rider tables (a run with them is not reordered). */
+ * counts and starts, the pair arrays, the walls' partial sums, the vertex rows and the patch records), OWN_START, SID
+ * and ORDER (below), and the membrane, patch and rider tables (by stable id: they stay). */
 static const moved_buffer moved[] = {
     {BUF_X, LAYOUT_PARTICLE, 0},          {BUF_V, LAYOUT_PARTICLE, 0},         {BUF_W, LAYOUT_PARTICLE, 0},
     {BUF_FORCE, LAYOUT_PARTICLE, 0},      {BUF_TORQUE, LAYOUT_PARTICLE, 0},    {BUF_RADIUS, LAYOUT_PARTICLE, 0},
@@ -42,7 +47,8 @@ static const moved_buffer moved[] = {
     {BUF_WALL_HIST, LAYOUT_PARTICLE, 0},  {BUF_WALL_MASK, LAYOUT_PARTICLE, 0}, {BUF_TRACE, LAYOUT_PARTICLE, 0},
     {BUF_STRESS, LAYOUT_PARTICLE, 0},     {BUF_MC_WALL_FN, LAYOUT_PARTICLE, 0}, {BUF_MC_WALL_DISP, LAYOUT_PARTICLE, 0},
     {BUF_RIDE, LAYOUT_PARTICLE, 0},       {BUF_HOLD, LAYOUT_PARTICLE, 0},      {BUF_WALL_PF, LAYOUT_GROUPS, 3},
-    {BUF_SERIES_RING, LAYOUT_GROUPS, SE_STRIDE},
+    {BUF_SERIES_RING, LAYOUT_GROUPS, SE_STRIDE}, {BUF_PCOUNT, LAYOUT_PARTICLE, 0},   {BUF_PLIST, LAYOUT_PARTICLE, 0},
+    {BUF_PHIST, LAYOUT_PARTICLE, 0},      {BUF_PTOUCH, LAYOUT_PARTICLE, 0},
 };
 
 /* dst[k] = src[from[k]] for n items of `item` bytes */
@@ -74,8 +80,7 @@ static double spacing(const double *x, int a, int b)
 
 int sim_reorder_due(const dem_sim *s)
 {
-    return s->cfg.reorder > 0 && !s->reorder_hold && s->n > 1 && s->rebuilds % s->cfg.reorder == 0 &&
-           !s->nsprings && !s->ntri && !s->nhinges && !s->npatch && !s->natt;
+    return s->cfg.reorder > 0 && !s->reorder_hold && s->n > 1 && s->rebuilds % s->cfg.reorder == 0;
 }
 
 static int device_fail(dem_sim *s) { return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err); }
