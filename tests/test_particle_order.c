@@ -433,6 +433,13 @@ static void test_membrane_reordered(void **st)
         if (memcmp(&ea, &eb, sizeof ea))
             fail_msg("%s: energies differ (elastic %.17g against %.17g)", where, ea.elastic, eb.elastic);
         same_patch_contacts(a, b, where);
+        dem_time_scales ta, tb; /* the springs' and hinges' periods: their tables by id, the host's arrays stored */
+        assert_int_equal(dem_time_scales_get(a, 0, &ta), 0);
+        assert_int_equal(dem_time_scales_get(b, 0, &tb), 0);
+        if (memcmp(&ta.spring_period, &tb.spring_period, sizeof(double)) ||
+            memcmp(&ta.hinge_period, &tb.hinge_period, sizeof(double)))
+            fail_msg("%s: spring period %.17g against %.17g, hinge period %.17g against %.17g", where,
+                     ta.spring_period, tb.spring_period, ta.hinge_period, tb.hinge_period);
         if (dem_rebuild_count(a) != dem_rebuild_count(b))
             fail_msg("%s: %ld rebuilds against %ld", where, dem_rebuild_count(a), dem_rebuild_count(b));
         printf("  %s: %ld rebuilds, stored anew %ld times, %ld patch contacts, %ld contacts\n", where,
