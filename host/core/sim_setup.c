@@ -392,8 +392,9 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
         }
 }
 
-/* The springs' and triangles' tables and their contribution channel (common/springs.h): particle p's records at
- * chan_start[p] .. chan_start[p+1] - its spring ends in ascending spring index, then its triangle vertices in
+/* The springs' and triangles' tables and their contribution channel (common/springs.h), naming particles by stable id
+ * (packed at dem_start, where each particle is stored at its id; they stay so when it is stored anew, reorder.c):
+ * particle p's records at chan_start[p] .. chan_start[p+1] - its spring ends in ascending spring index, then its triangle vertices in
  * ascending triangle index - so that every device adds them in one order. chan_slot: 2 per spring, then 3 per
  * triangle. A rest length < 0 is the distance of the initial positions; the damping constant 2 gamma
  * sqrt(k m_eff) is computed here in double. */
@@ -564,7 +565,8 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     return skin;
 }
 
-/* The patch triangles of each particle (common/patch_contacts.h): vtri_start / vtri_list in ascending triangle id; the
+/* The patch triangles of each particle by stable id (common/patch_contacts.h): vtri_start / vtri_list in ascending
+ * triangle id; the
  * search reach (1.5 x the longest patch edge: the device widens it when an edge reaches it) and the largest radius of
  * the particles that are not patch vertices. */
 static int pack_patches(dem_sim *s, dem_setup *u)
