@@ -28,6 +28,8 @@ typedef struct {
     const void *pairmat;    /* real[PM_STRIDE*nmat*nmat] */
     const int *wall_int;    /* int[WI_STRIDE*nwalls] */
     const void *wall_real;  /* real[W_STRIDE*nwalls] */
+    /* The tables below name particles by stable id (sid), never by storage place: they stay as they are when the
+     * particles are stored anew (host/core/reorder.c); the kernels read a particle's data at order[id]. */
     int nsprings;           /* springs (seed 001 Eq. 6): their particles, constants, and their records' channel */
     const int *spring_int;  /* int[2*nsprings] */
     const void *spring_real; /* real[SP_STRIDE*nsprings] */
@@ -39,7 +41,8 @@ typedef struct {
     const void *hinge_real; /* real[HG_STRIDE*nhinges] */
     const int *chan_slot;   /* int[2*nsprings + 3*ntriangles + 4*nhinges]: where each spring end's, triangle vertex's
                                and hinge vertex's record goes */
-    const int *chan_start;  /* int[n+1]: each particle's records: its springs, its triangles, its hinges, in order */
+    const int *chan_start;  /* int[n+1], by stable id: each particle's records: its springs, its triangles, its hinges,
+                               in order */
     int nriders;            /* particles riding on walls (dem_attach_to_wall) */
     const int *rider_int;   /* int[2*nriders]: particle, wall */
     const void *rider_off;  /* real[3*nriders]: the particle's place relative to its wall's point */
@@ -58,7 +61,7 @@ typedef struct {
     double dt, gravity[3], skin, half_skin2;
     int maxn; /* slots each neighbour-row set starts with (its rows packed together) */
     /* patch contacts (patch_contacts.h) */
-    const int *vtri_start;  /* int[n+1]: each particle's patch triangles at vtri_list[vtri_start[p] ..] */
+    const int *vtri_start;  /* int[n+1], by stable id: each particle's patch triangles at vtri_list[vtri_start[p] ..] */
     const int *vtri_list;   /* int[3*ntriangles]: ascending triangle ids per particle (the tail unused) */
     double reach, rmax;     /* the search reach (> every patch edge) and the largest sphere radius [m] */
     int maxp, maxv;         /* initial capacities of the sphere and vertex patch rows */

@@ -81,7 +81,9 @@ DEM_INLINE real hinge_stiffness(hinge_geom g, real kel) { return kel * (g.le * g
 
 DEM_ITEM(hinge_forces)
 {
-    int p1 = hinge_int[4 * i], p2 = hinge_int[4 * i + 1], p3 = hinge_int[4 * i + 2], p4 = hinge_int[4 * i + 3];
+    /* stable ids to places */
+    int p1 = order[hinge_int[4 * i]], p2 = order[hinge_int[4 * i + 1]], p3 = order[hinge_int[4 * i + 2]],
+        p4 = order[hinge_int[4 * i + 3]];
     vec3 x1 = v3_load(x, p1), x2 = v3_load(x, p2), x3 = v3_load(x, p3), x4 = v3_load(x, p4);
     hinge_geom g = hinge_geometry(x1, x2, x3, x4);
     vec3 u[4] = {v3_zero(), v3_zero(), v3_zero(), v3_zero()};

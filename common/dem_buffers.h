@@ -124,10 +124,10 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(HOLD, UINT, N, DEM_EFFECT_CONSTRAINTS, -1, SETUP(hold), MESH, P(1), NO)                                       \
     ENTRY(VTRI_START, INT, N + 1, DEM_EFFECT_PATCHES, -1, SETUP(vtri_start), MESH, STAY, NO)                            \
     ENTRY(VTRI_LIST, INT, 3 * NT, DEM_EFFECT_PATCHES, -1, SETUP(vtri_list), MESH, STAY, NO)                             \
-    ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                                 \
-    ENTRY(PLIST, INT, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                           \
-    ENTRY(PHIST, REAL, 3 * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                      \
-    ENTRY(PTOUCH, BYTE, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                         \
+    ENTRY(PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, P(1), NO)                                                 \
+    ENTRY(PLIST, INT, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, P(MAXP), NO)                                        \
+    ENTRY(PHIST, REAL, 3 * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, P(3 * MAXP), NO)                               \
+    ENTRY(PTOUCH, BYTE, N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, P(MAXP), NO)                                      \
     ENTRY(PREC, REAL, PK_STRIDE * N * MAXP, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                               \
     ENTRY(OLD_PCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                             \
     ENTRY(OLD_PLIST, INT, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                      \

@@ -74,7 +74,7 @@
     F(I, int, n, N) A(R, real, skin, SKIN) A(I, int, ncx, NCX) A(I, int, ncy, NCY) A(I, int, ncz, NCZ)               \
     A(BIN, real, x, X) A(BIN, real, radius, RADIUS) A(BIN, int, cell_of, CELL_OF) A(BIN, int, cell_start, CELL_START) \
     A(BIN, int, cell_particles, CELL_PARTICLES) A(BIN, int, vtri_start, VTRI_START) A(I, int, nmat, NMAT)            \
-    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BOUT, int, flags, FLAGS)
+    A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BOUT, int, flags, FLAGS) A(BIN, int, sid, SID)
 #define DEM_ARGS_nbr_count(F, A) DEM_ARGS_nbr_walk(F, A) A(NOUT, int, nbr_count, COUNT)
 #define DEM_ITEMS_nbr_count n
 #define DEM_ARGS_nbr_build(F, A)                                                                                     \
@@ -196,26 +196,29 @@
 /* ---- springs.h ---- */
 #define DEM_ARGS_spring_forces(F, A)                                                                                 \
     F(I, int, nsprings, NSPRINGS) A(BIN, real, x, X) A(BIN, real, v, V) A(BIN, int, spring_int, SPRING_INT)         \
-    A(BIN, real, spring_real, SPRING_REAL) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
+    A(BIN, real, spring_real, SPRING_REAL) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)        \
+    A(BIN, int, order, ORDER)
 #define DEM_ITEMS_spring_forces nsprings
 /* ---- pressure.h ---- */
 #define DEM_ARGS_pressure_forces(F, A)                                                                               \
     F(I, int, ntriangles, NTRIANGLES) A(I, int, nsprings, NSPRINGS) A(R, real, pressure, PRESSURE)                  \
-    A(BIN, real, x, X) A(BIN, int, tri, TRI) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
+    A(BIN, real, x, X) A(BIN, int, tri, TRI) A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)     \
+    A(BIN, int, order, ORDER)
 #define DEM_ITEMS_pressure_forces ntriangles
 /* ---- bending.h ---- */
 #define DEM_ARGS_hinge_forces(F, A)                                                                                  \
     F(I, int, nhinges, NHINGES) A(I, int, nsprings, NSPRINGS) A(I, int, ntriangles, NTRIANGLES) A(BIN, real, x, X)  \
     A(BIN, real, v, V) A(BIN, int, hinge_int, HINGE_INT) A(BIN, real, hinge_real, HINGE_REAL)                       \
-    A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC)
+    A(BIN, int, chan_slot, CHAN_SLOT) A(BOUT, real, chan_rec, CHAN_REC) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_hinge_forces nhinges
 #define DEM_ARGS_channel_gather(F, A)                                                                                \
-    F(I, int, n, N) A(BIN, int, chan_start, CHAN_START) A(BIN, real, chan_rec, CHAN_REC) A(BOUT, real, force, FORCE)
+    F(I, int, n, N) A(BIN, int, chan_start, CHAN_START) A(BIN, real, chan_rec, CHAN_REC) A(BOUT, real, force, FORCE) \
+    A(BIN, int, sid, SID)
 #define DEM_ITEMS_channel_gather n
 /* ---- riders.h ---- */
 #define DEM_ARGS_rider_place(F, A)                                                                                   \
     F(I, int, nriders, NRIDERS) A(BIN, int, rider_int, RIDER_INT) A(BIN, real, rider_off, RIDER_OFF)                 \
-    A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, x, X) A(BOUT, real, v, V)
+    A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, x, X) A(BOUT, real, v, V) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_rider_place nriders
 /* ---- patch_contacts.h ---- */
 #define DEM_ARGS_patch_build(F, A)                                                                                   \
@@ -227,20 +230,20 @@
     A(BIN, int, old_pcount, OLD_PCOUNT) A(BIN, int, old_plist, OLD_PLIST) A(BIN, real, old_phist, OLD_PHIST)         \
     A(BIN, dem_byte, old_ptouch, OLD_PTOUCH) A(BOUT, int, pcount, PCOUNT) A(BOUT, int, plist, PLIST)                 \
     A(BOUT, real, phist, PHIST) A(BOUT, dem_byte, ptouch, PTOUCH) A(BOUT, int, vcount, VCOUNT)                       \
-    A(BOUT, int, vlist, VLIST) A(BOUT, int, flags, FLAGS)
+    A(BOUT, int, vlist, VLIST) A(BOUT, int, flags, FLAGS) A(BIN, int, sid, SID) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_patch_build n
 #define DEM_ARGS_patch_forces(F, A)                                                                                  \
     F(I, int, n, N) A(I, int, maxp, MAXP) A(I, int, nmat, NMAT) A(R, real, dt, DT) A(BIN, real, x, X)               \
     A(BIN, real, v, V) A(BIN, real, w, W) A(BIN, real, radius, RADIUS) A(BIN, real, invmass, INVMASS)                \
     A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BIN, int, tri, TRI) A(BIN, int, pcount, PCOUNT)           \
     A(BIN, int, plist, PLIST) A(BOUT, real, phist, PHIST) A(BOUT, dem_byte, ptouch, PTOUCH)                          \
-    A(BOUT, real, prec, PREC) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE)
+    A(BOUT, real, prec, PREC) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_patch_forces n
 #define DEM_ARGS_patch_gather(F, A)                                                                                  \
     F(I, int, n, N) A(I, int, maxp, MAXP) A(I, int, maxv, MAXV) A(BIN, int, tri, TRI)                                \
     A(BIN, int, vtri_start, VTRI_START) A(BIN, int, vtri_list, VTRI_LIST) A(BIN, int, pcount, PCOUNT)                \
     A(BIN, int, plist, PLIST) A(BIN, dem_byte, ptouch, PTOUCH) A(BIN, real, prec, PREC) A(BIN, int, vcount, VCOUNT)  \
-    A(BIN, int, vlist, VLIST) A(BOUT, real, force, FORCE)
+    A(BIN, int, vlist, VLIST) A(BOUT, real, force, FORCE) A(BIN, int, sid, SID) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_patch_gather n
 
 /* ---- what the lists become ---- */

@@ -43,8 +43,8 @@ DEM_INLINE int nbr_walk(unsigned fx, int i, DEM_GLOBAL int *count, DEM_GLOBAL in
     int cnt = 0;
     (void)n;
     /* a membrane's patch vertex touches no particle as a sphere (patch_contacts.h): its row stays empty, and it is
-     * in no other row */
-    if ((fx & DEM_EFFECT_PATCHES) && vtri_start[i + 1] > vtri_start[i])
+     * in no other row (vtri_start is indexed by stable id) */
+    if ((fx & DEM_EFFECT_PATCHES) && vtri_start[sid[i] + 1] > vtri_start[sid[i]])
         return 0;
     for (int k = 13; k < 27; k++) { /* offsets (dz, dy, dx) from (0, 0, 0) on, in the grid's order */
         int z = cz + k / 9 - 1, y = cy + (k / 3) % 3 - 1, xx = cx + k % 3 - 1;
@@ -55,7 +55,7 @@ DEM_INLINE int nbr_walk(unsigned fx, int i, DEM_GLOBAL int *count, DEM_GLOBAL in
             int j = cell_particles[s];
             if (k == 13 && j <= i)
                 continue; /* i's own cell: the pair is walked by the one stored first */
-            if ((fx & DEM_EFFECT_PATCHES) && vtri_start[j + 1] > vtri_start[j])
+            if ((fx & DEM_EFFECT_PATCHES) && vtri_start[sid[j] + 1] > vtri_start[sid[j]])
                 continue;
             if ((fx & DEM_EFFECT_SPRINGS) && pairmat[PM_STRIDE * (mat[i] * nmat + mat[j]) + PM_APART] != (real)0)
                 continue; /* two vertices of one membrane */

@@ -1,8 +1,10 @@
 /* patch_contacts.h - spheres touching a membrane's triangular patches (seed 001 section 2.5, Eq. 17, Table 1, Fig. 3):
  * the candidate rows, the contact forces and their sums, without atomics on reals.
  *
- * Who is what: a particle with patch triangles (vtri_start[p] < vtri_start[p+1]) is a patch vertex; every other
- * particle is a sphere. With DEM_EFFECT_PATCHES a patch vertex touches no particle as a sphere (nbr_build leaves it
+ * Who is what: a particle with patch triangles (vtri_start[p] < vtri_start[p+1], p its stable id) is a patch vertex;
+ * every other particle is a sphere. The vertices' tables (tri, vtri_start, vtri_list) and the vertex rows (vlist)
+ * name particles by stable id (sid[place]; a stable id's place is order[id]), so that they hold when the particles
+ * are stored anew (host/core/reorder.c moves the per-particle rows with their particles and leaves the tables). With DEM_EFFECT_PATCHES a patch vertex touches no particle as a sphere (nbr_build leaves it
  * out of every row); spheres touch its triangles instead. Vertices still touch walls with their own radius.
  *
  * Rows, rebuilt with the neighbour rows (the same skin and trigger), from the same cell grid:
@@ -16,7 +18,8 @@
  *     the search looks at the cells within that distance. Between rebuilds no particle moves more than skin/2, so a
  *     triangle left out stays farther than 1.5 r_i: it cannot touch (as for the neighbour rows). The candidates
  *     that do not touch add nothing to any sum.
- *   - patch vertex v: the spheres s with |x_s - x_v| < 1.5 r_s + skin + reach, ascending s (vlist[v*maxv ...]): a
+ *   - patch vertex v: the spheres s with |x_s - x_v| < 1.5 r_s + skin + reach, by ascending stable id (vlist[v*maxv
+ *     ...]): a
  *     superset of the spheres whose rows hold one of v's triangles (same argument), the ones whose forces v gathers.
  *   A patch vertex also checks its triangles' edges against `reach` (FLAG_PATCH_REACH); the host then widens the
  *   reach and builds again, as it grows a row that overflowed (FLAG_PATCH_NEEDED, FLAG_VROW_NEEDED).
@@ -35,7 +38,7 @@
  * on the sphere and the weights w in a record (PK_*). A contact that starts where a neighbouring one ended takes its
  * tangential spring (patch_forces).
  * Sums (patch_gather, one patch vertex per item, after the contribution channel): vertex v adds -(w_c F) of each
- * touching record of its triangles, by ascending sphere id, then ascending triangle id. Each vertex's share is a
+ * touching record of its triangles, by ascending sphere stable id, then ascending triangle id. Each vertex's share is a
  * product of the record's bits, so the shares sum to -F up to the rounding of w0 + w1 + w2 = 1 (tests/test_patch.c
  * measures it); the sphere's F and the shares are the same numbers on every device.
  */
@@ -51,9 +54,13 @@
 
 DEM_INLINE int patch_is_vertex(DEM_CONST_GLOBAL int *vtri_start, int p) { return vtri_start[p + 1] > vtri_start[p]; }
 
-DEM_INLINE patch_point patch_of(vec3 p, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t)
+/* triangle t's vertex k: tri names it by stable id, x is read where it is stored */
+#define PATCH_X(t, k) v3_load(x, order[tri[3 * (t) + (k)]])
+
+DEM_INLINE patch_point patch_of(vec3 p, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri,
+                                DEM_CONST_GLOBAL int *order, int t)
 {
-    return patch_closest(p, v3_load(x, tri[3 * t]), v3_load(x, tri[3 * t + 1]), v3_load(x, tri[3 * t + 2]));
+    return patch_closest(p, PATCH_X(t, 0), PATCH_X(t, 1), PATCH_X(t, 2));
 }
 
 /* Inserts key into the sorted row of count entries (capacity cap) unless it is there; returns the new count, which
@@ -81,15 +88,16 @@ DEM_ITEM(patch_build)
     vec3 xi = v3_load(x, i);
     int c = cell_of[i];
     int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
-    int vertex = patch_is_vertex(vtri_start, i);
+    int si = sid[i]; /* the tables of vertices (vtri_start, vtri_list, tri) are by stable id */
+    int vertex = patch_is_vertex(vtri_start, si);
     real ri = radius[i], near = (real)1.5 * ri + skin; /* crossed contacts stay listed */
     real range = (real)1.5 * (vertex ? rmax : ri) + skin + reach; /* the cells to look at */
     int m = (int)(range * inv_cell) + 1, cnt = 0;
     if (vertex) { /* the triangles' edges against the reach */
-        for (int q = vtri_start[i]; q < vtri_start[i + 1]; q++) {
+        for (int q = vtri_start[si]; q < vtri_start[si + 1]; q++) {
             int t = vtri_list[q];
             for (int e = 0; e < 3; e++) {
-                vec3 d = v3_sub(v3_load(x, tri[3 * t + e]), v3_load(x, tri[3 * t + (e + 1) % 3]));
+                vec3 d = v3_sub(PATCH_X(t, e), PATCH_X(t, (e + 1) % 3));
                 if (!(v3_dot(d, d) < reach * reach))
                     DEM_ATOMIC_MAX(&flags[FLAG_PATCH_REACH], 1);
             }
@@ -102,21 +110,21 @@ DEM_ITEM(patch_build)
             for (int xx = cx - m > 0 ? cx - m : 0; xx <= (cx + m < ncx ? cx + m : ncx - 1); xx++) {
                 int cc = (z * ncy + y) * ncx + xx;
                 for (int s = cell_start[cc]; s < cell_start[cc + 1]; s++) {
-                    int j = cell_particles[s];
-                    if (patch_is_vertex(vtri_start, j) == vertex)
+                    int j = cell_particles[s], sj = sid[j];
+                    if (patch_is_vertex(vtri_start, sj) == vertex)
                         continue; /* spheres look for vertices, vertices for spheres */
                     int sph = vertex ? j : i, vtx = vertex ? i : j;
                     vec3 d = v3_sub(v3_load(x, sph), v3_load(x, vtx));
                     real cut = (real)1.5 * radius[sph] + skin + reach; /* the same expression from either side */
                     if (!(v3_dot(d, d) < cut * cut))
                         continue;
-                    if (vertex) {
-                        cnt = patch_row_insert(row, cnt, cap, j);
+                    if (vertex) { /* the sphere's stable id: the vertex's sums go by it, wherever it is stored */
+                        cnt = patch_row_insert(row, cnt, cap, sj);
                         continue;
                     }
-                    for (int q = vtri_start[j]; q < vtri_start[j + 1]; q++) {
+                    for (int q = vtri_start[sj]; q < vtri_start[sj + 1]; q++) {
                         int t = vtri_list[q];
-                        vec3 e = v3_sub(xi, patch_of(xi, x, tri, t).point);
+                        vec3 e = v3_sub(xi, patch_of(xi, x, tri, order, t).point);
                         if (v3_dot(e, e) < near * near)
                             cnt = patch_row_insert(row, cnt, cap, t);
                     }
@@ -142,10 +150,10 @@ DEM_ITEM(patch_build)
     }
 }
 
-DEM_INLINE vec3 patch_normal(DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t)
+DEM_INLINE vec3 patch_normal(DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *order, int t)
 {
-    vec3 a = v3_load(x, tri[3 * t]);
-    return v3_cross(v3_sub(v3_load(x, tri[3 * t + 1]), a), v3_sub(v3_load(x, tri[3 * t + 2]), a));
+    vec3 a = PATCH_X(t, 0);
+    return v3_cross(v3_sub(PATCH_X(t, 1), a), v3_sub(PATCH_X(t, 2), a));
 }
 
 /* The side of the patch a contact's sphere is on (1 below, 0 above, -1 not known: a new contact starts on the side its
@@ -182,13 +190,13 @@ typedef struct {
 /* The sphere's crossed contact that orients its other contacts (patch_side), from the flags of the previous step:
  * *ref its patch's normal towards the side its sphere came from, its triangle's vertices in tref; 0 if none */
 DEM_INLINE int patch_ref(int i, int cnt, int maxp, DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri,
-                         DEM_CONST_GLOBAL int *plist, DEM_GLOBAL dem_byte *ptouch, vec3 *ref, int *tref)
+                         DEM_CONST_GLOBAL int *order, DEM_CONST_GLOBAL int *plist, DEM_GLOBAL dem_byte *ptouch, vec3 *ref, int *tref)
 {
     for (int k = 0; k < cnt; k++) {
         unsigned f = ptouch[i * maxp + k];
         if ((f & (PATCH_CROSSED | PATCH_KNOWN)) == (PATCH_CROSSED | PATCH_KNOWN)) {
             int t = plist[i * maxp + k];
-            *ref = v3_scale(patch_normal(x, tri, t), f & PATCH_BELOW ? (real)-1 : (real)1);
+            *ref = v3_scale(patch_normal(x, tri, order, t), f & PATCH_BELOW ? (real)-1 : (real)1);
             tref[0] = tri[3 * t], tref[1] = tri[3 * t + 1], tref[2] = tri[3 * t + 2];
             return 1;
         }
@@ -205,14 +213,15 @@ DEM_INLINE int patch_ref(int i, int cnt, int maxp, DEM_CONST_GLOBAL real *x, DEM
  * is less than ri past the plane and less than ri from the triangle along it. Its rank in the selection is its
  * point's (patch_rank), as for any contact. ref, tref: patch_ref. */
 DEM_INLINE patch_geom patch_geometry(vec3 xi, real ri, unsigned flags, vec3 ref, const int *tref,
-                                     DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, int t)
+                                     DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *order,
+                                     int t)
 {
     patch_geom g;
-    g.pp = patch_of(xi, x, tri, t);
+    g.pp = patch_of(xi, x, tri, order, t);
     g.e = v3_sub(xi, g.pp.point);
     g.e2 = v3_dot(g.e, g.e);
     g.rank = patch_rank(g.pp);
-    g.nrm = patch_normal(x, tri, t);
+    g.nrm = patch_normal(x, tri, order, t);
     int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
     g.below = patch_side(flags, g.nrm, ref, tref[0] >= 0 && patch_common(tk, tref) > 0);
     g.h = g.below == 1 ? -v3_dot(g.e, g.nrm) : v3_dot(g.e, g.nrm);
@@ -272,11 +281,11 @@ DEM_INLINE real patch_law_overlap(real d, real r)
  * of the patches around it that have not (their normal, from the edge to the centre, would push the sphere on
  * through). */
 DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real ri, DEM_CONST_GLOBAL real *x,
-                          DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *plist, DEM_GLOBAL dem_byte *ptouch,
-                          vec3 ref, const int *tref, patch_geom *gk)
+                          DEM_CONST_GLOBAL int *tri, DEM_CONST_GLOBAL int *order, DEM_CONST_GLOBAL int *plist,
+                          DEM_GLOBAL dem_byte *ptouch, vec3 ref, const int *tref, patch_geom *gk)
 {
     int t = plist[i * maxp + k];
-    *gk = patch_geometry(xi, ri, ptouch[i * maxp + k], ref, tref, x, tri, t);
+    *gk = patch_geometry(xi, ri, ptouch[i * maxp + k], ref, tref, x, tri, order, t);
     if (!gk->touch)
         return 0;
     if (gk->rank == PATCH_FACE)
@@ -286,7 +295,7 @@ DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real ri, DEM
         if (j == k)
             continue;
         int u = plist[i * maxp + j];
-        patch_geom gj = patch_geometry(xi, ri, ptouch[i * maxp + j], ref, tref, x, tri, u);
+        patch_geom gj = patch_geometry(xi, ri, ptouch[i * maxp + j], ref, tref, x, tri, order, u);
         if (!gj.touch || (gk->crossed && !gj.crossed))
             continue; /* a crossed contact is removed only by a crossed one */
         int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
@@ -323,10 +332,10 @@ DEM_ITEM(patch_forces)
     if (fx & DEM_EFFECT_FRICTION)
         ti = v3_load(torque, i);
     int tref[3];
-    patch_ref(i, cnt, maxp, x, tri, plist, ptouch, &ref, tref);
+    patch_ref(i, cnt, maxp, x, tri, order, plist, ptouch, &ref, tref);
     for (int k = 0; k < cnt; k++) { /* pass 1 */
         patch_geom gk;
-        unsigned kept = patch_kept(i, k, cnt, maxp, xi, ri, x, tri, plist, ptouch, ref, tref, &gk) ? PATCH_KEPT : 0u;
+        unsigned kept = patch_kept(i, k, cnt, maxp, xi, ri, x, tri, order, plist, ptouch, ref, tref, &gk) ? PATCH_KEPT : 0u;
         if (gk.touch)
             ptouch[i * maxp + k] = (unsigned char)(ptouch[i * maxp + k] | kept | patch_next(gk));
     }
@@ -335,8 +344,8 @@ DEM_ITEM(patch_forces)
         unsigned state = ptouch[slot];
         if (!(state & PATCH_KEPT))
             continue;
-        patch_geom g = patch_geometry(xi, ri, state, ref, tref, x, tri, t);
-        int a = tri[3 * t], b = tri[3 * t + 1], cc = tri[3 * t + 2];
+        patch_geom g = patch_geometry(xi, ri, state, ref, tref, x, tri, order, t);
+        int a = order[tri[3 * t]], b = order[tri[3 * t + 1]], cc = order[tri[3 * t + 2]]; /* where they are stored */
         vec3 n;
         real delta;
         if (!g.crossed) {
@@ -361,7 +370,7 @@ DEM_ITEM(patch_forces)
             if (state & PATCH_TOUCHED) {
                 h = v3_load(phist, slot);
             } else { /* a new contact: the spring of a neighbour that ended now, if any */
-                int tk[3] = {a, b, cc};
+                int tk[3] = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
                 for (int j = 0; j < cnt; j++) {
                     int u = plist[i * maxp + j];
                     int tj[3] = {tri[3 * u], tri[3 * u + 1], tri[3 * u + 2]};
@@ -410,15 +419,16 @@ DEM_ITEM(patch_gather)
     if (nv == 0)
         return;
     vec3 f = v3_load(force, i);
+    int si = sid[i];
     for (int q = 0; q < nv; q++) {
-        int s = vlist[i * maxv + q];
-        for (int p = vtri_start[i]; p < vtri_start[i + 1]; p++) {
+        int s = order[vlist[i * maxv + q]]; /* the row: stable ids, ascending */
+        for (int p = vtri_start[si]; p < vtri_start[si + 1]; p++) {
             int t = vtri_list[p];
             int k = row_find(plist + s * maxp, pcount[s], t);
             if (k < 0 || !(ptouch[s * maxp + k] & PATCH_TOUCHED))
                 continue;
             DEM_CONST_GLOBAL real *rec = prec + (s * maxp + k) * PK_STRIDE;
-            int corner = tri[3 * t] == i ? 0 : tri[3 * t + 1] == i ? 1 : 2;
+            int corner = tri[3 * t] == si ? 0 : tri[3 * t + 1] == si ? 1 : 2;
             f = v3_sub(f, v3_scale(v3(rec[PK_FX], rec[PK_FY], rec[PK_FZ]), rec[PK_W0 + corner]));
         }
     }

@@ -14,7 +14,7 @@
 
 DEM_ITEM(pressure_forces)
 {
-    int a = tri[3 * i], b = tri[3 * i + 1], c = tri[3 * i + 2];
+    int a = order[tri[3 * i]], b = order[tri[3 * i + 1]], c = order[tri[3 * i + 2]]; /* stable ids to places */
     vec3 xa = v3_load(x, a);
     vec3 cr = v3_cross(v3_sub(v3_load(x, b), xa), v3_sub(v3_load(x, c), xa));
     vec3 f3 = v3_scale(cr, pressure * (real)0.5 / (real)3); /* sigma A n_hat / 3 */

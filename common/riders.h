@@ -10,7 +10,7 @@
 
 DEM_ITEM(rider_place)
 {
-    int p = rider_int[2 * i], w = rider_int[2 * i + 1];
+    int p = order[rider_int[2 * i]], w = rider_int[2 * i + 1]; /* the particle's stable id to its place */
     DEM_CONST_GLOBAL real *wr = wall_real + W_STRIDE * w;
     vec3 point = v3(wr[W_PX], wr[W_PY], wr[W_PZ]), vel = v3(wr[W_VX], wr[W_VY], wr[W_VZ]);
     v3_store(x, p, v3_add(point, v3_load(rider_off, i)));

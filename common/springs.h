@@ -1,7 +1,9 @@
 /* springs.h - damped linear springs between particles (seed 001 Eq. 3-7: the membrane's stretching), and the
  * channel that adds their forces to the particles' sums without atomics.
  *
- * Spring s joins particles a = spring_int[2s] and b = spring_int[2s+1]. With rho = x_a - x_b, its length |rho| and
+ * Spring s joins particles a = spring_int[2s] and b = spring_int[2s+1] (stable ids, stored at order[a], order[b]:
+ * the tables of springs, triangles, hinges and riders name particles by stable id, so that they stay as they are
+ * when the particles are stored anew, host/core/reorder.c). With rho = x_a - x_b, its length |rho| and
  * unit e = rho / |rho|, particle a feels
  *     F_a = -e [k (|rho| - rho0) + c e . (v_a - v_b)],   c = 2 gamma sqrt(k m_eff)  (SP_DAMP, from the host)
  * and b the exact negation. Seed 001 Eq. 6 as printed puts the elastic term with the sign of the force on b and the
@@ -10,8 +12,8 @@
  * and the force is zero. Only + - * / sqrt.
  *
  * The channel: spring_forces writes each end's force as a record at chan_slot[2s] (end a) and chan_slot[2s+1] (end
- * b); the host laid the slots out so that particle p's records are chan_rec[chan_start[p] .. chan_start[p+1]) in
- * ascending spring index. channel_gather then adds them, in that order, to the particle's force after its contact
+ * b); the host laid the slots out so that the records of the particle of stable id p are chan_rec[chan_start[p] ..
+ * chan_start[p+1]) in ascending spring index. channel_gather then adds them, in that order, to the particle's force after its contact
  * sums: the same order on every device (contacts.h has the contacts' order; the channel is the pattern for the
  * membrane's hinges, patch contacts and pressure, whose forces land on several vertices).
  */
@@ -23,7 +25,7 @@
 
 DEM_ITEM(spring_forces)
 {
-    int a = spring_int[2 * i], b = spring_int[2 * i + 1];
+    int a = order[spring_int[2 * i]], b = order[spring_int[2 * i + 1]]; /* stable ids to places */
     vec3 rho = v3_sub(v3_load(x, a), v3_load(x, b));
     real len = dem_sqrt(v3_dot(rho, rho));
     vec3 f = v3_zero();
@@ -41,7 +43,8 @@ DEM_ITEM(spring_forces)
 DEM_ITEM(channel_gather)
 {
     vec3 f = v3_load(force, i);
-    for (int r = chan_start[i]; r < chan_start[i + 1]; r++)
+    int q = sid[i]; /* the records are laid out by stable id */
+    for (int r = chan_start[q]; r < chan_start[q + 1]; r++)
         f = v3_add(f, v3_load(chan_rec, r));
     v3_store(force, i, f);
 }

@@ -154,8 +154,7 @@ typedef struct {
                             become scattered (reorder_gain), so that neighbours in space stay neighbours in memory as
                             the packing flows (host/core/reorder.c); 0 (default): they stay where they are. The bits do
                             not depend on it (every sum follows the particle ids), and every particle id the library
-                            takes or returns stays that of dem_start. A run with springs, triangles, hinges, patches
-                            or attachments is not reordered. */
+                            takes or returns stays that of dem_start, membranes, patches and attachments included. */
     double reorder_gain; /* stored anew when the mean distance between particles stored next to each other has grown
                             this many times since the last look and is this many times the new order's; 0 =
                             DEM_REORDER_GAIN (2); at most 1: whenever the order changes */

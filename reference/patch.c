@@ -25,9 +25,9 @@ int REF(dem_patch_keep)(int i, int n, const int *id, const int *tri, const int *
  * (host/physics/energy.c). */
 real REF(dem_patch_overlap)(const real *p, const real *tri_x, unsigned flags, real r)
 {
-    static const int tri[3] = {0, 1, 2};
+    static const int tri[3] = {0, 1, 2}; /* vertices 0, 1, 2, stored at 0, 1, 2 */
     static const int none[3] = {-1, -1, -1};
-    patch_geom g = patch_geometry(v3_load(p, 0), r, flags, v3_zero(), none, tri_x, tri, 0);
+    patch_geom g = patch_geometry(v3_load(p, 0), r, flags, v3_zero(), none, tri_x, tri, tri, 0);
     if (!g.touch)
         return (real)0;
     return g.crossed ? r - g.h / dem_sqrt(v3_dot(g.nrm, g.nrm)) : r - dem_sqrt(g.e2);

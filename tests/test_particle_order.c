@@ -7,8 +7,11 @@
  * reference and on PoCL: after 300 steps with a moving lid (several rebuilds) each particle's position, velocity,
  * spin, force and torque, each wall's force, the energies, a sampled series, the contact network and the saved
  * contact memory are the same bits, particle by particle. And a saved state is the same whether or when the run was
- * reordered, and continues bit for bit in a run stored either way. */
+ * reordered, and continues bit for bit in a run stored either way. A membrane's run (springs, pressure, hinges, patches
+ * touched by grains, riders on walls, a held velocity: tables that name particles by stable id) is reordered like any
+ * other, with the same bits. */
 #include "test_util.h"
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -331,21 +334,132 @@ static void test_saved_state(void **st)
     }
 }
 
-/* A run with a spring (a membrane's kind of particle table) names particles by their places: it is never reordered,
- * and runs as without dem_config.reorder. A negative reorder or reorder_gain is refused by dem_start. */
-static void test_not_reordered(void **st)
+/* ---- a membrane: the tables that name particles (springs, triangles, hinges, patches, riders) by stable id ---- */
+#define TUBE_DT 2e-6
+#define TUBE_STEPS 400
+#define GRAIN_R 0.0025
+
+/* A patched tube membrane (seed 001's rubber: springs, hinges, patches) between two plane walls its end rings ride on,
+ * the top wall moving down, a pressure on its triangles, and grains inside it: an outer ring of each layer thrown
+ * outwards onto the patches, an inner ring, one of them held in z; the layers thrown onto each other in pairs. Its vertices come first, the grains after them:
+ * the Morton order interleaves them at the first rebuild. */
+static dem_sim *tube_build(void)
+{
+    dem_sim *s = dem_create();
+    dem_mesh m;
+    char err[256];
+    dem_mesh_spec sp = {DEM_MESH_TUBE, {0, 0, 0.05}, 0.02, 0.06, 0.006};
+    if (dem_mesh_make(&sp, &m, err, sizeof err))
+        fail_msg("%s", err);
+    dem_membrane rubber = {1.25e6, 1.0 / 3, 3e-4, 1000, 0.5, 1.2, 0.3, 1e-4, 1e-6, 0.001, DEM_MEMBRANE_PATCH};
+    dem_membrane_info info;
+    if (dem_add_membrane(s, &m, &rubber, &info))
+        fail_msg("%s", dem_error(s));
+    assert_true(info.nsprings > 0 && info.ntriangles > 0 && info.nhinges > 0);
+    int steel = dem_add_material(s, &(dem_material){7800, INFINITY, 0.3, 0.5, 0.3});
+    int glass = dem_add_material(s, &(dem_material){2500, 5e6, 0.3, 0.5, 0.5, 0, 0});
+    dem_wall lo = {DEM_WALL_PLANE, steel, {0, 0, 0.02}, {0, 0, 1}, 0, 0, {{0}}};
+    dem_wall hi = {DEM_WALL_PLANE, steel, {0, 0, 0.08}, {0, 0, -1}, 0, 1, {{1.0, {0, 0, -0.5}}}};
+    int wl = dem_add_wall(s, &lo), wh = dem_add_wall(s, &hi);
+    for (int i = 0; i < m.nv; i++) {
+        double z = m.x[3 * i + 2];
+        if (fabs(z - 0.02) < 1e-12 || fabs(z - 0.08) < 1e-12)
+            assert_int_equal(dem_attach_to_wall(s, i, z < 0.05 ? wl : wh), 0);
+    }
+    dem_mesh_free(&m);
+    for (int layer = 0; layer < 9; layer++) {
+        double z = 0.028 + 0.0055 * layer;
+        for (int ring = 0; ring < 2; ring++) {
+            double rr = ring ? 0.0105 : 0.0172, speed = ring ? 0.2 : 1.0;
+            int count = ring ? 11 : 19;
+            for (int k = 0; k < count; k++) {
+                double a = 2 * M_PI * k / count, c = cos(a), sn = sin(a);
+                double x[3] = {rr * c, rr * sn, z}, v[3] = {speed * c, speed * sn, layer % 2 ? -0.6 : 0.6};
+                int id = dem_add_particle(s, x, v, GRAIN_R, glass);
+                assert_true(id >= 0);
+                if (layer == 4 && ring == 1 && k == 0)
+                    assert_int_equal(dem_set_particle_flags(s, id, DEM_PARTICLE_HOLD_VZ), 0);
+            }
+        }
+    }
+    assert_int_equal(dem_set_pressure(s, 2000), 0);
+    dem_set_domain(s, (double[3]){-0.05, -0.05, 0}, (double[3]){0.05, 0.05, 0.1});
+    dem_set_dt(s, TUBE_DT);
+    return s;
+}
+
+/* the touching patch contacts and the wall forces of two runs' saved states, by the particles' ids */
+static void same_patch_contacts(dem_sim *a, dem_sim *b, const char *where)
+{
+    dem_state sa, sb;
+    assert_int_equal(dem_state_get(a, &sa), 0);
+    assert_int_equal(dem_state_get(b, &sb), 0);
+    if (sa.npatch != sb.npatch || sa.npatch < 10)
+        fail_msg("%s: %ld saved patch contacts against %ld", where, sa.npatch, sb.npatch);
+    size_t ni = sizeof(int) * (size_t)sa.npatch;
+    if (memcmp(sa.patch_i, sb.patch_i, ni) || memcmp(sa.patch_t, sb.patch_t, ni) ||
+        memcmp(sa.patch_side, sb.patch_side, ni) ||
+        memcmp(sa.patch_hist, sb.patch_hist, 3 * (size_t)sa.real_size * (size_t)sa.npatch))
+        fail_msg("%s: the saved patch contacts differ", where);
+    same_state_bytes(&sa, &sb, where);
+    dem_state_free(&sa), dem_state_free(&sb);
+}
+
+/* The membrane's run stored anew at every rebuild is the run never stored anew, bit for bit: every particle's state,
+ * the walls' forces, the energies (springs' and patches' included) and the saved patch contacts. */
+static void test_membrane_reordered(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    {
+        dem_sim *a = tube_build(), *b = tube_build();
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        c.skin = 0.2 * GRAIN_R; /* rebuilds every few tens of steps: reorders among them */
+        start_twins(a, b, &c, TUBE_STEPS);
+        char where[200];
+        snprintf(where, sizeof where, "%s, a membrane", bc->name);
+        same_field(a, b, DEM_FIELD_X, 3, "position", where);
+        same_field(a, b, DEM_FIELD_V, 3, "velocity", where);
+        same_field(a, b, DEM_FIELD_W, 3, "spin", where);
+        same_field(a, b, DEM_FIELD_FORCE, 3, "force", where);
+        same_field(a, b, DEM_FIELD_TORQUE, 3, "torque", where);
+        double fa[3], fb[3];
+        for (int k = 0; k < 2; k++) {
+            assert_int_equal(dem_wall_force(a, k, fa), 0);
+            assert_int_equal(dem_wall_force(b, k, fb), 0);
+            if (memcmp(fa, fb, sizeof fa))
+                fail_msg("%s: the force on wall %d: %.17g against %.17g", where, k, fa[2], fb[2]);
+        }
+        dem_energy_t ea, eb;
+        assert_int_equal(dem_energy(a, &ea), 0);
+        assert_int_equal(dem_energy(b, &eb), 0);
+        if (memcmp(&ea, &eb, sizeof ea))
+            fail_msg("%s: energies differ (elastic %.17g against %.17g)", where, ea.elastic, eb.elastic);
+        same_patch_contacts(a, b, where);
+        dem_time_scales ta, tb; /* the springs' and hinges' periods: their tables by id, the host's arrays stored */
+        assert_int_equal(dem_time_scales_get(a, 0, &ta), 0);
+        assert_int_equal(dem_time_scales_get(b, 0, &tb), 0);
+        if (memcmp(&ta.spring_period, &tb.spring_period, sizeof(double)) ||
+            memcmp(&ta.hinge_period, &tb.hinge_period, sizeof(double)))
+            fail_msg("%s: spring period %.17g against %.17g, hinge period %.17g against %.17g", where,
+                     ta.spring_period, tb.spring_period, ta.hinge_period, tb.hinge_period);
+        if (dem_rebuild_count(a) != dem_rebuild_count(b))
+            fail_msg("%s: %ld rebuilds against %ld", where, dem_rebuild_count(a), dem_rebuild_count(b));
+        printf("  %s: %ld rebuilds, stored anew %ld times, %ld patch contacts, %ld contacts\n", where,
+               dem_rebuild_count(b), dem_reorder_count(b), eb.patch_contacts, eb.contacts);
+        assert_true(dem_reorder_count(b) > 2);
+        assert_int_equal(dem_reorder_count(a), 0);
+        assert_true(eb.patch_contacts > 10 && eb.contacts > 10);
+        dem_destroy(a), dem_destroy(b);
+    }
+}
+
+/* A negative reorder or reorder_gain is refused by dem_start. */
+static void test_bad_reorder(void **st)
 {
     (void)st;
     packing_opts o = opts_of(&models[0]);
-    dem_sim *a = packing_build(&o), *b = packing_build(&o);
-    assert_int_equal(dem_add_spring(a, 0, 1, 10.0, -1, 0), 0);
-    assert_int_equal(dem_add_spring(b, 0, 1, 10.0, -1, 0), 0);
     dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
-    start_twins(a, b, &c, STEPS / 3);
-    assert_true(dem_rebuild_count(b) > 1);
-    assert_int_equal(dem_reorder_count(b), 0);
-    same_field(a, b, DEM_FIELD_X, 3, "position", "a run with a spring");
-    dem_destroy(a), dem_destroy(b);
     dem_sim *bad = packing_build(&o);
     c.reorder = -1;
     assert_int_equal(dem_start(bad, &c), DEM_ERR_ARG);
@@ -362,6 +476,7 @@ static void test_not_reordered(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_storage_order_keeps_bits),
-                                       cmocka_unit_test(test_saved_state), cmocka_unit_test(test_not_reordered)};
+                                       cmocka_unit_test(test_saved_state), cmocka_unit_test(test_membrane_reordered),
+                                       cmocka_unit_test(test_bad_reorder)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

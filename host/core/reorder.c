@@ -18,7 +18,12 @@
  * so the host code that reads device buffers by storage place needs no map; the calls that take or return
  * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through sid / order (sim_api,
  * sim_dev): the stable id of the particle at each place is its id of dem_start.
- * Membranes, patches and riders name particles in their own tables: a run with them keeps its storage order. */
+ * Membranes, patches and riders name particles by stable id in their tables (springs, triangles, hinges, the channel's
+ * starts, the vertices' triangles, riders: common/springs.h, patch_contacts.h), which therefore stay as they are; the
+ * kernels find a particle's place through ORDER. What is kept per particle for them moves here like any other
+ * per-particle buffer: RIDE, HOLD and the spheres' patch rows with their history (PCOUNT, PLIST, PHIST, PTOUCH; the
+ * patch build that follows in this rebuild carries them over). The vertex rows (VCOUNT, VLIST: stable ids) and the
+ * patch records (PREC) are rewritten before they are read: the build, the forces of the next step. */
 #include "sim.h"
 #include <math.h>
 #include <stdlib.h>
@@ -53,8 +58,7 @@ static double spacing(const double *x, int a, int b)
 
 int sim_reorder_due(const dem_sim *s)
 {
-    return s->cfg.reorder > 0 && !s->reorder_hold && s->n > 1 && s->rebuilds % s->cfg.reorder == 0 &&
-           !s->nsprings && !s->ntri && !s->nhinges && !s->npatch && !s->natt;
+    return s->cfg.reorder > 0 && !s->reorder_hold && s->n > 1 && s->rebuilds % s->cfg.reorder == 0;
 }
 
 static int device_fail(dem_sim *s) { return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err); }

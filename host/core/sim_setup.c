@@ -91,8 +91,15 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     /* springs and hinges: velocity Verlet is stable for omega dt < 2 (dt < T / pi) and misses the period by (omega dt)^2 / 24:
      * 10 steps per period (1.6 %) bound it, 50 (0.07 %) are recommended */
     ts->spring_period = INFINITY;
+    /* the tables name particles by id; the per-particle arrays are in storage order (host/core/reorder.c) */
+    int *hg = s->reorders && s->nhinges ? malloc(sizeof(int) * 4 * (size_t)s->nhinges) : s->hinge;
+    if (!hg)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' time scales");
+    for (int k = 0; hg != s->hinge && k < 4 * s->nhinges; k++)
+        hg[k] = sim_dev(s, s->hinge[k]);
     for (int k = 0; k < s->nsprings; k++) { /* a fixed end has no inverse mass; two fixed ends, no period */
-        double ia = inverse_mass(s, s->spring_ij[2 * k]), ib = inverse_mass(s, s->spring_ij[2 * k + 1]);
+        double ia = inverse_mass(s, sim_dev(s, s->spring_ij[2 * k]));
+        double ib = inverse_mass(s, sim_dev(s, s->spring_ij[2 * k + 1]));
         if (ia + ib > 0)
             ts->spring_period = fmin(ts->spring_period, 2 * M_PI * sqrt(1 / (ia + ib) / s->spring_kr[3 * k]));
     }
@@ -100,22 +107,26 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     for (int h = 0; h < s->nhinges; h++) {
         double m4[4];
         for (int k = 0; k < 4; k++) /* a fixed vertex: an infinite mass, no share in the fold's motion */
-            m4[k] = inverse_mass(s, s->hinge[4 * h + k]) > 0 ? sim_mass(s, s->hinge[4 * h + k]) : INFINITY;
-        ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, s->hinge + 4 * h, s->hinge_k[3 * h], m4));
+            m4[k] = inverse_mass(s, hg[4 * h + k]) > 0 ? sim_mass(s, hg[4 * h + k]) : INFINITY;
+        ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, hg + 4 * h, s->hinge_k[3 * h], m4));
     }
     if (s->nhinges) {
-        double *sqrt_im = malloc(sizeof(double) * (size_t)s->n), rate;
-        if (!sqrt_im)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' damping rate");
-        for (int i = 0; i < s->n; i++)
+        double *sqrt_im = malloc(sizeof(double) * (size_t)s->n), rate = -1;
+        for (int i = 0; sqrt_im && i < s->n; i++)
             sqrt_im[i] = sqrt(inverse_mass(s, i));
-        rate = dem_hinge_damping_rate(s->x, s->hinge, s->hinge_k, s->nhinges, sqrt_im, s->n);
+        if (sqrt_im)
+            rate = dem_hinge_damping_rate(s->x, hg, s->hinge_k, s->nhinges, sqrt_im, s->n);
         free(sqrt_im);
-        if (rate < 0)
+        if (rate < 0) {
+            if (hg != s->hinge)
+                free(hg);
             return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' damping rate");
+        }
         if (rate > 0)
             ts->hinge_damping_time = 1 / rate;
     }
+    if (hg != s->hinge)
+        free(hg);
     double t_osc = fmin(ts->spring_period, ts->hinge_period);
     ts->recommended_dt = fmin(ts->recommended_dt, t_osc / 50);
     ts->max_dt = fmin(ts->max_dt, t_osc / 10);
@@ -408,8 +419,9 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
         }
 }
 
-/* The springs' and triangles' tables and their contribution channel (common/springs.h): particle p's records at
- * chan_start[p] .. chan_start[p+1] - its spring ends in ascending spring index, then its triangle vertices in
+/* The springs' and triangles' tables and their contribution channel (common/springs.h), naming particles by stable id
+ * (packed at dem_start, where each particle is stored at its id; they stay so when it is stored anew, reorder.c):
+ * particle p's records at chan_start[p] .. chan_start[p+1] - its spring ends in ascending spring index, then its triangle vertices in
  * ascending triangle index - so that every device adds them in one order. chan_slot: 2 per spring, then 3 per
  * triangle. A rest length < 0 is the distance of the initial positions; the damping constant 2 gamma
  * sqrt(k m_eff) is computed here in double. */
@@ -577,7 +589,8 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     return skin;
 }
 
-/* The patch triangles of each particle (common/patch_contacts.h): vtri_start / vtri_list in ascending triangle id; the
+/* The patch triangles of each particle by stable id (common/patch_contacts.h): vtri_start / vtri_list in ascending
+ * triangle id; the
  * search reach (1.5 x the longest patch edge: the device widens it when an edge reaches it) and the largest radius of
  * the particles that are not patch vertices. */
 static int pack_patches(dem_sim *s, dem_setup *u)

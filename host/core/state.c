@@ -86,7 +86,8 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
     return 0;
 }
 
-/* The touching sphere-patch contacts of the current rows, in row order (common/patch_contacts.h) */
+/* The touching sphere-patch contacts of the current rows, by the spheres' ids (stable ids), each sphere's in row order
+ * (common/patch_contacts.h): the same list in any storage order */
 static int patch_contacts_get(dem_sim *s, dem_state *st)
 {
     int e = 0, n = s->n, maxp = DEM_CORE(s->be)->maxp, rs = s->setup.real_size;
@@ -107,12 +108,12 @@ static int patch_contacts_get(dem_sim *s, dem_state *st)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
-    for (int i = 0; !e && i < n; i++)
-        for (int k = 0; k < cnt[i]; k++) {
+    for (int q = 0; !e && q < n; q++)
+        for (int i = sim_dev(s, q), k = 0; k < cnt[i]; k++) {
             int slot = i * maxp + k;
             if (!touch[slot])
                 continue;
-            st->patch_i[np] = i, st->patch_t[np] = list[slot];
+            st->patch_i[np] = q, st->patch_t[np] = list[slot];
             st->patch_side[np] = touch[slot] & PATCH_SAVED;
             memcpy((char *)st->patch_hist + (size_t)np * 3 * rs, hist + (size_t)slot * 3 * rs, 3 * (size_t)rs);
             np++;
@@ -136,11 +137,11 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
     if (!e && (!touch || !hist))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npatch; p++) {
-        int i = st->patch_i[p], t = st->patch_t[p];
-        int k = i >= 0 && i < n ? row_find(list + (size_t)i * maxp, cnt[i], t) : -1;
+        int id = st->patch_i[p], t = st->patch_t[p], i = id >= 0 && id < n ? sim_dev(s, id) : -1;
+        int k = i >= 0 ? row_find(list + (size_t)i * maxp, cnt[i], t) : -1;
         if (k < 0) {
             e = sim_fail(s, DEM_ERR_ARG, "saved patch contact of particle %d and triangle %d is not a patch candidate "
-                         "of the saved positions", i, t);
+                         "of the saved positions", id, t);
             break;
         }
         int flags = st->patch_side ? st->patch_side[p] : (int)PATCH_TOUCHED;

@@ -49,27 +49,30 @@ static double patch_contact_energy(unsigned fx, const double *row, double r, dou
 }
 
 /* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
- * positions x and its side, and the work of its normal law (patch_contact_energy) */
+ * positions x (in storage order) and its side, and the work of its normal law (patch_contact_energy); the spheres in
+ * ascending stable id, the triangles' vertices (stable ids) read where they are stored: any storage order */
 static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
 {
     int n = s->n, maxp = DEM_CORE(s->be)->maxp, e = 0;
     int *cnt = sim_buffer_get(s, BUF_PCOUNT, &e), *list = sim_buffer_get(s, BUF_PLIST, &e);
     unsigned char *touch = sim_buffer_get(s, BUF_PTOUCH, &e);
-    for (int i = 0; !e && i < n; i++)
+    for (int q = 0; !e && q < n; q++) {
+        int i = sim_dev(s, q);
         for (int k = 0; k < cnt[i]; k++) {
             if (!(touch[(size_t)i * maxp + k] & PATCH_TOUCHED))
                 continue;
             int t = list[(size_t)i * maxp + k];
             double tx[9];
             for (int v = 0; v < 3; v++)
-                memcpy(tx + 3 * v, x + 3 * s->tri[3 * t + v], sizeof(double) * 3);
+                memcpy(tx + 3 * v, x + 3 * sim_dev(s, s->tri[3 * t + v]), sizeof(double) * 3);
             double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i]), row[PM_STRIDE];
             if (d > 0) {
-                pair_row(s, s->mat[i], s->mat[s->tri[3 * t]], row);
+                pair_row(s, s->mat[i], s->mat[sim_dev(s, s->tri[3 * t])], row);
                 en->elastic += patch_contact_energy(s->setup.effects, row, s->radius[i], d);
             }
             en->patch_contacts++;
         }
+    }
     free(cnt), free(list), free(touch);
     return e;
 }
@@ -262,8 +265,8 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             }
         }
     }
-    for (int k = 0; !e && k < s->nsprings; k++) { /* springs: k (|rho| - rho0)^2 / 2 */
-        int a = s->spring_ij[2 * k], b = s->spring_ij[2 * k + 1];
+    for (int k = 0; !e && k < s->nsprings; k++) { /* springs: k (|rho| - rho0)^2 / 2; ends by stable id */
+        int a = sim_dev(s, s->spring_ij[2 * k]), b = sim_dev(s, s->spring_ij[2 * k + 1]);
         double d2 = 0, r2 = 0, rest = s->spring_kr[3 * k + 1];
         for (int q = 0; q < 3; q++) {
             d2 += (x[3 * a + q] - x[3 * b + q]) * (x[3 * a + q] - x[3 * b + q]);
