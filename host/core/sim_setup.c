@@ -93,7 +93,7 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     ts->spring_period = INFINITY;
     /* the tables name particles by id; the per-particle arrays are in storage order (host/core/reorder.c) */
     int *hg = s->reorders && s->nhinges ? malloc(sizeof(int) * 4 * (size_t)s->nhinges) : s->hinge;
-    if (!hg)
+    if (s->nhinges && !hg)
         return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' time scales");
     for (int k = 0; hg != s->hinge && k < 4 * s->nhinges; k++)
         hg[k] = sim_dev(s, s->hinge[k]);
