@@ -1,5 +1,5 @@
 /* mc_strain.c - the MC-strain steps (kernels/mc_strain.cl): induced displacements, and one fixed-point update of the
- * forces (the iteration loop itself is the driver's, host/core/sim.c). Written once for every backend. */
+ * forces (the iteration loop itself is the driver's, host/core/step_loop.c). Written once for every backend. */
 #include "backend.h"
 
 int dem_stage_mc_strain_disp(const dem_backend_ops *o, dem_backend *b) { return dem_launch(o, b, K_mc_strain_disp); }
