@@ -10,7 +10,7 @@ int dem_set_effects(dem_sim *s, unsigned effects)
 {
     if (sim_not_started(s))
         return DEM_ERR_STATE;
-    if (effects & ~(unsigned)DEM_EFFECT_ALL)
+    if (effects & ~(unsigned)(DEM_EFFECT_ALL | DEM_EFFECT_TEST_LAWS))
         return sim_fail(s, DEM_ERR_ARG, "effect mask 0x%x has bits of effects this version does not have", effects);
     if ((effects & DEM_EFFECT_MC_STRESS) && (effects & DEM_EFFECT_MC_STRAIN))
         return sim_fail(s, DEM_ERR_ARG, "mc_stress and mc_strain are two alternative normal laws: choose one");
@@ -88,5 +88,5 @@ int dem_effect_bit(const char *name)
     for (int k = 0; k < DEM_EFFECT_COUNT; k++)
         if (effect_names[k] && !strcmp(name, effect_names[k]))
             return k;
-    return -1;
+    return DEM_ERR_ARG;
 }

@@ -9,15 +9,15 @@
 int dem_add_spring(dem_sim *s, int i, int j, double k, double rest, double gamma)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (i < 0 || i >= s->n || j < 0 || j >= s->n || i == j)
         return sim_fail(s, DEM_ERR_ARG, "spring %d: particles %d and %d (two different particles of 0..%d)",
-                        s->nsprings, i, j, s->n - 1), -1;
+                        s->nsprings, i, j, s->n - 1);
     if (!(k > 0) || !isfinite(k) || !isfinite(rest) || !(gamma >= 0) || !isfinite(gamma))
         return sim_fail(s, DEM_ERR_ARG, "spring %d: k must be > 0 N/m, rest finite, gamma >= 0 (got %g, %g, %g)",
-                        s->nsprings, k, rest, gamma), -1;
+                        s->nsprings, k, rest, gamma);
     if (sim_grow(s, s->nsprings, &s->spring_cap, &s->spring_ij, 2, &s->spring_kr, 3, "springs"))
-        return -1;
+        return DEM_ERR_NOMEM;
     int id = s->nsprings++;
     s->spring_ij[2 * id] = i, s->spring_ij[2 * id + 1] = j;
     s->spring_kr[3 * id] = k, s->spring_kr[3 * id + 1] = rest, s->spring_kr[3 * id + 2] = gamma;
@@ -30,12 +30,12 @@ int dem_spring_count(const dem_sim *s) { return s->nsprings; }
 int dem_add_triangle(dem_sim *s, int a, int b, int c)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (a < 0 || a >= s->n || b < 0 || b >= s->n || c < 0 || c >= s->n || a == b || b == c || a == c)
         return sim_fail(s, DEM_ERR_ARG, "triangle %d: particles %d, %d, %d (three different particles of 0..%d)",
-                        s->ntri, a, b, c, s->n - 1), -1;
+                        s->ntri, a, b, c, s->n - 1);
     if (sim_grow(s, s->ntri, &s->tri_cap, &s->tri, 3, NULL, 0, "triangles"))
-        return -1;
+        return DEM_ERR_NOMEM;
     int id = s->ntri++;
     s->tri[3 * id] = a, s->tri[3 * id + 1] = b, s->tri[3 * id + 2] = c;
     return id;
@@ -47,7 +47,7 @@ void dem_triangles_get(const dem_sim *s, int *tri) { memcpy(tri, s->tri, sizeof(
 int dem_add_patches(dem_sim *s, int first, int count)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (first < 0 || count < 1 || first > s->ntri - count)
         return sim_fail(s, DEM_ERR_ARG, "patches: triangles %d..%d (of 0..%d)", first, first + count - 1, s->ntri - 1);
     for (int k = 0; k < s->npatch; k++)
@@ -55,7 +55,7 @@ int dem_add_patches(dem_sim *s, int first, int count)
             return sim_fail(s, DEM_ERR_ARG, "patches: triangle %d is a patch already", s->patch[k]);
     for (int t = first; t < first + count; t++) {
         if (sim_grow(s, s->npatch, &s->patch_cap, &s->patch, 1, NULL, 0, "patches"))
-            return -1;
+            return DEM_ERR_NOMEM;
         s->patch[s->npatch++] = t;
     }
     s->effects |= DEM_EFFECT_PATCHES;
@@ -65,20 +65,20 @@ int dem_add_patches(dem_sim *s, int first, int count)
 int dem_add_hinge(dem_sim *s, int p1, int p2, int p3, int p4, double kel, double kdiss, double theta0)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     int p[4] = {p1, p2, p3, p4};
     for (int a = 0; a < 4; a++) {
         if (p[a] < 0 || p[a] >= s->n)
-            return sim_fail(s, DEM_ERR_ARG, "hinge %d: no particle %d", s->nhinges, p[a]), -1;
+            return sim_fail(s, DEM_ERR_ARG, "hinge %d: no particle %d", s->nhinges, p[a]);
         for (int b = 0; b < a; b++)
             if (p[a] == p[b])
-                return sim_fail(s, DEM_ERR_ARG, "hinge %d: particle %d twice", s->nhinges, p[a]), -1;
+                return sim_fail(s, DEM_ERR_ARG, "hinge %d: particle %d twice", s->nhinges, p[a]);
     }
     if (!(kel >= 0) || !isfinite(kel) || !(kdiss >= 0) || !isfinite(kdiss) || isinf(theta0))
         return sim_fail(s, DEM_ERR_ARG, "hinge %d: kel and kdiss must be >= 0, theta0 finite or NAN (got %g, %g, %g)",
-                        s->nhinges, kel, kdiss, theta0), -1;
+                        s->nhinges, kel, kdiss, theta0);
     if (sim_grow(s, s->nhinges, &s->hinge_cap, &s->hinge, 4, &s->hinge_k, 3, "hinges"))
-        return -1;
+        return DEM_ERR_NOMEM;
     int id = s->nhinges++;
     memcpy(s->hinge + 4 * id, p, sizeof p);
     s->hinge_k[3 * id] = kel, s->hinge_k[3 * id + 1] = kdiss, s->hinge_k[3 * id + 2] = theta0;

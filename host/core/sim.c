@@ -31,8 +31,8 @@ void dem_destroy(dem_sim *s)
         return;
     if (s->be)
         s->ops->destroy(s->be);
-    for (int k = 0; k < SIM_PACKED; k++)
-        free(s->packed[k]);
+    sim_setup_free(s);
+    free(s->setup_mem);
     free(s->wall_real);
     free(s->scratch);
     free(s->x);
@@ -76,28 +76,28 @@ int sim_not_started(dem_sim *s)
 int dem_add_material(dem_sim *s, const dem_material *m)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (s->nmat >= (int)(sizeof s->mats / sizeof s->mats[0]))
-        return sim_fail(s, DEM_ERR_ARG, "too many materials (at most 64)"), -1;
+        return sim_fail(s, DEM_ERR_ARG, "too many materials (at most 64)");
     /* young = +inf: a rigid material, for walls only (E* and G* of a contact then come from the particle alone,
      * exactly: (1 - nu^2) / inf = 0); its density is never used and may be 0 */
     int rigid = m->young == INFINITY;
     if (!rigid && (!(m->density > 0) || !isfinite(m->density)))
-        return sim_fail(s, DEM_ERR_ARG, "material %d: density must be > 0 kg/m^3 (got %g)", s->nmat, m->density), -1;
+        return sim_fail(s, DEM_ERR_ARG, "material %d: density must be > 0 kg/m^3 (got %g)", s->nmat, m->density);
     if (!(m->young > 0) || !(isfinite(m->young) || rigid))
         return sim_fail(s, DEM_ERR_ARG, "material %d: Young's modulus must be > 0 Pa, or infinite for a rigid wall "
-                        "material (got %g)", s->nmat, m->young), -1;
+                        "material (got %g)", s->nmat, m->young);
     if (!(m->poisson > -1 && m->poisson <= 0.5))
         return sim_fail(s, DEM_ERR_ARG, "material %d: Poisson's ratio must be in (-1, 0.5] (got %g)", s->nmat,
-                        m->poisson), -1;
+                        m->poisson);
     if (!(m->restitution > 0 && m->restitution <= 1))
         return sim_fail(s, DEM_ERR_ARG, "material %d: restitution must be in (0, 1] (got %g)", s->nmat,
-                        m->restitution), -1;
+                        m->restitution);
     if (!(m->friction >= 0) || !isfinite(m->friction))
-        return sim_fail(s, DEM_ERR_ARG, "material %d: friction must be >= 0 (got %g)", s->nmat, m->friction), -1;
+        return sim_fail(s, DEM_ERR_ARG, "material %d: friction must be >= 0 (got %g)", s->nmat, m->friction);
     if (!(m->mc_beta >= 0) || !isfinite(m->mc_beta) || !(m->mc_gamma >= 0) || !isfinite(m->mc_gamma))
         return sim_fail(s, DEM_ERR_ARG, "material %d: multi-contact prefactors beta and gamma must be >= 0 (got %g, %g)",
-                        s->nmat, m->mc_beta, m->mc_gamma), -1;
+                        s->nmat, m->mc_beta, m->mc_gamma);
     s->mats[s->nmat] = *m;
     return s->nmat++;
 }
@@ -105,16 +105,16 @@ int dem_add_material(dem_sim *s, const dem_material *m)
 int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double radius, int material)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     if (!(radius > 0) || !isfinite(radius))
-        return sim_fail(s, DEM_ERR_ARG, "particle %d: radius must be > 0 m (got %g)", s->n, radius), -1;
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: radius must be > 0 m (got %g)", s->n, radius);
     if (material < 0 || material >= s->nmat)
-        return sim_fail(s, DEM_ERR_ARG, "particle %d: unknown material %d", s->n, material), -1;
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: unknown material %d", s->n, material);
     if (s->mats[material].young == INFINITY)
         return sim_fail(s, DEM_ERR_ARG, "particle %d: material %d is rigid (Young's modulus infinite): for walls only",
-                        s->n, material), -1;
+                        s->n, material);
     if (!sim_finite3(x) || (v && !sim_finite3(v)))
-        return sim_fail(s, DEM_ERR_ARG, "particle %d: position and velocity must be finite", s->n), -1;
+        return sim_fail(s, DEM_ERR_ARG, "particle %d: position and velocity must be finite", s->n);
     if (s->n == s->cap) {
         int cap = s->cap ? 2 * s->cap : 1024;
         double *nx = realloc(s->x, sizeof(double) * 3 * cap);
@@ -132,7 +132,7 @@ int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double ra
         double *nb = realloc(s->body, sizeof(double) * 2 * cap);
         if (nb) s->body = nb;
         if (!nx || !nv || !nw || !nr || !nm || !nf || !nb)
-            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d particles", s->n), -1;
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d particles", s->n);
         s->cap = cap;
     }
     int i = s->n++;
@@ -164,7 +164,7 @@ int dem_set_particle_mass(dem_sim *s, int id, double mass, double inertia)
 }
 
 /* Room for one more row of a table of `count` rows (ni ints and nr doubles each; reals may be NULL), doubling its
- * capacity; 0, or -1 with DEM_ERR_NOMEM and the table's name. */
+ * capacity; 0, or DEM_ERR_NOMEM with the table's name. */
 int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what)
 {
     if (count < *cap)
@@ -177,7 +177,7 @@ int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals
     if (r)
         *reals = r;
     if (!a || (reals && !r))
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d %s", count, what), -1;
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory at %d %s", count, what);
     *cap = c;
     return 0;
 }
@@ -252,6 +252,6 @@ int dem_set_dt(dem_sim *s, double dt)
 
 int dem_count(const dem_sim *s) { return s->n; }
 double dem_particle_radius(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->radius[sim_dev(s, i)] : NAN; }
-int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[sim_dev(s, i)] : -1; }
+int dem_particle_material(const dem_sim *s, int i) { return i >= 0 && i < s->n ? s->mat[sim_dev(s, i)] : DEM_ERR_ARG; }
 double dem_particle_mass(const dem_sim *s, int i) { return i >= 0 && i < s->n ? sim_mass(s, sim_dev(s, i)) : NAN; }
 double dem_dt(const dem_sim *s) { return s->dt; }

@@ -29,7 +29,7 @@ static int mc_strain(dem_sim *s)
 {
     long it = 0;
     int converged = 0;
-    if (dem_stage_mc_strain_disp(s->ops, s->be))
+    if (dem_launch(s->ops, s->be, K_mc_strain_disp))
         return sim_be_fail(s);
     while (it < s->mc_max_iter) {
         int flags[FLAG_COUNT];
@@ -37,7 +37,7 @@ static int mc_strain(dem_sim *s)
             return DEM_ERR_DEVICE;
         flags[FLAG_MC_PENDING] = 0;
         if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc_tol) ||
-            dem_stage_mc_strain_disp(s->ops, s->be))
+            dem_launch(s->ops, s->be, K_mc_strain_disp))
             return sim_be_fail(s);
         it++;
         if (sim_read_flags(s, flags))
@@ -65,7 +65,7 @@ static int mc_strain(dem_sim *s)
 
 /* The force stages of a step, in order, each run only when the run has its effect (0: always) and, for the walls'
  * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through sim_be_fail). */
-static int stage_stress_trace(dem_sim *s) { return dem_stage_stress_trace(s->ops, s->be) ? sim_be_fail(s) : 0; }
+static int stage_stress_trace(dem_sim *s) { return dem_launch(s->ops, s->be, K_stress_trace) ? sim_be_fail(s) : 0; }
 /* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
  * dem_get_field and the output see it after any call) and every step while a servo stage may read it. Unless the
  * run keeps each particle's wall forces (DEM_KEEP_WALL_FORCES: a servo, the contact network), the sum evaluates
@@ -78,34 +78,36 @@ static int stage_contacts(dem_sim *s)
     int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls, fin = walls && s->wall_sums_due;
     int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
     int blocks = fin || (walls && s->sample_row >= 0 && !kept);
-    return dem_stage_contact_pairs(s->ops, s->be) || (blocks && !kept && dem_stage_wall_reduce(s->ops, s->be, fin)) ||
-                   dem_stage_contact_sums(s->ops, s->be) ||
+    return dem_launch(s->ops, s->be, K_contact_pairs) ||
+                   (blocks && !kept && dem_stage_wall_reduce(s->ops, s->be, fin)) ||
+                   dem_launch(s->ops, s->be, K_contact_forces) ||
                    (blocks && kept && dem_stage_wall_reduce(s->ops, s->be, fin))
                ? sim_be_fail(s)
                : 0;
 }
 static int stage_springs(dem_sim *s)
 {
-    return s->nsprings && dem_stage_springs(s->ops, s->be) ? sim_be_fail(s) : 0;
+    return s->nsprings && dem_launch(s->ops, s->be, K_spring_forces) ? sim_be_fail(s) : 0;
 }
 static int stage_pressure(dem_sim *s)
 {
     s->pressure_now = pressure_at(s, (double)s->force_step * s->dt);
     DEM_CORE(s->be)->sr[SR_PRESSURE] = s->pressure_now;
-    return s->ntri && dem_stage_pressure(s->ops, s->be) ? sim_be_fail(s) : 0;
+    return s->ntri && dem_launch(s->ops, s->be, K_pressure_forces) ? sim_be_fail(s) : 0;
 }
 static int stage_bending(dem_sim *s)
 {
-    return s->nhinges && dem_stage_bending(s->ops, s->be) ? sim_be_fail(s) : 0;
+    return s->nhinges && dem_launch(s->ops, s->be, K_hinge_forces) ? sim_be_fail(s) : 0;
 }
 static int stage_gather(dem_sim *s)
 {
-    return (s->nsprings || s->ntri || s->nhinges) && dem_stage_channel_gather(s->ops, s->be) ? sim_be_fail(s) : 0;
+    return (s->nsprings || s->ntri || s->nhinges) && dem_launch(s->ops, s->be, K_channel_gather) ? sim_be_fail(s) : 0;
 }
 static int stage_patches(dem_sim *s)
 {
-    return s->npatch && (dem_stage_patch_forces(s->ops, s->be) || dem_stage_patch_gather(s->ops, s->be)) ? sim_be_fail(s)
-                                                                                                            : 0;
+    return s->npatch && (dem_launch(s->ops, s->be, K_patch_forces) || dem_launch(s->ops, s->be, K_patch_gather))
+               ? sim_be_fail(s)
+               : 0;
 }
 static const struct {
     unsigned gate;
@@ -180,7 +182,7 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     dem_core *c = DEM_CORE(s->be);
     c->ntrace = 0;
     s->rebuild_at = s->rebuild_len = 0;
-    if (dem_stage_reset_flags(s->ops, s->be) || dem_stage_kick_drift(s->ops, s->be))
+    if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, K_integrate_kick_drift))
         return sim_be_fail(s);
     /* walls move with the particles' drift: positions at t + dt, velocity of this step */
     if (s->nwalls && (e = sim_walls_move(s)))
@@ -199,7 +201,7 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
         dem_stage_series_arm(s->ops, s->be, 0, 0);
         return e;
     }
-    if (dem_stage_kick(s->ops, s->be) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
+    if (dem_launch(s->ops, s->be, K_integrate_kick) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
         return sim_be_fail(s);
     s->sample_row = -1;
     s->nseq_step = sim_copy_trace(c, 0, s->rebuild_len ? s->rebuild_at : c->ntrace, s->seq_step, 0);

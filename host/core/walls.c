@@ -39,30 +39,30 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
 int dem_add_wall(dem_sim *s, const dem_wall *w)
 {
     if (sim_not_started(s))
-        return -1;
+        return DEM_ERR_STATE;
     int k = s->nwalls;
     if (k >= DEM_MAX_WALLS)
-        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most %d)", DEM_MAX_WALLS), -1;
+        return sim_fail(s, DEM_ERR_ARG, "too many walls (at most %d)", DEM_MAX_WALLS);
     if (w->kind != DEM_WALL_PLANE && w->kind != DEM_WALL_CYLINDER)
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown kind %d", k, (int)w->kind), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown kind %d", k, (int)w->kind);
     if (w->material < 0 || w->material >= s->nmat)
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown material %d", k, w->material), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: unknown material %d", k, w->material);
     double len = sqrt(w->normal[0] * w->normal[0] + w->normal[1] * w->normal[1] + w->normal[2] * w->normal[2]);
     if (!(len > 0) || !isfinite(len) || !sim_finite3(w->point))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: point must be finite and normal/axis non-zero", k);
     if (w->kind == DEM_WALL_CYLINDER && !(w->radius > 0 && isfinite(w->radius)))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius), -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder radius must be > 0 m (got %g)", k, w->radius);
     if (w->kind == DEM_WALL_CYLINDER && !(w->height >= 0 && isfinite(w->height)))
-        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height),
-               -1;
+        return sim_fail(s, DEM_ERR_ARG, "wall %d: cylinder height must be >= 0 m (0: endless; got %g)", k, w->height);
     int flat = w->cup_radius == 0 && w->cup_depth == 0;
     if (!flat && (w->kind != DEM_WALL_PLANE || !(w->cup_depth >= 1e-3 * w->cup_radius) || !(w->cup_radius >= w->cup_depth) ||
                   !isfinite(w->cup_radius) || !(w->cup_depth > 0)))
         return sim_fail(s, DEM_ERR_ARG, "wall %d: a cup is a plane's, with radius / 1000 <= depth <= radius (at most a "
                         "hemisphere; a shallower one is a flat punch; got radius %g m, depth %g m)", k, w->cup_radius,
-                        w->cup_depth), -1;
-    if (check_stages(s, k, w->kind, w->nstages, w->stages))
-        return -1;
+                        w->cup_depth);
+    int e = check_stages(s, k, w->kind, w->nstages, w->stages);
+    if (e)
+        return e;
     s->walls[k] = *w;
     for (int d = 0; d < 3; d++)
         s->walls[k].normal[d] = w->normal[d] / len;
@@ -83,7 +83,7 @@ int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int material
         w.normal[axis] = upper ? -1 : 1;
         int id = dem_add_wall(s, &w);
         if (id < 0)
-            return -1;
+            return id;
         if (k == 0)
             first = id;
     }
@@ -166,7 +166,7 @@ int dem_density_walls(const dem_sim *s, int wall, int *die, int *other)
 int dem_cup_in_bore(const dem_sim *s, int wall, int die)
 {
     if (wall < 0 || wall >= s->nwalls || die < 0 || die >= s->nwalls)
-        return 0;
+        return DEM_ERR_ARG;
     const dem_wall *p = &s->walls[wall], *d = &s->walls[die];
     if (!(p->cup_depth > 0))
         return 1;
@@ -207,7 +207,7 @@ int dem_relative_density(const dem_sim *s, int wall, double *rho)
     int die, other, e = dem_density_walls(s, wall, &die, &other);
     if (e)
         return e;
-    if (!dem_cup_in_bore(s, wall, die) || !dem_cup_in_bore(s, other, die))
+    if (dem_cup_in_bore(s, wall, die) != 1 || dem_cup_in_bore(s, other, die) != 1)
         return DEM_ERR_ARG; /* the cup's volume would not be the bore's */
     double vol = 0, a[3], b[3];
     for (int i = 0; i < s->n; i++)
@@ -331,7 +331,7 @@ int sim_walls_move(dem_sim *s)
             s->wall_pos[w][d] += v[d] * s->dt;
     }
     sim_pack_walls(s);
-    if (dem_stage_set_walls(s->ops, s->be, s->wall_real) || (s->natt && dem_stage_riders(s->ops, s->be)))
+    if (dem_stage_set_walls(s->ops, s->be, s->wall_real) || (s->natt && dem_launch(s->ops, s->be, K_rider_place)))
         return sim_be_fail(s);
     return 0;
 }
