@@ -4,7 +4,7 @@
  * registry buffer, launch a kernel of common/dem_kernels.h with its arguments looked up by their sources, fill,
  * copy, read, write); everything else is written once on top of them: the buffers a run needs (walking the registry,
  * common/dem_buffers.h, in backend/backend.c), and the steps of a time step (host/steps/: binning, neighbour rows,
- * contact forces, wall forces, integration, stress, MC-strain). The driver (host/core/sim.c) decides when to rebuild,
+ * contact forces, wall forces, integration, stress, MC-strain). The driver (host/core/) decides when to rebuild,
  * grows capacities, moves walls and checks flags, identically for every backend, so two backends given the same
  * setup execute the same sequence of launches.
  * Arrays cross this interface as raw bytes in the backend's precision (real_size 4 or 8).
@@ -87,7 +87,7 @@ typedef struct {
 
 #define DEM_TRACE_MAX 256 /* launches recorded per step (dem_kernel_sequence) */
 /* Slots per particle the packed neighbour rows start with (all rows together: DEM_ROWS); a build that needs more
- * grows them before it fills them (sim.c row_capacity). */
+ * grows them before it fills them (host/core/rebuild.c row_capacity). */
 #define DEM_INITIAL_ROW_CAPACITY 8
 /* Pair records per particle assumed by dem_memory_estimate (a dense packing has about 3 partners of higher id). */
 #define DEM_ESTIMATE_PAIRS_PER_PARTICLE 3
@@ -110,7 +110,7 @@ typedef struct {
     size_t row_bytes[2][ROW__COUNT];
     double ktime[K__COUNT]; /* seconds per kernel, when timed (OpenCL: DEM_PROFILE set; reference: always) */
     int timed;
-    int ntrace;                            /* launches since the driver last cleared it (sim.c) */
+    int ntrace;                            /* launches since the driver last cleared it (step_loop.c) */
     unsigned char trace[DEM_TRACE_MAX];    /* their kernel ids, the first DEM_TRACE_MAX */
     char build[2048]; /* provenance: how the kernels were built (dem_build_info) */
     char err[4096];

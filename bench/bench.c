@@ -627,7 +627,7 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     dem_kernel_times(s, &names, &secs, &cnt);
     size_t len = 0;
     /* the kernels of every step: each launched once per step, so its bytes / its time is a rate. The walls' sums are
-     * in the last step's sequence but run only on the last step of a dem_step call (host/core/sim.c): left out */
+     * in the last step's sequence but run only on the last step of a dem_step call (host/core/step_loop.c): left out */
     char seq[2048] = "";
     dem_kernel_sequence(s, 0, seq, sizeof seq);
     for (int k = 0; k < cnt && k < 64 && profile; k++) {

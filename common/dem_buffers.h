@@ -7,7 +7,7 @@
  * the particles' bounding box at a build, binning.h, with room to spare; host/steps/binning.c), NBS (scan
  * blocks of the cells), NBR (reduction blocks of the particles), MAXN (slots of the row set the buffer belongs to:
  * its rows are packed one after the other, row i from start[i], so MAXN is what all its rows hold together, with
- * room to spare: host/core/sim.c row_capacity), MAXC (slots of the current row set: for a buffer laid out like the rows
+ * room to spare: host/core/rebuild.c row_capacity), MAXC (slots of the current row set: for a buffer laid out like the rows
  * but written before it is read after each rebuild, so held once and not in both sets; host/steps/neighbor.c grows it with
  * the current set), PAIRS (pair
  * records allocated), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV (capacity of the

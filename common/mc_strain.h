@@ -21,7 +21,7 @@
  * induces displacements, and counts as touching) while d_c + D_i,c + D_j,c > 0. Its contact radius is taken as 0.
  *
  * f_k comes from the previous evaluation: the previous time step in the lagged scheme (published, one pass), or
- * the previous iteration when iterating (host/core/sim.c repeats mc_strain_disp + mc_strain_update until no force changes
+ * the previous iteration when iterating (host/core/step_loop.c repeats mc_strain_disp + mc_strain_update until no force changes
  * by more than the relative tolerance, or the iteration cap). It is stored per pair (numbered like the records:
  * contacts.h row_pair; until 2026-12-03 per row slot, in both slots of a pair and in both row sets) and per
  * particle-wall slot, carried across neighbour rebuilds and saved in checkpoints.

@@ -5,7 +5,7 @@
  * ids, not the places the particles are stored at (host/core/reorder.c moves them). The test is symmetric in i and j bit
  * for bit (IEEE + and * commute), so j is in row i exactly when i is in row j.
  * The rows are packed (dem_buffers.h DEM_ROWS): a build is a count (nbr_count), a scan of the counts into each row's
- * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/core/sim.c), a fill (nbr_build), which
+ * start (nbr_start[n]: the slots needed; the host grows the list to hold them: host/core/rebuild.c), a fill (nbr_build), which
  * walks the same cells with the same test and so finds exactly the pairs counted (FLAG_ASYMMETRIC 2, a library bug,
  * when it does not), and a sort of each row (nbr_sort). Count and fill each test every pair once, from the particle
  * whose cell comes first in the grid's order (in one cell: the one stored first), so together they cost one walk of

@@ -79,7 +79,7 @@ static void check(dem_precision prec, double cfg_skin, long steps)
     assert_true(total > 2 * n); /* a dense packing */
     /* the rows are packed: their slots start at 8 per particle and grow when a build's count needs more (they never
      * shrink): with the large skins the rows outgrew them, so the count-and-grow path has run. They grow to 1/8 over
-     * what that build needed, plus 16 (host/core/sim.c row_capacity), not by doubling, and not to the widest row for every
+     * what that build needed, plus 16 (host/core/rebuild.c row_capacity), not by doubling, and not to the widest row for every
      * particle. The rows now may be a little shorter than when they grew: 1/8 of slack. */
     assert_true(total <= m);
     if (cfg_skin > 5e-4)

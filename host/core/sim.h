@@ -1,10 +1,14 @@
-/* sim.h - internal state of a simulation (host/core/sim.c drives; host/core/sim_setup.c validates and packs). */
+/* sim.h - internal state of a simulation and what the driver's files share. The driver (host/core/): sim.c (the
+ * object, particles, materials), mesh_elements.c, walls.c, effects.c (the set-up), sim_setup.c (validated and packed
+ * at dem_start), step_loop.c (dem_start, dem_step), rebuild.c (the neighbour rows), fields.c (the callers' reads),
+ * state.c (dem_state), reorder.c and particle_order.c (the storage order), diagnostics.c (errors, trace, memory). */
 #ifndef DEM_SIM_H
 #define DEM_SIM_H
 #include "dem.h"
 #include "backend.h"
+#include <math.h>
 
-/* The automatic neighbour skin (dem_config.skin 0; sim.c's skin_choose): between LO and HI x the smallest radius
+/* The automatic neighbour skin (dem_config.skin 0; rebuild.c's skin_choose): between LO and HI x the smallest radius
  * (HI sizes the cells); R / B of its cost model, measured on a settled bed of 1e5 spheres on PoCL (2 cores): a rebuild
  * cost 4.5 steps, and 0.25 r_min less skin saved 13 % of the contact kernels' time (docs/design.md "The neighbour
  * skin"); rows that lasted PROBE steps are rebuilt to try a smaller skin. */
@@ -119,7 +123,7 @@ void sim_setup_free(dem_sim *s);     /* frees those arrays */
 int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that ends at a force (both read every step's) */
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
-double sim_relative_density(const dem_sim *s, int k); /* punch k's relative density now (dem_stage.until_density) */
+double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's relative density now (until_density) */
 /* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
  * checkpoint written before stages could end early). */
 void sim_stages_from_step(dem_sim *s);
@@ -131,6 +135,21 @@ void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the cur
 int sim_wall_table(const dem_wall *w, double *radius, double *height);
 void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its stage of the current step [m/s] */
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
+/* sim.c: 0 while the set-up may change, else DEM_ERR_STATE (reported) */
+int sim_not_started(dem_sim *s);
+static inline int sim_finite3(const double *a) { return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]); }
+/* diagnostics.c: a backend failure reported as DEM_ERR_DEVICE with the backend's message; launches [a, z) of the
+ * core's trace copied after the n already in dst (the new count) */
+int sim_be_fail(dem_sim *s);
+int sim_copy_trace(const dem_core *c, int a, int z, unsigned char *dst, int n);
+/* step_loop.c: the device's flags (FLAG_COUNT ints) read, or DEM_ERR_DEVICE reported */
+int sim_read_flags(dem_sim *s, int *flags);
+/* rebuild.c: the neighbour rows (and the patch rows) built anew, the storage order first when due; whether an
+ * automatic skin is to be tried smaller (a rebuild although none is needed) */
+int sim_rebuild(dem_sim *s);
+int sim_skin_probe_due(const dem_sim *s);
+/* walls.c: each wall's stage, servo velocity and position for the step being taken, uploaded with the riders */
+int sim_walls_move(dem_sim *s);
 int sim_grow(dem_sim *s, int count, int *cap, int **ints, int ni, double **reals, int nr, const char *what);
 /* A whole registry buffer read from the device (malloc'd; the patch rows have no field: their capacity is the
  * driver's). Sets *e (a dem_status) on failure unless it is set already; the caller frees the result. */
@@ -170,7 +189,7 @@ void sim_buffer_from_api(dem_sim *s, int id, const void *src, void *dst, size_t 
  * (neighbor.h's own_start; malloc'd, n + 1 entries) */
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);
 int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all); /* state.c */
-size_t sim_stored_bytes(const dem_sim *s, dem_field f);          /* sim.c: a field's bytes as the device holds it */
+size_t sim_stored_bytes(const dem_sim *s, dem_field f);          /* fields.c: a field's bytes as the device holds it */
 
 /* host/mesh/attach.c: riders take their walls' velocities of the current step on the host (sim_pack, once the stage
  * lengths are known; the device places them each step: common/riders.h) */

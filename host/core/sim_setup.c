@@ -316,7 +316,7 @@ void sim_wall_velocity(const dem_sim *s, int k, double v[3])
     long first;
     int st = sim_stage_now(s, k, &first);
     v[0] = v[1] = v[2] = 0;
-    if (st >= 0) /* a servo stage: the velocity dem_step worked out (sim.c) */
+    if (st >= 0) /* a servo stage: the velocity dem_step worked out (walls.c) */
         memcpy(v, s->walls[k].stages[st].force > 0 ? s->servo_v[k] : s->walls[k].stages[st].velocity,
                sizeof(double) * 3);
 }
@@ -705,7 +705,7 @@ int sim_pack(dem_sim *s)
     memcpy(u->gravity, s->gravity, sizeof u->gravity);
     u->skin = skin + reach_extra;
     u->half_skin2 = 0.25 * skin * skin;
-    s->skin_hi = s->skin_now = skin; /* the cells fit the largest skin: sim.c's skin_choose stays below it */
+    s->skin_hi = s->skin_now = skin; /* the cells fit the largest skin: rebuild.c's skin_choose stays below it */
     s->skin_lo = s->cfg.skin > 0 ? skin : DEM_SKIN_AUTO_LO * s->rmin;
     s->skin_extra = reach_extra;
     s->skin_built = -1;

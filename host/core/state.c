@@ -414,7 +414,6 @@ int dem_state_get(dem_sim *s, dem_state *st)
     return e;
 }
 
-int sim_rebuild(dem_sim *s); /* sim.c */
 
 static int state_set(dem_sim *s, const dem_state *st, int keep);
 
@@ -515,7 +514,7 @@ static int pairs_set(dem_sim *s, const dem_state *st)
 static void state_adopt(dem_sim *s, const dem_state *st)
 {
     s->step = st->step;
-    s->skin_built = s->step; /* the rows just built are this step's (sim.c skin_choose counts from it) */
+    s->skin_built = s->step; /* the rows just built are this step's (rebuild.c skin_choose counts from it) */
     long first_capped = s->mc.first_capped, last_capped = s->mc.last_capped; /* this process's, not the state's */
     s->mc = st->mc;
     s->mc.first_capped = first_capped, s->mc.last_capped = last_capped;

@@ -32,6 +32,45 @@ static int check_material(dem_sim *s, const dem_membrane *mm)
     return 0;
 }
 
+/* Each vertex's mass (a third of each of its triangles'), and the mesh's area in *area, once the triangles, vertices
+ * and edges are checked against the membrane (every triangle has an area, every vertex a triangle, no edge is
+ * shorter than vertex_radius); NULL otherwise, reported, with its dem_status in *rc. The caller frees the result. */
+static double *vertex_masses(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, const dem_mesh_topo *t,
+                             double *area, int *rc)
+{
+    double *vmass = calloc((size_t)m->nv, sizeof(double)), shortest = INFINITY;
+    if (!vmass)
+        return *rc = sim_fail(s, DEM_ERR_NOMEM, "out of host memory"), NULL;
+    for (int k = 0; k < m->nt; k++) {
+        double a = tri_area(m->x, m->tri + 3 * k);
+        if (!(a > 0)) {
+            free(vmass);
+            return *rc = sim_fail(s, DEM_ERR_ARG, "membrane: triangle %d (vertices %d, %d, %d) has no area", k,
+                            m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2]), NULL;
+        }
+        *area += a;
+        for (int j = 0; j < 3; j++) /* a third of each triangle's mass to each of its vertices */
+            vmass[m->tri[3 * k + j]] += mm->density * mm->thickness * a / 3;
+    }
+    for (int e = 0; e < t->ne; e++) {
+        const double *a = m->x + 3 * t->edge[2 * e], *b = m->x + 3 * t->edge[2 * e + 1];
+        shortest = fmin(shortest, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                       (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    int bad = -1;
+    for (int i = 0; i < m->nv && bad < 0; i++)
+        if (!(vmass[i] > 0))
+            bad = i;
+    if (bad >= 0 || mm->vertex_radius > shortest) {
+        free(vmass);
+        if (bad >= 0)
+            return *rc = sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d belongs to no triangle", bad), NULL;
+        return *rc = sim_fail(s, DEM_ERR_ARG, "membrane: vertex_radius %g m is more than the shortest edge, %g m (a vertex "
+                        "would reach past its neighbours)", mm->vertex_radius, shortest), NULL;
+    }
+    return vmass;
+}
+
 int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info)
 {
     if (s->started)
@@ -48,36 +87,9 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     dem_mesh_topo t;
     if ((rc = dem_mesh_topology(m, &t, err, sizeof err)))
         return sim_fail(s, rc, "membrane: %s", err);
-    double *vmass = calloc((size_t)m->nv, sizeof(double)), area = 0, shortest = INFINITY;
+    double area = 0, *vmass = vertex_masses(s, m, mm, &t, &area, &rc);
     if (!vmass)
-        return dem_mesh_topo_free(&t), sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    for (int k = 0; k < m->nt; k++) {
-        double a = tri_area(m->x, m->tri + 3 * k);
-        if (!(a > 0)) {
-            free(vmass), dem_mesh_topo_free(&t);
-            return sim_fail(s, DEM_ERR_ARG, "membrane: triangle %d (vertices %d, %d, %d) has no area", k,
-                            m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2]);
-        }
-        area += a;
-        for (int j = 0; j < 3; j++) /* a third of each triangle's mass to each of its vertices */
-            vmass[m->tri[3 * k + j]] += mm->density * mm->thickness * a / 3;
-    }
-    for (int e = 0; e < t.ne; e++) {
-        const double *a = m->x + 3 * t.edge[2 * e], *b = m->x + 3 * t.edge[2 * e + 1];
-        shortest = fmin(shortest, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                       (a[2] - b[2]) * (a[2] - b[2])));
-    }
-    int bad = -1;
-    for (int i = 0; i < m->nv && bad < 0; i++)
-        if (!(vmass[i] > 0))
-            bad = i;
-    if (bad >= 0 || mm->vertex_radius > shortest) {
-        free(vmass), dem_mesh_topo_free(&t);
-        if (bad >= 0)
-            return sim_fail(s, DEM_ERR_ARG, "membrane: vertex %d belongs to no triangle", bad);
-        return sim_fail(s, DEM_ERR_ARG, "membrane: vertex_radius %g m is more than the shortest edge, %g m (a vertex "
-                        "would reach past its neighbours)", mm->vertex_radius, shortest);
-    }
+        return dem_mesh_topo_free(&t), rc;
     /* everything checked; what follows fails only for memory, and then is undone */
     int n0 = s->n, ns0 = s->nsprings, nt0 = s->ntri, nh0 = s->nhinges, nm0 = s->nmat, np0 = s->npatch;
     unsigned eff0 = s->effects;

@@ -210,6 +210,72 @@ static int cmp_edge_mid(const void *p, const void *q)
     return x->a != y->a ? (x->a > y->a) - (x->a < y->a) : (x->b > y->b) - (x->b < y->b);
 }
 
+/* One split of every triangle of m into four, each edge's new vertex at its midpoint on the unit sphere; ft and em
+ * hold 3 nt entries of the split mesh */
+static void split_once(dem_mesh *m, int *ft, edge_mid *em)
+{
+    int ne = 0; /* every edge once, with a new vertex at its midpoint on the sphere */
+    for (int k = 0; k < m->nt; k++)
+        for (int j = 0; j < 3; j++) {
+            int a = m->tri[3 * k + j], b = m->tri[3 * k + (j + 1) % 3];
+            if (a < b)
+                em[ne].a = a, em[ne].b = b, em[ne].mid = -1, ne++;
+        }
+    qsort(em, (size_t)ne, sizeof *em, cmp_edge_mid);
+    for (int e = 0; e < ne; e++) {
+        const double *xa = m->x + 3 * em[e].a, *xb = m->x + 3 * em[e].b;
+        double c[3], n = 0;
+        for (int q = 0; q < 3; q++)
+            c[q] = xa[q] + xb[q], n += c[q] * c[q];
+        em[e].mid = m->nv;
+        put_vertex(m, c[0] / sqrt(n), c[1] / sqrt(n), c[2] / sqrt(n));
+    }
+    int nf = 0;
+    for (int k = 0; k < m->nt; k++) {
+        int v[3], mid[3];
+        for (int j = 0; j < 3; j++)
+            v[j] = m->tri[3 * k + j];
+        for (int j = 0; j < 3; j++) {
+            int a = v[j], b = v[(j + 1) % 3];
+            edge_mid key = {a < b ? a : b, a < b ? b : a, 0};
+            mid[j] = ((edge_mid *)bsearch(&key, em, (size_t)ne, sizeof *em, cmp_edge_mid))->mid;
+        }
+        int sub[4][3] = {{v[0], mid[0], mid[2]}, {v[1], mid[1], mid[0]}, {v[2], mid[2], mid[1]},
+                         {mid[0], mid[1], mid[2]}};
+        memcpy(ft + 3 * nf, sub, sizeof sub), nf += 4;
+    }
+    memcpy(m->tri, ft, sizeof(int) * 3 * (size_t)nf), m->nt = nf;
+}
+
+/* Smoothing of a split unit sphere (level > 0): every vertex to the mean of its neighbours (each edge seen from both
+ * triangles), back on the sphere, SPHERE_SMOOTHING times; -1 when out of memory */
+static int smooth_sphere(dem_mesh *m, int level)
+{
+    double *acc = malloc(sizeof(double) * 3 * (size_t)m->nv);
+    int *deg = malloc(sizeof(int) * (size_t)m->nv);
+    if (!acc || !deg)
+        return free(acc), free(deg), -1;
+    for (int it = 0; it < SPHERE_SMOOTHING && level > 0; it++) {
+        memset(acc, 0, sizeof(double) * 3 * (size_t)m->nv), memset(deg, 0, sizeof(int) * (size_t)m->nv);
+        for (int k = 0; k < m->nt; k++)
+            for (int j = 0; j < 3; j++) {
+                int a = m->tri[3 * k + j], b = m->tri[3 * k + (j + 1) % 3];
+                for (int q = 0; q < 3; q++)
+                    acc[3 * a + q] += m->x[3 * b + q];
+                deg[a]++;
+            }
+        for (int i = 0; i < m->nv; i++) {
+            double n = 0;
+            for (int q = 0; q < 3; q++)
+                n += acc[3 * i + q] * acc[3 * i + q];
+            for (int q = 0; q < 3; q++)
+                m->x[3 * i + q] = acc[3 * i + q] / sqrt(n);
+        }
+    }
+    free(acc), free(deg);
+    return 0;
+}
+
 static int make_sphere(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t errlen)
 {
     double r = sp->a, s = sp->edge, t = (1 + sqrt(5.0)) / 2;
@@ -234,63 +300,11 @@ static int make_sphere(const dem_mesh_spec *sp, dem_mesh *m, char *err, size_t e
     edge_mid *em = malloc(sizeof(edge_mid) * 3 * (size_t)nt);
     if (!ft || !em)
         return free(ft), free(em), dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
-    for (int l = 0; l < level; l++) {
-        int ne = 0; /* every edge once, with a new vertex at its midpoint on the sphere */
-        for (int k = 0; k < m->nt; k++)
-            for (int j = 0; j < 3; j++) {
-                int a = m->tri[3 * k + j], b = m->tri[3 * k + (j + 1) % 3];
-                if (a < b)
-                    em[ne].a = a, em[ne].b = b, em[ne].mid = -1, ne++;
-            }
-        qsort(em, (size_t)ne, sizeof *em, cmp_edge_mid);
-        for (int e = 0; e < ne; e++) {
-            const double *xa = m->x + 3 * em[e].a, *xb = m->x + 3 * em[e].b;
-            double c[3], n = 0;
-            for (int q = 0; q < 3; q++)
-                c[q] = xa[q] + xb[q], n += c[q] * c[q];
-            em[e].mid = m->nv;
-            put_vertex(m, c[0] / sqrt(n), c[1] / sqrt(n), c[2] / sqrt(n));
-        }
-        int nf = 0;
-        for (int k = 0; k < m->nt; k++) {
-            int v[3], mid[3];
-            for (int j = 0; j < 3; j++)
-                v[j] = m->tri[3 * k + j];
-            for (int j = 0; j < 3; j++) {
-                int a = v[j], b = v[(j + 1) % 3];
-                edge_mid key = {a < b ? a : b, a < b ? b : a, 0};
-                mid[j] = ((edge_mid *)bsearch(&key, em, (size_t)ne, sizeof *em, cmp_edge_mid))->mid;
-            }
-            int sub[4][3] = {{v[0], mid[0], mid[2]}, {v[1], mid[1], mid[0]}, {v[2], mid[2], mid[1]},
-                             {mid[0], mid[1], mid[2]}};
-            memcpy(ft + 3 * nf, sub, sizeof sub), nf += 4;
-        }
-        memcpy(m->tri, ft, sizeof(int) * 3 * (size_t)nf), m->nt = nf;
-    }
+    for (int l = 0; l < level; l++)
+        split_once(m, ft, em);
     free(ft), free(em);
-    /* smoothing: every vertex to the mean of its neighbours (each edge seen from both triangles), back on the sphere */
-    double *acc = malloc(sizeof(double) * 3 * (size_t)m->nv);
-    int *deg = malloc(sizeof(int) * (size_t)m->nv);
-    if (!acc || !deg)
-        return free(acc), free(deg), dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
-    for (int it = 0; it < SPHERE_SMOOTHING && level > 0; it++) {
-        memset(acc, 0, sizeof(double) * 3 * (size_t)m->nv), memset(deg, 0, sizeof(int) * (size_t)m->nv);
-        for (int k = 0; k < m->nt; k++)
-            for (int j = 0; j < 3; j++) {
-                int a = m->tri[3 * k + j], b = m->tri[3 * k + (j + 1) % 3];
-                for (int q = 0; q < 3; q++)
-                    acc[3 * a + q] += m->x[3 * b + q];
-                deg[a]++;
-            }
-        for (int i = 0; i < m->nv; i++) {
-            double n = 0;
-            for (int q = 0; q < 3; q++)
-                n += acc[3 * i + q] * acc[3 * i + q];
-            for (int q = 0; q < 3; q++)
-                m->x[3 * i + q] = acc[3 * i + q] / sqrt(n);
-        }
-    }
-    free(acc), free(deg);
+    if (smooth_sphere(m, level))
+        return dem_mesh_free(m), snprintf(err, errlen, "out of host memory"), DEM_ERR_NOMEM;
     for (int i = 0; i < m->nv; i++)
         for (int q = 0; q < 3; q++)
             m->x[3 * i + q] = sp->center[q] + r * m->x[3 * i + q];

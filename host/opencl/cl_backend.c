@@ -402,7 +402,7 @@ const dem_backend_ops dem_opencl_ops = {
     .unmap = cl_unmap,
 };
 
-/* the public device queries (dem.h): OpenCL's, so they live here and the driver (sim.c) holds no OpenCL call */
+/* the public device queries (dem.h): OpenCL's, so they live here and the driver (host/core/) holds no OpenCL call */
 int dem_device_count(void) { return cl_device_count(); }
 
 int dem_device_name(int k, char *buf, size_t len)

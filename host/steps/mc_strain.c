@@ -1,5 +1,5 @@
 /* mc_strain.c - MC-strain's fixed-point update of the forces with its tolerance (common/mc_strain.h; the induced
- * displacements are one launch, mc_strain_disp; the iteration loop itself is the driver's, host/core/sim.c). Written
+ * displacements are one launch, mc_strain_disp; the iteration loop itself is the driver's, host/core/step_loop.c). Written
  * once for every backend. */
 #include "backend.h"
 

@@ -1,0 +1,215 @@
+/* step_loop.c - the run: dem_start, and each step (dem_step, sim_step_once): kick and drift, the walls' move, a
+ * rebuild when due (rebuild.c), the force stages in order (the pressure schedule, MC-strain's iteration), and the
+ * second kick. Every decision is taken here the same way for every backend. */
+#include "sim.h"
+#include "dem_layout.h"
+#include <math.h>
+#include <stdlib.h>
+
+int sim_read_flags(dem_sim *s, int *flags)
+{
+    return dem_stage_read_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof(int) * FLAG_COUNT) ? sim_be_fail(s) : 0;
+}
+
+/* The scheduled pressure at time t [s] (dem_set_pressure_stages) */
+static double pressure_at(const dem_sim *s, double t)
+{
+    double from = s->pressure, t0 = 0;
+    for (int k = 0; k < s->npstages; k++) {
+        const dem_pressure_stage *g = &s->pstages[k];
+        if (t < t0 + g->duration)
+            return from + (g->pressure - from) * ((t - t0) / g->duration);
+        from = g->pressure, t0 += g->duration;
+    }
+    return from;
+}
+
+/* MC-strain before the contact pass: displacements from the stored forces (lagged), or iterated to the tolerance. */
+static int mc_strain(dem_sim *s)
+{
+    long it = 0;
+    int converged = 0;
+    if (dem_launch(s->ops, s->be, K_mc_strain_disp))
+        return sim_be_fail(s);
+    while (it < s->mc_max_iter) {
+        int flags[FLAG_COUNT];
+        if (sim_read_flags(s, flags))
+            return DEM_ERR_DEVICE;
+        flags[FLAG_MC_PENDING] = 0;
+        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc_tol) ||
+            dem_launch(s->ops, s->be, K_mc_strain_disp))
+            return sim_be_fail(s);
+        it++;
+        if (sim_read_flags(s, flags))
+            return DEM_ERR_DEVICE;
+        if (!flags[FLAG_MC_PENDING]) {
+            converged = 1;
+            break;
+        }
+    }
+    s->mc.last = it;
+    if (s->force_step == s->step) /* dem_start's forces, before any step: no step to count (a cap hit there made
+                                   * the count one more than the steps, "6001 of 6000") */
+        return 0;
+    if (s->mc_max_iter && !converged) {
+        s->mc.unconverged++;
+        if (s->mc.first_capped < 0)
+            s->mc.first_capped = s->force_step;
+        s->mc.last_capped = s->force_step;
+    }
+    s->mc.total += it;
+    if (it > s->mc.max)
+        s->mc.max = it;
+    return 0;
+}
+
+/* The force stages of a step, in order, each run only when the run has its effect (0: always) and, for the walls'
+ * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through sim_be_fail). */
+static int stage_stress_trace(dem_sim *s) { return dem_launch(s->ops, s->be, K_stress_trace) ? sim_be_fail(s) : 0; }
+/* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
+ * dem_get_field and the output see it after any call) and every step while a servo stage may read it. Unless the
+ * run keeps each particle's wall forces (DEM_KEEP_WALL_FORCES: a servo, the contact network), the sum evaluates
+ * the wall contacts itself, between the pair pass and the per-particle sums, which then apply exactly those forces
+ * (common/wall_forces.h); otherwise it adds the kept forces after the per-particle sums. The bits are the same. */
+static int stage_contacts(dem_sim *s)
+{
+    /* A sampled step's row (common/series.h) keeps the blocks' partial sums: integrate_kick takes them from the kept
+     * forces, or else they are computed here; the final sum runs only when due. */
+    int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls, fin = walls && s->wall_sums_due;
+    int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
+    int blocks = fin || (walls && s->sample_row >= 0 && !kept);
+    return dem_launch(s->ops, s->be, K_contact_pairs) ||
+                   (blocks && !kept && dem_stage_wall_reduce(s->ops, s->be, fin)) ||
+                   dem_launch(s->ops, s->be, K_contact_forces) ||
+                   (blocks && kept && dem_stage_wall_reduce(s->ops, s->be, fin))
+               ? sim_be_fail(s)
+               : 0;
+}
+static int stage_springs(dem_sim *s)
+{
+    return s->nsprings && dem_launch(s->ops, s->be, K_spring_forces) ? sim_be_fail(s) : 0;
+}
+static int stage_pressure(dem_sim *s)
+{
+    s->pressure_now = pressure_at(s, (double)s->force_step * s->dt);
+    DEM_CORE(s->be)->sr[SR_PRESSURE] = s->pressure_now;
+    return s->ntri && dem_launch(s->ops, s->be, K_pressure_forces) ? sim_be_fail(s) : 0;
+}
+static int stage_bending(dem_sim *s)
+{
+    return s->nhinges && dem_launch(s->ops, s->be, K_hinge_forces) ? sim_be_fail(s) : 0;
+}
+static int stage_gather(dem_sim *s)
+{
+    return (s->nsprings || s->ntri || s->nhinges) && dem_launch(s->ops, s->be, K_channel_gather) ? sim_be_fail(s) : 0;
+}
+static int stage_patches(dem_sim *s)
+{
+    return s->npatch && (dem_launch(s->ops, s->be, K_patch_forces) || dem_launch(s->ops, s->be, K_patch_gather))
+               ? sim_be_fail(s)
+               : 0;
+}
+static const struct {
+    unsigned gate;
+    int (*run)(dem_sim *s);
+} force_stages[] = {
+    {DEM_EFFECT_MC_STRESS, stage_stress_trace}, /* pass 1 of MC-stress: the traces the contacts read */
+    {DEM_EFFECT_MC_STRAIN, mc_strain},          /* induced displacements (lagged or iterated forces) */
+    {0, stage_contacts},                        /* pairs once, [the walls' sums,] per-particle sums with the walls */
+    {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces into the contribution channel (springs.h) */
+    {DEM_EFFECT_PRESSURE, stage_pressure},      /* triangle loads into it (pressure.h) */
+    {DEM_EFFECT_BENDING, stage_bending},        /* hinge forces into it (bending.h) */
+    {DEM_EFFECT_CHANNEL, stage_gather},         /* each particle's records added in order */
+    {DEM_EFFECT_PATCHES, stage_patches},        /* spheres on patches, then the vertices' sums (patch_contacts.h) */
+};
+
+static int forces(dem_sim *s)
+{
+    for (size_t k = 0; k < sizeof force_stages / sizeof force_stages[0]; k++)
+        if (!force_stages[k].gate || (s->effects & force_stages[k].gate)) {
+            int e = force_stages[k].run(s);
+            if (e)
+                return e;
+        }
+    return 0;
+}
+
+int dem_start(dem_sim *s, const dem_config *c)
+{
+    if (sim_not_started(s))
+        return DEM_ERR_STATE;
+    s->cfg = *c;
+    int e = sim_validate(s);
+    if (e || (e = sim_pack(s)))
+        return e;
+    if (c->backend == DEM_BACKEND_REFERENCE)
+        s->ops = c->precision == DEM_FP64 ? &dem_reference_ops_f64 : &dem_reference_ops_f32;
+    else if (c->backend == DEM_BACKEND_OPENCL)
+        s->ops = &dem_opencl_ops;
+    else
+        return sim_fail(s, DEM_ERR_ARG, "unknown backend %d", (int)c->backend);
+    char err[4096];
+    if (s->ops->create(&s->be, &s->setup, err, sizeof err)) {
+        s->be = NULL;
+        return sim_fail(s, DEM_ERR_DEVICE, "%s", err);
+    }
+    s->started = 1;
+    if (dem_stage_reset_flags(s->ops, s->be))
+        return sim_be_fail(s);
+    s->force_step = s->step;
+    s->wall_sums_due = 1;
+    s->servo_walls = sim_has_servo(s);
+    if ((e = sim_rebuild(s)) || (e = forces(s)))
+        return e;
+    return 0;
+}
+
+int dem_step(dem_sim *s, long nsteps)
+{
+    if (!s->started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    for (long k = 0; k < nsteps; k++) {
+        int e = sim_step_once(s, k == nsteps - 1, -1);
+        if (e)
+            return e;
+    }
+    return 0;
+}
+
+int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
+{
+    int flags[FLAG_COUNT], e;
+    dem_core *c = DEM_CORE(s->be);
+    c->ntrace = 0;
+    s->rebuild_at = s->rebuild_len = 0;
+    if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, K_integrate_kick_drift))
+        return sim_be_fail(s);
+    /* walls move with the particles' drift: positions at t + dt, velocity of this step */
+    if (s->nwalls && (e = sim_walls_move(s)))
+        return e;
+    if (sim_read_flags(s, flags))
+        return DEM_ERR_DEVICE;
+    if ((flags[FLAG_REBUILD] || sim_skin_probe_due(s)) && (e = sim_rebuild(s)))
+        return e;
+    s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
+    s->wall_sums_due = wall_sums || s->servo_walls;
+    s->sample_row = sample_row;
+    if (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 1, sample_row))
+        return sim_be_fail(s);
+    if ((e = forces(s))) {
+        s->sample_row = -1; /* a later step is not sampled into this row */
+        dem_stage_series_arm(s->ops, s->be, 0, 0);
+        return e;
+    }
+    if (dem_launch(s->ops, s->be, K_integrate_kick) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
+        return sim_be_fail(s);
+    s->sample_row = -1;
+    s->nseq_step = sim_copy_trace(c, 0, s->rebuild_len ? s->rebuild_at : c->ntrace, s->seq_step, 0);
+    if (s->rebuild_len)
+        s->nseq_step = sim_copy_trace(c, s->rebuild_at + s->rebuild_len, c->ntrace, s->seq_step, s->nseq_step);
+    s->step++;
+    return 0;
+}
+
+long dem_step_index(const dem_sim *s) { return s->step; }
+double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }
