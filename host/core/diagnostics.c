@@ -6,8 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *dem_error(const dem_sim *s) { return s ? s->err : "no simulation (out of memory?)"; }
-int dem_error_particle(const dem_sim *s) { return s ? s->err_particle : -1; }
+const char *dem_error(const dem_sim *s) { return s ? s->report.err : "no simulation (out of memory?)"; }
+int dem_error_particle(const dem_sim *s) { return s ? s->report.err_particle : -1; }
 
 int sim_be_fail(dem_sim *s)
 {
@@ -28,8 +28,8 @@ const char *dem_describe(dem_sim *s)
         return "not started";
     char fx[128];
     dem_effects_string(s->effects, fx, sizeof fx);
-    snprintf(s->desc, sizeof s->desc, "%s, effects %s", s->ops->describe(s->be), fx);
-    return s->desc;
+    snprintf(s->report.desc, sizeof s->report.desc, "%s, effects %s", s->ops->describe(s->be), fx);
+    return s->report.desc;
 }
 
 int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, int *count)
@@ -52,8 +52,8 @@ double dem_kernel_bytes(const dem_sim *s, int k)
 
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 {
-    const unsigned char *q = rebuild ? s->seq_rebuild : s->seq_step;
-    int n = rebuild ? s->nseq_rebuild : s->nseq_step;
+    const unsigned char *q = rebuild ? s->trace.rebuild : s->trace.step;
+    int n = rebuild ? s->trace.nrebuild : s->trace.nstep;
     size_t o = 0;
     if (len)
         buf[0] = 0;
@@ -113,7 +113,7 @@ const char *dem_memory_part_name(dem_memory_part part)
 int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
 {
     *bytes = 0;
-    if (s->started)
+    if (s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_memory_estimate is for a run not started (dem_device_bytes after)");
     s->cfg = *c;
     int e = sim_validate(s);
@@ -143,7 +143,7 @@ int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
 
 const char *dem_build_info(dem_sim *s)
 {
-    snprintf(s->build, sizeof s->build, "libdem %s; host code compiled by %s with %s; kernels: %s", DEM_VERSION,
+    snprintf(s->report.build, sizeof s->report.build, "libdem %s; host code compiled by %s with %s; kernels: %s", DEM_VERSION,
              DEM_COMPILER, DEM_BUILD_FLAGS, s->be ? DEM_CORE(s->be)->build : "not started");
-    return s->build;
+    return s->report.build;
 }

@@ -30,11 +30,11 @@ int dem_set_mc_stress_convention(dem_sim *s, unsigned convention)
         return sim_fail(s, DEM_ERR_ARG, "MC-stress convention 0x%x has bits other than DEM_MCS_*", convention);
     if ((convention & DEM_MCS_SCALE_TEXT) && (convention & DEM_MCS_SCALE_TRACE))
         return sim_fail(s, DEM_ERR_ARG, "MC-stress convention: choose one scale (text or trace), not both");
-    s->mcs_conv = convention;
+    s->mc.stress_conv = convention;
     return 0;
 }
 
-unsigned dem_mc_stress_convention(const dem_sim *s) { return s->mcs_conv; }
+unsigned dem_mc_stress_convention(const dem_sim *s) { return s->mc.stress_conv; }
 
 void dem_mc_stress_convention_string(unsigned c, char *buf, size_t len)
 {
@@ -50,8 +50,8 @@ int dem_set_mc_strain(dem_sim *s, int max_iterations, double tolerance)
     if (max_iterations < 0 || max_iterations > 10000 || !(tolerance > 0) || !isfinite(tolerance))
         return sim_fail(s, DEM_ERR_ARG, "MC-strain: iterations in 0..10000 (0 = lagged) and tolerance > 0 (got %d, %g)",
                         max_iterations, tolerance);
-    s->mc_max_iter = max_iterations;
-    s->mc_tol = tolerance;
+    s->mc.max_iter = max_iterations;
+    s->mc.tol = tolerance;
     return 0;
 }
 
@@ -61,11 +61,11 @@ int dem_set_mc_strain_reach(dem_sim *s, double factor)
         return DEM_ERR_STATE;
     if (!(factor >= 1 && factor <= 2))
         return sim_fail(s, DEM_ERR_ARG, "MC-strain contact distance factor must be in [1, 2] (got %g)", factor);
-    s->mc_reach = factor;
+    s->mc.reach = factor;
     return 0;
 }
 
-void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc; }
+void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc.stats; }
 
 /* by bit position; the convention bits (7..11, dem_effects.h) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",

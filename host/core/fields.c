@@ -31,22 +31,22 @@ size_t dem_field_bytes(const dem_sim *s, dem_field f)
 {
     if (f == DEM_FIELD_MC_FORCE) /* kept per pair, handed out per row slot (dem_get_raw) */
         return (s->setup.effects & DEM_EFFECT_MC_STRAIN)
-                   ? (size_t)s->setup.real_size * (size_t)(s->be ? DEM_CORE(s->be)->maxn[DEM_CORE(s->be)->cur] : s->maxn)
+                   ? (size_t)s->setup.real_size * (size_t)(s->be ? DEM_CORE(s->be)->maxn[DEM_CORE(s->be)->cur] : s->rows.maxn)
                    : 0;
-    if (s->started) /* the run's own sizes: the pair-sized fields follow the pairs allocated */
+    if (s->run.started) /* the run's own sizes: the pair-sized fields follow the pairs allocated */
         return sim_stored_bytes(s, f);
-    return dem_field_size(f, s->setup.effects, (size_t)s->n, (size_t)s->maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
+    return dem_field_size(f, s->setup.effects, (size_t)s->n, (size_t)s->rows.maxn, (size_t)s->nwalls, (size_t)dem_cell_count(s),
                           (size_t)s->setup.real_size);
 }
 
 int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 {
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return sim_be_fail(s);
     int slots = f == DEM_FIELD_MC_FORCE; /* kept per pair, handed out per row slot */
-    if (!bytes || (!slots && !s->reorders))
+    if (!bytes || (!slots && !s->order.count))
         return dem_stage_read_field(s->ops, s->be, f, dst, bytes) ? sim_be_fail(s) : 0;
     /* stored anew (dem_config.reorder): the whole field read, then put in the callers' order */
     size_t all = dem_field_bytes(s, f);
@@ -57,7 +57,7 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     int e = slots ? sim_mc_force_slots(s, buf, all)
                   : dem_stage_read_field(s->ops, s->be, f, buf, all) ? sim_be_fail(s) : 0;
-    if (!e && s->reorders)
+    if (!e && s->order.count)
         e = sim_field_to_api(s, f, buf, all);
     if (!e)
         memcpy(dst, buf, bytes);

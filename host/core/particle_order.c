@@ -82,9 +82,9 @@ int sim_morton_order(const double *x, int n, int *perm)
 
 int dem_sort_particles(dem_sim *s)
 {
-    if (s->started)
+    if (s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_sort_particles: before dem_start");
-    if (s->nsprings || s->ntri || s->nhinges || s->npatch || s->natt)
+    if (s->mesh.nsprings || s->mesh.ntri || s->mesh.nhinges || s->mesh.npatch || s->mesh.natt)
         return sim_fail(s, DEM_ERR_STATE, "dem_sort_particles: before any spring, triangle, hinge, patch or attachment "
                                           "refers to particles by id (sort first, then add membranes)");
     int n = s->n;
@@ -99,7 +99,7 @@ int dem_sort_particles(dem_sim *s)
     }
     morton_keys(s->x, n, o);
     for (int k = 0; k < n; k++) /* where each particle came from, through earlier sorts too */
-        src[k] = s->source && o[k].id < s->source_n ? s->source[o[k].id] : o[k].id;
+        src[k] = s->order.source && o[k].id < s->order.source_n ? s->order.source[o[k].id] : o[k].id;
     permute(s->x, 3 * sizeof(double), o, n, tmp);
     permute(s->v, 3 * sizeof(double), o, n, tmp);
     permute(s->w, 3 * sizeof(double), o, n, tmp);
@@ -108,9 +108,9 @@ int dem_sort_particles(dem_sim *s)
     permute(s->pflags, sizeof(unsigned), o, n, tmp);
     permute(s->body, 2 * sizeof(double), o, n, tmp);
     free(o), free(tmp);
-    free(s->source);
-    s->source = src;
-    s->source_n = n;
+    free(s->order.source);
+    s->order.source = src;
+    s->order.source_n = n;
     return 0;
 }
 
@@ -118,7 +118,7 @@ int dem_particle_source(const dem_sim *s, int i)
 {
     if (i < 0 || i >= s->n)
         return DEM_ERR_ARG;
-    return s->source && i < s->source_n ? s->source[i] : i;
+    return s->order.source && i < s->order.source_n ? s->order.source[i] : i;
 }
 
 static int by_double(const void *a, const void *b)

@@ -20,18 +20,18 @@ static int report_out_of_domain(dem_sim *s, int slot)
         for (int d = 0; d < 3; d++)
             p[d] = rs == 8 ? ((double *)buf)[3 * slot + d] : ((float *)buf)[3 * slot + d];
     free(buf);
-    s->err_particle = id;
+    s->report.err_particle = id;
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) /* a value that overflowed or was never a number */
         return sim_fail(s, DEM_ERR_DOMAIN,
                         "step %ld: particle %d: its position became non-finite (%g, %g, %g): a velocity or force "
                         "overflowed or was not a number (check the time step, overlaps and parameters)",
-                        s->step, id, p[0], p[1], p[2]);
+                        s->run.step, id, p[0], p[1], p[2]);
     return sim_fail(s, DEM_ERR_DOMAIN,
                     "step %ld: particle %d at (%g, %g, %g) m is outside the binning domain [%g,%g]x[%g,%g]x[%g,%g] "
                     "(the domain rounded up to whole cells of %g m) or not finite; enlarge the domain or check the "
                     "set-up (time step, overlaps)",
-                    s->step, id, p[0], p[1], p[2], s->lo[0], s->grid_hi[0], s->lo[1], s->grid_hi[1], s->lo[2],
-                    s->grid_hi[2], s->grid_cell);
+                    s->run.step, id, p[0], p[1], p[2], s->domain.lo[0], s->domain.grid_hi[0], s->domain.lo[1], s->domain.grid_hi[1], s->domain.lo[2],
+                    s->domain.grid_hi[2], s->domain.grid_cell);
 }
 
 int sim_rebuild(dem_sim *s)
@@ -39,8 +39,8 @@ int sim_rebuild(dem_sim *s)
     int e = sim_rebuild_traced(s);
     if (!e) {
         const dem_core *c = DEM_CORE(s->be);
-        s->nseq_rebuild = sim_copy_trace(c, s->rebuild_at, c->ntrace, s->seq_rebuild, 0);
-        s->rebuild_len = c->ntrace - s->rebuild_at;
+        s->trace.nrebuild = sim_copy_trace(c, s->trace.rebuild_at, c->ntrace, s->trace.rebuild, 0);
+        s->trace.rebuild_len = c->ntrace - s->trace.rebuild_at;
     }
     return e;
 }
@@ -50,18 +50,18 @@ static int patch_rows(dem_sim *s)
 {
     for (int first = 1;; first = 0) {
         int flags[FLAG_COUNT];
-        if (dem_stage_patch_build(s->ops, s->be, first, s->maxp, s->maxv, s->reach))
+        if (dem_stage_patch_build(s->ops, s->be, first, s->rows.maxp, s->rows.maxv, s->rows.reach))
             return sim_be_fail(s);
         if (sim_read_flags(s, flags))
             return DEM_ERR_DEVICE;
-        if (flags[FLAG_PATCH_NEEDED] <= s->maxp && flags[FLAG_VROW_NEEDED] <= s->maxv && !flags[FLAG_PATCH_REACH])
+        if (flags[FLAG_PATCH_NEEDED] <= s->rows.maxp && flags[FLAG_VROW_NEEDED] <= s->rows.maxv && !flags[FLAG_PATCH_REACH])
             return 0;
-        while (s->maxp < flags[FLAG_PATCH_NEEDED])
-            s->maxp *= 2;
-        while (s->maxv < flags[FLAG_VROW_NEEDED])
-            s->maxv *= 2;
+        while (s->rows.maxp < flags[FLAG_PATCH_NEEDED])
+            s->rows.maxp *= 2;
+        while (s->rows.maxv < flags[FLAG_VROW_NEEDED])
+            s->rows.maxv *= 2;
         if (flags[FLAG_PATCH_REACH])
-            s->reach *= 1.5;
+            s->rows.reach *= 1.5;
         flags[FLAG_PATCH_NEEDED] = flags[FLAG_VROW_NEEDED] = flags[FLAG_PATCH_REACH] = 0;
         if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags))
             return sim_be_fail(s);
@@ -76,20 +76,20 @@ static int patch_rows(dem_sim *s)
  * not touch adds nothing): this only moves the time between the steps and the rebuilds. */
 static void skin_choose(dem_sim *s)
 {
-    if (s->skin_lo < s->skin_hi && s->skin_built >= 0 && s->step > s->skin_built) {
-        double best = sqrt(DEM_SKIN_COST_RATIO * s->rmin * s->skin_now / (double)(s->step - s->skin_built));
-        s->skin_now = best < s->skin_lo ? s->skin_lo : best > s->skin_hi ? s->skin_hi : best;
+    if (s->rows.skin_lo < s->rows.skin_hi && s->rows.skin_built >= 0 && s->run.step > s->rows.skin_built) {
+        double best = sqrt(DEM_SKIN_COST_RATIO * s->rmin * s->rows.skin_now / (double)(s->run.step - s->rows.skin_built));
+        s->rows.skin_now = best < s->rows.skin_lo ? s->rows.skin_lo : best > s->rows.skin_hi ? s->rows.skin_hi : best;
     }
-    s->skin_built = s->step;
+    s->rows.skin_built = s->run.step;
     dem_core *c = DEM_CORE(s->be);
-    c->sr[SR_SKIN] = s->skin_now + s->skin_extra;
-    c->sr[SR_HALF_SKIN2] = 0.25 * s->skin_now * s->skin_now;
+    c->sr[SR_SKIN] = s->rows.skin_now + s->rows.skin_extra;
+    c->sr[SR_HALF_SKIN2] = 0.25 * s->rows.skin_now * s->rows.skin_now;
 }
 
 /* An automatic skin above its lower end is tried smaller once the rows have lasted DEM_SKIN_PROBE steps. */
 int sim_skin_probe_due(const dem_sim *s)
 {
-    return s->skin_now > s->skin_lo && s->skin_built >= 0 && s->step - s->skin_built >= DEM_SKIN_PROBE;
+    return s->rows.skin_now > s->rows.skin_lo && s->rows.skin_built >= 0 && s->run.step - s->rows.skin_built >= DEM_SKIN_PROBE;
 }
 
 /* The slots of a row set for a build whose rows need `need` together: 1/8 to spare, so that a packing that
@@ -108,7 +108,7 @@ static int sim_rebuild_traced(dem_sim *s)
     if (sim_reorder_due(s) && (e = sim_reorder(s)))
         return e;
     skin_choose(s);
-    s->rebuild_at = DEM_CORE(s->be)->ntrace;
+    s->trace.rebuild_at = DEM_CORE(s->be)->ntrace;
     if (dem_stage_bin_bounds(s->ops, s->be))
         return sim_be_fail(s);
     if (sim_read_flags(s, flags))
@@ -117,13 +117,13 @@ static int sim_rebuild_traced(dem_sim *s)
         return report_out_of_domain(s, flags[FLAG_OUT_OF_DOMAIN]);
     if (dem_stage_bin_cells(s->ops, s->be, flags) || dem_stage_bin(s->ops, s->be))
         return sim_be_fail(s);
-    /* s->maxn is the current rows' slots: it changes only once new rows are committed */
-    int maxn = s->maxn, need = 0;
+    /* s->rows.maxn is the current rows' slots: it changes only once new rows are committed */
+    int maxn = s->rows.maxn, need = 0;
     if (dem_stage_nbr_count(s->ops, s->be, &need))
         return sim_be_fail(s);
     if (need < 0 || need > INT_MAX / 9 * 8 - 16)
         return sim_fail(s, DEM_ERR_NOMEM, "step %ld: the neighbour rows need %d slots, more than an int counts",
-                        s->step, need);
+                        s->run.step, need);
     if (need > maxn)
         maxn = row_capacity(need);
     if (dem_stage_nbr_reserve(s->ops, s->be, maxn) || dem_stage_nbr_build(s->ops, s->be))
@@ -133,38 +133,38 @@ static int sim_rebuild_traced(dem_sim *s)
         return DEM_ERR_DEVICE;
     if (flags[FLAG_ASYMMETRIC])
         return sim_fail(s, DEM_ERR_STATE, "step %ld: neighbour rows are not as counted (a library bug; please report)",
-                        s->step);
+                        s->run.step);
     if (dem_stage_nbr_commit(s->ops, s->be))
         return sim_be_fail(s);
-    s->maxn = maxn;
+    s->rows.maxn = maxn;
     if (sim_read_flags(s, flags))
         return DEM_ERR_DEVICE;
     if (flags[FLAG_ASYMMETRIC])
         return sim_fail(s, DEM_ERR_STATE, "step %ld: neighbour rows are not symmetric (a library bug; please report)",
-                        s->step);
-    if ((s->effects & DEM_EFFECT_PATCHES) && s->npatch && (e = patch_rows(s)))
+                        s->run.step);
+    if ((s->effects & DEM_EFFECT_PATCHES) && s->mesh.npatch && (e = patch_rows(s)))
         return e;
-    if (s->reordered) { /* the rows are numbered in the new places: where the particles were no longer matters */
+    if (s->order.reordered) { /* the rows are numbered in the new places: where the particles were no longer matters */
         dem_bufref r = {TABLE_ONE, BUF_OLD_SLOT};
         if (s->ops->write(s->be, r, 0, s->setup.identity, sizeof(int) * (size_t)s->n, 1))
             return sim_be_fail(s);
-        s->reordered = 0;
+        s->order.reordered = 0;
     }
-    s->rebuilds++;
+    s->rows.rebuilds++;
     return 0;
 }
 
-int dem_neighbor_capacity(const dem_sim *s) { return s->maxn; }
-double dem_neighbor_skin(const dem_sim *s) { return s->skin_now; }
-long dem_rebuild_count(const dem_sim *s) { return s->rebuilds; }
-long dem_reorder_count(const dem_sim *s) { return s->reorders; }
+int dem_neighbor_capacity(const dem_sim *s) { return s->rows.maxn; }
+double dem_neighbor_skin(const dem_sim *s) { return s->rows.skin_now; }
+long dem_rebuild_count(const dem_sim *s) { return s->rows.rebuilds; }
+long dem_reorder_count(const dem_sim *s) { return s->order.count; }
 int dem_cell_count(const dem_sim *s)
 {
     return s->be ? DEM_CORE(s->be)->ncells : s->setup.cells[0] * s->setup.cells[1] * s->setup.cells[2];
 }
 int dem_grid_cells(const dem_sim *s, int first[3], int count[3])
 {
-    if (!s->started)
+    if (!s->run.started)
         return DEM_ERR_STATE;
     const int *si = DEM_CORE(s->be)->si;
     first[0] = si[SI_CX0], first[1] = si[SI_CY0], first[2] = si[SI_CZ0];
@@ -173,7 +173,7 @@ int dem_grid_cells(const dem_sim *s, int first[3], int count[3])
 }
 int dem_grid_get(const dem_sim *s, double lo[3], double *inv_cell, int ncell[3])
 {
-    if (!s->started)
+    if (!s->run.started)
         return DEM_ERR_STATE;
     memcpy(lo, s->setup.lo, sizeof(double) * 3);
     memcpy(ncell, s->setup.ncell, sizeof(int) * 3);

@@ -58,7 +58,7 @@ static double spacing(const double *x, int a, int b)
 
 int sim_reorder_due(const dem_sim *s)
 {
-    return s->cfg.reorder > 0 && !s->reorder_hold && s->n > 1 && s->rebuilds % s->cfg.reorder == 0;
+    return s->cfg.reorder > 0 && !s->order.hold && s->n > 1 && s->rows.rebuilds % s->cfg.reorder == 0;
 }
 
 static int device_fail(dem_sim *s) { return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err); }
@@ -139,7 +139,7 @@ static int order_anew(dem_sim *s, unsigned char *buf, double *x, int *from, int 
     double gain = s->cfg.reorder_gain > 0 ? s->cfg.reorder_gain : DEM_REORDER_GAIN, now = 0, anew = 0;
     for (int k = 0; k + 1 < n; k++)
         now += spacing(x, k, k + 1);
-    if (gain > 1 && s->reorder_ref > 0 && !(now > gain * s->reorder_ref))
+    if (gain > 1 && s->order.ref > 0 && !(now > gain * s->order.ref))
         return 0;
     if (sim_morton_order(x, n, from))
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -151,9 +151,9 @@ static int order_anew(dem_sim *s, unsigned char *buf, double *x, int *from, int 
         anew += spacing(x, from[k], from[k + 1]);
     if (gain > 1 && !(now > gain * anew)) {
         *same = 1;
-        s->reorder_ref = now; /* close enough: looked at again when it has spread `gain` times this */
+        s->order.ref = now; /* close enough: looked at again when it has spread `gain` times this */
     } else
-        s->reorder_ref = anew;
+        s->order.ref = anew;
     return 0;
 }
 
@@ -229,14 +229,14 @@ int sim_reorder(dem_sim *s)
     if (!e && !same)
         e = move_rows(s, from, to, buf, tmp);
     if (!e && !same) {
-        s->reordered = 1; /* OLD_SLOT (moved) holds where each particle was stored when the rows were built */
+        s->order.reordered = 1; /* OLD_SLOT (moved) holds where each particle was stored when the rows were built */
         move_host(s, from, tmp);
         int *sid = (int *)s->setup.sid, *order = (int *)s->setup.order; /* the setup's (sim_pack) */
         for (int k = 0; k < n; k++) /* where each stable id is stored now */
             order[sid[k]] = k;
         if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_ORDER}, 0, order, sizeof(int) * (size_t)n, 1))
             e = device_fail(s);
-        s->reorders++;
+        s->order.count++;
     }
     free(buf), free(tmp), free(from), free(to);
     return e;
@@ -290,7 +290,7 @@ int sim_buffer_to_api(dem_sim *s, int id, void *buf, size_t bytes)
 {
     size_t item;
     int kind = dem_buffer_move(DEM_CORE(s->be), id, &item);
-    if (!s->reorders || kind == DEM_MOVE_STAY)
+    if (!s->order.count || kind == DEM_MOVE_STAY)
         return 0;
     unsigned char *tmp = malloc(bytes ? bytes : 1);
     if (!tmp)
@@ -305,7 +305,7 @@ void sim_buffer_from_api(dem_sim *s, int id, const void *src, void *dst, size_t 
 {
     size_t item;
     int kind = dem_buffer_move(DEM_CORE(s->be), id, &item);
-    items_move(s->reorders ? kind : DEM_MOVE_STAY, item, s->n, src, dst, bytes, s->setup.sid);
+    items_move(s->order.count ? kind : DEM_MOVE_STAY, item, s->n, src, dst, bytes, s->setup.sid);
 }
 
 /* A field laid out like the current rows (packed: row i at start[i], dem_buffers.h DEM_ROWS) in the callers' order:
@@ -338,7 +338,7 @@ static int rows_to_api(dem_sim *s, dem_field f, unsigned char *buf, size_t bytes
 
 int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes)
 {
-    if (!s->reorders)
+    if (!s->order.count)
         return 0;
     if (f == DEM_FIELD_NBR_LIST || f == DEM_FIELD_NBR_START || f == DEM_FIELD_MC_FORCE || f == DEM_FIELD_MC_DISP)
         return rows_to_api(s, f, buf, bytes);
@@ -353,7 +353,7 @@ int sim_field_to_api(dem_sim *s, dem_field f, void *buf, size_t bytes)
 
 int sim_field_from_api(dem_sim *s, dem_field f, const void *src, void *dst, size_t bytes)
 {
-    if (!s->reorders) {
+    if (!s->order.count) {
         memcpy(dst, src, bytes);
         return 0;
     }

@@ -15,12 +15,12 @@ dem_sim *dem_create(void)
     dem_sim *s = calloc(1, sizeof(dem_sim));
     if (s) {
         s->effects = DEM_EFFECT_CLASSICAL;
-        s->mcs_conv = DEM_MCS_DEFAULT;
-        s->mc_tol = 1e-6;
-        s->mc_reach = 1;
-        s->sample_row = -1; /* no step is sampled until dem_step_sampled says so */
-        s->mc.first_capped = s->mc.last_capped = -1;
-        s->err_particle = -1;
+        s->mc.stress_conv = DEM_MCS_DEFAULT;
+        s->mc.tol = 1e-6;
+        s->mc.reach = 1;
+        s->run.sample_row = -1; /* no step is sampled until dem_step_sampled says so */
+        s->mc.stats.first_capped = s->mc.stats.last_capped = -1;
+        s->report.err_particle = -1;
     }
     return s;
 }
@@ -33,8 +33,8 @@ void dem_destroy(dem_sim *s)
         s->ops->destroy(s->be);
     sim_setup_free(s);
     free(s->setup_mem);
-    free(s->wall_real);
-    free(s->scratch);
+    free(s->motion.table);
+    free(s->scratch.buf);
     free(s->x);
     free(s->v);
     free(s->w);
@@ -42,14 +42,14 @@ void dem_destroy(dem_sim *s)
     free(s->mat);
     free(s->pflags);
     free(s->body);
-    free(s->source);
-    free(s->spring_ij);
-    free(s->spring_kr);
-    free(s->tri);
-    free(s->patch);
-    free(s->hinge);
-    free(s->att);
-    free(s->hinge_k);
+    free(s->order.source);
+    free(s->mesh.spring_ij);
+    free(s->mesh.spring_kr);
+    free(s->mesh.tri);
+    free(s->mesh.patch);
+    free(s->mesh.hinge);
+    free(s->mesh.att);
+    free(s->mesh.hinge_k);
     free(s);
 }
 
@@ -70,7 +70,7 @@ void dem_config_default(dem_config *c)
 
 int sim_not_started(dem_sim *s)
 {
-    return s->started ? sim_fail(s, DEM_ERR_STATE, "the simulation has started: the set-up is fixed") : 0;
+    return s->run.started ? sim_fail(s, DEM_ERR_STATE, "the simulation has started: the set-up is fixed") : 0;
 }
 
 int dem_add_material(dem_sim *s, const dem_material *m)
@@ -234,9 +234,9 @@ int dem_set_domain(dem_sim *s, const double lo[3], const double hi[3])
         if (!(hi[d] > lo[d]) || !isfinite(lo[d]) || !isfinite(hi[d]))
             return sim_fail(s, DEM_ERR_ARG, "domain: need finite lo < hi on every axis (axis %d: %g, %g)", d, lo[d],
                             hi[d]);
-    memcpy(s->lo, lo, sizeof s->lo);
-    memcpy(s->hi, hi, sizeof s->hi);
-    s->have_domain = 1;
+    memcpy(s->domain.lo, lo, sizeof s->domain.lo);
+    memcpy(s->domain.hi, hi, sizeof s->domain.hi);
+    s->domain.given = 1;
     return 0;
 }
 

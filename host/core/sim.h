@@ -17,22 +17,11 @@
 #define DEM_SKIN_COST_RATIO 8.7
 #define DEM_SKIN_PROBE 200
 
-struct dem_sim {
-    /* description, double precision, as given */
-    int n, cap;
-    double *x, *v, *w, *radius;
-    int *mat;
-    unsigned *pflags;
-    double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
-                            (sim_mass, sim_inertia) */
-    int *source, source_n; /* after dem_sort_particles: each particle's id before it (the first source_n) */
-    /* dem_config.reorder (host/core/reorder.c): times the particles were stored anew. Once they were, the host's
-     * per-particle arrays above follow the storage order, and setup.sid / setup.order map places to the ids of
-     * dem_start and back (sim_api, sim_dev). */
-    long reorders;
-    int reorder_hold; /* 1: rebuilds keep the storage order (dem_state_set) */
-    int reordered;    /* the particles were stored anew since the rows were built: OLD_SLOT holds where they were */
-    double reorder_ref; /* the storage's mean spacing of neighbours in memory when last looked at (reorder.c) [m] */
+/* The parts of a simulation, one job each (struct dem_sim below holds one of each). */
+
+/* Membranes and riders, by particle index: springs, triangles and the pressure on them, hinges, patches, riders
+ * (mesh_elements.c, host/mesh/attach.c) */
+struct sim_mesh {
     int nsprings, spring_cap;
     int *spring_ij;      /* [2 * nsprings] */
     double *spring_kr;   /* [3 * nsprings]: k, rest (< 0: at the start), gamma */
@@ -47,69 +36,134 @@ struct dem_sim {
     double *hinge_k;     /* [3 * nhinges]: kel, kdiss, theta0 (NAN: from the initial positions) */
     int npatch, patch_cap;
     int *patch;          /* [npatch]: triangles that spheres touch as surfaces (dem_add_patches) */
-    int maxp, maxv;      /* capacities of the patch rows (patch_contacts.h), grown on overflow */
-    double reach;        /* patch search reach [m], widened when an edge reaches it */
     int natt, att_cap;
     int *att;            /* [2 * natt]: particle, wall it rides on (dem_attach_to_wall; host/mesh/attach.c) */
-    int nmat;
-    dem_material mats[64];
-    unsigned char mat_apart[64]; /* 1: a membrane's material, whose particles do not touch each other (PM_APART) */
-    int nwalls;
-    dem_wall walls[DEM_MAX_WALLS];
-    double gravity[3];
-    double lo[3], hi[3];
-    double grid_hi[3], grid_cell; /* upper corner of the binning grid (lo + whole cells) and its cell size [m] */
-    int have_domain;
-    double dt;
-    unsigned effects; /* DEM_EFFECT_* mask; DEM_EFFECT_CLASSICAL unless set */
-    unsigned mcs_conv; /* DEM_MCS_* bits; DEM_MCS_DEFAULT unless set (compiled in with mc_stress: sim_pack) */
-    /* run state */
-    int started;
-    int wall_sums_due;                 /* this step's force stages sum the force each wall received (dem_step) */
-    int sample_row;                    /* >= 0: this step is sampled into that row of the series ring (series.h) */
-    int servo_walls;                   /* a wall has a servo stage: the sums are due every step (dem_start) */
-    long force_step;    /* step index of the positions the forces are computed at (walls, pressure schedule) */
-    dem_config cfg;
-    dem_setup setup;
-    void **setup_mem; /* the host arrays setup points to (sim_pack), freed when packed again or destroyed */
-    int nsetup_mem, setup_mem_cap;
-    int mc_max_iter;     /* MC-strain: 0 lagged, else the iteration cap */
-    double mc_tol;       /* MC-strain: relative force tolerance of the iteration */
-    double mc_reach;     /* MC-strain contact distance factor (1: geometric contacts only) */
-    dem_mc_stats mc;
-    const dem_backend_ops *ops;
-    dem_backend *be;
-    int maxn;
-    long step, rebuilds;
-    double wall_pos[DEM_MAX_WALLS][3]; /* wall reference point now [m] */
-    double servo_v[DEM_MAX_WALLS][3];  /* the velocity of each wall in a servo stage, this step [m/s] */
+};
+
+/* The walls' motion in a run (walls.c): where each wall is, its stage, its servo */
+struct sim_motion {
+    double pos[DEM_MAX_WALLS][3];     /* wall reference point now [m] */
+    double servo_v[DEM_MAX_WALLS][3]; /* the velocity of each wall in a servo stage, this step [m/s] */
     dem_servo_stats servo[DEM_MAX_WALLS]; /* how each wall's latest servo stage went (.held: dem_servo_stats_get) */
     double servo_sum[DEM_MAX_WALLS];       /* the normal force summed over its last tenth so far [N] */
     double servo_err[DEM_MAX_WALLS];       /* its force error in the step before [N] */
-    long wall_stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
+    int servo_walls;                       /* a wall has a servo stage: the sums are due every step (dem_start) */
+    long stage_steps[DEM_MAX_WALLS][DEM_MAX_STAGES];
     int stage_cur[DEM_MAX_WALLS];          /* each wall's current motion stage (nstages: past the last) */
     long stage_first[DEM_MAX_WALLS];       /* the step it began */
     double stage_from[DEM_MAX_WALLS][3];   /* the wall's position then [m] */
     int density_die[DEM_MAX_WALLS];        /* until_density: the die (cylinder) and the facing punch of each wall with */
     int density_other[DEM_MAX_WALLS];      /* such a stage (sim_validate), -1 for the others */
     double particle_volume;                /* sum of 4/3 pi r^3 [m^3] (sim_validate) */
-    void *wall_real;        /* packed wall table uploaded each step */
-    double rmin, rmax;
+    void *table;                           /* packed wall table uploaded each step */
+};
+
+/* The storage order (host/core/reorder.c, particle_order.c) */
+struct sim_order {
+    int *source, source_n; /* after dem_sort_particles: each particle's id before it (the first source_n) */
+    /* dem_config.reorder (host/core/reorder.c): times the particles were stored anew. Once they were, the host's
+     * per-particle arrays of dem_sim follow the storage order, and setup.sid / setup.order map places to the ids of
+     * dem_start and back (sim_api, sim_dev). */
+    long count;
+    int hold;      /* 1: rebuilds keep the storage order (dem_state_set) */
+    int reordered; /* the particles were stored anew since the rows were built: OLD_SLOT holds where they were */
+    double ref;    /* the storage's mean spacing of neighbours in memory when last looked at (reorder.c) [m] */
+};
+
+/* The neighbour and patch rows (rebuild.c): their capacities, the rebuilds, the skin */
+struct sim_rows {
+    int maxn;            /* slots of the current neighbour rows (all rows together) */
+    long rebuilds;
+    int maxp, maxv;      /* capacities of the patch rows (patch_contacts.h), grown on overflow */
+    double reach;        /* patch search reach [m], widened when an edge reaches it */
     /* the neighbour skin (docs/design.md "The neighbour skin"): the range it is chosen in at each rebuild (equal ends
      * when dem_config.skin fixes it), the current rows' skin, the step they were built (-1: none yet), and the rows'
      * extra reach under MC-strain's contact distance [m] */
     double skin_lo, skin_hi, skin_now, skin_extra;
     long skin_built;
+};
+
+/* The multi-contact laws' settings and MC-strain's iteration counts (effects.c, step_loop.c) */
+struct sim_mc {
+    unsigned stress_conv; /* DEM_MCS_* bits; DEM_MCS_DEFAULT unless set (compiled in with mc_stress: sim_pack) */
+    int max_iter;         /* MC-strain: 0 lagged, else the iteration cap */
+    double tol;           /* MC-strain: relative force tolerance of the iteration */
+    double reach;         /* MC-strain contact distance factor (1: geometric contacts only) */
+    dem_mc_stats stats;
+};
+
+/* The kernels launched (ids, dem_kernel_names): by the last step, without a rebuild's, and by the last rebuild
+ * (diagnostics.c) */
+struct sim_trace {
+    unsigned char step[DEM_TRACE_MAX], rebuild[DEM_TRACE_MAX];
+    int nstep, nrebuild;
+    int rebuild_at, rebuild_len; /* the current step's rebuild within the core's trace */
+};
+
+/* The binning domain (dem_set_domain; sim_setup.c rounds it to whole cells) */
+struct sim_domain {
+    double lo[3], hi[3];
+    double grid_hi[3], grid_cell; /* upper corner of the binning grid (lo + whole cells) and its cell size [m] */
+    int given;
+};
+
+/* Where the run is (step_loop.c) */
+struct sim_run {
+    int started;
+    long step;
+    long force_step;   /* step index of the positions the forces are computed at (walls, pressure schedule) */
+    int wall_sums_due; /* this step's force stages sum the force each wall received (dem_step) */
+    int sample_row;    /* >= 0: this step is sampled into that row of the series ring (series.h) */
+};
+
+/* The texts handed to the caller (diagnostics.c, sim_fail) */
+struct sim_report {
     char err[4096];
     int err_particle; /* the particle a DEM_ERR_DOMAIN error named (dem_error_particle), -1 none */
     char desc[1024];
     char build[4096];
-    /* the kernels launched (ids, dem_kernel_names): by the last step, without a rebuild's, and by the last rebuild */
-    unsigned char seq_step[DEM_TRACE_MAX], seq_rebuild[DEM_TRACE_MAX];
-    int nseq_step, nseq_rebuild;
-    int rebuild_at, rebuild_len; /* the current step's rebuild within the core's trace */
-    void *scratch;               /* host scratch of dem_energy / dem_sample_get, kept between calls */
-    size_t scratch_bytes;
+};
+
+/* Host scratch of dem_energy / dem_sample_get, kept between calls (host/physics/energy.c) */
+struct sim_scratch {
+    void *buf;
+    size_t bytes;
+};
+
+struct dem_sim {
+    /* description, double precision, as given */
+    int n, cap;
+    double *x, *v, *w, *radius;
+    int *mat;
+    unsigned *pflags;
+    double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
+                            (sim_mass, sim_inertia) */
+    double rmin, rmax;
+    int nmat;
+    dem_material mats[64];
+    unsigned char mat_apart[64]; /* 1: a membrane's material, whose particles do not touch each other (PM_APART) */
+    int nwalls;
+    dem_wall walls[DEM_MAX_WALLS];
+    double gravity[3];
+    double dt;
+    unsigned effects; /* DEM_EFFECT_* mask; DEM_EFFECT_CLASSICAL unless set */
+    struct sim_mesh mesh;
+    struct sim_domain domain;
+    struct sim_mc mc;
+    /* the run */
+    dem_config cfg;
+    dem_setup setup;
+    void **setup_mem; /* the host arrays setup points to (sim_pack), freed when packed again or destroyed */
+    int nsetup_mem, setup_mem_cap;
+    const dem_backend_ops *ops;
+    dem_backend *be;
+    struct sim_run run;
+    struct sim_motion motion;
+    struct sim_order order;
+    struct sim_rows rows;
+    struct sim_trace trace;
+    struct sim_report report;
+    struct sim_scratch scratch;
 };
 
 /* sim.c: a particle's mass and moment of inertia (explicit, or a solid sphere of its material and radius) */
@@ -130,7 +184,7 @@ void sim_stages_from_step(dem_sim *s);
 /* One step (dem_step's body); wall_sums: sum the force each wall received in it (always under a servo); sample_row
  * >= 0: a sampled step, whose series row goes to that row of the device's ring (common/series.h). */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row);
-void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->wall_real */
+void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->motion.table */
 /* The kernels' wall type of w (dem_layout.h WALL_*) and its W_RADIUS and W_HEIGHT (host/physics/wall_overlap.c) */
 int sim_wall_table(const dem_wall *w, double *radius, double *height);
 void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its stage of the current step [m/s] */
@@ -161,8 +215,8 @@ int sim_morton_order(const double *x, int n, int *perm);
 int sim_reorder_due(const dem_sim *s);
 int sim_reorder(dem_sim *s);
 /* A caller's particle id (the order of dem_start: the stable id) and where that particle is stored, both ways */
-static inline int sim_dev(const dem_sim *s, int id) { return s->reorders ? s->setup.order[id] : id; }
-static inline int sim_api(const dem_sim *s, int slot) { return s->reorders ? s->setup.sid[slot] : slot; }
+static inline int sim_dev(const dem_sim *s, int id) { return s->order.count ? s->setup.order[id] : id; }
+static inline int sim_api(const dem_sim *s, int slot) { return s->order.count ? s->setup.sid[slot] : slot; }
 /* element k of an array of the run's reals (float or double, rs bytes each) in double; count of them into dst */
 static inline double sim_real_at(const void *raw, size_t k, int rs)
 {

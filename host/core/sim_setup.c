@@ -15,7 +15,7 @@ int sim_fail(dem_sim *s, int code, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(s->err, sizeof s->err, fmt, ap);
+    vsnprintf(s->report.err, sizeof s->report.err, fmt, ap);
     va_end(ap);
     return code;
 }
@@ -92,40 +92,40 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
      * 10 steps per period (1.6 %) bound it, 50 (0.07 %) are recommended */
     ts->spring_period = INFINITY;
     /* the tables name particles by id; the per-particle arrays are in storage order (host/core/reorder.c) */
-    int *hg = s->reorders && s->nhinges ? malloc(sizeof(int) * 4 * (size_t)s->nhinges) : s->hinge;
-    if (s->nhinges && !hg)
+    int *hg = s->order.count && s->mesh.nhinges ? malloc(sizeof(int) * 4 * (size_t)s->mesh.nhinges) : s->mesh.hinge;
+    if (s->mesh.nhinges && !hg)
         return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' time scales");
-    for (int k = 0; hg != s->hinge && k < 4 * s->nhinges; k++)
-        hg[k] = sim_dev(s, s->hinge[k]);
-    for (int k = 0; k < s->nsprings; k++) { /* a fixed end has no inverse mass; two fixed ends, no period */
-        double ia = inverse_mass(s, sim_dev(s, s->spring_ij[2 * k]));
-        double ib = inverse_mass(s, sim_dev(s, s->spring_ij[2 * k + 1]));
+    for (int k = 0; hg != s->mesh.hinge && k < 4 * s->mesh.nhinges; k++)
+        hg[k] = sim_dev(s, s->mesh.hinge[k]);
+    for (int k = 0; k < s->mesh.nsprings; k++) { /* a fixed end has no inverse mass; two fixed ends, no period */
+        double ia = inverse_mass(s, sim_dev(s, s->mesh.spring_ij[2 * k]));
+        double ib = inverse_mass(s, sim_dev(s, s->mesh.spring_ij[2 * k + 1]));
         if (ia + ib > 0)
-            ts->spring_period = fmin(ts->spring_period, 2 * M_PI * sqrt(1 / (ia + ib) / s->spring_kr[3 * k]));
+            ts->spring_period = fmin(ts->spring_period, 2 * M_PI * sqrt(1 / (ia + ib) / s->mesh.spring_kr[3 * k]));
     }
     ts->hinge_period = ts->hinge_damping_time = INFINITY;
-    for (int h = 0; h < s->nhinges; h++) {
+    for (int h = 0; h < s->mesh.nhinges; h++) {
         double m4[4];
         for (int k = 0; k < 4; k++) /* a fixed vertex: an infinite mass, no share in the fold's motion */
             m4[k] = inverse_mass(s, hg[4 * h + k]) > 0 ? sim_mass(s, hg[4 * h + k]) : INFINITY;
-        ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, hg + 4 * h, s->hinge_k[3 * h], m4));
+        ts->hinge_period = fmin(ts->hinge_period, dem_hinge_period(s->x, hg + 4 * h, s->mesh.hinge_k[3 * h], m4));
     }
-    if (s->nhinges) {
+    if (s->mesh.nhinges) {
         double *sqrt_im = malloc(sizeof(double) * (size_t)s->n), rate = -1;
         for (int i = 0; sqrt_im && i < s->n; i++)
             sqrt_im[i] = sqrt(inverse_mass(s, i));
         if (sqrt_im)
-            rate = dem_hinge_damping_rate(s->x, hg, s->hinge_k, s->nhinges, sqrt_im, s->n);
+            rate = dem_hinge_damping_rate(s->x, hg, s->mesh.hinge_k, s->mesh.nhinges, sqrt_im, s->n);
         free(sqrt_im);
         if (rate < 0) {
-            if (hg != s->hinge)
+            if (hg != s->mesh.hinge)
                 free(hg);
             return sim_fail(s, DEM_ERR_NOMEM, "out of memory for the hinges' damping rate");
         }
         if (rate > 0)
             ts->hinge_damping_time = 1 / rate;
     }
-    if (hg != s->hinge)
+    if (hg != s->mesh.hinge)
         free(hg);
     double t_osc = fmin(ts->spring_period, ts->hinge_period);
     ts->recommended_dt = fmin(ts->recommended_dt, t_osc / 50);
@@ -214,31 +214,31 @@ int sim_validate(dem_sim *s)
     }
     if (s->nwalls && !(s->effects & DEM_EFFECT_WALLS))
         return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
-    s->particle_volume = 0;
+    s->motion.particle_volume = 0;
     for (int i = 0; i < s->n; i++)
-        s->particle_volume += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
+        s->motion.particle_volume += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
     for (int k = 0; k < s->nwalls; k++) { /* until_density: the die and the punch facing this one */
         const dem_wall *w = &s->walls[k];
         int wants = 0;
         for (int st = 0; st < w->nstages; st++)
             wants |= w->stages[st].until_density > 0;
-        s->density_die[k] = s->density_other[k] = -1;
-        if (wants && dem_density_walls(s, k, &s->density_die[k], &s->density_other[k]))
+        s->motion.density_die[k] = s->motion.density_other[k] = -1;
+        if (wants && dem_density_walls(s, k, &s->motion.density_die[k], &s->motion.density_other[k]))
             return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density (until_density), which needs "
                             "a die (a cylinder wall along its normal) and a punch facing it on the particles' side: "
-                            "found %s", k, s->density_die[k] < 0 ? "no such cylinder" : "no facing plane wall");
+                            "found %s", k, s->motion.density_die[k] < 0 ? "no such cylinder" : "no facing plane wall");
         for (int q = 0; wants && q < 2; q++) { /* the cups' volumes count as the bore's (dem_relative_density) */
-            int p = q ? s->density_other[k] : k;
-            if (!dem_cup_in_bore(s, p, s->density_die[k]))
+            int p = q ? s->motion.density_other[k] : k;
+            if (!dem_cup_in_bore(s, p, s->motion.density_die[k]))
                 return sim_fail(s, DEM_ERR_ARG, "wall %d: a stage ends at a relative density, and punch %d's cup "
                                 "(radius %g m) does not lie within the die's bore (radius %g m)", k, p,
-                                s->walls[p].cup_radius, s->walls[s->density_die[k]].radius);
+                                s->walls[p].cup_radius, s->walls[s->motion.density_die[k]].radius);
         }
     }
-    if (s->nsprings && !(s->effects & DEM_EFFECT_SPRINGS))
-        return sim_fail(s, DEM_ERR_ARG, "%d springs are defined but the effect 'springs' is off", s->nsprings);
-    if (s->nhinges && !(s->effects & DEM_EFFECT_BENDING))
-        return sim_fail(s, DEM_ERR_ARG, "%d hinges are defined but the effect 'bending' is off", s->nhinges);
+    if (s->mesh.nsprings && !(s->effects & DEM_EFFECT_SPRINGS))
+        return sim_fail(s, DEM_ERR_ARG, "%d springs are defined but the effect 'springs' is off", s->mesh.nsprings);
+    if (s->mesh.nhinges && !(s->effects & DEM_EFFECT_BENDING))
+        return sim_fail(s, DEM_ERR_ARG, "%d hinges are defined but the effect 'bending' is off", s->mesh.nhinges);
     if (s->cfg.skin < 0 || !isfinite(s->cfg.skin))
         return sim_fail(s, DEM_ERR_ARG, "skin must be >= 0 (got %g)", s->cfg.skin);
     if (s->cfg.reorder < 0)
@@ -293,8 +293,8 @@ void sim_setup_free(dem_sim *s)
 
 int sim_stage_now(const dem_sim *s, int k, long *first)
 {
-    int st = s->stage_cur[k];
-    *first = s->stage_first[k];
+    int st = s->motion.stage_cur[k];
+    *first = s->motion.stage_first[k];
     return st < s->walls[k].nstages ? st : -1;
 }
 
@@ -303,11 +303,11 @@ void sim_stages_from_step(dem_sim *s)
     for (int k = 0; k < s->nwalls; k++) {
         long start = 0;
         int st = 0;
-        while (st < s->walls[k].nstages && s->step >= start + s->wall_stage_steps[k][st])
-            start += s->wall_stage_steps[k][st++];
-        s->stage_cur[k] = st;
-        s->stage_first[k] = start;
-        memcpy(s->stage_from[k], s->wall_pos[k], sizeof(double) * 3); /* only a distance-ended stage reads it */
+        while (st < s->walls[k].nstages && s->run.step >= start + s->motion.stage_steps[k][st])
+            start += s->motion.stage_steps[k][st++];
+        s->motion.stage_cur[k] = st;
+        s->motion.stage_first[k] = start;
+        memcpy(s->motion.stage_from[k], s->motion.pos[k], sizeof(double) * 3); /* only a distance-ended stage reads it */
     }
 }
 
@@ -317,7 +317,7 @@ void sim_wall_velocity(const dem_sim *s, int k, double v[3])
     int st = sim_stage_now(s, k, &first);
     v[0] = v[1] = v[2] = 0;
     if (st >= 0) /* a servo stage: the velocity dem_step worked out (walls.c) */
-        memcpy(v, s->walls[k].stages[st].force > 0 ? s->servo_v[k] : s->walls[k].stages[st].velocity,
+        memcpy(v, s->walls[k].stages[st].force > 0 ? s->motion.servo_v[k] : s->walls[k].stages[st].velocity,
                sizeof(double) * 3);
 }
 
@@ -327,10 +327,10 @@ void sim_pack_walls(dem_sim *s)
     for (int k = 0; k < s->nwalls; k++) {
         const dem_wall *w = &s->walls[k];
         double *t = tab + k * W_STRIDE, v[3];
-        /* velocity of the step being taken (step index s->step, moving the wall from t to t + dt) */
+        /* velocity of the step being taken (step index s->run.step, moving the wall from t to t + dt) */
         sim_wall_velocity(s, k, v);
         for (int d = 0; d < 3; d++) {
-            t[W_PX + d] = s->wall_pos[k][d];
+            t[W_PX + d] = s->motion.pos[k][d];
             t[W_NX + d] = w->normal[d];
             t[W_VX + d] = v[d];
         }
@@ -339,9 +339,9 @@ void sim_pack_walls(dem_sim *s)
     int rs = s->setup.real_size;
     for (int k = 0; k < W_STRIDE * s->nwalls; k++) {
         if (rs == 8)
-            ((double *)s->wall_real)[k] = tab[k];
+            ((double *)s->motion.table)[k] = tab[k];
         else
-            ((float *)s->wall_real)[k] = (float)tab[k];
+            ((float *)s->motion.table)[k] = (float)tab[k];
     }
 }
 
@@ -363,8 +363,8 @@ static void pack_effects(dem_sim *s, dem_setup *u)
 {
     /* the MC-stress convention is compiled in with the effects (only when MC-stress is on: other runs' kernels and
      * their cached binaries stay as they were) */
-    u->effects = s->effects | ((s->effects & DEM_EFFECT_MC_STRESS) ? s->mcs_conv : 0u);
-    int reach = (s->effects & DEM_EFFECT_MC_STRAIN) && s->mc_reach > 1; /* compiled in only when it can act */
+    u->effects = s->effects | ((s->effects & DEM_EFFECT_MC_STRESS) ? s->mc.stress_conv : 0u);
+    int reach = (s->effects & DEM_EFFECT_MC_STRAIN) && s->mc.reach > 1; /* compiled in only when it can act */
     if (reach)
         u->effects |= DEM_MC_REACH;
     /* the force from each wall on each particle is kept where it is read: by the contact network, and by the
@@ -414,7 +414,7 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_MCS_K] = ma->mc_gamma * (1 + ma->poisson) / (2 * M_PI * ma->young);
             row[PM_MCS_C1] = 3 - 4 * ma->poisson;
             row[PM_MCS_C2] = 1 - 2 * ma->poisson;
-            row[PM_MC_REACH] = s->mc_reach;
+            row[PM_MC_REACH] = s->mc.reach;
             row[PM_APART] = a == b && s->mat_apart[a];
         }
 }
@@ -427,7 +427,7 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
  * sqrt(k m_eff) is computed here in double. */
 static int pack_channel(dem_sim *s, dem_setup *u, int rs)
 {
-    int ns = s->nsprings, nt = s->ntri, nh = s->nhinges, n = s->n;
+    int ns = s->mesh.nsprings, nt = s->mesh.ntri, nh = s->mesh.nhinges, n = s->n;
     int *ij = calloc(2 * (size_t)ns + 1, sizeof(int));
     int *slot = calloc(2 * (size_t)ns + 3 * (size_t)nt + 4 * (size_t)nh + 1, sizeof(int));
     int *start = calloc((size_t)n + 1, sizeof(int)), *fill = calloc((size_t)n + 1, sizeof(int));
@@ -439,19 +439,19 @@ static int pack_channel(dem_sim *s, dem_setup *u, int rs)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     for (int k = 0; k < ns; k++)
-        start[s->spring_ij[2 * k] + 1]++, start[s->spring_ij[2 * k + 1] + 1]++;
+        start[s->mesh.spring_ij[2 * k] + 1]++, start[s->mesh.spring_ij[2 * k + 1] + 1]++;
     for (int t = 0; t < 3 * nt; t++)
-        start[s->tri[t] + 1]++;
+        start[s->mesh.tri[t] + 1]++;
     for (int t = 0; t < 4 * nh; t++)
-        start[s->hinge[t] + 1]++;
+        start[s->mesh.hinge[t] + 1]++;
     for (int p = 0; p < n; p++)
         start[p + 1] += start[p];
     for (int k = 0; k < ns; k++) {
-        int a = s->spring_ij[2 * k], b = s->spring_ij[2 * k + 1];
+        int a = s->mesh.spring_ij[2 * k], b = s->mesh.spring_ij[2 * k + 1];
         ij[2 * k] = a, ij[2 * k + 1] = b;
         slot[2 * k] = start[a] + fill[a]++;
         slot[2 * k + 1] = start[b] + fill[b]++;
-        double kk = s->spring_kr[3 * k], rest = s->spring_kr[3 * k + 1], gamma = s->spring_kr[3 * k + 2];
+        double kk = s->mesh.spring_kr[3 * k], rest = s->mesh.spring_kr[3 * k + 1], gamma = s->mesh.spring_kr[3 * k + 2];
         if (rest < 0) {
             const double *xa = s->x + 3 * a, *xb = s->x + 3 * b;
             rest = sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
@@ -463,22 +463,22 @@ static int pack_channel(dem_sim *s, dem_setup *u, int rs)
         kr[SP_STRIDE * k + SP_DAMP] = 2 * gamma * sqrt(kk * ma * mb / (ma + mb));
     }
     for (int t = 0; t < 3 * nt; t++) { /* after every spring: a particle's triangles follow its springs */
-        tri[t] = s->tri[t];
+        tri[t] = s->mesh.tri[t];
         slot[2 * ns + t] = start[tri[t]] + fill[tri[t]]++;
     }
     for (int h = 0; h < nh; h++) { /* then its hinges; the rest angle as s(theta0) = sin(theta0 / 2) (bending.h) */
         for (int k = 0; k < 4; k++) {
-            hg[4 * h + k] = s->hinge[4 * h + k];
+            hg[4 * h + k] = s->mesh.hinge[4 * h + k];
             slot[2 * ns + 3 * nt + 4 * h + k] = start[hg[4 * h + k]] + fill[hg[4 * h + k]]++;
         }
-        double th0 = s->hinge_k[3 * h + 2];
-        hk[HG_STRIDE * h + HG_KEL] = s->hinge_k[3 * h];
-        hk[HG_STRIDE * h + HG_KDISS] = s->hinge_k[3 * h + 1];
+        double th0 = s->mesh.hinge_k[3 * h + 2];
+        hk[HG_STRIDE * h + HG_KEL] = s->mesh.hinge_k[3 * h];
+        hk[HG_STRIDE * h + HG_KDISS] = s->mesh.hinge_k[3 * h + 1];
         hk[HG_STRIDE * h + HG_SIN0] = isnan(th0) ? dem_hinge_rest_shalf(s->x, hg + 4 * h) : sin(0.5 * th0);
     }
     u->nsprings = ns, u->spring_int = keep(s, ij), u->chan_slot = keep(s, slot), u->chan_start = keep(s, start);
     u->spring_real = keep(s, pack_real(kr, SP_STRIDE * (size_t)ns, rs));
-    u->ntriangles = nt, u->tri = keep(s, tri), u->pressure = s->pressure;
+    u->ntriangles = nt, u->tri = keep(s, tri), u->pressure = s->mesh.pressure;
     u->nhinges = nh, u->hinge_int = keep(s, hg), u->hinge_real = keep(s, pack_real(hk, HG_STRIDE * (size_t)nh, rs));
     free(fill), free(kr), free(hk);
     return u->spring_int && u->chan_slot && u->chan_start && u->spring_real && u->tri && u->hinge_int && u->hinge_real
@@ -489,16 +489,16 @@ static int pack_channel(dem_sim *s, dem_setup *u, int rs)
  * start (after pack_walls) */
 static int pack_riders(dem_sim *s, dem_setup *u, int rs)
 {
-    int nr = s->natt;
+    int nr = s->mesh.natt;
     int *ri = malloc(sizeof(int) * 2 * (size_t)(nr ? nr : 1));
     double *off = malloc(sizeof(double) * 3 * (size_t)(nr ? nr : 1));
     if (!ri || !off)
         return free(ri), free(off), sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (int k = 0; k < nr; k++) {
-        int p = s->att[2 * k], w = s->att[2 * k + 1];
+        int p = s->mesh.att[2 * k], w = s->mesh.att[2 * k + 1];
         ri[2 * k] = p, ri[2 * k + 1] = w;
         for (int d = 0; d < 3; d++)
-            off[3 * k + d] = s->x[3 * p + d] - s->wall_pos[w][d];
+            off[3 * k + d] = s->x[3 * p + d] - s->motion.pos[w][d];
     }
     unsigned *ride = calloc((size_t)s->n, sizeof(unsigned));
     for (int k = 0; ride && k < nr; k++)
@@ -516,7 +516,7 @@ static void pack_walls(dem_sim *s, int *wint)
         double rad, hgt;
         wint[k * WI_STRIDE + WI_TYPE] = sim_wall_table(&s->walls[k], &rad, &hgt);
         wint[k * WI_STRIDE + WI_MATERIAL] = s->walls[k].material;
-        memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
+        memcpy(s->motion.pos[k], s->walls[k].point, sizeof(double) * 3);
     }
     sim_pack_walls(s);
 }
@@ -531,7 +531,7 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     double skin = s->cfg.skin > 0 ? s->cfg.skin : DEM_SKIN_AUTO_HI * s->rmin;
     /* rows are built to the interaction range plus the skin: with the MC-strain contact distance the range is
      * F (r_i + r_j) <= r_i + r_j + 2 (F - 1) r_max; the rebuild trigger stays at half the skin itself */
-    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc_reach - 1) * s->rmax : 0;
+    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc.reach - 1) * s->rmax : 0;
     double cell = 1.01 * (2 * s->rmax + skin + reach_extra);
     if (s->cfg.cell_size > cell)
         cell = s->cfg.cell_size;
@@ -541,9 +541,9 @@ static double pack_grid(dem_sim *s, dem_setup *u)
             pmin[d] = fmin(pmin[d], s->x[3 * i + d]);
             pmax[d] = fmax(pmax[d], s->x[3 * i + d]);
         }
-    if (s->have_domain) {
-        memcpy(lo, s->lo, sizeof lo);
-        memcpy(hi, s->hi, sizeof hi);
+    if (s->domain.given) {
+        memcpy(lo, s->domain.lo, sizeof lo);
+        memcpy(hi, s->domain.hi, sizeof hi);
     } else { /* the particles' bounding box, padded by half its extent, 4 r_max and the deepest punch cup on each side
                 (a fill settles into a concave punch's cup, below its land) */
         double cup = 0;
@@ -569,11 +569,11 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     }
     for (int d = 0; d < 3; d++) {
         u->lo[d] = lo[d];
-        s->lo[d] = lo[d];
-        s->hi[d] = hi[d];
-        s->grid_hi[d] = lo[d] + u->ncell[d] * cell; /* what the binning checks: whole cells, past hi by < 1 cell */
+        s->domain.lo[d] = lo[d];
+        s->domain.hi[d] = hi[d];
+        s->domain.grid_hi[d] = lo[d] + u->ncell[d] * cell; /* what the binning checks: whole cells, past hi by < 1 cell */
     }
-    s->grid_cell = cell;
+    s->domain.grid_cell = cell;
     u->inv_cell = 1 / cell;
     /* the cells of the particles' bounding box now (binning.h bin_bounds finds them on the device at each build, in
      * the run's precision; a cell more or less here only moves when the buffers grow) */
@@ -595,19 +595,19 @@ static double pack_grid(dem_sim *s, dem_setup *u)
  * the particles that are not patch vertices. */
 static int pack_patches(dem_sim *s, dem_setup *u)
 {
-    int n = s->n, nt = s->ntri;
+    int n = s->n, nt = s->mesh.ntri;
     int *start = calloc((size_t)n + 1, sizeof(int)), *list = calloc(3 * (size_t)(nt ? nt : 1), sizeof(int));
     int *fill = calloc((size_t)n + 1, sizeof(int));
     unsigned char *mark = calloc((size_t)(nt ? nt : 1), 1);
     if (!start || !list || !mark || !fill)
         return free(start), free(list), free(mark), free(fill), sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    for (int k = 0; k < s->npatch; k++)
-        mark[s->patch[k]] = 1;
+    for (int k = 0; k < s->mesh.npatch; k++)
+        mark[s->mesh.patch[k]] = 1;
     double longest = 0;
     for (int t = 0; t < nt; t++)
         for (int c = 0; mark[t] && c < 3; c++) {
-            start[s->tri[3 * t + c] + 1]++;
-            const double *a = s->x + 3 * s->tri[3 * t + c], *b = s->x + 3 * s->tri[3 * t + (c + 1) % 3];
+            start[s->mesh.tri[3 * t + c] + 1]++;
+            const double *a = s->x + 3 * s->mesh.tri[3 * t + c], *b = s->x + 3 * s->mesh.tri[3 * t + (c + 1) % 3];
             longest = fmax(longest, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                          (a[2] - b[2]) * (a[2] - b[2])));
         }
@@ -615,7 +615,7 @@ static int pack_patches(dem_sim *s, dem_setup *u)
         start[p + 1] += start[p];
     for (int t = 0; t < nt; t++)
         for (int c = 0; mark[t] && c < 3; c++) {
-            int p = s->tri[3 * t + c];
+            int p = s->mesh.tri[3 * t + c];
             list[start[p] + fill[p]++] = t;
         }
     u->rmax = 0;
@@ -626,9 +626,9 @@ static int pack_patches(dem_sim *s, dem_setup *u)
     u->vtri_start = keep(s, start), u->vtri_list = keep(s, list);
     if (!u->vtri_start || !u->vtri_list)
         return DEM_ERR_NOMEM;
-    s->reach = u->reach = longest > 0 ? 1.5 * longest : s->rmax;
-    s->maxp = u->maxp = 16;
-    s->maxv = u->maxv = 32;
+    s->rows.reach = u->reach = longest > 0 ? 1.5 * longest : s->rmax;
+    s->rows.maxp = u->maxp = 16;
+    s->rows.maxv = u->maxv = 32;
     return 0;
 }
 
@@ -670,8 +670,8 @@ int sim_pack(dem_sim *s)
     dem_setup *u = &s->setup;
     int e, rs = (int)s->cfg.precision;
     sim_setup_free(s); /* packed again (dem_memory_estimate, then dem_start): the last packing holds */
-    free(s->wall_real);
-    s->wall_real = NULL;
+    free(s->motion.table);
+    s->motion.table = NULL;
     memset(u, 0, sizeof *u);
     u->real_size = rs;
     pack_effects(s, u);
@@ -683,14 +683,14 @@ int sim_pack(dem_sim *s)
     free(pm), free(damp);
     for (int k = 0; k < s->nwalls; k++) /* the walls' stage lengths in steps, then the riders' velocities of step 0 */
         for (int st = 0; st < s->walls[k].nstages; st++)
-            s->wall_stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
+            s->motion.stage_steps[k][st] = lround(s->walls[k].stages[st].duration / s->dt);
     for (int k = 0; k < s->nwalls; k++) /* where the walls start (pack_walls packs them), and the stages of step 0 */
-        memcpy(s->wall_pos[k], s->walls[k].point, sizeof(double) * 3);
+        memcpy(s->motion.pos[k], s->walls[k].point, sizeof(double) * 3);
     sim_stages_from_step(s);
     sim_attach_start(s);
     int *wint = keep(s, calloc((size_t)WI_STRIDE * (s->nwalls ? s->nwalls : 1), sizeof(int)));
-    s->wall_real = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
-    if (!u->pairmat || !wint || !s->wall_real)
+    s->motion.table = calloc((size_t)W_STRIDE * (s->nwalls ? s->nwalls : 1), (size_t)rs);
+    if (!u->pairmat || !wint || !s->motion.table)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     if ((e = pack_particles(s, u, rs)))
         return e;
@@ -698,17 +698,17 @@ int sim_pack(dem_sim *s)
     if ((e = pack_channel(s, u, rs)) || (e = pack_riders(s, u, rs)) || (e = pack_patches(s, u)))
         return e;
     u->wall_int = wint;
-    u->wall_real = s->wall_real;
+    u->wall_real = s->motion.table;
     double skin = pack_grid(s, u);
-    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc_reach - 1) * s->rmax : 0;
+    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc.reach - 1) * s->rmax : 0;
     u->dt = s->dt;
     memcpy(u->gravity, s->gravity, sizeof u->gravity);
     u->skin = skin + reach_extra;
     u->half_skin2 = 0.25 * skin * skin;
-    s->skin_hi = s->skin_now = skin; /* the cells fit the largest skin: rebuild.c's skin_choose stays below it */
-    s->skin_lo = s->cfg.skin > 0 ? skin : DEM_SKIN_AUTO_LO * s->rmin;
-    s->skin_extra = reach_extra;
-    s->skin_built = -1;
+    s->rows.skin_hi = s->rows.skin_now = skin; /* the cells fit the largest skin: rebuild.c's skin_choose stays below it */
+    s->rows.skin_lo = s->cfg.skin > 0 ? skin : DEM_SKIN_AUTO_LO * s->rmin;
+    s->rows.skin_extra = reach_extra;
+    s->rows.skin_built = -1;
     u->maxn = s->n > INT_MAX / DEM_INITIAL_ROW_CAPACITY ? INT_MAX : DEM_INITIAL_ROW_CAPACITY * s->n;
     u->device = s->cfg.device;
     u->local_size = s->cfg.local_size;
@@ -721,6 +721,6 @@ int sim_pack(dem_sim *s)
 #endif
     if (!u->source_dir)
         u->source_dir = ".";
-    s->maxn = u->maxn;
+    s->rows.maxn = u->maxn;
     return 0;
 }

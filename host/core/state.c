@@ -65,7 +65,7 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
 {
     long np = st->npairs;
     size_t rs = (size_t)st->real_size;
-    if (!s->reorders || np == 0)
+    if (!s->order.count || np == 0)
         return 0;
     pair_key *k = malloc(sizeof *k * (size_t)np);
     unsigned char *tmp = malloc(PR_STRIDE * rs * (size_t)np); /* the widest item: a record */
@@ -91,7 +91,7 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
 static int patch_contacts_get(dem_sim *s, dem_state *st)
 {
     int e = 0, n = s->n, maxp = DEM_CORE(s->be)->maxp, rs = s->setup.real_size;
-    if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->npatch)
+    if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->mesh.npatch)
         return 0;
     int *cnt = sim_buffer_get(s, BUF_PCOUNT, &e), *list = sim_buffer_get(s, BUF_PLIST, &e);
     unsigned char *touch = sim_buffer_get(s, BUF_PTOUCH, &e), *hist = sim_buffer_get(s, BUF_PHIST, &e);
@@ -128,7 +128,7 @@ static int patch_contacts_set(dem_sim *s, const dem_state *st)
 {
     int e = 0, n = s->n, rs = s->setup.real_size;
     dem_core *c = DEM_CORE(s->be);
-    if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->npatch)
+    if (!(s->setup.effects & DEM_EFFECT_PATCHES) || !s->mesh.npatch)
         return st->npatch ? sim_fail(s, DEM_ERR_ARG, "the saved state has %ld patch contacts; this run has no patches",
                                      st->npatch) : 0;
     int maxp = c->maxp;
@@ -387,21 +387,21 @@ static int pairs_get(dem_sim *s, dem_state *st)
 int dem_state_get(dem_sim *s, dem_state *st)
 {
     memset(st, 0, sizeof *st);
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    st->step = s->step;
+    st->step = s->run.step;
     st->n = s->n;
     st->nwalls = s->nwalls;
     st->real_size = s->setup.real_size;
-    st->rebuilds = s->rebuilds;
+    st->rebuilds = s->rows.rebuilds;
     st->has_stages = 1;
     for (int k = 0; k < s->nwalls; k++) {
-        memcpy(st->wall_pos[k], s->wall_pos[k], sizeof st->wall_pos[k]);
-        st->wall_stage[k] = s->stage_cur[k];
-        st->wall_stage_first[k] = s->stage_first[k];
-        memcpy(st->wall_stage_from[k], s->stage_from[k], sizeof st->wall_stage_from[k]);
+        memcpy(st->wall_pos[k], s->motion.pos[k], sizeof st->wall_pos[k]);
+        st->wall_stage[k] = s->motion.stage_cur[k];
+        st->wall_stage_first[k] = s->motion.stage_first[k];
+        memcpy(st->wall_stage_from[k], s->motion.stage_from[k], sizeof st->wall_stage_from[k]);
     }
-    st->mc = s->mc;
+    st->mc = s->mc.stats;
     int e = arrays_get(s, st);
     if (!e)
         e = pairs_get(s, st);
@@ -420,10 +420,10 @@ static int state_set(dem_sim *s, const dem_state *st, int keep);
 /* The rebuilds within keep the storage order (host/core/reorder.c). */
 int dem_state_set(dem_sim *s, const dem_state *st)
 {
-    int hold = s->reorder_hold;
-    s->reorder_hold = 1;
+    int hold = s->order.hold;
+    s->order.hold = 1;
     int e = state_set(s, st, 1);
-    s->reorder_hold = hold;
+    s->order.hold = hold;
     return e;
 }
 
@@ -513,19 +513,19 @@ static int pairs_set(dem_sim *s, const dem_state *st)
 /* The run takes st's step, iteration counts, wall positions and stages */
 static void state_adopt(dem_sim *s, const dem_state *st)
 {
-    s->step = st->step;
-    s->skin_built = s->step; /* the rows just built are this step's (rebuild.c skin_choose counts from it) */
-    long first_capped = s->mc.first_capped, last_capped = s->mc.last_capped; /* this process's, not the state's */
-    s->mc = st->mc;
-    s->mc.first_capped = first_capped, s->mc.last_capped = last_capped;
+    s->run.step = st->step;
+    s->rows.skin_built = s->run.step; /* the rows just built are this step's (rebuild.c skin_choose counts from it) */
+    long first_capped = s->mc.stats.first_capped, last_capped = s->mc.stats.last_capped; /* this process's, not the state's */
+    s->mc.stats = st->mc;
+    s->mc.stats.first_capped = first_capped, s->mc.stats.last_capped = last_capped;
     for (int k = 0; k < s->nwalls; k++)
-        memcpy(s->wall_pos[k], st->wall_pos[k], sizeof s->wall_pos[k]);
+        memcpy(s->motion.pos[k], st->wall_pos[k], sizeof s->motion.pos[k]);
     if (!st->has_stages) /* a state from before stages could end early: every stage ran its duration */
         sim_stages_from_step(s);
     for (int k = 0; st->has_stages && k < s->nwalls; k++) {
-        s->stage_cur[k] = st->wall_stage[k];
-        s->stage_first[k] = st->wall_stage_first[k];
-        memcpy(s->stage_from[k], st->wall_stage_from[k], sizeof s->stage_from[k]);
+        s->motion.stage_cur[k] = st->wall_stage[k];
+        s->motion.stage_first[k] = st->wall_stage_first[k];
+        memcpy(s->motion.stage_from[k], st->wall_stage_from[k], sizeof s->motion.stage_from[k]);
     }
 }
 
@@ -537,7 +537,7 @@ static void state_adopt(dem_sim *s, const dem_state *st)
  * written again after the rebuild, so that what they hold does not depend on what a rebuild touches. */
 static int state_set(dem_sim *s, const dem_state *st, int keep)
 {
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     int e = state_check(s, st);
     dem_state mine;
@@ -548,8 +548,8 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
         dem_state_free(&mine);
         return e;
     }
-    s->skin_now = s->skin_hi; /* how the restored particles move is not known yet: rows of the largest skin */
-    s->skin_built = -1;
+    s->rows.skin_now = s->rows.skin_hi; /* how the restored particles move is not known yet: rows of the largest skin */
+    s->rows.skin_built = -1;
     if ((e = sim_rebuild(s))) {
         dem_state_free(&mine);
         return e;
@@ -558,11 +558,11 @@ static int state_set(dem_sim *s, const dem_state *st, int keep)
     if (!e)
         e = arrays_set(s, st);
     if (e == DEM_ERR_ARG && keep) { /* the run's own state back; the message stays the state's */
-        char why[sizeof s->err];
-        snprintf(why, sizeof why, "%s", s->err);
+        char why[sizeof s->report.err];
+        snprintf(why, sizeof why, "%s", s->report.err);
         if (state_set(s, &mine, 0))
             e = DEM_ERR_DEVICE;
-        snprintf(s->err, sizeof s->err, "%s", why);
+        snprintf(s->report.err, sizeof s->report.err, "%s", why);
     }
     dem_state_free(&mine);
     if (!e)

@@ -14,9 +14,9 @@ int sim_read_flags(dem_sim *s, int *flags)
 /* The scheduled pressure at time t [s] (dem_set_pressure_stages) */
 static double pressure_at(const dem_sim *s, double t)
 {
-    double from = s->pressure, t0 = 0;
-    for (int k = 0; k < s->npstages; k++) {
-        const dem_pressure_stage *g = &s->pstages[k];
+    double from = s->mesh.pressure, t0 = 0;
+    for (int k = 0; k < s->mesh.npstages; k++) {
+        const dem_pressure_stage *g = &s->mesh.pstages[k];
         if (t < t0 + g->duration)
             return from + (g->pressure - from) * ((t - t0) / g->duration);
         from = g->pressure, t0 += g->duration;
@@ -31,12 +31,12 @@ static int mc_strain(dem_sim *s)
     int converged = 0;
     if (dem_launch(s->ops, s->be, K_mc_strain_disp))
         return sim_be_fail(s);
-    while (it < s->mc_max_iter) {
+    while (it < s->mc.max_iter) {
         int flags[FLAG_COUNT];
         if (sim_read_flags(s, flags))
             return DEM_ERR_DEVICE;
         flags[FLAG_MC_PENDING] = 0;
-        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc_tol) ||
+        if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc.tol) ||
             dem_launch(s->ops, s->be, K_mc_strain_disp))
             return sim_be_fail(s);
         it++;
@@ -47,19 +47,19 @@ static int mc_strain(dem_sim *s)
             break;
         }
     }
-    s->mc.last = it;
-    if (s->force_step == s->step) /* dem_start's forces, before any step: no step to count (a cap hit there made
+    s->mc.stats.last = it;
+    if (s->run.force_step == s->run.step) /* dem_start's forces, before any step: no step to count (a cap hit there made
                                    * the count one more than the steps, "6001 of 6000") */
         return 0;
-    if (s->mc_max_iter && !converged) {
-        s->mc.unconverged++;
-        if (s->mc.first_capped < 0)
-            s->mc.first_capped = s->force_step;
-        s->mc.last_capped = s->force_step;
+    if (s->mc.max_iter && !converged) {
+        s->mc.stats.unconverged++;
+        if (s->mc.stats.first_capped < 0)
+            s->mc.stats.first_capped = s->run.force_step;
+        s->mc.stats.last_capped = s->run.force_step;
     }
-    s->mc.total += it;
-    if (it > s->mc.max)
-        s->mc.max = it;
+    s->mc.stats.total += it;
+    if (it > s->mc.stats.max)
+        s->mc.stats.max = it;
     return 0;
 }
 
@@ -75,9 +75,9 @@ static int stage_contacts(dem_sim *s)
 {
     /* A sampled step's row (common/series.h) keeps the blocks' partial sums: integrate_kick takes them from the kept
      * forces, or else they are computed here; the final sum runs only when due. */
-    int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls, fin = walls && s->wall_sums_due;
+    int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls, fin = walls && s->run.wall_sums_due;
     int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
-    int blocks = fin || (walls && s->sample_row >= 0 && !kept);
+    int blocks = fin || (walls && s->run.sample_row >= 0 && !kept);
     return dem_launch(s->ops, s->be, K_contact_pairs) ||
                    (blocks && !kept && dem_stage_wall_reduce(s->ops, s->be, fin)) ||
                    dem_launch(s->ops, s->be, K_contact_forces) ||
@@ -87,25 +87,25 @@ static int stage_contacts(dem_sim *s)
 }
 static int stage_springs(dem_sim *s)
 {
-    return s->nsprings && dem_launch(s->ops, s->be, K_spring_forces) ? sim_be_fail(s) : 0;
+    return s->mesh.nsprings && dem_launch(s->ops, s->be, K_spring_forces) ? sim_be_fail(s) : 0;
 }
 static int stage_pressure(dem_sim *s)
 {
-    s->pressure_now = pressure_at(s, (double)s->force_step * s->dt);
-    DEM_CORE(s->be)->sr[SR_PRESSURE] = s->pressure_now;
-    return s->ntri && dem_launch(s->ops, s->be, K_pressure_forces) ? sim_be_fail(s) : 0;
+    s->mesh.pressure_now = pressure_at(s, (double)s->run.force_step * s->dt);
+    DEM_CORE(s->be)->sr[SR_PRESSURE] = s->mesh.pressure_now;
+    return s->mesh.ntri && dem_launch(s->ops, s->be, K_pressure_forces) ? sim_be_fail(s) : 0;
 }
 static int stage_bending(dem_sim *s)
 {
-    return s->nhinges && dem_launch(s->ops, s->be, K_hinge_forces) ? sim_be_fail(s) : 0;
+    return s->mesh.nhinges && dem_launch(s->ops, s->be, K_hinge_forces) ? sim_be_fail(s) : 0;
 }
 static int stage_gather(dem_sim *s)
 {
-    return (s->nsprings || s->ntri || s->nhinges) && dem_launch(s->ops, s->be, K_channel_gather) ? sim_be_fail(s) : 0;
+    return (s->mesh.nsprings || s->mesh.ntri || s->mesh.nhinges) && dem_launch(s->ops, s->be, K_channel_gather) ? sim_be_fail(s) : 0;
 }
 static int stage_patches(dem_sim *s)
 {
-    return s->npatch && (dem_launch(s->ops, s->be, K_patch_forces) || dem_launch(s->ops, s->be, K_patch_gather))
+    return s->mesh.npatch && (dem_launch(s->ops, s->be, K_patch_forces) || dem_launch(s->ops, s->be, K_patch_gather))
                ? sim_be_fail(s)
                : 0;
 }
@@ -153,12 +153,12 @@ int dem_start(dem_sim *s, const dem_config *c)
         s->be = NULL;
         return sim_fail(s, DEM_ERR_DEVICE, "%s", err);
     }
-    s->started = 1;
+    s->run.started = 1;
     if (dem_stage_reset_flags(s->ops, s->be))
         return sim_be_fail(s);
-    s->force_step = s->step;
-    s->wall_sums_due = 1;
-    s->servo_walls = sim_has_servo(s);
+    s->run.force_step = s->run.step;
+    s->run.wall_sums_due = 1;
+    s->motion.servo_walls = sim_has_servo(s);
     if ((e = sim_rebuild(s)) || (e = forces(s)))
         return e;
     return 0;
@@ -166,7 +166,7 @@ int dem_start(dem_sim *s, const dem_config *c)
 
 int dem_step(dem_sim *s, long nsteps)
 {
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     for (long k = 0; k < nsteps; k++) {
         int e = sim_step_once(s, k == nsteps - 1, -1);
@@ -181,7 +181,7 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     int flags[FLAG_COUNT], e;
     dem_core *c = DEM_CORE(s->be);
     c->ntrace = 0;
-    s->rebuild_at = s->rebuild_len = 0;
+    s->trace.rebuild_at = s->trace.rebuild_len = 0;
     if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, K_integrate_kick_drift))
         return sim_be_fail(s);
     /* walls move with the particles' drift: positions at t + dt, velocity of this step */
@@ -191,25 +191,25 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
         return DEM_ERR_DEVICE;
     if ((flags[FLAG_REBUILD] || sim_skin_probe_due(s)) && (e = sim_rebuild(s)))
         return e;
-    s->force_step = s->step + 1; /* the drifted positions are those of t + dt */
-    s->wall_sums_due = wall_sums || s->servo_walls;
-    s->sample_row = sample_row;
+    s->run.force_step = s->run.step + 1; /* the drifted positions are those of t + dt */
+    s->run.wall_sums_due = wall_sums || s->motion.servo_walls;
+    s->run.sample_row = sample_row;
     if (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 1, sample_row))
         return sim_be_fail(s);
     if ((e = forces(s))) {
-        s->sample_row = -1; /* a later step is not sampled into this row */
+        s->run.sample_row = -1; /* a later step is not sampled into this row */
         dem_stage_series_arm(s->ops, s->be, 0, 0);
         return e;
     }
     if (dem_launch(s->ops, s->be, K_integrate_kick) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
         return sim_be_fail(s);
-    s->sample_row = -1;
-    s->nseq_step = sim_copy_trace(c, 0, s->rebuild_len ? s->rebuild_at : c->ntrace, s->seq_step, 0);
-    if (s->rebuild_len)
-        s->nseq_step = sim_copy_trace(c, s->rebuild_at + s->rebuild_len, c->ntrace, s->seq_step, s->nseq_step);
-    s->step++;
+    s->run.sample_row = -1;
+    s->trace.nstep = sim_copy_trace(c, 0, s->trace.rebuild_len ? s->trace.rebuild_at : c->ntrace, s->trace.step, 0);
+    if (s->trace.rebuild_len)
+        s->trace.nstep = sim_copy_trace(c, s->trace.rebuild_at + s->trace.rebuild_len, c->ntrace, s->trace.step, s->trace.nstep);
+    s->run.step++;
     return 0;
 }
 
-long dem_step_index(const dem_sim *s) { return s->step; }
-double dem_time(const dem_sim *s) { return (double)s->step * s->dt; }
+long dem_step_index(const dem_sim *s) { return s->run.step; }
+double dem_time(const dem_sim *s) { return (double)s->run.step * s->dt; }

@@ -109,7 +109,7 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3])
 {
     if (wall < 0 || wall >= s->nwalls)
         return DEM_ERR_ARG;
-    memcpy(p, s->started ? s->wall_pos[wall] : s->walls[wall].point, sizeof(double) * 3);
+    memcpy(p, s->run.started ? s->motion.pos[wall] : s->walls[wall].point, sizeof(double) * 3);
     return 0;
 }
 
@@ -198,8 +198,8 @@ static double bore_density(const dem_sim *s, int k, int other, int die, const do
 /* The relative density seen by punch k in a run (dem_stage.until_density), from the volume sim_validate summed. */
 double sim_relative_density(const dem_sim *s, int k)
 {
-    return bore_density(s, k, s->density_other[k], s->density_die[k], s->wall_pos[k],
-                        s->wall_pos[s->density_other[k]], s->particle_volume);
+    return bore_density(s, k, s->motion.density_other[k], s->motion.density_die[k], s->motion.pos[k],
+                        s->motion.pos[s->motion.density_other[k]], s->motion.particle_volume);
 }
 
 int dem_relative_density(const dem_sim *s, int wall, double *rho)
@@ -243,12 +243,12 @@ static int stages_advance(dem_sim *s, wall_read *wr)
 {
     for (int k = 0; k < s->nwalls; k++) {
         const dem_wall *w = &s->walls[k];
-        while (s->stage_cur[k] < w->nstages) {
-            const dem_stage *g = &w->stages[s->stage_cur[k]];
-            long ran = s->step - s->stage_first[k];
-            int done = ran >= s->wall_stage_steps[k][s->stage_cur[k]];
+        while (s->motion.stage_cur[k] < w->nstages) {
+            const dem_stage *g = &w->stages[s->motion.stage_cur[k]];
+            long ran = s->run.step - s->motion.stage_first[k];
+            int done = ran >= s->motion.stage_steps[k][s->motion.stage_cur[k]];
             if (!done && ran > 0 && g->until_distance > 0) {
-                const double *p = s->wall_pos[k], *p0 = s->stage_from[k];
+                const double *p = s->motion.pos[k], *p0 = s->motion.stage_from[k];
                 double d = sqrt((p[0] - p0[0]) * (p[0] - p0[0]) + (p[1] - p0[1]) * (p[1] - p0[1]) +
                                 (p[2] - p0[2]) * (p[2] - p0[2]));
                 done = d >= g->until_distance;
@@ -263,9 +263,9 @@ static int stages_advance(dem_sim *s, wall_read *wr)
             }
             if (!done)
                 break;
-            s->stage_cur[k]++;
-            s->stage_first[k] = s->step;
-            memcpy(s->stage_from[k], s->wall_pos[k], sizeof(double) * 3);
+            s->motion.stage_cur[k]++;
+            s->motion.stage_first[k] = s->run.step;
+            memcpy(s->motion.stage_from[k], s->motion.pos[k], sizeof(double) * 3);
         }
     }
     return 0;
@@ -289,16 +289,16 @@ static int servo_update(dem_sim *s, wall_read *wr)
         double u = g->gain * err;
         u = u > g->max_speed ? g->max_speed : u < -g->max_speed ? -g->max_speed : u;
         for (int d = 0; d < 3; d++)
-            s->servo_v[k][d] = u * n[d];
-        dem_servo_stats *r = &s->servo[k];
+            s->motion.servo_v[k][d] = u * n[d];
+        dem_servo_stats *r = &s->motion.servo[k];
         if (r->stage != st || r->steps == 0) /* a new stage, or the first step this process runs */
-            *r = (dem_servo_stats){st, g->force, 0, 0, NAN, 0}, s->servo_err[k] = s->servo_sum[k] = 0;
-        double big = 0.1 * g->force, prev = s->servo_err[k];
+            *r = (dem_servo_stats){st, g->force, 0, 0, NAN, 0}, s->motion.servo_err[k] = s->motion.servo_sum[k] = 0;
+        double big = 0.1 * g->force, prev = s->motion.servo_err[k];
         r->chatter += (prev > big && err < -big) || (prev < -big && err > big);
-        s->servo_err[k] = err;
-        long len = s->wall_stage_steps[k][st];
-        if (s->step - first >= len - len / 10) /* its last tenth: the force it holds */
-            s->servo_sum[k] += fn, r->tail++;
+        s->motion.servo_err[k] = err;
+        long len = s->motion.stage_steps[k][st];
+        if (s->run.step - first >= len - len / 10) /* its last tenth: the force it holds */
+            s->motion.servo_sum[k] += fn, r->tail++;
         r->steps++;
     }
     return 0;
@@ -308,11 +308,11 @@ int dem_servo_stats_get(const dem_sim *s, int wall, dem_servo_stats *st)
 {
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail((dem_sim *)s, DEM_ERR_ARG, "wall %d: no such wall (%d)", wall, s->nwalls);
-    *st = s->servo[wall];
+    *st = s->motion.servo[wall];
     if (!st->steps)
         st->stage = -1;
     if (st->tail)
-        st->held = s->servo_sum[wall] / (double)st->tail;
+        st->held = s->motion.servo_sum[wall] / (double)st->tail;
     return 0;
 }
 
@@ -328,10 +328,10 @@ int sim_walls_move(dem_sim *s)
         double v[3];
         sim_wall_velocity(s, w, v);
         for (int d = 0; d < 3; d++)
-            s->wall_pos[w][d] += v[d] * s->dt;
+            s->motion.pos[w][d] += v[d] * s->dt;
     }
     sim_pack_walls(s);
-    if (dem_stage_set_walls(s->ops, s->be, s->wall_real) || (s->natt && dem_launch(s->ops, s->be, K_rider_place)))
+    if (dem_stage_set_walls(s->ops, s->be, s->motion.table) || (s->mesh.natt && dem_launch(s->ops, s->be, K_rider_place)))
         return sim_be_fail(s);
     return 0;
 }

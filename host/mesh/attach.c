@@ -8,18 +8,18 @@
 
 int dem_attach_to_wall(dem_sim *s, int particle, int wall)
 {
-    if (s->started)
+    if (s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_attach_to_wall after dem_start");
     if (particle < 0 || particle >= s->n || wall < 0 || wall >= s->nwalls)
         return sim_fail(s, DEM_ERR_ARG, "attach: no particle %d or no wall %d (particles 0..%d, walls 0..%d)",
                         particle, wall, s->n - 1, s->nwalls - 1);
-    for (int k = 0; k < s->natt; k++)
-        if (s->att[2 * k] == particle)
+    for (int k = 0; k < s->mesh.natt; k++)
+        if (s->mesh.att[2 * k] == particle)
             return sim_fail(s, DEM_ERR_ARG, "attach: particle %d already rides on wall %d", particle,
-                            s->att[2 * k + 1]);
-    if (sim_grow(s, s->natt, &s->att_cap, &s->att, 2, NULL, 0, "riders"))
+                            s->mesh.att[2 * k + 1]);
+    if (sim_grow(s, s->mesh.natt, &s->mesh.att_cap, &s->mesh.att, 2, NULL, 0, "riders"))
         return DEM_ERR_NOMEM;
-    s->att[2 * s->natt] = particle, s->att[2 * s->natt + 1] = wall, s->natt++;
+    s->mesh.att[2 * s->mesh.natt] = particle, s->mesh.att[2 * s->mesh.natt + 1] = wall, s->mesh.natt++;
     s->pflags[particle] |= DEM_PARTICLE_FIXED;
     s->effects |= DEM_EFFECT_RIDERS; /* and it does not touch that wall (contact_geometry.h, wall_met) */
     return 0;
@@ -27,8 +27,8 @@ int dem_attach_to_wall(dem_sim *s, int particle, int wall)
 
 void sim_attach_start(dem_sim *s)
 {
-    for (int k = 0; k < s->natt; k++) {
-        int i = s->att[2 * k], w = s->att[2 * k + 1];
+    for (int k = 0; k < s->mesh.natt; k++) {
+        int i = s->mesh.att[2 * k], w = s->mesh.att[2 * k + 1];
         sim_wall_velocity(s, w, s->v + 3 * i);
     }
 }

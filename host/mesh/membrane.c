@@ -73,7 +73,7 @@ static double *vertex_masses(dem_sim *s, const dem_mesh *m, const dem_membrane *
 
 int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info)
 {
-    if (s->started)
+    if (s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_add_membrane after dem_start");
     if (!m || !mm || m->nv < 3 || m->nt < 1 || !m->x || !m->tri)
         return sim_fail(s, DEM_ERR_ARG, "membrane: a mesh of at least 3 vertices and one triangle is needed");
@@ -91,7 +91,7 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
     if (!vmass)
         return dem_mesh_topo_free(&t), rc;
     /* everything checked; what follows fails only for memory, and then is undone */
-    int n0 = s->n, ns0 = s->nsprings, nt0 = s->ntri, nh0 = s->nhinges, nm0 = s->nmat, np0 = s->npatch;
+    int n0 = s->n, ns0 = s->mesh.nsprings, nt0 = s->mesh.ntri, nh0 = s->mesh.nhinges, nm0 = s->nmat, np0 = s->mesh.npatch;
     unsigned eff0 = s->effects;
     double k = sqrt(3.0) / 2 * mm->young * mm->thickness;
     int mat = dem_add_material(s, &(dem_material){mm->density, mm->young, mm->poisson, mm->restitution,
@@ -119,10 +119,10 @@ int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_
                                     mm->density * mm->thickness * area};
     free(vmass), dem_mesh_topo_free(&t);
     if (!ok) { /* undo: the message of the failed call stays */
-        s->n = n0, s->nsprings = ns0, s->ntri = nt0, s->nhinges = nh0, s->nmat = nm0, s->effects = eff0;
+        s->n = n0, s->mesh.nsprings = ns0, s->mesh.ntri = nt0, s->mesh.nhinges = nh0, s->nmat = nm0, s->effects = eff0;
         if (mat >= 0)
             s->mat_apart[mat] = 0;
-        s->npatch = np0;
+        s->mesh.npatch = np0;
         return rc;
     }
     return 0;

@@ -118,7 +118,7 @@ static void wall_contact(const dem_sim *s, const net_fields *t, int i, int w, de
 {
     int n = t->n, nw = t->nw, rs = t->rs;
     const dem_wall *wl = &s->walls[w];
-    const double *p = s->wall_pos[w];
+    const double *p = s->motion.pos[w];
     double xi[3], F[3], nrm[3];
     for (int q = 0; q < 3; q++) {
         xi[q] = sim_real_at(t->x, 3 * (size_t)i + q, rs);
@@ -139,7 +139,7 @@ static void wall_contact(const dem_sim *s, const net_fields *t, int i, int w, de
 int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
 {
     *out = NULL, *count = 0, *npairs = 0;
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     if ((s->setup.effects & DEM_EFFECT_WALLS) && s->nwalls > 0 && !(s->setup.effects & DEM_KEEP_WALL_FORCES))
         return sim_fail(s, DEM_ERR_STATE, "the contact network of a run with walls needs dem_config.contacts = 1 at "
@@ -185,7 +185,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
             if ((t.mask[i] >> w) & 1u)
                 wall_contact(s, &t, i, w, &cs[m++]);
     free(t.raw);
-    for (long k = 0; s->reorders && k < np + nwc; k++) { /* stored anew (host/core/reorder.c): the callers' ids */
+    for (long k = 0; s->order.count && k < np + nwc; k++) { /* stored anew (host/core/reorder.c): the callers' ids */
         cs[k].i = sim_api(s, cs[k].i);
         if (cs[k].j >= 0)
             cs[k].j = sim_api(s, cs[k].j);

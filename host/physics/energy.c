@@ -64,10 +64,10 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
             int t = list[(size_t)i * maxp + k];
             double tx[9];
             for (int v = 0; v < 3; v++)
-                memcpy(tx + 3 * v, x + 3 * sim_dev(s, s->tri[3 * t + v]), sizeof(double) * 3);
+                memcpy(tx + 3 * v, x + 3 * sim_dev(s, s->mesh.tri[3 * t + v]), sizeof(double) * 3);
             double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i]), row[PM_STRIDE];
             if (d > 0) {
-                pair_row(s, s->mat[i], s->mat[sim_dev(s, s->tri[3 * t])], row);
+                pair_row(s, s->mat[i], s->mat[sim_dev(s, s->mesh.tri[3 * t])], row);
                 en->elastic += patch_contact_energy(s->setup.effects, row, s->radius[i], d);
             }
             en->patch_contacts++;
@@ -89,11 +89,11 @@ static int device_rows(const dem_sim *s) { return !(s->setup.effects & (DEM_EFFE
 static void sample_begin(const dem_sim *s, dem_sample *o)
 {
     memset(o, 0, sizeof *o);
-    o->step = s->step;
+    o->step = s->run.step;
     o->time = dem_time(s);
-    o->mc = s->mc;
+    o->mc = s->mc.stats;
     for (int w = 0; w < s->nwalls; w++)
-        memcpy(o->wall_pos + 3 * w, s->wall_pos[w], sizeof(double) * 3);
+        memcpy(o->wall_pos + 3 * w, s->motion.pos[w], sizeof(double) * 3);
 }
 
 /* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending stable id, in
@@ -142,7 +142,7 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
 
 int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
 {
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     long nrows = 0, last = -1;
     for (long k = 0; want && k < nsteps; k++)
@@ -185,24 +185,24 @@ int dem_sample_get(dem_sim *s, dem_sample *out)
 static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal)
 {
     memset(en, 0, sizeof *en);
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     int n = s->n, rs = s->setup.real_size;
     size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
     /* one scratch block kept in the simulation (a series every step allocated and freed it every step) */
     size_t need = 3 * n3 * sizeof(double) + sizeof(int) * (2 * (size_t)n + 1) + lb + 8 + 3 * n3 * (size_t)rs +
                   4 * DEM_MAX_WALLS * (size_t)rs + 64;
-    if (need > s->scratch_bytes) {
-        free(s->scratch);
-        s->scratch = malloc(need);
-        s->scratch_bytes = s->scratch ? need : 0;
+    if (need > s->scratch.bytes) {
+        free(s->scratch.buf);
+        s->scratch.buf = malloc(need);
+        s->scratch.bytes = s->scratch.buf ? need : 0;
     }
-    if (!s->scratch)
+    if (!s->scratch.buf)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    double *x = (double *)s->scratch, *v = x + n3, *w = v + n3;
+    double *x = (double *)s->scratch.buf, *v = x + n3, *w = v + n3;
     int *cnt = (int *)(w + n3), *start = cnt + n, *list = start + n + 1;
-    size_t off = (size_t)((unsigned char *)list + lb - (unsigned char *)s->scratch);
-    unsigned char *raw = (unsigned char *)s->scratch + (off + 7) / 8 * 8; /* the reals aligned */
+    size_t off = (size_t)((unsigned char *)list + lb - (unsigned char *)s->scratch.buf);
+    unsigned char *raw = (unsigned char *)s->scratch.buf + (off + 7) / 8 * 8; /* the reals aligned */
     int e = 0;
     if (!e) {
         unsigned char *wraw = raw + 3 * n3 * rs;
@@ -256,7 +256,7 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             if (sim_rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
                 continue;
             const dem_wall *wl = &s->walls[k];
-            double delta = dem_wall_overlap(wl, s->wall_pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
+            double delta = dem_wall_overlap(wl, s->motion.pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
             if (delta > 0) {
                 double row[PM_STRIDE];
                 pair_row(s, s->mat[i], wl->material, row);
@@ -265,17 +265,17 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
             }
         }
     }
-    for (int k = 0; !e && k < s->nsprings; k++) { /* springs: k (|rho| - rho0)^2 / 2; ends by stable id */
-        int a = sim_dev(s, s->spring_ij[2 * k]), b = sim_dev(s, s->spring_ij[2 * k + 1]);
-        double d2 = 0, r2 = 0, rest = s->spring_kr[3 * k + 1];
+    for (int k = 0; !e && k < s->mesh.nsprings; k++) { /* springs: k (|rho| - rho0)^2 / 2; ends by stable id */
+        int a = sim_dev(s, s->mesh.spring_ij[2 * k]), b = sim_dev(s, s->mesh.spring_ij[2 * k + 1]);
+        double d2 = 0, r2 = 0, rest = s->mesh.spring_kr[3 * k + 1];
         for (int q = 0; q < 3; q++) {
             d2 += (x[3 * a + q] - x[3 * b + q]) * (x[3 * a + q] - x[3 * b + q]);
             r2 += (s->x[3 * a + q] - s->x[3 * b + q]) * (s->x[3 * a + q] - s->x[3 * b + q]);
         }
         double ext = sqrt(d2) - (rest < 0 ? sqrt(r2) : rest);
-        en->elastic += 0.5 * s->spring_kr[3 * k] * ext * ext;
+        en->elastic += 0.5 * s->mesh.spring_kr[3 * k] * ext * ext;
     }
-    if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->npatch)
+    if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
         e = patch_energy(s, x, en);
     en->total = en->kinetic + en->elastic + en->potential;
     return e;

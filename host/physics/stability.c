@@ -71,7 +71,7 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     memset(st, 0, sizeof *st);
     st->particle = -1;
     st->dt_advice = INFINITY;
-    if (!s->started)
+    if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     int n = s->n, rs = s->setup.real_size, nm = s->nmat;
     unsigned fx = s->setup.effects;
@@ -128,7 +128,7 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
             if (sim_rides_on(s, i, w)) /* a rider does not touch its wall */
                 continue;
             const dem_wall *wl = &s->walls[w];
-            double delta = dem_wall_overlap(wl, s->wall_pos[w], x + 3 * i, ri, NULL); /* the kernels' geometry */
+            double delta = dem_wall_overlap(wl, s->motion.pos[w], x + 3 * i, ri, NULL); /* the kernels' geometry */
             if (!(delta > 0))
                 continue;
             int a = s->mat[i], b = wl->material;
