@@ -321,7 +321,7 @@ static void size_ratio_table(void)
 {
     long rb[2];
     double mix = size_ratio_rate(1, &rb[0]), equal = size_ratio_rate(0, &rb[1]);
-    printf("\n## Size ratio 20:1 (issue 13, hard case 2; 2000 steps on OpenCL device 0, fp64; target: within 2x of "
+    printf("\n## Size ratio 20:1 (hard case 2; 2000 steps on OpenCL device 0, fp64; target: within 2x of "
            "equal spheres)\n\n| packing | particles | particle-steps/s | rebuilds |\n|---|---|---|---|\n"
            "| 64 coarse (2 mm) + 4000 fines (0.1 mm) | 4064 | %.3g | %ld |\n| 4064 fines alone | 4064 | %.3g | %ld |\n"
            "\nthe mix costs %.1fx per particle-step\n", mix, rb[0], equal, rb[1], equal / mix);
@@ -666,7 +666,7 @@ static void bed_table(int quick)
     char dev[256] = "";
     dem_device_name(0, dev, sizeof dev);
     double gbs = copy_gbs(0);
-    printf("\n### Throughput on a poured polydisperse bed (issue 14)\n\n%s: %ld spheres as poured (random order), cut or "
+    printf("\n### Throughput on a poured polydisperse bed\n\n%s: %ld spheres as poured (random order), cut or "
            "tiled; Hertz-Mindlin with friction, damping, gravity, 5 walls; dt 2e-6 s. OpenCL device 0: %s. The state "
            "after the timed steps is hashed on each backend. The device copies %.1f GB/s (clEnqueueCopyBuffer, bytes read "
            "+ written); beside each kernel launched every step, the bytes of the buffers it is given over its time: the "

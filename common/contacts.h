@@ -1,4 +1,4 @@
-/* contacts.h - the contacts of one particle in the one canonical order every per-particle sum uses (issue 18).
+/* contacts.h - the contacts of one particle in the one canonical order every per-particle sum uses.
  *
  * Particle i's possible contacts are numbered c = 0 .. contact_count(cnt, nw) - 1:
  *   c <  cnt:  its neighbour row's slot c, partners in ascending stable id (neighbor.h): MIRRORED in the row's first

@@ -1,4 +1,4 @@
-/* dem_buffers.h - the one registry of device buffers and kernel scalars (issue 18): name, element type, size rule, the
+/* dem_buffers.h - the one registry of device buffers and kernel scalars: name, element type, size rule, the
  * effect that gates it, the field it is read and written as, and what it starts from. The backends create, grow,
  * look up and destroy buffers by walking it (backend/backend.c); the kernels' argument lists (dem_kernels.h) name their
  * sources here. Host only: the kernels see plain pointers.

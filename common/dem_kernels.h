@@ -1,4 +1,4 @@
-/* dem_kernels.h - every kernel's argument list, written once (issue 18).
+/* dem_kernels.h - every kernel's argument list, written once.
  *
  * From each list below come, by the macros at the end of this file:
  *   - the OpenCL kernel (kernels/program.cl makes every kernel of DEM_KERNEL_LIST with DEM_KERNEL),

@@ -23,7 +23,7 @@
  * f_k comes from the previous evaluation: the previous time step in the lagged scheme (published, one pass), or
  * the previous iteration when iterating (host/core/step_loop.c repeats mc_strain_disp + mc_strain_update until no force changes
  * by more than the relative tolerance, or the iteration cap). It is stored per pair (numbered like the records:
- * contacts.h row_pair; until 2026-12-03 per row slot, in both slots of a pair and in both row sets) and per
+ * contacts.h row_pair: one real per pair, not one per row slot in both row sets) and per
  * particle-wall slot, carried across neighbour rebuilds and saved in checkpoints.
  *
  * Guards (the singular cases stay finite): d_kc is raised to the Hertz contact radius a_k = sqrt(r*_k d_k) of the

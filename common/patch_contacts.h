@@ -257,8 +257,8 @@ DEM_INLINE unsigned patch_next(patch_geom g)
  * 0.8 r; beyond, a barrier that grows as 0.8 r + 0.2 r u / (1 - u), u = (d - 0.8 r) / (0.2 r), until u = 0.95
  * (d = 0.99 r, 4.6 r for the law), then on along its tangent (slope 400), so that the force and its slope are
  * continuous and the force grows without end. Hertz's law alone lets the centre reach the patch's plane at a
- * pressure of about 0.2 E* (issue 39's estimate for seed 001's rubber membrane: ~300 kPa; grains got out from ~270
- * kPa). With the barrier, issue 39's closed sphere at 1 MPa kept every centre inside, the nearest 0.012 r from the
+ * pressure of about 0.2 E* (an estimate: ~300 kPa for seed 001's rubber membrane; grains got out from ~270 kPa).
+ * With the barrier, a closed sphere membrane of 627 grains at 1 MPa kept every centre inside, the nearest 0.012 r from the
  * membrane (tests/test_patch_contacts.c, test_one_megapascal; with u = 0.9 and slope 100 one came 0.01 r outside);
  * a sphere pressed further still is pushed back (crossed contacts, patch_geometry). Runs whose overlaps stay below
  * 0.8 r have Hertz's bits (seed 001's triaxial case 1, 3000 steps: the same state hash as before). By a hand estimate
@@ -317,8 +317,8 @@ DEM_INLINE int patch_kept(int i, int k, int cnt, int maxp, vec3 xi, real ri, DEM
  * The normal: from the closest point to the centre, n = e/|e| with overlap r - |e|, while the centre is on its side;
  * once it is on the plane or past it (crossed, patch_geometry), n = +-N/|N| towards the side it came from, overlap
  * r + its depth past the plane: the contact does not flip, and pushes the sphere back until it is wholly through or
- * has left the triangle's prism by a radius (Hertz's law alone let spheres through seed 001's rubber membrane from
- * ~270 kPa: issue 39). The law is Hertz's with the barrier of patch_law_overlap. */
+ * has left the triangle's prism by a radius (Hertz's law alone lets spheres through seed 001's rubber membrane from
+ * ~270 kPa). The law is Hertz's with the barrier of patch_law_overlap. */
 DEM_ITEM(patch_forces)
 {
     int cnt = pcount[i];

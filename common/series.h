@@ -1,4 +1,4 @@
-/* series.h - a time-series row's terms, on the device in a sampled step (issue 15): each particle's kinetic and
+/* series.h - a time-series row's terms, on the device in a sampled step: each particle's kinetic and
  * potential energy, the Hertz elastic energy of its contacts and its contact counts (dem_layout.h SE_*), written to
  * the particle's slot in one row of a ring of rows by the kernels that have them at hand - integrate_kick (the
  * velocities at the step's end; and at each block's first particle the walls' block partial sums), contact_forces

@@ -59,7 +59,7 @@ def read_part(path):
     with f:
         s = f.get("series")
         if s is None or "wall_force" not in s or "wall_radius" not in s:
-            fail(f"{path}: no wall series with the walls' shapes (a run of a scene with walls, libdem >= issue 12)")
+            fail(f"{path}: no wall series with the walls' shapes (a run of a scene with walls, a libdem that writes the wall shapes)")
         raw = s.attrs["wall_names"]
         p = dict(names=(raw.decode() if isinstance(raw, bytes) else str(raw)).split("\n"),
                  radius=s["wall_radius"][:], normal=s["wall_normal"][:], r=f["particles/radius"][:])

@@ -1,5 +1,5 @@
 /* particle_order.c - dem_sort_particles: the particles in the order of a Morton (Z-order) curve through their
- * positions, so that neighbours in space are neighbours in memory (issue 14).
+ * positions, so that neighbours in space are neighbours in memory.
  *
  * Why: every kernel reads its partners' positions, velocities and histories by particle id. A packing that arrives in
  * another code's order, or a random packing (generated in random order), scatters those reads over the whole arrays;
@@ -7,7 +7,7 @@
  * The sort is a pure function of the positions (21 bits per axis over their bounding box, ties by the earlier id),
  * so a run and its restart, the reference and every device, see the same order; two files listing the same
  * particles in different orders give the same run as long as no two particles share a key (they do not unless
- * closer than 2^-21 of the box). It moves particles, not results: sums follow particle ids as before, so a sorted
+ * closer than 2^-21 of the box). It moves particles, not results: sums follow the particle ids, so a sorted
  * run differs from an unsorted one in the rounding of its sums only. */
 #include "sim.h"
 #include <math.h>

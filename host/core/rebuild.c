@@ -94,9 +94,9 @@ int sim_skin_probe_due(const dem_sim *s)
 
 /* The slots of a row set for a build whose rows need `need` together: 1/8 to spare, so that a packing that
  * tightens grows them at one rebuild in several, not at each. The rows are packed (dem_buffers.h DEM_ROWS): each
- * slot is an int (MC-strain's displacements per slot are held for the current set only: MAXC). Until
- * 2026-12-03 every row had the longest row's capacity: a compact in the press lists 17-23 partners in its longest row
- * and about 8 in its mean one (docs/design.md "Memory in a compact"). */
+ * slot is an int (MC-strain's displacements per slot are held for the current set only: MAXC), not each
+ * as long as the longest: a compact in the press lists 17-23 partners in its longest row and about 8 in its mean one
+ * (docs/design.md "Memory in a compact"). */
 static int row_capacity(int need)
 {
     return need + need / 8 + 16;

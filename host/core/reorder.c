@@ -1,5 +1,5 @@
 /* reorder.c - the particles stored anew along a Morton curve through their current positions, at a neighbour rebuild
- * (dem_config.reorder; issue 14), and the particle ids of the library's calls kept those of dem_start.
+ * (dem_config.reorder), and the particle ids of the library's calls kept those of dem_start.
  *
  * Why: every kernel reads its partners' data by where they are stored. A packing in another code's order, or one
  * that flows (a pour, a die fill), scatters those reads; the same bed of 1e5 spheres ran 1.4x faster stored in
@@ -14,7 +14,7 @@
  * (common/dem_buffers.h, the move column) to the new places, among them each particle's start of its owned pairs in
  * the old pair list (OWN_START: old_pair_number reads the old pairs through it) and where it was stored when the rows
  * were built (OLD_SLOT), and the current rows with their partners renamed; the pair-sized arrays stay where they are,
- * numbered as before, until pair_index carries them into the new rows. The host's own per-particle arrays follow,
+ * numbered as they were, until pair_index carries them into the new rows. The host's own per-particle arrays follow,
  * so the host code that reads device buffers by storage place needs no map; the calls that take or return
  * particle ids (dem_get_raw, dem_state_*, dem_contacts_get, dem_particle_*) map through sid / order (sim_api,
  * sim_dev): the stable id of the particle at each place is its id of dem_start.

@@ -88,8 +88,8 @@ static void zip_rows(dem_mesh *m, int l0, int nl, const double *sl, int u0, int 
 /* The grid a generated sheet or tube is made of, in double (dem_membrane.h): n1 vertices along a row (a sheet's even
  * rows; a tube's rings), n2 rows, so that a huge size over a tiny edge is counted, not wrapped (lround and long products
  * overflowed: a tube of radius 1e-30 m and height 5.3e18 m with edges of 1 m came out 2051 vertices); round() as
- * lround. A sheet is equilateral: its length a cut into whole edges dx, its rows dx sqrt(3)/2 apart (issue 39: both
- * spacings rounded apart gave 59.74 deg for 6 x 6 cm at 1 cm). A tube keeps its circumference and height: dx the
+ * lround. A sheet is equilateral: its length a cut into whole edges dx, its rows dx sqrt(3)/2 apart (both
+ * spacings rounded apart would give 59.74 deg for 6 x 6 cm at 1 cm). A tube keeps its circumference and height: dx the
  * chord between neighbours on a ring, dy the height over whole rows. */
 int dem_mesh_grid(const dem_mesh_spec *sp, double *n1, double *n2, double *dx, double *dy)
 {

@@ -44,8 +44,9 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
      * every reader reads a record only where the touching flag says so; 3 reals of history per pair fit in 7 of a
      * record's) and MC-strain's displacements per row slot (mc_strain_disp writes each
      * before anything reads it; a row set has two slots per pair); both grow only after pair_index has read them.
-     * Until 2026-12-03 the history's copy held a buffer of its own (24 bytes per pair in fp64) all the run for this
-     * moment, and the forces were kept per row slot in both row sets. The touching flags' copy is grown here to the
+     * Using these spaces saves a buffer of its own for the history's copy (24 bytes per pair in fp64, held all the
+     * run for this moment) and MC-strain's forces per row slot in both row sets (docs/design.md "Memory in a
+     * compact"). The touching flags' copy is grown here to the
      * flags' capacity (which may have grown at the last commit). */
     dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, rec = {TABLE_ONE, BUF_PAIR};
     dem_bufref fn = {TABLE_ONE, BUF_PAIR_MC_FN}, disp = {TABLE_ONE, BUF_MC_DISP};
