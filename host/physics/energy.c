@@ -182,14 +182,19 @@ int dem_sample_get(dem_sim *s, dem_sample *out)
     return energy_of(s, &out->energy, out->wall_force, out->wall_normal);
 }
 
-static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal)
+/* The state energy_of reads, widened to double in the simulation's scratch block: positions, velocities, spins and
+ * the neighbour lists */
+typedef struct {
+    double *x, *v, *w;
+    int *cnt, *start, *list;
+} host_state;
+
+/* reads hs (and the walls' forces where asked) in one device synchronisation, into one scratch block kept in the
+ * simulation (a series every step allocated and freed it every step) */
+static int read_state(dem_sim *s, host_state *hs, double *wall_force, double *wall_normal)
 {
-    memset(en, 0, sizeof *en);
-    if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     int n = s->n, rs = s->setup.real_size;
     size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
-    /* one scratch block kept in the simulation (a series every step allocated and freed it every step) */
     size_t need = 3 * n3 * sizeof(double) + sizeof(int) * (2 * (size_t)n + 1) + lb + 8 + 3 * n3 * (size_t)rs +
                   4 * DEM_MAX_WALLS * (size_t)rs + 64;
     if (need > s->scratch.bytes) {
@@ -199,73 +204,84 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
     }
     if (!s->scratch.buf)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    double *x = (double *)s->scratch.buf, *v = x + n3, *w = v + n3;
-    int *cnt = (int *)(w + n3), *start = cnt + n, *list = start + n + 1;
-    size_t off = (size_t)((unsigned char *)list + lb - (unsigned char *)s->scratch.buf);
+    hs->x = (double *)s->scratch.buf, hs->v = hs->x + n3, hs->w = hs->v + n3;
+    hs->cnt = (int *)(hs->w + n3), hs->start = hs->cnt + n, hs->list = hs->start + n + 1;
+    size_t off = (size_t)((unsigned char *)hs->list + lb - (unsigned char *)s->scratch.buf);
     unsigned char *raw = (unsigned char *)s->scratch.buf + (off + 7) / 8 * 8; /* the reals aligned */
-    int e = 0;
-    if (!e) {
-        unsigned char *wraw = raw + 3 * n3 * rs;
-        dem_field f[8] = {DEM_FIELD_X,        DEM_FIELD_V,        DEM_FIELD_W,          DEM_FIELD_NBR_COUNT,
-                          DEM_FIELD_NBR_START, DEM_FIELD_NBR_LIST, DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE};
-        void *dst[8] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, cnt, start, list, wraw,
-                        wraw + 3 * (size_t)s->nwalls * rs};
-        size_t bytes[8] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, sizeof(int) * (n + 1), lb,
-                           3 * (size_t)s->nwalls * rs, (size_t)s->nwalls * rs};
-        if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 8 : 6, f, dst, bytes))
-            e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
-    }
-    if (!e) {
-        sim_widen(raw, x, n3, rs);
-        sim_widen(raw + n3 * rs, v, n3, rs);
-        sim_widen(raw + 2 * n3 * rs, w, n3, rs);
-        if (wall_force)
-            sim_widen(raw + 3 * n3 * rs, wall_force, 3 * (size_t)s->nwalls, rs);
-        if (wall_normal)
-            sim_widen(raw + 3 * n3 * rs + 3 * (size_t)s->nwalls * rs, wall_normal, (size_t)s->nwalls, rs);
-    }
+    unsigned char *wraw = raw + 3 * n3 * rs;
+    dem_field f[8] = {DEM_FIELD_X,         DEM_FIELD_V,        DEM_FIELD_W,          DEM_FIELD_NBR_COUNT,
+                      DEM_FIELD_NBR_START, DEM_FIELD_NBR_LIST, DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE};
+    void *dst[8] = {raw, raw + n3 * rs, raw + 2 * n3 * rs, hs->cnt, hs->start, hs->list, wraw,
+                    wraw + 3 * (size_t)s->nwalls * rs};
+    size_t bytes[8] = {n3 * rs, n3 * rs, n3 * rs, sizeof(int) * n, sizeof(int) * (n + 1), lb,
+                       3 * (size_t)s->nwalls * rs, (size_t)s->nwalls * rs};
+    if (dem_stage_read_fields(s->ops, s->be, wall_force && s->nwalls ? 8 : 6, f, dst, bytes))
+        return sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
+    sim_widen(raw, hs->x, n3, rs);
+    sim_widen(raw + n3 * rs, hs->v, n3, rs);
+    sim_widen(raw + 2 * n3 * rs, hs->w, n3, rs);
+    if (wall_force)
+        sim_widen(raw + 3 * n3 * rs, wall_force, 3 * (size_t)s->nwalls, rs);
+    if (wall_normal)
+        sim_widen(raw + 3 * n3 * rs + 3 * (size_t)s->nwalls * rs, wall_normal, (size_t)s->nwalls, rs);
+    return 0;
+}
 
+/* adds particle i's kinetic energy (translation, then rotation) and its potential energy in gravity to en */
+static void add_motion_energy(const dem_sim *s, const host_state *hs, int i, dem_energy_t *en)
+{
+    const double *x = hs->x, *v = hs->v, *w = hs->w;
+    double m = sim_mass(s, i), I = sim_inertia(s, i);
+    unsigned fl = s->pflags[i];
+    double v2 = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
+    double w2 = w[3 * i] * w[3 * i] + w[3 * i + 1] * w[3 * i + 1] + w[3 * i + 2] * w[3 * i + 2];
+    if (!(fl & DEM_PARTICLE_FIXED)) {
+        en->kinetic += 0.5 * m * v2;
+        if (s->effects & DEM_EFFECT_GRAVITY)
+            en->potential -= m * (s->gravity[0] * x[3 * i] + s->gravity[1] * x[3 * i + 1] + s->gravity[2] * x[3 * i + 2]);
+    }
+    if (!(fl & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)))
+        en->kinetic += 0.5 * I * w2;
+}
+
+/* adds the elastic energy of particle i's contacts to en: its sphere pairs from their owner (the lower stable id),
+ * then its walls */
+static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, dem_energy_t *en)
+{
+    const double *x = hs->x;
     const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */
-    for (int q = 0; !e && q < n; q++) {
-        int i = s->setup.order[q];
-        double m = sim_mass(s, i), r = s->radius[i], I = sim_inertia(s, i);
-        unsigned fl = s->pflags[i];
-        double v2 = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
-        double w2 = w[3 * i] * w[3 * i] + w[3 * i + 1] * w[3 * i + 1] + w[3 * i + 2] * w[3 * i + 2];
-        if (!(fl & DEM_PARTICLE_FIXED)) {
-            en->kinetic += 0.5 * m * v2;
-            if (s->effects & DEM_EFFECT_GRAVITY)
-                en->potential -= m * (s->gravity[0] * x[3 * i] + s->gravity[1] * x[3 * i + 1] + s->gravity[2] * x[3 * i + 2]);
-        }
-        if (!(fl & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)))
-            en->kinetic += 0.5 * I * w2;
-        for (int k = 0; k < cnt[i]; k++) {
-            int j = list[start[i] + k];
-            if (sid[j] < sid[i])
-                continue;
-            double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
-            double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            if (delta > 0) {
-                double rs = r * s->radius[j] / (r + s->radius[j]), row[PM_STRIDE];
-                pair_row(s, s->mat[i], s->mat[j], row);
-                en->elastic += law_energy(s->setup.effects, row, rs, delta);
-                en->contacts++;
-            }
-        }
-        for (int k = 0; k < s->nwalls; k++) {
-            if (sim_rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
-                continue;
-            const dem_wall *wl = &s->walls[k];
-            double delta = dem_wall_overlap(wl, s->motion.pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
-            if (delta > 0) {
-                double row[PM_STRIDE];
-                pair_row(s, s->mat[i], wl->material, row);
-                en->elastic += law_energy(s->setup.effects, row, r, delta);
-                en->wall_contacts++;
-            }
+    double r = s->radius[i];
+    for (int k = 0; k < hs->cnt[i]; k++) {
+        int j = hs->list[hs->start[i] + k];
+        if (sid[j] < sid[i])
+            continue;
+        double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
+        double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (delta > 0) {
+            double rs = r * s->radius[j] / (r + s->radius[j]), row[PM_STRIDE];
+            pair_row(s, s->mat[i], s->mat[j], row);
+            en->elastic += law_energy(s->setup.effects, row, rs, delta);
+            en->contacts++;
         }
     }
-    for (int k = 0; !e && k < s->mesh.nsprings; k++) { /* springs: k (|rho| - rho0)^2 / 2; ends by stable id */
+    for (int k = 0; k < s->nwalls; k++) {
+        if (sim_rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
+            continue;
+        const dem_wall *wl = &s->walls[k];
+        double delta = dem_wall_overlap(wl, s->motion.pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
+        if (delta > 0) {
+            double row[PM_STRIDE];
+            pair_row(s, s->mat[i], wl->material, row);
+            en->elastic += law_energy(s->setup.effects, row, r, delta);
+            en->wall_contacts++;
+        }
+    }
+}
+
+/* adds the springs' energy k (|rho| - rho0)^2 / 2 to en, at positions x; ends by stable id */
+static void add_spring_energy(const dem_sim *s, const double *x, dem_energy_t *en)
+{
+    for (int k = 0; k < s->mesh.nsprings; k++) {
         int a = sim_dev(s, s->mesh.spring_ij[2 * k]), b = sim_dev(s, s->mesh.spring_ij[2 * k + 1]);
         double d2 = 0, r2 = 0, rest = s->mesh.spring_kr[3 * k + 1];
         for (int q = 0; q < 3; q++) {
@@ -275,8 +291,24 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
         double ext = sqrt(d2) - (rest < 0 ? sqrt(r2) : rest);
         en->elastic += 0.5 * s->mesh.spring_kr[3 * k] * ext * ext;
     }
+}
+
+static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal)
+{
+    memset(en, 0, sizeof *en);
+    if (!s->run.started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    host_state hs = {0}; /* set by read_state where it succeeds */
+    int e = read_state(s, &hs, wall_force, wall_normal);
+    for (int q = 0; !e && q < s->n; q++) { /* ascending stable id: the same sums in any storage order */
+        int i = s->setup.order[q];
+        add_motion_energy(s, &hs, i, en);
+        add_contact_energy(s, &hs, i, en);
+    }
+    if (!e)
+        add_spring_energy(s, hs.x, en);
     if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
-        e = patch_energy(s, x, en);
+        e = patch_energy(s, hs.x, en);
     en->total = en->kinetic + en->elastic + en->potential;
     return e;
 }

@@ -64,26 +64,27 @@ static void add_contact(particle_modes *pm, double kn, double kt, double inv_m, 
     pm->contacts++;
 }
 
+/* the inverse of a mass or inertia v, 0 where v is not a positive finite number */
 static double inv_of(double v) { return isfinite(v) && v > 0 ? 1 / v : 0; }
 
-int dem_stability_get(dem_sim *s, dem_stability *st)
+/* entry q of the run's pair table (as the kernels have it) for materials a and b, widened to double */
+static double pair_at(const dem_sim *s, int a, int b, int q)
 {
-    memset(st, 0, sizeof *st);
-    st->particle = -1;
-    st->dt_advice = INFINITY;
-    if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    int n = s->n, rs = s->setup.real_size, nm = s->nmat;
-    unsigned fx = s->setup.effects;
-    size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
-    unsigned char *raw = malloc(n3 * (size_t)rs + sizeof(int) * (2 * (size_t)n + 1) + lb);
-    double *x = malloc(sizeof(double) * n3);
-    particle_modes *pm = calloc((size_t)n, sizeof *pm);
-    if (!raw || !x || !pm) {
-        free(raw), free(x), free(pm);
-        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    }
-    int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1, e = 0;
+    return sim_real_at(s->setup.pairmat, PM_STRIDE * (size_t)(a * s->nmat + b) + q, s->setup.real_size);
+}
+
+/* the pair table's row of materials a and b widened to double for the law */
+static void table_row(const dem_sim *s, int a, int b, double *row)
+{
+    for (int q = 0; q < PM_STRIDE; q++)
+        row[q] = pair_at(s, a, b, q);
+}
+
+/* the positions x (widened to double) and the neighbour lists, read from the device in one synchronisation */
+static int read_positions(dem_sim *s, unsigned char *raw, double *x, int *cnt, int *start, int *list, size_t lb)
+{
+    int n = s->n, rs = s->setup.real_size, e = 0;
+    size_t n3 = 3 * (size_t)n;
     dem_field f[4] = {DEM_FIELD_X, DEM_FIELD_NBR_COUNT, DEM_FIELD_NBR_START, DEM_FIELD_NBR_LIST};
     void *dst[4] = {raw, cnt, start, list};
     size_t bytes[4] = {n3 * (size_t)rs, sizeof(int) * (size_t)n, sizeof(int) * ((size_t)n + 1), lb};
@@ -91,59 +92,67 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
         e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
     if (!e)
         sim_widen(raw, x, n3, rs);
-    /* the run's pair table (as the kernels have it), a row widened to double for the law; the damping
-     * c = PM_DAMP_N / sqrt(2 E*) */
-    const void *pt = s->setup.pairmat;
-    double row[PM_STRIDE];
-#define PAIR(a, b, q) sim_real_at(pt, PM_STRIDE * (size_t)((a) * nm + (b)) + (q), rs)
-#define ROW(a, b)                                                                                                    \
-    for (int q = 0; q < PM_STRIDE; q++)                                                                              \
-        row[q] = PAIR(a, b, q);
+    return e;
+}
+
+/* adds to pm the sphere contacts of particle i (inverse mass mi, rotational term roti), each pair from both ends:
+ * every particle sums all of its contacts; the damping c = PM_DAMP_N / sqrt(2 E*) */
+static void add_sphere_contacts(const dem_sim *s, const double *x, const int *cnt, const int *start, const int *list,
+                                int i, double mi, double roti, particle_modes *pm)
+{
+    unsigned fx = s->setup.effects;
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
-    for (int i = 0; !e && i < n; i++) {
-        if (s->pflags[i] & DEM_PARTICLE_FIXED)
+    double ri = s->radius[i], row[PM_STRIDE];
+    for (int k = 0; k < cnt[i]; k++) {
+        int j = list[start[i] + k];
+        double rj = s->radius[j], d[3];
+        for (int q = 0; q < 3; q++)
+            d[q] = x[3 * i + q] - x[3 * j + q];
+        double delta = ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(delta > 0))
             continue;
-        double mi = inv_of(sim_mass(s, i)), ri = s->radius[i];
-        double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
-        for (int k = 0; k < cnt[i]; k++) { /* each pair from both ends: every particle sums all of its contacts */
-            int j = list[start[i] + k];
-            double rj = s->radius[j], d[3];
-            for (int q = 0; q < 3; q++)
-                d[q] = x[3 * i + q] - x[3 * j + q];
-            double delta = ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            if (!(delta > 0))
-                continue;
-            int a = s->mat[i], b = s->mat[j];
-            double estar = PAIR(a, b, PM_ESTAR), kn, kt;
-            ROW(a, b)
-            law_stiffness(fx, row, ri * rj / (ri + rj), delta, &kn, &kt);
-            int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
-            double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
-            double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
-            double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;
-            double c = damping ? PAIR(a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
-            add_contact(&pm[i], kn, friction ? kt : 0, mi + mj, ai * ai * roti + aj * aj * rotj, c);
-        }
-        for (int w = 0; (fx & DEM_EFFECT_WALLS) && w < s->nwalls; w++) {
-            if (sim_rides_on(s, i, w)) /* a rider does not touch its wall */
-                continue;
-            const dem_wall *wl = &s->walls[w];
-            double delta = dem_wall_overlap(wl, s->motion.pos[w], x + 3 * i, ri, NULL); /* the kernels' geometry */
-            if (!(delta > 0))
-                continue;
-            int a = s->mat[i], b = wl->material;
-            double estar = PAIR(a, b, PM_ESTAR), kn, kt;
-            ROW(a, b)
-            law_stiffness(fx, row, ri, delta, &kn, &kt);
-            double ai = ri - delta; /* a wall contact's lever arm (wall_forces.h) */
-            double c = damping ? PAIR(a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
-            add_contact(&pm[i], kn, friction ? kt : 0, mi, ai * ai * roti, c);
-        }
+        int a = s->mat[i], b = s->mat[j];
+        double estar = pair_at(s, a, b, PM_ESTAR), kn, kt;
+        table_row(s, a, b, row);
+        law_stiffness(fx, row, ri * rj / (ri + rj), delta, &kn, &kt);
+        int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
+        double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
+        double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
+        double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;
+        double c = damping ? pair_at(s, a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
+        add_contact(pm, kn, friction ? kt : 0, mi + mj, ai * ai * roti + aj * aj * rotj, c);
     }
-#undef ROW
-#undef PAIR
+}
+
+/* adds to pm the wall contacts of particle i (inverse mass mi, rotational term roti): a wall is immovable */
+static void add_wall_contacts(const dem_sim *s, const double *x, int i, double mi, double roti, particle_modes *pm)
+{
+    unsigned fx = s->setup.effects;
+    int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
+    double ri = s->radius[i], row[PM_STRIDE];
+    for (int w = 0; (fx & DEM_EFFECT_WALLS) && w < s->nwalls; w++) {
+        if (sim_rides_on(s, i, w)) /* a rider does not touch its wall */
+            continue;
+        const dem_wall *wl = &s->walls[w];
+        double delta = dem_wall_overlap(wl, s->motion.pos[w], x + 3 * i, ri, NULL); /* the kernels' geometry */
+        if (!(delta > 0))
+            continue;
+        int a = s->mat[i], b = wl->material;
+        double estar = pair_at(s, a, b, PM_ESTAR), kn, kt;
+        table_row(s, a, b, row);
+        law_stiffness(fx, row, ri, delta, &kn, &kt);
+        double ai = ri - delta; /* a wall contact's lever arm (wall_forces.h) */
+        double c = damping ? pair_at(s, a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
+        add_contact(pm, kn, friction ? kt : 0, mi, ai * ai * roti, c);
+    }
+}
+
+/* the particle whose largest omega dt over its damped bound is the largest, into st (ratio, mode, particle) */
+static void worst_particle(const dem_sim *s, const particle_modes *pm, dem_stability *st)
+{
+    int friction = (s->setup.effects & DEM_EFFECT_FRICTION) != 0;
     double dt = s->dt;
-    for (int i = 0; !e && i < n; i++) {
+    for (int i = 0; i < s->n; i++) {
         if (!pm[i].contacts)
             continue;
         double rn = dt * sqrt(pm[i].wn2) / damped_bound(pm[i].zn);
@@ -158,8 +167,38 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
             st->contacts = pm[i].contacts;
         }
     }
+}
+
+int dem_stability_get(dem_sim *s, dem_stability *st)
+{
+    memset(st, 0, sizeof *st);
+    st->particle = -1;
+    st->dt_advice = INFINITY;
+    if (!s->run.started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int n = s->n, rs = s->setup.real_size;
+    size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
+    unsigned char *raw = malloc(n3 * (size_t)rs + sizeof(int) * (2 * (size_t)n + 1) + lb);
+    double *x = malloc(sizeof(double) * n3);
+    particle_modes *pm = calloc((size_t)n, sizeof *pm);
+    if (!raw || !x || !pm) {
+        free(raw), free(x), free(pm);
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1;
+    int e = read_positions(s, raw, x, cnt, start, list, lb);
+    for (int i = 0; !e && i < n; i++) {
+        if (s->pflags[i] & DEM_PARTICLE_FIXED)
+            continue;
+        double mi = inv_of(sim_mass(s, i));
+        double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
+        add_sphere_contacts(s, x, cnt, start, list, i, mi, roti, &pm[i]);
+        add_wall_contacts(s, x, i, mi, roti, &pm[i]);
+    }
+    if (!e)
+        worst_particle(s, pm, st);
     if (!e && st->ratio > 0)
-        st->dt_advice = dt * DEM_STABILITY_TARGET / st->ratio;
+        st->dt_advice = s->dt * DEM_STABILITY_TARGET / st->ratio;
     free(raw), free(x), free(pm);
     return e;
 }
