@@ -1,5 +1,5 @@
 /* stability.c - how close the time step is to the explicit integration's stability bound at the current overlaps
- * (dem_stability_get; issue 12 item 5, issue 13).
+ * (dem_stability_get).
  *
  * The Rayleigh time the scenes size dt by does not depend on how far the particles overlap, but a Hertz contact's
  * stiffness grows as sqrt(delta): a compact pressed to 50 MPa (scenes/tablet_3k.yaml, docs/tableting.md) heated up
