@@ -63,6 +63,24 @@ static void same_field(dem_sim *a, dem_sim *b, dem_field f, int width, const cha
     free(fa), free(fb);
 }
 
+/* Every particle's position, velocity, spin, force and torque, and the force on each of the first nwalls walls, the
+ * same bits in a and b */
+static void same_motion(dem_sim *a, dem_sim *b, int nwalls, const char *where)
+{
+    same_field(a, b, DEM_FIELD_X, 3, "position", where);
+    same_field(a, b, DEM_FIELD_V, 3, "velocity", where);
+    same_field(a, b, DEM_FIELD_W, 3, "spin", where);
+    same_field(a, b, DEM_FIELD_FORCE, 3, "force", where);
+    same_field(a, b, DEM_FIELD_TORQUE, 3, "torque", where);
+    double fa[3], fb[3];
+    for (int k = 0; k < nwalls; k++) {
+        assert_int_equal(dem_wall_force(a, k, fa), 0);
+        assert_int_equal(dem_wall_force(b, k, fb), 0);
+        if (memcmp(fa, fb, sizeof fa))
+            fail_msg("%s: the force on wall %d: %.17g against %.17g", where, k, fa[2], fb[2]);
+    }
+}
+
 typedef struct {
     int a, b; /* ids, a < b */
     const unsigned char *hist, *fn;
@@ -200,18 +218,7 @@ static void one_case(const backend_case *bc, const model *m, const storage *st)
     dem_sample ra[ROWS], rb[ROWS];
     assert_int_equal(dem_step_sampled(a, ROWS, want, ra), 0);
     assert_int_equal(dem_step_sampled(b, ROWS, want, rb), 0);
-    same_field(a, b, DEM_FIELD_X, 3, "position", where);
-    same_field(a, b, DEM_FIELD_V, 3, "velocity", where);
-    same_field(a, b, DEM_FIELD_W, 3, "spin", where);
-    same_field(a, b, DEM_FIELD_FORCE, 3, "force", where);
-    same_field(a, b, DEM_FIELD_TORQUE, 3, "torque", where);
-    double fa[3], fb[3];
-    for (int k = 0; k < 6; k++) {
-        assert_int_equal(dem_wall_force(a, k, fa), 0);
-        assert_int_equal(dem_wall_force(b, k, fb), 0);
-        if (memcmp(fa, fb, sizeof fa))
-            fail_msg("%s: the force on wall %d: %.17g against %.17g", where, k, fa[2], fb[2]);
-    }
+    same_motion(a, b, 6, where);
     for (int r = 0; r < 3; r++) /* the sampled rows */
         if (memcmp(&ra[r].energy, &rb[r].energy, sizeof ra[r].energy) ||
             memcmp(ra[r].wall_force, rb[r].wall_force, sizeof ra[r].wall_force))
@@ -418,18 +425,7 @@ static void test_membrane_reordered(void **st)
         start_twins(a, b, &c, TUBE_STEPS);
         char where[200];
         snprintf(where, sizeof where, "%s, a membrane", bc->name);
-        same_field(a, b, DEM_FIELD_X, 3, "position", where);
-        same_field(a, b, DEM_FIELD_V, 3, "velocity", where);
-        same_field(a, b, DEM_FIELD_W, 3, "spin", where);
-        same_field(a, b, DEM_FIELD_FORCE, 3, "force", where);
-        same_field(a, b, DEM_FIELD_TORQUE, 3, "torque", where);
-        double fa[3], fb[3];
-        for (int k = 0; k < 2; k++) {
-            assert_int_equal(dem_wall_force(a, k, fa), 0);
-            assert_int_equal(dem_wall_force(b, k, fb), 0);
-            if (memcmp(fa, fb, sizeof fa))
-                fail_msg("%s: the force on wall %d: %.17g against %.17g", where, k, fa[2], fb[2]);
-        }
+        same_motion(a, b, 2, where);
         dem_energy_t ea, eb;
         assert_int_equal(dem_energy(a, &ea), 0);
         assert_int_equal(dem_energy(b, &eb), 0);
