@@ -756,7 +756,10 @@ static int check_density_walls(const scene *sc, dem_sim *s, const int *first_wal
             dem_wall_get(s, die, &d);
             for (int e = 0; e < 2; e++) { /* the cups' volumes count as the bore's (dem_relative_density) */
                 dem_wall_get(s, e ? other : first_wall[k], &w);
-                if (!dem_cup_in_bore(s, e ? other : first_wall[k], die))
+                int in = dem_cup_in_bore(s, e ? other : first_wall[k], die); /* 1, 0, or a negative DEM_ERR_* */
+                if (in < 0)
+                    return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+                if (!in)
                     return scene_fail(sc, err, errlen, p, "the %s punch's cup (radius %g m) does not lie within the "
                                       "die's bore (radius %g m)", e ? "facing" : "moving", w.cup_radius, d.radius);
             }

@@ -20,7 +20,7 @@
 /* Everything a backend needs, already packed into its precision by the driver. */
 typedef struct {
     int real_size; /* 4 or 8 */
-    unsigned effects; /* DEM_EFFECT_* mask (common/dem_effects.h); OpenCL compiles it in as DEM_EFFECTS */
+    unsigned effects; /* DEM_EFFECT_* mask (include/dem_effects.h); OpenCL compiles it in as DEM_EFFECTS */
     int n, nmat, nwalls;
     const void *x, *v, *w, *radius, *invmass, *invinertia; /* real arrays */
     const void *invvol;     /* real[n]: 1 / particle volume [1/m^3] (stress, particle_stress.h) */

@@ -10,9 +10,9 @@
  * Rows, rebuilt with the neighbour rows (the same skin and trigger), from the same cell grid:
  *   - sphere i: the patch triangles t with dist(x_i, t) < 1.5 r_i + skin, ascending t (plist[i*maxp ...]): more
  *     than the radius, because a contact whose sphere has crossed the patch's plane holds until the centre is r_i
- *     past it and r_i from the triangle along it (patch_geometry), within sqrt(2) r_i < 1.5 r_i. (Issue 39's sphere
- *     squeezed to 100 kPa on the reference took 1.26 times as long as before the sides (rows of r_i + skin); with
- *     2 r_i, 1.66 times, most of it in the vertices' sums.) Found through the
+ *     past it and r_i from the triangle along it (patch_geometry), within sqrt(2) r_i < 1.5 r_i. (Measured on a
+ *     closed sphere membrane of 627 grains squeezed to 100 kPa on the reference: 1.26 times the time with rows of
+ *     r_i + skin; with 2 r_i, 1.66 times, most of it in the vertices' sums.) Found through the
  *     vertices in the grid: a point of t lies within the longest edge of t from each of t's vertices, so with every
  *     patch edge shorter than `reach` each vertex of a listed triangle is within 1.5 r_i + skin + reach of x_i, and
  *     the search looks at the cells within that distance. Between rebuilds no particle moves more than skin/2, so a

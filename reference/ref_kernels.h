@@ -1,8 +1,7 @@
 /* ref_kernels.h - every function of the reference that others call, declared once for both precisions:
  *   - for each kernel of common/dem_kernels.h, its serial loop ref_<name>_f32 / ref_<name>_f64 (fx, <the kernel's
  *     arguments>) (reference/loops.c), generated from the kernel's argument list;
- *   - the helpers the driver and the tests call: the Hertz energy and stiffness (reference/series.c), the patch
- *     geometry (reference/patch.c), the hinges' rest angle, period and damping rate (reference/bending.c, fp64 only).
+ *   - the helpers the driver and the tests call: the patch geometry (reference/patch.c), the hinges' rest angle, period and damping rate (reference/bending.c, fp64 only).
  * Both sides include it: the reference's files, compiled once per precision, define REF(name) (name_f32 or name_f64)
  * against these declarations, so the compiler checks each definition's argument list; the host and the tests, which
  * have no precision (no DEM_REAL_SIZE), call them through it. */

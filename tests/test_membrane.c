@@ -462,10 +462,10 @@ static void test_membrane_refusals(void **st)
     assert_int_equal(dem_spring_count(s) + dem_triangle_count(s) + dem_hinge_count(s), 0);
     dem_mesh_free(&m);
     dem_mesh_spec huge = {DEM_MESH_SPHERE, {0, 0, 0}, 1, 0, 1e-5};
-    assert_int_equal(dem_mesh_make(&huge, &m, err, sizeof err), -1);
+    assert_int_equal(dem_mesh_make(&huge, &m, err, sizeof err), DEM_ERR_ARG);
     assert_non_null(strstr(err, "needs more than"));
     dem_mesh_spec neg = {DEM_MESH_TUBE, {0, 0, 0}, 0.01, -1, 0.001};
-    assert_int_equal(dem_mesh_make(&neg, &m, err, sizeof err), -1);
+    assert_int_equal(dem_mesh_make(&neg, &m, err, sizeof err), DEM_ERR_ARG);
     dem_destroy(s);
 }
 

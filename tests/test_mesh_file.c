@@ -171,17 +171,17 @@ static void test_refusals(void **st)
     refused("mesh.ply", "ply\n", 4, ": a mesh file is .obj (Wavefront) or .stl");
     dem_mesh m;
     char err[512];
-    assert_int_equal(dem_mesh_read("/nonexistent/x.obj", &m, err, sizeof err), -1);
+    assert_int_equal(dem_mesh_read("/nonexistent/x.obj", &m, err, sizeof err), DEM_ERR_ARG);
     assert_non_null(strstr(err, "/nonexistent/x.obj: cannot open the mesh file: No such file or directory"));
     /* what is not a regular file is refused without being read: a named pipe would block the open for ever */
     char fifo[512];
     snprintf(fifo, sizeof fifo, "%s/pipe.obj", dir);
     assert_int_equal(mkfifo(fifo, 0600), 0);
-    assert_int_equal(dem_mesh_read(fifo, &m, err, sizeof err), -1);
+    assert_int_equal(dem_mesh_read(fifo, &m, err, sizeof err), DEM_ERR_ARG);
     assert_non_null(strstr(err, "pipe.obj: cannot open the mesh file: not a regular file"));
-    assert_int_equal(dem_mesh_read("/dev/zero", &m, err, sizeof err), -1);
+    assert_int_equal(dem_mesh_read("/dev/zero", &m, err, sizeof err), DEM_ERR_ARG);
     assert_non_null(strstr(err, "/dev/zero: cannot open the mesh file: not a regular file"));
-    assert_int_equal(dem_mesh_read(dir, &m, err, sizeof err), -1);
+    assert_int_equal(dem_mesh_read(dir, &m, err, sizeof err), DEM_ERR_ARG);
     assert_non_null(strstr(err, "cannot open the mesh file: not a regular file"));
 }
 

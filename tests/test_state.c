@@ -121,6 +121,12 @@ static void test_unfit_state_changes_nothing(void **st)
     saved.pair_j[0] = n + 5;
     assert_int_equal(dem_state_set(a, &saved), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(a), "want 0 <= i < j <"));
+    /* 1b: more arrays than a state holds (an array count read from a damaged file): refused before any is read */
+    int keep_narrays = saved.narrays;
+    saved.narrays = DEM_STATE_MAX_ARRAYS + 1;
+    assert_int_equal(dem_state_set(a, &saved), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(a), "arrays (at most"));
+    saved.narrays = keep_narrays;
     /* 2: a contact between particles that are far apart in the saved positions (found only after the rows of those
      * positions are built: the run's own come back). The saved positions are moved so that the state differs from
      * the run's in every particle. */

@@ -154,10 +154,10 @@ static void test_servo(void **st)
     dem_sim *s = dem_create(); /* a servo stage is refused on a cylinder and without a gain */
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
     dem_wall cyl = {DEM_WALL_CYLINDER, m, {0, 0, 0}, {0, 0, 1}, 0.01, 1, {{1e-3, {0, 0, 0}, 1, 1, 1}}};
-    assert_int_equal(dem_add_wall(s, &cyl), -1);
+    assert_int_equal(dem_add_wall(s, &cyl), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "a servo stage needs a plane wall"));
     dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{1e-3, {0, 0, 0}, 1, 0, 1}}};
-    assert_int_equal(dem_add_wall(s, &pl), -1);
+    assert_int_equal(dem_add_wall(s, &pl), DEM_ERR_ARG);
     dem_destroy(s);
 }
 
@@ -232,10 +232,10 @@ static void test_stage_ends(void **st)
     dem_sim *s = dem_create(); /* an early end at a force needs a plane; the limits must be >= 0 and finite */
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
     dem_wall cyl = {DEM_WALL_CYLINDER, m, {0, 0, 0}, {0, 0, 1}, 0.01, 1, {{.duration = 1e-3, .until_force = 1}}};
-    assert_int_equal(dem_add_wall(s, &cyl), -1);
+    assert_int_equal(dem_add_wall(s, &cyl), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "until_force needs a plane wall"));
     dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{.duration = 1e-3, .until_distance = -1}}};
-    assert_int_equal(dem_add_wall(s, &pl), -1);
+    assert_int_equal(dem_add_wall(s, &pl), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "until_force and until_distance must be >= 0"));
     dem_destroy(s);
 }
@@ -307,7 +307,7 @@ static void test_stage_ends_density(void **st)
     s = dem_create();
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
     dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{.duration = 1e-3, .until_density = 1.5}}};
-    assert_int_equal(dem_add_wall(s, &pl), -1);
+    assert_int_equal(dem_add_wall(s, &pl), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "until_density is a relative density in [0, 1]"));
     dem_destroy(s);
 }
@@ -454,7 +454,7 @@ static void test_finite_die(void **st)
     dem_sim *s = dem_create(); /* a negative or non-finite height is refused */
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
     dem_wall bad = {.kind = DEM_WALL_CYLINDER, .material = m, .normal = {0, 0, 1}, .radius = 0.005, .height = -1};
-    assert_int_equal(dem_add_wall(s, &bad), -1);
+    assert_int_equal(dem_add_wall(s, &bad), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "cylinder height must be >= 0 m"));
     dem_destroy(s);
 }
@@ -521,13 +521,13 @@ static void test_cup_geometry(void **st)
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
     w.material = m;
     w.cup_depth = 0.005;
-    assert_int_equal(dem_add_wall(s, &w), -1);
+    assert_int_equal(dem_add_wall(s, &w), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "a cup is a plane's, with radius / 1000 <= depth <= radius"));
     w.cup_depth = 1e-7; /* shallower than a thousandth of its radius: a flat punch */
-    assert_int_equal(dem_add_wall(s, &w), -1);
+    assert_int_equal(dem_add_wall(s, &w), DEM_ERR_ARG);
     dem_wall cyl = {.kind = DEM_WALL_CYLINDER, .material = m, .normal = {0, 0, 1}, .radius = 0.005, .cup_radius = 0.001,
                     .cup_depth = 0.0005};
-    assert_int_equal(dem_add_wall(s, &cyl), -1);
+    assert_int_equal(dem_add_wall(s, &cyl), DEM_ERR_ARG);
     w.cup_depth = c;
     assert_int_equal(dem_add_wall(s, &w), 0);
     dem_destroy(s);

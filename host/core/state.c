@@ -442,9 +442,9 @@ static int state_check(dem_sim *s, const dem_state *st)
     if (!!st->has_mc != mce)
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
                         st->has_mc ? "has" : "has no", mce ? "has" : "has no");
-    if (st->step < 0 || st->npairs < 0 || st->narrays < 0)
-        return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld, %ld contacts and %d arrays", st->step,
-                        st->npairs, st->narrays);
+    if (st->step < 0 || st->npairs < 0 || st->narrays < 0 || st->narrays > DEM_STATE_MAX_ARRAYS)
+        return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld, %ld contacts and %d arrays (at most %d)",
+                        st->step, st->npairs, st->narrays, DEM_STATE_MAX_ARRAYS);
     for (int k = 0; st->has_stages && k < s->nwalls; k++) {
         const double *p = st->wall_stage_from[k];
         if (st->wall_stage[k] < 0 || st->wall_stage[k] > s->walls[k].nstages || st->wall_stage_first[k] < 0 ||

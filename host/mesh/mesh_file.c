@@ -89,9 +89,10 @@ static int read_obj(FILE *fp, const char *path, grow_mesh *g, char *err, size_t 
             }
             if (k != 3 && k != 4)
                 return snprintf(err, errlen, "%s:%d: vertex: %d numbers (want x y z, or x y z w)", path, ln, k), -1;
-            if (g->nv >= MESH_FILE_MAX || add_vertex(g, p) < 0)
-                return snprintf(err, errlen, "%s:%d: more than %d vertices, or out of memory", path, ln,
-                                MESH_FILE_MAX), -1;
+            if (g->nv >= MESH_FILE_MAX)
+                return snprintf(err, errlen, "%s:%d: more than %d vertices", path, ln, MESH_FILE_MAX), -1;
+            if (add_vertex(g, p) < 0)
+                return snprintf(err, errlen, "%s:%d: out of host memory", path, ln), DEM_ERR_NOMEM;
         } else if (!strcmp(tok, "f")) {
             int t[3], k = 0;
             char *c;
@@ -113,9 +114,10 @@ static int read_obj(FILE *fp, const char *path, grow_mesh *g, char *err, size_t 
                 return snprintf(err, errlen, "%s:%d: face: %d corners (only triangles)", path, ln, k), -1;
             if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
                 return snprintf(err, errlen, "%s:%d: face: a corner is repeated", path, ln), -1;
-            if (g->nt >= MESH_FILE_MAX || add_tri(g, t) < 0)
-                return snprintf(err, errlen, "%s:%d: more than %d triangles, or out of memory", path, ln,
-                                MESH_FILE_MAX), -1;
+            if (g->nt >= MESH_FILE_MAX)
+                return snprintf(err, errlen, "%s:%d: more than %d triangles", path, ln, MESH_FILE_MAX), -1;
+            if (add_tri(g, t) < 0)
+                return snprintf(err, errlen, "%s:%d: out of host memory", path, ln), DEM_ERR_NOMEM;
         } else if (strcmp(tok, "vt") && strcmp(tok, "vn") && strcmp(tok, "vp") && strcmp(tok, "o") &&
                    strcmp(tok, "g") && strcmp(tok, "s") && strcmp(tok, "usemtl") && strcmp(tok, "mtllib") &&
                    strcmp(tok, "l"))
@@ -234,10 +236,12 @@ static int read_stl_ascii(FILE *fp, const char *path, grow_mesh *g, char *err, s
         if (state >= 2 && state <= 4) {
             if (n == cap) {
                 cap = cap ? 2 * cap : 3072;
-                double *nc = cap / 3 > MESH_FILE_MAX ? NULL : realloc(c, sizeof(double) * 3 * (size_t)cap);
+                if (cap / 3 > MESH_FILE_MAX)
+                    return free(c), snprintf(err, errlen, "%s:%d: more than %d triangles", path, ln, MESH_FILE_MAX),
+                           -1;
+                double *nc = realloc(c, sizeof(double) * 3 * (size_t)cap);
                 if (!nc)
-                    return free(c), snprintf(err, errlen, "%s:%d: more than %d triangles, or out of memory", path,
-                                             ln, MESH_FILE_MAX), -1;
+                    return free(c), snprintf(err, errlen, "%s:%d: out of host memory", path, ln), DEM_ERR_NOMEM;
                 c = nc;
             }
             for (int k = 0; k < 3; k++) {
@@ -311,7 +315,7 @@ int dem_mesh_read(const char *path, dem_mesh *m, char *err, size_t errlen)
     fclose(fp);
     if (!rc && (g.nv < 3 || g.nt < 1))
         rc = -1, snprintf(err, errlen, "%s: %d vertices and %d triangles (a mesh needs a triangle)", path, g.nv, g.nt);
-    if (rc) { /* the readers' -1: the file refused */
+    if (rc) { /* the readers' -1: the file refused; DEM_ERR_NOMEM: out of memory */
         free(g.x), free(g.tri);
         return rc == DEM_ERR_NOMEM ? DEM_ERR_NOMEM : DEM_ERR_ARG;
     }
