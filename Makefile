@@ -15,6 +15,16 @@ DEPS_STAMP := $(BUILD)/config.mk
 ifneq ($(filter-out clean test-fresh,$(or $(MAKECMDGOALS),all)),)
 include $(DEPS_STAMP)
 endif
+# A quiet build: each compile and archive is one line (CC build/host/core/sim.o); make V=1 shows the whole commands.
+# Errors and warnings are printed either way.
+V ?= 0
+ifeq ($(V),1)
+Q :=
+msg =
+else
+Q := @
+msg = printf '  %-7s %s\n' $(1) $(2);
+endif
 # Bit equality rules: no FP contraction, no fast math, no tuning for the build machine (see common/dem_real.h).
 # -fno-math-errno only drops the errno branch around sqrt; results are unchanged (IEEE sqrt either way).
 # NUM_FLAGS: the flags that decide the reference's arithmetic, recorded in every output (dem_build_info).
@@ -59,43 +69,43 @@ $(DEPS_STAMP): scripts/install-deps.sh
 
 $(BUILD)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -c $< -o $@
 $(BUILD)/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -c $< -o $@
 $(BUILD)/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_REAL_SIZE=4 -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_REAL_SIZE=4 -c $< -o $@
 $(BUILD)/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_REAL_SIZE=8 -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_REAL_SIZE=8 -c $< -o $@
 
 $(BUILD)/app/%.o: app/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -c $< -o $@
 
 # made afresh: ar would keep the members of source files since removed
 $(LIB): $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	$(Q)$(call msg,AR,$@)ar rcs $@ $^
 $(APPLIB): $(APP_OBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	$(Q)$(call msg,AR,$@)ar rcs $@ $^
 
 $(BUILD)/dem: app/dem_main.c $(APPLIB) $(LIB) $(HEADERS)
-	$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
 
 $(BUILD)/dem-demo: examples/demo.c $(LIB) $(HEADERS)
-	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-membrane: examples/membrane.c $(LIB) $(HEADERS)
-	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-bench: bench/bench.c $(LIB) $(HEADERS)
-	$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-accuracy: bench/accuracy.c $(APPLIB) $(LIB) $(HEADERS)
-	$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
 $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
 
 # The test build of one more checkpointed per-particle buffer (common/dem_buffers.h, DEM_TEST_EXTRA_BUFFER): the
 # library compiled again with it, in build/extra/, for tests/test_extra_buffer.c only
@@ -103,22 +113,22 @@ EXTRA_OBJ := $(HOST_SRC:%.c=$(BUILD)/extra/%.o) $(REF_SRC:reference/%.c=$(BUILD)
              $(REF_SRC:reference/%.c=$(BUILD)/extra/ref64/%.o)
 $(BUILD)/extra/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -c $< -o $@
 $(BUILD)/extra/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -c $< -o $@
 $(BUILD)/extra/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=4 -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=4 -c $< -o $@
 $(BUILD)/extra/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=8 -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -DDEM_REAL_SIZE=8 -c $< -o $@
 $(BUILD)/extra/libdem.a: $(EXTRA_OBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	$(Q)$(call msg,AR,$@)ar rcs $@ $^
 $(BUILD)/tests/test_extra_buffer: tests/test_extra_buffer.c tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -Itests $< tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a \
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_EXTRA_BUFFER -Itests $< tests/test_util.c $(APPLIB) $(BUILD)/extra/libdem.a \
 	  $(TEST_LDLIBS) -o $@
 # tests/test_law_toy.c links the library built again with -DDEM_TEST_LAWS: the test-only contact laws of
 # common/laws/laws.h, their effect bits (common/dem_internal_bits.h) and their kernels (host/opencl/cl_backend.c)
@@ -127,22 +137,22 @@ TL_OBJ := $(HOST_SRC:%.c=$(TL_DIR)/%.o) $(REF_SRC:reference/%.c=$(TL_DIR)/ref32/
           $(REF_SRC:reference/%.c=$(TL_DIR)/ref64/%.o)
 $(TL_DIR)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
 $(TL_DIR)/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_LAWS -c $< -o $@
 $(TL_DIR)/ref32/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=4 -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=4 -c $< -o $@
 $(TL_DIR)/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=8 -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_LAWS -DDEM_REAL_SIZE=8 -c $< -o $@
 $(TL_DIR)/libdem.a: $(TL_OBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	$(Q)$(call msg,AR,$@)ar rcs $@ $^
 $(BUILD)/tests/test_law_toy: tests/test_law_toy.c tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -DDEM_TEST_LAWS -Itests $< tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(TEST_LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_LAWS -Itests $< tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(TEST_LDLIBS) -o $@
 
 # The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
 SCENE ?= scenes/hydrogel_514.yaml
@@ -333,14 +343,14 @@ endif
 INSTALL_OBJ = $(filter-out $(BUILD)/host/core/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ)
 $(BUILD)/install/sim_setup.o: host/core/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(filter-out -DDEM_DEFAULT_SOURCE_DIR=%,$(CFLAGS)) -DDEM_DEFAULT_SOURCE_DIR='"$(DATADIR)"' -c $< -o $@
+	$(Q)$(call msg,CC,$@)$(CC) $(filter-out -DDEM_DEFAULT_SOURCE_DIR=%,$(CFLAGS)) -DDEM_DEFAULT_SOURCE_DIR='"$(DATADIR)"' -c $< -o $@
 $(BUILD)/install/libdem.so.$(VERSION): $(INSTALL_OBJ) FORCE
-	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined $(filter-out FORCE,$^) $(LDLIBS) -o $@
+	$(Q)$(call msg,CC,$@)$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined $(filter-out FORCE,$^) $(LDLIBS) -o $@
 $(BUILD)/install/libdem.a: $(INSTALL_OBJ) FORCE
 	@rm -f $@ $(BUILD)/install/libdem.o
-	$(LD) -r $(filter-out FORCE,$^) -o $(BUILD)/install/libdem.o
-	objcopy --localize-hidden $(BUILD)/install/libdem.o
-	ar rcs $@ $(BUILD)/install/libdem.o
+	$(Q)$(call msg,LD,$@)$(LD) -r $(filter-out FORCE,$^) -o $(BUILD)/install/libdem.o
+	$(Q)$(call msg,OBJCOPY,$@)objcopy --localize-hidden $(BUILD)/install/libdem.o
+	$(Q)$(call msg,AR,$@)ar rcs $@ $(BUILD)/install/libdem.o
 INSTALL_LIBS := $(BUILD)/pic/install/libdem.so.$(VERSION) $(BUILD)/pic/install/libdem.a
 install-libs:
 	+$(MAKE) --no-print-directory BUILD=$(BUILD)/pic PIC=1 DEPS_STAMP=$(DEPS_STAMP) PREFIX=$(PREFIX) $(INSTALL_LIBS)
