@@ -45,6 +45,14 @@ struct output {
     long long c_total;
     long long *c_frame; /* per frame: first row, pair rows (for the XDMF) */
     long c_cap;
+    /* the walls as surfaces (wall_mesh): each vertex an offset from its wall's point as added, moved per frame by
+     * the wall's position; /walls/points holds the frames' vertices, /walls/triangles the shared connectivity */
+    hid_t walls;
+    h5rows wpoints;
+    int wnv, wnt;   /* wall-mesh vertices, triangles */
+    double *wlocal; /* wnv x 3: offset from the wall's point */
+    int *wvert;     /* wnv: the wall of each vertex */
+    double *wbuf;   /* wnv x 3: one frame's vertices */
 };
 
 /* One name per library wall, newline-separated, in the order of the wall_position / wall_force columns
@@ -70,6 +78,187 @@ void output_xmf_path(const char *h5, char *buf, size_t len)
 {
     size_t l = strlen(h5);
     snprintf(buf, len, "%.*s.xmf", (int)(l > 3 && !strcmp(h5 + l - 3, ".h5") ? l - 3 : l), h5);
+}
+
+/* The walls as triangle surfaces for ParaView (/walls in the HDF5 file, the "walls" grid of the XDMF). Walls are
+ * endless or have no visible edge in the library, so the drawing needs a size: the extent is the binning domain the
+ * scene gives (domain:), else the particles' bounding box (centres +- radii) when the output opens. A plane is a
+ * rectangle centred on its point, reaching every corner of that box projected onto it (and at least 1.25 cup radii);
+ * a plane with a cup (a punch) is the same rectangle with the spherical cap recessed in it, the cup drawn as
+ * WM_CUP_RINGS rings; a cylinder is an open tube of its radius from its point along its height, or over the box's
+ * extent along its axis when endless (height 0). Every mesh moves rigidly with its wall's position (walls translate:
+ * dem_stage has no rotation). Triangles face the particles: (x1 - x0) x (x2 - x0) along a plane's normal, towards a
+ * cylinder's axis. */
+#define WM_SIDE 12                 /* points per side of a plane's rectangle */
+#define WM_AROUND (4 * WM_SIDE)    /* points around a plane's rectangle, a cup's rings and a cylinder's rims */
+#define WM_CUP_RINGS 8
+
+static void wm_basis(const double n[3], double u[3], double v[3])
+{
+    int a = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+    double e[3] = {0, 0, 0};
+    e[a] = 1;
+    u[0] = n[1] * e[2] - n[2] * e[1], u[1] = n[2] * e[0] - n[0] * e[2], u[2] = n[0] * e[1] - n[1] * e[0];
+    double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    u[0] /= l, u[1] /= l, u[2] /= l;
+    v[0] = n[1] * u[2] - n[2] * u[1], v[1] = n[2] * u[0] - n[0] * u[2], v[2] = n[0] * u[1] - n[1] * u[0];
+}
+
+/* The largest |(corner - p).d| and the range of (corner - p).d over the box's corners */
+static void wm_extent(const double lo[3], const double hi[3], const double p[3], const double d[3], double *amax,
+                      double *mn, double *mx)
+{
+    *amax = 0, *mn = INFINITY, *mx = -INFINITY;
+    for (int c = 0; c < 8; c++) {
+        double x[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]};
+        double t = (x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1] + (x[2] - p[2]) * d[2];
+        *amax = fmax(*amax, fabs(t)), *mn = fmin(*mn, t), *mx = fmax(*mx, t);
+    }
+}
+
+/* Vertices and triangles of wall w (its index k), appended at *nv and *nt; with NULL arrays, counts them only */
+static void wall_mesh(const dem_wall *w, int k, const double lo[3], const double hi[3], double *loc, int *vw, int *tri,
+                      int *nv, int *nt)
+{
+    const double *n = w->normal;
+    double u[3], v[3];
+    wm_basis(n, u, v);
+    int v0 = *nv;
+#define WM_VERT(a, b, h)                                                                                               \
+    do {                                                                                                               \
+        if (loc) {                                                                                                     \
+            for (int d_ = 0; d_ < 3; d_++)                                                                             \
+                loc[3 * *nv + d_] = (a) * u[d_] + (b) * v[d_] + (h) * n[d_];                                           \
+            vw[*nv] = k;                                                                                               \
+        }                                                                                                              \
+        ++*nv;                                                                                                         \
+    } while (0)
+#define WM_TRI(a, b, c)                                                                                                \
+    do {                                                                                                               \
+        if (tri)                                                                                                       \
+            tri[3 * *nt] = (a), tri[3 * *nt + 1] = (b), tri[3 * *nt + 2] = (c);                                        \
+        ++*nt;                                                                                                         \
+    } while (0)
+    if (w->kind == DEM_WALL_CYLINDER) { /* two rims, WM_AROUND quads between them */
+        double z0 = 0, z1 = w->height, amax;
+        if (!(w->height > 0))
+            wm_extent(lo, hi, w->point, n, &amax, &z0, &z1);
+        for (int r = 0; r < 2; r++)
+            for (int j = 0; j < WM_AROUND; j++) {
+                double th = 2 * M_PI * j / WM_AROUND;
+                WM_VERT(w->radius * cos(th), w->radius * sin(th), r ? z1 : z0);
+            }
+        for (int j = 0; j < WM_AROUND; j++) {
+            int a0 = v0 + j, a1 = v0 + (j + 1) % WM_AROUND, b0 = a0 + WM_AROUND, b1 = a1 + WM_AROUND;
+            WM_TRI(a0, b0, a1);
+            WM_TRI(a1, b0, b1);
+        }
+    } else { /* the centre, the cup's rings (if any), the rectangle's edge: fans and bands around the centre */
+        double a, b, mn, mx, c = w->cup_radius, depth = w->cup_depth;
+        wm_extent(lo, hi, w->point, u, &a, &mn, &mx);
+        wm_extent(lo, hi, w->point, v, &b, &mn, &mx);
+        a = fmax(a, 1.25 * c), b = fmax(b, 1.25 * c);
+        if (!(a > 0))
+            a = b = 1;
+        double ex[WM_AROUND], ey[WM_AROUND]; /* the edge, anticlockwise about n from the corner (a, -b) */
+        for (int j = 0; j < WM_SIDE; j++) {
+            double t = 2.0 * j / WM_SIDE - 1;
+            ex[j] = a, ey[j] = t * b;
+            ex[j + WM_SIDE] = -t * a, ey[j + WM_SIDE] = b;
+            ex[j + 2 * WM_SIDE] = -a, ey[j + 2 * WM_SIDE] = -t * b;
+            ex[j + 3 * WM_SIDE] = t * a, ey[j + 3 * WM_SIDE] = -b;
+        }
+        int rings = c > 0 && depth > 0 ? WM_CUP_RINGS : 0;
+        double R = rings ? (c * c + depth * depth) / (2 * depth) : 0; /* the cup's sphere, its centre R - depth
+                                                                       * along n from the point */
+        WM_VERT(0, 0, rings ? -depth : 0);
+        for (int r = 1; r <= rings; r++) {
+            double rho = c * r / rings, h = r == rings ? 0 : (R - depth) - sqrt(R * R - rho * rho);
+            for (int j = 0; j < WM_AROUND; j++) {
+                double l = sqrt(ex[j] * ex[j] + ey[j] * ey[j]);
+                WM_VERT(rho * ex[j] / l, rho * ey[j] / l, h);
+            }
+        }
+        for (int j = 0; j < WM_AROUND; j++)
+            WM_VERT(ex[j], ey[j], 0);
+        for (int j = 0; j < WM_AROUND; j++)
+            WM_TRI(v0, v0 + 1 + j, v0 + 1 + (j + 1) % WM_AROUND);
+        for (int r = 0; r < rings; r++)
+            for (int j = 0; j < WM_AROUND; j++) {
+                int a0 = v0 + 1 + r * WM_AROUND + j, a1 = v0 + 1 + r * WM_AROUND + (j + 1) % WM_AROUND;
+                WM_TRI(a0, a0 + WM_AROUND, a1);
+                WM_TRI(a1, a0 + WM_AROUND, a1 + WM_AROUND);
+            }
+    }
+#undef WM_VERT
+#undef WM_TRI
+}
+
+/* Builds the walls' meshes and creates /walls (triangles, wall of each triangle, points per frame) */
+static int walls_open(output *o, const scene *sc, dem_sim *s)
+{
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    if (scene_has(sc->loc, "domain")) {
+        memcpy(lo, sc->f->domain_lo, sizeof lo);
+        memcpy(hi, sc->f->domain_hi, sizeof hi);
+    } else if (o->n > 0) {
+        if (dem_get_field(s, DEM_FIELD_X, o->buf))
+            return -1;
+        for (int d = 0; d < 3; d++)
+            lo[d] = INFINITY, hi[d] = -INFINITY;
+        for (int i = 0; i < o->n; i++) {
+            double r = dem_particle_radius(s, i);
+            for (int d = 0; d < 3; d++)
+                lo[d] = fmin(lo[d], o->buf[3 * i + d] - r), hi[d] = fmax(hi[d], o->buf[3 * i + d] + r);
+        }
+    }
+    dem_wall w[DEM_MAX_WALLS];
+    int nv = 0, nt = 0;
+    for (int k = 0; k < o->nwalls; k++) {
+        dem_wall_get(s, k, &w[k]);
+        wall_mesh(&w[k], k, lo, hi, NULL, NULL, NULL, &nv, &nt);
+    }
+    int *tri = malloc(sizeof(int) * 3 * (size_t)nt), *twall = malloc(sizeof(int) * (size_t)nt);
+    o->wlocal = malloc(sizeof(double) * 3 * (size_t)nv);
+    o->wbuf = malloc(sizeof(double) * 3 * (size_t)nv);
+    o->wvert = malloc(sizeof(int) * (size_t)nv);
+    int rc = !tri || !twall || !o->wlocal || !o->wbuf || !o->wvert;
+    o->wnv = o->wnt = 0;
+    for (int k = 0; !rc && k < o->nwalls; k++) {
+        int t0 = o->wnt;
+        wall_mesh(&w[k], k, lo, hi, o->wlocal, o->wvert, tri, &o->wnv, &o->wnt);
+        for (int t = t0; t < o->wnt; t++)
+            twall[t] = k;
+    }
+    if (!rc) {
+        o->walls = H5Gcreate2(o->file, "walls", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hsize_t dt[2] = {(hsize_t)nt, 3}, d1[1] = {(hsize_t)nt};
+        rc = o->walls < 0 || h5_write(o->walls, "triangles", H5T_NATIVE_INT, 2, dt, tri, NULL) ||
+             h5_write(o->walls, "wall", H5T_NATIVE_INT, 1, d1, twall, NULL) ||
+             h5rows_create(&o->wpoints, o->walls, "points", H5T_NATIVE_DOUBLE, 3, (hsize_t)nv, 3, "m") ||
+             h5_attr_string(o->walls, "layout",
+                            "the walls drawn as triangle surfaces, per frame of /frames: points[f] the vertices at "
+                            "frame f (each wall's mesh moved by its position), triangles the vertex ids of each "
+                            "triangle (facing the particles), wall the wall of each triangle (a column of "
+                            "/series/wall_position, named in /series wall_names). Planes are rectangles over the "
+                            "scene's domain (or the particles' first bounding box), cups recessed in them; cylinders "
+                            "open tubes of their height (endless: over that box)");
+    }
+    free(tri);
+    free(twall);
+    return rc ? -1 : 0;
+}
+
+static int walls_frame(output *o, dem_sim *s)
+{
+    double p[DEM_MAX_WALLS][3];
+    for (int k = 0; k < o->nwalls; k++)
+        if (dem_wall_position(s, k, p[k]))
+            return -1;
+    for (int i = 0; i < o->wnv; i++)
+        for (int d = 0; d < 3; d++)
+            o->wbuf[3 * i + d] = p[o->wvert[i]][d] + o->wlocal[3 * i + d];
+    return h5rows_append(&o->wpoints, o->wbuf);
 }
 
 output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen)
@@ -211,6 +400,8 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
                                                          "force the piston receives against its normal / area "
                                                          "(compression positive)");
     }
+    if (!rc && nw)
+        rc = walls_open(o, sc, s);
     if (rc) {
         if (create_errno)
             snprintf(err, errlen, "%s: cannot create the output file: %s", o->part, strerror(create_errno));
@@ -266,6 +457,8 @@ int output_frame(output *o, dem_sim *s)
         if (o->fields & frame_fields[k].bit)
             if (dem_get_field(s, frame_fields[k].field, o->buf) || h5rows_append(&o->fdata[k], o->buf))
                 return -1;
+    if (o->nwalls && walls_frame(o, s))
+        return -1;
     o->nframes++;
     return 0;
 }
@@ -346,7 +539,7 @@ int output_flush(output *o)
     rc |= h5rows_flush(&o->c_start) | h5rows_flush(&o->c_pairs) | h5rows_flush(&o->c_ids) | h5rows_flush(&o->c_data) |
           h5rows_flush(&o->c_fn);
     rc |= h5rows_flush(&o->wall_pos) | h5rows_flush(&o->wall_force) | h5rows_flush(&o->wall_normal) |
-          h5rows_flush(&o->ftime) | h5rows_flush(&o->fstep);
+          h5rows_flush(&o->ftime) | h5rows_flush(&o->fstep) | h5rows_flush(&o->wpoints);
     return rc ? -1 : 0;
 }
 
@@ -366,13 +559,16 @@ static void close_all(output *o)
     h5rows_close(&o->c_ids);
     h5rows_close(&o->c_data);
     h5rows_close(&o->c_fn);
+    h5rows_close(&o->wpoints);
+    if (o->walls > 0)
+        H5Gclose(o->walls);
     if (o->frames > 0)
         H5Gclose(o->frames);
     if (o->series > 0)
         H5Gclose(o->series);
     if (o->contacts > 0)
         H5Gclose(o->contacts);
-    o->frames = o->series = o->contacts = 0;
+    o->frames = o->series = o->contacts = o->walls = 0;
 }
 
 /* s with XML's five special characters as entities (&amp; &lt; &gt; &quot; &apos;), malloc'd: the HDF5 file's name
@@ -463,6 +659,33 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
         }
         fprintf(fp, "</Grid>\n");
     }
+    if (o->nwalls && o->wnt) {
+        /* the walls (/walls): a temporal collection of its own, as the membranes and the contact network - ParaView's
+         * XDMF reader makes each top-level grid a block of one multiblock, named, with a time series each (a spatial
+         * collection per frame would nest the particles one level deeper, and readers and scripts that open the
+         * particles' grid by name as the first block would change) */
+        fprintf(fp, "<Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+        for (long f = 0; f < F; f++) {
+            fprintf(fp, "<Grid Name=\"walls %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
+            /* the connectivity as a whole-array hyperslab, as the membranes' (see there) */
+            fprintf(fp, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n"
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 2\" Format=\"XML\">0 0 1 1 %d 3</DataItem>\n"
+                        "<DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                        "%s:/walls/triangles</DataItem>\n</DataItem>\n</Topology>\n",
+                    o->wnt, o->wnt, o->wnt, o->wnt, h5name);
+            fprintf(fp, "<Geometry GeometryType=\"XYZ\">\n"
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
+                        "<DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                        "%s:/walls/points</DataItem>\n</DataItem>\n</Geometry>\n",
+                    o->wnv, f, o->wnv, F, o->wnv, h5name);
+            fprintf(fp, "<Attribute Name=\"wall\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+                        "<DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                        "%s:/walls/wall</DataItem>\n</Attribute>\n</Grid>\n", o->wnt, h5name);
+        }
+        fprintf(fp, "</Grid>\n");
+    }
     if ((o->fields & OUT_CONTACTS) && (o->fields & OUT_POSITION) && o->c_total > 0) {
         /* the contact network: per frame, a line between the centres of each touching pair, coloured by the normal
          * force (frames without a pair are left out: XDMF has no empty polyline) */
@@ -520,6 +743,9 @@ int output_finish(output *o, char *err, size_t errlen)
                  h5_io_reason(e), o->part);
     free(o->buf);
     free(o->c_frame);
+    free(o->wlocal);
+    free(o->wvert);
+    free(o->wbuf);
     free(o);
     return rc;
 }
@@ -534,5 +760,8 @@ void output_abort(output *o)
         H5Fclose(o->file);
     free(o->buf);
     free(o->c_frame);
+    free(o->wlocal);
+    free(o->wvert);
+    free(o->wbuf);
     free(o);
 }
