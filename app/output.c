@@ -82,7 +82,8 @@ void output_xmf_path(const char *h5, char *buf, size_t len)
 
 /* The walls as triangle surfaces for ParaView (/walls in the HDF5 file, the "walls" grid of the XDMF). Walls are
  * endless or have no visible edge in the library, so the drawing needs a size: the extent is the binning domain the
- * scene gives (domain:), else the particles' bounding box (centres +- radii) when the output opens. A plane is a
+ * scene gives (domain:), else the particles' bounding box (centres +- radii) when the output opens, stretched to
+ * hold every plane's point (so that an endless die reaches its punches). A plane is a
  * rectangle centred on its point, reaching every corner of that box projected onto it (and at least 1.25 cup radii);
  * a plane with a cup (a punch) is the same rectangle with the spherical cap recessed in it, the cup drawn as
  * WM_CUP_RINGS rings; a cylinder is an open tube of its radius from its point along its height, or over the box's
@@ -216,8 +217,11 @@ static int walls_open(output *o, const scene *sc, dem_sim *s)
     int nv = 0, nt = 0;
     for (int k = 0; k < o->nwalls; k++) {
         dem_wall_get(s, k, &w[k]);
-        wall_mesh(&w[k], k, lo, hi, NULL, NULL, NULL, &nv, &nt);
+        for (int d = 0; !scene_has(sc->loc, "domain") && w[k].kind == DEM_WALL_PLANE && d < 3; d++)
+            lo[d] = fmin(lo[d], w[k].point[d]), hi[d] = fmax(hi[d], w[k].point[d]); /* a tube reaches the punches */
     }
+    for (int k = 0; k < o->nwalls; k++)
+        wall_mesh(&w[k], k, lo, hi, NULL, NULL, NULL, &nv, &nt);
     int *tri = malloc(sizeof(int) * 3 * (size_t)nt), *twall = malloc(sizeof(int) * (size_t)nt);
     o->wlocal = malloc(sizeof(double) * 3 * (size_t)nv);
     o->wbuf = malloc(sizeof(double) * 3 * (size_t)nv);
@@ -241,7 +245,8 @@ static int walls_open(output *o, const scene *sc, dem_sim *s)
                             "frame f (each wall's mesh moved by its position), triangles the vertex ids of each "
                             "triangle (facing the particles), wall the wall of each triangle (a column of "
                             "/series/wall_position, named in /series wall_names). Planes are rectangles over the "
-                            "scene's domain (or the particles' first bounding box), cups recessed in them; cylinders "
+                            "scene's domain (or the particles' first bounding box and the planes' points), cups "
+                            "recessed in them; cylinders "
                             "open tubes of their height (endless: over that box)");
     }
     free(tri);

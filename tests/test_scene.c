@@ -936,6 +936,45 @@ static void test_output_and_xdmf(void **st)
     assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/o.xmf", SRC, tmp), 0);
 }
 
+/* The walls in the XDMF (/walls, the "walls" grid): a short concave press (tests/scenes/tablet_concave.yaml: a die of
+ * height 12 mm, the lower punch made flat, the upper one cupped and coming down at 0.1 m/s). tests/xdmf_walls_check.py
+ * reads the meshes through the XDMF's hyperslabs and checks, in the first and the last frame, the flat plane's
+ * vertices in its plane, the cup's on its sphere, the die's at its radius and along its height, and the punch's mesh
+ * moved rigidly by its travel; the same with an endless die and no domain (the tube spans the particles and the
+ * punches). The check fails on a vertex moved by 1 nm and on a travel left undeclared. */
+static void test_xdmf_walls(void **st)
+{
+    (void)st;
+    char err[16384];
+    const char *short_run = "s/^time:.*/time: {dt_rayleigh: 0.2, duration: 0.004}/; s/frame_every: 0.005/frame_every: "
+                            "0.002/";
+    assert_int_equal(sh(err, sizeof err, "sed -e '0,/cup:/{/cup:/d}' -e '%s' %s/tests/scenes/tablet_concave.yaml > "
+                        "%s/press.yaml && %s run %s/press.yaml -o %s/press.h5 --quiet", short_run, SRC, tmp, DEM, tmp,
+                        tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/press.xmf", SRC, tmp), 0);
+    /* 960 triangles: the die 96, the flat lower punch 48, the cupped upper one 48 + 2 x 48 x 8 */
+    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_walls_check.py %s/press.xmf triangles=960 "
+                        "upper=0,0,-0.1", SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "test $(grep -c 'Grid Name=\"walls ' %s/press.xmf) = $(grep -c "
+                                         "'Grid Name=\"frame ' %s/press.xmf)", tmp, tmp), 0); /* a mesh per frame */
+    /* the check can fail: the punch's travel undeclared; one vertex of the last frame 1 nm off */
+    assert_int_not_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_walls_check.py %s/press.xmf", SRC, tmp),
+                         0);
+    assert_non_null(strstr(err, "wall upper: moved"));
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/bad && cp %s/press.h5 %s/press.xmf %s/bad && /usr/bin/python3 "
+                        "-c \"import h5py; p = h5py.File('%s/bad/press.h5', 'r+')['walls/points']; "
+                        "p[-1, 100, 2] += 1e-9\"", tmp, tmp, tmp, tmp, tmp), 0); /* vertex 100: the flat punch's */
+    assert_int_not_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_walls_check.py %s/bad/press.xmf "
+                            "upper=0,0,-0.1", SRC, tmp), 0);
+    assert_non_null(strstr(err, "not moved rigidly"));
+    /* an endless die, no domain: the tube from the lower punch's face to the upper's */
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/, height: 0.012//' -e '/^domain:/d' %s/press.yaml > %s/endless.yaml "
+                        "&& %s run %s/endless.yaml -o %s/endless.h5 --quiet && /usr/bin/python3 %s/tests/"
+                        "xdmf_walls_check.py %s/endless.xmf upper=0,0,-0.1 && /usr/bin/python3 -c \"import h5py, sys; "
+                        "z = h5py.File('%s/endless.h5')['walls/points'][0, :96, 2]; sys.exit(not (z.min() == 0.002 and "
+                        "z.max() == 0.0125))\"", tmp, tmp, DEM, tmp, tmp, SRC, tmp, tmp), 0);
+}
+
 /* Iterated MC-strain with a cap too small to converge: the progress line counts capped steps, the run ends with a
  * warning (also with --quiet), and the series mc_capped holds the running count, the last row the warning's number. */
 static void test_mc_cap_reported(void **st)
@@ -1828,6 +1867,7 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_restart_bitwise),
         cmocka_unit_test(test_output_and_xdmf),
+        cmocka_unit_test(test_xdmf_walls),
         cmocka_unit_test(test_mc_cap_reported),
         cmocka_unit_test(test_mc_cap_before_failure),
         cmocka_unit_test(test_integer_arguments),

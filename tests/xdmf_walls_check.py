@@ -4,7 +4,8 @@ grid has one triangle mesh per frame (read through the XDMF's own hyperslabs), e
 first and last frame a plane's vertices lie in its plane (or on its cup's sphere inside the cup's rim), a cylinder's
 at its radius from its axis and along its height. The plane's or axis' point is the wall's position in the series'
 first row (time 0), at the last frame moved as the mesh moved, which must be a rigid translation by the wall's travel.
-usage: xdmf_walls_check.py RUN.xmf [WALL=VX,VY,VZ ...]
+usage: xdmf_walls_check.py RUN.xmf [triangles=T] [WALL=VX,VY,VZ ...]
+  triangles=T: the walls' meshes have T triangles in all;
   WALL=VX,VY,VZ (a wall's name as in /series wall_names, and its constant velocity from the first frame): that wall's
   mesh at the last frame must be the first frame's moved by the velocity times the time between them; every other
   wall must not move."""
@@ -16,10 +17,13 @@ import h5py
 import numpy as np
 
 xmf = sys.argv[1]
-velocity = {}
+velocity, triangles = {}, None
 for a in sys.argv[2:]:
     name, v = a.split("=")
-    velocity[name] = np.array([float(c) for c in v.split(",")])
+    if name == "triangles":
+        triangles = int(v)
+    else:
+        velocity[name] = np.array([float(c) for c in v.split(",")])
 root = ET.parse(xmf).getroot()
 folder = os.path.dirname(xmf)
 problems = []
@@ -75,6 +79,8 @@ tri0, p0, wall0, t0 = mesh(frames[0])
 tri1, p1, wall1, t1 = mesh(frames[-1])
 if not (np.array_equal(tri0, tri1) and np.array_equal(wall0, wall1)) or p0.shape != p1.shape:
     fail("the wall mesh's connectivity changes between frames")
+if triangles is not None and len(tri0) != triangles:
+    fail(f"{len(tri0)} triangles, expected {triangles}")
 if sorted(set(wall0.tolist())) != list(range(nw)):
     fail(f"triangles of walls {sorted(set(wall0.tolist()))}, expected every one of {nw}")
 # each wall's point at the start: the series' first row (written at time 0, as the first frame)
