@@ -163,7 +163,7 @@ run: $(BUILD)/dem
 	/usr/bin/python3 tools/plot_series.py $(RUN_OUT).h5
 	@echo "make run: results in out/"
 	@echo "  $(RUN_OUT).h5       frames (positions, velocities, forces ...) and time series, HDF5 (h5ls -r to list)"
-	@echo "  $(RUN_OUT).xmf      open in ParaView: File > Open, pick 'XDMF Reader', Apply; Filters > Glyph (Sphere, scale by radius)"
+	@echo "  $(RUN_OUT).xmf      open in ParaView: File > Open, pick 'XDMF Reader', Apply; Filters > Glyph (Sphere, scale by radius); the walls are the 'walls' block"
 	@echo "  $(RUN_OUT).png      energies, wall forces and stress-strain (tools/plot_series.py)"
 	@echo "  $(RUN_OUT).ckpt.h5  checkpoint: build/dem run --restart $(RUN_OUT).ckpt.h5 -o more.h5"
 
