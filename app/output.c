@@ -595,6 +595,19 @@ static char *xml_escaped(const char *s)
     return e;
 }
 
+/* A triangle topology of nt triangles from dataset (nt x 3 ints) of the HDF5 file h5name, as a whole-array
+ * hyperslab: ParaView's XDMF reader otherwise tries to cache the geometry with it, finds a hyperslab there and logs
+ * an error (the surface was right either way). Shared by the membranes and the walls. */
+static void xdmf_triangles(FILE *fp, int nt, const char *h5name, const char *dataset)
+{
+    fprintf(fp, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n"
+                "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
+                "<DataItem Dimensions=\"3 2\" Format=\"XML\">0 0 1 1 %d 3</DataItem>\n"
+                "<DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                "%s:%s</DataItem>\n</DataItem>\n</Topology>\n",
+            nt, nt, nt, nt, h5name, dataset);
+}
+
 /* XDMF 2: a temporal collection of point sets; every attribute is a hyperslab of the frame arrays. */
 static int write_xdmf(const output *o, const char *xmf_path, const double *times)
 {
@@ -636,14 +649,7 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
         fprintf(fp, "<Grid Name=\"membranes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
         for (long f = 0; f < F; f++) {
             fprintf(fp, "<Grid Name=\"membranes %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
-            /* the connectivity as a whole-array hyperslab: ParaView's XDMF reader otherwise tries to cache the
-             * geometry with it, finds a hyperslab there and logs an error (the surface was right either way) */
-            fprintf(fp, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n"
-                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
-                        "<DataItem Dimensions=\"3 2\" Format=\"XML\">0 0 1 1 %d 3</DataItem>\n"
-                        "<DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
-                        "%s:/membranes/triangles</DataItem>\n</DataItem>\n</Topology>\n",
-                    o->ntri, o->ntri, o->ntri, o->ntri, h5name);
+            xdmf_triangles(fp, o->ntri, h5name, "/membranes/triangles");
             for (size_t k = 0; k < NFF; k++) {
                 if (!(o->fields & frame_fields[k].bit) || frame_fields[k].ncomp != 3)
                     continue;
@@ -672,13 +678,7 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
         fprintf(fp, "<Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
         for (long f = 0; f < F; f++) {
             fprintf(fp, "<Grid Name=\"walls %ld\" GridType=\"Uniform\">\n<Time Value=\"%.17g\"/>\n", f, times[f]);
-            /* the connectivity as a whole-array hyperslab, as the membranes' (see there) */
-            fprintf(fp, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n"
-                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
-                        "<DataItem Dimensions=\"3 2\" Format=\"XML\">0 0 1 1 %d 3</DataItem>\n"
-                        "<DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
-                        "%s:/walls/triangles</DataItem>\n</DataItem>\n</Topology>\n",
-                    o->wnt, o->wnt, o->wnt, o->wnt, h5name);
+            xdmf_triangles(fp, o->wnt, h5name, "/walls/triangles");
             fprintf(fp, "<Geometry GeometryType=\"XYZ\">\n"
                         "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 3\" Type=\"HyperSlab\">\n"
                         "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 3</DataItem>\n"

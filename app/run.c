@@ -12,7 +12,6 @@
 #include <time.h>
 #include <errno.h>
 #include <libgen.h>
-#include <pthread.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -54,21 +53,6 @@ static void run_catch_signals(int on)
         sa.sa_handler = run_signals[k] == SIGPIPE ? SIG_IGN : run_on_signal;
         sigaction(run_signals[k], &sa, NULL);
     }
-}
-
-/* The stop signals held back (hold 1) and let through again (0) while the device starts. A signal during the OpenCL
- * program's build makes PoCL's compiler (LLVM, in the process) delete its temporary files and fail the build
- * ("unable to rename temporary ..."): measured, a SIGINT 0.2 s into a run of tests/scenes/tablet_small.yaml ended it
- * as a device error (exit 69). Held, the signal arrives when the build is done and stops the run like one before the
- * first step. Threads the runtime starts meanwhile inherit the mask, so the signal comes to this thread. */
-static void run_hold_signals(int hold)
-{
-    sigset_t set;
-    sigemptyset(&set);
-    for (size_t k = 0; k < RUN_NSIG; k++)
-        if (run_signals[k] != SIGPIPE)
-            sigaddset(&set, run_signals[k]);
-    pthread_sigmask(hold ? SIG_BLOCK : SIG_UNBLOCK, &set, NULL);
 }
 
 static double now(void)
@@ -632,9 +616,7 @@ static int phase_start(run_ctx *c)
 {
     const run_opts *o = c->o;
     const scene_run *run = &c->run;
-    run_hold_signals(1);
     int se = dem_start(c->s, &run->cfg); /* run->cfg.contacts: set by scene_build when frames carry contacts */
-    run_hold_signals(0);
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
