@@ -1,7 +1,7 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/<name> for each array of the state (dem_state_arrays: the library's
  * saved buffers, common/dem_buffers.h's checkpoint column: x, v, w, force, torque, wall_force, wall_normal_force,
  * wall_hist, wall_pf, wall_mask, wall_mc_fn, wall_mc_disp), /state/{wall_pos,wall_stage,wall_stage_first,
- * wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,radius,pair_mc_fn,pair_mc_disp,patch_i,patch_t,patch_hist,
+ * wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,radius,pair_mc_fn,pair_mc_disp,pair_law,patch_i,patch_t,patch_hist,
  * patch_side} with attributes step, n, nwalls, real_size (4 or 8: the arrays hold the run's own bits), has_hist,
  * has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
@@ -88,6 +88,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_attr_long(g, "mc_max", st.mc.max) || h5_attr_long(g, "mc_total", st.mc.total) ||
              h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
+             h5_attr_long(g, "has_law", st.has_law) ||
+             (st.has_law && h5_write(g, "pair_law", real_t, 1, p1, st.pair_law, "m")) ||
              (st.pair_mc_disp && h5_write(g, "pair_mc_disp", real_t, 2, pd, st.pair_mc_disp, "m")) ||
              h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
              h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
@@ -182,6 +184,7 @@ static int check_finite(const checkpoint *ck, const char *path, char *err, size_
         {"pair_rec", st->pair_rec, DEM_PAIR_RECORD_REALS * np, st->real_size},
         {"pair_mc_fn", st->has_mc ? st->pair_mc_fn : NULL, np, st->real_size},
         {"pair_mc_disp", st->pair_mc_disp, 2 * np, st->real_size},
+        {"pair_law", st->has_law ? st->pair_law : NULL, np, st->real_size},
         {"patch_hist", st->patch_hist, 3 * (size_t)st->npatch, st->real_size}, {"radius", ck->radius, n, 8},
     };
     for (int k = 0; k < st->narrays; k++) { /* the arrays of reals */
@@ -236,7 +239,7 @@ static int read_patches(hid_t g, dem_state *st, hid_t real_t)
 static int read_state(hid_t g, checkpoint *ck)
 {
     dem_state *st = &ck->st;
-    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0;
+    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0, hl = 0;
     int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
              h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
              h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > DEM_MAX_WALLS;
@@ -248,6 +251,8 @@ static int read_state(hid_t g, checkpoint *ck)
     if (!rc) {
         h5_read_attr_long(g, "rebuilds", &st->rebuilds);
         h5_read_attr_long(g, "has_mc", &hm);
+        h5_read_attr_long(g, "has_law", &hl); /* absent from checkpoints of runs before plastic laws: 0 */
+        st->has_law = hl == 1;
         h5_read_attr_long(g, "mc_last", &st->mc.last);
         h5_read_attr_long(g, "mc_max", &st->mc.max);
         h5_read_attr_long(g, "mc_total", &st->mc.total);
@@ -256,7 +261,7 @@ static int read_state(hid_t g, checkpoint *ck)
         st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
         hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
         long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist, has_mc */
-        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1))
+        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1) || (hl != 0 && hl != 1))
             rc = 1, npairs = 0;
         if (npairs < 0)
             rc = 1, npairs = 0;
@@ -265,6 +270,7 @@ static int read_state(hid_t g, checkpoint *ck)
         st->pair_hist = malloc(3 * (size_t)(npairs + 1) * rs);
         size_t want_pm = hm ? (size_t)npairs : 0;
         st->pair_mc_fn = malloc((want_pm + 1) * rs);
+        st->pair_law = malloc(((hl ? (size_t)npairs : 0) + 1) * rs);
         ck->radius = malloc(sizeof(double) * (size_t)n);
         rc = rc || !st->pair_i || !st->pair_j || !st->pair_hist || !ck->radius || read_arrays(g, st, real_t) ||
              h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
@@ -273,7 +279,8 @@ static int read_state(hid_t g, checkpoint *ck)
         rc = rc || h5_read(g, "pair_i", H5T_NATIVE_INT, st->pair_i, (size_t)npairs) ||
              h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
-             (hm && h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs));
+             (hm && h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs)) || !st->pair_law ||
+             (hl && h5_read(g, "pair_law", real_t, st->pair_law, (size_t)npairs));
         /* what the contact network reads right after a restore (absent from older checkpoints, empty in runs that
          * keep none of it: those values zero until the next step): each touching pair's force record of the last
          * step (common/dem_layout.h PR_*) and MC-strain's induced displacements at both ends of each pair (the

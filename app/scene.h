@@ -12,10 +12,18 @@
 #include <stdio.h>
 #include <stddef.h>
 
+/* material_pairs: a pair of materials with its own friction or restitution (dem_set_material_pair) */
+typedef struct {
+    char **materials; /* the two names */
+    unsigned materials_count;
+    double friction, restitution; /* each only where the scene gives it */
+} scene_material_pair;
+
 typedef struct {
     char *name;
     double density, young, poisson, restitution, friction;
     double beta, gamma;           /* multi-contact prefactors (mc_stress, mc_strain) */
+    double yield_stress;          /* limiting contact pressure of thornton_ning [Pa]; 0: does not yield */
 } scene_material;
 
 typedef struct {
@@ -184,6 +192,8 @@ typedef struct {
     unsigned effects_count;
     scene_material *materials;
     unsigned materials_count;
+    scene_material_pair *material_pairs;
+    unsigned material_pairs_count;
     scene_particles *particles;
     unsigned particles_count;
     scene_wall *walls;

@@ -33,9 +33,17 @@ static const cyaml_schema_field_t material_fields[] = {
     CYAML_FIELD_FLOAT("restitution", CYAML_FLAG_DEFAULT, scene_material, restitution),
     REAL("friction", scene_material, friction),
     REAL("beta", scene_material, beta), REAL("gamma", scene_material, gamma),
+    REAL("yield_stress", scene_material, yield_stress),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t material_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material, material_fields)};
+
+static const cyaml_schema_field_t material_pair_fields[] = {
+    CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_material_pair, materials, &string_entry, 2, 2),
+    REAL("friction", scene_material_pair, friction), REAL("restitution", scene_material_pair, restitution),
+    CYAML_FIELD_END};
+static const cyaml_schema_value_t material_pair_entry = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material_pair, material_pair_fields)};
 
 static const cyaml_schema_field_t sphere_fields[] = {
     CYAML_FIELD_SEQUENCE_FIXED("x", CYAML_FLAG_DEFAULT, scene_sphere, x, &real_entry, 3),
@@ -196,6 +204,8 @@ static const cyaml_schema_field_t scene_fields[] = {
     TEXT("particle_order", scene_file, particle_order),
     CYAML_FIELD_SEQUENCE("effects", CYAML_FLAG_POINTER, scene_file, effects, &string_entry, 1, 16),
     CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_file, materials, &material_entry, 1, 64),
+    CYAML_FIELD_SEQUENCE("material_pairs", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, material_pairs,
+                         &material_pair_entry, 0, 256),
     CYAML_FIELD_SEQUENCE("particles", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, particles, &particles_entry, 0, 64),
     CYAML_FIELD_SEQUENCE("walls", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, walls, &wall_entry, 0, DEM_MAX_WALLS),
     CYAML_FIELD_SEQUENCE("membranes", CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER, scene_file, membranes,

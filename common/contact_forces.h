@@ -40,6 +40,7 @@ typedef struct {
     vec3 force;  /* force on a (the smaller id) [N] */
     vec3 c;      /* n x f_t [N] */
     vec3 hist;   /* new tangential history */
+    real st;     /* new law state (a law with memory: laws/law.h) */
 } pair_contact;
 
 /* Pair (a, b) through the run's law (laws.h: law_force); ctx: what the law reads beyond the two particles. */
@@ -47,7 +48,8 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
-                                          DEM_CONST_GLOBAL real *hist, int hp, int touching, law_ctx ctx)
+                                          DEM_CONST_GLOBAL real *hist, DEM_CONST_GLOBAL real *law_st, int hp,
+                                          int touching, law_ctx ctx)
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
@@ -58,6 +60,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     pc.force = v3_zero();
     pc.c = v3_zero();
     pc.hist = v3_zero();
+    pc.st = (real)0;
     if (!g.active)
         return pc;
     vec3 n = g.n;
@@ -80,6 +83,8 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     }
     c.vrel = v3_sub(vca, vcb);
     c.hist = h;
+    /* the law's state, like the history, only for a pair that touched in the previous step */
+    c.st = ((fx & DEM_LAW_STATE_BITS) && touching) ? law_st[hp] : (real)0;
     law_result r = law_force(fx, c, ctx);
     if (!r.active) {
         pc.active = 0;
@@ -87,6 +92,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     }
     pc.delta = delta;
     pc.fel = r.fel;
+    pc.st = r.st;
     pc.force = r.force;
     if (fx & DEM_EFFECT_FRICTION) {
         pc.c = v3_cross(n, r.ft);
@@ -117,7 +123,7 @@ DEM_ITEM(contact_pairs)
     }
     law_ctx ctx;
     ctx.trace = trace, ctx.invvol = invvol, ctx.disp_a = da, ctx.disp_b = db;
-    pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, i,
+    pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, law_st, i,
                                         touching, ctx);
     /* per pair (both particles' mc_strain_disp read it). A pair that neither touched nor touches holds 0 already
      * (mc_strain_update zeroes what it set for a pair that does not touch now) */
@@ -127,12 +133,16 @@ DEM_ITEM(contact_pairs)
         if (touching) { /* the contact ended: so does its history */
             if (fx & DEM_EFFECT_FRICTION)
                 v3_store(hist, i, v3_zero());
+            if (fx & DEM_LAW_STATE_BITS)
+                law_st[i] = (real)0;
             touch[i] = 0;
         }
         return;
     }
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(hist, i, pc.hist);
+    if (fx & DEM_LAW_STATE_BITS)
+        law_st[i] = pc.st;
     if (!touching)
         touch[i] = 1;
     DEM_GLOBAL real *pr = pair + i * PR_STRIDE;
@@ -147,7 +157,7 @@ DEM_ITEM(contact_pairs)
     pr[PR_DELTA] = pc.delta; /* the torque's lever arm, and a sampled step's elastic energy (series.h) */
     if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
         pair_ela[i] = series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
-                                              pc.delta, pc.fel); /* series_pair_energy's bits */
+                                              pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
 }
 
 /* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
@@ -197,7 +207,7 @@ DEM_ITEM(contact_forces)
     }
     if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
-                          invmass[i], mat[i], pairmat, nmat, wall_hist, dt, wall_pf, wall_mask, trace, invvol,
+                          invmass[i], mat[i], pairmat, nmat, wall_hist, wall_law, dt, wall_pf, wall_mask, trace, invvol,
                           mc_wall_disp, mc_wall_fn, ride, &fi, &ti, sample ? &ela : 0, &wcon);
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)

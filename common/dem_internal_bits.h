@@ -35,6 +35,10 @@ enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
 #define DEM_EFFECT_TEST_LAWS 0
 #endif
 
+/* The laws with memory (common/laws/law.h): a run with one of them keeps a law state per contact (PAIR_LAW,
+ * WALL_LAW: common/dem_buffers.h) */
+#define DEM_LAW_STATE_BITS DEM_EFFECT_THORNTON_NING
+
 /* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
 #define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY)
 #ifndef __OPENCL_VERSION__

@@ -97,7 +97,8 @@
     A(NIN, int, old_count, COUNT)                                                                                    \
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR)               \
     A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)                             \
-    A(BIN, real, old_mc_fn, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)
+    A(BIN, real, old_mc_fn, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN) A(BIN, real, old_law_st, PAIR_LAW_OLD)         \
+    A(BOUT, real, law_st, PAIR_LAW)
 #define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
@@ -112,7 +113,7 @@
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)                     \
-    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA)
+    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BOUT, real, law_st, PAIR_LAW)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
@@ -122,7 +123,8 @@
     A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
     A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
-    A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)
+    A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)                 \
+    A(BOUT, real, wall_law, WALL_LAW)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */
@@ -133,7 +135,7 @@
     A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
     A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
     A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)                      \
-    A(BIN, int, order, ORDER)
+    A(BIN, int, order, ORDER) A(BIN, real, wall_law, WALL_LAW)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \

@@ -24,7 +24,12 @@ enum {
     PM_MC_REACH = 9, /* MC-strain contact distance factor F >= 1, the same in every entry (dem_effects.h) [-] */
     PM_APART = 10,   /* 1: particles of this pair of materials never touch - two vertices of one membrane, whose
                         spheres may overlap (dem_add_membrane); read with DEM_EFFECT_SPRINGS only (neighbor.h) */
-    PM_STRIDE = 11
+    /* Thornton-Ning's yield (common/laws/thornton_ning.h), from p_y, the smaller yield stress of the two materials
+     * (dem_material.yield_stress; 0 in all three when neither yields: the law is then Hertz's) */
+    PM_TN_PIPY = 11, /* pi p_y: the plastic branch's slope per r* [Pa] */
+    PM_TN_DY = 12,   /* delta_y / r* = (pi p_y / (2 E*))^2: the overlap at first yield per effective radius [-] */
+    PM_TN_FY = 13,   /* F_y / r*^2 = 4/3 E* (delta_y / r*)^(3/2): the force at first yield per r*^2 [Pa] */
+    PM_STRIDE = 14
 };
 
 /* Spring table, real part (index s*SP_STRIDE + ...; seed 001 Eq. 6): the two particles are in the int table

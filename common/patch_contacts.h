@@ -386,6 +386,7 @@ DEM_ITEM(patch_forces)
         lc.site = LAW_AT_PATCH;
         lc.a = lc.b = i, lc.ra = lc.rb = ri;
         lc.n = n, lc.delta = law, lc.rstar = ri, lc.mstar = mstar, lc.vrel = v3_sub(vc, vp), lc.hist = h, lc.dt = dt;
+        lc.st = (real)0; /* no law with memory acts at patches (host/core/effects.c refuses them together) */
         lc.pm = lc.pmi = pm;
         law_ctx none;
         none.trace = none.invvol = pm, none.disp_a = none.disp_b = (real)0;

@@ -88,11 +88,14 @@ DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nb
  * row of the pair table; the run's law: laws/laws.h) */
 DEM_INLINE real series_pair_energy(unsigned fx, DEM_CONST_GLOBAL real *pm, real ra, real rb, real delta)
 {
-    return law_energy(fx, pm, ra * rb / (ra + rb), delta);
+    /* no law state here: a run with a law that has one always keeps its pairs' energies (DEM_KEEP_PAIR_ENERGY,
+     * host/core/sim_setup.c), computed where the state is at hand (series_pair_energy_kept) */
+    return law_energy(fx, pm, ra * rb / (ra + rb), delta, (real)0);
 }
 /* The same given the elastic force fel the law returned for the pair (law_energy_kept: Hertz's needs no root) */
-DEM_INLINE real series_pair_energy_kept(unsigned fx, DEM_CONST_GLOBAL real *pm, real ra, real rb, real delta, real fel)
+DEM_INLINE real series_pair_energy_kept(unsigned fx, DEM_CONST_GLOBAL real *pm, real ra, real rb, real delta, real fel,
+                                        real st)
 {
-    return law_energy_kept(fx, pm, ra * rb / (ra + rb), delta, fel);
+    return law_energy_kept(fx, pm, ra * rb / (ra + rb), delta, fel, st);
 }
 #endif /* DEM_SERIES_H */

@@ -44,8 +44,8 @@ DEM_INLINE law_ctx wall_law_ctx(unsigned fx, int i, int slot, DEM_CONST_GLOBAL r
 DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                           DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri,
                                           real invm, int mi, DEM_CONST_GLOBAL real *pairmat, int nmat,
-                                          DEM_CONST_GLOBAL real *wall_hist, real dt, int old_touch, law_ctx ctx,
-                                          DEM_CONST_GLOBAL unsigned *ride)
+                                          DEM_CONST_GLOBAL real *wall_hist, DEM_CONST_GLOBAL real *wall_law, real dt,
+                                          int old_touch, law_ctx ctx, DEM_CONST_GLOBAL unsigned *ride)
 {
     wall_contact c;
     DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
@@ -70,6 +70,7 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     }
     lc.vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
     lc.hist = h;
+    lc.st = ((fx & DEM_LAW_STATE_BITS) && old_touch) ? wall_law[slot] : (real)0; /* the law's state (laws/law.h) */
     lc.pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
     lc.pmi = pairmat + PM_STRIDE * (mi * nmat + mi);
     c.r = law_force(fx, lc, ctx);
@@ -78,14 +79,14 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
 
 /* One particle against every wall, added to its force and torque after all its particle contacts (called by
  * contact_forces_item, so the particle's data are read and its sums written once per step). Keeps each wall's
- * tangential history; wall_mask[i] gets bit k set when particle i touches wall k (the history of wall k is only
+ * tangential history and the law's state; wall_mask[i] gets bit k set when particle i touches wall k (the history of wall k is only
  * touched when bit k is set now or was set in the previous step). With DEM_KEEP_WALL_FORCES (a run that reads the
  * contact network) the force from each touching wall is also stored, at wall_pf[k * n + i]. In a sampled step (ela
  * not null) the Hertz energy and count of the touching walls are added to *ela and *wcon (series.h). */
 DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CONST_GLOBAL int *wall_int,
                                   DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri, real invm,
                                   int mi, DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_GLOBAL real *wall_hist,
-                                  real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask,
+                                  DEM_GLOBAL real *wall_law, real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask,
                                   DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
                                   DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn,
                                   DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti, real *ela, real *wcon)
@@ -94,8 +95,8 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     for (int k = 0; k < nwalls; k++) {
         int slot = i * nwalls + k, old_touch = (old_mask >> k) & 1u;
         wall_contact c = wall_contact_eval(fx, i, k, nwalls, wall_int, wall_real, xi, vi, wi, ri, invm, mi, pairmat,
-                                           nmat, wall_hist, dt, old_touch, wall_law_ctx(fx, i, slot, trace, invvol,
-                                                                                        mc_wall_disp), ride);
+                                           nmat, wall_hist, wall_law, dt, old_touch,
+                                           wall_law_ctx(fx, i, slot, trace, invvol, mc_wall_disp), ride);
         if (c.active) {
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = c.r.fel;
@@ -103,10 +104,12 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 v3_store(wall_pf, k * n + i, c.r.force);
             if (ela && c.delta > (real)0) { /* a sampled step (series.h): the law's energy, from the force at hand */
                 *ela += law_energy_kept(fx, pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]),
-                                        ri, c.delta, c.r.fel);
+                                        ri, c.delta, c.r.fel, c.r.st);
                 *wcon += (real)1;
             }
             *fi = v3_add(*fi, c.r.force);
+            if (fx & DEM_LAW_STATE_BITS)
+                wall_law[slot] = c.r.st;
             if (fx & DEM_EFFECT_FRICTION) {
                 v3_store(wall_hist, slot, c.r.hist);
                 *ti = v3_sub(*ti, v3_scale(v3_cross(c.n, c.r.ft), c.arm));
@@ -115,6 +118,8 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
         } else {
             if ((fx & DEM_EFFECT_FRICTION) && old_touch)
                 v3_store(wall_hist, slot, v3_zero());
+            if ((fx & DEM_LAW_STATE_BITS) && old_touch)
+                wall_law[slot] = (real)0;
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = (real)0;
         }
@@ -189,7 +194,7 @@ DEM_ITEM(wall_reduce_block)
             int j = order[q];
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
-                                               dt, (wall_mask[j] >> k) & 1u,
+                                               wall_law, dt, (wall_mask[j] >> k) & 1u,
                                                wall_law_ctx(fx, j, j * nwalls + k, trace, invvol, mc_wall_disp), ride);
             if (c.active) {
                 p.f = v3_sub(p.f, c.r.force);

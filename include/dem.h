@@ -71,7 +71,18 @@ typedef struct {
     double friction;    /* Coulomb friction coefficient mu >= 0 */
     double mc_beta;     /* MC-stress prefactor beta >= 0 (seed 000 Eq. 10; used with DEM_EFFECT_MC_STRESS) */
     double mc_gamma;    /* MC-strain prefactor gamma >= 0 (seed 000 Eq. 7; used with DEM_EFFECT_MC_STRAIN) */
+    double yield_stress; /* limiting contact pressure p_y [Pa] of the plastic law (DEM_EFFECT_THORNTON_NING); 0: the
+                            material does not yield (a wall's steel). A pair yields at the smaller p_y of its two
+                            materials that yield */
 } dem_material;
+
+/* What one pair of materials takes instead of the mean of its two materials' values (dem_set_material_pair): a
+ * field left NAN keeps the mean. E.g. a lubricated die: friction 0.1 between the powder and the die's steel, while
+ * the powder keeps 0.7 against itself. */
+typedef struct {
+    double friction;    /* Coulomb friction coefficient of the pair, >= 0 */
+    double restitution; /* coefficient of restitution of the pair, in (0, 1] (the damping follows from it) */
+} dem_material_pair;
 
 /* Most motion stages of one wall (a scene's settling pause counts as one; `repeat` multiplies a list): enough for
  * a hundred load-unload cycles. */
@@ -224,6 +235,9 @@ DEM_API void dem_config_default(dem_config *c);
 /* Returns the new material's id (0, 1, ... in the order added; at most 64), or a negative dem_status. */
 DEM_API int dem_add_material(dem_sim *s, const dem_material *m);
 /* Returns the new particle's id (0, 1, ... in the order added), or a negative dem_status. v may be NULL (at rest). */
+/* The pair of materials a and b (either order; a == b: the material with itself) takes p's values instead of the mean
+ * of the two materials' (the default, dem_material). Before dem_start; a later call for the same pair replaces it. */
+DEM_API int dem_set_material_pair(dem_sim *s, int a, int b, const dem_material_pair *p);
 DEM_API int dem_add_particle(dem_sim *s, const double x[3], const double v[3], double radius, int material);
 DEM_API int dem_set_particle_flags(dem_sim *s, int id, unsigned flags);
 /* A body's mass [kg] and moment of inertia [kg m^2] (isotropic; 0 = 2/5 m r^2), apart from its contact radius: by
@@ -472,6 +486,10 @@ typedef struct {
     void *pair_mc_fn;                 /* real[npairs]: MC-strain force of each touching pair */
     void *pair_mc_disp;               /* real[2 npairs] with MC-strain: the induced displacement at i's and at j's
                                          end in the last step (the contact network's extra); NULL: not known */
+    int has_law;                      /* 1 when the run's contact law keeps a state per contact (a plastic law,
+                                         DEM_EFFECT_THORNTON_NING): pair_law and the array wall_law follow */
+    void *pair_law;                   /* real[npairs]: that state of each touching pair (Thornton-Ning: the largest
+                                         overlap so far [m]) */
     dem_mc_stats mc;                  /* iteration counts so far */
     long npatch;                      /* sphere-patch row slots with flags: the touching contacts, and the spheres
                                          touching a patch whose side is remembered (common/patch_contacts.h), by
@@ -483,7 +501,7 @@ typedef struct {
                                          side is known, 16: the centre has crossed the patch's plane); NULL: not known
                                          (an older checkpoint: contacts, each side taken anew) */
 } dem_state;
-/* The arrays a state of st's n, nwalls, real_size, has_hist and has_mc holds, without data: names, types, and the
+/* The arrays a state of st's n, nwalls, real_size, has_hist, has_mc and has_law holds, without data: names, types, and the
  * count each has (an array whose size only the run knows, e.g. wall_pf: its full size, not required); what a reader
  * of a saved state fills before dem_state_set. Sets st->narrays and returns it. */
 DEM_API int dem_state_arrays(dem_state *st);

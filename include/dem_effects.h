@@ -41,10 +41,16 @@ enum {
                                   wall they ride on (contact_geometry.h: wall_met) */
     DEM_EFFECT_CONSTRAINTS = 131072, /* particles keep velocity components (DEM_PARTICLE_HOLD_V*: a prescribed
                                         motion along some axes, free along the others; common/integrate.h) */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072
+    DEM_EFFECT_THORNTON_NING = 2097152, /* elastic-perfectly plastic normal law of Thornton and Ning (Hertz up to the
+                                           limiting contact pressure, then a linear plastic branch; unloading along a
+                                           Hertz curve of the flattened radius): common/laws/thornton_ning.h; needs a
+                                           yield_stress; excludes mc_stress, mc_strain and patches. Above the host's
+                                           bits 262144 and 524288 and the test laws' 1048576 */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..17; 7..11 are the convention bits, not effects. */
-#define DEM_EFFECT_COUNT 18
+/* Bit positions an effect name can have (dem_effect_name): 0..21; 7..11 are the convention bits and 18..20 the
+ * host's and the test laws' bits, not effects. */
+#define DEM_EFFECT_COUNT 22
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

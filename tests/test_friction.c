@@ -1,7 +1,7 @@
 /* test_friction.c - Coulomb friction on an incline (gravity tilted by theta over a flat floor, mu = 0.4).
  * A sphere that cannot rotate is a block: it sticks for tan(theta) < mu and slides above, with acceleration
- * g (sin theta - mu cos theta). A free sphere rolls without slipping for tan(theta) < 7/2 mu (contact point at
- * rest, acceleration 5/7 g sin theta) and slips above. Angles 10 % either side of each threshold. PoCL, fp64. */
+ * g (sin theta - mu cos theta), also with mu from the material-pair table (test_pair_friction). A free sphere rolls
+ * without slipping for tan(theta) < 7/2 mu (contact point at rest, acceleration 5/7 g sin theta) and slips above. Angles 10 % either side of each threshold. PoCL, fp64. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -16,12 +16,18 @@ typedef struct {
 } slope_result;
 
 static double inertia_factor = 0; /* > 0: the sphere's moment of inertia set to this x m r^2 (dem_set_particle_mass) */
+/* 1: the sphere's material has friction 0.7 and the floor's another material with 0 (their mean 0.35), and the pair is
+ * set apart to MU (dem_set_material_pair): a lubricated die against a sticky powder */
+static int pair_set_apart = 0;
 
 static slope_result slide(double theta, int rotate)
 {
     const double r = 0.005, rho = 2500, E = 1e7, nu = 0.3;
     dem_sim *s = dem_create();
-    int m = dem_add_material(s, &(dem_material){rho, E, nu, 0.5, MU});
+    int m = dem_add_material(s, &(dem_material){rho, E, nu, 0.5, pair_set_apart ? 0.7 : MU});
+    int fm = pair_set_apart ? dem_add_material(s, &(dem_material){rho, E, nu, 0.5, 0.0}) : m;
+    if (pair_set_apart)
+        assert_int_equal(dem_set_material_pair(s, fm, m, &(dem_material_pair){MU, NAN}), 0);
     /* start at the static overlap under the normal load m g cos(theta) */
     double mass = rho * 4.0 / 3.0 * M_PI * r * r * r, es = E / (2 * (1 - nu * nu)); /* sphere on a wall of the same */
     double d = pow(mass * G * cos(theta) / (4.0 / 3.0 * es * sqrt(r)), 2.0 / 3.0);
@@ -30,7 +36,7 @@ static slope_result slide(double theta, int rotate)
         dem_set_particle_flags(s, id, DEM_PARTICLE_NO_ROTATION);
     if (inertia_factor > 0)
         assert_int_equal(dem_set_particle_mass(s, id, mass, inertia_factor * mass * r * r), 0);
-    dem_wall floor = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1}};
+    dem_wall floor = {.kind = DEM_WALL_PLANE, .material = fm, .point = {0, 0, 0}, .normal = {0, 0, 1}};
     dem_add_wall(s, &floor);
     dem_set_gravity(s, (double[3]){G * sin(theta), 0, -G * cos(theta)});
     dem_set_domain(s, (double[3]){-0.05, -0.05, -0.05}, (double[3]){1.0, 0.05, 0.05});
@@ -96,12 +102,28 @@ static void test_explicit_inertia(void **st)
     assert_true(fabs(roll.slip) < 1e-3);
 }
 
+/* The block again with its friction from the material-pair table: the pair's 0.4, not the mean 0.35 of 0.7 and 0 */
+static void test_pair_friction(void **st)
+{
+    (void)st;
+    pair_set_apart = 1;
+    double crit = atan(MU);
+    slope_result below = slide(0.9 * crit, 0), above = slide(1.1 * crit, 0);
+    pair_set_apart = 0;
+    double a_expect = G * (sin(1.1 * crit) - MU * cos(1.1 * crit));
+    printf("  block, pair friction 0.4 over materials 0.7 and 0: theta 0.9 atan(0.4), tan 0.356: moved %.3g m (it would slide at "
+           "the mean 0.35); 1.1 atan(0.4): a %.4g m/s^2 (expected %.4g)\n", below.disp, above.accel, a_expect);
+    assert_true(fabs(below.disp) < 1e-5);
+    assert_true(fabs(above.accel / a_expect - 1) < 0.005);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_block),
         cmocka_unit_test(test_rolling_sphere),
         cmocka_unit_test(test_explicit_inertia),
+        cmocka_unit_test(test_pair_friction),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

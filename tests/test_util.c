@@ -78,7 +78,8 @@ const char *mcs_convention_name(unsigned c, char *buf, size_t len)
 dem_sim *packing_build(const packing_opts *o)
 {
     dem_sim *s = dem_create();
-    dem_material m = {o->density, o->young, o->poisson, o->restitution, o->friction, o->mc_beta, o->mc_gamma};
+    dem_material m = {o->density,  o->young,    o->poisson,     o->restitution,
+                      o->friction, o->mc_beta, o->mc_gamma, o->yield_stress};
     int mat = dem_add_material(s, &m);
     dem_material wm = {7800, 2e8, 0.3, o->restitution, o->friction};
     int wmat = dem_add_material(s, &wm);
@@ -241,6 +242,9 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
         size_t na, nb;
         /* fields of a model one run does not have (multi-contact) are compared only when both have them */
         if (fields[k] >= DEM_FIELD_STRESS_TRACE && (!dem_field_bytes(a, fields[k]) || !dem_field_bytes(b, fields[k])))
+            continue;
+        /* a law with memory has no stress output (host/core/fields.c refuses it): the forces decide */
+        if (fields[k] == DEM_FIELD_STRESS && (dem_effects(a) & DEM_EFFECT_THORNTON_NING))
             continue;
         unsigned char *pa = get(a, fields[k], &na), *pb = get(b, fields[k], &nb);
         int bad = na != nb || memcmp(pa, pb, na) != 0;

@@ -23,6 +23,7 @@ typedef struct {
     int mc_iterations;  /* MC-strain: 0 lagged, else iterated with tolerance 1e-6 */
     unsigned mcs_conv;  /* MC-stress convention, DEM_MCS_* (DEM_MCS_DEFAULT from packing_defaults) */
     double mc_reach;    /* MC-strain contact distance factor (0 or 1: off) */
+    double yield_stress; /* the particle material's limiting contact pressure (DEM_EFFECT_THORNTON_NING) [Pa] */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);

@@ -85,18 +85,20 @@ DEM_INLINE real hm_tangential_stiffness(real gstar, real srd)
     return (real)8 * gstar * srd;
 }
 
-/* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */
-DEM_INLINE law_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
-                                DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
+/* The contact given its elastic normal force fel and its contact radius srd (Hertz: sqrt(r* delta)), which sets the
+ * damping's stiffness S_n = 2 E* srd and the tangential k_t = 8 G* srd: Hertz-Mindlin's, and that of a law with
+ * another elastic force and the same Mindlin tangential part (thornton_ning.h) */
+DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
+                                    DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
 {
-    const real estar = pm[PM_ESTAR];
     law_result r;
     real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
     real vn = v3_dot(vrel, n);          /* < 0 while approaching: d' = -vn */
 
     r.active = 1;
+    r.st = (real)0;
     /* normal */
-    r.fel = hm_elastic_srd(estar, srd, delta);
+    r.fel = fel;
     real fn = r.fel;
     if (fx & DEM_EFFECT_MC_STRESS)
         fn = fn + fn_extra;
@@ -134,6 +136,13 @@ DEM_INLINE law_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real
     return r;
 }
 
+/* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */
+DEM_INLINE law_result hm_contact(unsigned fx, vec3 n, real delta, real srd, real mstar, vec3 vrel,
+                                DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
+{
+    return hm_contact_fel(fx, n, hm_elastic_srd(pm[PM_ESTAR], srd, delta), srd, mstar, vrel, pm, dt, hist, fn_extra);
+}
+
 /* ---- the law unit (law.h) ---- */
 DEM_INLINE law_result hertz_mindlin_force(unsigned fx, law_in c, law_ctx ctx)
 {
@@ -143,11 +152,11 @@ DEM_INLINE real hertz_mindlin_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
 {
     return hm_elastic(pm[PM_ESTAR], rstar, delta);
 }
-DEM_INLINE real hertz_mindlin_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real hertz_mindlin_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     return hertz_energy(pm[PM_ESTAR], rstar, delta);
 }
-DEM_INLINE real hertz_mindlin_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel)
+DEM_INLINE real hertz_mindlin_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel, real st)
 {
     return hertz_energy_of_force(fel, delta);
 }

@@ -6,8 +6,10 @@
  *                                       its context (law_ctx: what a law reads beyond the two bodies, e.g. MC-stress
  *                                       the stress traces, MC-strain the induced displacements);
  *   <law>_elastic(pm, rstar, delta)     the elastic normal force at overlap delta (the stress tensor's f_H);
- *   <law>_energy(pm, rstar, delta)      the elastic energy stored at delta (the work of <law>_elastic from 0);
- *   <law>_energy_kept(pm, rstar, delta, fel)  the same given the elastic force fel its force returned
+ *   <law>_energy(pm, rstar, delta, st)  the elastic energy stored at delta (what the contact gives back if it is
+ *                                       unloaded from there; an elastic law: the work of <law>_elastic from 0),
+ *                                       given the contact's law state st;
+ *   <law>_energy_kept(pm, rstar, delta, fel, st)  the same given the elastic force fel its force returned
  *                                       (Hertz spares a root with it; MC-strain's is at another overlap);
  *   <law>_stiffness(pm, rstar, delta, &kn, &kt)   normal and tangential stiffness at delta (the host's stability
  *                                       estimate, host/physics/stability.c).
@@ -15,6 +17,11 @@
  * the callers - particle pairs (contact_forces.h), walls (wall_forces.h), patches (patch_contacts.h), the stress
  * (particle_stress.h), the series (series.h), the host's energy.c and stability.c (compiled in double) - call only
  * those entry points.
+ *
+ * A law with memory (a plastic one) keeps one real per contact, its state (law_in.st in, law_result.st out; e.g. the
+ * largest overlap so far): its effect bit is in DEM_LAW_STATE_BITS (dem_internal_bits.h), and the run then holds
+ * the state of every pair (PAIR_LAW, carried across rebuilds like the tangential history: neighbor.h) and of every
+ * particle-wall slot (WALL_LAW), saved in checkpoints. A new contact starts from st = 0.
  *
  * Conventions: body a and body b; n the unit vector from b to a; delta > 0 the overlap; vrel the velocity of a's
  * contact point relative to b's. Returned forces act on a (b receives the negative).
@@ -39,6 +46,7 @@ typedef struct {
     real mstar;    /* effective mass [kg] (0: both immovable) */
     vec3 vrel;     /* velocity of a's contact point relative to b's [m/s] */
     vec3 hist;     /* the stored elastic tangential force [N] (zero when none) */
+    real st;       /* the law's stored state (a law with memory; 0 for a new contact or a law without) */
     real dt;       /* time step [s] */
     DEM_CONST_GLOBAL real *pm;  /* the pair-table row of the two materials */
     DEM_CONST_GLOBAL real *pmi; /* the row of a's own material with itself (MC-stress at a wall) */
@@ -60,6 +68,7 @@ typedef struct {
     vec3 force; /* total contact force on a [N] */
     vec3 ft;    /* its tangential part [N] (torques) */
     vec3 hist;  /* new elastic tangential force to store [N] */
+    real st;    /* new law state to store (a law with memory; 0 otherwise) */
 } law_result;
 
 /* Effective mass of two bodies given inverse masses; 0 when both are immovable (no damping then). */

@@ -16,6 +16,7 @@
 #include "hertz_mindlin.h"
 #include "mc_stress.h"
 #include "mc_strain.h"
+#include "thornton_ning.h"
 #ifdef DEM_TEST_LAWS
 #include "linear_spring.h"
 #define DEM_TEST_LAW_LIST(X) X(linear_spring, DEM_EFFECT_TEST_SPRING)
@@ -27,6 +28,7 @@
     DEM_TEST_LAW_LIST(X)                                                                                             \
     X(mc_stress, DEM_EFFECT_MC_STRESS)                                                                               \
     X(mc_strain, DEM_EFFECT_MC_STRAIN)                                                                               \
+    X(thornton_ning, DEM_EFFECT_THORNTON_NING)                                                                       \
     X(hertz_mindlin, DEM_EFFECT_HERTZ)
 
 /* every column a law names is one of the pair table's */
@@ -60,26 +62,26 @@ DEM_INLINE real law_elastic(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, 
     return hertz_mindlin_elastic(pm, rstar, delta);
 }
 
-/* The elastic energy stored at overlap delta */
-DEM_INLINE real law_energy(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+/* The elastic energy stored at overlap delta, given the contact's law state st (law.h; 0 for a law without) */
+DEM_INLINE real law_energy(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
 #define DEM_LAW_CASE(law, bit)                                                                                       \
     if (fx & (bit))                                                                                                  \
-        return law##_energy(pm, rstar, delta);
+        return law##_energy(pm, rstar, delta, st);
     DEM_LAW_LIST(DEM_LAW_CASE)
 #undef DEM_LAW_CASE
-    return hertz_mindlin_energy(pm, rstar, delta);
+    return hertz_mindlin_energy(pm, rstar, delta, st);
 }
 
 /* The same, given the elastic force fel that law_force returned for this contact (law_result.fel) */
-DEM_INLINE real law_energy_kept(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel)
+DEM_INLINE real law_energy_kept(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel, real st)
 {
 #define DEM_LAW_CASE(law, bit)                                                                                       \
     if (fx & (bit))                                                                                                  \
-        return law##_energy_kept(pm, rstar, delta, fel);
+        return law##_energy_kept(pm, rstar, delta, fel, st);
     DEM_LAW_LIST(DEM_LAW_CASE)
 #undef DEM_LAW_CASE
-    return hertz_mindlin_energy_kept(pm, rstar, delta, fel);
+    return hertz_mindlin_energy_kept(pm, rstar, delta, fel, st);
 }
 
 /* Normal and tangential stiffness at overlap delta */

@@ -22,18 +22,19 @@ DEM_INLINE law_result linear_spring_force(unsigned fx, law_in c, law_ctx ctx)
 {
     law_result r;
     r.active = 1;
+    r.st = (real)0;
     r.fel = linear_spring_elastic(c.pm, c.rstar, c.delta);
     r.force = v3_scale(c.n, r.fel);
     r.ft = r.hist = v3_zero();
     return r;
 }
-DEM_INLINE real linear_spring_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel)
+DEM_INLINE real linear_spring_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel, real st)
 {
     return (real)0.5 * fel * delta;
 }
-DEM_INLINE real linear_spring_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real linear_spring_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return linear_spring_energy_kept(pm, rstar, delta, linear_spring_elastic(pm, rstar, delta));
+    return linear_spring_energy_kept(pm, rstar, delta, linear_spring_elastic(pm, rstar, delta), st);
 }
 DEM_INLINE void linear_spring_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real *kn, real *kt)
 {

@@ -33,7 +33,7 @@ DEM_INLINE law_result mc_strain_force(unsigned fx, law_in c, law_ctx ctx)
     if (c.site == LAW_AT_PAIR && (fx & DEM_MC_REACH) && !(c.delta > (real)0) && !(law_delta > (real)0)) {
         law_result r; /* a neighbour within the contact distance whose induced overlap does not close the gap */
         r.active = 0;
-        r.fel = (real)0;
+        r.fel = r.st = (real)0;
         r.force = r.ft = r.hist = v3_zero();
         return r;
     }
@@ -43,13 +43,13 @@ DEM_INLINE real mc_strain_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real de
 {
     return hertz_mindlin_elastic(pm, rstar, delta);
 }
-DEM_INLINE real mc_strain_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real mc_strain_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return hertz_mindlin_energy(pm, rstar, delta);
+    return hertz_mindlin_energy(pm, rstar, delta, st);
 }
-DEM_INLINE real mc_strain_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel)
+DEM_INLINE real mc_strain_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel, real st)
 {
-    return hertz_mindlin_energy(pm, rstar, delta); /* fel is at the induced overlap */
+    return hertz_mindlin_energy(pm, rstar, delta, st); /* fel is at the induced overlap */
 }
 DEM_INLINE void mc_strain_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real *kn, real *kt)
 {

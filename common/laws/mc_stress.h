@@ -82,13 +82,13 @@ DEM_INLINE real mc_stress_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real de
 {
     return hertz_mindlin_elastic(pm, rstar, delta);
 }
-DEM_INLINE real mc_stress_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real mc_stress_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return hertz_mindlin_energy(pm, rstar, delta);
+    return hertz_mindlin_energy(pm, rstar, delta, st);
 }
-DEM_INLINE real mc_stress_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel)
+DEM_INLINE real mc_stress_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel, real st)
 {
-    return hertz_mindlin_energy_kept(pm, rstar, delta, fel);
+    return hertz_mindlin_energy_kept(pm, rstar, delta, fel, st);
 }
 DEM_INLINE void mc_stress_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real *kn, real *kt)
 {

@@ -14,6 +14,11 @@ int dem_set_effects(dem_sim *s, unsigned effects)
         return sim_fail(s, DEM_ERR_ARG, "effect mask 0x%x has bits of effects this version does not have", effects);
     if ((effects & DEM_EFFECT_MC_STRESS) && (effects & DEM_EFFECT_MC_STRAIN))
         return sim_fail(s, DEM_ERR_ARG, "mc_stress and mc_strain are two alternative normal laws: choose one");
+    if ((effects & DEM_EFFECT_THORNTON_NING) && (effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN)))
+        return sim_fail(s, DEM_ERR_ARG, "thornton_ning and the multi-contact laws are alternative normal laws: choose one");
+    if ((effects & DEM_EFFECT_THORNTON_NING) && (effects & DEM_EFFECT_PATCHES))
+        return sim_fail(s, DEM_ERR_ARG, "thornton_ning does not act at membrane patches yet (their contacts keep no "
+                                        "normal history): use hertz there");
     if (!(effects & DEM_EFFECT_HERTZ))
         return sim_fail(s, DEM_ERR_ARG, "the effect mask must contain DEM_EFFECT_HERTZ (the contact law itself)");
     s->effects = effects;
@@ -67,10 +72,11 @@ int dem_set_mc_strain_reach(dem_sim *s, double factor)
 
 void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc.stats; }
 
-/* by bit position; the convention bits (7..11, dem_effects.h) have no name */
+/* by bit position; the convention bits (7..11, dem_effects.h) and the host's bits (18..20) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
-                                                           "springs", "pressure", "bending", "patches", "riders", "constraints"};
+                                                           "springs", "pressure", "bending", "patches", "riders", "constraints",
+                                                           NULL, NULL, NULL, "thornton_ning"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

@@ -142,6 +142,8 @@ struct dem_sim {
     int nmat;
     dem_material mats[64];
     unsigned char mat_apart[64]; /* 1: a membrane's material, whose particles do not touch each other (PM_APART) */
+    dem_material_pair pair_props[64][64]; /* dem_set_material_pair's values, where pair_set says so; both orders */
+    unsigned char pair_set[64][64];
     int nwalls;
     dem_wall walls[DEM_MAX_WALLS];
     double gravity[3];

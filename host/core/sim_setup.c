@@ -374,7 +374,8 @@ static void pack_effects(dem_sim *s, dem_setup *u)
     int sampled = s->cfg.sample_every > 0 && s->cfg.sample_every <= DEM_SAMPLE_KEEP;
     if ((s->cfg.contacts || sampled || sim_has_servo(s)) && s->nwalls > 0 && (s->effects & DEM_EFFECT_WALLS))
         u->effects |= DEM_KEEP_WALL_FORCES;
-    if (sampled)
+    /* a law with memory keeps its pairs' energies, computed where the contact's state is at hand (series.h) */
+    if (sampled || (s->effects & DEM_LAW_STATE_BITS))
         u->effects |= DEM_KEEP_PAIR_ENERGY;
     u->n = s->n;
     u->nmat = s->nmat;
@@ -395,15 +396,18 @@ static void pack_bodies(const dem_sim *s, double *invm, double *invi, double *in
 /* The material-pair table (dem_layout.h PM_*), double; damp: scratch of nmat^2. */
 static void pack_pairs(const dem_sim *s, double *pm, double *damp)
 {
-    /* pair table: restitution and friction of a pair are the means of the two materials' values */
+    /* pair table: restitution and friction of a pair are the means of the two materials' values, unless the pair is
+     * set apart (dem_set_material_pair) */
     for (int a = 0; a < s->nmat; a++)
         for (int b = 0; b < s->nmat; b++) {
             const dem_material *ma = &s->mats[a], *mb = &s->mats[b];
             double *row = pm + PM_STRIDE * (a * s->nmat + b);
             row[PM_ESTAR] = estar(ma, mb);
             row[PM_GSTAR] = gstar(ma, mb);
-            row[PM_MU] = 0.5 * (ma->friction + mb->friction);
-            double e = 0.5 * (ma->restitution + mb->restitution);
+            /* a pair set apart (dem_set_material_pair) takes its own values where given */
+            const dem_material_pair *pp = s->pair_set[a][b] ? &s->pair_props[a][b] : NULL;
+            row[PM_MU] = pp && !isnan(pp->friction) ? pp->friction : 0.5 * (ma->friction + mb->friction);
+            double e = pp && !isnan(pp->restitution) ? pp->restitution : 0.5 * (ma->restitution + mb->restitution);
             double c = (a <= b) ? dem_damping_for_restitution(e) : damp[b * s->nmat + a];
             damp[a * s->nmat + b] = c;
             row[PM_DAMP_N] = c * sqrt(2 * row[PM_ESTAR]);
@@ -416,6 +420,14 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_MCS_C2] = 1 - 2 * ma->poisson;
             row[PM_MC_REACH] = s->mc.reach;
             row[PM_APART] = a == b && s->mat_apart[a];
+            /* Thornton-Ning: the pair yields at the smaller limiting pressure of its materials that yield */
+            double py = ma->yield_stress > 0 && (mb->yield_stress <= 0 || ma->yield_stress < mb->yield_stress)
+                            ? ma->yield_stress
+                            : mb->yield_stress;
+            double ky = M_PI * py / (2 * row[PM_ESTAR]);
+            row[PM_TN_PIPY] = M_PI * py;
+            row[PM_TN_DY] = ky * ky;
+            row[PM_TN_FY] = 4.0 / 3.0 * row[PM_ESTAR] * ky * ky * ky;
         }
 }
 

@@ -24,6 +24,7 @@ void dem_state_free(dem_state *st)
     for (int k = 0; k < st->narrays && k < DEM_STATE_MAX_ARRAYS; k++)
         free(st->arrays[k].data);
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->pair_mc_disp);
+    free(st->pair_law);
     free(st->pair_mc_fn);
     free(st->patch_i), free(st->patch_t), free(st->patch_hist), free(st->patch_side);
     memset(st, 0, sizeof *st);
@@ -82,6 +83,7 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
     pairs_permute(st->pair_mc_fn, rs, k, np, tmp);
     pairs_permute(st->pair_rec, PR_STRIDE * rs, k, np, tmp);
     pairs_permute(st->pair_mc_disp, 2 * rs, k, np, tmp);
+    pairs_permute(st->pair_law, rs, k, np, tmp);
     free(k), free(tmp);
     return 0;
 }
@@ -231,8 +233,9 @@ int dem_state_arrays(dem_state *st)
     dem_core c; /* the sizes of st's header: friction and MC-strain as it says; another gate (wall_pf's): full size */
     memset(&c, 0, sizeof c);
     c.n = st->n, c.nwalls = st->nwalls, c.rs = st->real_size;
-    unsigned known = DEM_EFFECT_FRICTION | DEM_EFFECT_MC_STRAIN;
-    unsigned fx = (st->has_hist ? DEM_EFFECT_FRICTION : 0u) | (st->has_mc ? DEM_EFFECT_MC_STRAIN : 0u);
+    unsigned known = DEM_EFFECT_FRICTION | DEM_EFFECT_MC_STRAIN | DEM_LAW_STATE_BITS;
+    unsigned fx = (st->has_hist ? DEM_EFFECT_FRICTION : 0u) | (st->has_mc ? DEM_EFFECT_MC_STRAIN : 0u) |
+                  (st->has_law ? DEM_LAW_STATE_BITS : 0u);
     st->narrays = 0;
     for (int id = 0; id < BUF__COUNT && st->narrays < DEM_STATE_MAX_ARRAYS; id++) {
         if (!sb[id].name)
@@ -332,6 +335,8 @@ static int pairs_get(dem_sim *s, dem_state *st)
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
     unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = get_stored(s, DEM_FIELD_MC_DISP, &b, &e);
+    int law = (s->setup.effects & DEM_LAW_STATE_BITS) != 0;
+    unsigned char *lst = sim_buffer_get(s, BUF_PAIR_LAW, &e);
     long np = 0;
     const int *sid = s->setup.sid;
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
@@ -350,7 +355,9 @@ static int pairs_get(dem_sim *s, dem_state *st)
         st->pair_mc_fn = calloc((size_t)(np ? np : 1), (size_t)rs);
         st->pair_rec = calloc((size_t)(np ? np : 1), PR_STRIDE * (size_t)rs);
         st->pair_mc_disp = calloc((size_t)(np ? np : 1), 2 * (size_t)rs);
-        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec || !st->pair_mc_disp)
+        st->pair_law = law ? calloc((size_t)(np ? np : 1), (size_t)rs) : NULL;
+        if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec || !st->pair_mc_disp ||
+            (law && !st->pair_law))
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
@@ -366,6 +373,8 @@ static int pairs_get(dem_sim *s, dem_state *st)
                 memcpy((char *)st->pair_hist + (size_t)np * 3 * rs, hist + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) /* MC-strain: the force the next step's induced displacements start from (kept per pair) */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
+            if (law) /* the law's state (laws/law.h), kept per pair like the history */
+                memcpy((char *)st->pair_law + (size_t)np * rs, lst + (size_t)pn * rs, (size_t)rs);
             if (fb) { /* the displacements at both ends in the last step: the network's extra (mc_strain.h) */
                 int m = find_slot(cnt, list, start, sid, j, i);
                 memcpy((char *)st->pair_mc_disp + (size_t)np * 2 * rs, mcd + (size_t)slot * rs, (size_t)rs);
@@ -380,7 +389,9 @@ static int pairs_get(dem_sim *s, dem_state *st)
     st->npairs = np;
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
+    st->has_law = law;
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(mcd);
+    free(lst);
     return e;
 }
 
@@ -442,6 +453,10 @@ static int state_check(dem_sim *s, const dem_state *st)
     if (!!st->has_mc != mce)
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
                         st->has_mc ? "has" : "has no", mce ? "has" : "has no");
+    int law = (fx & DEM_LAW_STATE_BITS) != 0;
+    if (!!st->has_law != law || (law && st->npairs > 0 && !st->pair_law))
+        return sim_fail(s, DEM_ERR_ARG, "the saved state %s contact law states but this run's law %s (thornton_ning "
+                        "keeps one per contact)", st->has_law ? "has" : "has no", law ? "keeps them" : "keeps none");
     if (st->step < 0 || st->npairs < 0 || st->narrays < 0 || st->narrays > DEM_STATE_MAX_ARRAYS)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld, %ld contacts and %d arrays (at most %d)",
                         st->step, st->npairs, st->narrays, DEM_STATE_MAX_ARRAYS);
@@ -473,8 +488,10 @@ static int pairs_set(dem_sim *s, const dem_state *st)
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     unsigned char *rec = calloc(rb + 1, 1); /* the records too: the restore runs no force pass that would write them */
     unsigned char *disp = calloc(db + 1, 1); /* and MC-strain's displacements */
+    size_t lb = DEM_CORE(s->be)->bytes[BUF_PAIR_LAW];
+    unsigned char *lst = calloc(lb + 1, 1); /* and the law's states */
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
-    if (!e && (!touch || !hist || !mcf || !rec || !disp || !own))
+    if (!e && (!touch || !hist || !mcf || !rec || !disp || !lst || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
@@ -490,6 +507,8 @@ static int pairs_set(dem_sim *s, const dem_state *st)
             memcpy(hist + pn * 3 * rs, (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) /* kept per pair, like the history (mc_strain.h) */
             memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
+        if (lb && (pn + 1) * rs <= lb) /* so is the law's state (state_check: there when the law keeps one) */
+            memcpy(lst + pn * rs, (const char *)st->pair_law + (size_t)p * rs, (size_t)rs);
         if (fb && st->pair_mc_disp && ((size_t)a + 1) * rs <= db && ((size_t)m + 1) * rs <= db) {
             memcpy(disp + (size_t)a * rs, (const char *)st->pair_mc_disp + (size_t)p * 2 * rs, (size_t)rs);
             memcpy(disp + (size_t)m * rs, (const char *)st->pair_mc_disp + ((size_t)p * 2 + 1) * rs, (size_t)rs);
@@ -504,9 +523,11 @@ static int pairs_set(dem_sim *s, const dem_state *st)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_HIST, hist, hb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
-               (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db))))
+               (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db)) ||
+               (lb && s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_PAIR_LAW}, 0, lst, lb, 1))))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(disp);
+    free(lst);
     return e;
 }
 

@@ -8,6 +8,7 @@
 #include "sim.h"
 #include "dem_layout.h"
 #include "ref_kernels.h" /* the reference's patch overlaps and final wall sum */
+#include "sorted_row.h"  /* row_pair_of: a pair's number from its row slot */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,14 +39,14 @@ static double patch_contact_energy(unsigned fx, const double *row, double r, dou
 {
     double db = 0.8 * r;
     if (!(d > db))
-        return law_energy(fx, row, r, d);
+        return law_energy(fx, row, r, d, 0);
     const int m = 256;
     double sum = 0, step = (d - db) / m;
     for (int k = 0; k <= m; k++) {
         double law = dem_patch_law_f64(db + k * step, r);
         sum += law_elastic(fx, row, r, law) * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
     }
-    return law_energy(fx, row, r, db) + sum * step / 3;
+    return law_energy(fx, row, r, db, 0) + sum * step / 3;
 }
 
 /* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
@@ -187,6 +188,10 @@ int dem_sample_get(dem_sim *s, dem_sample *out)
 typedef struct {
     double *x, *v, *w;
     int *cnt, *start, *list;
+    /* a law with memory (laws/law.h): the pairs' states by pair number (neighbor.h), where each particle's hosted
+     * pairs start in that numbering, and the particle-wall slots' states; NULL otherwise */
+    double *pair_st, *wall_st;
+    int *own;
 } host_state;
 
 /* reads hs (and the walls' forces where asked) in one device synchronisation, into one scratch block kept in the
@@ -227,6 +232,31 @@ static int read_state(dem_sim *s, host_state *hs, double *wall_force, double *wa
     return 0;
 }
 
+/* The law states of a law with memory into hs (laws/law.h: PAIR_LAW, WALL_LAW), widened; the pairs' only where the
+ * pair touched in the last step (a stale state of a pair that parted is not read by the law either) */
+static int read_law_states(dem_sim *s, host_state *hs)
+{
+    int e = 0, rs = s->setup.real_size;
+    dem_core *c = DEM_CORE(s->be);
+    size_t np = c->bytes[BUF_PAIR_LAW] / (size_t)rs, nw = c->bytes[BUF_WALL_LAW] / (size_t)rs;
+    unsigned char *ps = sim_buffer_get(s, BUF_PAIR_LAW, &e), *ws = sim_buffer_get(s, BUF_WALL_LAW, &e);
+    unsigned char *touch = sim_buffer_get(s, BUF_TOUCH, &e);
+    unsigned *mask = sim_buffer_get(s, BUF_WALL_MASK, &e);
+    hs->pair_st = calloc(np + 1, sizeof(double));
+    hs->wall_st = calloc(nw + 1, sizeof(double));
+    hs->own = e ? NULL : sim_own_starts(hs->cnt, hs->list, hs->start, s->n);
+    if (!e && (!hs->pair_st || !hs->wall_st || !hs->own))
+        e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (size_t p = 0; !e && p < np; p++)
+        if (touch[p])
+            sim_widen(ps + p * rs, hs->pair_st + p, 1, rs);
+    for (size_t q = 0; !e && s->nwalls && q < nw; q++)
+        if ((mask[q / (size_t)s->nwalls] >> (q % (size_t)s->nwalls)) & 1u)
+            sim_widen(ws + q * rs, hs->wall_st + q, 1, rs);
+    free(ps), free(ws), free(touch), free(mask);
+    return e;
+}
+
 /* adds particle i's kinetic energy (translation, then rotation) and its potential energy in gravity to en */
 static void add_motion_energy(const dem_sim *s, const host_state *hs, int i, dem_energy_t *en)
 {
@@ -251,6 +281,7 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
     const double *x = hs->x;
     const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */
     double r = s->radius[i];
+    unsigned fx = s->setup.effects;
     for (int k = 0; k < hs->cnt[i]; k++) {
         int j = hs->list[hs->start[i] + k];
         if (sid[j] < sid[i])
@@ -260,7 +291,12 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         if (delta > 0) {
             double rs = r * s->radius[j] / (r + s->radius[j]), row[PM_STRIDE];
             pair_row(s, s->mat[i], s->mat[j], row);
-            en->elastic += law_energy(s->setup.effects, row, rs, delta);
+            double st = 0;
+            if (hs->pair_st) {
+                int p = row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k);
+                st = p >= 0 ? hs->pair_st[p] : 0;
+            }
+            en->elastic += law_energy(fx, row, rs, delta, st);
             en->contacts++;
         }
     }
@@ -272,7 +308,7 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         if (delta > 0) {
             double row[PM_STRIDE];
             pair_row(s, s->mat[i], wl->material, row);
-            en->elastic += law_energy(s->setup.effects, row, r, delta);
+            en->elastic += law_energy(fx, row, r, delta, hs->wall_st ? hs->wall_st[(size_t)i * s->nwalls + k] : 0);
             en->wall_contacts++;
         }
     }
@@ -300,6 +336,8 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     host_state hs = {0}; /* set by read_state where it succeeds */
     int e = read_state(s, &hs, wall_force, wall_normal);
+    if (!e && (s->setup.effects & DEM_LAW_STATE_BITS))
+        e = read_law_states(s, &hs);
     for (int q = 0; !e && q < s->n; q++) { /* ascending stable id: the same sums in any storage order */
         int i = s->setup.order[q];
         add_motion_energy(s, &hs, i, en);
@@ -310,5 +348,6 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
     if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
         e = patch_energy(s, hs.x, en);
     en->total = en->kinetic + en->elastic + en->potential;
+    free(hs.pair_st), free(hs.wall_st), free(hs.own);
     return e;
 }

@@ -54,6 +54,12 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
     if (c->bytes[BUF_PAIR_HIST] > c->bytes[BUF_PAIR] || c->bytes[BUF_PAIR_MC_FN] > c->bytes[BUF_MC_DISP])
         return dem_core_fail(c, "the pairs' copies do not fit where they are kept for a rebuild (a library bug; please "
                                 "report)");
+    /* a law's states (laws/law.h) have a copy buffer of their own (8 or 4 bytes per pair, in runs of such a law) */
+    dem_bufref law = {TABLE_ONE, BUF_PAIR_LAW}, old_law = {TABLE_ONE, BUF_PAIR_LAW_OLD};
+    if ((c->bytes[BUF_PAIR_LAW_OLD] != c->bytes[BUF_PAIR_LAW] &&
+         o->alloc(b, TABLE_ONE, 0, BUF_PAIR_LAW_OLD, c->bytes[BUF_PAIR_LAW], NULL)) ||
+        (c->bytes[BUF_PAIR_LAW] && o->copy(b, law, old_law, c->bytes[BUF_PAIR_LAW])))
+        return 1;
     if ((c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
          o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)) ||
         (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
@@ -84,7 +90,8 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
          * energies (written before they are read in that step); the records after pair_index has read the history's
          * copy from them, the flags' copy at the next commit (above) */
         static const int grown[] = {BUF_PAIR_HOST,   BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR,
-                                    BUF_TOUCH,       BUF_PAIR_HIST,  BUF_PAIR_ELA,  BUF_PAIR_MC_FN};
+                                    BUF_TOUCH,       BUF_PAIR_HIST,  BUF_PAIR_ELA,  BUF_PAIR_MC_FN,
+                                    BUF_PAIR_LAW};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;
