@@ -258,6 +258,19 @@ static void restart_case(const char *sc, const char *precision, int mc)
     for (long k = 0; k < 3 * np * rs; k++)
         nonzero |= ha[k];
     assert_true(nonzero);
+    if (mc == 2) { /* a law with memory (Thornton-Ning): each contact's largest overlap, and the walls' */
+        read_state(a, "pair_law", ha, (size_t)np, rt);
+        read_state(b, "pair_law", hb, (size_t)np, rt);
+        assert_memory_equal(ha, hb, (size_t)np * rs);
+        nonzero = 0;
+        for (long k = 0; k < np * rs; k++)
+            nonzero |= ha[k];
+        assert_true(nonzero);
+        read_state(a, "wall_law", wa, 7, rt); /* the first particle's slots of its walls */
+        read_state(b, "wall_law", wb, 7, rt);
+        assert_memory_equal(wa, wb, 7 * (size_t)rs);
+        return;
+    }
     if (mc) { /* MC-strain: the stored contact forces the next step starts from */
         read_state(a, "pair_mc_fn", ha, (size_t)np, rt);
         read_state(b, "pair_mc_fn", hb, (size_t)np, rt);
@@ -283,6 +296,14 @@ static void test_restart_bitwise(void **st)
                         "duration: 0.03, until_distance: 0.002}, {velocity: [0, 0, 0.3], duration: 0.03}/' "
                         "%s/tests/scenes/restart_box.yaml > %s", SRC, until), 0);
     restart_case(until, "fp64", 0);
+    /* the same box of plastic grains (thornton_ning): the law's states travel in the checkpoint */
+    char plastic[300];
+    snprintf(plastic, sizeof plastic, "%s/plastic.yaml", tmp);
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, thornton_ning]/' -e 's/friction: 0.4}/friction: 0.4, "
+                        "yield_stress: 2.0e5}/' %s/tests/scenes/restart_box.yaml > %s && grep -q thornton_ning %s && "
+                        "grep -q yield_stress %s", SRC, plastic, plastic, plastic), 0);
+    restart_case(plastic, "fp64", 2);
+    restart_case(plastic, "fp32", 2);
 }
 
 /* A membrane scene (tests/scenes/membrane_tube.yaml: a patch tube between platens, beads inside, a pressure ramp):
