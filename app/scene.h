@@ -85,6 +85,8 @@ typedef struct {
     double until_stress;          /* this stress [Pa] x area, and/or */
     double until_distance;        /* once it has moved this far [m] */
     double until_density;         /* once the relative density in the die reached this (dem_stage.until_density) */
+    double ramp;                  /* [s]: the velocity ramps from the previous stage's (dem_stage.ramp) */
+    char *after;                  /* the stage waits until this wall has run all its stages (dem_stage.after_wall) */
 } scene_stage;
 
 typedef struct {

@@ -404,7 +404,32 @@ static int until_stage(const scene *sc, const char *base, const scene_stage *g, 
     return 0;
 }
 
-static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, int *nst, char *err, size_t errlen)
+/* A stage's `after`: the wall it names (after_wall, its id in the library) and that wall's number of stages
+ * (after_stage: the stage waits until the other has run them all). first_wall, nst_of: NULL in the first pass (the
+ * walls not all added yet: no wait), the walls' ids and stage counts in the second. */
+static int stage_after(const scene *sc, const char *base, const scene_stage *g, int k, const int *first_wall,
+                       const int *nst_of, dem_stage *st, char *err, size_t errlen)
+{
+    if (!g->after || !first_wall)
+        return 0;
+    const scene_file *f = sc->f;
+    char p[160];
+    snprintf(p, sizeof p, "%s.after", base);
+    for (unsigned q = 0; q < f->walls_count; q++)
+        if (f->walls[q].name && !strcmp(f->walls[q].name, g->after)) {
+            if ((int)q == k)
+                return scene_fail(sc, err, errlen, p, "a wall's stage cannot wait for its own wall");
+            if (!nst_of[q])
+                return scene_fail(sc, err, errlen, p, "wall '%s' has no motion to wait for", g->after);
+            st->after_wall = first_wall[q];
+            st->after_stage = nst_of[q];
+            return 0;
+        }
+    return scene_fail(sc, err, errlen, p, "no wall is named '%s'", g->after);
+}
+
+static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, int *nst, const int *first_wall,
+                        const int *nst_of, char *err, size_t errlen)
 {
     const scene_wall *w = &sc->f->walls[k];
     int n = 0;
@@ -449,15 +474,31 @@ static int parse_motion(const scene *sc, int k, double settle, dem_stage *st, in
             if (!(speed > 0))
                 return scene_fail(sc, err, errlen, base, "a stage given by distance or strain needs a non-zero velocity");
             dur = dist / speed;
+            /* with a ramp the wall covers ramp (v_prev + v) / 2 in it (dem_stage.ramp): the duration holds the distance
+             * along v (v_prev the previous stage's velocity as the library takes it: 0 after a servo stage) */
+            if (g->ramp > 0) {
+                const dem_stage *pv = n > 0 && !(st[n - 1].force > 0) ? &st[n - 1] : NULL;
+                double along = 0;
+                for (int d = 0; pv && d < 3; d++)
+                    along += pv->velocity[d] * g->velocity[d] / speed;
+                dur = (dist - g->ramp * (along + speed) / 2) / speed + g->ramp;
+            }
         }
+        snprintf(p, sizeof p, "%s.ramp", base);
+        if (scene_has(sc->loc, p) && !(g->ramp >= 0 && g->ramp <= dur && isfinite(g->ramp)))
+            return scene_fail(sc, err, errlen, p, "a ramp is >= 0 s and at most the stage's duration (%g s)", dur);
         if (n >= DEM_MAX_STAGES)
             return scene_fail(sc, err, errlen, base, "at most %d motion stages", DEM_MAX_STAGES - 1);
         memset(&st[n], 0, sizeof st[n]);
         st[n].duration = dur;
         for (int d = 0; d < 3; d++)
             st[n].velocity[d] = has_v ? g->velocity[d] : 0;
-        if (servo_stage(sc, base, g, has_v, has_d, &st[n], err, errlen) || until_stage(sc, base, g, &st[n], err, errlen))
+        st[n].ramp = g->ramp;
+        if (servo_stage(sc, base, g, has_v, has_d, &st[n], err, errlen) || until_stage(sc, base, g, &st[n], err, errlen) ||
+            stage_after(sc, base, g, k, first_wall, nst_of, &st[n], err, errlen))
             return 1;
+        if (g->ramp > 0 && st[n].force > 0)
+            return scene_fail(sc, err, errlen, p, "a servo stage has no ramp");
         n++;
     }
     /* repeat: N plays the list N times (load-unload cycles), each stage rounded to steps on its own as if written
@@ -488,6 +529,7 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
     int rigid_of[64]; /* the rigid copy of each scene material, made when a rigid wall first needs it */
     for (int k = 0; k < 64; k++)
         rigid_of[k] = -1;
+    int nst_of[DEM_MAX_WALLS] = {0}; /* each scene wall's number of stages (a stage's `after`) */
     for (unsigned k = 0; k < f->walls_count; k++) {
         const scene_wall *w = &f->walls[k];
         char base[64], p[128];
@@ -510,8 +552,9 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
         }
         dem_stage st[DEM_MAX_STAGES];
         int nst = 0;
-        if (parse_motion(sc, (int)k, f->time.settle, st, &nst, err, errlen))
+        if (parse_motion(sc, (int)k, f->time.settle, st, &nst, NULL, NULL, err, errlen))
             return 1;
+        nst_of[k] = nst;
         const char *need[4] = {0};
         dem_wall dw;
         memset(&dw, 0, sizeof dw);
@@ -591,6 +634,24 @@ static int parse_walls(const scene *sc, dem_sim *s, const scene_run *run, int *f
         if (id < 0)
             return scene_fail(sc, err, errlen, base, "%s", dem_error(s));
         first_wall[k] = id;
+    }
+    /* the stages that wait for another wall (`after`), now that every wall has its id */
+    for (unsigned k = 0; k < f->walls_count; k++) {
+        int waits = 0;
+        for (unsigned j = 0; j < f->walls[k].motion_count; j++)
+            waits |= f->walls[k].motion[j].after != NULL;
+        if (!waits)
+            continue;
+        dem_stage st[DEM_MAX_STAGES];
+        int nst = 0, box = !strcmp(f->walls[k].type, "box");
+        if (parse_motion(sc, (int)k, f->time.settle, st, &nst, first_wall, nst_of, err, errlen))
+            return 1;
+        for (int q = 0; q < (box ? 6 : 1); q++)
+            if (dem_set_wall_motion(s, first_wall[k] + q, nst, st)) {
+                char p[64];
+                snprintf(p, sizeof p, "walls[%u].motion", k);
+                return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
+            }
     }
     return 0;
 }

@@ -101,6 +101,7 @@ static const cyaml_schema_field_t stage_fields[] = {
     REAL("gain", scene_stage, gain), REAL("max_speed", scene_stage, max_speed),
     REAL("until_force", scene_stage, until_force), REAL("until_stress", scene_stage, until_stress),
     REAL("until_distance", scene_stage, until_distance), REAL("until_density", scene_stage, until_density),
+    REAL("ramp", scene_stage, ramp), NAME("after", scene_stage, after),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t stage_entry = {CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_stage, stage_fields)};
 

@@ -113,6 +113,16 @@ typedef struct {
     double until_force;
     double until_distance;
     double until_density;
+    /* A velocity ramp (0: none, the velocity steps at once): over its first `ramp` seconds the stage's velocity goes
+     * linearly from the previous stage's (0 after a servo stage or for the first one) to its own, step by step at
+     * each step's midpoint, so the ramp moves the wall by ramp (v_prev + v) / 2. At most the stage's duration; not
+     * with a servo stage. */
+    double ramp;        /* [s] */
+    /* A stage that waits for another wall: it begins (its duration counts) only once wall after_wall has begun its
+     * stage after_stage (its nstages: has run them all), and the wall rests while it waits. Both 0 (wall 0's first
+     * stage): no wait. */
+    int after_wall;
+    int after_stage;
 } dem_stage;
 
 typedef enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 } dem_wall_kind;

@@ -240,6 +240,75 @@ static void test_stage_ends(void **st)
     dem_destroy(s);
 }
 
+/* A velocity ramp and a stage that waits for another wall (dem_stage.ramp, after_wall): wall A comes down at 1 m/s for
+ * 1 ms, its velocity ramping up from rest over the first 0.4 ms (0.8 mm in all: 0.4 ms x 0.5 m/s + 0.6 ms x 1 m/s);
+ * wall B's one stage (up at 1 m/s for 0.5 ms) waits until A has run its stage: it rests 1000 steps, then rises
+ * 0.5 mm. A sphere far from both keeps the run alive. Positions against those numbers; a restart during the wait and
+ * one after it bit for bit. */
+static dem_sim *build_ramp_after(void *ctx)
+{
+    (void)ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    dem_add_particle(s, (double[3]){0, 0, 0.005}, NULL, 0.001, m);
+    dem_wall a = {DEM_WALL_PLANE, m, {0, 0, 0.01}, {0, 0, -1}, 0, 1, {{0}}};
+    a.stages[0] = (dem_stage){.duration = 1e-3, .velocity = {0, 0, -1}, .ramp = 0.4e-3};
+    dem_wall b = {DEM_WALL_PLANE, m, {0, 0, 0}, {0, 0, 1}, 0, 1, {{0}}};
+    b.stages[0] = (dem_stage){.duration = 0.5e-3, .velocity = {0, 0, 1}, .after_wall = 0, .after_stage = 1};
+    assert_true(dem_add_wall(s, &a) == 0 && dem_add_wall(s, &b) == 1);
+    dem_set_domain(s, (double[3]){-0.005, -0.005, -0.001}, (double[3]){0.005, 0.005, 0.011});
+    dem_set_dt(s, 1e-6);
+    return s;
+}
+
+static void check_ramp_after(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    (void)ctx;
+    double pa[3], pb[3];
+    step_or_fail(s, 200); /* mid-ramp: sum over j < 200 of (j + 0.5) / 400 um = 200^2 / 800 um = 50 um */
+    dem_wall_position(s, 0, pa);
+    dem_wall_position(s, 1, pb);
+    assert_true(fabs(pa[2] - (0.01 - 50e-6)) < 1e-12 && pb[2] == 0);
+    step_or_fail(s, 799); /* A's last step still to come, B waiting */
+    dem_wall_position(s, 1, pb);
+    assert_true(pb[2] == 0);
+    step_or_fail(s, 1);
+    dem_wall_position(s, 0, pa);
+    assert_true(fabs(pa[2] - (0.01 - 0.8e-3)) < 1e-12);
+    step_or_fail(s, 600);
+    dem_wall_position(s, 0, pa);
+    dem_wall_position(s, 1, pb);
+    printf("  %s: A at %.12f m after its stage (0.0092), B at %.12f m after its wait and stage (0.0005)\n", bc->name,
+           pa[2], pb[2]);
+    assert_true(fabs(pa[2] - (0.01 - 0.8e-3)) < 1e-12); /* A rests after its stage */
+    assert_true(fabs(pb[2] - 0.5e-3) < 1e-12);
+}
+
+static void test_stage_ramp_after(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc)
+    if (bc->precision == DEM_FP64)
+        backend_run(bc, build_ramp_after, 0, check_ramp_after, NULL);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    for (int k = 0; k < 2; k++) { /* restarts in A's ramp (B waiting) and in B's stage */
+        dem_sim *a = build_ramp_after(NULL), *b = build_ramp_after(NULL);
+        restart_check(a, b, &c, k ? 1200 : 300, 400, "ramp and wait");
+        dem_destroy(a);
+        dem_destroy(b);
+    }
+    dem_sim *s = build_ramp_after(NULL); /* a ramp longer than its stage; a stage waiting for its own wall */
+    dem_stage bad = {.duration = 1e-3, .velocity = {0, 0, 1}, .ramp = 2e-3};
+    assert_int_equal(dem_set_wall_motion(s, 0, 1, &bad), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "ramp"));
+    dem_stage self = {.duration = 1e-3, .after_wall = 1, .after_stage = 1};
+    assert_int_equal(dem_set_wall_motion(s, 1, 1, &self), 0);
+    dem_config rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    assert_int_equal(dem_start(s, &rc), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "other wall"));
+    dem_destroy(s);
+}
+
 /* A stage that ends at a relative density (dem_stage.until_density): five spheres (r 1 mm) on the floor of a die
  * (R 3 mm), the punch coming down from 10 mm at 1 m/s until their volume fills 20 % of the bore below it; it must stop
  * after the first step at which the density it sees reached 0.2 (computed here from the positions), before touching
@@ -605,7 +674,7 @@ static void test_cup_forces(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
-                                       cmocka_unit_test(test_stage_ends_density),
+                                       cmocka_unit_test(test_stage_ends_density), cmocka_unit_test(test_stage_ramp_after),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die),
                                        cmocka_unit_test(test_cup_geometry), cmocka_unit_test(test_cup_forces)};
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -188,6 +188,14 @@ int sim_validate(dem_sim *s)
         return sim_fail(s, DEM_ERR_ARG, "no particles");
     if (!(s->dt > 0) || !isfinite(s->dt))
         return sim_fail(s, DEM_ERR_ARG, "time step not set (dem_set_dt)");
+    for (int k = 0; k < s->nwalls; k++) /* a stage waits for a wall and a stage that exist (dem_stage.after_wall) */
+        for (int st = 0; st < s->walls[k].nstages; st++) {
+            const dem_stage *g = &s->walls[k].stages[st];
+            if ((g->after_wall || g->after_stage) &&
+                (g->after_wall >= s->nwalls || g->after_wall == k || g->after_stage > s->walls[g->after_wall].nstages))
+                return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d waits for wall %d's stage %d: no such %s", k, st,
+                                g->after_wall, g->after_stage, g->after_wall == k ? "other wall" : "wall or stage");
+        }
     s->rmin = INFINITY;
     s->rmax = 0;
     for (int i = 0; i < s->n; i++) {
@@ -311,14 +319,34 @@ void sim_stages_from_step(dem_sim *s)
     }
 }
 
+/* Whether wall k's stage st waits for another wall (dem_stage.after_wall) at this step: the wall rests */
+static int stage_waits(const dem_sim *s, int k, int st)
+{
+    const dem_stage *g = &s->walls[k].stages[st];
+    return s->motion.stage_cur[g->after_wall] < g->after_stage;
+}
+
 void sim_wall_velocity(const dem_sim *s, int k, double v[3])
 {
     long first;
     int st = sim_stage_now(s, k, &first);
     v[0] = v[1] = v[2] = 0;
-    if (st >= 0) /* a servo stage: the velocity dem_step worked out (walls.c) */
-        memcpy(v, s->walls[k].stages[st].force > 0 ? s->motion.servo_v[k] : s->walls[k].stages[st].velocity,
-               sizeof(double) * 3);
+    if (st < 0 || stage_waits(s, k, st))
+        return;
+    const dem_stage *g = &s->walls[k].stages[st];
+    /* a servo stage: the velocity dem_step worked out (walls.c) */
+    memcpy(v, g->force > 0 ? s->motion.servo_v[k] : g->velocity, sizeof(double) * 3);
+    long ran = s->run.step - first, nr = lround(g->ramp / s->dt);
+    if (g->force > 0 || ran >= nr) /* nr = 0: no ramp */
+        return;
+    /* the ramp: from the previous stage's velocity (0 after a servo stage or for the first) to this one's, at the
+     * midpoint of each step */
+    const dem_stage *prev = st > 0 ? &s->walls[k].stages[st - 1] : NULL;
+    double f = ((double)ran + 0.5) / (double)nr;
+    for (int d = 0; d < 3; d++) {
+        double v0 = prev && !(prev->force > 0) ? prev->velocity[d] : 0;
+        v[d] = v0 + (v[d] - v0) * f;
+    }
 }
 
 void sim_pack_walls(dem_sim *s)

@@ -32,6 +32,13 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
                             wall, st, g->until_density);
         if (g->until_density > 0 && kind != DEM_WALL_PLANE)
             return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: until_density needs a plane wall (a punch)", wall, st);
+        if (!(g->ramp >= 0) || !(g->ramp <= g->duration) || (g->ramp > 0 && g->force > 0))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: a ramp is >= 0 s, at most the stage's duration (%g s), "
+                            "and not on a servo stage (got %g s)", wall, st, g->duration, g->ramp);
+        if (g->after_wall < 0 || g->after_wall >= DEM_MAX_WALLS || g->after_stage < 0 ||
+            g->after_stage > DEM_MAX_STAGES)
+            return sim_fail(s, DEM_ERR_ARG, "wall %d stage %d: it waits for wall %d's stage %d, which cannot exist",
+                            wall, st, g->after_wall, g->after_stage);
     }
     return 0;
 }
@@ -241,10 +248,19 @@ static int wall_normal_before(dem_sim *s, wall_read *wr, int k, double *fn)
 
 static int stages_advance(dem_sim *s, wall_read *wr)
 {
+    /* the stages as the last step left them: a stage that waits for another wall (dem_stage.after_wall) sees the same
+     * stage of that wall whatever the walls' order */
+    int cur[DEM_MAX_WALLS];
+    memcpy(cur, s->motion.stage_cur, sizeof(int) * (size_t)s->nwalls);
     for (int k = 0; k < s->nwalls; k++) {
         const dem_wall *w = &s->walls[k];
         while (s->motion.stage_cur[k] < w->nstages) {
             const dem_stage *g = &w->stages[s->motion.stage_cur[k]];
+            if (cur[g->after_wall] < g->after_stage) { /* it waits, at rest, and begins when the other wall is there */
+                s->motion.stage_first[k] = s->run.step;
+                memcpy(s->motion.stage_from[k], s->motion.pos[k], sizeof(double) * 3);
+                break;
+            }
             long ran = s->run.step - s->motion.stage_first[k];
             int done = ran >= s->motion.stage_steps[k][s->motion.stage_cur[k]];
             if (!done && ran > 0 && g->until_distance > 0) {
