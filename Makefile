@@ -339,6 +339,11 @@ PUBLIC_HEADERS := include/dem.h include/dem_effects.h include/dem_membrane.h inc
 # it may have its own sim_fail or ref_bin). The programs built in this tree link $(LIB), compiled as before.
 ifeq ($(PIC),1)
 CFLAGS += -fPIC -fvisibility=hidden
+# The shared library of this tree for the Python package (python/libdem/sim.py drives it through ctypes): the same
+# PIC objects as the installed one, but with this tree's kernel sources as its default source folder (the objects'
+# sim_setup.o, not install/'s), so that it runs from the tree; built by `make python-lib` into build/pic/libdem.so.
+$(BUILD)/libdem.so: $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
+	$(Q)$(call msg,CC,$@)$(CC) -shared -Wl,--no-undefined $^ $(LDLIBS) -o $@
 endif
 INSTALL_OBJ = $(filter-out $(BUILD)/host/core/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ)
 $(BUILD)/install/sim_setup.o: host/core/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)
@@ -354,6 +359,15 @@ $(BUILD)/install/libdem.a: $(INSTALL_OBJ) FORCE
 INSTALL_LIBS := $(BUILD)/pic/install/libdem.so.$(VERSION) $(BUILD)/pic/install/libdem.a
 install-libs:
 	+$(MAKE) --no-print-directory BUILD=$(BUILD)/pic PIC=1 DEPS_STAMP=$(DEPS_STAMP) PREFIX=$(PREFIX) $(INSTALL_LIBS)
+python-lib:
+	+$(MAKE) --no-print-directory BUILD=$(BUILD)/pic PIC=1 DEPS_STAMP=$(DEPS_STAMP) $(BUILD)/pic/libdem.so
+# The Python package (python/libdem) is copied into PYSITE, Debian's folder for PREFIX's own modules (on sys.path for
+# /usr/local), with a link to the installed shared library beside it (the package looks there first). Copied, not
+# `pip install`ed: the package is pure Python with no entry points, Debian's python3 has no pip by default and
+# refuses pip into the system (PEP 668), and a copy stages under DESTDIR like every other file;
+# `pip install ./python` does the same for a user who wants pip's record of it.
+PYTHON := /usr/bin/python3
+PYSITE = $(PREFIX)/lib/python$(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')/dist-packages
 install: install-libs
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(DATADIR)/kernels \
 	  $(DESTDIR)$(DATADIR)/common/laws $(DESTDIR)$(DATADIR)/include
@@ -367,14 +381,17 @@ install: install-libs
 	install -m 644 common/laws/*.h $(DESTDIR)$(DATADIR)/common/laws/
 	install -m 644 include/dem_effects.h $(DESTDIR)$(DATADIR)/include/
 	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|$(VERSION)|' scripts/libdem.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem.pc
-.PHONY: install install-libs FORCE
+	install -d $(DESTDIR)$(PYSITE)/libdem
+	install -m 644 python/libdem/*.py $(DESTDIR)$(PYSITE)/libdem/
+	ln -sf $(PREFIX)/lib/$(SONAME) $(DESTDIR)$(PYSITE)/libdem/libdem.so
+.PHONY: install install-libs python-lib FORCE
 FORCE:
 
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo
 
-test: $(TEST_BIN)
-	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh
+test: $(TEST_BIN) python-lib
+	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh tests/test_python.py
 
 bench: $(BUILD)/dem-bench $(BUILD)/dem
 	bash bench/peer/run.sh --bed

@@ -11,7 +11,7 @@ PKGS=(
   libhdf5-dev hdf5-tools                                      # HDF5 output
   libcmocka-dev                                               # test framework
   libcyaml-dev libyaml-dev                                    # scene files (YAML -> C structs)
-  python3-h5py python3-matplotlib                             # tools/plot_series.py, tests/xdmf_check.py
+  python3-h5py python3-numpy python3-matplotlib               # python/libdem (ctypes: no cffi), tools/*.py, tests/*.py
 )
 # Only for the targets that need them: clang's libFuzzer and sanitizers (make fuzz), ParaView (about 440 MB,
 # make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it), LIGGGHTS and Open MPI

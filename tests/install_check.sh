@@ -8,6 +8,7 @@
 #    libdem.so.MAJOR (the soname), the second no libdem.so at all;
 #  - each library must define, as global symbols, exactly the functions the installed headers declare (the shared
 #    one as its dynamic symbols, nm -D); dem_debug.h and the internal bits' header must not be installed.
+#  - the Python package (python/libdem), copied beside them, loads the installed libdem.so and steps a run.
 # Also checks that DESTDIR stages every file under it. Run by `make test`.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -80,6 +81,22 @@ for v in shared static; do
 done
 cmp -s "$T/cpp_shared.log" "$T/cpp_static.log" || { cat "$T"/cpp_*.log; fail "the two C++ builds printed differently"; }
 
+# the Python package: copied into PREFIX's dist-packages with a link to the installed libdem.so, which libdem.sim
+# loads (run from another folder, the tree out of sight)
+pysite=$(echo "$P"/lib/python3*/dist-packages)
+[ -f "$pysite/libdem/__init__.py" ] && [ -f "$pysite/libdem/sim.py" ] || fail "the install lacks the Python package"
+[ "$(readlink "$pysite/libdem/libdem.so")" = "$P/lib/$SONAME" ] || fail "the Python package's libdem.so is no link to $SONAME"
+(cd "$T/elsewhere" && env -u DEM_SOURCE_DIR -u LIBDEM_PATH PYTHONPATH="$pysite" /usr/bin/python3 -c "
+import libdem, libdem.sim as m
+assert libdem.__file__.startswith('$pysite/'), libdem.__file__
+assert m.library_path() == '$pysite/libdem/libdem.so', m.library_path()
+with m.Sim() as s:
+    g = s.add_material(density=1000, young=1e7, poisson=0.3, restitution=0.5, friction=0.3)
+    s.add_particles([[0, 0, 0]], radius=0.001, material=g, v=[[0, 0, 0.1]])
+    s.set_domain([-0.01] * 3, [0.01] * 3); s.set_dt(1e-6); s.start(backend='reference'); s.step(10)
+    assert abs(s.get('x')[0, 2] - 1e-6) < 1e-18, s.get('x')
+" > "$T/py.log" 2>&1) || { cat "$T/py.log"; fail "the installed Python package does not run the installed library"; }
+
 # DESTDIR: everything under the staging root, nothing elsewhere
 make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
 for f in lib/libdem.a "lib/libdem.so.$VERSION" "lib/$SONAME" lib/libdem.so lib/pkgconfig/libdem.pc include/dem.h \
@@ -87,6 +104,9 @@ for f in lib/libdem.a "lib/libdem.so.$VERSION" "lib/$SONAME" lib/libdem.so lib/p
          share/libdem/common/dem_kernels.h share/libdem/common/laws/laws.h share/libdem/common/dem_internal_bits.h share/libdem/include/dem_effects.h; do
     [ -e "$T/stage/opt/libdem-check/$f" ] || fail "DESTDIR install lacks $f"
 done
+stsite=$(echo "$T"/stage/opt/libdem-check/lib/python3*/dist-packages)
+[ -f "$stsite/libdem/output.py" ] || fail "DESTDIR install lacks the Python package"
+[ "$(readlink "$stsite/libdem/libdem.so")" = "/opt/libdem-check/lib/$SONAME" ] || fail "the staged package's libdem.so link is not the final path"
 [ ! -e /opt/libdem-check ] || fail "DESTDIR install wrote outside the staging root"
 grep -q '^prefix=/opt/libdem-check$' "$T/stage/opt/libdem-check/lib/pkgconfig/libdem.pc"
 echo "install_check: the README example (C, shared) and a C++ program (shared and static) build with pkg-config and"

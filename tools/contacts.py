@@ -7,17 +7,21 @@ Reads the contact network of one frame (the scene's output lists the field `cont
 takes |normal force| of every touching particle pair, and draws the probability density of f/<f> on a log scale
 with the exponential fitted to the strong forces (f > <f>: P ~ exp(-b f/<f>), the classic tail of granular force
 networks; Radjai et al., PRL 77, 274, 1996, find b of about 1.4 in 2D). Prints the frame, the pair count, <f>, the
-share of forces above the mean and b. Uses Debian's python3-h5py, numpy and matplotlib; run with /usr/bin/python3.
+share of forces above the mean and b. Reads the run with the Python package (python/libdem: libdem.Run). Uses
+Debian's python3-h5py, numpy and matplotlib; run with /usr/bin/python3.
 """
 import argparse
+import os
 import sys
 
-import h5py
 import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from libdem import OutputError, Run  # noqa: E402
 
 
 def main():
@@ -28,21 +32,15 @@ def main():
     a = ap.parse_args()
     out = a.output or (a.run[:-3] if a.run.endswith(".h5") else a.run) + ".contacts.png"
     try:
-        f = h5py.File(a.run, "r")
-    except OSError as e:
-        sys.exit(f"contacts: cannot open {a.run}: {e}")
-    with f:
-        if "contacts" not in f:
-            sys.exit(f"contacts: {a.run} has no contact network (list `contacts` in the scene's output.fields)")
-        c = f["contacts"]
-        starts, pairs = c["frame_start"][:], c["frame_pairs"][:]
-        nf = len(starts)
-        fr = a.frame if a.frame >= 0 else nf + a.frame
-        if not 0 <= fr < nf:
+        run = Run(a.run)
+        nf = len(run.frames)
+        if not -nf <= a.frame < nf:
             sys.exit(f"contacts: frame {a.frame} is not in 0 .. {nf - 1}")
-        s0, npair = int(starts[fr]), int(pairs[fr])
-        fn = c["normal_force"][s0:s0 + npair]
-        t = float(f["frames/time"][fr])
+        c = run.contacts(a.frame)
+    except OutputError as e:
+        sys.exit(f"contacts: {e}")
+    fr, npair, t = a.frame % nf, c["npairs"], c["time"]
+    fn = np.linalg.norm(c["normal_force"][:npair], axis=1)
     if npair < 2:
         sys.exit(f"contacts: frame {fr} (t = {t:g} s) has {npair} particle pairs in contact: no distribution")
     mean = fn.mean()

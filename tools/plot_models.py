@@ -11,22 +11,25 @@ model attribute (and MC-stress runs with their pressure convention). Closed form
                                  d = 2r - d4, A = pi (r/2) d4, V = 4/3 pi r^3 (the five-sphere box, Fig. 10)
   --hertz r=,E=,nu=,E2=,nu2=,area=,height=   Hertz f = 4/3 E* sqrt(r) d^{3/2}, d = strain height, sphere on a
                                  rigid-ish plate of E2, nu2 (the rubber sphere between plates, Fig. 4)
-Uses Debian's python3-h5py and python3-matplotlib; run it with /usr/bin/python3.
+Reads the runs with the Python package (python/libdem: libdem.Run). Uses Debian's python3-h5py, python3-numpy and
+python3-matplotlib; run it with /usr/bin/python3.
 """
 import argparse
+import os
 import sys
 
-import h5py
 import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from libdem import OutputError, Run  # noqa: E402
 
-def attr(f, name, default=""):
-    v = f.attrs.get(name, default)
-    return v.decode() if isinstance(v, bytes) else str(v)
+
+def attr(run, name, default=""):
+    return str(run.attrs.get(name, default))
 
 
 def kv(text):
@@ -50,22 +53,20 @@ def main():
     ap.add_argument("--eq11", help="r=,E=,nu=,beta=,area= : draw Eq. 11 (stress against strain)")
     ap.add_argument("--hertz", help="r=,E=,nu=,E2=,nu2=,area=,height= : draw the Hertz force (stress against strain)")
     a = ap.parse_args()
-    files = []
-    for path in a.runs:
-        try:
-            files.append(h5py.File(path, "r"))
-        except OSError as e:
-            sys.exit(f"plot_models: cannot open {path}: {e}")
+    try:
+        files = [Run(path) for path in a.runs]
+    except OutputError as e:
+        sys.exit(f"plot_models: {e}")
     title = attr(files[0], "scene_name")
-    sample = "strain" in files[0]["series"]
+    sample = "strain" in files[0].series
     if sample:
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
         top = 0.0
         for f in files:
-            s = f["series"]
-            strain = 100 * s["strain"][:]
+            s = f.series
+            strain = 100 * s["strain"]
             top = max(top, float(np.nanmax(strain)))
-            ax.plot(strain, s["stress"][:], label=label_of(f))
+            ax.plot(strain, s["stress"], label=label_of(f))
         eps = np.linspace(0, top / 100, 200)
         if a.eq11:
             k = kv(a.eq11)
@@ -86,13 +87,13 @@ def main():
     else:
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
         for f in files:
-            s, fr = f["series"], f["frames"]
+            s = f.series
             label = label_of(f)
-            ax1.plot(1e3 * s["time"][:], s["kinetic"][:], label=label)
-            x = fr["position"][:]
-            r = f["particles/radius"][:]
+            ax1.plot(1e3 * s["time"], s["kinetic"], label=label)
+            x = f.frame_field("position")
+            r = f.radius
             d = r[0] + r[1] - np.linalg.norm(x[:, 0, :] - x[:, 1, :], axis=1)
-            ax2.plot(1e3 * fr["time"][:], 1e3 * np.maximum(d, 0), label=label)
+            ax2.plot(1e3 * f.frame_time, 1e3 * np.maximum(d, 0), label=label)
         ax1.set_xlabel("time [ms]")
         ax1.set_ylabel("kinetic energy [J]")
         ax2.set_xlabel("time [ms]")
@@ -102,8 +103,6 @@ def main():
     fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(a.output, dpi=120)
-    for f in files:
-        f.close()
     print(f"plot_models: wrote {a.output}")
 
 

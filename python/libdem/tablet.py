@@ -1,0 +1,197 @@
+"""The tablet report of a press cycle run by dem run: one PNG and one line of numbers (tools/plot_tablet.py,
+`python3 -m libdem report`).
+
+Reads the run's time series (/series: wall_position, wall_force, wall_normal_force, the walls' names and shapes) and
+the spheres' radii; a run in parts (--restart) is given as its files in order (libdem.Run joins them by step). The die
+is the cylinder wall (or `die`), the punches the planes named upper and lower (or `upper`, `lower`).
+  - punch pressure: the normal force the powder exerts on a punch over the bore's area pi R^2;
+  - gap: the distance between the punch faces (their lands) along the lower punch's normal; relative density D = the
+    spheres' volume / (pi R^2 gap + the punches' cups, pi c (3 r^2 + c^2) / 6 each), as if the compact filled the bore
+    between the punches (the elastic recovery below is the gap's: a concave tablet's band);
+  - Heckel: ln(1 / (1 - D)) against the upper punch pressure over the loading (up to the largest pressure), a line
+    fitted over its upper half; the mean yield pressure is 1 / slope;
+  - transmission ratio: the median of lower over upper punch pressure over the loading rows: the upper punch moving
+    in and its pressure rising, above 10 % of the largest pressure and up to it (the dwell and the unloading, where
+    friction in the die turns round, are left out);
+  - radial die-wall pressure: the die's normal force (the sum of the particles' forces along their contact normals,
+    radial on a cylinder) over the bore's wall between the punches, 2 pi R gap; its ratio to the upper punch
+    pressure at the largest pressure (the radial transmission, Janssen's coefficient);
+  - elastic recovery: (gap where the upper punch lets go - gap at the largest pressure) / gap at the largest pressure;
+  - ejection (the lower punch rising after the upper punch let go): the die-wall friction is the die's axial force
+    (the compact drags the die along as it slides out); the lower punch's force is that friction plus the compact's
+    inertia and weight, reported apart: a velocity step of the punch accelerates the compact, and its inertia (mass
+    scaled in a mass-scaled run) is not the friction a press's ejection force measures.
+
+Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m3, max_upper_mpa, density_at_max,
+yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejection_friction_n, max_ejection_punch_n.
+Renamed from the report's earlier keys: max_upper_pa -> max_upper_mpa, yield_pa -> yield_mpa, radial_pa ->
+radial_mpa (the values in MPa, no longer Pa); max_ejection_n (the lower punch's largest force, inertia included) ->
+max_ejection_punch_n, beside the new max_ejection_friction_n. transmission keeps its name; it is now taken over the
+loading rows only (it was a median over every row above 10 % of the largest pressure, dwell and unloading included).
+analyse() returns SI values (pressures in Pa).
+"""
+import math
+
+import numpy as np
+
+from .output import Run
+
+MPA = 1e-6
+
+
+class TabletError(ValueError):
+    """A run that is not a press cycle the report can read."""
+
+
+def _wall(names, want, what):
+    if want in names:
+        return names.index(want)
+    raise TabletError(f"no wall named '{want}' for the {what} (walls: {', '.join(names)}; name it with --{what})")
+
+
+def analyse(run, die=None, upper="upper", lower="lower"):
+    """The press cycle of one run (a libdem.Run, a file, or the files of a run continued by --restart, in order): a
+    dict of the series (arrays over the rows) and the report's numbers, in SI units (pressures in Pa)."""
+    if not isinstance(run, Run):
+        run = Run(run)
+    s, names, sh = run.series, run.wall_names, run.wall_shape
+    if "wall_force" not in s or "wall_radius" not in sh:
+        raise TabletError(f"{' + '.join(run.paths)}: no wall series with the walls' shapes (a run of a scene with "
+                          "walls, a libdem that writes the wall shapes)")
+    t, pos, force = s["time"], s["wall_position"], s["wall_force"]
+    radius, normal = sh["wall_radius"], sh["wall_normal"]
+    cup_r = sh.get("wall_cup_radius", np.zeros(len(radius)))
+    cup_d = sh.get("wall_cup_depth", np.zeros(len(radius)))
+    fnorm, r = s.get("wall_normal_force"), run.radius
+    model = run.attrs.get("model", "")
+    kinetic = s["kinetic"] if "kinetic" in s else np.full(len(t), np.nan)
+    elastic = s["elastic"] if "elastic" in s else np.full(len(t), np.nan)
+    if die:
+        k_die = _wall(names, die, "die")
+    else:
+        cyl = [k for k in range(len(names)) if radius[k] > 0]
+        if not cyl:
+            raise TabletError("no cylinder wall (the die); name it with --die")
+        k_die = cyl[0]
+    up, lo = _wall(names, upper, "upper"), _wall(names, lower, "lower")
+    area = math.pi * radius[k_die] ** 2
+    solid = float(np.sum(4.0 / 3.0 * math.pi * r**3))
+    n_up, n_lo, axis = normal[up], normal[lo], normal[k_die]
+    # the force the powder exerts on a plane along -normal (pushing it back) counts positive, as a servo's
+    p_up = -(force[:, up, :] @ n_up) / area
+    p_lo = -(force[:, lo, :] @ n_lo) / area
+    die_axial = force[:, k_die, :] @ axis
+    gap = (pos[:, up, :] - pos[:, lo, :]) @ n_lo  # between the punches' lands
+    cups = sum(math.pi * cup_d[k] * (3 * cup_r[k] ** 2 + cup_d[k] ** 2) / 6 for k in (up, lo))
+    dens = solid / (area * gap + cups)
+    p_rad = fnorm[:, k_die] / (2 * math.pi * radius[k_die] * gap) if fnorm is not None else np.full(len(t), np.nan)
+    travel_up = (pos[0, up, :] - pos[:, up, :]) @ n_lo  # downwards travel of the upper punch
+    rows = np.arange(len(t))
+    k_max = int(np.argmax(p_up))
+    p_max = p_up[k_max]
+    if not p_max > 0:
+        raise TabletError("the upper punch never pressed on the powder")
+    after = np.nonzero((rows > k_max) & (p_up <= 1e-3 * p_max))[0]
+    k_rel = int(after[0]) if len(after) else None
+    # Heckel over the loading: from where the punch starts pressing (2 % of the largest) to the largest pressure
+    load = np.nonzero((rows <= k_max) & (p_up > 0.02 * p_max) & (dens < 1))[0]
+    heckel = -np.log(1 - dens[load])
+    fit = load[p_up[load] >= 0.5 * p_max]
+    slope = intercept = yield_p = float("nan")
+    if len(fit) >= 2:
+        slope, intercept = np.polyfit(p_up[fit], -np.log(1 - dens[fit]), 1)
+        yield_p = 1 / slope if slope > 0 else float("nan")
+    # transmission over the loading rows: the upper punch moving in, its pressure rising, up to the largest
+    rising = np.zeros(len(t), dtype=bool)
+    rising[1:] = (travel_up[1:] > travel_up[:-1]) & (p_up[1:] > p_up[:-1])
+    loading = np.nonzero(rising & (rows <= k_max) & (p_up > 0.1 * p_max))[0]
+    ratio = float(np.median(p_lo[loading] / p_up[loading])) if len(loading) else float("nan")
+    recovery = (gap[k_rel] - gap[k_max]) / gap[k_max] if k_rel is not None else float("nan")
+    radial_ratio = float(p_rad[k_max] / p_max)
+    # ejection: the lower punch rising after the upper one let go
+    ej = np.array([], dtype=int)
+    if k_rel is not None:
+        z_lo = pos[:, lo, :] @ n_lo
+        ej = np.nonzero((rows >= k_rel) & (z_lo > z_lo[k_rel] + 1e-12))[0]
+    eject_travel = (pos[ej, lo, :] - pos[k_rel, lo, :]) @ n_lo if len(ej) else np.array([])
+    eject_force = -(force[ej, lo, :] @ n_lo) if len(ej) else np.array([])
+    # the die is dragged along the compact's way out (+n_lo) by the friction that holds the compact back
+    eject_friction = force[ej, k_die, :] @ n_lo if len(ej) else np.array([])
+    nan = float("nan")
+    return dict(t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
+                gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
+                heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
+                recovery=recovery, radial_ratio=radial_ratio, ej=ej, eject_travel=eject_travel,
+                eject_force=eject_force, eject_friction=eject_friction,
+                max_ejection_friction=float(np.max(eject_friction)) if len(ej) else nan,
+                max_ejection_punch=float(np.max(eject_force)) if len(ej) else nan, kinetic=kinetic, elastic=elastic)
+
+
+def numbers(c):
+    """The report's numbers as (key, value) pairs, pressures in MPa (the printed line's keys)."""
+    k = c["k_max"]
+    return [("bore_area_m2", c["area"]), ("solid_m3", c["solid"]), ("max_upper_mpa", MPA * c["p_max"]),
+            ("density_at_max", c["dens"][k]), ("yield_mpa", MPA * c["yield_p"]), ("transmission", c["ratio"]),
+            ("radial_mpa", MPA * c["p_rad"][k]), ("radial_ratio", c["radial_ratio"]),
+            ("elastic_recovery", c["recovery"]), ("max_ejection_friction_n", c["max_ejection_friction"]),
+            ("max_ejection_punch_n", c["max_ejection_punch"])]
+
+
+def report_line(c, png):
+    return f"png={png} " + " ".join(f"{k}={float(v):.6g}" for k, v in numbers(c))
+
+
+def plot(c, out, title):
+    """The report's four panels into the PNG `out`."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t, p_up, p_lo, p_rad, die_axial, area = c["t"], c["p_up"], c["p_lo"], c["p_rad"], c["die_axial"], c["area"]
+    dens, travel_up, k_max, p_max, k_rel = c["dens"], c["travel_up"], c["k_max"], c["p_max"], c["k_rel"]
+    load, heckel, slope, intercept, yield_p = c["load"], c["heckel"], c["slope"], c["intercept"], c["yield_p"]
+    ej, eject_travel, eject_force, eject_friction = c["ej"], c["eject_travel"], c["eject_force"], c["eject_friction"]
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8.5))
+    cyc = slice(0, (k_rel if k_rel is not None else len(t) - 1) + 1)  # loading and unloading, before the punch leaves
+    ax[0, 0].plot(1e3 * travel_up[cyc], MPA * p_up[cyc], label="upper punch")
+    ax[0, 0].plot(1e3 * travel_up[cyc], MPA * p_lo[cyc], label="lower punch")
+    ax[0, 0].plot(1e3 * travel_up[cyc], MPA * p_rad[cyc], label="die wall, radial")
+    ax[0, 0].plot(1e3 * travel_up[cyc], MPA * die_axial[cyc] / area, label="die wall, axial (friction) / bore area",
+                  lw=0.8)
+    ax[0, 0].set(xlabel="upper punch travel [mm]", ylabel="pressure [MPa]", title="pressure against displacement")
+    ax[0, 0].legend(fontsize=8)
+    ax[0, 1].plot(dens[: k_max + 1], MPA * p_up[: k_max + 1], label="loading")
+    if k_rel is not None:
+        ax[0, 1].plot(dens[k_max: k_rel + 1], MPA * p_up[k_max: k_rel + 1], label="unloading")
+    ax[0, 1].set(xlabel="relative density D", ylabel="upper punch pressure [MPa]", title="compaction curve")
+    ax[0, 1].legend(fontsize=8)
+    ax[1, 0].plot(MPA * p_up[load], heckel, "o", ms=3, label="ln 1/(1-D)")
+    if math.isfinite(slope):
+        pp = np.linspace(0, p_max, 50)
+        ax[1, 0].plot(MPA * pp, slope * pp + intercept, "--",
+                      label=f"fit: yield pressure {MPA * yield_p:.3g} MPa" if math.isfinite(yield_p) else "fit")
+    ax[1, 0].set(xlabel="upper punch pressure [MPa]", ylabel="ln 1/(1 - D)", title="Heckel plot")
+    ax[1, 0].legend(fontsize=8)
+    if len(ej):
+        ax[1, 1].plot(1e3 * eject_travel, eject_friction, label="die-wall friction (the die's axial force)")
+        ax[1, 1].plot(1e3 * eject_travel, eject_force, lw=0.8, label="lower punch force")
+        ax[1, 1].plot(1e3 * eject_travel, eject_force - eject_friction, lw=0.8, ls="--",
+                      label="punch - friction: the compact's inertia and weight")
+        ax[1, 1].legend(fontsize=8)
+    ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="force [N]", title="ejection")
+    fig.suptitle(f"{title}: transmission {c['ratio']:.3f} (loading), radial/axial {c['radial_ratio']:.3f}, elastic "
+                 f"recovery {100 * c['recovery']:.2f} %", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def report(paths, out=None, die=None, upper="upper", lower="lower"):
+    """analyse() the run, draw its PNG (default: the first file's name with _tablet.png) and return the printed line."""
+    paths = [paths] if isinstance(paths, str) else list(paths)
+    first = paths[0]
+    out = out or (first[:-3] if first.endswith(".h5") else first) + "_tablet.png"
+    c = analyse(paths, die, upper, lower)
+    plot(c, out, " + ".join(paths))
+    return report_line(c, out)
