@@ -36,13 +36,18 @@ d3 = ctypes.c_double * 3
 class Material(ctypes.Structure):
     _fields_ = [("density", ctypes.c_double), ("young", ctypes.c_double), ("poisson", ctypes.c_double),
                 ("restitution", ctypes.c_double), ("friction", ctypes.c_double), ("mc_beta", ctypes.c_double),
-                ("mc_gamma", ctypes.c_double)]
+                ("mc_gamma", ctypes.c_double), ("yield_stress", ctypes.c_double)]
+
+
+class MaterialPair(ctypes.Structure):
+    _fields_ = [("friction", ctypes.c_double), ("restitution", ctypes.c_double)]
 
 
 class Stage(ctypes.Structure):
     _fields_ = [("duration", ctypes.c_double), ("velocity", d3), ("force", ctypes.c_double),
                 ("gain", ctypes.c_double), ("max_speed", ctypes.c_double), ("until_force", ctypes.c_double),
-                ("until_distance", ctypes.c_double), ("until_density", ctypes.c_double)]
+                ("until_distance", ctypes.c_double), ("until_density", ctypes.c_double), ("ramp", ctypes.c_double),
+                ("after_wall", ctypes.c_int), ("after_stage", ctypes.c_int)]
 
 
 class WallDesc(ctypes.Structure):
@@ -91,7 +96,8 @@ class State(ctypes.Structure):
                 ("npairs", ctypes.c_long), ("pair_i", ctypes.POINTER(ctypes.c_int)),
                 ("pair_j", ctypes.POINTER(ctypes.c_int)), ("pair_hist", ctypes.c_void_p),
                 ("pair_rec", ctypes.c_void_p), ("has_hist", ctypes.c_int), ("has_mc", ctypes.c_int),
-                ("pair_mc_fn", ctypes.c_void_p), ("pair_mc_disp", ctypes.c_void_p), ("mc", McStats),
+                ("pair_mc_fn", ctypes.c_void_p), ("pair_mc_disp", ctypes.c_void_p), ("has_law", ctypes.c_int),
+                ("pair_law", ctypes.c_void_p), ("mc", McStats),
                 ("npatch", ctypes.c_long), ("patch_i", ctypes.POINTER(ctypes.c_int)),
                 ("patch_t", ctypes.POINTER(ctypes.c_int)), ("patch_hist", ctypes.c_void_p),
                 ("patch_side", ctypes.POINTER(ctypes.c_int))]
@@ -107,6 +113,7 @@ SIGNATURES = {
     "dem_error": (ctypes.c_char_p, [_sim]),
     "dem_config_default": (None, [P(Config)]),
     "dem_add_material": (_i, [_sim, P(Material)]),
+    "dem_set_material_pair": (_i, [_sim, ctypes.c_int, ctypes.c_int, P(MaterialPair)]),
     "dem_add_particle": (_i, [_sim, P(_d), P(_d), _d, _i]),
     "dem_set_particle_flags": (_i, [_sim, _i, _u]),
     "dem_add_wall": (_i, [_sim, P(WallDesc)]),
@@ -247,10 +254,17 @@ class Sim:
         return rc
 
     # ---- set-up ----
-    def add_material(self, density, young, poisson, restitution, friction, mc_beta=0.0, mc_gamma=0.0):
-        """A material [kg/m^3, Pa, -, -, -]; returns its id. young=float('inf'): rigid (walls only)."""
-        m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma)
+    def add_material(self, density, young, poisson, restitution, friction, mc_beta=0.0, mc_gamma=0.0,
+                     yield_stress=0.0):
+        """A material [kg/m^3, Pa, -, -, -]; returns its id. young=float('inf'): rigid (walls only). yield_stress
+        [Pa]: the limiting contact pressure of the thornton_ning law (0: does not yield)."""
+        m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma, yield_stress)
         return self._check(self._lib.dem_add_material(self._s, ctypes.byref(m)))
+
+    def set_material_pair(self, a, b, friction=float("nan"), restitution=float("nan")):
+        """Materials a and b take this friction and/or restitution instead of the mean of theirs (NaN: the mean)."""
+        p = MaterialPair(friction, restitution)
+        return self._check(self._lib.dem_set_material_pair(self._s, a, b, ctypes.byref(p)))
 
     def add_particles(self, x, radius, material, v=None):
         """Spheres at x [n, 3] m with radius (one or n) [m] of material (one id or n), velocities v [n, 3] m/s
