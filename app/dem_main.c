@@ -79,9 +79,14 @@ static int check(const char *path, const char *model)
                "compression 10-19 %% off at 0.5 under every model, within 0.6 %% at 0.35 (docs/accuracy.md)\n");
     if (scene_mass_scale(sc) != 1) {
         double S = scene_mass_scale(sc);
-        printf("mass scale     x %g (time.mass_scale): every mass %g times its density's, gravity / %g (the weights stay "
-               "real); the time scales above and the step are %.3g times the real ones, inertia %g times too strong "
-               "(docs/scenes.md \"Mass scaling\")\n", S, S, S, sqrt(S), S);
+        if (scene_keeps_acceleration(sc))
+            printf("mass scale     x %g (time.mass_scale): every mass %g times its density's, gravity as given "
+                   "(mass_scale_keeps: acceleration: a fall at the real rate, weights %g times too heavy)", S, S, S);
+        else
+            printf("mass scale     x %g (time.mass_scale): every mass %g times its density's, gravity / %g (the weights "
+                   "stay real)", S, S, S);
+        printf("; the time scales above and the step are %.3g times the real ones, inertia %g times too strong "
+               "(docs/scenes.md \"Mass scaling\")\n", sqrt(S), S);
     }
     printf("duration       %.6g s = %ld steps (%.3g particle-steps)\n", sc->f->time.duration, run.steps,
            (double)run.steps * n);

@@ -297,6 +297,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
              h5_attr_string(o->file, "precision", run->cfg.precision == DEM_FP64 ? "fp64" : "fp32") ||
              h5_attr_string(o->file, "effects", fx) || h5_attr_double(o->file, "dt", run->dt) ||
              h5_attr_double(o->file, "mass_scale", scene_mass_scale(sc)) ||
+             h5_attr_string(o->file, "mass_scale_keeps", scene_keeps_acceleration(sc) ? "acceleration" : "weight") ||
              h5_attr_string(o->file, "model", run->model[0] ? run->model : "as in the scene") ||
              h5_attr_long(o->file, "steps", run->steps) || h5_attr_string(o->file, "scene_path", sc->path) ||
              h5_attr_string(o->file, "units", "SI: m, kg, s, N, Pa, J") ||

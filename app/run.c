@@ -641,7 +641,11 @@ static int phase_start(run_ctx *c)
         fprintf(stderr, "dem: MC-stress pressure convention: %s%s\n", conv,
                 run->mcs_conv == DEM_MCS_DEFAULT ? " (the default: Eq. 11's reading)" : "");
     }
-    if (scene_mass_scale(c->sc) != 1)
+    if (scene_mass_scale(c->sc) != 1 && scene_keeps_acceleration(c->sc))
+        fprintf(stderr, "dem: note: masses scaled x %g (time.mass_scale; gravity as given: weights %g times too heavy): "
+                        "inertia and kinetic energies are the scaled system's\n", scene_mass_scale(c->sc),
+                scene_mass_scale(c->sc));
+    else if (scene_mass_scale(c->sc) != 1)
         fprintf(stderr, "dem: note: masses scaled x %g (time.mass_scale; gravity / %g): inertia and kinetic energies "
                         "are the scaled system's\n", scene_mass_scale(c->sc), scene_mass_scale(c->sc));
     if ((run->effects & DEM_EFFECT_MC_STRAIN) && c->sc->f->mc_contact_distance > 1)

@@ -157,6 +157,7 @@ typedef struct {
     double duration;              /* [s] */
     double settle;                /* [s] at the start during which walls hold still (their stages start after) */
     double mass_scale;            /* every mass x this (>= 1; 1 when absent): scene_mass_scale, docs/scenes.md */
+    char *mass_scale_keeps;       /* "weight" (default: gravity / mass_scale) or "acceleration" (gravity as given) */
 } scene_time;
 
 typedef struct {
@@ -269,6 +270,8 @@ void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
 /* time.mass_scale, or 1 where the scene gives none (scene_build has checked it: finite, >= 1) */
 double scene_mass_scale(const scene *sc);
+/* 1 when gravity is kept as given under mass scaling (time.mass_scale_keeps: acceleration), 0: divided by it */
+int scene_keeps_acceleration(const scene *sc);
 /* Replaces the scene's normal law (after scene_build, before dem_start): "classical", "mc_stress", "mc_strain"
  * (lagged) or "mc_strain_iterated" (the scene's mc_iterations, or 20). Records it in run->model. */
 int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *model, char *err, size_t errlen);

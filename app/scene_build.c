@@ -228,6 +228,12 @@ double scene_mass_scale(const scene *sc)
     return scene_has(sc->loc, "time.mass_scale") ? sc->f->time.mass_scale : 1.0;
 }
 
+int scene_keeps_acceleration(const scene *sc)
+{
+    const char *k = sc->f->time.mass_scale_keeps;
+    return k && !strcmp(k, "acceleration");
+}
+
 static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen)
 {
     const scene_file *f = sc->f;
@@ -292,8 +298,6 @@ int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *m
     const char *why = k == 0 ? NULL
                       : k == 4 ? yield_missing(sc)
                                : mc_prefactor_missing(sc, k == 1 ? DEM_EFFECT_MC_STRESS : DEM_EFFECT_MC_STRAIN);
-    if (!why && k == 4 && (run->fields & OUT_STRESS))
-        why = "the stress output is not available with thornton_ning yet: drop 'stress' from output.fields";
     if (why) {
         snprintf(err, errlen, "model %s: %s", model, why);
         return 1;
@@ -675,9 +679,6 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
             return scene_fail(sc, err, errlen, p,
                               "unknown field '%s' (position, velocity, angular_velocity, radius, force, torque, "
                               "material, stress, contacts)", o->fields[k]);
-        if (bit == OUT_STRESS && (run->effects & DEM_EFFECT_THORNTON_NING))
-            return scene_fail(sc, err, errlen, p, "the stress output is not available with thornton_ning yet (the "
-                              "stress of a plastic contact needs its history, which the stress pass does not read)");
         run->fields |= bit;
     }
     const double dt = run->dt, T = sc->f->time.duration;
@@ -795,8 +796,17 @@ static int parse_run_options(const scene *sc, dem_sim *s, scene_run *run, char *
         return scene_fail(sc, err, errlen, "gravity", "must be finite");
     if (norm3(f->gravity) > 0 && !(run->effects & DEM_EFFECT_GRAVITY))
         return scene_fail(sc, err, errlen, "gravity", "gravity is set but the effect 'gravity' is not listed");
-    const double scale = scene_mass_scale(sc), g[3] = {f->gravity[0] / scale, f->gravity[1] / scale,
-                                                       f->gravity[2] / scale}; /* the weights stay real */
+    /* under mass scaling the weights stay real (gravity / S), or the fall does (time.mass_scale_keeps: acceleration,
+     * for a pour: docs/scenes.md "Mass scaling") */
+    const char *keeps = f->time.mass_scale_keeps;
+    if (keeps && strcmp(keeps, "weight") && strcmp(keeps, "acceleration"))
+        return scene_fail(sc, err, errlen, "time.mass_scale_keeps", "'%s': give weight (gravity / mass_scale, the "
+                          "default: weights real) or acceleration (gravity as given: a pour falls at the real rate)",
+                          keeps);
+    if (keeps && !scene_has(sc->loc, "time.mass_scale"))
+        return scene_fail(sc, err, errlen, "time.mass_scale_keeps", "means something only with time.mass_scale");
+    const double scale = scene_keeps_acceleration(sc) ? 1.0 : scene_mass_scale(sc);
+    const double g[3] = {f->gravity[0] / scale, f->gravity[1] / scale, f->gravity[2] / scale};
     dem_set_gravity(s, g);
     if (scene_has(sc->loc, "domain") && dem_set_domain(s, f->domain_lo, f->domain_hi))
         return scene_fail(sc, err, errlen, "domain", "%s", dem_error(s));

@@ -171,7 +171,7 @@ static const cyaml_schema_value_t membrane_entry = {
 static const cyaml_schema_field_t time_fields[] = {
     REAL("dt", scene_time, dt), REAL("dt_rayleigh", scene_time, dt_rayleigh),
     CYAML_FIELD_FLOAT("duration", CYAML_FLAG_DEFAULT, scene_time, duration), REAL("settle", scene_time, settle),
-    REAL("mass_scale", scene_time, mass_scale), CYAML_FIELD_END};
+    REAL("mass_scale", scene_time, mass_scale), TEXT("mass_scale_keeps", scene_time, mass_scale_keeps), CYAML_FIELD_END};
 
 static const cyaml_schema_field_t output_fields[] = {
     REAL("frame_every", scene_output, frame_every), REAL("series_every", scene_output, series_every),

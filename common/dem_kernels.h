@@ -168,7 +168,9 @@
     A(BIN, real, invvol, INVVOL) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT)                                \
     A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST) A(I, int, nwalls, NWALLS)                              \
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE)                  \
-    A(BIN, int, nbr_lower, LOWER)
+    A(BIN, int, nbr_lower, LOWER) A(BIN, int, own_start, OWN_START) A(BIN, int, in_start, IN_START)                  \
+    A(BIN, int, in_pair, IN_PAIR) A(BIN, dem_byte, touch, TOUCH) A(BIN, real, law_st, PAIR_LAW)                      \
+    A(BIN, unsigned, wall_mask, WALL_MASK) A(BIN, real, wall_law, WALL_LAW)
 #define DEM_ARGS_stress_trace(F, A)                                                                                  \
     DEM_ARGS_stress_head(F, A) A(BOUT, real, trace, TRACE)
 #define DEM_ITEMS_stress_trace n

@@ -239,7 +239,7 @@ DEM_ITEM(mc_strain_update)
             pair_geom g = mc_pair_geometry(fx, xi, ri, v3_load(x, j), radius[j], pairmat);
             if (g.active)
                 f = mc_strain_elastic(pairmat + PM_STRIDE * (mi * nmat + mat[j]), g.rstar,
-                                      mc_strain_overlap(g.delta, disp[slot], disp[m]));
+                                      mc_strain_overlap(g.delta, disp[slot], disp[m]), (real)0);
             int p = row_pair(i, j, c, hc, own, in, in_pair);
             changed |= mc_changed(f, fn[p], tol);
             fn[p] = f;
@@ -248,7 +248,7 @@ DEM_ITEM(mc_strain_update)
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
             if (g.active)
                 f = mc_strain_elastic(pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]), ri,
-                                      mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0));
+                                      mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0), (real)0);
             changed |= mc_changed(f, wall_fn[r.slot], tol);
             wall_fn[r.slot] = f;
         }

@@ -45,7 +45,11 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
                             DEM_CONST_GLOBAL real *pairmat, int nmat, DEM_CONST_GLOBAL int *nbr_count,
                             DEM_CONST_GLOBAL int *nbr_lower, DEM_CONST_GLOBAL int *nbr_list, int nwalls,
                             DEM_CONST_GLOBAL int *wall_int,
-                            DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride, DEM_GLOBAL real *out)
+                            DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride,
+                            DEM_CONST_GLOBAL int *own_start, DEM_CONST_GLOBAL int *in_start,
+                            DEM_CONST_GLOBAL int *in_pair, DEM_CONST_GLOBAL dem_byte *touch,
+                            DEM_CONST_GLOBAL real *law_st, DEM_CONST_GLOBAL unsigned *wall_mask,
+                            DEM_CONST_GLOBAL real *wall_law, DEM_GLOBAL real *out)
 {
     vec3 xi = v3_load(x, i);
     real ri = radius[i], iv = invvol[i], tr = (real)0;
@@ -53,19 +57,24 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
     for (int c = 0; c < ST_STRIDE; c++)
         st[c] = (real)0;
     int mi = mat[i], cnt = nbr_count[i], lower = row_lower(nbr_lower[i]), nw = (fx & DEM_EFFECT_WALLS) ? nwalls : 0;
-    int row0 = nbr_start[i];
+    int row0 = nbr_start[i], h = 0; /* h: the row's slots so far whose partner is stored after i (contacts.h row_pair) */
     for (int k = 0; k < contact_count(cnt, nw); k++) { /* the canonical order (contacts.h): the row, then the walls */
         contact_ref r = contact_at(i, k, cnt, lower, row0, nwalls, nbr_list);
-        real delta, rstar, arm;
+        real delta, rstar, arm, lst = (real)0; /* lst: the law's state of a contact that touched (laws/law.h) */
         vec3 n;
         int other;
         if (r.kind != CONTACT_WALL) {
-            int j = r.partner;
+            int j = r.partner, hk = h;
+            h += j > i;
             pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
             if (!g.active)
                 continue;
             delta = g.delta, rstar = g.rstar, n = g.n, other = mat[j];
             arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
+            if (fx & DEM_LAW_STATE_BITS) {
+                int p = row_pair(i, j, k, hk, own_start[i], in_start[i], in_pair);
+                lst = touch[p] ? law_st[p] : (real)0;
+            }
         } else {
             int w = r.partner;
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, w, xi, ri);
@@ -73,8 +82,10 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
                 continue;
             delta = g.delta, rstar = ri, n = g.n, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
             arm = tensor ? ri - g.delta : mcs_lever_wall(fx, ri, g.delta);
+            if ((fx & DEM_LAW_STATE_BITS) && ((wall_mask[i] >> w) & 1u))
+                lst = wall_law[r.slot];
         }
-        real c = stress_term(arm, law_elastic(fx, pairmat + PM_STRIDE * (mi * nmat + other), rstar, delta), iv);
+        real c = stress_term(arm, law_elastic(fx, pairmat + PM_STRIDE * (mi * nmat + other), rstar, delta, lst), iv);
         if (tensor)
             stress_add(st, c, n);
         else
@@ -90,12 +101,12 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
 DEM_ITEM(stress_trace)
 {
     stress_at(fx, 0, i, nbr_start, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,
-              wall_real, ride, trace);
+              wall_real, ride, own_start, in_start, in_pair, touch, law_st, wall_mask, wall_law, trace);
 }
 
 DEM_ITEM(stress_tensor)
 {
     stress_at(fx, 1, i, nbr_start, x, radius, invvol, mat, pairmat, nmat, nbr_count, nbr_lower, nbr_list, nwalls, wall_int,
-              wall_real, ride, stress);
+              wall_real, ride, own_start, in_start, in_pair, touch, law_st, wall_mask, wall_law, stress);
 }
 #endif /* DEM_PARTICLE_STRESS_H */

@@ -67,6 +67,22 @@ static void test_errors(void **st)
     bad("s/^time:/timme:/", "bad.yaml:14: timme: Unexpected key");
     bad("s/  dt: 1.0e-6/  dt: 1.0e-2/", "bad.yaml:15: time.dt: time step 0.01 s exceeds the stability bound");
     bad("s/hertz, damping/hertz, dampng/", "bad.yaml:5: effects[1]: unknown effect 'dampng'");
+    /* the plastic law needs a material that yields and excludes the multi-contact laws */
+    bad("s/hertz, damping/hertz, damping, thornton_ning/", "bad.yaml:5: effects[2]: thornton_ning is listed but no "
+        "material has a yield_stress > 0");
+    bad("s/friction: 0.5}/friction: 0.5, yield_stress: -1}/", "bad.yaml:7: materials[0].yield_stress: the yield stress "
+        "must be >= 0 Pa");
+    bad("s/hertz, damping/hertz, damping, thornton_ning, mc_stress/; s/friction: 0.5}/friction: 0.5, yield_stress: "
+        "1e6, beta: 1}/", "bad.yaml:5: effects: thornton_ning and the multi-contact laws are alternative normal laws");
+    /* material_pairs: named materials, once each, with a value */
+    bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, steel], friction: 0.1}\\nparticles:/",
+        "material_pairs[0].materials[1]: no material is called 'steel'");
+    bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber]}\\nparticles:/",
+        "material_pairs[0]: give the pair's friction or restitution (or both)");
+    bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: 0.1}\\n  - {materials: [rubber, "
+        "rubber], restitution: 0.5}\\nparticles:/", "material_pairs[1].materials: the pair rubber-rubber is given twice");
+    bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: -1}\\nparticles:/",
+        "material_pairs[0]: material pair 0-0: friction must be >= 0");
     bad("s/friction: 0.5}/friction: 0.5, beta: -1}/", "bad.yaml:7: materials[0].beta: the MC-stress prefactor beta");
     bad("s/hertz, damping/hertz, membrane/", "effects[1]: effect 'membrane' is listed but the scene has no membranes");
     bad("s/hertz, damping/hertz, patches/", "effects[1]: effect 'patches' is not listed by name: it is part of the effect 'membrane'");
@@ -1435,6 +1451,22 @@ static void test_mass_scale(void **st)
     bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 0.5/", "bad.yaml:17: time.mass_scale: must be in "
         "[1, 1e12] (every mass is multiplied by it to allow a longer time step; 1 is the real mass), got 0.5");
     bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 1e13/", "time.mass_scale: must be in [1, 1e12]");
+    /* mass_scale_keeps: acceleration - gravity as given: the same bits as every density x S with gravity unchanged */
+    assert_int_equal(sh(err, sizeof err, "sed 's/duration: 0.04}/duration: 0.04, mass_scale: 4, mass_scale_keeps: "
+                                          "acceleration}/' %s > %s/ma4.yaml && sed 's/density: 2500,/density: 10000,/' "
+                                          "%s > %s/mad.yaml && grep -q 'keeps: acceleration}' %s/ma4.yaml && grep -q "
+                                          "'density: 10000' %s/mad.yaml && for m in ma4 mad; do %s run %s/$m.yaml -o "
+                                          "%s/$m.h5 --quiet --stop-after 300 || exit 1; done && for d in x v w force "
+                                          "torque; do h5diff %s/ma4.ckpt.h5 %s/mad.ckpt.h5 /state/$d || exit 1; done && "
+                                          "! h5diff -q %s/ma4.ckpt.h5 %s/ms4.ckpt.h5 /state/x && h5dump -a "
+                                          "mass_scale_keeps %s/ma4.h5 | grep -q acceleration && h5dump -a "
+                                          "mass_scale_keeps %s/ms4.h5 | grep -q weight && %s check %s/ma4.yaml | grep -q "
+                                          "'gravity as given'", box, tmp, box, tmp, tmp, tmp, DEM, tmp, tmp, tmp, tmp,
+                        tmp, tmp, tmp, tmp, DEM, tmp), 0);
+    bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale: 4\\n  mass_scale_keeps: mass/",
+        "time.mass_scale_keeps: 'mass': give weight");
+    bad("s/^  duration: 0.003 .*/  duration: 0.003\\n  mass_scale_keeps: weight/",
+        "time.mass_scale_keeps: means something only with time.mass_scale");
 }
 
 /* Random packings: placement looks only at nearby spheres (a spatial hash), which must still

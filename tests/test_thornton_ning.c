@@ -9,7 +9,7 @@
  *   e = sqrt(6 sqrt(3) / 5) sqrt(1 - (V_y/V_i)^2 / 6) [ (V_y/V_i) / (V_y/V_i + 2 sqrt(6/5 - (V_y/V_i)^2 / 5)) ]^(1/4),
  *   V_y the impact speed that just reaches yield (1/2 m* V_y^2 = 8/15 E* sqrt(R*) delta_y^(5/2)).
  * Cases: two spheres and a sphere on a wall colliding at 5 V_y (force at every step, the rebound speed, the energy the
- * host reports on unloading); a fixed sphere pressed, released part way, pressed again past the first maximum and
+ * host reports and the stress output on unloading); a fixed sphere pressed, released part way, pressed again past the first maximum and
  * released by a moving plane (the loading-unloading-reloading curve, from the wall's force); a packing of plastic
  * spheres under a moving lid, restarted from a saved state and run with another skin (the law's state must survive
  * checkpoints and neighbour rebuilds bit for bit). Every case on the reference and on OpenCL (PoCL), in fp64 and
@@ -119,7 +119,7 @@ static void collide(int wall, dem_precision prec)
     dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
     start_or_fail(cl, &c);
     start_or_fail(ref, &rc);
-    double dmax = 0, worst_f = 0, worst_e = 0, fscale = 0, dp_seen = -1;
+    double dmax = 0, worst_f = 0, worst_e = 0, worst_s = 0, fscale = 0, dp_seen = -1;
     int was = 0, plastic = 0, unload = 0;
     char msg[256];
     for (int k = 0; k < 20000; k++) {
@@ -147,6 +147,11 @@ static void collide(int wall, dem_precision prec)
             dem_energy_t en;
             assert_int_equal(dem_energy(ref, &en), 0);
             worst_e = fmax(worst_e, fabs(en.elastic - tn_energy(&t, d, dmax)));
+            /* the stress output: -(lever x elastic force) / V along the line of centres, the lever r - d/2 (a wall:
+             * r - d), the force the unloading curve's (taken with the state of the step's force pass) */
+            double sg[6], lever = wall ? R - d : R - 0.5 * d, vol = 4.0 / 3.0 * M_PI * R * R * R;
+            assert_int_equal(dem_get_field(ref, DEM_FIELD_STRESS, sg), 0);
+            worst_s = fmax(worst_s, fabs(sg[0] + lever * want / vol) * vol / R);
             if (want == 0 && dp_seen < 0)
                 dp_seen = d;
         }
@@ -156,13 +161,14 @@ static void collide(int wall, dem_precision prec)
     double vout = wall ? v[0] : v[3] - v[0], e = vout / vi, e0 = restitution_thornton(vy, vi);
     double fm = t.fy + M_PI * PY * t.rs * (dmax - t.dy), emax = 0.4 * fm * dmax;
     printf("  %s, %s: V_y %.4g m/s, V_i %.4g; delta_y %.4g m, delta_max %.4g; %d plastic and %d unloading steps; "
-           "restitution %.6f (Thornton 1997: %.6f); worst force %.2g, energy %.2g (relative)\n",
+           "restitution %.6f (Thornton 1997: %.6f); worst force %.2g, energy %.2g, stress %.2g (relative)\n",
            wall ? "sphere on a wall" : "two spheres", prec == DEM_FP64 ? "fp64" : "fp32", vy, vi, t.dy, dmax, plastic,
-           unload, e, e0, worst_f / fscale, worst_e / emax);
+           unload, e, e0, worst_f / fscale, worst_e / emax, worst_s / fscale);
     assert_true(plastic > 100 && unload > 100);
     assert_true(dp_seen > 0); /* the spheres part with a permanent dent: no force while they still overlap */
     assert_true(worst_f / fscale < tol);
     assert_true(worst_e / emax < tol);
+    assert_true(worst_s / fscale < tol);
     assert_true(fabs(e / e0 - 1) < (prec == DEM_FP64 ? 2e-3 : 5e-3));
     dem_destroy(cl);
     dem_destroy(ref);

@@ -148,7 +148,7 @@ DEM_INLINE law_result hertz_mindlin_force(unsigned fx, law_in c, law_ctx ctx)
 {
     return hm_contact(fx, c.n, c.delta, dem_sqrt(c.rstar * c.delta), c.mstar, c.vrel, c.pm, c.dt, c.hist, (real)0);
 }
-DEM_INLINE real hertz_mindlin_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real hertz_mindlin_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     return hm_elastic(pm[PM_ESTAR], rstar, delta);
 }

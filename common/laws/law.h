@@ -5,7 +5,8 @@
  *   <law>_force(fx, c, ctx)             the contact force on a (law_result) from the contact's state (law_in) and
  *                                       its context (law_ctx: what a law reads beyond the two bodies, e.g. MC-stress
  *                                       the stress traces, MC-strain the induced displacements);
- *   <law>_elastic(pm, rstar, delta)     the elastic normal force at overlap delta (the stress tensor's f_H);
+ *   <law>_elastic(pm, rstar, delta, st) the elastic normal force at overlap delta given the contact's law state st
+ *                                       (the stress tensor's f_H);
  *   <law>_energy(pm, rstar, delta, st)  the elastic energy stored at delta (what the contact gives back if it is
  *                                       unloaded from there; an elastic law: the work of <law>_elastic from 0),
  *                                       given the contact's law state st;

@@ -51,15 +51,16 @@ DEM_INLINE law_result law_force(unsigned fx, law_in c, law_ctx ctx)
     return hertz_mindlin_force(fx, c, ctx);
 }
 
-/* The elastic normal force at overlap delta (pm: the pair-table row) */
-DEM_INLINE real law_elastic(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+/* The elastic normal force at overlap delta (pm: the pair-table row), given the contact's law state st (law.h; 0 for a
+ * law without) */
+DEM_INLINE real law_elastic(unsigned fx, DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
 #define DEM_LAW_CASE(law, bit)                                                                                       \
     if (fx & (bit))                                                                                                  \
-        return law##_elastic(pm, rstar, delta);
+        return law##_elastic(pm, rstar, delta, st);
     DEM_LAW_LIST(DEM_LAW_CASE)
 #undef DEM_LAW_CASE
-    return hertz_mindlin_elastic(pm, rstar, delta);
+    return hertz_mindlin_elastic(pm, rstar, delta, st);
 }
 
 /* The elastic energy stored at overlap delta, given the contact's law state st (law.h; 0 for a law without) */

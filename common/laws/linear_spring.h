@@ -14,7 +14,7 @@
 #define PM_LINEAR_K PM_ESTAR
 #define LAW_COLUMNS_linear_spring(C) C(PM_LINEAR_K)
 
-DEM_INLINE real linear_spring_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real linear_spring_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     return pm[PM_LINEAR_K] * delta;
 }
@@ -23,7 +23,7 @@ DEM_INLINE law_result linear_spring_force(unsigned fx, law_in c, law_ctx ctx)
     law_result r;
     r.active = 1;
     r.st = (real)0;
-    r.fel = linear_spring_elastic(c.pm, c.rstar, c.delta);
+    r.fel = linear_spring_elastic(c.pm, c.rstar, c.delta, 0);
     r.force = v3_scale(c.n, r.fel);
     r.ft = r.hist = v3_zero();
     return r;
@@ -34,7 +34,7 @@ DEM_INLINE real linear_spring_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar,
 }
 DEM_INLINE real linear_spring_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return linear_spring_energy_kept(pm, rstar, delta, linear_spring_elastic(pm, rstar, delta), st);
+    return linear_spring_energy_kept(pm, rstar, delta, linear_spring_elastic(pm, rstar, delta, 0), st);
 }
 DEM_INLINE void linear_spring_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real *kn, real *kt)
 {

@@ -39,9 +39,9 @@ DEM_INLINE law_result mc_strain_force(unsigned fx, law_in c, law_ctx ctx)
     }
     return hm_contact(fx, c.n, law_delta, dem_sqrt(c.rstar * law_delta), c.mstar, c.vrel, c.pm, c.dt, c.hist, (real)0);
 }
-DEM_INLINE real mc_strain_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real mc_strain_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return hertz_mindlin_elastic(pm, rstar, delta);
+    return hertz_mindlin_elastic(pm, rstar, delta, st);
 }
 DEM_INLINE real mc_strain_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {

@@ -78,9 +78,9 @@ DEM_INLINE law_result mc_stress_force(unsigned fx, law_in c, law_ctx ctx)
                      : mc_stress_pair(fx, c.pm, ctx.trace, ctx.invvol, c.a, c.b, c.ra, c.rb, c.delta, c.rstar, fh);
     return hm_contact(fx, c.n, c.delta, srd, c.mstar, c.vrel, c.pm, c.dt, c.hist, extra);
 }
-DEM_INLINE real mc_stress_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+DEM_INLINE real mc_stress_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return hertz_mindlin_elastic(pm, rstar, delta);
+    return hertz_mindlin_elastic(pm, rstar, delta, st);
 }
 DEM_INLINE real mc_stress_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {

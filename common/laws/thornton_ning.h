@@ -105,11 +105,11 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
     r.st = c.delta > c.st ? c.delta : c.st;
     return r;
 }
-/* The force on first loading (the law's elastic force has no meaning without the contact's state; its callers,
- * the stress output and the membrane patches, refuse this law: host/core/effects.c, fields.c) */
-DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+/* The elastic force at delta given the largest overlap st (the stress output: particle_stress.h) */
+DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    return tn_loading(pm, rstar, delta).f;
+    real de;
+    return tn_at(pm, rstar, delta, st, &de).f;
 }
 /* What the contact gives back if unloaded from delta: 2/5 F (delta - delta_p), the Hertz energy of its elastic part */
 DEM_INLINE real thornton_ning_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)

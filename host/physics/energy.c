@@ -44,7 +44,7 @@ static double patch_contact_energy(unsigned fx, const double *row, double r, dou
     double sum = 0, step = (d - db) / m;
     for (int k = 0; k <= m; k++) {
         double law = dem_patch_law_f64(db + k * step, r);
-        sum += law_elastic(fx, row, r, law) * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
+        sum += law_elastic(fx, row, r, law, 0) * (k == 0 || k == m ? 1 : k % 2 ? 4 : 2);
     }
     return law_energy(fx, row, r, db, 0) + sum * step / 3;
 }
