@@ -50,6 +50,18 @@ double dem_kernel_bytes(const dem_sim *s, int k)
     return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
 }
 
+long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e)
+{
+    long n = s->motion.stage_log_n;
+    if (e && k >= 0 && k < n) {
+        if (k >= n - DEM_STAGE_LOG)
+            *e = s->motion.stage_log[k % DEM_STAGE_LOG];
+        else
+            *e = (dem_stage_end){-1, -1, -1, -1, 0};
+    }
+    return n;
+}
+
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 {
     const unsigned char *q = rebuild ? s->trace.rebuild : s->trace.step;
