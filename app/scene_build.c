@@ -110,10 +110,14 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
                     return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
             continue;
         }
-        if (bit < 0)
+        if (bit < 0) {
+            static const char *const known[] = {"hertz", "damping", "friction", "gravity", "walls", "mc_stress",
+                                                "mc_strain", "membrane"};
+            char hint[300];
             return scene_fail(sc, err, errlen, path,
                               "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
-                              "mc_strain, membrane)", e);
+                              "mc_strain, membrane)%s", e, scene_did_you_mean(e, known, 8, hint, sizeof hint));
+        }
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
         if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS))
@@ -257,7 +261,11 @@ static int lookup_material(const scene *sc, const char *name, const char *path, 
 {
     *id = scene_material_id(sc, name);
     if (*id < 0)
-        return scene_fail(sc, err, errlen, path, "unknown material '%s'", name);
+    {
+        char hint[300];
+        return scene_fail(sc, err, errlen, path, "unknown material '%s'%s", name,
+                          scene_material_hint(sc, name, hint, sizeof hint));
+    }
     return 0;
 }
 
@@ -696,7 +704,11 @@ static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *
         if (f->walls[q].name && !strcmp(f->walls[q].name, f->sample->piston) && !strcmp(f->walls[q].type, "plane"))
             k = (int)q;
     if (k < 0)
-        return scene_fail(sc, err, errlen, "sample.piston", "no plane wall named '%s'", f->sample->piston);
+    {
+        char hint[300];
+        return scene_fail(sc, err, errlen, "sample.piston", "no plane wall named '%s'%s", f->sample->piston,
+                          scene_wall_hint(sc, f->sample->piston, 1, hint, sizeof hint));
+    }
     run->piston = first_wall[k];
     const double *p = f->walls[k].point, *nr = f->walls[k].normal;
     double nn = norm3(nr), n[3] = {nr[0] / nn, nr[1] / nn, nr[2] / nn};
