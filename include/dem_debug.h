@@ -93,6 +93,9 @@ typedef struct {
  * their count, and when 0 <= k < count puts the k-th in *e (only the last DEM_STAGE_LOG are kept: an older k
  * leaves *e with wall -1). The dem command logs them after each stretch of steps. */
 long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e);
+/* Particle i's position as it was added (dem_add_particle: the scene's, before any step) [m]; DEM_ERR_ARG for no
+ * such particle. dem check measures from it how far a moving wall is from the particles. */
+int dem_particle_added_position(const dem_sim *s, int i, double x[3]);
 /* Provenance of a started run's arithmetic: the library version, the compiler and numeric flags of the host code and
  * the reference, and for OpenCL the device, driver and the program's build options (with the source hash). */
 const char *dem_build_info(dem_sim *s);

@@ -752,6 +752,61 @@ static void test_triaxial_fp32_bitwise(void **st)
  * 25 % - and a mean of 7 %, below where lagged MC-strain rings on them (15.7 %); 300 soft spheres pressed to a
  * relative density of 0.97 (test_stability.c's compaction scene, further) pass both under lagged MC-strain: a mean of
  * 26 %, a pair at 122 %. */
+/* dem check's wall-time estimate (steps x (60 us + 0.12 us x particles), the rate written in dem_main.c) and its
+ * stages: a piston 0.05 m above the top of two spheres (centres at z = 0 and 0.0202 m, radius 0.01 m) moving down at
+ * 0.5 m/s meets them after (0.08 - 0.0302) / 0.5 = 0.0996 s; moving 0.03 m at most, it stops 0.0198 m short (a
+ * warning). */
+static void test_check_estimates(void **st)
+{
+    (void)st;
+    char err[8192], out[8192];
+    const char *sed = "sed -e 's/effects: \\[hertz, damping\\]/effects: [hertz, damping, walls]/' "
+                      "-e 's/{x: \\[-0.0101, 0, 0\\], v: \\[10, 0, 0\\]/{x: [0, 0, 0], v: [0, 0, 0]/' "
+                      "-e 's/{x: \\[0.0101, 0, 0\\], v: \\[-10, 0, 0\\]/{x: [0, 0, 0.0202], v: [0, 0, 0]/' "
+                      "-e 's/^domain: .*/walls: [{type: plane, name: piston, material: rubber, point: [0, 0, 0.08], "
+                      "normal: [0, 0, -1], motion: [{velocity: [0, 0, -0.5], duration: %s}]}]\\n"
+                      "domain: {lo: [-0.1, -0.1, -0.05], hi: [0.1, 0.1, 0.1]}/' -e 's/duration: 0.003 /duration: 0.3 /'";
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, sed, "0.2");
+    assert_int_equal(sh(err, sizeof err, "%s %s/scenes/two_spheres.yaml > %s/ck.yaml && %s check %s/ck.yaml > "
+                        "%s/ck.txt", cmd, SRC, tmp, DEM, tmp, tmp), 0);
+    FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/ck.txt"), "r");
+    assert_non_null(fp);
+    size_t got = fread(out, 1, sizeof out - 1, fp);
+    out[got] = 0;
+    fclose(fp);
+    long steps;
+    double est, into, at;
+    const char *d = strstr(out, "duration       0.3 s = ");
+    const char *w = strstr(out, "wall time      about ");
+    assert_true(d && w && sscanf(d, "duration       0.3 s = %ld steps", &steps) == 1 &&
+                sscanf(w, "wall time      about %lf s", &est) == 1);
+    double want = (double)steps * (60e-6 + 0.12e-6 * 2);
+    printf("  %ld steps of 2 spheres: about %g s (the formula: %g s)\n", steps, est, want);
+    assert_true(fabs(est - want) <= 0.05 * want); /* printed to 2 digits */
+    const char *sl = strstr(out, "stage          wall 'piston' 1/1 (motion[0]): up to 0.2 s (t = 0 to 0.2 s), 0.5 m/s, "
+                                 "0.1 m at most, towards the particles; meets the particles as placed ");
+    assert_non_null(sl);
+    assert_int_equal(sscanf(strstr(sl, "as placed "), "as placed %lf s into the stage (t = %lf s)", &into, &at), 2);
+    assert_true(fabs(into - 0.0996) < 1e-6 && fabs(at - 0.0996) < 1e-6);
+    assert_null(strstr(out, "never reaches"));
+    /* 0.06 s: 0.03 m of the 0.0498 m */
+    snprintf(cmd, sizeof cmd, sed, "0.06");
+    assert_int_equal(sh(err, sizeof err, "%s %s/scenes/two_spheres.yaml > %s/ck2.yaml && %s check %s/ck2.yaml > "
+                        "%s/ck2.txt", cmd, SRC, tmp, DEM, tmp, tmp), 0);
+    fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/ck2.txt"), "r");
+    assert_non_null(fp);
+    got = fread(out, 1, sizeof out - 1, fp);
+    out[got] = 0;
+    fclose(fp);
+    const char *sh2 = strstr(out, "a press that stops ");
+    double shortby;
+    assert_true(sh2 && sscanf(sh2, "a press that stops %lf m short", &shortby) == 1);
+    assert_true(fabs(shortby - 0.0198) < 1e-6);
+    assert_non_null(strstr(out, "warning: wall 'piston' never reaches the particles as placed (0.0498 m away, it moves "
+                                "0.03 m towards them at most)"));
+}
+
 /* Stage ends in the run log: the tutorial's pour-then-press cut short (examples/pour_press_small.yaml: 100 beads
  * poured from 2 cm, a settling pause, the piston down until 0.5 N, then until 2 N, a hold). Each line names the wall,
  * the stage, the step and why it ended; the pause and the hold end after their durations to a step. */
@@ -1969,6 +2024,7 @@ int main(void)
         cmocka_unit_test(test_overlap_report),
         cmocka_unit_test(test_mass_scale),
         cmocka_unit_test(test_stage_ends),
+        cmocka_unit_test(test_check_estimates),
         cmocka_unit_test(test_compile_note),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

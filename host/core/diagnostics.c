@@ -50,6 +50,15 @@ double dem_kernel_bytes(const dem_sim *s, int k)
     return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
 }
 
+int dem_particle_added_position(const dem_sim *s, int i, double x[3])
+{
+    if (i < 0 || i >= s->n)
+        return DEM_ERR_ARG;
+    for (int d = 0; d < 3; d++)
+        x[d] = s->x[3 * (size_t)sim_dev(s, i) + d];
+    return 0;
+}
+
 long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e)
 {
     long n = s->motion.stage_log_n;
