@@ -667,7 +667,13 @@ static int start_with_note(dem_sim *s, const scene_run *run, int note)
             snprintf(n.device, sizeof n.device, "device %d", run->cfg.device);
         pthread_mutex_init(&n.mu, NULL);
         pthread_cond_init(&n.cv, NULL);
+        /* the watcher takes no signal: a Ctrl-C stays the main thread's, held there while the device starts
+         * (cl_create), as it would be without the watcher */
+        sigset_t all, old;
+        sigfillset(&all);
+        pthread_sigmask(SIG_BLOCK, &all, &old);
         watching = pthread_create(&th, NULL, compile_note_wait, &n) == 0;
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
     }
     int se = dem_start(s, &run->cfg);
     if (watching) {
