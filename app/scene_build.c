@@ -95,6 +95,26 @@ static int parse_mcs_convention(const scene *sc, scene_run *run, char *err, size
     return 0;
 }
 
+/* For an unknown effect name near a known one (the names dem_effect_name gives that a scene may list, and
+ * "membrane"): "unknown effect 'x' (known: ...) (did you mean 'y'?)" in buf, and 1; else 0. */
+static int effect_hint(const char *e, char *buf, size_t len)
+{
+    const char *known[DEM_EFFECT_COUNT + 1];
+    int n = 0;
+    unsigned unnamed = DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS;
+    for (int b = 0; b < DEM_EFFECT_COUNT; b++)
+        if (dem_effect_name(b) && (DEM_EFFECT_ALL & ~unnamed & (1u << b)))
+            known[n++] = dem_effect_name(b);
+    known[n++] = "membrane";
+    char hint[300], list[400] = "";
+    if (!scene_did_you_mean(e, known, n, hint, sizeof hint)[0])
+        return 0;
+    for (int k = 0; k < n; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", known[k]);
+    snprintf(buf, len, "unknown effect '%s' (known: %s)%s", e, list, hint);
+    return 1;
+}
+
 static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errlen)
 {
     const scene_file *f = sc->f;
@@ -110,14 +130,12 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
                     return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
             continue;
         }
-        if (bit < 0) {
-            static const char *const known[] = {"hertz", "damping", "friction", "gravity", "walls", "mc_stress",
-                                                "mc_strain", "membrane"};
-            char hint[300];
+        if (bit < 0 && effect_hint(e, err, errlen)) /* a misspelt name: the message with the nearest one */
+            return scene_fail(sc, err, errlen, path, "%s", err);
+        if (bit < 0)
             return scene_fail(sc, err, errlen, path,
                               "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
-                              "mc_strain, membrane)%s", e, scene_did_you_mean(e, known, 8, hint, sizeof hint));
-        }
+                              "mc_strain, membrane)", e);
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
         if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS))
