@@ -36,9 +36,28 @@ int scene_fail(const scene *sc, char *err, size_t errlen, const char *path, cons
     return 1;
 }
 
+/* For an unknown effect name near a known one (the names dem_effect_name gives that a scene may list, and
+ * "membrane"): "unknown effect 'x' (known: ...) (did you mean 'y'?)" in buf, and 1; else 0. */
+static int effect_hint(const char *e, char *buf, size_t len)
+{
+    const char *known[DEM_EFFECT_COUNT + 1];
+    int n = 0;
+    unsigned unnamed = DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS;
+    for (int b = 0; b < DEM_EFFECT_COUNT; b++)
+        if (dem_effect_name(b) && (DEM_EFFECT_ALL & ~unnamed & (1u << b)))
+            known[n++] = dem_effect_name(b);
+    known[n++] = "membrane";
+    char hint[300], list[400] = "";
+    if (!scene_did_you_mean(e, known, n, hint, sizeof hint)[0])
+        return 0;
+    for (int k = 0; k < n; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", known[k]);
+    snprintf(buf, len, "unknown effect '%s' (known: %s)%s", e, list, hint);
+    return 1;
+}
+
 static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
 
 /* One rule for the scene's effects and for --model: a multi-contact law needs a material whose prefactor makes it do
  * something (MC-stress: beta nu != 0, seed 000's "nu = 0 de-activates the model"; MC-strain: gamma > 0), or it would
@@ -93,26 +112,6 @@ static int parse_mcs_convention(const scene *sc, scene_run *run, char *err, size
         run->mcs_conv = (run->mcs_conv & ~opt[k].clear) | opt[k].bits[q];
     }
     return 0;
-}
-
-/* For an unknown effect name near a known one (the names dem_effect_name gives that a scene may list, and
- * "membrane"): "unknown effect 'x' (known: ...) (did you mean 'y'?)" in buf, and 1; else 0. */
-static int effect_hint(const char *e, char *buf, size_t len)
-{
-    const char *known[DEM_EFFECT_COUNT + 1];
-    int n = 0;
-    unsigned unnamed = DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS;
-    for (int b = 0; b < DEM_EFFECT_COUNT; b++)
-        if (dem_effect_name(b) && (DEM_EFFECT_ALL & ~unnamed & (1u << b)))
-            known[n++] = dem_effect_name(b);
-    known[n++] = "membrane";
-    char hint[300], list[400] = "";
-    if (!scene_did_you_mean(e, known, n, hint, sizeof hint)[0])
-        return 0;
-    for (int k = 0; k < n; k++)
-        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", known[k]);
-    snprintf(buf, len, "unknown effect '%s' (known: %s)%s", e, list, hint);
-    return 1;
 }
 
 static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errlen)
