@@ -59,6 +59,7 @@ static int effect_hint(const char *e, char *buf, size_t len)
 static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
+
 /* One rule for the scene's effects and for --model: a multi-contact law needs a material whose prefactor makes it do
  * something (MC-stress: beta nu != 0, seed 000's "nu = 0 de-activates the model"; MC-strain: gamma > 0), or it would
  * run as classical DEM in disguise. NULL when the law can act, else the reason. */
@@ -277,8 +278,7 @@ int scene_material_id(const scene *sc, const char *name)
 static int lookup_material(const scene *sc, const char *name, const char *path, int *id, char *err, size_t errlen)
 {
     *id = scene_material_id(sc, name);
-    if (*id < 0)
-    {
+    if (*id < 0) {
         char hint[300];
         return scene_fail(sc, err, errlen, path, "unknown material '%s'%s", name,
                           scene_material_hint(sc, name, hint, sizeof hint));
@@ -720,8 +720,7 @@ static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *
     for (unsigned q = 0; q < f->walls_count; q++)
         if (f->walls[q].name && !strcmp(f->walls[q].name, f->sample->piston) && !strcmp(f->walls[q].type, "plane"))
             k = (int)q;
-    if (k < 0)
-    {
+    if (k < 0) {
         char hint[300];
         return scene_fail(sc, err, errlen, "sample.piston", "no plane wall named '%s'%s", f->sample->piston,
                           scene_wall_hint(sc, f->sample->piston, 1, hint, sizeof hint));

@@ -152,8 +152,7 @@ static int attach(const scene *sc, dem_sim *s, unsigned k, unsigned a, const dou
     char p[128];
     snprintf(p, sizeof p, "membranes[%u].attach[%u].wall", k, a);
     int w = find_wall(sc, at->wall, first_wall);
-    if (w < 0)
-    {
+    if (w < 0) {
         char hint[300];
         return scene_fail(sc, err, errlen, p, "no wall named '%s'%s", at->wall,
                           scene_wall_hint(sc, at->wall, 0, hint, sizeof hint));
