@@ -56,7 +56,7 @@ HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer clean validate conventions stability accuracy tablet-models tablet-mass-scale
+.PHONY: all deps run demo test test-examples test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer clean validate conventions stability accuracy tablet-models tablet-mass-scale
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -391,7 +391,11 @@ demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo
 
 test: $(TEST_BIN) python-lib
-	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh tests/test_python.py
+	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh tests/test_python.py tests/examples_check.sh
+
+# The tutorial's scenes (docs/tutorial.md, examples/*.yaml) alone; make test runs the same check.
+test-examples: $(BUILD)/dem
+	@bash tests/examples_check.sh
 
 bench: $(BUILD)/dem-bench $(BUILD)/dem
 	bash bench/peer/run.sh --bed

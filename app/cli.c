@@ -8,7 +8,7 @@
 
 const char cli_usage[] =
     "usage: dem run SCENE.yaml [-o OUT.h5] [--device N] [--precision fp32|fp64] [--checkpoint FILE]\n"
-    "                          [--progress | --quiet] [--stop-after STEPS]\n"
+    "                          [--progress | --quiet] [--verbose] [--stop-after STEPS]\n"
     "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated]\n"
     "       dem run --restart CHECKPOINT.h5 [-o OUT.h5] [options as above]\n"
     "       dem check SCENE.yaml [--model M]   validate a scene and print what it implies (time scales, memory,\n"
@@ -19,7 +19,8 @@ const char cli_usage[] =
     "run writes OUT.h5 (frames and time series; OUT.h5.part until it completes), OUT.xmf for ParaView, and\n"
     "checkpoints to OUT.ckpt.h5 (the scene's output.checkpoint_every, and at the end). A progress line goes to\n"
     "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI. --model replaces the\n"
-    "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart).\n"
+    "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart). --verbose\n"
+    "adds the kernels each step and each neighbour rebuild launched to the report at the end.\n"
     "SIGINT, SIGTERM or SIGHUP ends a run within about a second, its output and checkpoint complete.\n"
     "\n"
     "exit status: 0 done; 1 the simulation failed while running; 2 bad command line; 65 invalid scene or\n"
@@ -159,6 +160,8 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
             o->progress = 1;
         } else if (!strcmp(a, "--quiet")) {
             o->progress = 0;
+        } else if (!strcmp(a, "--verbose")) {
+            o->verbose = 1;
         } else if (a[0] == '-') {
             snprintf(err, errlen, "unknown option '%s'", cli_show(a, q, 200));
             *with_usage = 1;

@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "run.h"
 #include "scene.h"
+#include "dem_debug.h" /* dem_particle_added_position */
 #include <hdf5.h>
 #include <math.h>
 #include <errno.h>
@@ -9,6 +10,119 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The wall-time estimate of dem check: a rate measured with dem run on the 2-core development VM (AMD EPYC, PoCL
+ * 3.1, fp64, classical Hertz-Mindlin): about 60 us per step whatever the size (kernel launches, the host's stage
+ * and wall work) plus 0.12 us per particle-step in a packed bed. Measured: 300 beads poured 85 us/step, the
+ * 514-hydrogel compression 150, examples/pour_press.yaml (2500 beads) 377, tablet_3k about 270 on average,
+ * tablet_100k 10 000 (54 minutes for 323 977 steps); the formula gives 96, 122, 360, 420 and 12 060: within about a
+ * factor 1.5. Loose packings cost less per particle, the multi-contact laws more (docs/multicontact.md), and other
+ * devices differ altogether: dem run's progress line measures the real rate. */
+#define CHECK_STEP_S 6.0e-5
+#define CHECK_PARTICLE_STEP_S 1.2e-7
+#define CHECK_STAGE_LINES 12 /* stage lines per wall at most (repeat: load-unload cycles by the hundred) */
+
+static void print_duration(double sec, char *buf, size_t len)
+{
+    if (sec < 120)
+        snprintf(buf, len, "%.2g s", sec);
+    else if (sec < 7200)
+        snprintf(buf, len, "%.2g minutes", sec / 60);
+    else if (sec < 3 * 86400)
+        snprintf(buf, len, "%.2g hours", sec / 3600);
+    else
+        snprintf(buf, len, "%.2g days", sec / 86400);
+}
+
+/* Each moving wall's stages: how long each runs at most, where it goes, and for a plane moving along its normal
+ * whether it reaches the particles as the scene places them (their initial positions: a pour settles them lower,
+ * so a wall that reaches the placed particles may still stop short of the bed; the stage-end lines of dem run say
+ * what happened). */
+static void print_stages(dem_sim *s, const scene *sc, int gravity)
+{
+    int n = dem_count(s), settle = sc->f->time.settle > 0;
+    for (int k = 0; k < dem_wall_count(s); k++) {
+        dem_wall w;
+        dem_wall_get(s, k, &w);
+        if (w.nstages <= settle)
+            continue;
+        char name[1100];
+        scene_wall_label(sc, k, name, sizeof name);
+        double gap = INFINITY, nn = sqrt(w.normal[0] * w.normal[0] + w.normal[1] * w.normal[1] +
+                                         w.normal[2] * w.normal[2]);
+        double p0[3];
+        dem_wall_position(s, k, p0);
+        if (w.kind == DEM_WALL_PLANE && nn > 0)
+            for (int i = 0; i < n; i++) {
+                double x[3];
+                if (dem_particle_added_position(s, i, x))
+                    continue;
+                double h = ((x[0] - p0[0]) * w.normal[0] + (x[1] - p0[1]) * w.normal[1] + (x[2] - p0[2]) * w.normal[2]) /
+                           nn - dem_particle_radius(s, i);
+                gap = h < gap ? h : gap;
+            }
+        double t = 0, travel = 0, most = 0; /* time since the start; travel towards the particles along the normal, and
+                                               its largest */
+        int reached = 0;
+        for (int st = 0; st < w.nstages; st++) {
+            const dem_stage *g = &w.stages[st];
+            char lab[64], what[400] = "", ends[300] = "", reach[300] = "";
+            if (settle && st == 0)
+                snprintf(lab, sizeof lab, "time.settle");
+            else
+                snprintf(lab, sizeof lab, "motion[%d]", st - settle); /* repeats: the list played again */
+            double vn = w.kind == DEM_WALL_PLANE && nn > 0
+                            ? (g->velocity[0] * w.normal[0] + g->velocity[1] * w.normal[1] +
+                               g->velocity[2] * w.normal[2]) / nn : 0;
+            double speed = sqrt(g->velocity[0] * g->velocity[0] + g->velocity[1] * g->velocity[1] +
+                                g->velocity[2] * g->velocity[2]);
+            if (g->force > 0)
+                snprintf(what, sizeof what, "a servo at %g N (at most %g m/s)", g->force, g->max_speed);
+            else if (speed == 0)
+                snprintf(what, sizeof what, "holds still");
+            else
+                snprintf(what, sizeof what, "%g m/s, %g m at most%s", speed, speed * g->duration,
+                         w.kind != DEM_WALL_PLANE ? "" : vn > 0 ? ", towards the particles" : vn < 0 ? ", away from them"
+                                                                                                     : ", along its plane");
+            if (g->until_force > 0)
+                snprintf(ends + strlen(ends), sizeof ends - strlen(ends), "; ends early at until_force %g N", g->until_force);
+            if (g->until_distance > 0)
+                snprintf(ends + strlen(ends), sizeof ends - strlen(ends), "; ends early at until_distance %g m",
+                         g->until_distance);
+            if (g->until_density > 0)
+                snprintf(ends + strlen(ends), sizeof ends - strlen(ends), "; ends early at until_density %g",
+                         g->until_density);
+            if (t + g->duration > sc->f->time.duration)
+                snprintf(ends + strlen(ends), sizeof ends - strlen(ends), "; the run ends at %g s",
+                         sc->f->time.duration);
+            double after = travel + vn * g->duration;
+            if (isfinite(gap) && !reached && gap - travel <= 0) {
+                reached = 1;
+                snprintf(reach, sizeof reach, "; touches the particles as placed from its start");
+            } else if (isfinite(gap) && !reached && vn > 0 && g->force <= 0 && after >= gap) {
+                reached = 1;
+                snprintf(reach, sizeof reach, "; meets the particles as placed %.3g s into the stage (t = %.4g s)",
+                         (gap - travel) / vn, t + (gap - travel) / vn);
+            }
+            travel = g->force > 0 ? travel : after;
+            most = travel > most ? travel : most;
+            if (st < CHECK_STAGE_LINES || reach[0]) /* a long repeat list: its first stages, and where it reaches */
+                printf("stage          wall '%s' %d/%d (%s): up to %g s (t = %.4g to %.4g s), %s%s%s\n", name, st + 1,
+                       w.nstages, lab, g->duration, t, t + g->duration, what, ends, reach);
+            else if (st == CHECK_STAGE_LINES)
+                printf("               wall '%s': %d stages more (its motion list repeated)\n", name,
+                       w.nstages - CHECK_STAGE_LINES);
+            t += g->duration;
+        }
+        if (isfinite(gap) && !reached && most > 0)
+            printf("               warning: wall '%s' never reaches the particles as placed (%.3g m away, it moves %.3g m "
+                   "towards them at most): a press that stops %.3g m short, unless the particles move to it\n", name,
+                   gap, most, gap - most);
+        if (isfinite(gap) && gravity)
+            printf("               (with gravity the particles fall first, so the bed lies lower than placed: dem run "
+                   "logs where and why each stage ended)\n");
+    }
+}
 
 static int check(const char *path, const char *model)
 {
@@ -90,6 +204,13 @@ static int check(const char *path, const char *model)
     }
     printf("duration       %.6g s = %ld steps (%.3g particle-steps)\n", sc->f->time.duration, run.steps,
            (double)run.steps * n);
+    char wt[64];
+    print_duration((double)run.steps * (CHECK_STEP_S + CHECK_PARTICLE_STEP_S * n), wt, sizeof wt);
+    printf("wall time      about %s on 2 CPU cores with PoCL (%.0f us per step + %.2f us per particle-step, measured "
+           "with dem run on the development VM, classical law, within a factor of about 1.5; a GPU or the "
+           "multi-contact laws differ: the progress line of dem run gives the real rate)\n", wt, CHECK_STEP_S * 1e6,
+           CHECK_PARTICLE_STEP_S * 1e6);
+    print_stages(s, sc, (run.effects & DEM_EFFECT_GRAVITY) != 0);
     printf("output         frame every %ld steps (%ld frames, %d vector fields), series every %ld steps, "
            "checkpoint every %ld steps (0: end only)\n", run.frame_every, frames, nfields, run.series_every,
            run.checkpoint_every);

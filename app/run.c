@@ -12,6 +12,7 @@
 #include <time.h>
 #include <errno.h>
 #include <libgen.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -279,9 +280,14 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
     if (a.steps < DEM_MIN_STEPS_PER_CONTACT)
         fprintf(stderr, "dem: warning: %s: the shortest contact (%s, %.3g s at %.3g m/s) spans %.1f steps of dt; below %d "
                         "a collision is resolved badly (a restitution of 0.7 comes out 0.5 %% off at 20 steps, 1 %% at 10, "
-                        "6 %% at 5; one of 0.5 1.4 %% at 16): dt <= %.3g s would give %d\n",
+                        "6 %% at 5; one of 0.5 1.4 %% at 16): dt <= %.3g s would give %d%s\n",
                 sc->path, which, a.contact_time, a.wall_time <= a.pair_time ? a.wall_speed : a.pair_speed, a.steps,
-                DEM_MIN_STEPS_PER_CONTACT, a.contact_time / DEM_MIN_STEPS_PER_CONTACT, DEM_MIN_STEPS_PER_CONTACT);
+                DEM_MIN_STEPS_PER_CONTACT, a.contact_time / DEM_MIN_STEPS_PER_CONTACT, DEM_MIN_STEPS_PER_CONTACT,
+                /* a wall's stage speed: a press, where no rebound is resolved (make run's piston at 2 cm/s) */
+                a.wall >= 0 && a.wall_time <= a.pair_time
+                    ? ". Expected where the wall presses a packing slowly instead of striking particles (make run's "
+                      "scenes/hydrogel_514.yaml: its piston at 2 cm/s): there is no rebound to resolve; it matters "
+                      "for impacts" : "");
 }
 
 /* Lagged MC-strain (docs/multicontact.md "When lagged MC-strain rings"). The lagged scheme
@@ -444,6 +450,7 @@ typedef struct {
     dem_mc_stats mc0;                  /* the MC-strain counts at the run's first step (a restart's earlier ones) */
     double *x0;                        /* the positions at the run's first step, with a closed membrane (else NULL) */
     int *tri;                          /* the triangles' particles then (dem_triangles_get) */
+    long stage_seen;                   /* the stage ends logged so far (stage_ends) */
 } run_ctx;
 
 /* A membrane is closed when each of its edges (springs) borders two triangles: 2 edges = 3 triangles */
@@ -611,12 +618,85 @@ static int phase_configure(run_ctx *c)
     return 0;
 }
 
+/* The note while a device compiles the kernels: OpenCL builds the program from source when a run starts, which a
+ * driver with a cache (PoCL's, in ~/.cache/pocl) does once per build of the kernels and device - 2.3 s for the
+ * 514-hydrogel scene on the idle 2-core development VM with an empty cache, 15 s reported on a busy one - and later
+ * runs find in its cache (0.13 s for the same start). The library cannot tell which
+ * it will be, so a watcher thread says it once dem_start has taken longer than COMPILE_NOTE_S: a run that starts
+ * at once prints nothing, a silent pause of 15 s gets a reason. */
+#define COMPILE_NOTE_S 1.5
+typedef struct {
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    int done;
+    char device[600];
+} compile_note;
+
+static void *compile_note_wait(void *arg)
+{
+    compile_note *n = arg;
+    struct timespec until;
+    double after = COMPILE_NOTE_S;
+    const char *e = getenv("DEM_TEST_COMPILE_NOTE_S"); /* tests/test_scene.c: 0 shows it on every start, cached or not */
+    if (e && atof(e) >= 0)
+        after = atof(e);
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_sec += (time_t)after;
+    until.tv_nsec += (long)((after - (double)(time_t)after) * 1e9);
+    if (until.tv_nsec >= 1000000000L)
+        until.tv_sec++, until.tv_nsec -= 1000000000L;
+    pthread_mutex_lock(&n->mu);
+    int rc = 0;
+    while (!n->done && rc == 0)
+        rc = pthread_cond_timedwait(&n->cv, &n->mu, &until);
+    if (!n->done)
+        fprintf(stderr, "dem: compiling the kernels for %s (once for this build and device: seconds, up to ~15 s on "
+                        "a busy 2-core machine; later runs take them from the driver's cache)\n", n->device);
+    pthread_mutex_unlock(&n->mu);
+    return NULL;
+}
+
+/* dem_start, with the note above when it is slow and the run is not --quiet */
+static int start_with_note(dem_sim *s, const scene_run *run, int note)
+{
+    compile_note n = {.done = 0};
+    pthread_t th;
+    int watching = 0;
+    if (note && run->cfg.backend == DEM_BACKEND_OPENCL) {
+        if (dem_device_name(run->cfg.device, n.device, sizeof n.device))
+            snprintf(n.device, sizeof n.device, "device %d", run->cfg.device);
+        pthread_mutex_init(&n.mu, NULL);
+        pthread_cond_init(&n.cv, NULL);
+        /* the watcher takes no signal: a Ctrl-C stays the main thread's, held there while the device starts
+         * (cl_create), as it would be without the watcher */
+        sigset_t all, old;
+        sigfillset(&all);
+        pthread_sigmask(SIG_BLOCK, &all, &old);
+        watching = pthread_create(&th, NULL, compile_note_wait, &n) == 0;
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+    }
+    int se = dem_start(s, &run->cfg);
+    if (watching) {
+        pthread_mutex_lock(&n.mu);
+        n.done = 1;
+        pthread_cond_signal(&n.cv);
+        pthread_mutex_unlock(&n.mu);
+        pthread_join(th, NULL);
+    }
+    if (note && run->cfg.backend == DEM_BACKEND_OPENCL) {
+        pthread_mutex_destroy(&n.mu);
+        pthread_cond_destroy(&n.cv);
+    }
+    return se;
+}
+
 /* 3. The device started, the checkpoint's state restored, the run announced. */
 static int phase_start(run_ctx *c)
 {
     const run_opts *o = c->o;
     const scene_run *run = &c->run;
-    int se = dem_start(c->s, &run->cfg); /* run->cfg.contacts: set by scene_build when frames carry contacts */
+    /* run->cfg.contacts: set by scene_build when frames carry contacts */
+    int se = start_with_note(c->s, run, o->progress != 0);
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
@@ -682,6 +762,59 @@ static int poison_hook(dem_sim *s, long id)
     return e;
 }
 
+/* The scene's own words for stage st of wall k: "time.settle" (the settling pause, which every wall holds as its
+ * first stage) or "motion[j]" (its index in the wall's motion list, repeats folded). */
+static void stage_label(const scene *sc, int k, int st, char *buf, size_t len)
+{
+    int at = 0, settle = sc->f->time.settle > 0;
+    for (unsigned i = 0; i < sc->f->walls_count; i++) {
+        const scene_wall *w = &sc->f->walls[i];
+        at += w->type && !strcmp(w->type, "box") ? 6 : 1;
+        if (k >= at)
+            continue;
+        if (settle && st == 0)
+            snprintf(buf, len, "time.settle");
+        else if (w->motion_count)
+            snprintf(buf, len, "motion[%u]", (unsigned)(st - settle) % w->motion_count);
+        else
+            snprintf(buf, len, "stage %d", st);
+        return;
+    }
+    snprintf(buf, len, "stage %d", st);
+}
+
+/* Logs each motion stage that ended since the last look (dem_stage_ends, the library's record of what it decided):
+ * "wall 'piston' stage 2 of 4 (motion[0]) ended at step S (t = ...): until_force 0.5 N reached (0.53 N)". Walls
+ * whose only stage is the settling pause are not logged. */
+static void stage_ends(run_ctx *c, int print)
+{
+    dem_sim *s = c->s;
+    long n = dem_stage_ends(s, 0, NULL);
+    for (; c->stage_seen < n; c->stage_seen++) {
+        dem_stage_end e;
+        dem_stage_ends(s, c->stage_seen, &e);
+        dem_wall w;
+        if (!print || e.wall < 0 || dem_wall_get(s, e.wall, &w) || w.nstages <= (c->sc->f->time.settle > 0))
+            continue;
+        const dem_stage *g = &w.stages[e.stage];
+        char name[1100], lab[64], why[200];
+        scene_wall_label(c->sc, e.wall, name, sizeof name);
+        stage_label(c->sc, e.wall, e.stage, lab, sizeof lab);
+        if (e.why == DEM_STAGE_END_FORCE)
+            snprintf(why, sizeof why, "until_force %g N reached (%.4g N)", g->until_force, e.value);
+        else if (e.why == DEM_STAGE_END_DISTANCE)
+            snprintf(why, sizeof why, "until_distance %g m reached (%.4g m)", g->until_distance, e.value);
+        else if (e.why == DEM_STAGE_END_DENSITY)
+            snprintf(why, sizeof why, "until_density %g reached (%.4g)", g->until_density, e.value);
+        else if (g->until_force > 0 || g->until_distance > 0 || g->until_density > 0)
+            snprintf(why, sizeof why, "its duration (%g s) ran out before its end condition held", g->duration);
+        else
+            snprintf(why, sizeof why, "its duration (%g s) ran out", g->duration);
+        fprintf(stderr, "dem: wall '%s' stage %d of %d (%s) ended at step %ld (t = %.6g s): %s\n", name, e.stage + 1,
+                w.nstages, lab, e.step, (double)e.step * dem_dt(s), why);
+    }
+}
+
 /* 4. The steps, with frames, series, checkpoints and progress, to the end (or --stop-after); the output finished. */
 static int phase_steps(run_ctx *c)
 {
@@ -701,6 +834,7 @@ static int phase_steps(run_ctx *c)
     c->step0 = step0;
     dem_mc_stats_get(s, &c->mc0);
     membrane_watch(c);
+    c->stage_seen = dem_stage_ends(s, 0, NULL); /* a restart logs the ends from its first step */
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
@@ -774,6 +908,7 @@ static int phase_steps(run_ctx *c)
             return EXIT_RUN_FAILED;
         }
         st = dem_step_index(s);
+        stage_ends(c, o->progress != 0);
         int io = 0;
         errno = 0;
         if (st % run->frame_every == 0 || st == end) {
@@ -871,11 +1006,13 @@ static void phase_report(run_ctx *c)
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", c->outp, c->ckp,
                 dem_step_index(s), now() - c->t0);
         char seq[2048];
-        if (dem_kernel_sequence(s, 0, seq, sizeof seq))
+        if (c->o->verbose && dem_kernel_sequence(s, 0, seq, sizeof seq)) /* the library's internals: on request */
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
-        if (dem_kernel_sequence(s, 1, seq, sizeof seq))
-            fprintf(stderr, "dem: and at each neighbour rebuild (%ld in all, %ld storing the particles anew; skin now "
-                            "%.3g m): %s\n", dem_rebuild_count(s), dem_reorder_count(s), dem_neighbor_skin(s), seq);
+        if (!c->o->verbose || !dem_kernel_sequence(s, 1, seq, sizeof seq))
+            seq[0] = 0;
+        fprintf(stderr, "dem: neighbour rebuilds: %ld (%ld storing the particles anew; skin now %.3g m)%s%s\n",
+                dem_rebuild_count(s), dem_reorder_count(s), dem_neighbor_skin(s), seq[0] ? "; kernels at each: " : "",
+                seq);
         const char **kn;
         const double *ks;
         int kc = 0;

@@ -18,6 +18,7 @@ typedef struct {
     int progress;            /* 1 always, 0 never, -1 when stderr is a terminal */
     long stop_after;         /* > 0: stop after this many steps (a checkpoint is written; for tests and staging) */
     const char *model;       /* NULL: the scene's normal law; else see scene_apply_model */
+    int verbose;             /* 1: also the kernels launched and each rebuild's (--verbose) */
 } run_opts;
 
 int run_scene(const run_opts *o);

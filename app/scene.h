@@ -264,6 +264,13 @@ void scene_file_path(const scene *sc, const char *name, char *buf, size_t len);
  * regular file ..."): a named pipe would block the open and the read forever, a device (/dev/zero) be read without
  * end. The scene, its CSV files and its mesh files are opened this way. */
 FILE *scene_open_regular(const char *path, char *why, size_t len);
+/* " (did you mean 'x'?)" in buf when one of the n candidates is near word - an edit distance (insertions, deletions,
+ * substitutions, and swaps of two neighbours) of at most 1 for words up to 4 characters, 2 up to 8, 3 beyond - the
+ * nearest, the first of equals; else "". For a misspelt key, wall, material or effect name. Returns buf. */
+const char *scene_did_you_mean(const char *word, const char *const *cands, int n, char *buf, size_t len);
+/* The same over the names of the scene's walls (plane walls only when planes_only) and over its materials' names */
+const char *scene_wall_hint(const scene *sc, const char *word, int planes_only, char *buf, size_t len);
+const char *scene_material_hint(const scene *sc, const char *word, char *buf, size_t len);
 /* Library wall k's name, as the output's wall_names lists it (a box's faces "NAME x-" ...) */
 void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
 /* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */

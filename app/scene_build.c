@@ -36,6 +36,26 @@ int scene_fail(const scene *sc, char *err, size_t errlen, const char *path, cons
     return 1;
 }
 
+/* For an unknown effect name near a known one (the names dem_effect_name gives that a scene may list, and
+ * "membrane"): "unknown effect 'x' (known: ...) (did you mean 'y'?)" in buf, and 1; else 0. */
+static int effect_hint(const char *e, char *buf, size_t len)
+{
+    const char *known[DEM_EFFECT_COUNT + 1];
+    int n = 0;
+    unsigned unnamed = DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS;
+    for (int b = 0; b < DEM_EFFECT_COUNT; b++)
+        if (dem_effect_name(b) && (DEM_EFFECT_ALL & ~unnamed & (1u << b)))
+            known[n++] = dem_effect_name(b);
+    known[n++] = "membrane";
+    char hint[300], list[400] = "";
+    if (!scene_did_you_mean(e, known, n, hint, sizeof hint)[0])
+        return 0;
+    for (int k = 0; k < n; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", known[k]);
+    snprintf(buf, len, "unknown effect '%s' (known: %s)%s", e, list, hint);
+    return 1;
+}
+
 static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
@@ -165,6 +185,8 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
                     return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
             continue;
         }
+        if (bit < 0 && effect_hint(e, err, errlen)) /* a misspelt name: the message with the nearest one */
+            return scene_fail(sc, err, errlen, path, "%s", err);
         if (bit < 0)
             return scene_fail(sc, err, errlen, path,
                               "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
@@ -326,8 +348,11 @@ int scene_material_id(const scene *sc, const char *name)
 static int lookup_material(const scene *sc, const char *name, const char *path, int *id, char *err, size_t errlen)
 {
     *id = scene_material_id(sc, name);
-    if (*id < 0)
-        return scene_fail(sc, err, errlen, path, "unknown material '%s'", name);
+    if (*id < 0) {
+        char hint[300];
+        return scene_fail(sc, err, errlen, path, "unknown material '%s'%s", name,
+                          scene_material_hint(sc, name, hint, sizeof hint));
+    }
     return 0;
 }
 
@@ -835,8 +860,11 @@ static int parse_sample(const scene *sc, dem_sim *s, scene_run *run, const int *
     for (unsigned q = 0; q < f->walls_count; q++)
         if (f->walls[q].name && !strcmp(f->walls[q].name, f->sample->piston) && !strcmp(f->walls[q].type, "plane"))
             k = (int)q;
-    if (k < 0)
-        return scene_fail(sc, err, errlen, "sample.piston", "no plane wall named '%s'", f->sample->piston);
+    if (k < 0) {
+        char hint[300];
+        return scene_fail(sc, err, errlen, "sample.piston", "no plane wall named '%s'%s", f->sample->piston,
+                          scene_wall_hint(sc, f->sample->piston, 1, hint, sizeof hint));
+    }
     run->piston = first_wall[k];
     const double *p = f->walls[k].point, *nr = f->walls[k].normal;
     double nn = norm3(nr), n[3] = {nr[0] / nn, nr[1] / nn, nr[2] / nn};

@@ -152,8 +152,11 @@ static int attach(const scene *sc, dem_sim *s, unsigned k, unsigned a, const dou
     char p[128];
     snprintf(p, sizeof p, "membranes[%u].attach[%u].wall", k, a);
     int w = find_wall(sc, at->wall, first_wall);
-    if (w < 0)
-        return scene_fail(sc, err, errlen, p, "no wall named '%s'", at->wall);
+    if (w < 0) {
+        char hint[300];
+        return scene_fail(sc, err, errlen, p, "no wall named '%s'%s", at->wall,
+                          scene_wall_hint(sc, at->wall, 0, hint, sizeof hint));
+    }
     const scene_wall *sw = &sc->f->walls[w];
     if (strcmp(sw->type, "plane"))
         return scene_fail(sc, err, errlen, p, "wall '%s' is a %s: vertices ride on plane walls only", at->wall,

@@ -653,7 +653,9 @@ int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char
         snprintf(p, sizeof p, "particles[%u].material", g);
         int mat = scene_material_id(sc, pg->material);
         if (mat < 0) {
-            rc = scene_fail(sc, err, errlen, p, "unknown material '%s'", pg->material);
+            char hint[300];
+            rc = scene_fail(sc, err, errlen, p, "unknown material '%s'%s", pg->material,
+                            scene_material_hint(sc, pg->material, hint, sizeof hint));
             break;
         }
         int kinds = (pg->spheres_count > 0) + (pg->csv != NULL) + (pg->generate != NULL);

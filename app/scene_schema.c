@@ -377,6 +377,104 @@ static char *dup_str(const char *s, size_t n)
     return d;
 }
 
+/* Optimal string alignment distance (Levenshtein with swaps of two neighbours), for "did you mean" */
+static int edit_distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 64 || lb > 64) /* names are short; a long one is no typo of a key */
+        return 99;
+    int d[65][65];
+    for (size_t i = 0; i <= la; i++)
+        d[i][0] = (int)i;
+    for (size_t j = 0; j <= lb; j++)
+        d[0][j] = (int)j;
+    for (size_t i = 1; i <= la; i++)
+        for (size_t j = 1; j <= lb; j++) {
+            int c = a[i - 1] != b[j - 1], v = d[i - 1][j - 1] + c;
+            v = d[i - 1][j] + 1 < v ? d[i - 1][j] + 1 : v;
+            v = d[i][j - 1] + 1 < v ? d[i][j - 1] + 1 : v;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < v)
+                v = d[i - 2][j - 2] + 1;
+            d[i][j] = v;
+        }
+    return d[la][lb];
+}
+
+const char *scene_did_you_mean(const char *word, const char *const *cands, int n, char *buf, size_t len)
+{
+    size_t lw = strlen(word);
+    int limit = lw <= 4 ? 1 : lw <= 8 ? 2 : 3, best = limit + 1;
+    const char *pick = NULL;
+    for (int k = 0; k < n; k++) {
+        if (!cands[k] || !strcmp(cands[k], word))
+            continue;
+        int d = edit_distance(word, cands[k]);
+        if (d < best)
+            best = d, pick = cands[k];
+    }
+    if (len)
+        buf[0] = 0;
+    if (pick)
+        snprintf(buf, len, " (did you mean '%.200s'?)", pick);
+    return buf;
+}
+
+const char *scene_wall_hint(const scene *sc, const char *word, int planes_only, char *buf, size_t len)
+{
+    const char *names[DEM_MAX_WALLS];
+    int n = 0;
+    for (unsigned w = 0; w < sc->f->walls_count && n < DEM_MAX_WALLS; w++)
+        if (sc->f->walls[w].name && (!planes_only || (sc->f->walls[w].type && !strcmp(sc->f->walls[w].type, "plane"))))
+            names[n++] = sc->f->walls[w].name;
+    return scene_did_you_mean(word, names, n, buf, len);
+}
+
+const char *scene_material_hint(const scene *sc, const char *word, char *buf, size_t len)
+{
+    const char *names[64];
+    int n = 0;
+    for (unsigned m = 0; m < sc->f->materials_count && n < 64; m++)
+        names[n++] = sc->f->materials[m].name;
+    return scene_did_you_mean(word, names, n, buf, len);
+}
+
+/* The keys the schema knows in the mapping at path ("particles[0].generate"; "" the top level): follows the path's
+ * keys through the schema's mappings and sequences. Returns their count (0 when the path leads to no mapping). */
+static int schema_keys_at(const char *path, const char **keys, int max)
+{
+    const cyaml_schema_value_t *v = &scene_schema;
+    char seg[128];
+    const char *p = path;
+    while (*p) {
+        size_t l = strcspn(p, ".[");
+        if (l) { /* a key: the field of that name in the current mapping */
+            snprintf(seg, sizeof seg, "%.*s", (int)(l < sizeof seg - 1 ? l : sizeof seg - 1), p);
+            if (v->type != CYAML_MAPPING)
+                return 0;
+            const cyaml_schema_field_t *f = v->mapping.fields;
+            while (f->key && strcmp(f->key, seg))
+                f++;
+            if (!f->key)
+                return 0;
+            v = &f->value;
+            p += l;
+        } else if (*p == '[') { /* an index: the sequence's entry */
+            if (v->type != CYAML_SEQUENCE && v->type != CYAML_SEQUENCE_FIXED)
+                return 0;
+            v = v->sequence.entry;
+            p = strchr(p, ']') ? strchr(p, ']') + 1 : p + strlen(p);
+        } else {
+            p++; /* the '.' between keys */
+        }
+    }
+    if (v->type != CYAML_MAPPING)
+        return 0;
+    int n = 0;
+    for (const cyaml_schema_field_t *f = v->mapping.fields; f->key && n < max; f++)
+        keys[n++] = f->key;
+    return n;
+}
+
 scene *scene_load_text(const char *path, const char *text, size_t len, char *err, size_t errlen)
 {
     scene *sc = calloc(1, sizeof *sc);
@@ -448,7 +546,12 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
         }
         /* an unknown key is reported as "Unexpected key: k" inside its mapping */
         const char *uk = strstr(cap.msg, "Unexpected key: ");
+        char hint[300] = "";
         if (uk) {
+            const char *keys[64];
+            char word[128];
+            snprintf(word, sizeof word, "%.*s", (int)strcspn(uk + 16, " \n"), uk + 16);
+            scene_did_you_mean(word, keys, schema_keys_at(full, keys, 64), hint, sizeof hint); /* before full grows */
             size_t l = strlen(full);
             snprintf(full + l, sizeof full - l, "%s%s", l ? "." : "", uk + 16);
         }
@@ -466,8 +569,8 @@ scene *scene_load_text(const char *path, const char *text, size_t len, char *err
             line = cap.line;
         if (!line)
             line = scene_line(sc->loc, "#error"); /* a YAML syntax error: where libyaml stopped */
-        snprintf(err, errlen, "%s:%d: %s%s%s (%s)", path, line, full[0] ? full : "", full[0] ? ": " : "",
-                 cap.msg[0] ? cap.msg : "invalid scene", cyaml_strerror(e));
+        snprintf(err, errlen, "%s:%d: %s%s%s (%s)%s", path, line, full[0] ? full : "", full[0] ? ": " : "",
+                 cap.msg[0] ? cap.msg : "invalid scene", cyaml_strerror(e), hint);
         sc->f = NULL;
         scene_free(sc);
         return NULL;

@@ -78,6 +78,24 @@ double dem_kernel_bytes(const dem_sim *s, int k);
  * rebuild (rebuild = 1), as "name, name, N x (name, name), ..." (an iteration's pair once, with its count).
  * Returns the number of launches (0 before the first step). */
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len);
+/* A motion stage's end (dem_stage_ends): which wall and stage (an index into its dem_wall.stages), the step at which
+ * it ended (the first step of the next), and why: DEM_STAGE_END_DURATION (its duration ran out), _FORCE (until_force:
+ * value is the normal force [N] the particles exerted in the step before), _DISTANCE (until_distance: value is the
+ * distance [m] from where the stage began) or _DENSITY (until_density: value is the relative density). */
+enum { DEM_STAGE_END_DURATION, DEM_STAGE_END_FORCE, DEM_STAGE_END_DISTANCE, DEM_STAGE_END_DENSITY };
+typedef struct {
+    int wall, stage, why;
+    long step;
+    double value;
+} dem_stage_end;
+#define DEM_STAGE_LOG 256
+/* The stage ends since dem_start or the last dem_state_set, counted from 0 in the order they happened: returns
+ * their count, and when 0 <= k < count puts the k-th in *e (only the last DEM_STAGE_LOG are kept: an older k
+ * leaves *e with wall -1). The dem command logs them after each stretch of steps. */
+long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e);
+/* Particle i's position as it was added (dem_add_particle: the scene's, before any step) [m]; DEM_ERR_ARG for no
+ * such particle. dem check measures from it how far a moving wall is from the particles. */
+int dem_particle_added_position(const dem_sim *s, int i, double x[3]);
 /* Provenance of a started run's arithmetic: the library version, the compiler and numeric flags of the host code and
  * the reference, and for OpenCL the device, driver and the program's build options (with the source hash). */
 const char *dem_build_info(dem_sim *s);

@@ -243,6 +243,38 @@ static void test_codes_and_messages(void **st)
     run_cases("codes and messages", c, sizeof c / sizeof c[0]);
 }
 
+/* Class 5 too: a misspelt key, effect, material or wall name is refused with the nearest known one (an edit distance
+ * over the mapping's keys in the schema, the scene's walls or materials); a word near none gets no guess. */
+#define PP SRC "/examples/pour_press_small.yaml"
+static void test_did_you_mean(void **st)
+{
+    (void)st;
+    static const cli_case c[] = {
+        {"sed 's/^precision: fp64/precison: fp64/' " PP " > k1.yaml && %1$s check k1.yaml", 65,
+         "k1.yaml:4: precison: Unexpected key: precison (Invalid key) (did you mean 'precision'?)", NULL},
+        /* the keys of the mapping the key is in: generate's, the time block's, a wall's (a swap of two letters) */
+        {"sed 's/radius_min: 0.001,/radus_min: 0.001,/' " PP " > k2.yaml && %1$s check k2.yaml", 65,
+         "particles[0].generate.radus_min: Unexpected key", "(did you mean 'radius_min'?)"},
+        {"sed 's/settle: 0.3/setle: 0.3/' " PP " > k3.yaml && %1$s check k3.yaml", 65, "time.setle: Unexpected key",
+         "(did you mean 'settle'?)"},
+        {"sed 's/normal: \\[0, 0, -1\\]/nromal: [0, 0, -1]/' " PP " > k4.yaml && %1$s check k4.yaml", 65,
+         "walls[2].nromal: Unexpected key", "(did you mean 'normal'?)"},
+        {"sed 's/gravity, walls]/gravty, walls]/' " PP " > k5.yaml && %1$s check k5.yaml", 65,
+         "unknown effect 'gravty'", "(did you mean 'gravity'?)"},
+        {"sed 's/material: bead/material: baed/' " PP " > k6.yaml && %1$s check k6.yaml", 65,
+         "particles[0].material: unknown material 'baed' (did you mean 'bead'?)", NULL},
+        /* sample.piston names plane walls: 'dei' is near the die, a cylinder, and gets no guess; 'pistn' does */
+        {"sed 's/piston: piston}/piston: pistn}/' " PP " > k7.yaml && %1$s check k7.yaml", 65,
+         "sample.piston: no plane wall named 'pistn' (did you mean 'piston'?)", NULL},
+        {"sed 's/piston: piston}/piston: dei}/' " PP " > k8.yaml && %1$s check k8.yaml", 65,
+         "sample.piston: no plane wall named 'dei'\n", NULL},
+        /* nothing near: no guess */
+        {"sed 's/^precision: fp64/zzzzzz: fp64/' " PP " > k9.yaml && %1$s check k9.yaml", 65,
+         "k9.yaml:4: zzzzzz: Unexpected key: zzzzzz (Invalid key)\n", NULL},
+    };
+    run_cases("did you mean", c, sizeof c / sizeof c[0]);
+}
+
 /* Class 6: the output's name is escaped in the XDMF sidecar (it was written raw: -o '<&"x>.h5' made invalid XML);
  * a name XML cannot hold at all (a control character, invalid UTF-8) is refused before the run. */
 static void test_xdmf_escaping(void **st)
@@ -271,6 +303,7 @@ int main(void)
         cmocka_unit_test(test_memory_safety),      cmocka_unit_test(test_outputs_distinct),
         cmocka_unit_test(test_restored_state),     cmocka_unit_test(test_costly_inputs),
         cmocka_unit_test(test_codes_and_messages), cmocka_unit_test(test_xdmf_escaping),
+        cmocka_unit_test(test_did_you_mean),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

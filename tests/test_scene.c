@@ -789,6 +789,123 @@ static void test_triaxial_fp32_bitwise(void **st)
  * 25 % - and a mean of 7 %, below where lagged MC-strain rings on them (15.7 %); 300 soft spheres pressed to a
  * relative density of 0.97 (test_stability.c's compaction scene, further) pass both under lagged MC-strain: a mean of
  * 26 %, a pair at 122 %. */
+/* dem check's wall-time estimate (steps x (60 us + 0.12 us x particles), the rate written in dem_main.c) and its
+ * stages: a piston 0.05 m above the top of two spheres (centres at z = 0 and 0.0202 m, radius 0.01 m) moving down at
+ * 0.5 m/s meets them after (0.08 - 0.0302) / 0.5 = 0.0996 s; moving 0.03 m at most, it stops 0.0198 m short (a
+ * warning). */
+static void test_check_estimates(void **st)
+{
+    (void)st;
+    char err[8192], out[8192];
+    const char *sed = "sed -e 's/effects: \\[hertz, damping\\]/effects: [hertz, damping, walls]/' "
+                      "-e 's/{x: \\[-0.0101, 0, 0\\], v: \\[10, 0, 0\\]/{x: [0, 0, 0], v: [0, 0, 0]/' "
+                      "-e 's/{x: \\[0.0101, 0, 0\\], v: \\[-10, 0, 0\\]/{x: [0, 0, 0.0202], v: [0, 0, 0]/' "
+                      "-e 's/^domain: .*/walls: [{type: plane, name: piston, material: rubber, point: [0, 0, 0.08], "
+                      "normal: [0, 0, -1], motion: [{velocity: [0, 0, -0.5], duration: %s}]}]\\n"
+                      "domain: {lo: [-0.1, -0.1, -0.05], hi: [0.1, 0.1, 0.1]}/' -e 's/duration: 0.003 /duration: 0.3 /'";
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, sed, "0.2");
+    assert_int_equal(sh(err, sizeof err, "%s %s/scenes/two_spheres.yaml > %s/ck.yaml && %s check %s/ck.yaml > "
+                        "%s/ck.txt", cmd, SRC, tmp, DEM, tmp, tmp), 0);
+    FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/ck.txt"), "r");
+    assert_non_null(fp);
+    size_t got = fread(out, 1, sizeof out - 1, fp);
+    out[got] = 0;
+    fclose(fp);
+    long steps;
+    double est, into, at;
+    const char *d = strstr(out, "duration       0.3 s = ");
+    const char *w = strstr(out, "wall time      about ");
+    assert_true(d && w && sscanf(d, "duration       0.3 s = %ld steps", &steps) == 1 &&
+                sscanf(w, "wall time      about %lf s", &est) == 1);
+    double want = (double)steps * (60e-6 + 0.12e-6 * 2);
+    printf("  %ld steps of 2 spheres: about %g s (the formula: %g s)\n", steps, est, want);
+    assert_true(fabs(est - want) <= 0.05 * want); /* printed to 2 digits */
+    const char *sl = strstr(out, "stage          wall 'piston' 1/1 (motion[0]): up to 0.2 s (t = 0 to 0.2 s), 0.5 m/s, "
+                                 "0.1 m at most, towards the particles; meets the particles as placed ");
+    assert_non_null(sl);
+    assert_int_equal(sscanf(strstr(sl, "as placed "), "as placed %lf s into the stage (t = %lf s)", &into, &at), 2);
+    assert_true(fabs(into - 0.0996) < 1e-6 && fabs(at - 0.0996) < 1e-6);
+    assert_null(strstr(out, "never reaches"));
+    /* 0.06 s: 0.03 m of the 0.0498 m */
+    snprintf(cmd, sizeof cmd, sed, "0.06");
+    assert_int_equal(sh(err, sizeof err, "%s %s/scenes/two_spheres.yaml > %s/ck2.yaml && %s check %s/ck2.yaml > "
+                        "%s/ck2.txt", cmd, SRC, tmp, DEM, tmp, tmp), 0);
+    fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/ck2.txt"), "r");
+    assert_non_null(fp);
+    got = fread(out, 1, sizeof out - 1, fp);
+    out[got] = 0;
+    fclose(fp);
+    const char *sh2 = strstr(out, "a press that stops ");
+    double shortby;
+    assert_true(sh2 && sscanf(sh2, "a press that stops %lf m short", &shortby) == 1);
+    assert_true(fabs(shortby - 0.0198) < 1e-6);
+    assert_non_null(strstr(out, "warning: wall 'piston' never reaches the particles as placed (0.0498 m away, it moves "
+                                "0.03 m towards them at most)"));
+}
+
+/* Stage ends in the run log: the tutorial's pour-then-press cut short (examples/pour_press_small.yaml: 100 beads
+ * poured from 2 cm, a settling pause, the piston down until 0.5 N, then until 2 N, a hold). Each line names the wall,
+ * the stage, the step and why it ended; the pause and the hold end after their durations to a step. */
+static void test_stage_ends(void **st)
+{
+    (void)st;
+    char err[16384];
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/count: 300/count: 100/' -e 's/height: 0.05}/height: 0.02}/' "
+                        "-e 's/0, 0, 0.055]/0, 0, 0.025]/' -e 's/dt_rayleigh: 0.1, settle: 0.3, duration: 0.6/"
+                        "dt_rayleigh: 0.2, settle: 0.15, duration: 0.3/' %s/examples/pour_press_small.yaml > "
+                        "%s/stages.yaml && %s run %s/stages.yaml -o %s/stages.h5", SRC, tmp, DEM, tmp, tmp), 0);
+    long s1, s2, s3, s4;
+    double t1, t2, t3, t4, f2, f3;
+    const char *l1 = strstr(err, "dem: wall 'piston' stage 1 of 4 (time.settle) ended at step ");
+    const char *l2 = strstr(err, "dem: wall 'piston' stage 2 of 4 (motion[0]) ended at step ");
+    const char *l3 = strstr(err, "dem: wall 'piston' stage 3 of 4 (motion[1]) ended at step ");
+    const char *l4 = strstr(err, "dem: wall 'piston' stage 4 of 4 (motion[2]) ended at step ");
+    printf("%s", err);
+    assert_true(l1 && l2 && l3 && l4 && l1 < l2 && l2 < l3 && l3 < l4);
+    assert_int_equal(sscanf(l1, "dem: wall 'piston' stage 1 of 4 (time.settle) ended at step %ld (t = %lf s): its "
+                                "duration (0.15 s) ran out\n", &s1, &t1), 2);
+    assert_int_equal(sscanf(l2, "dem: wall 'piston' stage 2 of 4 (motion[0]) ended at step %ld (t = %lf s): until_force "
+                                "0.5 N reached (%lf N)", &s2, &t2, &f2), 3);
+    assert_int_equal(sscanf(l3, "dem: wall 'piston' stage 3 of 4 (motion[1]) ended at step %ld (t = %lf s): until_force "
+                                "2 N reached (%lf N)", &s3, &t3, &f3), 3);
+    assert_int_equal(sscanf(l4, "dem: wall 'piston' stage 4 of 4 (motion[2]) ended at step %ld (t = %lf s): its "
+                                "duration (0.05 s) ran out\n", &s4, &t4), 2);
+    double dt = t1 / (double)s1;
+    assert_true(fabs(t1 - 0.15) <= dt);                 /* the pause: its duration, to a step */
+    assert_true(s1 < s2 && t2 < 0.15 + 0.2 && f2 >= 0.5); /* ended by its force, before its 0.2 s */
+    assert_true(s2 < s3 && t3 < t2 + 0.2 && f3 >= 2);
+    assert_true(labs((s4 - s3) - lround(0.05 / dt)) <= 1); /* the hold: its duration */
+    /* --quiet: no stage lines */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/stages.yaml -o %s/stages_q.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_null(strstr(err, "ended at step"));
+}
+
+/* The note while the kernels compile: shown when dem_start takes longer than a threshold (DEM_TEST_COMPILE_NOTE_S
+ * sets it; 0 shows it on every OpenCL start), never with --quiet, never on the reference backend. */
+static void test_compile_note(void **st)
+{
+    (void)st;
+    char err[8192];
+    assert_int_equal(sh(err, sizeof err, "DEM_TEST_COMPILE_NOTE_S=0 %s run %s/tests/scenes/restart_box.yaml -o %s/cn.h5 "
+                        "--stop-after 1", DEM, SRC, tmp), 0);
+    const char *n = strstr(err, "dem: compiling the kernels for ");
+    assert_non_null(n);
+    assert_non_null(strstr(n, "later runs take them from the driver's cache)"));
+    assert_true(n < strstr(err, "dem: wrote ")); /* said before the run, not after */
+    assert_int_equal(sh(err, sizeof err, "DEM_TEST_COMPILE_NOTE_S=0 %s run %s/tests/scenes/restart_box.yaml -o %s/cn.h5 "
+                        "--stop-after 1 --quiet", DEM, SRC, tmp), 0);
+    assert_null(strstr(err, "compiling the kernels"));
+    assert_int_equal(sh(err, sizeof err, "{ sed 's/^precision: fp64/precision: fp64\\nbackend: reference/' "
+                        "%s/tests/scenes/restart_box.yaml > %s/cnr.yaml && DEM_TEST_COMPILE_NOTE_S=0 %s run %s/cnr.yaml "
+                        "-o %s/cnr.h5 --stop-after 1; }", SRC, tmp, DEM, tmp, tmp), 0);
+    assert_null(strstr(err, "compiling the kernels"));
+    /* a threshold longer than any start: no note */
+    assert_int_equal(sh(err, sizeof err, "DEM_TEST_COMPILE_NOTE_S=600 %s run %s/tests/scenes/restart_box.yaml -o "
+                        "%s/cn.h5 --stop-after 1", DEM, SRC, tmp), 0);
+    assert_null(strstr(err, "compiling the kernels"));
+}
+
 static void test_overlap_report(void **st)
 {
     (void)st;
@@ -804,6 +921,10 @@ static void test_overlap_report(void **st)
     printf("  514 hydrogels to 13.4 %%, classical: largest overlap %.3g %%, mean %.3g %%\n", largest, mean);
     assert_true(largest > 15 && largest < 25 && mean > 5 && mean < 10);
     assert_non_null(strstr(err, "beyond the 10 % within which Hertz's small-strain law holds"));
+    /* make run's two warnings say that they are expected there: the overlap, and the piston's slow contact */
+    assert_non_null(strstr(err, "Expected where a compression is run classically to be set against those models"));
+    assert_non_null(strstr(err, "(particle on wall 5 'piston', "));
+    assert_non_null(strstr(err, "Expected where the wall presses a packing slowly instead of striking particles"));
     /* the step's stability at those overlaps (dem_stability_get): the paper's scene stays within the estimate */
     line = strstr(err, "dem: time step at the frames' overlaps: at most ");
     double ratio;
@@ -872,15 +993,15 @@ static void test_output_and_xdmf(void **st)
 {
     (void)st;
     char err[8192], p[300];
-    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/o.h5 --progress", DEM, SRC, tmp),
-                     0);
-    /* the run reports its effects and its kernels, and shows progress */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/o.h5 --progress --verbose", DEM,
+                        SRC, tmp), 0);
+    /* the run reports its effects and, with --verbose, its kernels, and shows progress */
     assert_non_null(strstr(err, "effects hertz+damping+friction+gravity+walls"));
     /* the kernels as the library launched them (dem_kernel_sequence), walls included */
     assert_non_null(strstr(err, "kernels of the last step: integrate_kick_drift, contact_pairs, wall_reduce_block, "
                                 "wall_reduce_final, contact_forces, integrate_kick\n"));
-    assert_non_null(strstr(err, "at each neighbour rebuild"));
-    assert_non_null(strstr(err, "bin_bounds, bin_index, scan_block_sum, scan_block_sums, scan_apply, bin_scatter, "
+    assert_non_null(strstr(err, "dem: neighbour rebuilds: "));
+    assert_non_null(strstr(err, "; kernels at each: bin_bounds, bin_index, scan_block_sum, scan_block_sums, scan_apply, bin_scatter, "
                                 "bin_sort, nbr_count, scan_block_sum, scan_block_sums, scan_apply, nbr_build, nbr_sort, "
                                 "scan_block_sum, scan_block_sums, scan_apply, scan_block_sum, scan_block_sums, "
                                 "scan_apply, pair_index\n"));
@@ -888,6 +1009,12 @@ static void test_output_and_xdmf(void **st)
     assert_non_null(strstr(err, "step 660/660 (100.0 %)"));
     if (!getenv("DEM_PROFILE")) /* only when asked: */
         assert_null(strstr(err, "device time per step by kernel"));
+    /* without --verbose the report names no kernel, but still counts the rebuilds */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/o2.h5 --stop-after 50", DEM, SRC,
+                        tmp), 0);
+    assert_null(strstr(err, "kernels"));
+    assert_null(strstr(err, "integrate_kick"));
+    assert_non_null(strstr(err, "dem: neighbour rebuilds: "));
     assert_int_equal(sh(err, sizeof err, "{ DEM_PROFILE=1 %s run %s/tests/scenes/restart_box.yaml -o %s/prof.h5 "
                         "--stop-after 40; }", DEM, SRC, tmp), 0);
     const char *prof = strstr(err, "dem: device time per step by kernel (DEM_PROFILE) [us]: ");
@@ -1591,6 +1718,7 @@ static void test_dt_advice(void **st)
     assert_int_equal(sh(err, sizeof err, "%s check %s/tests/scenes/restart_box.yaml > %s/adv.txt", DEM, SRC, tmp), 0);
     assert_non_null(strstr(err, "spans 12.0 steps of dt; below 20 a collision is resolved badly"));
     assert_non_null(strstr(err, "dt <= 3.64e-05 s would give 20"));
+    assert_null(strstr(err, "Expected where")); /* a collision between particles: no excuse */
     assert_int_equal(sh(err, sizeof err, "grep -c 'contact time   0.0007271 s (two smallest like particles' %s/adv.txt",
                         tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s check %s/scenes/two_spheres.yaml > %s/adv2.txt && grep -q "
@@ -1948,6 +2076,9 @@ int main(void)
         cmocka_unit_test(test_servo_report),
         cmocka_unit_test(test_overlap_report),
         cmocka_unit_test(test_mass_scale),
+        cmocka_unit_test(test_stage_ends),
+        cmocka_unit_test(test_check_estimates),
+        cmocka_unit_test(test_compile_note),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

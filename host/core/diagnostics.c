@@ -50,6 +50,27 @@ double dem_kernel_bytes(const dem_sim *s, int k)
     return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
 }
 
+int dem_particle_added_position(const dem_sim *s, int i, double x[3])
+{
+    if (i < 0 || i >= s->n)
+        return DEM_ERR_ARG;
+    for (int d = 0; d < 3; d++)
+        x[d] = s->x[3 * (size_t)sim_dev(s, i) + d];
+    return 0;
+}
+
+long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e)
+{
+    long n = s->motion.stage_log_n;
+    if (e && k >= 0 && k < n) {
+        if (k >= n - DEM_STAGE_LOG)
+            *e = s->motion.stage_log[k % DEM_STAGE_LOG];
+        else
+            *e = (dem_stage_end){-1, -1, -1, -1, 0};
+    }
+    return n;
+}
+
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 {
     const unsigned char *q = rebuild ? s->trace.rebuild : s->trace.step;

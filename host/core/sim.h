@@ -5,6 +5,7 @@
 #ifndef DEM_SIM_H
 #define DEM_SIM_H
 #include "dem.h"
+#include "dem_debug.h" /* dem_stage_end */
 #include "backend.h"
 #include <math.h>
 
@@ -52,6 +53,8 @@ struct sim_motion {
     int stage_cur[DEM_MAX_WALLS];          /* each wall's current motion stage (nstages: past the last) */
     long stage_first[DEM_MAX_WALLS];       /* the step it began */
     double stage_from[DEM_MAX_WALLS][3];   /* the wall's position then [m] */
+    dem_stage_end stage_log[DEM_STAGE_LOG]; /* the last stage ends, a ring by their count (dem_stage_ends) */
+    long stage_log_n;                      /* stage ends since dem_start or the last restore */
     int density_die[DEM_MAX_WALLS];        /* until_density: the die (cylinder) and the facing punch of each wall with */
     int density_other[DEM_MAX_WALLS];      /* such a stage (sim_validate), -1 for the others */
     double particle_volume;                /* sum of 4/3 pi r^3 [m^3] (sim_validate) */

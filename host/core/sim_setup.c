@@ -308,6 +308,7 @@ int sim_stage_now(const dem_sim *s, int k, long *first)
 
 void sim_stages_from_step(dem_sim *s)
 {
+    s->motion.stage_log_n = 0; /* the ends logged are those from here on */
     for (int k = 0; k < s->nwalls; k++) {
         long start = 0;
         int st = 0;

@@ -548,6 +548,7 @@ static void state_adopt(dem_sim *s, const dem_state *st)
         s->motion.stage_first[k] = st->wall_stage_first[k];
         memcpy(s->motion.stage_from[k], st->wall_stage_from[k], sizeof s->motion.stage_from[k]);
     }
+    s->motion.stage_log_n = 0; /* dem_stage_ends: the ends from the restored step on */
 }
 
 /* keep: the run's own state is saved before the first write and put back when the state turns out not to fit.

@@ -263,22 +263,33 @@ static int stages_advance(dem_sim *s, wall_read *wr)
             }
             long ran = s->run.step - s->motion.stage_first[k];
             int done = ran >= s->motion.stage_steps[k][s->motion.stage_cur[k]];
+            int why = DEM_STAGE_END_DURATION;
+            double value = 0;
             if (!done && ran > 0 && g->until_distance > 0) {
                 const double *p = s->motion.pos[k], *p0 = s->motion.stage_from[k];
                 double d = sqrt((p[0] - p0[0]) * (p[0] - p0[0]) + (p[1] - p0[1]) * (p[1] - p0[1]) +
                                 (p[2] - p0[2]) * (p[2] - p0[2]));
                 done = d >= g->until_distance;
+                why = DEM_STAGE_END_DISTANCE, value = d;
             }
-            if (!done && ran > 0 && g->until_density > 0)
-                done = sim_relative_density(s, k) >= g->until_density;
+            if (!done && ran > 0 && g->until_density > 0) {
+                value = sim_relative_density(s, k);
+                done = value >= g->until_density;
+                why = DEM_STAGE_END_DENSITY;
+            }
             if (!done && ran > 0 && g->until_force > 0) { /* the force the particles exerted in the step before */
                 double fn;
                 if (wall_normal_before(s, wr, k, &fn))
                     return DEM_ERR_DEVICE;
                 done = fn >= g->until_force;
+                why = DEM_STAGE_END_FORCE, value = fn;
             }
             if (!done)
                 break;
+            /* the log of stage ends (dem_stage_ends): what the host decided, kept for the caller to report */
+            s->motion.stage_log[s->motion.stage_log_n++ % DEM_STAGE_LOG] =
+                (dem_stage_end){k, s->motion.stage_cur[k], ran >= s->motion.stage_steps[k][s->motion.stage_cur[k]]
+                                ? DEM_STAGE_END_DURATION : why, s->run.step, value};
             s->motion.stage_cur[k]++;
             s->motion.stage_first[k] = s->run.step;
             memcpy(s->motion.stage_from[k], s->motion.pos[k], sizeof(double) * 3);
