@@ -847,6 +847,32 @@ static void test_check_estimates(void **st)
 /* Stage ends in the run log: the tutorial's pour-then-press cut short (examples/pour_press_small.yaml: 100 beads
  * poured from 2 cm, a settling pause, the piston down until 0.5 N, then until 2 N, a hold). Each line names the wall,
  * the stage, the step and why it ended; the pause and the hold end after their durations to a step. */
+/* tests/scenes/stage_wait.yaml: the lid's 5 mm at 1 m/s with a 2 ms ramp last 6 ms (5 mm / 1 m/s + 2 ms / 2); the
+ * floor's stage waits for the lid and then runs its 1 ms: the stage-end lines at steps 6000 and 7000, the lid 5 mm
+ * down and the floor 0.075 mm up (0.1 m/s x 1 ms less half the 0.5 ms ramp's) in the checkpoint; dem check says it
+ * ramps and waits; a wait for no wall or for itself, and a ramp longer than its stage, are refused */
+static void test_stage_wait_ramp(void **st)
+{
+    (void)st;
+    char err[16384];
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/stage_wait.yaml -o %s/wait.h5", DEM, SRC, tmp), 0);
+    assert_non_null(strstr(err, "dem: wall 'lid' stage 1 of 1 (motion[0]) ended at step 6000 (t = 0.006 s)"));
+    assert_non_null(strstr(err, "dem: wall 'floor' stage 1 of 1 (motion[0]) ended at step 7000 (t = 0.007 s)"));
+    char ck[300];
+    snprintf(ck, sizeof ck, "%s/wait.ckpt.h5", tmp);
+    double pos[6];
+    read_state(ck, "wall_pos", pos, 6, H5T_NATIVE_DOUBLE);
+    printf("  floor at %.12g m, lid at %.12g m\n", pos[2], pos[5]);
+    assert_true(fabs(pos[2] - 0.075e-3) < 1e-12 && fabs(pos[5] - 0.005) < 1e-12);
+    assert_int_equal(sh(err, sizeof err, "%s check %s/tests/scenes/stage_wait.yaml | grep -q \"ramps up over 0.0005 s; "
+                        "waits for wall 'lid' to run its stages\"", DEM, SRC), 0);
+    const char *in = "tests/scenes/stage_wait.yaml";
+    bad_in(in, "s/after: lid/after: lidd/", "walls[0].motion[0].after: no wall is named 'lidd'");
+    bad_in(in, "s/after: lid/after: floor/", "walls[0].motion[0].after: a wall's stage cannot wait for its own wall");
+    bad_in(in, "s/ramp: 0.0005/ramp: 0.002/", "walls[0].motion[0].ramp: a ramp is >= 0 s and at most the stage's "
+           "duration (0.001 s)");
+}
+
 static void test_stage_ends(void **st)
 {
     (void)st;
@@ -2077,6 +2103,7 @@ int main(void)
         cmocka_unit_test(test_overlap_report),
         cmocka_unit_test(test_mass_scale),
         cmocka_unit_test(test_stage_ends),
+        cmocka_unit_test(test_stage_wait_ramp),
         cmocka_unit_test(test_check_estimates),
         cmocka_unit_test(test_compile_note),
     };
