@@ -291,9 +291,11 @@ static int devices(void)
         return EXIT_DEVICE;
     }
     for (int k = 0; k < n; k++) {
-        char name[512];
+        char name[512], what[512];
         dem_device_name(k, name, sizeof name);
         printf("%d  %s\n", k, name);
+        if (!dem_device_describe(k, what, sizeof what))
+            printf("   %s\n", what);
     }
     return 0;
 }

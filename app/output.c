@@ -24,10 +24,12 @@ static const struct {
                     {OUT_STRESS, DEM_FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
 #define NFF (sizeof frame_fields / sizeof frame_fields[0])
 
+/* coordination: the mean number of particle contacts per particle, 2 contacts / particles (every particle counted,
+ * rattlers too; walls not): python/libdem's coordination_number gives it without rattlers or with the walls */
 static const char *series_names[S__N] = {"time", "step", "kinetic", "elastic", "potential", "total",
-                                         "contacts", "wall_contacts", "strain", "stress", "mc_iterations",
-                                         "mc_capped"};
-static const char *series_units[S__N] = {"s", NULL, "J", "J", "J", "J", NULL, NULL, "1", "Pa", NULL};
+                                         "contacts", "wall_contacts", "coordination", "strain", "stress",
+                                         "mc_iterations", "mc_capped"};
+static const char *series_units[S__N] = {"s", NULL, "J", "J", "J", "J", NULL, NULL, NULL, "1", "Pa", NULL, NULL};
 
 struct output {
     char path[4096], part[4200];
@@ -485,8 +487,9 @@ void output_row_of(const dem_sample *smp, const scene_run *run, int nwalls, seri
         stress = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / run->sample_area;
     }
     double v[S__N] = {smp->time, (double)smp->step, e->kinetic, e->elastic, e->potential, e->total,
-                      (double)e->contacts, (double)e->wall_contacts, strain, stress, (double)smp->mc.last,
-                      (double)smp->mc.unconverged};
+                      (double)e->contacts, (double)e->wall_contacts,
+                      run->particles > 0 ? 2.0 * (double)e->contacts / (double)run->particles : 0.0, strain, stress,
+                      (double)smp->mc.last, (double)smp->mc.unconverged};
     memcpy(r->v, v, sizeof v);
 }
 

@@ -24,7 +24,7 @@ int output_frame(output *o, dem_sim *s);
 
 /* One time-series row: the series' columns (time, step, energies, contact counts, strain and stress - NAN without a
  * sample -, MC-strain iterations and capped steps) and every wall's position and received force. */
-enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };
+enum { S_TIME, S_STEP, S_KIN, S_ELA, S_POT, S_TOT, S_CON, S_WCON, S_COORD, S_STRAIN, S_STRESS, S_MCIT, S_MCCAP, S__N };
 typedef struct {
     double v[S__N];
     double wall_pos[3 * DEM_MAX_WALLS], wall_force[3 * DEM_MAX_WALLS], wall_normal[DEM_MAX_WALLS];

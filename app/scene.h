@@ -252,6 +252,7 @@ typedef struct {
     int mc_cap;             /* MC-strain iteration cap in force (0: lagged) and its tolerance */
     double mc_tol;
     dem_membrane_info membrane[16]; /* where each of the scene's membranes went (scene_add_membranes) */
+    long particles;         /* particles in the run (the series' coordination number) */
 } scene_run;
 
 /* Loads and parses; on failure returns NULL and writes "file:line: field: reason" into err. */

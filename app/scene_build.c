@@ -759,6 +759,7 @@ static int parse_time(const scene *sc, dem_sim *s, scene_run *run, char *err, si
                               "(its inverse overflows); check the density [kg/m^3] and the radii [m]", i, r, mass);
         }
     }
+    run->particles = dem_count(s);
     dem_time_scales_get(s, 0, &run->ts);
     if (!(run->ts.rayleigh_time > 0) || !isfinite(run->ts.rayleigh_time))
         return scene_fail(sc, err, errlen, "materials", "the Rayleigh time of these materials and radii is %g s: check "

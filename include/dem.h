@@ -526,6 +526,8 @@ DEM_API void dem_state_free(dem_state *st);
  * reason in buf. */
 DEM_API int dem_device_count(void);
 DEM_API int dem_device_name(int k, char *buf, size_t len);
+/* What device k has: compute units, clock, global memory, largest work-group, driver (`dem devices`) */
+DEM_API int dem_device_describe(int k, char *buf, size_t len);
 
 #ifdef __cplusplus
 }

@@ -4,6 +4,7 @@
  * dem_error saying why. Also: the internal fields (dem_debug.h) and bits (common/dem_internal_bits.h) stay apart from
  * the public ones. */
 #include "test_util.h"
+#include <stdio.h>
 #include "dem_internal_bits.h"
 #include <math.h>
 #include <string.h>
@@ -174,11 +175,30 @@ static void test_field_numbers(void **st)
     assert_int_equal(npub + nint, DEM_FIELD__COUNT);
 }
 
+/* The devices: PoCL's CPU device is there (make deps installs it), it names itself and says what it has; an index
+ * that is no device is an error */
+static void test_devices(void **st)
+{
+    (void)st;
+    int n = dem_device_count();
+    assert_true(n >= 1);
+    char name[512], what[512];
+    assert_int_equal(dem_device_name(0, name, sizeof name), 0);
+    assert_int_equal(dem_device_describe(0, what, sizeof what), 0);
+    unsigned cu = 0, mhz = 0;
+    double gib = 0;
+    printf("  device 0: %s\n            %s\n", name, what);
+    assert_int_equal(sscanf(what, "%u compute units at %u MHz, %lf GiB global memory", &cu, &mhz, &gib), 3);
+    assert_true(cu >= 1 && gib > 0);
+    assert_int_equal(dem_device_describe(n, what, sizeof what), DEM_ERR_DEVICE);
+    assert_int_equal(dem_device_describe(-1, what, sizeof what), DEM_ERR_DEVICE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_status_values), cmocka_unit_test(test_bad_arguments), cmocka_unit_test(test_after_start),
-        cmocka_unit_test(test_meshes),        cmocka_unit_test(test_field_numbers),
+        cmocka_unit_test(test_meshes),        cmocka_unit_test(test_field_numbers), cmocka_unit_test(test_devices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1776,9 +1776,9 @@ static void test_series_average(void **st)
                                           "%s run %s/every.yaml -o %s/every.h5 --quiet && %s run %s/avg.yaml -o %s/avg.h5 "
                                           "--quiet", SRC, tmp, SRC, tmp, DEM, tmp, tmp, DEM, tmp, tmp),
                      0);
-    const char *cols[] = {"time", "step", "kinetic", "elastic", "total", "contacts"};
-    double *a = malloc(sizeof(double) * 4000), *m = malloc(sizeof(double) * 400);
-    for (int c = 0; c < 6; c++) {
+    const char *cols[] = {"time", "step", "kinetic", "elastic", "total", "contacts", "coordination"};
+    double *a = malloc(sizeof(double) * 4000), *m = malloc(sizeof(double) * 400), *z = malloc(sizeof(double) * 4000);
+    for (int c = 0; c < 7; c++) {
         snprintf(p, sizeof p, "%s/every.h5", tmp);
         hid_t fa = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
         snprintf(p, sizeof p, "%s/avg.h5", tmp);
@@ -1804,6 +1804,19 @@ static void test_series_average(void **st)
                 fail_msg("%s row %ld: %.17g, mean of the steps %.17g", cols[c], k, m[k], want);
         }
     }
+    /* the coordination number of each row: 2 contacts / particles, here two spheres: the contact count itself */
+    snprintf(p, sizeof p, "%s/every.h5", tmp);
+    hid_t fz = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_int_equal(h5_read(fz, "series/contacts", H5T_NATIVE_DOUBLE, a, 3001), 0);
+    assert_int_equal(h5_read(fz, "series/coordination", H5T_NATIVE_DOUBLE, z, 3001), 0);
+    H5Fclose(fz);
+    int touched = 0;
+    for (long k = 0; k < 3001; k++) {
+        assert_true(z[k] == 2 * a[k] / 2);
+        touched |= z[k] == 1;
+    }
+    assert_true(touched);
+    free(z);
     /* a run that ends between rows (--stop-after 2995): its last row is the mean of the steps since the row before,
      * 2991..2995, not of ten steps reaching back into that row's window */
     assert_int_equal(sh(err, sizeof err, "%s run %s/avg.yaml -o %s/avg3.h5 --quiet --stop-after 2995", DEM, tmp, tmp), 0);

@@ -436,3 +436,17 @@ int dem_device_name(int k, char *buf, size_t len)
              info.fp64 ? ", fp64" : "");
     return 0;
 }
+
+int dem_device_describe(int k, char *buf, size_t len)
+{
+    cl_device_info_t info;
+    char err[256];
+    if (cl_device_get(k, &info, err, sizeof err)) {
+        snprintf(buf, len, "%s", err);
+        return DEM_ERR_DEVICE;
+    }
+    snprintf(buf, len, "%u compute units at %u MHz, %.3g GiB global memory, work-groups up to %zu, driver %s",
+             (unsigned)info.compute_units, (unsigned)info.clock_mhz, (double)info.global_mem / 1073741824.0,
+             info.max_wg, info.driver_version);
+    return 0;
+}

@@ -112,6 +112,8 @@ int cl_device_get(int want, cl_device_info_t *info, char *err, size_t errlen)
                  "clGetDeviceInfo(DRIVER_VERSION)", err, errlen) ||
         cl_check(clGetDeviceInfo(dv, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof info->compute_units, &info->compute_units,
                                  NULL), "clGetDeviceInfo(MAX_COMPUTE_UNITS)", err, errlen) ||
+        cl_check(clGetDeviceInfo(dv, CL_DEVICE_MAX_CLOCK_FREQUENCY, sizeof info->clock_mhz, &info->clock_mhz, NULL),
+                 "clGetDeviceInfo(MAX_CLOCK_FREQUENCY)", err, errlen) ||
         cl_check(clGetDeviceInfo(dv, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof info->max_wg, &info->max_wg, NULL),
                  "clGetDeviceInfo(MAX_WORK_GROUP_SIZE)", err, errlen) ||
         cl_check(clGetDeviceInfo(dv, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof info->global_mem, &info->global_mem, NULL),

@@ -17,6 +17,7 @@ typedef struct {
     int fp64;                     /* cl_khr_fp64 with a non-empty double FP config */
     int fp32_correct_div_sqrt;    /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT */
     cl_uint compute_units;
+    cl_uint clock_mhz;            /* CL_DEVICE_MAX_CLOCK_FREQUENCY */
     size_t max_wg;
     cl_ulong global_mem;
 } cl_device_info_t;

@@ -1,7 +1,7 @@
 """Reading what `dem run` writes: one HDF5 file, or the files of a run continued with `dem run --restart`.
 
 The layout (app/output.c writes it; `h5ls -r RUN.h5` lists it):
-  /series       one row per sample: time [s], step, kinetic, elastic, potential, total [J], contacts,
+  /series       one row per sample: time [s], step, kinetic, elastic, potential, total [J], contacts, coordination,
                 wall_contacts, (with a scene's `sample`) strain, stress [Pa], (MC-strain) mc_iterations, mc_capped;
                 with walls: wall_position [rows, walls, 3] m, wall_force [rows, walls, 3] N (the force each wall
                 receives), wall_normal_force [rows, walls] N, and per wall (not per row) wall_radius, wall_height,
