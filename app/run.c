@@ -272,8 +272,9 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
         return;
     }
     if (info) {
-        fprintf(out, "approach       fastest %.3g m/s between particles, %.3g m/s onto walls (initial speeds and wall "
-                     "stages; a fall under gravity adds sqrt(2 g h))\n", a.pair_speed, a.wall_speed);
+        fprintf(out, "approach       fastest %.3g m/s between particles, %.3g m/s onto walls (initial speeds, and the "
+                     "wall stages that reach the particles as placed; a fall under gravity adds sqrt(2 g h))\n",
+                a.pair_speed, a.wall_speed);
         fprintf(out, "contact time   %.4g s (%s, Hertz closed form): %.1f steps of dt (at least %d wanted)\n",
                 a.contact_time, which, a.steps, DEM_MIN_STEPS_PER_CONTACT);
     }

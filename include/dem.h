@@ -325,7 +325,9 @@ DEM_API void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st);
 DEM_API int dem_time_scales_get(dem_sim *s, double hertz_velocity, dem_time_scales *ts);
 /* The shortest contact the scene can make, for choosing dt: Hertz contact times (closed form, undamped) at the
  * fastest approach the set-up gives - particle pairs at twice the largest initial particle speed, particle-wall
- * contacts at that speed plus the wall's fastest stage - for every particle's size and material. Gravity is left
+ * contacts at that speed plus the wall's fastest approach (a plane: its speed along its normal in the stages that
+ * reach the particles as placed, a servo's max_speed; a cylinder: its fastest stage) - for every particle's size
+ * and material. Gravity is left
  * out (a settled bed does not fall; a pour hits at sqrt(2 g h) of its drop height). steps = contact time / dt (the run's
  * dt, 0 when not set). Fewer than DEM_MIN_STEPS_PER_CONTACT steps per contact resolve a collision badly: a
  * restitution of 0.7 comes out 0.5 % high at 20 steps, 1.1 % at 10, 5.8 % at 5 (velocity Verlet, measured on

@@ -62,12 +62,45 @@ static void test_equal_fp64(void **st) { (void)st; collide(0.01, 0.01, 1.0, DEM_
 static void test_unequal_fp64(void **st) { (void)st; collide(0.01, 0.004, 0.3, DEM_FP64); }
 static void test_equal_fp32(void **st) { (void)st; collide(0.01, 0.01, 1.0, DEM_FP32); }
 
+/* The contact advice counts a wall's speed only where its stages bring it onto the particles: a resting sphere whose
+ * top is 9 mm below a plane; the plane moves away at 9 m/s for 1 ms (-9 mm), comes back at 5 m/s for 4 ms ramped over
+ * 2 ms from the -9 m/s before (4 ms x 5 m/s - 2 ms x (5 + 9) / 2 = +6 mm: still 12 mm away), then at 0.2 m/s for
+ * 0.2 s (+40 mm: it arrives): the advice says 0.2 m/s, not 9 or 5. A servo in the last stage counts its max_speed;
+ * 10 ms at 5 m/s (+36 mm) arrives fast. */
+static void test_wall_approach(void **st)
+{
+    (void)st;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.4});
+    dem_add_particle(s, (double[3]){0, 0, 0}, NULL, 0.001, m);
+    dem_wall pl = {DEM_WALL_PLANE, m, {0, 0, 0.01}, {0, 0, -1}, 0, 3, {{0}}};
+    pl.stages[0] = (dem_stage){.duration = 1e-3, .velocity = {0, 0, 9}};
+    pl.stages[1] = (dem_stage){.duration = 4e-3, .velocity = {0, 0, -5}, .ramp = 2e-3};
+    pl.stages[2] = (dem_stage){.duration = 0.2, .velocity = {0, 0, -0.2}};
+    assert_true(dem_add_wall(s, &pl) >= 0);
+    assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_WALLS), 0);
+    dem_contact_advice a;
+    assert_int_equal(dem_contact_advice_get(s, &a), 0);
+    printf("  wall approach %.6g m/s (the slow stage's 0.2: the fast ones stop short or move away)\n", a.wall_speed);
+    assert_true(a.wall == 0 && a.wall_speed == 0.2);
+    pl.stages[2] = (dem_stage){.duration = 0.2, .force = 1, .gain = 1e-3, .max_speed = 0.05}; /* a servo */
+    assert_int_equal(dem_set_wall_motion(s, 0, 3, pl.stages), 0);
+    assert_int_equal(dem_contact_advice_get(s, &a), 0);
+    assert_true(a.wall_speed == 0.05);
+    pl.stages[1].duration = 10e-3;
+    assert_int_equal(dem_set_wall_motion(s, 0, 3, pl.stages), 0);
+    assert_int_equal(dem_contact_advice_get(s, &a), 0);
+    assert_true(a.wall_speed == 5);
+    dem_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_equal_fp64),
         cmocka_unit_test(test_unequal_fp64),
         cmocka_unit_test(test_equal_fp32),
+        cmocka_unit_test(test_wall_approach),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

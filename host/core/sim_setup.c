@@ -138,6 +138,46 @@ int dem_time_scales_get(dem_sim *s, double v, dem_time_scales *ts)
     return 0;
 }
 
+/* The fastest a wall's stages bring it onto the particles: a plane's speed along its normal towards them, in the stages
+ * that reach the particles as placed (its travel along the normal, ramps counted, at least the gap to the nearest
+ * sphere by the stage's end) or that press them (a servo: its max_speed); a fast approach that stops short, or a
+ * stage that moves the plane away or along itself, brings no impact. A cylinder: its fastest stage, whatever it
+ * does. */
+static double wall_approach_speed(const dem_sim *s, int w)
+{
+    const dem_wall *wl = &s->walls[w];
+    double ws = 0, nn = sqrt(wl->normal[0] * wl->normal[0] + wl->normal[1] * wl->normal[1] +
+                             wl->normal[2] * wl->normal[2]);
+    if (wl->kind != DEM_WALL_PLANE || !(nn > 0)) {
+        for (int st = 0; st < wl->nstages; st++) {
+            const double *u = wl->stages[st].velocity;
+            ws = fmax(ws, wl->stages[st].force > 0 ? wl->stages[st].max_speed : sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+        }
+        return ws;
+    }
+    double gap = INFINITY, travel = 0, vprev = 0;
+    for (int i = 0; i < s->n; i++) {
+        const double *x = s->x + 3 * i;
+        double h = ((x[0] - wl->point[0]) * wl->normal[0] + (x[1] - wl->point[1]) * wl->normal[1] +
+                    (x[2] - wl->point[2]) * wl->normal[2]) / nn - s->radius[i];
+        gap = fmin(gap, h);
+    }
+    for (int st = 0; st < wl->nstages; st++) {
+        const dem_stage *g = &wl->stages[st];
+        if (g->force > 0) { /* a servo presses whatever is there, at up to its max_speed */
+            ws = fmax(ws, g->max_speed);
+            vprev = 0;
+            continue;
+        }
+        double vn = (g->velocity[0] * wl->normal[0] + g->velocity[1] * wl->normal[1] + g->velocity[2] * wl->normal[2]) / nn;
+        travel += vn * g->duration - g->ramp * (vn - vprev) / 2; /* a ramp from the stage before (dem_stage.ramp) */
+        if (vn > 0 && travel >= gap)
+            ws = fmax(ws, vn);
+        vprev = vn;
+    }
+    return ws;
+}
+
 int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
 {
     memset(a, 0, sizeof *a);
@@ -162,11 +202,7 @@ int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
         if (!(s->effects & DEM_EFFECT_WALLS))
             continue;
         for (int w = 0; w < s->nwalls; w++) {
-            double ws = 0;
-            for (int st = 0; st < s->walls[w].nstages; st++) {
-                const double *u = s->walls[w].stages[st].velocity;
-                ws = fmax(ws, sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
-            }
+            double ws = wall_approach_speed(s, w);
             stage_max = fmax(stage_max, ws);
             double v = vmax + ws + fall;
             if (!(v > 0))
