@@ -282,9 +282,9 @@ static void restart_case(const char *sc, const char *precision, int mc)
         for (long k = 0; k < np * rs; k++)
             nonzero |= ha[k];
         assert_true(nonzero);
-        read_state(a, "wall_law", wa, 7, rt); /* the first particle's slots of its walls */
-        read_state(b, "wall_law", wb, 7, rt);
-        assert_memory_equal(wa, wb, 7 * (size_t)rs);
+        read_state(a, "wall_law", ha, 7 * (size_t)n, rt); /* every particle's slot of every wall */
+        read_state(b, "wall_law", hb, 7 * (size_t)n, rt);
+        assert_memory_equal(ha, hb, 7 * (size_t)n * rs);
         return;
     }
     if (mc) { /* MC-strain: the stored contact forces the next step starts from */
