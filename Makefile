@@ -342,8 +342,11 @@ CFLAGS += -fPIC -fvisibility=hidden
 # The shared library of this tree for the Python package (python/libdem/sim.py drives it through ctypes): the same
 # PIC objects as the installed one, but with this tree's kernel sources as its default source folder (the objects'
 # sim_setup.o, not install/'s), so that it runs from the tree; built by `make python-lib` into build/pic/libdem.so.
-$(BUILD)/libdem.so: $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
-	$(Q)$(call msg,CC,$@)$(CC) -shared -Wl,--no-undefined $^ $(LDLIBS) -o $@
+# It also holds the scene reader (app/scene*.c, with libcyaml): dem_scene_open (app/scene_api.c) builds a `dem run`
+# scene for the package's Sim.from_scene.
+SCENE_PIC_OBJ := $(patsubst app/%.c,$(BUILD)/app/%.o,$(wildcard app/scene*.c))
+$(BUILD)/libdem.so: $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ) $(SCENE_PIC_OBJ)
+	$(Q)$(call msg,CC,$@)$(CC) -shared -Wl,--no-undefined $^ $(PKG_LIBS) $(LDLIBS) -o $@
 endif
 INSTALL_OBJ = $(filter-out $(BUILD)/host/core/sim_setup.o,$(HOST_OBJ)) $(BUILD)/install/sim_setup.o $(REF32_OBJ) $(REF64_OBJ)
 $(BUILD)/install/sim_setup.o: host/core/sim_setup.c $(HEADERS) FORCE | $(DEPS_STAMP)

@@ -556,6 +556,30 @@ class SimTest(unittest.TestCase):
         for a, b in zip(out["reference"], out["opencl"]):
             np.testing.assert_array_equal(a, b)
 
+    def test_from_scene(self):
+        """a `dem run` scene driven from Python: two_spheres.yaml's set-up, configuration and steps; its first 1000
+        steps give the bits `dem run --stop-after 1000` checkpoints; a bad scene is refused with file:line"""
+        sim = self.sim
+        scene = os.path.join(ROOT, "scenes", "two_spheres.yaml")
+        with sim.Sim.from_scene(scene) as s:
+            self.assertEqual((s.count, s.scene_steps), (2, 3000))
+            self.assertEqual(s.scene_config["precision"], "fp64")
+            s.start(**s.scene_config)
+            s.step(1000)
+            x, v = s.get("x"), s.get("v")
+        with tempfile.TemporaryDirectory() as d:
+            subprocess.run([os.path.join(ROOT, "build", "dem"), "run", scene, "-o", "t.h5", "--quiet",
+                            "--stop-after", "1000"], cwd=d, check=True)
+            with h5py.File(os.path.join(d, "t.ckpt.h5"), "r") as f:
+                np.testing.assert_array_equal(x, f["state/x"][:].reshape(-1, 3))
+                np.testing.assert_array_equal(v, f["state/v"][:].reshape(-1, 3))
+            bad = os.path.join(d, "bad.yaml")
+            with open(scene) as fh, open(bad, "w") as out:
+                out.write(fh.read().replace("poisson: 0.46", "poisson: 0.7"))
+            with self.assertRaises(sim.DemError) as e:
+                sim.Sim.from_scene(bad)
+            self.assertIn("bad.yaml:7: materials[0].poisson: Poisson's ratio must be in (-1, 0.5]", str(e.exception))
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

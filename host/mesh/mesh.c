@@ -357,7 +357,7 @@ int dem_mesh_topology(const dem_mesh *m, dem_mesh_topo *t, char *err, size_t err
                 return snprintf(err, errlen, "triangle %d: vertices %d, %d, %d (three different vertices of 0..%d)",
                                 k, m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2], m->nv - 1), DEM_ERR_ARG;
         }
-    size_t nh = 3 * (size_t)m->nt;
+    size_t nh = 3 * (size_t)(m->nt > 0 ? m->nt : 0); /* (nt < 0 is no mesh: the loop above ran none) */
     half_edge *h = malloc(sizeof *h * (nh ? nh : 1));
     t->edge = malloc(sizeof(int) * 2 * (nh ? nh : 1));
     t->hinge = malloc(sizeof(int) * 4 * (nh ? nh : 1));

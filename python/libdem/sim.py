@@ -235,6 +235,31 @@ class Sim:
             raise MemoryError("dem_create failed")
         self.started = False
 
+    @classmethod
+    def from_scene(cls, path, library=None):
+        """A simulation built from a `dem run` scene file, with every check `dem check` makes, not yet started.
+        Its scene_config holds the scene's backend, precision and device (start(**sim.scene_config)) and scene_steps
+        the steps of its duration. Needs the library of the source tree (make python-lib), which holds the scene
+        reader; the installed library keeps no YAML reader. A bad scene raises DemError with "file:line: field:
+        reason"."""
+        self = cls.__new__(cls)
+        self._lib = load(library)
+        self.started, self._s = False, None
+        fn = getattr(self._lib, "dem_scene_open", None)
+        if fn is None:
+            raise OSError("this libdem.so has no scene reader (dem_scene_open): use the source tree's, make python-lib")
+        fn.restype = _sim
+        fn.argtypes = [ctypes.c_char_p, P(Config), P(_l), ctypes.c_char_p, _sz]
+        c, steps, err = Config(), _l(0), ctypes.create_string_buffer(4096)
+        self._s = fn(os.fsencode(path), ctypes.byref(c), ctypes.byref(steps), err, len(err))
+        if not self._s:
+            raise DemError(-1, err.value.decode(errors="replace"))
+        back = {v: k for k, v in BACKENDS.items()}
+        self.scene_config = {"backend": back.get(c.backend, "opencl"), "precision": "fp64" if c.precision == 8
+                             else "fp32", "device": c.device}
+        self.scene_steps = steps.value
+        return self
+
     def close(self):
         if self._s:
             self._lib.dem_destroy(self._s)
