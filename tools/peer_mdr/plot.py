@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""Draws the MDR peer check: LAMMPS's single-contact curves with the independent reference on top, a zoom on the
+adhesive (tensile) branch, and the die compaction's punch force against punch displacement.
+
+usage: plot.py OUTDIR   (reads OUTDIR/single_*.csv, reference_*.csv, die_force.csv; writes OUTDIR/peer_mdr.png)
+"""
+import os
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cases as C  # noqa: E402
+
+
+def load(path, skip):
+    return np.loadtxt(path, delimiter=",", skiprows=skip)
+
+
+def main():
+    out = sys.argv[1]
+    fig, ax = plt.subplots(2, 2, figsize=(13, 9.5))
+    colors = {"g0": "C0", "adh": "C1", "adh50": "C3"}
+    for col, kind in enumerate(("pair", "wall")):
+        a = ax[0, col]
+        for tag, color in colors.items():
+            case = f"{kind}_{tag}"
+            lam = load(os.path.join(out, f"single_{case}.csv"), 3)
+            ref = load(os.path.join(out, f"reference_{case}.csv"), 2)
+            g = C.SINGLE[case]["gamma"]
+            a.plot(lam[:, 3] / C.R, lam[:, 5], color=color, lw=2.5, alpha=0.45,
+                   label=f"LAMMPS, surface energy {g:g} J/m$^2$")
+            a.plot(ref[:, 2] / C.R, ref[:, 4], color=color, lw=0.8, ls="--", label="reference (docs/laws/mdr.md)")
+        a.set_xlabel("apparent overlap / R" + (" (two spheres: sum of both)" if kind == "pair" else ""))
+        a.set_ylabel("normal force (N)")
+        a.set_title(("two equal spheres" if kind == "pair" else "sphere on a flat wall")
+                    + f", R {C.R * 1e3:g} mm: load, unload, reload, unload")
+        a.grid(alpha=0.3)
+        a.legend(fontsize=7)
+    # tensile branch, strong adhesion
+    a = ax[1, 0]
+    for kind, color in (("pair", "C3"), ("wall", "C2")):
+        case = f"{kind}_adh50"
+        lam = load(os.path.join(out, f"single_{case}.csv"), 3)
+        ref = load(os.path.join(out, f"reference_{case}.csv"), 2)
+        fl = np.where(lam[:, 5] < 0.5, lam[:, 5], np.nan)      # NaN breaks the lines between branches
+        fr = np.where(ref[:, 4] < 0.5, ref[:, 4], np.nan)
+        a.plot(lam[:, 3] / C.R, fl, ".", color=color, ms=3, alpha=0.5, label=f"LAMMPS {case}")
+        a.plot(ref[:, 2] / C.R, fr, "-", color="k", lw=0.6, label=f"reference {case}")
+    a.set_xlabel("apparent overlap / R")
+    a.set_ylabel("normal force (N)")
+    a.set_title(f"the adhesive branch below 0.5 N (surface energy {C.GAMMA_STRONG:g} J/m$^2$)")
+    a.grid(alpha=0.3)
+    a.legend(fontsize=7)
+    # die
+    a = ax[1, 1]
+    die = os.path.join(out, "die_force.csv")
+    if os.path.exists(die):
+        d = load(die, 3)
+        area = np.pi * C.DIE["die_radius"] ** 2
+        a.plot(d[:, 0] * 1e3, d[:, 1], label="upper punch")
+        a.plot(d[:, 0] * 1e3, d[:, 2], label="lower punch")
+        a.set_xlabel("upper punch travel (mm)")
+        a.set_ylabel("punch force (N)")
+        sec = a.secondary_yaxis("right", functions=(lambda f: f / area / 1e6, lambda p: p * area * 1e6))
+        sec.set_ylabel("punch pressure (MPa)")
+        a.set_title(f"LAMMPS MDR die: {C.DIE['n']} spheres, die radius {C.DIE['die_radius'] * 1e3:g} mm, "
+                    f"punch {C.DIE['punch_speed'] * 1e3:g} mm/s")
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    png = os.path.join(out, "peer_mdr.png")
+    fig.savefig(png, dpi=110)
+    print(f"plot: {png}")
+
+
+if __name__ == "__main__":
+    main()
