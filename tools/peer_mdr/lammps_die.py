@@ -183,10 +183,13 @@ def main():
         lines = f.read().split("\n")
     n = int(lines[3])
     atoms = sorted((line.split() for line in lines[9:9 + n]), key=lambda v: int(v[0]))
+    # the upper punch starts r_max above the highest centre (in.die: 'gap')
+    z_start = max(float(v[3]) for v in atoms) + D["r_max"]
+    v_solid = sum(4.0 / 3.0 * math.pi * float(v[4]) ** 3 for v in atoms)
     with open(os.path.join(outdir, "die_packing.csv"), "w") as f:
         f.write(f"# MDR die compaction, LAMMPS {version}: the spheres when the upper punch starts (after the pour)\n"
-                f"# die radius {D['die_radius']!r} m, lower punch z = 0, density {C.RHO!r} kg/m^3 x mass scale "
-                f"{D['mass_scale']!r}\nid,x_m,y_m,z_m,radius_m\n")
+                f"# die radius {D['die_radius']!r} m, lower punch z = 0, upper punch z = {z_start!r} m, density "
+                f"{C.RHO!r} kg/m^3 x mass scale {D['mass_scale']!r}\nid,x_m,y_m,z_m,radius_m\n")
         for v in atoms:
             f.write(",".join(v) + "\n")
     rows = []
@@ -201,12 +204,15 @@ def main():
                 f"{D['gamma_w']:g}), psi_b {C.PSI_B:g}, damping mdr {C.DAMP:g}, friction {D['mu_p']:g} / wall "
                 f"{D['mu_w']:g}, density {C.RHO:g} kg/m^3 x {D['mass_scale']:g}, dt {DT:g} s, punch speed "
                 f"{D['punch_speed']:g} m/s, stop at {f_max:.6g} N\n"
-                "# punch_disp_m: upper punch travel from where it starts (downwards > 0); forces on the punches "
-                "(compressive > 0)\npunch_disp_m,upper_force_N,lower_force_N\n")
+                f"# punch_disp_m: upper punch travel from where it starts, z = {z_start:.9g} m (downwards > 0); "
+                "forces on the punches (compressive > 0); solid_fraction: the spheres' initial volume (MDR keeps "
+                "it) over the die's volume between the punches\n"
+                "punch_disp_m,upper_force_N,lower_force_N,solid_fraction\n")
         for d, fu, fl in rows:
-            f.write(f"{d!r},{fu!r},{fl!r}\n")
-    fpk = max(r_[1] for r_ in rows)
-    print(f"lammps_die: {D['n']} spheres, peak punch force {fpk:.1f} N ({fpk / area / 1e6:.1f} MPa), "
+            f.write(f"{d!r},{fu!r},{fl!r},{v_solid / (area * (z_start - d))!r}\n")
+    fpk, dpk = max((r_[1], r_[0]) for r_ in rows)
+    print(f"lammps_die: {D['n']} spheres, peak punch force {fpk:.1f} N ({fpk / area / 1e6:.1f} MPa) at solid "
+          f"fraction {v_solid / (area * (z_start - dpk)):.3f} (start {v_solid / (area * z_start):.3f}), "
           f"{len(rows)} rows, {wall:.0f} s -> {outdir}/die_force.csv, {outdir}/die_packing.csv")
 
 

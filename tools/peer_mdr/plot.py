@@ -40,19 +40,23 @@ def main():
                     + f", R {C.R * 1e3:g} mm: load, unload, reload, unload")
         a.grid(alpha=0.3)
         a.legend(fontsize=7)
-    # tensile branch, strong adhesion
+    # the last pull-off, strong adhesion: the final unloading's rows below 0.5 N, against the overlap measured
+    # from where the force last is not zero
     a = ax[1, 0]
     for kind, color in (("pair", "C3"), ("wall", "C2")):
         case = f"{kind}_adh50"
+        start = sum(C.phase_steps(C.SINGLE[case]["path"])[:3])
         lam = load(os.path.join(out, f"single_{case}.csv"), 3)
         ref = load(os.path.join(out, f"reference_{case}.csv"), 2)
-        fl = np.where(lam[:, 5] < 0.5, lam[:, 5], np.nan)      # NaN breaks the lines between branches
-        fr = np.where(ref[:, 4] < 0.5, ref[:, 4], np.nan)
-        a.plot(lam[:, 3] / C.R, fl, ".", color=color, ms=3, alpha=0.5, label=f"LAMMPS {case}")
-        a.plot(ref[:, 2] / C.R, fr, "-", color="k", lw=0.6, label=f"reference {case}")
-    a.set_xlabel("apparent overlap / R")
+        lam = lam[(lam[:, 0] > start) & (lam[:, 5] < 0.5)]
+        ref = ref[(ref[:, 0] > start) & (ref[:, 4] < 0.5)]
+        x0 = lam[np.nonzero(lam[:, 5])[0][-1], 3]
+        a.plot((lam[:, 3] - x0) * 1e6, lam[:, 5], "o", color=color, ms=3, alpha=0.5, label=f"LAMMPS {case}")
+        a.plot((ref[:, 2] - x0) * 1e6, ref[:, 4], "-", color="k", lw=0.7, label=f"reference {case}")
+    a.set_xlim(-0.3, 2.5)
+    a.set_xlabel("apparent overlap above the pull-off point (µm)")
     a.set_ylabel("normal force (N)")
-    a.set_title(f"the adhesive branch below 0.5 N (surface energy {C.GAMMA_STRONG:g} J/m$^2$)")
+    a.set_title(f"the final pull-off, surface energy {C.GAMMA_STRONG:g} J/m$^2$ (every step)")
     a.grid(alpha=0.3)
     a.legend(fontsize=7)
     # die
@@ -70,7 +74,12 @@ def main():
         a.set_title(f"LAMMPS MDR die: {C.DIE['n']} spheres, die radius {C.DIE['die_radius'] * 1e3:g} mm, "
                     f"punch {C.DIE['punch_speed'] * 1e3:g} mm/s")
         a.grid(alpha=0.3)
-        a.legend(fontsize=8)
+        a.legend(fontsize=8, loc="upper left")
+        if d.shape[1] > 3:
+            ld = d[:np.argmax(d[:, 0]) + 1]           # loading rows: travel and solid fraction both increase
+            top = a.secondary_xaxis("top", functions=(
+                lambda x: np.interp(x, ld[:, 0] * 1e3, ld[:, 3]), lambda p: np.interp(p, ld[:, 3], ld[:, 0] * 1e3)))
+            top.set_xlabel("solid fraction")
     fig.tight_layout()
     png = os.path.join(out, "peer_mdr.png")
     fig.savefig(png, dpi=110)
