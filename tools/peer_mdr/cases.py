@@ -37,19 +37,38 @@ SINGLE = {
     "wall_adh": dict(kind="wall", gamma=GAMMA_ADH, path=(0.15 * R, 0.09 * R, 0.225 * R, -0.03 * R)),
     "pair_adh50": dict(kind="pair", gamma=GAMMA_STRONG, path=(0.30 * R, 0.18 * R, 0.45 * R, -0.05 * R)),
     "wall_adh50": dict(kind="wall", gamma=GAMMA_STRONG, path=(0.15 * R, 0.09 * R, 0.225 * R, -0.03 * R)),
+    # one sphere between six planes that close in together: past about 15 % of R the free-surface fraction psi
+    # falls below psi_b and Part II's bulk force takes over; no damping (the planes move, the sphere does not)
+    "box_g0":   dict(kind="box", gamma=0.0, damp=0.0, path=(0.20 * R, 0.12 * R, 0.24 * R, -0.06 * R)),
 }
 
 
 def phase_steps(path):
     """Steps of each phase: |change of approach| / STEP, rounded."""
-    ends = (0.0,) + tuple(path)
-    return [int(round(abs(ends[k + 1] - ends[k]) / STEP)) for k in range(len(path))]
+    ends = [0.0]
+    n = []
+    for k in range(len(path)):
+        n.append(int(round(abs(path[k] - ends[k]) / STEP)))
+        ends.append(ends[k] + (1.0 if path[k] > ends[k] else -1.0) * STEP * n[k])
+    return n
+
+
+def phase_ends(path):
+    """The approach where each phase really ends: whole steps of STEP from where the previous one ended (a phase
+    that starts where the last one was meant to end, not where it got, makes LAMMPS's next run start with a jump;
+    its setup then sees a position no step walked through, and the MDR history's unguarded maxima keep it)."""
+    n = phase_steps(path)
+    ends = [0.0]
+    for k in range(len(path)):
+        sign = 1.0 if path[k] > ends[k] else -1.0
+        ends.append(ends[k] + sign * STEP * n[k])
+    return ends
 
 
 def approach_at(path, step):
     """Approach (m) after `step` steps of the whole path, as LAMMPS's 'fix move variable' sets it: each phase
     is its own 'run', the displacement is start + sign*STEP*elapsed."""
-    ends = (0.0,) + tuple(path)
+    ends = phase_ends(path)
     n = phase_steps(path)
     s = step
     for k in range(len(path)):

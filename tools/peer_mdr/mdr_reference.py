@@ -2,9 +2,11 @@
 """The MDR normal force of a single contact, written from docs/laws/mdr.md (equation numbers (Mn) there), in plain
 Python doubles, and its comparison with LAMMPS's single-contact curves (lammps_single.py).
 
-It walks the same prescribed path as the LAMMPS run (cases.py), step by step, with the per-particle radius update
-of Part II (M30-M36) between steps, and prints the largest difference along each branch (loading, unloading,
-reloading, final unloading) relative to the largest force of the case.
+It walks the same prescribed path as the LAMMPS run (cases.py), step by step, with Part II's per-particle step
+(M28-M36: volumes, free-surface fraction, radius update, mean surface displacement, bulk force) between and
+within steps, and prints the largest difference along each branch (loading, unloading, reloading, final
+unloading) relative to the largest force of the case. Pairs of equal spheres, a sphere on a wall and a sphere
+between six planes (the bulk response); no penalty (M40: it needs three particles).
 
 usage: mdr_reference.py OUTDIR        (reads OUTDIR/single_<case>.csv, writes OUTDIR/reference_<case>.csv and
                                        OUTDIR/comparison.txt; exit status 1 if a case differs by more than TOL)
@@ -104,9 +106,10 @@ class Particle:
         self.dRavg = 0.0
         self.Acon0 = 0.0
         self.clear_sums()
-        self.eps_bar = 0.0
         self.psi = 1.0
         self.Velas = 4.0 / 3.0 * math.pi * R ** 3
+        self.Vgeo = self.Velas
+        self.ddelta_bar = 0.0
 
     def clear_sums(self):
         self.Vcaps = 0.0
@@ -117,10 +120,11 @@ class Particle:
         self.Atot_sum = 0.0
 
     def begin_step(self, mat):
-        """(M31-M36) between steps: the particle's volumes, free-area fraction and radius from the sums its
-        contacts left in the previous step; then the sums restart."""
+        """(M31, M34, M36) between steps: the particle's volumes, free-surface fraction and radius from the sums
+        its contacts left in the previous step; then the sums restart."""
         R = self.R
         Vo = 4.0 / 3.0 * math.pi * self.Ro ** 3
+        self.Vgeo = min(4.0 / 3.0 * math.pi * R ** 3 - self.Vcaps, Vo)
         self.Velas = Vo * (1.0 + self.eps_sum)
         Atot = 4.0 * math.pi * R * R + self.Atot_sum
         self.psi = (Atot - self.Acon1) / Atot
@@ -131,10 +135,14 @@ class Particle:
                 self.dRavg += (dR - self.dRavg) / 10.0
                 if R + dR < 1.5 * self.Ro:
                     self.R = R + self.dRavg
-        else:
-            raise AssertionError("bulk response (Part II) is outside the single-contact reference")
         self.Acon0 = self.Acon1
         self.clear_sums()
+        self.ddelta_bar = 0.0
+
+    def add_surface_motion(self, side, delta_now):
+        """(M33) one contact's share of the mean surface displacement increment, at the step's start."""
+        if self.Acon0 != 0.0:
+            self.ddelta_bar += side.Ac / self.Acon0 * (delta_now - side.delta)
 
 
 class Side:
@@ -143,6 +151,8 @@ class Side:
         self.delta = 0.0        # side's apparent overlap at the last step
         self.deltao = 0.0       # the same against the initial radius
         self.delta_mdr = 0.0
+        self.delta_bulk = 0.0
+        self.Ac = 0.0           # last step's contact area (M33)
         self.deltamax = 0.0     # largest delta_mdr
         self.yielded = False
         self.cA = 0.0           # area intercept fixed at yield (M12)
@@ -152,15 +162,22 @@ class Side:
 
 
 def side_force(mat, s, p, delta):
-    """One side: a sphere of apparent radius p.R pressed on a rigid flat by `delta`. Returns (F_MDR, a_damp)
-    and leaves the side's and the particle's updates (M10-M29, M32)."""
+    """One side: a sphere of apparent radius p.R pressed on a rigid flat by `delta`. Returns
+    (F_MDR + F_BULK, a_damp) and leaves the side's and the particle's updates (M10-M35)."""
     R, Ro = p.R, p.Ro
     ddelta = delta - s.delta
     s.delta = delta
     deltao = delta - (R - Ro)
     ddeltao = deltao - s.deltao
     s.deltao = deltao
-    s.delta_mdr += ddelta                                       # (M10) no bulk split in a single contact
+    if p.psi < mat.psi_b:                                       # (M10) the bulk response takes its share
+        dd_mdr = min(ddelta - p.ddelta_bar, delta - s.delta_mdr)
+        dd_bulk = p.ddelta_bar
+    else:
+        dd_mdr = ddelta
+        dd_bulk = 0.0
+    s.delta_mdr += dd_mdr
+    s.delta_bulk = max(0.0, s.delta_bulk + dd_bulk)
     if s.delta_mdr > s.deltamax:
         s.deltamax = s.delta_mdr
     dm = s.deltamax
@@ -216,10 +233,12 @@ def side_force(mat, s, p, delta):
     # (M28, M29, M32) areas, cap volume, strain and radius-update sums of the particle
     Ac = math.pi * (2.0 * delta * R - delta * delta) + s.cA if s.yielded else math.pi * delta * R
     Ac = max(Ac, 0.0)
-    p.Atot_sum += Ac - 2.0 * math.pi * R * dm
+    p.Atot_sum += Ac - 2.0 * math.pi * R * (dm + s.delta_bulk)
     p.Acon1 += Ac
+    s.Ac = Ac
+    F_bulk = p.Acon0 * s.delta_bulk * mat.kappa * Ac / p.Vgeo if s.delta_bulk > 0.0 else 0.0   # (M35)
     p.Vcaps += math.pi / 3.0 * delta * delta * (3.0 * R - delta)
-    eps_c = -F * (Ro - deltao) / (3.0 * mat.kappa * p.Velas)
+    eps_c = -(F + F_bulk) * (Ro - deltao) / (3.0 * mat.kappa * p.Velas)
     p.eps_sum += eps_c
     if s.delta_mdr >= dm and s.yielded and F > 0.0:
         Vo = 4.0 / 3.0 * math.pi * Ro ** 3
@@ -227,7 +246,7 @@ def side_force(mat, s, p, delta):
         p.dRnum -= math.pi * ddeltao * (2.0 * deltao * Ro - deltao * deltao + R * R - Ro * Ro)
         p.dRden += 2.0 * math.pi * R * (deltao + R - Ro)
     s.eps_c = eps_c
-    return F, a_damp
+    return F + F_bulk, a_damp
 
 
 class Contact:
@@ -258,8 +277,41 @@ def pair_split(c, p_hi, p_lo, delta):
     return out
 
 
+def run_box(spec, mat, mass):
+    """One sphere between six planes closing in by the path's approach u (no damping: spec's damp is 0)."""
+    path = spec["path"]
+    nsteps = sum(C.phase_steps(path))
+    p = Particle(C.R, mass)
+    walls = [Contact() for _ in range(6)]
+    rows = []
+    for step in range(nsteps + 1):
+        u = C.approach_at(path, step)
+        F = 0.0
+        if step > 0:
+            p.begin_step(mat)
+            # each plane at distance R - u from the centre: its overlap with the (grown) sphere
+            delta = p.R - (C.R - u)
+            for c in walls:
+                if delta > 0.0:
+                    p.add_surface_motion(c.sides[0], delta)
+            for k, c in enumerate(walls):
+                if delta > 0.0:
+                    if delta >= c.deltamax:
+                        c.deltamax = delta
+                    F0, _ = side_force(mat, c.sides[0], p, delta)
+                    wfm = math.exp(10.7 * c.sides[0].deltao / p.Ro - 10.0) + 1.0
+                    if k == 0:
+                        F = F0 * wfm
+                else:
+                    c.reset()
+        rows.append((step, u, p.R - (C.R - u), p.R, F, p.psi))
+    return rows
+
+
 def run_case(case, spec):
-    mat = Material(C.E, C.NU, C.Y, spec["gamma"], C.PSI_B, C.DAMP)
+    mat = Material(C.E, C.NU, C.Y, spec["gamma"], C.PSI_B, spec.get("damp", C.DAMP))
+    if spec["kind"] == "box":
+        return run_box(spec, mat, C.RHO * 4.0 / 3.0 * math.pi * C.R ** 3)
     mass = C.RHO * 4.0 / 3.0 * math.pi * C.R ** 3
     path = spec["path"]
     nsteps = sum(C.phase_steps(path))
@@ -292,11 +344,14 @@ def run_case(case, spec):
                 c.deltamax = delta
             if spec["kind"] == "pair":
                 d0, d1 = pair_split(c, p2, p1, delta)
+                p2.add_surface_motion(c.sides[0], d0)
+                p1.add_surface_motion(c.sides[1], d1)
                 F0, a0 = side_force(mat, c.sides[0], p2, d0)
                 F1, a1 = side_force(mat, c.sides[1], p1, d1)
                 Fel = 0.5 * (F0 + F1)                                        # (M4)
                 eta = mat.damp * math.sqrt(meff * 2.0 * mat.Es * (a0 + a1))  # (M38)
             else:
+                p1.add_surface_motion(c.sides[0], delta)
                 F0, a0 = side_force(mat, c.sides[0], p1, delta)
                 wfm = math.exp(10.7 * c.sides[0].deltao / p1.Ro - 10.0) + 1.0  # (M39)
                 Fel = F0 * wfm
@@ -304,7 +359,7 @@ def run_case(case, spec):
             F = Fel + eta * v_app
         elif delta <= 0.0:
             c.reset()
-        rows.append((step, u, delta, p1.R, F))
+        rows.append((step, u, delta, p1.R, F, p1.psi))
     return rows
 
 
@@ -325,7 +380,7 @@ def compare(outdir):
         ref = run_case(case, spec)
         with open(os.path.join(outdir, f"reference_{case}.csv"), "w") as f:
             f.write(f"# MDR single contact, tools/peer_mdr/mdr_reference.py (docs/laws/mdr.md); case {case}\n"
-                    "step,approach_m,overlap_m,radius_m,force_N\n")
+                    "step,approach_m,overlap_m,radius_m,force_N,psi\n")
             for r in ref:
                 f.write(",".join(repr(x) for x in r) + "\n")
         lam = load_csv(os.path.join(outdir, f"single_{case}.csv"))
@@ -350,6 +405,8 @@ def compare(outdir):
         fmin_l = min(r[5] for r in lam)
         fmin_r = min(q[4] for q in ref)
         rad = max(abs(ref[int(r[0])][3] - r[4]) for r in lam) / C.R
+        dpsi = max(abs(ref[int(r[0])][5] - r[6]) for r in lam)
+        psimin = min(r[6] for r in lam)
         tens = ""
         if spec["gamma"] > 0.0:
             # the tensile branch against its own scale: rows where either force is below 1 % of the peak
@@ -358,7 +415,8 @@ def compare(outdir):
             ntens = sum(1 for r in lam if r[5] < 0.0)
             tens = f"; tensile rows {ntens}, largest difference there {d_t / abs(fmin_l):.2e} of the pull-off"
         lines.append(f"{case:10s} peak {fmax:8.4f} N; largest |F_ref - F_lammps| / peak: " + ", ".join(parts)
-                     + f"; radius {rad:.1e} R; least force LAMMPS {fmin_l:.6g} N, reference {fmin_r:.6g} N"
+                     + f"; radius {rad:.1e} R; psi down to {psimin:.3f}, {dpsi:.1e} apart"
+                     + f"; least force LAMMPS {fmin_l:.6g} N, reference {fmin_r:.6g} N"
                      + tens)
     text = "\n".join(lines)
     print(text)

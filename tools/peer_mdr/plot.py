@@ -22,7 +22,7 @@ def load(path, skip):
 
 def main():
     out = sys.argv[1]
-    fig, ax = plt.subplots(2, 2, figsize=(13, 9.5))
+    fig, ax = plt.subplots(2, 3, figsize=(19, 9.5))
     colors = {"g0": "C0", "adh": "C1", "adh50": "C3"}
     for col, kind in enumerate(("pair", "wall")):
         a = ax[0, col]
@@ -40,6 +40,26 @@ def main():
                     + f", R {C.R * 1e3:g} mm: load, unload, reload, unload")
         a.grid(alpha=0.3)
         a.legend(fontsize=7)
+    # one sphere between six closing planes: force of one plane, and the free-surface fraction psi
+    a = ax[0, 2]
+    lam = load(os.path.join(out, "single_box_g0.csv"), 3)
+    ref = load(os.path.join(out, "reference_box_g0.csv"), 2)
+    a.plot(lam[:, 3] / C.R, lam[:, 5], color="C4", lw=2.5, alpha=0.45, label="LAMMPS: force of one plane")
+    a.plot(ref[:, 2] / C.R, ref[:, 4], color="C4", lw=0.8, ls="--", label="reference")
+    a.set_xlabel("apparent overlap of each plane / R")
+    a.set_ylabel("normal force (N)")
+    a.set_title(f"sphere between six closing planes (bulk below psi_b {C.PSI_B:g})")
+    a.grid(alpha=0.3)
+    a.legend(fontsize=7, loc="upper left")
+    b = ax[1, 2]
+    b.plot(lam[:, 3] / C.R, lam[:, 6], color="C5", lw=2.5, alpha=0.45, label="LAMMPS psi")
+    b.plot(ref[:, 2] / C.R, ref[:, 5], color="C5", lw=0.8, ls="--", label="reference psi")
+    b.axhline(C.PSI_B, color="k", lw=0.6, ls=":")
+    b.set_xlabel("apparent overlap of each plane / R")
+    b.set_ylabel("free-surface fraction psi")
+    b.set_title("the six-plane sphere's free-surface fraction")
+    b.grid(alpha=0.3)
+    b.legend(fontsize=7)
     # the last pull-off, strong adhesion: the final unloading's rows below 0.5 N, against the overlap measured
     # from where the force last is not zero
     a = ax[1, 0]
