@@ -42,8 +42,10 @@ def write_input(case, spec, path):
         "create_box 1 box",
     ]
     if kind == "pair":
-        # sphere 1 at the origin stays put; sphere 2 starts touching at +2R and moves along -x
-        lines += ["create_atoms 1 single 0 0 0", f"create_atoms 1 single {2 * R!r} 0 0"]
+        # sphere 1 (radius R) at the origin stays put; sphere 2 (radius R2, R unless the case says) starts
+        # touching and moves along -x
+        R2 = spec.get("R2", R)
+        lines += ["create_atoms 1 single 0 0 0", f"create_atoms 1 single {R + R2!r} 0 0"]
     elif kind == "wall":
         # one sphere touching the plane z = 0 from above, moved along -z
         lines += [f"create_atoms 1 single 0 0 {R!r}"]
@@ -52,6 +54,7 @@ def write_input(case, spec, path):
         lines += ["create_atoms 1 single 0 0 0"]
     lines += [
         f"set atom * diameter {2 * R!r} density {C.RHO!r}",
+        f"set atom 2 diameter {2 * spec.get('R2', R)!r} density {C.RHO!r}" if kind == "pair" else "",
         f"neighbor {0.5 * R!r} bin", "neigh_modify every 1 delay 0 check yes",
         "pair_style granular", f"pair_coeff * * {mdr}",
         f"timestep {C.DT!r}",

@@ -317,7 +317,9 @@ def run_case(case, spec):
     nsteps = sum(C.phase_steps(path))
     rows = []
     if spec["kind"] == "pair":
-        p1, p2 = Particle(C.R, mass), Particle(C.R, mass)    # p2 has the higher id: side 0
+        R2 = spec.get("R2", C.R)
+        m2 = C.RHO * 4.0 / 3.0 * math.pi * R2 ** 3
+        p1, p2 = Particle(C.R, mass), Particle(R2, m2)       # p2 has the higher id: side 0
         parts = (p1, p2)
     else:
         p1 = Particle(C.R, mass)
@@ -331,9 +333,9 @@ def run_case(case, spec):
             for p in parts:
                 p.begin_step(mat)
         if spec["kind"] == "pair":
-            dist = 2.0 * C.R - u
+            dist = C.R + p2.Ro - u
             delta = p1.R + p2.R - dist
-            meff = 0.5 * mass
+            meff = mass * p2.mass / (mass + p2.mass)
         else:
             dist = C.R - u
             delta = p1.R - dist

@@ -34,6 +34,13 @@ def main():
             a.plot(lam[:, 3] / C.R, lam[:, 5], color=color, lw=2.5, alpha=0.45,
                    label=f"LAMMPS, surface energy {g:g} J/m$^2$")
             a.plot(ref[:, 2] / C.R, ref[:, 4], color=color, lw=0.8, ls="--", label="reference (docs/laws/mdr.md)")
+        if kind == "pair":
+            lam = load(os.path.join(out, "single_pair_uneq.csv"), 3)
+            ref = load(os.path.join(out, "reference_pair_uneq.csv"), 2)
+            r2 = C.SINGLE["pair_uneq"]["R2"]
+            a.plot(lam[:, 3] / C.R, lam[:, 5], color="C2", lw=2.5, alpha=0.45,
+                   label=f"LAMMPS, R {C.R * 1e3:g} and {r2 * 1e3:g} mm, {C.SINGLE['pair_uneq']['gamma']:g} J/m$^2$")
+            a.plot(ref[:, 2] / C.R, ref[:, 4], color="C2", lw=0.8, ls="--", label="reference")
         a.set_xlabel("apparent overlap / R" + (" (two spheres: sum of both)" if kind == "pair" else ""))
         a.set_ylabel("normal force (N)")
         a.set_title(("two equal spheres" if kind == "pair" else "sphere on a flat wall")
