@@ -70,10 +70,8 @@ def solve_adhesive_radius(d, A, B, mat, a_hi):
     bit (the reference's own solver: nothing about its count or start carries over to the C law)."""
     def f(a):
         return d - g_of_a(a, A, B) + math.sqrt(2.0 * math.pi * mat.gamma * a / mat.Es)
-    # f decreases from a_crit upwards (g' > l' there); f(a_hi) < 0 is the case's condition
-    lo = 0.0
-    hi = a_hi
-    # lower end: the critical radius, where f is largest
+    # f decreases from a_crit upwards (g' > l' there); f(a_hi) < 0 is the case's condition.
+    # Lower end: the critical radius, where f is largest (the sign change of P, by bisection)
     clo, chi = 0.0, a_hi
     for _ in range(200):
         m = 0.5 * (clo + chi)
