@@ -152,7 +152,7 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
                                   mp->materials[0], mp->materials[1], j);
             }
         }
-        dem_material_pair dp = {NAN, NAN};
+        dem_material_pair dp = {NAN, NAN, NAN};
         snprintf(p, sizeof p, "material_pairs[%u].friction", k);
         int hf = scene_has(sc->loc, p);
         if (hf)
@@ -161,9 +161,13 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
         int he = scene_has(sc->loc, p);
         if (he)
             dp.restitution = mp->restitution;
+        snprintf(p, sizeof p, "material_pairs[%u].rolling_friction", k);
+        int hr = scene_has(sc->loc, p);
+        if (hr)
+            dp.rolling_friction = mp->rolling_friction;
         snprintf(p, sizeof p, "material_pairs[%u]", k);
-        if (!hf && !he)
-            return scene_fail(sc, err, errlen, p, "give the pair's friction or restitution (or both)");
+        if (!hf && !he && !hr)
+            return scene_fail(sc, err, errlen, p, "give the pair's friction, restitution or rolling_friction");
         if (dem_set_material_pair(s, id[0], id[1], &dp))
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
     }
@@ -190,7 +194,7 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         if (bit < 0)
             return scene_fail(sc, err, errlen, path,
                               "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
-                              "mc_strain, thornton_ning, membrane)", e);
+                              "mc_strain, thornton_ning, rolling, membrane)", e);
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
         if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS))
@@ -287,6 +291,8 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
         MCHECK("gamma", m->gamma >= 0 && isfinite(m->gamma), "the MC-strain prefactor gamma must be >= 0");
         MCHECK("yield_stress", m->yield_stress >= 0 && isfinite(m->yield_stress),
                "the yield stress must be >= 0 Pa (0: the material does not yield)");
+        MCHECK("rolling_friction", m->rolling_friction >= 0 && isfinite(m->rolling_friction),
+               "the rolling friction must be >= 0");
 #undef MCHECK
         for (unsigned j = 0; j < k; j++)
             if (!strcmp(f->materials[j].name, m->name)) {
@@ -295,7 +301,7 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
             }
         /* a wall-only material without a density gets a placeholder the library accepts; no mass is made from it */
         dem_material dm = {used || m->density > 0 ? m->density * scale : 1.0, m->young, m->poisson, m->restitution,
-                           m->friction, m->beta, m->gamma, m->yield_stress};
+                           m->friction, m->beta, m->gamma, m->yield_stress, m->rolling_friction};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));

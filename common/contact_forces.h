@@ -32,6 +32,7 @@
 #include "particle_stress.h"
 #include "mc_strain.h"
 #include "series.h"
+#include "rolling.h"
 
 typedef struct {
     int active;  /* 1 when the spheres overlap */
@@ -41,6 +42,7 @@ typedef struct {
     vec3 c;      /* n x f_t [N] */
     vec3 hist;   /* new tangential history */
     real st;     /* new law state (a law with memory: laws/law.h) */
+    vec3 roll;   /* rolling torque on a (rolling.h) [N m] */
 } pair_contact;
 
 /* Pair (a, b) through the run's law (laws.h: law_force); ctx: what the law reads beyond the two particles. */
@@ -61,6 +63,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     pc.c = v3_zero();
     pc.hist = v3_zero();
     pc.st = (real)0;
+    pc.roll = v3_zero();
     if (!g.active)
         return pc;
     vec3 n = g.n;
@@ -98,6 +101,8 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         pc.c = v3_cross(n, r.ft);
         pc.hist = r.hist;
     }
+    if (fx & DEM_EFFECT_ROLLING) /* against the pair's relative spin, with its normal force */
+        pc.roll = rolling_torque(n, v3_dot(r.force, n), v3_sub(v3_load(w, a), v3_load(w, b)), g.rstar, c.pm);
     return pc;
 }
 
@@ -155,6 +160,8 @@ DEM_ITEM(contact_pairs)
         pr[PR_CZ] = pc.c.z;
     }
     pr[PR_DELTA] = pc.delta; /* the torque's lever arm, and a sampled step's elastic energy (series.h) */
+    if (fx & DEM_EFFECT_ROLLING) /* read with the record, only for a touching pair */
+        v3_store(pair_roll, i, pc.roll);
     if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
         pair_ela[i] = series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
                                               pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
@@ -184,6 +191,8 @@ DEM_ITEM(contact_forces)
         fi = v3_add(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
+        if (fx & DEM_EFFECT_ROLLING) /* i is the pair's a: its rolling torque */
+            ti = v3_add(ti, v3_load(pair_roll, p));
         if (sample && pr[PR_DELTA] > (real)0) { /* a sampled step: the pair's elastic energy, by its lower id */
             if (fx & DEM_KEEP_PAIR_ENERGY) {
                 ela += pair_ela[p];
@@ -204,6 +213,8 @@ DEM_ITEM(contact_forces)
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
+        if (fx & DEM_EFFECT_ROLLING) /* i is the pair's b: minus a's rolling torque */
+            ti = v3_sub(ti, v3_load(pair_roll, p));
     }
     if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,

@@ -106,6 +106,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS, STAY, NO)                     \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS, STAY, NO)                       \
     ENTRY(PAIR_LAW, REAL, PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                         \
+    ENTRY(PAIR_ROLL, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING, -1, NONE, PAIRS, STAY, NO)                                     \
     ENTRY(PAIR_LAW_OLD, REAL, PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                     \
     ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES, STAY, NO)                                                  \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE, PARTICLES, P(1), NO)                      \

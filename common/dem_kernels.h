@@ -113,7 +113,8 @@
     A(BOUT, real, hist, PAIR_HIST) A(BOUT, dem_byte, touch, TOUCH) A(BOUT, real, pair, PAIR)                          \
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)                     \
-    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BOUT, real, law_st, PAIR_LAW)
+    A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BOUT, real, law_st, PAIR_LAW)              \
+    A(BOUT, real, pair_roll, PAIR_ROLL)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
@@ -124,7 +125,7 @@
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
     A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
     A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)                 \
-    A(BOUT, real, wall_law, WALL_LAW)
+    A(BOUT, real, wall_law, WALL_LAW) A(BIN, real, pair_roll, PAIR_ROLL)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */

@@ -16,6 +16,7 @@
 #include "contact_geometry.h"
 #include "particle_stress.h"
 #include "mc_strain.h"
+#include "rolling.h"
 
 /* Particle i against wall k: the law's result when they touch (active). old_touch: whether they touched in the
  * previous step (wall_mask), i.e. whether a tangential history is stored. A pure function of the state before the
@@ -114,6 +115,9 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 v3_store(wall_hist, slot, c.r.hist);
                 *ti = v3_sub(*ti, v3_scale(v3_cross(c.n, c.r.ft), c.arm));
             }
+            if (fx & DEM_EFFECT_ROLLING) /* against the sphere's spin (the wall's is prescribed: none), r* = r_i */
+                *ti = v3_add(*ti, rolling_torque(c.n, v3_dot(c.r.force, c.n), wi, ri,
+                                                 pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL])));
             mask |= 1u << k;
         } else {
             if ((fx & DEM_EFFECT_FRICTION) && old_touch)

@@ -74,6 +74,8 @@ typedef struct {
     double yield_stress; /* limiting contact pressure p_y [Pa] of the plastic law (DEM_EFFECT_THORNTON_NING); 0: the
                             material does not yield (a wall's steel). A pair yields at the smaller p_y of its two
                             materials that yield */
+    double rolling_friction; /* coefficient of rolling resistance mu_r >= 0 (DEM_EFFECT_ROLLING): a contact's torque
+                                is at most mu_r r* f_n; a pair takes the mean of its two materials' */
 } dem_material;
 
 /* What one pair of materials takes instead of the mean of its two materials' values (dem_set_material_pair): a
@@ -82,6 +84,7 @@ typedef struct {
 typedef struct {
     double friction;    /* Coulomb friction coefficient of the pair, >= 0 */
     double restitution; /* coefficient of restitution of the pair, in (0, 1] (the damping follows from it) */
+    double rolling_friction; /* rolling resistance coefficient of the pair, >= 0 (DEM_EFFECT_ROLLING) */
 } dem_material_pair;
 
 /* Most motion stages of one wall (a scene's settling pause counts as one; `repeat` multiplies a list): enough for

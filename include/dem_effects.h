@@ -46,11 +46,14 @@ enum {
                                            Hertz curve of the flattened radius): common/laws/thornton_ning.h; needs a
                                            yield_stress; excludes mc_stress, mc_strain and patches. Above the host's
                                            bits 262144 and 524288 and the test laws' 1048576 */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152
+    DEM_EFFECT_ROLLING = 4194304, /* rolling resistance of constant torque (Ai et al. 2011, model A): each contact
+                                     resists the relative rolling of its bodies with mu_r r* f_n; needs friction:
+                                     common/rolling.h */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..21; 7..11 are the convention bits and 18..20 the
+/* Bit positions an effect name can have (dem_effect_name): 0..22; 7..11 are the convention bits and 18..20 the
  * host's and the test laws' bits, not effects. */
-#define DEM_EFFECT_COUNT 22
+#define DEM_EFFECT_COUNT 23
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

@@ -78,7 +78,7 @@ static void test_errors(void **st)
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, steel], friction: 0.1}\\nparticles:/",
         "material_pairs[0].materials[1]: no material is called 'steel'");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber]}\\nparticles:/",
-        "material_pairs[0]: give the pair's friction or restitution (or both)");
+        "material_pairs[0]: give the pair's friction, restitution or rolling_friction");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: 0.1}\\n  - {materials: [rubber, "
         "rubber], restitution: 0.5}\\nparticles:/", "material_pairs[1].materials: the pair rubber-rubber is given twice");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: -1}\\nparticles:/",

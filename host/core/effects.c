@@ -19,6 +19,10 @@ int dem_set_effects(dem_sim *s, unsigned effects)
     if ((effects & DEM_EFFECT_THORNTON_NING) && (effects & DEM_EFFECT_PATCHES))
         return sim_fail(s, DEM_ERR_ARG, "thornton_ning does not act at membrane patches yet (their contacts keep no "
                                         "normal history): use hertz there");
+    if ((effects & DEM_EFFECT_ROLLING) && !(effects & DEM_EFFECT_FRICTION))
+        return sim_fail(s, DEM_ERR_ARG, "rolling resistance acts on spins, which only friction gives: list friction too");
+    if ((effects & DEM_EFFECT_ROLLING) && (effects & DEM_EFFECT_PATCHES))
+        return sim_fail(s, DEM_ERR_ARG, "rolling resistance does not act at membrane patches yet");
     if (!(effects & DEM_EFFECT_HERTZ))
         return sim_fail(s, DEM_ERR_ARG, "the effect mask must contain DEM_EFFECT_HERTZ (the contact law itself)");
     s->effects = effects;
@@ -76,7 +80,7 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc.stats; }
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
                                                            "springs", "pressure", "bending", "patches", "riders", "constraints",
-                                                           NULL, NULL, NULL, "thornton_ning"};
+                                                           NULL, NULL, NULL, "thornton_ning", "rolling"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

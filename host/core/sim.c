@@ -98,6 +98,9 @@ int dem_add_material(dem_sim *s, const dem_material *m)
     if (!(m->mc_beta >= 0) || !isfinite(m->mc_beta) || !(m->mc_gamma >= 0) || !isfinite(m->mc_gamma))
         return sim_fail(s, DEM_ERR_ARG, "material %d: multi-contact prefactors beta and gamma must be >= 0 (got %g, %g)",
                         s->nmat, m->mc_beta, m->mc_gamma);
+    if (!(m->rolling_friction >= 0) || !isfinite(m->rolling_friction))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: rolling friction must be >= 0 (got %g)", s->nmat,
+                        m->rolling_friction);
     if (!(m->yield_stress >= 0) || !isfinite(m->yield_stress))
         return sim_fail(s, DEM_ERR_ARG, "material %d: yield stress must be >= 0 Pa, 0 for a material that does not "
                         "yield (got %g)", s->nmat, m->yield_stress);
@@ -113,6 +116,9 @@ int dem_set_material_pair(dem_sim *s, int a, int b, const dem_material_pair *p)
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: no such material (%d defined)", a, b, s->nmat);
     if (!isnan(p->friction) && !(p->friction >= 0 && isfinite(p->friction)))
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: friction must be >= 0 (got %g)", a, b, p->friction);
+    if (!isnan(p->rolling_friction) && !(p->rolling_friction >= 0 && isfinite(p->rolling_friction)))
+        return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: rolling friction must be >= 0 (got %g)", a, b,
+                        p->rolling_friction);
     if (!isnan(p->restitution) && !(p->restitution > 0 && p->restitution <= 1))
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: restitution must be in (0, 1] (got %g)", a, b,
                         p->restitution);

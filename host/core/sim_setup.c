@@ -493,6 +493,8 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_TN_PIPY] = M_PI * py;
             row[PM_TN_DY] = ky * ky;
             row[PM_TN_FY] = 4.0 / 3.0 * row[PM_ESTAR] * ky * ky * ky;
+            row[PM_MU_ROLL] = pp && !isnan(pp->rolling_friction) ? pp->rolling_friction
+                                                                : 0.5 * (ma->rolling_friction + mb->rolling_friction);
         }
 }
 
