@@ -166,7 +166,7 @@ run: $(BUILD)/dem
 	@echo "  $(RUN_OUT).h5       frames (positions, velocities, forces ...) and time series, HDF5 (h5ls -r to list)"
 	@echo "  $(RUN_OUT).xmf      open in ParaView: File > Open, pick 'XDMF Reader', Apply; Filters > Glyph (Sphere, scale by radius); the walls are the 'walls' block"
 	@echo "  $(RUN_OUT).png      energies, wall forces and stress-strain (tools/plot_series.py)"
-	@echo "  $(RUN_OUT).ckpt.h5  checkpoint: build/dem run --restart $(RUN_OUT).ckpt.h5 -o more.h5"
+	@echo "  $(RUN_OUT).ckpt.h5  checkpoint: the end state (dem run --restart continues a run stopped early)"
 
 # Seed 000's validation scenes under each contact model, and one comparison plot per scene, in out/validation/.
 VALIDATION ?= three_hydrogel five_hydrogel three_rubber five_rubber five_box rubber_plates

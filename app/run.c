@@ -286,9 +286,9 @@ void run_contact_advice(dem_sim *s, const scene *sc, int info, FILE *out)
                 DEM_MIN_STEPS_PER_CONTACT, a.contact_time / DEM_MIN_STEPS_PER_CONTACT, DEM_MIN_STEPS_PER_CONTACT,
                 /* a wall's stage speed: a press, where no rebound is resolved (make run's piston at 2 cm/s) */
                 a.wall >= 0 && a.wall_time <= a.pair_time
-                    ? ". Expected where the wall presses a packing slowly instead of striking particles (make run's "
-                      "scenes/hydrogel_514.yaml: its piston at 2 cm/s): there is no rebound to resolve; it matters "
-                      "for impacts" : "");
+                    ? ". Expected where the wall presses a packing slowly instead of striking particles (a press, "
+                      "such as make run's piston at 2 cm/s): there is no rebound to resolve; it matters for impacts"
+                    : "");
 }
 
 /* Lagged MC-strain (docs/multicontact.md "When lagged MC-strain rings"). The lagged scheme
@@ -600,7 +600,8 @@ static int phase_configure(run_ctx *c)
      * neither output nor checkpoint */
     if (c->ck.st.step >= run->steps) {
         snprintf(c->err, sizeof c->err, "%s: the checkpoint is at step %ld, %s of the scene (%ld steps of %g s): "
-                 "nothing is left to run", o->restart, c->ck.st.step, c->ck.st.step > run->steps ? "past the end"
+                 "nothing is left to run (a restart continues a run stopped before its end, by --stop-after or a "
+                 "signal; to go on, raise time.duration in a copy of the scene)", o->restart, c->ck.st.step, c->ck.st.step > run->steps ? "past the end"
                  : "the end", run->steps, run->dt);
         return fail_with(EXIT_BAD_INPUT, c->err);
     }

@@ -29,29 +29,10 @@ static double sphere_mass(double r) { return RHO * 4.0 / 3.0 * M_PI * r * r * r;
  * -v towards the plane x = 0, touching it at t = 0 (the wall's material rigid: E* = E of the sphere = k) */
 static dem_sim *build(int wall, double v, double dt)
 {
-    dem_sim *s = dem_create();
     dem_material m = {RHO, wall ? K_SPRING : 2 * K_SPRING, 0.0, 1.0, 0.0, 0.0, 0.0};
-    int id = dem_add_material(s, &m);
-    if (wall) {
-        dem_material rigid = {RHO, INFINITY, 0.0, 1.0, 0.0, 0.0, 0.0};
-        dem_wall w;
-        memset(&w, 0, sizeof w);
-        w.kind = DEM_WALL_PLANE;
-        w.material = dem_add_material(s, &rigid);
-        w.normal[0] = 1;
-        assert_true(dem_add_wall(s, &w) >= 0);
-        dem_add_particle(s, (double[3]){R, 0, 0}, (double[3]){-v, 0, 0}, R, id);
-    } else {
-        dem_add_particle(s, (double[3]){-R, 0, 0}, (double[3]){0.5 * v, 0, 0}, R, id);
-        dem_add_particle(s, (double[3]){R, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R, id);
-    }
-    double L = 8 * R;
-    dem_set_domain(s, (double[3]){-L, -L, -L}, (double[3]){L, L, L});
-    unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_TEST_SPRING | (wall ? DEM_EFFECT_WALLS : 0);
-    if (dem_set_effects(s, fx))
-        fail_msg("%s", dem_error(s));
-    dem_set_dt(s, dt);
-    return s;
+    dem_material rigid = {RHO, INFINITY, 0.0, 1.0, 0.0, 0.0, 0.0};
+    return head_on_build(&m, wall ? &rigid : NULL, R, v,
+                         DEM_EFFECT_HERTZ | DEM_EFFECT_TEST_SPRING | (wall ? DEM_EFFECT_WALLS : 0), dt);
 }
 
 /* the overlap, the x force on the sphere at the smaller x side (particle 0) and the host's figures */

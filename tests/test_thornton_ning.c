@@ -82,28 +82,9 @@ static dem_material steel(void) /* rigid, does not yield: the pair is the sphere
 
 static dem_sim *collision_build(int wall, double v, double dt)
 {
-    dem_sim *s = dem_create();
-    dem_material m = powder();
-    int id = dem_add_material(s, &m);
-    if (wall) {
-        dem_material w = steel();
-        dem_wall pl;
-        memset(&pl, 0, sizeof pl);
-        pl.kind = DEM_WALL_PLANE;
-        pl.material = dem_add_material(s, &w);
-        pl.normal[0] = 1;
-        assert_true(dem_add_wall(s, &pl) >= 0);
-        dem_add_particle(s, (double[3]){R, 0, 0}, (double[3]){-v, 0, 0}, R, id);
-    } else {
-        dem_add_particle(s, (double[3]){-R, 0, 0}, (double[3]){0.5 * v, 0, 0}, R, id);
-        dem_add_particle(s, (double[3]){R, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R, id);
-    }
-    double L = 8 * R;
-    dem_set_domain(s, (double[3]){-L, -L, -L}, (double[3]){L, L, L});
-    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING | (wall ? DEM_EFFECT_WALLS : 0)))
-        fail_msg("%s", dem_error(s));
-    dem_set_dt(s, dt);
-    return s;
+    dem_material m = powder(), w = steel();
+    return head_on_build(&m, wall ? &w : NULL, R, v,
+                         DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING | (wall ? DEM_EFFECT_WALLS : 0), dt);
 }
 
 static void collide(int wall, dem_precision prec)

@@ -75,6 +75,31 @@ const char *mcs_convention_name(unsigned c, char *buf, size_t len)
     return buf;
 }
 
+dem_sim *head_on_build(const dem_material *m, const dem_material *wall_m, double r, double v, unsigned effects,
+                       double dt)
+{
+    dem_sim *s = dem_create();
+    int id = dem_add_material(s, m);
+    if (wall_m) {
+        dem_wall w;
+        memset(&w, 0, sizeof w);
+        w.kind = DEM_WALL_PLANE;
+        w.material = dem_add_material(s, wall_m);
+        w.normal[0] = 1;
+        assert_true(dem_add_wall(s, &w) >= 0);
+        dem_add_particle(s, (double[3]){r, 0, 0}, (double[3]){-v, 0, 0}, r, id);
+    } else {
+        dem_add_particle(s, (double[3]){-r, 0, 0}, (double[3]){0.5 * v, 0, 0}, r, id);
+        dem_add_particle(s, (double[3]){r, 0, 0}, (double[3]){-0.5 * v, 0, 0}, r, id);
+    }
+    double L = 8 * r;
+    dem_set_domain(s, (double[3]){-L, -L, -L}, (double[3]){L, L, L});
+    if (dem_set_effects(s, effects))
+        fail_msg("%s", dem_error(s));
+    dem_set_dt(s, dt);
+    return s;
+}
+
 dem_sim *packing_build(const packing_opts *o)
 {
     dem_sim *s = dem_create();

@@ -36,6 +36,11 @@ const char *mcs_convention_name(unsigned c, char *buf, size_t len);
 dem_sim *packing_build(const packing_opts *o);
 
 dem_config cfg_of(dem_backend_kind b, dem_precision p);
+/* A head-on collision of spheres of radius r and material m along x, touching at t = 0: wall_m NULL, two spheres at
+ * -+r approaching at +-v/2; else one sphere at x = r moving at -v onto the plane x = 0 of material wall_m. Domain
+ * +-8 r; effects as given (fails the test if refused); dt set. */
+dem_sim *head_on_build(const dem_material *m, const dem_material *wall_m, double r, double v, unsigned effects,
+                       double dt);
 
 /* The backend x precision matrix every kernel test runs over (HOOMD style): the reference and OpenCL device
  * DEM_DEVICE (default 0), each in fp32 and fp64. A test builds the same scene for each case, checks the physics on
