@@ -9,11 +9,12 @@
  *   e = sqrt(6 sqrt(3) / 5) sqrt(1 - (V_y/V_i)^2 / 6) [ (V_y/V_i) / (V_y/V_i + 2 sqrt(6/5 - (V_y/V_i)^2 / 5)) ]^(1/4),
  *   V_y the impact speed that just reaches yield (1/2 m* V_y^2 = 8/15 E* sqrt(R*) delta_y^(5/2)).
  * Cases: two spheres and a sphere on a wall colliding at 5 V_y (force at every step, the rebound speed, the energy the
- * host reports and the stress output on unloading); a fixed sphere pressed, released part way, pressed again past the first maximum and
- * released by a moving plane (the loading-unloading-reloading curve, from the wall's force); a packing of plastic
- * spheres under a moving lid, restarted from a saved state and run with another skin (the law's state must survive
- * checkpoints and neighbour rebuilds bit for bit). Every case on the reference and on OpenCL (PoCL), in fp64 and
- * fp32, the OpenCL state equal to the reference's at every step. */
+ * host reports and the stress output on unloading); a fixed sphere pressed, released part way, pressed again past the
+ * first maximum and released by a moving plane (the loading-unloading-reloading curve, from the wall's force); a
+ * packing of plastic spheres under a moving lid, restarted from a saved state, run with another skin and stored anew
+ * at every rebuild (the law's state must survive checkpoints, neighbour rebuilds and reordering bit for bit). Every
+ * case on the reference and on OpenCL (PoCL), in fp64 and fp32, the OpenCL state equal to the reference's at every
+ * step. */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -286,8 +287,28 @@ static void test_restart_and_skin(void **st)
         char msg[512];
         if (state_diff(s1, s2, msg, sizeof msg))
             fail_msg("%s: skins %g and %g differ: %s", bc->name, c1.skin, c2.skin, msg);
+        /* stored anew at every rebuild (the states move with their pairs), the same bits, and the same states handed
+         * out in the callers' order */
+        dem_config c3 = c;
+        c3.reorder = 1;
+        dem_sim *s3 = packing_build(&o);
+        start_or_fail(s3, &c3);
+        step_or_fail(s3, 600);
+        if (state_diff(s1, s3, msg, sizeof msg))
+            fail_msg("%s: stored anew, the run differs: %s", bc->name, msg);
+        dem_state t1, t3;
+        assert_int_equal(dem_state_get(s1, &t1), 0);
+        assert_int_equal(dem_state_get(s3, &t3), 0);
+        assert_true(t1.npairs == t3.npairs && t1.npairs > 10);
+        size_t rs = (size_t)t1.real_size, np = (size_t)t1.npairs;
+        assert_memory_equal(t1.pair_i, t3.pair_i, sizeof(int) * np);
+        assert_memory_equal(t1.pair_j, t3.pair_j, sizeof(int) * np);
+        assert_memory_equal(t1.pair_law, t3.pair_law, rs * np);
+        dem_state_free(&t1);
+        dem_state_free(&t3);
         dem_destroy(s1);
         dem_destroy(s2);
+        dem_destroy(s3);
     }
 }
 

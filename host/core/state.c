@@ -54,9 +54,12 @@ static int by_owner(const void *a, const void *b)
     const pair_key *p = a, *q = b;
     return p->i != q->i ? (p->i > q->i) - (p->i < q->i) : (p->j > q->j) - (p->j < q->j);
 }
-/* A per-pair array of `item` bytes per pair put in the order of k (tmp holds item * np bytes) */
+/* A per-pair array of `item` bytes per pair put in the order of k (tmp holds item * np bytes); NULL: none kept (a
+ * law's states in a run of a law without) */
 static void pairs_permute(void *arr, size_t item, const pair_key *k, long np, unsigned char *tmp)
 {
+    if (!arr)
+        return;
     for (long p = 0; p < np; p++)
         memcpy(tmp + item * (size_t)p, (unsigned char *)arr + item * (size_t)k[p].at, item);
     memcpy(arr, tmp, item * (size_t)np);
