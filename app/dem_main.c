@@ -38,17 +38,6 @@ static void print_duration(double sec, char *buf, size_t len)
  * whether it reaches the particles as the scene places them (their initial positions: a pour settles them lower,
  * so a wall that reaches the placed particles may still stop short of the bed; the stage-end lines of dem run say
  * what happened). */
-/* How far stage st of a wall's list moves it at most: its speed over its duration, less what a ramp from the previous
- * stage's velocity (0 after a servo stage or for the first) leaves out (dem_stage.ramp) */
-static double stage_travel(const dem_stage *stages, int st, double speed)
-{
-    const dem_stage *g = &stages[st], *p = st > 0 && !(stages[st - 1].force > 0) ? &stages[st - 1] : NULL;
-    double along = 0;
-    for (int d = 0; p && speed > 0 && d < 3; d++)
-        along += p->velocity[d] * g->velocity[d] / speed;
-    return speed * g->duration - g->ramp * (speed - along) / 2;
-}
-
 static void print_stages(dem_sim *s, const scene *sc, int gravity)
 {
     int n = dem_count(s), settle = sc->f->time.settle > 0;
@@ -92,7 +81,7 @@ static void print_stages(dem_sim *s, const scene *sc, int gravity)
             else if (speed == 0)
                 snprintf(what, sizeof what, "holds still");
             else
-                snprintf(what, sizeof what, "%g m/s, %g m at most%s", speed, stage_travel(w.stages, st, speed),
+                snprintf(what, sizeof what, "%g m/s, %g m at most%s", speed, dem_stage_travel(w.stages, st, g->velocity),
                          w.kind != DEM_WALL_PLANE ? "" : vn > 0 ? ", towards the particles" : vn < 0 ? ", away from them"
                                                                                                      : ", along its plane");
             if (g->until_force > 0)
@@ -114,12 +103,7 @@ static void print_stages(dem_sim *s, const scene *sc, int gravity)
             if (t + g->duration > sc->f->time.duration)
                 snprintf(ends + strlen(ends), sizeof ends - strlen(ends), "; the run ends at %g s",
                          sc->f->time.duration);
-            /* a ramp covers ramp (v_prev + v) / 2 (dem_stage.ramp) */
-            const dem_stage *pg = st > 0 && !(w.stages[st - 1].force > 0) ? &w.stages[st - 1] : NULL;
-            double vp = pg && w.kind == DEM_WALL_PLANE && nn > 0
-                            ? (pg->velocity[0] * w.normal[0] + pg->velocity[1] * w.normal[1] +
-                               pg->velocity[2] * w.normal[2]) / nn : 0;
-            double after = travel + vn * g->duration - g->ramp * (vn - vp) / 2;
+            double after = travel + (w.kind == DEM_WALL_PLANE ? dem_stage_travel(w.stages, st, w.normal) : 0);
             if (isfinite(gap) && !reached && gap - travel <= 0) {
                 reached = 1;
                 snprintf(reach, sizeof reach, "; touches the particles as placed from its start");

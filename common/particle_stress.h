@@ -65,7 +65,8 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
         int other;
         if (r.kind != CONTACT_WALL) {
             int j = r.partner, hk = h;
-            h += j > i;
+            if (fx & DEM_LAW_STATE_BITS) /* only a law's states need the pair number */
+                h += j > i;
             pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
             if (!g.active)
                 continue;

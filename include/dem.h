@@ -287,6 +287,11 @@ DEM_API int dem_add_box(dem_sim *s, const double lo[3], const double hi[3], int 
 DEM_API double dem_wall_overlap(const dem_wall *w, const double point[3], const double x[3], double r, double n[3]);
 /* Replaces the motion stages of a wall (before dem_start). */
 DEM_API int dem_set_wall_motion(dem_sim *s, int wall, int nstages, const dem_stage *stages);
+/* How far stage st of a motion list moves a wall along the direction u (normalised here): its velocity along u over
+ * its duration, less what a ramp from the previous stage's velocity (0 after a servo stage or for the first) leaves
+ * out (dem_stage.ramp: the ramp covers ramp (v_prev + v) / 2); 0 for a servo stage, whose motion is found as it
+ * runs. Early ends (until_*) and waits are not counted: the most it can move. [m] */
+DEM_API double dem_stage_travel(const dem_stage *stages, int st, const double u[3]);
 DEM_API int dem_set_gravity(dem_sim *s, const double g[3]);
 DEM_API int dem_set_domain(dem_sim *s, const double lo[3], const double hi[3]);
 DEM_API int dem_set_dt(dem_sim *s, double dt);

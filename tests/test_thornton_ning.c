@@ -103,12 +103,8 @@ static void collide(int wall, dem_precision prec)
     start_or_fail(ref, &rc);
     double dmax = 0, worst_f = 0, worst_e = 0, worst_s = 0, fscale = 0, dp_seen = -1;
     int was = 0, plastic = 0, unload = 0;
-    char msg[256];
     for (int k = 0; k < 20000; k++) {
-        step_or_fail(cl, 1);
-        step_or_fail(ref, 1);
-        if (state_diff(cl, ref, msg, sizeof msg))
-            fail_msg("%s, step %d: PoCL vs reference: %s", wall ? "wall" : "pair", k + 1, msg);
+        twins_step(cl, ref, 1, wall ? "wall, PoCL vs reference" : "pair, PoCL vs reference");
         double x[6], f[6];
         assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
@@ -203,13 +199,9 @@ static void press(dem_precision prec)
     start_or_fail(ref, &rc);
     double dmax = 0, worst = 0, fscale = 0, dfirst = 0, dmin = INFINITY;
     int reloaded = 0, phase = 0;
-    char msg[256];
     long total = (long)((stage_t[0] + stage_t[1] + stage_t[2] + stage_t[3]) / dt);
     for (long k = 0; k < total; k++) {
-        step_or_fail(cl, 1);
-        step_or_fail(ref, 1);
-        if (state_diff(cl, ref, msg, sizeof msg))
-            fail_msg("press, step %ld: PoCL vs reference: %s", k + 1, msg);
+        twins_step(cl, ref, 1, "press, PoCL vs reference");
         double pa[3], f[3];
         assert_int_equal(dem_wall_position(ref, 0, pa), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
@@ -282,11 +274,7 @@ static void test_restart_and_skin(void **st)
         dem_sim *s1 = packing_build(&o), *s2 = packing_build(&o);
         start_or_fail(s1, &c1);
         start_or_fail(s2, &c2);
-        step_or_fail(s1, 600);
-        step_or_fail(s2, 600);
-        char msg[512];
-        if (state_diff(s1, s2, msg, sizeof msg))
-            fail_msg("%s: skins %g and %g differ: %s", bc->name, c1.skin, c2.skin, msg);
+        twins_step(s1, s2, 600, "skins 0.05 and 0.3 x the largest radius");
         /* stored anew at every rebuild (the states move with their pairs), the same bits, and the same states handed
          * out in the callers' order */
         dem_config c3 = c;
@@ -294,6 +282,7 @@ static void test_restart_and_skin(void **st)
         dem_sim *s3 = packing_build(&o);
         start_or_fail(s3, &c3);
         step_or_fail(s3, 600);
+        char msg[512];
         if (state_diff(s1, s3, msg, sizeof msg))
             fail_msg("%s: stored anew, the run differs: %s", bc->name, msg);
         dem_state t1, t3;

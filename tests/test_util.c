@@ -242,6 +242,15 @@ void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, lon
     dem_state_free(&saved);
 }
 
+void twins_step(dem_sim *a, dem_sim *b, long n, const char *what)
+{
+    step_or_fail(a, n);
+    step_or_fail(b, n);
+    char msg[512];
+    if (state_diff(a, b, msg, sizeof msg))
+        fail_msg("%s, step %ld: %s", what, dem_step_index(a), msg);
+}
+
 void mesh_write_obj(const dem_mesh *m, const char *path)
 {
     FILE *fp = fopen(path, "w");

@@ -68,6 +68,9 @@ void step_or_fail(dem_sim *s, long n);
 /* Bitwise comparison of the dynamic state of two simulations (x, v, w, force, torque, wall force and the
  * tangential history of every pair in contact). Returns 0 when identical; else describes the first difference. */
 int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len);
+/* Steps a and b by n each and fails the test (naming what and the step) unless their states are bitwise equal
+ * (state_diff): twins on two backends, skins or storage orders */
+void twins_step(dem_sim *a, dem_sim *b, long n, const char *what);
 /* Writes m as a Wavefront OBJ with every digit of its coordinates (%.17g), for dem_mesh_read to read back */
 void mesh_write_obj(const dem_mesh *m, const char *path);
 /* Restart: starts a and b (the same set-up) with c, steps a by `before`, restores a's state into b, steps both by

@@ -155,7 +155,7 @@ static double wall_approach_speed(const dem_sim *s, int w)
         }
         return ws;
     }
-    double gap = INFINITY, travel = 0, vprev = 0;
+    double gap = INFINITY, travel = 0;
     for (int i = 0; i < s->n; i++) {
         const double *x = s->x + 3 * i;
         double h = ((x[0] - wl->point[0]) * wl->normal[0] + (x[1] - wl->point[1]) * wl->normal[1] +
@@ -166,14 +166,12 @@ static double wall_approach_speed(const dem_sim *s, int w)
         const dem_stage *g = &wl->stages[st];
         if (g->force > 0) { /* a servo presses whatever is there, at up to its max_speed */
             ws = fmax(ws, g->max_speed);
-            vprev = 0;
             continue;
         }
         double vn = (g->velocity[0] * wl->normal[0] + g->velocity[1] * wl->normal[1] + g->velocity[2] * wl->normal[2]) / nn;
-        travel += vn * g->duration - g->ramp * (vn - vprev) / 2; /* a ramp from the stage before (dem_stage.ramp) */
+        travel += dem_stage_travel(wl->stages, st, wl->normal); /* ramps counted */
         if (vn > 0 && travel >= gap)
             ws = fmax(ws, vn);
-        vprev = vn;
     }
     return ws;
 }

@@ -43,6 +43,17 @@ static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, c
     return 0;
 }
 
+double dem_stage_travel(const dem_stage *stages, int st, const double u[3])
+{
+    double nu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const dem_stage *g = &stages[st], *p = st > 0 && !(stages[st - 1].force > 0) ? &stages[st - 1] : NULL;
+    if (g->force > 0 || !(nu > 0))
+        return 0;
+    double v = (g->velocity[0] * u[0] + g->velocity[1] * u[1] + g->velocity[2] * u[2]) / nu;
+    double vp = p ? (p->velocity[0] * u[0] + p->velocity[1] * u[1] + p->velocity[2] * u[2]) / nu : 0;
+    return v * g->duration - g->ramp * (v - vp) / 2;
+}
+
 int dem_add_wall(dem_sim *s, const dem_wall *w)
 {
     if (sim_not_started(s))
