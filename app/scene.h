@@ -16,7 +16,7 @@
 typedef struct {
     char **materials; /* the two names */
     unsigned materials_count;
-    double friction, restitution, rolling_friction; /* each only where the scene gives it */
+    double friction, restitution, rolling_friction, bond_strength; /* each only where the scene gives it */
 } scene_material_pair;
 
 typedef struct {
@@ -25,6 +25,7 @@ typedef struct {
     double beta, gamma;           /* multi-contact prefactors (mc_stress, mc_strain) */
     double yield_stress;          /* limiting contact pressure of thornton_ning [Pa]; 0: does not yield */
     double rolling_friction;      /* rolling resistance coefficient (effect rolling) */
+    double bond_strength;         /* strength of a yielded contact's solid bridge (thornton_ning) [Pa]; 0: no bond */
 } scene_material;
 
 typedef struct {

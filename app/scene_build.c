@@ -152,7 +152,7 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
                                   mp->materials[0], mp->materials[1], j);
             }
         }
-        dem_material_pair dp = {NAN, NAN, NAN};
+        dem_material_pair dp = {NAN, NAN, NAN, NAN};
         snprintf(p, sizeof p, "material_pairs[%u].friction", k);
         int hf = scene_has(sc->loc, p);
         if (hf)
@@ -165,9 +165,14 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
         int hr = scene_has(sc->loc, p);
         if (hr)
             dp.rolling_friction = mp->rolling_friction;
+        snprintf(p, sizeof p, "material_pairs[%u].bond_strength", k);
+        int hb = scene_has(sc->loc, p);
+        if (hb)
+            dp.bond_strength = mp->bond_strength;
         snprintf(p, sizeof p, "material_pairs[%u]", k);
-        if (!hf && !he && !hr)
-            return scene_fail(sc, err, errlen, p, "give the pair's friction, restitution or rolling_friction");
+        if (!hf && !he && !hr && !hb)
+            return scene_fail(sc, err, errlen, p,
+                              "give the pair's friction, restitution, rolling_friction or bond_strength");
         if (dem_set_material_pair(s, id[0], id[1], &dp))
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
     }
@@ -293,6 +298,8 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
                "the yield stress must be >= 0 Pa (0: the material does not yield)");
         MCHECK("rolling_friction", m->rolling_friction >= 0 && isfinite(m->rolling_friction),
                "the rolling friction must be >= 0");
+        MCHECK("bond_strength", m->bond_strength >= 0 && isfinite(m->bond_strength),
+               "the bond strength must be >= 0 Pa (0: the material does not bond)");
 #undef MCHECK
         for (unsigned j = 0; j < k; j++)
             if (!strcmp(f->materials[j].name, m->name)) {
@@ -301,7 +308,8 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
             }
         /* a wall-only material without a density gets a placeholder the library accepts; no mass is made from it */
         dem_material dm = {used || m->density > 0 ? m->density * scale : 1.0, m->young, m->poisson, m->restitution,
-                           m->friction, m->beta, m->gamma, m->yield_stress, m->rolling_friction};
+                           m->friction, m->beta, m->gamma, m->yield_stress, m->rolling_friction,
+                           m->bond_strength};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));

@@ -34,6 +34,7 @@ static const cyaml_schema_field_t material_fields[] = {
     REAL("friction", scene_material, friction),
     REAL("beta", scene_material, beta), REAL("gamma", scene_material, gamma),
     REAL("yield_stress", scene_material, yield_stress), REAL("rolling_friction", scene_material, rolling_friction),
+    REAL("bond_strength", scene_material, bond_strength),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t material_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material, material_fields)};
@@ -42,6 +43,7 @@ static const cyaml_schema_field_t material_pair_fields[] = {
     CYAML_FIELD_SEQUENCE("materials", CYAML_FLAG_POINTER, scene_material_pair, materials, &string_entry, 2, 2),
     REAL("friction", scene_material_pair, friction), REAL("restitution", scene_material_pair, restitution),
     REAL("rolling_friction", scene_material_pair, rolling_friction),
+    REAL("bond_strength", scene_material_pair, bond_strength),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t material_pair_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material_pair, material_pair_fields)};

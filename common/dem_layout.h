@@ -30,7 +30,10 @@ enum {
     PM_TN_DY = 12,   /* delta_y / r* = (pi p_y / (2 E*))^2: the overlap at first yield per effective radius [-] */
     PM_TN_FY = 13,   /* F_y / r*^2 = 4/3 E* (delta_y / r*)^(3/2): the force at first yield per r*^2 [Pa] */
     PM_MU_ROLL = 14, /* rolling resistance coefficient mu_r, the mean of the two materials' (common/rolling.h) [-] */
-    PM_STRIDE = 15
+    PM_TN_SIGB = 15, /* pi sigma_b: a yielded Thornton-Ning contact's bond holds a tension up to PM_TN_SIGB a_p^2, its
+                        plastic contact area times the bond strength sigma_b (dem_material.bond_strength; the smaller
+                        of the two materials', 0: no bond) [Pa] */
+    PM_STRIDE = 16
 };
 
 /* Spring table, real part (index s*SP_STRIDE + ...; seed 001 Eq. 6): the two particles are in the int table

@@ -76,6 +76,10 @@ typedef struct {
                             materials that yield */
     double rolling_friction; /* coefficient of rolling resistance mu_r >= 0 (DEM_EFFECT_ROLLING): a contact's torque
                                 is at most mu_r r* f_n; a pair takes the mean of its two materials' */
+    double bond_strength; /* sigma_b [Pa] >= 0 of the solid bridge a yielded contact forms (DEM_EFFECT_THORNTON_NING):
+                             the contact then holds a tension up to sigma_b pi a_p^2, a_p its plastic contact radius,
+                             and breaks beyond it. A pair takes the smaller of its two materials' (0: no bond, e.g. a
+                             tool's steel) */
 } dem_material;
 
 /* What one pair of materials takes instead of the mean of its two materials' values (dem_set_material_pair): a
@@ -85,6 +89,8 @@ typedef struct {
     double friction;    /* Coulomb friction coefficient of the pair, >= 0 */
     double restitution; /* coefficient of restitution of the pair, in (0, 1] (the damping follows from it) */
     double rolling_friction; /* rolling resistance coefficient of the pair, >= 0 (DEM_EFFECT_ROLLING) */
+    double bond_strength; /* sigma_b of the pair's bonds [Pa], >= 0 (DEM_EFFECT_THORNTON_NING); NAN: the smaller of
+                             the two materials' */
 } dem_material_pair;
 
 /* Most motion stages of one wall (a scene's settling pause counts as one; `repeat` multiplies a list): enough for

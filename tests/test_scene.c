@@ -72,13 +72,17 @@ static void test_errors(void **st)
         "material has a yield_stress > 0");
     bad("s/friction: 0.5}/friction: 0.5, yield_stress: -1}/", "bad.yaml:7: materials[0].yield_stress: the yield stress "
         "must be >= 0 Pa");
+    bad("s/friction: 0.5}/friction: 0.5, bond_strength: -2e6}/", "bad.yaml:7: materials[0].bond_strength: the bond "
+        "strength must be >= 0 Pa");
+    bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], bond_strength: -1}\\nparticles:/",
+        "material_pairs[0]: material pair 0-0: bond strength must be >= 0 Pa");
     bad("s/hertz, damping/hertz, damping, thornton_ning, mc_stress/; s/friction: 0.5}/friction: 0.5, yield_stress: "
         "1e6, beta: 1}/", "bad.yaml:5: effects: thornton_ning and the multi-contact laws are alternative normal laws");
     /* material_pairs: named materials, once each, with a value */
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, steel], friction: 0.1}\\nparticles:/",
         "material_pairs[0].materials[1]: no material is called 'steel'");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber]}\\nparticles:/",
-        "material_pairs[0]: give the pair's friction, restitution or rolling_friction");
+        "material_pairs[0]: give the pair's friction, restitution, rolling_friction or bond_strength");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: 0.1}\\n  - {materials: [rubber, "
         "rubber], restitution: 0.5}\\nparticles:/", "material_pairs[1].materials: the pair rubber-rubber is given twice");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: -1}\\nparticles:/",

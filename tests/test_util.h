@@ -24,6 +24,7 @@ typedef struct {
     unsigned mcs_conv;  /* MC-stress convention, DEM_MCS_* (DEM_MCS_DEFAULT from packing_defaults) */
     double mc_reach;    /* MC-strain contact distance factor (0 or 1: off) */
     double yield_stress; /* the particle material's limiting contact pressure (DEM_EFFECT_THORNTON_NING) [Pa] */
+    double bond_strength; /* the particle material's bond strength sigma_b (DEM_EFFECT_THORNTON_NING) [Pa] */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);

@@ -88,8 +88,8 @@ DEM_INLINE real hm_tangential_stiffness(real gstar, real srd)
 /* The contact given its elastic normal force fel and its contact radius srd (Hertz: sqrt(r* delta)), which sets the
  * damping's stiffness S_n = 2 E* srd and the tangential k_t = 8 G* srd: Hertz-Mindlin's, and that of a law with
  * another elastic force and the same Mindlin tangential part (thornton_ning.h) */
-DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
-                                    DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
+DEM_INLINE law_result hm_contact_core(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
+                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra, real fn_min)
 {
     law_result r;
     real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
@@ -106,8 +106,8 @@ DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, re
         q = dem_sqrt(srd * mstar);
         fn = fn - pm[PM_DAMP_N] * q * vn;
     }
-    if (fn < (real)0)
-        fn = (real)0;
+    if (fn < fn_min)
+        fn = fn_min;
 
     /* tangential */
     if (!(fx & DEM_EFFECT_FRICTION)) {
@@ -123,7 +123,7 @@ DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, re
     vec3 ft = ft_el;
     if (fx & DEM_EFFECT_DAMPING)
         ft = v3_sub(ft_el, v3_scale(vt, pm[PM_DAMP_T] * q));
-    real fmax = mu * fn;
+    real fmax = mu * (fn - fn_min); /* a bond's strength adds to the load friction resists (0 without) */
     real ft2 = v3_dot(ft, ft);
     if (ft2 > fmax * fmax) {
         ft = v3_scale(ft, fmax / dem_sqrt(ft2));
@@ -134,6 +134,19 @@ DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, re
     r.ft = ft;
     r.force = v3_add(v3_scale(n, fn), ft);
     return r;
+}
+
+/* fn_extra: MC-stress's added normal force; fn_min: the lowest normal force the contact carries (0: it only pushes;
+ * -F_b: a bond's tension, thornton_ning.h) */
+DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
+                                    DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
+{
+    return hm_contact_core(fx, n, fel, srd, mstar, vrel, pm, dt, hist, fn_extra, (real)0);
+}
+DEM_INLINE law_result hm_contact_bond(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
+                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_min)
+{
+    return hm_contact_core(fx, n, fel, srd, mstar, vrel, pm, dt, hist, (real)0, fn_min);
 }
 
 /* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */

@@ -39,17 +39,28 @@
 #define LAW_COLUMNS_thornton_ning(C)                                                                                 \
     C(PM_ESTAR) C(PM_GSTAR) C(PM_MU) C(PM_DAMP_N) C(PM_DAMP_T) C(PM_TN_PIPY) C(PM_TN_DY) C(PM_TN_FY)
 
-/* A point of the law: the elastic normal force and the contact radius */
+/* A point of the law: the elastic normal force, the contact radius, and the lowest normal force the contact may carry
+ * at this point (-F_b while a bond holds, else 0) */
 typedef struct {
-    real f; /* [N] */
-    real a; /* [m] */
+    real f;    /* [N] */
+    real a;    /* [m] */
+    real fmin; /* [N] */
+    int broke; /* 1: the bond broke at this point (its tension passed F_b) */
 } tn_point;
 
-/* On the loading curve at overlap delta (the largest so far) */
-DEM_INLINE tn_point tn_loading(DEM_CONST_GLOBAL real *pm, real rstar, real delta)
+/* The bond a contact of plastic contact radius a_p holds: F_b = sigma_b pi a_p^2 (0 without bonds) */
+DEM_INLINE real tn_bond_force(DEM_CONST_GLOBAL real *pm, real ap)
+{
+    return pm[PM_TN_SIGB] * ap * ap;
+}
+
+/* On the loading curve at overlap delta (the largest so far); bonded: 1 while the contact's bond is whole */
+DEM_INLINE tn_point tn_loading(DEM_CONST_GLOBAL real *pm, real rstar, real delta, int bonded)
 {
     tn_point p;
     real dy = pm[PM_TN_DY] * rstar;
+    p.fmin = (real)0;
+    p.broke = 0;
     if (!(pm[PM_TN_PIPY] > (real)0) || delta <= dy) {
         p.a = dem_sqrt(rstar * delta);
         p.f = hm_elastic_srd(pm[PM_ESTAR], p.a, delta);
@@ -58,42 +69,60 @@ DEM_INLINE tn_point tn_loading(DEM_CONST_GLOBAL real *pm, real rstar, real delta
     real fy = pm[PM_TN_FY] * rstar * rstar;
     p.f = fy + pm[PM_TN_PIPY] * rstar * (delta - dy);
     p.a = dem_sqrt(((real)2 * p.f + fy) / ((real)2 * pm[PM_TN_PIPY]));
+    if (bonded)
+        p.fmin = -tn_bond_force(pm, p.a);
     return p;
 }
 
 /* At overlap delta given the largest overlap dmax >= delta: on the unloading (reloading) curve from dmax; *de gets
- * the elastic part of the overlap, delta - delta_p (<= 0: no force) */
-DEM_INLINE tn_point tn_unloading(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real dmax, real *de)
+ * the elastic part of the overlap, delta - delta_p (<= 0: no force, or a bond's tension) */
+DEM_INLINE tn_point tn_unloading(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real dmax, int bonded, real *de)
 {
     tn_point p;
+    p.fmin = (real)0;
+    p.broke = 0;
     if (!(pm[PM_TN_PIPY] > (real)0) || dmax <= pm[PM_TN_DY] * rstar) { /* it never yielded: Hertz */
         *de = delta;
         p.a = dem_sqrt(rstar * delta);
         p.f = hm_elastic_srd(pm[PM_ESTAR], p.a, delta);
         return p;
     }
-    tn_point m = tn_loading(pm, rstar, dmax);
+    tn_point m = tn_loading(pm, rstar, dmax, bonded);
     real dem = (real)3 * m.f / ((real)4 * pm[PM_ESTAR] * m.a); /* delta_m - delta_p */
     real d = delta - (dmax - dem);
     *de = d;
     if (!(d > (real)0)) {
         p.f = p.a = (real)0;
+        if (m.fmin < (real)0) { /* a bond: a flat contact of radius a_p pulled, stiffness 2 E* a_p, up to F_b */
+            real ften = (real)2 * pm[PM_ESTAR] * m.a * d;
+            if (ften < m.fmin) {
+                p.broke = 1;
+            } else {
+                p.f = ften;
+                p.a = m.a;
+                p.fmin = m.fmin;
+            }
+        }
         return p;
     }
     real rp = m.a * m.a / dem;
     p.a = dem_sqrt(rp * d);
     p.f = hm_elastic_srd(pm[PM_ESTAR], p.a, d);
+    p.fmin = m.fmin;
     return p;
 }
 
-/* The point at delta given the stored largest overlap st (0: a new contact) */
+/* The point at delta given the stored state st: the largest overlap, negated once the contact's bond broke (0: a new
+ * contact) */
 DEM_INLINE tn_point tn_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, real *de)
 {
-    if (delta >= st) {
+    int bonded = !(st < (real)0);
+    real dmax = bonded ? st : -st;
+    if (delta >= dmax) {
         *de = delta; /* not used on loading */
-        return tn_loading(pm, rstar, delta);
+        return tn_loading(pm, rstar, delta, bonded);
     }
-    return tn_unloading(pm, rstar, delta, st, de);
+    return tn_unloading(pm, rstar, delta, dmax, bonded, de);
 }
 
 /* ---- the law unit (law.h) ---- */
@@ -101,8 +130,12 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
 {
     real de;
     tn_point p = tn_at(c.pm, c.rstar, c.delta, c.st, &de);
-    law_result r = hm_contact_fel(fx, c.n, p.f, p.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, (real)0);
-    r.st = c.delta > c.st ? c.delta : c.st;
+    law_result r = hm_contact_bond(fx, c.n, p.f, p.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, p.fmin);
+    real dmax = c.st < (real)0 ? -c.st : c.st;
+    real st = c.delta > dmax ? c.delta : dmax;
+    r.st = (c.st < (real)0 || p.broke) ? -st : st;
+    if (!(c.delta > (real)0) && !(p.f < (real)0)) /* across a gap, only a whole bond holds (contact_forces.h) */
+        r.active = 0;
     return r;
 }
 /* The elastic force at delta given the largest overlap st (the stress output: particle_stress.h) */
@@ -111,11 +144,16 @@ DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
     real de;
     return tn_at(pm, rstar, delta, st, &de).f;
 }
-/* What the contact gives back if unloaded from delta: 2/5 F (delta - delta_p), the Hertz energy of its elastic part */
+/* What the contact gives back if unloaded from delta: 2/5 F (delta - delta_p), the Hertz energy of its elastic part
+ * (a bond in tension: 1/2 F (delta - delta_p)) */
 DEM_INLINE real thornton_ning_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     real de;
-    tn_point p = tn_unloading(pm, rstar, delta, delta > st ? delta : st, &de);
+    int bonded = !(st < (real)0);
+    real dmax = bonded ? st : -st;
+    tn_point p = tn_unloading(pm, rstar, delta, delta > dmax ? delta : dmax, bonded, &de);
+    if (p.f < (real)0) /* a bond's tension: a linear spring's */
+        return (real)0.5 * p.f * de;
     return p.f > (real)0 ? hertz_energy_of_force(p.f, de) : (real)0;
 }
 DEM_INLINE real thornton_ning_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real fel, real st)
@@ -125,7 +163,7 @@ DEM_INLINE real thornton_ning_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar,
 /* At the stiffest: unloading from delta (k_n = 2 E* a_p >= the loading branch's slope) */
 DEM_INLINE void thornton_ning_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real *kn, real *kt)
 {
-    tn_point p = tn_loading(pm, rstar, delta);
+    tn_point p = tn_loading(pm, rstar, delta, 0);
     *kn = hm_normal_stiffness(pm[PM_ESTAR], p.a);
     *kt = hm_tangential_stiffness(pm[PM_GSTAR], p.a);
 }

@@ -104,6 +104,9 @@ int dem_add_material(dem_sim *s, const dem_material *m)
     if (!(m->yield_stress >= 0) || !isfinite(m->yield_stress))
         return sim_fail(s, DEM_ERR_ARG, "material %d: yield stress must be >= 0 Pa, 0 for a material that does not "
                         "yield (got %g)", s->nmat, m->yield_stress);
+    if (!(m->bond_strength >= 0) || !isfinite(m->bond_strength))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: bond strength must be >= 0 Pa, 0 for a material that does not "
+                        "bond (got %g)", s->nmat, m->bond_strength);
     s->mats[s->nmat] = *m;
     return s->nmat++;
 }
@@ -119,6 +122,9 @@ int dem_set_material_pair(dem_sim *s, int a, int b, const dem_material_pair *p)
     if (!isnan(p->rolling_friction) && !(p->rolling_friction >= 0 && isfinite(p->rolling_friction)))
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: rolling friction must be >= 0 (got %g)", a, b,
                         p->rolling_friction);
+    if (!isnan(p->bond_strength) && !(p->bond_strength >= 0 && isfinite(p->bond_strength)))
+        return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: bond strength must be >= 0 Pa (got %g)", a, b,
+                        p->bond_strength);
     if (!isnan(p->restitution) && !(p->restitution > 0 && p->restitution <= 1))
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: restitution must be in (0, 1] (got %g)", a, b,
                         p->restitution);

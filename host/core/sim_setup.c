@@ -493,6 +493,9 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_TN_FY] = 4.0 / 3.0 * row[PM_ESTAR] * ky * ky * ky;
             row[PM_MU_ROLL] = pp && !isnan(pp->rolling_friction) ? pp->rolling_friction
                                                                 : 0.5 * (ma->rolling_friction + mb->rolling_friction);
+            /* a bond is as strong as the weaker of the two materials (a tool's steel, 0, bonds to nothing) */
+            double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
+            row[PM_TN_SIGB] = py > 0 ? M_PI * sb : 0;
         }
 }
 

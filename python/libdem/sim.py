@@ -37,12 +37,12 @@ class Material(ctypes.Structure):
     _fields_ = [("density", ctypes.c_double), ("young", ctypes.c_double), ("poisson", ctypes.c_double),
                 ("restitution", ctypes.c_double), ("friction", ctypes.c_double), ("mc_beta", ctypes.c_double),
                 ("mc_gamma", ctypes.c_double), ("yield_stress", ctypes.c_double),
-                ("rolling_friction", ctypes.c_double)]
+                ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double)]
 
 
 class MaterialPair(ctypes.Structure):
     _fields_ = [("friction", ctypes.c_double), ("restitution", ctypes.c_double),
-                ("rolling_friction", ctypes.c_double)]
+                ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double)]
 
 
 class Stage(ctypes.Structure):
@@ -282,17 +282,19 @@ class Sim:
 
     # ---- set-up ----
     def add_material(self, density, young, poisson, restitution, friction, mc_beta=0.0, mc_gamma=0.0,
-                     yield_stress=0.0, rolling_friction=0.0):
+                     yield_stress=0.0, rolling_friction=0.0, bond_strength=0.0):
         """A material [kg/m^3, Pa, -, -, -]; returns its id. young=float('inf'): rigid (walls only). yield_stress
         [Pa]: the limiting contact pressure of the thornton_ning law (0: does not yield); rolling_friction: mu_r of
-        the rolling effect."""
-        m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma, yield_stress, rolling_friction)
+        the rolling effect; bond_strength [Pa]: sigma_b of the bonds its yielded contacts form (thornton_ning)."""
+        m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma, yield_stress, rolling_friction,
+                     bond_strength)
         return self._check(self._lib.dem_add_material(self._s, ctypes.byref(m)))
 
-    def set_material_pair(self, a, b, friction=float("nan"), restitution=float("nan"), rolling_friction=float("nan")):
-        """Materials a and b take this friction, restitution or rolling friction instead of the mean of theirs
-        (NaN: the mean)."""
-        p = MaterialPair(friction, restitution, rolling_friction)
+    def set_material_pair(self, a, b, friction=float("nan"), restitution=float("nan"), rolling_friction=float("nan"),
+                          bond_strength=float("nan")):
+        """Materials a and b take this friction, restitution, rolling friction or bond strength instead of the rule's
+        (NaN: the mean; for the bond strength the smaller of the two)."""
+        p = MaterialPair(friction, restitution, rolling_friction, bond_strength)
         return self._check(self._lib.dem_set_material_pair(self._s, a, b, ctypes.byref(p)))
 
     def add_particles(self, x, radius, material, v=None):

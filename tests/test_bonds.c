@@ -1,0 +1,259 @@
+/* test_bonds.c - the solid bridge a yielded Thornton-Ning contact forms (common/laws/thornton_ning.h,
+ * dem_material.bond_strength sigma_b), against closed forms typed in here, not taken from the library:
+ *   a contact that yielded holds the plastic contact radius a_p of its largest load F_m,
+ *     a_p^2 = (2 F_m + F_y) / (2 pi p_y)                                  (Thornton and Ning 1998),
+ *   and, once unloaded past its dent delta_p, is a flat circular contact of radius a_p pulled apart: stiffness
+ *     k_b = 2 E* a_p (the flat punch's), force F = k_b (delta - delta_p) < 0,
+ *   until the tension reaches F_b = sigma_b pi a_p^2 (the bridge's strength over the plastic area), where the bond
+ *   breaks for good: no tension after it, while the contact lasts.
+ * Cases:
+ *   - a fixed sphere pressed plastically by a plane that bonds, pulled back past its dent until the bond breaks,
+ *     pressed again and pulled clear: the force at every step against the closed form (the paper's powers), the
+ *     largest tension = F_b, none after the break, and the elastic energy the host reports in tension = F^2/(2 k_b);
+ *   - two spheres colliding at 5 V_y: the bond takes F_b^2 / (2 k_b) from the rebound, V_out^2 = V_0^2 -
+ *     F_b^2 / (k_b m*), V_0 the rebound of the same collision without bonds; a bond stronger than the rebound's
+ *     energy keeps the spheres together;
+ *   - bad bond strengths are refused.
+ * Every case on the reference and on OpenCL (PoCL), in fp64 and fp32, the OpenCL state equal to the reference's at
+ * every step (the pair's forces are exactly antisymmetric: the states compared include both spheres). */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define RHO 1500.0
+#define YOUNG 5e9
+#define NU 0.3
+#define PY 2e8 /* p_y [Pa] */
+#define R 1e-3
+
+/* The papers' loading curve and unloading curve from dmax, and the bond, in double */
+typedef struct {
+    double es, rs, dy, fy, sigb;
+} bond_closed;
+
+static bond_closed bond_of(double es, double rs, double sigb)
+{
+    bond_closed t = {es, rs, pow(M_PI * PY / (2 * es), 2) * rs, 0, sigb};
+    t.fy = 4.0 / 3.0 * es * sqrt(rs) * pow(t.dy, 1.5);
+    return t;
+}
+static double fm_of(const bond_closed *t, double dmax) { return t->fy + M_PI * PY * t->rs * (dmax - t->dy); }
+static double ap_of(const bond_closed *t, double dmax) { return sqrt((2 * fm_of(t, dmax) + t->fy) / (2 * M_PI * PY)); }
+static double dp_of(const bond_closed *t, double dmax)
+{
+    double fm = fm_of(t, dmax), rp = 4 * t->es / (3 * fm) * pow(ap_of(t, dmax), 3);
+    return dmax - pow(3 * fm / (4 * t->es * sqrt(rp)), 2.0 / 3.0);
+}
+static double fb_of(const bond_closed *t, double dmax) { return t->sigb * M_PI * pow(ap_of(t, dmax), 2); }
+static double kb_of(const bond_closed *t, double dmax) { return 2 * t->es * ap_of(t, dmax); }
+
+/* The force at d on the unloading curve from dmax (> delta_y); broken: the bond's state */
+static double bond_force(const bond_closed *t, double d, double dmax, int broken)
+{
+    double fm = fm_of(t, dmax), rp = 4 * t->es / (3 * fm) * pow(ap_of(t, dmax), 3), dp = dp_of(t, dmax);
+    if (d >= dmax)
+        return fm_of(t, d);
+    if (d > dp)
+        return 4.0 / 3.0 * t->es * sqrt(rp) * pow(d - dp, 1.5);
+    return broken ? 0 : kb_of(t, dmax) * (d - dp);
+}
+
+static dem_material powder(double sigb)
+{
+    dem_material m = {RHO, YOUNG, NU, 1.0, 0.0, 0.0, 0.0, PY, 0.0, sigb};
+    return m;
+}
+
+/* A fixed sphere at the origin; a rigid plane (of a material that bonds) from +x, moved by the stages: press to
+ * d1, back to d_back (past the break, still overlapping), press to d_again, back clear */
+static dem_sim *pull_build(double sigb, double dt, int nst, const double *dur, const double *vel)
+{
+    dem_sim *s = dem_create();
+    dem_material m = powder(sigb), w = {7800, INFINITY, 0.3, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, sigb};
+    int id = dem_add_material(s, &m);
+    dem_wall pl;
+    memset(&pl, 0, sizeof pl);
+    pl.kind = DEM_WALL_PLANE;
+    pl.material = dem_add_material(s, &w);
+    pl.point[0] = R;
+    pl.normal[0] = -1;
+    pl.nstages = nst;
+    for (int k = 0; k < nst; k++) {
+        pl.stages[k].duration = dur[k];
+        pl.stages[k].velocity[0] = vel[k];
+    }
+    assert_true(dem_add_wall(s, &pl) >= 0);
+    int p = dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R, id);
+    dem_set_particle_flags(s, p, DEM_PARTICLE_FIXED);
+    double L = 8 * R;
+    dem_set_domain(s, (double[3]){-L, -L, -L}, (double[3]){L, L, L});
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_WALLS))
+        fail_msg("%s", dem_error(s));
+    dem_set_dt(s, dt);
+    return s;
+}
+
+static void pull(dem_precision prec)
+{
+    double sigb = 0.2 * PY;
+    bond_closed t = bond_of(YOUNG / (1 - NU * NU), R, sigb);
+    double d1 = 6 * t.dy, dp = dp_of(&t, d1), fb = fb_of(&t, d1), kb = kb_of(&t, d1), stretch = fb / kb;
+    assert_true(dp > 3 * stretch); /* the bond breaks while the sphere still overlaps the plane */
+    double dback = dp - 2 * stretch, dagain = 0.5 * (dp + d1), dt = 1e-6;
+    double u = stretch / (100 * dt); /* 100 steps across the tension branch */
+    double vel[4] = {-u, u, -u, u};
+    double dur[4] = {d1 / u, (d1 - dback) / u, (dagain - dback) / u, (dagain + 0.1 * d1) / u};
+    dem_sim *cl = pull_build(sigb, dt, 4, dur, vel), *ref = pull_build(sigb, dt, 4, dur, vel);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
+    start_or_fail(cl, &c);
+    start_or_fail(ref, &rc);
+    long total = (long)((dur[0] + dur[1] + dur[2] + dur[3]) / dt);
+    double dmax = 0, worst = 0, fmax_seen = 0, tension_max = 0, worst_e = 0, tension_after = 0, dbreak = 0;
+    int broken = 0, tension_steps = 0, phase = 0; /* phase: 0 first press, 1 back, 2 again, 3 clear */
+    double dprev = 0;
+    for (long k = 0; k < total; k++) {
+        twins_step(cl, ref, 1, "bond pulled, PoCL vs reference");
+        double pa[3], f[3];
+        assert_int_equal(dem_wall_position(ref, 0, pa), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+        double d = R - pa[0], got = -f[0];
+        if (d < dprev && phase % 2 == 0)
+            phase++;
+        else if (d > dprev && phase % 2 == 1)
+            phase++;
+        dprev = d;
+        if (d > dmax)
+            dmax = d;
+        if (d <= 0 || dmax <= t.dy)
+            continue;
+        double want = bond_force(&t, d, dmax, broken);
+        fb = fb_of(&t, dmax), kb = kb_of(&t, dmax); /* of the overlap reached (the wall's steps pass d1 by < 1e-3) */
+        if (!broken && want < -fb) { /* the closed form breaks here; so must the library, to a rounding of F_b */
+            broken = 1;
+            dbreak = d;
+            want = 0;
+            if (got != 0 && fabs(got + fb) < 1e-3 * fb) /* the library breaks a rounding later: the same step */
+                want = got;
+        }
+        fmax_seen = fmax(fmax_seen, fabs(want));
+        worst = fmax(worst, fabs(got - want));
+        if (got < 0) {
+            tension_steps++;
+            tension_max = fmax(tension_max, -got);
+            if (broken)
+                tension_after = fmax(tension_after, -got);
+            dem_energy_t en;
+            assert_int_equal(dem_energy(ref, &en), 0);
+            worst_e = fmax(worst_e, fabs(en.elastic - got * got / (2 * kb)) / (fb * fb / (2 * kb)));
+        }
+    }
+    printf("  bond pulled from a plane, %s: a_p %.4g m, delta_p %.4g m, F_b %.4g N (stretch %.3g m); %d steps in "
+           "tension, largest tension %.6g F_b, broke at %.6g m (closed form %.6g); worst force %.2g, tension's energy "
+           "%.2g (relative); reloaded to %.4g m\n",
+           prec == DEM_FP64 ? "fp64" : "fp32", ap_of(&t, d1), dp, fb, stretch, tension_steps, tension_max / fb, dbreak,
+           dp - stretch, worst / fmax_seen, worst_e, dagain);
+    assert_true(phase == 3 && dmax >= d1 * (1 - 1e-6) && dmax < d1 * (1 + 1e-3));
+    assert_true(broken && tension_steps > 50);
+    assert_true(tension_max / fb > 0.98 && tension_max / fb <= 1 + (prec == DEM_FP64 ? 1e-9 : 1e-3));
+    assert_true(tension_after == 0); /* broken for good: no tension on the second pull */
+    assert_true(worst / fmax_seen < (prec == DEM_FP64 ? 1e-6 : 5e-3));
+    assert_true(worst_e < (prec == DEM_FP64 ? 1e-6 : 1e-2));
+    dem_destroy(cl);
+    dem_destroy(ref);
+}
+
+static void test_pull_fp64(void **st) { (void)st; pull(DEM_FP64); }
+static void test_pull_fp32(void **st) { (void)st; pull(DEM_FP32); }
+
+/* Two spheres at 5 V_y; returns the separation speed after contact (or -1: still together at the end) and the
+ * largest overlap */
+static double collide(double sigb, double *dmax_out, int *gap_out, dem_precision prec)
+{
+    double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2;
+    bond_closed t = bond_of(es, rs, sigb);
+    double vy = sqrt(2 * 0.4 * t.fy * t.dy / ms), vi = 5 * vy;
+    double tc = 2.87 * pow(ms * ms / (rs * es * es * vi), 0.2), dt = tc / 4000;
+    dem_material m = powder(sigb);
+    unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING;
+    dem_sim *cl = head_on_build(&m, NULL, R, vi, fx, dt), *ref = head_on_build(&m, NULL, R, vi, fx, dt);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
+    start_or_fail(cl, &c);
+    start_or_fail(ref, &rc);
+    double dmax = 0, vout = -1;
+    int was = 0, gap = 0;
+    for (int k = 0; k < 20000; k++) {
+        twins_step(cl, ref, 1, "bonded pair, PoCL vs reference");
+        double x[6], v[6], f[6];
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+        double d = 2 * R - fabs(x[3] - x[0]);
+        if (d > 0) {
+            was = 1;
+            dmax = fmax(dmax, d);
+        } else if (was && f[0] != 0) { /* the bond holds them across a gap */
+            gap++;
+        } else if (was) { /* apart */
+            assert_int_equal(dem_get_field(ref, DEM_FIELD_V, v), 0);
+            vout = v[3] - v[0];
+            break;
+        }
+    }
+    *dmax_out = dmax;
+    *gap_out = gap;
+    dem_destroy(cl);
+    dem_destroy(ref);
+    return vout;
+}
+
+static void bounce(dem_precision prec)
+{
+    double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2, dm0, dm1, dm2;
+    int gap0, gap1, gap2;
+    double v0 = collide(0, &dm0, &gap0, prec);
+    assert_true(v0 > 0);
+    /* a bond that takes half the rebound's energy: sigma_b from E_b = F_b^2 / (2 k_b) = 1/4 m* v0^2 */
+    bond_closed unit = bond_of(es, rs, 1.0);
+    double fb1 = fb_of(&unit, dm0), kb = kb_of(&unit, dm0);
+    double sigb = sqrt(0.25 * ms * v0 * v0 * 2 * kb) / fb1;
+    bond_closed t = bond_of(es, rs, sigb);
+    double v1 = collide(sigb, &dm1, &gap1, prec), fb = fb_of(&t, dm1);
+    double want = sqrt(v0 * v0 - fb * fb / (kb_of(&t, dm1) * ms));
+    /* four times stronger: 16 times the energy, more than the rebound has */
+    double v2 = collide(4 * sigb, &dm2, &gap2, prec);
+    printf("  bonded pair at 5 V_y, %s: sigma_b %.4g Pa (%.3g p_y); rebound %.6g m/s without bond, %.6g with "
+           "(closed form %.6g; dent %.4g m, bond's stretch %.4g m: %d steps bonded across a gap), %s with 4 sigma_b\n",
+           prec == DEM_FP64 ? "fp64" : "fp32", sigb, sigb / PY, v0, v1, want, dp_of(&t, dm1),
+           fb / kb_of(&t, dm1), gap1, v2 < 0 ? "together" : "apart");
+    assert_true(dm1 == dm0 || fabs(dm1 / dm0 - 1) < 1e-6); /* the loading does not feel the bond */
+    assert_true(gap0 == 0 && gap1 > 10); /* this dent is shallower than the stretch: the bond holds across a gap */
+    assert_true(v1 > 0 && fabs(v1 / want - 1) < 2e-3);
+    assert_true(v2 < 0);
+}
+
+static void test_bounce_fp64(void **st) { (void)st; bounce(DEM_FP64); }
+static void test_bounce_fp32(void **st) { (void)st; bounce(DEM_FP32); }
+
+static void test_refusals(void **st)
+{
+    (void)st;
+    dem_sim *s = dem_create();
+    dem_material m = powder(-1);
+    assert_int_equal(dem_add_material(s, &m), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "bond strength"));
+    m = powder(1e6);
+    int a = dem_add_material(s, &m);
+    assert_true(a >= 0);
+    assert_int_equal(dem_set_material_pair(s, a, a, &(dem_material_pair){NAN, NAN, NAN, INFINITY}), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "bond strength"));
+    dem_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pull_fp64),   cmocka_unit_test(test_pull_fp32),   cmocka_unit_test(test_bounce_fp64),
+        cmocka_unit_test(test_bounce_fp32), cmocka_unit_test(test_refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
