@@ -57,7 +57,7 @@ HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*
 TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all deps run demo test test-examples test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer peer-mdr clean validate conventions stability accuracy tablet-models tablet-mass-scale
+.PHONY: all deps run demo test test-examples test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer peer-mdr clean validate conventions stability accuracy tablet-models tablet-mass-scale tablet-strength
 all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
 
 deps: $(DEPS_STAMP)
@@ -235,6 +235,12 @@ accuracy: $(BUILD)/dem-accuracy
 # most two hours a sitting and continues the stopped ones at the next call)
 tablet-models: $(BUILD)/dem
 	bash tools/tablet_models.sh
+
+# Tablet strength: scenes/tablet_strength.yaml pressed to 25, 50, 100 and 150 MPa, ejected and broken across a diameter
+# (the Brazilian test); out/tablet_strength/strength.png and .md (tools/tablet_strength.sh; about 25 minutes on 2
+# cores; docs/tableting.md "Bonds and tensile strength")
+tablet-strength: $(BUILD)/dem
+	bash tools/tablet_strength.sh
 
 # What mass scaling (time.mass_scale) does to the same press: scenes/tablet_3k.yaml at scales 1-6400, three fills each,
 # under the classical law; out/tablet_mass_scale/mass_scale.png and .md (tools/tablet_mass_scale.sh; about 15 minutes

@@ -57,9 +57,11 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     real ra = radius[a], rb = radius[b];
     pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pairmat);
     DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
-    /* a bond (thornton_ning.h) whose dent is shallower than its stretch holds across a gap: a pair that touched,
-     * with a whole bond of a yielded contact (state > 0), goes to the law, which ends it once the bond is gone */
-    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touching && pm[PM_TN_SIGB] > (real)0 && law_st[hp] > (real)0)
+    /* a bond (thornton_ning.h) whose dent is shallower than its stretch holds across a gap: a pair that touched and
+     * whose bond did not break (state > 0) goes to the law, which ends it unless a whole bond of a yielded contact
+     * pulls */
+    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touching && pm[PM_TN_SIGB] > (real)0 &&
+        law_st[hp] > (real)0)
         g = pair_geometry_reach(v3_load(x, a), ra, v3_load(x, b), rb, (real)2);
     pc.active = g.active;
     pc.delta = (real)0;

@@ -90,7 +90,7 @@ typedef struct {
     double restitution; /* coefficient of restitution of the pair, in (0, 1] (the damping follows from it) */
     double rolling_friction; /* rolling resistance coefficient of the pair, >= 0 (DEM_EFFECT_ROLLING) */
     double bond_strength; /* sigma_b of the pair's bonds [Pa], >= 0 (DEM_EFFECT_THORNTON_NING); NAN: the smaller of
-                             the two materials' */
+                             the two materials'. Give every field: an initialiser that leaves it out sets 0, no bond */
 } dem_material_pair;
 
 /* Most motion stages of one wall (a scene's settling pause counts as one; `repeat` multiplies a list): enough for

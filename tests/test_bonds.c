@@ -10,9 +10,12 @@
  *   - a fixed sphere pressed plastically by a plane that bonds, pulled back past its dent until the bond breaks,
  *     pressed again and pulled clear: the force at every step against the closed form (the paper's powers), the
  *     largest tension = F_b, none after the break, and the elastic energy the host reports in tension = F^2/(2 k_b);
+ *     with the bond strength from both materials (the smaller), from the material pair, and from the sphere's alone
+ *     (no bond: the plane's material gives none);
  *   - two spheres colliding at 5 V_y: the bond takes F_b^2 / (2 k_b) from the rebound, V_out^2 = V_0^2 -
  *     F_b^2 / (k_b m*), V_0 the rebound of the same collision without bonds; a bond stronger than the rebound's
  *     energy keeps the spheres together;
+ *   - a bond held in tension and slid sideways: friction resists up to mu (f_n + F_b);
  *   - bad bond strengths are refused.
  * Every case on the reference and on OpenCL (PoCL), in fp64 and fp32, the OpenCL state equal to the reference's at
  * every step (the pair's forces are exactly antisymmetric: the states compared include both spheres). */
@@ -65,36 +68,48 @@ static dem_material powder(double sigb)
     return m;
 }
 
-/* A fixed sphere at the origin; a rigid plane (of a material that bonds) from +x, moved by the stages: press to
- * d1, back to d_back (past the break, still overlapping), press to d_again, back clear */
-static dem_sim *pull_build(double sigb, double dt, int nst, const double *dur, const double *vel)
+/* How the plane's bond strength is set: both materials give sigma_b (the pair takes the smaller, the plane's being
+ * larger); the plane's material gives none and the material pair gives sigma_b (dem_set_material_pair); the plane's
+ * gives none and nothing else (no bond: the smaller of the two) */
+enum { BOND_MATERIALS, BOND_PAIR, BOND_NONE };
+
+/* A fixed sphere at the origin; a rigid plane from +x, moved by the stages: press to d1, back to d_back (past the
+ * break, still overlapping), press to d_again, back clear */
+static dem_sim *pull_build(double sigb, int how, double mu, double dt, int nst, const double *dur, const double *vel,
+                           const double *vel_y)
 {
     dem_sim *s = dem_create();
-    dem_material m = powder(sigb), w = {7800, INFINITY, 0.3, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, sigb};
+    dem_material m = powder(sigb), w = {7800, INFINITY, 0.3, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                                        how == BOND_MATERIALS ? 3 * sigb : 0.0};
+    m.friction = 2 * mu; /* the pair takes the mean with the plane's 0: mu */
     int id = dem_add_material(s, &m);
     dem_wall pl;
     memset(&pl, 0, sizeof pl);
     pl.kind = DEM_WALL_PLANE;
     pl.material = dem_add_material(s, &w);
+    if (how == BOND_PAIR)
+        assert_int_equal(dem_set_material_pair(s, id, pl.material, &(dem_material_pair){NAN, NAN, NAN, sigb}), 0);
     pl.point[0] = R;
     pl.normal[0] = -1;
     pl.nstages = nst;
     for (int k = 0; k < nst; k++) {
         pl.stages[k].duration = dur[k];
         pl.stages[k].velocity[0] = vel[k];
+        pl.stages[k].velocity[1] = vel_y ? vel_y[k] : 0;
     }
     assert_true(dem_add_wall(s, &pl) >= 0);
     int p = dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R, id);
     dem_set_particle_flags(s, p, DEM_PARTICLE_FIXED);
     double L = 8 * R;
     dem_set_domain(s, (double[3]){-L, -L, -L}, (double[3]){L, L, L});
-    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_WALLS))
+    unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_WALLS | (mu > 0 ? DEM_EFFECT_FRICTION : 0);
+    if (dem_set_effects(s, fx))
         fail_msg("%s", dem_error(s));
     dem_set_dt(s, dt);
     return s;
 }
 
-static void pull(dem_precision prec)
+static void pull(dem_precision prec, int how)
 {
     double sigb = 0.2 * PY;
     bond_closed t = bond_of(YOUNG / (1 - NU * NU), R, sigb);
@@ -104,7 +119,7 @@ static void pull(dem_precision prec)
     double u = stretch / (100 * dt); /* 100 steps across the tension branch */
     double vel[4] = {-u, u, -u, u};
     double dur[4] = {d1 / u, (d1 - dback) / u, (dagain - dback) / u, (dagain + 0.1 * d1) / u};
-    dem_sim *cl = pull_build(sigb, dt, 4, dur, vel), *ref = pull_build(sigb, dt, 4, dur, vel);
+    dem_sim *cl = pull_build(sigb, how, 0, dt, 4, dur, vel, NULL), *ref = pull_build(sigb, how, 0, dt, 4, dur, vel, NULL);
     dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
     start_or_fail(cl, &c);
     start_or_fail(ref, &rc);
@@ -127,7 +142,7 @@ static void pull(dem_precision prec)
             dmax = d;
         if (d <= 0 || dmax <= t.dy)
             continue;
-        double want = bond_force(&t, d, dmax, broken);
+        double want = bond_force(&t, d, dmax, broken || how == BOND_NONE);
         fb = fb_of(&t, dmax), kb = kb_of(&t, dmax); /* of the overlap reached (the wall's steps pass d1 by < 1e-3) */
         if (!broken && want < -fb) { /* the closed form breaks here; so must the library, to a rounding of F_b */
             broken = 1;
@@ -148,23 +163,73 @@ static void pull(dem_precision prec)
             worst_e = fmax(worst_e, fabs(en.elastic - got * got / (2 * kb)) / (fb * fb / (2 * kb)));
         }
     }
-    printf("  bond pulled from a plane, %s: a_p %.4g m, delta_p %.4g m, F_b %.4g N (stretch %.3g m); %d steps in "
+    printf("  bond pulled from a plane (%s), %s: a_p %.4g m, delta_p %.4g m, F_b %.4g N (stretch %.3g m); %d steps in "
            "tension, largest tension %.6g F_b, broke at %.6g m (closed form %.6g); worst force %.2g, tension's energy "
            "%.2g (relative); reloaded to %.4g m\n",
+           how == BOND_MATERIALS ? "both materials bond" : how == BOND_PAIR ? "the pair's bond strength" : "no bond",
            prec == DEM_FP64 ? "fp64" : "fp32", ap_of(&t, d1), dp, fb, stretch, tension_steps, tension_max / fb, dbreak,
            dp - stretch, worst / fmax_seen, worst_e, dagain);
     assert_true(phase == 3 && dmax >= d1 * (1 - 1e-6) && dmax < d1 * (1 + 1e-3));
-    assert_true(broken && tension_steps > 50);
-    assert_true(tension_max / fb > 0.98 && tension_max / fb <= 1 + (prec == DEM_FP64 ? 1e-9 : 1e-3));
-    assert_true(tension_after == 0); /* broken for good: no tension on the second pull */
+    if (how == BOND_NONE) { /* the plane's material bonds to nothing: the pair has no bond */
+        assert_true(tension_steps == 0);
+    } else {
+        assert_true(broken && tension_steps > 50);
+        assert_true(tension_max / fb > 0.98 && tension_max / fb <= 1 + (prec == DEM_FP64 ? 1e-9 : 1e-3));
+        assert_true(tension_after == 0); /* broken for good: no tension on the second pull */
+    }
     assert_true(worst / fmax_seen < (prec == DEM_FP64 ? 1e-6 : 5e-3));
     assert_true(worst_e < (prec == DEM_FP64 ? 1e-6 : 1e-2));
     dem_destroy(cl);
     dem_destroy(ref);
 }
 
-static void test_pull_fp64(void **st) { (void)st; pull(DEM_FP64); }
-static void test_pull_fp32(void **st) { (void)st; pull(DEM_FP32); }
+static void test_pull_fp64(void **st) { (void)st; pull(DEM_FP64, BOND_MATERIALS); }
+static void test_pull_fp32(void **st) { (void)st; pull(DEM_FP32, BOND_MATERIALS); }
+/* A bond held in tension T < F_b and slid sideways: friction resists up to mu (f_n + F_b) = mu (F_b - T), where a
+ * contact without a bond, in tension, would slide freely (mu max(f_n, 0) = 0). Reference and PoCL, fp64. */
+static void test_friction_bonded(void **st)
+{
+    (void)st;
+    double sigb = 0.2 * PY, mu = 0.4;
+    bond_closed t = bond_of(YOUNG / (1 - NU * NU), R, sigb);
+    double d1 = 6 * t.dy, dp = dp_of(&t, d1), stretch = fb_of(&t, d1) / kb_of(&t, d1), dt = 1e-6;
+    double u = stretch / (100 * dt), ut = 0.5 * u;
+    double vel[3] = {-u, u, 0}, vel_y[3] = {0, 0, ut};
+    double dur[3] = {d1 / u, (d1 - (dp - 0.5 * stretch)) / u, 40 * stretch / ut};
+    dem_sim *cl = pull_build(sigb, BOND_MATERIALS, mu, dt, 3, dur, vel, vel_y);
+    dem_sim *ref = pull_build(sigb, BOND_MATERIALS, mu, dt, 3, dur, vel, vel_y);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64), rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(cl, &c);
+    start_or_fail(ref, &rc);
+    long total = (long)((dur[0] + dur[1] + dur[2]) / dt), slid = 0;
+    double worst = 0, fn_seen = 0, ft_seen = 0, fb = 0;
+    for (long k = 0; k < total; k++) {
+        twins_step(cl, ref, 1, "bond slid, PoCL vs reference");
+        double pa[3], f[3];
+        assert_int_equal(dem_wall_position(ref, 0, pa), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+        if (k * dt < dur[0] + dur[1] + 20 * stretch / ut) /* slid far enough to slip */
+            continue;
+        double fn = -f[0];
+        fb = fb_of(&t, d1); /* at the overlap the press reached, d1 to its last step's travel (1e-3 d1) */
+        worst = fmax(worst, fabs(fabs(f[1]) - mu * (fn + fb)) / (mu * fb));
+        fn_seen = fn, ft_seen = f[1];
+        slid++;
+    }
+    printf("  bond held at %.4g N (F_b %.4g N) and slid: tangential force %.6g N, mu (f_n + F_b) %.6g N; worst %.2g "
+           "(relative to mu F_b) over %ld steps\n", fn_seen, fb, ft_seen, mu * (fn_seen + fb), worst, slid);
+    assert_true(slid > 100 && fn_seen < -0.3 * fb && fn_seen > -0.7 * fb); /* held in tension */
+    assert_true(worst < 2e-3);
+    dem_destroy(cl);
+    dem_destroy(ref);
+}
+
+static void test_pull_pair_table(void **st)
+{
+    (void)st;
+    pull(DEM_FP64, BOND_PAIR);
+    pull(DEM_FP64, BOND_NONE);
+}
 
 /* Two spheres at 5 V_y; returns the separation speed after contact (or -1: still together at the end) and the
  * largest overlap */
@@ -252,8 +317,9 @@ static void test_refusals(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_pull_fp64),   cmocka_unit_test(test_pull_fp32),   cmocka_unit_test(test_bounce_fp64),
-        cmocka_unit_test(test_bounce_fp32), cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_pull_fp64),   cmocka_unit_test(test_pull_fp32), cmocka_unit_test(test_pull_pair_table),
+        cmocka_unit_test(test_friction_bonded),
+        cmocka_unit_test(test_bounce_fp64), cmocka_unit_test(test_bounce_fp32), cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,9 +18,9 @@
  * the law is bitwise the same on every device (docs/design.md "Laws with memory"). Both branches meet at delta_m
  * (F = F_m) and at delta_y (a_p = the Hertz radius sqrt(r* delta_y)); tests/test_thornton_ning.c checks them against
  * these closed forms, typed in there.
- * The state kept per contact (law.h) is the largest overlap delta_m; a contact that ends (the spheres part) forgets
- * it. Between delta_p and 0 the spheres still overlap geometrically but carry no force (the dent is deeper than the
- * overlap).
+ * The state kept per contact (law.h) is the largest overlap delta_m (negated once a bond broke, below); a contact that
+ * ends (the spheres part) forgets it. Between delta_p and 0 the spheres still overlap geometrically but carry no
+ * force (the dent is deeper than the overlap) - or a bond's tension (below).
  * Contact radius a (the elastic branches' sqrt(r* delta), on the plastic line a_p, unloading sqrt(r_p (delta -
  * delta_p))): the tangential stiffness k_t = 8 G* a and the damping's stiffness S_n = 2 E* a, as Hertz-Mindlin's with
  * a = sqrt(r* delta) (hm_contact_fel). The damping calibrated from the restitution then acts on top of the plastic
@@ -29,7 +29,21 @@
  * Pair-table columns (dem_layout.h): Hertz-Mindlin's and PM_TN_PIPY = pi p_y, PM_TN_DY = delta_y / r*,
  * PM_TN_FY = F_y / r*^2 (host/core/sim_setup.c, in double from p_y, the smaller yield stress of the two materials
  * that yield). A pair of which neither yields (all three 0) is Hertzian.
- * Not here yet: Thornton-Ning's JKR adhesion (the issue that asks for it says so in its closing note).
+ * Bonds (PM_TN_SIGB = pi sigma_b, dem_material.bond_strength): a yielded contact has formed a solid bridge over its
+ * plastic contact area pi a_p^2 (bonding area x bonding strength, the picture behind Rumpf's tensile strength of an
+ * agglomerate). Unloaded past its dent (delta < delta_p) it is a flat circular contact of radius a_p pulled apart:
+ *   F = 2 E* a_p (delta - delta_p) (< 0),  while -F <= F_b = sigma_b pi a_p^2,
+ * and it breaks for good (this contact carries no tension again) the first time the tension would pass F_b. While the
+ * bond holds, the normal force (with its damping) may go down to -F_b and the Coulomb limit is mu (f_n + F_b), also in
+ * compression (as JKR-type laws let adhesion raise the load friction resists); the bond breaks in tension only, not
+ * in shear, and rolling resistance (rolling.h) acts with the compressive normal force only. The force is continuous at
+ * delta_p, its slope is not: the Hertz curve's goes to 0 there, the bond's is 2 E* a_p (and the tangential stiffness
+ * and the damping, which follow the contact radius, jump from 0 to a_p's). The state is the largest overlap, negated
+ * once the bond broke. A pair's bond may hold across a gap (contact_forces.h); a wall's cannot (its geometry ends the
+ * contact at zero overlap, so a wall given a bond strength lets go there, unbroken, where the dent is shallower than
+ * the bond's stretch F_b / (2 E* a_p)): bonds are meant for powder on powder, tools' steel bonds to nothing.
+ * Not here: Thornton-Ning's JKR adhesion of surfaces that have not yielded (surface energy; its paper could not be
+ * read here); the bond is this law's adhesion, the one a compact's strength needs.
  */
 #ifndef DEM_LAW_THORNTON_NING_H
 #define DEM_LAW_THORNTON_NING_H
@@ -37,7 +51,7 @@
 #include "hertz_mindlin.h"
 
 #define LAW_COLUMNS_thornton_ning(C)                                                                                 \
-    C(PM_ESTAR) C(PM_GSTAR) C(PM_MU) C(PM_DAMP_N) C(PM_DAMP_T) C(PM_TN_PIPY) C(PM_TN_DY) C(PM_TN_FY)
+    C(PM_ESTAR) C(PM_GSTAR) C(PM_MU) C(PM_DAMP_N) C(PM_DAMP_T) C(PM_TN_PIPY) C(PM_TN_DY) C(PM_TN_FY) C(PM_TN_SIGB)
 
 /* A point of the law: the elastic normal force, the contact radius, and the lowest normal force the contact may carry
  * at this point (-F_b while a bond holds, else 0) */
@@ -69,7 +83,7 @@ DEM_INLINE tn_point tn_loading(DEM_CONST_GLOBAL real *pm, real rstar, real delta
     real fy = pm[PM_TN_FY] * rstar * rstar;
     p.f = fy + pm[PM_TN_PIPY] * rstar * (delta - dy);
     p.a = dem_sqrt(((real)2 * p.f + fy) / ((real)2 * pm[PM_TN_PIPY]));
-    if (bonded)
+    if (bonded && pm[PM_TN_SIGB] > (real)0) /* (not -0: a run without bonds keeps its clamp at +0) */
         p.fmin = -tn_bond_force(pm, p.a);
     return p;
 }
@@ -83,6 +97,10 @@ DEM_INLINE tn_point tn_unloading(DEM_CONST_GLOBAL real *pm, real rstar, real del
     p.broke = 0;
     if (!(pm[PM_TN_PIPY] > (real)0) || dmax <= pm[PM_TN_DY] * rstar) { /* it never yielded: Hertz */
         *de = delta;
+        if (delta < (real)0) { /* across a gap (contact_forces.h): no bond, no force */
+            p.f = p.a = (real)0;
+            return p;
+        }
         p.a = dem_sqrt(rstar * delta);
         p.f = hm_elastic_srd(pm[PM_ESTAR], p.a, delta);
         return p;
@@ -134,11 +152,11 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
     real dmax = c.st < (real)0 ? -c.st : c.st;
     real st = c.delta > dmax ? c.delta : dmax;
     r.st = (c.st < (real)0 || p.broke) ? -st : st;
-    if (!(c.delta > (real)0) && !(p.f < (real)0)) /* across a gap, only a whole bond holds (contact_forces.h) */
+    if (c.delta < (real)0 && !(p.f < (real)0)) /* across a gap, only a whole bond holds (contact_forces.h) */
         r.active = 0;
     return r;
 }
-/* The elastic force at delta given the largest overlap st (the stress output: particle_stress.h) */
+/* The elastic force at delta given the contact's state st (the stress output: particle_stress.h) */
 DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     real de;

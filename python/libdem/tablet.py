@@ -23,7 +23,10 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
     scaled in a mass-scaled run) is not the friction a press's ejection force measures.
 
 Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m3, max_upper_mpa, density_at_max,
-yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejection_friction_n, max_ejection_punch_n.
+yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejection_friction_n, max_ejection_punch_n;
+and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet):
+tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n, tensile_mpa (2 F / (pi D t)),
+platen_force_after_peak (the platen force at the end over its peak: below 1 once the tablet broke).
 Renamed from the report's earlier keys: max_upper_pa -> max_upper_mpa, yield_pa -> yield_mpa, radial_pa ->
 radial_mpa (the values in MPa, no longer Pa); max_ejection_n (the lower punch's largest force, inertia included) ->
 max_ejection_punch_n, beside the new max_ejection_friction_n. transmission keeps its name; it is now taken over the
@@ -118,13 +121,58 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     # the die is dragged along the compact's way out (+n_lo) by the friction that holds the compact back
     eject_friction = force[ej, k_die, :] @ n_lo if len(ej) else np.array([])
     nan = float("nan")
-    return dict(t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
+    dia = diametral(run, lo) if all(w in names for w in PLATENS) else None
+    return dict(dia=dia, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
                 gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
                 heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
                 recovery=recovery, radial_ratio=radial_ratio, ej=ej, eject_travel=eject_travel,
                 eject_force=eject_force, eject_friction=eject_friction,
                 max_ejection_friction=float(np.max(eject_friction)) if len(ej) else nan,
                 max_ejection_punch=float(np.max(eject_force)) if len(ej) else nan, kinetic=kinetic, elastic=elastic)
+
+
+PLATENS = ("platen_a", "platen_b")
+TRIM = 0.005
+
+
+def diametral(run, lower):
+    """The diametral compression (Brazilian test) of the ejected tablet between two plane walls named platen_a and
+    platen_b that close on it across a diameter: the largest platen force F (the mean of the two platens' normal
+    forces, which agree in a quasi-static test), the tablet's diameter D and thickness t, measured on the last frame
+    before the platens touch it (the extreme spheres' surfaces across the axis of the lower punch and along it, the
+    outermost 0.5 % of the spheres on each side left out), and
+    the tensile strength 2 F / (pi D t) (Fell and Newton 1970); the out-of-die relative density is the spheres'
+    volume over pi D^2 t / 4."""
+    s, names = run.series, run.wall_names
+    ka, kb = names.index(PLATENS[0]), names.index(PLATENS[1])
+    n_a, n_b, axis = run.wall_shape["wall_normal"][ka], run.wall_shape["wall_normal"][kb], \
+        run.wall_shape["wall_normal"][lower]
+    force, pos, t = s["wall_force"], s["wall_position"], s["time"]
+    f = 0.5 * (-(force[:, ka, :] @ n_a) - (force[:, kb, :] @ n_b))
+    travel = ((pos[:, ka, :] - pos[0, ka, :]) @ n_a + (pos[:, kb, :] - pos[0, kb, :]) @ n_b)  # closing: > 0
+    touched = np.nonzero(f > 0)[0]
+    if not len(touched):
+        raise TabletError("the platens (platen_a, platen_b) never touched the tablet")
+    k0 = int(touched[0])
+    frames = [k for k in range(len(run.frames)) if run.frames.time[k] <= t[k0]]
+    if "position" not in run.frame_fields or not frames:
+        raise TabletError("no frame with positions before the platens touch the tablet (output.fields: position)")
+    x, r = run.frame(frames[-1])["position"], run.radius
+    h = x @ axis
+    # the extreme surfaces, leaving out the outermost TRIM of the spheres on each side: a loose grain at the edge is
+    # not the tablet a caliper measures
+    thick = float(np.quantile(h + r, 1 - TRIM) - np.quantile(h - r, TRIM))
+    centre = np.median(x, axis=0)
+    rad = x - centre - np.outer((x - centre) @ axis, axis)
+    diam = float(2 * np.quantile(np.sqrt(np.sum(rad * rad, axis=1)) + r, 1 - TRIM))
+    k_peak = int(np.argmax(f))
+    f_peak = float(f[k_peak])
+    solid = float(np.sum(4.0 / 3.0 * math.pi * r**3))
+    return dict(force=f, travel=travel - travel[k0], k0=k0, k_peak=k_peak, peak=f_peak, diameter=diam,
+                thickness=thick, frame_time=float(run.frames.time[frames[-1]]),
+                density=solid / (math.pi * diam * diam / 4 * thick),
+                tensile=2 * f_peak / (math.pi * diam * thick),
+                after_peak=float(f[-1] / f_peak))
 
 
 def numbers(c):
@@ -134,7 +182,11 @@ def numbers(c):
             ("density_at_max", c["dens"][k]), ("yield_mpa", MPA * c["yield_p"]), ("transmission", c["ratio"]),
             ("radial_mpa", MPA * c["p_rad"][k]), ("radial_ratio", c["radial_ratio"]),
             ("elastic_recovery", c["recovery"]), ("max_ejection_friction_n", c["max_ejection_friction"]),
-            ("max_ejection_punch_n", c["max_ejection_punch"])]
+            ("max_ejection_punch_n", c["max_ejection_punch"])] + (
+            [("tablet_diameter_m", c["dia"]["diameter"]), ("tablet_thickness_m", c["dia"]["thickness"]),
+             ("tablet_density", c["dia"]["density"]), ("max_platen_n", c["dia"]["peak"]),
+             ("tensile_mpa", MPA * c["dia"]["tensile"]), ("platen_force_after_peak", c["dia"]["after_peak"])]
+            if c.get("dia") else [])
 
 
 def report_line(c, png):
@@ -152,7 +204,8 @@ def plot(c, out, title):
     dens, travel_up, k_max, p_max, k_rel = c["dens"], c["travel_up"], c["k_max"], c["p_max"], c["k_rel"]
     load, heckel, slope, intercept, yield_p = c["load"], c["heckel"], c["slope"], c["intercept"], c["yield_p"]
     ej, eject_travel, eject_force, eject_friction = c["ej"], c["eject_travel"], c["eject_force"], c["eject_friction"]
-    fig, ax = plt.subplots(2, 2, figsize=(11, 8.5))
+    dia = c.get("dia")
+    fig, ax = plt.subplots(2, 3 if dia else 2, figsize=(16 if dia else 11, 8.5))
     cyc = slice(0, (k_rel if k_rel is not None else len(t) - 1) + 1)  # loading and unloading, before the punch leaves
     ax[0, 0].plot(1e3 * travel_up[cyc], MPA * p_up[cyc], label="upper punch")
     ax[0, 0].plot(1e3 * travel_up[cyc], MPA * p_lo[cyc], label="lower punch")
@@ -180,6 +233,16 @@ def plot(c, out, title):
                       label="punch - friction: the compact's inertia and weight")
         ax[1, 1].legend(fontsize=8)
     ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="force [N]", title="ejection")
+    if dia:
+        k0 = dia["k0"]
+        ax[0, 2].plot(1e6 * dia["travel"][k0:], dia["force"][k0:])
+        ax[0, 2].plot([1e6 * dia["travel"][dia["k_peak"]]], [dia["peak"]], "o",
+                      label=f"peak {dia['peak']:.3g} N: tensile strength {MPA * dia['tensile']:.3g} MPa")
+        ax[0, 2].set(xlabel="platens' closing [um]", ylabel="platen force [N]",
+                     title=f"diametral compression: D {1e3 * dia['diameter']:.3g} mm, t {1e3 * dia['thickness']:.3g} "
+                           f"mm, density {dia['density']:.3f}")
+        ax[0, 2].legend(fontsize=8)
+        ax[1, 2].axis("off")
     fig.suptitle(f"{title}: transmission {c['ratio']:.3f} (loading), radial/axial {c['radial_ratio']:.3f}, elastic "
                  f"recovery {100 * c['recovery']:.2f} %", fontsize=10)
     fig.tight_layout()

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# make tablet-strength: scenes/tablet_strength.yaml pressed to each of several pressures, ejected and broken across a
+# diameter; then tensile strength against relative density, beside published MCC tablets and a Ryshkewitch-Duckworth
+# fit (tools/plot_tablet_strength.py: strength.png and strength.md).
+#
+#   STRENGTH_PRESSURES  compaction pressures in MPa (default "25 50 100 150")
+#   STRENGTH_OUT        where the runs go (default out/tablet_strength): P.h5, P.log for each pressure P
+#   STRENGTH_SCENE      the scene (default scenes/tablet_strength.yaml; its upper punch's until_stress is replaced)
+#   DEM                 the dem binary (default build/dem)
+# About 6 minutes per pressure on 2 cores. A run that fails is reported and left out of the figure.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+SCENE=${STRENGTH_SCENE:-scenes/tablet_strength.yaml}
+OUT=${STRENGTH_OUT:-out/tablet_strength}
+PRESSURES=${STRENGTH_PRESSURES:-25 50 100 150}
+DEM=${DEM:-build/dem}
+[ -x "$DEM" ] || { echo "tablet-strength: $DEM is missing: run make first" >&2; exit 1; }
+grep -q "until_stress: 5.0e7" "$SCENE" || { echo "tablet-strength: $SCENE has no 'until_stress: 5.0e7' to replace" >&2; exit 1; }
+mkdir -p "$OUT"
+runs=()
+for p in $PRESSURES; do
+  sed "s/until_stress: 5.0e7/until_stress: ${p}.0e6/" "$SCENE" > "$OUT/$p.yaml"
+  echo "tablet-strength: $p MPa -> $OUT/$p.h5 (log $OUT/$p.log)" >&2
+  if "$DEM" run "$OUT/$p.yaml" -o "$OUT/$p.h5" --quiet > "$OUT/$p.log" 2>&1; then
+    runs+=("$OUT/$p.h5")
+  else
+    echo "tablet-strength: $p MPa failed (exit $?; $OUT/$p.log)" >&2
+  fi
+done
+[ ${#runs[@]} -gt 0 ] || { echo "tablet-strength: no run finished" >&2; exit 1; }
+PYTHONPATH=python /usr/bin/python3 tools/plot_tablet_strength.py "$OUT" "${runs[@]}"
