@@ -336,6 +336,56 @@ class TabletTest(unittest.TestCase):
         self.assertIn("plot_tablet: no wall named 'lid'", bad.stderr)
 
 
+class DiametralTest(unittest.TestCase):
+    """The press cycle of TabletTest followed by a diametral compression: two platens (plane walls platen_a, platen_b
+    along -x and +x) close on a hand-made tablet - rings of spheres (r 0.1 mm) whose outermost centres lie 0.9 mm
+    from the axis, in five layers 0.1 mm apart - so D = 2 mm and t = 0.6 mm; the platen force rises to 5 N and drops
+    to 2 N: tensile strength 2 F / (pi D t) = 2.6526 MPa. A second frame, after the platens touched, must not be
+    the one measured."""
+
+    def test_tensile_strength(self):
+        with tempfile.TemporaryDirectory() as d:
+            n = 30
+            walls = [dict(name="die", normal=[0, 0, 1], radius=0.0011), dict(name="lower", normal=[0, 0, 1]),
+                     dict(name="upper", normal=[0, 0, -1]), dict(name="platen_a", normal=[-1, 0, 0]),
+                     dict(name="platen_b", normal=[1, 0, 0])]
+            pos, force = np.zeros((n, 5, 3)), np.zeros((n, 5, 3))
+            pos[:, 2, 2] = 0.001 - 1e-5 * np.minimum(np.arange(n), 5)  # the upper punch presses, rows 1-5
+            force[1:6, 2, 2] = np.arange(1, 6)
+            pos[:, 3, 0], pos[:, 4, 0] = 0.0012, -0.0012
+            close = np.arange(n) >= 15
+            pos[close, 3, 0] -= 1e-5 * np.arange(1, 16)
+            pos[close, 4, 0] += 1e-5 * np.arange(1, 16)
+            f = np.concatenate([np.zeros(16), np.linspace(1, 5, 8), np.linspace(4, 2, 6)])  # touches at row 16
+            force[:, 3, 0], force[:, 4, 0] = f, -f
+            x = []
+            for layer in range(5):
+                for ring, count in ((0.0009, 40), (0.0006, 24), (0.0003, 12), (0.0, 1)):
+                    for k in range(count):
+                        a = 2 * math.pi * k / count
+                        x.append([ring * math.cos(a), ring * math.sin(a), 0.0001 * layer])
+            x = np.array(x)
+            messy = x * 1.5
+            frames = dict(time=[0.010, 0.025], step=[10, 25], position=[x, messy])
+            path = os.path.join(d, "brazil.h5")
+            radius = np.full(len(x), 0.0001)
+            write_run(path, 1e-3 * np.arange(n), walls, pos, force, radius, frames=frames)
+            c = tablet.analyse(path)
+            dia = c["dia"]
+            self.assertAlmostEqual(dia["diameter"], 0.002, places=15)
+            self.assertAlmostEqual(dia["thickness"], 0.0006, places=15)
+            self.assertEqual(dia["peak"], 5.0)
+            self.assertAlmostEqual(dia["tensile"], 2 * 5.0 / (math.pi * 0.002 * 0.0006), places=6)
+            self.assertAlmostEqual(dia["after_peak"], 0.4, places=12)
+            solid = len(x) * 4 / 3 * math.pi * 0.0001**3
+            self.assertAlmostEqual(dia["density"], solid / (math.pi * 0.001**2 * 0.0006), places=12)
+            out = subprocess.run([PY, "-m", "libdem", "report", path, "-o", os.path.join(d, "b.png")],
+                                 cwd=os.path.join(ROOT, "python"), capture_output=True, text=True, check=True).stdout
+            kv = dict(w.split("=", 1) for w in out.split())
+            self.assertAlmostEqual(float(kv["tensile_mpa"]), 2.65258, places=5)
+            self.assertEqual(float(kv["max_platen_n"]), 5.0)
+
+
 SQUEEZE = """name: one sphere squeezed by a piston
 precision: fp64
 backend: reference
