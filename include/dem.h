@@ -515,7 +515,7 @@ typedef struct {
     int has_law;                      /* 1 when the run's contact law keeps a state per contact (a plastic law,
                                          DEM_EFFECT_THORNTON_NING): pair_law and the array wall_law follow */
     void *pair_law;                   /* real[npairs]: that state of each touching pair (Thornton-Ning: the largest
-                                         overlap so far [m]) */
+                                         overlap so far [m], negated once the contact's bond broke) */
     dem_mc_stats mc;                  /* iteration counts so far */
     long npatch;                      /* sphere-patch row slots with flags: the touching contacts, and the spheres
                                          touching a patch whose side is remembered (common/patch_contacts.h), by

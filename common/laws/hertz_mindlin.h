@@ -89,7 +89,8 @@ DEM_INLINE real hm_tangential_stiffness(real gstar, real srd)
  * damping's stiffness S_n = 2 E* srd and the tangential k_t = 8 G* srd: Hertz-Mindlin's, and that of a law with
  * another elastic force and the same Mindlin tangential part (thornton_ning.h) */
 DEM_INLINE law_result hm_contact_core(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
-                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra, real fn_min)
+                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra, real fn_min,
+                                     int *slid)
 {
     law_result r;
     real q = (real)0;                   /* sqrt(sqrt(r* d) m*), shared by both damping terms */
@@ -110,6 +111,7 @@ DEM_INLINE law_result hm_contact_core(unsigned fx, vec3 n, real fel, real srd, r
         fn = fn_min;
 
     /* tangential */
+    *slid = 0;
     if (!(fx & DEM_EFFECT_FRICTION)) {
         r.ft = v3_zero();
         r.hist = v3_zero();
@@ -128,6 +130,7 @@ DEM_INLINE law_result hm_contact_core(unsigned fx, vec3 n, real fel, real srd, r
     if (ft2 > fmax * fmax) {
         ft = v3_scale(ft, fmax / dem_sqrt(ft2));
         r.hist = ft;
+        *slid = 1;
     } else {
         r.hist = ft_el;
     }
@@ -137,16 +140,17 @@ DEM_INLINE law_result hm_contact_core(unsigned fx, vec3 n, real fel, real srd, r
 }
 
 /* fn_extra: MC-stress's added normal force; fn_min: the lowest normal force the contact carries (0: it only pushes;
- * -F_b: a bond's tension, thornton_ning.h) */
+ * -F_b: a bond's tension, thornton_ning.h); *slid: 1 when the tangential force met the Coulomb limit */
 DEM_INLINE law_result hm_contact_fel(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_extra)
 {
-    return hm_contact_core(fx, n, fel, srd, mstar, vrel, pm, dt, hist, fn_extra, (real)0);
+    int slid;
+    return hm_contact_core(fx, n, fel, srd, mstar, vrel, pm, dt, hist, fn_extra, (real)0, &slid);
 }
 DEM_INLINE law_result hm_contact_bond(unsigned fx, vec3 n, real fel, real srd, real mstar, vec3 vrel,
-                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_min)
+                                     DEM_CONST_GLOBAL real *pm, real dt, vec3 hist, real fn_min, int *slid)
 {
-    return hm_contact_core(fx, n, fel, srd, mstar, vrel, pm, dt, hist, (real)0, fn_min);
+    return hm_contact_core(fx, n, fel, srd, mstar, vrel, pm, dt, hist, (real)0, fn_min, slid);
 }
 
 /* srd = sqrt(r* delta), computed by the caller (it may need it for its own terms: one square root, not two). */

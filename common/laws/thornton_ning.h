@@ -33,10 +33,14 @@
  * plastic contact area pi a_p^2 (bonding area x bonding strength, the picture behind Rumpf's tensile strength of an
  * agglomerate). Unloaded past its dent (delta < delta_p) it is a flat circular contact of radius a_p pulled apart:
  *   F = 2 E* a_p (delta - delta_p) (< 0),  while -F <= F_b = sigma_b pi a_p^2,
- * and it breaks for good (this contact carries no tension again) the first time the tension would pass F_b. While the
- * bond holds, the normal force (with its damping) may go down to -F_b and the Coulomb limit is mu (f_n + F_b), also in
- * compression (as JKR-type laws let adhesion raise the load friction resists); the bond breaks in tension only, not
- * in shear, and rolling resistance (rolling.h) acts with the compressive normal force only. The force is continuous at
+ * and it breaks the first time the tension would pass F_b. While the bond holds, the normal force (with its damping)
+ * may go down to -F_b and the Coulomb limit is mu (f_n + F_b), also in compression (as JKR-type laws let adhesion
+ * raise the load friction resists); a bonded contact that slides (its tangential force meets that limit) breaks its
+ * bond too, at the end of the step: the bridge's shear strength is mu (f_n + F_b), as bonded-particle models give a
+ * bond a normal and a shear strength (Potyondy and Cundall 2004). A broken contact carries no tension until it
+ * yields further (loads past its largest overlap on the plastic line), which forms a new bond over the new plastic
+ * area: in a compact under compaction the contacts that slide while the powder rearranges bond again as the
+ * pressure flattens them. Rolling resistance (rolling.h) acts with the compressive normal force only. The force is continuous at
  * delta_p, its slope is not: the Hertz curve's goes to 0 there, the bond's is 2 E* a_p (and the tangential stiffness
  * and the damping, which follow the contact radius, jump from 0 to a_p's). The state is the largest overlap, negated
  * once the bond broke. A pair's bond may hold across a gap (contact_forces.h); a wall's cannot (its geometry ends the
@@ -147,11 +151,19 @@ DEM_INLINE tn_point tn_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, rea
 DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
 {
     real de;
+    int slid;
     tn_point p = tn_at(c.pm, c.rstar, c.delta, c.st, &de);
-    law_result r = hm_contact_bond(fx, c.n, p.f, p.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, p.fmin);
+    law_result r = hm_contact_bond(fx, c.n, p.f, p.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, p.fmin, &slid);
     real dmax = c.st < (real)0 ? -c.st : c.st;
     real st = c.delta > dmax ? c.delta : dmax;
-    r.st = (c.st < (real)0 || p.broke) ? -st : st;
+    r.st = st;
+    if (c.pm[PM_TN_SIGB] > (real)0) { /* the bond's fate (runs without bonds keep st >= 0) */
+        /* a contact that yields further forms a bond (anew where one broke); one that slides or is pulled past F_b
+         * has none after this step */
+        int whole = !(c.st < (real)0) || (c.delta > dmax && c.delta > c.pm[PM_TN_DY] * c.rstar);
+        if (!whole || p.broke || slid)
+            r.st = -st;
+    }
     if (c.delta < (real)0 && !(p.f < (real)0)) /* across a gap, only a whole bond holds (contact_forces.h) */
         r.active = 0;
     return r;

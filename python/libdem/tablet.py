@@ -135,6 +135,17 @@ PLATENS = ("platen_a", "platen_b")
 TRIM = 0.005
 
 
+def tablet_size(x, r, axis):
+    """The diameter and thickness [m] of a tablet of spheres at x [n, 3] with radii r, its axis along the unit vector
+    axis: the extreme surfaces across the axis and along it, leaving out the outermost TRIM of the spheres on each
+    side (a loose grain at the edge is not the tablet a caliper measures)."""
+    h = x @ axis
+    thick = float(np.quantile(h + r, 1 - TRIM) - np.quantile(h - r, TRIM))
+    centre = np.median(x, axis=0)
+    rad = x - centre - np.outer((x - centre) @ axis, axis)
+    return float(2 * np.quantile(np.sqrt(np.sum(rad * rad, axis=1)) + r, 1 - TRIM)), thick
+
+
 def diametral(run, lower):
     """The diametral compression (Brazilian test) of the ejected tablet between two plane walls named platen_a and
     platen_b that close on it across a diameter: the largest platen force F (the mean of the two platens' normal
@@ -158,13 +169,7 @@ def diametral(run, lower):
     if "position" not in run.frame_fields or not frames:
         raise TabletError("no frame with positions before the platens touch the tablet (output.fields: position)")
     x, r = run.frame(frames[-1])["position"], run.radius
-    h = x @ axis
-    # the extreme surfaces, leaving out the outermost TRIM of the spheres on each side: a loose grain at the edge is
-    # not the tablet a caliper measures
-    thick = float(np.quantile(h + r, 1 - TRIM) - np.quantile(h - r, TRIM))
-    centre = np.median(x, axis=0)
-    rad = x - centre - np.outer((x - centre) @ axis, axis)
-    diam = float(2 * np.quantile(np.sqrt(np.sum(rad * rad, axis=1)) + r, 1 - TRIM))
+    diam, thick = tablet_size(x, r, axis)
     k_peak = int(np.argmax(f))
     f_peak = float(f[k_peak])
     solid = float(np.sum(4.0 / 3.0 * math.pi * r**3))
