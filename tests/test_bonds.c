@@ -176,7 +176,7 @@ static void pull(dem_precision prec, int how)
     } else {
         assert_true(broken && tension_steps > 50);
         assert_true(tension_max / fb > 0.98 && tension_max / fb <= 1 + (prec == DEM_FP64 ? 1e-9 : 1e-3));
-        assert_true(tension_after == 0); /* broken for good: no tension on the second pull */
+        assert_true(tension_after == 0); /* broken: no tension on the second pull, which does not pass the first press */
     }
     assert_true(worst / fmax_seen < (prec == DEM_FP64 ? 1e-6 : 5e-3));
     assert_true(worst_e < (prec == DEM_FP64 ? 1e-6 : 1e-2));

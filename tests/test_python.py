@@ -339,9 +339,9 @@ class TabletTest(unittest.TestCase):
 class DiametralTest(unittest.TestCase):
     """The press cycle of TabletTest followed by a diametral compression: two platens (plane walls platen_a, platen_b
     along -x and +x) close on a hand-made tablet - rings of spheres (r 0.1 mm) whose outermost centres lie 0.9 mm
-    from the axis, in five layers 0.1 mm apart - so D = 2 mm and t = 0.6 mm; the platen force rises to 5 N and drops
-    to 2 N: tensile strength 2 F / (pi D t) = 2.6526 MPa. A second frame, after the platens touched, must not be
-    the one measured."""
+    from the axis, in five layers 0.1 mm apart - so D = 2 mm and t = 0.6 mm; the platen force rises to 5 N, falls
+    (the crack) and rises to 7 N (the halves crushed): tensile strength 2 F / (pi D t) = 2.6526 MPa with F = 5 N. A
+    second frame, after the platens touched, must not be the one measured."""
 
     def test_tensile_strength(self):
         with tempfile.TemporaryDirectory() as d:
@@ -356,7 +356,8 @@ class DiametralTest(unittest.TestCase):
             close = np.arange(n) >= 15
             pos[close, 3, 0] -= 1e-5 * np.arange(1, 16)
             pos[close, 4, 0] += 1e-5 * np.arange(1, 16)
-            f = np.concatenate([np.zeros(16), np.linspace(1, 5, 8), np.linspace(4, 2, 6)])  # touches at row 16
+            # touches at row 16, cracks after 5 N (down to 3.5 N: below 80 % of it), then crushes the halves up to 7 N
+            f = np.concatenate([np.zeros(16), np.linspace(1, 5, 5), [3.5, 3.0], np.linspace(4, 7, 4), [6.5, 6.0, 6.0]])
             force[:, 3, 0], force[:, 4, 0] = f, -f
             x = []
             for layer in range(5):
@@ -374,9 +375,11 @@ class DiametralTest(unittest.TestCase):
             dia = c["dia"]
             self.assertAlmostEqual(dia["diameter"], 0.002, places=15)
             self.assertAlmostEqual(dia["thickness"], 0.0006, places=15)
-            self.assertEqual(dia["peak"], 5.0)
+            self.assertEqual(dia["peak"], 5.0)  # the failure load, not the 7 N of the crushed halves
+            self.assertTrue(dia["failed"])
+            self.assertEqual(dia["largest"], 7.0)
             self.assertAlmostEqual(dia["tensile"], 2 * 5.0 / (math.pi * 0.002 * 0.0006), places=6)
-            self.assertAlmostEqual(dia["after_peak"], 0.4, places=12)
+            self.assertAlmostEqual(dia["after_peak"], 1.2, places=12)
             solid = len(x) * 4 / 3 * math.pi * 0.0001**3
             self.assertAlmostEqual(dia["density"], solid / (math.pi * 0.001**2 * 0.0006), places=12)
             out = subprocess.run([PY, "-m", "libdem", "report", path, "-o", os.path.join(d, "b.png")],
@@ -384,6 +387,14 @@ class DiametralTest(unittest.TestCase):
             kv = dict(w.split("=", 1) for w in out.split())
             self.assertAlmostEqual(float(kv["tensile_mpa"]), 2.65258, places=5)
             self.assertEqual(float(kv["max_platen_n"]), 5.0)
+            self.assertEqual(float(kv["tablet_failed"]), 1.0)
+            # a tablet that never cracks (the force only rises): its largest force, marked so
+            force[16:, 3, 0] = np.linspace(1, 7, n - 16)
+            force[16:, 4, 0] = -force[16:, 3, 0]
+            write_run(path, 1e-3 * np.arange(n), walls, pos, force, radius, frames=frames)
+            dia = tablet.analyse(path)["dia"]
+            self.assertFalse(dia["failed"])
+            self.assertEqual(dia["peak"], 7.0)
 
 
 SQUEEZE = """name: one sphere squeezed by a piston

@@ -6,7 +6,8 @@ Usage: plot_tablet_strength.py OUT RUN.h5 [RUN.h5 ...]
 
 Each run is a press cycle followed by a diametral compression (libdem.tablet.analyse: its "dia" part). The table
 lists, per run: the largest upper punch pressure, the relative density in the die there, the tablet's diameter,
-thickness and relative density out of the die, the largest platen force and the tensile strength 2 F / (pi D t).
+thickness and relative density out of the die, the failure load (libdem.tablet.diametral) and the tensile strength
+2 F / (pi D t).
 A Ryshkewitch-Duckworth line, sigma_t = sigma_0 exp(-b (1 - D)), is fitted to the runs (least squares on ln sigma_t)
 and drawn beside the published MCC tablet that could be verified here (PUBLISHED below).
 """
@@ -38,7 +39,7 @@ def main(argv):
             continue
         rows.append(dict(path=os.path.basename(p), p_max=c["p_max"] * 1e-6, d_die=c["dens"][c["k_max"]],
                          d_out=d["density"], diam=d["diameter"], thick=d["thickness"], peak=d["peak"],
-                         tensile=d["tensile"] * 1e-6, after=d["after_peak"]))
+                         tensile=d["tensile"] * 1e-6, failed=d["failed"]))
     if not rows:
         sys.exit("plot_tablet_strength: no run to draw")
     rows.sort(key=lambda r: r["p_max"])
@@ -49,13 +50,12 @@ def main(argv):
         slope, icpt = np.polyfit(1 - dens, np.log(sig), 1)
         b, s0 = -slope, math.exp(icpt)
     with open(os.path.join(out, "strength.md"), "w") as f:
-        f.write("| run | pressure [MPa] | density in die at it | D [mm] | t [mm] | density out of die | largest platen "
-                "force [N] | tensile strength [MPa] | platen force at the end / largest |\n|---|---|---|---|---|---|"
-                "---|---|---|\n")
+        f.write("| run | pressure [MPa] | density in die at it | D [mm] | t [mm] | density out of die | failure load "
+                "[N] | tensile strength [MPa] | cracked |\n|---|---|---|---|---|---|---|---|---|\n")
         for r in rows:
             f.write(f"| {r['path']} | {r['p_max']:.1f} | {r['d_die']:.3f} | {1e3 * r['diam']:.3f} | "
                     f"{1e3 * r['thick']:.3f} | {r['d_out']:.3f} | {r['peak']:.3g} | {r['tensile']:.3g} | "
-                    f"{r['after']:.2f} |\n")
+                    f"{'yes' if r['failed'] else 'no (largest force)'} |\n")
         f.write(f"\nRyshkewitch-Duckworth fit to these runs: sigma_0 = {s0:.3g} MPa, b = {b:.3g} "
                 "(sigma_t = sigma_0 exp(-b (1 - D)), D out of die)\n")
     import matplotlib

@@ -25,8 +25,9 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
 Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m3, max_upper_mpa, density_at_max,
 yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejection_friction_n, max_ejection_punch_n;
 and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet):
-tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n, tensile_mpa (2 F / (pi D t)),
-platen_force_after_peak (the platen force at the end over its peak: below 1 once the tablet broke).
+tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n (the failure load F: the platen
+force before it first falls by 20 %, from at least half its largest), tensile_mpa (2 F / (pi D t)), tablet_failed (1: the force fell so, 0: it never
+did and F is the largest force), platen_force_after_peak (the platen force at the end over F).
 Renamed from the report's earlier keys: max_upper_pa -> max_upper_mpa, yield_pa -> yield_mpa, radial_pa ->
 radial_mpa (the values in MPa, no longer Pa); max_ejection_n (the lower punch's largest force, inertia included) ->
 max_ejection_punch_n, beside the new max_ejection_friction_n. transmission keeps its name; it is now taken over the
@@ -133,6 +134,7 @@ def analyse(run, die=None, upper="upper", lower="lower"):
 
 PLATENS = ("platen_a", "platen_b")
 TRIM = 0.005
+DROP = 0.2
 
 
 def tablet_size(x, r, axis):
@@ -148,8 +150,10 @@ def tablet_size(x, r, axis):
 
 def diametral(run, lower):
     """The diametral compression (Brazilian test) of the ejected tablet between two plane walls named platen_a and
-    platen_b that close on it across a diameter: the largest platen force F (the mean of the two platens' normal
-    forces, which agree in a quasi-static test), the tablet's diameter D and thickness t, measured on the last frame
+    platen_b that close on it across a diameter: the failure load F (the platen force, the mean of the two platens'
+    normal forces, which agree in a quasi-static test, at its largest before it first falls by DROP = 20 % from a
+    level of at least half the test's largest force: the crack; the largest force of a run in which it never falls
+    so), the tablet's diameter D and thickness t, measured on the last frame
     before the platens touch it (the extreme spheres' surfaces across the axis of the lower punch and along it, the
     outermost 0.5 % of the spheres on each side left out), and
     the tensile strength 2 F / (pi D t) (Fell and Newton 1970); the out-of-die relative density is the spheres'
@@ -170,14 +174,19 @@ def diametral(run, lower):
         raise TabletError("no frame with positions before the platens touch the tablet (output.fields: position)")
     x, r = run.frame(frames[-1])["position"], run.radius
     diam, thick = tablet_size(x, r, axis)
-    k_peak = int(np.argmax(f))
+    # the failure load: the largest force before the first drop below (1 - DROP) of the largest so far, once that
+    # is at least half the largest force of the test (the crack; the first contacts' flicker is not, and what the
+    # platens crush afterwards is not the tablet's strength); without such a drop, the largest force
+    runmax = np.maximum.accumulate(np.where(np.arange(len(f)) >= k0, f, 0.0))
+    drop = np.nonzero((np.arange(len(f)) > k0) & (f < (1 - DROP) * runmax) & (runmax >= 0.5 * np.max(f)))[0]
+    failed = len(drop) > 0
+    k_peak = int(np.argmax(f[: drop[0]])) if failed else int(np.argmax(f))
     f_peak = float(f[k_peak])
     solid = float(np.sum(4.0 / 3.0 * math.pi * r**3))
-    return dict(force=f, travel=travel - travel[k0], k0=k0, k_peak=k_peak, peak=f_peak, diameter=diam,
-                thickness=thick, frame_time=float(run.frames.time[frames[-1]]),
-                density=solid / (math.pi * diam * diam / 4 * thick),
-                tensile=2 * f_peak / (math.pi * diam * thick),
-                after_peak=float(f[-1] / f_peak))
+    return dict(force=f, travel=travel - travel[k0], k0=k0, k_peak=k_peak, peak=f_peak, failed=failed,
+                largest=float(np.max(f)), diameter=diam, thickness=thick,
+                frame_time=float(run.frames.time[frames[-1]]), density=solid / (math.pi * diam * diam / 4 * thick),
+                tensile=2 * f_peak / (math.pi * diam * thick), after_peak=float(f[-1] / f_peak))
 
 
 def numbers(c):
@@ -190,7 +199,8 @@ def numbers(c):
             ("max_ejection_punch_n", c["max_ejection_punch"])] + (
             [("tablet_diameter_m", c["dia"]["diameter"]), ("tablet_thickness_m", c["dia"]["thickness"]),
              ("tablet_density", c["dia"]["density"]), ("max_platen_n", c["dia"]["peak"]),
-             ("tensile_mpa", MPA * c["dia"]["tensile"]), ("platen_force_after_peak", c["dia"]["after_peak"])]
+             ("tensile_mpa", MPA * c["dia"]["tensile"]), ("tablet_failed", float(c["dia"]["failed"])),
+             ("platen_force_after_peak", c["dia"]["after_peak"])]
             if c.get("dia") else [])
 
 
@@ -242,7 +252,8 @@ def plot(c, out, title):
         k0 = dia["k0"]
         ax[0, 2].plot(1e6 * dia["travel"][k0:], dia["force"][k0:])
         ax[0, 2].plot([1e6 * dia["travel"][dia["k_peak"]]], [dia["peak"]], "o",
-                      label=f"peak {dia['peak']:.3g} N: tensile strength {MPA * dia['tensile']:.3g} MPa")
+                      label=f"{'failure' if dia['failed'] else 'largest (no failure)'} {dia['peak']:.3g} N: tensile "
+                            f"strength {MPA * dia['tensile']:.3g} MPa")
         ax[0, 2].set(xlabel="platens' closing [um]", ylabel="platen force [N]",
                      title=f"diametral compression: D {1e3 * dia['diameter']:.3g} mm, t {1e3 * dia['thickness']:.3g} "
                            f"mm, density {dia['density']:.3f}")
