@@ -247,6 +247,9 @@ def plot(c, out, title):
         ax[1, 1].plot(1e3 * eject_travel, eject_force - eject_friction, lw=0.8, ls="--",
                       label="punch - friction: the compact's inertia and weight")
         ax[1, 1].legend(fontsize=8)
+    else:
+        ax[1, 1].text(0.5, 0.5, "no ejection by the lower punch in this run", ha="center", va="center",
+                      transform=ax[1, 1].transAxes)
     ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="force [N]", title="ejection")
     if dia:
         k0 = dia["k0"]
