@@ -152,25 +152,25 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
                                   mp->materials[0], mp->materials[1], j);
             }
         }
+        /* each value the scene gives replaces the rule's (NAN: keep it) */
         dem_material_pair dp = {NAN, NAN, NAN, NAN};
-        snprintf(p, sizeof p, "material_pairs[%u].friction", k);
-        int hf = scene_has(sc->loc, p);
-        if (hf)
-            dp.friction = mp->friction;
-        snprintf(p, sizeof p, "material_pairs[%u].restitution", k);
-        int he = scene_has(sc->loc, p);
-        if (he)
-            dp.restitution = mp->restitution;
-        snprintf(p, sizeof p, "material_pairs[%u].rolling_friction", k);
-        int hr = scene_has(sc->loc, p);
-        if (hr)
-            dp.rolling_friction = mp->rolling_friction;
-        snprintf(p, sizeof p, "material_pairs[%u].bond_strength", k);
-        int hb = scene_has(sc->loc, p);
-        if (hb)
-            dp.bond_strength = mp->bond_strength;
+        const struct {
+            const char *key;
+            double given, *to;
+        } keys[] = {{"friction", mp->friction, &dp.friction},
+                    {"restitution", mp->restitution, &dp.restitution},
+                    {"rolling_friction", mp->rolling_friction, &dp.rolling_friction},
+                    {"bond_strength", mp->bond_strength, &dp.bond_strength}};
+        int any = 0;
+        for (unsigned q = 0; q < sizeof keys / sizeof keys[0]; q++) {
+            snprintf(p, sizeof p, "material_pairs[%u].%s", k, keys[q].key);
+            if (scene_has(sc->loc, p)) {
+                *keys[q].to = keys[q].given;
+                any = 1;
+            }
+        }
         snprintf(p, sizeof p, "material_pairs[%u]", k);
-        if (!hf && !he && !hr && !hb)
+        if (!any)
             return scene_fail(sc, err, errlen, p,
                               "give the pair's friction, restitution, rolling_friction or bond_strength");
         if (dem_set_material_pair(s, id[0], id[1], &dp))

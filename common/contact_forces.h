@@ -56,12 +56,11 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
     pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pairmat);
-    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     /* a bond (thornton_ning.h) whose dent is shallower than its stretch holds across a gap: a pair that touched and
      * whose bond did not break (state > 0) goes to the law, which ends it unless a whole bond of a yielded contact
-     * pulls */
-    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touching && pm[PM_TN_SIGB] > (real)0 &&
-        law_st[hp] > (real)0)
+     * pulls (the pair-table read only for such a pair: not on the path of every pair) */
+    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touching && law_st[hp] > (real)0 &&
+        pairmat[PM_STRIDE * (mat[a] * nmat + mat[b]) + PM_TN_SIGB] > (real)0)
         g = pair_geometry_reach(v3_load(x, a), ra, v3_load(x, b), rb, (real)2);
     pc.active = g.active;
     pc.delta = (real)0;
@@ -79,7 +78,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     c.site = LAW_AT_PAIR;
     c.a = a, c.b = b, c.ra = ra, c.rb = rb;
     c.n = n, c.delta = delta, c.rstar = g.rstar, c.dt = dt;
-    c.pm = c.pmi = pm;
+    c.pm = c.pmi = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     c.mstar = law_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */

@@ -18,9 +18,9 @@
  * the law is bitwise the same on every device (docs/design.md "Laws with memory"). Both branches meet at delta_m
  * (F = F_m) and at delta_y (a_p = the Hertz radius sqrt(r* delta_y)); tests/test_thornton_ning.c checks them against
  * these closed forms, typed in there.
- * The state kept per contact (law.h) is the largest overlap delta_m (negated once a bond broke, below); a contact that
- * ends (the spheres part) forgets it. Between delta_p and 0 the spheres still overlap geometrically but carry no
- * force (the dent is deeper than the overlap) - or a bond's tension (below).
+ * The state kept per contact (law.h) is the largest overlap delta_m (negated while the contact has no bond, below); a
+ * contact that ends (the spheres part) forgets it. Between delta_p and 0 the spheres still overlap geometrically but
+ * carry no force (the dent is deeper than the overlap) - or a bond's tension (below).
  * Contact radius a (the elastic branches' sqrt(r* delta), on the plastic line a_p, unloading sqrt(r_p (delta -
  * delta_p))): the tangential stiffness k_t = 8 G* a and the damping's stiffness S_n = 2 E* a, as Hertz-Mindlin's with
  * a = sqrt(r* delta) (hm_contact_fel). The damping calibrated from the restitution then acts on top of the plastic
@@ -33,19 +33,20 @@
  * plastic contact area pi a_p^2 (bonding area x bonding strength, the picture behind Rumpf's tensile strength of an
  * agglomerate). Unloaded past its dent (delta < delta_p) it is a flat circular contact of radius a_p pulled apart:
  *   F = 2 E* a_p (delta - delta_p) (< 0),  while -F <= F_b = sigma_b pi a_p^2,
- * and it breaks the first time the tension would pass F_b. While the bond holds, the normal force (with its damping)
- * may go down to -F_b and the Coulomb limit is mu (f_n + F_b), also in compression (as JKR-type laws let adhesion
- * raise the load friction resists); a bonded contact that slides (its tangential force meets that limit) breaks its
- * bond too, at the end of the step: the bridge's shear strength is mu (f_n + F_b), as bonded-particle models give a
- * bond a normal and a shear strength (Potyondy and Cundall 2004). A broken contact carries no tension until it
- * yields further (loads past its largest overlap on the plastic line), which forms a new bond over the new plastic
- * area: in a compact under compaction the contacts that slide while the powder rearranges bond again as the
- * pressure flattens them. Rolling resistance (rolling.h) acts with the compressive normal force only. The force is continuous at
- * delta_p, its slope is not: the Hertz curve's goes to 0 there, the bond's is 2 E* a_p (and the tangential stiffness
- * and the damping, which follow the contact radius, jump from 0 to a_p's). The state is the largest overlap, negated
- * once the bond broke. A pair's bond may hold across a gap (contact_forces.h); a wall's cannot (its geometry ends the
- * contact at zero overlap, so a wall given a bond strength lets go there, unbroken, where the dent is shallower than
- * the bond's stretch F_b / (2 E* a_p)): bonds are meant for powder on powder, tools' steel bonds to nothing.
+ * and it breaks the first time the tension would pass F_b. While the bond holds, the normal force (with its
+ * damping) may go down to -F_b and the Coulomb limit is mu (f_n + F_b), also in compression (as JKR-type laws let
+ * adhesion raise the load friction resists); a bonded contact that slides (its tangential force meets that limit)
+ * breaks its bond too, at the end of the step: the bridge's shear strength is mu (f_n + F_b), as bonded-particle
+ * models give a bond a normal and a shear strength (Potyondy and Cundall 2004). A broken contact carries no tension
+ * until it yields further (loads past its largest overlap on the plastic line), which forms a new bond over the new
+ * plastic area: in a compact under compaction the contacts that slide while the powder rearranges bond again as the
+ * pressure flattens them. Rolling resistance (rolling.h) acts with the compressive normal force only. The force is
+ * continuous at delta_p, its slope is not: the Hertz curve's goes to 0 there, the bond's is 2 E* a_p (and the
+ * tangential stiffness and the damping, which follow the contact radius, jump from 0 to a_p's). The state is the
+ * largest overlap, negated while the contact has no bond. A pair's bond may hold across a gap (contact_forces.h); a
+ * wall's cannot (its geometry ends the contact at zero overlap, so a wall given a bond strength lets go there,
+ * unbroken, where the dent is shallower than the bond's stretch F_b / (2 E* a_p)): bonds are meant for powder on
+ * powder, tools' steel bonds to nothing.
  * Not here: Thornton-Ning's JKR adhesion of surfaces that have not yielded (surface energy; its paper could not be
  * read here); the bond is this law's adhesion, the one a compact's strength needs.
  */
@@ -134,12 +135,18 @@ DEM_INLINE tn_point tn_unloading(DEM_CONST_GLOBAL real *pm, real rstar, real del
     return p;
 }
 
-/* The point at delta given the stored state st: the largest overlap, negated once the contact's bond broke (0: a new
+/* The largest overlap in a stored state st (negated while the contact has no bond) */
+DEM_INLINE real tn_dmax(real st)
+{
+    return st < (real)0 ? -st : st;
+}
+
+/* The point at delta given the stored state st: the largest overlap, negated while the contact has no bond (0: a new
  * contact) */
 DEM_INLINE tn_point tn_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, real *de)
 {
     int bonded = !(st < (real)0);
-    real dmax = bonded ? st : -st;
+    real dmax = tn_dmax(st);
     if (delta >= dmax) {
         *de = delta; /* not used on loading */
         return tn_loading(pm, rstar, delta, bonded);
@@ -154,7 +161,7 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
     int slid;
     tn_point p = tn_at(c.pm, c.rstar, c.delta, c.st, &de);
     law_result r = hm_contact_bond(fx, c.n, p.f, p.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, p.fmin, &slid);
-    real dmax = c.st < (real)0 ? -c.st : c.st;
+    real dmax = tn_dmax(c.st);
     real st = c.delta > dmax ? c.delta : dmax;
     r.st = st;
     if (c.pm[PM_TN_SIGB] > (real)0) { /* the bond's fate (runs without bonds keep st >= 0) */
@@ -179,9 +186,8 @@ DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
 DEM_INLINE real thornton_ning_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     real de;
-    int bonded = !(st < (real)0);
-    real dmax = bonded ? st : -st;
-    tn_point p = tn_unloading(pm, rstar, delta, delta > dmax ? delta : dmax, bonded, &de);
+    real dmax = tn_dmax(st);
+    tn_point p = tn_unloading(pm, rstar, delta, delta > dmax ? delta : dmax, !(st < (real)0), &de);
     if (p.f < (real)0) /* a bond's tension: a linear spring's */
         return (real)0.5 * p.f * de;
     return p.f > (real)0 ? hertz_energy_of_force(p.f, de) : (real)0;
