@@ -203,6 +203,24 @@ static void read_state(const char *path, const char *name, void *buf, size_t cou
     H5Fclose(f);
 }
 
+/* state/name of checkpoints a and b (count elements of rs bytes, read as rt): the same bits in both, and, where
+ * nonzero is asked, not all zero (the restart carried something) */
+static void same_in_checkpoints(const char *a, const char *b, const char *name, size_t count, hid_t rt, int rs,
+                                int nonzero)
+{
+    static unsigned char ha[4096 * 24], hb[4096 * 24];
+    assert_true(count * (size_t)rs <= sizeof ha);
+    read_state(a, name, ha, count, rt);
+    read_state(b, name, hb, count, rt);
+    if (memcmp(ha, hb, count * (size_t)rs))
+        fail_msg("state/%s differs between the straight and the restarted run", name);
+    int any = 0;
+    for (size_t k = 0; k < count * (size_t)rs; k++)
+        any |= ha[k];
+    if (nonzero)
+        assert_true(any);
+}
+
 /* A whole dataset of an output file (malloc'd), and its element count in *count if asked */
 static void *read_all(const char *h5, const char *name, hid_t type, long *count)
 {
@@ -257,15 +275,13 @@ static void restart_case(const char *sc, const char *precision, int mc)
     long np = n_pairs(a);
     assert_true(np > 10); /* the restart really carried contacts */
     assert_int_equal(np, n_pairs(b));
-    unsigned char ha[4096 * 24], hb[4096 * 24];
     int ia[4096], ib[4096];
     assert_true(np < 4096);
-    read_state(a, "pair_hist", ha, 3 * (size_t)np, rt);
-    read_state(b, "pair_hist", hb, 3 * (size_t)np, rt);
     read_state(a, "pair_i", ia, (size_t)np, H5T_NATIVE_INT);
     read_state(b, "pair_i", ib, (size_t)np, H5T_NATIVE_INT);
     assert_memory_equal(ia, ib, sizeof(int) * np);
-    assert_memory_equal(ha, hb, 3 * (size_t)np * rs);
+    /* the history, and not trivially zero: friction was at work */
+    same_in_checkpoints(a, b, "pair_hist", 3 * (size_t)np, rt, rs, 1);
     unsigned char wa[7 * 3 * 8], wb[7 * 3 * 8];
     read_state(a, "wall_force", wa, 21, rt);
     read_state(b, "wall_force", wb, 21, rt);
@@ -273,33 +289,13 @@ static void restart_case(const char *sc, const char *precision, int mc)
     read_state(a, "wall_pos", wa, 21, H5T_NATIVE_DOUBLE); /* the walls went the same way (their stages) */
     read_state(b, "wall_pos", wb, 21, H5T_NATIVE_DOUBLE);
     assert_memory_equal(wa, wb, 21 * sizeof(double));
-    /* and the history is not trivially zero: friction was at work */
-    int nonzero = 0;
-    for (long k = 0; k < 3 * np * rs; k++)
-        nonzero |= ha[k];
-    assert_true(nonzero);
     if (mc == 2) { /* a law with memory (Thornton-Ning): each contact's largest overlap, and the walls' */
-        read_state(a, "pair_law", ha, (size_t)np, rt);
-        read_state(b, "pair_law", hb, (size_t)np, rt);
-        assert_memory_equal(ha, hb, (size_t)np * rs);
-        nonzero = 0;
-        for (long k = 0; k < np * rs; k++)
-            nonzero |= ha[k];
-        assert_true(nonzero);
-        read_state(a, "wall_law", ha, 7 * (size_t)n, rt); /* every particle's slot of every wall */
-        read_state(b, "wall_law", hb, 7 * (size_t)n, rt);
-        assert_memory_equal(ha, hb, 7 * (size_t)n * rs);
+        same_in_checkpoints(a, b, "pair_law", (size_t)np, rt, rs, 1);
+        same_in_checkpoints(a, b, "wall_law", 7 * (size_t)n, rt, rs, 0); /* every particle's slot of every wall */
         return;
     }
-    if (mc) { /* MC-strain: the stored contact forces the next step starts from */
-        read_state(a, "pair_mc_fn", ha, (size_t)np, rt);
-        read_state(b, "pair_mc_fn", hb, (size_t)np, rt);
-        assert_memory_equal(ha, hb, (size_t)np * rs);
-        nonzero = 0;
-        for (long k = 0; k < np * rs; k++)
-            nonzero |= ha[k];
-        assert_true(nonzero);
-    }
+    if (mc) /* MC-strain: the stored contact forces the next step starts from */
+        same_in_checkpoints(a, b, "pair_mc_fn", (size_t)np, rt, rs, 1);
 }
 
 static void test_restart_bitwise(void **st)
