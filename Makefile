@@ -237,7 +237,7 @@ tablet-models: $(BUILD)/dem
 	bash tools/tablet_models.sh
 
 # Tablet strength: scenes/tablet_strength.yaml pressed to 25, 50 and 100 MPa, ejected and broken across a diameter
-# (the Brazilian test); out/tablet_strength/strength.png and .md (tools/tablet_strength.sh; about 20 minutes on 2
+# (the Brazilian test); out/tablet_strength/strength.png and .md (tools/tablet_strength.sh; about 16 minutes on 2
 # cores; docs/tableting.md "Bonds and tensile strength")
 tablet-strength: $(BUILD)/dem
 	bash tools/tablet_strength.sh

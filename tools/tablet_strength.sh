@@ -8,7 +8,7 @@
 #   STRENGTH_OUT        where the runs go (default out/tablet_strength): P.h5, P.log for each pressure P
 #   STRENGTH_SCENE      the scene (default scenes/tablet_strength.yaml; its upper punch's until_stress is replaced)
 #   DEM                 the dem binary (default build/dem)
-# About 6 minutes per pressure on 2 cores. A run that fails is reported and left out of the figure.
+# About 5-6 minutes per pressure on 2 cores. A run that fails is reported and left out of the figure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SCENE=${STRENGTH_SCENE:-scenes/tablet_strength.yaml}
