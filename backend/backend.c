@@ -57,6 +57,7 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->nwalls = s->nwalls;
     c->ncells = c->cell_cap = s->cells[0] * s->cells[1] * s->cells[2];
     c->nblocks_red = (s->n + DEM_REDUCE_BLOCK - 1) / DEM_REDUCE_BLOCK;
+    c->nmid_red = (c->nblocks_red + DEM_REDUCE_FAN - 1) / DEM_REDUCE_FAN;
     size_t row_bytes = (size_t)s->n * SE_STRIDE * (size_t)s->real_size; /* a sampled step's terms (series.h) */
     c->series_rows = row_bytes ? (int)(DEM_SERIES_RING_BYTES / row_bytes) : DEM_SERIES_RING;
     c->series_rows = c->series_rows < 1 ? 1 : c->series_rows > DEM_SERIES_RING ? DEM_SERIES_RING : c->series_rows;
@@ -68,7 +69,7 @@ void dem_core_init(dem_core *c, const dem_setup *s)
     c->maxp = c->maxp_old = s->maxp, c->maxv = s->maxv;
     int *si = c->si;
     si[SI_N] = s->n, si[SI_NMAT] = s->nmat, si[SI_NWALLS] = s->nwalls, si[SI_NCELLS] = c->ncells;
-    si[SI_NBLOCKS_RED] = c->nblocks_red;
+    si[SI_NBLOCKS_RED] = c->nblocks_red, si[SI_NMID_RED] = c->nmid_red;
     si[SI_NSPRINGS] = c->nsprings;
     si[SI_NTRIANGLES] = c->ntriangles;
     si[SI_NHINGES] = c->nhinges;
@@ -93,12 +94,12 @@ size_t dem_elem_size(int elem, int rs)
 /* the size rules' names, bound to a core */
 #define SIZE_NAMES(c, maxn_)                                                                                         \
     size_t N = (size_t)(c)->n, NMAT = (size_t)(c)->nmat, NW = (size_t)(c)->nwalls, NC = (size_t)(c)->cell_cap,         \
-           NBS = ((size_t)(c)->cell_cap + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, NBR = (size_t)(c)->nblocks_red, PAIRS = (c)->pair_cap,                   \
+           NBS = ((size_t)(c)->cell_cap + DEM_SCAN_BLOCK - 1) / DEM_SCAN_BLOCK, NBR = (size_t)(c)->nblocks_red, NMR = (size_t)(c)->nmid_red, PAIRS = (c)->pair_cap,                   \
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
            NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
            MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows,                  \
            MAXC = (size_t)(c)->maxn[(c)->cur];                                                                       \
-    (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
+    (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)NMR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
         (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR, (void)MAXC
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }

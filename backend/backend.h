@@ -97,7 +97,7 @@ typedef struct {
 typedef struct {
     unsigned fx;
     int rs;
-    int n, nmat, nwalls, ncells, nblocks_red, nsprings, ntriangles, nhinges, nriders;
+    int n, nmat, nwalls, ncells, nblocks_red, nmid_red, nsprings, ntriangles, nhinges, nriders;
     int cell_cap;    /* cells the cell buffers hold (ncells: in use; host/steps/binning.c) */
     int series_rows; /* rows of the series ring (common/series.h) */
     int maxn[2], cur;  /* slots of each row set (its rows packed together); the set in use (1 - cur is built into) */

@@ -5,7 +5,8 @@
  *
  * Size rules are expressions of the dimensions N (particles), NMAT (materials), NW (walls), NC (cells held: those of
  * the particles' bounding box at a build, binning.h, with room to spare; host/steps/binning.c), NBS (scan
- * blocks of the cells), NBR (reduction blocks of the particles), MAXN (slots of the row set the buffer belongs to:
+ * blocks of the cells), NBR (reduction blocks of the particles), NMR (groups of
+ * DEM_REDUCE_FAN of those blocks: the middle level of the wall-force tree), MAXN (slots of the row set the buffer belongs to:
  * its rows are packed one after the other, row i from start[i], so MAXN is what all its rows hold together, with
  * room to spare: host/core/rebuild.c row_capacity), MAXC (slots of the current row set: for a buffer laid out like the rows
  * but written before it is read after each rebuild, so held once and not in both sets; host/steps/neighbor.c grows it with
@@ -78,6 +79,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE, WALLS, P(1), CK(wall_mask, 1, NULL))                        \
     ENTRY(WALL_LAW, REAL, N * NW, DEM_LAW_STATE_BITS, -1, NONE, WALLS, P(NW), CK(wall_law, 1, "m"))                     \
     ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS, STAY, NO)                                            \
+    ENTRY(PARTIAL_MID, REAL, WP_STRIDE * NMR * NW, 0, -1, NONE, WALLS, STAY, NO)                                        \
     ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE, WALLS, STAY, CK(wall_force, 3, "N"))                 \
     ENTRY(WALL_NFORCE, REAL, NW, 0, DEM_FIELD_WALL_NORMAL_FORCE, NONE, WALLS, STAY, CK_OPT(wall_normal_force, 1, "N"))  \
     ENTRY(SERIES_RING, REAL, SE_STRIDE * N * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT, G(SE_STRIDE), NO)                    \
@@ -156,7 +158,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
 /* ENTRY(ID) - scalar kernel arguments (the cells: NCELLS in use, NCX..NCZ in use per axis from the domain's cell
  * CX0..CZ0 on, DCX..DCZ the domain's per axis: binning.h) */
 #define DEM_SCALARS_INT(ENTRY)                                                                                       \
-    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(DCX)     \
+    ENTRY(N) ENTRY(NMAT) ENTRY(NWALLS) ENTRY(NCELLS) ENTRY(NBLOCKS_RED) ENTRY(NMID_RED) ENTRY(NCX) ENTRY(NCY) ENTRY(NCZ) ENTRY(DCX)     \
     ENTRY(DCY) ENTRY(DCZ) ENTRY(CX0) ENTRY(CY0) ENTRY(CZ0) ENTRY(NSPRINGS)                                              \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                                \
     ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                                                                 \

@@ -33,7 +33,7 @@
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
     K(bin_bounds) K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
-    K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_final)                        \
+    K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather)
@@ -138,8 +138,12 @@
     A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)                      \
     A(BIN, int, order, ORDER) A(BIN, real, wall_law, WALL_LAW)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
+#define DEM_ARGS_wall_reduce_mid(F, A)                                                                               \
+    F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(I, int, nmid, NMID_RED) A(BIN, real, partial, PARTIAL)  \
+    A(BOUT, real, mid, PARTIAL_MID)
+#define DEM_ITEMS_wall_reduce_mid (nmid * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
-    F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, partial, PARTIAL)                         \
+    F(I, int, nwalls, NWALLS) A(I, int, nmid, NMID_RED) A(BIN, real, mid, PARTIAL_MID)                               \
     A(BOUT, real, wall_force, WALL_FORCE) A(BOUT, real, wall_nforce, WALL_NFORCE)
 #define DEM_ITEMS_wall_reduce_final nwalls
 

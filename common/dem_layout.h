@@ -127,10 +127,14 @@ enum { ST_XX = 0, ST_YY, ST_ZZ, ST_XY, ST_XZ, ST_YZ, ST_STRIDE };
  * force components (each particle's force from the wall along its contact normal: for a cylinder the radial force on
  * the die wall, for a plane its normal force) [N]. */
 enum { WP_FX = 0, WP_FY, WP_FZ, WP_FN, WP_STRIDE };
-/* Fixed block length of the canonical wall-force reduction: partial sums over blocks of this many
- * particles, in ascending id, then the partials in ascending block order. It is a constant, not the
- * work-group size, so the sum has the same bits on every device and launch configuration. */
+/* The canonical wall-force reduction is a fixed tree of three levels: partial sums over blocks of DEM_REDUCE_BLOCK
+ * particles in ascending id (wall_reduce_block), sums of groups of DEM_REDUCE_FAN consecutive blocks in ascending
+ * block order (wall_reduce_mid), and the groups' sums in ascending order (wall_reduce_final). Its shape is fixed by
+ * these constants and n, not by the work-group size, so the sum has the same bits on every device and launch
+ * configuration; no level's item adds more than max(256, 64, n / 16384) terms (61 at 1e6), where one item per wall
+ * adding every block was 73 % of a 1e6 press's step on a GPU (docs/design.md "The walls' sum as a tree"). */
 #define DEM_REDUCE_BLOCK 256
+#define DEM_REDUCE_FAN 64
 /* A particle's wall mask holds one bit per wall: the most walls a kernel meets (dem.h's DEM_MAX_WALLS, checked
  * against it in host/core/sim_setup.c) */
 #define DEM_WALL_MASK_BITS 32

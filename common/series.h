@@ -5,7 +5,7 @@
  * (the touching pairs it owns and its walls; with DEM_KEEP_PAIR_ENERGY each pair's energy comes from contact_pairs,
  * which has the pair's elastic force at hand). So a sampled step launches no kernel more than another step (with the
  * wall forces kept; without, the walls' block sums) and needs no synchronisation; the host reads the ring when it is full or the steps end and adds each row's terms in ascending
- * particle order in double, and finishes the walls' sums with wall_reduce_final's own loop (host/physics/energy.c): the same
+ * particle order in double, and finishes the walls' sums with the same tree (wall_reduce_mid, wall_reduce_final) (host/physics/energy.c): the same
  * bits on every backend.
  *
  * A pair's contact is counted by its lower id when the overlap the contact law computed (PR_DELTA) is positive, a wall
@@ -47,7 +47,7 @@ DEM_INLINE void series_motion_terms(unsigned fx, vec3 xi, vec3 vi, vec3 wi, real
 /* Block b's partial sums for each wall (wall_part), into the row: from the forces contact_forces kept
  * (DEM_KEEP_WALL_FORCES, the same function as wall_reduce_block's), or, without them, the partial sums
  * wall_reduce_block computed in this step (the driver has them computed in a sampled step). The host finishes them
- * with wall_reduce_final's loop. */
+ * with the tree's upper levels (wall_reduce_mid, wall_reduce_final). */
 DEM_INLINE void series_wall_blocks(unsigned fx, int b, int n, int nwalls, int nblocks, int row,
                                    DEM_CONST_GLOBAL unsigned *wall_mask, DEM_CONST_GLOBAL real *wall_pf,
                                    DEM_CONST_GLOBAL real *x, DEM_CONST_GLOBAL real *radius,

@@ -208,14 +208,32 @@ DEM_ITEM(wall_reduce_block)
     wall_part_store(partial, k * nblocks + b, p);
 }
 
-/* Wall k's sums over the blocks in ascending order: its force and its normal force. */
+/* The middle level of the tree (dem_layout.h): group g of wall k adds its blocks g*FAN .. (g+1)*FAN-1 in ascending
+ * order. */
+DEM_ITEM(wall_reduce_mid)
+{
+    int g = i % nmid, k = i / nmid;
+    int end = (g + 1) * DEM_REDUCE_FAN < nblocks ? (g + 1) * DEM_REDUCE_FAN : nblocks;
+    vec3 s = v3_zero();
+    real sn = (real)0;
+    for (int b = g * DEM_REDUCE_FAN; b < end; b++) {
+        DEM_CONST_GLOBAL real *q = partial + (k * nblocks + b) * WP_STRIDE;
+        s = v3_add(s, v3(q[WP_FX], q[WP_FY], q[WP_FZ]));
+        sn += q[WP_FN];
+    }
+    wall_part p;
+    p.f = s, p.fn = sn;
+    wall_part_store(mid, k * nmid + g, p);
+}
+
+/* Wall k's sums over its groups in ascending order: its force and its normal force. */
 DEM_ITEM(wall_reduce_final)
 {
     int k = i;
     vec3 s = v3_zero();
     real sn = (real)0;
-    for (int b = 0; b < nblocks; b++) {
-        DEM_CONST_GLOBAL real *q = partial + (k * nblocks + b) * WP_STRIDE;
+    for (int g = 0; g < nmid; g++) {
+        DEM_CONST_GLOBAL real *q = mid + (k * nmid + g) * WP_STRIDE;
         s = v3_add(s, v3(q[WP_FX], q[WP_FY], q[WP_FZ]));
         sn += q[WP_FN];
     }

@@ -7,7 +7,7 @@
 #include "laws/laws.h"
 #include "sim.h"
 #include "dem_layout.h"
-#include "ref_kernels.h" /* the reference's patch overlaps and final wall sum */
+#include "ref_kernels.h" /* the reference's patch overlaps and the walls' tree sum */
 #include "sorted_row.h"  /* row_pair_of: a pair's number from its row slot */
 #include <math.h>
 #include <stdlib.h>
@@ -98,11 +98,14 @@ static void sample_begin(const dem_sim *s, dem_sample *o)
 }
 
 /* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending stable id, in
- * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened. */
-static void rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
+ * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened.
+ * -1 when out of host memory. */
+static int rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
                            dem_sample *out)
 {
-    int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nw = s->nwalls, n = s->n;
+    int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nm = DEM_CORE(s->be)->nmid_red, nw = s->nwalls;
+    int n = s->n;
+    double *mid = NULL; /* the tree's middle level (dem_layout.h), in the run's reals */
     const int *order = s->setup.order; /* ascending stable id (neighbor.h): the same sums in any storage order */
     double one[SE_STRIDE];
     double wf[3 * DEM_MAX_WALLS], wn[DEM_MAX_WALLS]; /* the run's reals (float or double) in double-aligned room */
@@ -132,13 +135,20 @@ static void rows_from_ring(const dem_sim *s, int count, const unsigned char *ter
         if (!nw || !(s->effects & DEM_EFFECT_WALLS))
             continue;
         const unsigned char *part = walls + (size_t)r * WP_STRIDE * nw * nb * rs;
-        if (rs == 8)
-            ref_wall_reduce_final_f64(s->setup.effects, nw, nb, (const double *)part, (double *)wf, (double *)wn);
-        else
-            ref_wall_reduce_final_f32(s->setup.effects, nw, nb, (const float *)part, (float *)wf, (float *)wn);
+        if (!mid && !(mid = malloc((size_t)WP_STRIDE * nw * nm * sizeof(double))))
+            return -1;
+        if (rs == 8) {
+            ref_wall_reduce_mid_f64(s->setup.effects, nw, nb, nm, (const double *)part, mid);
+            ref_wall_reduce_final_f64(s->setup.effects, nw, nm, mid, (double *)wf, (double *)wn);
+        } else {
+            ref_wall_reduce_mid_f32(s->setup.effects, nw, nb, nm, (const float *)part, (float *)mid);
+            ref_wall_reduce_final_f32(s->setup.effects, nw, nm, (const float *)mid, (float *)wf, (float *)wn);
+        }
         sim_widen(wf, out[r].wall_force, 3 * (size_t)nw, rs);
         sim_widen(wn, out[r].wall_normal, (size_t)nw, rs);
     }
+    free(mid);
+    return 0;
 }
 
 int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
@@ -166,7 +176,8 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
             if (dem_stage_series_map(s->ops, s->be, held, &terms, &walls))
                 e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
             else {
-                rows_from_ring(s, held, terms, walls, o - (held - 1));
+                if (rows_from_ring(s, held, terms, walls, o - (held - 1)))
+                    e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory for the walls' sums of the series");
                 if (dem_stage_series_unmap(s->ops, s->be, terms, walls))
                     e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
             }
