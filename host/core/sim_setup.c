@@ -191,7 +191,9 @@ int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
         vmax = fmax(vmax, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     }
     a->pair_speed = 2 * vmax + fall;
-    double stage_max = 0;
+    double stage_max = 0, ws_of[DEM_MAX_WALLS]; /* each wall's approach speed, once: it scans every particle */
+    for (int w = 0; (s->effects & DEM_EFFECT_WALLS) && w < s->nwalls; w++)
+        stage_max = fmax(stage_max, ws_of[w] = wall_approach_speed(s, w));
     for (int i = 0; i < s->n; i++) {
         const dem_material *m = &s->mats[s->mat[i]];
         double r = s->radius[i], mass = sim_mass(s, i);
@@ -200,9 +202,7 @@ int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
         if (!(s->effects & DEM_EFFECT_WALLS))
             continue;
         for (int w = 0; w < s->nwalls; w++) {
-            double ws = wall_approach_speed(s, w);
-            stage_max = fmax(stage_max, ws);
-            double v = vmax + ws + fall;
+            double v = vmax + ws_of[w] + fall;
             if (!(v > 0))
                 continue;
             double t = dem_hertz_contact_time(mass, r, estar(m, &s->mats[s->walls[w].material]), v);
