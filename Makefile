@@ -409,7 +409,8 @@ test-examples: $(BUILD)/dem
 
 bench: $(BUILD)/dem-bench $(BUILD)/dem
 	bash bench/peer/run.sh --bed
-	./$(BUILD)/dem-bench
+	mkdir -p out; ./$(BUILD)/dem conform --device $${DEM_DEVICE:-0} > out/conform.txt; tail -1 out/conform.txt
+	DEM_BENCH_CONFORM=out/conform.txt ./$(BUILD)/dem-bench
 
 # Against a peer code: Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
 # 100 000 spheres, poured once and cached in out/peer/bed.csv; 2000 steps each; the floor forces must agree within

@@ -8,18 +8,25 @@
 
 const char cli_usage[] =
     "usage: dem run SCENE.yaml [-o OUT.h5] [--device N] [--precision fp32|fp64] [--checkpoint FILE]\n"
-    "                          [--progress | --quiet] [--verbose] [--stop-after STEPS]\n"
-    "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated]\n"
+    "                          [--progress | --quiet] [--verbose] [--stop-after STEPS] [--backend opencl|reference]\n"
+    "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated|thornton_ning]\n"
     "       dem run --restart CHECKPOINT.h5 [-o OUT.h5] [options as above]\n"
-    "       dem check SCENE.yaml [--model M]   validate a scene and print what it implies (time scales, memory,\n"
-    "                                           effects), under contact model M if given\n"
+    "       dem check SCENE.yaml [--model M] [--probe] [--device N] [--precision fp32|fp64]\n"
+    "                                validate a scene and print what it implies (time scales, memory, effects, wall\n"
+    "                                time), under contact model M if given; --probe times its first steps on the\n"
+    "                                device and predicts the whole run's wall time from them\n"
     "       dem devices              list OpenCL devices (index for --device)\n"
+    "       dem conform [--device N] [--precision fp32|fp64] [--backend opencl|reference] [--only SCENE]\n"
+    "                   [--table FILE]   run the conformance set (every shipped scene x model x precision, 150\n"
+    "                                    steps) and compare each state hash with the reference's record\n"
+    "       dem hash CHECKPOINT.h5   the state hash of a checkpoint (the one dem conform compares)\n"
     "       dem --help | --version\n"
     "\n"
     "run writes OUT.h5 (frames and time series; OUT.h5.part until it completes), OUT.xmf for ParaView, and\n"
     "checkpoints to OUT.ckpt.h5 (the scene's output.checkpoint_every, and at the end). A progress line goes to\n"
     "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI. --model replaces the\n"
-    "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart). --verbose\n"
+    "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart); --backend\n"
+    "replaces the scene's backend. --verbose\n"
     "adds the kernels each step and each neighbour rebuild launched to the report at the end.\n"
     "SIGINT, SIGTERM or SIGHUP ends a run within about a second, its output and checkpoint complete.\n"
     "\n"
@@ -72,6 +79,61 @@ static int path_ok(const char *what, const char *p, char *err, size_t errlen)
     return l > 0 && l <= DEM_MAX_PATH;
 }
 
+static int parse_precision(const char *val, int *p)
+{
+    *p = !strcmp(val, "fp32") ? DEM_FP32 : !strcmp(val, "fp64") ? DEM_FP64 : 0;
+    return *p != 0;
+}
+
+static int parse_backend(const char *val, int *b)
+{
+    *b = !strcmp(val, "opencl") ? DEM_BACKEND_OPENCL : !strcmp(val, "reference") ? DEM_BACKEND_REFERENCE : -1;
+    return *b >= 0;
+}
+
+static int parse_conform(int argc, char **argv, cli *c, char *err, size_t errlen, int *with_usage)
+{
+    c->cmd = CLI_CONFORM;
+    conform_opts *o = &c->conform;
+    *o = (conform_opts){-1, 0, 0, NULL, NULL};
+    for (int k = 2; k < argc; k++) {
+        const char *a = argv[k];
+        char q[CLI_SHOW_LEN];
+        long v;
+        int b;
+        if (strcmp(a, "--device") && strcmp(a, "--precision") && strcmp(a, "--backend") && strcmp(a, "--only") &&
+            strcmp(a, "--table")) {
+            snprintf(err, errlen, "conform: unknown option '%s'", cli_show(a, q, 200));
+            *with_usage = 1;
+            return EXIT_USAGE;
+        }
+        if (k + 1 >= argc)
+            return snprintf(err, errlen, "option %s needs a value", a), *with_usage = 1, EXIT_USAGE;
+        const char *val = argv[++k];
+        if (!strcmp(a, "--device")) {
+            if (!parse_long(val, &v, 0, 65535)) {
+                snprintf(err, errlen, "--device needs an index in 0..65535 (see dem devices), not '%s'",
+                         cli_show(val, q, 200));
+                return EXIT_USAGE;
+            }
+            o->device = (int)v;
+        } else if (!strcmp(a, "--precision")) {
+            if (!parse_precision(val, &o->precision))
+                return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
+        } else if (!strcmp(a, "--backend")) {
+            if (!parse_backend(val, &b))
+                return usage_error(err, errlen, with_usage, 0, "--backend must be opencl or reference");
+            o->reference = b == DEM_BACKEND_REFERENCE;
+        } else if (!strcmp(a, "--only")) {
+            o->only = val;
+        } else if (!path_ok("--table", val, err, errlen))
+            return EXIT_USAGE;
+        else
+            o->table = val;
+    }
+    return 0;
+}
+
 int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with_usage)
 {
     memset(c, 0, sizeof *c);
@@ -93,13 +155,55 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
     }
     if (!strcmp(cmd, "check")) {
         c->cmd = CLI_CHECK;
-        if (argc == 5 && !strcmp(argv[3], "--model"))
-            c->check_model = argv[4]; /* checked against the list by scene_apply_model */
-        else if (argc != 3)
-            return usage_error(err, errlen, with_usage, 1, "check takes one scene file (and --model M)");
-        c->check_path = argv[2];
-        return path_ok("the scene", argv[2], err, errlen) ? 0 : EXIT_USAGE;
+        c->check_device = -1;
+        for (int k = 2; k < argc; k++) {
+            const char *a = argv[k];
+            char q[CLI_SHOW_LEN];
+            long v;
+            if (!strcmp(a, "--probe")) {
+                c->check_probe = 1;
+                continue;
+            }
+            if (!strcmp(a, "--model") || !strcmp(a, "--device") || !strcmp(a, "--precision")) {
+                if (k + 1 >= argc)
+                    return snprintf(err, errlen, "option %s needs a value", a), *with_usage = 1, EXIT_USAGE;
+                const char *val = argv[++k];
+                if (!strcmp(a, "--model"))
+                    c->check_model = val; /* checked against the list by scene_apply_model */
+                else if (!strcmp(a, "--precision")) {
+                    if (!parse_precision(val, &c->check_precision))
+                        return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
+                } else if (!parse_long(val, &v, 0, 65535)) {
+                    snprintf(err, errlen, "--device needs an index in 0..65535 (see dem devices), not '%s'",
+                             cli_show(val, q, 200));
+                    return EXIT_USAGE;
+                } else
+                    c->check_device = (int)v;
+                continue;
+            }
+            if (a[0] == '-' || c->check_path) {
+                snprintf(err, errlen, a[0] == '-' ? "check: unknown option '%s'" : "check takes one scene file, not also '%s'",
+                         cli_show(a, q, 200));
+                *with_usage = 1;
+                return EXIT_USAGE;
+            }
+            if (!path_ok("the scene", a, err, errlen))
+                return EXIT_USAGE;
+            c->check_path = a;
+        }
+        if (!c->check_path)
+            return usage_error(err, errlen, with_usage, 1, "check takes one scene file (and --model M, --probe ...)");
+        return 0;
     }
+    if (!strcmp(cmd, "hash")) {
+        c->cmd = CLI_HASH;
+        if (argc != 3)
+            return usage_error(err, errlen, with_usage, 1, "hash takes one checkpoint file");
+        c->hash_path = argv[2];
+        return path_ok("the checkpoint", argv[2], err, errlen) ? 0 : EXIT_USAGE;
+    }
+    if (!strcmp(cmd, "conform"))
+        return parse_conform(argc, argv, c, err, errlen, with_usage);
     if (strcmp(cmd, "run")) {
         char q[CLI_SHOW_LEN];
         snprintf(err, errlen, "unknown command '%s'", cli_show(cmd, q, 200));
@@ -108,14 +212,14 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
     }
     c->cmd = CLI_RUN;
     run_opts *o = &c->run;
-    *o = (run_opts){NULL, NULL, NULL, NULL, -1, 0, -1, 0, NULL};
+    *o = (run_opts){NULL, NULL, NULL, NULL, -1, 0, -1, 0, NULL, 0, -1};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         long v;
         char q[CLI_SHOW_LEN];
         int takes = !strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--checkpoint") ||
                     !strcmp(a, "--restart") || !strcmp(a, "--device") || !strcmp(a, "--precision") ||
-                    !strcmp(a, "--stop-after") || !strcmp(a, "--model");
+                    !strcmp(a, "--stop-after") || !strcmp(a, "--model") || !strcmp(a, "--backend");
         if (takes && k + 1 >= argc) {
             snprintf(err, errlen, "option %s needs a value", a); /* a is one of the known options */
             *with_usage = 1;
@@ -142,12 +246,11 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
             }
             o->device = (int)v;
         } else if (!strcmp(a, "--precision")) {
-            if (!strcmp(val, "fp32"))
-                o->precision = DEM_FP32;
-            else if (!strcmp(val, "fp64"))
-                o->precision = DEM_FP64;
-            else
+            if (!parse_precision(val, &o->precision))
                 return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
+        } else if (!strcmp(a, "--backend")) {
+            if (!parse_backend(val, &o->backend))
+                return usage_error(err, errlen, with_usage, 0, "--backend must be opencl or reference");
         } else if (!strcmp(a, "--stop-after")) {
             if (!parse_long(val, &v, 1, LONG_MAX)) {
                 snprintf(err, errlen, "--stop-after needs a step count >= 1, not '%s'", cli_show(val, q, 200));

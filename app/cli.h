@@ -2,19 +2,25 @@
  * range-checked, every path non-empty and short enough that no derived name (.part, .xmf, .ckpt.h5, .tmp) is cut. */
 #ifndef DEM_CLI_H
 #define DEM_CLI_H
+#include "conform.h"
 #include "run.h"
 #include <stddef.h>
 
 /* Longest path accepted on the command line (characters); derived names add at most 13. */
 #define DEM_MAX_PATH 4000
 
-typedef enum { CLI_HELP, CLI_VERSION, CLI_DEVICES, CLI_CHECK, CLI_RUN } cli_command;
+typedef enum { CLI_HELP, CLI_VERSION, CLI_DEVICES, CLI_CHECK, CLI_RUN, CLI_HASH, CLI_CONFORM } cli_command;
 
 typedef struct {
     cli_command cmd;
     const char *check_path; /* CLI_CHECK */
     const char *check_model; /* CLI_CHECK: --model, NULL = the scene's */
+    int check_probe;         /* CLI_CHECK: --probe */
+    int check_device;        /* CLI_CHECK: --device, -1 = the scene's */
+    int check_precision;     /* CLI_CHECK: --precision, 0 = the scene's */
     run_opts run;           /* CLI_RUN */
+    const char *hash_path;  /* CLI_HASH */
+    conform_opts conform;   /* CLI_CONFORM */
 } cli;
 
 extern const char cli_usage[];

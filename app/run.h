@@ -19,6 +19,7 @@ typedef struct {
     long stop_after;         /* > 0: stop after this many steps (a checkpoint is written; for tests and staging) */
     const char *model;       /* NULL: the scene's normal law; else see scene_apply_model */
     int verbose;             /* 1: also the kernels launched and each rebuild's (--verbose) */
+    int backend;             /* -1: the scene's, else a dem_backend_kind (--backend) */
 } run_opts;
 
 int run_scene(const run_opts *o);

@@ -8,6 +8,7 @@
  *   DEM_BENCH_JSON=FILE         where the bed table's figures go as JSON (default out/bench_bed.json)
  *   DEM_BENCH_TRIAXIAL_MS=2     simulated milliseconds of each triaxial run in the membrane cost table
  *   DEM_BENCH_SKIN=1.8e-4       a fixed neighbour skin [m] for the bed table (default: the automatic one)
+ *   DEM_BENCH_CONFORM=FILE      `dem conform`'s output on device 0, whose summary the bed table's JSON records
  * Then more tables: what an effect that is off costs (effects_table), what each contact model costs on seed 000's
  * compression scenes (model_cost_table, the paper's Table 2), what the time series cost (series_cost_table) and what
  * each membrane model costs in seed 001's triaxial test (membrane_cost_table, the paper's Table 4). */
@@ -580,7 +581,11 @@ typedef struct {
     double rate, bytes_per_particle, contacts;
     unsigned long long hash;
     char kernels[1024];
+    char narrow[512]; /* kernels of every step with fewer work-groups of BED_GROUP items than compute units */
 } bed_result;
+
+/* The work-group size the bench counts groups in (a GPU's usual choice; the runtime picks its own) */
+#define BED_GROUP 64
 
 static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_backend_kind kind, dem_precision prec,
                    long steps, int profile, bed_result *r)
@@ -630,6 +635,24 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
      * in the last step's sequence but run only on the last step of a dem_step call (host/core/step_loop.c): left out */
     char seq[2048] = "";
     dem_kernel_sequence(s, 0, seq, sizeof seq);
+    int cu = 0; /* the device's compute units, from its description */
+    char what[512];
+    if (kind == DEM_BACKEND_OPENCL && !dem_device_describe(0, what, sizeof what))
+        sscanf(what, "%d compute units", &cu);
+    size_t nl = 0;
+    r->narrow[0] = 0;
+    for (int k = 0; k < cnt && cu > 0; k++) { /* every kernel of the step's sequence, walls' sums included */
+        const char *nm = names[k];
+        size_t ln = strlen(nm);
+        int in_step = 0;
+        for (const char *at = strstr(seq, nm); at && !in_step; at = strstr(at + 1, nm))
+            in_step = (at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' ');
+        long items = dem_kernel_item_count(s, k);
+        if (in_step && items > 0 && (items + BED_GROUP - 1) / BED_GROUP < cu)
+            nl += (size_t)snprintf(r->narrow + nl, sizeof r->narrow - nl, "%s%s %ld", nl ? ", " : "", nm, items);
+        if (nl >= sizeof r->narrow)
+            break;
+    }
     for (int k = 0; k < cnt && k < 64 && profile; k++) {
         double us = 1e6 * (secs[k] - before[k]) / steps;
         size_t ln = strlen(names[k]);
@@ -647,6 +670,28 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     }
     dem_destroy(s);
     return 0;
+}
+
+/* The summary line of `dem conform` on this device, from the file DEM_BENCH_CONFORM names (make bench runs it
+ * first), for the bed table's JSON: whether the device reproduces the reference; "not run" without it. */
+static const char *conform_summary(void)
+{
+    static char line[512];
+    snprintf(line, sizeof line, "not run");
+    const char *p = getenv("DEM_BENCH_CONFORM");
+    FILE *f = p ? fopen(p, "r") : NULL;
+    char buf[1024];
+    while (f && fgets(buf, sizeof buf, f))
+        if (!strncmp(buf, "dem conform: ", 13) && strstr(buf, " equal to the reference")) {
+            buf[strcspn(buf, "\n")] = 0;
+            for (char *c = buf; *c; c++) /* a JSON string */
+                if (*c == '"' || *c == '\\')
+                    *c = '\'';
+            snprintf(line, sizeof line, "%s", buf + 13);
+        }
+    if (f)
+        fclose(f);
+    return line;
 }
 
 static void bed_table(int quick)
@@ -678,7 +723,8 @@ static void bed_table(int quick)
         fprintf(js, "{\n  \"bench\": \"poured bed\", \"bed\": \"%s\", \"device\": \"%s\", \"copy_gb_per_s\": %.2f,\n  \"rows\": [",
                 path, dev, gbs);
     double lnN[8], lnT[8];
-    int nfit = 0, first = 1;
+    int nfit = 0, first = 1, narrow_said[4] = {0};
+    char narrow[4][600] = {"", "", "", ""};
     const char *only_sizes = getenv("DEM_BENCH_BED_SIZES"); /* e.g. "3": the 1e6 rows only (0..3: 1e3 .. 1e6) */
     for (int z = 0; z < nsizes; z++)
         for (int q = 0; q < 4; q++) {
@@ -701,6 +747,10 @@ static void bed_table(int quick)
             const char *eq = !have_ref ? "not checked" : ro.hash && rr.hash == ro.hash && rp.hash == ro.hash ? "yes" : "NO";
             printf("| %ld | %s | %.2f | opencl | %s | %.3g | %.0f | %s | %s |\n", ro.n, order, ro.contacts,
                    p ? "fp32" : "fp64", ro.rate, ro.bytes_per_particle, eq, rp.kernels);
+            if (ro.n >= 100000 && rp.narrow[0] && !narrow_said[z]) {
+                snprintf(narrow[z], sizeof narrow[z], "n = %ld: %s", ro.n, rp.narrow);
+                narrow_said[z] = 1;
+            }
             if (have_ref)
                 printf("| %ld | %s | | reference | %s | %.3g | | | |\n", rr.n, order, p ? "fp32" : "fp64", rr.rate);
             fflush(stdout);
@@ -720,6 +770,24 @@ static void bed_table(int quick)
                 first = 0;
             }
         }
+    /* the kernels of a step too narrow to give every compute unit a work-group (docs/design.md "The walls' sum as a
+     * tree": the tree's upper levels are latency, not throughput) */
+    char cuw[512] = "";
+    dem_device_describe(0, cuw, sizeof cuw);
+    printf("\nKernels of a step with fewer work-groups of %d items than the device's compute units (%.*s), n >= 1e5: ",
+           BED_GROUP, (int)strcspn(cuw, ","), cuw);
+    int any = 0;
+    for (int z = 0; z < 4; z++)
+        if (narrow[z][0])
+            printf("%s%s", any++ ? "; " : "", narrow[z]);
+    printf("%s\n", any ? " (items per launch)" : "none");
+    if (js) {
+        fprintf(js, "\n  ],\n  \"narrow_kernels\": \"");
+        for (int z = 0, a = 0; z < 4; z++)
+            if (narrow[z][0])
+                fprintf(js, "%s%s", a++ ? "; " : "", narrow[z]);
+        fprintf(js, "\",\n  \"conform\": \"%s\",\n", conform_summary());
+    }
     if (nfit >= 2) { /* least squares slope of ln(time per step) on ln n, fp64 OpenCL, n >= 5000 */
         double sx = 0, sy = 0, sxx = 0, sxy = 0;
         for (int k = 0; k < nfit; k++)
@@ -727,9 +795,9 @@ static void bed_table(int quick)
         double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
         printf("\nCost per step grows as n^%.3f (fp64 OpenCL, sorted, %d sizes from 1e4 up; goal <= 1.05).\n", slope, nfit);
         if (js)
-            fprintf(js, "\n  ],\n  \"cost_exponent_fp64\": %.4f\n}\n", slope);
+            fprintf(js, "  \"cost_exponent_fp64\": %.4f\n}\n", slope);
     } else if (js)
-        fprintf(js, "\n  ]\n}\n");
+        fprintf(js, "  \"cost_exponent_fp64\": null\n}\n");
     if (js)
         fclose(js), printf("(JSON: %s)\n", json);
     free(b.p);

@@ -74,6 +74,9 @@ int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, in
  * would move if it touched each byte once (make bench divides it by the kernel's time: a bandwidth to set against
  * the device's copy rate). */
 double dem_kernel_bytes(const dem_sim *s, int k);
+/* The work items kernel k (an index of dem_kernel_times' names) would be launched with now (its DEM_ITEMS_ rule at the
+ * run's present sizes; make bench sets it against the device's compute units). 0 before dem_start. */
+long dem_kernel_item_count(const dem_sim *s, int k);
 /* The kernels the last step launched, in order, without a rebuild's (rebuild = 0), or those of the last neighbour
  * rebuild (rebuild = 1), as "name, name, N x (name, name), ..." (an iteration's pair once, with its count).
  * Returns the number of launches (0 before the first step). */

@@ -1025,7 +1025,7 @@ static void test_output_and_xdmf(void **st)
     assert_non_null(strstr(err, "effects hertz+damping+friction+gravity+walls"));
     /* the kernels as the library launched them (dem_kernel_sequence), walls included */
     assert_non_null(strstr(err, "kernels of the last step: integrate_kick_drift, contact_pairs, wall_reduce_block, "
-                                "wall_reduce_final, contact_forces, integrate_kick\n"));
+                                "wall_reduce_mid, wall_reduce_final, contact_forces, integrate_kick\n"));
     assert_non_null(strstr(err, "dem: neighbour rebuilds: "));
     assert_non_null(strstr(err, "; kernels at each: bin_bounds, bin_index, scan_block_sum, scan_block_sums, scan_apply, bin_scatter, "
                                 "bin_sort, nbr_count, scan_block_sum, scan_block_sums, scan_apply, nbr_build, nbr_sort, "
@@ -2081,6 +2081,59 @@ static void test_kernels_ignore_working_folder(void **st)
         fail_msg("a source folder with a space: status %d, message: %s", rc, err);
 }
 
+/* dem conform and dem hash: the recorded table's runs reproduce it here (PoCL), a changed record or a run that went
+ * otherwise is named as a difference with a non-zero exit, and the hash tells apart states one step apart. */
+static void test_conform(void **st)
+{
+    (void)st;
+    char err[16384];
+    /* the shipped table's restart_box lines in fp64: one run and three refusals (no MC-strain gamma) */
+    int rc = sh(err, sizeof err, "%s conform --only restart_box --precision fp64", DEM);
+    if (rc != 0 || !strstr(err, "dem conform: 4 of 4 equal to the reference"))
+        fail_msg("conform on the shipped table: status %d:\n%s", rc, err);
+    /* one recorded hash altered, one refusal recorded as a hash: both named, exit 1 */
+    rc = sh(err, sizeof err,
+            "awk '$1 == \"restart_box\" && $2 == \"reference\" && $4 == \"fp64\" { if ($3 == \"scene\") $5 = "
+            "\"0123456789abcdef\"; if ($3 == \"mc_stress\") $5 = \"fedcba9876543210\" } { print }' "
+            "%s/docs/state_hashes.txt > %s/t.txt && %s conform --only restart_box --precision fp64 --table %s/t.txt",
+            SRC, tmp, DEM, tmp);
+    if (rc != 1 || !strstr(err, "dem conform: 2 of 4 equal") || !strstr(err, "0123456789abcdef") ||
+        !strstr(err, "DIFFERS"))
+        fail_msg("conform against an altered table: status %d:\n%s", rc, err);
+    /* dem hash: the reference's run and PoCL's hash as the table records; one step fewer hashes otherwise */
+    char a[64] = "", b[64] = "", c[64] = "", want[64] = "";
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/h1.h5 --quiet --stop-after 150 "
+                                         "--precision fp64 --backend reference && %s hash %s/h1.ckpt.h5 > %s/h1.txt && "
+                                         "%s run %s/tests/scenes/restart_box.yaml -o %s/h2.h5 --quiet --stop-after 150 "
+                                         "--precision fp64 --backend opencl && %s hash %s/h2.ckpt.h5 > %s/h2.txt && "
+                                         "%s run %s/tests/scenes/restart_box.yaml -o %s/h3.h5 --quiet --stop-after 149 "
+                                         "--precision fp64 && %s hash %s/h3.ckpt.h5 > %s/h3.txt && awk '$1 == "
+                                         "\"restart_box\" && $2 == \"reference\" && $3 == \"scene\" && $4 == \"fp64\" "
+                                         "{ print $5 }' %s/docs/state_hashes.txt > %s/h0.txt",
+                                         DEM, SRC, tmp, DEM, tmp, tmp, DEM, SRC, tmp, DEM, tmp, tmp, DEM, SRC, tmp, DEM, tmp,
+                                         tmp, SRC, tmp),
+                     0);
+    char p[400];
+    const char *names[] = {"h1", "h2", "h3", "h0"};
+    char *vals[] = {a, b, c, want};
+    for (int k = 0; k < 4; k++) {
+        snprintf(p, sizeof p, "%s/%s.txt", tmp, names[k]);
+        FILE *f = fopen(p, "r");
+        assert_non_null(f);
+        assert_non_null(fgets(vals[k], 64, f));
+        fclose(f);
+        vals[k][strcspn(vals[k], "\n")] = 0;
+        assert_int_equal(strlen(vals[k]), 16);
+    }
+    assert_string_equal(a, want);
+    assert_string_equal(b, want);
+    assert_string_not_equal(c, want);
+    /* not a checkpoint: a clear refusal */
+    rc = sh(err, sizeof err, "%s hash %s/h1.h5", DEM, tmp);
+    if (rc != 65 || !strstr(err, "not a checkpoint"))
+        fail_msg("dem hash of an output file: status %d: %s", rc, err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2119,6 +2172,7 @@ int main(void)
         cmocka_unit_test(test_stage_wait_ramp),
         cmocka_unit_test(test_check_estimates),
         cmocka_unit_test(test_compile_note),
+        cmocka_unit_test(test_conform),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -4,12 +4,14 @@
 # tools/device_pack.sh packed into .device/ here:
 #   run(command="bash tools/device_check.sh", carry=[".device"], timeout_s=600)
 #   run(command="bash tools/device_check.sh bench tablet", ...)     some stages only (a second call)
-# Stages, in order: devices (the OpenCL platforms and devices seen), tests (every test program with DEM_DEVICE=0,
-# the GPU's index when NVIDIA's is the one ICD; sixteen at a time, each stopped after 240 s), bench (make bench's
-# bed table: 1e3-1e6, fp64 and fp32, as poured and sorted, the state hashes against the reference; at most 180 s),
-# tablet (tablet_1m, 2000 steps from its fill: particle-steps/s, device time per kernel and the device memory
-# held; at most 120 s). Everything goes to $OUT (the device tool's folder; out/device here): check.log (all),
-# tests.log, bench.txt, bench_bed.json, tablet.log, summary.txt. Each stage's programs are stopped at its limit,
+# Stages, in order: devices (the OpenCL platforms and devices seen), conform (`dem conform --device 0`: every shipped
+# scene x model x precision against the reference's state hashes; at most 120 s), tests (every test program with
+# DEM_DEVICE=0, the GPU's index when NVIDIA's is the one ICD; sixteen at a time, each stopped after 180 s), bench
+# (make bench's bed table: 1e3-1e6, fp64 and fp32, as poured and sorted, the state hashes against the reference; at
+# most 150 s), tablet (tablet_1m, 2000 steps from its fill: particle-steps/s, device time per kernel and the device
+# memory held; at most 60 s): at most 9 minutes (devices 20 s). Everything goes to $OUT (the device tool's folder;
+# out/device here), seven files: check.log (all), conform.txt, tests.log, bench.txt, bench_bed.json, tablet.log,
+# summary.txt. Each stage's programs are stopped at its limit,
 # so one that hangs costs that and not the call; their output is line-buffered, so a stopped program leaves what
 # it printed. DEM_CHECK_TESTS (a list or glob of test programs, e.g. "build/tests/test_neighbor") runs some tests
 # only, DEM_CHECK_TABLET_STEPS the tablet's steps (2000), DEM_BENCH_BED_SIZES the bed table's rows (bench/bench.c).
@@ -21,7 +23,7 @@ ROOT=$PWD
 D=$ROOT/.device
 OUT=${OUT:-$ROOT/out/device}
 mkdir -p "$OUT"
-STAGES=${*:-devices tests bench tablet}
+STAGES=${*:-devices conform tests bench tablet}
 STEPS=${DEM_CHECK_TABLET_STEPS:-2000}
 LOG=$OUT/check.log
 say() { echo "[$(date +%T)] $*" | tee -a "$LOG" >&2; }
@@ -57,14 +59,20 @@ command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,memory.total,dri
 for stage in $STAGES; do
   case $stage in
   devices)
-    timeout 60 build/dem devices >> "$LOG" 2>&1
+    timeout 20 build/dem devices >> "$LOG" 2>&1
     say "devices: exit $?"
+    ;;
+  conform)
+    DEM_DEVICE=0 timeout 120 stdbuf -oL build/dem conform --device 0 > "$OUT/conform.txt" 2>&1
+    rc=$?
+    say "conform: exit $rc: $(tail -1 "$OUT/conform.txt")"
+    echo "conform (exit $rc): $(tail -1 "$OUT/conform.txt")" >> "$OUT/summary.txt"
     ;;
   tests)
     T=$(mktemp -d)
     start=$(date +%s)
     ls ${DEM_CHECK_TESTS:-build/tests/test_*} | xargs -P 16 -I{} bash -c \
-      'n=$(basename {}); DEM_DEVICE=0 timeout 240 stdbuf -oL {} > '"$T"'/$n.log 2>&1; echo "$n $?" >> '"$T"'/status'
+      'n=$(basename {}); DEM_DEVICE=0 timeout 180 stdbuf -oL {} > '"$T"'/$n.log 2>&1; echo "$n $?" >> '"$T"'/status'
     for f in "$T"/*.log; do echo "=== $(basename "$f" .log)"; cat "$f"; done > "$OUT/tests.log"
     sort "$T/status" >> "$LOG"
     pass=$(awk '$2 == 0' "$T/status" | wc -l)
@@ -77,7 +85,7 @@ for stage in $STAGES; do
     if [ -f "$D/bed.csv.gz" ]; then
       gunzip -c "$D/bed.csv.gz" > /tmp/dem-bed.csv
       DEM_DEVICE=0 DEM_BENCH_ONLY=bed DEM_BENCH_BED=/tmp/dem-bed.csv DEM_BENCH_JSON=$OUT/bench_bed.json \
-        timeout 180 stdbuf -oL build/dem-bench > "$OUT/bench.txt" 2>&1
+        DEM_BENCH_CONFORM=$OUT/conform.txt timeout 150 stdbuf -oL build/dem-bench > "$OUT/bench.txt" 2>&1
       rc=$?
       say "bench: exit $rc"
       echo "bench (bed table): exit $rc, bench.txt and bench_bed.json" >> "$OUT/summary.txt"
@@ -86,7 +94,7 @@ for stage in $STAGES; do
     fi
     ;;
   tablet)
-    DEM_DEVICE=0 DEM_PROFILE=1 timeout 120 build/dem run scenes/tablet_1m.yaml --stop-after "$STEPS" --progress \
+    DEM_DEVICE=0 DEM_PROFILE=1 timeout 60 build/dem run scenes/tablet_1m.yaml --stop-after "$STEPS" --progress \
       -o /tmp/dem-tablet_1m.h5 > "$OUT/tablet.log" 2>&1
     rc=$?
     say "tablet_1m, $STEPS steps: exit $rc"
@@ -94,7 +102,7 @@ for stage in $STAGES; do
       grep -E "memory held|device time per step" "$OUT/tablet.log"; } >> "$OUT/summary.txt"
     ;;
   *)
-    say "unknown stage $stage (devices, tests, bench, tablet)"
+    say "unknown stage $stage (devices, conform, tests, bench, tablet)"
     ;;
   esac
 done

@@ -50,6 +50,11 @@ double dem_kernel_bytes(const dem_sim *s, int k)
     return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
 }
 
+long dem_kernel_item_count(const dem_sim *s, int k)
+{
+    return s->be && k >= 0 && k < K__COUNT ? (long)dem_kernel_items(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
+}
+
 int dem_particle_added_position(const dem_sim *s, int i, double x[3])
 {
     if (i < 0 || i >= s->n)

@@ -1,0 +1,295 @@
+/* conform.c - see conform.h. */
+#include "conform.h"
+#include "dem.h"
+#include "run.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <hdf5.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define FNV_OFFSET 14695981039346656037ULL
+#define FNV_PRIME 1099511628211ULL
+
+static uint64_t fnv(uint64_t h, const void *p, size_t len)
+{
+    const unsigned char *c = p;
+    for (size_t k = 0; k < len; k++)
+        h = (h ^ c[k]) * FNV_PRIME;
+    return h;
+}
+
+/* the value's bytes least significant first, whatever the host's order */
+static uint64_t fnv_u64(uint64_t h, uint64_t v)
+{
+    unsigned char b[8];
+    for (int k = 0; k < 8; k++)
+        b[k] = (unsigned char)(v >> (8 * k));
+    return fnv(h, b, 8);
+}
+
+int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen)
+{
+    static const char *names[] = {CONFORM_DATASETS};
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0) {
+        snprintf(err, errlen, "%s: cannot open as HDF5", path);
+        return -1;
+    }
+    uint64_t h = FNV_OFFSET;
+    int rc = 0, found = 0;
+    for (size_t k = 0; k < sizeof names / sizeof *names && !rc; k++) {
+        char ds[64];
+        snprintf(ds, sizeof ds, "/state/%s", names[k]);
+        if (H5Lexists(f, "/state", H5P_DEFAULT) <= 0 || H5Lexists(f, ds, H5P_DEFAULT) <= 0)
+            continue;
+        hid_t d = H5Dopen2(f, ds, H5P_DEFAULT), sp = d < 0 ? -1 : H5Dget_space(d), t = d < 0 ? -1 : H5Dget_type(d);
+        hid_t nt = t < 0 ? -1 : H5Tget_native_type(t, H5T_DIR_ASCEND);
+        hssize_t count = sp < 0 ? -1 : H5Sget_simple_extent_npoints(sp);
+        size_t esz = nt < 0 ? 0 : H5Tget_size(nt);
+        void *buf = count >= 0 && esz ? malloc((size_t)count * esz + 1) : NULL;
+        if (!buf || (count > 0 && H5Dread(d, nt, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)) {
+            snprintf(err, errlen, "%s: cannot read %s", path, ds);
+            rc = -1;
+        } else {
+            h = fnv(h, names[k], strlen(names[k]) + 1);
+            h = fnv_u64(fnv_u64(h, esz), (uint64_t)count);
+            /* the values least significant byte first, as every host we build for stores them */
+            unsigned char *b = buf;
+            for (hssize_t e = 0; e < count; e++)
+                for (size_t q = 0; q < esz; q++) {
+                    const int little = 1;
+                    size_t at = *(const char *)&little ? q : esz - 1 - q;
+                    h = (h ^ b[(size_t)e * esz + at]) * FNV_PRIME;
+                }
+            found++;
+        }
+        free(buf);
+        if (nt >= 0)
+            H5Tclose(nt);
+        if (t >= 0)
+            H5Tclose(t);
+        if (sp >= 0)
+            H5Sclose(sp);
+        if (d >= 0)
+            H5Dclose(d);
+    }
+    H5Fclose(f);
+    if (!rc && !found) {
+        snprintf(err, errlen, "%s: no /state/x: not a checkpoint of dem run", path);
+        rc = -1;
+    }
+    if (!rc)
+        snprintf(hex, 17, "%016llx", (unsigned long long)h);
+    return rc;
+}
+
+/* ---- dem conform ---- */
+
+typedef struct {
+    char scene[128], model[64], prec[8], hash[32];
+} conform_line;
+
+static const char *source_dir(void)
+{
+    const char *d = getenv("DEM_SOURCE_DIR");
+    return d && *d ? d : DEM_DEFAULT_SOURCE_DIR;
+}
+
+/* The scene file of a table line's name: the folders tools/state_hashes.sh runs. */
+static int find_scene(const char *root, const char *name, char *path, size_t len)
+{
+    static const char *dirs[] = {"scenes", "scenes/validation", "tests/scenes"};
+    for (size_t k = 0; k < sizeof dirs / sizeof *dirs; k++) {
+        snprintf(path, len, "%s/%s/%s.yaml", root, dirs[k], name);
+        if (access(path, R_OK) == 0)
+            return 0;
+    }
+    return -1;
+}
+
+/* One `dem run` of 150 steps into dir; its exit status (-1: it could not be started or was killed). */
+static int run_child(const char *self, const char *scene, const conform_line *l, const conform_opts *o, const char *dir)
+{
+    char out[4200], log[4200], dev[16];
+    snprintf(out, sizeof out, "%s/o.h5", dir);
+    snprintf(log, sizeof log, "%s/log", dir);
+    snprintf(dev, sizeof dev, "%d", o->device);
+    const char *argv[24];
+    int a = 0;
+    argv[a++] = self, argv[a++] = "run", argv[a++] = scene, argv[a++] = "-o", argv[a++] = out;
+    argv[a++] = "--quiet", argv[a++] = "--stop-after", argv[a++] = "150", argv[a++] = "--precision";
+    argv[a++] = l->prec, argv[a++] = "--backend", argv[a++] = o->reference ? "reference" : "opencl";
+    if (strcmp(l->model, "scene"))
+        argv[a++] = "--model", argv[a++] = l->model;
+    if (o->device >= 0)
+        argv[a++] = "--device", argv[a++] = dev;
+    argv[a] = NULL;
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0)
+            dup2(fd, 1), dup2(fd, 2), close(fd);
+        execv(self, (char *const *)argv);
+        _exit(127);
+    }
+    int st;
+    while (waitpid(pid, &st, 0) < 0)
+        if (errno != EINTR)
+            return -1;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* The last non-empty line of the run's log, for a failed run's line. */
+static void last_line(const char *dir, char *buf, size_t len)
+{
+    char p[4200], line[1024];
+    snprintf(p, sizeof p, "%s/log", dir);
+    buf[0] = 0;
+    FILE *f = fopen(p, "r");
+    while (f && fgets(line, sizeof line, f))
+        if (line[0] && line[0] != '\n') {
+            line[strcspn(line, "\n")] = 0;
+            snprintf(buf, len, "%s", line);
+        }
+    if (f)
+        fclose(f);
+}
+
+static void clean_dir(const char *dir)
+{
+    static const char *files[] = {"o.h5", "o.h5.part", "o.xmf", "o.ckpt.h5", "o.ckpt.h5.tmp", "log"};
+    char p[4200];
+    for (size_t k = 0; k < sizeof files / sizeof *files; k++) {
+        snprintf(p, sizeof p, "%s/%s", dir, files[k]);
+        unlink(p);
+    }
+}
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int conform_run(const conform_opts *o, const char *self)
+{
+    const char *root = source_dir();
+    char table[4200];
+    if (o->table)
+        snprintf(table, sizeof table, "%s", o->table);
+    else
+        snprintf(table, sizeof table, "%s/docs/state_hashes.txt", root);
+    FILE *f = fopen(table, "r");
+    if (!f) {
+        fprintf(stderr, "dem conform: cannot open the table %s: %s (set DEM_SOURCE_DIR to the project folder, or give "
+                        "--table)\n", table, strerror(errno));
+        return EXIT_NO_INPUT;
+    }
+    conform_line *lines = NULL;
+    int n = 0, cap = 0, lineno = 0, bad = 0;
+    char buf[1024];
+    while (fgets(buf, sizeof buf, f)) {
+        lineno++;
+        if (buf[0] == '#' || buf[strspn(buf, " \t\r\n")] == 0)
+            continue;
+        conform_line l;
+        char be[32];
+        if (sscanf(buf, "%127s %31s %63s %7s %31s", l.scene, be, l.model, l.prec, l.hash) != 5 ||
+            (strcmp(l.prec, "fp32") && strcmp(l.prec, "fp64"))) {
+            fprintf(stderr, "dem conform: %s:%d: not a line 'scene backend model precision hash'\n", table, lineno);
+            bad = 1;
+            break;
+        }
+        if (strcmp(be, "reference")) /* the reference's line is the record; the OpenCL lines repeat it */
+            continue;
+        if ((o->precision == DEM_FP32 && strcmp(l.prec, "fp32")) || (o->precision == DEM_FP64 && strcmp(l.prec, "fp64")))
+            continue;
+        if (o->only && strcmp(o->only, l.scene))
+            continue;
+        if (n == cap) {
+            conform_line *g = realloc(lines, sizeof *lines * (size_t)(cap = cap ? 2 * cap : 64));
+            if (!g) {
+                bad = 1;
+                break;
+            }
+            lines = g;
+        }
+        lines[n++] = l;
+    }
+    fclose(f);
+    if (bad || !n) {
+        if (!bad)
+            fprintf(stderr, "dem conform: %s has no reference line%s%s\n", table, o->only ? " for scene " : "",
+                    o->only ? o->only : "");
+        free(lines);
+        return bad ? EXIT_BAD_INPUT : EXIT_USAGE;
+    }
+    const char *tmp = getenv("TMPDIR");
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/dem-conform-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(dir)) {
+        fprintf(stderr, "dem conform: cannot make a folder %s: %s\n", dir, strerror(errno));
+        free(lines);
+        return EXIT_IO;
+    }
+    char devname[512] = "the reference (plain C)";
+    if (!o->reference && dem_device_name(o->device >= 0 ? o->device : 0, devname, sizeof devname))
+        snprintf(devname, sizeof devname, "device %d (no name)", o->device);
+    printf("dem conform: %d runs of 150 steps on %s against %s\n", n, devname, table);
+    printf("%-26s %-19s %-5s %-17s %-17s %s\n", "scene", "model", "prec", "reference", "this run", "result");
+    int equal = 0;
+    double t0 = now_s();
+    for (int k = 0; k < n; k++) {
+        const conform_line *l = &lines[k];
+        char scene[4400], got[32] = "", note[1024] = "";
+        int same = 0;
+        double t = now_s();
+        if (find_scene(root, l->scene, scene, sizeof scene)) {
+            snprintf(got, sizeof got, "missing");
+            snprintf(note, sizeof note, " (no %s.yaml under %s/scenes, scenes/validation or tests/scenes)", l->scene,
+                     root);
+        } else {
+            int rc = run_child(self, scene, l, o, dir);
+            char ck[4300], herr[512];
+            snprintf(ck, sizeof ck, "%s/o.ckpt.h5", dir);
+            if (rc == 0 && !conform_hash_file(ck, got, herr, sizeof herr))
+                same = !strcmp(got, l->hash);
+            else if (rc == 0)
+                snprintf(got, sizeof got, "unreadable"), snprintf(note, sizeof note, " (%s)", herr);
+            else if (rc == EXIT_USAGE || rc == EXIT_BAD_INPUT) /* the scene or model refused, as recorded or not */
+                snprintf(got, sizeof got, "refused"), same = !strcmp(l->hash, "refused");
+            else {
+                char last[900];
+                last_line(dir, last, sizeof last);
+                snprintf(got, sizeof got, "failed");
+                snprintf(note, sizeof note, " (exit %d: %s)", rc, last);
+            }
+            if (!same && !strcmp(got, "refused")) {
+                char last[900];
+                last_line(dir, last, sizeof last);
+                snprintf(note, sizeof note, " (%s)", last);
+            }
+            clean_dir(dir);
+        }
+        equal += same;
+        printf("%-26s %-19s %-5s %-17s %-17s %s%s  %.1f s\n", l->scene, l->model, l->prec, l->hash, got,
+               same ? "equal" : "DIFFERS", note, now_s() - t);
+        fflush(stdout);
+    }
+    rmdir(dir);
+    printf("dem conform: %d of %d equal to the reference (refusals included) in %.0f s%s\n", equal, n, now_s() - t0,
+           equal == n ? "" : ": this device does not reproduce the reference bits");
+    free(lines);
+    return equal == n ? 0 : EXIT_RUN_FAILED;
+}
