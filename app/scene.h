@@ -192,7 +192,7 @@ typedef struct {
     char *precision;              /* "fp32" or "fp64" */
     int device;
     char *backend;                /* "opencl" (default) or "reference" */
-    char *particle_order;         /* "input" (default) or "spatial" (dem_sort_particles) */
+    char *particle_order;         /* "spatial" (dem_sort_particles; the default: scene_particle_order) or "input" */
     char **effects;
     unsigned effects_count;
     scene_material *materials;
@@ -280,6 +280,10 @@ void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
 /* time.mass_scale, or 1 where the scene gives none (scene_build has checked it: finite, >= 1) */
 double scene_mass_scale(const scene *sc);
+/* particle_order: "spatial" where the scene gives none (the spheres sorted along a Morton curve at load: a packing
+ * in another code's order, or generated at random, then runs in the fast order without the user knowing the key;
+ * docs/scenes.md), else as given (scene_particles.c checks it) */
+const char *scene_particle_order(const scene *sc);
 /* 1 when gravity is kept as given under mass scaling (time.mass_scale_keeps: acceleration), 0: divided by it */
 int scene_keeps_acceleration(const scene *sc);
 /* Replaces the scene's normal law (after scene_build, before dem_start): "classical", "mc_stress", "mc_strain"

@@ -259,6 +259,11 @@ double scene_mass_scale(const scene *sc)
     return scene_has(sc->loc, "time.mass_scale") ? sc->f->time.mass_scale : 1.0;
 }
 
+const char *scene_particle_order(const scene *sc)
+{
+    return sc->f->particle_order ? sc->f->particle_order : "spatial";
+}
+
 int scene_keeps_acceleration(const scene *sc)
 {
     const char *k = sc->f->time.mass_scale_keeps;
@@ -981,9 +986,9 @@ dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen)
     }
     free(origin);
     run->cfg.contacts = (run->fields & OUT_CONTACTS) != 0; /* frames carry the contact network: keep wall forces */
-    /* particle_order: spatial sorts the particles at load (scene_particles.c) and stores them anew every
+    /* particle_order: spatial (the default) sorts the particles at load (scene_particles.c) and stores them anew every
      * DEM_REORDER_PERIOD rebuilds as they move (host/core/reorder.c: the same bits and ids) */
-    run->cfg.reorder = sc->f->particle_order && !strcmp(sc->f->particle_order, "spatial") ? DEM_REORDER_PERIOD : 0;
+    run->cfg.reorder = !strcmp(scene_particle_order(sc), "spatial") ? DEM_REORDER_PERIOD : 0;
     run->cfg.sample_every = run->series_average > 1 ? 1 : run->series_every; /* steps between the series' samples */
     if (!(run->effects & DEM_EFFECT_FRICTION))
         for (unsigned k = 0; k < sc->f->materials_count; k++)

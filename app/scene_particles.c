@@ -683,10 +683,10 @@ int scene_add_particles(const scene *sc, dem_sim *s, scene_origin **origin, char
         if (!rc)
             rc = constrain(sc, s, g, first, dem_count(s), err, errlen);
     }
-    const char *order = sc->f->particle_order;
-    if (!rc && order && strcmp(order, "input") && strcmp(order, "spatial"))
+    const char *order = scene_particle_order(sc);
+    if (!rc && strcmp(order, "input") && strcmp(order, "spatial"))
         rc = scene_fail(sc, err, errlen, "particle_order", "particle_order must be input or spatial (got '%s')", order);
-    if (!rc && order && !strcmp(order, "spatial")) { /* before the membranes add their vertices, springs and hinges */
+    if (!rc && !strcmp(order, "spatial")) { /* before the membranes add their vertices, springs and hinges */
         scene_origin *sorted = malloc(sizeof *sorted * (size_t)(ol.n ? ol.n : 1));
         if (!sorted || dem_sort_particles(s))
             rc = scene_fail(sc, err, errlen, "particle_order", "%s", sorted ? dem_error(s) : "out of host memory");
