@@ -9,10 +9,11 @@
 #  - else the first of the `python3` on PATH and /usr/bin/python3 that imports every MODULE. Debian's python3-h5py
 #    and friends serve /usr/bin/python3, but a machine with h5py from pip or conda has it only in the python3 on its
 #    PATH (a GPU machine was seen so: /usr/bin/python3 without h5py); the one on PATH goes first so that a venv or
-#    conda environment the user activated wins when it has them. Here the `python3` on PATH is a pyenv one without
-#    numpy, so /usr/bin/python3 is the one found.
-# What it prints is the interpreter's sys.executable (a pyenv shim resolves to the Python it runs).
-# POSIX sh: the C tests run it through system().
+#    conda environment the user activated wins when it has them. On the development VM the `python3` on PATH is a
+#    pyenv one without numpy, so /usr/bin/python3 is the one found.
+# What it prints is the path of the interpreter it tried (as `command -v` gives it), not its sys.executable: a python3
+# that is a wrapper script setting the environment (PYTHONPATH, a module system) must run as it was probed.
+# POSIX sh: the C tests run it through popen (/bin/sh), which may be dash.
 mods=${*:-h5py numpy}
 
 # "h5py, numpy and matplotlib"
@@ -29,7 +30,7 @@ words() {
     printf '%s' "$list"
 }
 
-# imports each module named in its arguments; prints its sys.executable, or "lacks M, N" and exits 1
+# imports each module named in its arguments; prints "ok", or "lacks M, N" and exits 1
 probe='import sys
 missing = []
 for m in sys.argv[1:]:
@@ -42,22 +43,23 @@ for m in sys.argv[1:]:
 if missing:
     print("lacks " + ", ".join(missing))
     sys.exit(1)
-print(sys.executable)'
+print("ok")'
 
 nl='
 '
 # try INTERPRETER: 0 and its path in $found, or 1 and why not in $why
 try() {
-    if ! command -v "$1" > /dev/null 2>&1; then
+    path=$(command -v "$1" 2> /dev/null)
+    if [ -z "$path" ]; then
         why="is not found"
         return 1
     fi
     # shellcheck disable=SC2086 # one module a word
-    out=$("$1" -c "$probe" $mods 2> /dev/null)
+    out=$("$path" -c "$probe" $mods 2> /dev/null)
     rc=$?
     last=${out##*"$nl"} # its last line (no tail: the probe runs with any PATH)
-    if [ "$rc" -eq 0 ] && [ -n "$last" ]; then
-        found=$last
+    if [ "$rc" -eq 0 ] && [ "$last" = ok ]; then
+        found=$path
         return 0
     fi
     case $last in
