@@ -155,13 +155,22 @@ $(BUILD)/tests/test_law_toy: tests/test_law_toy.c tests/test_util.c $(APPLIB) $(
 	@mkdir -p $(dir $@)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -DDEM_TEST_LAWS -Itests $< tests/test_util.c $(APPLIB) $(TL_DIR)/libdem.a $(TEST_LDLIBS) -o $@
 
+# The Python of the recipes below (tools/*.py, which draw with matplotlib; the install's PYSITE): PYTHON when given
+# (`make run PYTHON=...` or the environment), else the first of the `python3` on PATH and /usr/bin/python3 that
+# imports h5py, numpy and matplotlib - the rule of scripts/find_python.sh, which the tests and tools/*.sh follow too.
+# Looked up once, on first use (a build alone never runs it). With none, find_python.sh says on stderr what each one
+# lacks and /usr/bin/python3 is used, so that the recipe stops at its first import.
+ifeq ($(strip $(PYTHON)),)
+PYTHON = $(eval PYTHON := $(or $(shell scripts/find_python.sh h5py numpy matplotlib),/usr/bin/python3))$(PYTHON)
+endif
+
 # The main job: the default scene on PoCL, its HDF5 + XDMF output and a plot, in out/.
 SCENE ?= scenes/hydrogel_514.yaml
 RUN_OUT = out/$(basename $(notdir $(SCENE)))
 run: $(BUILD)/dem
 	@mkdir -p out
 	./$(BUILD)/dem run $(SCENE) -o $(RUN_OUT).h5 --progress
-	/usr/bin/python3 tools/plot_series.py $(RUN_OUT).h5
+	$(PYTHON) tools/plot_series.py $(RUN_OUT).h5
 	@echo "make run: results in out/"
 	@echo "  $(RUN_OUT).h5       frames (positions, velocities, forces ...) and time series, HDF5 (h5ls -r to list)"
 	@echo "  $(RUN_OUT).xmf      open in ParaView: File > Open, pick 'XDMF Reader', Apply; Filters > Glyph (Sphere, scale by radius); the walls are the 'walls' block"
@@ -190,13 +199,13 @@ validate: $(BUILD)/dem
 	    runs="$$runs out/validation/$$s-$$m.h5"; \
 	  done; \
 	  case $$s in five_box) ref="$(PLOT_REF_five_box)";; rubber_plates) ref="$(PLOT_REF_rubber_plates)";; *) ref="";; esac; \
-	  /usr/bin/python3 tools/plot_models.py -o out/validation/$$s.png $$ref $$runs || exit 1; \
+	  $(PYTHON) tools/plot_models.py -o out/validation/$$s.png $$ref $$runs || exit 1; \
 	done
 	@for m in patch particle; do \
 	  echo "validate: seed001/friction_slide_$$m"; \
 	  ./$(BUILD)/dem run scenes/seed001/friction_slide_$$m.yaml -o out/validation/friction_slide_$$m.h5 --quiet || exit 1; \
 	done
-	/usr/bin/python3 tools/plot_friction_slide.py -o out/validation/friction_slide.png \
+	$(PYTHON) tools/plot_friction_slide.py -o out/validation/friction_slide.png \
 	  out/validation/friction_slide_patch.h5 out/validation/friction_slide_particle.h5
 	@for c in $(TRIAXIAL_CASES); do runs=""; \
 	  for m in $(TRIAXIAL_MODELS); do \
@@ -206,7 +215,7 @@ validate: $(BUILD)/dem
 	    runs="$$runs out/validation/triaxial_case$${c}_$$m.h5"; \
 	  done; \
 	  area=0.0019635; [ $$c = 2 ] && area=0.0038485; \
-	  /usr/bin/python3 tools/plot_triaxial.py --area $$area -o out/validation/triaxial_case$$c.png $$runs || exit 1; \
+	  $(PYTHON) tools/plot_triaxial.py --area $$area -o out/validation/triaxial_case$$c.png $$runs || exit 1; \
 	done
 
 # The README's two commands on a bare Debian 12 root (mmdebstrap minbase, cached; the committed HEAD is cloned
@@ -217,7 +226,7 @@ test-fresh:
 # seed 000's validation scenes under each of the twelve MC-stress pressure conventions (docs/multicontact.md):
 # one Markdown table on stdout, runs in out/conventions/ (about 8 minutes on 2 cores).
 conventions: $(BUILD)/dem
-	/usr/bin/python3 tools/mc_stress_conventions.py
+	$(PYTHON) tools/mc_stress_conventions.py
 
 # What accuracy costs in time: a matrix of runs, error against closed forms and converged runs against
 # wall time, drawn in out/accuracy.png and tabled in docs/accuracy.md (bench/accuracy.c, tools/plot_accuracy.py).
@@ -226,7 +235,7 @@ conventions: $(BUILD)/dem
 accuracy: $(BUILD)/dem-accuracy
 	@mkdir -p out
 	./$(BUILD)/dem-accuracy out/accuracy.csv
-	/usr/bin/python3 tools/plot_accuracy.py out/accuracy.csv -o out/accuracy.png \
+	$(PYTHON) tools/plot_accuracy.py out/accuracy.csv -o out/accuracy.png \
 	  $(if $(ACCURACY_QUICK)$(ACCURACY_ONLY),> out/accuracy.md,--doc docs/accuracy.md)
 
 # One press scene under the four contact models and their compaction curves side by side
@@ -376,7 +385,6 @@ python-lib:
 # `pip install`ed: the package is pure Python with no entry points, Debian's python3 has no pip by default and
 # refuses pip into the system (PEP 668), and a copy stages under DESTDIR like every other file;
 # `pip install ./python` does the same for a user who wants pip's record of it.
-PYTHON := /usr/bin/python3
 PYSITE = $(PREFIX)/lib/python$(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')/dist-packages
 install: install-libs
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(DATADIR)/kernels \

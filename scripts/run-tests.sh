@@ -26,6 +26,7 @@
 # this script starts nothing more, sends SIGTERM to each running program and its children, waits for them, and dies
 # of the same signal, so make stops too.
 set -u
+here=$(dirname "$0")
 jobs_max=${TEST_JOBS:-$(nproc)}
 case "$jobs_max" in '' | *[!0-9]*) jobs_max=0 ;; *) jobs_max=$((10#$jobs_max)) ;; esac
 [ "$jobs_max" -gt 0 ] || { echo "run-tests: TEST_JOBS must be a positive integer, not '${TEST_JOBS-}'" >&2; exit 2; }
@@ -94,7 +95,13 @@ for t in "${order[@]}"; do
   while [ -z "$signal" ] && [ "${#running[@]}" -ge "$jobs_max" ]; do reap; done
   [ -z "$signal" ] || break
   n=$(basename "$t")
-  ( env --default-signal=INT,QUIT stdbuf -oL "$t" > "$logdir/$n.log" 2>&1 < /dev/null
+  ( if [ "${t%.py}" != "$t" ]; then
+      # a Python test runs under scripts/find_python.sh's Python (with matplotlib: it draws), or fails saying what
+      # is missing, not under its #! line's /usr/bin/python3
+      py=$("$here/find_python.sh" h5py numpy matplotlib) && env --default-signal=INT,QUIT stdbuf -oL "$py" "$t"
+    else
+      env --default-signal=INT,QUIT stdbuf -oL "$t"
+    fi > "$logdir/$n.log" 2>&1 < /dev/null
     echo "$?" > "$logdir/$n.rc" ) &
   name_of[$!]=$n
   start_of[$!]=$(date +%s)

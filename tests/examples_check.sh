@@ -28,7 +28,8 @@ grep -q "stage 2 of 4 (motion\[0\]) ended at step [0-9]* (t = [0-9.e-]* s): unti
 grep -q "stage 3 of 4 (motion\[1\]) ended at step [0-9]* (t = [0-9.e-]* s): until_force 2 N reached" "$T/run.log" ||
     fail "no stage-end line for the piston's press (until_force 2 N)"
 
-/usr/bin/python3 - "$T/pp.h5" <<'PY' || fail "the output's forces are not what the scene implies"
+python=$("$ROOT/scripts/find_python.sh" 2>&1) || fail "$python"
+"$python" - "$T/pp.h5" <<'PY' || fail "the output's forces are not what the scene implies"
 import sys
 import h5py
 import numpy as np

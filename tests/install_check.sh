@@ -15,8 +15,10 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 P="$T/prefix"
-make -s -C "$ROOT" install PREFIX="$P" > "$T/install.log" 2>&1 || { cat "$T/install.log"; exit 1; }
 fail() { echo "install_check: $*"; exit 1; }
+# the Python that runs the installed package below, and whose version names the install's dist-packages folder
+python=$("$ROOT/scripts/find_python.sh" 2>&1) || fail "$python"
+make -s -C "$ROOT" install PREFIX="$P" PYTHON="$python" > "$T/install.log" 2>&1 || { cat "$T/install.log"; exit 1; }
 
 # the installed files: both libraries, the soname's links, the public headers and only those
 VERSION=$(sed -n 's/^#define DEM_VERSION "\(.*\)"/\1/p' "$ROOT/include/dem.h")
@@ -86,7 +88,7 @@ cmp -s "$T/cpp_shared.log" "$T/cpp_static.log" || { cat "$T"/cpp_*.log; fail "th
 pysite=$(echo "$P"/lib/python3*/dist-packages)
 [ -f "$pysite/libdem/__init__.py" ] && [ -f "$pysite/libdem/sim.py" ] || fail "the install lacks the Python package"
 [ "$(readlink "$pysite/libdem/libdem.so")" = "$P/lib/$SONAME" ] || fail "the Python package's libdem.so is no link to $SONAME"
-(cd "$T/elsewhere" && env -u DEM_SOURCE_DIR -u LIBDEM_PATH PYTHONPATH="$pysite" /usr/bin/python3 -c "
+(cd "$T/elsewhere" && env -u DEM_SOURCE_DIR -u LIBDEM_PATH PYTHONPATH="$pysite" "$python" -c "
 import libdem, libdem.sim as m
 assert libdem.__file__.startswith('$pysite/'), libdem.__file__
 assert m.library_path() == '$pysite/libdem/libdem.so', m.library_path()
@@ -98,7 +100,7 @@ with m.Sim() as s:
 " > "$T/py.log" 2>&1) || { cat "$T/py.log"; fail "the installed Python package does not run the installed library"; }
 
 # DESTDIR: everything under the staging root, nothing elsewhere
-make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
+make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" PYTHON="$python" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
 for f in lib/libdem.a "lib/libdem.so.$VERSION" "lib/$SONAME" lib/libdem.so lib/pkgconfig/libdem.pc include/dem.h \
          include/dem_effects.h include/dem_membrane.h include/dem_press.h share/libdem/kernels/program.cl \
          share/libdem/common/dem_kernels.h share/libdem/common/laws/laws.h share/libdem/common/dem_internal_bits.h share/libdem/include/dem_effects.h; do

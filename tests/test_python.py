@@ -34,7 +34,7 @@ import libdem  # noqa: E402
 from libdem import analysis, tablet  # noqa: E402
 from libdem.output import OutputError, Run  # noqa: E402
 
-PY = "/usr/bin/python3"
+PY = sys.executable  # the command lines below run under the Python running this file
 
 
 def write_run(path, time, walls, wall_position, wall_force, radius, step=None, wall_normal_force=None,

@@ -431,7 +431,7 @@ static void test_membrane_scene(void **st)
     assert_int_equal(sh(err, sizeof err, "%s run %s -o %s/mt.h5 --quiet", DEM, sc, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s run %s -o %s/mh.h5 --stop-after 369 --quiet", DEM, sc, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "%s run --restart %s/mh.ckpt.h5 -o %s/mr.h5 --quiet", DEM, tmp, tmp), 0);
-    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/mt.xmf", SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s %s/tests/xdmf_check.py %s/mt.xmf", test_python(), SRC, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "test $(grep -c 'Grid Name=\"membranes ' %s/mt.xmf) = $(grep -c "
                                          "'Grid Name=\"frame ' %s/mt.xmf)", tmp, tmp), 0); /* a surface per frame */
     char a[300], b[300], h5[300];
@@ -1123,7 +1123,7 @@ static void test_output_and_xdmf(void **st)
     assert_non_null(strstr(xml, "o.h5:/frames/torque"));
     assert_non_null(strstr(xml, "NumberOfElements=\"64\""));
     /* an independent reader: h5py resolves every dataset path named in the XDMF with the stated shape */
-    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/o.xmf", SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s %s/tests/xdmf_check.py %s/o.xmf", test_python(), SRC, tmp), 0);
 }
 
 /* The walls in the XDMF (/walls, the "walls" grid): a short concave press (tests/scenes/tablet_concave.yaml: a die of
@@ -1141,28 +1141,28 @@ static void test_xdmf_walls(void **st)
     assert_int_equal(sh(err, sizeof err, "sed -e '0,/cup:/{/cup:/d}' -e '%s' %s/tests/scenes/tablet_concave.yaml > "
                         "%s/press.yaml && %s run %s/press.yaml -o %s/press.h5 --quiet", short_run, SRC, tmp, DEM, tmp,
                         tmp), 0);
-    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/press.xmf", SRC, tmp), 0);
+    const char *py = test_python();
+    assert_int_equal(sh(err, sizeof err, "%s %s/tests/xdmf_check.py %s/press.xmf", py, SRC, tmp), 0);
     /* 960 triangles: the die 96, the flat lower punch 48, the cupped upper one 48 + 2 x 48 x 8 */
-    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_walls_check.py %s/press.xmf triangles=960 "
-                        "upper=0,0,-0.1", SRC, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s %s/tests/xdmf_walls_check.py %s/press.xmf triangles=960 "
+                        "upper=0,0,-0.1", py, SRC, tmp), 0);
     assert_int_equal(sh(err, sizeof err, "test $(grep -c 'Grid Name=\"walls ' %s/press.xmf) = $(grep -c "
                                          "'Grid Name=\"frame ' %s/press.xmf)", tmp, tmp), 0); /* a mesh per frame */
     /* the check can fail: the punch's travel undeclared; one vertex of the last frame 1 nm off */
-    assert_int_not_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_walls_check.py %s/press.xmf", SRC, tmp),
-                         0);
+    assert_int_not_equal(sh(err, sizeof err, "%s %s/tests/xdmf_walls_check.py %s/press.xmf", py, SRC, tmp), 0);
     assert_non_null(strstr(err, "wall upper: moved"));
-    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/bad && cp %s/press.h5 %s/press.xmf %s/bad && /usr/bin/python3 "
+    assert_int_equal(sh(err, sizeof err, "mkdir -p %s/bad && cp %s/press.h5 %s/press.xmf %s/bad && %s "
                         "-c \"import h5py; p = h5py.File('%s/bad/press.h5', 'r+')['walls/points']; "
-                        "p[-1, 100, 2] += 1e-9\"", tmp, tmp, tmp, tmp, tmp), 0); /* vertex 100: the flat punch's */
-    assert_int_not_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_walls_check.py %s/bad/press.xmf "
-                            "upper=0,0,-0.1", SRC, tmp), 0);
+                        "p[-1, 100, 2] += 1e-9\"", tmp, tmp, tmp, tmp, py, tmp), 0); /* vertex 100: the flat punch's */
+    assert_int_not_equal(sh(err, sizeof err, "%s %s/tests/xdmf_walls_check.py %s/bad/press.xmf "
+                            "upper=0,0,-0.1", py, SRC, tmp), 0);
     assert_non_null(strstr(err, "not moved rigidly"));
     /* an endless die, no domain: the tube from the lower punch's face to the upper's */
     assert_int_equal(sh(err, sizeof err, "sed -e 's/, height: 0.012//' -e '/^domain:/d' %s/press.yaml > %s/endless.yaml "
-                        "&& %s run %s/endless.yaml -o %s/endless.h5 --quiet && /usr/bin/python3 %s/tests/"
-                        "xdmf_walls_check.py %s/endless.xmf upper=0,0,-0.1 && /usr/bin/python3 -c \"import h5py, sys; "
+                        "&& %s run %s/endless.yaml -o %s/endless.h5 --quiet && %s %s/tests/"
+                        "xdmf_walls_check.py %s/endless.xmf upper=0,0,-0.1 && %s -c \"import h5py, sys; "
                         "z = h5py.File('%s/endless.h5')['walls/points'][0, :96, 2]; sys.exit(not (z.min() == 0.002 and "
-                        "z.max() == 0.0125))\"", tmp, tmp, DEM, tmp, tmp, SRC, tmp, tmp), 0);
+                        "z.max() == 0.0125))\"", tmp, tmp, DEM, tmp, tmp, py, SRC, tmp, py, tmp), 0);
 }
 
 /* Iterated MC-strain with a cap too small to converge: the progress line counts capped steps, the run ends with a
@@ -1537,9 +1537,9 @@ static void test_crafted_checkpoints(void **st)
         {"pairs_out_of_range", "joins particles 1000000 and 2 (want 0 <= i < j < 64)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        int rc = sh(err, sizeof err, "/usr/bin/python3 %s/tests/craft_checkpoint.py %s/good.ckpt.h5 %s/bad.ckpt.h5 %s && "
+        int rc = sh(err, sizeof err, "%s %s/tests/craft_checkpoint.py %s/good.ckpt.h5 %s/bad.ckpt.h5 %s && "
                                      "%s run --restart %s/bad.ckpt.h5 -o %s/after.h5 --quiet",
-                    SRC, tmp, tmp, cases[k].variant, DEM, tmp, tmp);
+                    test_python(), SRC, tmp, tmp, cases[k].variant, DEM, tmp, tmp);
         if (rc != 65 || !strstr(err, cases[k].expect) || strstr(err, "HDF5-DIAG"))
             fail_msg("%s: status %d (want 65): %s", cases[k].variant, rc, err);
         assert_false(exists("%s/after.h5", tmp));
@@ -1918,9 +1918,11 @@ static void test_contact_network(void **st)
     printf("  contact network: %ld pair rows, %ld wall rows over %ld frames\n", pairs, walls, nf);
     assert_true(pairs > 0 && walls > 0);
     free(start), free(np), free(ids), free(d), free(force);
-    assert_int_equal(sh(err, sizeof err, "/usr/bin/python3 %s/tests/xdmf_check.py %s/net.xmf && /usr/bin/python3 "
+    const char *py = test_python_plots(); /* tools/contacts.py draws net.contacts.png */
+    assert_int_equal(sh(err, sizeof err, "%s %s/tests/xdmf_check.py %s/net.xmf && %s "
                                           "%s/tools/contacts.py %s/net.h5 > %s/net.txt && grep -q 'particle pairs, <f> = ' "
-                                          "%s/net.txt && test -s %s/net.contacts.png", SRC, tmp, SRC, tmp, tmp, tmp, tmp),
+                                          "%s/net.txt && test -s %s/net.contacts.png",
+                        py, SRC, tmp, py, SRC, tmp, tmp, tmp, tmp),
                      0);
 }
 

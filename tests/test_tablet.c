@@ -250,7 +250,8 @@ static void test_tablet_report(void **st)
     assert_int_equal(test_tmpdir_make(dir, sizeof dir, "dem-test-tablet"), 0);
     assert_int_equal(test_sh(dir, err, sizeof err, "%s/build/dem run %s -o %s/t.h5 > %s/t.log 2>&1 || { cat %s/t.log "
                              ">&2; exit 1; }", DEM_DEFAULT_SOURCE_DIR, SCENE, dir, dir, dir), 0);
-    if (test_sh(dir, err, sizeof err, "{ /usr/bin/python3 %s/tools/plot_tablet.py %s/t.h5 > %s/report.txt; }",
+    const char *py = test_python_plots(); /* the reports draw PNGs */
+    if (test_sh(dir, err, sizeof err, "{ %s %s/tools/plot_tablet.py %s/t.h5 > %s/report.txt; }", py,
                 DEM_DEFAULT_SOURCE_DIR, dir, dir))
         fail_msg("plot_tablet.py: %s", err);
     char path[300];
@@ -291,9 +292,9 @@ static void test_tablet_report(void **st)
     fclose(fp);
     /* the models' comparison (tools/plot_tablet_models.py, make tablet-models) of this one run: its PNG, and a table
      * row with the report's density and dem run's own numbers from the log beside the run */
-    if (test_sh(dir, err, sizeof err, "echo 't 0 12.5' > %s/times.txt && /usr/bin/python3 %s/tools/plot_tablet_models.py "
-                "%s/t.h5 --times %s/times.txt -o %s/m.png --table %s/m.md > /dev/null", dir, DEM_DEFAULT_SOURCE_DIR, dir,
-                dir, dir, dir))
+    if (test_sh(dir, err, sizeof err, "echo 't 0 12.5' > %s/times.txt && %s %s/tools/plot_tablet_models.py "
+                "%s/t.h5 --times %s/times.txt -o %s/m.png --table %s/m.md > /dev/null", dir, py, DEM_DEFAULT_SOURCE_DIR,
+                dir, dir, dir, dir))
         fail_msg("plot_tablet_models.py: %s", err);
     snprintf(path, sizeof path, "%s/m.md", dir);
     fp = fopen(path, "r");
@@ -327,8 +328,8 @@ static void test_tablet_report(void **st)
                              "%s/build/dem run --restart p1.ckpt.h5 --stop-after 60000 -o p2.h5 --quiet 2>/dev/null && "
                              "%s/build/dem run --restart p2.ckpt.h5 -o p3.h5 --quiet 2>/dev/null", dir,
                              DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR), 0);
-    if (test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet.py p1.h5 p2.h5 p3.h5 -o p.png "
-                "> parts.txt", dir, DEM_DEFAULT_SOURCE_DIR))
+    if (test_sh(dir, err, sizeof err, "cd %s && %s %s/tools/plot_tablet.py p1.h5 p2.h5 p3.h5 -o p.png "
+                "> parts.txt", dir, py, DEM_DEFAULT_SOURCE_DIR))
         fail_msg("plot_tablet.py of the parts: %s", err);
     char parts[1024] = {0};
     snprintf(path, sizeof path, "%s/parts.txt", dir);
@@ -341,15 +342,15 @@ static void test_tablet_report(void **st)
     assert_non_null(whole);
     if (strcmp(numbers, whole))
         fail_msg("the report of the run in parts differs from the whole run's:\n%s%s", parts, line);
-    assert_int_not_equal(test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet.py p1.h5 p3.h5 "
-                                 "-o p.png", dir, DEM_DEFAULT_SOURCE_DIR), 0);
+    assert_int_not_equal(test_sh(dir, err, sizeof err, "cd %s && %s %s/tools/plot_tablet.py p1.h5 p3.h5 "
+                                 "-o p.png", dir, py, DEM_DEFAULT_SOURCE_DIR), 0);
     assert_non_null(strstr(err, "missing"));
-    assert_int_not_equal(test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet.py p2.h5 p1.h5 "
-                                 "-o p.png", dir, DEM_DEFAULT_SOURCE_DIR), 0);
+    assert_int_not_equal(test_sh(dir, err, sizeof err, "cd %s && %s %s/tools/plot_tablet.py p2.h5 p1.h5 "
+                                 "-o p.png", dir, py, DEM_DEFAULT_SOURCE_DIR), 0);
     assert_non_null(strstr(err, "order they ran"));
     /* the models' comparison takes such a run as its parts joined by '+' */
-    if (test_sh(dir, err, sizeof err, "cd %s && /usr/bin/python3 %s/tools/plot_tablet_models.py p1.h5+p2.h5+p3.h5 "
-                "-o pm.png --table pm.md > /dev/null", dir, DEM_DEFAULT_SOURCE_DIR))
+    if (test_sh(dir, err, sizeof err, "cd %s && %s %s/tools/plot_tablet_models.py p1.h5+p2.h5+p3.h5 "
+                "-o pm.png --table pm.md > /dev/null", dir, py, DEM_DEFAULT_SOURCE_DIR))
         fail_msg("plot_tablet_models.py of the parts: %s", err);
     snprintf(path, sizeof path, "%s/pm.md", dir);
     fp = fopen(path, "r");
@@ -371,9 +372,10 @@ static void test_tablet_report(void **st)
                                  "i.ckpt.h5", dir), 0);
     } else {
         assert_non_null(strstr(err, "stopped by signal 2"));
-        if (test_sh(dir, err, sizeof err, "cd %s && test ! -e i.h5.part && /usr/bin/python3 -c \"import h5py, sys; "
+        if (test_sh(dir, err, sizeof err, "cd %s && test ! -e i.h5.part && %s -c \"import h5py, sys; "
                     "s = h5py.File('i.h5')['series/step'][-1]; c = h5py.File('i.ckpt.h5')['state'].attrs['step']; "
-                    "sys.exit(0 if s == c and s > 0 else 'series ends at %%d, checkpoint at %%d' %% (s, c))\"", dir))
+                    "sys.exit(0 if s == c and s > 0 else 'series ends at %%d, checkpoint at %%d' %% (s, c))\"",
+                    dir, py))
             fail_msg("the interrupted run's output: %s", err);
     }
     test_tmpdir_remove(dir);

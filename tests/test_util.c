@@ -39,6 +39,44 @@ int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
+/* scripts/find_python.sh MODULES, once per module set: its path, or fails the test with its message */
+static const char *python_with(int k, const char *modules)
+{
+    static char path[2][1024], msg[2][2048];
+    static int looked[2];
+    if (!looked[k]) {
+        looked[k] = 1;
+        char cmd[1200];
+        snprintf(cmd, sizeof cmd, "/bin/sh '%s/scripts/find_python.sh' %s 2>&1", DEM_DEFAULT_SOURCE_DIR, modules);
+        FILE *p = popen(cmd, "r");
+        size_t n = p ? fread(msg[k], 1, sizeof msg[k] - 1, p) : 0;
+        msg[k][n] = 0;
+        int st = p ? pclose(p) : -1;
+        while (n > 0 && (msg[k][n - 1] == '\n' || msg[k][n - 1] == ' '))
+            msg[k][--n] = 0;
+        if (st == 0 && n > 0 && n < sizeof path[k]) {
+            const char *last = strrchr(msg[k], '\n'); /* its last line: the path */
+            snprintf(path[k], sizeof path[k], "%s", last ? last + 1 : msg[k]);
+        } else if (!n) {
+            snprintf(msg[k], sizeof msg[k], "%s/scripts/find_python.sh did not run (status %d)",
+                     DEM_DEFAULT_SOURCE_DIR, st);
+        }
+    }
+    if (!path[k][0])
+        fail_msg("%s", msg[k]);
+    return path[k];
+}
+
+const char *test_python(void)
+{
+    return python_with(0, "h5py numpy");
+}
+
+const char *test_python_plots(void)
+{
+    return python_with(1, "h5py numpy matplotlib");
+}
+
 double uniform01(unsigned *st)
 {
     *st = *st * 1664525u + 1013904223u;

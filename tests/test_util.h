@@ -87,6 +87,12 @@ int test_tmpdir_make(char *dir, size_t len, const char *prefix);
 int test_tmpdir_remove(const char *dir);
 /* Runs a shell command (printf-style), its stderr captured into err via dir/stderr.txt; returns its exit status. */
 int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...);
+/* The Python the tests run their scripts with, by scripts/find_python.sh's rule: $PYTHON when set, else the first of
+ * the `python3` on PATH and /usr/bin/python3 that imports h5py and numpy; test_python_plots: one that also imports
+ * matplotlib (for the tests that draw a PNG). When there is none, fails the test with the script's message (what each
+ * interpreter tried lacks): a test that needs Python never passes without running it. Looked up once per program. */
+const char *test_python(void);
+const char *test_python_plots(void);
 
 /* Two spheres (radius r, material m) approaching head-on along x at relative speed v, touching at t = 0.
  * dt_frac: time step as a fraction of the closed-form Hertz contact time. */

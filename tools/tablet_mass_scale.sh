@@ -22,6 +22,9 @@ OUT=${MASS_OUT:-out/tablet_mass_scale}
 SCALES=${MASS_SCALES:-1 100 400 1600 6400}
 SEEDS=${MASS_SEEDS:-7 8 9}
 DEM=${DEM:-build/dem}
+# the Python that draws (scripts/find_python.sh: $PYTHON, else python3 on PATH or /usr/bin/python3), found before
+# the runs so that a machine without one learns it at once
+PY=$(scripts/find_python.sh h5py numpy matplotlib) || exit 1
 [ -x "$DEM" ] || { echo "tablet-mass-scale: $DEM is missing: run make first" >&2; exit 1; }
 grep -q '^time: {.*}$' "$SCENE" || { echo "tablet-mass-scale: $SCENE has no one-line 'time: {...}' map" >&2; exit 1; }
 mkdir -p "$OUT"
@@ -37,5 +40,5 @@ for S in $SCALES; do
   done
 done
 [ ${#runs[@]} -gt 0 ] || { echo "tablet-mass-scale: no run completed" >&2; exit 1; }
-/usr/bin/python3 tools/plot_tablet_mass_scale.py --times "$OUT/times.txt" -o "$OUT/mass_scale.png" \
+"$PY" tools/plot_tablet_mass_scale.py --times "$OUT/times.txt" -o "$OUT/mass_scale.png" \
   --table "$OUT/mass_scale.md" "${runs[@]}"

@@ -28,6 +28,9 @@ MODELS=${TABLET_MODELS:-classical mc_stress mc_strain mc_strain_iterated}
 DEM=${DEM:-build/dem}
 TIME=${TABLET_TIME:-}
 [ -x "$DEM" ] || { echo "tablet-models: $DEM is missing: run make first" >&2; exit 1; }
+# the Python that draws (scripts/find_python.sh: $PYTHON, else python3 on PATH or /usr/bin/python3), found before
+# the runs so that a machine without one learns it at once
+PY=$(scripts/find_python.sh h5py numpy matplotlib) || exit 1
 mkdir -p "$OUT"
 : > "$OUT/times.txt"
 runs=()
@@ -77,5 +80,5 @@ for m in $MODELS; do
 TABLET_TIME set continues it" >&2 ;; esac
 done
 [ ${#runs[@]} -gt 0 ] || { echo "tablet-models: no run completed" >&2; exit 1; }
-/usr/bin/python3 tools/plot_tablet_models.py --times "$OUT/times.txt" -o "$OUT/models.png" --table "$OUT/models.md" \
+"$PY" tools/plot_tablet_models.py --times "$OUT/times.txt" -o "$OUT/models.png" --table "$OUT/models.md" \
   "${runs[@]}"

@@ -16,6 +16,9 @@ OUT=${STRENGTH_OUT:-out/tablet_strength}
 PRESSURES=${STRENGTH_PRESSURES:-25 50 100}
 DEM=${DEM:-build/dem}
 [ -x "$DEM" ] || { echo "tablet-strength: $DEM is missing: run make first" >&2; exit 1; }
+# the Python that draws (scripts/find_python.sh: $PYTHON, else python3 on PATH or /usr/bin/python3), found before
+# the runs so that a machine without one learns it at once
+PY=$(scripts/find_python.sh h5py numpy matplotlib) || exit 1
 grep -q "until_stress: 5.0e7" "$SCENE" || { echo "tablet-strength: $SCENE has no 'until_stress: 5.0e7' to replace" >&2; exit 1; }
 mkdir -p "$OUT"
 runs=()
@@ -29,4 +32,4 @@ for p in $PRESSURES; do
   fi
 done
 [ ${#runs[@]} -gt 0 ] || { echo "tablet-strength: no run finished" >&2; exit 1; }
-PYTHONPATH=python /usr/bin/python3 tools/plot_tablet_strength.py "$OUT" "${runs[@]}"
+PYTHONPATH=python "$PY" tools/plot_tablet_strength.py "$OUT" "${runs[@]}"
