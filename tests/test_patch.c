@@ -9,6 +9,7 @@
  *    independent of the order the contacts are listed in. */
 #include "test_util.h"
 #define CL_TARGET_OPENCL_VERSION 120
+#include "cl_util.h" /* cl_build_options: the library's build options */
 #include <CL/cl.h>
 #include <math.h>
 #include <stdio.h>
@@ -136,10 +137,9 @@ static void opencl_probe(int rs, const void *p, const void *tri, int *kind, int 
     cl_command_queue q = clCreateCommandQueue(ctx, dev, 0, &e);
     cl_program prog = clCreateProgramWithSource(ctx, 1, &probe_src, NULL, &e);
     char opts[4096];
-    /* the library's arithmetic options (host/opencl/cl_backend.c): without correctly rounded fp32 divide and sqrt NVIDIA's
+    /* the library's own build options (cl_build_options): without correctly rounded fp32 divide and sqrt NVIDIA's
      * OpenCL gives other fp32 bits than the reference */
-    snprintf(opts, sizeof opts, "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d %s -I %s/common -I %s/include", rs,
-             rs == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "", DEM_DEFAULT_SOURCE_DIR, DEM_DEFAULT_SOURCE_DIR);
+    assert_true(cl_build_options(opts, sizeof opts, DEM_DEFAULT_SOURCE_DIR, rs) > 0);
     if (clBuildProgram(prog, 1, &dev, opts, NULL, NULL) != CL_SUCCESS) {
         static char log[16384];
         clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log, log, NULL);

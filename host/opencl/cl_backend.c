@@ -313,12 +313,14 @@ static int cl_program_build(dem_backend *b, const dem_setup *s, char *err, size_
         if (hash_folder(dir, source_folders[k], 0, &hash, err, errlen))
             return 1;
     char options[8192], src[4200];
-    snprintf(options, sizeof options,
-             "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL -I%s/kernels "
-             "-I%s/common -I%s/include %s %s%s",
-             s->real_size, s->effects, (unsigned long long)hash, dir, dir, dir,
-             s->real_size == 4 ? "-cl-fp32-correctly-rounded-divide-sqrt" : "",
-             s->extra_build_options ? s->extra_build_options : "", DEM_TEST_LAW_OPTION);
+    int at = cl_build_options(options, sizeof options, dir, s->real_size);
+    if (at < 0) {
+        snprintf(err, errlen, "the kernel source folder '%s' is too long a path", dir);
+        return 1;
+    }
+    snprintf(options + at, sizeof options - (size_t)at, " -DDEM_EFFECTS=%u -DDEM_SOURCE_HASH=0x%016llxULL %s%s",
+             s->effects, (unsigned long long)hash, s->extra_build_options ? s->extra_build_options : "",
+             DEM_TEST_LAW_OPTION);
     int w = snprintf(src, sizeof src, "#include \"%s/%s\"\n", dir, PROGRAM_FILE);
     if (w < 0 || (size_t)w >= sizeof src) {
         snprintf(err, errlen, "the kernel source folder '%s' is too long a path", dir);

@@ -154,3 +154,10 @@ int cl_build(cl_context ctx, cl_device_id dev, const char *source, const char *o
     *out = prog;
     return 0;
 }
+
+int cl_build_options(char *buf, size_t len, const char *dir, int real_size)
+{
+    int w = snprintf(buf, len, "-cl-std=CL1.2 -DDEM_REAL_SIZE=%d -I%s/kernels -I%s/common -I%s/include%s", real_size,
+                     dir, dir, dir, real_size == 4 ? " -cl-fp32-correctly-rounded-divide-sqrt" : "");
+    return w < 0 || (size_t)w >= len ? -1 : w;
+}

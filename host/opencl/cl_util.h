@@ -27,6 +27,11 @@ int cl_device_count(void);
 /* The k-th device over all platforms, in platform order. */
 int cl_device_get(int k, cl_device_info_t *info, char *err, size_t errlen);
 
+/* The build options every OpenCL program of the project starts from - the library's kernels and a test's own probe
+ * kernels alike: OpenCL C 1.2, the precision (DEM_REAL_SIZE), the correctly rounded fp32 divide and sqrt without
+ * which a GPU's fp32 bits are not the reference's (NVIDIA's OpenCL), and dir's kernels/, common/ and include/ as -I
+ * folders. Into buf; its length, or -1 when it does not fit. */
+int cl_build_options(char *buf, size_t len, const char *dir, int real_size);
 /* Builds `source` for the device; on failure the message holds the device's build log. */
 int cl_build(cl_context ctx, cl_device_id dev, const char *source, const char *options, cl_program *out, char *err,
              size_t errlen);
