@@ -99,7 +99,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
             H5Gclose(g);
         hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         rc = rc || sg < 0 || h5_write_text(sg, "text", sc->text) || h5_write_text(sg, "path", sc->path) ||
-             h5_attr_string(sg, "model", run->model) ||
+             h5_attr_string(sg, "model", run->model) || h5_attr_string(sg, "particle_order", scene_particle_order(sc)) ||
              h5_attr_string(f, "libdem_version", DEM_VERSION);
         if (sg >= 0)
             H5Gclose(sg);
@@ -338,10 +338,17 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         int model_ok = !has_model || model;
         snprintf(ck->model, sizeof ck->model, "%s", model ? model : "");
         free(model);
+        int has_order = sg >= 0 && H5Aexists(sg, "particle_order") > 0;
+        char *order = has_order ? h5_read_attr_string(sg, "particle_order") : NULL;
+        int order_ok = !has_order || (order && (!strcmp(order, "input") || !strcmp(order, "spatial")));
+        snprintf(ck->order, sizeof ck->order, "%s", order ? order : "");
+        free(order);
         if (sg >= 0)
             H5Gclose(sg);
         rc = !ck->scene_text || !ck->scene_path || !model_ok; /* a model that cannot be read: damaged */
-        what = !ck->scene_text ? "/scene/text" : !ck->scene_path ? "/scene/path" : !model_ok ? "/scene model" : NULL;
+        rc = rc || !order_ok;
+        what = !ck->scene_text ? "/scene/text" : !ck->scene_path ? "/scene/path" : !model_ok ? "/scene model"
+                                                : !order_ok ? "/scene particle_order (input or spatial)" : NULL;
     }
     H5Fclose(f);
     if (rc) {

@@ -10,6 +10,8 @@ typedef struct {
     char *scene_text;  /* the scene the run was built from */
     char *scene_path;  /* where it was (CSV paths are relative to its folder) */
     char model[32];    /* dem run --model of the run ("" = the scene's own law) */
+    char order[16];    /* the particles' order the run was built in (scene_particle_order); "" in a checkpoint older
+                          than that attribute, whose default order was "input" */
     double *radius;    /* [n], checked against the rebuilt scene */
 } checkpoint;
 

@@ -26,8 +26,8 @@ const char cli_usage[] =
     "checkpoints to OUT.ckpt.h5 (the scene's output.checkpoint_every, and at the end). A progress line goes to\n"
     "stderr when it is a terminal (--progress: always; --quiet: never). Units are SI. --model replaces the\n"
     "scene's normal law (same scene, another contact model; kept in the checkpoint for --restart); --backend\n"
-    "replaces the scene's backend. --verbose\n"
-    "adds the kernels each step and each neighbour rebuild launched to the report at the end.\n"
+    "replaces the scene's backend. --verbose adds the kernels each step and each neighbour rebuild launched\n"
+    "to the report at the end.\n"
     "SIGINT, SIGTERM or SIGHUP ends a run within about a second, its output and checkpoint complete.\n"
     "\n"
     "exit status: 0 done; 1 the simulation failed while running; 2 bad command line; 65 invalid scene or\n"
@@ -165,7 +165,7 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
                 continue;
             }
             if (!strcmp(a, "--model") || !strcmp(a, "--device") || !strcmp(a, "--precision")) {
-                if (k + 1 >= argc)
+                if (k + 1 >= argc || !strncmp(argv[k + 1], "--", 2))
                     return snprintf(err, errlen, "option %s needs a value", a), *with_usage = 1, EXIT_USAGE;
                 const char *val = argv[++k];
                 if (!strcmp(a, "--model"))

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <hdf5.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,9 +38,13 @@ static uint64_t fnv_u64(uint64_t h, uint64_t v)
 int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen)
 {
     static const char *names[] = {CONFORM_DATASETS};
+    if (access(path, R_OK)) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -2;
+    }
     hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f < 0) {
-        snprintf(err, errlen, "%s: cannot open as HDF5", path);
+        snprintf(err, errlen, "%s: not an HDF5 file: not a checkpoint of dem run", path);
         return -1;
     }
     uint64_t h = FNV_OFFSET;
@@ -114,21 +119,26 @@ static int find_scene(const char *root, const char *name, char *path, size_t len
     return -1;
 }
 
-/* One `dem run` of 150 steps into dir; its exit status (-1: it could not be started or was killed). */
-static int run_child(const char *self, const char *scene, const conform_line *l, const conform_opts *o, const char *dir)
+/* SIGINT or SIGTERM: the run under way is stopped, and the table ends with what was compared */
+static volatile sig_atomic_t stop_signal;
+static void on_stop(int sig) { stop_signal = sig; }
+
+/* One `dem run` of 150 steps into dir on device `device` (-1: the reference); its exit status (-1: it could not be
+ * started or was killed). */
+static int run_child(const char *self, const char *scene, const conform_line *l, int device, const char *dir)
 {
     char out[4200], log[4200], dev[16];
     snprintf(out, sizeof out, "%s/o.h5", dir);
     snprintf(log, sizeof log, "%s/log", dir);
-    snprintf(dev, sizeof dev, "%d", o->device);
+    snprintf(dev, sizeof dev, "%d", device);
     const char *argv[24];
     int a = 0;
     argv[a++] = self, argv[a++] = "run", argv[a++] = scene, argv[a++] = "-o", argv[a++] = out;
     argv[a++] = "--quiet", argv[a++] = "--stop-after", argv[a++] = "150", argv[a++] = "--precision";
-    argv[a++] = l->prec, argv[a++] = "--backend", argv[a++] = o->reference ? "reference" : "opencl";
+    argv[a++] = l->prec, argv[a++] = "--backend", argv[a++] = device < 0 ? "reference" : "opencl";
     if (strcmp(l->model, "scene"))
         argv[a++] = "--model", argv[a++] = l->model;
-    if (o->device >= 0)
+    if (device >= 0)
         argv[a++] = "--device", argv[a++] = dev;
     argv[a] = NULL;
     fflush(stdout);
@@ -140,12 +150,16 @@ static int run_child(const char *self, const char *scene, const conform_line *l,
         if (fd >= 0)
             dup2(fd, 1), dup2(fd, 2), close(fd);
         execv(self, (char *const *)argv);
+        fprintf(stderr, "dem conform: cannot run %s: %s\n", self, strerror(errno));
         _exit(127);
     }
-    int st;
-    while (waitpid(pid, &st, 0) < 0)
+    int st, told = 0;
+    while (waitpid(pid, &st, 0) < 0) {
         if (errno != EINTR)
             return -1;
+        if (stop_signal && !told) /* the run ends within about a second, as dem run does on a signal */
+            kill(pid, SIGTERM), told = 1;
+    }
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
@@ -243,14 +257,30 @@ int conform_run(const conform_opts *o, const char *self)
         free(lines);
         return EXIT_IO;
     }
+    /* the device as dem run would choose it (--device, else $DEM_DEVICE, else 0), named before anything runs */
+    int device = -1;
     char devname[512] = "the reference (plain C)";
-    if (!o->reference && dem_device_name(o->device >= 0 ? o->device : 0, devname, sizeof devname))
-        snprintf(devname, sizeof devname, "device %d (no name)", o->device);
+    if (!o->reference) {
+        dem_config dc;
+        dem_config_default(&dc);
+        device = o->device >= 0 ? o->device : dc.device;
+        if (dem_device_name(device, devname, sizeof devname)) {
+            fprintf(stderr, "dem conform: no OpenCL device %d (dem devices lists them)\n", device);
+            rmdir(dir);
+            free(lines);
+            return EXIT_DEVICE;
+        }
+    }
     printf("dem conform: %d runs of 150 steps on %s against %s\n", n, devname, table);
     printf("%-26s %-19s %-5s %-17s %-17s %s\n", "scene", "model", "prec", "reference", "this run", "result");
-    int equal = 0;
+    int equal = 0, refused = 0, missing = 0, done = 0;
     double t0 = now_s();
-    for (int k = 0; k < n; k++) {
+    struct sigaction sa, old_int, old_term;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop; /* no SA_RESTART: the wait for a run returns to pass the signal on */
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    for (int k = 0; k < n && !stop_signal; k++) {
         const conform_line *l = &lines[k];
         char scene[4400], got[32] = "", note[1024] = "";
         int same = 0;
@@ -259,8 +289,9 @@ int conform_run(const conform_opts *o, const char *self)
             snprintf(got, sizeof got, "missing");
             snprintf(note, sizeof note, " (no %s.yaml under %s/scenes, scenes/validation or tests/scenes)", l->scene,
                      root);
+            missing++;
         } else {
-            int rc = run_child(self, scene, l, o, dir);
+            int rc = run_child(self, scene, l, device, dir);
             char ck[4300], herr[512];
             snprintf(ck, sizeof ck, "%s/o.ckpt.h5", dir);
             if (rc == 0 && !conform_hash_file(ck, got, herr, sizeof herr))
@@ -282,14 +313,27 @@ int conform_run(const conform_opts *o, const char *self)
             }
             clean_dir(dir);
         }
-        equal += same;
+        if (stop_signal && !same) /* a run stopped by the signal is not a result */
+            break;
+        equal += same, done++;
+        refused += same && !strcmp(got, "refused");
         printf("%-26s %-19s %-5s %-17s %-17s %s%s  %.1f s\n", l->scene, l->model, l->prec, l->hash, got,
-               same ? "equal" : "DIFFERS", note, now_s() - t);
+               same ? "equal" : missing && !strcmp(got, "missing") ? "MISSING" : "DIFFERS", note, now_s() - t);
         fflush(stdout);
     }
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
     rmdir(dir);
-    printf("dem conform: %d of %d equal to the reference (refusals included) in %.0f s%s\n", equal, n, now_s() - t0,
-           equal == n ? "" : ": this device does not reproduce the reference bits");
+    const char *verdict = equal == n ? ""
+                          : missing ? ": scenes of the table are missing here (a tree other than the table's?)"
+                          : done < n ? ""
+                                     : ": this device does not reproduce the reference bits";
+    if (done < n)
+        printf("dem conform: stopped by signal %d after %d of %d runs; %d equal to the reference (%d of them refusals "
+               "as recorded)\n", (int)stop_signal, done, n, equal, refused);
+    else
+        printf("dem conform: %d of %d equal to the reference (%d of them refusals as recorded) in %.0f s%s\n", equal, n,
+               refused, now_s() - t0, verdict);
     free(lines);
-    return equal == n ? 0 : EXIT_RUN_FAILED;
+    return done < n ? 128 + (int)stop_signal : equal == n ? 0 : missing ? EXIT_NO_INPUT : EXIT_RUN_FAILED;
 }

@@ -13,11 +13,12 @@
 /* The state hash of checkpoint `path` as 16 hex digits into hex[17]: 64-bit FNV-1a over each dataset of
  * CONFORM_DATASETS present under /state - its name, its element size and count, then its values as stored
  * (little-endian, the checkpoint's own precision). Two runs hash equal exactly when those arrays are bit for bit
- * equal (up to a collision: 2^-64 per pair). 0, or -1 with a message in err. */
-int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen);
+ * equal (up to a collision: 2^-64 per pair). 0, or -1 (not a checkpoint) or -2 (cannot be opened) with a message in
+ * err. */
+int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen); /* -2: cannot be opened */
 
 typedef struct {
-    int device;        /* --device N; -1 = the default device */
+    int device;        /* --device N; -1 = dem run's default ($DEM_DEVICE, else 0) */
     int precision;     /* 0 both, else DEM_FP32 / DEM_FP64 */
     int reference;     /* 1: run the reference backend instead of OpenCL (--backend reference) */
     const char *table; /* --table FILE; NULL = docs/state_hashes.txt of the source folder */
@@ -26,6 +27,8 @@ typedef struct {
 
 /* Runs the set (each line as its own `dem run` process, so that one failing run does not end the others), prints
  * one table line per run and a summary to stdout. Exit status: 0 every hash equal (and every refusal refused), 1 any
- * difference, 2 bad options, 66 the table or a scene missing. self: this program's path, to run `dem run`. */
+ * difference, 2 no line selected, 65 a malformed table line, 66 the table or one of its scenes missing, 69 no such
+ * device, 128 + N stopped by signal N (the summary then says how many runs were compared). self: this program's
+ * path, to run `dem run`. */
 int conform_run(const conform_opts *o, const char *self);
 #endif

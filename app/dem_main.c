@@ -151,9 +151,10 @@ static double wall_now(void)
 static int probe(dem_sim *s, const scene_run *run, const char *path)
 {
     double t0 = wall_now();
-    if (dem_start(s, &run->cfg) || dem_step(s, 1)) {
+    int e = dem_start(s, &run->cfg);
+    if (e || dem_step(s, 1)) {
         fprintf(stderr, "dem: %s: the probe could not run: %s\n", path, dem_error(s));
-        return EXIT_RUN_FAILED;
+        return e == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_RUN_FAILED;
     }
     double ready = wall_now() - t0, t = 0;
     long done = 0;
@@ -200,6 +201,13 @@ static int check(const cli *cl)
         dem_destroy(s);
         scene_free(sc);
         return EXIT_USAGE;
+    }
+    char dn[512];
+    if (cl->check_device >= 0 && dem_device_name(cl->check_device, dn, sizeof dn)) {
+        fprintf(stderr, "dem: no OpenCL device %d (dem devices lists them)\n", cl->check_device);
+        dem_destroy(s);
+        scene_free(sc);
+        return EXIT_DEVICE;
     }
     if (cl->check_device >= 0)
         run.cfg.device = cl->check_device, run.cfg.backend = DEM_BACKEND_OPENCL;
@@ -366,9 +374,10 @@ int main(int argc, char **argv)
         return check(&c);
     case CLI_HASH: {
         char hex[17];
-        if (conform_hash_file(c.hash_path, hex, err, sizeof err)) {
+        int h = conform_hash_file(c.hash_path, hex, err, sizeof err);
+        if (h) {
             fprintf(stderr, "dem: %s\n", err);
-            return EXIT_BAD_INPUT;
+            return h == -2 ? EXIT_NO_INPUT : EXIT_BAD_INPUT;
         }
         printf("%s\n", hex);
         return 0;

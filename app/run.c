@@ -561,6 +561,10 @@ static int phase_load(run_ctx *c)
         c->have_ck = 1;
         c->sc = scene_load_text(o->scene_path ? o->scene_path : c->ck.scene_path, c->ck.scene_text,
                                 strlen(c->ck.scene_text), c->err, sizeof c->err);
+        /* the order the checkpoint's run was built in, whatever the default is now (a checkpoint without it is
+         * older than the spatial default: its run was in the scene's order) */
+        if (c->sc)
+            c->sc->order_default = c->ck.order[0] ? (!strcmp(c->ck.order, "input") ? "input" : "spatial") : "input";
     } else {
         c->sc = scene_load(o->scene_path, c->err, sizeof c->err);
     }

@@ -227,6 +227,8 @@ typedef struct {
     size_t text_len;
     scene_file *f;
     scene_locator *loc;
+    const char *order_default; /* particle_order where the text gives none: NULL = "spatial"; "input" for a
+                                  checkpoint written before spatial became the default (its own order) */
 } scene;
 
 /* Output fields a scene may ask for. */

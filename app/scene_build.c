@@ -261,7 +261,7 @@ double scene_mass_scale(const scene *sc)
 
 const char *scene_particle_order(const scene *sc)
 {
-    return sc->f->particle_order ? sc->f->particle_order : "spatial";
+    return sc->f->particle_order ? sc->f->particle_order : sc->order_default ? sc->order_default : "spatial";
 }
 
 int scene_keeps_acceleration(const scene *sc)

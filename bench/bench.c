@@ -579,6 +579,7 @@ static double copy_gbs(int device)
 typedef struct {
     long n;
     double rate, bytes_per_particle, contacts;
+    double step_bytes; /* the bytes of the buffers given to the kernels launched every step (with DEM_PROFILE) */
     unsigned long long hash;
     char kernels[1024];
     char narrow[512]; /* kernels of every step with fewer work-groups of BED_GROUP items than compute units */
@@ -660,6 +661,8 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
         for (const char *at = strstr(seq, names[k]); at && !each_step; at = strstr(at + 1, names[k]))
             each_step = (at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' ');
         each_step = each_step && strncmp(names[k], "wall_reduce", 11);
+        if (each_step)
+            r->step_bytes += dem_kernel_bytes(s, k);
         if (us >= 1 && each_step)
             len += (size_t)snprintf(r->kernels + len, sizeof r->kernels - len, "%s%s %.0f (%.1f GB/s)", len ? ", " : "",
                                     names[k], us, dem_kernel_bytes(s, k) / (us * 1e-6) / 1e9);
@@ -681,14 +684,21 @@ static const char *conform_summary(void)
     const char *p = getenv("DEM_BENCH_CONFORM");
     FILE *f = p ? fopen(p, "r") : NULL;
     char buf[1024];
-    while (f && fgets(buf, sizeof buf, f))
-        if (!strncmp(buf, "dem conform: ", 13) && strstr(buf, " equal to the reference")) {
+    int rows = 0, header = 0;
+    while (f && fgets(buf, sizeof buf, f)) {
+        header |= !strncmp(buf, "dem conform: ", 13) && strstr(buf, " runs of 150 steps on ");
+        rows += strstr(buf, "  equal  ") || strstr(buf, " DIFFERS") || strstr(buf, " MISSING");
+        if (header && !strncmp(buf, "dem conform: ", 13) && !strstr(buf, " runs of 150 steps on ")) {
             buf[strcspn(buf, "\n")] = 0;
             for (char *c = buf; *c; c++) /* a JSON string */
                 if (*c == '"' || *c == '\\')
                     *c = '\'';
             snprintf(line, sizeof line, "%s", buf + 13);
+            header = 2; /* the summary seen */
         }
+    }
+    if (header == 1) /* stopped before its summary (a time limit) */
+        snprintf(line, sizeof line, "incomplete: %d runs compared, no summary", rows);
     if (f)
         fclose(f);
     return line;
@@ -716,14 +726,15 @@ static void bed_table(int quick)
            "after the timed steps is hashed on each backend. The device copies %.1f GB/s (clEnqueueCopyBuffer, bytes read "
            "+ written); beside each kernel launched every step, the bytes of the buffers it is given over its time: the "
            "rate if it moved each of them once (gathers that hit the cache make it higher, rows and records it skips "
-           "lower).\n\n"
-           "| n | order | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | state hash = reference | us per step by kernel |\n"
-           "|---|---|---|---|---|---|---|---|---|\n", path, b.n, dev, gbs);
+           "lower). bytes/particle-step: those bytes summed over the kernels of every step, over n - the traffic of a "
+           "step by that count, the same proxy on every device (goal: 400 in fp32).\n\n"
+           "| n | order | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | bytes/particle-step | state hash = reference | us per step by kernel |\n"
+           "|---|---|---|---|---|---|---|---|---|---|\n", path, b.n, dev, gbs);
     if (js)
         fprintf(js, "{\n  \"bench\": \"poured bed\", \"bed\": \"%s\", \"device\": \"%s\", \"copy_gb_per_s\": %.2f,\n  \"rows\": [",
                 path, dev, gbs);
     double lnN[8], lnT[8];
-    int nfit = 0, first = 1, narrow_said[4] = {0};
+    int nfit = 0, first = 1, narrow_said[4] = {0}, narrow_rows = 0;
     char narrow[4][600] = {"", "", "", ""};
     const char *only_sizes = getenv("DEM_BENCH_BED_SIZES"); /* e.g. "3": the 1e6 rows only (0..3: 1e3 .. 1e6) */
     for (int z = 0; z < nsizes; z++)
@@ -739,20 +750,21 @@ static void bed_table(int quick)
             const char *order = sorted ? "sorted" : "as poured";
             if (bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_OPENCL, prec, steps, 0, &ro) ||
                 bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_OPENCL, prec, steps, 1, &rp)) {
-                printf("| %ld | %s | | opencl | %s | failed | | | |\n", n_est, order, p ? "fp32" : "fp64");
+                printf("| %ld | %s | | opencl | %s | failed | | | | |\n", n_est, order, p ? "fp32" : "fp64");
                 continue;
             }
             int have_ref = z < 3 && !bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_REFERENCE,
                                              prec, steps, 0, &rr);
             const char *eq = !have_ref ? "not checked" : ro.hash && rr.hash == ro.hash && rp.hash == ro.hash ? "yes" : "NO";
-            printf("| %ld | %s | %.2f | opencl | %s | %.3g | %.0f | %s | %s |\n", ro.n, order, ro.contacts,
-                   p ? "fp32" : "fp64", ro.rate, ro.bytes_per_particle, eq, rp.kernels);
-            if (ro.n >= 100000 && rp.narrow[0] && !narrow_said[z]) {
+            printf("| %ld | %s | %.2f | opencl | %s | %.3g | %.0f | %.0f | %s | %s |\n", ro.n, order, ro.contacts,
+                   p ? "fp32" : "fp64", ro.rate, ro.bytes_per_particle, rp.step_bytes / (double)rp.n, eq, rp.kernels);
+            narrow_rows += ro.n >= 50000;
+            if (ro.n >= 50000 && rp.narrow[0] && !narrow_said[z]) {
                 snprintf(narrow[z], sizeof narrow[z], "n = %ld: %s", ro.n, rp.narrow);
                 narrow_said[z] = 1;
             }
             if (have_ref)
-                printf("| %ld | %s | | reference | %s | %.3g | | | |\n", rr.n, order, p ? "fp32" : "fp64", rr.rate);
+                printf("| %ld | %s | | reference | %s | %.3g | | | | |\n", rr.n, order, p ? "fp32" : "fp64", rr.rate);
             fflush(stdout);
             if (!p && sorted && ro.n >= 5000) {
                 lnN[nfit] = log((double)ro.n);
@@ -763,9 +775,10 @@ static void bed_table(int quick)
                 if (have_ref)
                     snprintf(refrate, sizeof refrate, "%.4g", rr.rate);
                 fprintf(js, "%s\n    {\"n\": %ld, \"order\": \"%s\", \"precision\": \"%s\", \"steps\": %ld, \"contacts_per_particle\": %.3f, "
-                        "\"opencl_particle_steps_per_s\": %.4g, \"device_bytes_per_particle\": %.0f, "
+                        "\"opencl_particle_steps_per_s\": %.4g, \"device_bytes_per_particle\": %.0f, \"bytes_per_particle_step\": %.0f, "
                         "\"reference_particle_steps_per_s\": %s, \"hash_opencl\": \"%016llx\", \"hash_equal\": \"%s\"}",
                         first ? "" : ",", ro.n, order, p ? "fp32" : "fp64", steps, ro.contacts, ro.rate, ro.bytes_per_particle,
+                        rp.step_bytes / (double)rp.n,
                         refrate, ro.hash, eq);
                 first = 0;
             }
@@ -774,13 +787,13 @@ static void bed_table(int quick)
      * tree": the tree's upper levels are latency, not throughput) */
     char cuw[512] = "";
     dem_device_describe(0, cuw, sizeof cuw);
-    printf("\nKernels of a step with fewer work-groups of %d items than the device's compute units (%.*s), n >= 1e5: ",
+    printf("\nKernels of a step with fewer work-groups of %d items than the device's compute units (%.*s), n >= 5e4: ",
            BED_GROUP, (int)strcspn(cuw, ","), cuw);
     int any = 0;
     for (int z = 0; z < 4; z++)
         if (narrow[z][0])
             printf("%s%s", any++ ? "; " : "", narrow[z]);
-    printf("%s\n", any ? " (items per launch)" : "none");
+    printf("%s\n", any ? " (items per launch)" : narrow_rows ? "none" : "not measured (no row of 5e4 spheres or more)");
     if (js) {
         fprintf(js, "\n  ],\n  \"narrow_kernels\": \"");
         for (int z = 0, a = 0; z < 4; z++)
@@ -794,8 +807,10 @@ static void bed_table(int quick)
             sx += lnN[k], sy += lnT[k], sxx += lnN[k] * lnN[k], sxy += lnN[k] * lnT[k];
         double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
         printf("\nCost per step grows as n^%.3f (fp64 OpenCL, sorted, %d sizes from 1e4 up; goal <= 1.05).\n", slope, nfit);
-        if (js)
+        if (js && isfinite(slope))
             fprintf(js, "  \"cost_exponent_fp64\": %.4f\n}\n", slope);
+        else if (js)
+            fprintf(js, "  \"cost_exponent_fp64\": null\n}\n");
     } else if (js)
         fprintf(js, "  \"cost_exponent_fp64\": null\n}\n");
     if (js)

@@ -131,7 +131,7 @@ enum { WP_FX = 0, WP_FY, WP_FZ, WP_FN, WP_STRIDE };
  * particles in ascending id (wall_reduce_block), sums of groups of DEM_REDUCE_FAN consecutive blocks in ascending
  * block order (wall_reduce_mid), and the groups' sums in ascending order (wall_reduce_final). Its shape is fixed by
  * these constants and n, not by the work-group size, so the sum has the same bits on every device and launch
- * configuration; no level's item adds more than max(256, 64, n / 16384) terms (61 at 1e6), where one item per wall
+ * configuration; no level's item adds more than max(256, 64, n / 16384) terms (62 at 1e6), where one item per wall
  * adding every block was 73 % of a 1e6 press's step on a GPU (docs/design.md "The walls' sum as a tree"). */
 #define DEM_REDUCE_BLOCK 256
 #define DEM_REDUCE_FAN 64

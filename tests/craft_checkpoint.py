@@ -4,7 +4,8 @@
 usage: tests/craft_checkpoint.py GOOD.ckpt.h5 OUT.ckpt.h5 VARIANT
 VARIANT: step_negative, step_past_end, step_huge, n_huge, n_mismatch, hist_dropped, scene_frictionless, pairs_out_of_range,
 pairs_huge, text_varlen, step_array, model_array, text_array, path_array, wall_pos_nan, spin_inf, v_nan,
-radius_zero. Each one is a file a careless reader would act on: allocate on its claims, restart at a time the scene
+radius_zero, order_bad; and order_unrecorded, a checkpoint as written before the particles' order was recorded (it
+must restart in the scene's order). Each other one is a file a careless reader would act on: allocate on its claims, restart at a time the scene
 never reaches, or write saved memory that does not fit the run.
 """
 import shutil
@@ -39,6 +40,15 @@ def main():
             raw = text.encode()
             del f["scene/text"]
             f["scene"].create_dataset("text", data=np.array(raw, dtype=f"S{len(raw) + 1}"))
+        elif variant == "order_unrecorded":  # as written before particle_order had a default of spatial: no attribute,
+            # and a scene without the key (the run in the scene's order, which the default was then)
+            del f["scene"].attrs["particle_order"]
+            text = f["scene/text"][()].decode()
+            raw = "".join(l for l in text.splitlines(True) if not l.startswith("particle_order:")).encode()
+            del f["scene/text"]
+            f["scene"].create_dataset("text", data=np.array(raw, dtype=f"S{len(raw) + 1}"))
+        elif variant == "order_bad":
+            f["scene"].attrs["particle_order"] = "random"
         elif variant == "pairs_out_of_range":
             p = st["pair_i"][:]
             p[0] = 10 ** 6

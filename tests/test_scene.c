@@ -793,6 +793,43 @@ static void test_triaxial_fp32_bitwise(void **st)
  * stages: a piston 0.05 m above the top of two spheres (centres at z = 0 and 0.0202 m, radius 0.01 m) moving down at
  * 0.5 m/s meets them after (0.08 - 0.0302) / 0.5 = 0.0996 s; moving 0.03 m at most, it stops 0.0198 m short (a
  * warning). */
+/* dem check --probe: the first steps timed on the device, the whole run predicted from them (restart_box: 660 steps,
+ * the probe stops one short of the end at most); the precision and device asked for; a device that is not there. */
+static void test_check_probe(void **st)
+{
+    (void)st;
+    char err[8192], out[16384], p[300];
+    int rc = sh(err, sizeof err, "%s check %s/tests/scenes/restart_box.yaml --probe --precision fp32 > %s/probe.txt", DEM,
+                SRC, tmp);
+    snprintf(p, sizeof p, "%s/probe.txt", tmp);
+    FILE *f = fopen(p, "r");
+    assert_non_null(f);
+    size_t len = fread(out, 1, sizeof out - 1, f);
+    out[len] = 0;
+    fclose(f);
+    if (rc != 0)
+        fail_msg("dem check --probe: status %d: %s", rc, err);
+    const char *at = strstr(out, "probe          ");
+    long steps = 0;
+    double ready = 0, us = 0, secs = 0;
+    assert_non_null(at);
+    assert_int_equal(sscanf(at, "probe          %ld steps in fp32 from the start on", &steps), 1);
+    assert_true(steps >= 1 && steps <= 659);
+    const char *q = strstr(at, "after ");
+    assert_non_null(q);
+    assert_int_equal(sscanf(q, "after %lf s to start and take the first: %lf us per step", &ready, &us), 2);
+    assert_true(us > 0 && ready >= 0);
+    q = strstr(at, "wall time      about ");
+    assert_non_null(q);
+    assert_int_equal(sscanf(q, "wall time      about %lf s", &secs), 1); /* a short run: printed in seconds */
+    double want = us * 1e-6 * 660 + ready;
+    if (fabs(secs / want - 1) > 0.06) /* two significant digits */
+        fail_msg("predicted %g s, but %g us x 660 steps + %g s is %g s", secs, us, ready, want);
+    rc = sh(err, sizeof err, "%s check %s/tests/scenes/restart_box.yaml --probe --device 999", DEM, SRC);
+    if (rc != 69 || !strstr(err, "no OpenCL device 999"))
+        fail_msg("dem check --device 999: status %d: %s", rc, err);
+}
+
 static void test_check_estimates(void **st)
 {
     (void)st;
@@ -1534,7 +1571,8 @@ static void test_crafted_checkpoints(void **st)
         {"text_varlen", "incomplete or damaged checkpoint"},
         {"hist_dropped", "the saved state has no tangential history but this run has friction"},
         {"scene_frictionless", "the saved state has tangential history but this run has no friction"},
-        {"pairs_out_of_range", "joins particles 1000000 and 2 (want 0 <= i < j < 64)"},
+        {"pairs_out_of_range", "saved contact 0 joins particles 1000000 and "}, /* its partner: the sorted order's */
+        {"order_bad", "/scene particle_order (input or spatial)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         int rc = sh(err, sizeof err, "%s %s/tests/craft_checkpoint.py %s/good.ckpt.h5 %s/bad.ckpt.h5 %s && "
@@ -1949,9 +1987,21 @@ static void test_size_distributions(void **st)
     assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/size_distributions.yaml -o %s/sd.h5 --quiet "
                                           "--stop-after 1", DEM, SRC, tmp), 0);
     snprintf(path, sizeof path, "%s/sd.h5", tmp);
-    long n = 0;
-    double *r = read_all(path, "particles/radius", H5T_NATIVE_DOUBLE, &n);
+    long n = 0, ni = 0;
+    double *rs = read_all(path, "particles/radius", H5T_NATIVE_DOUBLE, &n);
     assert_int_equal(n, 4000 + 1001 + 900);
+    /* sorted at load (particle_order: spatial, the default): /particles/input_index gives each sphere's place in the
+     * scene's groups */
+    int *idx = read_all(path, "particles/input_index", H5T_NATIVE_INT, &ni);
+    assert_int_equal(ni, n);
+    double *r = malloc(sizeof *r * (size_t)n);
+    char *seen = calloc((size_t)n, 1);
+    for (long i = 0; i < n; i++) {
+        assert_true(idx[i] >= 0 && idx[i] < n && !seen[idx[i]]); /* a permutation */
+        seen[idx[i]] = 1;
+        r[idx[i]] = rs[i];
+    }
+    free(seen), free(idx), free(rs);
     /* the lognormal (median 0.6 mm, sigma 0.3, within 0.3 .. 1.5 mm): the bounds hold, median and spread follow */
     double ln[4000], mean = 0, var = 0;
     for (int i = 0; i < 4000; i++) {
@@ -2014,11 +2064,27 @@ static void test_particle_order(void **st)
     assert_int_equal(sh(err, sizeof err, "%s run %s/sp.yaml -o %s/sp.h5 --stop-after 300", DEM, tmp, tmp), 0);
     assert_non_null(strstr(err, " storing the particles anew; skin now")); /* dem run says how often (reorder.c) */
     assert_int_equal(sh(err, sizeof err, "%s run %s/spr.yaml -o %s/spr.h5 --quiet --stop-after 300", DEM, tmp, tmp), 0);
-    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/in.h5 --quiet --stop-after 1",
+    assert_int_equal(sh(err, sizeof err, "sed 's/^precision: fp64/precision: fp64\\nparticle_order: input/' "
+                                          "%s/tests/scenes/restart_box.yaml > %s/inp.yaml && %s run %s/inp.yaml -o %s/in.h5 "
+                                          "--quiet --stop-after 1", SRC, tmp, DEM, tmp, tmp), 0);
+    /* the default is spatial: the scene without the key runs as sp.yaml, bit for bit */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/def.h5 --quiet --stop-after 300",
                         DEM, SRC, tmp), 0);
     snprintf(a, sizeof a, "%s/sp.ckpt.h5", tmp);
     snprintf(b, sizeof b, "%s/spr.ckpt.h5", tmp);
     assert_true(same_state(a, b, "particle_order spatial, PoCL against the reference") > 5);
+    snprintf(b, sizeof b, "%s/def.ckpt.h5", tmp);
+    assert_true(same_state(a, b, "particle_order spatial against the default") > 5);
+    /* a checkpoint written before the order was recorded (and input was the default) restarts in the scene's order:
+     * 150 steps in input order, that checkpoint made old, 150 more, against 300 straight */
+    assert_int_equal(sh(err, sizeof err, "%s run %s/inp.yaml -o %s/inp3.h5 --quiet --stop-after 300 && %s run %s/inp.yaml "
+                                          "-o %s/old.h5 --quiet --stop-after 150 && %s %s/tests/craft_checkpoint.py "
+                                          "%s/old.ckpt.h5 %s/older.ckpt.h5 order_unrecorded && %s run --restart "
+                                          "%s/older.ckpt.h5 -o %s/old2.h5 --quiet --stop-after 150",
+                        DEM, tmp, tmp, DEM, tmp, tmp, test_python(), SRC, tmp, tmp, DEM, tmp, tmp), 0);
+    snprintf(a, sizeof a, "%s/inp3.ckpt.h5", tmp);
+    snprintf(b, sizeof b, "%s/old2.ckpt.h5", tmp);
+    assert_true(same_state(a, b, "an unrecorded order restarted in the scene's order") > 5);
     snprintf(a, sizeof a, "%s/sp.h5", tmp);
     snprintf(b, sizeof b, "%s/in.h5", tmp);
     long n = 0, moved = 0;
@@ -2041,16 +2107,14 @@ static void test_particle_order(void **st)
      * placed at random), and not once they are sorted */
     assert_int_equal(sed_check_run(err, sizeof err,
                                    "s/count: 2000,/count: 8000,/; s/radius_min: 0.001, radius_max: 0.002/radius_min: "
-                                   "0.0008, radius_max: 0.0012/",
+                                   "0.0008, radius_max: 0.0012/; s/^precision: fp64/precision: fp64\\nparticle_order: input/",
                                    SRC "/tests/scenes/random_groups.yaml", "scat"),
                      0);
-    assert_non_null(strstr(err, "apart (scattered: particle_order: spatial would sort them at load)"));
+    assert_non_null(strstr(err, "apart (scattered: particle_order: spatial (the default) would sort them at load)"));
     assert_non_null(strstr(err, "dem: note: ") && strstr(err, "the particles are in a scattered order"));
     char scat[300];
     snprintf(scat, sizeof scat, "%s/scat.yaml", tmp);
-    assert_int_equal(sed_check_run(err, sizeof err, "s/^precision: fp64/precision: fp64\\nparticle_order: spatial/", scat,
-                                   "scat2"),
-                     0);
+    assert_int_equal(sed_check_run(err, sizeof err, "/^particle_order: input/d", scat, "scat2"), 0); /* the default */
     assert_non_null(strstr(err, "apart (close enough, or too few particles for the order to matter)"));
     assert_null(strstr(err, "scattered order"));
     snprintf(sp, sizeof sp, "%s/sp.yaml", tmp);
@@ -2090,18 +2154,22 @@ static void test_conform(void **st)
     (void)st;
     char err[16384];
     /* the shipped table's restart_box lines in fp64: one run and three refusals (no MC-strain gamma) */
-    int rc = sh(err, sizeof err, "%s conform --only restart_box --precision fp64", DEM);
+    int rc = sh(err, sizeof err, "{ %s conform --only restart_box --precision fp64 >&2; }", DEM);
     if (rc != 0 || !strstr(err, "dem conform: 4 of 4 equal to the reference"))
         fail_msg("conform on the shipped table: status %d:\n%s", rc, err);
     /* one recorded hash altered, one refusal recorded as a hash: both named, exit 1 */
     rc = sh(err, sizeof err,
             "awk '$1 == \"restart_box\" && $2 == \"reference\" && $4 == \"fp64\" { if ($3 == \"scene\") $5 = "
             "\"0123456789abcdef\"; if ($3 == \"mc_stress\") $5 = \"fedcba9876543210\" } { print }' "
-            "%s/docs/state_hashes.txt > %s/t.txt && %s conform --only restart_box --precision fp64 --table %s/t.txt",
+            "%s/docs/state_hashes.txt > %s/t.txt && { %s conform --only restart_box --precision fp64 --table %s/t.txt >&2; }",
             SRC, tmp, DEM, tmp);
     if (rc != 1 || !strstr(err, "dem conform: 2 of 4 equal") || !strstr(err, "0123456789abcdef") ||
         !strstr(err, "DIFFERS"))
         fail_msg("conform against an altered table: status %d:\n%s", rc, err);
+    /* a device that is not there: said before any run, exit 69 */
+    rc = sh(err, sizeof err, "{ %s conform --only restart_box --device 999 >&2; }", DEM);
+    if (rc != 69 || !strstr(err, "no OpenCL device 999"))
+        fail_msg("conform on device 999: status %d:\n%s", rc, err);
     /* dem hash: the reference's run and PoCL's hash as the table records; one step fewer hashes otherwise */
     char a[64] = "", b[64] = "", c[64] = "", want[64] = "";
     assert_int_equal(sh(err, sizeof err, "%s run %s/tests/scenes/restart_box.yaml -o %s/h1.h5 --quiet --stop-after 150 "
@@ -2173,6 +2241,7 @@ int main(void)
         cmocka_unit_test(test_stage_ends),
         cmocka_unit_test(test_stage_wait_ramp),
         cmocka_unit_test(test_check_estimates),
+        cmocka_unit_test(test_check_probe),
         cmocka_unit_test(test_compile_note),
         cmocka_unit_test(test_conform),
     };

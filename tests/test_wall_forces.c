@@ -428,6 +428,76 @@ static void test_kept_wall_forces(void **st)
     }
 }
 
+/* The walls' sum as a tree of three levels (dem_layout.h) with more than one group: 40 000 spheres at rest on a floor,
+ * each pressed into it by its own overlap, the 12 000 of lowest id larger and also touching a ceiling; one step. Each
+ * wall receives the sum of the Hertz forces of its contacts, 4/3 E* sqrt(r) delta^(3/2), added here in long double;
+ * 157 blocks of 256 in 3 groups of 64, so a group dropped, counted twice or given to the other wall is 1/157 or more
+ * of the sum. The series row finishes the same tree on the host: its wall forces are dem_wall_force's bits. OpenCL
+ * bitwise = reference. */
+#define TREE_N 40000
+#define TREE_BIG 12000
+static void tree_forces(double floor_f[3], double ceil_f[3], double ceil_z, double E, double nu)
+{
+    long double fz = 0, cz = 0, estar = E / (2 * (1 - nu * nu));
+    for (int i = 0; i < TREE_N; i++) {
+        double r = i < TREE_BIG ? 0.0015 : 0.001, d = 1e-6 * (1 + (i % 97) / 97.0);
+        fz += 4.0L / 3 * estar * sqrtl(r) * d * sqrtl(d);
+        double z = r - d, dc = z + r - ceil_z; /* the ceiling's overlap */
+        if (dc > 0)
+            cz -= 4.0L / 3 * estar * sqrtl(r) * dc * sqrtl(dc);
+    }
+    floor_f[0] = floor_f[1] = ceil_f[0] = ceil_f[1] = 0;
+    floor_f[2] = -(double)fz, ceil_f[2] = -(double)cz; /* what each wall receives: minus the force on the spheres */
+}
+
+static dem_sim *build_tree(void *ctx)
+{
+    (void)ctx;
+    dem_sim *s = dem_create();
+    int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0, 0, 0});
+    for (int i = 0; i < TREE_N; i++) {
+        double r = i < TREE_BIG ? 0.0015 : 0.001, d = 1e-6 * (1 + (i % 97) / 97.0);
+        double x[3] = {0.0032 * (i % 200), 0.0032 * (i / 200), r - d};
+        dem_add_particle(s, x, NULL, r, m);
+    }
+    dem_wall w = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1}};
+    assert_true(dem_add_wall(s, &w) >= 0);
+    w.point[2] = 0.0029975, w.normal[2] = -1; /* the large spheres' tops reach 3 mm - delta: 0.5-1.5 um into it */
+    assert_true(dem_add_wall(s, &w) >= 0);
+    dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.65, 0.65, 0.02});
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_WALLS))
+        fail_msg("%s", dem_error(s));
+    dem_set_dt(s, 1e-11); /* the start's forces move the spheres by (F/m) dt^2 / 2 in the first drift: 1e-21 m here */
+    return s;
+}
+
+static void check_tree(dem_sim *s, const backend_case *bc, void *ctx)
+{
+    (void)ctx;
+    double want_floor[3], want_ceil[3], f[3], c[3];
+    tree_forces(want_floor, want_ceil, 0.0029975, 1e7, 0.3);
+    unsigned char want = 1;
+    dem_sample row;
+    assert_int_equal(dem_step_sampled(s, 1, &want, &row), 0); /* the first step: the spheres have not moved yet */
+    dem_wall_force(s, 0, f);
+    dem_wall_force(s, 1, c);
+    /* fp32: a position of 3 mm carries 2.3e-10 m, 2e-4 to 5e-4 of these overlaps; a group lost is 1/157 of a sum */
+    double tol = bc->precision == DEM_FP64 ? 1e-12 : 1e-3;
+    printf("  %s: floor %.10g N (sum %.10g), ceiling %.10g N (sum %.10g)\n", bc->name, f[2], want_floor[2], c[2],
+           want_ceil[2]);
+    assert_true(want_ceil[2] > 0 && want_floor[2] < 0); /* the ceiling is pushed up, the floor down */
+    assert_true(fabs(f[2] / want_floor[2] - 1) < tol && fabs(c[2] / want_ceil[2] - 1) < tol);
+    assert_true(fabs(f[0]) + fabs(f[1]) < tol * fabs(f[2]) && fabs(c[0]) + fabs(c[1]) < tol * fabs(c[2]));
+    assert_memory_equal(row.wall_force, f, sizeof f);
+    assert_memory_equal(row.wall_force + 3, c, sizeof c);
+}
+
+static void test_wall_tree(void **st)
+{
+    (void)st;
+    FOR_EACH_BACKEND(bc) backend_run(bc, build_tree, 0, check_tree, NULL);
+}
+
 /* A finite cylinder (dem_wall.height: a die a tablet can leave): its side inside its length, its rim (an edge) in the
  * bore beyond either end, its end faces (the die table) outside the bore. One sphere (r = 1 mm) at rest against a die of radius 5 mm and height 10 mm, one step each:
  * what the wall receives points the way the geometry says, and an endless cylinder still touches where the finite
@@ -673,7 +743,7 @@ static void test_cup_forces(void **st)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_wall_tree), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
                                        cmocka_unit_test(test_stage_ends_density), cmocka_unit_test(test_stage_ramp_after),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die),
                                        cmocka_unit_test(test_cup_geometry), cmocka_unit_test(test_cup_forces)};

@@ -30,7 +30,7 @@ for s in "$ROOT"/scenes/*.yaml "$ROOT"/scenes/validation/*.yaml "$ROOT"/tests/sc
                     > "$T/log" 2>&1
                 rc=$?
                 case $rc in # refused: the scene or model rejected (exit 2 or 65), as dem conform counts it
-                0) h=$("$DEM" hash "$T/o.ckpt.h5") ;;
+                0) h=$("$DEM" hash "$T/o.ckpt.h5") || h="failed(hash)" ;;
                 2 | 65) h="refused" ;;
                 *) h="failed($rc)" ;;
                 esac
