@@ -261,6 +261,8 @@ double scene_mass_scale(const scene *sc)
 
 const char *scene_particle_order(const scene *sc)
 {
+    if (!sc->f) /* no scene file (a program's own packing written through checkpoint_write): as added */
+        return "input";
     return sc->f->particle_order ? sc->f->particle_order : sc->order_default ? sc->order_default : "spatial";
 }
 
