@@ -79,6 +79,19 @@ static int path_ok(const char *what, const char *p, char *err, size_t errlen)
     return l > 0 && l <= DEM_MAX_PATH;
 }
 
+/* --device's value: an index in 0..65535; 1 with the reason in err otherwise */
+static int parse_device(const char *val, int *dev, char *err, size_t errlen)
+{
+    long v;
+    char q[CLI_SHOW_LEN];
+    if (!parse_long(val, &v, 0, 65535)) {
+        snprintf(err, errlen, "--device needs an index in 0..65535 (see dem devices), not '%s'", cli_show(val, q, 200));
+        return 1;
+    }
+    *dev = (int)v;
+    return 0;
+}
+
 static int parse_precision(const char *val, int *p)
 {
     *p = !strcmp(val, "fp32") ? DEM_FP32 : !strcmp(val, "fp64") ? DEM_FP64 : 0;
@@ -99,7 +112,6 @@ static int parse_conform(int argc, char **argv, cli *c, char *err, size_t errlen
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         char q[CLI_SHOW_LEN];
-        long v;
         int b;
         if (strcmp(a, "--device") && strcmp(a, "--precision") && strcmp(a, "--backend") && strcmp(a, "--only") &&
             strcmp(a, "--table")) {
@@ -111,12 +123,8 @@ static int parse_conform(int argc, char **argv, cli *c, char *err, size_t errlen
             return snprintf(err, errlen, "option %s needs a value", a), *with_usage = 1, EXIT_USAGE;
         const char *val = argv[++k];
         if (!strcmp(a, "--device")) {
-            if (!parse_long(val, &v, 0, 65535)) {
-                snprintf(err, errlen, "--device needs an index in 0..65535 (see dem devices), not '%s'",
-                         cli_show(val, q, 200));
+            if (parse_device(val, &o->device, err, errlen))
                 return EXIT_USAGE;
-            }
-            o->device = (int)v;
         } else if (!strcmp(a, "--precision")) {
             if (!parse_precision(val, &o->precision))
                 return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
@@ -159,7 +167,6 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
         for (int k = 2; k < argc; k++) {
             const char *a = argv[k];
             char q[CLI_SHOW_LEN];
-            long v;
             if (!strcmp(a, "--probe")) {
                 c->check_probe = 1;
                 continue;
@@ -173,12 +180,8 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
                 else if (!strcmp(a, "--precision")) {
                     if (!parse_precision(val, &c->check_precision))
                         return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
-                } else if (!parse_long(val, &v, 0, 65535)) {
-                    snprintf(err, errlen, "--device needs an index in 0..65535 (see dem devices), not '%s'",
-                             cli_show(val, q, 200));
+                } else if (parse_device(val, &c->check_device, err, errlen))
                     return EXIT_USAGE;
-                } else
-                    c->check_device = (int)v;
                 continue;
             }
             if (a[0] == '-' || c->check_path) {
@@ -239,12 +242,8 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
                 return EXIT_USAGE;
             o->restart = val;
         } else if (!strcmp(a, "--device")) {
-            if (!parse_long(val, &v, 0, 65535)) {
-                snprintf(err, errlen, "--device needs an index in 0..65535 (see dem devices), not '%s'",
-                         cli_show(val, q, 200));
+            if (parse_device(val, &o->device, err, errlen))
                 return EXIT_USAGE;
-            }
-            o->device = (int)v;
         } else if (!strcmp(a, "--precision")) {
             if (!parse_precision(val, &o->precision))
                 return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
