@@ -717,7 +717,9 @@ static void bed_table(int quick)
     struct { double side; int tx, ty; } sizes[4] = {{0.01, 0, 0}, {0.032, 0, 0}, {0.1, 0, 0}, {0, 5, 2}};
     int nsizes = quick ? 3 : 4;
     const char *json = getenv("DEM_BENCH_JSON") ? getenv("DEM_BENCH_JSON") : DEM_DEFAULT_SOURCE_DIR "/out/bench_bed.json";
-    FILE *js = fopen(json, "w");
+    char json_tmp[4200]; /* written whole, then renamed: a bench stopped at a time limit leaves no half a file */
+    snprintf(json_tmp, sizeof json_tmp, "%s.part", json);
+    FILE *js = fopen(json_tmp, "w");
     char dev[256] = "";
     dem_device_name(0, dev, sizeof dev);
     double gbs = copy_gbs(0);
@@ -814,7 +816,7 @@ static void bed_table(int quick)
     } else if (js)
         fprintf(js, "  \"cost_exponent_fp64\": null\n}\n");
     if (js)
-        fclose(js), printf("(JSON: %s)\n", json);
+        fclose(js), rename(json_tmp, json), printf("(JSON: %s)\n", json);
     free(b.p);
 }
 
