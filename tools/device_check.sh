@@ -7,15 +7,15 @@
 # Stages, in order: devices (the OpenCL platforms and devices seen), conform (`dem conform --device 0`: every shipped
 # scene x model x precision against the reference's state hashes; at most 90 s: 24 s on PoCL with 2 cores, its
 # kernels cached), tests (every test program with DEM_DEVICE=0, the GPU's index when NVIDIA's is the one ICD; sixteen
-# at a time, each stopped after 170 s), bench (make bench's bed table: 1e3-1e6, fp64 and fp32, as poured and sorted,
-# the state hashes against the reference; at most 180 s), tablet (tablet_1m, 2000 steps from its fill:
+# at a time, each stopped after 170 s), bench (make bench's bed table at 1e5 and 1e6, fp64 and fp32, as poured and
+# sorted, the state hashes against the reference at 1e5; at most 180 s), tablet (tablet_1m, 2000 steps from its fill:
 # particle-steps/s, device time per kernel and the device memory held; at most 60 s): at most 9 minutes (devices
 # 20 s). Everything goes to $OUT (the device tool's folder;
 # out/device here), seven files: check.log (all), conform.txt, tests.log, bench.txt, bench_bed.json, tablet.log,
 # summary.txt. Each stage's programs are stopped at its limit,
 # so one that hangs costs that and not the call; their output is line-buffered, so a stopped program leaves what
 # it printed. DEM_CHECK_TESTS (a list or glob of test programs, e.g. "build/tests/test_neighbor") runs some tests
-# only, DEM_CHECK_TABLET_STEPS the tablet's steps (2000), DEM_BENCH_BED_SIZES the bed table's rows (bench/bench.c).
+# only, DEM_CHECK_TABLET_STEPS the tablet's steps (2000), DEM_BENCH_BED_SIZES the bed table's rows (bench/bench.c; 23 by default: 1e5 and 1e6).
 # Here, without an NVIDIA driver, it runs the same stages on whatever OpenCL device 0 is (PoCL): that is how this
 # script was checked (a copy of the tree without build/, the packed build folder's path gone).
 set -uo pipefail
@@ -86,6 +86,7 @@ for stage in $STAGES; do
     if [ -f "$D/bed.csv.gz" ]; then
       gunzip -c "$D/bed.csv.gz" > /tmp/dem-bed.csv
       DEM_DEVICE=0 DEM_BENCH_ONLY=bed DEM_BENCH_BED=/tmp/dem-bed.csv DEM_BENCH_JSON=$OUT/bench_bed.json \
+        DEM_BENCH_BED_SIZES=${DEM_BENCH_BED_SIZES:-23} \
         DEM_BENCH_CONFORM=$OUT/conform.txt timeout 180 stdbuf -oL build/dem-bench > "$OUT/bench.txt" 2>&1
       rc=$?
       say "bench: exit $rc"
