@@ -19,7 +19,7 @@ OUT=${PEER_OUT:-out/peer}
 POUR=${PEER_POUR:-bench/peer/bed_pour.yaml}
 STEPS=${PEER_STEPS:-2000}
 DT=2.0e-6
-PY=/usr/bin/python3
+PY=$(scripts/find_python.sh h5py numpy) || exit 1 # $PYTHON, else python3 on PATH or /usr/bin/python3 (scripts/find_python.sh)
 DEM=build/dem
 # the grains' material, as in bed_pour.yaml (LIGGGHTS' inputs and ours are written from these)
 RHO=2500 YOUNG=5.0e6 POISSON=0.3 RESTITUTION=0.3 FRICTION=0.5
