@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""make bench-peer's helpers (bench/peer/run.sh calls them; run with the Python scripts/find_python.sh finds: it needs h5py).
+"""make bench-peer's helpers (bench/peer/run.sh calls them with the Python scripts/find_python.sh finds: they need
+h5py).
 
   peer.py pour POUR.h5 DENSITY                is the poured bed at rest? (its last series row and frame)
   peer.py lammps BED.csv DATA STL DENSITY     LIGGGHTS' inputs from the bed: a data file (atom_style granular,
