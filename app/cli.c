@@ -92,16 +92,18 @@ static int parse_device(const char *val, int *dev, char *err, size_t errlen)
     return 0;
 }
 
-static int parse_precision(const char *val, int *p)
+/* --precision's value: fp32 or fp64, as DEM_FP32 / DEM_FP64; --backend's: opencl or reference, as a
+ * dem_backend_kind. 0, or EXIT_USAGE with the reason in err. */
+static int parse_precision(const char *val, int *p, char *err, size_t errlen)
 {
     *p = !strcmp(val, "fp32") ? DEM_FP32 : !strcmp(val, "fp64") ? DEM_FP64 : 0;
-    return *p != 0;
+    return *p ? 0 : (snprintf(err, errlen, "--precision must be fp32 or fp64"), EXIT_USAGE);
 }
 
-static int parse_backend(const char *val, int *b)
+static int parse_backend(const char *val, int *b, char *err, size_t errlen)
 {
     *b = !strcmp(val, "opencl") ? DEM_BACKEND_OPENCL : !strcmp(val, "reference") ? DEM_BACKEND_REFERENCE : -1;
-    return *b >= 0;
+    return *b >= 0 ? 0 : (snprintf(err, errlen, "--backend must be opencl or reference"), EXIT_USAGE);
 }
 
 static int parse_conform(int argc, char **argv, cli *c, char *err, size_t errlen, int *with_usage)
@@ -112,7 +114,7 @@ static int parse_conform(int argc, char **argv, cli *c, char *err, size_t errlen
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         char q[CLI_SHOW_LEN];
-        int b;
+        int b = -1;
         if (strcmp(a, "--device") && strcmp(a, "--precision") && strcmp(a, "--backend") && strcmp(a, "--only") &&
             strcmp(a, "--table")) {
             snprintf(err, errlen, "conform: unknown option '%s'", cli_show(a, q, 200));
@@ -122,21 +124,17 @@ static int parse_conform(int argc, char **argv, cli *c, char *err, size_t errlen
         if (k + 1 >= argc)
             return snprintf(err, errlen, "option %s needs a value", a), *with_usage = 1, EXIT_USAGE;
         const char *val = argv[++k];
-        if (!strcmp(a, "--device")) {
-            if (parse_device(val, &o->device, err, errlen))
-                return EXIT_USAGE;
-        } else if (!strcmp(a, "--precision")) {
-            if (!parse_precision(val, &o->precision))
-                return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
-        } else if (!strcmp(a, "--backend")) {
-            if (!parse_backend(val, &b))
-                return usage_error(err, errlen, with_usage, 0, "--backend must be opencl or reference");
-            o->reference = b == DEM_BACKEND_REFERENCE;
-        } else if (!strcmp(a, "--only")) {
-            o->only = val;
-        } else if (!path_ok("--table", val, err, errlen))
+        int rc = !strcmp(a, "--device")      ? parse_device(val, &o->device, err, errlen)
+                 : !strcmp(a, "--precision") ? parse_precision(val, &o->precision, err, errlen)
+                 : !strcmp(a, "--backend")   ? parse_backend(val, &b, err, errlen)
+                                             : 0;
+        if (rc || (!strcmp(a, "--table") && !path_ok("--table", val, err, errlen)))
             return EXIT_USAGE;
-        else
+        if (!strcmp(a, "--backend"))
+            o->reference = b == DEM_BACKEND_REFERENCE;
+        else if (!strcmp(a, "--only"))
+            o->only = val;
+        else if (!strcmp(a, "--table"))
             o->table = val;
     }
     return 0;
@@ -178,8 +176,8 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
                 if (!strcmp(a, "--model"))
                     c->check_model = val; /* checked against the list by scene_apply_model */
                 else if (!strcmp(a, "--precision")) {
-                    if (!parse_precision(val, &c->check_precision))
-                        return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
+                    if (parse_precision(val, &c->check_precision, err, errlen))
+                        return EXIT_USAGE;
                 } else if (parse_device(val, &c->check_device, err, errlen))
                     return EXIT_USAGE;
                 continue;
@@ -245,11 +243,11 @@ int cli_parse(int argc, char **argv, cli *c, char *err, size_t errlen, int *with
             if (parse_device(val, &o->device, err, errlen))
                 return EXIT_USAGE;
         } else if (!strcmp(a, "--precision")) {
-            if (!parse_precision(val, &o->precision))
-                return usage_error(err, errlen, with_usage, 0, "--precision must be fp32 or fp64");
+            if (parse_precision(val, &o->precision, err, errlen))
+                return EXIT_USAGE;
         } else if (!strcmp(a, "--backend")) {
-            if (!parse_backend(val, &o->backend))
-                return usage_error(err, errlen, with_usage, 0, "--backend must be opencl or reference");
+            if (parse_backend(val, &o->backend, err, errlen))
+                return EXIT_USAGE;
         } else if (!strcmp(a, "--stop-after")) {
             if (!parse_long(val, &v, 1, LONG_MAX)) {
                 snprintf(err, errlen, "--stop-after needs a step count >= 1, not '%s'", cli_show(val, q, 200));

@@ -1,6 +1,7 @@
 /* conform.c - see conform.h. */
 #include "conform.h"
 #include "dem.h"
+#include "h5util.h"
 #include "run.h"
 #include <errno.h>
 #include <fcntl.h>
@@ -49,30 +50,21 @@ int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen)
     }
     uint64_t h = FNV_OFFSET;
     int rc = 0, found = 0;
-    for (size_t k = 0; k < sizeof names / sizeof *names && !rc; k++) {
-        char ds[64];
-        snprintf(ds, sizeof ds, "/state/%s", names[k]);
-        if (H5Lexists(f, "/state", H5P_DEFAULT) <= 0 || H5Lexists(f, ds, H5P_DEFAULT) <= 0)
-            continue;
-        hid_t d = H5Dopen2(f, ds, H5P_DEFAULT), sp = d < 0 ? -1 : H5Dget_space(d), t = d < 0 ? -1 : H5Dget_type(d);
+    hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
+    for (size_t k = 0; g >= 0 && k < sizeof names / sizeof *names && !rc; k++) {
+        long count = h5_count(g, names[k]);
+        if (count < 0)
+            continue; /* not in this run's checkpoint */
+        hid_t d = H5Dopen2(g, names[k], H5P_DEFAULT), t = d < 0 ? -1 : H5Dget_type(d); /* as stored: float, double, int */
         hid_t nt = t < 0 ? -1 : H5Tget_native_type(t, H5T_DIR_ASCEND);
-        hssize_t count = sp < 0 ? -1 : H5Sget_simple_extent_npoints(sp);
         size_t esz = nt < 0 ? 0 : H5Tget_size(nt);
-        void *buf = count >= 0 && esz ? malloc((size_t)count * esz + 1) : NULL;
-        if (!buf || (count > 0 && H5Dread(d, nt, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)) {
-            snprintf(err, errlen, "%s: cannot read %s", path, ds);
+        void *buf = esz ? malloc((size_t)count * esz + 1) : NULL;
+        if (!buf || h5_read(g, names[k], nt, buf, (size_t)count)) {
+            snprintf(err, errlen, "%s: cannot read /state/%s", path, names[k]);
             rc = -1;
-        } else {
+        } else { /* its name, element size and count, then its bytes (little-endian on every host we build for) */
             h = fnv(h, names[k], strlen(names[k]) + 1);
-            h = fnv_u64(fnv_u64(h, esz), (uint64_t)count);
-            /* the values least significant byte first, as every host we build for stores them */
-            unsigned char *b = buf;
-            for (hssize_t e = 0; e < count; e++)
-                for (size_t q = 0; q < esz; q++) {
-                    const int little = 1;
-                    size_t at = *(const char *)&little ? q : esz - 1 - q;
-                    h = (h ^ b[(size_t)e * esz + at]) * FNV_PRIME;
-                }
+            h = fnv(fnv_u64(fnv_u64(h, esz), (uint64_t)count), buf, (size_t)count * esz);
             found++;
         }
         free(buf);
@@ -80,11 +72,11 @@ int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen)
             H5Tclose(nt);
         if (t >= 0)
             H5Tclose(t);
-        if (sp >= 0)
-            H5Sclose(sp);
         if (d >= 0)
             H5Dclose(d);
     }
+    if (g >= 0)
+        H5Gclose(g);
     H5Fclose(f);
     if (!rc && !found) {
         snprintf(err, errlen, "%s: no /state/x: not a checkpoint of dem run", path);

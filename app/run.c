@@ -564,7 +564,7 @@ static int phase_load(run_ctx *c)
         /* the order the checkpoint's run was built in, whatever the default is now (a checkpoint without it is
          * older than the spatial default: its run was in the scene's order) */
         if (c->sc)
-            c->sc->order_default = c->ck.order[0] ? (!strcmp(c->ck.order, "input") ? "input" : "spatial") : "input";
+            c->sc->order_default = !strcmp(c->ck.order, "spatial") ? "spatial" : "input";
     } else {
         c->sc = scene_load(o->scene_path, c->err, sizeof c->err);
     }
