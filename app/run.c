@@ -37,23 +37,61 @@ static void run_on_signal(int sig)
 static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 #define RUN_NSIG (sizeof run_signals / sizeof run_signals[0])
 static struct sigaction run_signal_old[RUN_NSIG];
+/* The stop signals are taken by one thread, in sigwait, and blocked in every other: the main thread blocks them
+ * before the device starts, so the OpenCL runtime's threads inherit the mask. A handler alone is not enough: PoCL
+ * compiles a kernel in-process with LLVM at its first launch, and libLLVM installs its own SIGINT and SIGTERM
+ * handlers then (an LD_PRELOAD trace of sigaction shows the calls from libLLVM-15.so.1); a Ctrl-C that came while it
+ * compiled killed the run at once, its output left as .part and no checkpoint (seen in CI; reproduced with an empty
+ * PoCL cache, and tests/test_tablet.c checks the masks). A signal blocked in every thread but the waiter goes to
+ * sigwait whoever installed a handler. run_on_signal stays installed so that the disposition is never the default. */
+static sigset_t run_wait_set, run_mask_old;
+static pthread_t run_waiter;
+static int run_waiting;
+static void *run_signal_wait(void *arg)
+{
+    (void)arg;
+    for (;;) { /* sigwait is a cancellation point: run_catch_signals(0) ends this loop */
+        int sig;
+        if (!sigwait(&run_wait_set, &sig))
+            run_on_signal(sig);
+    }
+    return NULL;
+}
 static void run_catch_signals(int on)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_flags = SA_RESTART; /* reads and writes of ours, HDF5's or the OpenCL runtime's do not fail with EINTR */
     sigemptyset(&sa.sa_mask);
-    for (size_t k = 0; k < RUN_NSIG; k++) {
-        if (!on) { /* as the caller had them */
-            sigaction(run_signals[k], &run_signal_old[k], NULL);
-            continue;
+    if (!on) {
+        if (run_waiting) {
+            pthread_cancel(run_waiter);
+            pthread_join(run_waiter, NULL);
+            run_waiting = 0;
+            /* what came after the waiter ended: the run is done, as for a signal during its report */
+            struct timespec zero = {0, 0};
+            while (sigtimedwait(&run_wait_set, NULL, &zero) > 0)
+                ;
         }
+        for (size_t k = 0; k < RUN_NSIG; k++) /* as the caller had them */
+            sigaction(run_signals[k], &run_signal_old[k], NULL);
+        pthread_sigmask(SIG_SETMASK, &run_mask_old, NULL);
+        return;
+    }
+    sigemptyset(&run_wait_set);
+    for (size_t k = 0; k < RUN_NSIG; k++) {
         sigaction(run_signals[k], NULL, &run_signal_old[k]);
         if (run_signal_old[k].sa_handler == SIG_IGN) /* a signal the caller ignores (nohup's SIGHUP) stays ignored */
             continue;
         sa.sa_handler = run_signals[k] == SIGPIPE ? SIG_IGN : run_on_signal;
         sigaction(run_signals[k], &sa, NULL);
+        if (run_signals[k] != SIGPIPE)
+            sigaddset(&run_wait_set, run_signals[k]);
     }
+    pthread_sigmask(SIG_BLOCK, &run_wait_set, &run_mask_old);
+    run_waiting = pthread_create(&run_waiter, NULL, run_signal_wait, NULL) == 0;
+    if (!run_waiting) /* no thread to take them: the handler takes them, as before */
+        pthread_sigmask(SIG_SETMASK, &run_mask_old, NULL);
 }
 
 static double now(void)
@@ -676,8 +714,7 @@ static int start_with_note(dem_sim *s, const scene_run *run, int note)
             snprintf(n.device, sizeof n.device, "device %d", run->cfg.device);
         pthread_mutex_init(&n.mu, NULL);
         pthread_cond_init(&n.cv, NULL);
-        /* the watcher takes no signal: a Ctrl-C stays the main thread's, held there while the device starts
-         * (cl_create), as it would be without the watcher */
+        /* the watcher takes no signal: a Ctrl-C is run_signal_wait's (run_catch_signals) */
         sigset_t all, old;
         sigfillset(&all);
         pthread_sigmask(SIG_BLOCK, &all, &old);
@@ -870,8 +907,13 @@ static int phase_steps(run_ctx *c)
     double prev_t = 0;
     while (dem_step_index(s) < end) {
         long st = dem_step_index(s), next;
-        if (st == signal_step)
-            raise((int)signal_no);
+        if (st == signal_step) { /* to the process, as kill(1) sends it (raise() would go to this thread, which
+                                  * blocks it), and taken by the waiter before this step goes on, so that the run
+                                  * stops at the step the test names */
+            kill(getpid(), (int)signal_no);
+            for (int k = 0; k < 2000 && !run_signal; k++)
+                nanosleep(&(struct timespec){0, 1000000L}, NULL);
+        }
         if (run_signal && st + 1 < end) { /* stop: one more step, which ends the run as the scene's last would */
             end = st + 1;
             c->stopped = run_signal;
