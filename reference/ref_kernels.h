@@ -44,12 +44,16 @@ DEM_KERNEL_LIST(DEM_REF_DECLARE)
 #undef DEM_REF_DECLARE
 
 /* The helpers of both precisions (suffix S): the closest feature of point i to triangle i, which of a list of contacts stay,
- * a sphere's overlap on a patch and the overlap the patch law is given (common/patch.h, patch_contacts.h). */
+ * a sphere's overlap on a patch and the overlap the patch law is given (common/patch.h, patch_contacts.h); an MDR
+ * contact walked along a prescribed approach (common/laws/mdr_core.h mdr_walk; reference/mdr.c). */
 #define DEM_REF_HELPERS(T, S)                                                                                        \
     void dem_patch_probe##S(int n, const T *p, const T *tri_x, int *kind, int *index, T *w, T *point);               \
     int dem_patch_keep##S(int i, int n, const int *id, const int *tri, const int *kind, const T *d2);                \
     T dem_patch_overlap##S(const T *p, const T *tri_x, unsigned flags, T radius);                                    \
-    T dem_patch_law##S(T d, T radius);
+    T dem_patch_law##S(T d, T radius);                                                                           \
+    void dem_mdr_walk##S(int kind, int nsteps, const T *u, const T *mat, T r, T r2, T mass1, T mass2, T dt,          \
+                         T *delta, T *radius, T *psi, T *force);                                                 \
+    void dem_mdr_fixed##S(int which, int n, const T *x, T *y);
 DEM_REF_HELPERS(float, _f32)
 DEM_REF_HELPERS(double, _f64)
 #undef DEM_REF_HELPERS

@@ -7,9 +7,7 @@
  *  - Table 1: each of its nine cells on two patches with a common edge, the "rand" cells and vertex contacts at one
  *    mesh vertex resolved to the lower patch index, patches without a common edge left alone, and the decisions
  *    independent of the order the contacts are listed in. */
-#include "test_util.h"
-#define CL_TARGET_OPENCL_VERSION 120
-#include "cl_util.h" /* cl_build_options: the library's build options */
+#include "test_util.h" /* test_cl_open: the probe kernel, built with the library's options */
 #include <CL/cl.h>
 #include <math.h>
 #include <stdio.h>
@@ -115,56 +113,25 @@ static const char *probe_src =
 /* Runs the probe kernel in precision rs on device DEM_DEVICE; the results into kind, index, w, pt */
 static void opencl_probe(int rs, const void *p, const void *tri, int *kind, int *index, void *w, void *pt)
 {
-    cl_platform_id plats[8];
-    cl_uint np = 0;
-    assert_int_equal(clGetPlatformIDs(8, plats, &np), CL_SUCCESS);
-    const char *env = getenv("DEM_DEVICE");
-    int want = env ? atoi(env) : 0, seen = 0;
-    cl_device_id dev = NULL;
-    for (cl_uint k = 0; k < np && !dev; k++) {
-        cl_device_id ds[16];
-        cl_uint nd = 0;
-        if (clGetDeviceIDs(plats[k], CL_DEVICE_TYPE_ALL, 16, ds, &nd) != CL_SUCCESS)
-            continue;
-        for (cl_uint j = 0; j < nd && !dev; j++, seen++)
-            if (seen == want)
-                dev = ds[j];
-    }
-    assert_non_null(dev);
-    cl_int e;
-    cl_context ctx = clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
-    assert_int_equal(e, CL_SUCCESS);
-    cl_command_queue q = clCreateCommandQueue(ctx, dev, 0, &e);
-    cl_program prog = clCreateProgramWithSource(ctx, 1, &probe_src, NULL, &e);
-    char opts[4096];
-    /* the library's own build options (cl_build_options): without correctly rounded fp32 divide and sqrt NVIDIA's
-     * OpenCL gives other fp32 bits than the reference */
-    assert_true(cl_build_options(opts, sizeof opts, DEM_DEFAULT_SOURCE_DIR, rs) > 0);
-    if (clBuildProgram(prog, 1, &dev, opts, NULL, NULL) != CL_SUCCESS) {
-        static char log[16384];
-        clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log, log, NULL);
-        fail_msg("patch.h does not build as OpenCL C: %s", log);
-    }
-    cl_kernel k = clCreateKernel(prog, "probe", &e);
+    test_cl t;
+    test_cl_open(&t, probe_src, "probe", rs);
     size_t r = (size_t)rs;
-    cl_mem bp = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, 3 * r * NPROBE, (void *)p, &e);
-    cl_mem bt = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, 9 * r * NPROBE, (void *)tri, &e);
-    cl_mem bk = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, sizeof(int) * NPROBE, NULL, &e);
-    cl_mem bi = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, sizeof(int) * NPROBE, NULL, &e);
-    cl_mem bw = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * r * NPROBE, NULL, &e);
-    cl_mem bx = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * r * NPROBE, NULL, &e);
-    cl_mem args[6] = {bp, bt, bk, bi, bw, bx};
+    cl_mem args[6] = {test_cl_buffer(&t, 3 * r * NPROBE, p), test_cl_buffer(&t, 9 * r * NPROBE, tri),
+                      test_cl_buffer(&t, sizeof(int) * NPROBE, NULL), test_cl_buffer(&t, sizeof(int) * NPROBE, NULL),
+                      test_cl_buffer(&t, 3 * r * NPROBE, NULL), test_cl_buffer(&t, 3 * r * NPROBE, NULL)};
+    cl_kernel k = t.kernel;
+    cl_command_queue q = t.queue;
     for (cl_uint a = 0; a < 6; a++)
         assert_int_equal(clSetKernelArg(k, a, sizeof(cl_mem), &args[a]), CL_SUCCESS);
     size_t global = NPROBE;
     assert_int_equal(clEnqueueNDRangeKernel(q, k, 1, NULL, &global, NULL, 0, NULL, NULL), CL_SUCCESS);
-    clEnqueueReadBuffer(q, bk, CL_TRUE, 0, sizeof(int) * NPROBE, kind, 0, NULL, NULL);
-    clEnqueueReadBuffer(q, bi, CL_TRUE, 0, sizeof(int) * NPROBE, index, 0, NULL, NULL);
-    clEnqueueReadBuffer(q, bw, CL_TRUE, 0, 3 * r * NPROBE, w, 0, NULL, NULL);
-    clEnqueueReadBuffer(q, bx, CL_TRUE, 0, 3 * r * NPROBE, pt, 0, NULL, NULL);
+    clEnqueueReadBuffer(q, args[2], CL_TRUE, 0, sizeof(int) * NPROBE, kind, 0, NULL, NULL);
+    clEnqueueReadBuffer(q, args[3], CL_TRUE, 0, sizeof(int) * NPROBE, index, 0, NULL, NULL);
+    clEnqueueReadBuffer(q, args[4], CL_TRUE, 0, 3 * r * NPROBE, w, 0, NULL, NULL);
+    clEnqueueReadBuffer(q, args[5], CL_TRUE, 0, 3 * r * NPROBE, pt, 0, NULL, NULL);
     for (int a = 0; a < 6; a++)
         clReleaseMemObject(args[a]);
-    clReleaseKernel(k), clReleaseProgram(prog), clReleaseCommandQueue(q), clReleaseContext(ctx);
+    test_cl_close(&t);
 }
 
 static void test_opencl_bits(void **st)

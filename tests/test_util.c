@@ -409,3 +409,61 @@ double pair_distance(dem_sim *s)
     double d = sqrt((x[0] - x[3]) * (x[0] - x[3]) + (x[1] - x[4]) * (x[1] - x[4]) + (x[2] - x[5]) * (x[2] - x[5]));
     return d;
 }
+
+/* ---- the tests' own probe kernels (test_util.h) ---- */
+#include <CL/cl.h>
+#include "cl_util.h" /* cl_build_options: the library's build options */
+
+void test_cl_open(test_cl *t, const char *src, const char *name, int rs)
+{
+    cl_platform_id plats[8];
+    cl_uint np = 0;
+    assert_int_equal(clGetPlatformIDs(8, plats, &np), CL_SUCCESS);
+    const char *env = getenv("DEM_DEVICE");
+    int want = env ? atoi(env) : 0, seen = 0;
+    cl_device_id dev = NULL;
+    for (cl_uint k = 0; k < np && !dev; k++) {
+        cl_device_id ds[16];
+        cl_uint nd = 0;
+        if (clGetDeviceIDs(plats[k], CL_DEVICE_TYPE_ALL, 16, ds, &nd) != CL_SUCCESS)
+            continue;
+        for (cl_uint j = 0; j < nd && !dev; j++, seen++)
+            if (seen == want)
+                dev = ds[j];
+    }
+    if (!dev)
+        fail_msg("no OpenCL device %d (DEM_DEVICE)", want);
+    cl_int e;
+    cl_context ctx = clCreateContext(NULL, 1, &dev, NULL, NULL, &e);
+    assert_int_equal(e, CL_SUCCESS);
+    cl_command_queue q = clCreateCommandQueue(ctx, dev, 0, &e);
+    assert_int_equal(e, CL_SUCCESS);
+    cl_program prog = clCreateProgramWithSource(ctx, 1, &src, NULL, &e);
+    char opts[4096];
+    /* the library's own options: without correctly rounded fp32 divide and sqrt NVIDIA's OpenCL gives other fp32
+     * bits than the reference */
+    assert_true(cl_build_options(opts, sizeof opts, DEM_DEFAULT_SOURCE_DIR, rs) > 0);
+    if (clBuildProgram(prog, 1, &dev, opts, NULL, NULL) != CL_SUCCESS) {
+        static char log[16384];
+        clGetProgramBuildInfo(prog, dev, CL_PROGRAM_BUILD_LOG, sizeof log, log, NULL);
+        fail_msg("the probe kernel %s does not build as OpenCL C: %s", name, log);
+    }
+    cl_kernel k = clCreateKernel(prog, name, &e);
+    assert_int_equal(e, CL_SUCCESS);
+    t->ctx = ctx, t->queue = q, t->program = prog, t->kernel = k;
+}
+
+void *test_cl_buffer(test_cl *t, size_t bytes, const void *host)
+{
+    cl_int e;
+    cl_mem b = clCreateBuffer((cl_context)t->ctx, CL_MEM_READ_WRITE | (host ? CL_MEM_COPY_HOST_PTR : 0), bytes,
+                              (void *)host, &e);
+    assert_int_equal(e, CL_SUCCESS);
+    return b;
+}
+
+void test_cl_close(test_cl *t)
+{
+    clReleaseKernel((cl_kernel)t->kernel), clReleaseProgram((cl_program)t->program);
+    clReleaseCommandQueue((cl_command_queue)t->queue), clReleaseContext((cl_context)t->ctx);
+}

@@ -94,6 +94,17 @@ int test_sh(const char *dir, char *err, size_t len, const char *fmt, ...);
 const char *test_python(void);
 const char *test_python_plots(void);
 
+/* A probe kernel of the tests' own (a header of common/ driven by a few lines of OpenCL C): its program built from src
+ * for device DEM_DEVICE (default 0) with the library's build options for precision rs (4 or 8; cl_build_options), and
+ * its kernel `name`; fails the test with the build log when it does not build. test_cl_buffer makes a buffer of
+ * bytes bytes (copied from host when not NULL); test_cl_close releases the kernel, program, queue and context. */
+typedef struct {
+    void *ctx, *queue, *program, *kernel; /* cl_context, cl_command_queue, cl_program, cl_kernel */
+} test_cl;
+void test_cl_open(test_cl *t, const char *src, const char *name, int rs);
+void *test_cl_buffer(test_cl *t, size_t bytes, const void *host);
+void test_cl_close(test_cl *t);
+
 /* Two spheres (radius r, material m) approaching head-on along x at relative speed v, touching at t = 0.
  * dt_frac: time step as a fraction of the closed-form Hertz contact time. */
 dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, double dt_frac);

@@ -12,6 +12,9 @@ usage: mdr_reference.py OUTDIR        (reads OUTDIR/single_<case>.csv, writes OU
                                        OUTDIR/comparison.txt; exit status 1 if a case differs by more than TOL)
        mdr_reference.py --selftest    (checks of the closed forms against quadrature and of the fixed-count
                                        replacements for acos, exp and the adhesive Newton solve)
+       mdr_reference.py --walk        (every case's walk on stdout, for tests/test_mdr.c: a line "case NAME KIND
+                                       NSTEPS R R2 MASS1 MASS2 DT ES G KAPPA NU Y GAMMA PSI_B DAMP", then a line
+                                       "APPROACH DELTA RADIUS PSI FORCE" per step, every digit; needs no mpmath)
 """
 import math
 import os
@@ -428,7 +431,24 @@ def compare(outdir):
     return 0 if ok else 1
 
 
+def walk_all():
+    """--walk: each case's inputs and the reference's walk, for the C law's test (tests/test_mdr.c)"""
+    for case, spec in C.SINGLE.items():
+        mat = Material(C.E, C.NU, C.Y, spec["gamma"], C.PSI_B, spec.get("damp", C.DAMP))
+        rows = run_case(case, spec)
+        R2 = spec.get("R2", C.R)
+        m1 = C.RHO * 4.0 / 3.0 * math.pi * C.R ** 3
+        m2 = C.RHO * 4.0 / 3.0 * math.pi * R2 ** 3
+        head = [C.R, R2, m1, m2, C.DT, mat.Es, mat.G, mat.kappa, mat.nu, mat.Y, mat.gamma, mat.psi_b, mat.damp]
+        print("case", case, spec["kind"], len(rows) - 1, " ".join(repr(x) for x in head))
+        for r in rows:  # (step, u, delta, R, F, psi)
+            print(repr(r[1]), repr(r[2]), repr(r[3]), repr(r[5]), repr(r[4]))
+    return 0
+
+
 if __name__ == "__main__":
+    if len(sys.argv) == 2 and sys.argv[1] == "--walk":
+        sys.exit(walk_all())
     if len(sys.argv) == 2 and sys.argv[1] == "--selftest":
         sys.exit(fixed_count.main())
     sys.exit(compare(sys.argv[1]))
