@@ -1,7 +1,7 @@
 /* test_mdr.c - the MDR contact law's core (common/laws/mdr_core.h; docs/laws/mdr.md), one contact at a time, against
  * what we did not write into it:
- *  - its fixed-count exp, h(u) and cube root (F1, F2, F5) against the C library's exp, acos and cbrt, and h's small-u
- *    series;
+ *  - its fixed-count exp, h(u), cube root and acos (F1, F2, F5, M40) against the C library's exp, acos and cbrt, and
+ *    h's small-u series;
  *  - a sphere pressed elastically on a wall against Hertz (the limit MDR's circle profile must reach, M9) and against
  *    the profile's closed form with the C library's acos;
  *  - every single-contact path of tools/peer_mdr/cases.py (pairs, walls, an unequal pair, adhesion 0, 2 and 50 J/m^2,
@@ -20,7 +20,7 @@
 #include "ref_kernels.h" /* dem_mdr_walk_f32/_f64, dem_mdr_fixed_f32/_f64 */
 
 enum { WALK_PAIR = 0, WALK_WALL = 1, WALK_BOX = 2 }; /* mdr_core.h's MDR_WALK_* */
-enum { FIXED_EXP = 0, FIXED_H = 1, FIXED_CBRT = 2 }; /* its MDR_FIXED_* */
+enum { FIXED_EXP = 0, FIXED_H = 1, FIXED_CBRT = 2, FIXED_ACOS = 3, FIXED_PENALTY = 4 }; /* its MDR_FIXED_* */
 
 /* One case of cases.py as mdr_reference.py --walk prints it: its inputs and the reference's rows */
 typedef struct {
@@ -185,6 +185,22 @@ static void test_fixed_count(void **st)
                "1e-7]\n", rs == 8 ? "fp64" : "fp32", wa, ws);
         assert_true(wa <= (rs == 8 ? 1e-14 : 2e-6));
         assert_true(ws <= (rs == 8 ? 1e-14 : 2e-6));
+        /* (M40) acos(c)/pi and the penalty 1/(1 + exp(-50 (acos(c)/pi - 1/2))) on c in [-1, 1] (long double) */
+        for (int k = 0; k < N; k++)
+            x[k] = rs == 8 ? -1 + 2.0 * k / (N - 1) : (double)(float)(-1 + 2.0 * k / (N - 1));
+        fixed_ref(rs, FIXED_ACOS, N, x, y);
+        wa = 0, ws = 0;
+        for (int k = 0; k < N; k++)
+            wa = fmax(wa, (double)fabsl(y[k] - acosl(x[k]) / 3.14159265358979323846264338327950288L));
+        fixed_ref(rs, FIXED_PENALTY, N, x, y);
+        for (int k = 0; k < N; k++) {
+            long double e = 1 / (1 + expl(-50 * (acosl(x[k]) / 3.14159265358979323846264338327950288L - 0.5L)));
+            ws = fmax(ws, (double)fabsl((y[k] - e) / e));
+        }
+        printf("  %s acos(c)/pi on [-1, 1]: %.1e at most; the penalty (M40): relative %.1e at most\n",
+               rs == 8 ? "fp64" : "fp32", wa, ws);
+        assert_true(wa <= (rs == 8 ? 1e-15 : 3e-7));
+        assert_true(ws <= (rs == 8 ? 1e-13 : 1e-4));
     }
 }
 
@@ -369,12 +385,13 @@ static void test_opencl_bits(void **st)
         assert_int_equal(e, CL_SUCCESS);
         enum { N = 4001 };
         static double x[N], y[N];
-        for (int which = 0; which < 3; which++) {
+        for (int which = 0; which < 5; which++) {
             unsigned char xb[N * 8], want[N * 8], got[N * 8];
             for (int k = 0; k < N; k++) {
-                double v = which == FIXED_EXP ? -80 + 100.0 * k / (N - 1)
-                           : which == FIXED_H ? 0.5 * pow(10, -16 + 16.0 * k / (N - 1))
-                                              : pow(10, -30 + 60.0 * k / (N - 1));
+                double v = which == FIXED_EXP    ? -80 + 100.0 * k / (N - 1)
+                           : which == FIXED_H    ? 0.5 * pow(10, -16 + 16.0 * k / (N - 1))
+                           : which == FIXED_CBRT ? pow(10, -30 + 60.0 * k / (N - 1))
+                                                 : -1 + 2.0 * k / (N - 1);
                 x[k] = rs == 8 ? v : (double)(float)v;
                 rs == 8 ? (void)(((double *)xb)[k] = v) : (void)(((float *)xb)[k] = (float)v);
             }
@@ -395,7 +412,7 @@ static void test_opencl_bits(void **st)
         }
         clReleaseKernel(kf);
         test_cl_close(&t);
-        printf("  OpenCL %s: %d walks and 3 fixed-count functions, the reference's bits\n", rs == 8 ? "fp64" : "fp32",
+        printf("  OpenCL %s: %d walks and 5 fixed-count functions, the reference's bits\n", rs == 8 ? "fp64" : "fp32",
                same);
     }
 }

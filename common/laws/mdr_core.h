@@ -12,8 +12,8 @@
  * closed forms.
  *
  * Not here yet: MDR as a law unit of a run (law.h). A run needs per contact 2 + 2 x 11 reals (M37) where law.h keeps
- * one, per-particle sums over every contact of a particle in a fixed order and a radius that grows (M34), and the
- * penalty of contacts through a third particle (M40). docs/laws/mdr.md "Open for the C law" lists them.
+ * one, per-particle sums over every contact of a particle in a fixed order, a radius that grows (M34), and the
+ * search for the triplets the penalty (M40) weighs. docs/laws/mdr.md "Open for the C law" lists them.
  *
  * Determinism: only + - * / sqrt, floor and scaling by powers of two (frexp, ldexp: exact), fixed counts of terms and
  * Newton steps from starts the inputs fix; constants are integers or ratios of integers, rounded once to `real` in C
@@ -62,6 +62,19 @@ DEM_INLINE real mdr_exp(real x)
     return mdr_ldexp(p, (int)nf);
 }
 
+/* atan(t) for 0 <= t <= 1: two halvings of the angle (t <- t/(1 + sqrt(1 + t^2))) to t <= tan(pi/16), then atan's
+ * odd series to t^25 (13 terms), times 4 */
+DEM_INLINE real mdr_atan01(real t)
+{
+    t = t / ((real)1 + dem_sqrt((real)1 + t * t));
+    t = t / ((real)1 + dem_sqrt((real)1 + t * t));
+    real t2 = t * t;
+    real s = (real)1 / (real)25;
+    for (int k = 11; k >= 0; k--)
+        s = s * -t2 + (real)1 / (real)(2 * k + 1);
+    return (real)4 * t * s;
+}
+
 /* (F2) h(u) = acos(1 - 2u) - 2 (1 - 2u) sqrt(u (1 - u)) for u in [0, 1/2] (M7), with full relative precision at small
  * u: t = tan(theta/2) = sqrt(u/(1-u)), halved twice (t <- t/(1 + sqrt(1 + t^2))) to t <= tan(pi/16); theta/4 =
  * atan(t) by its odd series to t^25 (13 terms); phi = 2 theta; h = (phi - sin phi)/2 = phi^3/12 (1 - phi^2/(4 5)
@@ -70,14 +83,7 @@ DEM_INLINE real mdr_h(real u)
 {
     if (!(u > (real)0))
         return (real)0;
-    real t = dem_sqrt(u / ((real)1 - u));
-    t = t / ((real)1 + dem_sqrt((real)1 + t * t));
-    t = t / ((real)1 + dem_sqrt((real)1 + t * t));
-    real t2 = t * t;
-    real s = (real)1 / (real)25;
-    for (int k = 11; k >= 0; k--)
-        s = s * -t2 + (real)1 / (real)(2 * k + 1);
-    real phi = (real)16 * t * s;
+    real phi = (real)4 * mdr_atan01(dem_sqrt(u / ((real)1 - u)));
     real p2 = phi * phi;
     real q = (real)1;
     for (int k = 13; k >= 1; k--)
@@ -386,6 +392,28 @@ DEM_INLINE real mdr_wall_magnifier(real deltao, real ro)
     return mdr_exp((real)107 / (real)10 * deltao / ro - (real)10) + (real)1;
 }
 
+/* (M40) acos(c)/pi for c in [-1, 1], the angle as 2 atan(t), t = sqrt((1 - c)/(1 + c)), with atan(t) = pi/2 -
+ * atan(1/t) for t > 1 so that mdr_atan01's series keeps its range */
+DEM_INLINE real mdr_acos_over_pi(real c)
+{
+    if (!(c < (real)1))
+        return (real)0;
+    if (!(c > (real)-1))
+        return (real)1;
+    real t = dem_sqrt(((real)1 - c) / ((real)1 + c));
+    if (t > (real)1)
+        return (real)1 - (real)2 * mdr_atan01((real)1 / t) / MDR_PI;
+    return (real)2 * mdr_atan01(t) / MDR_PI;
+}
+
+/* (M40) the penalty one central particle adds to the pair of the three whose centres are farthest apart:
+ * 1/(1 + exp(-50 (alpha/pi - 1/2))), alpha the angle at the central particle between the unit directions to the other
+ * two (c = their dot product, cos alpha) */
+DEM_INLINE real mdr_penalty(real c)
+{
+    return (real)1 / ((real)1 + mdr_exp((real)-50 * (mdr_acos_over_pi(c) - (real)1 / (real)2)));
+}
+
 /* The material from its 8 reals in the struct's order (es, g, kappa, nu, y, gamma, psi_b, damp) */
 DEM_INLINE mdr_material mdr_material_from(DEM_CONST_GLOBAL real *v)
 {
@@ -394,12 +422,17 @@ DEM_INLINE mdr_material mdr_material_from(DEM_CONST_GLOBAL real *v)
     return m;
 }
 
-/* The fixed-count functions on an array, for the tests: which 0 exp (F1), 1 h (F2), 2 the cube root (F5) */
-enum { MDR_FIXED_EXP = 0, MDR_FIXED_H = 1, MDR_FIXED_CBRT = 2 };
+/* The fixed-count functions on an array, for the tests: which 0 exp (F1), 1 h (F2), 2 the cube root (F5), 3 acos/pi,
+ * 4 the penalty (M40) */
+enum { MDR_FIXED_EXP = 0, MDR_FIXED_H = 1, MDR_FIXED_CBRT = 2, MDR_FIXED_ACOS = 3, MDR_FIXED_PENALTY = 4 };
 DEM_INLINE void mdr_fixed(int which, int n, DEM_CONST_GLOBAL real *x, DEM_GLOBAL real *y)
 {
     for (int i = 0; i < n; i++)
-        y[i] = which == MDR_FIXED_EXP ? mdr_exp(x[i]) : which == MDR_FIXED_H ? mdr_h(x[i]) : mdr_cbrt(x[i]);
+        y[i] = which == MDR_FIXED_EXP    ? mdr_exp(x[i])
+               : which == MDR_FIXED_H    ? mdr_h(x[i])
+               : which == MDR_FIXED_CBRT ? mdr_cbrt(x[i])
+               : which == MDR_FIXED_ACOS ? mdr_acos_over_pi(x[i])
+                                         : mdr_penalty(x[i]);
 }
 
 /* ---- a contact walked along a prescribed approach (tools/peer_mdr/cases.py) ---- */
