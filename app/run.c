@@ -28,7 +28,7 @@
  * only the last checkpoint survives - which is why a run longer than a sitting is better run in parts (--stop-after,
  * then --restart; tools/plot_tablet.py joins the parts). SIGPIPE is ignored while a run goes (a
  * progress line to a pipe whose reader died - `| tee` after a hang-up - would kill it before its output is done). */
-static volatile sig_atomic_t run_signal;
+static _Atomic int run_signal; /* set by the waiter thread or a handler, read by the steps (lock-free: signal-safe) */
 static void run_on_signal(int sig)
 {
     if (!run_signal)
@@ -43,8 +43,10 @@ static struct sigaction run_signal_old[RUN_NSIG];
  * handlers then (an LD_PRELOAD trace of sigaction shows the calls from libLLVM-15.so.1); a Ctrl-C that came while it
  * compiled killed the run at once, its output left as .part and no checkpoint (seen in CI; reproduced with an empty
  * PoCL cache, and tests/test_tablet.c checks the masks). A signal blocked in every thread but the waiter goes to
- * sigwait whoever installed a handler. run_on_signal stays installed so that the disposition is never the default. */
-static sigset_t run_wait_set, run_mask_old;
+ * sigwait whoever installed a handler. run_on_signal stays installed so that the disposition is never the default.
+ * A stop signal the caller ignores (nohup's SIGHUP) is blocked too - LLVM installs its handler over SIG_IGN as well -
+ * and the waiter drops it (run_signal_ignored). */
+static sigset_t run_wait_set, run_mask_old, run_signal_ignored;
 static pthread_t run_waiter;
 static int run_waiting;
 static void *run_signal_wait(void *arg)
@@ -52,7 +54,7 @@ static void *run_signal_wait(void *arg)
     (void)arg;
     for (;;) { /* sigwait is a cancellation point: run_catch_signals(0) ends this loop */
         int sig;
-        if (!sigwait(&run_wait_set, &sig))
+        if (!sigwait(&run_wait_set, &sig) && !sigismember(&run_signal_ignored, sig))
             run_on_signal(sig);
     }
     return NULL;
@@ -79,14 +81,17 @@ static void run_catch_signals(int on)
         return;
     }
     sigemptyset(&run_wait_set);
+    sigemptyset(&run_signal_ignored);
     for (size_t k = 0; k < RUN_NSIG; k++) {
         sigaction(run_signals[k], NULL, &run_signal_old[k]);
-        if (run_signal_old[k].sa_handler == SIG_IGN) /* a signal the caller ignores (nohup's SIGHUP) stays ignored */
-            continue;
-        sa.sa_handler = run_signals[k] == SIGPIPE ? SIG_IGN : run_on_signal;
-        sigaction(run_signals[k], &sa, NULL);
         if (run_signals[k] != SIGPIPE)
             sigaddset(&run_wait_set, run_signals[k]);
+        if (run_signal_old[k].sa_handler == SIG_IGN) { /* a signal the caller ignores (nohup's SIGHUP) stays ignored */
+            sigaddset(&run_signal_ignored, run_signals[k]);
+            continue;
+        }
+        sa.sa_handler = run_signals[k] == SIGPIPE ? SIG_IGN : run_on_signal;
+        sigaction(run_signals[k], &sa, NULL);
     }
     pthread_sigmask(SIG_BLOCK, &run_wait_set, &run_mask_old);
     run_waiting = pthread_create(&run_waiter, NULL, run_signal_wait, NULL) == 0;
@@ -911,7 +916,7 @@ static int phase_steps(run_ctx *c)
                                   * blocks it), and taken by the waiter before this step goes on, so that the run
                                   * stops at the step the test names */
             kill(getpid(), (int)signal_no);
-            for (int k = 0; k < 2000 && !run_signal; k++)
+            for (int k = 0; k < 20000 && !run_signal; k++)
                 nanosleep(&(struct timespec){0, 1000000L}, NULL);
         }
         if (run_signal && st + 1 < end) { /* stop: one more step, which ends the run as the scene's last would */

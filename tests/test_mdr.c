@@ -48,6 +48,8 @@ static void read_cases(void)
     int row = 0;
     while (fgets(line, sizeof line, p)) {
         if (!strncmp(line, "case ", 5)) {
+            if (c && row != c->n + 1)
+                fail_msg("%s: case %s has %d rows, not %d", cmd, c->name, row, c->n + 1);
             assert_true(ncases < MAX_CASES);
             c = &cases[ncases++];
             char kind[16];
@@ -72,6 +74,8 @@ static void read_cases(void)
         row++;
     }
     int st = pclose(p);
+    if (c && row != c->n + 1)
+        fail_msg("%s: case %s has %d rows, not %d", cmd, c->name, row, c->n + 1);
     if (st != 0 || ncases < 8)
         fail_msg("%s: exit status %d, %d cases read", cmd, st, ncases);
 }
@@ -271,13 +275,15 @@ static void test_against_reference(void **st)
                 printf("       tensile branch (least force %.4g N): %.1e of it\n", least, wt);
             /* fp64: the two differ in exp (libm against F1), h's rounding and the tensile root (bisection against
              * F4's Newton steps): 3e-15 of the peak, 2e-13 of the pull-off measured; fp32 rounds the overlap
-             * R - u (5e-4 m to 3e-11 m), 3.4e-4 of the peak measured, and its tensile branch is not held to the
-             * fp64 one (the unequal pair lets go a step apart: 0.25 of the pull-off) */
-            assert_true(wf <= (rs == 8 ? 1e-12 : 1e-3));
+             * R - u (5e-4 m to 3e-11 m): 3.4e-4 of the peak measured, and 1e-4 to 2.3e-3 of the pull-off with
+             * adhesion - but for the unequal pair, which lets go a step apart (0.25 of the pull-off) */
+            assert_true(wf <= (rs == 8 ? 1e-13 : 1e-3));
             assert_true(wr <= (rs == 8 ? 1e-14 : 2e-4));
             assert_true(wp <= (rs == 8 ? 1e-14 : 5e-4));
             if (rs == 8 && least < 0)
-                assert_true(wt <= 1e-11);
+                assert_true(wt <= 1e-12);
+            if (rs == 4 && c->head[10] > 0 && c->head[0] == c->head[1]) /* adhesion, equal spheres or a wall */
+                assert_true(wt <= 5e-3);
             free(o.delta);
         }
     }
@@ -290,33 +296,35 @@ static void test_dent_and_pull(void **st)
 {
     (void)st;
     read_cases();
-    double least[3] = {0, 0, 0}; /* the least force without adhesion, per kind */
-    for (int pass = 0; pass < 2; pass++)
-        for (int i = 0; i < ncases; i++) {
-            const walk_case *c = &cases[i];
-            if ((c->head[10] > 0) != pass) /* the cases without adhesion first */
-                continue;
-            walk_out o = walk_ref(8, c->kind, c->n, c->u, c->head, NULL);
-            int dent = 0;
-            double psi_min = 1, fmin_ = 0;
-            for (int k = 1; k <= c->n; k++) {
-                dent += o.delta[k] > 0 && o.f[k] == 0;
-                fmin_ = fmin_ < o.f[k] ? fmin_ : o.f[k];
-                psi_min = fmin(psi_min, o.psi[k]);
+    for (int rs = 8; rs >= 4; rs -= 4) {
+        double least[3] = {0, 0, 0}; /* the least force without adhesion, per kind */
+        for (int pass = 0; pass < 2; pass++)
+            for (int i = 0; i < ncases; i++) {
+                const walk_case *c = &cases[i];
+                if ((c->head[10] > 0) != pass) /* the cases without adhesion first */
+                    continue;
+                walk_out o = walk_ref(rs, c->kind, c->n, c->u, c->head, NULL);
+                int dent = 0;
+                double psi_min = 1, fmin_ = 0;
+                for (int k = 1; k <= c->n; k++) {
+                    dent += o.delta[k] > 0 && o.f[k] == 0;
+                    fmin_ = fmin_ < o.f[k] ? fmin_ : o.f[k];
+                    psi_min = fmin(psi_min, o.psi[k]);
+                }
+                printf("  %s %-10s steps overlapping without force %d; least force %.4g N; psi down to %.3f\n",
+                       rs == 8 ? "fp64" : "fp32", c->name, dent, fmin_, psi_min);
+                if (!pass) {
+                    least[c->kind] = fmin_;
+                    if (c->kind != WALK_BOX)
+                        assert_true(dent > 0);
+                } else {
+                    assert_true(fmin_ < 10 * least[c->kind]);
+                }
+                if (c->kind == WALK_BOX)
+                    assert_true(psi_min < c->head[11]);
+                free(o.delta);
             }
-            printf("  %-10s steps overlapping without force %d; least force %.4g N; psi down to %.3f\n", c->name,
-                   dent, fmin_, psi_min);
-            if (!pass) {
-                least[c->kind] = fmin_;
-                if (c->kind != WALK_BOX)
-                    assert_true(dent > 0);
-            } else {
-                assert_true(fmin_ < 10 * least[c->kind]);
-            }
-            if (c->kind == WALK_BOX)
-                assert_true(psi_min < c->head[11]);
-            free(o.delta);
-        }
+    }
 }
 
 static const char *walk_src =

@@ -49,12 +49,14 @@ DEM_INLINE real mdr_frexp(real x, int *e)
 /* ---- fixed-count functions (docs/laws/mdr.md "Only + - * / sqrt, fixed counts") ---- */
 
 /* (F1) exp(x) for the bounded arguments of the law (|x| < 100): x = n ln2 + r, |r| <= ln2/2, Cody-Waite (ln2_hi has
- * 16 significant bits, so n ln2_hi is exact for |n| < 256 in fp32 too), exp(r) = 1 + r(1 + r/2(1 + r/3(...(1 + r/13))))
- * (13 nested terms), times 2^n (exact) */
+ * 15 significant bits, so n ln2_hi is exact for |n| < 512 in fp32 too), exp(r) = 1 + r(1 + r/2(1 + r/3(...(1 + r/13))))
+ * (13 nested terms), times 2^n (exact). A NaN comes back as it is (its n would not be an int). */
 DEM_INLINE real mdr_exp(real x)
 {
+    if (!(x == x))
+        return x;
     const real ln2_hi = (real)0x1.62e4p-1, ln2_lo = (real)0x1.7f7d1cf79abcap-20, inv_ln2 = (real)0x1.71547652b82fep+0;
-    real nf = mdr_floor(x * inv_ln2 + (real)0.5);
+    real nf = mdr_floor(x * inv_ln2 + (real)1 / (real)2);
     real r = (x - nf * ln2_hi) - nf * ln2_lo;
     real p = (real)1;
     for (int k = 13; k >= 1; k--)
@@ -155,7 +157,8 @@ DEM_INLINE real mdr_f_adh(real a, real d, real A, real B, real c, real *w, real 
 }
 /* (F4) the radius of (M25): the root of the concave f in [a_c, a0], or 0 when f(a_c) < 0 (no root: the contact lets go,
  * M27). Start at the root of f's quadratic model at the fold (not above a0); 5 Newton steps fall onto the root from
- * above */
+ * above. Guards for rounding at the fold (f(a_c) = 0, a0 not above a_c, f' not negative): the iterate stays in
+ * [a_c, a0], so no step divides by zero or leaves the contact's range */
 DEM_INLINE real mdr_adhesive_radius(real d, real A, real B, real es, real gamma, real a0)
 {
     real c = (real)2 * MDR_PI * gamma / es, w, sq;
@@ -163,13 +166,17 @@ DEM_INLINE real mdr_adhesive_radius(real d, real A, real B, real es, real gamma,
     real fc = mdr_f_adh(ac, d, A, B, c, &w, &sq);
     if (fc < (real)0)
         return (real)0;
+    if (!(a0 > ac) || !(fc > (real)0)) /* no room above the fold, or the root is the fold itself */
+        return ac < a0 ? ac : a0;
     real f2 = -(A / B) * (B * B / (real)4) / (w * w * w) - sq / ((real)4 * ac * ac);
-    real a = ac + dem_sqrt((real)2 * fc / -f2);
-    if (a > a0)
+    real a = f2 < (real)0 ? ac + dem_sqrt((real)2 * fc / -f2) : a0;
+    if (!(a < a0))
         a = a0;
-    for (int k = 0; k < 5; k++) {
+    for (int k = 0; k < 5; k++) { /* each step kept in [a_c, a0]: a rounding that left f' ~ 0 cannot throw it out */
         real f = mdr_f_adh(a, d, A, B, c, &w, &sq);
-        a = a - f / (-A * a / (B * w) + c / ((real)2 * sq));
+        real df = -A * a / (B * w) + c / ((real)2 * sq);
+        real next = df < (real)0 ? a - f / df : a;
+        a = next > a0 ? a0 : next < ac ? ac : next;
     }
     return a;
 }
@@ -500,7 +507,7 @@ DEM_INLINE void mdr_walk(int kind, int nsteps, DEM_CONST_GLOBAL real *u, const m
                 mdr_surface_motion(&p1, &sides[0], delta);
                 real f0 = mdr_side_force(m, &sides[0], &p1, delta, &a0);
                 fel = f0 * mdr_wall_magnifier(sides[0].deltao, p1.ro);
-                eta = m->damp * dem_sqrt(mass1 * m->es * (real)0.5 * a0);
+                eta = m->damp * dem_sqrt(mass1 * m->es / (real)2 * a0);
             }
             f = fel + eta * v_app;
         } else if (!(delta > (real)0)) {
