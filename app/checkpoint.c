@@ -1,9 +1,9 @@
 /* checkpoint.c - see checkpoint.h. Layout: /state/<name> for each array of the state (dem_state_arrays: the library's
  * saved buffers, common/dem_buffers.h's checkpoint column: x, v, w, force, torque, wall_force, wall_normal_force,
  * wall_hist, wall_pf, wall_mask, wall_mc_fn, wall_mc_disp), /state/{wall_pos,wall_stage,wall_stage_first,
- * wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,radius,pair_mc_fn,pair_mc_disp,pair_law,patch_i,patch_t,patch_hist,
- * patch_side} with attributes step, n, nwalls, real_size (4 or 8: the arrays hold the run's own bits), has_hist,
- * has_mc, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
+ * wall_stage_from,pair_i,pair_j,pair_hist,pair_rec,radius,pair_mc_fn,pair_mc_disp,pair_law,pair_rspring,patch_i,
+ * patch_t,patch_hist,patch_side} with attributes step, n, nwalls, real_size (4 or 8: the arrays hold the run's own
+ * bits), has_hist, has_mc, has_law, has_rspring, mc_* (MC-strain iteration counts), and /scene/text, /scene/path. */
 #include "checkpoint.h"
 /* a checkpoint claiming more is damaged (or not ours): far above any run this library makes */
 #define CHECKPOINT_MAX_PARTICLES 100000000L
@@ -90,6 +90,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
              h5_attr_long(g, "has_law", st.has_law) ||
              (st.has_law && h5_write(g, "pair_law", real_t, 1, p1, st.pair_law, "m")) ||
+             (st.has_rspring && (h5_attr_long(g, "has_rspring", 1) ||
+                                 h5_write(g, "pair_rspring", real_t, 2, p3, st.pair_rspring, "N m"))) ||
              (st.pair_mc_disp && h5_write(g, "pair_mc_disp", real_t, 2, pd, st.pair_mc_disp, "m")) ||
              h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
              h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
@@ -185,6 +187,7 @@ static int check_finite(const checkpoint *ck, const char *path, char *err, size_
         {"pair_mc_fn", st->has_mc ? st->pair_mc_fn : NULL, np, st->real_size},
         {"pair_mc_disp", st->pair_mc_disp, 2 * np, st->real_size},
         {"pair_law", st->has_law ? st->pair_law : NULL, np, st->real_size},
+        {"pair_rspring", st->has_rspring ? st->pair_rspring : NULL, 3 * np, st->real_size},
         {"patch_hist", st->patch_hist, 3 * (size_t)st->npatch, st->real_size}, {"radius", ck->radius, n, 8},
     };
     for (int k = 0; k < st->narrays; k++) { /* the arrays of reals */
@@ -239,7 +242,7 @@ static int read_patches(hid_t g, dem_state *st, hid_t real_t)
 static int read_state(hid_t g, checkpoint *ck)
 {
     dem_state *st = &ck->st;
-    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0, hl = 0;
+    long n = 0, nw = 0, rs = 0, hh = 0, hm = 0, hl = 0, hr = 0;
     int rc = g < 0 || h5_read_attr_long(g, "step", &st->step) || h5_read_attr_long(g, "n", &n) ||
              h5_read_attr_long(g, "nwalls", &nw) || h5_read_attr_long(g, "real_size", &rs) ||
              h5_read_attr_long(g, "has_hist", &hh) || (rs != 4 && rs != 8) || n < 1 || nw < 0 || nw > DEM_MAX_WALLS;
@@ -253,6 +256,8 @@ static int read_state(hid_t g, checkpoint *ck)
         h5_read_attr_long(g, "has_mc", &hm);
         h5_read_attr_long(g, "has_law", &hl); /* absent from checkpoints of runs before plastic laws: 0 */
         st->has_law = hl == 1;
+        h5_read_attr_long(g, "has_rspring", &hr); /* written only by runs with rolling springs */
+        st->has_rspring = hr == 1;
         h5_read_attr_long(g, "mc_last", &st->mc.last);
         h5_read_attr_long(g, "mc_max", &st->mc.max);
         h5_read_attr_long(g, "mc_total", &st->mc.total);
@@ -261,7 +266,8 @@ static int read_state(hid_t g, checkpoint *ck)
         st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
         hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
         long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist, has_mc */
-        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1) || (hl != 0 && hl != 1))
+        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1) || (hl != 0 && hl != 1) ||
+            (hr != 0 && hr != 1))
             rc = 1, npairs = 0;
         if (npairs < 0)
             rc = 1, npairs = 0;
@@ -271,6 +277,7 @@ static int read_state(hid_t g, checkpoint *ck)
         size_t want_pm = hm ? (size_t)npairs : 0;
         st->pair_mc_fn = malloc((want_pm + 1) * rs);
         st->pair_law = malloc(((hl ? (size_t)npairs : 0) + 1) * rs);
+        st->pair_rspring = malloc(((hr ? 3 * (size_t)npairs : 0) + 1) * rs);
         ck->radius = malloc(sizeof(double) * (size_t)n);
         rc = rc || !st->pair_i || !st->pair_j || !st->pair_hist || !ck->radius || read_arrays(g, st, real_t) ||
              h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
@@ -280,7 +287,8 @@ static int read_state(hid_t g, checkpoint *ck)
              h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              (hm && h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs)) || !st->pair_law ||
-             (hl && h5_read(g, "pair_law", real_t, st->pair_law, (size_t)npairs));
+             (hl && h5_read(g, "pair_law", real_t, st->pair_law, (size_t)npairs)) || !st->pair_rspring ||
+             (hr && h5_read(g, "pair_rspring", real_t, st->pair_rspring, 3 * (size_t)npairs));
         /* what the contact network reads right after a restore (absent from older checkpoints, empty in runs that
          * keep none of it: those values zero until the next step): each touching pair's force record of the last
          * step (common/dem_layout.h PR_*) and MC-strain's induced displacements at both ends of each pair (the

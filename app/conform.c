@@ -38,7 +38,8 @@ static uint64_t fnv_u64(uint64_t h, uint64_t v)
 
 int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen)
 {
-    static const char *names[] = {CONFORM_DATASETS};
+    static const char *names[] = {CONFORM_DATASETS, CONFORM_DATASETS_LATER};
+    const size_t first_later = sizeof (const char *[]){CONFORM_DATASETS} / sizeof(const char *);
     if (access(path, R_OK)) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return -2;
@@ -53,8 +54,8 @@ int conform_hash_file(const char *path, char hex[17], char *err, size_t errlen)
     hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
     for (size_t k = 0; g >= 0 && k < sizeof names / sizeof *names && !rc; k++) {
         long count = h5_count(g, names[k]);
-        if (count < 0)
-            continue; /* not in this run's checkpoint */
+        if (count < 0 || (k >= first_later && count == 0))
+            continue; /* not in this run's checkpoint (or, added later, empty: conform.h) */
         hid_t d = H5Dopen2(g, names[k], H5P_DEFAULT), t = d < 0 ? -1 : H5Dget_type(d); /* as stored: float, double, int */
         hid_t nt = t < 0 ? -1 : H5Tget_native_type(t, H5T_DIR_ASCEND);
         size_t esz = nt < 0 ? 0 : H5Tget_size(nt);

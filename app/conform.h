@@ -7,8 +7,11 @@
 
 /* The datasets of a checkpoint's dynamic state a hash covers, in this order, each where the checkpoint has it:
  * positions, velocities, spins, forces, contact histories, wall forces, MC-strain forces, and the contact law's
- * states (a law with memory). */
+ * states (a law with memory); then those added after docs/state_hashes.txt was recorded (the rolling springs), which
+ * count only where they hold values: a checkpoint lists a gated array empty in a run without its effect, and such a
+ * run hashes as it did before. */
 #define CONFORM_DATASETS "x", "v", "w", "force", "pair_hist", "wall_force", "pair_mc_fn", "pair_law", "wall_law"
+#define CONFORM_DATASETS_LATER "pair_rspring", "wall_rspring"
 
 /* The state hash of checkpoint `path` as 16 hex digits into hex[17]: 64-bit FNV-1a over each dataset of
  * CONFORM_DATASETS present under /state - its name, its element size and count, then its values as stored

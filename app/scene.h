@@ -26,6 +26,7 @@ typedef struct {
     double yield_stress;          /* limiting contact pressure of thornton_ning [Pa]; 0: does not yield */
     double rolling_friction;      /* rolling resistance coefficient (effect rolling) */
     double bond_strength;         /* strength of a yielded contact's solid bridge (thornton_ning) [Pa]; 0: no bond */
+    double rolling_damping;       /* viscous damping ratio of the rolling spring (effect rolling_spring) */
 } scene_material;
 
 typedef struct {

@@ -307,6 +307,8 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
                "the rolling friction must be >= 0");
         MCHECK("bond_strength", m->bond_strength >= 0 && isfinite(m->bond_strength),
                "the bond strength must be >= 0 Pa (0: the material does not bond)");
+        MCHECK("rolling_damping", m->rolling_damping >= 0 && isfinite(m->rolling_damping),
+               "the rolling damping ratio must be >= 0");
 #undef MCHECK
         for (unsigned j = 0; j < k; j++)
             if (!strcmp(f->materials[j].name, m->name)) {
@@ -316,7 +318,7 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
         /* a wall-only material without a density gets a placeholder the library accepts; no mass is made from it */
         dem_material dm = {used || m->density > 0 ? m->density * scale : 1.0, m->young, m->poisson, m->restitution,
                            m->friction, m->beta, m->gamma, m->yield_stress, m->rolling_friction,
-                           m->bond_strength};
+                           m->bond_strength, m->rolling_damping};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));

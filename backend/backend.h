@@ -24,6 +24,8 @@ typedef struct {
     int n, nmat, nwalls;
     const void *x, *v, *w, *radius, *invmass, *invinertia; /* real arrays */
     const void *invvol;     /* real[n]: 1 / particle volume [1/m^3] (stress, particle_stress.h) */
+    const void *roll_inertia; /* real[n]: 1 / (I + m r^2), a body's term of the rolling spring's 1/I_r (rolling.h;
+                                 0 for an immovable one) [1/(kg m^2)] */
     const int *mat;
     const void *pairmat;    /* real[PM_STRIDE*nmat*nmat] */
     const int *wall_int;    /* int[WI_STRIDE*nwalls] */

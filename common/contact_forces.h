@@ -43,6 +43,7 @@ typedef struct {
     vec3 hist;   /* new tangential history */
     real st;     /* new law state (a law with memory: laws/law.h) */
     vec3 roll;   /* rolling torque on a (rolling.h) [N m] */
+    vec3 rspring; /* new rolling spring (DEM_EFFECT_ROLLING_SPRING, rolling.h) [N m] */
 } pair_contact;
 
 /* Pair (a, b) through the run's law (laws.h: law_force); ctx: what the law reads beyond the two particles. */
@@ -51,7 +52,8 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
                                           DEM_CONST_GLOBAL real *hist, DEM_CONST_GLOBAL real *law_st, int hp,
-                                          int touching, law_ctx ctx)
+                                          int touching, law_ctx ctx, DEM_CONST_GLOBAL real *roll_inertia,
+                                          DEM_CONST_GLOBAL real *rspring)
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
@@ -70,6 +72,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     pc.hist = v3_zero();
     pc.st = (real)0;
     pc.roll = v3_zero();
+    pc.rspring = v3_zero();
     if (!g.active)
         return pc;
     vec3 n = g.n;
@@ -107,8 +110,12 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
         pc.c = v3_cross(n, r.ft);
         pc.hist = r.hist;
     }
-    if (fx & DEM_EFFECT_ROLLING) /* against the pair's relative spin, with its normal force */
+    if ((fx & DEM_EFFECT_ROLLING) && !(fx & DEM_EFFECT_ROLLING_SPRING)) /* against the relative spin, model A */
         pc.roll = rolling_torque(n, v3_dot(r.force, n), v3_sub(v3_load(w, a), v3_load(w, b)), g.rstar, c.pm);
+    if (fx & DEM_EFFECT_ROLLING_SPRING) /* model C: the pair's spring, stored only for a pair that touched */
+        pc.rspring = rolling_spring_torque(n, delta, v3_dot(r.force, n), v3_sub(v3_load(w, a), v3_load(w, b)),
+                                           touching ? v3_load(rspring, hp) : v3_zero(), g.rstar,
+                                           roll_inertia[a] + roll_inertia[b], dt, c.pm, &pc.roll);
     return pc;
 }
 
@@ -135,7 +142,7 @@ DEM_ITEM(contact_pairs)
     law_ctx ctx;
     ctx.trace = trace, ctx.invvol = invvol, ctx.disp_a = da, ctx.disp_b = db;
     pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, law_st, i,
-                                        touching, ctx);
+                                        touching, ctx, roll_inertia, rspring);
     /* per pair (both particles' mc_strain_disp read it). A pair that neither touched nor touches holds 0 already
      * (mc_strain_update zeroes what it set for a pair that does not touch now) */
     if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching))
@@ -146,6 +153,8 @@ DEM_ITEM(contact_pairs)
                 v3_store(hist, i, v3_zero());
             if (fx & DEM_LAW_STATE_BITS)
                 law_st[i] = (real)0;
+            if (fx & DEM_EFFECT_ROLLING_SPRING)
+                v3_store(rspring, i, v3_zero());
             touch[i] = 0;
         }
         return;
@@ -168,6 +177,8 @@ DEM_ITEM(contact_pairs)
     pr[PR_DELTA] = pc.delta; /* the torque's lever arm, and a sampled step's elastic energy (series.h) */
     if (fx & DEM_EFFECT_ROLLING) /* read with the record, only for a touching pair */
         v3_store(pair_roll, i, pc.roll);
+    if (fx & DEM_EFFECT_ROLLING_SPRING)
+        v3_store(rspring, i, pc.rspring);
     if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
         pair_ela[i] = series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
                                               pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
@@ -225,7 +236,8 @@ DEM_ITEM(contact_forces)
     if ((fx & DEM_EFFECT_WALLS) && nwalls > 0)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
                           invmass[i], mat[i], pairmat, nmat, wall_hist, wall_law, dt, wall_pf, wall_mask, trace, invvol,
-                          mc_wall_disp, mc_wall_fn, ride, &fi, &ti, sample ? &ela : 0, &wcon);
+                          mc_wall_disp, mc_wall_fn, ride, &fi, &ti, sample ? &ela : 0, &wcon,
+                          (fx & DEM_EFFECT_ROLLING_SPRING) ? roll_inertia[i] : (real)0, wall_rspring);
     v3_store(force, i, fi);
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(torque, i, ti);

@@ -64,6 +64,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(INVMASS, REAL, N, 0, -1, SETUP(invmass), PARTICLES, P(1), NO)                                                 \
     ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia), PARTICLES, P(1), NO)                                           \
     ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol), PARTICLES, P(1), NO)                                                   \
+    ENTRY(ROLL_INERTIA, REAL, N, DEM_EFFECT_ROLLING_SPRING, -1, SETUP(roll_inertia), PARTICLES, P(1), NO)               \
     ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x), PARTICLES, P(3), NO)                                    \
     ENTRY(MAT, INT, N, 0, -1, SETUP(mat), PARTICLES, P(1), NO)                                                          \
     ENTRY(SID, INT, N, 0, -1, SETUP(sid), PARTICLES, P(1), NO)                                                          \
@@ -78,6 +79,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(WALL_PF, REAL, 3 * N * NW, DEM_KEEP_WALL_FORCES, DEM_FIELD_WALL_PF, NONE, WALLS, G(3), CK_OPT(wall_pf, 1, "N")) \
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE, WALLS, P(1), CK(wall_mask, 1, NULL))                        \
     ENTRY(WALL_LAW, REAL, N * NW, DEM_LAW_STATE_BITS, -1, NONE, WALLS, P(NW), CK(wall_law, 1, "m"))                     \
+    ENTRY(WALL_RSPRING, REAL, 3 * N * NW, DEM_EFFECT_ROLLING_SPRING, -1, NONE, WALLS, P(3 * NW), CK(wall_rspring, 1, "N m")) \
     ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS, STAY, NO)                                            \
     ENTRY(PARTIAL_MID, REAL, WP_STRIDE * NMR * NW, 0, -1, NONE, WALLS, STAY, NO)                                        \
     ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE, WALLS, STAY, CK(wall_force, 3, "N"))                 \
@@ -110,6 +112,8 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(PAIR_LAW, REAL, PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                         \
     ENTRY(PAIR_ROLL, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING, -1, NONE, PAIRS, STAY, NO)                                     \
     ENTRY(PAIR_LAW_OLD, REAL, PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                     \
+    ENTRY(PAIR_RSPRING, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING_SPRING, -1, NONE, PAIRS, STAY, NO)                          \
+    ENTRY(PAIR_RSPRING_OLD, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING_SPRING, -1, NONE, PAIRS, STAY, NO)                      \
     ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES, STAY, NO)                                                  \
     ENTRY(TRACE, REAL, N, DEM_EFFECT_MC_STRESS, DEM_FIELD_STRESS_TRACE, NONE, PARTICLES, P(1), NO)                      \
     ENTRY(STRESS, REAL, ST_STRIDE * N, DEM_GATE_LAZY, DEM_FIELD_STRESS, NONE, OUTPUT, P(ST_STRIDE), NO)                 \

@@ -98,7 +98,7 @@
     A(NIN, int, old_list, LIST) A(BIN, int, old_own_start, OWN_START_OLD) A(BIN, real, old_hist, PAIR)               \
     A(BOUT, real, hist, PAIR_HIST) A(BIN, int, sid, SID) A(BIN, int, old_slot, OLD_SLOT)                             \
     A(BIN, real, old_mc_fn, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN) A(BIN, real, old_law_st, PAIR_LAW_OLD)         \
-    A(BOUT, real, law_st, PAIR_LAW)
+    A(BOUT, real, law_st, PAIR_LAW) A(BIN, real, old_rspring, PAIR_RSPRING_OLD) A(BOUT, real, rspring, PAIR_RSPRING)
 #define DEM_ITEMS_pair_index n
 
 /* ---- contact_forces.h ---- */
@@ -115,7 +115,8 @@
     A(BIN, real, trace, TRACE)                                                                                       \
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)                     \
     A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BOUT, real, law_st, PAIR_LAW)              \
-    A(BOUT, real, pair_roll, PAIR_ROLL)
+    A(BOUT, real, pair_roll, PAIR_ROLL) A(BIN, real, roll_inertia, ROLL_INERTIA)                \
+    A(BOUT, real, rspring, PAIR_RSPRING)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT)                          \
@@ -127,7 +128,8 @@
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
     A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
     A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)                 \
-    A(BOUT, real, wall_law, WALL_LAW) A(BIN, real, pair_roll, PAIR_ROLL)
+    A(BOUT, real, wall_law, WALL_LAW) A(BIN, real, pair_roll, PAIR_ROLL) A(BIN, real, roll_inertia, ROLL_INERTIA)    \
+    A(BOUT, real, wall_rspring, WALL_RSPRING)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */

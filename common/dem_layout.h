@@ -33,7 +33,9 @@ enum {
     PM_TN_SIGB = 15, /* pi sigma_b: a yielded Thornton-Ning contact's bond holds a tension up to PM_TN_SIGB a_p^2, its
                         plastic contact area times the bond strength sigma_b (dem_material.bond_strength; the smaller
                         of the two materials', 0: no bond) [Pa] */
-    PM_STRIDE = 16
+    PM_ROLL_DAMP = 16, /* rolling viscous damping ratio eta_r of the spring model, the mean of the two materials'
+                          (common/rolling.h) [-] */
+    PM_STRIDE = 17
 };
 
 /* Spring table, real part (index s*SP_STRIDE + ...; seed 001 Eq. 6): the two particles are in the int table

@@ -154,7 +154,7 @@ DEM_INLINE int old_pair_number(int a, int b, DEM_CONST_GLOBAL int *old_count, DE
  * in_pair[in_start[j] + g] = p. With MC-strain, pair_slot[p] names i's row slot of the pair and pair_mirror[p] j's. Each entry has one writer: p's host writes them all. A pair whose partner row lacks
  * it (rows are symmetric: a bug) raises FLAG_ASYMMETRIC. The touching flag (touch[p]), tangential history
  * (hist[3 p], in the orientation of the lower stable id), MC-strain force (mc_fn[p]) and the law's state
- * (law_st[p], a law with memory: laws/law.h) are kept per pair: a pair
+ * (law_st[p], a law with memory: laws/law.h) and rolling spring (rspring[3 p], rolling.h) are kept per pair: a pair
  * takes them from its number in the old rows (old_pair_number), a new one starts untouched, from zero. Per pair, not per row slot, they are dense
  * arrays read in order by contact_pairs. */
 DEM_ITEM(pair_index)
@@ -189,6 +189,8 @@ DEM_ITEM(pair_index)
             mc_fn[p] = t ? old_mc_fn[q] : (real)0;
         if (fx & DEM_LAW_STATE_BITS) /* the law's state of the same contact (laws/law.h) */
             law_st[p] = t ? old_law_st[q] : (real)0;
+        if (fx & DEM_EFFECT_ROLLING_SPRING) /* its rolling spring (rolling.h) */
+            v3_store(rspring, p, t ? v3_load(old_rspring, q) : v3_zero());
         p++;
     }
 }

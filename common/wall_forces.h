@@ -90,7 +90,8 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                                   DEM_GLOBAL real *wall_law, real dt, DEM_GLOBAL real *wall_pf, DEM_GLOBAL unsigned *wall_mask,
                                   DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
                                   DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn,
-                                  DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti, real *ela, real *wcon)
+                                  DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti, real *ela, real *wcon,
+                                  real iroll, DEM_GLOBAL real *wall_rspring)
 {
     unsigned old_mask = wall_mask[i], mask = 0;
     for (int k = 0; k < nwalls; k++) {
@@ -115,15 +116,26 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 v3_store(wall_hist, slot, c.r.hist);
                 *ti = v3_sub(*ti, v3_scale(v3_cross(c.n, c.r.ft), c.arm));
             }
-            if (fx & DEM_EFFECT_ROLLING) /* against the sphere's spin (the wall's is prescribed: none), r* = r_i */
-                *ti = v3_add(*ti, rolling_torque(c.n, v3_dot(c.r.force, c.n), wi, ri,
-                                                 pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL])));
+            DEM_CONST_GLOBAL real *pmw = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
+            if ((fx & DEM_EFFECT_ROLLING) && !(fx & DEM_EFFECT_ROLLING_SPRING)) /* against the sphere's spin (the
+                                                                                  wall's: none), r* = r_i */
+                *ti = v3_add(*ti, rolling_torque(c.n, v3_dot(c.r.force, c.n), wi, ri, pmw));
+            if (fx & DEM_EFFECT_ROLLING_SPRING) { /* model C: the slot's spring (the wall's term of 1/I_r: 0) */
+                vec3 mr;
+                v3_store(wall_rspring, slot,
+                         rolling_spring_torque(c.n, c.delta, v3_dot(c.r.force, c.n), wi,
+                                               old_touch ? v3_load(wall_rspring, slot) : v3_zero(), ri,
+                                               iroll, dt, pmw, &mr));
+                *ti = v3_add(*ti, mr);
+            }
             mask |= 1u << k;
         } else {
             if ((fx & DEM_EFFECT_FRICTION) && old_touch)
                 v3_store(wall_hist, slot, v3_zero());
             if ((fx & DEM_LAW_STATE_BITS) && old_touch)
                 wall_law[slot] = (real)0;
+            if ((fx & DEM_EFFECT_ROLLING_SPRING) && old_touch)
+                v3_store(wall_rspring, slot, v3_zero());
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = (real)0;
         }

@@ -80,6 +80,9 @@ typedef struct {
                              the contact then holds a tension up to sigma_b pi a_p^2, a_p its plastic contact radius,
                              and breaks beyond it. A pair takes the smaller of its two materials' (0: no bond, e.g. a
                              tool's steel) */
+    double rolling_damping; /* viscous damping ratio eta_r >= 0 of the rolling spring (DEM_EFFECT_ROLLING_SPRING; Ai et
+                               al. 2011 model C: the dashpot is eta_r times the critical 2 sqrt(I_r k_r)); a pair takes
+                               the mean of its two materials' */
 } dem_material;
 
 /* What one pair of materials takes instead of the mean of its two materials' values (dem_set_material_pair): a
@@ -516,6 +519,10 @@ typedef struct {
                                          DEM_EFFECT_THORNTON_NING): pair_law and the array wall_law follow */
     void *pair_law;                   /* real[npairs]: that state of each touching pair (Thornton-Ning: the largest
                                          overlap so far [m], negated once the contact's bond broke) */
+    int has_rspring;                  /* 1 when the run has rolling springs (DEM_EFFECT_ROLLING_SPRING): pair_rspring
+                                         and the array wall_rspring follow */
+    void *pair_rspring;               /* real[3 npairs]: each touching pair's rolling spring, the torque on its lower
+                                         id [N m] */
     dem_mc_stats mc;                  /* iteration counts so far */
     long npatch;                      /* sphere-patch row slots with flags: the touching contacts, and the spheres
                                          touching a patch whose side is remembered (common/patch_contacts.h), by
@@ -527,9 +534,9 @@ typedef struct {
                                          side is known, 16: the centre has crossed the patch's plane); NULL: not known
                                          (an older checkpoint: contacts, each side taken anew) */
 } dem_state;
-/* The arrays a state of st's n, nwalls, real_size, has_hist, has_mc and has_law holds, without data: names, types, and the
- * count each has (an array whose size only the run knows, e.g. wall_pf: its full size, not required); what a reader
- * of a saved state fills before dem_state_set. Sets st->narrays and returns it. */
+/* The arrays a state of st's n, nwalls, real_size, has_hist, has_mc, has_law and has_rspring holds, without data:
+ * names, types, and the count each has (an array whose size only the run knows, e.g. wall_pf: its full size, not
+ * required); what a reader of a saved state fills before dem_state_set. Sets st->narrays and returns it. */
 DEM_API int dem_state_arrays(dem_state *st);
 /* The array called name (NULL: none), e.g. (double *)dem_state_find(&st, "x")->data in an fp64 run */
 DEM_API dem_state_array *dem_state_find(const dem_state *st, const char *name);

@@ -49,11 +49,15 @@ enum {
     DEM_EFFECT_ROLLING = 4194304, /* rolling resistance of constant torque (Ai et al. 2011, model A): each contact
                                      resists the relative rolling of its bodies with mu_r r* f_n; needs friction:
                                      common/rolling.h */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304
+    DEM_EFFECT_ROLLING_SPRING = 8388608, /* rolling resistance by a spring per contact (Ai et al. 2011, model C, the
+                                            elastic-plastic spring-dashpot): the torque grows with the relative
+                                            rotation up to model A's mu_r r* f_n, with a dashpot below it; needs
+                                            rolling: common/rolling.h */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304 | 8388608
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..22; 7..11 are the convention bits and 18..20 the
+/* Bit positions an effect name can have (dem_effect_name): 0..23; 7..11 are the convention bits and 18..20 the
  * host's and the test laws' bits, not effects. */
-#define DEM_EFFECT_COUNT 23
+#define DEM_EFFECT_COUNT 24
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

@@ -142,7 +142,8 @@ dem_sim *packing_build(const packing_opts *o)
 {
     dem_sim *s = dem_create();
     dem_material m = {o->density,  o->young,    o->poisson,     o->restitution,
-                      o->friction, o->mc_beta, o->mc_gamma, o->yield_stress, 0, o->bond_strength};
+                      o->friction, o->mc_beta, o->mc_gamma, o->yield_stress, o->rolling_friction, o->bond_strength,
+                      o->rolling_damping};
     int mat = dem_add_material(s, &m);
     dem_material wm = {7800, 2e8, 0.3, o->restitution, o->friction};
     int wmat = dem_add_material(s, &wm);

@@ -25,6 +25,7 @@ typedef struct {
     double mc_reach;    /* MC-strain contact distance factor (0 or 1: off) */
     double yield_stress; /* the particle material's limiting contact pressure (DEM_EFFECT_THORNTON_NING) [Pa] */
     double bond_strength; /* the particle material's bond strength sigma_b (DEM_EFFECT_THORNTON_NING) [Pa] */
+    double rolling_friction, rolling_damping; /* the particle material's mu_r and eta_r (DEM_EFFECT_ROLLING[_SPRING]) */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);

@@ -23,6 +23,8 @@ int dem_set_effects(dem_sim *s, unsigned effects)
         return sim_fail(s, DEM_ERR_ARG, "rolling resistance acts on spins, which only friction gives: list friction too");
     if ((effects & DEM_EFFECT_ROLLING) && (effects & DEM_EFFECT_PATCHES))
         return sim_fail(s, DEM_ERR_ARG, "rolling resistance does not act at membrane patches yet");
+    if ((effects & DEM_EFFECT_ROLLING_SPRING) && !(effects & DEM_EFFECT_ROLLING))
+        return sim_fail(s, DEM_ERR_ARG, "rolling_spring is a model of rolling resistance: list rolling too");
     if (!(effects & DEM_EFFECT_HERTZ))
         return sim_fail(s, DEM_ERR_ARG, "the effect mask must contain DEM_EFFECT_HERTZ (the contact law itself)");
     s->effects = effects;
@@ -80,7 +82,8 @@ void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc.stats; }
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
                                                            "springs", "pressure", "bending", "patches", "riders", "constraints",
-                                                           NULL, NULL, NULL, "thornton_ning", "rolling"};
+                                                           NULL, NULL, NULL, "thornton_ning", "rolling",
+                                                           "rolling_spring"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

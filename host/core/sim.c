@@ -101,6 +101,9 @@ int dem_add_material(dem_sim *s, const dem_material *m)
     if (!(m->rolling_friction >= 0) || !isfinite(m->rolling_friction))
         return sim_fail(s, DEM_ERR_ARG, "material %d: rolling friction must be >= 0 (got %g)", s->nmat,
                         m->rolling_friction);
+    if (!(m->rolling_damping >= 0) || !isfinite(m->rolling_damping))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: rolling damping must be >= 0 (got %g)", s->nmat,
+                        m->rolling_damping);
     if (!(m->yield_stress >= 0) || !isfinite(m->yield_stress))
         return sim_fail(s, DEM_ERR_ARG, "material %d: yield stress must be >= 0 Pa, 0 for a material that does not "
                         "yield (got %g)", s->nmat, m->yield_stress);

@@ -493,6 +493,7 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_TN_FY] = 4.0 / 3.0 * row[PM_ESTAR] * ky * ky * ky;
             row[PM_MU_ROLL] = pp && !isnan(pp->rolling_friction) ? pp->rolling_friction
                                                                 : 0.5 * (ma->rolling_friction + mb->rolling_friction);
+            row[PM_ROLL_DAMP] = 0.5 * (ma->rolling_damping + mb->rolling_damping);
             /* a bond is as strong as the weaker of the two materials (a tool's steel, 0, bonds to nothing) */
             double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
             row[PM_TN_SIGB] = py > 0 ? M_PI * sb : 0;
@@ -721,11 +722,16 @@ static int pack_particles(dem_sim *s, dem_setup *u, int rs)
 {
     size_t n = (size_t)s->n;
     double *invm = malloc(sizeof(double) * n), *invi = malloc(sizeof(double) * n), *invv = malloc(sizeof(double) * n);
+    double *iroll = malloc(sizeof(double) * (n ? n : 1));
     unsigned *hold = calloc(n, sizeof(unsigned)); /* DEM_PARTICLE_HOLD_V{X,Y,Z} as bits 0, 1, 2 */
     int *sid = malloc(sizeof(int) * (n ? n : 1)), *order = malloc(sizeof(int) * (n ? n : 1));
     int *identity = malloc(sizeof(int) * (n ? n : 1));
     if (invm && invi && invv)
         pack_bodies(s, invm, invi, invv);
+    for (size_t i = 0; invm && invi && iroll && i < n; i++) { /* 1 / (I + m r^2) in double (rolling.h) */
+        double d = invm[i] + s->radius[i] * s->radius[i] * invi[i];
+        iroll[i] = d > 0 ? invm[i] * invi[i] / d : 0;
+    }
     for (size_t i = 0; hold && i < n; i++)
         hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
     for (size_t i = 0; sid && order && identity && i < n; i++)
@@ -738,10 +744,11 @@ static int pack_particles(dem_sim *s, dem_setup *u, int rs)
     u->invmass = invm ? keep(s, pack_real(invm, n, rs)) : NULL;
     u->invinertia = invi ? keep(s, pack_real(invi, n, rs)) : NULL;
     u->invvol = invv ? keep(s, pack_real(invv, n, rs)) : NULL;
+    u->roll_inertia = iroll ? keep(s, pack_real(iroll, n, rs)) : NULL;
     u->mat = s->mat;
-    free(invm), free(invi), free(invv);
+    free(invm), free(invi), free(invv), free(iroll);
     return u->hold && u->sid && u->order && u->identity && u->x && u->v && u->w && u->radius && u->invmass &&
-                   u->invinertia && u->invvol
+                   u->invinertia && u->invvol && u->roll_inertia
                ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }
 

@@ -24,7 +24,7 @@ void dem_state_free(dem_state *st)
     for (int k = 0; k < st->narrays && k < DEM_STATE_MAX_ARRAYS; k++)
         free(st->arrays[k].data);
     free(st->pair_i), free(st->pair_j), free(st->pair_hist), free(st->pair_rec), free(st->pair_mc_disp);
-    free(st->pair_law);
+    free(st->pair_law), free(st->pair_rspring);
     free(st->pair_mc_fn);
     free(st->patch_i), free(st->patch_t), free(st->patch_hist), free(st->patch_side);
     memset(st, 0, sizeof *st);
@@ -87,6 +87,7 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
     pairs_permute(st->pair_rec, PR_STRIDE * rs, k, np, tmp);
     pairs_permute(st->pair_mc_disp, 2 * rs, k, np, tmp);
     pairs_permute(st->pair_law, rs, k, np, tmp);
+    pairs_permute(st->pair_rspring, 3 * rs, k, np, tmp);
     free(k), free(tmp);
     return 0;
 }
@@ -236,9 +237,9 @@ int dem_state_arrays(dem_state *st)
     dem_core c; /* the sizes of st's header: friction and MC-strain as it says; another gate (wall_pf's): full size */
     memset(&c, 0, sizeof c);
     c.n = st->n, c.nwalls = st->nwalls, c.rs = st->real_size;
-    unsigned known = DEM_EFFECT_FRICTION | DEM_EFFECT_MC_STRAIN | DEM_LAW_STATE_BITS;
+    unsigned known = DEM_EFFECT_FRICTION | DEM_EFFECT_MC_STRAIN | DEM_LAW_STATE_BITS | DEM_EFFECT_ROLLING_SPRING;
     unsigned fx = (st->has_hist ? DEM_EFFECT_FRICTION : 0u) | (st->has_mc ? DEM_EFFECT_MC_STRAIN : 0u) |
-                  (st->has_law ? DEM_LAW_STATE_BITS : 0u);
+                  (st->has_law ? DEM_LAW_STATE_BITS : 0u) | (st->has_rspring ? DEM_EFFECT_ROLLING_SPRING : 0u);
     st->narrays = 0;
     for (int id = 0; id < BUF__COUNT && st->narrays < DEM_STATE_MAX_ARRAYS; id++) {
         if (!sb[id].name)
@@ -340,6 +341,8 @@ static int pairs_get(dem_sim *s, dem_state *st)
     unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = get_stored(s, DEM_FIELD_MC_DISP, &b, &e);
     int law = (s->setup.effects & DEM_LAW_STATE_BITS) != 0;
     unsigned char *lst = sim_buffer_get(s, BUF_PAIR_LAW, &e);
+    int rsp = (s->setup.effects & DEM_EFFECT_ROLLING_SPRING) != 0;
+    unsigned char *rsb = sim_buffer_get(s, BUF_PAIR_RSPRING, &e);
     long np = 0;
     const int *sid = s->setup.sid;
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
@@ -359,8 +362,9 @@ static int pairs_get(dem_sim *s, dem_state *st)
         st->pair_rec = calloc((size_t)(np ? np : 1), PR_STRIDE * (size_t)rs);
         st->pair_mc_disp = calloc((size_t)(np ? np : 1), 2 * (size_t)rs);
         st->pair_law = law ? calloc((size_t)(np ? np : 1), (size_t)rs) : NULL;
+        st->pair_rspring = rsp ? calloc((size_t)(np ? np : 1), 3 * (size_t)rs) : NULL;
         if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec || !st->pair_mc_disp ||
-            (law && !st->pair_law))
+            (law && !st->pair_law) || (rsp && !st->pair_rspring))
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     }
     np = 0;
@@ -378,6 +382,8 @@ static int pairs_get(dem_sim *s, dem_state *st)
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
             if (law) /* the law's state (laws/law.h), kept per pair like the history */
                 memcpy((char *)st->pair_law + (size_t)np * rs, lst + (size_t)pn * rs, (size_t)rs);
+            if (rsp) /* the rolling spring (rolling.h), kept per pair like the history */
+                memcpy((char *)st->pair_rspring + (size_t)np * 3 * rs, rsb + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) { /* the displacements at both ends in the last step: the network's extra (mc_strain.h) */
                 int m = find_slot(cnt, list, start, sid, j, i);
                 memcpy((char *)st->pair_mc_disp + (size_t)np * 2 * rs, mcd + (size_t)slot * rs, (size_t)rs);
@@ -393,8 +399,9 @@ static int pairs_get(dem_sim *s, dem_state *st)
     st->has_hist = hb > 0;
     st->has_mc = fb > 0;
     st->has_law = law;
+    st->has_rspring = rsp;
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(mcd);
-    free(lst);
+    free(lst), free(rsb);
     return e;
 }
 
@@ -460,6 +467,10 @@ static int state_check(dem_sim *s, const dem_state *st)
     if (!!st->has_law != law || (law && st->npairs > 0 && !st->pair_law))
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s contact law states but this run's law %s (thornton_ning "
                         "keeps one per contact)", st->has_law ? "has" : "has no", law ? "keeps them" : "keeps none");
+    int rsp = (fx & DEM_EFFECT_ROLLING_SPRING) != 0;
+    if (!!st->has_rspring != rsp || (rsp && st->npairs > 0 && !st->pair_rspring))
+        return sim_fail(s, DEM_ERR_ARG, "the saved state %s rolling springs but this run %s rolling_spring",
+                        st->has_rspring ? "has" : "has no", rsp ? "has" : "has no");
     if (st->step < 0 || st->npairs < 0 || st->narrays < 0 || st->narrays > DEM_STATE_MAX_ARRAYS)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld, %ld contacts and %d arrays (at most %d)",
                         st->step, st->npairs, st->narrays, DEM_STATE_MAX_ARRAYS);
@@ -493,8 +504,10 @@ static int pairs_set(dem_sim *s, const dem_state *st)
     unsigned char *disp = calloc(db + 1, 1); /* and MC-strain's displacements */
     size_t lb = DEM_CORE(s->be)->bytes[BUF_PAIR_LAW];
     unsigned char *lst = calloc(lb + 1, 1); /* and the law's states */
+    size_t sb = DEM_CORE(s->be)->bytes[BUF_PAIR_RSPRING];
+    unsigned char *rsb = calloc(sb + 1, 1); /* and the rolling springs */
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
-    if (!e && (!touch || !hist || !mcf || !rec || !disp || !lst || !own))
+    if (!e && (!touch || !hist || !mcf || !rec || !disp || !lst || !rsb || !own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (long p = 0; !e && p < st->npairs; p++) {
         int ci = st->pair_i[p], cj = st->pair_j[p], i = sim_dev(s, ci), j = sim_dev(s, cj); /* ids: checked above */
@@ -512,6 +525,8 @@ static int pairs_set(dem_sim *s, const dem_state *st)
             memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
         if (lb && (pn + 1) * rs <= lb) /* so is the law's state (state_check: there when the law keeps one) */
             memcpy(lst + pn * rs, (const char *)st->pair_law + (size_t)p * rs, (size_t)rs);
+        if (sb && (pn + 1) * 3 * rs <= sb) /* and the rolling spring (state_check: there with rolling_spring) */
+            memcpy(rsb + pn * 3 * rs, (const char *)st->pair_rspring + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb && st->pair_mc_disp && ((size_t)a + 1) * rs <= db && ((size_t)m + 1) * rs <= db) {
             memcpy(disp + (size_t)a * rs, (const char *)st->pair_mc_disp + (size_t)p * 2 * rs, (size_t)rs);
             memcpy(disp + (size_t)m * rs, (const char *)st->pair_mc_disp + ((size_t)p * 2 + 1) * rs, (size_t)rs);
@@ -527,10 +542,11 @@ static int pairs_set(dem_sim *s, const dem_state *st)
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_FORCE, mcf, fb) ||
                dem_stage_write_field(s->ops, s->be, DEM_FIELD_PAIR_RECORDS, rec, rb) ||
                (db && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, disp, db)) ||
-               (lb && s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_PAIR_LAW}, 0, lst, lb, 1))))
+               (lb && s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_PAIR_LAW}, 0, lst, lb, 1)) ||
+               (sb && s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_PAIR_RSPRING}, 0, rsb, sb, 1))))
         e = sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err);
     free(cnt), free(list), free(start), free(touch), free(hist), free(mcf), free(own), free(rec), free(disp);
-    free(lst);
+    free(lst), free(rsb);
     return e;
 }
 

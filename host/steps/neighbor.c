@@ -60,6 +60,12 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
          o->alloc(b, TABLE_ONE, 0, BUF_PAIR_LAW_OLD, c->bytes[BUF_PAIR_LAW], NULL)) ||
         (c->bytes[BUF_PAIR_LAW] && o->copy(b, law, old_law, c->bytes[BUF_PAIR_LAW])))
         return 1;
+    /* and so have the rolling springs (rolling.h; 24 or 12 bytes per pair, in runs with DEM_EFFECT_ROLLING_SPRING) */
+    dem_bufref rsp = {TABLE_ONE, BUF_PAIR_RSPRING}, old_rsp = {TABLE_ONE, BUF_PAIR_RSPRING_OLD};
+    if ((c->bytes[BUF_PAIR_RSPRING_OLD] != c->bytes[BUF_PAIR_RSPRING] &&
+         o->alloc(b, TABLE_ONE, 0, BUF_PAIR_RSPRING_OLD, c->bytes[BUF_PAIR_RSPRING], NULL)) ||
+        (c->bytes[BUF_PAIR_RSPRING] && o->copy(b, rsp, old_rsp, c->bytes[BUF_PAIR_RSPRING])))
+        return 1;
     if ((c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
          o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)) ||
         (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
@@ -91,7 +97,7 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
          * copy from them, the flags' copy at the next commit (above) */
         static const int grown[] = {BUF_PAIR_HOST,   BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR,
                                     BUF_TOUCH,       BUF_PAIR_HIST,  BUF_PAIR_ELA,  BUF_PAIR_MC_FN,
-                                    BUF_PAIR_LAW,    BUF_PAIR_ROLL};
+                                    BUF_PAIR_LAW,    BUF_PAIR_ROLL,  BUF_PAIR_RSPRING};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;

@@ -37,7 +37,8 @@ class Material(ctypes.Structure):
     _fields_ = [("density", ctypes.c_double), ("young", ctypes.c_double), ("poisson", ctypes.c_double),
                 ("restitution", ctypes.c_double), ("friction", ctypes.c_double), ("mc_beta", ctypes.c_double),
                 ("mc_gamma", ctypes.c_double), ("yield_stress", ctypes.c_double),
-                ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double)]
+                ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double),
+                ("rolling_damping", ctypes.c_double)]
 
 
 class MaterialPair(ctypes.Structure):
@@ -99,7 +100,8 @@ class State(ctypes.Structure):
                 ("pair_j", ctypes.POINTER(ctypes.c_int)), ("pair_hist", ctypes.c_void_p),
                 ("pair_rec", ctypes.c_void_p), ("has_hist", ctypes.c_int), ("has_mc", ctypes.c_int),
                 ("pair_mc_fn", ctypes.c_void_p), ("pair_mc_disp", ctypes.c_void_p), ("has_law", ctypes.c_int),
-                ("pair_law", ctypes.c_void_p), ("mc", McStats),
+                ("pair_law", ctypes.c_void_p), ("has_rspring", ctypes.c_int), ("pair_rspring", ctypes.c_void_p),
+                ("mc", McStats),
                 ("npatch", ctypes.c_long), ("patch_i", ctypes.POINTER(ctypes.c_int)),
                 ("patch_t", ctypes.POINTER(ctypes.c_int)), ("patch_hist", ctypes.c_void_p),
                 ("patch_side", ctypes.POINTER(ctypes.c_int))]
@@ -282,12 +284,13 @@ class Sim:
 
     # ---- set-up ----
     def add_material(self, density, young, poisson, restitution, friction, mc_beta=0.0, mc_gamma=0.0,
-                     yield_stress=0.0, rolling_friction=0.0, bond_strength=0.0):
+                     yield_stress=0.0, rolling_friction=0.0, bond_strength=0.0, rolling_damping=0.0):
         """A material [kg/m^3, Pa, -, -, -]; returns its id. young=float('inf'): rigid (walls only). yield_stress
         [Pa]: the limiting contact pressure of the thornton_ning law (0: does not yield); rolling_friction: mu_r of
-        the rolling effect; bond_strength [Pa]: sigma_b of the bonds its yielded contacts form (thornton_ning)."""
+        the rolling effect; bond_strength [Pa]: sigma_b of the bonds its yielded contacts form (thornton_ning);
+        rolling_damping: eta_r of the rolling_spring effect's dashpot."""
         m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma, yield_stress, rolling_friction,
-                     bond_strength)
+                     bond_strength, rolling_damping)
         return self._check(self._lib.dem_add_material(self._s, ctypes.byref(m)))
 
     def set_material_pair(self, a, b, friction=float("nan"), restitution=float("nan"), rolling_friction=float("nan"),
