@@ -8,6 +8,8 @@
  *     opposite, with no friction torque;
  *   - rolling without friction is refused (no spins without it).
  * And model C, the rolling spring (DEM_EFFECT_ROLLING_SPRING):
+ *   - the pair above after one step: the spring's -k_r w dt and the dashpot's -eta_r 2 sqrt(I_r k_r) w, equal and
+ *     opposite;
  *   - a sphere resting on a plane, given a small spin, rocks on its rolling spring with the period
  *     2 pi sqrt((I + m arm^2) / k_r), k_r = 2.25 (2 E* sqrt(R delta)) mu_r^2 R^2 (no dashpot; the amplitude below
  *     the cap mu_r R m g);
@@ -89,15 +91,15 @@ static void test_sphere_on_plane(void **st)
     dem_destroy(ref);
 }
 
-static dem_sim *rolling_pair(double delta, double w, dem_backend_kind be)
+static dem_sim *rolling_pair_with(double delta, double w, dem_backend_kind be, unsigned extra, double eta_r)
 {
     dem_sim *s = dem_create();
-    dem_material m = {RHO, YOUNG, NU, 1.0, 0.8, 0, 0, 0, MU_R};
+    dem_material m = {RHO, YOUNG, NU, 1.0, 0.8, 0, 0, 0, MU_R, 0, eta_r};
     int id = dem_add_material(s, &m);
     dem_add_particle(s, (double[3]){-R + 0.5 * delta, 0, 0}, NULL, R, id);
     dem_add_particle(s, (double[3]){R - 0.5 * delta, 0, 0}, NULL, R, id);
     dem_set_domain(s, (double[3]){-0.02, -0.02, -0.02}, (double[3]){0.02, 0.02, 0.02});
-    assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_ROLLING), 0);
+    assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_ROLLING | extra), 0);
     dem_set_dt(s, 1e-7);
     dem_config c = cfg_of(be, DEM_FP64);
     start_or_fail(s, &c);
@@ -108,6 +110,10 @@ static dem_sim *rolling_pair(double delta, double w, dem_backend_kind be)
     assert_int_equal(dem_state_set(s, &st), 0);
     dem_state_free(&st);
     return s;
+}
+static dem_sim *rolling_pair(double delta, double w, dem_backend_kind be)
+{
+    return rolling_pair_with(delta, w, be, 0, 0);
 }
 
 static void test_pair_torque(void **st)
@@ -128,6 +134,34 @@ static void test_pair_torque(void **st)
            t[0][0], t[0][2]);
     assert_memory_equal(t[0], t[1], sizeof t[0]);
     assert_true(fabs(t[0][1] + want) < 1e-12 * want && t[0][4] == -t[0][1]);
+    assert_true(t[0][0] == 0 && t[0][2] == 0 && t[0][3] == 0 && t[0][5] == 0);
+}
+
+/* Model C on the same pair, spins small enough to stay below the cap: after one step the spring holds
+ * -k_r (w_a - w_b) dt and the dashpot adds -eta_r 2 sqrt(I_r k_r) (w_a - w_b), with k_r = 2.25 (2 E* sqrt(r* delta))
+ * mu_r^2 r*^2, r* = R/2, I_r = (I + m R^2)/2 = 0.7 m R^2; equal and opposite on the two spheres */
+static void test_spring_pair_torque(void **st)
+{
+    (void)st;
+    double delta = 1e-5, w = 1e-3, eta = 0.3, es = estar_same(), rs = R / 2, m = RHO * 4.0 / 3.0 * M_PI * R * R * R;
+    double t[2][6], x[6];
+    for (int k = 0; k < 2; k++) {
+        dem_sim *s = rolling_pair_with(delta, w, k ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE,
+                                       DEM_EFFECT_ROLLING_SPRING, eta);
+        step_or_fail(s, 1);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_TORQUE, t[k]), 0);
+        assert_int_equal(dem_get_field(s, DEM_FIELD_X, x), 0);
+        dem_destroy(s);
+    }
+    double d = 2 * R - (x[3] - x[0]), dt = 1e-7, wr = 2 * w;
+    double kr = 2.25 * (2 * es * sqrt(rs * d)) * MU_R * MU_R * rs * rs, ir = 0.7 * m * R * R;
+    double want = -kr * wr * dt - eta * 2 * sqrt(ir * kr) * wr;
+    double cap = MU_R * rs * 4.0 / 3.0 * es * sqrt(rs) * d * sqrt(d);
+    printf("  rolling spring, pair: torque %.9g N m about y after a step (closed form %.9g; cap %.3g), the other "
+           "%.9g\n", t[0][1], want, cap, t[0][4]);
+    assert_true(fabs(kr * wr * dt) < 0.1 * cap); /* below the cap: the dashpot acts */
+    assert_memory_equal(t[0], t[1], sizeof t[0]);
+    assert_true(fabs(t[0][1] / want - 1) < 1e-9 && t[0][4] == -t[0][1]);
     assert_true(t[0][0] == 0 && t[0][2] == 0 && t[0][3] == 0 && t[0][5] == 0);
 }
 
@@ -296,7 +330,8 @@ static void test_refused(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_sphere_on_plane), cmocka_unit_test(test_pair_torque),
-                                       cmocka_unit_test(test_spring_rocking),  cmocka_unit_test(test_spring_rest),
+                                       cmocka_unit_test(test_spring_pair_torque), cmocka_unit_test(test_spring_rocking),
+                                       cmocka_unit_test(test_spring_rest),
                                        cmocka_unit_test(test_spring_packing),  cmocka_unit_test(test_refused)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
