@@ -256,6 +256,7 @@ static int check(const cli *cl)
            run.dt / ts.rayleigh_time, ts.recommended_dt, ts.max_dt);
     fflush(stdout);
     run_dt_advice(sc, &run); /* a warning, above a membrane's recommendation */
+    run_rolling_advice(sc, run.effects);
     if (run.dt > 0.35 * ts.rayleigh_time) /* docs/accuracy.md: stable up to the bound, not accurate */
         printf("               above 0.35 x Rayleigh time: stable, but make accuracy measured the 514-hydrogel "
                "compression 10-19 %% off at 0.5 under every model, within 0.6 %% at 0.35 (docs/accuracy.md)\n");

@@ -403,6 +403,28 @@ void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out)
                 sc->path, q);
 }
 
+void run_rolling_advice(const scene *sc, unsigned effects)
+{
+    if (!(effects & DEM_EFFECT_ROLLING_SPRING))
+        return;
+    const scene_file *f = sc->f;
+    double worst = 0;
+    for (unsigned a = 0; a < f->materials_count; a++) /* the mean rule's pairs */
+        for (unsigned b = a; b < f->materials_count; b++)
+            worst = fmax(worst, 0.5 * (f->materials[a].rolling_friction + f->materials[b].rolling_friction));
+    for (unsigned k = 0; k < f->material_pairs_count; k++) { /* and the pairs given their own */
+        char p[64];
+        snprintf(p, sizeof p, "material_pairs[%u].rolling_friction", k);
+        if (scene_has(sc->loc, p))
+            worst = fmax(worst, f->material_pairs[k].rolling_friction);
+    }
+    if (worst >= 0.88)
+        fprintf(stderr, "dem: warning: %s: a rolling coefficient of %.3g with rolling_spring: the spring's own mode is "
+                        "about %.2g times the tangential one the time step is sized for, past it from 0.88 "
+                        "(docs/design.md \"Rolling resistance\"): a smaller dt_rayleigh keeps it stable\n",
+                sc->path, worst, 1.14 * worst);
+}
+
 /* Position resolution (dem_position_resolution): with info, one line for dem check; a warning when the run's
  * precision resolves positions more coarsely than DEM_RESOLUTION_WARN of the smallest radius - an overlap of 1e-3
  * of a radius (stiff grains) then spans fewer than 10 steps of the grid (fp32 far from the origin). */
@@ -763,6 +785,7 @@ static int phase_start(run_ctx *c)
             dem_wall_count(c->s), run->dt, run->steps, dem_describe(c->s));
     run_contact_advice(c->s, c->sc, 0, stderr); /* a warning only, when dt is coarse for the fastest contact */
     run_dt_advice(c->sc, &c->run);              /* a warning only, when dt is coarse for a membrane */
+    run_rolling_advice(c->sc, run->effects);    /* a warning only, a stiff rolling spring */
     run_mc_lag_advice(c->s, c->sc, &c->run, 0, stderr); /* a warning only, lagged MC-strain where it rings */
     run_order_advice(c->s, c->sc, 0, stderr);   /* a note only, when the order is scattered */
     run_precision_advice(c->s, c->sc, run->cfg.precision, 0, stderr); /* a warning only, far from the origin */

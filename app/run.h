@@ -36,6 +36,9 @@ void run_mc_lag_advice(dem_sim *s, const scene *sc, const scene_run *run, int in
 void run_order_advice(dem_sim *s, const scene *sc, int info, FILE *out);
 /* the same for the precision's position resolution far from the origin (dem_position_resolution) */
 void run_precision_advice(dem_sim *s, const scene *sc, dem_precision p, int info, FILE *out);
+/* A warning on stderr when the rolling spring (effect rolling_spring) has a rolling coefficient of 0.88 or more for a
+ * pair of materials: its own mode is then faster than the one the time step is sized for (docs/design.md) */
+void run_rolling_advice(const scene *sc, unsigned effects);
 /* A warning on stderr when the time step is above what a membrane's springs or hinges recommend (run->ts) */
 void run_dt_advice(const scene *sc, const scene_run *run);
 

@@ -11,12 +11,16 @@
  * of the order mu_r r f_n dt / I each step.
  *
  * The cure, with DEM_EFFECT_ROLLING_SPRING: model C of the same paper, the elastic-plastic spring-dashpot (EPSD), as
- * LIGGGHTS' `rolling_friction epsd`. Each contact keeps a rolling spring M (a torque, in its tangent plane), which the
- * relative rotation winds up and the full mobilisation torque caps:
+ * LIGGGHTS' `rolling_friction epsd` has it. Each contact keeps a rolling spring M (a torque, in its tangent plane),
+ * which the relative rotation winds up and the full mobilisation torque caps:
  *   M <- R[M] - k_r w_t dt,   k_r = 2.25 k_n mu_r^2 r*^2,   |M| <= M_m = mu_r r* f_n,
  * R rotating the stored spring into the current tangent plane keeping its length (as the tangential history:
- * hm_rotate_history), k_n = 2 E* sqrt(r* delta) the Hertz normal stiffness at the overlap (Ai et al.'s 2.25 for 3D,
- * after Iwashita and Oda); below the cap a dashpot acts too,
+ * hm_rotate_history), k_n = 4/3 E* sqrt(r* delta) Hertz's force over overlap at the geometric overlap (LIGGGHTS'
+ * Hertz kn, so that a calibration made there carries over; Ai et al.'s springs were linear, where k_n is the one
+ * stiffness; 2.25 is their 3D factor, after Iwashita and Oda), 0 where the overlap is not positive (a bond or an
+ * induced displacement holding a contact across a gap: its spring then only slides to the cap); f_n the contact's
+ * normal force with its damping, as model A takes it (0: no cap, the spring slides to zero); below the cap a dashpot
+ * acts too,
  *   M_d = -eta_r 2 sqrt(I_r k_r) w_t,   1/I_r = 1/(I_a + m_a r_a^2) + 1/(I_b + m_b r_b^2)   (a wall: its term 0),
  * and none once the spring is at the cap (f = 0 in Ai et al.; LIGGGHTS does the same). The torque on a is M + M_d,
  * -(M + M_d) on b. At full mobilisation the spring's torque is model A's, so a rolling sphere slows as before; once
@@ -51,7 +55,8 @@ DEM_INLINE vec3 rolling_spring_torque(vec3 n, real delta, real fn, vec3 w, vec3 
 {
     vec3 wt = v3_sub(w, v3_scale(n, v3_dot(w, n)));
     real mu = pm[PM_MU_ROLL];
-    real kr = (real)9 / (real)4 * ((real)2 * pm[PM_ESTAR] * dem_sqrt(rstar * delta)) * mu * mu * rstar * rstar;
+    real dk = delta > (real)0 ? delta : (real)0;
+    real kr = (real)9 / (real)4 * ((real)4 / (real)3 * pm[PM_ESTAR] * dem_sqrt(rstar * dk)) * mu * mu * rstar * rstar;
     vec3 m = v3_sub(hm_rotate_history(spring, n), v3_scale(wt, kr * dt));
     real mmax = fn > (real)0 ? mu * rstar * fn : (real)0, m2 = v3_dot(m, m);
     if (m2 > mmax * mmax) { /* full mobilisation: the spring slides at the cap, no dashpot */

@@ -789,6 +789,48 @@ static void test_triaxial_fp32_bitwise(void **st)
  * 25 % - and a mean of 7 %, below where lagged MC-strain rings on them (15.7 %); 300 soft spheres pressed to a
  * relative density of 0.97 (test_stability.c's compaction scene, further) pass both under lagged MC-strain: a mean of
  * 26 %, a pair at 122 %. */
+/* A rolling spring with a rolling coefficient of 0.88 or more (its mode faster than the tangential one the step is
+ * sized for: docs/design.md) is warned of by dem check and dem run; 0.1 is not. Its springs go through a checkpoint
+ * and a restart bit for bit */
+static void test_rolling_advice(void **st)
+{
+    (void)st;
+    char err[16384];
+    for (int stiff = 0; stiff < 2; stiff++) {
+        char sed[600];
+        snprintf(sed, sizeof sed, "s/effects: \\[hertz, damping, friction, gravity, walls\\]/effects: [hertz, damping, "
+                                  "friction, gravity, walls, rolling, rolling_spring]/; s/friction: 0.3}/friction: 0.3, "
+                                  "rolling_friction: %s, rolling_damping: 0.3}/",
+                 stiff ? "0.9" : "0.1");
+        assert_int_equal(sed_check_run(err, sizeof err, sed, SRC "/tests/scenes/tablet_small.yaml", "rs"), 0);
+        const char *w = "a rolling coefficient of 0.9 with rolling_spring", *first = strstr(err, w);
+        if (stiff && !(first && strstr(first + 1, w))) /* both: check, then run */
+            fail_msg("rolling coefficient 0.9: expected the warning from dem check and dem run in: %s", err);
+        if (!stiff && strstr(err, "rolling coefficient"))
+            fail_msg("rolling coefficient 0.1: no warning expected: %s", err);
+    }
+    /* the springs through a checkpoint file: 12000 steps straight and 6000 + 6000 from the first part's checkpoint hash
+     * the same (dem hash covers /state/pair_rspring and wall_rspring, which hold wound springs); without
+     * rolling_spring (model A) the hash differs */
+    char ha[64] = {0}, hb[64] = {0}, hc[64] = {0};
+    assert_int_equal(sh(err, sizeof err, "cd %s && %s run rs.yaml -o a.h5 --stop-after 12000 --quiet && "
+                        "%s run rs.yaml -o b.h5 --stop-after 6000 --quiet && %s run --restart b.ckpt.h5 -o c.h5 --stop-after 6000 --quiet "
+                        "&& sed 's/, rolling_spring\\]/]/' rs.yaml > ra.yaml && %s run ra.yaml -o d.h5 --stop-after 12000 "
+                        "--quiet && { %s hash a.ckpt.h5; %s hash c.ckpt.h5; %s hash d.ckpt.h5; } > hashes.txt && %s -c "
+                        "\"import h5py, numpy; s = h5py.File('a.ckpt.h5')['state']; "
+                        "assert s.attrs['has_rspring'] == 1 and numpy.abs(s['pair_rspring'][()]).max() > 0 and "
+                        "numpy.abs(s['wall_rspring'][()]).max() > 0, 'springs not saved'\"",
+                        tmp, DEM, DEM, DEM, DEM, DEM, DEM, DEM, test_python()),
+                     0);
+    FILE *fp = fopen(strcat(strcpy((char[300]){0}, tmp), "/hashes.txt"), "r");
+    assert_non_null(fp);
+    assert_int_equal(fscanf(fp, "%63s %63s %63s", ha, hb, hc), 3);
+    fclose(fp);
+    printf("  rolling springs: straight %s, restarted %s, model A %s\n", ha, hb, hc);
+    assert_string_equal(ha, hb);
+    assert_string_not_equal(ha, hc);
+}
+
 /* dem check's wall-time estimate (steps x (60 us + 0.12 us x particles), the rate written in dem_main.c) and its
  * stages: a piston 0.05 m above the top of two spheres (centres at z = 0 and 0.0202 m, radius 0.01 m) moving down at
  * 0.5 m/s meets them after (0.08 - 0.0302) / 0.5 = 0.0996 s; moving 0.03 m at most, it stops 0.0198 m short (a
@@ -2240,6 +2282,7 @@ int main(void)
         cmocka_unit_test(test_mass_scale),
         cmocka_unit_test(test_stage_ends),
         cmocka_unit_test(test_stage_wait_ramp),
+        cmocka_unit_test(test_rolling_advice),
         cmocka_unit_test(test_check_estimates),
         cmocka_unit_test(test_check_probe),
         cmocka_unit_test(test_compile_note),
