@@ -342,6 +342,60 @@ static void bounce(dem_precision prec)
 static void test_bounce_fp64(void **st) { (void)st; bounce(DEM_FP64); }
 static void test_bounce_fp32(void **st) { (void)st; bounce(DEM_FP32); }
 
+/* The bonded collision with friction and the rolling spring (rolling.h): while the bond holds the spheres across a
+ * gap, the spring's stiffness is taken at zero overlap - every spin stays finite (it was a NaN: the square root of a
+ * negative overlap) - and both backends agree bit for bit */
+static void test_bond_gap_rolling_spring(void **st)
+{
+    (void)st;
+    double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2;
+    bond_closed t = bond_of(es, rs, 1.0);
+    double vi = 5 * sqrt(2 * 0.4 * t.fy * t.dy / ms);
+    double tc = 2.87 * pow(ms * ms / (rs * es * es * vi), 0.2), dt = tc / 4000;
+    double dm0;
+    int gap0;
+    double v0 = collide(0, &dm0, &gap0, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
+    double sigb = sqrt(0.25 * ms * v0 * v0 * 2 * kb_of(&t, dm0)) / fb_of(&t, dm0);
+    dem_material m = powder(sigb);
+    m.friction = 0.5, m.rolling_friction = 0.1, m.rolling_damping = 0.3;
+    unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_ROLLING |
+                  DEM_EFFECT_ROLLING_SPRING;
+    dem_sim *cl = head_on_build(&m, NULL, R, vi, fx, dt), *ref = head_on_build(&m, NULL, R, vi, fx, dt);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64), rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(cl, &c);
+    start_or_fail(ref, &rc);
+    dem_state sv; /* a small relative spin about y, so that the spring winds */
+    for (int k = 0; k < 2; k++) {
+        dem_sim *s = k ? ref : cl;
+        assert_int_equal(dem_state_get(s, &sv), 0);
+        double *w = dem_state_find(&sv, "w")->data;
+        w[1] = 10, w[4] = -10;
+        assert_int_equal(dem_state_set(s, &sv), 0);
+        dem_state_free(&sv);
+    }
+    int gap = 0, was = 0;
+    for (int k = 0; k < 20000; k++) {
+        twins_step(cl, ref, 1, "bonded pair with rolling springs, PoCL vs reference");
+        double x[6], f[6], w[6];
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_W, w), 0);
+        for (int d = 0; d < 6; d++)
+            if (!isfinite(w[d]))
+                fail_msg("step %d: spin %d is %g", k, d, w[d]);
+        double d = 2 * R - fabs(x[3] - x[0]);
+        was |= d > 0;
+        if (was && d <= 0 && f[0] != 0)
+            gap++;
+        else if (was && d <= 0)
+            break;
+    }
+    printf("  bonded pair with rolling springs: %d steps held across a gap, every spin finite\n", gap);
+    assert_true(gap > 10);
+    dem_destroy(cl);
+    dem_destroy(ref);
+}
+
 static void test_refusals(void **st)
 {
     (void)st;
@@ -362,7 +416,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pull_fp64),   cmocka_unit_test(test_pull_fp32), cmocka_unit_test(test_pull_pair_table),
         cmocka_unit_test(test_friction_bonded), cmocka_unit_test(test_rebond),
-        cmocka_unit_test(test_bounce_fp64), cmocka_unit_test(test_bounce_fp32), cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_bounce_fp64), cmocka_unit_test(test_bounce_fp32),
+        cmocka_unit_test(test_bond_gap_rolling_spring), cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
