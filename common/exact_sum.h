@@ -1,0 +1,234 @@
+/* exact_sum.h - an exact accumulator of floating-point numbers (a long fixed-point integer, after Kulisch): every
+ * finite double or float added to it is held without rounding, so the sum of any numbers in any order, split in any
+ * way and the parts merged in any order, is the same integer, and rounding it once gives the same bits - the
+ * correctly rounded sum. It compiles as C and as OpenCL C (integers only: 64-bit limbs; a float is taken apart from
+ * its bits, never through double), the same bits on every device.
+ *
+ * Meant for the sums a run over many devices must get right whatever the decomposition (docs/design.md "Sums that do
+ * not depend on the decomposition"): the walls' forces, the energies and series rows, servo and until_force decisions.
+ * Nothing uses it yet: adopting it for a sum changes that sum's last bits once (the correctly rounded value instead
+ * of the fixed tree's), which the state hash table then records anew.
+ *
+ * Layout: EXACT_LIMBS 64-bit limbs, two's complement, limb 0 the lowest; bit k of the whole integer stands for
+ * 2^(k - 1074) (2^-1074 is the smallest subnormal double). A finite double's bits lie between 2^-1074 and 2^1023
+ * (bit 2097); 34 limbs hold 2176 bits: the sign and 77 bits of headroom, room for 2^77 terms of the largest
+ * magnitude before the sum could overflow. Infinities and NaNs are not held (exact_add_* ignores them: a caller
+ * that may meet one tests for it).
+ */
+#ifndef DEM_EXACT_SUM_H
+#define DEM_EXACT_SUM_H
+
+#define EXACT_LIMBS 34
+#define EXACT_BIAS 1074 /* bit k stands for 2^(k - EXACT_BIAS) */
+/* doubles in OpenCL C only where the program has them (a run's fp64 build: dem_real.h enables cl_khr_fp64) */
+#if !defined(__OPENCL_C_VERSION__) || (defined(DEM_REAL_SIZE) && DEM_REAL_SIZE == 8)
+#define EXACT_HAS_DOUBLE 1
+#else
+#define EXACT_HAS_DOUBLE 0
+#endif
+
+#ifdef __OPENCL_C_VERSION__
+typedef ulong exact_u64;
+typedef long exact_i64;
+#define EXACT_INLINE static inline __attribute__((always_inline))
+#if EXACT_HAS_DOUBLE
+#define exact_double_bits(x) as_ulong(x)
+#endif
+#define exact_float_bits(x) as_uint(x)
+#else
+#include <stdint.h>
+#include <string.h>
+typedef uint64_t exact_u64;
+typedef int64_t exact_i64;
+#define EXACT_INLINE static inline
+static inline exact_u64 exact_double_bits(double x)
+{
+    exact_u64 b;
+    memcpy(&b, &x, sizeof b);
+    return b;
+}
+static inline unsigned exact_float_bits(float x)
+{
+    unsigned b;
+    memcpy(&b, &x, sizeof b);
+    return b;
+}
+#endif
+
+typedef struct {
+    exact_u64 limb[EXACT_LIMBS];
+} exact_acc;
+
+EXACT_INLINE void exact_clear(exact_acc *a)
+{
+    for (int k = 0; k < EXACT_LIMBS; k++)
+        a->limb[k] = 0;
+}
+
+/* adds (neg = 0) or subtracts (neg = 1) the integer m (< 2^53) times 2^pos (bit position pos >= 0) */
+EXACT_INLINE void exact_add_bits(exact_acc *a, exact_u64 m, int pos, int neg)
+{
+    int k = pos >> 6, s = pos & 63;
+    exact_u64 lo = m << s, hi = s ? m >> (64 - s) : 0;
+    if (!neg) {
+        exact_u64 t = a->limb[k] + lo, c = t < lo;
+        a->limb[k] = t;
+        for (int j = k + 1; j < EXACT_LIMBS; j++) { /* the carry, and the high part, until nothing is left */
+            exact_u64 add = (j == k + 1 ? hi : 0);
+            exact_u64 u = a->limb[j] + add, c1 = u < add;
+            exact_u64 v = u + c, c2 = v < c;
+            a->limb[j] = v;
+            c = c1 | c2;
+            if (!c && j > k)
+                break;
+        }
+    } else {
+        exact_u64 t = a->limb[k], b = t < lo;
+        a->limb[k] = t - lo;
+        for (int j = k + 1; j < EXACT_LIMBS; j++) { /* the borrow, and the high part */
+            exact_u64 sub = (j == k + 1 ? hi : 0);
+            exact_u64 u = a->limb[j], b1 = u < sub;
+            u -= sub;
+            exact_u64 b2 = u < b;
+            a->limb[j] = u - b;
+            b = b1 | b2;
+            if (!b && j > k)
+                break;
+        }
+    }
+}
+
+#if EXACT_HAS_DOUBLE
+/* x into the sum, exactly (infinities and NaNs are left out) */
+EXACT_INLINE void exact_add_double(exact_acc *a, double x)
+{
+    exact_u64 b = exact_double_bits(x);
+    int e = (int)((b >> 52) & 2047);
+    exact_u64 m = b & (((exact_u64)1 << 52) - 1);
+    if (e == 2047 || (e == 0 && m == 0))
+        return;
+    if (e) /* normal: the hidden bit; a subnormal keeps the exponent of the smallest normal */
+        m |= (exact_u64)1 << 52;
+    exact_add_bits(a, m, e ? e - 1 : 0, (int)(b >> 63));
+}
+#endif
+EXACT_INLINE void exact_add_float(exact_acc *a, float x)
+{
+    unsigned b = exact_float_bits(x);
+    int e = (int)((b >> 23) & 255);
+    exact_u64 m = b & ((1u << 23) - 1);
+    if (e == 255 || (e == 0 && m == 0))
+        return;
+    if (e)
+        m |= (exact_u64)1 << 23;
+    /* a float m 2^(e - 150) (subnormal: e = 1): bit position e - 150 + 1074 */
+    exact_add_bits(a, m, (e ? e : 1) - 150 + EXACT_BIAS, (int)(b >> 31));
+}
+
+/* b added into a, exactly (limb by limb with the carry) */
+EXACT_INLINE void exact_merge(exact_acc *a, const exact_acc *b)
+{
+    exact_u64 c = 0;
+    for (int k = 0; k < EXACT_LIMBS; k++) {
+        exact_u64 u = a->limb[k] + b->limb[k], c1 = u < b->limb[k];
+        exact_u64 v = u + c, c2 = v < c;
+        a->limb[k] = v;
+        c = c1 | c2;
+    }
+}
+
+/* The sum rounded to nearest (ties to even) with p significant bits (53: double, 24: float) and its smallest
+ * exponent emin (the value of the lowest bit of a subnormal: -1074, -149): *neg its sign, the result m 2^q with
+ * m < 2^p (0 when the sum is 0); returns 1 when the sum overflows the format (an infinity), else 0 */
+EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int *neg, exact_u64 *m, int *q)
+{
+    exact_acc v = *a;
+    *neg = (int)(v.limb[EXACT_LIMBS - 1] >> 63);
+    if (*neg) { /* the magnitude: two's complement */
+        exact_u64 c = 1;
+        for (int k = 0; k < EXACT_LIMBS; k++) {
+            exact_u64 u = ~v.limb[k] + c;
+            c = c && u == 0;
+            v.limb[k] = u;
+        }
+    }
+    int top = -1; /* the highest set bit */
+    for (int k = EXACT_LIMBS - 1; k >= 0 && top < 0; k--)
+        if (v.limb[k])
+            for (int s = 63; s >= 0 && top < 0; s--)
+                if ((v.limb[k] >> s) & 1)
+                    top = 64 * k + s;
+    *m = 0, *q = emin;
+    if (top < 0)
+        return 0;
+    /* the lowest bit kept: p bits below and including top, but not below emin's bit */
+    int low = top - (p - 1), lowest = emin + EXACT_BIAS;
+    if (low < lowest)
+        low = lowest;
+    exact_u64 mm = 0;
+    for (int k = top; k >= low; k--)
+        mm = (mm << 1) | ((v.limb[k >> 6] >> (k & 63)) & 1);
+    int g = low - 1; /* the guard bit's position; the sticky bits below it */
+    int guard = g >= 0 ? (int)((v.limb[g >> 6] >> (g & 63)) & 1) : 0, sticky = 0;
+    if (g > 0) {
+        for (int k = 0; k < (g >> 6); k++) /* whole limbs below the guard's */
+            sticky |= v.limb[k] != 0;
+        sticky |= (g & 63) && (v.limb[g >> 6] & ((((exact_u64)1) << (g & 63)) - 1)) != 0;
+    }
+    if (guard && (sticky || (mm & 1)))
+        mm++;
+    int qq = low - EXACT_BIAS;
+    if (mm >> p) /* rounded up to 2^p */
+        mm >>= 1, qq++;
+    *m = mm, *q = qq;
+    return qq + p - 1 > emax;
+}
+
+#if EXACT_HAS_DOUBLE
+/* The sum as the nearest double (ties to even); +-infinity past the largest */
+EXACT_INLINE double exact_to_double(const exact_acc *a)
+{
+    int neg, q;
+    exact_u64 m;
+    int over = exact_round(a, 53, -1074, 1023, &neg, &m, &q);
+    exact_u64 b;
+    if (over)
+        b = (exact_u64)2047 << 52;
+    else if (m >> 52) /* normal: m 2^q with 2^52 <= m < 2^53, exponent field q + 52 + 1023 */
+        b = ((exact_u64)(q + 1075) << 52) | (m & (((exact_u64)1 << 52) - 1));
+    else /* subnormal (q = -1074) or zero */
+        b = m;
+    b |= (exact_u64)neg << 63;
+#ifdef __OPENCL_C_VERSION__
+    return as_double(b);
+#else
+    double x;
+    memcpy(&x, &b, sizeof x);
+    return x;
+#endif
+}
+#endif
+
+/* The sum as the nearest float (ties to even), rounded once from the exact sum (never through a double) */
+EXACT_INLINE float exact_to_float(const exact_acc *a)
+{
+    int neg, q;
+    exact_u64 m;
+    int over = exact_round(a, 24, -149, 127, &neg, &m, &q);
+    unsigned b;
+    if (over)
+        b = 255u << 23;
+    else if (m >> 23)
+        b = ((unsigned)(q + 150) << 23) | (unsigned)(m & ((1u << 23) - 1));
+    else
+        b = (unsigned)m;
+    b |= (unsigned)neg << 31;
+#ifdef __OPENCL_C_VERSION__
+    return as_float(b);
+#else
+    float x;
+    memcpy(&x, &b, sizeof x);
+    return x;
+#endif
+}
+#endif /* DEM_EXACT_SUM_H */
