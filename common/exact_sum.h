@@ -12,8 +12,15 @@
  * Layout: EXACT_LIMBS 64-bit limbs, two's complement, limb 0 the lowest; bit k of the whole integer stands for
  * 2^(k - 1074) (2^-1074 is the smallest subnormal double). A finite double's bits lie between 2^-1074 and 2^1023
  * (bit 2097); 34 limbs hold 2176 bits: the sign and 77 bits of headroom, room for 2^77 terms of the largest
- * magnitude before the sum could overflow. Infinities and NaNs are not held (exact_add_* ignores them: a caller
- * that may meet one tests for it).
+ * magnitude before the sum could overflow. Infinities and NaNs are flagged beside the limbs and give what IEEE
+ * addition gives: a NaN, or +inf + -inf, makes the sum NaN; one kind of infinity makes it that infinity. A sum that is
+ * exactly zero (no terms, only zeros, or terms that cancel) is +0, as a loop from s = 0 gives and math.fsum does; a
+ * non-zero sum too small for the format rounds to a zero of its sign.
+ *
+ * Each work item keeps its own accumulator (private memory: 280 bytes) and accumulators are merged afterwards; the
+ * functions take private pointers (OpenCL C 1.2), so two items never add into one accumulator. In OpenCL C the double
+ * functions exist in a program built with DEM_REAL_SIZE 8, and dem_real.h (which enables cl_khr_fp64) must come
+ * first.
  */
 #ifndef DEM_EXACT_SUM_H
 #define DEM_EXACT_SUM_H
@@ -35,6 +42,7 @@ typedef long exact_i64;
 #define exact_double_bits(x) as_ulong(x)
 #endif
 #define exact_float_bits(x) as_uint(x)
+#define exact_clz(x) clz(x)
 #else
 #include <stdint.h>
 #include <string.h>
@@ -47,6 +55,7 @@ static inline exact_u64 exact_double_bits(double x)
     memcpy(&b, &x, sizeof b);
     return b;
 }
+#define exact_clz(x) __builtin_clzll(x) /* x != 0 */
 static inline unsigned exact_float_bits(float x)
 {
     unsigned b;
@@ -57,12 +66,15 @@ static inline unsigned exact_float_bits(float x)
 
 typedef struct {
     exact_u64 limb[EXACT_LIMBS];
+    unsigned special; /* EXACT_NAN, EXACT_PINF, EXACT_NINF: what the limbs cannot hold */
 } exact_acc;
+enum { EXACT_NAN = 1, EXACT_PINF = 2, EXACT_NINF = 4 };
 
 EXACT_INLINE void exact_clear(exact_acc *a)
 {
     for (int k = 0; k < EXACT_LIMBS; k++)
         a->limb[k] = 0;
+    a->special = 0;
 }
 
 /* adds (neg = 0) or subtracts (neg = 1) the integer m (< 2^53) times 2^pos (bit position pos >= 0) */
@@ -105,7 +117,11 @@ EXACT_INLINE void exact_add_double(exact_acc *a, double x)
     exact_u64 b = exact_double_bits(x);
     int e = (int)((b >> 52) & 2047);
     exact_u64 m = b & (((exact_u64)1 << 52) - 1);
-    if (e == 2047 || (e == 0 && m == 0))
+    if (e == 2047) { /* an infinity or a NaN: flagged */
+        a->special |= m ? EXACT_NAN : (b >> 63) ? EXACT_NINF : EXACT_PINF;
+        return;
+    }
+    if (e == 0 && m == 0)
         return;
     if (e) /* normal: the hidden bit; a subnormal keeps the exponent of the smallest normal */
         m |= (exact_u64)1 << 52;
@@ -117,7 +133,11 @@ EXACT_INLINE void exact_add_float(exact_acc *a, float x)
     unsigned b = exact_float_bits(x);
     int e = (int)((b >> 23) & 255);
     exact_u64 m = b & ((1u << 23) - 1);
-    if (e == 255 || (e == 0 && m == 0))
+    if (e == 255) {
+        a->special |= m ? EXACT_NAN : (b >> 31) ? EXACT_NINF : EXACT_PINF;
+        return;
+    }
+    if (e == 0 && m == 0)
         return;
     if (e)
         m |= (exact_u64)1 << 23;
@@ -135,6 +155,7 @@ EXACT_INLINE void exact_merge(exact_acc *a, const exact_acc *b)
         a->limb[k] = v;
         c = c1 | c2;
     }
+    a->special |= b->special;
 }
 
 /* The sum rounded to nearest (ties to even) with p significant bits (53: double, 24: float) and its smallest
@@ -155,9 +176,7 @@ EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int 
     int top = -1; /* the highest set bit */
     for (int k = EXACT_LIMBS - 1; k >= 0 && top < 0; k--)
         if (v.limb[k])
-            for (int s = 63; s >= 0 && top < 0; s--)
-                if ((v.limb[k] >> s) & 1)
-                    top = 64 * k + s;
+            top = 64 * k + 63 - (int)exact_clz(v.limb[k]);
     *m = 0, *q = emin;
     if (top < 0)
         return 0;
@@ -166,8 +185,13 @@ EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int 
     if (low < lowest)
         low = lowest;
     exact_u64 mm = 0;
-    for (int k = top; k >= low; k--)
-        mm = (mm << 1) | ((v.limb[k >> 6] >> (k & 63)) & 1);
+    if (top >= low) { /* bits low..top (at most p <= 53 of them) from the limb of low and the next */
+        int L = low >> 6, s = low & 63;
+        exact_u64 w = v.limb[L] >> s;
+        if (s && L + 1 < EXACT_LIMBS)
+            w |= v.limb[L + 1] << (64 - s);
+        mm = w & ((((exact_u64)1) << (top - low + 1)) - 1);
+    }
     int g = low - 1; /* the guard bit's position; the sticky bits below it */
     int guard = g >= 0 ? (int)((v.limb[g >> 6] >> (g & 63)) & 1) : 0, sticky = 0;
     if (g > 0) {
@@ -192,7 +216,12 @@ EXACT_INLINE double exact_to_double(const exact_acc *a)
     exact_u64 m;
     int over = exact_round(a, 53, -1074, 1023, &neg, &m, &q);
     exact_u64 b;
-    if (over)
+    unsigned sp = a->special;
+    if (sp & (EXACT_PINF | EXACT_NINF)) /* an infinity among the terms: its sign (NaN below if both) */
+        over = 1, neg = (sp & EXACT_NINF) != 0;
+    if ((sp & EXACT_NAN) || ((sp & EXACT_PINF) && (sp & EXACT_NINF)))
+        b = ((exact_u64)2047 << 52) | ((exact_u64)1 << 51), neg = 0;
+    else if (over)
         b = (exact_u64)2047 << 52;
     else if (m >> 52) /* normal: m 2^q with 2^52 <= m < 2^53, exponent field q + 52 + 1023 */
         b = ((exact_u64)(q + 1075) << 52) | (m & (((exact_u64)1 << 52) - 1));
@@ -216,7 +245,12 @@ EXACT_INLINE float exact_to_float(const exact_acc *a)
     exact_u64 m;
     int over = exact_round(a, 24, -149, 127, &neg, &m, &q);
     unsigned b;
-    if (over)
+    unsigned sp = a->special;
+    if (sp & (EXACT_PINF | EXACT_NINF))
+        over = 1, neg = (sp & EXACT_NINF) != 0;
+    if ((sp & EXACT_NAN) || ((sp & EXACT_PINF) && (sp & EXACT_NINF)))
+        b = (255u << 23) | (1u << 22), neg = 0;
+    else if (over)
         b = 255u << 23;
     else if (m >> 23)
         b = ((unsigned)(q + 150) << 23) | (unsigned)(m & ((1u << 23) - 1));

@@ -38,15 +38,36 @@ static double sum_of(const double *x, const int *idx, int n)
 
 static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
 
-/* math.fsum of the numbers in path (hex floats, one per line), rounded to double, or to float when to_float */
+/* The correctly rounded sum of the numbers in path (hex floats, one per line): math.fsum's double, or, to_float, the
+ * exact sum (fractions.Fraction) rounded once to float by hand (nearest, ties to even; 24 bits, subnormals from
+ * 2^-149) */
 static double python_fsum(const char *dir, const char *path, int to_float)
 {
     char err[2048], out[600];
     snprintf(out, sizeof out, "%s/fsum.txt", dir);
-    if (test_sh(dir, err, sizeof err, "%s -c \"import math, struct, sys; s = math.fsum(float.fromhex(l) for l in "
-                                      "open('%s')); %s print(s.hex())\" > %s",
-                test_python(), path,
-                to_float ? "s = struct.unpack('f', struct.pack('f', s))[0];" : "", out))
+    static const char *f32 =
+        "import fractions, sys\n"
+        "F = fractions.Fraction\n"
+        "s = sum(F(float.fromhex(l)) for l in open(sys.argv[1]))\n"
+        "a = abs(s)\n"
+        "if a == 0: print((0.0).hex()); sys.exit()\n"
+        "e = a.numerator.bit_length() - a.denominator.bit_length()\n"
+        "e = e - 1 if F(2) ** e > a else e\n"
+        "q = max(e - 23, -149)\n"
+        "t = a / F(2) ** q\n"
+        "n = t.numerator // t.denominator\n"
+        "r = t - n\n"
+        "n = n + 1 if r > F(1, 2) or (r == F(1, 2) and n % 2) else n\n"
+        "print((float(n) * 2.0 ** q * (1 if s > 0 else -1)).hex())\n";
+    char script[600];
+    snprintf(script, sizeof script, "%s/f32.py", dir);
+    FILE *sp = fopen(script, "w");
+    assert_non_null(sp);
+    fputs(f32, sp);
+    fclose(sp);
+    if (to_float ? test_sh(dir, err, sizeof err, "%s %s %s > %s", test_python(), script, path, out)
+                 : test_sh(dir, err, sizeof err, "%s -c \"import math; print(math.fsum(float.fromhex(l) for l in "
+                                                 "open('%s')).hex())\" > %s", test_python(), path, out))
         fail_msg("python fsum: %s", err);
     FILE *fp = fopen(out, "r");
     assert_non_null(fp);
@@ -109,7 +130,8 @@ static void test_orders_and_fsum(void **st)
     printf("  %d doubles: exact sum %a in four orders; math.fsum %a; a plain loop %a\n", N, fwd, fsum, naive);
     assert_true(same_bits(fwd, rev) && same_bits(fwd, shuf) && same_bits(fwd, merged));
     assert_true(same_bits(fwd, fsum));
-    /* cancelling: pairs y and -(y + e), y up to 2^100, e up to 2^-20, shuffled: the sum is the e's alone */
+    /* cancelling: pairs y and -(y + e), y up to 2^100, e up to 2^-20 (y + e rounded: most of a large y's e is lost),
+     * shuffled: a plain loop is left with rounding errors of the y's */
     for (int k = 0; k < N; k += 2) {
         double y = ldexp(uniform() + 0.5, (int)(next_u() % 100)), e = ldexp(uniform(), -20 - (int)(next_u() % 30));
         x[k] = y, x[k + 1] = -(y + e);
@@ -140,8 +162,8 @@ static void test_orders_and_fsum(void **st)
     for (int k = N - 1; k >= 0; k--)
         exact_add_float(&ar, xf[k]);
     float sf = exact_to_float(&af), sr = exact_to_float(&ar), pf = (float)python_fsum(dir, path, 1);
-    printf("  %d floats: exact sum %a (reversed %a); math.fsum rounded to float %a\n", N, (double)sf, (double)sr,
-           (double)pf);
+    printf("  %d floats: exact sum %a (reversed %a); the exact sum rounded once by Python %a\n", N, (double)sf,
+           (double)sr, (double)pf);
     assert_true(memcmp(&sf, &sr, sizeof sf) == 0 && memcmp(&sf, &pf, sizeof sf) == 0);
     test_tmpdir_remove(dir);
 }
@@ -182,12 +204,31 @@ static void test_known_sums(void **st)
         {2, {DBL_MAX, DBL_MAX}, INFINITY},                    /* past the largest double */
         {3, {DBL_MAX, DBL_MAX, -DBL_MAX}, DBL_MAX},           /* not past it in the end: exact in between */
         {4, {-0.5, -0.25, -0.125, 0}, -0.875},
+        {3, {ldexp(1, 53) - 1, 0.5, 0}, ldexp(1, 53)},       /* a tie rounded up into the next binade */
+        {2, {ldexp(1, 1000), -tiny}, ldexp(1, 1000)},        /* a borrow through 15 limbs, rounded back */
+        {2, {-0.0, -0.0}, 0.0},                              /* exactly zero: +0 (as from s = 0) */
+        {2, {INFINITY, 1}, INFINITY},                        /* an infinity among the terms */
+        {3, {-INFINITY, 1e308, 1e308}, -INFINITY},
     };
     for (size_t k = 0; k < sizeof d / sizeof d[0]; k++) {
         double got = dsum(d[k].n, d[k].v);
         if (!same_bits(got, d[k].want))
             fail_msg("double case %zu: %a, want %a", k, got, d[k].want);
     }
+    assert_true(isnan(dsum(2, (double[2]){INFINITY, -INFINITY})) && isnan(dsum(2, (double[2]){NAN, 1})));
+    /* doubles rounded to float: 2^-150 + 2^-151 = 0.75 of the smallest float subnormal: up to it; 2^-151 alone:
+     * down to a zero of its sign; a sum just under the largest float's half ulp past it: FLT_MAX */
+    exact_acc a;
+    exact_clear(&a);
+    exact_add_double(&a, ldexp(1, -150)), exact_add_double(&a, ldexp(1, -151));
+    float f1 = exact_to_float(&a);
+    exact_clear(&a);
+    exact_add_double(&a, -ldexp(1, -151));
+    float f2 = exact_to_float(&a);
+    exact_clear(&a);
+    exact_add_double(&a, (double)FLT_MAX), exact_add_double(&a, ldexp(1, 103) - ldexp(1, 50));
+    float f3 = exact_to_float(&a);
+    assert_true(f1 == ldexpf(1, -149) && f2 == 0 && signbit(f2) && f3 == FLT_MAX);
     const float ftiny = ldexpf(1, -149), feps = ldexpf(1, -23);
     struct {
         int n;
