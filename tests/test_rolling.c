@@ -290,25 +290,13 @@ static void test_spring_packing(void **st)
         dem_state_free(&sa);
         dem_destroy(a);
         dem_destroy(b);
-        dem_config c1 = c, c2 = c;
-        c1.skin = 0.05 * o.rmax, c2.skin = 0.3 * o.rmax;
-        dem_sim *s1 = packing_build(&o), *s2 = packing_build(&o);
-        start_or_fail(s1, &c1);
-        start_or_fail(s2, &c2);
-        twins_step(s1, s2, 600, "skins 0.05 and 0.3 x the largest radius");
-        dem_config c3 = c1; /* stored anew at every rebuild: the springs move with their pairs and particles */
-        c3.reorder = 1;
-        dem_sim *s4 = packing_build(&o);
-        start_or_fail(s4, &c3);
-        step_or_fail(s4, 600);
-        char msg4[512];
-        if (state_diff(s1, s4, msg4, sizeof msg4))
-            fail_msg("%s: stored anew, the run differs: %s", bc->name, msg4);
+        dem_sim *s1, *s4; /* two skins, and stored anew: the springs move with their pairs and particles */
+        skins_and_order_check(&o, &c, 600, bc->name, &s1, &s4);
         dem_destroy(s4);
         if (bc->backend == DEM_BACKEND_OPENCL) { /* and the reference's bits */
             dem_config r = cfg_of(DEM_BACKEND_REFERENCE, bc->precision);
             dem_sim *s3 = packing_build(&o);
-            r.skin = c1.skin;
+            r.skin = 0.05 * o.rmax;
             start_or_fail(s3, &r);
             step_or_fail(s3, 600);
             char msg[512];
@@ -317,7 +305,6 @@ static void test_spring_packing(void **st)
             dem_destroy(s3);
         }
         dem_destroy(s1);
-        dem_destroy(s2);
     }
 }
 

@@ -281,6 +281,29 @@ void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, lon
     dem_state_free(&saved);
 }
 
+void skins_and_order_check(const packing_opts *o, const dem_config *c, long steps, const char *what, dem_sim **s1,
+                           dem_sim **s3)
+{
+    dem_config c1 = *c, c2 = *c;
+    c1.skin = 0.05 * o->rmax, c2.skin = 0.3 * o->rmax;
+    dem_sim *a = packing_build(o), *b = packing_build(o);
+    start_or_fail(a, &c1);
+    start_or_fail(b, &c2);
+    char name[300];
+    snprintf(name, sizeof name, "%s: skins 0.05 and 0.3 x the largest radius", what);
+    twins_step(a, b, steps, name);
+    dem_destroy(b);
+    dem_config c3 = c1; /* stored anew at every rebuild: what a pair or particle keeps moves with it */
+    c3.reorder = 1;
+    dem_sim *r = packing_build(o);
+    start_or_fail(r, &c3);
+    step_or_fail(r, steps);
+    char msg[512];
+    if (state_diff(a, r, msg, sizeof msg))
+        fail_msg("%s: stored anew, the run differs: %s", what, msg);
+    *s1 = a, *s3 = r;
+}
+
 void twins_step(dem_sim *a, dem_sim *b, long n, const char *what)
 {
     step_or_fail(a, n);

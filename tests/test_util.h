@@ -75,6 +75,11 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len);
 void twins_step(dem_sim *a, dem_sim *b, long n, const char *what);
 /* Writes m as a Wavefront OBJ with every digit of its coordinates (%.17g), for dem_mesh_read to read back */
 void mesh_write_obj(const dem_mesh *m, const char *path);
+/* The packing o run `steps` with c's backend and precision three ways: skins 0.05 and 0.3 x the largest radius
+ * (other rebuild steps) and stored anew at every rebuild (skin 0.05); fails the test (naming `what`) unless all three
+ * are bitwise equal. Returns the first run and the one stored anew alive in *s1 and *s3 (dem_destroy them). */
+void skins_and_order_check(const packing_opts *o, const dem_config *c, long steps, const char *what, dem_sim **s1,
+                           dem_sim **s3);
 /* Restart: starts a and b (the same set-up) with c, steps a by `before`, restores a's state into b, steps both by
  * `after` and fails the test (naming `what`) unless they are bitwise equal. Leaves both alive for further checks. */
 void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, long after, const char *what);
