@@ -38,7 +38,8 @@ int scene_fail(const scene *sc, char *err, size_t errlen, const char *path, cons
 
 /* For an unknown effect name near a known one (the names dem_effect_name gives that a scene may list, and
  * "membrane"): "unknown effect 'x' (known: ...) (did you mean 'y'?)" in buf, and 1; else 0. */
-static int effect_hint(const char *e, char *buf, size_t len)
+/* "unknown effect 'e' (known: <the names a scene may list>)", and the nearest name when one is near */
+static void effect_unknown(const char *e, char *buf, size_t len)
 {
     const char *known[DEM_EFFECT_COUNT + 1];
     int n = 0;
@@ -48,12 +49,10 @@ static int effect_hint(const char *e, char *buf, size_t len)
             known[n++] = dem_effect_name(b);
     known[n++] = "membrane";
     char hint[300], list[400] = "";
-    if (!scene_did_you_mean(e, known, n, hint, sizeof hint)[0])
-        return 0;
+    scene_did_you_mean(e, known, n, hint, sizeof hint);
     for (int k = 0; k < n; k++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", known[k]);
     snprintf(buf, len, "unknown effect '%s' (known: %s)%s", e, list, hint);
-    return 1;
 }
 
 static int finite3(const double *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
@@ -194,12 +193,10 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
                     return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
             continue;
         }
-        if (bit < 0 && effect_hint(e, err, errlen)) /* a misspelt name: the message with the nearest one */
+        if (bit < 0) { /* the names from the library's list, and the nearest one to a misspelt name */
+            effect_unknown(e, err, errlen);
             return scene_fail(sc, err, errlen, path, "%s", err);
-        if (bit < 0)
-            return scene_fail(sc, err, errlen, path,
-                              "unknown effect '%s' (known: hertz, damping, friction, gravity, walls, mc_stress, "
-                              "mc_strain, thornton_ning, rolling, membrane)", e);
+        }
         if (run->effects & (1u << bit))
             return scene_fail(sc, err, errlen, path, "effect '%s' is listed twice", e);
         if ((1u << bit) & (DEM_EFFECT_CHANNEL | DEM_EFFECT_PATCHES | DEM_EFFECT_RIDERS | DEM_EFFECT_CONSTRAINTS))
