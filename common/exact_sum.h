@@ -208,26 +208,33 @@ EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int 
     return qq + p - 1 > emax;
 }
 
-#if EXACT_HAS_DOUBLE
-/* The sum as the nearest double (ties to even); +-infinity past the largest */
-EXACT_INLINE double exact_to_double(const exact_acc *a)
+/* The bits of the sum in a binary format of p significant bits and e exponent bits (double: 53, 11; float: 24, 8),
+ * rounded once to nearest, ties to even: NaN for a NaN or both infinities among the terms, an infinity for one of them
+ * or past the largest finite value */
+EXACT_INLINE exact_u64 exact_bits(const exact_acc *a, int p, int e)
 {
-    int neg, q;
-    exact_u64 m;
-    int over = exact_round(a, 53, -1074, 1023, &neg, &m, &q);
-    exact_u64 b;
+    int bias = (1 << (e - 1)) - 1, neg, q;
+    exact_u64 m, b, inf = (((exact_u64)1 << e) - 1) << (p - 1), frac = ((exact_u64)1 << (p - 1)) - 1;
+    int over = exact_round(a, p, 2 - bias - p, bias, &neg, &m, &q);
     unsigned sp = a->special;
-    if (sp & (EXACT_PINF | EXACT_NINF)) /* an infinity among the terms: its sign (NaN below if both) */
+    if (sp & (EXACT_PINF | EXACT_NINF)) /* an infinity among the terms: its sign */
         over = 1, neg = (sp & EXACT_NINF) != 0;
     if ((sp & EXACT_NAN) || ((sp & EXACT_PINF) && (sp & EXACT_NINF)))
-        b = ((exact_u64)2047 << 52) | ((exact_u64)1 << 51), neg = 0;
+        b = inf | ((exact_u64)1 << (p - 2)), neg = 0; /* a quiet NaN */
     else if (over)
-        b = (exact_u64)2047 << 52;
-    else if (m >> 52) /* normal: m 2^q with 2^52 <= m < 2^53, exponent field q + 52 + 1023 */
-        b = ((exact_u64)(q + 1075) << 52) | (m & (((exact_u64)1 << 52) - 1));
-    else /* subnormal (q = -1074) or zero */
+        b = inf;
+    else if (m >> (p - 1)) /* normal: m 2^q with 2^(p-1) <= m < 2^p, exponent field q + p - 1 + bias */
+        b = ((exact_u64)(q + p - 1 + bias) << (p - 1)) | (m & frac);
+    else /* subnormal (q the smallest exponent) or zero */
         b = m;
-    b |= (exact_u64)neg << 63;
+    return b | ((exact_u64)neg << (p + e - 1));
+}
+
+#if EXACT_HAS_DOUBLE
+/* The sum as the nearest double */
+EXACT_INLINE double exact_to_double(const exact_acc *a)
+{
+    exact_u64 b = exact_bits(a, 53, 11);
 #ifdef __OPENCL_C_VERSION__
     return as_double(b);
 #else
@@ -238,25 +245,10 @@ EXACT_INLINE double exact_to_double(const exact_acc *a)
 }
 #endif
 
-/* The sum as the nearest float (ties to even), rounded once from the exact sum (never through a double) */
+/* The sum as the nearest float, rounded once from the exact sum (never through a double) */
 EXACT_INLINE float exact_to_float(const exact_acc *a)
 {
-    int neg, q;
-    exact_u64 m;
-    int over = exact_round(a, 24, -149, 127, &neg, &m, &q);
-    unsigned b;
-    unsigned sp = a->special;
-    if (sp & (EXACT_PINF | EXACT_NINF))
-        over = 1, neg = (sp & EXACT_NINF) != 0;
-    if ((sp & EXACT_NAN) || ((sp & EXACT_PINF) && (sp & EXACT_NINF)))
-        b = (255u << 23) | (1u << 22), neg = 0;
-    else if (over)
-        b = 255u << 23;
-    else if (m >> 23)
-        b = ((unsigned)(q + 150) << 23) | (unsigned)(m & ((1u << 23) - 1));
-    else
-        b = (unsigned)m;
-    b |= (unsigned)neg << 31;
+    unsigned b = (unsigned)exact_bits(a, 24, 8);
 #ifdef __OPENCL_C_VERSION__
     return as_float(b);
 #else

@@ -274,27 +274,40 @@ static void test_pull_pair_table(void **st)
     pull(DEM_FP64, BOND_NONE);
 }
 
-/* Two spheres at 5 V_y; returns the separation speed after contact (or -1: still together at the end) and the
- * largest overlap */
-static double collide(double sigb, double *dmax_out, int *gap_out, dem_precision prec)
+/* Two spheres of material m at 5 V_y (effects fx; spinning at -+spin about y, rolling on each other, when fx has
+ * friction); returns the separation speed after contact (or -1: still together at the end) and the largest overlap;
+ * fails the test if a spin is not finite */
+static double collide_with(const dem_material *m, unsigned fx, double spin, double *dmax_out, int *gap_out,
+                           dem_precision prec)
 {
     double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2;
-    bond_closed t = bond_of(es, rs, sigb);
+    bond_closed t = bond_of(es, rs, m->bond_strength);
     double vy = sqrt(2 * 0.4 * t.fy * t.dy / ms), vi = 5 * vy;
     double tc = 2.87 * pow(ms * ms / (rs * es * es * vi), 0.2), dt = tc / 4000;
-    dem_material m = powder(sigb);
-    unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING;
-    dem_sim *cl = head_on_build(&m, NULL, R, vi, fx, dt), *ref = head_on_build(&m, NULL, R, vi, fx, dt);
+    dem_sim *cl = head_on_build(m, NULL, R, vi, fx, dt), *ref = head_on_build(m, NULL, R, vi, fx, dt);
     dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
     start_or_fail(cl, &c);
     start_or_fail(ref, &rc);
+    for (int k = 0; spin != 0 && k < 2; k++) {
+        dem_sim *s = k ? ref : cl;
+        dem_state sv;
+        assert_int_equal(dem_state_get(s, &sv), 0);
+        double *w = dem_state_find(&sv, "w")->data;
+        w[1] = spin, w[4] = -spin;
+        assert_int_equal(dem_state_set(s, &sv), 0);
+        dem_state_free(&sv);
+    }
     double dmax = 0, vout = -1;
     int was = 0, gap = 0;
     for (int k = 0; k < 20000; k++) {
         twins_step(cl, ref, 1, "bonded pair, PoCL vs reference");
-        double x[6], v[6], f[6];
+        double x[6], v[6], f[6], w[6];
         assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_W, w), 0);
+        for (int d = 0; d < 6; d++)
+            if (!isfinite(w[d]))
+                fail_msg("step %d: spin %d is %g", k, d, w[d]);
         double d = 2 * R - fabs(x[3] - x[0]);
         if (d > 0) {
             was = 1;
@@ -312,6 +325,11 @@ static double collide(double sigb, double *dmax_out, int *gap_out, dem_precision
     dem_destroy(cl);
     dem_destroy(ref);
     return vout;
+}
+static double collide(double sigb, double *dmax_out, int *gap_out, dem_precision prec)
+{
+    dem_material m = powder(sigb);
+    return collide_with(&m, DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING, 0, dmax_out, gap_out, prec);
 }
 
 static void bounce(dem_precision prec)
@@ -348,52 +366,17 @@ static void test_bounce_fp32(void **st) { (void)st; bounce(DEM_FP32); }
 static void test_bond_gap_rolling_spring(void **st)
 {
     (void)st;
-    double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2;
+    double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2, dm;
     bond_closed t = bond_of(es, rs, 1.0);
-    double vi = 5 * sqrt(2 * 0.4 * t.fy * t.dy / ms);
-    double tc = 2.87 * pow(ms * ms / (rs * es * es * vi), 0.2), dt = tc / 4000;
-    double dm0;
-    int gap0;
-    double v0 = collide(0, &dm0, &gap0, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
-    double sigb = sqrt(0.25 * ms * v0 * v0 * 2 * kb_of(&t, dm0)) / fb_of(&t, dm0);
-    dem_material m = powder(sigb);
+    int gap;
+    double v0 = collide(0, &dm, &gap, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
+    dem_material m = powder(sqrt(0.25 * ms * v0 * v0 * 2 * kb_of(&t, dm)) / fb_of(&t, dm));
     m.friction = 0.5, m.rolling_friction = 0.1, m.rolling_damping = 0.3;
     unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_ROLLING |
                   DEM_EFFECT_ROLLING_SPRING;
-    dem_sim *cl = head_on_build(&m, NULL, R, vi, fx, dt), *ref = head_on_build(&m, NULL, R, vi, fx, dt);
-    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP64), rc = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
-    start_or_fail(cl, &c);
-    start_or_fail(ref, &rc);
-    dem_state sv; /* a small relative spin about y, so that the spring winds */
-    for (int k = 0; k < 2; k++) {
-        dem_sim *s = k ? ref : cl;
-        assert_int_equal(dem_state_get(s, &sv), 0);
-        double *w = dem_state_find(&sv, "w")->data;
-        w[1] = 10, w[4] = -10;
-        assert_int_equal(dem_state_set(s, &sv), 0);
-        dem_state_free(&sv);
-    }
-    int gap = 0, was = 0;
-    for (int k = 0; k < 20000; k++) {
-        twins_step(cl, ref, 1, "bonded pair with rolling springs, PoCL vs reference");
-        double x[6], f[6], w[6];
-        assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
-        assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
-        assert_int_equal(dem_get_field(ref, DEM_FIELD_W, w), 0);
-        for (int d = 0; d < 6; d++)
-            if (!isfinite(w[d]))
-                fail_msg("step %d: spin %d is %g", k, d, w[d]);
-        double d = 2 * R - fabs(x[3] - x[0]);
-        was |= d > 0;
-        if (was && d <= 0 && f[0] != 0)
-            gap++;
-        else if (was && d <= 0)
-            break;
-    }
+    collide_with(&m, fx, 10, &dm, &gap, DEM_FP64); /* a relative spin, so that the spring winds */
     printf("  bonded pair with rolling springs: %d steps held across a gap, every spin finite\n", gap);
     assert_true(gap > 10);
-    dem_destroy(cl);
-    dem_destroy(ref);
 }
 
 static void test_refusals(void **st)

@@ -35,6 +35,15 @@ int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b)
            dem_launch(o, b, K_nbr_sort);
 }
 
+/* Buffer id's contents into its copy old (grown to id's size first), for pair_index to carry (0, or 1 on failure);
+ * nothing for a buffer the run does not have */
+static int copy_to_old(const dem_backend_ops *o, dem_backend *b, int id, int old)
+{
+    dem_core *c = DEM_CORE(b);
+    return (c->bytes[old] != c->bytes[id] && o->alloc(b, TABLE_ONE, 0, old, c->bytes[id], NULL)) ||
+           (c->bytes[id] && o->copy(b, (dem_bufref){TABLE_ONE, id}, (dem_bufref){TABLE_ONE, old}, c->bytes[id]));
+}
+
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
 {
     dem_core *c = DEM_CORE(b);
@@ -50,25 +59,13 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
      * flags' capacity (which may have grown at the last commit). */
     dem_bufref hist = {TABLE_ONE, BUF_PAIR_HIST}, rec = {TABLE_ONE, BUF_PAIR};
     dem_bufref fn = {TABLE_ONE, BUF_PAIR_MC_FN}, disp = {TABLE_ONE, BUF_MC_DISP};
-    dem_bufref touch = {TABLE_ONE, BUF_TOUCH}, old_touch = {TABLE_ONE, BUF_TOUCH_OLD};
     if (c->bytes[BUF_PAIR_HIST] > c->bytes[BUF_PAIR] || c->bytes[BUF_PAIR_MC_FN] > c->bytes[BUF_MC_DISP])
         return dem_core_fail(c, "the pairs' copies do not fit where they are kept for a rebuild (a library bug; please "
                                 "report)");
-    /* a law's states (laws/law.h) have a copy buffer of their own (8 or 4 bytes per pair, in runs of such a law) */
-    dem_bufref law = {TABLE_ONE, BUF_PAIR_LAW}, old_law = {TABLE_ONE, BUF_PAIR_LAW_OLD};
-    if ((c->bytes[BUF_PAIR_LAW_OLD] != c->bytes[BUF_PAIR_LAW] &&
-         o->alloc(b, TABLE_ONE, 0, BUF_PAIR_LAW_OLD, c->bytes[BUF_PAIR_LAW], NULL)) ||
-        (c->bytes[BUF_PAIR_LAW] && o->copy(b, law, old_law, c->bytes[BUF_PAIR_LAW])))
-        return 1;
-    /* and so have the rolling springs (rolling.h; 24 or 12 bytes per pair, in runs with DEM_EFFECT_ROLLING_SPRING) */
-    dem_bufref rsp = {TABLE_ONE, BUF_PAIR_RSPRING}, old_rsp = {TABLE_ONE, BUF_PAIR_RSPRING_OLD};
-    if ((c->bytes[BUF_PAIR_RSPRING_OLD] != c->bytes[BUF_PAIR_RSPRING] &&
-         o->alloc(b, TABLE_ONE, 0, BUF_PAIR_RSPRING_OLD, c->bytes[BUF_PAIR_RSPRING], NULL)) ||
-        (c->bytes[BUF_PAIR_RSPRING] && o->copy(b, rsp, old_rsp, c->bytes[BUF_PAIR_RSPRING])))
-        return 1;
-    if ((c->bytes[BUF_TOUCH_OLD] != c->bytes[BUF_TOUCH] &&
-         o->alloc(b, TABLE_ONE, 0, BUF_TOUCH_OLD, c->bytes[BUF_TOUCH], NULL)) ||
-        (c->bytes[BUF_TOUCH] && o->copy(b, touch, old_touch, c->bytes[BUF_TOUCH])) ||
+    /* the touching flags, a law's states (laws/law.h: 8 or 4 bytes per pair, in runs of such a law) and the rolling
+     * springs (rolling.h: 24 or 12, with DEM_EFFECT_ROLLING_SPRING) have copy buffers of their own */
+    if (copy_to_old(o, b, BUF_TOUCH, BUF_TOUCH_OLD) || copy_to_old(o, b, BUF_PAIR_LAW, BUF_PAIR_LAW_OLD) ||
+        copy_to_old(o, b, BUF_PAIR_RSPRING, BUF_PAIR_RSPRING_OLD) ||
         (c->bytes[BUF_PAIR_HIST] && o->copy(b, hist, rec, c->bytes[BUF_PAIR_HIST])) ||
         (c->bytes[BUF_PAIR_MC_FN] && o->copy(b, fn, disp, c->bytes[BUF_PAIR_MC_FN])))
         return 1;
