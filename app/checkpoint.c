@@ -62,6 +62,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
     hsize_t w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
     hsize_t p7[2] = {(hsize_t)st.npairs, DEM_PAIR_RECORD_REALS};
     hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs}, w1[1] = {(hsize_t)st.nwalls};
+    hsize_t pl[2] = {(hsize_t)st.npairs, (hsize_t)st.has_law}; /* a law's row per pair (MDR) */
     hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0}, pd[2] = {st.has_mc ? (hsize_t)st.npairs : 0, 2};
     hsize_t q1[1] = {(hsize_t)st.npatch}, q3[2] = {(hsize_t)st.npatch, 3};
     double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
@@ -89,7 +90,8 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
              h5_attr_long(g, "has_law", st.has_law) ||
-             (st.has_law && h5_write(g, "pair_law", real_t, 1, p1, st.pair_law, "m")) ||
+             (st.has_law == 1 && h5_write(g, "pair_law", real_t, 1, p1, st.pair_law, "m")) ||
+             (st.has_law > 1 && h5_write(g, "pair_law", real_t, 2, pl, st.pair_law, NULL)) ||
              (st.has_rspring && (h5_attr_long(g, "has_rspring", 1) ||
                                  h5_write(g, "pair_rspring", real_t, 2, p3, st.pair_rspring, "N m"))) ||
              (st.pair_mc_disp && h5_write(g, "pair_mc_disp", real_t, 2, pd, st.pair_mc_disp, "m")) ||
@@ -186,7 +188,7 @@ static int check_finite(const checkpoint *ck, const char *path, char *err, size_
         {"pair_rec", st->pair_rec, DEM_PAIR_RECORD_REALS * np, st->real_size},
         {"pair_mc_fn", st->has_mc ? st->pair_mc_fn : NULL, np, st->real_size},
         {"pair_mc_disp", st->pair_mc_disp, 2 * np, st->real_size},
-        {"pair_law", st->has_law ? st->pair_law : NULL, np, st->real_size},
+        {"pair_law", st->has_law ? st->pair_law : NULL, (size_t)st->has_law * np, st->real_size},
         {"pair_rspring", st->has_rspring ? st->pair_rspring : NULL, 3 * np, st->real_size},
         {"patch_hist", st->patch_hist, 3 * (size_t)st->npatch, st->real_size}, {"radius", ck->radius, n, 8},
     };
@@ -254,8 +256,9 @@ static int read_state(hid_t g, checkpoint *ck)
     if (!rc) {
         h5_read_attr_long(g, "rebuilds", &st->rebuilds);
         h5_read_attr_long(g, "has_mc", &hm);
-        h5_read_attr_long(g, "has_law", &hl); /* absent from checkpoints of runs before plastic laws: 0 */
-        st->has_law = hl == 1;
+        h5_read_attr_long(g, "has_law", &hl); /* absent from checkpoints of runs before plastic laws: 0; the reals
+                                                   per contact: 1 thornton_ning, 24 mdr */
+        st->has_law = hl == 1 || hl == DEM_MDR_LAW_REALS ? (int)hl : 0;
         h5_read_attr_long(g, "has_rspring", &hr); /* written only by runs with rolling springs */
         st->has_rspring = hr == 1;
         h5_read_attr_long(g, "mc_last", &st->mc.last);
@@ -266,7 +269,7 @@ static int read_state(hid_t g, checkpoint *ck)
         st->n = (int)n, st->nwalls = (int)nw, st->real_size = (int)rs, st->has_hist = (int)hh;
         hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
         long npairs = h5_count(g, "pair_i"); /* every other size follows from n, nwalls, has_hist, has_mc */
-        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1) || (hl != 0 && hl != 1) ||
+        if (npairs > 64 * n || h5_count(g, "pair_j") != npairs || (hm != 0 && hm != 1) || (hl != 0 && hl != 1 && hl != DEM_MDR_LAW_REALS) ||
             (hr != 0 && hr != 1))
             rc = 1, npairs = 0;
         if (npairs < 0)
@@ -276,7 +279,7 @@ static int read_state(hid_t g, checkpoint *ck)
         st->pair_hist = malloc(3 * (size_t)(npairs + 1) * rs);
         size_t want_pm = hm ? (size_t)npairs : 0;
         st->pair_mc_fn = malloc((want_pm + 1) * rs);
-        st->pair_law = malloc(((hl ? (size_t)npairs : 0) + 1) * rs);
+        st->pair_law = malloc(((size_t)hl * (size_t)npairs + 1) * rs);
         st->pair_rspring = malloc(((hr ? 3 * (size_t)npairs : 0) + 1) * rs);
         ck->radius = malloc(sizeof(double) * (size_t)n);
         rc = rc || !st->pair_i || !st->pair_j || !st->pair_hist || !ck->radius || read_arrays(g, st, real_t) ||
@@ -287,7 +290,7 @@ static int read_state(hid_t g, checkpoint *ck)
              h5_read(g, "pair_j", H5T_NATIVE_INT, st->pair_j, (size_t)npairs) ||
              h5_read(g, "pair_hist", real_t, st->pair_hist, 3 * (size_t)npairs) || !st->pair_mc_fn ||
              (hm && h5_read(g, "pair_mc_fn", real_t, st->pair_mc_fn, (size_t)npairs)) || !st->pair_law ||
-             (hl && h5_read(g, "pair_law", real_t, st->pair_law, (size_t)npairs)) || !st->pair_rspring ||
+             (hl && h5_read(g, "pair_law", real_t, st->pair_law, (size_t)hl * (size_t)npairs)) || !st->pair_rspring ||
              (hr && h5_read(g, "pair_rspring", real_t, st->pair_rspring, 3 * (size_t)npairs));
         /* what the contact network reads right after a restore (absent from older checkpoints, empty in runs that
          * keep none of it: those values zero until the next step): each touching pair's force record of the last

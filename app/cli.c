@@ -9,7 +9,7 @@
 const char cli_usage[] =
     "usage: dem run SCENE.yaml [-o OUT.h5] [--device N] [--precision fp32|fp64] [--checkpoint FILE]\n"
     "                          [--progress | --quiet] [--verbose] [--stop-after STEPS] [--backend opencl|reference]\n"
-    "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated|thornton_ning]\n"
+    "                          [--model classical|mc_stress|mc_strain|mc_strain_iterated|thornton_ning|mdr]\n"
     "       dem run --restart CHECKPOINT.h5 [-o OUT.h5] [options as above]\n"
     "       dem check SCENE.yaml [--model M] [--probe] [--device N] [--precision fp32|fp64]\n"
     "                                validate a scene and print what it implies (time scales, memory, effects, wall\n"

@@ -27,6 +27,9 @@ typedef struct {
     double rolling_friction;      /* rolling resistance coefficient (effect rolling) */
     double bond_strength;         /* strength of a yielded contact's solid bridge (thornton_ning) [Pa]; 0: no bond */
     double rolling_damping;       /* viscous damping ratio of the rolling spring (effect rolling_spring) */
+    double surface_energy;        /* the mdr law's surface energy [J/m^2] (its yield stress: yield_stress) */
+    double bulk_fraction;         /* the mdr law's psi_b (required with it) */
+    double mdr_damping;           /* the mdr law's damping coefficient eta_d */
 } scene_material;
 
 typedef struct {

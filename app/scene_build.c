@@ -123,6 +123,35 @@ static const char *yield_missing(const scene *sc)
     return "no material has a yield_stress > 0 (the limiting contact pressure p_y [Pa] at which it yields)";
 }
 
+/* mdr needs its parameters on every material particles use: a yield stress, and psi_b said (0.5 in Zunker et al.'s
+ * MCC, 0 turns the bulk response off: no default hides that choice); the library checks that they are one material */
+static const char *const mdr_no_stress = "the mdr law has no stress tensor output yet (its elastic force needs each "
+                                         "contact's row: docs/laws/mdr.md)";
+static const char *mdr_missing(const scene *sc)
+{
+    static char why[256];
+    const scene_file *f = sc->f;
+    for (unsigned k = 0; k < f->materials_count; k++) {
+        const scene_material *m = &f->materials[k];
+        int used = 0;
+        for (unsigned g = 0; g < f->particles_count && !used; g++)
+            used = f->particles[g].material && !strcmp(f->particles[g].material, m->name);
+        char key[64];
+        snprintf(key, sizeof key, "materials[%u].bulk_fraction", k);
+        if (used && !(m->yield_stress > 0)) {
+            snprintf(why, sizeof why, "material '%s' (used by particles) has no yield_stress > 0 (MDR's yield stress Y "
+                     "[Pa])", m->name);
+            return why;
+        }
+        if (used && !scene_has(sc->loc, key)) {
+            snprintf(why, sizeof why, "material '%s' (used by particles) gives no bulk_fraction (MDR's psi_b: 0.5 in "
+                     "Zunker et al.'s MCC; 0 turns the bulk response off)", m->name);
+            return why;
+        }
+    }
+    return NULL;
+}
+
 /* material_pairs: each names two defined materials (in dem_add_material's order, the scene's) once, and gives a
  * friction or a restitution or both, which replace the mean of the two materials' for that pair */
 static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t errlen)
@@ -214,6 +243,10 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
     if ((run->effects & DEM_EFFECT_THORNTON_NING) && (run->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN)))
         return scene_fail(sc, err, errlen, "effects",
                           "thornton_ning and the multi-contact laws are alternative normal laws: list one");
+    if ((run->effects & DEM_EFFECT_MDR) &&
+        (run->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_THORNTON_NING)))
+        return scene_fail(sc, err, errlen, "effects",
+                          "mdr, thornton_ning and the multi-contact laws are alternative normal laws: list one");
     for (unsigned k = 0; k < f->effects_count; k++) {
         int bit = dem_effect_bit(f->effects[k]);
         if (bit < 0) /* membrane */
@@ -221,6 +254,7 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         unsigned law = 1u << bit;
         const char *why = (law == DEM_EFFECT_MC_STRESS || law == DEM_EFFECT_MC_STRAIN) ? mc_prefactor_missing(sc, law)
                           : law == DEM_EFFECT_THORNTON_NING ? yield_missing(sc)
+                          : law == DEM_EFFECT_MDR           ? mdr_missing(sc)
                                                             : NULL;
         if (why) {
             char path[64];
@@ -306,6 +340,11 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
                "the bond strength must be >= 0 Pa (0: the material does not bond)");
         MCHECK("rolling_damping", m->rolling_damping >= 0 && isfinite(m->rolling_damping),
                "the rolling damping ratio must be >= 0");
+        MCHECK("surface_energy", m->surface_energy >= 0 && isfinite(m->surface_energy),
+               "the surface energy must be >= 0 J/m^2 (0: no adhesion)");
+        MCHECK("bulk_fraction", m->bulk_fraction >= 0 && m->bulk_fraction < 1,
+               "the bulk fraction psi_b must be in [0, 1) (0: no bulk response)");
+        MCHECK("mdr_damping", m->mdr_damping >= 0 && isfinite(m->mdr_damping), "the MDR damping must be >= 0");
 #undef MCHECK
         for (unsigned j = 0; j < k; j++)
             if (!strcmp(f->materials[j].name, m->name)) {
@@ -315,7 +354,8 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
         /* a wall-only material without a density gets a placeholder the library accepts; no mass is made from it */
         dem_material dm = {used || m->density > 0 ? m->density * scale : 1.0, m->young, m->poisson, m->restitution,
                            m->friction, m->beta, m->gamma, m->yield_stress, m->rolling_friction,
-                           m->bond_strength, m->rolling_damping};
+                           m->bond_strength, m->rolling_damping, m->surface_energy, m->bulk_fraction,
+                           m->mdr_damping};
         if (dem_add_material(s, &dm) < 0) {
             snprintf(p, sizeof p, "materials[%u]", k);
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
@@ -326,20 +366,26 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
 
 int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *model, char *err, size_t errlen)
 {
-    static const char *const names[] = {"classical", "mc_stress", "mc_strain", "mc_strain_iterated", "thornton_ning"};
+    static const char *const names[] = {"classical", "mc_stress", "mc_strain", "mc_strain_iterated", "thornton_ning",
+                                        "mdr"};
     int k = 0;
-    while (k < 5 && strcmp(model, names[k]))
+    while (k < 6 && strcmp(model, names[k]))
         k++;
-    if (k == 5) {
-        snprintf(err, errlen, "unknown model '%s' (classical, mc_stress, mc_strain, mc_strain_iterated, thornton_ning)",
-                 model);
+    if (k == 6) {
+        snprintf(err, errlen, "unknown model '%s' (classical, mc_stress, mc_strain, mc_strain_iterated, thornton_ning, "
+                 "mdr)", model);
         return 1;
     }
-    unsigned fx = run->effects & ~(unsigned)(DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_THORNTON_NING);
-    fx |= k == 1 ? DEM_EFFECT_MC_STRESS : k == 4 ? DEM_EFFECT_THORNTON_NING : k >= 2 ? DEM_EFFECT_MC_STRAIN : 0;
+    unsigned fx = run->effects & ~(unsigned)(DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_THORNTON_NING |
+                                             DEM_EFFECT_MDR);
+    fx |= k == 1 ? DEM_EFFECT_MC_STRESS : k == 4 ? DEM_EFFECT_THORNTON_NING : k == 5 ? DEM_EFFECT_MDR
+          : k >= 2 ? DEM_EFFECT_MC_STRAIN : 0;
     const char *why = k == 0 ? NULL
                       : k == 4 ? yield_missing(sc)
+                      : k == 5 ? mdr_missing(sc)
                                : mc_prefactor_missing(sc, k == 1 ? DEM_EFFECT_MC_STRESS : DEM_EFFECT_MC_STRAIN);
+    if (!why && k == 5 && (run->fields & OUT_STRESS))
+        why = mdr_no_stress;
     if (why) {
         snprintf(err, errlen, "model %s: %s", model, why);
         return 1;
@@ -725,6 +771,8 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
                               "unknown field '%s' (position, velocity, angular_velocity, radius, force, torque, "
                               "material, stress, contacts)", o->fields[k]);
         run->fields |= bit;
+        if (bit == OUT_STRESS && (run->effects & DEM_EFFECT_MDR))
+            return scene_fail(sc, err, errlen, p, "%s", mdr_no_stress);
     }
     const double dt = run->dt, T = sc->f->time.duration;
     struct {

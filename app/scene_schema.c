@@ -35,6 +35,8 @@ static const cyaml_schema_field_t material_fields[] = {
     REAL("beta", scene_material, beta), REAL("gamma", scene_material, gamma),
     REAL("yield_stress", scene_material, yield_stress), REAL("rolling_friction", scene_material, rolling_friction),
     REAL("bond_strength", scene_material, bond_strength), REAL("rolling_damping", scene_material, rolling_damping),
+    REAL("surface_energy", scene_material, surface_energy), REAL("bulk_fraction", scene_material, bulk_fraction),
+    REAL("mdr_damping", scene_material, mdr_damping),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t material_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material, material_fields)};

@@ -31,11 +31,13 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 #define CHECK_ARG(kind, type, name, src) CHECK_##kind(type, src)
 #define CHECK_KERNEL(name) DEM_ARGS_##name(CHECK_ARG, CHECK_ARG)
 DEM_KERNEL_LIST(CHECK_KERNEL)
-_Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 17 && ST_STRIDE == 6,
+_Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 25 && ST_STRIDE == 6 &&
+                   MDR_PAIR_STRIDE == 24 && MDR_WALL_STRIDE == 13 && MDR_P_STRIDE == 14,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
 _Static_assert(FLAG_COUNT == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/steps/binning.c resets the cell bounds");
 _Static_assert(K__COUNT <= 256, "kernel ids fit the trace's bytes");
 _Static_assert(DEM_PAIR_RECORD_REALS == PR_STRIDE, "the pair records' size in dem.h (checkpoints)");
+_Static_assert(DEM_MDR_LAW_REALS == MDR_PAIR_STRIDE, "the mdr law's reals per pair in dem.h (checkpoints)");
 _Static_assert(DEM_MAX_WALLS <= 8 * sizeof(unsigned), "a particle's wall mask is one unsigned (WALL_MASK)");
 
 int dem_core_fail(dem_core *c, const char *fmt, ...)
@@ -98,9 +100,10 @@ size_t dem_elem_size(int elem, int rs)
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
            NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
            MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows,                  \
-           MAXC = (size_t)(c)->maxn[(c)->cur];                                                                       \
+           MAXC = (size_t)(c)->maxn[(c)->cur], LAWP = (size_t)DEM_LAW_PAIR_W((c)->fx),                               \
+           LAWW = (size_t)DEM_LAW_WALL_W((c)->fx);                                                                   \
     (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)NMR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
-        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR, (void)MAXC
+        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR, (void)MAXC, (void)LAWP, (void)LAWW
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 

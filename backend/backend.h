@@ -26,6 +26,8 @@ typedef struct {
     const void *invvol;     /* real[n]: 1 / particle volume [1/m^3] (stress, particle_stress.h) */
     const void *roll_inertia; /* real[n]: 1 / (I + m r^2), a body's term of the rolling spring's 1/I_r (rolling.h;
                                  0 for an immovable one) [1/(kg m^2)] */
+    const void *mdr_part;   /* real[MDR_P_STRIDE*n]: each particle's MDR row as created (laws/mdr_core.h
+                               mdr_particle_new; DEM_EFFECT_MDR) */
     const int *mat;
     const void *pairmat;    /* real[PM_STRIDE*nmat*nmat] */
     const int *wall_int;    /* int[WI_STRIDE*nwalls] */

@@ -42,6 +42,7 @@ typedef struct {
     vec3 c;      /* n x f_t [N] */
     vec3 hist;   /* new tangential history */
     real st;     /* new law state (a law with memory: laws/law.h) */
+    real ela;    /* the contact's elastic energy when asked (a law that returns it: laws/law.h) [J] */
     vec3 roll;   /* rolling torque on a (rolling.h) [N m] */
     vec3 rspring; /* new rolling spring (DEM_EFFECT_ROLLING_SPRING, rolling.h) [N m] */
 } pair_contact;
@@ -51,9 +52,9 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
                                           DEM_CONST_GLOBAL real *w, DEM_CONST_GLOBAL real *radius,
                                           DEM_CONST_GLOBAL real *invmass, DEM_CONST_GLOBAL int *mat,
                                           DEM_CONST_GLOBAL real *pairmat, int nmat, real dt,
-                                          DEM_CONST_GLOBAL real *hist, DEM_CONST_GLOBAL real *law_st, int hp,
+                                          DEM_CONST_GLOBAL real *hist, DEM_GLOBAL real *law_st, int hp,
                                           int touching, law_ctx ctx, DEM_CONST_GLOBAL real *roll_inertia,
-                                          DEM_CONST_GLOBAL real *rspring)
+                                          DEM_CONST_GLOBAL real *rspring, real *sums, int energy)
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
@@ -71,6 +72,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     pc.c = v3_zero();
     pc.hist = v3_zero();
     pc.st = (real)0;
+    pc.ela = (real)0;
     pc.roll = v3_zero();
     pc.rspring = v3_zero();
     if (!g.active)
@@ -95,8 +97,13 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     }
     c.vrel = v3_sub(vca, vcb);
     c.hist = h;
-    /* the law's state, like the history, only for a pair that touched in the previous step */
-    c.st = ((fx & DEM_LAW_STATE_BITS) && touching) ? law_st[hp] : (real)0;
+    /* the law's state, like the history, only for a pair that touched in the previous step; a law whose state is a
+     * row (MDR) reads and writes the pair's row and leaves its sides' sums (laws/law.h) */
+    c.st = ((fx & DEM_LAW_STATE_BITS) && touching) ? law_st[hp * DEM_LAW_PAIR_W(fx)] : (real)0;
+    c.row_in = ((fx & DEM_EFFECT_MDR) && touching) ? law_st + hp * DEM_LAW_PAIR_W(fx) : 0;
+    c.row_out = (fx & DEM_EFFECT_MDR) ? law_st + hp * DEM_LAW_PAIR_W(fx) : 0;
+    c.sums = sums;
+    c.energy = energy;
     law_result r = law_force(fx, c, ctx);
     if (!r.active) {
         pc.active = 0;
@@ -105,6 +112,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     pc.delta = delta;
     pc.fel = r.fel;
     pc.st = r.st;
+    pc.ela = r.ela;
     pc.force = r.force;
     if (fx & DEM_EFFECT_FRICTION) {
         pc.c = v3_cross(n, r.ft);
@@ -140,9 +148,11 @@ DEM_ITEM(contact_pairs)
         db = mc_disp[host_lower ? m : slot];
     }
     law_ctx ctx;
-    ctx.trace = trace, ctx.invvol = invvol, ctx.disp_a = da, ctx.disp_b = db;
+    ctx.trace = trace, ctx.invvol = invvol, ctx.disp_a = da, ctx.disp_b = db, ctx.mdr_part = mdr_part;
+    real sums[2 * MDR_NSUM]; /* MDR: each side's sums for its particle (laws/mdr.h) */
     pair_contact pc = pair_contact_eval(fx, a, j, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, law_st, i,
-                                        touching, ctx, roll_inertia, rspring);
+                                        touching, ctx, roll_inertia, rspring, sums,
+                                        (fx & DEM_EFFECT_MDR) && sample);
     /* per pair (both particles' mc_strain_disp read it). A pair that neither touched nor touches holds 0 already
      * (mc_strain_update zeroes what it set for a pair that does not touch now) */
     if ((fx & DEM_EFFECT_MC_STRAIN) && (pc.active || touching))
@@ -151,8 +161,8 @@ DEM_ITEM(contact_pairs)
         if (touching) { /* the contact ended: so does its history */
             if (fx & DEM_EFFECT_FRICTION)
                 v3_store(hist, i, v3_zero());
-            if (fx & DEM_LAW_STATE_BITS)
-                law_st[i] = (real)0;
+            for (int k = 0; (fx & DEM_LAW_STATE_BITS) && k < DEM_LAW_PAIR_W(fx); k++)
+                law_st[i * DEM_LAW_PAIR_W(fx) + k] = (real)0;
             if (fx & DEM_EFFECT_ROLLING_SPRING)
                 v3_store(rspring, i, v3_zero());
             touch[i] = 0;
@@ -161,8 +171,10 @@ DEM_ITEM(contact_pairs)
     }
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(hist, i, pc.hist);
-    if (fx & DEM_LAW_STATE_BITS)
+    if ((fx & DEM_LAW_STATE_BITS) && !(fx & DEM_EFFECT_MDR)) /* (MDR's law wrote its row) */
         law_st[i] = pc.st;
+    for (int k = 0; (fx & DEM_EFFECT_MDR) && k < 2 * MDR_NSUM; k++) /* read by both particles' contact_forces */
+        pair_mdr_sum[2 * MDR_NSUM * i + k] = sums[k];
     if (!touching)
         touch[i] = 1;
     DEM_GLOBAL real *pr = pair + i * PR_STRIDE;
@@ -180,7 +192,7 @@ DEM_ITEM(contact_pairs)
     if (fx & DEM_EFFECT_ROLLING_SPRING)
         v3_store(rspring, i, pc.rspring);
     if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
-        pair_ela[i] = series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
+        pair_ela[i] = (fx & DEM_EFFECT_MDR) ? pc.ela : series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
                                               pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
 }
 
@@ -193,6 +205,9 @@ DEM_ITEM(contact_forces)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
     real ri = radius[i], ela = (real)0, con = (real)0, wcon = (real)0;
+    real macc[MDR_NSUM]; /* MDR: the particle's sums from its contacts' sides, in the canonical order (laws/mdr.h) */
+    for (int k = 0; (fx & DEM_EFFECT_MDR) && k < MDR_NSUM; k++)
+        macc[k] = (real)0;
     int cnt = nbr_count[i], lv = nbr_lower[i], lower = row_lower(lv), own = own_start[i], in = in_start[i];
     int h = 0, g = 0;
     DEM_CONST_GLOBAL int *nrow = nbr_list + nbr_start[i]; /* the row (row: the series' row) */
@@ -208,6 +223,8 @@ DEM_ITEM(contact_forces)
         fi = v3_add(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
+        for (int q = 0; (fx & DEM_EFFECT_MDR) && q < MDR_NSUM; q++) /* i is the pair's a: side 1 */
+            macc[q] += pair_mdr_sum[2 * MDR_NSUM * p + MDR_NSUM + q];
         if (fx & DEM_EFFECT_ROLLING) /* i is the pair's a: its rolling torque */
             ti = v3_add(ti, v3_load(pair_roll, p));
         if (sample && pr[PR_DELTA] > (real)0) { /* a sampled step: the pair's elastic energy, by its lower id */
@@ -230,6 +247,8 @@ DEM_ITEM(contact_forces)
         fi = v3_sub(fi, v3(pr[PR_FX], pr[PR_FY], pr[PR_FZ]));
         if (fx & DEM_EFFECT_FRICTION)
             ti = v3_sub(ti, v3_scale(v3(pr[PR_CX], pr[PR_CY], pr[PR_CZ]), ri - (real)0.5 * pr[PR_DELTA]));
+        for (int q = 0; (fx & DEM_EFFECT_MDR) && q < MDR_NSUM; q++) /* i is the pair's b: side 0 */
+            macc[q] += pair_mdr_sum[2 * MDR_NSUM * p + q];
         if (fx & DEM_EFFECT_ROLLING) /* i is the pair's b: minus a's rolling torque */
             ti = v3_sub(ti, v3_load(pair_roll, p));
     }
@@ -237,8 +256,11 @@ DEM_ITEM(contact_forces)
         wall_contacts_add(fx, i, n, nwalls, wall_int, wall_real, v3_load(x, i), v3_load(v, i), v3_load(w, i), ri,
                           invmass[i], mat[i], pairmat, nmat, wall_hist, wall_law, dt, wall_pf, wall_mask, trace, invvol,
                           mc_wall_disp, mc_wall_fn, ride, &fi, &ti, sample ? &ela : 0, &wcon,
-                          (fx & DEM_EFFECT_ROLLING_SPRING) ? roll_inertia[i] : (real)0, wall_rspring);
+                          (fx & DEM_EFFECT_ROLLING_SPRING) ? roll_inertia[i] : (real)0, wall_rspring, mdr_part,
+                          macc);
     v3_store(force, i, fi);
+    for (int k = 0; (fx & DEM_EFFECT_MDR) && k < MDR_NSUM; k++) /* the next step's mdr_begin reads them */
+        mdr_part[MDR_P_STRIDE * i + MDR_P_SUMS + k] = macc[k];
     if (fx & DEM_EFFECT_FRICTION)
         v3_store(torque, i, ti);
     if (sample) { /* the particle's contact terms of the sampled step (series.h) */

@@ -11,7 +11,8 @@
  * room to spare: host/core/rebuild.c row_capacity), MAXC (slots of the current row set: for a buffer laid out like the rows
  * but written before it is read after each rebuild, so held once and not in both sets; host/steps/neighbor.c grows it with
  * the current set), PAIRS (pair
- * records allocated), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV (capacity of the
+ * records allocated), LAWP and LAWW (the reals of a contact's law state per pair and per particle-wall slot:
+ * DEM_LAW_PAIR_W, DEM_LAW_WALL_W), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV (capacity of the
  * sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows: patch_contacts.h), in
  * elements.
  * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
@@ -65,6 +66,8 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia), PARTICLES, P(1), NO)                                           \
     ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol), PARTICLES, P(1), NO)                                                   \
     ENTRY(ROLL_INERTIA, REAL, N, DEM_EFFECT_ROLLING_SPRING, -1, SETUP(roll_inertia), PARTICLES, P(1), NO)               \
+    ENTRY(MDR_PART, REAL, MDR_P_STRIDE * N, DEM_EFFECT_MDR, -1, SETUP(mdr_part), PARTICLES, P(MDR_P_STRIDE), CK(mdr_particle, MDR_P_STRIDE, NULL)) \
+    ENTRY(R_BUILD, REAL, N, DEM_EFFECT_MDR, -1, SETUP(radius), PARTICLES, P(1), NO)                                    \
     ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x), PARTICLES, P(3), NO)                                    \
     ENTRY(MAT, INT, N, 0, -1, SETUP(mat), PARTICLES, P(1), NO)                                                          \
     ENTRY(SID, INT, N, 0, -1, SETUP(sid), PARTICLES, P(1), NO)                                                          \
@@ -78,7 +81,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(WALL_HIST, REAL, 3 * N * NW, DEM_EFFECT_FRICTION, DEM_FIELD_WALL_HIST, NONE, WALLS, P(3 * NW), CK(wall_hist, 1, "N")) \
     ENTRY(WALL_PF, REAL, 3 * N * NW, DEM_KEEP_WALL_FORCES, DEM_FIELD_WALL_PF, NONE, WALLS, G(3), CK_OPT(wall_pf, 1, "N")) \
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE, WALLS, P(1), CK(wall_mask, 1, NULL))                        \
-    ENTRY(WALL_LAW, REAL, N * NW, DEM_LAW_STATE_BITS, -1, NONE, WALLS, P(NW), CK(wall_law, 1, "m"))                     \
+    ENTRY(WALL_LAW, REAL, LAWW * N * NW, DEM_LAW_STATE_BITS, -1, NONE, WALLS, P(LAWW * NW), CK(wall_law, 1, "m"))       \
     ENTRY(WALL_RSPRING, REAL, 3 * N * NW, DEM_EFFECT_ROLLING_SPRING, -1, NONE, WALLS, P(3 * NW), CK(wall_rspring, 1, "N m")) \
     ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS, STAY, NO)                                            \
     ENTRY(PARTIAL_MID, REAL, WP_STRIDE * NMR * NW, 0, -1, NONE, WALLS, STAY, NO)                                        \
@@ -109,9 +112,10 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS, STAY, NO)                                       \
     ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS, STAY, NO)                     \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS, STAY, NO)                       \
-    ENTRY(PAIR_LAW, REAL, PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                         \
+    ENTRY(PAIR_LAW, REAL, LAWP * PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                  \
+    ENTRY(PAIR_MDR_SUM, REAL, 2 * MDR_NSUM * PAIRS, DEM_EFFECT_MDR, -1, NONE, PAIRS, STAY, NO)                          \
     ENTRY(PAIR_ROLL, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING, -1, NONE, PAIRS, STAY, NO)                                     \
-    ENTRY(PAIR_LAW_OLD, REAL, PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                     \
+    ENTRY(PAIR_LAW_OLD, REAL, LAWP * PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                              \
     ENTRY(PAIR_RSPRING, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING_SPRING, -1, NONE, PAIRS, STAY, NO)                          \
     ENTRY(PAIR_RSPRING_OLD, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING_SPRING, -1, NONE, PAIRS, STAY, NO)                      \
     ENTRY(OWN_START_OLD, INT, N + 1, 0, -1, NONE, PARTICLES, STAY, NO)                                                  \

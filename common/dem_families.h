@@ -17,4 +17,5 @@
 #include "bending.h"
 #include "riders.h"
 #include "patch_contacts.h"
+#include "mdr_particle.h"
 #endif /* DEM_FAMILIES_H */

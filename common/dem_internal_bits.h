@@ -36,8 +36,11 @@ enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
 #endif
 
 /* The laws with memory (common/laws/law.h): a run with one of them keeps a law state per contact (PAIR_LAW,
- * WALL_LAW: common/dem_buffers.h) */
-#define DEM_LAW_STATE_BITS DEM_EFFECT_THORNTON_NING
+ * WALL_LAW: common/dem_buffers.h), of DEM_LAW_PAIR_W reals per pair and DEM_LAW_WALL_W per particle-wall slot: one
+ * (Thornton-Ning's largest overlap) or MDR's rows (dem_layout.h MDR_*) */
+#define DEM_LAW_STATE_BITS (DEM_EFFECT_THORNTON_NING | DEM_EFFECT_MDR)
+#define DEM_LAW_PAIR_W(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_PAIR_STRIDE : 1)
+#define DEM_LAW_WALL_W(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_WALL_STRIDE : 1)
 
 /* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
 #define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY)

@@ -36,7 +36,7 @@
     K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
-    K(patch_build) K(patch_forces) K(patch_gather)
+    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_bounds(F, A)                                                                                    \
@@ -116,7 +116,7 @@
     A(BIN, real, invvol, INVVOL) A(BIN, real, mc_disp, MC_DISP) A(BOUT, real, mc_fn, PAIR_MC_FN)                     \
     A(I, int, sample, SERIES_SAMPLE) A(BOUT, real, pair_ela, PAIR_ELA) A(BOUT, real, law_st, PAIR_LAW)              \
     A(BOUT, real, pair_roll, PAIR_ROLL) A(BIN, real, roll_inertia, ROLL_INERTIA)                \
-    A(BOUT, real, rspring, PAIR_RSPRING)
+    A(BOUT, real, rspring, PAIR_RSPRING) A(BIN, real, mdr_part, MDR_PART) A(BOUT, real, pair_mdr_sum, PAIR_MDR_SUM)
 #define DEM_ITEMS_contact_pairs npairs
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
     DEM_ARGS_contact_head(F, A) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT)                          \
@@ -129,7 +129,7 @@
     A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
     A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)                 \
     A(BOUT, real, wall_law, WALL_LAW) A(BIN, real, pair_roll, PAIR_ROLL) A(BIN, real, roll_inertia, ROLL_INERTIA)    \
-    A(BOUT, real, wall_rspring, WALL_RSPRING)
+    A(BOUT, real, wall_rspring, WALL_RSPRING) A(BOUT, real, mdr_part, MDR_PART) A(BIN, real, pair_mdr_sum, PAIR_MDR_SUM)
 #define DEM_ITEMS_contact_forces n
 
 /* ---- wall_forces.h ---- */
@@ -140,7 +140,7 @@
     A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
     A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
     A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)                      \
-    A(BIN, int, order, ORDER) A(BIN, real, wall_law, WALL_LAW)
+    A(BIN, int, order, ORDER) A(BIN, real, wall_law, WALL_LAW) A(BIN, real, mdr_part, MDR_PART)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_mid(F, A)                                                                               \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(I, int, nmid, NMID_RED) A(BIN, real, partial, PARTIAL)  \
@@ -258,6 +258,22 @@
     A(BIN, int, plist, PLIST) A(BIN, dem_byte, ptouch, PTOUCH) A(BIN, real, prec, PREC) A(BIN, int, vcount, VCOUNT)  \
     A(BIN, int, vlist, VLIST) A(BOUT, real, force, FORCE) A(BIN, int, sid, SID) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_patch_gather n
+
+/* ---- mdr_particle.h ---- */
+#define DEM_ARGS_mdr_begin(F, A)                                                                                     \
+    F(I, int, n, N) A(I, int, nmat, NMAT) A(R, real, half_skin2, HALF_SKIN2) A(BIN, real, x, X)                      \
+    A(BIN, real, x_build, X_BUILD) A(BIN, real, r_build, R_BUILD) A(BIN, int, mat, MAT)                              \
+    A(BIN, real, pairmat, PAIRMAT) A(BOUT, real, mdr_part, MDR_PART) A(BOUT, real, radius, RADIUS)                   \
+    A(BOUT, int, flags, FLAGS)
+#define DEM_ITEMS_mdr_begin n
+#define DEM_ARGS_mdr_surface(F, A)                                                                                   \
+    F(I, int, n, N) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)         \
+    A(BIN, int, nbr_lower, LOWER) A(BIN, int, own_start, OWN_START) A(BIN, int, in_start, IN_START)                  \
+    A(BIN, int, in_pair, IN_PAIR) A(BIN, dem_byte, touch, TOUCH) A(BIN, real, x, X) A(BIN, real, radius, RADIUS)     \
+    A(BOUT, real, law_st, PAIR_LAW) A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT)                        \
+    A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE) A(BIN, unsigned, wall_mask, WALL_MASK)           \
+    A(BIN, real, wall_law, WALL_LAW) A(BOUT, real, mdr_part, MDR_PART) A(BIN, int, sid, SID)
+#define DEM_ITEMS_mdr_surface n
 
 /* ---- what the lists become ---- */
 /* a parameter declaration of each kind */

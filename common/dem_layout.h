@@ -35,7 +35,30 @@ enum {
                         of the two materials', 0: no bond) [Pa] */
     PM_ROLL_DAMP = 16, /* rolling viscous damping ratio eta_r of the spring model, the mean of the two materials'
                           (common/rolling.h) [-] */
-    PM_STRIDE = 17
+    /* MDR (common/laws/mdr.h): the material of the row's sphere in mdr_material's order (laws/mdr_core.h): E* =
+     * E/(1 - nu^2) of one sphere on a rigid flat, G, the bulk modulus, nu, the yield stress Y, the surface energy (a
+     * wall material's own at a wall), psi_b and eta_d (host/core/sim_setup.c pack_pairs) */
+    PM_MDR = 17,
+    PM_STRIDE = 25
+};
+
+/* MDR's state (common/laws/mdr.h, docs/laws/mdr.md (M37)). One side of a contact, mdr_side's order (laws/mdr_core.h):
+ * its overlap share and that against R_o of the last step, the MDR and bulk parts of it, its last area, the largest
+ * MDR part, the yield flag, the area intercept, the adhesive radius, the last strain and the plastic overlap. */
+enum { MDR_SIDE = 11 };
+/* A pair's row (PAIR_MDR): the contact's largest overlap, its penalty of this step (M40), then side 0 (the sphere of
+ * higher stable id) and side 1; a particle-wall slot's row (WALL_MDR): the largest overlap, a reserved real, the
+ * side. A particle's row (MDR_PART): mdr_particle's 14 reals. A pair side's sums for its particle (PAIR_MDR_SUM: 6 per
+ * side, mdr_particle's vcaps .. atot_sum). */
+enum {
+    MDR_CMAX = 0,
+    MDR_PEN = 1,
+    MDR_S0 = 2,
+    MDR_PAIR_STRIDE = 2 + 2 * MDR_SIDE,
+    MDR_WALL_STRIDE = 2 + MDR_SIDE,
+    MDR_P_STRIDE = 14,
+    MDR_P_SUMS = 4, /* where the six sums start in a particle's row */
+    MDR_NSUM = 6
 };
 
 /* Spring table, real part (index s*SP_STRIDE + ...; seed 001 Eq. 6): the two particles are in the int table

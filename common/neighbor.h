@@ -187,8 +187,9 @@ DEM_ITEM(pair_index)
             v3_store(hist, p, t ? v3_load(old_hist, q) : v3_zero());
         if (fx & DEM_EFFECT_MC_STRAIN) /* the lagged MC-strain force of the same contact (mc_strain.h) */
             mc_fn[p] = t ? old_mc_fn[q] : (real)0;
-        if (fx & DEM_LAW_STATE_BITS) /* the law's state of the same contact (laws/law.h) */
-            law_st[p] = t ? old_law_st[q] : (real)0;
+        for (int k = 0; (fx & DEM_LAW_STATE_BITS) && k < DEM_LAW_PAIR_W(fx); k++) /* the law's state of the same
+                                                                                     contact (laws/law.h) */
+            law_st[p * DEM_LAW_PAIR_W(fx) + k] = t ? old_law_st[q * DEM_LAW_PAIR_W(fx) + k] : (real)0;
         if (fx & DEM_EFFECT_ROLLING_SPRING) /* its rolling spring (rolling.h) */
             v3_store(rspring, p, t ? v3_load(old_rspring, q) : v3_zero());
         p++;

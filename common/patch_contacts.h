@@ -387,9 +387,10 @@ DEM_ITEM(patch_forces)
         lc.a = lc.b = i, lc.ra = lc.rb = ri;
         lc.n = n, lc.delta = law, lc.rstar = ri, lc.mstar = mstar, lc.vrel = v3_sub(vc, vp), lc.hist = h, lc.dt = dt;
         lc.st = (real)0; /* no law with memory acts at patches (host/core/effects.c refuses them together) */
+        lc.row_in = 0, lc.row_out = 0, lc.sums = 0, lc.energy = 0;
         lc.pm = lc.pmi = pm;
         law_ctx none;
-        none.trace = none.invvol = pm, none.disp_a = none.disp_b = (real)0;
+        none.trace = none.invvol = none.mdr_part = pm, none.disp_a = none.disp_b = (real)0;
         law_result r = law_force(fx, lc, none);
         if (fx & DEM_EFFECT_FRICTION) {
             v3_store(phist, slot, r.hist);

@@ -33,10 +33,11 @@ typedef struct {
 /* The law's context of particle i's contact in wall slot `slot` (i * nwalls + k): the traces (MC-stress) and the
  * displacement induced at the slot (MC-strain; the wall has none) */
 DEM_INLINE law_ctx wall_law_ctx(unsigned fx, int i, int slot, DEM_CONST_GLOBAL real *trace,
-                                DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_wall_disp)
+                                DEM_CONST_GLOBAL real *invvol, DEM_CONST_GLOBAL real *mc_wall_disp,
+                                DEM_CONST_GLOBAL real *mdr_part)
 {
     law_ctx ctx;
-    ctx.trace = trace, ctx.invvol = invvol;
+    ctx.trace = trace, ctx.invvol = invvol, ctx.mdr_part = mdr_part;
     ctx.disp_a = (fx & DEM_EFFECT_MC_STRAIN) ? mc_wall_disp[slot] : (real)0;
     ctx.disp_b = (real)0;
     return ctx;
@@ -46,7 +47,8 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
                                           DEM_CONST_GLOBAL real *wall_real, vec3 xi, vec3 vi, vec3 wi, real ri,
                                           real invm, int mi, DEM_CONST_GLOBAL real *pairmat, int nmat,
                                           DEM_CONST_GLOBAL real *wall_hist, DEM_CONST_GLOBAL real *wall_law, real dt,
-                                          int old_touch, law_ctx ctx, DEM_CONST_GLOBAL unsigned *ride)
+                                          int old_touch, law_ctx ctx, DEM_CONST_GLOBAL unsigned *ride,
+                                          DEM_GLOBAL real *law_out, real *sums, int energy)
 {
     wall_contact c;
     DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
@@ -71,7 +73,12 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     }
     lc.vrel = v3_sub(vc, v3(wr[W_VX], wr[W_VY], wr[W_VZ]));
     lc.hist = h;
-    lc.st = ((fx & DEM_LAW_STATE_BITS) && old_touch) ? wall_law[slot] : (real)0; /* the law's state (laws/law.h) */
+    /* the law's state (laws/law.h): a real, or a row read from wall_law and written to law_out (0: not kept) */
+    lc.st = ((fx & DEM_LAW_STATE_BITS) && old_touch) ? wall_law[slot * DEM_LAW_WALL_W(fx)] : (real)0;
+    lc.row_in = ((fx & DEM_EFFECT_MDR) && old_touch) ? wall_law + slot * DEM_LAW_WALL_W(fx) : 0;
+    lc.row_out = ((fx & DEM_EFFECT_MDR) && law_out) ? law_out + slot * DEM_LAW_WALL_W(fx) : 0;
+    lc.sums = sums;
+    lc.energy = energy;
     lc.pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
     lc.pmi = pairmat + PM_STRIDE * (mi * nmat + mi);
     c.r = law_force(fx, lc, ctx);
@@ -91,26 +98,33 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                                   DEM_CONST_GLOBAL real *trace, DEM_CONST_GLOBAL real *invvol,
                                   DEM_CONST_GLOBAL real *mc_wall_disp, DEM_GLOBAL real *mc_wall_fn,
                                   DEM_CONST_GLOBAL unsigned *ride, vec3 *fi, vec3 *ti, real *ela, real *wcon,
-                                  real iroll, DEM_GLOBAL real *wall_rspring)
+                                  real iroll, DEM_GLOBAL real *wall_rspring, DEM_CONST_GLOBAL real *mdr_part,
+                                  real *macc)
 {
     unsigned old_mask = wall_mask[i], mask = 0;
     for (int k = 0; k < nwalls; k++) {
         int slot = i * nwalls + k, old_touch = (old_mask >> k) & 1u;
+        real sums[MDR_NSUM]; /* MDR: the side's sums, added to the particle's (macc) in wall order */
         wall_contact c = wall_contact_eval(fx, i, k, nwalls, wall_int, wall_real, xi, vi, wi, ri, invm, mi, pairmat,
                                            nmat, wall_hist, wall_law, dt, old_touch,
-                                           wall_law_ctx(fx, i, slot, trace, invvol, mc_wall_disp), ride);
+                                           wall_law_ctx(fx, i, slot, trace, invvol, mc_wall_disp, mdr_part), ride,
+                                           wall_law, sums, (fx & DEM_EFFECT_MDR) && ela);
         if (c.active) {
+            for (int q = 0; (fx & DEM_EFFECT_MDR) && q < MDR_NSUM; q++)
+                macc[q] += sums[q];
             if (fx & DEM_EFFECT_MC_STRAIN)
                 mc_wall_fn[slot] = c.r.fel;
             if (fx & DEM_KEEP_WALL_FORCES)
                 v3_store(wall_pf, k * n + i, c.r.force);
             if (ela && c.delta > (real)0) { /* a sampled step (series.h): the law's energy, from the force at hand */
-                *ela += law_energy_kept(fx, pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]),
-                                        ri, c.delta, c.r.fel, c.r.st);
+                *ela += (fx & DEM_EFFECT_MDR)
+                            ? c.r.ela
+                            : law_energy_kept(fx, pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]),
+                                              ri, c.delta, c.r.fel, c.r.st);
                 *wcon += (real)1;
             }
             *fi = v3_add(*fi, c.r.force);
-            if (fx & DEM_LAW_STATE_BITS)
+            if ((fx & DEM_LAW_STATE_BITS) && !(fx & DEM_EFFECT_MDR)) /* (MDR's law wrote its row) */
                 wall_law[slot] = c.r.st;
             if (fx & DEM_EFFECT_FRICTION) {
                 v3_store(wall_hist, slot, c.r.hist);
@@ -132,8 +146,8 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
         } else {
             if ((fx & DEM_EFFECT_FRICTION) && old_touch)
                 v3_store(wall_hist, slot, v3_zero());
-            if ((fx & DEM_LAW_STATE_BITS) && old_touch)
-                wall_law[slot] = (real)0;
+            for (int q = 0; (fx & DEM_LAW_STATE_BITS) && old_touch && q < DEM_LAW_WALL_W(fx); q++)
+                wall_law[slot * DEM_LAW_WALL_W(fx) + q] = (real)0;
             if ((fx & DEM_EFFECT_ROLLING_SPRING) && old_touch)
                 v3_store(wall_rspring, slot, v3_zero());
             if (fx & DEM_EFFECT_MC_STRAIN)
@@ -211,7 +225,8 @@ DEM_ITEM(wall_reduce_block)
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
                                                wall_law, dt, (wall_mask[j] >> k) & 1u,
-                                               wall_law_ctx(fx, j, j * nwalls + k, trace, invvol, mc_wall_disp), ride);
+                                               wall_law_ctx(fx, j, j * nwalls + k, trace, invvol, mc_wall_disp, mdr_part),
+                                               ride, 0, 0, 0);
             if (c.active) {
                 p.f = v3_sub(p.f, c.r.force);
                 p.fn += v3_dot(c.r.force, c.n);

@@ -83,6 +83,15 @@ typedef struct {
     double rolling_damping; /* viscous damping ratio eta_r >= 0 of the rolling spring (DEM_EFFECT_ROLLING_SPRING; Ai et
                                al. 2011 model C: the dashpot is eta_r times the critical 2 sqrt(I_r k_r)); a pair takes
                                the mean of its two materials' */
+    /* MDR (DEM_EFFECT_MDR; common/laws/mdr.h, docs/laws/mdr.md): a particle material gives yield_stress > 0 (the
+     * yield stress Y of MDR's plastic branch, whose mean contact pressure starts at 2.75 Y) and Poisson's ratio < 0.5;
+     * every particle material of an MDR run has the same young, poisson, yield_stress, surface_energy, bulk_fraction
+     * and mdr_damping (one MDR material, as in the papers and LAMMPS). A material with yield_stress 0 is a wall's:
+     * a wall contact takes the particle's properties and the wall material's surface_energy. */
+    double surface_energy; /* effective surface energy gamma >= 0 [J/m^2] of MDR's adhesion (0: none) */
+    double bulk_fraction;  /* free-surface fraction psi_b in [0, 1) below which MDR's bulk response of a confined
+                              sphere starts (0: never; 0.5 in Zunker et al.'s MCC) */
+    double mdr_damping;    /* MDR's damping coefficient eta_d >= 0 (dimensionless, docs/laws/mdr.md (M38)) */
 } dem_material;
 
 /* What one pair of materials takes instead of the mean of its two materials' values (dem_set_material_pair): a
@@ -482,6 +491,7 @@ DEM_API int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes);
  * dem_state_arrays lists them). Contacts: the touching pairs (i < j) and, with friction, their tangential spring.
  * Neighbour rows are rebuilt on restore. */
 #define DEM_PAIR_RECORD_REALS 7 /* reals per pair record (DEM_FIELD_PAIR_RECORDS, dem_state.pair_rec) */
+#define DEM_MDR_LAW_REALS 24 /* reals of state per pair of the mdr law (dem_state.has_law, pair_law) */
 typedef enum { DEM_STATE_REAL, DEM_STATE_INT, DEM_STATE_UINT } dem_state_elem;
 /* One array of a state: name (a checkpoint's dataset /state/<name>), unit (NULL: none), element type, elements per
  * dataset row (3 for x), whether a state must hold it (else missing: zero until computed), and count elements at
@@ -515,10 +525,11 @@ typedef struct {
     void *pair_mc_fn;                 /* real[npairs]: MC-strain force of each touching pair */
     void *pair_mc_disp;               /* real[2 npairs] with MC-strain: the induced displacement at i's and at j's
                                          end in the last step (the contact network's extra); NULL: not known */
-    int has_law;                      /* 1 when the run's contact law keeps a state per contact (a plastic law,
-                                         DEM_EFFECT_THORNTON_NING): pair_law and the array wall_law follow */
-    void *pair_law;                   /* real[npairs]: that state of each touching pair (Thornton-Ning: the largest
-                                         overlap so far [m], negated once the contact's bond broke) */
+    int has_law;                      /* the reals of state the run's contact law keeps per contact: 0 none, 1
+                                         DEM_EFFECT_THORNTON_NING, DEM_MDR_LAW_REALS DEM_EFFECT_MDR (its row, dem_layout.h
+                                         MDR_*); pair_law and the array wall_law (13 per slot with MDR) follow */
+    void *pair_law;                   /* real[has_law npairs]: that state of each touching pair (Thornton-Ning: the
+                                         largest overlap so far [m], negated once the contact's bond broke) */
     int has_rspring;                  /* 1 when the run has rolling springs (DEM_EFFECT_ROLLING_SPRING): pair_rspring
                                          and the array wall_rspring follow */
     void *pair_rspring;               /* real[3 npairs]: each touching pair's rolling spring, the torque on its lower

@@ -53,11 +53,16 @@ enum {
                                             elastic-plastic spring-dashpot): the torque grows with the relative
                                             rotation up to model A's mu_r r* f_n, with a dashpot below it; needs
                                             rolling: common/rolling.h */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304 | 8388608
+    DEM_EFFECT_MDR = 16777216, /* the mechanically-derived contact model of Zunker and Kamrin for adhesive
+                                  elastic-perfectly plastic spheres (apparent overlap, plastic yield, adhesion, the
+                                  bulk response of a confined sphere and the radius that keeps its volume):
+                                  common/laws/mdr.h, docs/laws/mdr.md; needs each particle material's yield_stress;
+                                  excludes mc_stress, mc_strain, thornton_ning and patches */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304 | 8388608 | 16777216
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..23; 7..11 are the convention bits and 18..20 the
+/* Bit positions an effect name can have (dem_effect_name): 0..24; 7..11 are the convention bits and 18..20 the
  * host's and the test laws' bits, not effects. */
-#define DEM_EFFECT_COUNT 24
+#define DEM_EFFECT_COUNT 25
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

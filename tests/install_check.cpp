@@ -22,7 +22,7 @@ int main()
     dem_sim *s = dem_create();
     if (!s)
         return fail("dem_create", nullptr);
-    const dem_material glass = {2500, 65e9, 0.24, 0.98, 0.2, 0, 0, 0, 0, 0, 0};
+    const dem_material glass = {2500, 65e9, 0.24, 0.98, 0.2, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     int m = dem_add_material(s, &glass);
     const double lo[3] = {0, 0, 0}, hi[3] = {0.02, 0.02, 0.02}, g[3] = {0, 0, -9.81};
     const double a[3] = {0.01, 0.01, 0.004}, b[3] = {0.0105, 0.01, 0.009};

@@ -26,6 +26,8 @@ typedef struct {
     double yield_stress; /* the particle material's limiting contact pressure (DEM_EFFECT_THORNTON_NING) [Pa] */
     double bond_strength; /* the particle material's bond strength sigma_b (DEM_EFFECT_THORNTON_NING) [Pa] */
     double rolling_friction, rolling_damping; /* the particle material's mu_r and eta_r (DEM_EFFECT_ROLLING[_SPRING]) */
+    double surface_energy, bulk_fraction, mdr_damping; /* the particle material's MDR gamma, psi_b, eta_d
+                                                          (DEM_EFFECT_MDR, with yield_stress its Y) */
 } packing_opts;
 
 void packing_defaults(packing_opts *o);

@@ -48,6 +48,12 @@ typedef struct {
     vec3 vrel;     /* velocity of a's contact point relative to b's [m/s] */
     vec3 hist;     /* the stored elastic tangential force [N] (zero when none) */
     real st;       /* the law's stored state (a law with memory; 0 for a new contact or a law without) */
+    /* A law whose state is a row of reals (MDR: dem_layout.h MDR_*; set only in its runs): */
+    DEM_CONST_GLOBAL real *row_in; /* the contact's row of the last step (0: a new contact, the row starts at zero) */
+    DEM_GLOBAL real *row_out;      /* where the new row goes (0: not kept, e.g. the walls' force sums) */
+    real *sums;                    /* where each side leaves its particle's sums (MDR: 6 per side; 0: not kept) */
+    int energy;                    /* 1: the law returns the contact's elastic energy in law_result.ela (a law whose
+                                      energy needs its row, MDR; the others' callers use law_energy_kept) */
     real dt;       /* time step [s] */
     DEM_CONST_GLOBAL real *pm;  /* the pair-table row of the two materials */
     DEM_CONST_GLOBAL real *pmi; /* the row of a's own material with itself (MC-stress at a wall) */
@@ -60,6 +66,7 @@ typedef struct {
     DEM_CONST_GLOBAL real *invvol; /* MC-stress: each particle's 1/V [1/m^3] */
     real disp_a, disp_b;           /* MC-strain: the displacements induced at this contact in a and in b (0 for a
                                       wall's b) [m] */
+    DEM_CONST_GLOBAL real *mdr_part; /* MDR: each particle's row of this step (dem_layout.h MDR_P_*) */
 } law_ctx;
 
 typedef struct {
@@ -70,6 +77,7 @@ typedef struct {
     vec3 ft;    /* its tangential part [N] (torques) */
     vec3 hist;  /* new elastic tangential force to store [N] */
     real st;    /* new law state to store (a law with memory; 0 otherwise) */
+    real ela;   /* the contact's elastic energy when law_in.energy asked (MDR) [J] */
 } law_result;
 
 /* Effective mass of two bodies given inverse masses; 0 when both are immovable (no damping then). */

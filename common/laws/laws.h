@@ -17,6 +17,7 @@
 #include "mc_stress.h"
 #include "mc_strain.h"
 #include "thornton_ning.h"
+#include "mdr.h"
 #ifdef DEM_TEST_LAWS
 #include "linear_spring.h"
 #define DEM_TEST_LAW_LIST(X) X(linear_spring, DEM_EFFECT_TEST_SPRING)
@@ -29,6 +30,7 @@
     X(mc_stress, DEM_EFFECT_MC_STRESS)                                                                               \
     X(mc_strain, DEM_EFFECT_MC_STRAIN)                                                                               \
     X(thornton_ning, DEM_EFFECT_THORNTON_NING)                                                                       \
+    X(mdr, DEM_EFFECT_MDR)                                                                                           \
     X(hertz_mindlin, DEM_EFFECT_HERTZ)
 
 /* every column a law names is one of the pair table's */

@@ -11,9 +11,8 @@
  * the reference (reference/mdr.c) and in an OpenCL kernel and compares it with the Python reference and with the
  * closed forms.
  *
- * Not here yet: MDR as a law unit of a run (law.h). A run needs per contact 2 + 2 x 11 reals (M37) where law.h keeps
- * one, per-particle sums over every contact of a particle in a fixed order, a radius that grows (M34), and the
- * search for the triplets the penalty (M40) weighs. docs/laws/mdr.md "Open for the C law" lists them.
+ * The law of a run is built on this core: laws/mdr.h (a contact), mdr_particle.h (a particle's step and the penalty's
+ * triplets); docs/laws/mdr.md "The law in a run".
  *
  * Determinism: only + - * / sqrt, floor and scaling by powers of two (frexp, ldexp: exact), fixed counts of terms and
  * Newton steps from starts the inputs fix; constants are integers or ratios of integers, rounded once to `real` in C
@@ -277,9 +276,57 @@ DEM_INLINE void mdr_surface_motion(mdr_particle *p, const mdr_side *s, real delt
         p->ddelta_bar += s->ac / p->acon0 * (delta_now - s->delta);
 }
 
-/* One side: a sphere of apparent radius p->r pressed on a rigid flat by delta (M10-M35). Returns F_MDR + F_BULK [N]
- * and the contact radius the damping sees (*a_damp); updates the side and adds to the particle's sums */
-DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle *p, real delta, real *a_damp)
+/* (M11) the mean contact pressure on the yield surface of a side whose largest MDR overlap is dm, on radius r */
+DEM_INLINE real mdr_yield_pressure(const mdr_material *m, real dm, real r)
+{
+    return m->y * ((real)7 / (real)4 * mdr_exp((real)-22 / (real)5 * dm / r) + (real)1);
+}
+
+/* (M13-M17) the indenter of a side on apparent radius r after its yield test: its shape A, B, its largest contact
+ * radius amax, the compliance dr of (M16) (0 while elastic) and the depth de of its MDR overlap (py: (M11)) */
+DEM_INLINE void mdr_side_shape(const mdr_material *m, const mdr_side *s, real r, real py, real *A, real *B,
+                               real *amax, real *dr, real *de)
+{
+    real dm = s->deltamax;
+    if (!(s->yielded > (real)0)) { /* (M13) */
+        *A = (real)4 * r, *B = (real)2 * r;
+        *de = s->delta_mdr;
+        *amax = dem_sqrt(dm * r);
+        *dr = (real)0;
+    } else { /* (M14-M17) */
+        real am = dem_sqrt((real)2 * dm * r - dm * dm + s->ca / MDR_PI);
+        real a = (real)4 * py * am / m->es;
+        *amax = am, *A = a, *B = (real)2 * am;
+        real fmax = MDR_PI * py * am * am;
+        real zr = r - (dm - a / (real)2);
+        real q = dem_sqrt(am * am + zr * zr);
+        real d = fmax / ((real)2 * MDR_PI * am * am * m->g * q) *
+                 ((real)2 * am * am * (m->nu - (real)1) + ((real)1 - (real)2 * m->nu) * zr * (q - zr)); /* (M16) */
+        *dr = d;
+        *de = (s->delta_mdr - dm + a / (real)2 + d) / ((real)1 + (real)2 * d / a); /* (M17) */
+    }
+}
+
+/* H(u) = the integral of h (M7) from 0 to u, u in [0, 1/2]: with 1 - 2u = cos t, (sin t - t cos t - sin^3 t / 3)/2,
+ * written as its series t^5/15 (1 - t^2 c_3 (1 - t^2 c_4 (...))) to t^31, c_k = (g_k/g_{k-1})/(2k (2k + 1)),
+ * g_k = (9^k - 1)/4 - 2k (exact integers): no cancellation at small t; t = 2 atan(sqrt(u/(1 - u))) as (F2) takes it.
+ * 5.6e-16 relative on [1e-12, 1/2] in double against quadrature (mpmath). */
+DEM_INLINE real mdr_hint(real u)
+{
+    const long g[14] = {16L, 176L, 1632L, 14752L, 132848L, 1195728L, 10761664L, 96855104L, 871696080L, 7845264880L,
+                        70607384096L, 635466457056L, 5719198113712L, 51472783023632L}; /* g_2 .. g_15 */
+    real t = (real)2 * mdr_atan01(dem_sqrt(u / ((real)1 - u)));
+    real t2 = t * t, q = (real)1;
+    for (int k = 15; k >= 3; k--)
+        q = (real)1 - t2 * ((real)g[k - 2] / (real)g[k - 3]) / (real)(2 * k * (2 * k + 1)) * q;
+    return t2 * t2 * t / (real)15 * q;
+}
+
+/* One side: a sphere of apparent radius p->r pressed on a rigid flat by delta (M10-M35), its contact weighted by w
+ * (M40: 1 - the penalty, at least 0; 1 for a contact no third particle obstructs). Returns F_MDR + F_BULK [N] (the
+ * caller weights the contact's force by w, (M4)) and the contact radius the damping sees (*a_damp); updates the side
+ * and adds to the particle's sums, the weighted ones weighted (M28, M32; the stored area too, (M37)) */
+DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle *p, real delta, real w, real *a_damp)
 {
     real r = p->r, ro = p->ro;
     real ddelta = delta - s->delta;
@@ -299,7 +346,7 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
     if (s->delta_mdr > s->deltamax)
         s->deltamax = s->delta_mdr;
     real dm = s->deltamax;
-    real py = m->y * ((real)7 / (real)4 * mdr_exp((real)-22 / (real)5 * dm / r) + (real)1); /* (M11) */
+    real py = mdr_yield_pressure(m, dm, r); /* (M11) */
     if (!(s->yielded > (real)0) && s->delta_mdr >= dm) { /* (M12) */
         real p_hertz = (real)4 * m->es * dem_sqrt(s->delta_mdr) / ((real)3 * MDR_PI * dem_sqrt(r));
         if (p_hertz > py) {
@@ -308,23 +355,10 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
             s->ca = MDR_PI * (dy * dy - dy * r);
         }
     }
-    real A, B, de, amax;
-    if (!(s->yielded > (real)0)) { /* (M13) */
-        A = (real)4 * r, B = (real)2 * r;
-        de = s->delta_mdr;
-        amax = dem_sqrt(dm * r);
-    } else { /* (M14-M18) */
-        amax = dem_sqrt((real)2 * dm * r - dm * dm + s->ca / MDR_PI);
-        A = (real)4 * py * amax / m->es;
-        B = (real)2 * amax;
-        real fmax = MDR_PI * py * amax * amax;
-        real zr = r - (dm - A / (real)2);
-        real q = dem_sqrt(amax * amax + zr * zr);
-        real dr = fmax / ((real)2 * MDR_PI * amax * amax * m->g * q) *
-                  ((real)2 * amax * amax * (m->nu - (real)1) + ((real)1 - (real)2 * m->nu) * zr * (q - zr)); /* (M16) */
-        de = (s->delta_mdr - dm + A / (real)2 + dr) / ((real)1 + (real)2 * dr / A); /* (M17) */
-        s->deltap = dm - (A / (real)2 + dr);                                       /* (M18) */
-    }
+    real A, B, de, amax, dr;
+    mdr_side_shape(m, s, r, py, &A, &B, &amax, &dr, &de);
+    if (s->yielded > (real)0)
+        s->deltap = dm - (A / (real)2 + dr); /* (M18) */
     real a_na = mdr_a_of_depth(de, A, B);
     real a_cap = (real)99 / (real)100 * amax;
     real a_prev = s->a_adh < a_cap ? s->a_adh : a_cap; /* (M20) */
@@ -359,21 +393,38 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
     real ac = s->yielded > (real)0 ? MDR_PI * ((real)2 * delta * r - delta * delta) + s->ca : MDR_PI * delta * r;
     if (ac < (real)0)
         ac = (real)0;
-    p->atot_sum += ac - (real)2 * MDR_PI * r * (dm + s->delta_bulk);
-    p->acon1 += ac;
-    s->ac = ac;
+    p->atot_sum += w * (ac - (real)2 * MDR_PI * r * (dm + s->delta_bulk));
+    p->acon1 += w * ac;
+    s->ac = w * ac;
     real f_bulk = s->delta_bulk > (real)0 ? p->acon0 * s->delta_bulk * m->kappa * ac / p->vgeo : (real)0;
     p->vcaps += MDR_PI / (real)3 * delta * delta * ((real)3 * r - delta);
-    real eps_c = -(f + f_bulk) * (ro - deltao) / ((real)3 * m->kappa * p->velas);
+    real eps_c = -(w * (f + f_bulk)) * (ro - deltao) / ((real)3 * m->kappa * p->velas);
     p->eps_sum += eps_c;
     if (s->delta_mdr >= dm && s->yielded > (real)0 && f > (real)0) {
         real vo = (real)4 / (real)3 * MDR_PI * ro * ro * ro;
         p->dr_num -= vo * (eps_c - s->eps_c);
-        p->dr_num -= MDR_PI * ddeltao * ((real)2 * deltao * ro - deltao * deltao + r * r - ro * ro);
-        p->dr_den += (real)2 * MDR_PI * r * (deltao + r - ro);
+        p->dr_num -= w * MDR_PI * ddeltao * ((real)2 * deltao * ro - deltao * deltao + r * r - ro * ro);
+        p->dr_den += w * (real)2 * MDR_PI * r * (deltao + r - ro);
     }
     s->eps_c = eps_c;
     return f + f_bulk;
+}
+
+/* The elastic energy a side gives back when unloaded from its state: (M7)'s force integrated along (M17)'s map from
+ * the indenter's depth de to 0, (1 + 2 dr/A) E* A^2 B / 4 H(de/A); the adhesive springs' part is not counted. *bulk
+ * gets the bulk spring's F_BULK delta_BULK / 2 (M35, with the side's stored area, which carries the contact's weight)
+ * of the particle p of this step. */
+DEM_INLINE real mdr_side_energy(const mdr_material *m, const mdr_side *s, const mdr_particle *p, real *bulk)
+{
+    real r = p->r, A, B, amax, dr, de;
+    mdr_side_shape(m, s, r, mdr_yield_pressure(m, s->deltamax, r), &A, &B, &amax, &dr, &de);
+    real u = de / A;
+    if (u > (real)1 / (real)2)
+        u = (real)1 / (real)2;
+    *bulk = s->delta_bulk > (real)0
+                ? p->acon0 * s->delta_bulk * m->kappa * s->ac / p->vgeo * s->delta_bulk / (real)2
+                : (real)0;
+    return de > (real)0 ? ((real)1 + (real)2 * dr / A) * (m->es * A * A * B / (real)4) * mdr_hint(u) : (real)0;
 }
 
 /* (M3) side k's share of a pair's apparent overlap delta: side 0 the sphere of higher id (radius r0), side 1 the
@@ -481,7 +532,7 @@ DEM_INLINE void mdr_walk(int kind, int nsteps, DEM_CONST_GLOBAL real *u, const m
                         real a;
                         if (delta >= cmax[k])
                             cmax[k] = delta;
-                        real f0 = mdr_side_force(m, &sides[k], &p1, delta, &a);
+                        real f0 = mdr_side_force(m, &sides[k], &p1, delta, (real)1, &a);
                         if (k == 0)
                             f = f0 * mdr_wall_magnifier(sides[0].deltao, p1.ro);
                     } else {
@@ -498,14 +549,14 @@ DEM_INLINE void mdr_walk(int kind, int nsteps, DEM_CONST_GLOBAL real *u, const m
                 real d1 = mdr_pair_share(1, delta, cmax[0], p2.r, p1.r, sides[0].deltap, sides[1].deltap);
                 mdr_surface_motion(&p2, &sides[0], d0);
                 mdr_surface_motion(&p1, &sides[1], d1);
-                real f0 = mdr_side_force(m, &sides[0], &p2, d0, &a0);
-                real f1 = mdr_side_force(m, &sides[1], &p1, d1, &a1);
+                real f0 = mdr_side_force(m, &sides[0], &p2, d0, (real)1, &a0);
+                real f1 = mdr_side_force(m, &sides[1], &p1, d1, (real)1, &a1);
                 fel = (f0 + f1) / (real)2; /* (M4) */
                 real meff = mass1 * mass2 / (mass1 + mass2);
                 eta = m->damp * dem_sqrt(meff * (real)2 * m->es * (a0 + a1)); /* (M38) */
             } else {
                 mdr_surface_motion(&p1, &sides[0], delta);
-                real f0 = mdr_side_force(m, &sides[0], &p1, delta, &a0);
+                real f0 = mdr_side_force(m, &sides[0], &p1, delta, (real)1, &a0);
                 fel = f0 * mdr_wall_magnifier(sides[0].deltao, p1.ro);
                 eta = m->damp * dem_sqrt(mass1 * m->es / (real)2 * a0);
             }

@@ -19,6 +19,11 @@ int dem_set_effects(dem_sim *s, unsigned effects)
     if ((effects & DEM_EFFECT_THORNTON_NING) && (effects & DEM_EFFECT_PATCHES))
         return sim_fail(s, DEM_ERR_ARG, "thornton_ning does not act at membrane patches yet (their contacts keep no "
                                         "normal history): use hertz there");
+    if ((effects & DEM_EFFECT_MDR) && (effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_THORNTON_NING)))
+        return sim_fail(s, DEM_ERR_ARG, "mdr, thornton_ning and the multi-contact laws are alternative normal laws: choose one");
+    if ((effects & DEM_EFFECT_MDR) && (effects & DEM_EFFECT_PATCHES))
+        return sim_fail(s, DEM_ERR_ARG, "mdr does not act at membrane patches (its contacts are spheres pressed on "
+                                        "flats: pairs and walls)");
     if ((effects & DEM_EFFECT_ROLLING) && !(effects & DEM_EFFECT_FRICTION))
         return sim_fail(s, DEM_ERR_ARG, "rolling resistance acts on spins, which only friction gives: list friction too");
     if ((effects & DEM_EFFECT_ROLLING) && (effects & DEM_EFFECT_PATCHES))
@@ -83,7 +88,7 @@ static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
                                                            "springs", "pressure", "bending", "patches", "riders", "constraints",
                                                            NULL, NULL, NULL, "thornton_ning", "rolling",
-                                                           "rolling_spring"};
+                                                           "rolling_spring", "mdr"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

@@ -107,6 +107,14 @@ int dem_add_material(dem_sim *s, const dem_material *m)
     if (!(m->yield_stress >= 0) || !isfinite(m->yield_stress))
         return sim_fail(s, DEM_ERR_ARG, "material %d: yield stress must be >= 0 Pa, 0 for a material that does not "
                         "yield (got %g)", s->nmat, m->yield_stress);
+    if (!(m->surface_energy >= 0) || !isfinite(m->surface_energy))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: surface energy must be >= 0 J/m^2 (got %g)", s->nmat,
+                        m->surface_energy);
+    if (!(m->bulk_fraction >= 0 && m->bulk_fraction < 1))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: bulk fraction (MDR's psi_b) must be in [0, 1) (got %g)", s->nmat,
+                        m->bulk_fraction);
+    if (!(m->mdr_damping >= 0) || !isfinite(m->mdr_damping))
+        return sim_fail(s, DEM_ERR_ARG, "material %d: MDR damping must be >= 0 (got %g)", s->nmat, m->mdr_damping);
     if (!(m->bond_strength >= 0) || !isfinite(m->bond_strength))
         return sim_fail(s, DEM_ERR_ARG, "material %d: bond strength must be >= 0 Pa, 0 for a material that does not "
                         "bond (got %g)", s->nmat, m->bond_strength);

@@ -216,8 +216,34 @@ int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
     return 0;
 }
 
+/* MDR (common/laws/mdr.h): every particle's material yields, and all of them are one MDR material (the law presses each
+ * sphere of a pair on a flat with its own modulus and averages: a mixed pair is not specified, docs/laws/mdr.md (M1)) */
+static int validate_mdr(dem_sim *s)
+{
+    if (!(s->effects & DEM_EFFECT_MDR))
+        return 0;
+    int first = -1;
+    for (int i = 0; i < s->n; i++) {
+        int k = s->mat[i];
+        const dem_material *m = &s->mats[k], *f = first >= 0 ? &s->mats[first] : m;
+        if (!(m->yield_stress > 0) || !(m->poisson < 0.5) || !isfinite(m->young))
+            return sim_fail(s, DEM_ERR_ARG, "particle %d: the mdr law needs its material %d to yield (yield_stress > 0, "
+                            "got %g Pa), to be compressible (poisson < 0.5, got %g) and not rigid", i, k,
+                            m->yield_stress, m->poisson);
+        if (m->young != f->young || m->poisson != f->poisson || m->yield_stress != f->yield_stress ||
+            m->surface_energy != f->surface_energy || m->bulk_fraction != f->bulk_fraction ||
+            m->mdr_damping != f->mdr_damping)
+            return sim_fail(s, DEM_ERR_ARG, "particle %d: the mdr law has one particle material (young, poisson, "
+                            "yield_stress, surface_energy, bulk_fraction, mdr_damping alike), and materials %d and %d "
+                            "differ", i, first, k);
+        first = k;
+    }
+    return 0;
+}
+
 int sim_validate(dem_sim *s)
 {
+    int e;
     if (s->n == 0)
         return sim_fail(s, DEM_ERR_ARG, "no particles");
     if (!(s->dt > 0) || !isfinite(s->dt))
@@ -256,6 +282,8 @@ int sim_validate(dem_sim *s)
     }
     if (s->nwalls && !(s->effects & DEM_EFFECT_WALLS))
         return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
+    if ((e = validate_mdr(s)))
+        return e;
     s->motion.particle_volume = 0;
     for (int i = 0; i < s->n; i++)
         s->motion.particle_volume += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
@@ -497,6 +525,19 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             /* a bond is as strong as the weaker of the two materials (a tool's steel, 0, bonds to nothing) */
             double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
             row[PM_TN_SIGB] = py > 0 ? M_PI * sb : 0;
+            /* MDR: the sphere's material is the one that yields (sim_validate: an MDR run has one such); at a wall
+             * (a material that does not yield) the wall's surface energy, as in LAMMPS */
+            const dem_material *sp = mb->yield_stress > 0 && !(ma->yield_stress > 0) ? mb : ma;
+            const dem_material *tool = sp == ma ? mb : ma;
+            double E = sp->young, nu = sp->poisson;
+            row[PM_MDR + 0] = E / (1 - nu * nu);
+            row[PM_MDR + 1] = E / (2 * (1 + nu));
+            row[PM_MDR + 2] = nu < 0.5 ? E / (3 * (1 - 2 * nu)) : 0;
+            row[PM_MDR + 3] = nu;
+            row[PM_MDR + 4] = sp->yield_stress;
+            row[PM_MDR + 5] = tool->yield_stress > 0 ? sp->surface_energy : tool->surface_energy;
+            row[PM_MDR + 6] = sp->bulk_fraction;
+            row[PM_MDR + 7] = sp->mdr_damping;
         }
 }
 
@@ -612,7 +653,10 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     double skin = s->cfg.skin > 0 ? s->cfg.skin : DEM_SKIN_AUTO_HI * s->rmin;
     /* rows are built to the interaction range plus the skin: with the MC-strain contact distance the range is
      * F (r_i + r_j) <= r_i + r_j + 2 (F - 1) r_max; the rebuild trigger stays at half the skin itself */
-    double reach_extra = (u->effects & DEM_MC_REACH) ? 2 * (s->mc.reach - 1) * s->rmax : 0;
+    /* MDR's radii grow to 1.5 R_o (M34; mdr_particle.h): the cells hold the grown pairs, the rows the radii of their
+     * build (a growth counts against the skin) */
+    double reach_extra = ((u->effects & DEM_MC_REACH) ? 2 * (s->mc.reach - 1) * s->rmax : 0) +
+                         ((u->effects & DEM_EFFECT_MDR) ? 1.01 * s->rmax : 0);
     double cell = 1.01 * (2 * s->rmax + skin + reach_extra);
     if (s->cfg.cell_size > cell)
         cell = s->cfg.cell_size;
@@ -718,6 +762,26 @@ static int pack_patches(dem_sim *s, dem_setup *u)
  * are stored later (host/core/reorder.c). (Their places in the input instead, which would make a sorted packing
  * (dem_sort_particles) run the bits of the unsorted one, cost that sorted run a third of its speed: docs/design.md
  * "Every sum follows the particle ids".) */
+/* Each particle's MDR row as laws/mdr_core.h mdr_particle_new makes it, in the run's precision with the same
+ * operations (its volumes (4/3) pi r^3 rounded as the kernels round them) */
+static void *pack_mdr_part(const dem_sim *s, int rs)
+{
+    size_t n = (size_t)s->n;
+    void *p = calloc(MDR_P_STRIDE * (n ? n : 1), (size_t)rs);
+    for (size_t i = 0; p && i < n; i++) {
+        if (rs == 8) {
+            double r = s->radius[i], *q = (double *)p + MDR_P_STRIDE * i;
+            double v = 4.0 / 3.0 * 0x1.921fb54442d18p+1 * r * r * r;
+            q[0] = q[1] = r, q[10] = 1, q[11] = q[12] = v;
+        } else {
+            float r = (float)s->radius[i], *q = (float *)p + MDR_P_STRIDE * i;
+            float v = 4.0f / 3.0f * (float)0x1.921fb54442d18p+1 * r * r * r;
+            q[0] = q[1] = r, q[10] = 1, q[11] = q[12] = v;
+        }
+    }
+    return p;
+}
+
 static int pack_particles(dem_sim *s, dem_setup *u, int rs)
 {
     size_t n = (size_t)s->n;
@@ -746,9 +810,10 @@ static int pack_particles(dem_sim *s, dem_setup *u, int rs)
     u->invvol = invv ? keep(s, pack_real(invv, n, rs)) : NULL;
     u->roll_inertia = iroll ? keep(s, pack_real(iroll, n, rs)) : NULL;
     u->mat = s->mat;
+    u->mdr_part = (s->effects & DEM_EFFECT_MDR) ? keep(s, pack_mdr_part(s, rs)) : NULL;
     free(invm), free(invi), free(invv), free(iroll);
     return u->hold && u->sid && u->order && u->identity && u->x && u->v && u->w && u->radius && u->invmass &&
-                   u->invinertia && u->invvol && u->roll_inertia
+                   u->invinertia && u->invvol && u->roll_inertia && (u->mdr_part || !(s->effects & DEM_EFFECT_MDR))
                ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }
 

@@ -238,8 +238,9 @@ int dem_state_arrays(dem_state *st)
     memset(&c, 0, sizeof c);
     c.n = st->n, c.nwalls = st->nwalls, c.rs = st->real_size;
     unsigned known = DEM_EFFECT_FRICTION | DEM_EFFECT_MC_STRAIN | DEM_LAW_STATE_BITS | DEM_EFFECT_ROLLING_SPRING;
-    unsigned fx = (st->has_hist ? DEM_EFFECT_FRICTION : 0u) | (st->has_mc ? DEM_EFFECT_MC_STRAIN : 0u) |
-                  (st->has_law ? DEM_LAW_STATE_BITS : 0u) | (st->has_rspring ? DEM_EFFECT_ROLLING_SPRING : 0u);
+    unsigned law = st->has_law == MDR_PAIR_STRIDE ? DEM_EFFECT_MDR : st->has_law ? DEM_EFFECT_THORNTON_NING : 0u;
+    unsigned fx = (st->has_hist ? DEM_EFFECT_FRICTION : 0u) | (st->has_mc ? DEM_EFFECT_MC_STRAIN : 0u) | law |
+                  (st->has_rspring ? DEM_EFFECT_ROLLING_SPRING : 0u);
     st->narrays = 0;
     for (int id = 0; id < BUF__COUNT && st->narrays < DEM_STATE_MAX_ARRAYS; id++) {
         if (!sb[id].name)
@@ -321,6 +322,18 @@ static int arrays_set(dem_sim *s, const dem_state *st)
             sim_buffer_from_api(s, id, a->data, buf, need);
         if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, id}, 0, buf, need, 1))
             e = sim_fail(s, DEM_ERR_DEVICE, "%s", c->err);
+        /* MDR: each particle's apparent radius is its row's (laws/mdr.h), which every contact and the rebuild read
+         * from RADIUS (mdr_begin writes it there each step) */
+        if (!e && id == BUF_MDR_PART) {
+            unsigned char *rad = calloc((size_t)s->n + 1, (size_t)c->rs);
+            for (int i = 0; rad && i < s->n; i++)
+                memcpy(rad + (size_t)i * c->rs, buf + ((size_t)MDR_P_STRIDE * i + 1) * c->rs, (size_t)c->rs);
+            if (!rad)
+                e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+            else if (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_RADIUS}, 0, rad, (size_t)s->n * c->rs, 1))
+                e = sim_fail(s, DEM_ERR_DEVICE, "%s", c->err);
+            free(rad);
+        }
         free(buf);
     }
     return e;
@@ -339,7 +352,7 @@ static int pairs_get(dem_sim *s, dem_state *st)
     int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
     unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = get_stored(s, DEM_FIELD_MC_DISP, &b, &e);
-    int law = (s->setup.effects & DEM_LAW_STATE_BITS) != 0;
+    int law = (s->setup.effects & DEM_LAW_STATE_BITS) ? DEM_LAW_PAIR_W(s->setup.effects) : 0; /* reals per pair */
     unsigned char *lst = sim_buffer_get(s, BUF_PAIR_LAW, &e);
     int rsp = (s->setup.effects & DEM_EFFECT_ROLLING_SPRING) != 0;
     unsigned char *rsb = sim_buffer_get(s, BUF_PAIR_RSPRING, &e);
@@ -361,7 +374,7 @@ static int pairs_get(dem_sim *s, dem_state *st)
         st->pair_mc_fn = calloc((size_t)(np ? np : 1), (size_t)rs);
         st->pair_rec = calloc((size_t)(np ? np : 1), PR_STRIDE * (size_t)rs);
         st->pair_mc_disp = calloc((size_t)(np ? np : 1), 2 * (size_t)rs);
-        st->pair_law = law ? calloc((size_t)(np ? np : 1), (size_t)rs) : NULL;
+        st->pair_law = law ? calloc((size_t)(np ? np : 1), (size_t)law * rs) : NULL;
         st->pair_rspring = rsp ? calloc((size_t)(np ? np : 1), 3 * (size_t)rs) : NULL;
         if (!st->pair_i || !st->pair_j || !st->pair_hist || !st->pair_mc_fn || !st->pair_rec || !st->pair_mc_disp ||
             (law && !st->pair_law) || (rsp && !st->pair_rspring))
@@ -381,7 +394,7 @@ static int pairs_get(dem_sim *s, dem_state *st)
             if (fb) /* MC-strain: the force the next step's induced displacements start from (kept per pair) */
                 memcpy((char *)st->pair_mc_fn + (size_t)np * rs, mcf + (size_t)pn * rs, (size_t)rs);
             if (law) /* the law's state (laws/law.h), kept per pair like the history */
-                memcpy((char *)st->pair_law + (size_t)np * rs, lst + (size_t)pn * rs, (size_t)rs);
+                memcpy((char *)st->pair_law + (size_t)np * law * rs, lst + (size_t)pn * law * rs, (size_t)law * rs);
             if (rsp) /* the rolling spring (rolling.h), kept per pair like the history */
                 memcpy((char *)st->pair_rspring + (size_t)np * 3 * rs, rsb + (size_t)pn * 3 * rs, 3 * (size_t)rs);
             if (fb) { /* the displacements at both ends in the last step: the network's extra (mc_strain.h) */
@@ -463,10 +476,10 @@ static int state_check(dem_sim *s, const dem_state *st)
     if (!!st->has_mc != mce)
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s MC-strain forces but this run %s mc_strain",
                         st->has_mc ? "has" : "has no", mce ? "has" : "has no");
-    int law = (fx & DEM_LAW_STATE_BITS) != 0;
-    if (!!st->has_law != law || (law && st->npairs > 0 && !st->pair_law))
-        return sim_fail(s, DEM_ERR_ARG, "the saved state %s contact law states but this run's law %s (thornton_ning "
-                        "keeps one per contact)", st->has_law ? "has" : "has no", law ? "keeps them" : "keeps none");
+    int law = (fx & DEM_LAW_STATE_BITS) ? DEM_LAW_PAIR_W(fx) : 0;
+    if (st->has_law != law || (law && st->npairs > 0 && !st->pair_law))
+        return sim_fail(s, DEM_ERR_ARG, "the saved state has contact law states of %d reals but this run's law keeps "
+                        "%d (thornton_ning keeps 1 per contact, mdr %d)", st->has_law, law, MDR_PAIR_STRIDE);
     int rsp = (fx & DEM_EFFECT_ROLLING_SPRING) != 0;
     if (!!st->has_rspring != rsp || (rsp && st->npairs > 0 && !st->pair_rspring))
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s rolling springs but this run %s rolling_spring",
@@ -523,8 +536,9 @@ static int pairs_set(dem_sim *s, const dem_state *st)
             memcpy(hist + pn * 3 * rs, (const char *)st->pair_hist + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb) /* kept per pair, like the history (mc_strain.h) */
             memcpy(mcf + pn * rs, (const char *)st->pair_mc_fn + (size_t)p * rs, (size_t)rs);
-        if (lb && (pn + 1) * rs <= lb) /* so is the law's state (state_check: there when the law keeps one) */
-            memcpy(lst + pn * rs, (const char *)st->pair_law + (size_t)p * rs, (size_t)rs);
+        size_t lw = (size_t)st->has_law * rs; /* so is the law's state (state_check: there when the law keeps one) */
+        if (lb && (pn + 1) * lw <= lb)
+            memcpy(lst + pn * lw, (const char *)st->pair_law + (size_t)p * lw, lw);
         if (sb && (pn + 1) * 3 * rs <= sb) /* and the rolling spring (state_check: there with rolling_spring) */
             memcpy(rsb + pn * 3 * rs, (const char *)st->pair_rspring + (size_t)p * 3 * rs, 3 * (size_t)rs);
         if (fb && st->pair_mc_disp && ((size_t)a + 1) * rs <= db && ((size_t)m + 1) * rs <= db) {

@@ -85,6 +85,10 @@ static int stage_contacts(dem_sim *s)
                ? sim_be_fail(s)
                : 0;
 }
+static int stage_mdr_surface(dem_sim *s)
+{
+    return dem_launch(s->ops, s->be, K_mdr_surface) ? sim_be_fail(s) : 0;
+}
 static int stage_springs(dem_sim *s)
 {
     return s->mesh.nsprings && dem_launch(s->ops, s->be, K_spring_forces) ? sim_be_fail(s) : 0;
@@ -115,6 +119,7 @@ static const struct {
 } force_stages[] = {
     {DEM_EFFECT_MC_STRESS, stage_stress_trace}, /* pass 1 of MC-stress: the traces the contacts read */
     {DEM_EFFECT_MC_STRAIN, mc_strain},          /* induced displacements (lagged or iterated forces) */
+    {DEM_EFFECT_MDR, stage_mdr_surface},        /* MDR's mean surface displacements (mdr_particle.h) */
     {0, stage_contacts},                        /* pairs once, [the walls' sums,] per-particle sums with the walls */
     {DEM_EFFECT_SPRINGS, stage_springs},        /* spring forces into the contribution channel (springs.h) */
     {DEM_EFFECT_PRESSURE, stage_pressure},      /* triangle loads into it (pressure.h) */
@@ -182,7 +187,9 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
     dem_core *c = DEM_CORE(s->be);
     c->ntrace = 0;
     s->trace.rebuild_at = s->trace.rebuild_len = 0;
-    if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, K_integrate_kick_drift))
+    if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, K_integrate_kick_drift) ||
+        ((s->effects & DEM_EFFECT_MDR) && dem_launch(s->ops, s->be, K_mdr_begin))) /* MDR's radii: before the
+                                                                                       rebuild test (mdr_particle.h) */
         return sim_be_fail(s);
     /* walls move with the particles' drift: positions at t + dt, velocity of this step */
     if (s->nwalls && (e = sim_walls_move(s)))

@@ -151,6 +151,7 @@ static int rows_from_ring(const dem_sim *s, int count, const unsigned char *term
     return 0;
 }
 
+
 int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
 {
     if (!s->run.started)
@@ -201,7 +202,8 @@ typedef struct {
     int *cnt, *start, *list;
     /* a law with memory (laws/law.h): the pairs' states by pair number (neighbor.h), where each particle's hosted
      * pairs start in that numbering, and the particle-wall slots' states; NULL otherwise */
-    double *pair_st, *wall_st;
+    double *pair_st, *wall_st; /* DEM_LAW_PAIR_W reals per pair, DEM_LAW_WALL_W per wall slot */
+    double *mdr;               /* MDR: each particle's row (dem_layout.h MDR_P_*) */
     int *own;
 } host_state;
 
@@ -249,21 +251,32 @@ static int read_law_states(dem_sim *s, host_state *hs)
 {
     int e = 0, rs = s->setup.real_size;
     dem_core *c = DEM_CORE(s->be);
-    size_t np = c->bytes[BUF_PAIR_LAW] / (size_t)rs, nw = c->bytes[BUF_WALL_LAW] / (size_t)rs;
+    unsigned fx = s->setup.effects;
+    size_t pw = (size_t)DEM_LAW_PAIR_W(fx), ww = (size_t)DEM_LAW_WALL_W(fx);
+    size_t np = c->bytes[BUF_PAIR_LAW] / ((size_t)rs * pw), nw = c->bytes[BUF_WALL_LAW] / ((size_t)rs * ww);
     unsigned char *ps = sim_buffer_get(s, BUF_PAIR_LAW, &e), *ws = sim_buffer_get(s, BUF_WALL_LAW, &e);
     unsigned char *touch = sim_buffer_get(s, BUF_TOUCH, &e);
     unsigned *mask = sim_buffer_get(s, BUF_WALL_MASK, &e);
-    hs->pair_st = calloc(np + 1, sizeof(double));
-    hs->wall_st = calloc(nw + 1, sizeof(double));
+    hs->pair_st = calloc(np * pw + 1, sizeof(double));
+    hs->wall_st = calloc(nw * ww + 1, sizeof(double));
+    if (fx & DEM_EFFECT_MDR) { /* the particles' rows, in storage order like the rest */
+        unsigned char *mp = sim_buffer_get(s, BUF_MDR_PART, &e);
+        hs->mdr = calloc((size_t)MDR_P_STRIDE * s->n + 1, sizeof(double));
+        if (!e && hs->mdr)
+            sim_widen(mp, hs->mdr, (size_t)MDR_P_STRIDE * s->n, rs);
+        else if (!e)
+            e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        free(mp);
+    }
     hs->own = e ? NULL : sim_own_starts(hs->cnt, hs->list, hs->start, s->n);
     if (!e && (!hs->pair_st || !hs->wall_st || !hs->own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (size_t p = 0; !e && p < np; p++)
         if (touch[p])
-            sim_widen(ps + p * rs, hs->pair_st + p, 1, rs);
+            sim_widen(ps + p * pw * rs, hs->pair_st + p * pw, pw, rs);
     for (size_t q = 0; !e && s->nwalls && q < nw; q++)
         if ((mask[q / (size_t)s->nwalls] >> (q % (size_t)s->nwalls)) & 1u)
-            sim_widen(ws + q * rs, hs->wall_st + q, 1, rs);
+            sim_widen(ws + q * ww * rs, hs->wall_st + q * ww, ww, rs);
     free(ps), free(ws), free(touch), free(mask);
     return e;
 }
@@ -291,23 +304,30 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
 {
     const double *x = hs->x;
     const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */
-    double r = s->radius[i];
     unsigned fx = s->setup.effects;
+    int mdr = (fx & DEM_EFFECT_MDR) != 0; /* MDR: the apparent radii, and each contact's energy from its row */
+    double r = mdr ? hs->mdr[MDR_P_STRIDE * i + 1] : s->radius[i];
     for (int k = 0; k < hs->cnt[i]; k++) {
         int j = hs->list[hs->start[i] + k];
         if (sid[j] < sid[i])
             continue;
+        double rj = mdr ? hs->mdr[MDR_P_STRIDE * j + 1] : s->radius[j];
         double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
-        double delta = r + s->radius[j] - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        double delta = r + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (delta > 0) {
-            double rs = r * s->radius[j] / (r + s->radius[j]), row[PM_STRIDE];
+            double rs = r * rj / (r + rj), row[PM_STRIDE];
             pair_row(s, s->mat[i], s->mat[j], row);
             double st = 0;
-            if (hs->pair_st) {
-                int p = row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k);
-                st = p >= 0 ? hs->pair_st[p] : 0;
-            }
-            en->elastic += law_energy(fx, row, rs, delta, st);
+            int p = hs->pair_st ? row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k) : -1;
+            if (p >= 0)
+                st = hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)];
+            if (mdr && p >= 0) { /* side 0 is j, of the higher stable id (laws/mdr.h) */
+                mdr_material m = mdr_material_from(row + PM_MDR);
+                mdr_particle p0 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * j);
+                mdr_particle p1 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
+                en->elastic += mdr_pair_row_energy(&m, hs->pair_st + (size_t)p * MDR_PAIR_STRIDE, &p0, &p1);
+            } else if (!mdr)
+                en->elastic += law_energy(fx, row, rs, delta, st);
             en->contacts++;
         }
     }
@@ -319,7 +339,13 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         if (delta > 0) {
             double row[PM_STRIDE];
             pair_row(s, s->mat[i], wl->material, row);
-            en->elastic += law_energy(fx, row, r, delta, hs->wall_st ? hs->wall_st[(size_t)i * s->nwalls + k] : 0);
+            size_t slot = ((size_t)i * s->nwalls + k) * DEM_LAW_WALL_W(fx);
+            if (mdr) {
+                mdr_material m = mdr_material_from(row + PM_MDR);
+                mdr_particle p = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
+                en->elastic += mdr_wall_row_energy(&m, hs->wall_st + slot, &p);
+            } else
+                en->elastic += law_energy(fx, row, r, delta, hs->wall_st ? hs->wall_st[slot] : 0);
             en->wall_contacts++;
         }
     }
@@ -359,6 +385,6 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
     if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
         e = patch_energy(s, hs.x, en);
     en->total = en->kinetic + en->elastic + en->potential;
-    free(hs.pair_st), free(hs.wall_st), free(hs.own);
+    free(hs.pair_st), free(hs.wall_st), free(hs.own), free(hs.mdr);
     return e;
 }

@@ -94,18 +94,20 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
          * copy from them, the flags' copy at the next commit (above) */
         static const int grown[] = {BUF_PAIR_HOST,   BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR,
                                     BUF_TOUCH,       BUF_PAIR_HIST,  BUF_PAIR_ELA,  BUF_PAIR_MC_FN,
-                                    BUF_PAIR_LAW,    BUF_PAIR_ROLL,  BUF_PAIR_RSPRING};
+                                    BUF_PAIR_LAW,    BUF_PAIR_ROLL,  BUF_PAIR_RSPRING, BUF_PAIR_MDR_SUM};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;
     }
     c->si[SI_NPAIRS] = total;
     dem_bufref x = {TABLE_ONE, BUF_X}, xb = {TABLE_ONE, BUF_X_BUILD};
+    dem_bufref rad = {TABLE_ONE, BUF_RADIUS}, rb = {TABLE_ONE, BUF_R_BUILD};
     /* the buffers laid out like the current rows but written before they are read (dem_buffers.h: MAXC, MC-strain's
      * displacements) follow the new rows' capacity; grown only, as the two sets' capacities may alternate */
     return dem_launch(o, b, K_pair_index) ||
            (grow && o->alloc(b, TABLE_ONE, 0, BUF_PAIR, dem_buffer_bytes(c, BUF_PAIR), NULL)) ||
            (dem_buffer_bytes(c, BUF_MC_DISP) > c->bytes[BUF_MC_DISP] &&
             o->alloc(b, TABLE_ONE, 0, BUF_MC_DISP, dem_buffer_bytes(c, BUF_MC_DISP), NULL)) ||
-           o->copy(b, x, xb, c->bytes[BUF_X]);
+           o->copy(b, x, xb, c->bytes[BUF_X]) ||
+           (c->bytes[BUF_R_BUILD] && o->copy(b, rad, rb, c->bytes[BUF_R_BUILD])); /* MDR's radii (mdr_particle.h) */
 }

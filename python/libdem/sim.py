@@ -38,7 +38,8 @@ class Material(ctypes.Structure):
                 ("restitution", ctypes.c_double), ("friction", ctypes.c_double), ("mc_beta", ctypes.c_double),
                 ("mc_gamma", ctypes.c_double), ("yield_stress", ctypes.c_double),
                 ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double),
-                ("rolling_damping", ctypes.c_double)]
+                ("rolling_damping", ctypes.c_double), ("surface_energy", ctypes.c_double),
+                ("bulk_fraction", ctypes.c_double), ("mdr_damping", ctypes.c_double)]
 
 
 class MaterialPair(ctypes.Structure):
@@ -284,13 +285,15 @@ class Sim:
 
     # ---- set-up ----
     def add_material(self, density, young, poisson, restitution, friction, mc_beta=0.0, mc_gamma=0.0,
-                     yield_stress=0.0, rolling_friction=0.0, bond_strength=0.0, rolling_damping=0.0):
+                     yield_stress=0.0, rolling_friction=0.0, bond_strength=0.0, rolling_damping=0.0,
+                     surface_energy=0.0, bulk_fraction=0.0, mdr_damping=0.0):
         """A material [kg/m^3, Pa, -, -, -]; returns its id. young=float('inf'): rigid (walls only). yield_stress
         [Pa]: the limiting contact pressure of the thornton_ning law (0: does not yield); rolling_friction: mu_r of
         the rolling effect; bond_strength [Pa]: sigma_b of the bonds its yielded contacts form (thornton_ning);
-        rolling_damping: eta_r of the rolling_spring effect's dashpot."""
+        rolling_damping: eta_r of the rolling_spring effect's dashpot; surface_energy [J/m^2], bulk_fraction
+        (psi_b) and mdr_damping (eta_d): the mdr law's (yield_stress is then its Y)."""
         m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma, yield_stress, rolling_friction,
-                     bond_strength, rolling_damping)
+                     bond_strength, rolling_damping, surface_energy, bulk_fraction, mdr_damping)
         return self._check(self._lib.dem_add_material(self._s, ctypes.byref(m)))
 
     def set_material_pair(self, a, b, friction=float("nan"), restitution=float("nan"), rolling_friction=float("nan"),

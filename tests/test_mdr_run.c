@@ -1,0 +1,594 @@
+/* test_mdr_run.c - the MDR law in a run (common/laws/mdr.h, common/mdr_particle.h) against its one-contact core
+ * walked along the same path (common/laws/mdr_core.h mdr_walk, which tests/test_mdr.c checks against the Python
+ * reference of docs/laws/mdr.md and `make peer-mdr` against LAMMPS itself):
+ *   - two spheres (equal, and 0.5/0.3 mm with adhesion) on held velocities loaded, unloaded, reloaded and pulled
+ *     apart; the velocities reversed between phases through dem_state_get/dem_state_set (so each phase also starts
+ *     from a restored state);
+ *   - a sphere on held velocity pressed on a plane wall, with adhesion, the same phases;
+ *   - a fixed sphere between six planes closing in (Part II: the bulk response, the mean surface displacement and the
+ *     radius update act), its first plane's force;
+ *   - an MDR packing under a moving lid: the OpenCL run equal to the reference bit for bit, skins, storage order and
+ *     a restart bit for bit.
+ * The walk is fed the approach the run's own positions give at each step, so the two see the same overlaps; the
+ * force on the run's first body is compared with the walk's at every step (fp64 to 1e-9 of the path's peak force,
+ * fp32 to 2e-3), the apparent radius at the end, and on OpenCL every step's force bit for bit with the reference's. */
+#include "test_util.h"
+#include "ref_kernels.h" /* dem_mdr_walk_f32/_f64 */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { WALK_PAIR = 0, WALK_WALL = 1, WALK_BOX = 2 }; /* mdr_core.h's MDR_WALK_* */
+
+/* Zunker et al.'s MCC as make peer-mdr runs it (docs/laws/mdr.md "Against LAMMPS") */
+#define E_MCC 5e9
+#define NU_MCC 0.4
+#define Y_MCC 1.9e8
+#define RHO_MCC 1560.0
+#define PSI_B 0.5
+#define ETA_D 0.2
+#define R1 5e-4
+#define DT 1e-6
+
+static dem_material mcc(double gamma)
+{
+    dem_material m = {RHO_MCC, E_MCC, NU_MCC, 1.0, 0.0, 0.0, 0.0, Y_MCC};
+    m.surface_energy = gamma, m.bulk_fraction = PSI_B, m.mdr_damping = ETA_D;
+    return m;
+}
+
+/* The walk's 8 material reals (mdr_material_from's order) in double */
+static void walk_material(double gamma, double mat[8])
+{
+    mat[0] = E_MCC / (1 - NU_MCC * NU_MCC), mat[1] = E_MCC / (2 * (1 + NU_MCC)), mat[2] = E_MCC / (3 * (1 - 2 * NU_MCC));
+    mat[3] = NU_MCC, mat[4] = Y_MCC, mat[5] = gamma, mat[6] = PSI_B, mat[7] = ETA_D;
+}
+
+static double mass_of(double r) { return RHO_MCC * 4.0 / 3.0 * M_PI * r * r * r; }
+
+/* The path: phases of held approach speed (m/s, negative: apart) and their steps */
+typedef struct {
+    int nphase;
+    double speed[4];
+    long steps[4];
+} path;
+
+/* The run's side of one case: per step the approach u (from positions), the normal force on the first body, and the
+ * raw force bits (to compare backends); and the first body's apparent radius at the end */
+typedef struct {
+    long n;
+    double *u, *f;
+    double r_end;
+    unsigned char *bits; /* 3 reals of particle 0's force per step, the run's precision */
+} run_out;
+
+/* Reverses the held velocities (every particle's v negated, then scaled to the next phase's speed) through the state */
+static void set_speed(dem_sim *s, double old_speed, double new_speed)
+{
+    dem_state st;
+    if (dem_state_get(s, &st))
+        fail_msg("dem_state_get: %s", dem_error(s));
+    dem_state_array *v = dem_state_find(&st, "v");
+    assert_non_null(v);
+    for (size_t k = 0; k < v->count; k++) {
+        if (st.real_size == 8)
+            ((double *)v->data)[k] *= new_speed / old_speed;
+        else
+            ((float *)v->data)[k] = (float)(((float *)v->data)[k] * (new_speed / old_speed));
+    }
+    if (dem_state_set(s, &st))
+        fail_msg("dem_state_set: %s", dem_error(s));
+    dem_state_free(&st);
+}
+
+/* kind WALK_PAIR: spheres of radii r1, r2 touching at t = 0 on the x axis, 0 at -r1 moving +v/2 and 1 at +r2 moving
+ * -v/2; WALK_WALL: sphere r1 at x = r1 moving -v onto the plane x = 0 */
+static run_out run_path(const backend_case *bc, int kind, double r1, double r2, double gamma, const path *pa)
+{
+    dem_sim *s = dem_create();
+    dem_material m = mcc(gamma), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
+    steel.surface_energy = gamma; /* a wall takes its material's surface energy (as LAMMPS) */
+    int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
+    double v0 = pa->speed[0];
+    if (kind == WALK_PAIR) {
+        dem_add_particle(s, (double[3]){-r1, 0, 0}, (double[3]){0.5 * v0, 0, 0}, r1, mat);
+        dem_add_particle(s, (double[3]){r2, 0, 0}, (double[3]){-0.5 * v0, 0, 0}, r2, mat);
+        dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
+        dem_set_particle_flags(s, 1, DEM_PARTICLE_HOLD_V);
+    } else {
+        dem_add_particle(s, (double[3]){r1, 0, 0}, (double[3]){-v0, 0, 0}, r1, mat);
+        dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
+        dem_wall w = {0};
+        w.kind = DEM_WALL_PLANE, w.normal[0] = 1, w.material = wmat;
+        if (dem_add_wall(s, &w) < 0)
+            fail_msg("%s", dem_error(s));
+    }
+    dem_set_domain(s, (double[3]){-8 * r1, -8 * r1, -8 * r1}, (double[3]){8 * r1, 8 * r1, 8 * r1});
+    unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_DAMPING | DEM_EFFECT_MDR | DEM_EFFECT_CONSTRAINTS |
+                  (kind == WALK_WALL ? DEM_EFFECT_WALLS : 0);
+    if (dem_set_effects(s, fx) || dem_set_dt(s, DT))
+        fail_msg("%s", dem_error(s));
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.force_dt = 1; /* LAMMPS's step of make peer-mdr: above half the Rayleigh time, harmless on held velocities */
+    start_or_fail(s, &c);
+    run_out o;
+    o.n = 0;
+    for (int k = 0; k < pa->nphase; k++)
+        o.n += pa->steps[k];
+    o.u = calloc((size_t)o.n + 1, sizeof(double));
+    o.f = calloc((size_t)o.n + 1, sizeof(double));
+    o.bits = calloc((size_t)o.n + 1, 3 * (size_t)bc->precision);
+    assert_true(o.u && o.f && o.bits);
+    double x[6], f[6];
+    long step = 0;
+    for (int ph = 0; ph < pa->nphase; ph++) {
+        if (ph)
+            set_speed(s, pa->speed[ph - 1], pa->speed[ph]);
+        for (long k = 0; k < pa->steps[ph]; k++) {
+            step_or_fail(s, 1);
+            step++;
+            if (dem_get_field(s, DEM_FIELD_X, x) || dem_get_field(s, DEM_FIELD_FORCE, f) ||
+                dem_get_raw(s, DEM_FIELD_FORCE, o.bits + (size_t)step * 3 * bc->precision, 3 * (size_t)bc->precision))
+                fail_msg("%s", dem_error(s));
+            /* the approach the walk takes: R1 + R2 - d (a pair), R1 - d (a wall) */
+            o.u[step] = kind == WALK_PAIR ? (r1 + r2) - (x[3] - x[0]) : r1 - x[0];
+            o.f[step] = kind == WALK_PAIR ? -f[0] : f[0]; /* the normal force, positive when repulsive */
+        }
+    }
+    dem_state st;
+    if (dem_state_get(s, &st))
+        fail_msg("%s", dem_error(s));
+    dem_state_array *mp = dem_state_find(&st, "mdr_particle");
+    assert_non_null(mp);
+    o.r_end = st.real_size == 8 ? ((double *)mp->data)[1] : ((float *)mp->data)[1];
+    dem_state_free(&st);
+    dem_destroy(s);
+    return o;
+}
+
+/* The walk of the same approach in the reference of the run's precision: its force on the first body per step and
+ * the first sphere's radius at the end */
+static double *walk_of(const backend_case *bc, int kind, double r1, double r2, double gamma, const run_out *o,
+                       double *r_end)
+{
+    size_t m = (size_t)o->n + 1;
+    double mat[8], *out = malloc(4 * m * sizeof(double));
+    walk_material(gamma, mat);
+    assert_non_null(out);
+    if (bc->precision == DEM_FP64) {
+        dem_mdr_walk_f64(kind, (int)o->n, o->u, mat, r1, r2, mass_of(r1), mass_of(r2), DT, out, out + m, out + 2 * m,
+                         out + 3 * m);
+    } else {
+        float *uf = malloc(m * sizeof(float)), matf[8], *b = malloc(4 * m * sizeof(float));
+        assert_true(uf && b);
+        for (size_t k = 0; k < m; k++)
+            uf[k] = (float)o->u[k];
+        for (int k = 0; k < 8; k++)
+            matf[k] = (float)mat[k];
+        dem_mdr_walk_f32(kind, (int)o->n, uf, matf, (float)r1, (float)r2, (float)mass_of(r1), (float)mass_of(r2),
+                         (float)DT, b, b + m, b + 2 * m, b + 3 * m);
+        for (size_t k = 0; k < 4 * m; k++)
+            out[k] = b[k];
+        free(uf), free(b);
+    }
+    *r_end = out[m + o->n];
+    return out + 3 * m; /* the forces (the block starts 3 m before) */
+}
+
+static void path_case(int kind, double r1, double r2, double gamma, const path *pa, const char *what)
+{
+    unsigned char *ref_bits[2] = {NULL, NULL};
+    FOR_EACH_BACKEND(bc) {
+        run_out o = run_path(bc, kind, r1, r2, gamma, pa);
+        double r_walk;
+        double *fw = walk_of(bc, kind, r1, r2, gamma, &o, &r_walk);
+        double peak = 0, worst = 0, least = 0;
+        long at = 0;
+        for (long k = 0; k <= o.n; k++) {
+            peak = fmax(peak, fabs(fw[k]));
+            least = fmin(least, fw[k]);
+        }
+        for (long k = 0; k <= o.n; k++)
+            if (fabs(o.f[k] - fw[k]) > worst)
+                worst = fabs(o.f[k] - fw[k]), at = k;
+        double tol = bc->precision == DEM_FP64 ? 1e-9 : 2e-3;
+        printf("  %s, %s: %ld steps, peak %.4g N, least %.4g N, largest |F_run - F_walk| %.3g of the peak (step "
+               "%ld), radius %.9g mm (walk %.9g)\n",
+               what, bc->name, o.n, peak, least, worst / peak, at, o.r_end * 1e3, r_walk * 1e3);
+        if (!(peak > 0) || !(worst <= tol * peak))
+            fail_msg("%s, %s: the run's force departs from the walk's by %g of the peak %g N at step %ld (run %.17g, "
+                     "walk %.17g)",
+                     what, bc->name, worst / peak, peak, at, o.f[at], fw[at]);
+        if (!(fabs(o.r_end - r_walk) <= (bc->precision == DEM_FP64 ? 1e-12 : 1e-5) * r1) || !(r_walk > r1))
+            fail_msg("%s, %s: apparent radius %.17g m at the end, the walk's %.17g m (grown from %g)", what, bc->name,
+                     o.r_end, r_walk, r1);
+        if (gamma > 0 && !(least < -5e-4 * peak))
+            fail_msg("%s, %s: adhesion never pulled (least force %g N of a peak %g N)", what, bc->name, least, peak);
+        int p = bc->precision == DEM_FP64 ? 0 : 1;
+        size_t bytes = ((size_t)o.n + 1) * 3 * (size_t)bc->precision;
+        if (bc->backend == DEM_BACKEND_REFERENCE)
+            ref_bits[p] = o.bits, o.bits = NULL;
+        else if (!ref_bits[p] || memcmp(ref_bits[p], o.bits, bytes))
+            fail_msg("%s, %s: the force is not the reference's bit for bit", what, bc->name);
+        free(o.u), free(o.f), free(o.bits), free(fw - 3 * ((size_t)o.n + 1));
+    }
+    free(ref_bits[0]), free(ref_bits[1]);
+}
+
+/* Two equal spheres of 0.5 mm: 0.1 m/s approach, loaded to about 9 % of R per sphere, unloaded past zero force, reloaded
+ * deeper and pulled apart; without adhesion */
+static void test_pair_path(void **state)
+{
+    (void)state;
+    path pa = {4, {0.1, -0.1, 0.1, -0.1}, {900, 500, 900, 1400}};
+    path_case(WALK_PAIR, R1, R1, 0.0, &pa, "pair 0.5/0.5 mm");
+}
+
+/* 0.5 and 0.3 mm with adhesion (2 J/m^2): the flat off the middle (M3), the tensile branch */
+static void test_unequal_adhesive_pair(void **state)
+{
+    (void)state;
+    path pa = {4, {0.1, -0.1, 0.1, -0.1}, {700, 400, 700, 1200}};
+    path_case(WALK_PAIR, R1, 3e-4, 2.0, &pa, "pair 0.5/0.3 mm, 2 J/m^2");
+}
+
+/* A sphere on a plane wall with adhesion (50 J/m^2) */
+static void test_wall_path(void **state)
+{
+    (void)state;
+    path pa = {4, {0.05, -0.05, 0.05, -0.05}, {900, 500, 900, 1500}};
+    path_case(WALK_WALL, R1, R1, 50.0, &pa, "wall, 50 J/m^2");
+}
+
+/* A fixed sphere of 0.5 mm between six planes that close in together at 0.1 m/s: loaded to 20 % of R, unloaded to 12 %,
+ * reloaded to 24 % and unloaded out of contact, without damping, as the walk's box (Part II's bulk response sets in
+ * below psi_b = 0.5, near 19 %). The walk is fed the run's first plane's approach; its force is the first plane's. */
+static void test_box(void **state)
+{
+    (void)state;
+    double v = 0.1, rt[4] = {0.2, 0.08, 0.12, 0.26}; /* each phase's travel, in R */
+    long steps[4];
+    for (int k = 0; k < 4; k++)
+        steps[k] = lround(rt[k] * R1 / (v * DT));
+    unsigned char *ref_bits[2] = {NULL, NULL};
+    FOR_EACH_BACKEND(bc) {
+        dem_sim *s = dem_create();
+        dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
+        int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
+        dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
+        dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
+        for (int k = 0; k < 6; k++) { /* -x, +x, -y, +y, -z, +z: each touching, its normal inwards */
+            dem_wall w = {0};
+            int ax = k / 2, sg = k % 2 ? 1 : -1;
+            w.kind = DEM_WALL_PLANE, w.material = wmat;
+            w.point[ax] = sg * R1, w.normal[ax] = -sg;
+            dem_stage st[4];
+            for (int q = 0; q < 4; q++) {
+                memset(&st[q], 0, sizeof st[q]);
+                st[q].duration = ((double)steps[q] - 0.5) * DT; /* whole steps: the walk is fed positions anyway */
+                st[q].velocity[ax] = (q % 2 ? 1 : -1) * sg * v;
+            }
+            w.nstages = 4;
+            int id = dem_add_wall(s, &w);
+            if (id < 0 || dem_set_wall_motion(s, id, 4, st))
+                fail_msg("%s", dem_error(s));
+        }
+        dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
+        if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS) || dem_set_dt(s, DT))
+            fail_msg("%s", dem_error(s));
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        c.force_dt = 1;
+        start_or_fail(s, &c);
+        long n = steps[0] + steps[1] + steps[2] + steps[3];
+        double *u = calloc((size_t)n + 1, sizeof(double)), *f = calloc((size_t)n + 1, sizeof(double));
+        size_t rs = (size_t)bc->precision;
+        unsigned char *bits = calloc((size_t)n + 1, 3 * rs);
+        assert_true(u && f && bits);
+        for (long k = 1; k <= n; k++) {
+            double p[3], wf[3 * 6];
+            step_or_fail(s, 1);
+            if (dem_wall_position(s, 0, p) || dem_get_field(s, DEM_FIELD_WALL_FORCE, wf) ||
+                dem_get_raw(s, DEM_FIELD_WALL_FORCE, bits + (size_t)k * 3 * rs, 3 * rs))
+                fail_msg("%s", dem_error(s));
+            u[k] = R1 + p[0];  /* plane 0 at x = -(R - u) */
+            f[k] = -wf[0];     /* the -x plane receives -F along x */
+        }
+        size_t m1 = (size_t)n + 1;
+        double mat8[8], *out = malloc(4 * m1 * sizeof(double));
+        walk_material(0.0, mat8);
+        mat8[7] = 0; /* the walk's box has no damping (and the run none: no damping effect) */
+        if (bc->precision == DEM_FP64) {
+            dem_mdr_walk_f64(WALK_BOX, (int)n, u, mat8, R1, R1, mass_of(R1), mass_of(R1), DT, out, out + m1,
+                             out + 2 * m1, out + 3 * m1);
+        } else {
+            float *uf = malloc(m1 * sizeof(float)), mf[8], *b = malloc(4 * m1 * sizeof(float));
+            for (size_t k = 0; k < m1; k++)
+                uf[k] = (float)u[k];
+            for (int k = 0; k < 8; k++)
+                mf[k] = (float)mat8[k];
+            dem_mdr_walk_f32(WALK_BOX, (int)n, uf, mf, (float)R1, (float)R1, (float)mass_of(R1), (float)mass_of(R1),
+                             (float)DT, b, b + m1, b + 2 * m1, b + 3 * m1);
+            for (size_t k = 0; k < 4 * m1; k++)
+                out[k] = b[k];
+            free(uf), free(b);
+        }
+        double *fw = out + 3 * m1, *psi = out + 2 * m1, peak = 0, worst = 0, psi_min = 1;
+        long at = 0;
+        for (long k = 0; k <= n; k++) {
+            peak = fmax(peak, fabs(fw[k]));
+            psi_min = fmin(psi_min, psi[k]);
+            if (fabs(f[k] - fw[k]) > worst)
+                worst = fabs(f[k] - fw[k]), at = k;
+        }
+        dem_state st;
+        if (dem_state_get(s, &st))
+            fail_msg("%s", dem_error(s));
+        dem_state_array *mp = dem_state_find(&st, "mdr_particle");
+        assert_non_null(mp);
+        double r_end = st.real_size == 8 ? ((double *)mp->data)[1] : ((float *)mp->data)[1];
+        dem_state_free(&st);
+        printf("  six planes, %s: %ld steps, peak %.4g N, least psi %.3f, largest |F_run - F_walk| %.3g of the peak "
+               "(step %ld), radius %.9g mm (walk %.9g)\n",
+               bc->name, n, peak, psi_min, worst / peak, at, r_end * 1e3, out[m1 + n] * 1e3);
+        double tol = bc->precision == DEM_FP64 ? 1e-9 : 2e-3;
+        if (!(peak > 0) || !(worst <= tol * peak))
+            fail_msg("six planes, %s: the run's force departs from the walk's by %g of the peak %g N at step %ld (run "
+                     "%.17g, walk %.17g)", bc->name, worst / peak, peak, at, f[at], fw[at]);
+        if (!(psi_min < PSI_B))
+            fail_msg("six planes, %s: psi stayed at %g or above: Part II's bulk response was not reached", bc->name,
+                     psi_min);
+        if (!(fabs(r_end - out[m1 + n]) <= (bc->precision == DEM_FP64 ? 1e-12 : 1e-5) * R1))
+            fail_msg("six planes, %s: apparent radius %.17g m, the walk's %.17g m", bc->name, r_end, out[m1 + n]);
+        int pp = bc->precision == DEM_FP64 ? 0 : 1;
+        if (bc->backend == DEM_BACKEND_REFERENCE)
+            ref_bits[pp] = bits, bits = NULL;
+        else if (!ref_bits[pp] || memcmp(ref_bits[pp], bits, m1 * 3 * rs))
+            fail_msg("six planes, %s: the wall force is not the reference's bit for bit", bc->name);
+        free(u), free(f), free(bits), free(out);
+        dem_destroy(s);
+    }
+    free(ref_bits[0]), free(ref_bits[1]);
+}
+
+/* The elastic energy (laws/mdr.h, mdr_core.h mdr_side_energy) against the work of the run's own force, by the
+ * trapezoid rule over its steps: two spheres of 0.5 mm on held velocities, no damping, no adhesion. Loading a material
+ * that does not yield (Y = 100 GPa): the energy at every step is the work done so far. Loading MCC past yield, then
+ * unloading: the energy at each unloading step is the work the contact gives back from there to where its force
+ * ends, and far less than the work put in (the rest went into the dent). Each step's energy from the device's sampled
+ * row (contact_pairs) and from the host (dem_energy, from the stored rows) alike. */
+static void energy_path(const backend_case *bc, double y, long load, long unload, double *worst_rel, double *kept)
+{
+    dem_sim *s = dem_create();
+    dem_material m = mcc(0.0);
+    m.yield_stress = y;
+    int mat = dem_add_material(s, &m);
+    double v = 0.1;
+    dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0.5 * v, 0, 0}, R1, mat);
+    dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R1, mat);
+    dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
+    dem_set_particle_flags(s, 1, DEM_PARTICLE_HOLD_V);
+    dem_set_domain(s, (double[3]){-8 * R1, -8 * R1, -8 * R1}, (double[3]){8 * R1, 8 * R1, 8 * R1});
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_CONSTRAINTS) || dem_set_dt(s, DT))
+        fail_msg("%s", dem_error(s));
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.force_dt = 1;
+    start_or_fail(s, &c);
+    long n = load + unload;
+    double *u = calloc((size_t)n + 1, sizeof(double)), *f = calloc((size_t)n + 1, sizeof(double));
+    double *e = calloc((size_t)n + 1, sizeof(double));
+    assert_true(u && f && e);
+    unsigned char want = 1;
+    double hd = 0, emax = 0;
+    long hk = 0;
+    for (long k = 1; k <= n; k++) {
+        if (k == load + 1)
+            set_speed(s, v, -v);
+        dem_sample row;
+        dem_energy_t host;
+        double x[6], fo[6];
+        if (dem_step_sampled(s, 1, &want, &row) || dem_energy(s, &host) || dem_get_field(s, DEM_FIELD_X, x) ||
+            dem_get_field(s, DEM_FIELD_FORCE, fo))
+            fail_msg("%s", dem_error(s));
+        u[k] = 2 * R1 - (x[3] - x[0]), f[k] = -fo[0], e[k] = row.energy.elastic;
+        if (fabs(host.elastic - e[k]) > hd)
+            hd = fabs(host.elastic - e[k]), hk = k;
+        emax = fmax(emax, e[k]);
+    }
+    /* the host's energy (in double from the stored state) and the device row's (the run's precision) */
+    if (!(hd <= (bc->precision == DEM_FP64 ? 1e-13 : 1e-5) * emax))
+        fail_msg("%s: step %ld, the host's energy and the device row's differ by %g J (largest energy %g J)", bc->name,
+                 hk, hd, emax);
+    /* the work from step a to step b, trapezoids */
+    double worst = 0;
+    if (unload == 0) {
+        double w = 0;
+        for (long k = 1; k <= n; k++) {
+            w += 0.5 * (f[k] + f[k - 1]) * (u[k] - u[k - 1]);
+            if (k > 50)
+                worst = fmax(worst, fabs(e[k] - w) / e[n]);
+        }
+        *kept = w;
+    } else {
+        long end = load; /* the last unloading step still carrying a force */
+        while (end < n && f[end + 1] > 0)
+            end++;
+        assert_true(end > load + 10 && end < n);
+        /* E(a) - E(end) against the work between them, from the second step of the unloading on: the first starts with
+         * the radius the last loading step grew (M34), which changes the curve once */
+        for (long a = load + 2; a < end - 10; a += 10) {
+            double w = 0;
+            for (long k = a + 1; k <= end; k++)
+                w += 0.5 * (f[k] + f[k - 1]) * (u[k - 1] - u[k]);
+            worst = fmax(worst, fabs(e[a] - e[end] - w) / e[load]);
+        }
+        /* and what is left at the last step with a force is what its force gives along the curve's last steps:
+         * F ~ (delta - delta_p)^(3/2) near its end, so E ~ 2/5 F (delta - delta_p) there, delta - delta_p from the
+         * last two forces */
+        double q = pow(f[end - 1] / f[end], 2.0 / 3.0), dp = (u[end] * q - u[end - 1]) / (q - 1);
+        worst = fmax(worst, fabs(e[end] - 0.4 * f[end] * (u[end] - dp)) / e[load]);
+        double put = 0;
+        for (long k = 1; k <= load; k++)
+            put += 0.5 * (f[k] + f[k - 1]) * (u[k] - u[k - 1]);
+        *kept = e[load] / put;
+    }
+    *worst_rel = worst;
+    free(u), free(f), free(e);
+    dem_destroy(s);
+}
+
+static void test_energy(void **state)
+{
+    (void)state;
+    FOR_EACH_BACKEND(bc) {
+        double worst, kept;
+        energy_path(bc, 1e11, 900, 0, &worst, &kept);
+        printf("  energy, %s, elastic loading: work %.6g J, largest |E - W| %.3g of it\n", bc->name, kept, worst);
+        double tol = bc->precision == DEM_FP64 ? 1e-5 : 1e-3;
+        if (!(worst <= tol))
+            fail_msg("%s: an elastic contact's energy departs from the work put in by %g of it", bc->name, worst);
+        energy_path(bc, Y_MCC, 900, 600, &worst, &kept);
+        printf("  energy, %s, unloading after yield: largest |E - W_back| %.3g of E at the turn, which is %.3g of "
+               "the work put in\n", bc->name, worst, kept);
+        if (!(worst <= 10 * tol) || !(kept > 0.01 && kept < 0.5))
+            fail_msg("%s: a yielded contact's energy departs from the work it gives back by %g (it keeps %g of the "
+                     "work put in)", bc->name, worst, kept);
+    }
+}
+
+/* Fixed spheres A, B, C of 0.5 mm at t = 0 (the first force pass): B at the origin, A and C at 0.6 mm from it, the
+ * angle at B 95 degrees, so that all three overlap pairwise and A-C, the farthest apart, runs through B. (M40): the
+ * pair A-C carries the penalty 1/(1 + exp(-50 (alpha/pi - 1/2))) = 0.80, typed in here with the C library's acos and
+ * exp, the other two none; and the force on A is A-B's alone plus (1 - p) times A-C's alone (runs of two spheres). */
+static dem_sim *penalty_run(const backend_case *bc, int with_b, int with_c, double f[3], dem_state *st)
+{
+    double d = 6e-4, half = 95.0 / 2 * M_PI / 180;
+    dem_sim *s = dem_create();
+    dem_material m = mcc(0.0);
+    int mat = dem_add_material(s, &m), id = 0;
+    double xa[3] = {-d * sin(half), d * cos(half), 0}, xc[3] = {d * sin(half), d * cos(half), 0};
+    dem_add_particle(s, xa, (double[3]){0, 0, 0}, R1, mat);
+    if (with_b)
+        dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
+    if (with_c)
+        dem_add_particle(s, xc, (double[3]){0, 0, 0}, R1, mat);
+    for (id = 0; id < dem_count(s); id++)
+        dem_set_particle_flags(s, id, DEM_PARTICLE_FIXED);
+    dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_DAMPING | DEM_EFFECT_MDR) || dem_set_dt(s, DT))
+        fail_msg("%s", dem_error(s));
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.force_dt = 1;
+    start_or_fail(s, &c);
+    double all[9];
+    if (dem_get_field(s, DEM_FIELD_FORCE, all) || dem_state_get(s, st))
+        fail_msg("%s", dem_error(s));
+    memcpy(f, all, sizeof(double) * 3);
+    return s;
+}
+
+static double row_real(const dem_state *st, long pair, int k)
+{
+    size_t at = (size_t)pair * DEM_MDR_LAW_REALS + (size_t)k;
+    return st->real_size == 8 ? ((double *)st->pair_law)[at] : ((float *)st->pair_law)[at];
+}
+
+static void test_penalty(void **state)
+{
+    (void)state;
+    double alpha = 95.0 * M_PI / 180, want = 1 / (1 + exp(-50 * (acos(cos(alpha)) / M_PI - 0.5)));
+    FOR_EACH_BACKEND(bc) {
+        double f3[3], fab[3], fac[3];
+        dem_state s3, sab, sac;
+        dem_sim *a = penalty_run(bc, 1, 1, f3, &s3), *b = penalty_run(bc, 1, 0, fab, &sab),
+                *c = penalty_run(bc, 0, 1, fac, &sac);
+        assert_int_equal(s3.npairs, 3);
+        double pen[3], tol = bc->precision == DEM_FP64 ? 1e-13 : 1e-5;
+        for (long p = 0; p < 3; p++) { /* A-B, A-C, B-C in the ids' order */
+            assert_true(s3.pair_i[p] == (p < 2 ? 0 : 1) && s3.pair_j[p] == (p == 0 ? 1 : 2));
+            pen[p] = row_real(&s3, p, 1);
+        }
+        printf("  penalty, %s: A-B %.3g, A-C %.17g (closed form %.17g), B-C %.3g\n", bc->name, pen[0], pen[1], want,
+               pen[2]);
+        if (pen[0] != 0 || pen[2] != 0 || !(fabs(pen[1] - want) <= tol * want))
+            fail_msg("%s: penalties A-B %g, A-C %.17g, B-C %g; want 0, %.17g, 0", bc->name, pen[0], pen[1], pen[2],
+                     want);
+        double fmag = sqrt(f3[0] * f3[0] + f3[1] * f3[1]), worst = 0;
+        for (int k = 0; k < 3; k++)
+            worst = fmax(worst, fabs(f3[k] - (fab[k] + (1 - want) * fac[k])));
+        printf("  penalty, %s: |F_A| %.6g N, |F_A - (F_AB + (1 - p) F_AC)| %.3g of it\n", bc->name, fmag, worst / fmag);
+        if (!(fmag > 0) || !(worst <= (bc->precision == DEM_FP64 ? 1e-12 : 1e-5) * fmag))
+            fail_msg("%s: the force on A is not A-B's plus the weighted A-C's (%g of |F|)", bc->name, worst / fmag);
+        dem_state_free(&s3), dem_state_free(&sab), dem_state_free(&sac);
+        dem_destroy(a), dem_destroy(b), dem_destroy(c);
+    }
+}
+
+/* A packing of adhesive plastic spheres (two sizes) falling under gravity and pressed by a lid, with friction: PoCL =
+ * reference bit for bit, restored mid-run, two skins and stored anew at every rebuild (the rows of pairs and wall slots,
+ * the particles' rows and the grown radii carried through all of it) */
+static void test_packing(void **st)
+{
+    (void)st;
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 4;
+    o.effects = DEM_EFFECT_CLASSICAL | DEM_EFFECT_MDR;
+    o.yield_stress = 1e5, o.surface_energy = 0.5, o.bulk_fraction = PSI_B, o.mdr_damping = 0.3;
+    o.lid_speed = 0.5;
+    FOR_EACH_BACKEND(bc) {
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        dem_sim *a = packing_build(&o), *b = packing_build(&o);
+        restart_check(a, b, &c, 300, 300, bc->name);
+        dem_state sa;
+        assert_int_equal(dem_state_get(a, &sa), 0);
+        long yielded = 0, grown = 0;
+        size_t rs = (size_t)sa.real_size;
+        for (long p = 0; p < sa.npairs; p++)
+            for (int k = 0; k < 2; k++) { /* each side's yield flag (dem_layout.h MDR_*) */
+                size_t at = (size_t)p * DEM_MDR_LAW_REALS + 2 + 11 * (size_t)k + 6;
+                yielded += (rs == 8 ? ((double *)sa.pair_law)[at] : ((float *)sa.pair_law)[at]) > 0;
+            }
+        dem_state_array *mp = dem_state_find(&sa, "mdr_particle");
+        for (int i = 0; mp && i < sa.n; i++) {
+            double ro = rs == 8 ? ((double *)mp->data)[14 * i] : ((float *)mp->data)[14 * i];
+            double r = rs == 8 ? ((double *)mp->data)[14 * i + 1] : ((float *)mp->data)[14 * i + 1];
+            grown += r > ro;
+        }
+        printf("  packing, %s: %ld touching pairs, %ld sides yielded, %ld of %d radii grown\n", bc->name, sa.npairs,
+               yielded, grown, sa.n);
+        assert_true(sa.has_law == DEM_MDR_LAW_REALS && sa.npairs > 10 && yielded > 10 && grown > 10);
+        dem_state_free(&sa);
+        dem_destroy(a);
+        dem_destroy(b);
+        dem_sim *s1, *s4;
+        skins_and_order_check(&o, &c, 600, bc->name, &s1, &s4);
+        dem_destroy(s4);
+        if (bc->backend == DEM_BACKEND_OPENCL) {
+            dem_config r = cfg_of(DEM_BACKEND_REFERENCE, bc->precision);
+            dem_sim *s3 = packing_build(&o);
+            r.skin = 0.05 * o.rmax;
+            start_or_fail(s3, &r);
+            step_or_fail(s3, 600);
+            char msg[512];
+            if (state_diff(s1, s3, msg, sizeof msg))
+                fail_msg("%s: the reference differs: %s", bc->name, msg);
+            dem_destroy(s3);
+        }
+        dem_destroy(s1);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pair_path),
+        cmocka_unit_test(test_unequal_adhesive_pair),
+        cmocka_unit_test(test_wall_path),
+        cmocka_unit_test(test_box),
+        cmocka_unit_test(test_penalty),
+        cmocka_unit_test(test_energy),
+        cmocka_unit_test(test_packing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
