@@ -125,8 +125,6 @@ static const char *yield_missing(const scene *sc)
 
 /* mdr needs its parameters on every material particles use: a yield stress, and psi_b said (0.5 in Zunker et al.'s
  * MCC, 0 turns the bulk response off: no default hides that choice); the library checks that they are one material */
-static const char *const mdr_no_stress = "the mdr law has no stress tensor output yet (its elastic force needs each "
-                                         "contact's row: docs/laws/mdr.md)";
 static const char *mdr_missing(const scene *sc)
 {
     static char why[256];
@@ -384,8 +382,6 @@ int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *m
                       : k == 4 ? yield_missing(sc)
                       : k == 5 ? mdr_missing(sc)
                                : mc_prefactor_missing(sc, k == 1 ? DEM_EFFECT_MC_STRESS : DEM_EFFECT_MC_STRAIN);
-    if (!why && k == 5 && (run->fields & OUT_STRESS))
-        why = mdr_no_stress;
     if (why) {
         snprintf(err, errlen, "model %s: %s", model, why);
         return 1;
@@ -771,8 +767,6 @@ static int parse_output(const scene *sc, scene_run *run, char *err, size_t errle
                               "unknown field '%s' (position, velocity, angular_velocity, radius, force, torque, "
                               "material, stress, contacts)", o->fields[k]);
         run->fields |= bit;
-        if (bit == OUT_STRESS && (run->effects & DEM_EFFECT_MDR))
-            return scene_fail(sc, err, errlen, p, "%s", mdr_no_stress);
     }
     const double dt = run->dt, T = sc->f->time.duration;
     struct {

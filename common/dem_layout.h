@@ -46,15 +46,17 @@ enum {
  * its overlap share and that against R_o of the last step, the MDR and bulk parts of it, its last area, the largest
  * MDR part, the yield flag, the area intercept, the adhesive radius, the last strain and the plastic overlap. */
 enum { MDR_SIDE = 11 };
-/* A pair's row (PAIR_MDR): the contact's largest overlap, its penalty of this step (M40), then side 0 (the sphere of
- * higher stable id) and side 1; a particle-wall slot's row (WALL_MDR): the largest overlap, a reserved real, the
- * side. A particle's row (MDR_PART): mdr_particle's 14 reals. A pair side's sums for its particle (PAIR_MDR_SUM: 6 per
+/* A pair's row (in PAIR_LAW): the contact's largest overlap, its penalty of this step (M40), side 0 (the sphere of
+ * higher stable id), side 1, and the contact's elastic normal force of the last step (the stress output's); a
+ * particle-wall slot's row (in WALL_LAW): the largest overlap, the elastic normal force, the side. A particle's row (MDR_PART): mdr_particle's 14 reals. A pair side's sums for its particle (PAIR_MDR_SUM: 6 per
  * side, mdr_particle's vcaps .. atot_sum). */
 enum {
     MDR_CMAX = 0,
     MDR_PEN = 1,
     MDR_S0 = 2,
-    MDR_PAIR_STRIDE = 2 + 2 * MDR_SIDE,
+    MDR_FEL_PAIR = 2 + 2 * MDR_SIDE,
+    MDR_PAIR_STRIDE = 3 + 2 * MDR_SIDE,
+    MDR_FEL_WALL = 1,
     MDR_WALL_STRIDE = 2 + MDR_SIDE,
     MDR_P_STRIDE = 14,
     MDR_P_SUMS = 4, /* where the six sums start in a particle's row */

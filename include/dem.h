@@ -491,7 +491,7 @@ DEM_API int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes);
  * dem_state_arrays lists them). Contacts: the touching pairs (i < j) and, with friction, their tangential spring.
  * Neighbour rows are rebuilt on restore. */
 #define DEM_PAIR_RECORD_REALS 7 /* reals per pair record (DEM_FIELD_PAIR_RECORDS, dem_state.pair_rec) */
-#define DEM_MDR_LAW_REALS 24 /* reals of state per pair of the mdr law (dem_state.has_law, pair_law) */
+#define DEM_MDR_LAW_REALS 25 /* reals of state per pair of the mdr law (dem_state.has_law, pair_law) */
 typedef enum { DEM_STATE_REAL, DEM_STATE_INT, DEM_STATE_UINT } dem_state_elem;
 /* One array of a state: name (a checkpoint's dataset /state/<name>), unit (NULL: none), element type, elements per
  * dataset row (3 for x), whether a state must hold it (else missing: zero until computed), and count elements at

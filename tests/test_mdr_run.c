@@ -147,31 +147,43 @@ static run_out run_path(const backend_case *bc, int kind, double r1, double r2, 
     return o;
 }
 
-/* The walk of the same approach in the reference of the run's precision: its force on the first body per step and
- * the first sphere's radius at the end */
-static double *walk_of(const backend_case *bc, int kind, double r1, double r2, double gamma, const run_out *o,
-                       double *r_end)
+/* The walk (mdr_core.h mdr_walk) of approach u over steps 0..n in the reference of precision p, with the walk's
+ * material of surface energy gamma and damping eta_d: its rows delta, radius, psi, force, each n + 1 long, in one
+ * block (free it) */
+static double *walk_rows(dem_precision p, int kind, long n, const double *u, double r1, double r2, double gamma,
+                         double eta_d)
 {
-    size_t m = (size_t)o->n + 1;
+    size_t m = (size_t)n + 1;
     double mat[8], *out = malloc(4 * m * sizeof(double));
     walk_material(gamma, mat);
+    mat[7] = eta_d;
     assert_non_null(out);
-    if (bc->precision == DEM_FP64) {
-        dem_mdr_walk_f64(kind, (int)o->n, o->u, mat, r1, r2, mass_of(r1), mass_of(r2), DT, out, out + m, out + 2 * m,
+    if (p == DEM_FP64) {
+        dem_mdr_walk_f64(kind, (int)n, u, mat, r1, r2, mass_of(r1), mass_of(r2), DT, out, out + m, out + 2 * m,
                          out + 3 * m);
     } else {
         float *uf = malloc(m * sizeof(float)), matf[8], *b = malloc(4 * m * sizeof(float));
         assert_true(uf && b);
         for (size_t k = 0; k < m; k++)
-            uf[k] = (float)o->u[k];
+            uf[k] = (float)u[k];
         for (int k = 0; k < 8; k++)
             matf[k] = (float)mat[k];
-        dem_mdr_walk_f32(kind, (int)o->n, uf, matf, (float)r1, (float)r2, (float)mass_of(r1), (float)mass_of(r2),
+        dem_mdr_walk_f32(kind, (int)n, uf, matf, (float)r1, (float)r2, (float)mass_of(r1), (float)mass_of(r2),
                          (float)DT, b, b + m, b + 2 * m, b + 3 * m);
         for (size_t k = 0; k < 4 * m; k++)
             out[k] = b[k];
         free(uf), free(b);
     }
+    return out;
+}
+
+/* The walk of the run's approach in the reference of the run's precision: its force on the first body per step and
+ * the first sphere's radius at the end */
+static double *walk_of(const backend_case *bc, int kind, double r1, double r2, double gamma, const run_out *o,
+                       double *r_end)
+{
+    size_t m = (size_t)o->n + 1;
+    double *out = walk_rows(bc->precision, kind, o->n, o->u, r1, r2, gamma, ETA_D);
     *r_end = out[m + o->n];
     return out + 3 * m; /* the forces (the block starts 3 m before) */
 }
@@ -295,24 +307,8 @@ static void test_box(void **state)
             f[k] = -wf[0];     /* the -x plane receives -F along x */
         }
         size_t m1 = (size_t)n + 1;
-        double mat8[8], *out = malloc(4 * m1 * sizeof(double));
-        walk_material(0.0, mat8);
-        mat8[7] = 0; /* the walk's box has no damping (and the run none: no damping effect) */
-        if (bc->precision == DEM_FP64) {
-            dem_mdr_walk_f64(WALK_BOX, (int)n, u, mat8, R1, R1, mass_of(R1), mass_of(R1), DT, out, out + m1,
-                             out + 2 * m1, out + 3 * m1);
-        } else {
-            float *uf = malloc(m1 * sizeof(float)), mf[8], *b = malloc(4 * m1 * sizeof(float));
-            for (size_t k = 0; k < m1; k++)
-                uf[k] = (float)u[k];
-            for (int k = 0; k < 8; k++)
-                mf[k] = (float)mat8[k];
-            dem_mdr_walk_f32(WALK_BOX, (int)n, uf, mf, (float)R1, (float)R1, (float)mass_of(R1), (float)mass_of(R1),
-                             (float)DT, b, b + m1, b + 2 * m1, b + 3 * m1);
-            for (size_t k = 0; k < 4 * m1; k++)
-                out[k] = b[k];
-            free(uf), free(b);
-        }
+        /* the walk's box has no damping (and the run none: no damping effect) */
+        double *out = walk_rows(bc->precision, WALK_BOX, n, u, R1, R1, 0.0, 0.0);
         double *fw = out + 3 * m1, *psi = out + 2 * m1, peak = 0, worst = 0, psi_min = 1;
         long at = 0;
         for (long k = 0; k <= n; k++) {
@@ -391,6 +387,21 @@ static void energy_path(const backend_case *bc, double y, long load, long unload
             dem_get_field(s, DEM_FIELD_FORCE, fo))
             fail_msg("%s", dem_error(s));
         u[k] = 2 * R1 - (x[3] - x[0]), f[k] = -fo[0], e[k] = row.energy.elastic;
+        if (k == load && unload > 0) { /* the stress output: -(R - delta/2) F / V along x, from the contact's force */
+            double st6[12];
+            dem_state sd;
+            if (dem_get_field(s, DEM_FIELD_STRESS, st6) || dem_state_get(s, &sd))
+                fail_msg("%s", dem_error(s));
+            dem_state_array *mp = dem_state_find(&sd, "mdr_particle");
+            double r0 = sd.real_size == 8 ? ((double *)mp->data)[1] : ((float *)mp->data)[1];
+            double r1 = sd.real_size == 8 ? ((double *)mp->data)[15] : ((float *)mp->data)[15];
+            double delta = r0 + r1 - (x[3] - x[0]), want = -(r0 - 0.5 * delta) * f[k] / (4.0 / 3.0 * M_PI * R1 * R1 * R1);
+            printf("  stress, %s: sigma_xx %.9g Pa, from the force %.9g Pa\n", bc->name, st6[0], want);
+            if (!(fabs(st6[0] - want) <= (bc->precision == DEM_FP64 ? 1e-12 : 1e-5) * fabs(want)) || !(want < 0))
+                fail_msg("%s: the stress output %.17g Pa, the contact's -(R - delta/2) F / V %.17g Pa", bc->name, st6[0],
+                         want);
+            dem_state_free(&sd);
+        }
         if (fabs(host.elastic - e[k]) > hd)
             hd = fabs(host.elastic - e[k]), hk = k;
         emax = fmax(emax, e[k]);
@@ -561,21 +572,52 @@ static void test_packing(void **st)
         dem_state_free(&sa);
         dem_destroy(a);
         dem_destroy(b);
-        dem_sim *s1, *s4;
-        skins_and_order_check(&o, &c, 600, bc->name, &s1, &s4);
-        dem_destroy(s4);
-        if (bc->backend == DEM_BACKEND_OPENCL) {
-            dem_config r = cfg_of(DEM_BACKEND_REFERENCE, bc->precision);
-            dem_sim *s3 = packing_build(&o);
-            r.skin = 0.05 * o.rmax;
-            start_or_fail(s3, &r);
-            step_or_fail(s3, 600);
-            char msg[512];
-            if (state_diff(s1, s3, msg, sizeof msg))
-                fail_msg("%s: the reference differs: %s", bc->name, msg);
-            dem_destroy(s3);
+        skins_order_and_reference_check(&o, &c, 600, bc->name);
+    }
+}
+
+/* What an MDR run refuses, each with its reason: a particle material that does not yield, two particle materials
+ * that differ, a wall material that yields and is not the particles', and a saved state whose MDR rows do not fit */
+static void test_refused(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 4; k++) {
+        dem_sim *s = dem_create();
+        dem_material m = mcc(0.0), other = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
+        other.yield_stress = 2 * Y_MCC;
+        if (k == 0)
+            m.yield_stress = 0;
+        int a = dem_add_material(s, &m), b = dem_add_material(s, k == 1 || k == 2 ? &other : &m);
+        int w = dem_add_material(s, k == 2 ? &other : &steel);
+        dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0, 0, 0}, R1, a);
+        dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){0, 0, 0}, R1, k == 1 ? b : a);
+        dem_wall pl = {0};
+        pl.kind = DEM_WALL_PLANE, pl.normal[2] = 1, pl.point[2] = -R1, pl.material = w;
+        assert_true(dem_add_wall(s, &pl) >= 0);
+        dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
+        assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS), 0);
+        dem_set_dt(s, DT);
+        dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+        c.force_dt = 1;
+        int rc = dem_start(s, &c);
+        static const char *const why[3] = {"needs its material 0 to yield", "materials 0 and 1 differ",
+                                           "wall 0: under the mdr law a wall's material does not yield"};
+        if (k < 3) {
+            if (rc != DEM_ERR_ARG || !strstr(dem_error(s), why[k]))
+                fail_msg("case %d: status %d, message '%s' (want '%s')", k, rc, dem_error(s), why[k]);
+        } else { /* a state whose particle row has shrunk below its radius as created */
+            assert_int_equal(rc, 0);
+            dem_state st;
+            assert_int_equal(dem_state_get(s, &st), 0);
+            dem_state_array *mp = dem_state_find(&st, "mdr_particle");
+            assert_non_null(mp);
+            ((double *)mp->data)[1] = 0.5 * R1;
+            rc = dem_state_set(s, &st);
+            if (rc != DEM_ERR_ARG || !strstr(dem_error(s), "MDR row of particle 0"))
+                fail_msg("a shrunk radius: status %d, message '%s'", rc, dem_error(s));
+            dem_state_free(&st);
         }
-        dem_destroy(s1);
+        dem_destroy(s);
     }
 }
 
@@ -589,6 +631,7 @@ int main(void)
         cmocka_unit_test(test_penalty),
         cmocka_unit_test(test_energy),
         cmocka_unit_test(test_packing),
+        cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

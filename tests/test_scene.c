@@ -78,7 +78,7 @@ static void test_errors(void **st)
         "material_pairs[0]: material pair 0-0: bond strength must be >= 0 Pa");
     bad("s/hertz, damping/hertz, damping, thornton_ning, mc_stress/; s/friction: 0.5}/friction: 0.5, yield_stress: "
         "1e6, beta: 1}/", "bad.yaml:5: effects: thornton_ning and the multi-contact laws are alternative normal laws");
-    /* MDR: its parameters said, one normal law, no stress output yet */
+    /* MDR: its parameters said, one normal law */
     bad("s/hertz, damping/hertz, damping, mdr/; s/friction: 0.5}/friction: 0.5, yield_stress: 1e6}/",
         "bad.yaml:5: effects[2]: mdr is listed but material 'rubber' (used by particles) gives no bulk_fraction");
     bad("s/hertz, damping/hertz, damping, mdr/", "bad.yaml:5: effects[2]: mdr is listed but material 'rubber' (used by "
@@ -89,9 +89,7 @@ static void test_errors(void **st)
         "fraction psi_b must be in [0, 1)");
     bad("s/friction: 0.5}/friction: 0.5, surface_energy: -2}/", "bad.yaml:7: materials[0].surface_energy: the surface "
         "energy must be >= 0 J/m^2");
-    bad("s/hertz, damping/hertz, damping, mdr/; s/friction: 0.5}/friction: 0.5, yield_stress: 1e6, bulk_fraction: "
-        "0.5}/; s/fields: \\[position, velocity, force\\]/fields: [position, stress]/",
-        "output.fields[1]: the mdr law has no stress tensor output yet");
+
     /* material_pairs: named materials, once each, with a value */
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, steel], friction: 0.1}\\nparticles:/",
         "material_pairs[0].materials[1]: no material is called 'steel'");
@@ -303,8 +301,8 @@ static void restart_case(const char *sc, const char *precision, int mc)
     read_state(a, "wall_pos", wa, 21, H5T_NATIVE_DOUBLE); /* the walls went the same way (their stages) */
     read_state(b, "wall_pos", wb, 21, H5T_NATIVE_DOUBLE);
     assert_memory_equal(wa, wb, 21 * sizeof(double));
-    if (mc == 3) { /* MDR: each pair's row of 24 reals, each wall slot's 13, each particle's 14 */
-        same_in_checkpoints(a, b, "pair_law", 24 * (size_t)np, rt, rs, 1);
+    if (mc == 3) { /* MDR: each pair's row of 25 reals, each wall slot's 13, each particle's 14 */
+        same_in_checkpoints(a, b, "pair_law", 25 * (size_t)np, rt, rs, 1);
         same_in_checkpoints(a, b, "wall_law", 13 * 7 * (size_t)n, rt, rs, 0);
         same_in_checkpoints(a, b, "mdr_particle", 14 * (size_t)n, rt, rs, 1);
         return;

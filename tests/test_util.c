@@ -259,14 +259,6 @@ static void *get(dem_sim *s, dem_field f, size_t *bytes)
     return p;
 }
 
-static int zero_bits(const unsigned char *p, size_t n)
-{
-    for (size_t k = 0; k < n; k++)
-        if (p[k])
-            return 0;
-    return 1;
-}
-
 void restart_check(dem_sim *a, dem_sim *b, const dem_config *c, long before, long after, const char *what)
 {
     start_or_fail(a, c);
@@ -295,8 +287,10 @@ void skins_and_order_check(const packing_opts *o, const dem_config *c, long step
     snprintf(name, sizeof name, "%s: skins 0.05 and 0.3 x the largest radius", what);
     twins_step(a, b, steps, name);
     dem_destroy(b);
-    dem_config c3 = c1; /* stored anew at every rebuild: what a pair or particle keeps moves with it */
+    dem_config c3 = c1; /* stored anew at every rebuild: what a pair or particle keeps moves with it (gain 1: whenever
+                         * the curve's order changed, not only once it has scattered) */
     c3.reorder = 1;
+    c3.reorder_gain = 1;
     dem_sim *r = packing_build(o);
     start_or_fail(r, &c3);
     step_or_fail(r, steps);
@@ -304,6 +298,25 @@ void skins_and_order_check(const packing_opts *o, const dem_config *c, long step
     if (state_diff(a, r, msg, sizeof msg))
         fail_msg("%s: stored anew, the run differs: %s", what, msg);
     *s1 = a, *s3 = r;
+}
+
+void skins_order_and_reference_check(const packing_opts *o, const dem_config *c, long steps, const char *what)
+{
+    dem_sim *s1, *s3;
+    skins_and_order_check(o, c, steps, what, &s1, &s3);
+    dem_destroy(s3);
+    if (c->backend == DEM_BACKEND_OPENCL) { /* and the reference's bits, at the first run's skin */
+        dem_config r = cfg_of(DEM_BACKEND_REFERENCE, c->precision);
+        dem_sim *ref = packing_build(o);
+        r.skin = 0.05 * o->rmax;
+        start_or_fail(ref, &r);
+        step_or_fail(ref, steps);
+        char msg[512];
+        if (state_diff(s1, ref, msg, sizeof msg))
+            fail_msg("%s: the reference differs: %s", what, msg);
+        dem_destroy(ref);
+    }
+    dem_destroy(s1);
 }
 
 void twins_step(dem_sim *a, dem_sim *b, long n, const char *what)
@@ -327,27 +340,47 @@ void mesh_write_obj(const dem_mesh *m, const char *path)
     fclose(fp);
 }
 
-/* MDR's state beyond the fields (laws/mdr.h): every particle's row, every wall slot's, every touching pair's (in the
- * ids' order, so runs of other skins and storage orders compare) */
-static int mdr_state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
+/* The touching pairs of a and b in the callers' ids (dem_state_get) and what each keeps: the same pairs, the same
+ * bits; with MDR also every particle's and wall slot's row (laws/mdr.h) */
+static int pairs_state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
 {
     dem_state sa, sb;
     if (dem_state_get(a, &sa) || dem_state_get(b, &sb))
         fail_msg("dem_state_get: %s %s", dem_error(a), dem_error(b));
     int bad = 0;
-    size_t rs = (size_t)sa.real_size;
-    const char *names[] = {"mdr_particle", "wall_law"};
-    for (int k = 0; k < 2 && !bad; k++) {
-        dem_state_array *x = dem_state_find(&sa, names[k]), *y = dem_state_find(&sb, names[k]);
+    size_t rs = (size_t)sa.real_size, np = (size_t)sa.npairs;
+    if (sa.npairs != sb.npairs || memcmp(sa.pair_i, sb.pair_i, sizeof(int) * np) ||
+        memcmp(sa.pair_j, sb.pair_j, sizeof(int) * np))
+        bad = 1, snprintf(msg, len, "the touching pairs differ (%ld and %ld of them)", sa.npairs, sb.npairs);
+    const struct {
+        const char *what;
+        void *pa, *pb;
+        size_t reals;
+    } kept[] = {{"tangential history", sa.has_hist ? sa.pair_hist : NULL, sb.has_hist ? sb.pair_hist : NULL, 3},
+                {"MC-strain force", sa.has_mc ? sa.pair_mc_fn : NULL, sb.has_mc ? sb.pair_mc_fn : NULL, 1},
+                {"contact law state", sa.pair_law, sb.pair_law, (size_t)sa.has_law},
+                {"rolling spring", sa.pair_rspring, sb.pair_rspring, 3}};
+    for (size_t k = 0; k < sizeof kept / sizeof kept[0] && !bad; k++) {
+        /* the history in both or neither; what a model keeps of its own (MC-strain, a law, a rolling spring) only where
+         * both runs have it, as the fields above */
+        if (k == 0 && !kept[k].pa != !kept[k].pb)
+            bad = 1, snprintf(msg, len, "one run keeps the pairs' %s and the other not", kept[k].what);
+        else if (kept[k].pa && kept[k].pb && np && (k != 2 || sa.has_law == sb.has_law) &&
+                 memcmp(kept[k].pa, kept[k].pb, np * kept[k].reals * rs)) {
+            size_t at = 0;
+            while (!memcmp((char *)kept[k].pa + at * kept[k].reals * rs, (char *)kept[k].pb + at * kept[k].reals * rs,
+                           kept[k].reals * rs))
+                at++;
+            bad = 1, snprintf(msg, len, "%s of the pair %d-%d differs", kept[k].what, sa.pair_i[at], sa.pair_j[at]);
+        }
+    }
+    const char *rows[] = {"mdr_particle", "wall_law"};
+    for (int k = 0; k < 2 && !bad && sa.has_law == DEM_MDR_LAW_REALS && sb.has_law == DEM_MDR_LAW_REALS; k++) {
+        dem_state_array *x = dem_state_find(&sa, rows[k]), *y = dem_state_find(&sb, rows[k]);
         bad = !x || !y || x->count != y->count || memcmp(x->data, y->data, x->count * rs);
         if (bad)
-            snprintf(msg, len, "MDR's %s differs", names[k]);
+            snprintf(msg, len, "MDR's %s differs", rows[k]);
     }
-    if (!bad && (sa.npairs != sb.npairs || sa.has_law != sb.has_law ||
-                 memcmp(sa.pair_i, sb.pair_i, sizeof(int) * (size_t)sa.npairs) ||
-                 memcmp(sa.pair_j, sb.pair_j, sizeof(int) * (size_t)sa.npairs) ||
-                 memcmp(sa.pair_law, sb.pair_law, (size_t)sa.npairs * (size_t)sa.has_law * rs)))
-        bad = 1, snprintf(msg, len, "MDR's pair rows differ (%ld and %ld touching pairs)", sa.npairs, sb.npairs);
     dem_state_free(&sa);
     dem_state_free(&sb);
     return bad;
@@ -385,47 +418,9 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
         if (bad)
             return 1;
     }
-    /* contact history (kept per pair: neighbor.h): merge the sorted rows; a pair in one run's rows only must carry
-     * zero history */
-    size_t n1, n2, l1, l2, h1, h2;
-    int *c1 = get(a, DEM_FIELD_NBR_COUNT, &n1), *c2 = get(b, DEM_FIELD_NBR_COUNT, &n2);
-    int *r1 = get(a, DEM_FIELD_NBR_LIST, &l1), *r2 = get(b, DEM_FIELD_NBR_LIST, &l2);
-    size_t t1, t2; /* the rows are packed: row i from start[i] */
-    int *s1 = get(a, DEM_FIELD_NBR_START, &t1), *s2 = get(b, DEM_FIELD_NBR_START, &t2);
-    unsigned char *g1 = get(a, DEM_FIELD_HIST, &h1), *g2 = get(b, DEM_FIELD_HIST, &h2);
-    int bad = h1 != h2 && (h1 == 0 || h2 == 0);
-    if (bad)
-        snprintf(msg, len, "one run has tangential history and the other none");
-    int own1 = 0, own2 = 0; /* where row i's owned pairs start in each run's numbering */
-    for (int i = 0; i < dem_count(a) && !bad && h1 > 0; i++) {
-        int lo1 = 0, lo2 = 0;
-        while (lo1 < c1[i] && r1[s1[i] + lo1] < i)
-            lo1++;
-        while (lo2 < c2[i] && r2[s2[i] + lo2] < i)
-            lo2++;
-        int p = lo1, q = lo2;
-        while ((p < c1[i] || q < c2[i]) && !bad) {
-            int j1 = p < c1[i] ? r1[s1[i] + p] : 1 << 30, j2 = q < c2[i] ? r2[s2[i] + q] : 1 << 30;
-            const unsigned char *ha = g1 + (size_t)(own1 + p - lo1) * 3 * rs, *hb = g2 + (size_t)(own2 + q - lo2) * 3 * rs;
-            if (j1 == j2) {
-                bad = memcmp(ha, hb, 3 * rs) != 0;
-                p++, q++;
-            } else if (j1 < j2) {
-                bad = !zero_bits(ha, 3 * rs);
-                p++;
-            } else {
-                bad = !zero_bits(hb, 3 * rs);
-                q++;
-            }
-            if (bad)
-                snprintf(msg, len, "tangential history of particle %d with partner %d differs", i, j1 < j2 ? j1 : j2);
-        }
-        own1 += c1[i] - lo1, own2 += c2[i] - lo2;
-    }
-    free(c1), free(c2), free(r1), free(r2), free(s1), free(s2), free(g1), free(g2);
-    if (!bad && (dem_effects(a) & DEM_EFFECT_MDR))
-        bad = mdr_state_diff(a, b, msg, len);
-    return bad;
+    /* what every touching pair keeps (tangential history, MC-strain's force, a law's state, a rolling spring), pair by
+     * pair as dem_state_get lists them: by the callers' ids, whatever the storage order and the rows */
+    return pairs_state_diff(a, b, msg, len);
 }
 
 uint64_t state_hash(dem_sim *s)

@@ -26,9 +26,9 @@
  * Energy (law_in.energy): each side's elastic energy (mdr_core.h mdr_side_energy: what it gives back unloaded from its
  * state, adhesion's springs not counted), a pair's the weighted sum of its two sides', a wall's times its magnifier;
  * the series rows and the host's energies (host/physics/energy.c) take it from there.
+ * Stress output: each contact's elastic normal force of the last step, kept in its row (particle_stress.h reads it).
  * The law's other entry points (law.h) have no contact state to read: law_elastic and law_energy give the unyielded
- * contact of two equal spheres (only stress frames would need them with MDR, and they are refused:
- * host/core/fields.c); law_stiffness gives the stiffest slope MDR reaches at an overlap, a
+ * contact of two equal spheres (no caller uses them with MDR); law_stiffness gives the stiffest slope MDR reaches at an overlap, a
  * flattened contact unloading (2 E* a per side with a^2 = 2 delta R), for the time-step bound.
  */
 #ifndef DEM_MDR_H
@@ -155,6 +155,7 @@ DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
         }
         if (c.row_out) {
             c.row_out[MDR_CMAX] = cmax;
+            c.row_out[MDR_FEL_PAIR] = fel; /* the stress output's (particle_stress.h) */
             mdr_side_store(c.row_out + MDR_S0, &s0);
             mdr_side_store(c.row_out + MDR_S0 + MDR_SIDE, &s1);
         }
@@ -173,7 +174,7 @@ DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
             mdr_sums_out(c.sums, &p);
         if (c.row_out) {
             c.row_out[MDR_CMAX] = cmax;
-            c.row_out[MDR_PEN] = (real)0;
+            c.row_out[MDR_FEL_WALL] = fel; /* the stress output's (particle_stress.h) */
             mdr_side_store(c.row_out + MDR_S0, &s);
         }
     }

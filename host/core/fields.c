@@ -43,9 +43,6 @@ int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 {
     if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    if (f == DEM_FIELD_STRESS && (s->effects & DEM_EFFECT_MDR))
-        return sim_fail(s, DEM_ERR_ARG, "the mdr law's contacts have no stress tensor yet (its elastic force needs "
-                                        "each contact's row: docs/laws/mdr.md)");
     if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return sim_be_fail(s);
     int slots = f == DEM_FIELD_MC_FORCE; /* kept per pair, handed out per row slot */

@@ -238,6 +238,17 @@ static int validate_mdr(dem_sim *s)
                             "differ", i, first, k);
         first = k;
     }
+    /* a wall of a material that yields would give the sphere's surface energy instead of its own (pack_pairs): only
+     * the particles' own MDR material may yield among the walls' */
+    for (int w = 0; first >= 0 && w < s->nwalls; w++) {
+        const dem_material *m = &s->mats[s->walls[w].material], *f = &s->mats[first];
+        if (m->yield_stress > 0 && (m->young != f->young || m->poisson != f->poisson ||
+                                    m->yield_stress != f->yield_stress || m->surface_energy != f->surface_energy ||
+                                    m->bulk_fraction != f->bulk_fraction || m->mdr_damping != f->mdr_damping))
+            return sim_fail(s, DEM_ERR_ARG, "wall %d: under the mdr law a wall's material does not yield (yield_stress "
+                            "0: it gives the wall's surface energy; the sphere's properties act at the wall) or is the "
+                            "particles' own MDR material; material %d is neither", w, s->walls[w].material);
+    }
     return 0;
 }
 

@@ -72,7 +72,8 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
     if (!s->order.count || np == 0)
         return 0;
     pair_key *k = malloc(sizeof *k * (size_t)np);
-    unsigned char *tmp = malloc(PR_STRIDE * rs * (size_t)np); /* the widest item: a record */
+    size_t widest = (size_t)(st->has_law > PR_STRIDE ? st->has_law : PR_STRIDE); /* a record, or MDR's row */
+    unsigned char *tmp = malloc(widest * rs * (size_t)np);
     if (!k || !tmp) {
         free(k), free(tmp);
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -86,7 +87,7 @@ static int pairs_to_api(dem_sim *s, dem_state *st)
     pairs_permute(st->pair_mc_fn, rs, k, np, tmp);
     pairs_permute(st->pair_rec, PR_STRIDE * rs, k, np, tmp);
     pairs_permute(st->pair_mc_disp, 2 * rs, k, np, tmp);
-    pairs_permute(st->pair_law, rs, k, np, tmp);
+    pairs_permute(st->pair_law, (size_t)st->has_law * rs, k, np, tmp); /* has_law reals per pair */
     pairs_permute(st->pair_rspring, 3 * rs, k, np, tmp);
     free(k), free(tmp);
     return 0;
@@ -484,6 +485,16 @@ static int state_check(dem_sim *s, const dem_state *st)
     if (!!st->has_rspring != rsp || (rsp && st->npairs > 0 && !st->pair_rspring))
         return sim_fail(s, DEM_ERR_ARG, "the saved state %s rolling springs but this run %s rolling_spring",
                         st->has_rspring ? "has" : "has no", rsp ? "has" : "has no");
+    const dem_state_array *mp = (fx & DEM_EFFECT_MDR) ? dem_state_find(st, "mdr_particle") : NULL;
+    for (int i = 0; mp && mp->data && mp->count == (size_t)MDR_P_STRIDE * n && i < n; i++) {
+        /* MDR's rows (laws/mdr.h): a radius as created > 0 and an apparent one from it up to M34's cap, 1.5 R_o (the
+         * cells hold no more), never shrinking */
+        double ro = sim_real_at(mp->data, (size_t)MDR_P_STRIDE * i, rs), r = sim_real_at(mp->data,
+                                                                                         (size_t)MDR_P_STRIDE * i + 1, rs);
+        if (!(ro > 0) || !(r >= ro) || !(r <= 1.51 * ro))
+            return sim_fail(s, DEM_ERR_ARG, "the saved state's MDR row of particle %d has the radius %g m grown from "
+                            "%g m (want 0 < R_o <= R <= 1.5 R_o)", i, r, ro);
+    }
     if (st->step < 0 || st->npairs < 0 || st->narrays < 0 || st->narrays > DEM_STATE_MAX_ARRAYS)
         return sim_fail(s, DEM_ERR_ARG, "the saved state has step %ld, %ld contacts and %d arrays (at most %d)",
                         st->step, st->npairs, st->narrays, DEM_STATE_MAX_ARRAYS);

@@ -95,41 +95,51 @@ static int read_positions(dem_sim *s, unsigned char *raw, double *x, int *cnt, i
     return e;
 }
 
+/* the damping factor c (zeta = c / 2) of a contact of materials a and b: the restitution's, PM_DAMP_N / sqrt(2 E*);
+ * MDR's (M38, laws/mdr.h) is eta_d sqrt(2 m* E* (a_0 + a_1)) against a slope E* (a_0 + a_1) / 2: zeta = eta_d */
+static double damping_of(const dem_sim *s, int a, int b)
+{
+    if (s->setup.effects & DEM_EFFECT_MDR)
+        return 2 * pair_at(s, a, b, PM_MDR + 7);
+    return pair_at(s, a, b, PM_DAMP_N) / sqrt(2 * pair_at(s, a, b, PM_ESTAR));
+}
+
 /* adds to pm the sphere contacts of particle i (inverse mass mi, rotational term roti), each pair from both ends:
- * every particle sums all of its contacts; the damping c = PM_DAMP_N / sqrt(2 E*) */
-static void add_sphere_contacts(const dem_sim *s, const double *x, const int *cnt, const int *start, const int *list,
-                                int i, double mi, double roti, particle_modes *pm)
+ * every particle sums all of its contacts; rad: the radii (MDR's apparent ones, or the particles' own) */
+static void add_sphere_contacts(const dem_sim *s, const double *x, const double *rad, const int *cnt, const int *start,
+                                const int *list, int i, double mi, double roti, particle_modes *pm)
 {
     unsigned fx = s->setup.effects;
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
-    double ri = s->radius[i], row[PM_STRIDE];
+    double ri = rad[i], row[PM_STRIDE];
     for (int k = 0; k < cnt[i]; k++) {
         int j = list[start[i] + k];
-        double rj = s->radius[j], d[3];
+        double rj = rad[j], d[3];
         for (int q = 0; q < 3; q++)
             d[q] = x[3 * i + q] - x[3 * j + q];
         double delta = ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (!(delta > 0))
             continue;
         int a = s->mat[i], b = s->mat[j];
-        double estar = pair_at(s, a, b, PM_ESTAR), kn, kt;
+        double kn, kt;
         table_row(s, a, b, row);
         law_stiffness(fx, row, ri * rj / (ri + rj), delta, &kn, &kt);
         int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
         double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
         double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
         double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;
-        double c = damping ? pair_at(s, a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
+        double c = damping ? damping_of(s, a, b) : 0;
         add_contact(pm, kn, friction ? kt : 0, mi + mj, ai * ai * roti + aj * aj * rotj, c);
     }
 }
 
 /* adds to pm the wall contacts of particle i (inverse mass mi, rotational term roti): a wall is immovable */
-static void add_wall_contacts(const dem_sim *s, const double *x, int i, double mi, double roti, particle_modes *pm)
+static void add_wall_contacts(const dem_sim *s, const double *x, const double *rad, int i, double mi, double roti,
+                              particle_modes *pm)
 {
     unsigned fx = s->setup.effects;
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
-    double ri = s->radius[i], row[PM_STRIDE];
+    double ri = rad[i], row[PM_STRIDE];
     for (int w = 0; (fx & DEM_EFFECT_WALLS) && w < s->nwalls; w++) {
         if (sim_rides_on(s, i, w)) /* a rider does not touch its wall */
             continue;
@@ -138,11 +148,11 @@ static void add_wall_contacts(const dem_sim *s, const double *x, int i, double m
         if (!(delta > 0))
             continue;
         int a = s->mat[i], b = wl->material;
-        double estar = pair_at(s, a, b, PM_ESTAR), kn, kt;
+        double kn, kt;
         table_row(s, a, b, row);
         law_stiffness(fx, row, ri, delta, &kn, &kt);
         double ai = ri - delta; /* a wall contact's lever arm (wall_forces.h) */
-        double c = damping ? pair_at(s, a, b, PM_DAMP_N) / sqrt(2 * estar) : 0;
+        double c = damping ? damping_of(s, a, b) : 0;
         add_contact(pm, kn, friction ? kt : 0, mi, ai * ai * roti, c);
     }
 }
@@ -187,18 +197,29 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     }
     int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1;
     int e = read_positions(s, raw, x, cnt, start, list, lb);
+    /* MDR: the apparent radii its contacts see (each particle's row, laws/mdr.h), in storage order like x */
+    double *rad = NULL;
+    if (!e && (s->setup.effects & DEM_EFFECT_MDR)) {
+        unsigned char *mp = sim_buffer_get(s, BUF_MDR_PART, &e);
+        rad = e ? NULL : malloc(sizeof(double) * (size_t)(n ? n : 1));
+        for (int i = 0; rad && i < n; i++)
+            sim_widen(mp + ((size_t)MDR_P_STRIDE * i + 1) * rs, rad + i, 1, rs);
+        if (!e && !rad)
+            e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+        free(mp);
+    }
     for (int i = 0; !e && i < n; i++) {
         if (s->pflags[i] & DEM_PARTICLE_FIXED)
             continue;
         double mi = inv_of(sim_mass(s, i));
         double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
-        add_sphere_contacts(s, x, cnt, start, list, i, mi, roti, &pm[i]);
-        add_wall_contacts(s, x, i, mi, roti, &pm[i]);
+        add_sphere_contacts(s, x, rad ? rad : s->radius, cnt, start, list, i, mi, roti, &pm[i]);
+        add_wall_contacts(s, x, rad ? rad : s->radius, i, mi, roti, &pm[i]);
     }
     if (!e)
         worst_particle(s, pm, st);
     if (!e && st->ratio > 0)
         st->dt_advice = s->dt * DEM_STABILITY_TARGET / st->ratio;
-    free(raw), free(x), free(pm);
+    free(raw), free(x), free(pm), free(rad);
     return e;
 }
