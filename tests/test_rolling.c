@@ -279,17 +279,13 @@ static void test_spring_packing(void **st)
     o.lid_speed = 0.5;
     FOR_EACH_BACKEND(bc) {
         dem_config c = cfg_of(bc->backend, bc->precision);
-        dem_sim *a = packing_build(&o), *b = packing_build(&o);
-        restart_check(a, b, &c, 300, 300, bc->name);
         dem_state sa;
-        assert_int_equal(dem_state_get(a, &sa), 0);
+        packing_restart_state(&o, &c, bc->name, &sa);
         long wound = 0;
         for (long p = 0; p < 3 * sa.npairs; p++)
             wound += (bc->precision == DEM_FP64 ? ((double *)sa.pair_rspring)[p] : ((float *)sa.pair_rspring)[p]) != 0;
         assert_true(sa.has_rspring && sa.npairs > 10 && wound > sa.npairs);
         dem_state_free(&sa);
-        dem_destroy(a);
-        dem_destroy(b);
         /* two skins, and stored anew: the springs move with their pairs and particles; OpenCL: the reference's bits */
         skins_order_and_reference_check(&o, &c, 600, bc->name);
     }

@@ -300,6 +300,16 @@ void skins_and_order_check(const packing_opts *o, const dem_config *c, long step
     *s1 = a, *s3 = r;
 }
 
+void packing_restart_state(const packing_opts *o, const dem_config *c, const char *what, dem_state *st)
+{
+    dem_sim *a = packing_build(o), *b = packing_build(o);
+    restart_check(a, b, c, 300, 300, what);
+    if (dem_state_get(a, st))
+        fail_msg("%s: dem_state_get: %s", what, dem_error(a));
+    dem_destroy(a);
+    dem_destroy(b);
+}
+
 void skins_order_and_reference_check(const packing_opts *o, const dem_config *c, long steps, const char *what)
 {
     dem_sim *s1, *s3;
