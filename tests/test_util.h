@@ -85,7 +85,8 @@ void skins_and_order_check(const packing_opts *o, const dem_config *c, long step
 /* restart_check on two fresh builds of packing o with c (300 steps, restored, 300 more); the first run's state then
  * into *st (dem_state_free it) */
 void packing_restart_state(const packing_opts *o, const dem_config *c, const char *what, dem_state *st);
-/* skins_and_order_check keeping none of the runs, and on OpenCL also against the reference of c's precision (skin 0.05) */
+/* skins_and_order_check keeping none of the runs, and on OpenCL also against the reference of c's precision
+ * (skin 0.05) */
 void skins_order_and_reference_check(const packing_opts *o, const dem_config *c, long steps, const char *what);
 /* Restart: starts a and b (the same set-up) with c, steps a by `before`, restores a's state into b, steps both by
  * `after` and fails the test (naming `what`) unless they are bitwise equal. Leaves both alive for further checks. */
