@@ -218,6 +218,14 @@ int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a)
 
 /* MDR (common/laws/mdr.h): every particle's material yields, and all of them are one MDR material (the law presses each
  * sphere of a pair on a flat with its own modulus and averages: a mixed pair is not specified, docs/laws/mdr.md (M1)) */
+/* Whether two materials are the same MDR material (what the mdr law reads of them) */
+static int same_mdr_material(const dem_material *m, const dem_material *f)
+{
+    return m->young == f->young && m->poisson == f->poisson && m->yield_stress == f->yield_stress &&
+           m->surface_energy == f->surface_energy && m->bulk_fraction == f->bulk_fraction &&
+           m->mdr_damping == f->mdr_damping;
+}
+
 static int validate_mdr(dem_sim *s)
 {
     if (!(s->effects & DEM_EFFECT_MDR))
@@ -230,9 +238,7 @@ static int validate_mdr(dem_sim *s)
             return sim_fail(s, DEM_ERR_ARG, "particle %d: the mdr law needs its material %d to yield (yield_stress > 0, "
                             "got %g Pa), to be compressible (poisson < 0.5, got %g) and not rigid", i, k,
                             m->yield_stress, m->poisson);
-        if (m->young != f->young || m->poisson != f->poisson || m->yield_stress != f->yield_stress ||
-            m->surface_energy != f->surface_energy || m->bulk_fraction != f->bulk_fraction ||
-            m->mdr_damping != f->mdr_damping)
+        if (!same_mdr_material(m, f))
             return sim_fail(s, DEM_ERR_ARG, "particle %d: the mdr law has one particle material (young, poisson, "
                             "yield_stress, surface_energy, bulk_fraction, mdr_damping alike), and materials %d and %d "
                             "differ", i, first, k);
@@ -242,9 +248,7 @@ static int validate_mdr(dem_sim *s)
      * the particles' own MDR material may yield among the walls' */
     for (int w = 0; first >= 0 && w < s->nwalls; w++) {
         const dem_material *m = &s->mats[s->walls[w].material], *f = &s->mats[first];
-        if (m->yield_stress > 0 && (m->young != f->young || m->poisson != f->poisson ||
-                                    m->yield_stress != f->yield_stress || m->surface_energy != f->surface_energy ||
-                                    m->bulk_fraction != f->bulk_fraction || m->mdr_damping != f->mdr_damping))
+        if (m->yield_stress > 0 && !same_mdr_material(m, f))
             return sim_fail(s, DEM_ERR_ARG, "wall %d: under the mdr law a wall's material does not yield (yield_stress "
                             "0: it gives the wall's surface energy; the sphere's properties act at the wall) or is the "
                             "particles' own MDR material; material %d is neither", w, s->walls[w].material);
