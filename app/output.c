@@ -21,7 +21,11 @@ static const struct {
                     {OUT_FORCE, DEM_FIELD_FORCE, "force", "N", 3, "Vector"},
                     {OUT_TORQUE, DEM_FIELD_TORQUE, "torque", "N m", 3, "Vector"},
                     /* xx, yy, zz, xy, xz, yz (dem_layout.h ST_*), seed 000 Eq. 9, negative in compression */
-                    {OUT_STRESS, DEM_FIELD_STRESS, "stress", "Pa", 6, "Tensor6"}};
+                    {OUT_STRESS, DEM_FIELD_STRESS, "stress", "Pa", 6, "Tensor6"},
+                    /* mdr: each sphere's apparent radius, which grows as it is pressed (docs/laws/mdr.md M34); frames
+                     * [F, n]. /particles/radius stays the radius as created: the solid volume a relative density
+                     * counts (MDR's growth stands for the material its flattened caps push aside) */
+                    {OUT_APPARENT_RADIUS, DEM_FIELD_RADIUS, "apparent_radius", "m", 1, "Scalar"}};
 #define NFF (sizeof frame_fields / sizeof frame_fields[0])
 
 /* coordination: the mean number of particle contacts per particle, 2 contacts / particles (every particle counted,
@@ -282,6 +286,8 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     o->n = n;
     o->nwalls = nw;
     o->fields = run->fields;
+    if ((run->fields & OUT_RADIUS) && (run->effects & DEM_EFFECT_MDR))
+        o->fields |= OUT_APPARENT_RADIUS;
     o->sample = run->piston >= 0;
     o->mc = (run->effects & DEM_EFFECT_MC_STRAIN) != 0;
     o->buf = malloc(sizeof(double) * 6 * (size_t)(n > DEM_MAX_WALLS ? n : DEM_MAX_WALLS)); /* frames, and wall rows */
@@ -347,8 +353,9 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
              h5rows_create(&o->fstep, o->frames, "step", H5T_NATIVE_DOUBLE, 1, 0, 0, NULL);
         for (size_t k = 0; !rc && k < NFF; k++)
             if (o->fields & frame_fields[k].bit)
-                rc = h5rows_create(&o->fdata[k], o->frames, frame_fields[k].name, H5T_NATIVE_DOUBLE, 3, (hsize_t)n,
-                                   (hsize_t)frame_fields[k].ncomp, frame_fields[k].units);
+                rc = h5rows_create(&o->fdata[k], o->frames, frame_fields[k].name, H5T_NATIVE_DOUBLE,
+                                   frame_fields[k].ncomp > 1 ? 3 : 2, (hsize_t)n, (hsize_t)frame_fields[k].ncomp,
+                                   frame_fields[k].units);
     }
     if (!rc && (o->fields & OUT_CONTACTS)) { /* the contact network, ragged: each frame's rows from start[f] */
         o->contacts = H5Gcreate2(o->file, "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -633,12 +640,20 @@ static int write_xdmf(const output *o, const char *xmf_path, const double *times
             if (k > 0)
                 fprintf(fp, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n",
                         frame_fields[k].name, frame_fields[k].xdmf);
-            fprintf(fp,
-                    "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n"
-                    "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d %d</DataItem>\n"
-                    "<DataItem Dimensions=\"%ld %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-                    "%s:/frames/%s</DataItem>\n</DataItem>\n",
-                    o->n, c, f, o->n, c, F, o->n, c, h5name, frame_fields[k].name);
+            if (c == 1) /* a scalar per particle: frames [F, n] */
+                fprintf(fp,
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 2\" Format=\"XML\">%ld 0 1 1 1 %d</DataItem>\n"
+                        "<DataItem Dimensions=\"%ld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                        "%s:/frames/%s</DataItem>\n</DataItem>\n",
+                        o->n, f, o->n, F, o->n, h5name, frame_fields[k].name);
+            else
+                fprintf(fp,
+                        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n"
+                        "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d %d</DataItem>\n"
+                        "<DataItem Dimensions=\"%ld %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                        "%s:/frames/%s</DataItem>\n</DataItem>\n",
+                        o->n, c, f, o->n, c, F, o->n, c, h5name, frame_fields[k].name);
             fprintf(fp, k > 0 ? "</Attribute>\n" : "</Geometry>\n");
         }
         fprintf(fp, "<Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"

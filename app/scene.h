@@ -237,7 +237,8 @@ typedef struct {
 
 /* Output fields a scene may ask for. */
 enum { OUT_POSITION = 1, OUT_VELOCITY = 2, OUT_ANGULAR_VELOCITY = 4, OUT_RADIUS = 8, OUT_FORCE = 16,
-       OUT_TORQUE = 32, OUT_MATERIAL = 64, OUT_STRESS = 128, OUT_CONTACTS = 256 };
+       OUT_TORQUE = 32, OUT_MATERIAL = 64, OUT_STRESS = 128, OUT_CONTACTS = 256,
+       OUT_APPARENT_RADIUS = 512 /* not a scene's key: output.c adds it to `radius` under mdr */ };
 
 /* What scene_build derives. */
 typedef struct {

@@ -61,7 +61,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(W, REAL, 3 * N, 0, DEM_FIELD_W, SETUP(w), PARTICLES, P(3), CK(w, 3, "rad/s"))                                 \
     ENTRY(FORCE, REAL, 3 * N, 0, DEM_FIELD_FORCE, NONE, PARTICLES, P(3), CK(force, 3, "N"))                             \
     ENTRY(TORQUE, REAL, 3 * N, 0, DEM_FIELD_TORQUE, NONE, PARTICLES, P(3), CK(torque, 3, "N m"))                        \
-    ENTRY(RADIUS, REAL, N, 0, -1, SETUP(radius), PARTICLES, P(1), NO)                                                   \
+    ENTRY(RADIUS, REAL, N, 0, DEM_FIELD_RADIUS, SETUP(radius), PARTICLES, P(1), NO)                                     \
     ENTRY(INVMASS, REAL, N, 0, -1, SETUP(invmass), PARTICLES, P(1), NO)                                                 \
     ENTRY(INVINERTIA, REAL, N, 0, -1, SETUP(invinertia), PARTICLES, P(1), NO)                                           \
     ENTRY(INVVOL, REAL, N, 0, -1, SETUP(invvol), PARTICLES, P(1), NO)                                                   \

@@ -219,9 +219,12 @@ enum {
                                          Eq. 9, elastic normal forces; negative in compression), computed when read */
     DEM_FIELD_STRESS_TRACE = 18,      /* real[n]: the trace MC-stress used in the last step [Pa]; empty without
                                          mc_stress */
-    DEM_FIELD_WALL_NORMAL_FORCE = 27  /* real[nwalls]: each wall's normal force, the sum of the particles' force
+    DEM_FIELD_WALL_NORMAL_FORCE = 27, /* real[nwalls]: each wall's normal force, the sum of the particles' force
                                          components along their contact normals [N] (a die's radial force; a plane's
                                          normal force) */
+    DEM_FIELD_RADIUS = 29             /* real[n]: each particle's radius as its contacts see it now [m]: the radius as
+                                         given (dem_particle_radius), or under mdr its apparent radius, which grows
+                                         as the sphere is pressed (docs/laws/mdr.md M34) */
 };
 
 typedef struct {

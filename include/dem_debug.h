@@ -53,7 +53,7 @@ enum {
                                        entries beyond the pairs listed (in_start[n]) hold nothing meaningful */
     DEM_FIELD_NBR_START = 28,       /* int[n+1]: where each particle's row starts in NBR_LIST (the exclusive prefix sum
                                        of NBR_COUNT; start[n] the slots in use) */
-    DEM_FIELD__COUNT = 29           /* every field, public and internal, is below this */
+    DEM_FIELD__COUNT = 30           /* every field, public and internal, is below this */
 };
 
 int dem_neighbor_capacity(const dem_sim *s);  /* slots held by the current rows, all rows together (NBR_LIST) */

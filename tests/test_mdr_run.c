@@ -142,6 +142,9 @@ static run_out run_path(const backend_case *bc, int kind, double r1, double r2, 
     dem_state_array *mp = dem_state_find(&st, "mdr_particle");
     assert_non_null(mp);
     o.r_end = st.real_size == 8 ? ((double *)mp->data)[1] : ((float *)mp->data)[1];
+    double rf[2]; /* the public field DEM_FIELD_RADIUS reads the same apparent radius */
+    if (dem_get_field(s, DEM_FIELD_RADIUS, rf) || rf[0] != o.r_end)
+        fail_msg("DEM_FIELD_RADIUS gives %.17g m, the particle's row %.17g m", rf[0], o.r_end);
     dem_state_free(&st);
     dem_destroy(s);
     return o;

@@ -257,6 +257,43 @@ static long n_pairs(const char *path)
     return n;
 }
 
+/* Under mdr the frames carry each sphere's apparent radius (the output field `radius`): the last frame's is the
+ * apparent radius the checkpoint written at the same step keeps (column 1 of state/mdr_particle), at least the radius
+ * as created (/particles/radius) and above it for the pressed spheres; the XDMF file names it. */
+static void apparent_radius_output(const char *ckpt, int n, hid_t rt, int rs)
+{
+    char h5[300], xmf[300], err[1024];
+    snprintf(h5, sizeof h5, "%s/straight.h5", tmp);
+    snprintf(xmf, sizeof xmf, "%s/straight.xmf", tmp);
+    static unsigned char part[64 * 14 * 8];
+    read_state(ckpt, "mdr_particle", part, 14 * (size_t)n, rt);
+    hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    hid_t d = H5Dopen2(f, "/frames/apparent_radius", H5P_DEFAULT), sp = H5Dget_space(d);
+    hsize_t dims[2] = {0, 0};
+    assert_true(d >= 0 && H5Sget_simple_extent_ndims(sp) == 2);
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    assert_true(dims[0] >= 2 && dims[1] == (hsize_t)n);
+    double *all = malloc(sizeof(double) * dims[0] * dims[1]), r0[64];
+    assert_true(all && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0);
+    H5Sclose(sp), H5Dclose(d);
+    hid_t g = H5Gopen2(f, "particles", H5P_DEFAULT);
+    assert_int_equal(h5_read(g, "radius", H5T_NATIVE_DOUBLE, r0, (size_t)n), 0);
+    H5Gclose(g), H5Fclose(f);
+    const double *last = all + (dims[0] - 1) * dims[1];
+    int grown = 0;
+    for (int i = 0; i < n; i++) {
+        double kept = rs == 8 ? ((double *)part)[14 * i + 1] : ((float *)part)[14 * i + 1];
+        if (last[i] != kept || !(last[i] >= (rs == 8 ? r0[i] : (double)(float)r0[i])))
+            fail_msg("sphere %d: apparent radius %.17g m in the last frame, %.17g m in the checkpoint, %.17g m as "
+                     "created", i, last[i], kept, r0[i]);
+        grown += last[i] > r0[i] * (1 + 1e-6);
+    }
+    assert_true(grown > 0);
+    free(all);
+    assert_int_equal(sh(err, sizeof err, "grep -q 'Name=\"apparent_radius\"' %s", xmf), 0);
+}
+
 static void restart_case(const char *sc, const char *precision, int mc)
 {
     char err[8192];
@@ -305,6 +342,16 @@ static void restart_case(const char *sc, const char *precision, int mc)
         same_in_checkpoints(a, b, "pair_law", 25 * (size_t)np, rt, rs, 1);
         same_in_checkpoints(a, b, "wall_law", 13 * 7 * (size_t)n, rt, rs, 0);
         same_in_checkpoints(a, b, "mdr_particle", 14 * (size_t)n, rt, rs, 1);
+        apparent_radius_output(a, n, rt, rs);
+        /* the wall slots' rows as rows, [7 n, 13], with no unit (they hold lengths, areas, forces ...) */
+        hid_t f = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT), d = H5Dopen2(f, "/state/wall_law", H5P_DEFAULT);
+        hid_t sp = H5Dget_space(d);
+        hsize_t dims[2] = {0, 0};
+        assert_int_equal(H5Sget_simple_extent_ndims(sp), 2);
+        H5Sget_simple_extent_dims(sp, dims, NULL);
+        assert_true(dims[0] == 7 * (hsize_t)n && dims[1] == 13);
+        assert_int_equal(H5Aexists(d, "units"), 0);
+        H5Sclose(sp), H5Dclose(d), H5Fclose(f);
         return;
     }
     if (mc == 2) { /* a law with memory (Thornton-Ning): each contact's largest overlap, and the walls' */
@@ -341,7 +388,8 @@ static void test_restart_bitwise(void **st)
     /* and of adhesive plastic grains under MDR: its rows of pairs, wall slots and particles */
     char mdr[300];
     snprintf(mdr, sizeof mdr, "%s/mdr.yaml", tmp);
-    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, mdr]/' -e 's/friction: 0.4}/friction: 0.4, "
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, mdr]/' -e 's/fields: \\[/fields: [radius, /' "
+                        "-e 's/friction: 0.4}/friction: 0.4, "
                         "yield_stress: 2.0e5, surface_energy: 0.2, bulk_fraction: 0.5, mdr_damping: 0.2}/' "
                         "%s/tests/scenes/restart_box.yaml > %s && grep -q mdr %s && grep -q bulk_fraction %s", SRC, mdr,
                         mdr, mdr), 0);

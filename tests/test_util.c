@@ -400,10 +400,10 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
 {
     static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE,
                                        DEM_FIELD_WALL_HIST, DEM_FIELD_STRESS, DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_FORCE,
-                                       DEM_FIELD_MC_WALL_FORCE};
+                                       DEM_FIELD_MC_WALL_FORCE, DEM_FIELD_RADIUS};
     static const char *names[] = {"position", "velocity", "angular velocity", "force", "torque", "wall force",
                                   "wall history", "stress tensor", "stress trace", "MC-strain force",
-                                  "MC-strain wall force"};
+                                  "MC-strain wall force", "radius"};
     size_t rs = dem_field_bytes(a, DEM_FIELD_X) / (3 * (size_t)dem_count(a));
     for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
         size_t na, nb;

@@ -8,6 +8,8 @@
 #   STRENGTH_OUT        where the runs go (default out/tablet_strength): P.h5, P.log for each pressure P
 #   STRENGTH_SCENE      the scene (default scenes/tablet_strength.yaml; its upper punch's until_stress is replaced)
 #   DEM                 the dem binary (default build/dem)
+#   STRENGTH_MODEL      a law to run instead of the scene's (passed as dem run --model; e.g. mdr, with
+#                       STRENGTH_OUT=out/tablet_strength_mdr)
 # About 5-6 minutes per pressure on 2 cores. A run that fails is reported and left out of the figure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -25,7 +27,7 @@ runs=()
 for p in $PRESSURES; do
   sed "s/until_stress: 5.0e7/until_stress: ${p}.0e6/" "$SCENE" > "$OUT/$p.yaml"
   echo "tablet-strength: $p MPa -> $OUT/$p.h5 (log $OUT/$p.log)" >&2
-  if "$DEM" run "$OUT/$p.yaml" -o "$OUT/$p.h5" --quiet > "$OUT/$p.log" 2>&1; then
+  if "$DEM" run "$OUT/$p.yaml" -o "$OUT/$p.h5" ${STRENGTH_MODEL:+--model "$STRENGTH_MODEL"} --quiet > "$OUT/$p.log" 2>&1; then
     runs+=("$OUT/$p.h5")
   else
     echo "tablet-strength: $p MPa failed (exit $?; $OUT/$p.log)" >&2

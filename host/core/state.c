@@ -249,8 +249,9 @@ int dem_state_arrays(dem_state *st)
         int told = !(sb[id].gate & ~known); /* whether st's header says if the buffer is there */
         c.fx = told ? fx : sb[id].gate;
         dem_state_elem elem = state_elem(sb[id].elem);
-        st->arrays[st->narrays++] = (dem_state_array){sb[id].name, sb[id].unit, elem, sb[id].width,
-                                                       sb[id].required && told,
+        int wide = id == BUF_WALL_LAW && (law & DEM_EFFECT_MDR);
+        st->arrays[st->narrays++] = (dem_state_array){sb[id].name, wide ? NULL : sb[id].unit, elem,
+                                                       wide ? MDR_WALL_STRIDE : sb[id].width, sb[id].required && told,
                                                        dem_buffer_bytes(&c, id) / state_elem_bytes(elem, c.rs), NULL};
     }
     return st->narrays;
@@ -269,8 +270,12 @@ static int arrays_get(dem_sim *s, dem_state *st)
         size_t bytes = c->bytes[id];
         dem_state_elem elem = state_elem(sb[id].elem);
         void *p = malloc(bytes ? bytes : 1);
-        st->arrays[st->narrays++] = (dem_state_array){sb[id].name, sb[id].unit, elem, sb[id].width,
-                                                       sb[id].required, bytes / state_elem_bytes(elem, c->rs), p};
+        /* MDR's wall slots are rows of MDR_WALL_STRIDE reals of several units (dem_layout.h MDR_*), written [slots, 13]
+         * without a unit; Thornton-Ning's one real per slot is a length */
+        int wide = id == BUF_WALL_LAW && (c->fx & DEM_EFFECT_MDR);
+        st->arrays[st->narrays++] = (dem_state_array){sb[id].name, wide ? NULL : sb[id].unit, elem,
+                                                       wide ? MDR_WALL_STRIDE : sb[id].width, sb[id].required,
+                                                       bytes / state_elem_bytes(elem, c->rs), p};
         if (!p)
             return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         if (bytes && s->ops->read(s->be, (dem_bufref){TABLE_ONE, id}, 0, p, bytes, 1))
