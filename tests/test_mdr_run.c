@@ -451,6 +451,71 @@ static void energy_path(const backend_case *bc, double y, long load, long unload
     dem_destroy(s);
 }
 
+/* The adhesive springs' energy (mdr_side_energy, M21): a pair that does not yield (Y = 100 GPa), of surface energy
+ * 500 J/m^2, pressed 10 um and pulled back. While each side's springs stay at the radius they held (a_adh unchanged
+ * from step to step, M24, and before it the compressive unloading, M22) the force is conservative, and the energy at
+ * each step is the energy at the turn less the work given back since, down into tension and past zero overlap of the
+ * indenters; the first step whose radius recedes (M25) ends the comparison (the springs let go there set energy free).
+ * Returns the largest |E - (E_turn - W)| over E_turn; *pull the least force reached within the compared steps. */
+static double energy_adhesive(const backend_case *bc, long *held, double *pull)
+{
+    dem_sim *s = dem_create();
+    dem_material m = mcc(500.0);
+    m.yield_stress = 1e11;
+    int mat = dem_add_material(s, &m);
+    double v = 0.1;
+    dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0.5 * v, 0, 0}, R1, mat);
+    dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R1, mat);
+    dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
+    dem_set_particle_flags(s, 1, DEM_PARTICLE_HOLD_V);
+    dem_set_domain(s, (double[3]){-8 * R1, -8 * R1, -8 * R1}, (double[3]){8 * R1, 8 * R1, 8 * R1});
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_CONSTRAINTS) || dem_set_dt(s, DT))
+        fail_msg("%s", dem_error(s));
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.force_dt = 1;
+    start_or_fail(s, &c);
+    enum { LOAD = 100, UNLOAD = 200 };
+    double u[LOAD + UNLOAD + 1] = {0}, f[LOAD + UNLOAD + 1] = {0}, e[LOAD + UNLOAD + 1] = {0}, adh[2] = {-1, -1};
+    unsigned char want = 1;
+    long end = -1;
+    for (long k = 1; k <= LOAD + UNLOAD && end < 0; k++) {
+        if (k == LOAD + 1)
+            set_speed(s, v, -v);
+        dem_sample row;
+        double x[6], fo[6];
+        dem_state st;
+        if (dem_step_sampled(s, 1, &want, &row) || dem_get_field(s, DEM_FIELD_X, x) ||
+            dem_get_field(s, DEM_FIELD_FORCE, fo) || dem_state_get(s, &st))
+            fail_msg("%s", dem_error(s));
+        u[k] = 2 * R1 - (x[3] - x[0]), f[k] = -fo[0], e[k] = row.energy.elastic;
+        assert_true(st.npairs <= 1 && (!st.npairs || (st.has_law == 25 && st.pair_law)));
+        int held_now = 1; /* both sides' a_adh (row 2 + 8 and 13 + 8) as at the last step */
+        for (int q = 0; q < 2; q++) {
+            int at = q ? 21 : 10;
+            double a = !st.npairs ? -1 : st.real_size == 8 ? ((double *)st.pair_law)[at] : ((float *)st.pair_law)[at];
+            held_now &= a == adh[q];
+            adh[q] = a;
+        }
+        dem_state_free(&st);
+        if (k > LOAD + 1 && held_now)
+            *held += 1;
+        else if (k > LOAD + 1 && *held > 0)
+            end = k - 1; /* a radius moved after having been held: receding (M25) */
+    }
+    assert_true(end > LOAD);
+    double w = 0, worst = 0;
+    *pull = 0;
+    for (long k = LOAD + 1; k <= end; k++) {
+        w += 0.5 * (f[k] + f[k - 1]) * (u[k - 1] - u[k]);
+        worst = fmax(worst, fabs(e[k] - (e[LOAD] - w)) / e[LOAD]);
+        *pull = fmin(*pull, f[k]);
+        if (!(e[k] >= 0))
+            fail_msg("%s: step %ld, a negative elastic energy %g J", bc->name, k, e[k]);
+    }
+    dem_destroy(s);
+    return worst;
+}
+
 static void test_energy(void **state)
 {
     (void)state;
@@ -467,6 +532,14 @@ static void test_energy(void **state)
         if (!(worst <= 10 * tol) || !(kept > 0.01 && kept < 0.5))
             fail_msg("%s: a yielded contact's energy departs from the work it gives back by %g (it keeps %g of the "
                      "work put in)", bc->name, worst, kept);
+        long held = 0;
+        double pull;
+        worst = energy_adhesive(bc, &held, &pull);
+        printf("  energy, %s, adhesive springs held for %ld steps, down to %.4g N: largest |E - (E_turn - W)| %.3g of "
+               "E_turn\n", bc->name, held, pull, worst);
+        if (!(worst <= tol) || held < 5 || !(pull < 0))
+            fail_msg("%s: the held springs' energy departs from the work given back by %g of it (%ld steps held, least "
+                     "force %g N)", bc->name, worst, held, pull);
     }
 }
 

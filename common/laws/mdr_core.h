@@ -411,20 +411,34 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
 }
 
 /* The elastic energy a side gives back when unloaded from its state: (M7)'s force integrated along (M17)'s map from
- * the indenter's depth de to 0, (1 + 2 dr/A) E* A^2 B / 4 H(de/A); the adhesive springs' part is not counted. *bulk
- * gets the bulk spring's F_BULK delta_BULK / 2 (M35, with the side's stored area, which carries the contact's weight)
- * of the particle p of this step. */
+ * the indenter's depth de to 0, (1 + 2 dr/A) E* A^2 B / 4 H(de/A). A side whose springs are held at a radius a
+ * beyond the compressive one (M21, cases 2 and 3 of mdr_side_force: after the step a = min(a_adh, 0.99 a_max) >
+ * a_na(de)) stores the springs' energy at the depth g = g(a) where a is compressive, plus what its force, linear in de
+ * at fixed a (slope 2 E* a), adds from g to de: F_na(g) (de - g) + E* a (de - g)^2, along the same map (the 1D springs'
+ * sum of squares, >= 0: it is the energy a pull-off sets free). *bulk gets the bulk spring's F_BULK delta_BULK / 2
+ * (M35, with the side's stored area, which carries the contact's weight) of the particle p of this step. */
 DEM_INLINE real mdr_side_energy(const mdr_material *m, const mdr_side *s, const mdr_particle *p, real *bulk)
 {
     real r = p->r, A, B, amax, dr, de;
     mdr_side_shape(m, s, r, mdr_yield_pressure(m, s->deltamax, r), &A, &B, &amax, &dr, &de);
-    real u = de / A;
+    real d = de, held = (real)0;
+    if (m->gamma > (real)0) {
+        real a_cap = (real)99 / (real)100 * amax;
+        real a = s->a_adh < a_cap ? s->a_adh : a_cap;
+        if (a > mdr_a_of_depth(de, A, B)) {
+            real g = mdr_g_of_a(a, A, B), x = de - g;
+            held = mdr_f_na(g, A, B, m->es) * x + m->es * a * x * x;
+            d = g;
+        }
+    }
+    real u = d / A;
     if (u > (real)1 / (real)2)
         u = (real)1 / (real)2;
     *bulk = s->delta_bulk > (real)0
                 ? p->acon0 * s->delta_bulk * m->kappa * s->ac / p->vgeo * s->delta_bulk / (real)2
                 : (real)0;
-    return de > (real)0 ? ((real)1 + (real)2 * dr / A) * (m->es * A * A * B / (real)4) * mdr_hint(u) : (real)0;
+    real k = (real)1 + (real)2 * dr / A;
+    return (d > (real)0 ? k * (m->es * A * A * B / (real)4) * mdr_hint(u) : (real)0) + k * held;
 }
 
 /* (M3) side k's share of a pair's apparent overlap delta: side 0 the sphere of higher id (radius r0), side 1 the
