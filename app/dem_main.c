@@ -236,6 +236,8 @@ static int check(const cli *cl)
     int nfields = 0;
     for (unsigned b = run.fields & ~(unsigned)(OUT_RADIUS | OUT_MATERIAL); b; b >>= 1)
         nfields += b & 1;
+    if ((run.fields & OUT_RADIUS) && (run.effects & DEM_EFFECT_MDR))
+        nfields++; /* /frames/apparent_radius: a third of a vector field, counted as one (an estimate) */
     printf("scene          %s%s%s\n", path, sc->f->name ? ": " : "", sc->f->name ? sc->f->name : "");
     printf("particles      %d (radius %.4g to %.4g m), %d walls, %u materials\n", n, rmin, rmax, dem_wall_count(s),
            sc->f->materials_count);

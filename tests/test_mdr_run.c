@@ -452,15 +452,18 @@ static void energy_path(const backend_case *bc, double y, long load, long unload
 }
 
 /* The adhesive springs' energy (mdr_side_energy, M21): a pair that does not yield (Y = 100 GPa), of surface energy
- * 500 J/m^2, pressed 10 um and pulled back. While each side's springs stay at the radius they held (a_adh unchanged
- * from step to step, M24, and before it the compressive unloading, M22) the force is conservative, and the energy at
- * each step is the energy at the turn less the work given back since, down into tension and past zero overlap of the
- * indenters; the first step whose radius recedes (M25) ends the comparison (the springs let go there set energy free).
+ * 120 J/m^2, pressed 10 um (5 um per side) and pulled back. The springs are held at a ~ 35 um where the depth is
+ * g ~ 2.45 um, and may stretch l(a) ~ 2.1 um (M23): more than the 2/3 g at which the force turns tensile, less than g,
+ * so the held phase (M24) goes into tension and ends with the radius receding (M25) while the pair still overlaps.
+ * While each side's springs stay at the radius they held (a_adh unchanged from step to step; before that the
+ * compressive unloading, M22) the force is conservative, and the energy at each step is the energy at the turn less
+ * the work given back since; the first step whose radius recedes ends the comparison (the springs let go there set
+ * energy free). The host's energy (dem_energy, from the stored rows) against the device row's at every step.
  * Returns the largest |E - (E_turn - W)| over E_turn; *pull the least force reached within the compared steps. */
 static double energy_adhesive(const backend_case *bc, long *held, double *pull)
 {
     dem_sim *s = dem_create();
-    dem_material m = mcc(500.0);
+    dem_material m = mcc(120.0);
     m.yield_stress = 1e11;
     int mat = dem_add_material(s, &m);
     double v = 0.1;
@@ -478,16 +481,24 @@ static double energy_adhesive(const backend_case *bc, long *held, double *pull)
     double u[LOAD + UNLOAD + 1] = {0}, f[LOAD + UNLOAD + 1] = {0}, e[LOAD + UNLOAD + 1] = {0}, adh[2] = {-1, -1};
     unsigned char want = 1;
     long end = -1;
+    double emax = 0;
     for (long k = 1; k <= LOAD + UNLOAD && end < 0; k++) {
         if (k == LOAD + 1)
             set_speed(s, v, -v);
         dem_sample row;
+        dem_energy_t host;
         double x[6], fo[6];
         dem_state st;
         if (dem_step_sampled(s, 1, &want, &row) || dem_get_field(s, DEM_FIELD_X, x) ||
-            dem_get_field(s, DEM_FIELD_FORCE, fo) || dem_state_get(s, &st))
+            dem_get_field(s, DEM_FIELD_FORCE, fo) || dem_state_get(s, &st) || dem_energy(s, &host))
             fail_msg("%s", dem_error(s));
         u[k] = 2 * R1 - (x[3] - x[0]), f[k] = -fo[0], e[k] = row.energy.elastic;
+        emax = fmax(emax, e[k]);
+        if (!(fabs(host.elastic - e[k]) <= (bc->precision == DEM_FP64 ? 1e-13 : 1e-5) * emax))
+            fail_msg("%s: step %ld, the host's energy %.17g J, the device row's %.17g J", bc->name, k, host.elastic,
+                     e[k]);
+        if (k > LOAD && st.npairs == 0)
+            fail_msg("%s: step %ld, the pair came apart before a radius receded", bc->name, k);
         assert_true(st.npairs <= 1 && (!st.npairs || (st.has_law == 25 && st.pair_law)));
         int held_now = 1; /* both sides' a_adh (row 2 + 8 and 13 + 8) as at the last step */
         for (int q = 0; q < 2; q++) {
@@ -537,7 +548,7 @@ static void test_energy(void **state)
         worst = energy_adhesive(bc, &held, &pull);
         printf("  energy, %s, adhesive springs held for %ld steps, down to %.4g N: largest |E - (E_turn - W)| %.3g of "
                "E_turn\n", bc->name, held, pull, worst);
-        if (!(worst <= tol) || held < 5 || !(pull < 0))
+        if (!(worst <= 3 * tol) || held < 5 || !(pull < 0))
             fail_msg("%s: the held springs' energy departs from the work given back by %g of it (%ld steps held, least "
                      "force %g N)", bc->name, worst, held, pull);
     }

@@ -291,7 +291,8 @@ static void apparent_radius_output(const char *ckpt, int n, hid_t rt, int rs)
     }
     assert_true(grown > 0);
     free(all);
-    assert_int_equal(sh(err, sizeof err, "grep -q 'Name=\"apparent_radius\"' %s", xmf), 0);
+    assert_int_equal(sh(err, sizeof err, "grep -q 'Name=\"apparent_radius\"' %s && %s %s/tests/xdmf_check.py %s", xmf,
+                        test_python(), SRC, xmf), 0);
 }
 
 static void restart_case(const char *sc, const char *precision, int mc)

@@ -24,8 +24,8 @@
  * (w = max(1 - p, 0)); mdr_surface computes p each step into the pair's row (mdr_particle.h).
  *
  * Energy (law_in.energy): each side's elastic energy (mdr_core.h mdr_side_energy: what it gives back unloaded from its
- * state, the springs adhesion holds in tension included), a pair's the weighted sum of its two sides', a wall's times its magnifier;
- * the series rows and the host's energies (host/physics/energy.c) take it from there.
+ * state, the springs adhesion holds in tension included), a pair's the weighted sum of its two sides', a wall's times
+ * its magnifier; the series rows and the host's energies (host/physics/energy.c) take it from there.
  * Stress output: each contact's elastic normal force of the last step, kept in its row (particle_stress.h reads it).
  * The law's other entry points (law.h) have no contact state to read: law_elastic and law_energy give the unyielded
  * contact of two equal spheres (no caller uses them with MDR); law_stiffness gives the stiffest slope MDR reaches at an overlap, a

@@ -9,7 +9,8 @@ The layout (app/output.c writes it; `h5ls -r RUN.h5` lists it):
                 string, in the walls' order)
   /particles    radius [m], material (per sphere), input_index (with particle_order: spatial)
   /frames       time, step and each output field per frame: position, velocity, angular_velocity, force, torque
-                [frames, n, 3], stress [frames, n, 6]
+                [frames, n, 3], stress [frames, n, 6]; under mdr with the field radius, apparent_radius [frames, n]
+                (the radius each sphere's contacts see; /particles/radius is the radius as created)
   /contacts     (the field `contacts`) the contact network of every frame, ragged: frame_start, frame_pairs, ids
                 [rows, 2] (j = -1 - wall for a wall contact), data [rows, 12], normal_force [rows]
   /walls        the walls as triangle meshes for ParaView

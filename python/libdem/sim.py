@@ -153,7 +153,8 @@ SIGNATURES = {
 
 # fields (dem_field) by name, with their values per particle (or per wall)
 FIELDS = {"x": (0, 3), "v": (1, 3), "w": (2, 3), "force": (3, 3), "torque": (4, 3), "wall_force": (10, 3),
-          "stress": (17, 6), "stress_trace": (18, 1), "wall_normal_force": (27, 1)}
+          "stress": (17, 6), "stress_trace": (18, 1), "wall_normal_force": (27, 1),
+          "radius": (29, 1)}
 # the fields set() writes: the state's arrays of the same names (dem_state_get / dem_state_set)
 WRITABLE = ("x", "v", "w")
 BACKENDS = {"reference": 0, "opencl": 1}
