@@ -341,7 +341,8 @@ class DiametralTest(unittest.TestCase):
     along -x and +x) close on a hand-made tablet - rings of spheres (r 0.1 mm) whose outermost centres lie 0.9 mm
     from the axis, in five layers 0.1 mm apart - so D = 2 mm and t = 0.6 mm; the platen force rises to 5 N, falls
     (the crack) and rises to 7 N (the halves crushed): tensile strength 2 F / (pi D t) = 2.6526 MPa with F = 5 N. A
-    second frame, after the platens touched, must not be the one measured."""
+    second frame, after the platens touched, must not be the one measured. A tablet more than twice as thick as the gap
+    where the upper punch let go has come apart: no tensile strength."""
 
     def test_tensile_strength(self):
         with tempfile.TemporaryDirectory() as d:
@@ -388,6 +389,17 @@ class DiametralTest(unittest.TestCase):
             self.assertAlmostEqual(float(kv["tensile_mpa"]), 2.65258, places=5)
             self.assertEqual(float(kv["max_platen_n"]), 5.0)
             self.assertEqual(float(kv["tablet_failed"]), 1.0)
+            self.assertTrue(dia["whole"])
+            self.assertEqual(float(kv["tablet_whole"]), 1.0)
+            # a compact that came apart out of the die: its spheres spread along the axis to 2.1 times the gap where
+            # the upper punch let go (0.95 mm): no tablet, no tensile strength, whatever the platens meet
+            flown = x * np.array([1.0, 1.0, 0.0021 / 0.0004])
+            write_run(path, 1e-3 * np.arange(n), walls, pos, force, radius,
+                      frames=dict(time=[0.010, 0.025], step=[10, 25], position=[flown, messy]))
+            gone = tablet.analyse(path)["dia"]
+            self.assertAlmostEqual(gone["thickness"], 0.0023, places=12)
+            self.assertFalse(gone["whole"])
+            self.assertTrue(math.isnan(gone["tensile"]))
             # a tablet that never cracks (the force only rises): its largest force, marked so
             force[16:, 3, 0] = np.linspace(1, 7, n - 16)
             force[16:, 4, 0] = -force[16:, 3, 0]

@@ -18,12 +18,20 @@ import sys
 import numpy as np
 
 from libdem import tablet
+from libdem.output import Run
 
 # Published MCC tablets (diametral compression), each (relative density, tensile strength [MPa], source). Only values
 # read in the source itself are listed: virgin MCC compacts at solid fraction 0.85, unlubricated and lubricated die
 # (AAPS PharmSciTech 12(3) (2011) 834-853, doi:10.1208/s12249-011-9640-z, Table III).
 PUBLISHED = [(0.85, 8.69, "MCC, solid fraction 0.85, unlubricated (AAPS PharmSciTech 2011, Table III)"),
              (0.85, 8.12, "MCC, solid fraction 0.85, lubricated (AAPS PharmSciTech 2011, Table III)")]
+
+
+def law_of(path):
+    """The run's normal contact law, from its effects attribute"""
+    fx = str(Run(path).attrs.get("effects", ""))
+    law = next((w for w in ("mdr", "thornton_ning", "mc_stress", "mc_strain") if w in fx.split("+")), "classical")
+    return law + (" + bonds" if law == "thornton_ning" else "")
 
 
 def main(argv):
@@ -39,15 +47,16 @@ def main(argv):
             continue
         rows.append(dict(path=os.path.basename(p), p_max=c["p_max"] * 1e-6, d_die=c["dens"][c["k_max"]],
                          d_out=d["density"], diam=d["diameter"], thick=d["thickness"], peak=d["peak"],
-                         tensile=d["tensile"] * 1e-6, failed=d["failed"]))
+                         tensile=d["tensile"] * 1e-6, failed=d["failed"], whole=d["whole"], law=law_of(p)))
     if not rows:
         sys.exit("plot_tablet_strength: no run to draw")
     rows.sort(key=lambda r: r["p_max"])
     dens = np.array([r["d_out"] for r in rows])
     sig = np.array([r["tensile"] for r in rows])
     b = s0 = float("nan")
-    if len(rows) >= 2:
-        slope, icpt = np.polyfit(1 - dens, np.log(sig), 1)
+    ok = np.isfinite(sig) & (sig > 0)  # the tablets that held together out of the die
+    if np.count_nonzero(ok) >= 2:
+        slope, icpt = np.polyfit(1 - dens[ok], np.log(sig[ok]), 1)
         b, s0 = -slope, math.exp(icpt)
     with open(os.path.join(out, "strength.md"), "w") as f:
         f.write("| run | pressure [MPa] | density in die at it | D [mm] | t [mm] | density out of die | failure load "
@@ -55,7 +64,7 @@ def main(argv):
         for r in rows:
             f.write(f"| {r['path']} | {r['p_max']:.1f} | {r['d_die']:.3f} | {1e3 * r['diam']:.3f} | "
                     f"{1e3 * r['thick']:.3f} | {r['d_out']:.3f} | {r['peak']:.3g} | {r['tensile']:.3g} | "
-                    f"{'yes' if r['failed'] else 'no (largest force)'} |\n")
+                    f"{'came apart out of the die' if not r['whole'] else 'yes' if r['failed'] else 'no (largest force)'} |\n")
         f.write(f"\nRyshkewitch-Duckworth fit to these runs: sigma_0 = {s0:.3g} MPa, b = {b:.3g} "
                 "(sigma_t = sigma_0 exp(-b (1 - D)), D out of die)\n")
     import matplotlib
@@ -64,7 +73,7 @@ def main(argv):
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(1, 2, figsize=(12, 4.8))
-    ax[0].plot(dens, sig, "o-", label="libdem: thornton_ning + bonds (out-of-die density)")
+    ax[0].plot(dens, sig, "o-", label=f"libdem: {rows[0]['law']} (out-of-die density)")
     for r in rows:
         ax[0].annotate(f"{r['p_max']:.0f} MPa", (r["d_out"], r["tensile"]), fontsize=8, xytext=(4, -10),
                        textcoords="offset points")

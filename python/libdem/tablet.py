@@ -27,7 +27,9 @@ yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejectio
 and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet):
 tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n (the failure load F: the platen
 force before it first falls by 20 %, from at least half its largest), tensile_mpa (2 F / (pi D t)), tablet_failed (1: the force fell so, 0: it never
-did and F is the largest force), platen_force_after_peak (the platen force at the end over F).
+did and F is the largest force), platen_force_after_peak (the platen force at the end over F), tablet_whole (1: the
+tablet held together out of the die, no thicker than 2 times the gap where the upper punch let go and no wider than 2
+times the bore; 0: it came apart, and tensile_mpa is nan).
 Renamed from the report's earlier keys: max_upper_pa -> max_upper_mpa, yield_pa -> yield_mpa, radial_pa ->
 radial_mpa (the values in MPa, no longer Pa); max_ejection_n (the lower punch's largest force, inertia included) ->
 max_ejection_punch_n, beside the new max_ejection_friction_n. transmission keeps its name; it is now taken over the
@@ -123,6 +125,14 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     eject_friction = force[ej, k_die, :] @ n_lo if len(ej) else np.array([])
     nan = float("nan")
     dia = diametral(run, lo) if all(w in names for w in PLATENS) else None
+    if dia is not None:
+        # a tablet came out of the die only if it holds together: no thicker than WHOLE times the gap where the upper
+        # punch let go (or at the largest pressure), no wider than WHOLE times the bore; a compact that came apart
+        # (spheres flying off as it springs back) has no tensile strength, whatever force the platens meet
+        g_rel = gap[k_rel] if k_rel is not None else gap[k_max]
+        dia["whole"] = bool(dia["thickness"] <= WHOLE * g_rel and dia["diameter"] <= WHOLE * 2 * radius[k_die])
+        if not dia["whole"]:
+            dia["tensile"] = float("nan")
     return dict(dia=dia, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
                 gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
                 heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
@@ -135,6 +145,7 @@ def analyse(run, die=None, upper="upper", lower="lower"):
 PLATENS = ("platen_a", "platen_b")
 TRIM = 0.005
 DROP = 0.2
+WHOLE = 2.0  # a tablet thicker than WHOLE times its gap at release, or wider than WHOLE bores, came apart
 
 
 def tablet_size(x, r, axis):
@@ -200,6 +211,7 @@ def numbers(c):
             [("tablet_diameter_m", c["dia"]["diameter"]), ("tablet_thickness_m", c["dia"]["thickness"]),
              ("tablet_density", c["dia"]["density"]), ("max_platen_n", c["dia"]["peak"]),
              ("tensile_mpa", MPA * c["dia"]["tensile"]), ("tablet_failed", float(c["dia"]["failed"])),
+             ("tablet_whole", float(c["dia"]["whole"])),
              ("platen_force_after_peak", c["dia"]["after_peak"])]
             if c.get("dia") else [])
 
@@ -255,8 +267,9 @@ def plot(c, out, title):
         k0 = dia["k0"]
         ax[0, 2].plot(1e6 * dia["travel"][k0:], dia["force"][k0:])
         ax[0, 2].plot([1e6 * dia["travel"][dia["k_peak"]]], [dia["peak"]], "o",
-                      label=f"{'failure' if dia['failed'] else 'largest (no failure)'} {dia['peak']:.3g} N: tensile "
-                            f"strength {MPA * dia['tensile']:.3g} MPa")
+                      label=(f"{'failure' if dia['failed'] else 'largest (no failure)'} {dia['peak']:.3g} N: tensile "
+                             f"strength {MPA * dia['tensile']:.3g} MPa") if dia["whole"] else
+                      f"no tablet: the compact came apart out of the die (largest force {dia['peak']:.3g} N)")
         ax[0, 2].set(xlabel="platens' closing [um]", ylabel="platen force [N]",
                      title=f"diametral compression: D {1e3 * dia['diameter']:.3g} mm, t {1e3 * dia['thickness']:.3g} "
                            f"mm, density {dia['density']:.3f}")
