@@ -6,7 +6,7 @@
 #   tools/state_hashes.sh OLD_BUILD/dem > before.txt; tools/state_hashes.sh build/dem > after.txt; diff before.txt after.txt
 # The hash is `dem hash` of the checkpoint (app/conform.h: positions, velocities, spins, forces, contact histories,
 # wall forces, MC-strain forces, and the contact law's states where the law has memory - thornton_ning, run on the
-# scenes whose materials give a yield_stress). A model a scene cannot take (MC-strain without gamma) is listed as
+# scenes whose materials give a yield_stress, and mdr, on those that give a bulk_fraction). A model a scene cannot take (MC-strain without gamma) is listed as
 # refused. docs/state_hashes.txt is the reference table, and `dem conform` runs its reference lines on a device and
 # compares (the same runs: `dem run SCENE --stop-after 150 --precision P --backend B [--model M]`). A change that is
 # meant to keep the bits compares against it directly,
@@ -22,6 +22,7 @@ for s in "$ROOT"/scenes/*.yaml "$ROOT"/scenes/validation/*.yaml "$ROOT"/tests/sc
     for be in opencl reference; do
         models="scene mc_stress mc_strain mc_strain_iterated"
         grep -q yield_stress "$s" && models="$models thornton_ning" # the plastic law where a material yields
+        grep -q bulk_fraction "$s" && models="$models mdr"          # MDR where a material gives its keys
         for model in $models; do
             for prec in fp64 fp32; do
                 m=()
