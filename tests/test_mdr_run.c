@@ -350,19 +350,14 @@ static void test_box(void **state)
     free(ref_bits[0]), free(ref_bits[1]);
 }
 
-/* The elastic energy (laws/mdr.h, mdr_core.h mdr_side_energy) against the work of the run's own force, by the
- * trapezoid rule over its steps: two spheres of 0.5 mm on held velocities, no damping, no adhesion. Loading a material
- * that does not yield (Y = 100 GPa): the energy at every step is the work done so far. Loading MCC past yield, then
- * unloading: the energy at each unloading step is the work the contact gives back from there to where its force
- * ends, and far less than the work put in (the rest went into the dent). Each step's energy from the device's sampled
- * row (contact_pairs) and from the host (dem_energy, from the stored rows) alike. */
-static void energy_path(const backend_case *bc, double y, long load, long unload, double *worst_rel, double *kept)
+/* Two spheres of 0.5 mm of MCC of surface energy gamma and yield stress y, touching at the origin, on held velocities
+ * v/2 towards each other (no damping: the effects leave it out), started on bc's backend and precision */
+static dem_sim *pressed_pair(const backend_case *bc, double gamma, double y, double v)
 {
     dem_sim *s = dem_create();
-    dem_material m = mcc(0.0);
+    dem_material m = mcc(gamma);
     m.yield_stress = y;
     int mat = dem_add_material(s, &m);
-    double v = 0.1;
     dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0.5 * v, 0, 0}, R1, mat);
     dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R1, mat);
     dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
@@ -373,6 +368,19 @@ static void energy_path(const backend_case *bc, double y, long load, long unload
     dem_config c = cfg_of(bc->backend, bc->precision);
     c.force_dt = 1;
     start_or_fail(s, &c);
+    return s;
+}
+
+/* The elastic energy (laws/mdr.h, mdr_core.h mdr_side_energy) against the work of the run's own force, by the
+ * trapezoid rule over its steps: two spheres of 0.5 mm on held velocities, no damping, no adhesion. Loading a material
+ * that does not yield (Y = 100 GPa): the energy at every step is the work done so far. Loading MCC past yield, then
+ * unloading: the energy at each unloading step is the work the contact gives back from there to where its force
+ * ends, and far less than the work put in (the rest went into the dent). Each step's energy from the device's sampled
+ * row (contact_pairs) and from the host (dem_energy, from the stored rows) alike. */
+static void energy_path(const backend_case *bc, double y, long load, long unload, double *worst_rel, double *kept)
+{
+    double v = 0.1;
+    dem_sim *s = pressed_pair(bc, 0.0, y, v);
     long n = load + unload;
     double *u = calloc((size_t)n + 1, sizeof(double)), *f = calloc((size_t)n + 1, sizeof(double));
     double *e = calloc((size_t)n + 1, sizeof(double));
@@ -462,21 +470,8 @@ static void energy_path(const backend_case *bc, double y, long load, long unload
  * Returns the largest |E - (E_turn - W)| over E_turn; *pull the least force reached within the compared steps. */
 static double energy_adhesive(const backend_case *bc, long *held, double *pull)
 {
-    dem_sim *s = dem_create();
-    dem_material m = mcc(120.0);
-    m.yield_stress = 1e11;
-    int mat = dem_add_material(s, &m);
     double v = 0.1;
-    dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0.5 * v, 0, 0}, R1, mat);
-    dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R1, mat);
-    dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
-    dem_set_particle_flags(s, 1, DEM_PARTICLE_HOLD_V);
-    dem_set_domain(s, (double[3]){-8 * R1, -8 * R1, -8 * R1}, (double[3]){8 * R1, 8 * R1, 8 * R1});
-    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_CONSTRAINTS) || dem_set_dt(s, DT))
-        fail_msg("%s", dem_error(s));
-    dem_config c = cfg_of(bc->backend, bc->precision);
-    c.force_dt = 1;
-    start_or_fail(s, &c);
+    dem_sim *s = pressed_pair(bc, 120.0, 1e11, v);
     enum { LOAD = 100, UNLOAD = 200 };
     double u[LOAD + UNLOAD + 1] = {0}, f[LOAD + UNLOAD + 1] = {0}, e[LOAD + UNLOAD + 1] = {0}, adh[2] = {-1, -1};
     unsigned char want = 1;
