@@ -223,8 +223,8 @@ enum {
                                          components along their contact normals [N] (a die's radial force; a plane's
                                          normal force) */
     DEM_FIELD_RADIUS = 29             /* real[n]: each particle's radius as its contacts see it now [m]: the radius as
-                                         given (dem_particle_radius, in the run's precision), or under mdr its apparent radius, which grows
-                                         as the sphere is pressed (docs/laws/mdr.md M34) */
+                                         given (dem_particle_radius, in the run's precision), or under mdr its
+                                         apparent radius, which grows as the sphere is pressed (docs/laws/mdr.md M34) */
 };
 
 typedef struct {

@@ -62,9 +62,9 @@ def main(argv):
         f.write("| run | pressure [MPa] | density in die at it | D [mm] | t [mm] | density out of die | failure load "
                 "[N] | tensile strength [MPa] | cracked |\n|---|---|---|---|---|---|---|---|---|\n")
         for r in rows:
+            cracked = ("yes" if r["failed"] else "no (largest force)") if r["whole"] else "came apart out of the die"
             f.write(f"| {r['path']} | {r['p_max']:.1f} | {r['d_die']:.3f} | {1e3 * r['diam']:.3f} | "
-                    f"{1e3 * r['thick']:.3f} | {r['d_out']:.3f} | {r['peak']:.3g} | {r['tensile']:.3g} | "
-                    f"{'came apart out of the die' if not r['whole'] else 'yes' if r['failed'] else 'no (largest force)'} |\n")
+                    f"{1e3 * r['thick']:.3f} | {r['d_out']:.3f} | {r['peak']:.3g} | {r['tensile']:.3g} | {cracked} |\n")
         f.write(f"\nRyshkewitch-Duckworth fit to these runs: sigma_0 = {s0:.3g} MPa, b = {b:.3g} "
                 "(sigma_t = sigma_0 exp(-b (1 - D)), D out of die)\n")
     import matplotlib
