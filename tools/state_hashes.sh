@@ -7,8 +7,8 @@
 # The hash is `dem hash` of the checkpoint (app/conform.h: positions, velocities, spins, forces, contact histories,
 # wall forces, MC-strain forces, and the contact law's states where the law has memory - thornton_ning, run on the
 # scenes whose materials give a yield_stress, and mdr, on those that give a bulk_fraction). A model a scene cannot
-# take (MC-strain without gamma) is listed as refused. docs/state_hashes.txt is the reference table, and `dem conform` runs its reference lines on a device and
-# compares (the same runs: `dem run SCENE --stop-after 150 --precision P --backend B [--model M]`). A change that is
+# take (MC-strain without gamma) is listed as refused. docs/state_hashes.txt is the reference table, and `dem
+# conform` runs its reference lines on a device and compares (the same runs: `dem run SCENE --stop-after 150 --precision P --backend B [--model M]`). A change that is
 # meant to keep the bits compares against it directly,
 #   tools/state_hashes.sh build/dem | diff <(grep -v '^#' docs/state_hashes.txt) -
 set -u
