@@ -4,12 +4,12 @@
 # "scene backend model precision hash". A refactor that claims bit-identity compares this table before and after
 # (docs/design.md "One description per kernel and buffer"):
 #   tools/state_hashes.sh OLD_BUILD/dem > before.txt; tools/state_hashes.sh build/dem > after.txt; diff before.txt after.txt
-# The hash is `dem hash` of the checkpoint (app/conform.h: positions, velocities, spins, forces, contact histories,
-# wall forces, MC-strain forces, and the contact law's states where the law has memory - thornton_ning, run on the
-# scenes whose materials give a yield_stress, and mdr, on those that give a bulk_fraction). A model a scene cannot
-# take (MC-strain without gamma) is listed as refused. docs/state_hashes.txt is the reference table, and `dem
-# conform` runs its reference lines on a device and compares (the same runs: `dem run SCENE --stop-after 150 --precision P --backend B [--model M]`). A change that is
-# meant to keep the bits compares against it directly,
+# The hash is `dem hash` of the checkpoint (app/conform.h: positions, velocities, spins, forces, contact histories, wall
+# forces, MC-strain forces, and the contact law's states where the law has memory - thornton_ning, run on the scenes
+# whose materials give a yield_stress, and mdr, on those that give a bulk_fraction). A model a scene cannot take
+# (MC-strain without gamma) is listed as refused. docs/state_hashes.txt is the reference table, and `dem conform` runs
+# its reference lines on a device and compares (the same runs: `dem run SCENE --stop-after 150 --precision P --backend B
+# [--model M]`). A change that is meant to keep the bits compares against it directly,
 #   tools/state_hashes.sh build/dem | diff <(grep -v '^#' docs/state_hashes.txt) -
 set -u
 DEM=$(readlink -f "${1:-build/dem}")
