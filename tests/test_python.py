@@ -330,6 +330,22 @@ class TabletTest(unittest.TestCase):
             self.assertNotIn("max_upper_pa", kv)
             self.assertTrue(os.path.getsize(png) > 0)
             os.unlink(png)
+        # the same cycle ejected by drawing the die down 0.5 mm per row instead (the lower punch stays): the die's
+        # axial force is the friction, 3 N, the lower punch's 3 N with a 5 N spike
+        h = h5py.File(self.path, "r+")
+        pos, force = h["series/wall_position"], h["series/wall_force"]
+        p, fo = pos[()], force[()]
+        p[25:, 1, 2] = 0.0
+        p[25:, 0, 2] = -0.0005 * np.arange(1, 11)
+        fo[25:, 0, 2], fo[25:, 1, 2] = 3.0, -3.0
+        fo[27, 1, 2] = -8.0
+        pos[...], force[...] = p, fo
+        h.close()
+        c = tablet.analyse(self.path)
+        self.assertTrue(c["eject_by_die"])
+        self.assertAlmostEqual(c["max_ejection_friction"], 3.0, places=12)
+        self.assertAlmostEqual(c["max_ejection_punch"], 8.0, places=12)
+        self.assertAlmostEqual(float(c["eject_travel"][-1]), 0.005, places=12)
         bad = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_tablet.py"), self.path, "--upper", "lid"],
                              capture_output=True, text=True)
         self.assertNotEqual(bad.returncode, 0)

@@ -20,7 +20,10 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
   - ejection (the lower punch rising after the upper punch let go): the die-wall friction is the die's axial force
     (the compact drags the die along as it slides out); the lower punch's force is that friction plus the compact's
     inertia and weight, reported apart: a velocity step of the punch accelerates the compact, and its inertia (mass
-    scaled in a mass-scaled run) is not the friction a press's ejection force measures.
+    scaled in a mass-scaled run) is not the friction a press's ejection force measures. Where the lower punch stays
+    and the die is drawn down off the compact instead (withdrawal ejection), the same two forces over the die's
+    travel: the die's axial force is the friction (the compact holds the die back), the lower punch's the force the
+    compact is held on it with.
 
 Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m3, max_upper_mpa, density_at_max,
 yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejection_friction_n, max_ejection_punch_n;
@@ -114,12 +117,18 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     ratio = float(np.median(p_lo[loading] / p_up[loading])) if len(loading) else float("nan")
     recovery = (gap[k_rel] - gap[k_max]) / gap[k_max] if k_rel is not None else float("nan")
     radial_ratio = float(p_rad[k_max] / p_max)
-    # ejection: the lower punch rising after the upper one let go
-    ej = np.array([], dtype=int)
+    # ejection: the lower punch rising after the upper one let go, or else the die drawn down off the compact (which
+    # then rests on the lower punch); the travel is the moving wall's, counted positive
+    ej, by_die = np.array([], dtype=int), False
     if k_rel is not None:
         z_lo = pos[:, lo, :] @ n_lo
         ej = np.nonzero((rows >= k_rel) & (z_lo > z_lo[k_rel] + 1e-12))[0]
-    eject_travel = (pos[ej, lo, :] - pos[k_rel, lo, :]) @ n_lo if len(ej) else np.array([])
+        if not len(ej):
+            z_die = pos[:, k_die, :] @ n_lo
+            ej = np.nonzero((rows >= k_rel) & (z_die < z_die[k_rel] - 1e-12))[0]
+            by_die = len(ej) > 0
+    mover = k_die if by_die else lo
+    eject_travel = abs((pos[ej, mover, :] - pos[k_rel, mover, :]) @ n_lo) if len(ej) else np.array([])
     eject_force = -(force[ej, lo, :] @ n_lo) if len(ej) else np.array([])
     # the die is dragged along the compact's way out (+n_lo) by the friction that holds the compact back
     eject_friction = force[ej, k_die, :] @ n_lo if len(ej) else np.array([])
@@ -136,7 +145,7 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     return dict(dia=dia, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
                 gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
                 heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
-                recovery=recovery, radial_ratio=radial_ratio, ej=ej, eject_travel=eject_travel,
+                recovery=recovery, radial_ratio=radial_ratio, ej=ej, eject_by_die=by_die, eject_travel=eject_travel,
                 eject_force=eject_force, eject_friction=eject_friction,
                 max_ejection_friction=float(np.max(eject_friction)) if len(ej) else nan,
                 max_ejection_punch=float(np.max(eject_force)) if len(ej) else nan, kinetic=kinetic, elastic=elastic)
@@ -260,9 +269,11 @@ def plot(c, out, title):
                       label="punch - friction: the compact's inertia and weight")
         ax[1, 1].legend(fontsize=8)
     else:
-        ax[1, 1].text(0.5, 0.5, "no ejection by the lower punch in this run", ha="center", va="center",
+        ax[1, 1].text(0.5, 0.5, "no ejection (lower punch or die) in this run", ha="center", va="center",
                       transform=ax[1, 1].transAxes)
-    ax[1, 1].set(xlabel="lower punch travel [mm]", ylabel="force [N]", title="ejection")
+    ax[1, 1].set(xlabel="die travel, drawn down off the compact [mm]" if c["eject_by_die"] else
+                 "lower punch travel [mm]", ylabel="force [N]",
+                 title="ejection by withdrawing the die" if c["eject_by_die"] else "ejection")
     if dia:
         k0 = dia["k0"]
         ax[0, 2].plot(1e6 * dia["travel"][k0:], dia["force"][k0:])
