@@ -427,8 +427,9 @@ class Sim:
         return (self._lib.dem_describe(self._s) or b"").decode(errors="replace")
 
     def get(self, field):
-        """A field as a float64 array: x, v, w, force, torque [n, 3], stress [n, 6], stress_trace [n], wall_force
-        [walls, 3], wall_normal_force [walls] (SI units, dem.h's DEM_FIELD_*)."""
+        """A field as a float64 array: x, v, w, force, torque [n, 3], stress [n, 6], stress_trace [n], radius [n] (as
+        the contacts see it: MDR's apparent radius under mdr), wall_force [walls, 3], wall_normal_force [walls] (SI
+        units, dem.h's DEM_FIELD_*)."""
         fid, width = FIELDS[field]
         if not self.started:
             raise DemError(-6, "get() needs a started simulation (start())")
