@@ -41,6 +41,10 @@ enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
 #define DEM_LAW_STATE_BITS (DEM_EFFECT_THORNTON_NING | DEM_EFFECT_MDR)
 #define DEM_LAW_PAIR_W(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_PAIR_STRIDE : 1)
 #define DEM_LAW_WALL_W(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_WALL_STRIDE : 1)
+/* which real of a contact's row law_elastic takes as its state (particle_stress.h): Thornton-Ning's one, MDR's
+ * elastic normal force of the last step */
+#define DEM_LAW_PAIR_ELASTIC(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_FEL_PAIR : 0)
+#define DEM_LAW_WALL_ELASTIC(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_FEL_WALL : 0)
 
 /* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
 #define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY)

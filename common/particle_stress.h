@@ -74,8 +74,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
             arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
             if (fx & DEM_LAW_STATE_BITS) {
                 int p = row_pair(i, j, k, hk, own_start[i], in_start[i], in_pair);
-                lst = touch[p] ? law_st[p * DEM_LAW_PAIR_W(fx) + ((fx & DEM_EFFECT_MDR) ? MDR_FEL_PAIR : 0)]
-                               : (real)0;
+                lst = touch[p] ? law_st[p * DEM_LAW_PAIR_W(fx) + DEM_LAW_PAIR_ELASTIC(fx)] : (real)0;
             }
         } else {
             int w = r.partner;
@@ -85,11 +84,9 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
             delta = g.delta, rstar = ri, n = g.n, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
             arm = tensor ? ri - g.delta : mcs_lever_wall(fx, ri, g.delta);
             if ((fx & DEM_LAW_STATE_BITS) && ((wall_mask[i] >> w) & 1u))
-                lst = wall_law[r.slot * DEM_LAW_WALL_W(fx) + ((fx & DEM_EFFECT_MDR) ? MDR_FEL_WALL : 0)];
+                lst = wall_law[r.slot * DEM_LAW_WALL_W(fx) + DEM_LAW_WALL_ELASTIC(fx)];
         }
-        /* MDR: the elastic normal force its law kept in the contact's row (laws/mdr.h), not one from the overlap */
-        real fh = (fx & DEM_EFFECT_MDR) ? lst : law_elastic(fx, pairmat + PM_STRIDE * (mi * nmat + other), rstar, delta, lst);
-        real c = stress_term(arm, fh, iv);
+        real c = stress_term(arm, law_elastic(fx, pairmat + PM_STRIDE * (mi * nmat + other), rstar, delta, lst), iv);
         if (tensor)
             stress_add(st, c, n);
         else

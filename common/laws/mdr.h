@@ -27,8 +27,8 @@
  * state, the springs adhesion holds in tension included), a pair's the weighted sum of its two sides', a wall's times
  * its magnifier; the series rows and the host's energies (host/physics/energy.c) take it from there.
  * Stress output: each contact's elastic normal force of the last step, kept in its row (particle_stress.h reads it).
- * The law's other entry points (law.h) have no contact state to read: law_elastic and law_energy give the unyielded
- * contact of two equal spheres (no caller uses them with MDR); law_stiffness gives the stiffest slope MDR reaches at an overlap, a
+ * law_elastic returns that kept force (its state argument); law_energy has no row to read and gives 0 (no caller uses
+ * it with MDR: the energies take each row, above); law_stiffness gives the stiffest slope MDR reaches at an overlap, a
  * flattened contact unloading (2 E* a per side with a^2 = 2 delta R), for the time-step bound.
  */
 #ifndef DEM_MDR_H
@@ -200,11 +200,12 @@ DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
     return r;
 }
 
-/* The unyielded contact of two equal spheres of radius R = 2 r*: each side pressed by delta/2, (M7) with (M9) */
+/* The elastic normal force is the contact's history, not a function of its overlap: the one mdr_force kept in the
+ * contact's row in the last force pass (MDR_FEL_PAIR, MDR_FEL_WALL), which the caller hands in as st
+ * (DEM_LAW_PAIR_ELASTIC) */
 DEM_INLINE real mdr_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    real R = (real)2 * rstar;
-    return delta > (real)0 ? mdr_f_na(delta / (real)2, (real)4 * R, (real)2 * R, pm[PM_MDR]) : (real)0;
+    return st;
 }
 /* Not defined for MDR (a plastic contact's recoverable energy needs its row): its callers refuse an MDR run */
 DEM_INLINE real mdr_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
