@@ -399,19 +399,15 @@ static void energy_path(const backend_case *bc, double y, long load, long unload
             fail_msg("%s", dem_error(s));
         u[k] = 2 * R1 - (x[3] - x[0]), f[k] = -fo[0], e[k] = row.energy.elastic;
         if (k == load && unload > 0) { /* the stress output: -(R - delta/2) F / V along x, from the contact's force */
-            double st6[12];
-            dem_state sd;
-            if (dem_get_field(s, DEM_FIELD_STRESS, st6) || dem_state_get(s, &sd))
+            double st6[12], rr[2]; /* the apparent radii (DEM_FIELD_RADIUS) give the overlap and the lever */
+            if (dem_get_field(s, DEM_FIELD_STRESS, st6) || dem_get_field(s, DEM_FIELD_RADIUS, rr))
                 fail_msg("%s", dem_error(s));
-            dem_state_array *mp = dem_state_find(&sd, "mdr_particle");
-            double r0 = sd.real_size == 8 ? ((double *)mp->data)[1] : ((float *)mp->data)[1];
-            double r1 = sd.real_size == 8 ? ((double *)mp->data)[15] : ((float *)mp->data)[15];
-            double delta = r0 + r1 - (x[3] - x[0]), want = -(r0 - 0.5 * delta) * f[k] / (4.0 / 3.0 * M_PI * R1 * R1 * R1);
+            double delta = rr[0] + rr[1] - (x[3] - x[0]);
+            double want = -(rr[0] - 0.5 * delta) * f[k] / (4.0 / 3.0 * M_PI * R1 * R1 * R1);
             printf("  stress, %s: sigma_xx %.9g Pa, from the force %.9g Pa\n", bc->name, st6[0], want);
             if (!(fabs(st6[0] - want) <= (bc->precision == DEM_FP64 ? 1e-12 : 1e-5) * fabs(want)) || !(want < 0))
                 fail_msg("%s: the stress output %.17g Pa, the contact's -(R - delta/2) F / V %.17g Pa", bc->name, st6[0],
                          want);
-            dem_state_free(&sd);
         }
         if (fabs(host.elastic - e[k]) > hd)
             hd = fabs(host.elastic - e[k]), hk = k;

@@ -410,8 +410,6 @@ int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
         /* fields of a model one run does not have (multi-contact) are compared only when both have them */
         if (fields[k] >= DEM_FIELD_STRESS_TRACE && (!dem_field_bytes(a, fields[k]) || !dem_field_bytes(b, fields[k])))
             continue;
-        if (fields[k] == DEM_FIELD_STRESS && (dem_effects(a) & DEM_EFFECT_MDR)) /* refused there (laws/mdr.h) */
-            continue;
         unsigned char *pa = get(a, fields[k], &na), *pb = get(b, fields[k], &nb);
         int bad = na != nb || memcmp(pa, pb, na) != 0;
         if (bad) {
