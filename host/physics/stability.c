@@ -197,16 +197,16 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     }
     int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1;
     int e = read_positions(s, raw, x, cnt, start, list, lb);
-    /* MDR: the apparent radii its contacts see (each particle's row, laws/mdr.h), in storage order like x */
+    /* MDR: the apparent radii its contacts see (RADIUS, which mdr_begin keeps), in storage order like x */
     double *rad = NULL;
     if (!e && (s->setup.effects & DEM_EFFECT_MDR)) {
-        unsigned char *mp = sim_buffer_get(s, BUF_MDR_PART, &e);
+        unsigned char *rb = sim_buffer_get(s, BUF_RADIUS, &e);
         rad = e ? NULL : malloc(sizeof(double) * (size_t)(n ? n : 1));
-        for (int i = 0; rad && i < n; i++)
-            sim_widen(mp + ((size_t)MDR_P_STRIDE * i + 1) * rs, rad + i, 1, rs);
+        if (rad)
+            sim_widen(rb, rad, n, rs);
         if (!e && !rad)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-        free(mp);
+        free(rb);
     }
     for (int i = 0; !e && i < n; i++) {
         if (s->pflags[i] & DEM_PARTICLE_FIXED)
