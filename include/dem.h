@@ -76,10 +76,11 @@ typedef struct {
                             materials that yield */
     double rolling_friction; /* coefficient of rolling resistance mu_r >= 0 (DEM_EFFECT_ROLLING): a contact's torque
                                 is at most mu_r r* f_n; a pair takes the mean of its two materials' */
-    double bond_strength; /* sigma_b [Pa] >= 0 of the solid bridge a yielded contact forms (DEM_EFFECT_THORNTON_NING):
-                             the contact then holds a tension up to sigma_b pi a_p^2, a_p its plastic contact radius,
-                             and breaks beyond it. A pair takes the smaller of its two materials' (0: no bond, e.g. a
-                             tool's steel) */
+    double bond_strength; /* sigma_b [Pa] >= 0 of the solid bridge a yielded contact forms (DEM_EFFECT_THORNTON_NING,
+                             and DEM_EFFECT_MDR over each side's pi a_max^2: docs/laws/mdr.md "Bonds"): the contact
+                             then holds a tension up to sigma_b pi a_p^2, a_p its plastic contact radius, and breaks
+                             beyond it. A pair takes the smaller of its two materials' (0: no bond, e.g. a tool's
+                             steel) */
     double rolling_damping; /* viscous damping ratio eta_r >= 0 of the rolling spring (DEM_EFFECT_ROLLING_SPRING; Ai et
                                al. 2011 model C: the dashpot is eta_r times the critical 2 sqrt(I_r k_r)); a pair takes
                                the mean of its two materials' */

@@ -7,8 +7,10 @@
  *   - a sphere on held velocity pressed on a plane wall, with adhesion, the same phases;
  *   - a fixed sphere between six planes closing in (Part II: the bulk response, the mean surface displacement and the
  *     radius update act), its first plane's force;
- *   - an MDR packing under a moving lid: the OpenCL run equal to the reference bit for bit, skins, storage order and
- *     a restart bit for bit.
+ *   - bonds (docs/laws/mdr.md "Bonds"): a bonded pair pulled, pressed further and pulled again, against F_turn
+ *     sigma_b / p_y; the same pair sheared until it slides at mu (F_n + F_b), then pulled without a bond;
+ *   - an MDR packing (with bonds) under a moving lid: the OpenCL run equal to the reference bit for bit, skins,
+ *     storage order and a restart bit for bit.
  * The walk is fed the approach the run's own positions give at each step, so the two see the same overlaps; the
  * force on the run's first body is compared with the walk's at every step (fp64 to 1e-9 of the path's peak force,
  * fp32 to 2e-3), the apparent radius at the end, and on OpenCL every step's force bit for bit with the reference's. */
@@ -352,23 +354,28 @@ static void test_box(void **state)
 
 /* Two spheres of 0.5 mm of MCC of surface energy gamma and yield stress y, touching at the origin, on held velocities
  * v/2 towards each other (no damping: the effects leave it out), started on bc's backend and precision */
-static dem_sim *pressed_pair(const backend_case *bc, double gamma, double y, double v)
+static dem_sim *pressed_pair_fx(const backend_case *bc, double gamma, double y, double v, double sigb, double mu,
+                               unsigned extra)
 {
     dem_sim *s = dem_create();
     dem_material m = mcc(gamma);
-    m.yield_stress = y;
+    m.yield_stress = y, m.bond_strength = sigb, m.friction = mu;
     int mat = dem_add_material(s, &m);
     dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0.5 * v, 0, 0}, R1, mat);
     dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R1, mat);
     dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
     dem_set_particle_flags(s, 1, DEM_PARTICLE_HOLD_V);
     dem_set_domain(s, (double[3]){-8 * R1, -8 * R1, -8 * R1}, (double[3]){8 * R1, 8 * R1, 8 * R1});
-    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_CONSTRAINTS) || dem_set_dt(s, DT))
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_CONSTRAINTS | extra) || dem_set_dt(s, DT))
         fail_msg("%s", dem_error(s));
     dem_config c = cfg_of(bc->backend, bc->precision);
     c.force_dt = 1;
     start_or_fail(s, &c);
     return s;
+}
+static dem_sim *pressed_pair(const backend_case *bc, double gamma, double y, double v)
+{
+    return pressed_pair_fx(bc, gamma, y, v, 0.0, 0.0, 0);
 }
 
 /* The elastic energy (laws/mdr.h, mdr_core.h mdr_side_energy) against the work of the run's own force, by the
@@ -545,6 +552,262 @@ static void test_energy(void **state)
     }
 }
 
+
+/* ---- bonds (mdr_core.h mdr_side_bond; docs/laws/mdr.md "Bonds") ----
+ * Closed forms from the law's own equations as the paper prints them, not from the code: at the turn of a loading on
+ * the plastic line a side's indenter stands at half its height (M17), where (M7) gives F = pi p_y a_max^2 with p_y of
+ * (M11), Y (7/4 exp(-4.4 delta_m/R) + 1). A bond over the plastic area pi a_max^2 therefore holds F_b = sigma_b pi
+ * a_max^2 = F_turn sigma_b / p_y, and pulled past the dent it is a flat circular contact of radius a_max (stiffness
+ * 2 E* a_max on the indenter's depth, whose map to the overlap (M17) is 1/(1 + 2 dR/A) with dR in [-A/4, 0]: a pair of
+ * equal sides, each taking half the approach, pulls at a slope between E* a_max and 2 E* a_max). */
+#define SIGB 5e7
+
+/* p_y of (M11) typed in: a side's largest MDR overlap dm on apparent radius r */
+static double py_of(double dm, double r) { return Y_MCC * (1.75 * exp(-4.4 * dm / r) + 1); }
+
+typedef struct {
+    double peak, pull, expect, slope, amax, e_rel, e_last_rel;
+    long tension, zero_after;
+} bond_pull;
+
+/* The pair's normal force (positive repulsive) and its apparent approach (apparent radii less the distance) */
+static void pair_now(dem_sim *s, double *u, double *f, double *u_app)
+{
+    double x[6], fo[6], rr[2];
+    if (dem_get_field(s, DEM_FIELD_X, x) || dem_get_field(s, DEM_FIELD_FORCE, fo) ||
+        dem_get_field(s, DEM_FIELD_RADIUS, rr))
+        fail_msg("%s", dem_error(s));
+    *u = 2 * R1 - (x[3] - x[0]), *f = -fo[0], *u_app = rr[0] + rr[1] - (x[3] - x[0]);
+}
+
+/* Loads the held pair (moving at speed_now, m/s of approach) at 0.1 m/s until its approach passes u_to, then pulls at 0.05 m/s until the bond breaks and 10
+ * steps more: the turn's force, the largest tension, the closed form's F_b, the tension's slope, the energy against
+ * the work given back (host and device rows alike), what the force is after the break. forces[] gets every step's
+ * force (NULL: not kept), *k its count. */
+static bond_pull load_and_pull(const backend_case *bc, dem_sim *s, double speed_now, double u_to, double *forces,
+                                long *k)
+{
+    bond_pull o = {0};
+    enum { MAXS = 4000 };
+    static double u[MAXS], f[MAXS], e[MAXS];
+    long n = 0, turn = -1, brk = -1;
+    double fu, uu, ua, peak_uapp = 0, emax = 1e-5; /* the scale of the energies compared (their turns: ~6e-4 J) */
+    unsigned char want = 1;
+    set_speed(s, speed_now, 0.1);
+    for (;;) {
+        dem_sample row;
+        dem_energy_t host;
+        if (dem_step_sampled(s, 1, &want, &row) || dem_energy(s, &host))
+            fail_msg("%s", dem_error(s));
+        pair_now(s, &uu, &fu, &ua);
+        assert_true(n < MAXS);
+        u[n] = uu, f[n] = fu, e[n] = row.energy.elastic;
+        if (forces)
+            forces[(*k)++] = fu;
+        emax = fmax(emax, e[n]);
+        if (!(fabs(host.elastic - e[n]) <= (bc->precision == DEM_FP64 ? 1e-13 : 1e-5) * emax))
+            fail_msg("%s: the host's energy %.17g J, the device row's %.17g J", bc->name, host.elastic, e[n]);
+        n++;
+        if (turn < 0 && uu >= u_to) {
+            turn = n - 1, peak_uapp = ua;
+            set_speed(s, 0.1, -0.05);
+        } else if (turn >= 0 && brk < 0 && f[n - 2] < 0 && !(fu < 0)) {
+            brk = n - 1;
+        } else if (brk >= 0 && n - 1 >= brk + 10) {
+            break;
+        }
+    }
+    /* the side's largest MDR overlap: half the apparent approach at the turn (equal spheres, psi > psi_b: no bulk
+     * part), on the apparent radius of that step, which unloading does not change */
+    double rr[2];
+    if (dem_get_field(s, DEM_FIELD_RADIUS, rr))
+        fail_msg("%s", dem_error(s));
+    double py = py_of(0.5 * peak_uapp, rr[0]);
+    o.peak = f[turn];
+    o.expect = o.peak * SIGB / py;
+    o.amax = sqrt(o.peak / (M_PI * py));
+    long first = turn; /* the first tensile step */
+    while (!(f[first] < 0))
+        first++;
+    o.tension = brk - first;
+    o.pull = 0;
+    for (long q = first; q < brk; q++)
+        o.pull = fmin(o.pull, f[q]);
+    o.slope = (f[brk - 2] - f[brk - 1]) / (u[brk - 2] - u[brk - 1]);
+    /* the energy: from each unloading step to the last one in tension, the work given back; and at that last step a
+     * linear spring's F^2 / (2 k) */
+    long last = brk - 1;
+    for (long a = turn + 2; a < last; a++) {
+        double w = 0;
+        for (long q = a + 1; q <= last; q++)
+            w += 0.5 * (f[q] + f[q - 1]) * (u[q - 1] - u[q]);
+        o.e_rel = fmax(o.e_rel, fabs(e[a] - e[last] - w) / e[turn]);
+    }
+    o.e_last_rel = fabs(e[last] - 0.5 * f[last] * f[last] / o.slope) / e[last];
+    o.zero_after = 0;
+    for (long q = brk; q < n && f[q] == 0; q++)
+        o.zero_after++;
+    pair_now(s, &uu, &fu, &ua);
+    if (!(ua > 0))
+        fail_msg("%s: the pair came apart (apparent approach %g m) within 10 steps of the break", bc->name, ua);
+    return o;
+}
+
+static void check_pull(const backend_case *bc, const bond_pull *o, const char *what)
+{
+    double tol = bc->precision == DEM_FP64 ? 1e-9 : 1e-4;
+    double step_f = o->slope * 0.05 * DT; /* one step's change of tension */
+    double esa = E_MCC / (1 - NU_MCC * NU_MCC) * o->amax;
+    printf("  bond, %s, %s: turn %.6g N, tension held %ld steps down to %.6g N; F_turn sigma_b / p_y = %.6g N; slope "
+           "%.4g N/m (E* a_max %.4g); energy %.2g, F^2/2k %.2g; force 0 for %ld steps after the break\n",
+           bc->name, what, o->peak, o->tension, o->pull, o->expect, o->slope, esa, o->e_rel, o->e_last_rel,
+           o->zero_after);
+    if (!(-o->pull <= o->expect * (1 + tol)) || !(-o->pull >= o->expect - 1.5 * step_f - tol * o->expect))
+        fail_msg("%s, %s: the largest tension %.17g N, the bond's F_b %.17g N (one step %g N)", bc->name, what,
+                 -o->pull, o->expect, step_f);
+    if (!(o->tension > 20) || !(o->slope >= esa * (1 - 1e-6) && o->slope <= 2 * esa))
+        fail_msg("%s, %s: %ld steps in tension, slope %g N/m, not in [E* a_max, 2 E* a_max] = [%g, %g]", bc->name,
+                 what, o->tension, o->slope, esa, 2 * esa);
+    double etol = bc->precision == DEM_FP64 ? 1e-4 : 1e-3;
+    if (!(o->e_rel <= etol) || !(o->e_last_rel <= (bc->precision == DEM_FP64 ? 1e-6 : 1e-3)))
+        fail_msg("%s, %s: the energy departs from the work given back by %g of E_turn; in tension from F^2/2k by %g",
+                 bc->name, what, o->e_rel, o->e_last_rel);
+    if (o->zero_after < 10)
+        fail_msg("%s, %s: after the break the force was 0 for %ld steps only (no adhesion: none is left)", bc->name,
+                 what, o->zero_after);
+}
+
+/* A pair of Zunker's MCC with bonds (sigma_b 50 MPa, no adhesion, no damping), held velocities: pressed 80 um (it
+ * yields at about 42 um) and pulled until the bond breaks; pressed again to 90 um, past its first largest approach (it yields further: a new
+ * bond over the larger plastic area) and pulled again. Every step's force of OpenCL equal to the reference's. Without
+ * bonds the same pair carries no tension. */
+static void test_bond(void **state)
+{
+    (void)state;
+    static double fref[2][8000];
+    long nref[2] = {0, 0};
+    FOR_EACH_BACKEND(bc) {
+        int pi = bc->precision == DEM_FP64 ? 0 : 1;
+        int is_ref = bc->backend == DEM_BACKEND_REFERENCE;
+        static double fnow[8000];
+        long k = 0;
+        dem_sim *s = pressed_pair_fx(bc, 0.0, Y_MCC, -0.1, SIGB, 0.0, 0);
+        bond_pull a = load_and_pull(bc, s, -0.1, 80e-6, fnow, &k);
+        check_pull(bc, &a, "first pull");
+        /* the approach of the first turn, from the forces' steps: press 5 um past it */
+        bond_pull b = load_and_pull(bc, s, -0.05, 90e-6, fnow, &k);
+        check_pull(bc, &b, "pressed further, pulled again");
+        if (!(b.expect > a.expect))
+            fail_msg("%s: the second bond (%g N) is not stronger than the first (%g N)", bc->name, b.expect, a.expect);
+        dem_destroy(s);
+        if (is_ref) {
+            memcpy(fref[pi], fnow, (size_t)k * sizeof(double));
+            nref[pi] = k;
+        } else if (k != nref[pi] || memcmp(fref[pi], fnow, (size_t)k * sizeof(double)))
+            fail_msg("%s: the forces differ from the reference's (%ld and %ld steps)", bc->name, k, nref[pi]);
+        /* no bonds: the same loading and pull never pulls */
+        s = pressed_pair_fx(bc, 0.0, Y_MCC, -0.1, 0.0, 0.0, 0);
+        set_speed(s, -0.1, 0.1);
+        double uu, fu, ua, least = 0;
+        for (long q = 0; q < 800; q++) {
+            step_or_fail(s, 1);
+            pair_now(s, &uu, &fu, &ua);
+        }
+        set_speed(s, 0.1, -0.05);
+        for (long q = 0; q < 2000 && ua > 0; q++) {
+            step_or_fail(s, 1);
+            pair_now(s, &uu, &fu, &ua);
+            least = fmin(least, fu);
+        }
+        if (least < 0)
+            fail_msg("%s: a pair without bonds pulled with %g N", bc->name, least);
+        dem_destroy(s);
+    }
+}
+
+/* A bonded pair sheared: the tangential force reaches mu (f_n + F_b) (friction 0.5) and the bond breaks, so the pull
+ * that follows carries no tension. (The ratio is read from the positions after the step, whose line of centres has
+ * turned by ~1e-4 rad from the one the force saw: to 1e-4, against F_b / f_n ~ 0.12 without the bond's term.) */
+static void test_bond_slide(void **state)
+{
+    (void)state;
+    FOR_EACH_BACKEND(bc) {
+        dem_sim *s = pressed_pair_fx(bc, 0.0, Y_MCC, -0.1, SIGB, 0.5, DEM_EFFECT_FRICTION);
+        set_speed(s, -0.1, 0.1);
+        double uu, fu, ua, ua_turn = 0;
+        for (long q = 0; q < 800; q++) {
+            step_or_fail(s, 1);
+            pair_now(s, &uu, &fu, &ua);
+        }
+        double peak = fu, rr[2];
+        ua_turn = ua;
+        if (dem_get_field(s, DEM_FIELD_RADIUS, rr))
+            fail_msg("%s", dem_error(s));
+        double fb = peak * SIGB / py_of(0.5 * ua_turn, rr[0]);
+        /* shear: sphere 1 moves along y at 0.1 m/s, sphere 0 still */
+        dem_state st;
+        if (dem_state_get(s, &st))
+            fail_msg("%s", dem_error(s));
+        dem_state_array *v = dem_state_find(&st, "v");
+        for (int c = 0; c < 6; c++) {
+            double val = c == 4 ? 0.1 : 0.0;
+            if (st.real_size == 8)
+                ((double *)v->data)[c] = val;
+            else
+                ((float *)v->data)[c] = (float)val;
+        }
+        if (dem_state_set(s, &st))
+            fail_msg("%s", dem_error(s));
+        dem_state_free(&st);
+        double ratio_max = 0;
+        long slid = -1;
+        for (long q = 0; q < 400 && slid < 0; q++) {
+            double x[6], fo[6];
+            step_or_fail(s, 1);
+            if (dem_get_field(s, DEM_FIELD_X, x) || dem_get_field(s, DEM_FIELD_FORCE, fo))
+                fail_msg("%s", dem_error(s));
+            double e[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]}, d = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+            for (int c = 0; c < 3; c++)
+                e[c] /= d;
+            double fn = -(fo[0] * e[0] + fo[1] * e[1] + fo[2] * e[2]);
+            double t[3] = {fo[0] + fn * e[0], fo[1] + fn * e[1], fo[2] + fn * e[2]};
+            double ft = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            double ratio = ft / (0.5 * (fn + fb));
+            ratio_max = fmax(ratio_max, ratio);
+            if (ratio > 1 - (bc->precision == DEM_FP64 ? 1e-4 : 1e-3))
+                slid = q;
+        }
+        printf("  bond, %s, sheared: |f_t| / mu (f_n + F_b) reached %.9f at step %ld (F_b %.6g N)\n", bc->name,
+               ratio_max, slid, fb);
+        if (slid < 0 || !(ratio_max <= 1 + (bc->precision == DEM_FP64 ? 1e-4 : 1e-3)))
+            fail_msg("%s: the tangential force reached %.9g of mu (f_n + F_b), not 1", bc->name, ratio_max);
+        /* stop the shear and pull apart: the bond is gone */
+        if (dem_state_get(s, &st))
+            fail_msg("%s", dem_error(s));
+        v = dem_state_find(&st, "v");
+        for (int c = 0; c < 6; c++) {
+            double val = c == 0 ? -0.025 : c == 3 ? 0.025 : 0.0;
+            if (st.real_size == 8)
+                ((double *)v->data)[c] = val;
+            else
+                ((float *)v->data)[c] = (float)val;
+        }
+        if (dem_state_set(s, &st))
+            fail_msg("%s", dem_error(s));
+        dem_state_free(&st);
+        double least = 0;
+        for (long q = 0; q < 3000 && ua > 0; q++) {
+            step_or_fail(s, 1);
+            pair_now(s, &uu, &fu, &ua);
+            least = fmin(least, fu);
+        }
+        if (least < 0 || ua > 0)
+            fail_msg("%s: after the bridge sheared off the pull carried %g N (apparent approach at the end %g m)",
+                     bc->name, least, ua);
+        dem_destroy(s);
+    }
+}
+
 /* Fixed spheres A, B, C of 0.5 mm at t = 0 (the first force pass): B at the origin, A and C at 0.6 mm from it, the
  * angle at B 95 degrees, so that all three overlap pairwise and A-C, the farthest apart, runs through B. (M40): the
  * pair A-C carries the penalty 1/(1 + exp(-50 (alpha/pi - 1/2))) = 0.80, typed in here with the C library's acos and
@@ -624,17 +887,19 @@ static void test_packing(void **st)
     o.side = 4;
     o.effects = DEM_EFFECT_CLASSICAL | DEM_EFFECT_MDR;
     o.yield_stress = 1e5, o.surface_energy = 0.5, o.bulk_fraction = PSI_B, o.mdr_damping = 0.3;
+    o.bond_strength = 5e4; /* bonds too (docs/laws/mdr.md "Bonds"): some break, by tension or by sliding */
     o.lid_speed = 0.5;
     FOR_EACH_BACKEND(bc) {
         dem_config c = cfg_of(bc->backend, bc->precision);
         dem_state sa;
         packing_restart_state(&o, &c, bc->name, &sa);
-        long yielded = 0, grown = 0;
+        long yielded = 0, grown = 0, broken = 0;
         size_t rs = (size_t)sa.real_size;
         for (long p = 0; p < sa.npairs; p++)
-            for (int k = 0; k < 2; k++) { /* each side's yield flag (dem_layout.h MDR_*) */
+            for (int k = 0; k < 2; k++) { /* each side's yield flag (dem_layout.h MDR_*; 2: its bond broke) */
                 size_t at = (size_t)p * DEM_MDR_LAW_REALS + 2 + 11 * (size_t)k + 6;
-                yielded += (rs == 8 ? ((double *)sa.pair_law)[at] : ((float *)sa.pair_law)[at]) > 0;
+                double flag = rs == 8 ? ((double *)sa.pair_law)[at] : ((float *)sa.pair_law)[at];
+                yielded += flag > 0, broken += flag == 2;
             }
         dem_state_array *mp = dem_state_find(&sa, "mdr_particle");
         for (int i = 0; mp && i < sa.n; i++) {
@@ -642,9 +907,10 @@ static void test_packing(void **st)
             double r = rs == 8 ? ((double *)mp->data)[14 * i + 1] : ((float *)mp->data)[14 * i + 1];
             grown += r > ro;
         }
-        printf("  packing, %s: %ld touching pairs, %ld sides yielded, %ld of %d radii grown\n", bc->name, sa.npairs,
-               yielded, grown, sa.n);
-        assert_true(sa.has_law == DEM_MDR_LAW_REALS && sa.npairs > 10 && yielded > 10 && grown > 10);
+        printf("  packing, %s: %ld touching pairs, %ld sides yielded (%ld of them with their bond broken), %ld of %d "
+               "radii grown\n", bc->name, sa.npairs, yielded, broken, grown, sa.n);
+        assert_true(sa.has_law == DEM_MDR_LAW_REALS && sa.npairs > 10 && yielded > 10 && grown > 10 && broken > 0 &&
+                    broken < yielded);
         dem_state_free(&sa);
         skins_order_and_reference_check(&o, &c, 600, bc->name);
     }
@@ -704,6 +970,8 @@ int main(void)
         cmocka_unit_test(test_box),
         cmocka_unit_test(test_penalty),
         cmocka_unit_test(test_energy),
+        cmocka_unit_test(test_bond),
+        cmocka_unit_test(test_bond_slide),
         cmocka_unit_test(test_packing),
         cmocka_unit_test(test_refused),
     };

@@ -120,68 +120,61 @@ DEM_INLINE real mdr_wall_row_energy(const mdr_material *m, DEM_CONST_GLOBAL real
     return mdr_wall_energy(m, &s, p);
 }
 
+/* The material of a contact's pair-table row: MDR's 8 reals and the bond strength (PM_TN_SIGB, pi sigma_b: the
+ * smaller of the two materials', so a tool's steel, 0, bonds to nothing) */
+DEM_INLINE mdr_material mdr_material_of(DEM_CONST_GLOBAL real *pm)
+{
+    mdr_material m = mdr_material_from(pm + PM_MDR);
+    m.sigb = pm[PM_TN_SIGB];
+    return m;
+}
+
 DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
 {
-    mdr_material m = mdr_material_from(c.pm + PM_MDR);
+    mdr_material m = mdr_material_of(c.pm);
     law_result r;
     r.active = 1;
     r.st = (real)0;
     real cmax = c.row_in ? c.row_in[MDR_CMAX] : (real)0;
     if (c.delta >= cmax)
         cmax = c.delta;
-    real fel, eta = (real)0, at, ela = (real)0;
-    if (c.site == LAW_AT_PAIR) {
-        mdr_side s0 = c.row_in ? mdr_side_load(c.row_in + MDR_S0) : mdr_side_new();
-        mdr_side s1 = c.row_in ? mdr_side_load(c.row_in + MDR_S0 + MDR_SIDE) : mdr_side_new();
-        mdr_particle p0 = mdr_particle_at(ctx.mdr_part, c.b), p1 = mdr_particle_at(ctx.mdr_part, c.a);
+    int pair = c.site == LAW_AT_PAIR;
+    /* side 0 (a pair's sphere b, or the wall's sphere a) and side 1 (a pair's sphere a) */
+    mdr_side s0 = c.row_in ? mdr_side_load(c.row_in + MDR_S0) : mdr_side_new(), s1 = mdr_side_new();
+    mdr_particle p0 = mdr_particle_at(ctx.mdr_part, pair ? c.b : c.a), p1 = p0;
+    real fel, eta = (real)0, at, w = (real)1, fb;
+    if (pair) {
+        if (c.row_in)
+            s1 = mdr_side_load(c.row_in + MDR_S0 + MDR_SIDE);
+        p1 = mdr_particle_at(ctx.mdr_part, c.a);
         real d0 = mdr_pair_share(0, c.delta, cmax, p0.r, p1.r, s0.deltap, s1.deltap);
         real d1 = mdr_pair_share(1, c.delta, cmax, p0.r, p1.r, s0.deltap, s1.deltap);
         /* (M40) this step's penalty, which mdr_surface left in the row before the contacts (a new contact's too) */
-        real pen = c.row_out ? c.row_out[MDR_PEN] : (real)0, w = (real)1 - pen;
+        real pen = c.row_out ? c.row_out[MDR_PEN] : (real)0;
+        w = (real)1 - pen;
         if (!(w > (real)0))
             w = (real)0;
         real a0, a1;
         real f0 = mdr_side_force(&m, &s0, &p0, d0, w, &a0);
         real f1 = mdr_side_force(&m, &s1, &p1, d1, w, &a1);
         fel = w * ((f0 + f1) / (real)2); /* (M4) */
-        if (c.energy)
-            ela = mdr_pair_energy(&m, w, &s0, &s1, &p0, &p1);
+        fb = w * ((mdr_side_bond(&m, &s0, p0.r) + mdr_side_bond(&m, &s1, p1.r)) / (real)2); /* the same mean */
         if (fx & DEM_EFFECT_DAMPING)
             eta = m.damp * dem_sqrt(c.mstar * (real)2 * m.es * (a0 + a1)); /* (M38) */
         at = (a0 + a1) / (real)2;
-        if (c.sums) {
-            mdr_sums_out(c.sums, &p0);
-            mdr_sums_out(c.sums + MDR_NSUM, &p1);
-        }
-        if (c.row_out) {
-            c.row_out[MDR_CMAX] = cmax;
-            c.row_out[MDR_FEL_PAIR] = fel; /* the stress output's (particle_stress.h) */
-            mdr_side_store(c.row_out + MDR_S0, &s0);
-            mdr_side_store(c.row_out + MDR_S0 + MDR_SIDE, &s1);
-        }
     } else {
-        mdr_side s = c.row_in ? mdr_side_load(c.row_in + MDR_S0) : mdr_side_new();
-        mdr_particle p = mdr_particle_at(ctx.mdr_part, c.a);
         real a0;
-        real f0 = mdr_side_force(&m, &s, &p, c.delta, (real)1, &a0); /* no third body obstructs a wall contact */
-        fel = f0 * mdr_wall_magnifier(s.deltao, p.ro); /* (M4), (M39) */
-        if (c.energy)
-            ela = mdr_wall_energy(&m, &s, &p);
+        real f0 = mdr_side_force(&m, &s0, &p0, c.delta, (real)1, &a0); /* no third body obstructs a wall contact */
+        real mag = mdr_wall_magnifier(s0.deltao, p0.ro);
+        fel = f0 * mag; /* (M4), (M39) */
+        fb = mdr_side_bond(&m, &s0, p0.r) * mag;
         if (fx & DEM_EFFECT_DAMPING)
             eta = m.damp * dem_sqrt(c.mstar * m.es / (real)2 * a0); /* (M38) */
         at = a0;
-        if (c.sums)
-            mdr_sums_out(c.sums, &p);
-        if (c.row_out) {
-            c.row_out[MDR_CMAX] = cmax;
-            c.row_out[MDR_FEL_WALL] = fel; /* the stress output's (particle_stress.h) */
-            mdr_side_store(c.row_out + MDR_S0, &s);
-        }
     }
     real vn = v3_dot(c.vrel, c.n); /* < 0 while approaching */
     real fn = fel - eta * vn;
     r.fel = fel;
-    r.ela = ela;
     r.force = v3_scale(c.n, fn);
     r.ft = v3_zero();
     r.hist = v3_zero();
@@ -189,13 +182,39 @@ DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
         vec3 vt = v3_sub(c.vrel, v3_scale(c.n, vn));
         real kt = hm_tangential_stiffness(c.pm[PM_GSTAR], at);
         vec3 ft = v3_sub(hm_rotate_history(c.hist, c.n), v3_scale(vt, kt * c.dt));
-        real fmax = c.pm[PM_MU] * (fn < (real)0 ? -fn : fn);
+        /* Coulomb on the whole normal force; a whole bond adds its strength to the load friction resists, and a
+         * bonded contact that slides loses its bond (mdr_core.h mdr_side_bond) */
+        real fmax = fb > (real)0 ? c.pm[PM_MU] * (fn + fb) : c.pm[PM_MU] * (fn < (real)0 ? -fn : fn);
+        if (fmax < (real)0)
+            fmax = (real)0;
         real ft2 = v3_dot(ft, ft);
-        if (ft2 > fmax * fmax)
+        if (ft2 > fmax * fmax) {
             ft = ft2 > (real)0 ? v3_scale(ft, fmax / dem_sqrt(ft2)) : ft;
+            if (fb > (real)0) { /* the bridge sheared off */
+                if (s0.yielded == MDR_YIELDED)
+                    s0.yielded = MDR_BROKEN;
+                if (s1.yielded == MDR_YIELDED)
+                    s1.yielded = MDR_BROKEN;
+            }
+        }
         r.hist = ft;
         r.ft = ft;
         r.force = v3_add(r.force, ft);
+    }
+    r.ela = (real)0;
+    if (c.energy)
+        r.ela = pair ? mdr_pair_energy(&m, w, &s0, &s1, &p0, &p1) : mdr_wall_energy(&m, &s0, &p0);
+    if (c.sums) {
+        mdr_sums_out(c.sums, &p0);
+        if (pair)
+            mdr_sums_out(c.sums + MDR_NSUM, &p1);
+    }
+    if (c.row_out) {
+        c.row_out[MDR_CMAX] = cmax;
+        c.row_out[pair ? MDR_FEL_PAIR : MDR_FEL_WALL] = fel; /* the stress output's (particle_stress.h) */
+        mdr_side_store(c.row_out + MDR_S0, &s0);
+        if (pair)
+            mdr_side_store(c.row_out + MDR_S0 + MDR_SIDE, &s1);
     }
     return r;
 }

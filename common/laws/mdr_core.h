@@ -193,6 +193,9 @@ typedef struct {
     real gamma; /* surface energy [J/m^2] */
     real psi_b; /* free-surface fraction below which the bulk response starts (Part II) */
     real damp;  /* damping coefficient eta_d (M38) */
+    real sigb;  /* pi sigma_b of the bonds its yielded contacts form (a solid bridge over the plastic contact area:
+                   mdr_side_force; 0, no bonds: every path of the published law). Not one of the 8 reals of
+                   mdr_material_from: laws/mdr.h sets it from the pair table's PM_TN_SIGB [Pa] */
 } mdr_material;
 
 /* A particle's MDR state (M30-M34, M36): radii, and the sums of its contacts, this step's and the last one's */
@@ -211,12 +214,18 @@ typedef struct {
     real delta_mdr, delta_bulk; /* the split (M10) [m] */
     real ac;                    /* last step's contact area (M33) [m^2] */
     real deltamax;              /* largest delta_mdr [m] */
-    real yielded;               /* 1 once yielded (M12), else 0 */
+    real yielded;               /* 1 once yielded (M12), else 0; 2: yielded, its bond broken (MDR_BROKEN) */
     real ca;                    /* area intercept fixed at yield (M12) [m^2] */
     real a_adh;                 /* the adhesive contact radius (M20-M27) [m] */
     real eps_c;                 /* this contact's last strain (M32) */
     real deltap;                /* plastic overlap at which the side's force vanishes (M18) [m] */
 } mdr_side;
+
+/* The yield flag's values: a side that yielded is MDR_YIELDED (its bond whole, where the material bonds) or
+ * MDR_BROKEN (its bond broke, and it has not yielded further since); both are > 0, so every test of yield reads them
+ * alike, and a run without bonds never sees MDR_BROKEN (its bits stay the published law's) */
+#define MDR_YIELDED ((real)1)
+#define MDR_BROKEN ((real)2)
 
 DEM_INLINE mdr_side mdr_side_new(void)
 {
@@ -307,6 +316,21 @@ DEM_INLINE void mdr_side_shape(const mdr_material *m, const mdr_side *s, real r,
     }
 }
 
+/* The tension a side's bond holds, F_b = sigma_b pi a_max^2 (0 without bonds, or with its bond broken): a side that
+ * yielded has formed a solid bridge over its plastic contact area pi a_max^2 (a_max its largest contact radius, M14:
+ * at the turn its indenter carries pi p_y a_max^2). Unloaded past its dent (the indenter's depth de < 0) it is a flat
+ * circular contact of radius a_max pulled apart: F = 2 E* a_max de, until the tension would pass F_b, which breaks
+ * the bond (MDR_BROKEN) until the side yields further; a more tensile adhesive force (M21) wins where there is one.
+ * laws/mdr.h adds F_b to the load friction resists and breaks the bond of a contact that slides (as
+ * laws/thornton_ning.h's bond, docs/laws/mdr.md "Bonds") */
+DEM_INLINE real mdr_side_bond(const mdr_material *m, const mdr_side *s, real r)
+{
+    if (!(m->sigb > (real)0) || !(s->yielded == MDR_YIELDED))
+        return (real)0;
+    real dm = s->deltamax;
+    return m->sigb * ((real)2 * dm * r - dm * dm + s->ca / MDR_PI); /* a_max^2 as mdr_side_shape's (M14) */
+}
+
 /* H(u) = the integral of h (M7) from 0 to u, u in [0, 1/2]: with 1 - 2u = cos t, (sin t - t cos t - sin^3 t / 3)/2,
  * written as its series t^5/15 (1 - t^2 c_3 (1 - t^2 c_4 (...))) to t^31, c_k = (g_k/g_{k-1})/(2k (2k + 1)),
  * g_k = (9^k - 1)/4 - 2k (exact integers): no cancellation at small t; t = 2 atan(sqrt(u/(1 - u))) as (F2) takes it.
@@ -341,6 +365,7 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
         dd_bulk = p->ddelta_bar;
     }
     s->delta_mdr += dd_mdr;
+    real dm_before = s->deltamax; /* a side that goes past it yields further: a bond anew (below) */
     real db = s->delta_bulk + dd_bulk;
     s->delta_bulk = db > (real)0 ? db : (real)0;
     if (s->delta_mdr > s->deltamax)
@@ -351,7 +376,7 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
         real p_hertz = (real)4 * m->es * dem_sqrt(s->delta_mdr) / ((real)3 * MDR_PI * dem_sqrt(r));
         if (p_hertz > py) {
             real dy = s->delta_mdr;
-            s->yielded = (real)1;
+            s->yielded = MDR_YIELDED;
             s->ca = MDR_PI * (dy * dy - dy * r);
         }
     }
@@ -389,6 +414,17 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
         }
         *a_damp = a;
     }
+    if (m->sigb > (real)0 && s->yielded > (real)0) { /* the bond over the plastic contact area (mdr_side_bond) */
+        if (s->delta_mdr > dm_before)
+            s->yielded = MDR_YIELDED; /* yielding further: bonded anew over the new plastic area */
+        if (s->yielded == MDR_YIELDED && de < (real)0) {
+            real ften = (real)2 * m->es * amax * de; /* a flat circular contact of radius a_max pulled apart */
+            if (ften < -(m->sigb * amax * amax))
+                s->yielded = MDR_BROKEN;
+            else if (ften < f)
+                f = ften, *a_damp = amax;
+        }
+    }
     /* (M28, M29, M32, M35) areas, cap volume, strain and the radius update's sums */
     real ac = s->yielded > (real)0 ? MDR_PI * ((real)2 * delta * r - delta * delta) + s->ca : MDR_PI * delta * r;
     if (ac < (real)0)
@@ -421,16 +457,20 @@ DEM_INLINE real mdr_side_energy(const mdr_material *m, const mdr_side *s, const 
 {
     real r = p->r, A, B, amax, dr, de;
     mdr_side_shape(m, s, r, mdr_yield_pressure(m, s->deltamax, r), &A, &B, &amax, &dr, &de);
-    real d = de, held = (real)0;
+    real d = de, held = (real)0, fheld = (real)0;
     if (m->gamma > (real)0) {
         real a_cap = (real)99 / (real)100 * amax;
         real a = s->a_adh < a_cap ? s->a_adh : a_cap;
         if (a > mdr_a_of_depth(de, A, B)) {
             real g = mdr_g_of_a(a, A, B), x = de - g;
             held = mdr_f_na(g, A, B, m->es) * x + m->es * a * x * x;
+            fheld = mdr_f_na(g, A, B, m->es) + (real)2 * m->es * a * x;
             d = g;
         }
     }
+    if (m->sigb > (real)0 && s->yielded == MDR_YIELDED && de < (real)0 &&
+        (real)2 * m->es * amax * de < fheld) /* a bond in tension (mdr_side_force): a linear spring's energy */
+        held = m->es * amax * de * de, d = (real)0;
     real u = d / A;
     if (u > (real)1 / (real)2)
         u = (real)1 / (real)2;
@@ -491,6 +531,7 @@ DEM_INLINE mdr_material mdr_material_from(DEM_CONST_GLOBAL real *v)
 {
     mdr_material m;
     m.es = v[0], m.g = v[1], m.kappa = v[2], m.nu = v[3], m.y = v[4], m.gamma = v[5], m.psi_b = v[6], m.damp = v[7];
+    m.sigb = (real)0;
     return m;
 }
 

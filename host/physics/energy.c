@@ -322,7 +322,7 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
             if (p >= 0)
                 st = hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)];
             if (mdr && p >= 0) { /* side 0 is j, of the higher stable id (laws/mdr.h) */
-                mdr_material m = mdr_material_from(row + PM_MDR);
+                mdr_material m = mdr_material_of(row);
                 mdr_particle p0 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * j);
                 mdr_particle p1 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
                 en->elastic += mdr_pair_row_energy(&m, hs->pair_st + (size_t)p * MDR_PAIR_STRIDE, &p0, &p1);
@@ -341,7 +341,7 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
             pair_row(s, s->mat[i], wl->material, row);
             size_t slot = ((size_t)i * s->nwalls + k) * DEM_LAW_WALL_W(fx);
             if (mdr) {
-                mdr_material m = mdr_material_from(row + PM_MDR);
+                mdr_material m = mdr_material_of(row);
                 mdr_particle p = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
                 en->elastic += mdr_wall_row_energy(&m, hs->wall_st + slot, &p);
             } else

@@ -290,7 +290,7 @@ class Sim:
                      surface_energy=0.0, bulk_fraction=0.0, mdr_damping=0.0):
         """A material [kg/m^3, Pa, -, -, -]; returns its id. young=float('inf'): rigid (walls only). yield_stress
         [Pa]: the limiting contact pressure of the thornton_ning law (0: does not yield); rolling_friction: mu_r of
-        the rolling effect; bond_strength [Pa]: sigma_b of the bonds its yielded contacts form (thornton_ning);
+        the rolling effect; bond_strength [Pa]: sigma_b of the bonds its yielded contacts form (thornton_ning, mdr);
         rolling_damping: eta_r of the rolling_spring effect's dashpot; surface_energy [J/m^2], bulk_fraction
         (psi_b) and mdr_damping (eta_d): the mdr law's (yield_stress is then its Y)."""
         m = Material(density, young, poisson, restitution, friction, mc_beta, mc_gamma, yield_stress, rolling_friction,
