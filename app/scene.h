@@ -25,7 +25,7 @@ typedef struct {
     double beta, gamma;           /* multi-contact prefactors (mc_stress, mc_strain) */
     double yield_stress;          /* limiting contact pressure of thornton_ning [Pa]; 0: does not yield */
     double rolling_friction;      /* rolling resistance coefficient (effect rolling) */
-    double bond_strength;         /* strength of a yielded contact's solid bridge (thornton_ning) [Pa]; 0: no bond */
+    double bond_strength;         /* strength of a yielded contact's solid bridge (thornton_ning, mdr) [Pa]; 0: none */
     double rolling_damping;       /* viscous damping ratio of the rolling spring (effect rolling_spring) */
     double surface_energy;        /* the mdr law's surface energy [J/m^2] (its yield stress: yield_stress) */
     double bulk_fraction;         /* the mdr law's psi_b (required with it) */

@@ -32,7 +32,8 @@ enum {
     PM_MU_ROLL = 14, /* rolling resistance coefficient mu_r, the mean of the two materials' (common/rolling.h) [-] */
     PM_TN_SIGB = 15, /* pi sigma_b: a yielded Thornton-Ning contact's bond holds a tension up to PM_TN_SIGB a_p^2, its
                         plastic contact area times the bond strength sigma_b (dem_material.bond_strength; the smaller
-                        of the two materials', 0: no bond) [Pa] */
+                        of the two materials', 0: no bond); an MDR side's up to PM_TN_SIGB a_max^2 (laws/mdr_core.h
+                        mdr_side_bond) [Pa] */
     PM_ROLL_DAMP = 16, /* rolling viscous damping ratio eta_r of the spring model, the mean of the two materials'
                           (common/rolling.h) [-] */
     /* MDR (common/laws/mdr.h): the material of the row's sphere in mdr_material's order (laws/mdr_core.h): E* =

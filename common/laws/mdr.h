@@ -18,7 +18,14 @@
  * Tangential (with DEM_EFFECT_FRICTION): Mindlin's spring on the MDR contact radius, k_t = 8 G* a with a the mean of
  * the sides' radii in effect (those the damping sees), the stored force rotated into the tangent plane as
  * Hertz-Mindlin's, and Coulomb's limit mu |F_n| on the whole normal force (adhesive and damping parts included); no
- * tangential dashpot (LAMMPS's `tangential mindlin NULL 0 mu`). A decision recorded in docs/laws/mdr.md.
+ * tangential dashpot (LAMMPS's `tangential mindlin NULL 0 mu`). A decision recorded in docs/laws/mdr.md. With a whole
+ * bond (mdr_core.h mdr_side_bond: the material's bond_strength) the limit is mu max(F_n + F_b, |F_n|), and a contact
+ * that slides loses its bond.
+ *
+ * Bonds break as a whole: when one side's tension passes its F_b this step, the other side's bond breaks too (the
+ * bridge is one element between the two spheres; the pair's force of this step still has the other side's tension,
+ * as a bond that slides keeps this step's force). The energy is the state's after the step, so the tension a break
+ * lets go is not in it (the break dissipates it).
  *
  * The penalty of a pair whose contact runs through a third sphere (M40) weights the pair's force and its sides' sums
  * (w = max(1 - p, 0)); mdr_surface computes p each step into the pair's row (mdr_particle.h).
@@ -37,7 +44,7 @@
 #include "mdr_core.h"
 #include "hertz_mindlin.h"
 
-#define LAW_COLUMNS_mdr(C) C(PM_MDR) C(PM_GSTAR) C(PM_MU)
+#define LAW_COLUMNS_mdr(C) C(PM_MDR) C(PM_GSTAR) C(PM_MU) C(PM_TN_SIGB)
 
 DEM_INLINE mdr_side mdr_side_load(DEM_CONST_GLOBAL real *v)
 {
@@ -154,9 +161,15 @@ DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
         w = (real)1 - pen;
         if (!(w > (real)0))
             w = (real)0;
-        real a0, a1;
+        real a0, a1, y0 = s0.yielded, y1 = s1.yielded;
         real f0 = mdr_side_force(&m, &s0, &p0, d0, w, &a0);
         real f1 = mdr_side_force(&m, &s1, &p1, d1, w, &a1);
+        if ((y0 == MDR_YIELDED && s0.yielded == MDR_BROKEN) || (y1 == MDR_YIELDED && s1.yielded == MDR_BROKEN)) {
+            if (s0.yielded == MDR_YIELDED) /* the bridge breaks as a whole */
+                s0.yielded = MDR_BROKEN;
+            if (s1.yielded == MDR_YIELDED)
+                s1.yielded = MDR_BROKEN;
+        }
         fel = w * ((f0 + f1) / (real)2); /* (M4) */
         fb = w * ((mdr_side_bond(&m, &s0, p0.r) + mdr_side_bond(&m, &s1, p1.r)) / (real)2); /* the same mean */
         if (fx & DEM_EFFECT_DAMPING)
@@ -182,11 +195,11 @@ DEM_INLINE law_result mdr_force(unsigned fx, law_in c, law_ctx ctx)
         vec3 vt = v3_sub(c.vrel, v3_scale(c.n, vn));
         real kt = hm_tangential_stiffness(c.pm[PM_GSTAR], at);
         vec3 ft = v3_sub(hm_rotate_history(c.hist, c.n), v3_scale(vt, kt * c.dt));
-        /* Coulomb on the whole normal force; a whole bond adds its strength to the load friction resists, and a
+        /* Coulomb on the whole normal force; a whole bond adds its strength to the load friction resists (never less
+         * than the published |F_n|: a bond in deep tension, or pulled past F_b by the damping, keeps that), and a
          * bonded contact that slides loses its bond (mdr_core.h mdr_side_bond) */
-        real fmax = fb > (real)0 ? c.pm[PM_MU] * (fn + fb) : c.pm[PM_MU] * (fn < (real)0 ? -fn : fn);
-        if (fmax < (real)0)
-            fmax = (real)0;
+        real fabs_n = fn < (real)0 ? -fn : fn, fbond = fn + fb;
+        real fmax = c.pm[PM_MU] * (fb > (real)0 && fbond > fabs_n ? fbond : fabs_n);
         real ft2 = v3_dot(ft, ft);
         if (ft2 > fmax * fmax) {
             ft = ft2 > (real)0 ? v3_scale(ft, fmax / dem_sqrt(ft2)) : ft;

@@ -319,10 +319,11 @@ DEM_INLINE void mdr_side_shape(const mdr_material *m, const mdr_side *s, real r,
 /* The tension a side's bond holds, F_b = sigma_b pi a_max^2 (0 without bonds, or with its bond broken): a side that
  * yielded has formed a solid bridge over its plastic contact area pi a_max^2 (a_max its largest contact radius, M14:
  * at the turn its indenter carries pi p_y a_max^2). Unloaded past its dent (the indenter's depth de < 0) it is a flat
- * circular contact of radius a_max pulled apart: F = 2 E* a_max de, until the tension would pass F_b, which breaks
- * the bond (MDR_BROKEN) until the side yields further; a more tensile adhesive force (M21) wins where there is one.
- * laws/mdr.h adds F_b to the load friction resists and breaks the bond of a contact that slides (as
- * laws/thornton_ning.h's bond, docs/laws/mdr.md "Bonds") */
+ * circular contact of radius a_max pulled apart: F = 2 E* a_max de, until this tension would pass F_b, which breaks
+ * the bond (MDR_BROKEN) until the side yields further. The bridge pulls beside the adhesive springs (M21) where there
+ * are any (their forces add, and so do their energies: one potential, so a pull conserves energy until the break).
+ * laws/mdr.h adds F_b to the load friction resists, breaks the bond of a contact that slides (as laws/thornton_ning.h's
+ * bond) and a pair's two sides' bonds together (docs/laws/mdr.md "Bonds") */
 DEM_INLINE real mdr_side_bond(const mdr_material *m, const mdr_side *s, real r)
 {
     if (!(m->sigb > (real)0) || !(s->yielded == MDR_YIELDED))
@@ -421,8 +422,8 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
             real ften = (real)2 * m->es * amax * de; /* a flat circular contact of radius a_max pulled apart */
             if (ften < -(m->sigb * amax * amax))
                 s->yielded = MDR_BROKEN;
-            else if (ften < f)
-                f = ften, *a_damp = amax;
+            else
+                f = f + ften, *a_damp = amax; /* beside the adhesive springs (M21), if any */
         }
     }
     /* (M28, M29, M32, M35) areas, cap volume, strain and the radius update's sums */
@@ -451,26 +452,25 @@ DEM_INLINE real mdr_side_force(const mdr_material *m, mdr_side *s, mdr_particle 
  * beyond the compressive one (M21, cases 2 and 3 of mdr_side_force: after the step a = min(a_adh, 0.99 a_max) >
  * a_na(de)) stores the springs' energy at the depth g = g(a) where a is compressive, plus what its force, linear in de
  * at fixed a (slope 2 E* a), adds from g to de: F_na(g) (de - g) + E* a (de - g)^2, along the same map (the 1D springs'
- * sum of squares, >= 0: it is the energy a pull-off sets free). *bulk gets the bulk spring's F_BULK delta_BULK / 2
+ * sum of squares, >= 0: it is the energy a pull-off sets free). A side whose bond pulls (de < 0, mdr_side_bond) adds
+ * the bridge's linear spring, E* a_max de^2 along the map. *bulk gets the bulk spring's F_BULK delta_BULK / 2
  * (M35, with the side's stored area, which carries the contact's weight) of the particle p of this step. */
 DEM_INLINE real mdr_side_energy(const mdr_material *m, const mdr_side *s, const mdr_particle *p, real *bulk)
 {
     real r = p->r, A, B, amax, dr, de;
     mdr_side_shape(m, s, r, mdr_yield_pressure(m, s->deltamax, r), &A, &B, &amax, &dr, &de);
-    real d = de, held = (real)0, fheld = (real)0;
+    real d = de, held = (real)0;
     if (m->gamma > (real)0) {
         real a_cap = (real)99 / (real)100 * amax;
         real a = s->a_adh < a_cap ? s->a_adh : a_cap;
         if (a > mdr_a_of_depth(de, A, B)) {
             real g = mdr_g_of_a(a, A, B), x = de - g;
             held = mdr_f_na(g, A, B, m->es) * x + m->es * a * x * x;
-            fheld = mdr_f_na(g, A, B, m->es) + (real)2 * m->es * a * x;
             d = g;
         }
     }
-    if (m->sigb > (real)0 && s->yielded == MDR_YIELDED && de < (real)0 &&
-        (real)2 * m->es * amax * de < fheld) /* a bond in tension (mdr_side_force): a linear spring's energy */
-        held = m->es * amax * de * de, d = (real)0;
+    if (m->sigb > (real)0 && s->yielded == MDR_YIELDED && de < (real)0) /* a bond in tension (mdr_side_force) */
+        held = held + m->es * amax * de * de; /* a linear spring's, beside the adhesive springs' */
     real u = d / A;
     if (u > (real)1 / (real)2)
         u = (real)1 / (real)2;
