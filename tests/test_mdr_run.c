@@ -7,8 +7,9 @@
  *   - a sphere on held velocity pressed on a plane wall, with adhesion, the same phases;
  *   - a fixed sphere between six planes closing in (Part II: the bulk response, the mean surface displacement and the
  *     radius update act), its first plane's force;
- *   - bonds (docs/laws/mdr.md "Bonds"): a bonded pair pulled, pressed further and pulled again, against F_turn
- *     sigma_b / p_y; the same pair sheared until it slides at mu (F_n + F_b), then pulled without a bond;
+ *   - bonds (docs/laws/mdr.md "Bonds"): a bonded pair pulled, pressed further and pulled again, against the closed
+ *     forms of F_b and the tension's slope; the same pair sheared until it slides at mu (F_n + F_b), then pulled
+ *     without a bond; an unequal pair whose bridge breaks as a whole;
  *   - an MDR packing (with bonds) under a moving lid: the OpenCL run equal to the reference bit for bit, skins,
  *     storage order and a restart bit for bit.
  * The walk is fed the approach the run's own positions give at each step, so the two see the same overlaps; the
@@ -352,17 +353,18 @@ static void test_box(void **state)
     free(ref_bits[0]), free(ref_bits[1]);
 }
 
-/* Two spheres of 0.5 mm of MCC of surface energy gamma and yield stress y, touching at the origin, on held velocities
- * v/2 towards each other (no damping: the effects leave it out), started on bc's backend and precision */
-static dem_sim *pressed_pair_fx(const backend_case *bc, double gamma, double y, double v, double sigb, double mu,
-                               unsigned extra)
+/* Two spheres of MCC of surface energy gamma and yield stress y (bond strength sigb, friction mu), 0.5 mm and r2,
+ * touching at the origin, on held velocities v/2 towards each other (no damping: the effects leave it out), started
+ * on bc's backend and precision */
+static dem_sim *pressed_pair_r(const backend_case *bc, double gamma, double y, double v, double sigb, double mu,
+                               unsigned extra, double r2)
 {
     dem_sim *s = dem_create();
     dem_material m = mcc(gamma);
     m.yield_stress = y, m.bond_strength = sigb, m.friction = mu;
     int mat = dem_add_material(s, &m);
     dem_add_particle(s, (double[3]){-R1, 0, 0}, (double[3]){0.5 * v, 0, 0}, R1, mat);
-    dem_add_particle(s, (double[3]){R1, 0, 0}, (double[3]){-0.5 * v, 0, 0}, R1, mat);
+    dem_add_particle(s, (double[3]){r2, 0, 0}, (double[3]){-0.5 * v, 0, 0}, r2, mat);
     dem_set_particle_flags(s, 0, DEM_PARTICLE_HOLD_V);
     dem_set_particle_flags(s, 1, DEM_PARTICLE_HOLD_V);
     dem_set_domain(s, (double[3]){-8 * R1, -8 * R1, -8 * R1}, (double[3]){8 * R1, 8 * R1, 8 * R1});
@@ -375,7 +377,12 @@ static dem_sim *pressed_pair_fx(const backend_case *bc, double gamma, double y, 
 }
 static dem_sim *pressed_pair(const backend_case *bc, double gamma, double y, double v)
 {
-    return pressed_pair_fx(bc, gamma, y, v, 0.0, 0.0, 0);
+    return pressed_pair_r(bc, gamma, y, v, 0.0, 0.0, 0, R1);
+}
+static dem_sim *pressed_pair_fx(const backend_case *bc, double gamma, double y, double v, double sigb, double mu,
+                                unsigned extra)
+{
+    return pressed_pair_r(bc, gamma, y, v, sigb, mu, extra, R1);
 }
 
 /* The elastic energy (laws/mdr.h, mdr_core.h mdr_side_energy) against the work of the run's own force, by the
@@ -765,6 +772,42 @@ static void test_bond(void **state)
     }
 }
 
+/* Unequal spheres (0.5 and 0.3 mm) with bonds, no adhesion: their sides' bonds differ (each F_b = sigma_b pi a_max^2 on
+ * its own side), but the bridge breaks as a whole: once the tension falls at the break, the pair pulls no more (a side
+ * left bonded would go on pulling with half its tension, (M4)) */
+static void test_bond_unequal(void **state)
+{
+    (void)state;
+    FOR_EACH_BACKEND(bc) {
+        dem_sim *s = pressed_pair_r(bc, 0.0, Y_MCC, -0.1, SIGB, 0.0, 0, 3e-4);
+        double uu, fu, ua, least = 0, prev = 0;
+        set_speed(s, -0.1, 0.1);
+        do {
+            step_or_fail(s, 1);
+            pair_now(s, &uu, &fu, &ua, NULL);
+        } while (ua < 70e-6);
+        set_speed(s, 0.1, -0.05);
+        long brk = -1, after = 0, q;
+        double after_least = 0;
+        for (q = 0; q < 4000 && ua > 0; q++) {
+            step_or_fail(s, 1);
+            pair_now(s, &uu, &fu, &ua, NULL);
+            least = fmin(least, fu);
+            if (brk < 0 && prev < 0 && fu > prev) /* the first step whose tension falls: a bond broke */
+                brk = q;
+            else if (brk >= 0)
+                after++, after_least = fmin(after_least, fu);
+            prev = fu;
+        }
+        printf("  bond, %s, 0.5/0.3 mm: largest tension %.6g N, broke at step %ld of the pull; %ld steps after it, "
+               "least force %g N, apart at step %ld\n", bc->name, -least, brk, after, after_least, q);
+        if (brk < 0 || !(least < -1) || after < 10 || !(after_least == 0))
+            fail_msg("%s: the unequal pair's bridge: largest tension %g N, break at %ld, then %g N over %ld steps",
+                     bc->name, -least, brk, after_least, after);
+        dem_destroy(s);
+    }
+}
+
 /* Sets the two spheres' held velocities */
 static void set_velocities(dem_sim *s, const double v[6])
 {
@@ -1017,6 +1060,7 @@ int main(void)
         cmocka_unit_test(test_energy),
         cmocka_unit_test(test_bond),
         cmocka_unit_test(test_bond_slide),
+        cmocka_unit_test(test_bond_unequal),
         cmocka_unit_test(test_packing),
         cmocka_unit_test(test_refused),
     };
