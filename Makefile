@@ -250,7 +250,8 @@ tablet-models: $(BUILD)/dem
 # Tablet strength: scenes/tablet_strength.yaml pressed to 25, 50 and 100 MPa, ejected and broken across a diameter
 # (the Brazilian test); out/tablet_strength/strength.png and .md (tools/tablet_strength.sh; about 16 minutes on 2
 # cores; docs/tableting.md "Bonds and tensile strength"). Under MDR: make tablet-strength
-# STRENGTH_SCENE=scenes/tablet_strength_mdr.yaml STRENGTH_OUT=out/tablet_strength_mdr (about 20 minutes per pressure; docs/tableting.md "MDR with bonds")
+# STRENGTH_SCENE=scenes/tablet_strength_mdr.yaml STRENGTH_OUT=out/tablet_strength_mdr (about 20 minutes per
+# pressure; docs/tableting.md "MDR with bonds")
 tablet-strength: $(BUILD)/dem
 	bash tools/tablet_strength.sh
 
