@@ -291,6 +291,13 @@ DEM_INLINE real mdr_yield_pressure(const mdr_material *m, real dm, real r)
     return m->y * ((real)7 / (real)4 * mdr_exp((real)-22 / (real)5 * dm / r) + (real)1);
 }
 
+/* (M14) a yielded side's largest contact radius squared, a_max^2 (the shape's and the bond's, mdr_side_bond) */
+DEM_INLINE real mdr_amax2(const mdr_side *s, real r)
+{
+    real dm = s->deltamax;
+    return (real)2 * dm * r - dm * dm + s->ca / MDR_PI;
+}
+
 /* (M13-M17) the indenter of a side on apparent radius r after its yield test: its shape A, B, its largest contact
  * radius amax, the compliance dr of (M16) (0 while elastic) and the depth de of its MDR overlap (py: (M11)) */
 DEM_INLINE void mdr_side_shape(const mdr_material *m, const mdr_side *s, real r, real py, real *A, real *B,
@@ -303,7 +310,7 @@ DEM_INLINE void mdr_side_shape(const mdr_material *m, const mdr_side *s, real r,
         *amax = dem_sqrt(dm * r);
         *dr = (real)0;
     } else { /* (M14-M17) */
-        real am = dem_sqrt((real)2 * dm * r - dm * dm + s->ca / MDR_PI);
+        real am = dem_sqrt(mdr_amax2(s, r));
         real a = (real)4 * py * am / m->es;
         *amax = am, *A = a, *B = (real)2 * am;
         real fmax = MDR_PI * py * am * am;
@@ -328,8 +335,7 @@ DEM_INLINE real mdr_side_bond(const mdr_material *m, const mdr_side *s, real r)
 {
     if (!(m->sigb > (real)0) || !(s->yielded == MDR_YIELDED))
         return (real)0;
-    real dm = s->deltamax;
-    return m->sigb * ((real)2 * dm * r - dm * dm + s->ca / MDR_PI); /* a_max^2 as mdr_side_shape's (M14) */
+    return m->sigb * mdr_amax2(s, r);
 }
 
 /* H(u) = the integral of h (M7) from 0 to u, u in [0, 1/2]: with 1 - 2u = cos t, (sin t - t cos t - sin^3 t / 3)/2,
