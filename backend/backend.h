@@ -223,7 +223,7 @@ int dem_stage_nbr_count(const dem_backend_ops *o, dem_backend *b, int *slots);
 int dem_stage_nbr_reserve(const dem_backend_ops *o, dem_backend *b, int slots); /* slots of the rows being built */
 int dem_stage_nbr_build(const dem_backend_ops *o, dem_backend *b);
 int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry history, swap, offsets, x_build */
-int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b, int final); /* walls' block sums [and final] */
+int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b); /* the walls' exact sums, block to final */
 /* Series rows (common/series.h): arm(1, row) has the next step write its terms to row `row` of the device's ring
  * (arm(0, 0) after it); series_map maps the first `rows` rows for the host to read (real[rows][n][SE_STRIDE] and
  * real[rows][nwalls][nblocks_red][WP_STRIDE], the walls' block partial sums; walls NULL without walls) with one

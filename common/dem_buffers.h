@@ -36,6 +36,7 @@
 #define DEM_BUFFERS_H
 #include "dem_layout.h"
 #include "dem_internal_bits.h" /* the effect bits, DEM_KEEP_* among them */
+#include "exact_sum.h"         /* EXACT_WORDS: the walls' partial sums are exact accumulators */
 
 /* element types */
 enum { DEM_ELEM_REAL, DEM_ELEM_INT, DEM_ELEM_UINT, DEM_ELEM_BYTE };
@@ -83,12 +84,12 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(WALL_MASK, UINT, N, 0, DEM_FIELD_WALL_MASK, NONE, WALLS, P(1), CK(wall_mask, 1, NULL))                        \
     ENTRY(WALL_LAW, REAL, LAWW * N * NW, DEM_LAW_STATE_BITS, -1, NONE, WALLS, P(LAWW * NW), CK(wall_law, 1, "m"))       \
     ENTRY(WALL_RSPRING, REAL, 3 * N * NW, DEM_EFFECT_ROLLING_SPRING, -1, NONE, WALLS, P(3 * NW), CK(wall_rspring, 1, "N m")) \
-    ENTRY(PARTIAL, REAL, WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS, STAY, NO)                                            \
-    ENTRY(PARTIAL_MID, REAL, WP_STRIDE * NMR * NW, 0, -1, NONE, WALLS, STAY, NO)                                        \
+    ENTRY(PARTIAL, UINT, EXACT_WORDS * WP_STRIDE * NBR * NW, 0, -1, NONE, WALLS, STAY, NO)                              \
+    ENTRY(PARTIAL_MID, UINT, EXACT_WORDS * WP_STRIDE * NMR * NW, 0, -1, NONE, WALLS, STAY, NO)                          \
     ENTRY(WALL_FORCE, REAL, 3 * NW, 0, DEM_FIELD_WALL_FORCE, NONE, WALLS, STAY, CK(wall_force, 3, "N"))                 \
     ENTRY(WALL_NFORCE, REAL, NW, 0, DEM_FIELD_WALL_NORMAL_FORCE, NONE, WALLS, STAY, CK_OPT(wall_normal_force, 1, "N"))  \
     ENTRY(SERIES_RING, REAL, SE_STRIDE * N * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT, G(SE_STRIDE), NO)                    \
-    ENTRY(SERIES_WALL, REAL, WP_STRIDE * NW * NBR * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT, STAY, NO)                     \
+    ENTRY(SERIES_WALL, REAL, WP_STRIDE * NW * NSR, DEM_GATE_LAZY, -1, NONE, OUTPUT, STAY, NO)                           \
     ENTRY(CELL_OF, INT, N, 0, -1, NONE, CELLS, STAY, NO)                                                                \
     ENTRY(CELL_COUNT, INT, NC, 0, -1, NONE, CELLS, STAY, NO)                                                            \
     ENTRY(CELL_START, INT, NC + 1, 0, DEM_FIELD_CELL_START, NONE, CELLS, STAY, NO)                                      \

@@ -139,15 +139,15 @@
     A(BIN, real, invmass, INVMASS) A(BIN, int, mat, MAT) A(BIN, real, pairmat, PAIRMAT) A(BIN, int, wall_int, WALL_INT) \
     A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
     A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
-    A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, real, partial, PARTIAL)                      \
-    A(BIN, int, order, ORDER) A(BIN, real, wall_law, WALL_LAW) A(BIN, real, mdr_part, MDR_PART)
+    A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, unsigned, partial, PARTIAL)                  \
+    A(BIN, real, wall_law, WALL_LAW) A(BIN, real, mdr_part, MDR_PART)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_mid(F, A)                                                                               \
-    F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(I, int, nmid, NMID_RED) A(BIN, real, partial, PARTIAL)  \
-    A(BOUT, real, mid, PARTIAL_MID)
+    F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(I, int, nmid, NMID_RED)                                 \
+    A(BIN, unsigned, partial, PARTIAL) A(BOUT, unsigned, mid, PARTIAL_MID)
 #define DEM_ITEMS_wall_reduce_mid (nmid * nwalls)
 #define DEM_ARGS_wall_reduce_final(F, A)                                                                             \
-    F(I, int, nwalls, NWALLS) A(I, int, nmid, NMID_RED) A(BIN, real, mid, PARTIAL_MID)                               \
+    F(I, int, nwalls, NWALLS) A(I, int, nmid, NMID_RED) A(BIN, unsigned, mid, PARTIAL_MID)                           \
     A(BOUT, real, wall_force, WALL_FORCE) A(BOUT, real, wall_nforce, WALL_NFORCE)
 #define DEM_ITEMS_wall_reduce_final nwalls
 
@@ -164,10 +164,8 @@
     A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                  \
     A(BIN, real, invmass, INVMASS) A(BIN, real, invinertia, INVINERTIA) A(BIN, unsigned, hold, HOLD)                 \
     A(BIN, real, x, X) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW) A(BOUT, real, ring, SERIES_RING)  \
-    A(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(BIN, unsigned, wall_mask, WALL_MASK)                 \
-    A(BIN, real, wall_pf, WALL_PF) A(BIN, real, radius, RADIUS) A(BIN, int, wall_int, WALL_INT)                      \
-    A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE) A(BIN, real, partial, PARTIAL)                   \
-    A(BOUT, real, ring_wall, SERIES_WALL) A(BIN, int, order, ORDER)
+    A(I, int, nwalls, NWALLS) A(BIN, real, wall_force, WALL_FORCE) A(BIN, real, wall_nforce, WALL_NFORCE)            \
+    A(BOUT, real, ring_wall, SERIES_WALL)
 #define DEM_ITEMS_integrate_kick n
 
 /* ---- particle_stress.h ---- */

@@ -208,6 +208,33 @@ EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int 
     return qq + p - 1 > emax;
 }
 
+/* An accumulator in global memory, as 2 EXACT_LIMBS + 1 unsigned words (each limb low word first, then the
+ * flags): a buffer of unsigned is all the registry needs (no 64-bit element type), and a partial sum of one work item
+ * is stored for another to merge (common/wall_forces.h) */
+#define EXACT_WORDS (2 * EXACT_LIMBS + 1)
+#ifdef __OPENCL_C_VERSION__
+#define EXACT_GLOBAL __global
+#else
+#define EXACT_GLOBAL
+#endif
+EXACT_INLINE void exact_store(EXACT_GLOBAL unsigned *p, const exact_acc *a)
+{
+    for (int k = 0; k < EXACT_LIMBS; k++) {
+        p[2 * k] = (unsigned)a->limb[k];
+        p[2 * k + 1] = (unsigned)(a->limb[k] >> 32);
+    }
+    p[2 * EXACT_LIMBS] = a->special;
+}
+/* the stored accumulator p added into a, exactly */
+EXACT_INLINE void exact_merge_stored(exact_acc *a, const EXACT_GLOBAL unsigned *p)
+{
+    exact_acc b;
+    for (int k = 0; k < EXACT_LIMBS; k++)
+        b.limb[k] = (exact_u64)p[2 * k] | ((exact_u64)p[2 * k + 1] << 32);
+    b.special = p[2 * EXACT_LIMBS];
+    exact_merge(a, &b);
+}
+
 /* The bits of the sum in a binary format of p significant bits and e exponent bits (double: 53, 11; float: 24, 8),
  * rounded once to nearest, ties to even: NaN for a NaN or both infinities among the terms, an infinity for one of them
  * or past the largest finite value */

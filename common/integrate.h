@@ -58,13 +58,12 @@ DEM_ITEM(integrate_kick)
 {
     vec3 g = v3(gx, gy, gz);
     integrate_kick_velocity(fx, i, (real)0.5 * dt, g, v, w, force, torque, invmass, invinertia, hold);
-    if (sample) { /* a sampled step (series.h): the energies of the motion at its end, and at a block's first
-                     particle the walls' partial sums over the block */
+    if (sample) { /* a sampled step (series.h): the energies of the motion at its end, and (item 0) the walls'
+                     sums of the step */
         series_motion_terms(fx, v3_load(x, i), v3_load(v, i), v3_load(w, i), invmass[i], invinertia[i], g,
                             series_slot(ring, row, n, i));
-        if ((fx & DEM_EFFECT_WALLS) && i % DEM_REDUCE_BLOCK == 0)
-            series_wall_blocks(fx, i / DEM_REDUCE_BLOCK, n, nwalls, nblocks, row, wall_mask, wall_pf, x, radius,
-                               wall_int, wall_real, ride, partial, ring_wall, order);
+        if ((fx & DEM_EFFECT_WALLS) && i == 0)
+            series_wall_row(nwalls, row, wall_force, wall_nforce, ring_wall);
     }
 }
 #endif /* DEM_INTEGRATE_H */

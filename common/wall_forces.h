@@ -5,9 +5,11 @@
  * which are curved: taken locally flat, as LIGGGHTS takes its walls; docs/tableting.md), the contact point lies on the wall
  * surface (lever arm r_i - d). The same law as between particles (laws/laws.h: law_force) is used with the wall's own
  * material. Walls are visited in index order after all particle contacts (contact_forces.h), which fixes
- * the summation order of every particle's force. The force each wall receives is summed over particles in fixed
- * blocks (wall_reduce_*), the same way on every device: after contact_forces from the forces it kept
- * (DEM_KEEP_WALL_FORCES), or before it by evaluating the same contacts (wall_reduce_block).
+ * the summation order of every particle's force. The force each wall receives is summed exactly (exact_sum.h) over
+ * blocks of particles, the blocks merged by a tree of work items (wall_reduce_*) and rounded once: the correctly
+ * rounded sum of the particles' terms, whatever their order, the blocks' cut or the device (docs/design.md "Sums that
+ * do not depend on the decomposition"). The terms come after contact_forces from the forces it kept
+ * (DEM_KEEP_WALL_FORCES), or before it from evaluating the same contacts (wall_reduce_block).
  */
 #ifndef DEM_WALL_FORCES_H
 #define DEM_WALL_FORCES_H
@@ -17,6 +19,16 @@
 #include "particle_stress.h"
 #include "mc_strain.h"
 #include "rolling.h"
+#include "exact_sum.h"
+
+/* a real into an exact sum, and the sum rounded once to a real */
+#if DEM_REAL_SIZE == 8
+#define exact_add_real exact_add_double
+#define exact_to_real exact_to_double
+#else
+#define exact_add_real exact_add_float
+#define exact_to_real exact_to_float
+#endif
 
 /* Particle i against wall k: the law's result when they touch (active). old_touch: whether they touched in the
  * previous step (wall_mask), i.e. whether a tangential history is stored. A pure function of the state before the
@@ -157,114 +169,106 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
     wall_mask[i] = mask;
 }
 
-/* A block's partial sums for one wall (dem_layout.h WP_*) */
+/* A block's sums for one wall (dem_layout.h WP_*), exact: the force the wall received [N] and the sum of the
+ * particles' normal force components [N] */
 typedef struct {
-    vec3 f;  /* the force the wall received [N] */
-    real fn; /* the sum of the particles' normal force components [N] */
+    exact_acc s[WP_STRIDE];
 } wall_part;
 
-/* A particle's kept force fj from a wall into the wall's partial sums (n: the contact normal): the one expression of
- * every kept sum, so each gives the same bits */
+DEM_INLINE void wall_part_clear(wall_part *p)
+{
+    for (int q = 0; q < WP_STRIDE; q++)
+        exact_clear(&p->s[q]);
+}
+
+/* A particle's force fj from a wall into the wall's sums (n: the contact normal): the wall receives -fj, and the normal
+ * part is fj . n, the one expression of every term, so every path adds the same numbers */
 DEM_INLINE void wall_part_take(wall_part *p, vec3 fj, vec3 n)
 {
-    p->f = v3_sub(p->f, fj);
-    p->fn += v3_dot(fj, n);
+    exact_add_real(&p->s[WP_FX], -fj.x);
+    exact_add_real(&p->s[WP_FY], -fj.y);
+    exact_add_real(&p->s[WP_FZ], -fj.z);
+    exact_add_real(&p->s[WP_FN], v3_dot(fj, n));
 }
 
-DEM_INLINE void wall_part_store(DEM_GLOBAL real *p, long idx, wall_part w)
+/* The sums of (wall, block) idx into the partial buffers: WP_STRIDE accumulators of EXACT_WORDS words each */
+DEM_INLINE void wall_part_store(DEM_GLOBAL unsigned *p, long idx, const wall_part *w)
 {
-    DEM_GLOBAL real *q = p + idx * WP_STRIDE;
-    q[WP_FX] = w.f.x;
-    q[WP_FY] = w.f.y;
-    q[WP_FZ] = w.f.z;
-    q[WP_FN] = w.fn;
+    for (int q = 0; q < WP_STRIDE; q++)
+        exact_store(p + (idx * WP_STRIDE + q) * EXACT_WORDS, &w->s[q]);
 }
 
-/* Block b's partial sums for wall k from the forces contact_forces kept (DEM_KEEP_WALL_FORCES): the wall receives
+/* Block b's sums for wall k from the forces contact_forces kept (DEM_KEEP_WALL_FORCES): the wall receives
  * minus the force on each particle that touches it; the normal part is that force along the contact normal
- * (wall_met: the geometry the force law saw, the state being the same). Also taken by integrate_kick in a sampled
- * step (series.h). */
-DEM_INLINE wall_part wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
-                                     DEM_CONST_GLOBAL real *wall_pf, DEM_CONST_GLOBAL real *x,
-                                     DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
-                                     DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride,
-                                     DEM_CONST_GLOBAL int *order)
+ * (wall_met: the geometry the force law saw, the state being the same). The block is the particles stored at
+ * [b*B, (b+1)*B) (B = DEM_REDUCE_BLOCK): the sums are exact, so which particles share a block does not matter. */
+DEM_INLINE void wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
+                                DEM_CONST_GLOBAL real *wall_pf, DEM_CONST_GLOBAL real *x,
+                                DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
+                                DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride, wall_part *p)
 {
-    wall_part p;
-    p.f = v3_zero();
-    p.fn = (real)0;
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
-    for (int q = b * DEM_REDUCE_BLOCK; q < end; q++) {
-        int j = order[q];
+    for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
         if ((wall_mask[j] >> k) & 1u) {
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
-            wall_part_take(&p, v3_load(wall_pf, k * n + j), g.n);
+            wall_part_take(p, v3_load(wall_pf, k * n + j), g.n);
         }
-    }
-    return p;
 }
 
-/* Partial sums of the force that particles of stable ids [b*B, (b+1)*B) exert on wall k, ascending stable id
- * (B = DEM_REDUCE_BLOCK; order[q] is where the particle of stable id q is stored), and of their normal parts. With
- * DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
+/* Exact sums of the force that the particles stored at [b*B, (b+1)*B) exert on wall k (B = DEM_REDUCE_BLOCK), and of
+ * their normal parts. With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
  * Without: each particle's force from the wall evaluated as contact_forces is about to (this kernel runs between
- * contact_pairs and contact_forces, on the same state), so nothing per particle and wall is stored. The same terms in
- * the same order: the same bits either way. */
+ * contact_pairs and contact_forces, on the same state), so nothing per particle and wall is stored. The same terms
+ * either way, and the same bits. */
 DEM_ITEM(wall_reduce_block)
 {
     int b = i % nblocks, k = i / nblocks;
     wall_part p;
-    p.f = v3_zero();
-    p.fn = (real)0;
+    wall_part_clear(&p);
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     if (fx & DEM_KEEP_WALL_FORCES)
-        p = wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride, order);
+        wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride, &p);
     else
-        for (int q = b * DEM_REDUCE_BLOCK; q < end; q++) { /* the wall receives minus the force on the particle */
-            int j = order[q];
+        for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) {
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
                                                wall_law, dt, (wall_mask[j] >> k) & 1u,
                                                wall_law_ctx(fx, j, j * nwalls + k, trace, invvol, mc_wall_disp, mdr_part),
                                                ride, 0, 0, 0);
-            if (c.active) {
-                p.f = v3_sub(p.f, c.r.force);
-                p.fn += v3_dot(c.r.force, c.n);
-            }
+            if (c.active)
+                wall_part_take(&p, c.r.force, c.n);
         }
-    wall_part_store(partial, k * nblocks + b, p);
+    wall_part_store(partial, k * nblocks + b, &p);
 }
 
-/* The middle level of the tree (dem_layout.h): group g of wall k adds its blocks g*FAN .. (g+1)*FAN-1 in ascending
- * order. */
+/* The middle level of the tree (dem_layout.h): group g of wall k merges its blocks g*FAN .. (g+1)*FAN-1, one sum at a
+ * time (one accumulator in private memory). */
 DEM_ITEM(wall_reduce_mid)
 {
     int g = i % nmid, k = i / nmid;
     int end = (g + 1) * DEM_REDUCE_FAN < nblocks ? (g + 1) * DEM_REDUCE_FAN : nblocks;
-    vec3 s = v3_zero();
-    real sn = (real)0;
-    for (int b = g * DEM_REDUCE_FAN; b < end; b++) {
-        DEM_CONST_GLOBAL real *q = partial + (k * nblocks + b) * WP_STRIDE;
-        s = v3_add(s, v3(q[WP_FX], q[WP_FY], q[WP_FZ]));
-        sn += q[WP_FN];
+    for (int q = 0; q < WP_STRIDE; q++) {
+        exact_acc a;
+        exact_clear(&a);
+        for (int b = g * DEM_REDUCE_FAN; b < end; b++)
+            exact_merge_stored(&a, partial + ((long)(k * nblocks + b) * WP_STRIDE + q) * EXACT_WORDS);
+        exact_store(mid + ((long)(k * nmid + g) * WP_STRIDE + q) * EXACT_WORDS, &a);
     }
-    wall_part p;
-    p.f = s, p.fn = sn;
-    wall_part_store(mid, k * nmid + g, p);
 }
 
-/* Wall k's sums over its groups in ascending order: its force and its normal force. */
+/* Wall k's sums over its groups, each rounded once: its force and its normal force. */
 DEM_ITEM(wall_reduce_final)
 {
     int k = i;
-    vec3 s = v3_zero();
-    real sn = (real)0;
-    for (int g = 0; g < nmid; g++) {
-        DEM_CONST_GLOBAL real *q = mid + (k * nmid + g) * WP_STRIDE;
-        s = v3_add(s, v3(q[WP_FX], q[WP_FY], q[WP_FZ]));
-        sn += q[WP_FN];
+    for (int q = 0; q < WP_STRIDE; q++) {
+        exact_acc a;
+        exact_clear(&a);
+        for (int g = 0; g < nmid; g++)
+            exact_merge_stored(&a, mid + ((long)(k * nmid + g) * WP_STRIDE + q) * EXACT_WORDS);
+        if (q == WP_FN)
+            wall_nforce[k] = exact_to_real(&a);
+        else
+            wall_force[3 * k + q] = exact_to_real(&a);
     }
-    v3_store(wall_force, k, s);
-    wall_nforce[k] = sn;
 }
 #endif /* DEM_WALL_FORCES_H */

@@ -450,12 +450,15 @@ static void tree_forces(double floor_f[3], double ceil_f[3], double ceil_z, doub
     floor_f[2] = -(double)fz, ceil_f[2] = -(double)cz; /* what each wall receives: minus the force on the spheres */
 }
 
+/* ctx: NULL, or an int stride: sphere k is then added k-th in the order i = k * stride mod TREE_N, so it gets
+ * another id and storage place (a stride prime to TREE_N makes it a permutation) */
 static dem_sim *build_tree(void *ctx)
 {
-    (void)ctx;
+    int stride = ctx ? *(const int *)ctx : 1;
     dem_sim *s = dem_create();
     int m = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0, 0, 0});
-    for (int i = 0; i < TREE_N; i++) {
+    for (int k = 0; k < TREE_N; k++) {
+        int i = (int)((long)k * stride % TREE_N);
         double r = i < TREE_BIG ? 0.0015 : 0.001, d = 1e-6 * (1 + (i % 97) / 97.0);
         double x[3] = {0.0032 * (i % 200), 0.0032 * (i / 200), r - d};
         dem_add_particle(s, x, NULL, r, m);
@@ -496,6 +499,118 @@ static void test_wall_tree(void **st)
 {
     (void)st;
     FOR_EACH_BACKEND(bc) backend_run(bc, build_tree, 0, check_tree, NULL);
+}
+
+/* The correctly rounded sum of x[0..n) in double, by Shewchuk's exact partials (the algorithm of Python's math.fsum,
+ * written here from its description, apart from common/exact_sum.h): the partials are non-overlapping doubles whose
+ * sum is exact; the result rounds their sum once, with the half-way correction for the partial below. */
+static double fsum_ref(const double *x, long n)
+{
+    double p[256];
+    int np = 0;
+    for (long k = 0; k < n; k++) {
+        double v = x[k];
+        int j = 0;
+        for (int q = 0; q < np; q++) {
+            double y = p[q];
+            if (fabs(v) < fabs(y)) {
+                double t = v;
+                v = y, y = t;
+            }
+            double hi = v + y, lo = y - (hi - v);
+            if (lo != 0)
+                p[j++] = lo;
+            v = hi;
+        }
+        assert_true(j < 256);
+        p[j++] = v;
+        np = j;
+    }
+    double hi = 0, lo = 0;
+    if (np > 0) {
+        hi = p[--np];
+        while (np > 0) {
+            double v = hi, y = p[--np];
+            hi = v + y;
+            lo = y - (hi - v);
+            if (lo != 0)
+                break;
+        }
+        if (np > 0 && ((lo < 0 && p[np - 1] < 0) || (lo > 0 && p[np - 1] > 0))) {
+            double y = lo * 2, v = hi + y;
+            if (y == v - hi)
+                hi = v;
+        }
+    }
+    return hi;
+}
+
+/* The walls' sums do not depend on which sphere has which id or is stored where (what a run split over several
+ * devices needs: docs/design.md "Sums that do not depend on the decomposition"): the tree scene built in id order and
+ * twice permuted (another id and storage place for every sphere; no two spheres touch, so each one's wall forces are
+ * the same numbers), one sampled step each: the same bits of every wall's force and normal force. And they are the
+ * correctly rounded sums of the forces in the contact network (each wall receives minus each contact's force, and its
+ * normal force is the contacts' force along the normal, here +-z): in fp64 bit for bit equal to fsum_ref of those
+ * terms; in fp32 (each term a float, the sum rounded once to float) within half a float ulp and half a double ulp of
+ * fsum_ref's double (both lie within half an ulp of their format of the exact sum). */
+static void test_wall_sum_any_order(void **st)
+{
+    (void)st;
+    static int strides[] = {1, 7919, 39999}; /* in order; a scatter; reversed */
+    FOR_EACH_BACKEND(bc)
+    {
+        double f0[2][3], n0[2];
+        for (int v = 0; v < 3; v++) {
+            dem_sim *s = build_tree(&strides[v]);
+            dem_config c = cfg_of(bc->backend, bc->precision);
+            c.contacts = 1;
+            start_or_fail(s, &c);
+            unsigned char want = 1;
+            dem_sample row;
+            assert_int_equal(dem_step_sampled(s, 1, &want, &row), 0);
+            dem_contact *cs;
+            long count, npairs;
+            assert_int_equal(dem_contacts_get(s, &cs, &count, &npairs), 0);
+            double *t = malloc(sizeof(double) * (size_t)(count + 1));
+            assert_non_null(t);
+            for (int w = 0; w < 2; w++) {
+                double f[3];
+                dem_wall_force(s, w, f);
+                assert_memory_equal(row.wall_force + 3 * w, f, sizeof f);
+                double want_f[4];
+                for (int d = 0; d < 4; d++) { /* x, y, z; then the normal force */
+                    long m = 0;
+                    for (long k = npairs; k < count; k++)
+                        if (cs[k].j == -1 - w)
+                            t[m++] = d < 3 ? -cs[k].fn[d] : (w == 0 ? cs[k].fn[2] : -cs[k].fn[2]);
+                    assert_true(m > 10000);
+                    want_f[d] = fsum_ref(t, m);
+                }
+                double got[4] = {f[0], f[1], f[2], row.wall_normal[w]};
+                for (int d = 0; d < 4; d++) {
+                    if (bc->precision == DEM_FP64) /* (a zero sum: +0 here, the sign of fsum_ref's may differ) */
+                        assert_true(got[d] == want_f[d] && (want_f[d] == 0 || !memcmp(&got[d], &want_f[d], 8)));
+                    else if (want_f[d] != 0) /* both within half an ulp of the exact sum, each of its format */
+                        assert_true(fabs(got[d] - want_f[d]) <=
+                                    ldexp(1, ilogb(want_f[d]) - 24) + ldexp(1, ilogb(want_f[d]) - 53));
+                    else
+                        assert_true(got[d] == 0);
+                }
+                if (v == 0)
+                    memcpy(f0[w], f, sizeof f), n0[w] = row.wall_normal[w];
+                else {
+                    assert_memory_equal(f0[w], f, sizeof f);
+                    assert_memory_equal(&n0[w], &row.wall_normal[w], sizeof(double));
+                }
+                if (w == 0)
+                    printf("  %s, stride %d: floor %.17g N, the terms' fsum %.17g N\n", bc->name, strides[v], f[2],
+                           want_f[2]);
+            }
+            free(t);
+            free(cs);
+            dem_destroy(s);
+        }
+    }
 }
 
 /* A finite cylinder (dem_wall.height: a die a tablet can leave): its side inside its length, its rim (an edge) in the
@@ -743,7 +858,8 @@ static void test_cup_forces(void **st)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_wall_tree), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_die), cmocka_unit_test(test_wall_tree),
+                                       cmocka_unit_test(test_wall_sum_any_order), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
                                        cmocka_unit_test(test_stage_ends_density), cmocka_unit_test(test_stage_ramp_after),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die),
                                        cmocka_unit_test(test_cup_geometry), cmocka_unit_test(test_cup_forces)};

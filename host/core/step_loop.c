@@ -67,21 +67,20 @@ static int mc_strain(dem_sim *s)
  * sum, walls. A stage returns 0 or a dem_status (a backend failure already reported through sim_be_fail). */
 static int stage_stress_trace(dem_sim *s) { return dem_launch(s->ops, s->be, K_stress_trace) ? sim_be_fail(s) : 0; }
 /* The force each wall received is summed only where someone can read it: the last step of every dem_step call (so
- * dem_get_field and the output see it after any call) and every step while a servo stage may read it. Unless the
+ * dem_get_field and the output see it after any call), a sampled step (its row, common/series.h) and every step while
+ * a servo stage may read it. Unless the
  * run keeps each particle's wall forces (DEM_KEEP_WALL_FORCES: a servo, the contact network), the sum evaluates
  * the wall contacts itself, between the pair pass and the per-particle sums, which then apply exactly those forces
  * (common/wall_forces.h); otherwise it adds the kept forces after the per-particle sums. The bits are the same. */
 static int stage_contacts(dem_sim *s)
 {
-    /* A sampled step's row (common/series.h) keeps the blocks' partial sums: integrate_kick takes them from the kept
-     * forces, or else they are computed here; the final sum runs only when due. */
-    int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls, fin = walls && s->run.wall_sums_due;
+    int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls;
+    int sums = walls && (s->run.wall_sums_due || s->run.sample_row >= 0);
     int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
-    int blocks = fin || (walls && s->run.sample_row >= 0 && !kept);
     return dem_launch(s->ops, s->be, K_contact_pairs) ||
-                   (blocks && !kept && dem_stage_wall_reduce(s->ops, s->be, fin)) ||
+                   (sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) ||
                    dem_launch(s->ops, s->be, K_contact_forces) ||
-                   (blocks && kept && dem_stage_wall_reduce(s->ops, s->be, fin))
+                   (sums && kept && dem_stage_wall_reduce(s->ops, s->be))
                ? sim_be_fail(s)
                : 0;
 }

@@ -2,6 +2,7 @@
  * received; the punch-and-die relative density; and, each step, the stage each wall is in (until_* ends), the
  * servos' velocities, and the walls' positions after the drift (sim_walls_move). */
 #include "sim.h"
+#include "exact_sum.h"
 #include "dem_layout.h"
 #include <math.h>
 #include <string.h>
@@ -227,9 +228,12 @@ int dem_relative_density(const dem_sim *s, int wall, double *rho)
         return e;
     if (dem_cup_in_bore(s, wall, die) != 1 || dem_cup_in_bore(s, other, die) != 1)
         return DEM_ERR_ARG; /* the cup's volume would not be the bore's */
-    double vol = 0, a[3], b[3];
+    double a[3], b[3];
+    exact_acc sum; /* the spheres' volume, exact and rounded once: the same bits in any order or split (exact_sum.h) */
+    exact_clear(&sum);
     for (int i = 0; i < s->n; i++)
-        vol += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
+        exact_add_double(&sum, 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i]);
+    double vol = exact_to_double(&sum);
     dem_wall_position(s, wall, a);
     dem_wall_position(s, other, b);
     *rho = bore_density(s, wall, other, die, a, b, vol);

@@ -2,12 +2,18 @@
  * Elastic: the run's contact law's energy per contact (common/laws/laws.h, law_energy, compiled here in double: for
  * Hertz-Mindlin and the multi-contact laws Hertz's 8/15 E* sqrt(r*) d^(5/2), the integral of Eq. 3's elastic part),
  * walls included, and k e^2 / 2 per spring (e its extension); the Mindlin tangential spring's energy is not counted
- * (zero when mu = 0). */
+ * (zero when mu = 0). Each energy is the exact sum of its terms rounded once to double (common/exact_sum.h): the same
+ * bits in any particle order or split of the particles (docs/design.md "Sums that do not depend on the
+ * decomposition"). */
+
+/* the energies' exact sums while they are added up */
+enum { EN_KIN, EN_POT, EN_ELA, EN_COUNT };
 #define DEM_REAL_SIZE 8
 #include "laws/laws.h"
 #include "sim.h"
 #include "dem_layout.h"
-#include "ref_kernels.h" /* the reference's patch overlaps and the walls' tree sum */
+#include "ref_kernels.h" /* the reference's patch overlaps */
+#include "exact_sum.h"   /* every sum over particles, contacts and springs: exact, rounded once */
 #include "sorted_row.h"  /* row_pair_of: a pair's number from its row slot */
 #include <math.h>
 #include <stdlib.h>
@@ -52,7 +58,7 @@ static double patch_contact_energy(unsigned fx, const double *row, double r, dou
 /* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
  * positions x (in storage order) and its side, and the work of its normal law (patch_contact_energy); the spheres in
  * ascending stable id, the triangles' vertices (stable ids) read where they are stored: any storage order */
-static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
+static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en, exact_acc *acc)
 {
     int n = s->n, maxp = DEM_CORE(s->be)->maxp, e = 0;
     int *cnt = sim_buffer_get(s, BUF_PCOUNT, &e), *list = sim_buffer_get(s, BUF_PLIST, &e);
@@ -69,7 +75,7 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en)
             double d = dem_patch_overlap_f64(x + 3 * i, tx, touch[(size_t)i * maxp + k], s->radius[i]), row[PM_STRIDE];
             if (d > 0) {
                 pair_row(s, s->mat[i], s->mat[sim_dev(s, s->mesh.tri[3 * t])], row);
-                en->elastic += patch_contact_energy(s->setup.effects, row, s->radius[i], d);
+                exact_add_double(&acc[EN_ELA], patch_contact_energy(s->setup.effects, row, s->radius[i], d));
             }
             en->patch_contacts++;
         }
@@ -97,34 +103,33 @@ static void sample_begin(const dem_sim *s, dem_sample *o)
         memcpy(o->wall_pos + 3 * w, s->motion.pos[w], sizeof(double) * 3);
 }
 
-/* Rows [0, count) of the ring into out[0..count): each row's per-particle terms added in ascending stable id, in
- * double; its walls' block partial sums finished as the device finishes them (in the run's precision), then widened.
- * -1 when out of host memory. */
-static int rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
+/* Rows [0, count) of the ring into out[0..count): each row's per-particle terms summed exactly in storage order
+ * (any order gives the same bits) and rounded once to double; its walls' sums as the step made them (in the run's
+ * precision), widened. */
+static void rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
                            dem_sample *out)
 {
-    int rs = s->setup.real_size, nb = DEM_CORE(s->be)->nblocks_red, nm = DEM_CORE(s->be)->nmid_red, nw = s->nwalls;
-    int n = s->n;
-    double *mid = NULL; /* the tree's middle level (dem_layout.h), in the run's reals */
-    const int *order = s->setup.order; /* ascending stable id (neighbor.h): the same sums in any storage order */
+    int rs = s->setup.real_size, nw = s->nwalls, n = s->n;
     double one[SE_STRIDE];
-    double wf[3 * DEM_MAX_WALLS], wn[DEM_MAX_WALLS]; /* the run's reals (float or double) in double-aligned room */
     for (int r = 0; r < count; r++) {
-        double t[SE_STRIDE] = {0};
-        if (rs == 8) { /* the same additions, without the copy through one[] (a row every step spent 3 us here) */
+        double t[SE_STRIDE];
+        exact_acc a[SE_STRIDE];
+        for (int q = 0; q < SE_STRIDE; q++)
+            exact_clear(&a[q]);
+        if (rs == 8) { /* the terms as they lie, without the copy through one[] */
             const double *row = (const double *)(terms + (size_t)r * n * SE_STRIDE * rs);
-            for (int k = 0; k < n; k++) {
-                const double *p = row + (size_t)order[k] * SE_STRIDE;
+            for (size_t k = 0; k < (size_t)n * SE_STRIDE; k += SE_STRIDE)
                 for (int q = 0; q < SE_STRIDE; q++)
-                    t[q] += p[q];
-            }
+                    exact_add_double(&a[q], row[k + q]);
         } else {
             for (int k = 0; k < n; k++) {
-                sim_widen(terms + ((size_t)r * n + order[k]) * SE_STRIDE * rs, one, SE_STRIDE, rs);
+                sim_widen(terms + ((size_t)r * n + k) * SE_STRIDE * rs, one, SE_STRIDE, rs);
                 for (int q = 0; q < SE_STRIDE; q++)
-                    t[q] += one[q];
+                    exact_add_double(&a[q], one[q]); /* a float widened: the same number */
             }
         }
+        for (int q = 0; q < SE_STRIDE; q++)
+            t[q] = exact_to_double(&a[q]);
         dem_energy_t *en = &out[r].energy;
         en->kinetic = t[SE_KIN];
         en->potential = t[SE_POT];
@@ -134,21 +139,14 @@ static int rows_from_ring(const dem_sim *s, int count, const unsigned char *term
         en->total = en->kinetic + en->elastic + en->potential;
         if (!nw || !(s->effects & DEM_EFFECT_WALLS))
             continue;
-        const unsigned char *part = walls + (size_t)r * WP_STRIDE * nw * nb * rs;
-        if (!mid && !(mid = malloc((size_t)WP_STRIDE * nw * nm * sizeof(double))))
-            return -1;
-        if (rs == 8) {
-            ref_wall_reduce_mid_f64(s->setup.effects, nw, nb, nm, (const double *)part, mid);
-            ref_wall_reduce_final_f64(s->setup.effects, nw, nm, mid, (double *)wf, (double *)wn);
-        } else {
-            ref_wall_reduce_mid_f32(s->setup.effects, nw, nb, nm, (const float *)part, (float *)mid);
-            ref_wall_reduce_final_f32(s->setup.effects, nw, nm, (const float *)mid, (float *)wf, (float *)wn);
+        double wr[WP_STRIDE * DEM_MAX_WALLS]; /* the row's walls (series_wall_row), widened */
+        sim_widen(walls + (size_t)r * WP_STRIDE * nw * rs, wr, WP_STRIDE * (size_t)nw, rs);
+        for (int k = 0; k < nw; k++) {
+            for (int q = 0; q < 3; q++)
+                out[r].wall_force[3 * k + q] = wr[k * WP_STRIDE + WP_FX + q];
+            out[r].wall_normal[k] = wr[k * WP_STRIDE + WP_FN];
         }
-        sim_widen(wf, out[r].wall_force, 3 * (size_t)nw, rs);
-        sim_widen(wn, out[r].wall_normal, (size_t)nw, rs);
     }
-    free(mid);
-    return 0;
 }
 
 
@@ -177,8 +175,7 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
             if (dem_stage_series_map(s->ops, s->be, held, &terms, &walls))
                 e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
             else {
-                if (rows_from_ring(s, held, terms, walls, o - (held - 1)))
-                    e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory for the walls' sums of the series");
+                rows_from_ring(s, held, terms, walls, o - (held - 1));
                 if (dem_stage_series_unmap(s->ops, s->be, terms, walls))
                     e = sim_fail(s, DEM_ERR_DEVICE, "%s: %s", s->ops->name, DEM_CORE(s->be)->err);
             }
@@ -281,8 +278,8 @@ static int read_law_states(dem_sim *s, host_state *hs)
     return e;
 }
 
-/* adds particle i's kinetic energy (translation, then rotation) and its potential energy in gravity to en */
-static void add_motion_energy(const dem_sim *s, const host_state *hs, int i, dem_energy_t *en)
+/* adds particle i's kinetic energy (translation, then rotation) and its potential energy in gravity to acc */
+static void add_motion_energy(const dem_sim *s, const host_state *hs, int i, exact_acc *acc)
 {
     const double *x = hs->x, *v = hs->v, *w = hs->w;
     double m = sim_mass(s, i), I = sim_inertia(s, i);
@@ -290,17 +287,18 @@ static void add_motion_energy(const dem_sim *s, const host_state *hs, int i, dem
     double v2 = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
     double w2 = w[3 * i] * w[3 * i] + w[3 * i + 1] * w[3 * i + 1] + w[3 * i + 2] * w[3 * i + 2];
     if (!(fl & DEM_PARTICLE_FIXED)) {
-        en->kinetic += 0.5 * m * v2;
+        exact_add_double(&acc[EN_KIN], 0.5 * m * v2);
         if (s->effects & DEM_EFFECT_GRAVITY)
-            en->potential -= m * (s->gravity[0] * x[3 * i] + s->gravity[1] * x[3 * i + 1] + s->gravity[2] * x[3 * i + 2]);
+            exact_add_double(&acc[EN_POT], -(m * (s->gravity[0] * x[3 * i] + s->gravity[1] * x[3 * i + 1] +
+                                                  s->gravity[2] * x[3 * i + 2])));
     }
     if (!(fl & (DEM_PARTICLE_FIXED | DEM_PARTICLE_NO_ROTATION)))
-        en->kinetic += 0.5 * I * w2;
+        exact_add_double(&acc[EN_KIN], 0.5 * I * w2);
 }
 
-/* adds the elastic energy of particle i's contacts to en: its sphere pairs from their owner (the lower stable id),
- * then its walls */
-static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, dem_energy_t *en)
+/* adds the elastic energy of particle i's contacts to acc and counts them in en: its sphere pairs from their owner
+ * (the lower stable id), then its walls */
+static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, dem_energy_t *en, exact_acc *acc)
 {
     const double *x = hs->x;
     const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */
@@ -325,9 +323,9 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
                 mdr_material m = mdr_material_of(row);
                 mdr_particle p0 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * j);
                 mdr_particle p1 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
-                en->elastic += mdr_pair_row_energy(&m, hs->pair_st + (size_t)p * MDR_PAIR_STRIDE, &p0, &p1);
+                exact_add_double(&acc[EN_ELA], mdr_pair_row_energy(&m, hs->pair_st + (size_t)p * MDR_PAIR_STRIDE, &p0, &p1));
             } else if (!mdr)
-                en->elastic += law_energy(fx, row, rs, delta, st);
+                exact_add_double(&acc[EN_ELA], law_energy(fx, row, rs, delta, st));
             en->contacts++;
         }
     }
@@ -343,16 +341,16 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
             if (mdr) {
                 mdr_material m = mdr_material_of(row);
                 mdr_particle p = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
-                en->elastic += mdr_wall_row_energy(&m, hs->wall_st + slot, &p);
+                exact_add_double(&acc[EN_ELA], mdr_wall_row_energy(&m, hs->wall_st + slot, &p));
             } else
-                en->elastic += law_energy(fx, row, r, delta, hs->wall_st ? hs->wall_st[slot] : 0);
+                exact_add_double(&acc[EN_ELA], law_energy(fx, row, r, delta, hs->wall_st ? hs->wall_st[slot] : 0));
             en->wall_contacts++;
         }
     }
 }
 
-/* adds the springs' energy k (|rho| - rho0)^2 / 2 to en, at positions x; ends by stable id */
-static void add_spring_energy(const dem_sim *s, const double *x, dem_energy_t *en)
+/* adds the springs' energy k (|rho| - rho0)^2 / 2 to acc, at positions x; ends by stable id */
+static void add_spring_energy(const dem_sim *s, const double *x, exact_acc *acc)
 {
     for (int k = 0; k < s->mesh.nsprings; k++) {
         int a = sim_dev(s, s->mesh.spring_ij[2 * k]), b = sim_dev(s, s->mesh.spring_ij[2 * k + 1]);
@@ -362,7 +360,7 @@ static void add_spring_energy(const dem_sim *s, const double *x, dem_energy_t *e
             r2 += (s->x[3 * a + q] - s->x[3 * b + q]) * (s->x[3 * a + q] - s->x[3 * b + q]);
         }
         double ext = sqrt(d2) - (rest < 0 ? sqrt(r2) : rest);
-        en->elastic += 0.5 * s->mesh.spring_kr[3 * k] * ext * ext;
+        exact_add_double(&acc[EN_ELA], 0.5 * s->mesh.spring_kr[3 * k] * ext * ext);
     }
 }
 
@@ -375,15 +373,20 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
     int e = read_state(s, &hs, wall_force, wall_normal);
     if (!e && (s->setup.effects & DEM_LAW_STATE_BITS))
         e = read_law_states(s, &hs);
-    for (int q = 0; !e && q < s->n; q++) { /* ascending stable id: the same sums in any storage order */
-        int i = s->setup.order[q];
-        add_motion_energy(s, &hs, i, en);
-        add_contact_energy(s, &hs, i, en);
+    exact_acc acc[EN_COUNT];
+    for (int q = 0; q < EN_COUNT; q++)
+        exact_clear(&acc[q]);
+    for (int i = 0; !e && i < s->n; i++) { /* storage order: exact sums, the same bits in any order */
+        add_motion_energy(s, &hs, i, acc);
+        add_contact_energy(s, &hs, i, en, acc);
     }
     if (!e)
-        add_spring_energy(s, hs.x, en);
+        add_spring_energy(s, hs.x, acc);
     if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
-        e = patch_energy(s, hs.x, en);
+        e = patch_energy(s, hs.x, en, acc);
+    en->kinetic = exact_to_double(&acc[EN_KIN]);
+    en->potential = exact_to_double(&acc[EN_POT]);
+    en->elastic = exact_to_double(&acc[EN_ELA]);
     en->total = en->kinetic + en->elastic + en->potential;
     free(hs.pair_st), free(hs.wall_st), free(hs.own), free(hs.mdr);
     return e;

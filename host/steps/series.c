@@ -16,7 +16,7 @@ int dem_stage_series_map(const dem_backend_ops *o, dem_backend *b, int rows, con
 {
     dem_core *c = DEM_CORE(b);
     size_t tb = (size_t)rows * SE_STRIDE * (size_t)c->n * (size_t)c->rs,
-           wb = (size_t)rows * WP_STRIDE * (size_t)c->nwalls * (size_t)c->nblocks_red * (size_t)c->rs;
+           wb = (size_t)rows * WP_STRIDE * (size_t)c->nwalls * (size_t)c->rs;
     dem_bufref rt = {TABLE_ONE, BUF_SERIES_RING}, rw = {TABLE_ONE, BUF_SERIES_WALL};
     *terms = *walls = NULL;
     if (o->map(b, rt, tb, terms))
