@@ -42,7 +42,7 @@ TEST_LDLIBS := $(APP_LDLIBS) -lcmocka
 # (core/: the simulation, its set-up, state and storage order; steps/: the steps written once for every backend;
 # physics/: the host's double-precision views (energy, stability, contacts); mesh/: membranes' meshes; opencl/: the
 # OpenCL backend); reference/: the plain C backend
-HOST_SRC := $(wildcard backend/*.c host/*/*.c)
+HOST_SRC := $(filter-out host/mpi/%,$(wildcard backend/*.c host/*/*.c))
 REF_SRC  := $(wildcard reference/*.c)
 HOST_OBJ := $(HOST_SRC:%.c=$(BUILD)/%.o)
 REF32_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref32/%.o)
@@ -54,11 +54,20 @@ APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
 APPLIB   := $(BUILD)/libdemapp.a
 HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
 
-TEST_SRC  := $(filter-out tests/test_util.c,$(wildcard tests/test_*.c))
+# host/mpi/: the MPI layer (issue 41), its own archive compiled with Open MPI's flags (MPI_CFLAGS, MPI_LIBS from
+# mpicc, in build/config.mk): libdem.a and every program that does not call it are built and linked without MPI
+MPI_SRC := $(wildcard host/mpi/*.c)
+MPI_OBJ := $(MPI_SRC:%.c=$(BUILD)/%.o)
+MPILIB  := $(BUILD)/libdem_mpi.a
+
+TEST_SRC  := $(filter-out tests/test_util.c tests/test_mpi_%,$(wildcard tests/test_*.c))
 TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+# the tests of the MPI layer, run under mpirun by tests/mpi_check.sh
+MPI_TEST_BIN := $(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_mpi_*.c))
 
 .PHONY: all deps run demo test test-examples test-fresh test-paraview fuzz fuzz-scene fuzz-checkpoint fuzz-cli fuzz-mesh fuzz-h5 bench bench-peer peer-mdr clean validate conventions stability accuracy tablet-models tablet-mass-scale tablet-strength
-all: $(LIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN)
+all: $(LIB) $(MPILIB) $(BUILD)/dem $(BUILD)/dem-demo $(BUILD)/dem-membrane $(BUILD)/dem-bench $(BUILD)/dem-accuracy $(TEST_BIN) \
+     $(MPI_TEST_BIN)
 
 deps: $(DEPS_STAMP)
 $(DEPS_STAMP): scripts/install-deps.sh
@@ -66,11 +75,17 @@ $(DEPS_STAMP): scripts/install-deps.sh
 	@mkdir -p $(BUILD)
 	@c=$$(pkg-config --cflags hdf5) && l=$$(pkg-config --libs hdf5 libcyaml yaml-0.1) || \
 	  { echo "make: pkg-config finds no hdf5, libcyaml or yaml-0.1 after installing them" >&2; exit 1; }; \
-	  printf 'PKG_CFLAGS := %s\nPKG_LIBS := %s\n' "$$c" "$$l" > $@.tmp && mv $@.tmp $@
+	  mc=$$(mpicc --showme:compile) && ml=$$(mpicc --showme:link) || \
+	  { echo "make: mpicc (Open MPI) gives no flags after installing it" >&2; exit 1; }; \
+	  printf 'PKG_CFLAGS := %s\nPKG_LIBS := %s\nMPI_CFLAGS := %s\nMPI_LIBS := %s\n' "$$c" "$$l" "$$mc" "$$ml" > $@.tmp && \
+	  mv $@.tmp $@
 
 $(BUILD)/host/%.o: host/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -c $< -o $@
+$(BUILD)/host/mpi/%.o: host/mpi/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $(MPI_CFLAGS) -c $< -o $@
 $(BUILD)/backend/%.o: backend/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -c $< -o $@
@@ -92,6 +107,9 @@ $(LIB): $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
 $(APPLIB): $(APP_OBJ)
 	@rm -f $@
 	$(Q)$(call msg,AR,$@)ar rcs $@ $^
+$(MPILIB): $(MPI_OBJ)
+	@rm -f $@
+	$(Q)$(call msg,AR,$@)ar rcs $@ $^
 
 $(BUILD)/dem: app/dem_main.c $(APPLIB) $(LIB) $(HEADERS)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
@@ -109,6 +127,10 @@ $(BUILD)/dem-accuracy: bench/accuracy.c $(APPLIB) $(LIB) $(HEADERS)
 $(BUILD)/tests/%: tests/%.c tests/test_util.c $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -Itests $< tests/test_util.c $(APPLIB) $(LIB) $(TEST_LDLIBS) -o $@
+$(BUILD)/tests/test_mpi_%: tests/test_mpi_%.c tests/test_util.c $(MPILIB) $(APPLIB) $(LIB) $(BUILD)/dem $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $(MPI_CFLAGS) -Itests -Ihost/mpi $< tests/test_util.c $(MPILIB) $(APPLIB) $(LIB) \
+	  $(TEST_LDLIBS) $(MPI_LIBS) -o $@
 
 # The test build of one more checkpointed per-particle buffer (common/dem_buffers.h, DEM_TEST_EXTRA_BUFFER): the
 # library compiled again with it, in build/extra/, for tests/test_extra_buffer.c only
@@ -412,8 +434,9 @@ FORCE:
 demo: $(BUILD)/dem-demo
 	./$(BUILD)/dem-demo
 
-test: $(TEST_BIN) python-lib
-	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh tests/test_python.py tests/examples_check.sh
+test: $(TEST_BIN) $(MPI_TEST_BIN) python-lib
+	@bash scripts/run-tests.sh $(TEST_BIN) tests/install_check.sh tests/test_python.py tests/examples_check.sh \
+	  tests/mpi_check.sh
 
 # The tutorial's scenes (docs/tutorial.md, examples/*.yaml) alone; make test runs the same check.
 test-examples: $(BUILD)/dem

@@ -151,16 +151,17 @@ enum {
 /* Per-particle symmetric stress tensor (DEM_FIELD_STRESS): 6 reals per particle in this order [Pa]. */
 enum { ST_XX = 0, ST_YY, ST_ZZ, ST_XY, ST_XZ, ST_YZ, ST_STRIDE };
 
-/* A block's partial sums for one wall (wall_reduce_block): the force the wall received, and the sum of the normal
+/* A block's sums for one wall (wall_reduce_block; exact accumulators, common/exact_sum.h, in the partial buffers; the
+ * rounded sums in a series row): the force the wall received, and the sum of the normal
  * force components (each particle's force from the wall along its contact normal: for a cylinder the radial force on
  * the die wall, for a plane its normal force) [N]. */
 enum { WP_FX = 0, WP_FY, WP_FZ, WP_FN, WP_STRIDE };
-/* The canonical wall-force reduction is a fixed tree of three levels: partial sums over blocks of DEM_REDUCE_BLOCK
- * particles in ascending id (wall_reduce_block), sums of groups of DEM_REDUCE_FAN consecutive blocks in ascending
- * block order (wall_reduce_mid), and the groups' sums in ascending order (wall_reduce_final). Its shape is fixed by
- * these constants and n, not by the work-group size, so the sum has the same bits on every device and launch
- * configuration; no level's item adds more than max(256, 64, n / 16384) terms (62 at 1e6), where one item per wall
- * adding every block was 73 % of a 1e6 press's step on a GPU (docs/design.md "The walls' sum as a tree"). */
+/* The wall-force reduction is a tree of three levels of exact sums: blocks of DEM_REDUCE_BLOCK particles as stored
+ * (wall_reduce_block), groups of DEM_REDUCE_FAN consecutive blocks (wall_reduce_mid), and the groups
+ * (wall_reduce_final), which rounds once. The sums are exact, so the bits are the correctly rounded sum's whatever the
+ * tree, the order or the device; the tree only spreads the work: no level's item merges more than max(256, 64,
+ * n / 16384) terms (62 at 1e6), where one item per wall adding every block was 73 % of a 1e6 press's step on a GPU
+ * (docs/design.md "The walls' sum as a tree"). */
 #define DEM_REDUCE_BLOCK 256
 #define DEM_REDUCE_FAN 64
 /* A particle's wall mask holds one bit per wall: the most walls a kernel meets (dem.h's DEM_MAX_WALLS, checked

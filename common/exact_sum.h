@@ -4,10 +4,9 @@
  * correctly rounded sum. It compiles as C and as OpenCL C (integers only: 64-bit limbs; a float is taken apart from
  * its bits, never through double), the same bits on every device.
  *
- * Meant for the sums a run over many devices must get right whatever the decomposition (docs/design.md "Sums that do
- * not depend on the decomposition"): the walls' forces, the energies and series rows, servo and until_force decisions.
- * Nothing uses it yet: adopting it for a sum changes that sum's last bits once (the correctly rounded value instead
- * of the fixed tree's), which the state hash table then records anew.
+ * Used for the sums a run over many devices must get right whatever the decomposition (docs/design.md "Sums that do
+ * not depend on the decomposition"): the walls' forces (common/wall_forces.h), hence servo and until_force
+ * decisions, the energies and series rows (host/physics/energy.c), the spheres' volume of dem_relative_density.
  *
  * Layout: EXACT_LIMBS 64-bit limbs, two's complement, limb 0 the lowest; bit k of the whole integer stands for
  * 2^(k - 1074) (2^-1074 is the smallest subnormal double). A finite double's bits lie between 2^-1074 and 2^1023

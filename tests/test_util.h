@@ -124,4 +124,7 @@ void test_cl_close(test_cl *t);
 dem_sim *pair_build(const dem_material *m, double r1, double r2, double v, double dt_frac);
 /* Distance between the centres of particles 0 and 1 [m] (a two-particle simulation). */
 double pair_distance(dem_sim *s);
+/* The correctly rounded double sum of x[0..n) (Shewchuk's exact partials, math.fsum's algorithm): a check of the
+ * exact sums written apart from common/exact_sum.h */
+double fsum_ref(const double *x, long n);
 #endif

@@ -501,56 +501,12 @@ static void test_wall_tree(void **st)
     FOR_EACH_BACKEND(bc) backend_run(bc, build_tree, 0, check_tree, NULL);
 }
 
-/* The correctly rounded sum of x[0..n) in double, by Shewchuk's exact partials (the algorithm of Python's math.fsum,
- * written here from its description, apart from common/exact_sum.h): the partials are non-overlapping doubles whose
- * sum is exact; the result rounds their sum once, with the half-way correction for the partial below. */
-static double fsum_ref(const double *x, long n)
-{
-    double p[256];
-    int np = 0;
-    for (long k = 0; k < n; k++) {
-        double v = x[k];
-        int j = 0;
-        for (int q = 0; q < np; q++) {
-            double y = p[q];
-            if (fabs(v) < fabs(y)) {
-                double t = v;
-                v = y, y = t;
-            }
-            double hi = v + y, lo = y - (hi - v);
-            if (lo != 0)
-                p[j++] = lo;
-            v = hi;
-        }
-        assert_true(j < 256);
-        p[j++] = v;
-        np = j;
-    }
-    double hi = 0, lo = 0;
-    if (np > 0) {
-        hi = p[--np];
-        while (np > 0) {
-            double v = hi, y = p[--np];
-            hi = v + y;
-            lo = y - (hi - v);
-            if (lo != 0)
-                break;
-        }
-        if (np > 0 && ((lo < 0 && p[np - 1] < 0) || (lo > 0 && p[np - 1] > 0))) {
-            double y = lo * 2, v = hi + y;
-            if (y == v - hi)
-                hi = v;
-        }
-    }
-    return hi;
-}
-
 /* The walls' sums do not depend on which sphere has which id or is stored where (what a run split over several
  * devices needs: docs/design.md "Sums that do not depend on the decomposition"): the tree scene built in id order and
  * twice permuted (another id and storage place for every sphere; no two spheres touch, so each one's wall forces are
  * the same numbers), one sampled step each: the same bits of every wall's force and normal force. And they are the
  * correctly rounded sums of the forces in the contact network (each wall receives minus each contact's force, and its
- * normal force is the contacts' force along the normal, here +-z): in fp64 bit for bit equal to fsum_ref of those
+ * normal force is the contacts' force along the normal, here +-z): in fp64 bit for bit equal to fsum_ref (test_util.c) of those
  * terms; in fp32 (each term a float, the sum rounded once to float) within half a float ulp and half a double ulp of
  * fsum_ref's double (both lie within half an ulp of their format of the exact sum). */
 static void test_wall_sum_any_order(void **st)

@@ -183,6 +183,9 @@ int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that en
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
 double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's relative density now (until_density) */
+/* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded: a run over MPI
+ * merges them across ranks (host/mpi/dem_mpi.h) */
+int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
 /* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
  * checkpoint written before stages could end early). */
 void sim_stages_from_step(dem_sim *s);

@@ -6,6 +6,7 @@
 #include "dem_layout.h"
 #include <math.h>
 #include <string.h>
+#include <stdlib.h>
 
 static int check_stages(dem_sim *s, int wall, dem_wall_kind kind, int nstages, const dem_stage *stages)
 {
@@ -148,6 +149,26 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
     int e = dem_get_field(s, DEM_FIELD_WALL_FORCE, all);
     if (!e)
         memcpy(f, all + 3 * wall, sizeof(double) * 3);
+    return e;
+}
+
+/* Wall k's sums of the last step that made them, before they are rounded: the merge of the tree's groups
+ * (common/wall_forces.h, PARTIAL_MID), acc[WP_FX..WP_FN]. A run split over ranks merges these across them and
+ * rounds once (host/mpi/dem_mpi.h), which gives the bits one process would. */
+int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
+{
+    if (!s->run.started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    if (wall < 0 || wall >= s->nwalls)
+        return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
+    int e = 0, nmid = DEM_CORE(s->be)->nmid_red;
+    unsigned *mid = sim_buffer_get(s, BUF_PARTIAL_MID, &e);
+    for (int q = 0; q < WP_STRIDE; q++) {
+        exact_clear(&acc[q]);
+        for (int g = 0; !e && g < nmid; g++)
+            exact_merge_stored(&acc[q], mid + ((size_t)(wall * nmid + g) * WP_STRIDE + q) * EXACT_WORDS);
+    }
+    free(mid);
     return e;
 }
 

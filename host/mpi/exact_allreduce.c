@@ -1,0 +1,27 @@
+/* exact_allreduce.c - exact accumulators merged across MPI ranks (dem_mpi.h) */
+#include "dem_mpi.h"
+
+/* MPI's user operation: each accumulator of in merged into inout's, exactly */
+static void merge_op(void *in, void *inout, int *len, MPI_Datatype *type)
+{
+    (void)type;
+    const exact_acc *a = in;
+    exact_acc *b = inout;
+    for (int k = 0; k < *len; k++)
+        exact_merge(&b[k], &a[k]);
+}
+
+int dem_mpi_exact_allreduce(MPI_Comm comm, exact_acc *acc, int count)
+{
+    MPI_Datatype t;
+    MPI_Op op;
+    int e = MPI_Type_contiguous((int)sizeof(exact_acc), MPI_BYTE, &t);
+    if (e != MPI_SUCCESS)
+        return e;
+    if ((e = MPI_Type_commit(&t)) == MPI_SUCCESS && (e = MPI_Op_create(merge_op, 1, &op)) == MPI_SUCCESS) {
+        e = MPI_Allreduce(MPI_IN_PLACE, acc, count, t, op, comm);
+        MPI_Op_free(&op);
+    }
+    MPI_Type_free(&t);
+    return e;
+}
