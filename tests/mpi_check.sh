@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
-# mpi_check.sh - the MPI layer's test (tests/test_mpi_sum.c) on 1, 2 and 3 ranks of Open MPI (mpirun --oversubscribe:
-# more ranks than this machine's cores), each run under a time limit so that a rank left waiting in a collective ends
-# the check instead of hanging it. Run by make test.
+# mpi_check.sh - the MPI layer's tests (build/tests/test_mpi_*: tests/test_mpi_sum.c, tests/test_mpi_halo.c) on 1, 2
+# and 3 ranks of Open MPI (mpirun --oversubscribe: more ranks than this machine's cores), each run under a time limit
+# so that a rank left waiting in a collective ends the check instead of hanging it. Run by make test.
 set -u
-bin=${1:-build/tests/test_mpi_sum}
-[ -x "$bin" ] || { echo "mpi_check: no $bin (make builds it)" >&2; exit 1; }
+cd "$(dirname "$0")/.."
+bins=(build/tests/test_mpi_*)
+[ -x "${bins[0]}" ] || { echo "mpi_check: no build/tests/test_mpi_* (make builds them)" >&2; exit 1; }
 command -v mpirun >/dev/null || { echo "mpi_check: no mpirun (scripts/install-deps.sh installs openmpi-bin)" >&2; exit 1; }
-# Open MPI refuses root unless told (CI and make test-fresh run as root); one thread per rank for PoCL
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+# Open MPI refuses root unless told (CI and make test-fresh run as root); one PoCL thread per rank (the ranks share
+# two cores)
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 POCL_CPU_MAX_CU_COUNT=1 POCL_MAX_PTHREAD_COUNT=1
 rc=0
-for np in 1 2 3; do
-    echo "== $np rank(s)"
-    POCL_CPU_MAX_CU_COUNT=1 POCL_MAX_PTHREAD_COUNT=1 timeout 600 mpirun -np "$np" --oversubscribe --bind-to none "$bin" || { echo "mpi_check: $np rank(s) failed" >&2; rc=1; }
+for bin in "${bins[@]}"; do
+    for np in 1 2 3; do
+        echo "== $(basename "$bin"), $np rank(s)"
+        timeout 600 mpirun -np "$np" --oversubscribe --bind-to none "$bin" || { echo "mpi_check: $bin on $np rank(s) failed" >&2; rc=1; }
+    done
 done
 exit $rc

@@ -11,23 +11,13 @@
  *   on the reference and PoCL, fp64 and fp32.
  * Every check is agreed on by all ranks (an MPI_MIN of the local verdicts) before it is asserted, so a failure on
  * one rank fails them all instead of leaving the others waiting in a collective. */
-#include "test_util.h"
+#include "mpi_util.h"
 #include "sim.h"
-#include "dem_mpi.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int rank, size;
-
-/* all ranks agree: 1 when ok holds on every one */
-static int all_ok(int ok)
-{
-    int all = 0;
-    assert_int_equal(MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), MPI_SUCCESS);
-    return all;
-}
 
 /* term k of the sums: a mantissa from a 64-bit LCG times 2^e, e in [-120, 120); every fourth term cancels the one
  * before it but for its lowest bits */
@@ -129,13 +119,4 @@ static void test_walls_split_by_space(void **st)
     }
 }
 
-int main(int argc, char **argv)
-{
-    MPI_Init(&argc, &argv);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_sums_any_cut), cmocka_unit_test(test_walls_split_by_space)};
-    int failed = cmocka_run_group_tests(tests, NULL, NULL);
-    MPI_Finalize();
-    return failed;
-}
+MPI_TEST_MAIN(cmocka_unit_test(test_sums_any_cut), cmocka_unit_test(test_walls_split_by_space))

@@ -183,6 +183,10 @@ int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that en
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
 double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's relative density now (until_density) */
+/* fields.c: rows of particle field f (width reals each: 3 for x) of the particles ids[0..count) (callers' ids) set to
+ * vals, in the run's precision (a value of an fp32 run must be a float widened), the other rows kept: what a run split
+ * over ranks writes into its ghosts after a step (host/mpi/halo.c) */
+int sim_set_field_rows(dem_sim *s, dem_field f, int width, int count, const int *ids, const double *vals);
 /* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded: a run over MPI
  * merges them across ranks (host/mpi/dem_mpi.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);

@@ -4,11 +4,41 @@
  * What it holds so far: the exact sums (common/exact_sum.h) merged across the ranks of a communicator, the one
  * operation the run's global sums need whatever the decomposition - each rank sums its own particles' terms exactly
  * (the walls' forces: sim_wall_sums_exact; the energies), the accumulators are merged, and every rank rounds the
- * same integer to the same bits. The decomposed run itself (subdomains, ghosts, migration) is not here yet. */
+ * same integer to the same bits; and a fixed halo of ghost particles kept equal to their owners' after each step.
+ * Not here yet: choosing the subdomains, migration, the dem run driver (docs/design.md "Runs over MPI"). */
 #ifndef DEM_MPI_H
 #define DEM_MPI_H
 #include <mpi.h>
+#include "dem.h"
 #include "exact_sum.h"
+
+/* The halo of one rank of a run split by space: its dem_sim holds its own particles and, as ghosts, copies of the
+ * particles of other ranks that can touch them; after every step the owners' values of what a step reads of a
+ * particle (position, velocity, spin, force, torque: a ghost's own step used its owner's values and gets them back, so
+ * it holds the owner's bits while it is in the halo) are written into the ghosts (dem_mpi_halo_exchange). A particle's
+ * force is its touching pairs' forces in the order of the partners' stable ids (docs/design.md "Every sum follows the
+ * particle ids"), which ghosts do not change, so each own particle keeps the bits it has in one process.
+ * The set of ghosts is fixed from dem_mpi_halo_init on: a run whose particles can leave it must be split anew
+ * (migration, not built yet: docs/design.md "Runs over MPI"). */
+typedef struct {
+    MPI_Comm comm;
+    int rank, size;
+    dem_sim *s;
+    int n;                                  /* particles held: own and ghosts */
+    int nsend, nrecv;                       /* own particles other ranks hold as ghosts (with repeats), ghosts held */
+    int *send_count, *send_displ, *send_id; /* per rank, its ghosts of ours, ascending global id: our local ids */
+    int *recv_count, *recv_displ, *recv_id; /* per rank, our ghosts it owns, ascending global id: our local ids */
+    double *field, *sbuf, *rbuf;            /* scratch: one field, and the messages */
+} dem_mpi_halo;
+/* Sets up h for the started run s of n particles: gid[k] each one's global id (ascending in k, the order they were
+ * added, so that the local stable ids keep the global order), owner[k] the rank that owns it. Collective over comm;
+ * every ghost must be owned, in the owner's run, by the rank named. Returns 0, or DEM_ERR_ARG / DEM_ERR_NOMEM / an
+ * MPI error code, the same on every rank. Ends with an exchange: the start's forces of a ghost (whose partners
+ * outside the halo it does not see) replaced by its owner's before the first step. */
+int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner);
+/* After a step: the owners' position, velocity, spin, force and torque into every ghost. Collective. */
+int dem_mpi_halo_exchange(dem_mpi_halo *h);
+void dem_mpi_halo_free(dem_mpi_halo *h);
 
 /* acc[0..count) replaced on every rank of comm by the merge of all ranks' acc[0..count): exact, so the result does
  * not depend on the number of ranks, their order or the reduction tree MPI chooses (the operation is commutative

@@ -1,0 +1,139 @@
+/* halo.c - ghost particles kept equal to their owners' after each step (dem_mpi.h) */
+#include "dem_mpi.h"
+#include "sim.h"
+#include <stdlib.h>
+#include <string.h>
+
+/* what a step reads of a particle, in the message's order: 3 reals each */
+static const dem_field halo_fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE};
+#define HALO_NF ((int)(sizeof halo_fields / sizeof halo_fields[0]))
+
+void dem_mpi_halo_free(dem_mpi_halo *h)
+{
+    free(h->send_count), free(h->send_displ), free(h->send_id);
+    free(h->recv_count), free(h->recv_displ), free(h->recv_id);
+    free(h->field), free(h->sbuf), free(h->rbuf);
+    memset(h, 0, sizeof *h);
+}
+
+/* the local id of global id g among gid[0..n) (ascending), -1 if absent */
+static int local_of(const long *gid, int n, long g)
+{
+    int lo = 0, hi = n;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (gid[mid] < g)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && gid[lo] == g ? lo : -1;
+}
+
+/* the worst of the ranks' codes (0 everywhere: 0) */
+static int agree(MPI_Comm comm, int e)
+{
+    int all = e;
+    MPI_Allreduce(&e, &all, 1, MPI_INT, MPI_MAX, comm);
+    return all;
+}
+
+int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner)
+{
+    memset(h, 0, sizeof *h);
+    h->comm = comm, h->s = s, h->n = n;
+    MPI_Comm_rank(comm, &h->rank);
+    MPI_Comm_size(comm, &h->size);
+    int P = h->size, e = 0;
+    h->send_count = calloc((size_t)P, sizeof(int)), h->send_displ = calloc((size_t)P, sizeof(int));
+    h->recv_count = calloc((size_t)P, sizeof(int)), h->recv_displ = calloc((size_t)P, sizeof(int));
+    h->recv_id = malloc(sizeof(int) * ((size_t)n + 1));
+    long *want = malloc(sizeof(long) * ((size_t)n + 1)), *asked = NULL;
+    if (!h->send_count || !h->send_displ || !h->recv_count || !h->recv_displ || !h->recv_id || !want)
+        e = DEM_ERR_NOMEM;
+    for (int k = 0; !e && k < n; k++) {
+        if ((k && gid[k] <= gid[k - 1]) || owner[k] < 0 || owner[k] >= P)
+            e = DEM_ERR_ARG; /* global ids not ascending, or an owner that is no rank */
+        else if (owner[k] != h->rank)
+            h->recv_count[owner[k]]++;
+    }
+    if ((e = agree(comm, e))) {
+        free(want);
+        dem_mpi_halo_free(h);
+        return e;
+    }
+    for (int q = 1; q < P; q++)
+        h->recv_displ[q] = h->recv_displ[q - 1] + h->recv_count[q - 1];
+    h->nrecv = P ? h->recv_displ[P - 1] + h->recv_count[P - 1] : 0;
+    int *fill = calloc((size_t)P, sizeof(int));
+    for (int k = 0; fill && k < n; k++) /* ghosts by owner, ascending global id within each */
+        if (owner[k] != h->rank) {
+            int at = h->recv_displ[owner[k]] + fill[owner[k]]++;
+            h->recv_id[at] = k, want[at] = gid[k];
+        }
+    e = fill ? 0 : DEM_ERR_NOMEM;
+    free(fill);
+    /* each rank learns which of its particles the others hold (their ghost lists), and finds them */
+    if (!e && (e = MPI_Alltoall(h->recv_count, 1, MPI_INT, h->send_count, 1, MPI_INT, comm)) == MPI_SUCCESS) {
+        for (int q = 1; q < P; q++)
+            h->send_displ[q] = h->send_displ[q - 1] + h->send_count[q - 1];
+        h->nsend = h->send_displ[P - 1] + h->send_count[P - 1];
+        asked = malloc(sizeof(long) * ((size_t)h->nsend + 1));
+        h->send_id = malloc(sizeof(int) * ((size_t)h->nsend + 1));
+        e = asked && h->send_id ? 0 : DEM_ERR_NOMEM;
+        if (!agree(comm, e))
+            e = MPI_Alltoallv(want, h->recv_count, h->recv_displ, MPI_LONG, asked, h->send_count, h->send_displ,
+                              MPI_LONG, comm);
+        else
+            e = e ? e : DEM_ERR_NOMEM;
+    }
+    for (int k = 0; !e && k < h->nsend; k++) {
+        int i = local_of(gid, n, asked[k]);
+        if (i < 0 || owner[i] != h->rank)
+            e = DEM_ERR_ARG; /* a rank holds as a ghost of ours a particle we do not own */
+        else
+            h->send_id[k] = i;
+    }
+    free(want), free(asked);
+    if (!e) {
+        h->field = malloc(sizeof(double) * 3 * ((size_t)n + 1));
+        h->sbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nsend + 1));
+        h->rbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nrecv + 1));
+        e = h->field && h->sbuf && h->rbuf ? 0 : DEM_ERR_NOMEM;
+    }
+    if ((e = agree(comm, e)))
+        dem_mpi_halo_free(h);
+    else /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step */
+        e = dem_mpi_halo_exchange(h);
+    return e;
+}
+
+int dem_mpi_halo_exchange(dem_mpi_halo *h)
+{
+    int P = h->size, e = 0, w = 3 * HALO_NF; /* reals per particle in the messages */
+    for (int f = 0; !e && f < HALO_NF; f++) {
+        if ((e = dem_get_field(h->s, halo_fields[f], h->field)))
+            break;
+        for (int k = 0; k < h->nsend; k++)
+            memcpy(h->sbuf + (size_t)k * w + 3 * f, h->field + 3 * (size_t)h->send_id[k], sizeof(double) * 3);
+    }
+    int *sc = malloc(sizeof(int) * 4 * (size_t)P);
+    if (!sc)
+        e = DEM_ERR_NOMEM;
+    if ((e = agree(h->comm, e))) {
+        free(sc);
+        return e;
+    }
+    int *sd = sc + P, *rc = sd + P, *rd = rc + P;
+    for (int q = 0; q < P; q++)
+        sc[q] = w * h->send_count[q], sd[q] = w * h->send_displ[q], rc[q] = w * h->recv_count[q],
+        rd[q] = w * h->recv_displ[q];
+    e = MPI_Alltoallv(h->sbuf, sc, sd, MPI_DOUBLE, h->rbuf, rc, rd, MPI_DOUBLE, h->comm);
+    free(sc);
+    for (int f = 0; !e && f < HALO_NF; f++) {
+        for (int k = 0; k < h->nrecv; k++)
+            memcpy(h->field + 3 * (size_t)k, h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
+        e = sim_set_field_rows(h->s, halo_fields[f], 3, h->nrecv, h->recv_id, h->field);
+    }
+    return agree(h->comm, e);
+}
