@@ -5,7 +5,8 @@
  * own particles and merged across the ranks, has the whole run's bits. The scene: 855 polydisperse spheres
  * (Hertz-Mindlin with friction, damping, gravity) released with random velocities in a box of six walls whose lid
  * comes down; the slabs cut across x, so contacts and their tangential histories cross the cuts. The halo is fixed
- * (no migration yet): the test checks that no particle moved by half its margin (every 50 steps), else its premise would not hold.
+ * here: the test checks that no particle moved by half its margin (every 50 steps), else its premise would not hold;
+ * test_split_anew splits the run anew twice, particles and contacts migrating.
  * Reference and PoCL, fp64 and fp32. Every check is agreed by all ranks before it is asserted. */
 #include "mpi_util.h"
 #include "sim.h"
@@ -174,4 +175,120 @@ static void test_split_run(void **st)
     }
 }
 
-MPI_TEST_MAIN(cmocka_unit_test(test_split_run))
+/* The particles of ranks' runs split anew twice (migration): 3 phases of 300 steps, the slabs cut across x, then
+ * across y, then across x half a slab further on, by the positions at each split. At a split the whole state is
+ * gathered from the ranks' own particles (dem_mpi_state_gather), cut to each rank's new particles and halo
+ * (dem_mpi_state_part) and set into a new run of them (dem_state_set): particles, their per-particle and per-wall
+ * arrays and their contacts' histories move between ranks. After the 900 steps every own particle has the whole
+ * run's bits, and the gathered state has the whole run's state's: every per-particle and per-wall array and every
+ * contact with its history and force record (the walls' sums aside: rank 0's). The reference in fp64 and PoCL in fp32. */
+static void test_split_anew(void **st)
+{
+    (void)st;
+    make_particles();
+    const double margin = 3 * RMAX, layer = 2 * RMAX + margin;
+    const long phase_steps = 300;
+    FOR_EACH_BACKEND(bc)
+    {
+        /* two of the four cases (the state's travel is the host's, the same for every backend; test_split_run runs
+         * all four): make test's time */
+        if ((bc->backend == DEM_BACKEND_REFERENCE) != (bc->precision == DEM_FP64))
+            continue;
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        double dt = 0;
+        dem_sim *whole = build(NULL, &dt), *part = NULL;
+        start_or_fail(whole, &c);
+        static double pos[NTOT][3], xw[3 * NTOT];
+        memcpy(pos, px, sizeof pos);
+        static unsigned char keep[NTOT];
+        static long gid[NTOT];
+        static int owner[NTOT];
+        int n = 0, moved_ok = 1;
+        long migrated = 0;
+        dem_mpi_halo h = {0};
+        dem_state g = {0};
+        for (int phase = 0; phase < 3; phase++) {
+            int axis = phase == 1 ? 1 : 0;
+            double shift = phase == 2 ? 0.5 * L / size : 0, lo = L * rank / size + shift, hi = L * (rank + 1) / size + shift;
+            int prev_owner[NTOT];
+            for (int k = 0; k < NTOT; k++)
+                prev_owner[k] = -1;
+            for (int i = 0; i < n; i++)
+                prev_owner[gid[i]] = owner[i];
+            n = 0;
+            for (int k = 0; k < NTOT; k++) {
+                int q = (int)floor((pos[k][axis] - shift) / L * size);
+                q = q < 0 ? 0 : q >= size ? size - 1 : q;
+                keep[k] = q == rank || (pos[k][axis] > lo - layer && pos[k][axis] < hi + layer);
+                if (keep[k]) {
+                    migrated += q == rank && phase > 0 && prev_owner[k] != rank;
+                    gid[n] = k, owner[n++] = q;
+                }
+            }
+            dem_sim *next = build(keep, &dt);
+            start_or_fail(next, &c);
+            if (phase > 0) { /* the whole state, cut to this rank's particles */
+                dem_state ps;
+                assert_int_equal(dem_mpi_state_part(next, &g, keep, &ps), 0);
+                if (dem_state_set(next, &ps))
+                    fail_msg("%s", dem_error(next));
+                dem_state_free(&ps), dem_state_free(&g);
+                dem_mpi_halo_free(&h);
+                dem_destroy(part);
+            }
+            part = next;
+            assert_int_equal(dem_mpi_halo_init(&h, MPI_COMM_WORLD, part, n, gid, owner), 0);
+            for (long t = 0; t < phase_steps; t++) {
+                step_or_fail(part, 1);
+                assert_int_equal(dem_mpi_halo_exchange(&h), 0);
+            }
+            for (long t = 0; t < phase_steps; t += 50) { /* the whole run; no particle may move half the margin */
+                step_or_fail(whole, 50);
+                assert_int_equal(dem_get_field(whole, DEM_FIELD_X, xw), 0);
+                for (int k = 0; k < NTOT; k++)
+                    for (int d = 0; d < 3; d++)
+                        moved_ok &= fabs(xw[3 * k + d] - pos[k][d]) < margin / 2;
+            }
+            assert_int_equal(dem_mpi_state_gather(&h, gid, owner, NTOT, &g), 0);
+            const dem_state_array *x = dem_state_find(&g, "x");
+            for (int k = 0; k < NTOT; k++) /* the positions the next split cuts by */
+                for (int d = 0; d < 3; d++)
+                    pos[k][d] = bc->precision == DEM_FP64 ? ((double *)x->data)[3 * k + d]
+                                                          : ((float *)x->data)[3 * k + d];
+        }
+        /* the gathered state against the whole run's */
+        dem_state ws;
+        assert_int_equal(dem_state_get(whole, &ws), 0);
+        int ok = ws.npairs == g.npairs && ws.narrays == g.narrays && ws.step == g.step, arrays = 0;
+        size_t rs = (size_t)g.real_size;
+        for (int a = 0; ok && a < ws.narrays; a++) {
+            const dem_state_array *wa = &ws.arrays[a], *ga = dem_state_find(&g, wa->name);
+            int per;
+            if (sim_state_array_layout(whole, wa->name, &per) == DEM_MOVE_STAY)
+                continue;
+            size_t es = wa->elem == DEM_STATE_REAL ? rs : sizeof(int);
+            ok &= ga && ga->count == wa->count && (!wa->count || !memcmp(ga->data, wa->data, wa->count * es));
+            arrays++;
+        }
+        for (long p = 0; ok && p < ws.npairs; p++)
+            ok &= ws.pair_i[p] == g.pair_i[p] && ws.pair_j[p] == g.pair_j[p] &&
+                  !memcmp((char *)ws.pair_hist + p * 3 * rs, (char *)g.pair_hist + p * 3 * rs, 3 * rs) &&
+                  !memcmp((char *)ws.pair_rec + p * DEM_PAIR_RECORD_REALS * rs,
+                          (char *)g.pair_rec + p * DEM_PAIR_RECORD_REALS * rs, DEM_PAIR_RECORD_REALS * rs);
+        long migrated_all = 0;
+        MPI_Allreduce(&migrated, &migrated_all, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+        if (rank == 0)
+            printf("  %s, %d ranks: %ld particles changed rank at the two splits; after %ld steps the gathered state "
+                   "(%d arrays, %ld contacts) %s the whole run's\n",
+                   bc->name, size, migrated_all, 3 * phase_steps, arrays, g.npairs, ok ? "equals" : "DIFFERS from");
+        assert_true(all_ok(moved_ok));
+        assert_true(all_ok(size == 1 || migrated_all > 100));
+        assert_true(all_ok(ok));
+        dem_state_free(&ws), dem_state_free(&g);
+        dem_mpi_halo_free(&h);
+        dem_destroy(part);
+        dem_destroy(whole);
+    }
+}
+
+MPI_TEST_MAIN(cmocka_unit_test(test_split_run), cmocka_unit_test(test_split_anew))

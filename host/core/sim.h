@@ -187,6 +187,10 @@ double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's rela
  * vals, in the run's precision (a value of an fp32 run must be a float widened), the other rows kept: what a run split
  * over ranks writes into its ghosts after a step (host/mpi/halo.c) */
 int sim_set_field_rows(dem_sim *s, dem_field f, int width, int count, const int *ids, const double *vals);
+/* state.c: how the saved array called name lies in a state of s's run: DEM_MOVE_P (per elements per particle),
+ * DEM_MOVE_G (groups of n items of per elements each: one per wall), DEM_MOVE_STAY (not by particle: the walls'
+ * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */
+int sim_state_array_layout(const dem_sim *s, const char *name, int *per);
 /* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded: a run over MPI
  * merges them across ranks (host/mpi/dem_mpi.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);

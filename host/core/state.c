@@ -257,6 +257,20 @@ int dem_state_arrays(dem_state *st)
     return st->narrays;
 }
 
+int sim_state_array_layout(const dem_sim *s, const char *name, int *per)
+{
+    const dem_saved_buffer *sb = dem_saved_buffers();
+    for (int id = 0; id < BUF__COUNT; id++)
+        if (sb[id].name && name && !strcmp(sb[id].name, name)) {
+            size_t item = 0, es = sb[id].elem == DEM_ELEM_REAL ? (size_t)s->setup.real_size : sizeof(int);
+            int kind = dem_buffer_move(DEM_CORE(s->be), id, &item);
+            *per = (int)(item / es);
+            return kind;
+        }
+    *per = 0;
+    return -1;
+}
+
 /* Every saved buffer into st, particles in the callers' order */
 static int arrays_get(dem_sim *s, dem_state *st)
 {

@@ -4,8 +4,10 @@
  * What it holds so far: the exact sums (common/exact_sum.h) merged across the ranks of a communicator, the one
  * operation the run's global sums need whatever the decomposition - each rank sums its own particles' terms exactly
  * (the walls' forces: sim_wall_sums_exact; the energies), the accumulators are merged, and every rank rounds the
- * same integer to the same bits; and a fixed halo of ghost particles kept equal to their owners' after each step.
- * Not here yet: choosing the subdomains, migration, the dem run driver (docs/design.md "Runs over MPI"). */
+ * same integer to the same bits; a halo of ghost particles kept equal to their owners' after each step; and the
+ * whole state gathered from the ranks' own particles and cut to a rank's part, which moves particles and their
+ * contacts between ranks when the run is split anew. Not here yet: choosing the subdomains, the dem run driver
+ * (docs/design.md "Runs over MPI"). */
 #ifndef DEM_MPI_H
 #define DEM_MPI_H
 #include <mpi.h>
@@ -19,7 +21,7 @@
  * force is its touching pairs' forces in the order of the partners' stable ids (docs/design.md "Every sum follows the
  * particle ids"), which ghosts do not change, so each own particle keeps the bits it has in one process.
  * The set of ghosts is fixed from dem_mpi_halo_init on: a run whose particles can leave it must be split anew
- * (migration, not built yet: docs/design.md "Runs over MPI"). */
+ * (dem_mpi_state_gather, dem_mpi_state_part, dem_state_set into a run of the new part). */
 typedef struct {
     MPI_Comm comm;
     int rank, size;
@@ -39,6 +41,20 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
 /* After a step: the owners' position, velocity, spin, force and torque into every ghost. Collective. */
 int dem_mpi_halo_exchange(dem_mpi_halo *h);
 void dem_mpi_halo_free(dem_mpi_halo *h);
+
+/* The worst of the ranks' codes e (0 on every rank: 0): a decision every rank takes the same way. Collective. */
+int dem_mpi_agreed(MPI_Comm comm, int e);
+
+/* The whole state of a run split over the ranks of h, on every rank: what dem_state_get gives in one process whose
+ * particles are those of global ids 0..nglobal-1 in that order (gid, owner: as given to dem_mpi_halo_init). Each
+ * particle's arrays come from its owner, each contact from the owner of its lower id (whose rows held it since the
+ * split: its history is right); the walls' sums (wall_force, wall_normal_force) are rank 0's, which counts its
+ * ghosts' walls too. Not yet for MC-strain or patch contacts (DEM_ERR_ARG). Collective; frees nothing of h. */
+int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g);
+/* The part of a whole state g that keep[0..g->n) selects, its particles renumbered in ascending global id, with the
+ * contacts of two kept particles: the state to dem_state_set into a rank's new run after a split (s: any started run
+ * of the scene, for the arrays' layout). */
+int dem_mpi_state_part(const dem_sim *s, const dem_state *g, const unsigned char *keep, dem_state *part);
 
 /* acc[0..count) replaced on every rank of comm by the merge of all ranks' acc[0..count): exact, so the result does
  * not depend on the number of ranks, their order or the reduction tree MPI chooses (the operation is commutative

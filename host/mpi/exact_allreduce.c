@@ -25,3 +25,10 @@ int dem_mpi_exact_allreduce(MPI_Comm comm, exact_acc *acc, int count)
     MPI_Type_free(&t);
     return e;
 }
+
+int dem_mpi_agreed(MPI_Comm comm, int e)
+{
+    int all = e;
+    MPI_Allreduce(&e, &all, 1, MPI_INT, MPI_MAX, comm);
+    return all;
+}

@@ -30,13 +30,6 @@ static int local_of(const long *gid, int n, long g)
     return lo < n && gid[lo] == g ? lo : -1;
 }
 
-/* the worst of the ranks' codes (0 everywhere: 0) */
-static int agree(MPI_Comm comm, int e)
-{
-    int all = e;
-    MPI_Allreduce(&e, &all, 1, MPI_INT, MPI_MAX, comm);
-    return all;
-}
 
 int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner)
 {
@@ -57,7 +50,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         else if (owner[k] != h->rank)
             h->recv_count[owner[k]]++;
     }
-    if ((e = agree(comm, e))) {
+    if ((e = dem_mpi_agreed(comm, e))) {
         free(want);
         dem_mpi_halo_free(h);
         return e;
@@ -81,7 +74,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         asked = malloc(sizeof(long) * ((size_t)h->nsend + 1));
         h->send_id = malloc(sizeof(int) * ((size_t)h->nsend + 1));
         e = asked && h->send_id ? 0 : DEM_ERR_NOMEM;
-        if (!agree(comm, e))
+        if (!dem_mpi_agreed(comm, e))
             e = MPI_Alltoallv(want, h->recv_count, h->recv_displ, MPI_LONG, asked, h->send_count, h->send_displ,
                               MPI_LONG, comm);
         else
@@ -101,7 +94,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         h->rbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nrecv + 1));
         e = h->field && h->sbuf && h->rbuf ? 0 : DEM_ERR_NOMEM;
     }
-    if ((e = agree(comm, e)))
+    if ((e = dem_mpi_agreed(comm, e)))
         dem_mpi_halo_free(h);
     else /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step */
         e = dem_mpi_halo_exchange(h);
@@ -120,7 +113,7 @@ int dem_mpi_halo_exchange(dem_mpi_halo *h)
     int *sc = malloc(sizeof(int) * 4 * (size_t)P);
     if (!sc)
         e = DEM_ERR_NOMEM;
-    if ((e = agree(h->comm, e))) {
+    if ((e = dem_mpi_agreed(h->comm, e))) {
         free(sc);
         return e;
     }
@@ -135,5 +128,5 @@ int dem_mpi_halo_exchange(dem_mpi_halo *h)
             memcpy(h->field + 3 * (size_t)k, h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
         e = sim_set_field_rows(h->s, halo_fields[f], 3, h->nrecv, h->recv_id, h->field);
     }
-    return agree(h->comm, e);
+    return dem_mpi_agreed(h->comm, e);
 }
