@@ -226,7 +226,7 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b); /* carry his
 int dem_stage_wall_reduce(const dem_backend_ops *o, dem_backend *b); /* the walls' exact sums, block to final */
 /* Series rows (common/series.h): arm(1, row) has the next step write its terms to row `row` of the device's ring
  * (arm(0, 0) after it); series_map maps the first `rows` rows for the host to read (real[rows][n][SE_STRIDE] and
- * real[rows][nwalls][nblocks_red][WP_STRIDE], the walls' block partial sums; walls NULL without walls) with one
+ * real[rows][nwalls][WP_STRIDE], the walls' sums of each row's step; walls NULL without walls) with one
  * synchronisation, series_unmap hands them back. */
 int dem_stage_series_arm(const dem_backend_ops *o, dem_backend *b, int on, int row);
 int dem_stage_series_map(const dem_backend_ops *o, dem_backend *b, int rows, const void **terms, const void **walls);

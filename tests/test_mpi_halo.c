@@ -7,7 +7,8 @@
  * comes down; the slabs cut across x, so contacts and their tangential histories cross the cuts. The halo is fixed
  * here: the test checks that no particle moved by half its margin (every 50 steps), else its premise would not hold;
  * test_split_anew splits the run anew twice, particles and contacts migrating.
- * Reference and PoCL, fp64 and fp32. Every check is agreed by all ranks before it is asserted. */
+ * Reference and PoCL, fp64 and fp32. Every verdict is agreed by all ranks before it is asserted; a rank's own failing
+ * call ends all ranks (tests/mpi_util.h). */
 #include "mpi_util.h"
 #include "sim.h"
 #include <math.h>
@@ -60,7 +61,7 @@ static dem_sim *build(const unsigned char *keep, double *dt)
     dem_set_domain(s, (double[3]){-0.5 * L, -0.5 * L, -0.5 * L}, (double[3]){1.5 * L, 1.5 * L, 1.5 * L});
     if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_DAMPING | DEM_EFFECT_FRICTION | DEM_EFFECT_GRAVITY |
                                DEM_EFFECT_WALLS))
-        fail_msg("%s", dem_error(s));
+        rank_fails(__FILE__, __LINE__, "dem_set_effects", dem_error(s));
     if (*dt == 0) {
         dem_time_scales ts;
         dem_time_scales_get(s, 0, &ts);
@@ -82,7 +83,7 @@ static void test_split_run(void **st)
         c.contacts = 1; /* each particle's wall forces kept (the walls' sums over own particles) */
         double dt = 0;
         dem_sim *whole = build(NULL, &dt);
-        start_or_fail(whole, &c);
+        REQUIRE_SIM(whole, dem_start(whole, &c));
         /* slabs across x by the starting positions; the halo of this rank's slab */
         static unsigned char keep[NTOT];
         static int owner_of[NTOT];
@@ -97,28 +98,28 @@ static void test_split_run(void **st)
                 gid[n] = k, owner[n++] = owner_of[k];
         }
         dem_sim *part = build(keep, &dt);
-        start_or_fail(part, &c);
+        REQUIRE_SIM(part, dem_start(part, &c));
         dem_mpi_halo h;
-        assert_int_equal(dem_mpi_halo_init(&h, MPI_COMM_WORLD, part, n, gid, owner), 0);
+        REQUIRE0(dem_mpi_halo_init(&h, MPI_COMM_WORLD, part, n, gid, owner));
         static double fw[3 * NTOT], fp[3 * NTOT];
         double moved = 0; /* the largest distance of a particle from where it started, every 50 steps */
         for (long t = 0; t < steps; t += 50) {
-            step_or_fail(whole, 50);
-            assert_int_equal(dem_get_field(whole, DEM_FIELD_X, fw), 0);
+            REQUIRE_SIM(whole, dem_step(whole, 50));
+            REQUIRE0(dem_get_field(whole, DEM_FIELD_X, fw));
             for (int k = 0; k < NTOT; k++)
                 for (int d = 0; d < 3; d++)
                     moved = fmax(moved, fabs(fw[3 * k + d] - px[k][d]));
         }
         for (long t = 0; t < steps; t++) {
-            step_or_fail(part, 1);
-            assert_int_equal(dem_mpi_halo_exchange(&h), 0);
+            REQUIRE_SIM(part, dem_step(part, 1));
+            REQUIRE0(dem_mpi_halo_exchange(&h));
         }
         /* own particles against the whole run, field by field */
         static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE};
         int ok = 1, own = 0;
         for (int f = 0; f < 5; f++) {
-            assert_int_equal(dem_get_field(whole, fields[f], fw), 0);
-            assert_int_equal(dem_get_field(part, fields[f], fp), 0);
+            REQUIRE0(dem_get_field(whole, fields[f], fw));
+            REQUIRE0(dem_get_field(part, fields[f], fp));
             for (int i = 0; i < n; i++)
                 if (owner[i] == rank) {
                     ok &= !memcmp(fw + 3 * gid[i], fp + 3 * i, sizeof(double) * 3);
@@ -128,7 +129,7 @@ static void test_split_run(void **st)
         /* touching pairs across the cut: one own particle, one ghost */
         dem_contact *cs;
         long count, npairs, across = 0;
-        assert_int_equal(dem_contacts_get(part, &cs, &count, &npairs), 0);
+        REQUIRE0(dem_contacts_get(part, &cs, &count, &npairs));
         for (long k = 0; k < npairs; k++)
             across += (owner[cs[k].i] == rank) != (owner[cs[k].j] == rank);
         free(cs);
@@ -136,8 +137,8 @@ static void test_split_run(void **st)
         int nw = dem_wall_count(part);
         static double pf[3 * 6 * NTOT];
         static unsigned mask[NTOT];
-        assert_int_equal(dem_get_field(part, DEM_FIELD_WALL_PF, pf), 0);
-        assert_int_equal(dem_get_raw(part, DEM_FIELD_WALL_MASK, mask, sizeof(unsigned) * (size_t)n), 0);
+        REQUIRE0(dem_get_field(part, DEM_FIELD_WALL_PF, pf));
+        REQUIRE0(dem_get_raw(part, DEM_FIELD_WALL_MASK, mask, sizeof(unsigned) * (size_t)n));
         exact_acc a[3 * 6];
         for (int q = 0; q < 3 * nw; q++)
             exact_clear(&a[q]);
@@ -146,7 +147,7 @@ static void test_split_run(void **st)
                 if (owner[i] == rank && ((mask[i] >> w) & 1u))
                     for (int d = 0; d < 3; d++)
                         exact_add_double(&a[3 * w + d], -pf[3 * ((size_t)w * n + i) + d]);
-        assert_int_equal(dem_mpi_exact_allreduce(MPI_COMM_WORLD, a, 3 * nw), MPI_SUCCESS);
+        REQUIRE0(dem_mpi_exact_allreduce(MPI_COMM_WORLD, a, 3 * nw));
         int wall_ok = 1;
         for (int w = 0; w < nw; w++) {
             double f[3];
@@ -197,7 +198,7 @@ static void test_split_anew(void **st)
         dem_config c = cfg_of(bc->backend, bc->precision);
         double dt = 0;
         dem_sim *whole = build(NULL, &dt), *part = NULL;
-        start_or_fail(whole, &c);
+        REQUIRE_SIM(whole, dem_start(whole, &c));
         static double pos[NTOT][3], xw[3 * NTOT];
         memcpy(pos, px, sizeof pos);
         static unsigned char keep[NTOT];
@@ -226,30 +227,29 @@ static void test_split_anew(void **st)
                 }
             }
             dem_sim *next = build(keep, &dt);
-            start_or_fail(next, &c);
+            REQUIRE_SIM(next, dem_start(next, &c));
             if (phase > 0) { /* the whole state, cut to this rank's particles */
                 dem_state ps;
-                assert_int_equal(dem_mpi_state_part(next, &g, keep, &ps), 0);
-                if (dem_state_set(next, &ps))
-                    fail_msg("%s", dem_error(next));
+                REQUIRE0(dem_mpi_state_part(next, &g, keep, &ps));
+                REQUIRE_SIM(next, dem_state_set(next, &ps));
                 dem_state_free(&ps), dem_state_free(&g);
                 dem_mpi_halo_free(&h);
                 dem_destroy(part);
             }
             part = next;
-            assert_int_equal(dem_mpi_halo_init(&h, MPI_COMM_WORLD, part, n, gid, owner), 0);
+            REQUIRE0(dem_mpi_halo_init(&h, MPI_COMM_WORLD, part, n, gid, owner));
             for (long t = 0; t < phase_steps; t++) {
-                step_or_fail(part, 1);
-                assert_int_equal(dem_mpi_halo_exchange(&h), 0);
+                REQUIRE_SIM(part, dem_step(part, 1));
+                REQUIRE0(dem_mpi_halo_exchange(&h));
             }
             for (long t = 0; t < phase_steps; t += 50) { /* the whole run; no particle may move half the margin */
-                step_or_fail(whole, 50);
-                assert_int_equal(dem_get_field(whole, DEM_FIELD_X, xw), 0);
+                REQUIRE_SIM(whole, dem_step(whole, 50));
+                REQUIRE0(dem_get_field(whole, DEM_FIELD_X, xw));
                 for (int k = 0; k < NTOT; k++)
                     for (int d = 0; d < 3; d++)
                         moved_ok &= fabs(xw[3 * k + d] - pos[k][d]) < margin / 2;
             }
-            assert_int_equal(dem_mpi_state_gather(&h, gid, owner, NTOT, &g), 0);
+            REQUIRE0(dem_mpi_state_gather(&h, gid, owner, NTOT, &g));
             const dem_state_array *x = dem_state_find(&g, "x");
             for (int k = 0; k < NTOT; k++) /* the positions the next split cuts by */
                 for (int d = 0; d < 3; d++)
@@ -258,7 +258,7 @@ static void test_split_anew(void **st)
         }
         /* the gathered state against the whole run's */
         dem_state ws;
-        assert_int_equal(dem_state_get(whole, &ws), 0);
+        REQUIRE0(dem_state_get(whole, &ws));
         int ok = ws.npairs == g.npairs && ws.narrays == g.narrays && ws.step == g.step, arrays = 0;
         size_t rs = (size_t)g.real_size;
         for (int a = 0; ok && a < ws.narrays; a++) {

@@ -9,8 +9,8 @@
  *   building only the spheres of its slab (other ids, other storage places, other blocks), one step, the walls' exact
  *   sums (sim_wall_sums_exact) merged across the ranks: the bits of the whole scene's wall forces in one process,
  *   on the reference and PoCL, fp64 and fp32.
- * Every check is agreed on by all ranks (an MPI_MIN of the local verdicts) before it is asserted, so a failure on
- * one rank fails them all instead of leaving the others waiting in a collective. */
+ * Every verdict is agreed by all ranks (an MPI_MIN of the local verdicts) before it is asserted, and a rank's own
+ * failing call ends all ranks (tests/mpi_util.h), so no rank is left waiting in a collective. */
 #include "mpi_util.h"
 #include "sim.h"
 #include <math.h>
@@ -45,7 +45,7 @@ static void test_sums_any_cut(void **st)
         if ((k * 7919 + 13 * size) % size == rank) /* this rank's cut: scattered, and another for each rank count */
             exact_add_double(&a[0], x[k]), exact_add_float(&a[1], (float)x[k]);
     }
-    assert_int_equal(dem_mpi_exact_allreduce(MPI_COMM_WORLD, a, 2), MPI_SUCCESS);
+    REQUIRE0(dem_mpi_exact_allreduce(MPI_COMM_WORLD, a, 2));
     double got = exact_to_double(&a[0]), want = fsum_ref(x, N);
     static float xf[N];
     static double xd[N];
@@ -75,12 +75,12 @@ static dem_sim *tree_slab(int c0, int c1)
         dem_add_particle(s, x, NULL, r, m);
     }
     dem_wall w = {.kind = DEM_WALL_PLANE, .material = m, .point = {0, 0, 0}, .normal = {0, 0, 1}};
-    assert_true(dem_add_wall(s, &w) >= 0);
+    REQUIRE(dem_add_wall(s, &w) >= 0);
     w.point[2] = 0.0029975, w.normal[2] = -1;
-    assert_true(dem_add_wall(s, &w) >= 0);
+    REQUIRE(dem_add_wall(s, &w) >= 0);
     dem_set_domain(s, (double[3]){-0.01, -0.01, -0.01}, (double[3]){0.65, 0.65, 0.02});
     if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_WALLS))
-        fail_msg("%s", dem_error(s));
+        rank_fails(__FILE__, __LINE__, "dem_set_effects", dem_error(s));
     dem_set_dt(s, 1e-11);
     return s;
 }
@@ -92,14 +92,14 @@ static void test_walls_split_by_space(void **st)
     {
         dem_config c = cfg_of(bc->backend, bc->precision);
         dem_sim *whole = tree_slab(0, 200), *part = tree_slab(200 * rank / size, 200 * (rank + 1) / size);
-        start_or_fail(whole, &c);
-        start_or_fail(part, &c);
-        step_or_fail(whole, 1);
-        step_or_fail(part, 1);
+        REQUIRE_SIM(whole, dem_start(whole, &c));
+        REQUIRE_SIM(part, dem_start(part, &c));
+        REQUIRE_SIM(whole, dem_step(whole, 1));
+        REQUIRE_SIM(part, dem_step(part, 1));
         exact_acc a[2 * WP_STRIDE];
         for (int w = 0; w < 2; w++)
-            assert_int_equal(sim_wall_sums_exact(part, w, a + w * WP_STRIDE), 0);
-        assert_int_equal(dem_mpi_exact_allreduce(MPI_COMM_WORLD, a, 2 * WP_STRIDE), MPI_SUCCESS);
+            REQUIRE0(sim_wall_sums_exact(part, w, a + w * WP_STRIDE));
+        REQUIRE0(dem_mpi_exact_allreduce(MPI_COMM_WORLD, a, 2 * WP_STRIDE));
         int ok = 1;
         for (int w = 0; w < 2; w++) {
             double f[3], fn, got[WP_STRIDE];

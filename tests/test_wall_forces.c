@@ -508,7 +508,8 @@ static void test_wall_tree(void **st)
  * correctly rounded sums of the forces in the contact network (each wall receives minus each contact's force, and its
  * normal force is the contacts' force along the normal, here +-z): in fp64 bit for bit equal to fsum_ref (test_util.c) of those
  * terms; in fp32 (each term a float, the sum rounded once to float) within half a float ulp and half a double ulp of
- * fsum_ref's double (both lie within half an ulp of their format of the exact sum). */
+ * fsum_ref's double (both lie within half an ulp of their format of the exact sum). The same bits again without the
+ * contact network (the sums then evaluate the wall contacts themselves, before contact_forces). */
 static void test_wall_sum_any_order(void **st)
 {
     (void)st;
@@ -564,6 +565,15 @@ static void test_wall_sum_any_order(void **st)
             }
             free(t);
             free(cs);
+            /* the same without kept forces: wall_reduce_block evaluates the wall contacts itself, the same terms */
+            dem_sim *u = build_tree(&strides[v]);
+            dem_config cu = cfg_of(bc->backend, bc->precision);
+            start_or_fail(u, &cu);
+            dem_sample urow;
+            assert_int_equal(dem_step_sampled(u, 1, &want, &urow), 0);
+            assert_memory_equal(urow.wall_force, row.wall_force, sizeof(double) * 6);
+            assert_memory_equal(urow.wall_normal, row.wall_normal, sizeof(double) * 2);
+            dem_destroy(u);
             dem_destroy(s);
         }
     }

@@ -183,6 +183,7 @@ int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that en
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
 double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's relative density now (until_density) */
+double sim_particle_volume(const dem_sim *s); /* walls.c: the spheres' volume, an exact sum rounded once [m^3] */
 /* fields.c: rows of particle field f (width reals each: 3 for x) of the particles ids[0..count) (callers' ids) set to
  * vals, in the run's precision (a value of an fp32 run must be a float widened), the other rows kept: what a run split
  * over ranks writes into its ghosts after a step (host/mpi/halo.c) */
@@ -191,8 +192,8 @@ int sim_set_field_rows(dem_sim *s, dem_field f, int width, int count, const int 
  * DEM_MOVE_G (groups of n items of per elements each: one per wall), DEM_MOVE_STAY (not by particle: the walls'
  * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */
 int sim_state_array_layout(const dem_sim *s, const char *name, int *per);
-/* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded: a run over MPI
- * merges them across ranks (host/mpi/dem_mpi.h) */
+/* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded, over every
+ * particle the run holds: runs over MPI that hold disjoint particles merge them across ranks (host/mpi/dem_mpi.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
 /* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
  * checkpoint written before stages could end early). */

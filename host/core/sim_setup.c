@@ -299,9 +299,7 @@ int sim_validate(dem_sim *s)
         return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
     if ((e = validate_mdr(s)))
         return e;
-    s->motion.particle_volume = 0;
-    for (int i = 0; i < s->n; i++)
-        s->motion.particle_volume += 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i];
+    s->motion.particle_volume = sim_particle_volume(s); /* until_density's: the same bits as dem_relative_density's */
     for (int k = 0; k < s->nwalls; k++) { /* until_density: the die and the punch facing this one */
         const dem_wall *w = &s->walls[k];
         int wants = 0;

@@ -152,9 +152,11 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
     return e;
 }
 
-/* Wall k's sums of the last step that made them, before they are rounded: the merge of the tree's groups
- * (common/wall_forces.h, PARTIAL_MID), acc[WP_FX..WP_FN]. A run split over ranks merges these across them and
- * rounds once (host/mpi/dem_mpi.h), which gives the bits one process would. */
+/* Wall k's sums of the last step that made them (PARTIAL_MID is not saved: after dem_state_set, none until a step
+ * makes them), before they are rounded: the merge of the tree's groups (common/wall_forces.h), acc[WP_FX..WP_FN],
+ * over every particle the run holds. Runs that hold disjoint sets of particles merge these across ranks and round
+ * once (host/mpi/dem_mpi.h) to the bits one process would give; a run that holds ghosts counts their walls too, so
+ * its own particles' sums come from the kept per-particle forces for now (tests/test_mpi_halo.c). */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
 {
     if (!s->run.started)
@@ -242,6 +244,15 @@ double sim_relative_density(const dem_sim *s, int k)
                         s->motion.pos[s->motion.density_other[k]], s->motion.particle_volume);
 }
 
+double sim_particle_volume(const dem_sim *s)
+{
+    exact_acc sum; /* exact and rounded once: the same bits in any order or split of the spheres (exact_sum.h) */
+    exact_clear(&sum);
+    for (int i = 0; i < s->n; i++)
+        exact_add_double(&sum, 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i]);
+    return exact_to_double(&sum);
+}
+
 int dem_relative_density(const dem_sim *s, int wall, double *rho)
 {
     int die, other, e = dem_density_walls(s, wall, &die, &other);
@@ -249,12 +260,7 @@ int dem_relative_density(const dem_sim *s, int wall, double *rho)
         return e;
     if (dem_cup_in_bore(s, wall, die) != 1 || dem_cup_in_bore(s, other, die) != 1)
         return DEM_ERR_ARG; /* the cup's volume would not be the bore's */
-    double a[3], b[3];
-    exact_acc sum; /* the spheres' volume, exact and rounded once: the same bits in any order or split (exact_sum.h) */
-    exact_clear(&sum);
-    for (int i = 0; i < s->n; i++)
-        exact_add_double(&sum, 4.0 / 3.0 * M_PI * s->radius[i] * s->radius[i] * s->radius[i]);
-    double vol = exact_to_double(&sum);
+    double a[3], b[3], vol = sim_particle_volume(s);
     dem_wall_position(s, wall, a);
     dem_wall_position(s, other, b);
     *rho = bore_density(s, wall, other, die, a, b, vol);

@@ -3,8 +3,8 @@
  *
  * What it holds so far: the exact sums (common/exact_sum.h) merged across the ranks of a communicator, the one
  * operation the run's global sums need whatever the decomposition - each rank sums its own particles' terms exactly
- * (the walls' forces: sim_wall_sums_exact; the energies), the accumulators are merged, and every rank rounds the
- * same integer to the same bits; a halo of ghost particles kept equal to their owners' after each step; and the
+ * (the walls' forces: sim_wall_sums_exact where a rank holds no ghosts, else the kept per-particle forces of its own
+ * particles; the energies), the accumulators are merged, and every rank rounds the same integer to the same bits; a halo of ghost particles kept equal to their owners' after each step; and the
  * whole state gathered from the ranks' own particles and cut to a rank's part, which moves particles and their
  * contacts between ranks when the run is split anew. Not here yet: choosing the subdomains, the dem run driver
  * (docs/design.md "Runs over MPI"). */
@@ -34,15 +34,18 @@ typedef struct {
 } dem_mpi_halo;
 /* Sets up h for the started run s of n particles: gid[k] each one's global id (ascending in k, the order they were
  * added, so that the local stable ids keep the global order), owner[k] the rank that owns it. Collective over comm;
- * every ghost must be owned, in the owner's run, by the rank named. Returns 0, or DEM_ERR_ARG / DEM_ERR_NOMEM / an
- * MPI error code, the same on every rank. Ends with an exchange: the start's forces of a ghost (whose partners
+ * every ghost must be owned, in the owner's run, by the rank named. Returns 0, or a dem_status, the same on every
+ * rank (dem_mpi_agreed). Refused on more than one rank (DEM_ERR_ARG, dem_error(s) names it): what the halo does not
+ * carry yet - MDR, MC-stress, MC-strain, membranes (springs, pressure, hinges, patches) and servo or until_force
+ * stages (walls steered by sums each rank would make of its own). Ends with an exchange: the start's forces of a ghost (whose partners
  * outside the halo it does not see) replaced by its owner's before the first step. */
 int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner);
 /* After a step: the owners' position, velocity, spin, force and torque into every ghost. Collective. */
 int dem_mpi_halo_exchange(dem_mpi_halo *h);
 void dem_mpi_halo_free(dem_mpi_halo *h);
 
-/* The worst of the ranks' codes e (0 on every rank: 0): a decision every rank takes the same way. Collective. */
+/* One verdict from every rank's code e (0 or a negative dem_status; an MPI error code counts as DEM_ERR_DEVICE): 0
+ * when all are 0, else the lowest, on every rank, so that all ranks take the same branch. Collective. */
 int dem_mpi_agreed(MPI_Comm comm, int e);
 
 /* The whole state of a run split over the ranks of h, on every rank: what dem_state_get gives in one process whose

@@ -28,7 +28,9 @@ int dem_mpi_exact_allreduce(MPI_Comm comm, exact_acc *acc, int count)
 
 int dem_mpi_agreed(MPI_Comm comm, int e)
 {
-    int all = e;
-    MPI_Allreduce(&e, &all, 1, MPI_INT, MPI_MAX, comm);
+    /* a dem_status is negative, MPI's codes positive: an MPI failure counts as the device's (DEM_ERR_DEVICE); the
+     * lowest code wins, so any rank's failure is every rank's */
+    int mine = e > 0 ? DEM_ERR_DEVICE : e, all = mine;
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, comm);
     return all;
 }

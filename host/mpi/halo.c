@@ -38,6 +38,21 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     MPI_Comm_rank(comm, &h->rank);
     MPI_Comm_size(comm, &h->size);
     int P = h->size, e = 0;
+    /* what the halo does not carry yet: per-particle law state read by a ghost's partners (MDR's row, MC-stress's
+     * trace, MC-strain's displacements), membranes, and walls steered by their sums (each rank's would differ) */
+    unsigned not_yet = DEM_EFFECT_MDR | DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
+                       DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING | DEM_EFFECT_PATCHES;
+    unsigned bad = s->effects & not_yet;
+    if (!s->run.started)
+        e = sim_fail(s, DEM_ERR_STATE, "dem_mpi_halo_init: dem_start first");
+    else if (P > 1 && bad)
+        e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take the effect %s yet (docs/design.md \"Runs over MPI\")",
+                     P, dem_effect_name(__builtin_ctz(bad)));
+    else if (P > 1 && sim_has_servo(s))
+        e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take a servo or until_force stage yet (docs/design.md "
+                     "\"Runs over MPI\")", P);
+    if ((e = dem_mpi_agreed(comm, e)))
+        return e;
     h->send_count = calloc((size_t)P, sizeof(int)), h->send_displ = calloc((size_t)P, sizeof(int));
     h->recv_count = calloc((size_t)P, sizeof(int)), h->recv_displ = calloc((size_t)P, sizeof(int));
     h->recv_id = malloc(sizeof(int) * ((size_t)n + 1));
@@ -64,7 +79,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
             int at = h->recv_displ[owner[k]] + fill[owner[k]]++;
             h->recv_id[at] = k, want[at] = gid[k];
         }
-    e = fill ? 0 : DEM_ERR_NOMEM;
+    e = dem_mpi_agreed(comm, fill ? 0 : DEM_ERR_NOMEM);
     free(fill);
     /* each rank learns which of its particles the others hold (their ghost lists), and finds them */
     if (!e && (e = MPI_Alltoall(h->recv_count, 1, MPI_INT, h->send_count, 1, MPI_INT, comm)) == MPI_SUCCESS) {

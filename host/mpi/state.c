@@ -4,6 +4,7 @@
  * not depend on the rank count. */
 #include "dem_mpi.h"
 #include "sim.h"
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,85 +70,96 @@ static void header_copy(dem_state *dst, const dem_state *st, int n)
 
 static int by_pair(const void *a, const void *b)
 {
-    const long *p = a, *q = b;
+    long p[2], q[2]; /* the records' ids, copied out: a record of an fp32 run is not aligned for a long */
+    memcpy(p, a, sizeof p), memcpy(q, b, sizeof q);
     return p[0] != q[0] ? (p[0] < q[0] ? -1 : 1) : p[1] != q[1] ? (p[1] < q[1] ? -1 : 1) : 0;
 }
 
+/* whether a message of count items of `bytes` bytes each, and offsets up to it, fit MPI's int counts */
+static int fits_int(size_t count, size_t bytes) { return bytes == 0 || count <= (size_t)INT_MAX / bytes; }
+
+/* Every collective below is entered by every rank or by none: each local failure is agreed (dem_mpi_agreed) before
+ * the next collective, and all ranks leave together. */
 static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *loc, dem_state *g)
 {
     MPI_Comm comm = h->comm;
-    int P = h->size, n = h->n, rs = loc->real_size, no = 0, e = 0;
-    if (loc->has_mc || loc->npatch || n == 0)
-        return DEM_ERR_ARG; /* MC-strain's displacements and patch contacts do not travel yet; a rank holds particles */
-    int *own = malloc(sizeof(int) * ((size_t)n + 1)), *cnt = malloc(sizeof(int) * 2 * (size_t)P), *dsp = cnt + P;
+    int P = h->size, n = h->n, rs = loc->real_size, no = 0;
+    /* MC-strain's displacements and patch contacts do not travel yet; every rank holds a particle */
+    int e = loc->has_mc || loc->npatch || n == 0 ? DEM_ERR_ARG : 0;
+    int *own = malloc(sizeof(int) * ((size_t)n + 1)), *cnt = malloc(sizeof(int) * 4 * (size_t)P);
+    int *dsp = cnt ? cnt + P : NULL, *bc = cnt ? cnt + 2 * P : NULL, *bd = cnt ? cnt + 3 * P : NULL;
     long *allgid = malloc(sizeof(long) * ((size_t)nglobal + 1)), *mine = malloc(sizeof(long) * ((size_t)n + 1));
-    if (!own || !cnt || !allgid || !mine) {
-        free(own), free(cnt), free(allgid), free(mine);
-        return DEM_ERR_NOMEM;
-    }
-    for (int i = 0; i < n; i++)
+    unsigned char *send = NULL, *recv = NULL;
+    e = e ? e : own && cnt && allgid && mine ? 0 : DEM_ERR_NOMEM;
+    for (int i = 0; !e && i < n; i++)
         if (owner[i] == h->rank)
             mine[no] = gid[i], own[no++] = i;
-    MPI_Allgather(&no, 1, MPI_INT, cnt, 1, MPI_INT, comm);
     long total = 0;
-    for (int q = 0; q < P; q++)
-        dsp[q] = (int)total, total += cnt[q];
-    if (total != nglobal)
-        e = DEM_ERR_ARG; /* every particle owned once */
-    else
+    if (!(e = dem_mpi_agreed(comm, e))) {
+        MPI_Allgather(&no, 1, MPI_INT, cnt, 1, MPI_INT, comm);
+        for (int q = 0; q < P; q++)
+            dsp[q] = (int)total, total += cnt[q];
+        e = total == nglobal ? 0 : DEM_ERR_ARG; /* every particle owned once: the same verdict on every rank */
+    }
+    if (!e)
         MPI_Allgatherv(mine, no, MPI_LONG, allgid, cnt, dsp, MPI_LONG, comm);
-    header_copy(g, loc, (int)nglobal);
-    int *bc = malloc(sizeof(int) * 2 * (size_t)P), *bd = bc ? bc + P : NULL;
-    e = e ? e : bc ? 0 : DEM_ERR_NOMEM;
+    if (!e) { /* the header: rank 0's (the step and the walls are every rank's; the rebuild and iteration counts not) */
+        header_copy(g, loc, (int)nglobal);
+        MPI_Bcast(&g->rebuilds, 1, MPI_LONG, 0, comm);
+        MPI_Bcast(&g->mc, (int)sizeof g->mc, MPI_BYTE, 0, comm);
+    }
     /* the arrays: each rank's own rows (of every group), gathered, put at their global ids */
     for (int a = 0; !e && a < loc->narrays; a++) {
         const dem_state_array *la = &loc->arrays[a];
         dem_state_array *ga = &g->arrays[g->narrays++];
         *ga = *la, ga->data = NULL;
         int per, kind = sim_state_array_layout(h->s, la->name, &per);
-        size_t es = la->elem == DEM_STATE_REAL ? (size_t)rs : sizeof(int);
-        if (!la->data || !la->count)
+        size_t es = la->elem == DEM_STATE_REAL ? (size_t)rs : sizeof(int), groups = 0, row = 0;
+        if (!la->data || !la->count) /* the same on every rank: the run's set-up decides it */
             continue;
         if (kind == DEM_MOVE_STAY) { /* the walls' sums: rank 0's (docs/design.md "Runs over MPI") */
-            if ((ga->data = malloc(la->count * es)))
+            ga->data = malloc(la->count * es);
+            if (ga->data)
                 memcpy(ga->data, la->data, la->count * es);
-            e = ga->data ? 0 : DEM_ERR_NOMEM;
-            MPI_Bcast(ga->data, (int)(la->count * es), MPI_BYTE, 0, comm);
+            if (!(e = dem_mpi_agreed(comm, ga->data ? 0 : DEM_ERR_NOMEM)))
+                MPI_Bcast(ga->data, (int)(la->count * es), MPI_BYTE, 0, comm);
             continue;
         }
-        if (kind < 0 || per <= 0 || la->count % ((size_t)n * per)) {
+        if (kind < 0 || per <= 0 || la->count % ((size_t)n * per))
             e = DEM_ERR_ARG;
-            break;
+        else {
+            groups = la->count / ((size_t)n * per), row = (size_t)per * es; /* groups: 1 for a per-particle array */
+            ga->count = groups * (size_t)nglobal * per;
+            send = malloc(groups * (size_t)no * row + 1), recv = malloc(groups * (size_t)nglobal * row + 1);
+            ga->data = malloc(ga->count * es + 1);
+            e = !send || !recv || !ga->data ? DEM_ERR_NOMEM : fits_int(groups * (size_t)nglobal, row) ? 0 : DEM_ERR_ARG;
         }
-        size_t groups = la->count / ((size_t)n * per), row = (size_t)per * es; /* 1 for a per-particle array */
-        ga->count = groups * (size_t)nglobal * per;
-        unsigned char *send = malloc(groups * (size_t)no * row + 1), *recv = malloc(groups * (size_t)nglobal * row + 1);
-        ga->data = malloc(ga->count * es);
-        if (!send || !recv || !ga->data)
-            e = DEM_ERR_NOMEM;
-        for (size_t gr = 0; !e && gr < groups; gr++)
-            for (int k = 0; k < no; k++)
-                memcpy(send + (gr * no + k) * row, (unsigned char *)la->data + (gr * n + own[k]) * row, row);
-        for (int q = 0; !e && q < P; q++)
-            bc[q] = (int)(groups * cnt[q] * row), bd[q] = (int)(groups * dsp[q] * row);
-        if (!e)
-            MPI_Allgatherv(send, (int)(groups * no * row), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
-        for (int q = 0; !e && q < P; q++) /* rank q's block: its groups, each of its cnt[q] rows */
+        if (!(e = dem_mpi_agreed(comm, e))) {
             for (size_t gr = 0; gr < groups; gr++)
-                for (int k = 0; k < cnt[q]; k++)
-                    memcpy((unsigned char *)ga->data + (gr * nglobal + allgid[dsp[q] + k]) * row,
-                           recv + (size_t)bd[q] + (gr * cnt[q] + k) * row, row);
+                for (int k = 0; k < no; k++)
+                    memcpy(send + (gr * no + k) * row, (unsigned char *)la->data + (gr * n + own[k]) * row, row);
+            for (int q = 0; q < P; q++)
+                bc[q] = (int)(groups * cnt[q] * row), bd[q] = (int)(groups * dsp[q] * row);
+            MPI_Allgatherv(send, (int)(groups * no * row), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
+            for (int q = 0; q < P; q++) /* rank q's block: its groups, each of its cnt[q] rows */
+                for (size_t gr = 0; gr < groups; gr++)
+                    for (int k = 0; k < cnt[q]; k++)
+                        memcpy((unsigned char *)ga->data + (gr * nglobal + allgid[dsp[q] + k]) * row,
+                               recv + (size_t)bd[q] + (gr * cnt[q] + k) * row, row);
+        }
         free(send), free(recv);
+        send = recv = NULL;
     }
     /* the contacts: each from the rank that owns its lower id, whose copy is right */
     pair_bytes pb = pair_bytes_of(loc);
     size_t rec = 2 * sizeof(long) + pb.all;
-    long npo = 0;
-    for (long p = 0; p < loc->npairs; p++)
+    long npo = 0, all = 0;
+    for (long p = 0; !e && p < loc->npairs; p++)
         npo += owner[loc->pair_i[p]] == h->rank;
-    unsigned char *send = malloc((size_t)npo * rec + 1), *recv = NULL;
-    int np_me = (int)npo, *pc = malloc(sizeof(int) * 2 * (size_t)P), *pd = pc ? pc + P : NULL;
-    e = e ? e : send && pc ? 0 : DEM_ERR_NOMEM;
+    if (!e) {
+        send = malloc((size_t)npo * rec + 1);
+        e = send ? 0 : DEM_ERR_NOMEM;
+    }
     for (long p = 0, k = 0; !e && p < loc->npairs; p++)
         if (owner[loc->pair_i[p]] == h->rank) {
             long ij[2] = {gid[loc->pair_i[p]], gid[loc->pair_j[p]]};
@@ -155,25 +167,30 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
             pair_copy(loc, p, send + (size_t)k * rec + sizeof ij, &pb, 0);
             k++;
         }
-    if ((e = dem_mpi_agreed(comm, e)) == 0) {
-        MPI_Allgather(&np_me, 1, MPI_INT, pc, 1, MPI_INT, comm);
-        long all = 0;
+    int np_me = (int)npo;
+    if (!(e = dem_mpi_agreed(comm, e))) {
+        MPI_Allgather(&np_me, 1, MPI_INT, bc, 1, MPI_INT, comm);
         for (int q = 0; q < P; q++)
-            pd[q] = (int)(all * rec), all += pc[q], pc[q] = (int)(pc[q] * rec);
+            all += bc[q];
+        e = fits_int((size_t)all, rec) ? 0 : DEM_ERR_ARG; /* the same on every rank */
+    }
+    if (!e) {
+        for (int q = 0, at = 0; q < P; q++)
+            bd[q] = (int)((size_t)at * rec), at += bc[q], bc[q] = (int)((size_t)bc[q] * rec);
         recv = malloc((size_t)all * rec + 1);
-        e = recv && !pair_alloc(g, all) ? 0 : DEM_ERR_NOMEM;
-        if ((e = dem_mpi_agreed(comm, e)) == 0) {
-            MPI_Allgatherv(send, (int)(npo * rec), MPI_BYTE, recv, pc, pd, MPI_BYTE, comm);
-            qsort(recv, (size_t)all, rec, by_pair); /* ascending i, then j: as a run's state lists them */
-            for (long p = 0; p < all; p++) {
-                long ij[2];
-                memcpy(ij, recv + (size_t)p * rec, sizeof ij);
-                g->pair_i[p] = (int)ij[0], g->pair_j[p] = (int)ij[1];
-                pair_copy(g, p, recv + (size_t)p * rec + sizeof ij, &pb, 1);
-            }
+        e = dem_mpi_agreed(comm, recv && !pair_alloc(g, all) ? 0 : DEM_ERR_NOMEM);
+    }
+    if (!e) {
+        MPI_Allgatherv(send, (int)((size_t)npo * rec), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
+        qsort(recv, (size_t)all, rec, by_pair); /* ascending i, then j: as a run's state lists them */
+        for (long p = 0; p < all; p++) {
+            long ij[2];
+            memcpy(ij, recv + (size_t)p * rec, sizeof ij);
+            g->pair_i[p] = (int)ij[0], g->pair_j[p] = (int)ij[1];
+            pair_copy(g, p, recv + (size_t)p * rec + sizeof ij, &pb, 1);
         }
     }
-    free(send), free(recv), free(pc), free(bc), free(own), free(cnt), free(allgid), free(mine);
+    free(send), free(recv), free(own), free(cnt), free(allgid), free(mine);
     return e;
 }
 
@@ -182,8 +199,8 @@ int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, lon
     dem_state loc;
     memset(g, 0, sizeof *g);
     int e = dem_mpi_agreed(h->comm, dem_state_get(h->s, &loc));
-    if (!e)
-        e = dem_mpi_agreed(h->comm, gather_state(h, gid, owner, nglobal, &loc, g));
+    if (!e) /* (its verdict is every rank's already) */
+        e = gather_state(h, gid, owner, nglobal, &loc, g);
     dem_state_free(&loc);
     if (e)
         dem_state_free(g);

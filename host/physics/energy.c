@@ -56,8 +56,8 @@ static double patch_contact_energy(unsigned fx, const double *row, double r, dou
 }
 
 /* Sphere-patch contacts: each touching slot of the patch rows (common/patch_contacts.h), its overlap from the
- * positions x (in storage order) and its side, and the work of its normal law (patch_contact_energy); the spheres in
- * ascending stable id, the triangles' vertices (stable ids) read where they are stored: any storage order */
+ * positions x (in storage order) and its side, and the work of its normal law (patch_contact_energy), added to the
+ * exact sum acc; the triangles' vertices (stable ids) read where they are stored: any storage order */
 static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en, exact_acc *acc)
 {
     int n = s->n, maxp = DEM_CORE(s->be)->maxp, e = 0;
