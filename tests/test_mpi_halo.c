@@ -6,7 +6,7 @@
  * (Hertz-Mindlin with friction, damping, gravity) released with random velocities in a box of six walls whose lid
  * comes down; the slabs cut across x, so contacts and their tangential histories cross the cuts. The halo is fixed
  * here: the test checks that no particle moved by half its margin (every 50 steps), else its premise would not hold;
- * test_split_anew splits the run anew twice, particles and contacts migrating.
+ * test_split_anew splits the run anew twice, particles and contacts migrating; test_refusals, what the halo refuses.
  * Reference and PoCL, fp64 and fp32. Every verdict is agreed by all ranks before it is asserted; a rank's own failing
  * call ends all ranks (tests/mpi_util.h). */
 #include "mpi_util.h"
@@ -291,4 +291,57 @@ static void test_split_anew(void **st)
     }
 }
 
-MPI_TEST_MAIN(cmocka_unit_test(test_split_run), cmocka_unit_test(test_split_anew))
+/* What the halo refuses, the same on every rank and without a hang: on more than one rank, a run whose lid stops at
+ * a force (until_force: walls steered by sums each rank would make of its own particles), naming it; and a halo
+ * whose ranks disagree on an owner (the last rank says one of its particles, far from rank 0's slab, belongs to
+ * rank 0, which does not hold it): DEM_ERR_ARG on every rank. */
+static void test_refusals(void **st)
+{
+    (void)st;
+    make_particles();
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    static unsigned char keep[NTOT];
+    static long gid[NTOT];
+    static int owner[NTOT];
+    const double layer = 5 * RMAX;
+    int n = 0, far = -1;
+    double lo = L * rank / size, hi = L * (rank + 1) / size;
+    for (int k = 0; k < NTOT; k++) {
+        int q = (int)(px[k][0] / L * size);
+        q = q < 0 ? 0 : q >= size ? size - 1 : q;
+        keep[k] = q == rank || (px[k][0] > lo - layer && px[k][0] < hi + layer);
+        if (keep[k]) {
+            if (q == rank && px[k][0] > L / size + layer && far < 0)
+                far = n; /* an own particle no other rank holds as a ghost of rank 0's */
+            gid[n] = k, owner[n++] = q;
+        }
+    }
+    double dt = 0;
+    dem_sim *s = build(keep, &dt);
+    dem_stage lid = {0.01, {0, 0, -0.2}, .until_force = 1.0};
+    REQUIRE0(dem_set_wall_motion(s, 5, 1, &lid));
+    REQUIRE_SIM(s, dem_start(s, &c));
+    dem_mpi_halo h;
+    int e = dem_mpi_halo_init(&h, MPI_COMM_WORLD, s, n, gid, owner);
+    if (rank == 0)
+        printf("  %d ranks, a lid stopped by until_force: %d (%s)\n", size, e, e ? dem_error(s) : "taken");
+    assert_true(all_ok(size == 1 ? e == 0 : e == DEM_ERR_ARG && strstr(dem_error(s), "until_force") != NULL));
+    if (!e)
+        dem_mpi_halo_free(&h);
+    dem_destroy(s);
+    if (size < 2)
+        return;
+    s = build(keep, &dt);
+    REQUIRE_SIM(s, dem_start(s, &c));
+    if (rank == size - 1) {
+        REQUIRE(far >= 0);
+        owner[far] = 0;
+    }
+    e = dem_mpi_halo_init(&h, MPI_COMM_WORLD, s, n, gid, owner);
+    if (rank == 0)
+        printf("  %d ranks, an owner the ranks disagree on: %d\n", size, e);
+    assert_true(all_ok(e == DEM_ERR_ARG));
+    dem_destroy(s);
+}
+
+MPI_TEST_MAIN(cmocka_unit_test(test_split_run), cmocka_unit_test(test_split_anew), cmocka_unit_test(test_refusals))
