@@ -209,8 +209,11 @@ EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int 
 
 /* An accumulator in global memory, as 2 EXACT_LIMBS + 1 unsigned words (each limb low word first, then the
  * flags): a buffer of unsigned is all the registry needs (no 64-bit element type), and a partial sum of one work item
- * is stored for another to merge (common/wall_forces.h) */
+ * is stored for another to merge (common/wall_forces.h). A zero accumulator is stored as its flags word alone,
+ * marked EXACT_EMPTY, and merged as nothing: most blocks of a run touch no wall, and their 272 bytes of zero limbs
+ * were written and read again at every sum. */
 #define EXACT_WORDS (2 * EXACT_LIMBS + 1)
+#define EXACT_EMPTY 8u /* in a stored flags word only: the limbs were not written (all zero) */
 #ifdef __OPENCL_C_VERSION__
 #define EXACT_GLOBAL __global
 #else
@@ -218,6 +221,13 @@ EXACT_INLINE int exact_round(const exact_acc *a, int p, int emin, int emax, int 
 #endif
 EXACT_INLINE void exact_store(EXACT_GLOBAL unsigned *p, const exact_acc *a)
 {
+    exact_u64 any = a->special;
+    for (int k = 0; k < EXACT_LIMBS; k++)
+        any |= a->limb[k];
+    if (!any) {
+        p[2 * EXACT_LIMBS] = EXACT_EMPTY;
+        return;
+    }
     for (int k = 0; k < EXACT_LIMBS; k++) {
         p[2 * k] = (unsigned)a->limb[k];
         p[2 * k + 1] = (unsigned)(a->limb[k] >> 32);
@@ -227,11 +237,21 @@ EXACT_INLINE void exact_store(EXACT_GLOBAL unsigned *p, const exact_acc *a)
 /* the stored accumulator p added into a, exactly */
 EXACT_INLINE void exact_merge_stored(exact_acc *a, const EXACT_GLOBAL unsigned *p)
 {
+    if (p[2 * EXACT_LIMBS] & EXACT_EMPTY)
+        return;
     exact_acc b;
     for (int k = 0; k < EXACT_LIMBS; k++)
         b.limb[k] = (exact_u64)p[2 * k] | ((exact_u64)p[2 * k + 1] << 32);
     b.special = p[2 * EXACT_LIMBS];
     exact_merge(a, &b);
+}
+/* a set to the sum of the count stored accumulators at p, p + stride, ... (stride in words): one level of a tree of
+ * sums (common/wall_forces.h's, and the host's reading of it) */
+EXACT_INLINE void exact_sum_stored(exact_acc *a, const EXACT_GLOBAL unsigned *p, int count, long stride)
+{
+    exact_clear(a);
+    for (int k = 0; k < count; k++)
+        exact_merge_stored(a, p + k * stride);
 }
 
 /* The bits of the sum in a binary format of p significant bits and e exponent bits (double: 53, 11; float: 24, 8),

@@ -249,9 +249,8 @@ DEM_ITEM(wall_reduce_mid)
     int end = (g + 1) * DEM_REDUCE_FAN < nblocks ? (g + 1) * DEM_REDUCE_FAN : nblocks;
     for (int q = 0; q < WP_STRIDE; q++) {
         exact_acc a;
-        exact_clear(&a);
-        for (int b = g * DEM_REDUCE_FAN; b < end; b++)
-            exact_merge_stored(&a, partial + ((long)(k * nblocks + b) * WP_STRIDE + q) * EXACT_WORDS);
+        exact_sum_stored(&a, partial + ((long)(k * nblocks + g * DEM_REDUCE_FAN) * WP_STRIDE + q) * EXACT_WORDS,
+                         end - g * DEM_REDUCE_FAN, WP_STRIDE * EXACT_WORDS);
         exact_store(mid + ((long)(k * nmid + g) * WP_STRIDE + q) * EXACT_WORDS, &a);
     }
 }
@@ -262,9 +261,7 @@ DEM_ITEM(wall_reduce_final)
     int k = i;
     for (int q = 0; q < WP_STRIDE; q++) {
         exact_acc a;
-        exact_clear(&a);
-        for (int g = 0; g < nmid; g++)
-            exact_merge_stored(&a, mid + ((long)(k * nmid + g) * WP_STRIDE + q) * EXACT_WORDS);
+        exact_sum_stored(&a, mid + ((long)k * nmid * WP_STRIDE + q) * EXACT_WORDS, nmid, WP_STRIDE * EXACT_WORDS);
         if (q == WP_FN)
             wall_nforce[k] = exact_to_real(&a);
         else

@@ -83,34 +83,29 @@ int dem_get_field(dem_sim *s, dem_field f, double *dst)
     return e;
 }
 
-int sim_set_field_rows(dem_sim *s, dem_field f, int width, int count, const int *ids, const double *vals)
+int sim_set_field(dem_sim *s, dem_field f, const double *vals)
 {
     if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
-    size_t all = sim_stored_bytes(s, f);
-    int rs = s->setup.real_size;
-    unsigned char *buf = malloc(all ? all : 1);
+    size_t all = sim_stored_bytes(s, f), rs = (size_t)s->setup.real_size, cnt = all / rs;
+    size_t width = s->n ? cnt / (size_t)s->n : 0;
+    if (!width || width * (size_t)s->n != cnt)
+        return sim_fail(s, DEM_ERR_ARG, "field %d is not a per-particle field", (int)f);
+    unsigned char *buf = malloc(all);
     if (!buf)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    int e = dem_stage_read_field(s->ops, s->be, f, buf, all) ? sim_be_fail(s) : 0;
-    for (int k = 0; !e && k < count; k++) {
-        if (ids[k] < 0 || ids[k] >= s->n || (size_t)(sim_dev(s, ids[k]) + 1) * width * rs > all) {
-            e = sim_fail(s, DEM_ERR_ARG, "field %d: no particle %d", (int)f, ids[k]);
-            break;
-        }
-        size_t at = (size_t)sim_dev(s, ids[k]) * width;
-        for (int q = 0; q < width; q++) {
-            double v = vals[(size_t)k * width + q];
+    for (int i = 0; i < s->n; i++) /* callers' id i to where it is stored */
+        for (size_t q = 0; q < width; q++) {
+            size_t at = (size_t)sim_dev(s, i) * width + q;
+            double v = vals[(size_t)i * width + q];
             if (rs == 8)
-                memcpy(buf + (at + q) * 8, &v, 8);
+                memcpy(buf + at * 8, &v, 8);
             else {
                 float x = (float)v; /* a value of an fp32 run, widened: the same number */
-                memcpy(buf + (at + q) * 4, &x, 4);
+                memcpy(buf + at * 4, &x, 4);
             }
         }
-    }
-    if (!e && dem_stage_write_field(s->ops, s->be, f, buf, all))
-        e = sim_be_fail(s);
+    int e = dem_stage_write_field(s->ops, s->be, f, buf, all) ? sim_be_fail(s) : 0;
     free(buf);
     return e;
 }

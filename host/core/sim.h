@@ -184,10 +184,10 @@ int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that en
 int sim_stage_now(const dem_sim *s, int k, long *first);
 double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's relative density now (until_density) */
 double sim_particle_volume(const dem_sim *s); /* walls.c: the spheres' volume, an exact sum rounded once [m^3] */
-/* fields.c: rows of particle field f (width reals each: 3 for x) of the particles ids[0..count) (callers' ids) set to
- * vals, in the run's precision (a value of an fp32 run must be a float widened), the other rows kept: what a run split
- * over ranks writes into its ghosts after a step (host/mpi/halo.c) */
-int sim_set_field_rows(dem_sim *s, dem_field f, int width, int count, const int *ids, const double *vals);
+/* fields.c: the per-particle field f set whole from vals, in the callers' order as dem_get_field gives it, in the
+ * run's precision (a value of an fp32 run must be a float widened): what a run split over ranks writes back after
+ * putting its owners' values into its ghosts' rows (host/mpi/halo.c) */
+int sim_set_field(dem_sim *s, dem_field f, const double *vals);
 /* state.c: how the saved array called name lies in a state of s's run: DEM_MOVE_P (per elements per particle),
  * DEM_MOVE_G (groups of n items of per elements each: one per wall), DEM_MOVE_STAY (not by particle: the walls'
  * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */

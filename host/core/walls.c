@@ -165,11 +165,9 @@ int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
         return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
     int e = 0, nmid = DEM_CORE(s->be)->nmid_red;
     unsigned *mid = sim_buffer_get(s, BUF_PARTIAL_MID, &e);
-    for (int q = 0; q < WP_STRIDE; q++) {
-        exact_clear(&acc[q]);
-        for (int g = 0; !e && g < nmid; g++)
-            exact_merge_stored(&acc[q], mid + ((size_t)(wall * nmid + g) * WP_STRIDE + q) * EXACT_WORDS);
-    }
+    for (int q = 0; q < WP_STRIDE; q++) /* as wall_reduce_final merges them */
+        exact_sum_stored(&acc[q], mid + ((size_t)wall * nmid * WP_STRIDE + q) * EXACT_WORDS, e ? 0 : nmid,
+                         WP_STRIDE * EXACT_WORDS);
     free(mid);
     return e;
 }

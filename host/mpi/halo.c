@@ -104,7 +104,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     }
     free(want), free(asked);
     if (!e) {
-        h->field = malloc(sizeof(double) * 3 * ((size_t)n + 1));
+        h->field = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)n + 1));
         h->sbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nsend + 1));
         h->rbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nrecv + 1));
         e = h->field && h->sbuf && h->rbuf ? 0 : DEM_ERR_NOMEM;
@@ -119,11 +119,13 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
 int dem_mpi_halo_exchange(dem_mpi_halo *h)
 {
     int P = h->size, e = 0, w = 3 * HALO_NF; /* reals per particle in the messages */
-    for (int f = 0; !e && f < HALO_NF; f++) {
-        if ((e = dem_get_field(h->s, halo_fields[f], h->field)))
+    size_t fw = 3 * (size_t)h->n;              /* reals of one field */
+    for (int f = 0; !e && f < HALO_NF; f++) {  /* each field read once, its own rows packed */
+        double *field = h->field + f * fw;
+        if ((e = dem_get_field(h->s, halo_fields[f], field)))
             break;
         for (int k = 0; k < h->nsend; k++)
-            memcpy(h->sbuf + (size_t)k * w + 3 * f, h->field + 3 * (size_t)h->send_id[k], sizeof(double) * 3);
+            memcpy(h->sbuf + (size_t)k * w + 3 * f, field + 3 * (size_t)h->send_id[k], sizeof(double) * 3);
     }
     int *sc = malloc(sizeof(int) * 4 * (size_t)P);
     if (!sc)
@@ -138,10 +140,11 @@ int dem_mpi_halo_exchange(dem_mpi_halo *h)
         rd[q] = w * h->recv_displ[q];
     e = MPI_Alltoallv(h->sbuf, sc, sd, MPI_DOUBLE, h->rbuf, rc, rd, MPI_DOUBLE, h->comm);
     free(sc);
-    for (int f = 0; !e && f < HALO_NF; f++) {
+    for (int f = 0; !e && f < HALO_NF; f++) { /* the owners' values into the ghosts' rows, each field written once */
+        double *field = h->field + f * fw;
         for (int k = 0; k < h->nrecv; k++)
-            memcpy(h->field + 3 * (size_t)k, h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
-        e = sim_set_field_rows(h->s, halo_fields[f], 3, h->nrecv, h->recv_id, h->field);
+            memcpy(field + 3 * (size_t)h->recv_id[k], h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
+        e = sim_set_field(h->s, halo_fields[f], field);
     }
     return dem_mpi_agreed(h->comm, e);
 }
