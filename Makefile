@@ -49,7 +49,7 @@ REF32_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref32/%.o)
 REF64_OBJ := $(REF_SRC:reference/%.c=$(BUILD)/ref64/%.o)
 LIB      := $(BUILD)/libdem.a
 # app/: the dem command's parts (scenes, HDF5 output, checkpoints), in their own archive
-APP_SRC  := $(filter-out app/dem_main.c,$(wildcard app/*.c))
+APP_SRC  := $(filter-out app/dem_main.c app/run_mpi.c,$(wildcard app/*.c))
 APP_OBJ  := $(APP_SRC:%.c=$(BUILD)/%.o)
 APPLIB   := $(BUILD)/libdemapp.a
 HEADERS  := $(wildcard include/*.h common/*.h common/laws/*.h backend/*.h host/*/*.h reference/*.h tests/*.h app/*.h)
@@ -99,6 +99,10 @@ $(BUILD)/ref64/%.o: reference/%.c $(HEADERS) | $(DEPS_STAMP)
 $(BUILD)/app/%.o: app/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) -c $< -o $@
+# dem run under mpirun (app/run_mpi.c): the one file of app/ compiled with MPI, linked into dem alone
+$(BUILD)/app/run_mpi.o: app/run_mpi.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $(MPI_CFLAGS) -Ihost/mpi -c $< -o $@
 
 # made afresh: ar would keep the members of source files since removed
 $(LIB): $(HOST_OBJ) $(REF32_OBJ) $(REF64_OBJ)
@@ -111,8 +115,8 @@ $(MPILIB): $(MPI_OBJ)
 	@rm -f $@
 	$(Q)$(call msg,AR,$@)ar rcs $@ $^
 
-$(BUILD)/dem: app/dem_main.c $(APPLIB) $(LIB) $(HEADERS)
-	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(APPLIB) $(LIB) $(APP_LDLIBS) -o $@
+$(BUILD)/dem: app/dem_main.c $(BUILD)/app/run_mpi.o $(APPLIB) $(MPILIB) $(LIB) $(HEADERS)
+	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(BUILD)/app/run_mpi.o $(APPLIB) $(MPILIB) $(LIB) $(APP_LDLIBS) $(MPI_LIBS) -o $@
 
 $(BUILD)/dem-demo: examples/demo.c $(LIB) $(HEADERS)
 	$(Q)$(call msg,CC,$@)$(CC) $(CFLAGS) $< $(LIB) $(LDLIBS) -o $@

@@ -397,5 +397,5 @@ int main(int argc, char **argv)
     case CLI_RUN:
         break;
     }
-    return run_scene(&c.run);
+    return run_mpi_wanted() ? run_mpi(&c.run) : run_scene(&c.run); /* under mpirun -np N > 1: split over ranks */
 }

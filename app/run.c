@@ -136,9 +136,16 @@ static void checkpoint_note(char *buf, size_t len, const char *ckp, long ck_step
         snprintf(buf, len, "no checkpoint written yet (output.checkpoint_every sets how often)");
 }
 
+/* A rank other than 0 of a run over MPI ranks (run_scene_ranks) is quiet: its first message is held, and said
+ * only where that rank alone failed (run_say_held). */
+static int run_quiet;
+static char run_held[8192];
 static int fail_with(int code, const char *msg)
 {
-    fprintf(stderr, "dem: %s\n", msg);
+    if (!run_quiet)
+        fprintf(stderr, "dem: %s\n", msg);
+    else if (!run_held[0])
+        snprintf(run_held, sizeof run_held, "%s", msg);
     return code;
 }
 
@@ -518,7 +525,12 @@ typedef struct {
     double *x0;                        /* the positions at the run's first step, with a closed membrane (else NULL) */
     int *tri;                          /* the triangles' particles then (dem_triangles_get) */
     long stage_seen;                   /* the stage ends logged so far (stage_ends) */
+    run_ranks *R;                      /* a run split over MPI ranks (s: the whole run, never stepped), or NULL */
+    const char *model;                 /* the model asked for (the command line's or the checkpoint's), or NULL */
 } run_ctx;
+
+/* the step the run is at: the parts' when it is split over ranks */
+static long run_step(const run_ctx *c) { return c->R ? c->R->step_index(c->R) : dem_step_index(c->s); }
 
 /* A membrane is closed when each of its edges (springs) borders two triangles: 2 edges = 3 triangles */
 static int membrane_closed(const dem_membrane_info *m)
@@ -653,6 +665,7 @@ static int phase_configure(run_ctx *c)
                  o->model);
         return fail_with(EXIT_USAGE, c->err);
     }
+    c->model = model;
     if (model && scene_apply_model(c->sc, c->s, run, model, c->err, sizeof c->err))
         return fail_with(o->model ? EXIT_USAGE : EXIT_BAD_INPUT, c->err);
     if (o->device >= 0)
@@ -763,13 +776,30 @@ static int start_with_note(dem_sim *s, const scene_run *run, int note)
     return se;
 }
 
+/* A new whole run of the scene, not started, as phase_load and phase_configure built it: what a run split over
+ * ranks cuts each rank's part from (run_ranks.start). */
+static dem_sim *build_whole(void *arg, char *err, size_t len)
+{
+    run_ctx *c = arg;
+    scene_run run;
+    dem_sim *s = scene_build(c->sc, &run, err, len);
+    if (s && c->model && scene_apply_model(c->sc, s, &run, c->model, err, len)) {
+        dem_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
 /* 3. The device started, the checkpoint's state restored, the run announced. */
 static int phase_start(run_ctx *c)
 {
     const run_opts *o = c->o;
     const scene_run *run = &c->run;
     /* run->cfg.contacts: set by scene_build when frames carry contacts */
-    int se = start_with_note(c->s, run, o->progress != 0);
+    scene_run whole_run = *run;
+    if (c->R) /* split over ranks: the whole run is only read (output, checkpoints), on the host */
+        whole_run.cfg.backend = DEM_BACKEND_REFERENCE;
+    int se = start_with_note(c->s, &whole_run, o->progress != 0 && !c->R);
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
@@ -778,11 +808,25 @@ static int phase_start(run_ctx *c)
         snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
         return fail_with(EXIT_BAD_INPUT, c->err);
     }
-    c->show = o->progress < 0 ? isatty(2) : o->progress;
+    if (c->R) { /* the parts, from the whole run's state */
+        int who, e = c->R->start(c->R, c->s, &run->cfg, build_whole, c, c->err, sizeof c->err);
+        if ((e = c->R->agree(c->R, e, &who))) {
+            c->R->share(c->R, who, c->err, sizeof c->err);
+            return fail_with(e == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
+        }
+    }
+    c->show = run_quiet ? 0 : o->progress < 0 ? isatty(2) : o->progress;
+    if (run_quiet)
+        return 0;
     if (!c->show && o->progress == 0)
         return 0;
     fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", c->sc->path, dem_count(c->s),
-            dem_wall_count(c->s), run->dt, run->steps, dem_describe(c->s));
+            dem_wall_count(c->s), run->dt, run->steps, c->R ? "split over MPI ranks" : dem_describe(c->s));
+    if (c->R) {
+        char line[512];
+        c->R->describe(c->R, line, sizeof line);
+        fprintf(stderr, "dem: %s\n", line);
+    }
     run_contact_advice(c->s, c->sc, 0, stderr); /* a warning only, when dt is coarse for the fastest contact */
     run_dt_advice(c->sc, &c->run);              /* a warning only, when dt is coarse for a membrane */
     run_rolling_advice(c->sc, run->effects);    /* a warning only, a stiff rolling spring */
@@ -899,12 +943,17 @@ static int phase_steps(run_ctx *c)
         c->stopped = run_signal;
         return 0;
     }
-    c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
-    if (!c->out)
+    run_ranks *R = c->R;
+    int writer = !R || R->rank == 0, who; /* a run over ranks: rank 0 writes */
+    if (writer)
+        c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
+    if (R && R->agree(R, writer && !c->out ? EXIT_IO : 0, &who))
+        return fail_with(EXIT_IO, c->err);
+    if (!R && !c->out)
         return fail_with(EXIT_IO, c->err);
     double last;
     c->t0 = last = now();
-    long step0 = dem_step_index(s), end = run->steps;
+    long step0 = run_step(c), end = run->steps;
     c->step0 = step0;
     dem_mc_stats_get(s, &c->mc0);
     membrane_watch(c);
@@ -917,7 +966,8 @@ static int phase_steps(run_ctx *c)
     memset(&sum, 0, sizeof sum);
     int nw = dem_wall_count(s);
     errno = 0;
-    if (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row)) {
+    int bad = writer && (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row));
+    if (bad || (R && R->agree(R, bad, &who))) {
         int e = errno;
         snprintf(c->err, sizeof c->err, "%s.part: cannot write the first frame to the output file: %s", c->outp,
                  h5_io_reason(e));
@@ -933,8 +983,8 @@ static int phase_steps(run_ctx *c)
     test_hook("DEM_TEST_SIGNAL", &signal_step, &signal_no);
     long prev_st = step0; /* the last stretch: its first step and when it began */
     double prev_t = 0;
-    while (dem_step_index(s) < end) {
-        long st = dem_step_index(s), next;
+    while (run_step(c) < end) {
+        long st = run_step(c), next;
         if (st == signal_step) { /* to the process, as kill(1) sends it (raise() would go to this thread, which
                                   * blocks it), and taken by the waiter before this step goes on, so that the run
                                   * stops at the step the test names */
@@ -942,12 +992,13 @@ static int phase_steps(run_ctx *c)
             for (int k = 0; k < 20000 && !run_signal; k++)
                 nanosleep(&(struct timespec){0, 1000000L}, NULL);
         }
-        if (run_signal && st + 1 < end) { /* stop: one more step, which ends the run as the scene's last would */
+        int sig = R ? (int)-R->agree_min(R, -(long)run_signal) : run_signal; /* over ranks: any rank's */
+        if (sig && st + 1 < end) { /* stop: one more step, which ends the run as the scene's last would */
             end = st + 1;
-            c->stopped = run_signal;
+            c->stopped = sig;
         }
         next = end;
-        if (st == poison_step && poison_hook(s, poison_id))
+        if (st == poison_step && !R && poison_hook(s, poison_id))
             return fail_with(EXIT_RUN_FAILED, "DEM_TEST_POISON: cannot poison that particle");
         long hooks[2] = {poison_step, signal_step}; /* a stretch ends where a test hook acts */
         for (int k = 0; k < 2; k++)
@@ -965,6 +1016,8 @@ static int phase_steps(run_ctx *c)
             prev_t = tn;
             if (cap < next)
                 next = cap;
+            if (R) /* every rank's stretch the same: the shortest */
+                next = R->agree_min(R, next);
         }
         /* The steps to sample: each series row's step, and with series_average N the N - 1 before it (its window).
          * dem_step_sampled samples them on the device without a synchronisation per row. */
@@ -976,26 +1029,35 @@ static int phase_steps(run_ctx *c)
             if (c->want[t - st - 1] && ++nrows == RUN_SAMPLE_CHUNK)
                 next = t;
         }
-        if (dem_step_sampled(s, next - st, c->want, c->rows)) {
+        char why[8192];
+        if (R ? R->step(R, next - st, c->want, c->rows, why, sizeof why)
+              : (dem_step_sampled(s, next - st, c->want, c->rows) ? (snprintf(why, sizeof why, "%s", dem_error(s)), 1)
+                                                                   : 0)) {
             char cknote[4400];
             checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
             snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
-                     c->sc->path, dem_step_index(s), dem_error(s), c->outp, cknote);
+                     c->sc->path, run_step(c), why, c->outp, cknote);
             fail_with(EXIT_RUN_FAILED, c->err);
             membrane_left(c);
             failure_preceded(c);
             return EXIT_RUN_FAILED;
         }
-        st = dem_step_index(s);
-        stage_ends(c, o->progress != 0);
-        int io = 0;
+        st = run_step(c);
+        if (!R) /* split over ranks: the whole run does not step, and keeps no log of stage ends */
+            stage_ends(c, o->progress != 0);
+        int io = 0, ck_due = (run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end;
         errno = 0;
+        if (R && (st % run->frame_every == 0 || ck_due) && R->sync(R, s, why, sizeof why)) {
+            snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part)", c->sc->path,
+                     st, why, c->outp);
+            return fail_with(EXIT_RUN_FAILED, c->err);
+        }
         if (st % run->frame_every == 0 || st == end) {
-            io |= output_frame(c->out, s);
+            io |= writer && output_frame(c->out, s);
             if (!c->sc->f->membranes_count)
                 overlap_watch_sample(&c->ov, s);
         }
-        for (long k = 0; !io && k < nrows; k++) {
+        for (long k = 0; writer && !io && k < nrows; k++) {
             long t = c->rows[k].step, at = row_step(run, t, end);
             output_row_of(&c->rows[k], run, nw, &row);
             if (run->series_average > 1) { /* a step of the averaging window: into the sum, a row at its end */
@@ -1011,7 +1073,7 @@ static int phase_steps(run_ctx *c)
                 io = output_series(c->out, &row);
             }
         }
-        if (io) {
+        if (io || (R && R->agree(R, io, &who))) {
             int e = errno;
             char cknote[4400];
             checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
@@ -1019,15 +1081,17 @@ static int phase_steps(run_ctx *c)
                      h5_io_reason(e), cknote);
             return fail_with(EXIT_IO, c->err);
         }
-        if ((run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end) {
+        if (ck_due) {
             errno = 0;
-            if (output_flush(c->out)) { /* the series up to the checkpoint reach OUT.part with it */
+            if (writer && output_flush(c->out)) { /* the series up to the checkpoint reach OUT.part with it */
                 int e = errno;
                 snprintf(c->err, sizeof c->err, "%s.part: cannot write to the output file: %s", c->outp,
                          h5_io_reason(e));
-                return fail_with(EXIT_IO, c->err);
+                io = 1;
+            } else if (writer && checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err)) {
+                io = 1;
             }
-            if (checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err))
+            if (io || (R && R->agree(R, io, &who)))
                 return fail_with(EXIT_IO, c->err);
             ck_step = st;
         }
@@ -1036,15 +1100,17 @@ static int phase_steps(run_ctx *c)
             double rate = (double)(st - step0) / (tn - c->t0 + 1e-12);
             dem_mc_stats mc;
             dem_mc_stats_get(s, &mc);
-            progress_line(tty, st, run->steps, dem_time(s), rate * dem_count(s), (double)(end - st) / (rate + 1e-12),
+            progress_line(tty, st, run->steps, (double)st * run->dt, rate * dem_count(s), (double)(end - st) / (rate + 1e-12),
                           (double)mc.total / (double)(st > 0 ? st : 1), run->mc_cap > 0 ? mc.unconverged : -1);
             last = tn;
         }
     }
     if (c->show && tty)
         fputc('\n', stderr);
-    int rc = output_finish(c->out, c->err, sizeof c->err);
+    int rc = writer ? output_finish(c->out, c->err, sizeof c->err) : 0;
     c->out = NULL;
+    if (R)
+        rc = R->agree(R, rc, &who);
     return rc ? fail_with(EXIT_IO, c->err) : 0;
 }
 
@@ -1089,6 +1155,11 @@ static void phase_report(run_ctx *c)
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
         if (!c->o->verbose || !dem_kernel_sequence(s, 1, seq, sizeof seq))
             seq[0] = 0;
+        if (c->R) { /* the whole run did not step: its rebuilds and kernels are not the run's */
+            char line[512];
+            c->R->describe(c->R, line, sizeof line);
+            fprintf(stderr, "dem: %s\n", line);
+        } else
         fprintf(stderr, "dem: neighbour rebuilds: %ld (%ld storing the particles anew; skin now %.3g m)%s%s\n",
                 dem_rebuild_count(s), dem_reorder_count(s), dem_neighbor_skin(s), seq[0] ? "; kernels at each: " : "",
                 seq);
@@ -1106,7 +1177,8 @@ static void phase_report(run_ctx *c)
             }
         if (!first)
             fprintf(stderr, "\n");
-        print_memory(s);
+        if (!c->R) /* split: the whole run's memory is the host's copy, not a device's */
+            print_memory(s);
         if (iterated)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
                             "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
@@ -1140,23 +1212,36 @@ static void phase_report(run_ctx *c)
                 mc.unconverged, dem_step_index(s), run->mc_cap, run->mc_tol);
 }
 
-int run_scene(const run_opts *o)
+int run_scene(const run_opts *o) { return run_scene_ranks(o, NULL); }
+
+int run_scene_ranks(const run_opts *o, run_ranks *R)
 {
     run_ctx *c = calloc(1, sizeof *c);
     if (!c)
         return fail_with(EXIT_IO, "out of memory");
     c->ov.largest_i = c->ov.largest_j = -1; /* no overlap seen yet */
     c->o = o;
+    c->R = R;
+    run_quiet = R && R->rank != 0;
+    run_held[0] = 0;
     run_signal = 0;
     run_catch_signals(1);
     int code = phase_load(c);
     if (!code)
         code = phase_configure(c);
+    if (R) { /* the scene's errors: rank 0's, said once; another rank's where rank 0 had none */
+        int who, mine = code;
+        code = R->agree(R, code, &who);
+        if (code && who == R->rank && R->rank != 0 && mine)
+            fprintf(stderr, "dem: rank %d: %s\n", R->rank, run_held);
+    }
     if (!code)
         code = phase_start(c);
     if (!code)
         code = phase_steps(c);
-    if (!code && c->stopped) {
+    if (!code && c->stopped && run_quiet) {
+        code = 128 + c->stopped;
+    } else if (!code && c->stopped) {
         if (!c->t0) /* stopped before the first step */
             fprintf(stderr, "dem: stopped by signal %d (%s) before the first step: nothing written\n", c->stopped,
                     strsignal(c->stopped));
@@ -1167,10 +1252,12 @@ int run_scene(const run_opts *o)
                     strsignal(c->stopped), dem_step_index(c->s), c->run.steps, dem_time(c->s), c->outp, c->ckp, c->ckp);
         }
         code = 128 + c->stopped;
-    } else if (!code)
+    } else if (!code && !run_quiet)
         phase_report(c);
     if (c->out)
         output_abort(c->out);
+    if (R)
+        R->finish(R);
     dem_destroy(c->s);
     scene_free(c->sc);
     if (c->have_ck)

@@ -23,6 +23,41 @@ typedef struct {
 } run_opts;
 
 int run_scene(const run_opts *o);
+
+/* A run split over MPI ranks (app/run_mpi.c, linked into dem with the MPI layer; docs/design.md "Runs over MPI"):
+ * run.c drives it through these calls and needs no MPI itself. Every rank loads the scene and holds the whole run
+ * as `whole`, started on the reference backend and never stepped: what the output, checkpoints and reports read,
+ * brought up to date from the ranks' parts (sync) where they read it. The steps are the parts': each rank's dem_sim
+ * holds the particles of its subdomain and, as ghosts, those of other ranks that can touch them. Rank 0 writes the
+ * output and the checkpoints and prints; every other rank is quiet. Each call is collective. */
+typedef struct run_ranks run_ranks;
+struct run_ranks {
+    int rank, size;
+    void *ctx;
+    /* every rank's code agreed: 0 when all are 0, else the lowest; *who the lowest rank that had it */
+    int (*agree)(run_ranks *r, int code, int *who);
+    /* the least of every rank's v */
+    long (*agree_min)(run_ranks *r, long v);
+    /* message msg of rank who to every rank (msg of len bytes) */
+    void (*share)(run_ranks *r, int who, char *msg, size_t len);
+    /* the parts made and started (cfg: the run's device, precision, backend) from whole's state (whole started,
+     * and restored where the run restarts), build
+     * making a new unstarted whole run of the scene each time a part is made; dem_status, message in err */
+    int (*start)(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(*build)(void *arg, char *err,
+                 size_t len), void *arg, char *err, size_t len);
+    /* nsteps steps like dem_step_sampled, rows merged over the ranks (every rank gets them) */
+    int (*step)(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len);
+    long (*step_index)(run_ranks *r);
+    /* whole set to the parts' state */
+    int (*sync)(run_ranks *r, dem_sim *whole, char *err, size_t len);
+    /* a line on the split for the report (subdomains, ghosts, splits) */
+    void (*describe)(run_ranks *r, char *buf, size_t len);
+    void (*finish)(run_ranks *r);
+};
+int run_scene_ranks(const run_opts *o, run_ranks *r);
+/* app/run_mpi.c: `dem run` under mpirun on more than one rank (run_mpi_wanted: the launcher's environment says so) */
+int run_mpi_wanted(void);
+int run_mpi(const run_opts *o);
 /* The scene's shortest contact against its dt (dem_contact_advice_get): with info, two lines for `dem check` on out;
  * always, a warning on stderr when a contact spans fewer than DEM_MIN_STEPS_PER_CONTACT steps (`dem run` asks for it
  * unless --quiet). */

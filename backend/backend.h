@@ -51,6 +51,7 @@ typedef struct {
     const int *rider_int;   /* int[2*nriders]: particle, wall */
     const void *rider_off;  /* real[3*nriders]: the particle's place relative to its wall's point */
     const unsigned *ride;   /* unsigned[n]: bit k set when the particle rides on wall k (it does not touch it) */
+    const unsigned *ghost;  /* unsigned[n]: 1 for a ghost (another rank's particle: DEM_HAS_GHOSTS), else 0 */
     const unsigned *hold;   /* unsigned[n]: bits 0, 1, 2: the particle keeps its velocity along x, y, z */
     const int *sid;         /* int[n]: the stable id (the id of dem_start) of the particle at each place: every sum's
                                order */

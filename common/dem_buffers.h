@@ -72,6 +72,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(X_BUILD, REAL, 3 * N, 0, DEM_FIELD_X_BUILD, SETUP(x), PARTICLES, P(3), NO)                                    \
     ENTRY(MAT, INT, N, 0, -1, SETUP(mat), PARTICLES, P(1), NO)                                                          \
     ENTRY(SID, INT, N, 0, -1, SETUP(sid), PARTICLES, P(1), NO)                                                          \
+    ENTRY(GHOST, UINT, N, DEM_HAS_GHOSTS, -1, SETUP(ghost), PARTICLES, P(1), NO)                                        \
     ENTRY(ORDER, INT, N, 0, -1, SETUP(order), PARTICLES, STAY, NO)                                                      \
     ENTRY(LOWER, INT, N, 0, -1, NONE, PARTICLES, STAY, NO)                                                              \
     ENTRY(NBR_FILL, INT, N, 0, -1, NONE, ROWS, STAY, NO)                                                                \

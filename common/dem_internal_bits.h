@@ -26,6 +26,11 @@ enum { DEM_KEEP_WALL_FORCES = 262144 };
  * energy from the overlap (a division and a square root per pair): the same bits either way (common/series.h). */
 enum { DEM_KEEP_PAIR_ENERGY = 524288 };
 
+/* A run that holds ghosts (copies of other ranks' particles: host/mpi/halo.c, sim_set_ghosts) marks them in GHOST
+ * (1 per ghost, by particle), and the walls' sums leave them out (common/wall_forces.h): each rank then sums its own
+ * particles' wall forces only, and the ranks' exact sums merge to the one-process bits. Set by the host. */
+enum { DEM_HAS_GHOSTS = 33554432 };
+
 /* Test-only contact laws (common/laws/laws.h), compiled in a test build (-DDEM_TEST_LAWS: tests/test_law_toy.c) and
  * nowhere else: their effect bits, above every other. */
 #ifdef DEM_TEST_LAWS
@@ -47,7 +52,7 @@ enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
 #define DEM_LAW_WALL_ELASTIC(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_FEL_WALL : 0)
 
 /* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
-#define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY)
+#define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY | DEM_HAS_GHOSTS)
 #ifndef __OPENCL_VERSION__
 _Static_assert((DEM_INTERNAL_BITS & (DEM_EFFECT_ALL | DEM_MCS_MASK)) == 0,
                "a host-only bit of the effect mask overlaps a caller's effect or convention bit");

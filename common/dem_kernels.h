@@ -140,7 +140,7 @@
     A(BIN, real, wall_real, WALL_REAL) A(BIN, real, wall_hist, WALL_HIST) A(BIN, unsigned, wall_mask, WALL_MASK)     \
     A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
     A(BIN, unsigned, ride, RIDE) A(BIN, real, wall_pf, WALL_PF) A(BOUT, unsigned, partial, PARTIAL)                  \
-    A(BIN, real, wall_law, WALL_LAW) A(BIN, real, mdr_part, MDR_PART)
+    A(BIN, real, wall_law, WALL_LAW) A(BIN, real, mdr_part, MDR_PART) A(BIN, unsigned, ghost, GHOST)
 #define DEM_ITEMS_wall_reduce_block (nblocks * nwalls)
 #define DEM_ARGS_wall_reduce_mid(F, A)                                                                               \
     F(I, int, nwalls, NWALLS) A(I, int, nblocks, NBLOCKS_RED) A(I, int, nmid, NMID_RED)                                 \

@@ -205,11 +205,12 @@ DEM_INLINE void wall_part_store(DEM_GLOBAL unsigned *p, long idx, const wall_par
 DEM_INLINE void wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOBAL unsigned *wall_mask,
                                 DEM_CONST_GLOBAL real *wall_pf, DEM_CONST_GLOBAL real *x,
                                 DEM_CONST_GLOBAL real *radius, DEM_CONST_GLOBAL int *wall_int,
-                                DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride, wall_part *p)
+                                DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride,
+                                DEM_CONST_GLOBAL unsigned *ghost, wall_part *p)
 {
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
-        if ((wall_mask[j] >> k) & 1u) {
+        if (((wall_mask[j] >> k) & 1u) && !((fx & DEM_HAS_GHOSTS) && ghost[j])) {
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
             wall_part_take(p, v3_load(wall_pf, k * n + j), g.n);
         }
@@ -219,7 +220,8 @@ DEM_INLINE void wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOB
  * their normal parts. With DEM_KEEP_WALL_FORCES: the forces contact_forces kept (this kernel runs after it).
  * Without: each particle's force from the wall evaluated as contact_forces is about to (this kernel runs between
  * contact_pairs and contact_forces, on the same state), so nothing per particle and wall is stored. The same terms
- * either way, and the same bits. */
+ * either way, and the same bits. A run holding ghosts (DEM_HAS_GHOSTS) leaves them out: its sums are its own
+ * particles', which the ranks merge (host/mpi). */
 DEM_ITEM(wall_reduce_block)
 {
     int b = i % nblocks, k = i / nblocks;
@@ -227,9 +229,11 @@ DEM_ITEM(wall_reduce_block)
     wall_part_clear(&p);
     int end = (b + 1) * DEM_REDUCE_BLOCK < n ? (b + 1) * DEM_REDUCE_BLOCK : n;
     if (fx & DEM_KEEP_WALL_FORCES)
-        wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride, &p);
+        wall_block_kept(fx, b, k, n, wall_mask, wall_pf, x, radius, wall_int, wall_real, ride, ghost, &p);
     else
         for (int j = b * DEM_REDUCE_BLOCK; j < end; j++) {
+            if ((fx & DEM_HAS_GHOSTS) && ghost[j]) /* another rank's particle: its owner counts it */
+                continue;
             wall_contact c = wall_contact_eval(fx, j, k, nwalls, wall_int, wall_real, v3_load(x, j), v3_load(v, j),
                                                v3_load(w, j), radius[j], invmass[j], mat[j], pairmat, nmat, wall_hist,
                                                wall_law, dt, (wall_mask[j] >> k) & 1u,

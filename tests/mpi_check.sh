@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # mpi_check.sh - the MPI layer's tests (build/tests/test_mpi_*: tests/test_mpi_sum.c, tests/test_mpi_halo.c) on 1, 2
 # and 3 ranks of Open MPI (mpirun --oversubscribe: more ranks than this machine's cores), each run under a time limit
-# so that a rank left waiting in a collective ends the check instead of hanging it. Run by make test.
+# so that a rank left waiting in a collective ends the check instead of hanging it; then `mpirun -np N dem run`
+# against the one-process run (tests/mpi_run_check.sh). Run by make test.
 set -u
 cd "$(dirname "$0")/.."
 bins=(build/tests/test_mpi_*)
@@ -17,4 +18,6 @@ for bin in "${bins[@]}"; do
         timeout 600 mpirun -np "$np" --oversubscribe --bind-to none "$bin" || { echo "mpi_check: $bin on $np rank(s) failed" >&2; rc=1; }
     done
 done
+# dem run under mpirun against the one-process run (output, checkpoints, restarts, failures, signals)
+bash tests/mpi_run_check.sh || rc=1
 exit $rc

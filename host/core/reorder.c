@@ -188,11 +188,12 @@ static void move_host(dem_sim *s, const int *from, unsigned char *tmp)
         size_t item;
     } own[] = {{s->x, 3 * sizeof(double)}, {s->v, 3 * sizeof(double)}, {s->w, 3 * sizeof(double)},
                {s->radius, sizeof(double)}, {s->body, 2 * sizeof(double)}, {s->mat, sizeof(int)},
-               {s->pflags, sizeof(unsigned)}};
+               {s->pflags, sizeof(unsigned)}, {s->ghost, 1}};
     const void *done[BUF__COUNT + 2] = {s->setup.identity, s->mat};
     int ndone = 2;
     for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
-        move_items(own[k].a, tmp, own[k].item * (size_t)n, from, n, own[k].item);
+        if (own[k].a) /* ghost: only in a rank's part of a split run */
+            move_items(own[k].a, tmp, own[k].item * (size_t)n, from, n, own[k].item);
     for (int id = 0; id < BUF__COUNT; id++) {
         size_t item;
         const void *p = dem_buffer_init(&s->setup, id);

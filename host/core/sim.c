@@ -41,6 +41,7 @@ void dem_destroy(dem_sim *s)
     free(s->radius);
     free(s->mat);
     free(s->pflags);
+    free(s->ghost);
     free(s->body);
     free(s->order.source);
     free(s->mesh.spring_ij);

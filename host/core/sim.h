@@ -139,6 +139,7 @@ struct dem_sim {
     double *x, *v, *w, *radius;
     int *mat;
     unsigned *pflags;
+    unsigned char *ghost; /* per particle, 1: another rank's (sim_set_ghosts); NULL: none */
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     double rmin, rmax;
@@ -169,6 +170,7 @@ struct dem_sim {
     struct sim_trace trace;
     struct sim_report report;
     struct sim_scratch scratch;
+    exact_acc row_acc[SE_STRIDE]; /* the last series row's exact sums from the ring (energy.c, sim_row_exact) */
 };
 
 /* sim.c: a particle's mass and moment of inertia (explicit, or a solid sphere of its material and radius) */
@@ -195,6 +197,14 @@ int sim_state_array_layout(const dem_sim *s, const char *name, int *per);
 /* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded, over every
  * particle the run holds: runs over MPI that hold disjoint particles merge them across ranks (host/mpi/dem_mpi.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
+/* part.c: a run of part of a scene (a rank's of a run split over MPI ranks), before dem_start: the particles kept
+ * (keep[i] != 0, in their order; returns how many), and which of them are ghosts (copies of other ranks' particles:
+ * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */
+int sim_keep_particles(dem_sim *s, const unsigned char *keep);
+int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
+/* energy.c: the exact sums (SE_* of dem_layout.h) behind the last series row made from the device's ring, before
+ * they were rounded: over the run's own particles (its ghosts left out). Runs split over ranks merge them. */
+void sim_row_exact(const dem_sim *s, exact_acc acc[SE_STRIDE]);
 /* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
  * checkpoint written before stages could end early). */
 void sim_stages_from_step(dem_sim *s);

@@ -481,6 +481,8 @@ static void pack_effects(dem_sim *s, dem_setup *u)
     /* a law with memory keeps its pairs' energies, computed where the contact's state is at hand (series.h) */
     if (sampled || (s->effects & DEM_LAW_STATE_BITS))
         u->effects |= DEM_KEEP_PAIR_ENERGY;
+    if (s->ghost) /* a rank's part of a split run: its ghosts left out of the walls' sums */
+        u->effects |= DEM_HAS_GHOSTS;
     u->n = s->n;
     u->nmat = s->nmat;
     u->nwalls = s->nwalls;
@@ -813,6 +815,11 @@ static int pack_particles(dem_sim *s, dem_setup *u, int rs)
         hold[i] = (s->pflags[i] & DEM_PARTICLE_HOLD_V) / DEM_PARTICLE_HOLD_VX;
     for (size_t i = 0; sid && order && identity && i < n; i++)
         sid[i] = order[i] = identity[i] = (int)i;
+    unsigned *ghost = NULL;
+    if (s->ghost && (ghost = malloc(sizeof(unsigned) * n)))
+        for (size_t i = 0; i < n; i++)
+            ghost[i] = s->ghost[i] != 0;
+    u->ghost = s->ghost ? keep(s, ghost) : NULL;
     u->hold = keep(s, hold), u->sid = keep(s, sid), u->order = keep(s, order), u->identity = keep(s, identity);
     u->x = keep(s, pack_real(s->x, 3 * n, rs));
     u->v = keep(s, pack_real(s->v, 3 * n, rs));
@@ -825,7 +832,7 @@ static int pack_particles(dem_sim *s, dem_setup *u, int rs)
     u->mat = s->mat;
     u->mdr_part = (s->effects & DEM_EFFECT_MDR) ? keep(s, pack_mdr_part(s, rs)) : NULL;
     free(invm), free(invi), free(invv), free(iroll);
-    return u->hold && u->sid && u->order && u->identity && u->x && u->v && u->w && u->radius && u->invmass &&
+    return (u->ghost || !s->ghost) && u->hold && u->sid && u->order && u->identity && u->x && u->v && u->w && u->radius && u->invmass &&
                    u->invinertia && u->invvol && u->roll_inertia && (u->mdr_part || !(s->effects & DEM_EFFECT_MDR))
                ? 0 : sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
 }

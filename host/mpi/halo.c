@@ -30,6 +30,15 @@ static int local_of(const long *gid, int n, long g)
     return lo < n && gid[lo] == g ? lo : -1;
 }
 
+/* a wall stage that ends at a relative density */
+static int until_density(const dem_sim *s)
+{
+    for (int k = 0; k < s->nwalls; k++)
+        for (int st = 0; st < s->walls[k].nstages; st++)
+            if (s->walls[k].stages[st].until_density > 0)
+                return 1;
+    return 0;
+}
 
 int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner)
 {
@@ -50,6 +59,9 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
                      P, dem_effect_name(__builtin_ctz(bad)));
     else if (P > 1 && sim_has_servo(s))
         e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take a servo or until_force stage yet (docs/design.md "
+                     "\"Runs over MPI\")", P);
+    else if (P > 1 && until_density(s)) /* the spheres' volume: each rank would count its own and its ghosts */
+        e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take an until_density stage yet (docs/design.md "
                      "\"Runs over MPI\")", P);
     if ((e = dem_mpi_agreed(comm, e)))
         return e;

@@ -86,6 +86,8 @@ static int patch_energy(dem_sim *s, const double *x, dem_energy_t *en, exact_acc
 
 int dem_energy(dem_sim *s, dem_energy_t *en) { return energy_of(s, en, NULL, NULL); }
 
+void sim_row_exact(const dem_sim *s, exact_acc acc[SE_STRIDE]) { memcpy(acc, s->row_acc, sizeof s->row_acc); }
+
 /* ---- series rows (dem_sample) ---- */
 
 /* Rows are summed on the device (common/series.h) unless a membrane's springs or patches add terms that only the
@@ -106,23 +108,27 @@ static void sample_begin(const dem_sim *s, dem_sample *o)
 /* Rows [0, count) of the ring into out[0..count): each row's per-particle terms summed exactly in storage order
  * (any order gives the same bits) and rounded once to double; its walls' sums as the step made them (in the run's
  * precision), widened. */
-static void rows_from_ring(const dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
+static void rows_from_ring(dem_sim *s, int count, const unsigned char *terms, const unsigned char *walls,
                            dem_sample *out)
 {
     int rs = s->setup.real_size, nw = s->nwalls, n = s->n;
+    const unsigned *ghost = s->setup.ghost; /* by place: a rank's ghosts are its owners' to count (part.c) */
     double one[SE_STRIDE];
     for (int r = 0; r < count; r++) {
         double t[SE_STRIDE];
-        exact_acc a[SE_STRIDE];
+        exact_acc *a = s->row_acc; /* kept: the last row's exact sums (sim_row_exact) */
         for (int q = 0; q < SE_STRIDE; q++)
             exact_clear(&a[q]);
         if (rs == 8) { /* the terms as they lie, without the copy through one[] */
             const double *row = (const double *)(terms + (size_t)r * n * SE_STRIDE * rs);
             for (size_t k = 0; k < (size_t)n * SE_STRIDE; k += SE_STRIDE)
-                for (int q = 0; q < SE_STRIDE; q++)
-                    exact_add_double(&a[q], row[k + q]);
+                if (!ghost || !ghost[k / SE_STRIDE])
+                    for (int q = 0; q < SE_STRIDE; q++)
+                        exact_add_double(&a[q], row[k + q]);
         } else {
             for (int k = 0; k < n; k++) {
+                if (ghost && ghost[k])
+                    continue;
                 sim_widen(terms + ((size_t)r * n + k) * SE_STRIDE * rs, one, SE_STRIDE, rs);
                 for (int q = 0; q < SE_STRIDE; q++)
                     exact_add_double(&a[q], one[q]); /* a float widened: the same number */

@@ -1,0 +1,454 @@
+/* run_mpi.c - `mpirun -np N dem run SCENE.yaml`: the run split over N ranks by space (docs/design.md "Runs over MPI").
+ * run.c drives it through run_ranks (run.h); this file alone of app/ is compiled with MPI, and only dem links it.
+ *
+ * The split: recursive bisection of the particles' positions (the cut across the longest side of a part's particles,
+ * at the count that gives each side its share of ranks), each rank a box. A rank's run holds its own particles and,
+ * as ghosts, every particle within 2 r_max + margin of its box (margin = r_max), in ascending global id; after each
+ * step the owners' values go to the ghosts (host/mpi/halo.c). Before a step, when some own particle has moved by
+ * half the margin since the split, the whole state is gathered and split anew (particles and contacts migrate). The
+ * walls' sums and the series rows are each rank's own particles', merged exactly (dem_mpi_exact_allreduce): the bits
+ * of one process at any rank count. */
+#include "run.h"
+#include "dem_mpi.h"
+#include "sim.h"
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    run_ranks pub;
+    MPI_Comm comm;
+    dem_config cfg;                                   /* the parts' (the run's device, precision, backend) */
+    dem_sim *(*build)(void *arg, char *err, size_t len); /* a new unstarted whole run of the scene */
+    void *arg;
+    dem_sim *part;                                    /* this rank's particles and ghosts, started */
+    dem_mpi_halo h;
+    int have_h;
+    long n;                                           /* particles of the whole run */
+    int nloc, nown;                                   /* held, and own of them */
+    long *gid;                                        /* [nloc]: each held particle's global id, ascending */
+    int *owner;                                       /* [nloc]: its rank */
+    double *x0;                                       /* [3 nloc]: positions at the split */
+    double rmax, margin;
+    long splits;                                      /* the splits so far (the first included) */
+    long ghosts_sum;                                  /* ghosts over all ranks at the last split */
+    int *last_owner;                                  /* [n]: each particle's rank after the last split */
+    long moves;                                       /* particles that changed rank at the splits anew */
+    int nw;
+    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK": that rank fails there */
+    int fail_rank;
+} rr;
+
+static rr *of(run_ranks *r) { return (rr *)r->ctx; }
+
+/* 0 when every code is 0, else the lowest of those that are not (dem_status codes are negative, exit statuses
+ * positive: a rank's failure is never outvoted by another's 0) */
+static int agree(run_ranks *r, int code, int *who)
+{
+    int in = code ? code : INT_MAX, low = INT_MAX;
+    MPI_Allreduce(&in, &low, 1, MPI_INT, MPI_MIN, of(r)->comm);
+    int mine = code && code == low ? r->rank : r->size, first = r->size;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, of(r)->comm);
+    if (who)
+        *who = low != INT_MAX ? first : -1;
+    return low != INT_MAX ? low : 0;
+}
+
+static long agree_min(run_ranks *r, long v)
+{
+    long out = v;
+    MPI_Allreduce(&v, &out, 1, MPI_LONG, MPI_MIN, of(r)->comm);
+    return out;
+}
+
+static void share(run_ranks *r, int who, char *msg, size_t len)
+{
+    if (who < 0 || who >= r->size || !len)
+        return;
+    if (who != 0 && r->rank == who) { /* said as that rank's */
+        char tmp[8192];
+        snprintf(tmp, sizeof tmp, "rank %d: %s", who, msg);
+        snprintf(msg, len, "%s", tmp);
+    }
+    msg[len - 1] = 0;
+    int n = r->rank == who ? (int)strlen(msg) + 1 : 0;
+    MPI_Bcast(&n, 1, MPI_INT, who, of(r)->comm);
+    if (n > (int)len)
+        n = (int)len;
+    MPI_Bcast(msg, n, MPI_CHAR, who, of(r)->comm);
+    msg[len - 1] = 0;
+}
+
+/* every rank's e agreed; on failure the first failing rank's message (its dem_error, or what is in err) to all */
+static int agreed_msg(rr *q, int e, dem_sim *s, char *err, size_t len)
+{
+    if (e && s && err != NULL && !err[0])
+        snprintf(err, len, "%s", dem_error(s));
+    int who, a = agree(&q->pub, e, &who);
+    if (a)
+        share(&q->pub, who, err, len);
+    return a;
+}
+
+/* ---- the split ---- */
+
+/* ids[0..m) ordered by their coordinate along axis, ties by id (the same order on every rank) */
+static const double *sort_x;
+static int sort_axis;
+static int by_coord(const void *a, const void *b)
+{
+    long i = *(const long *)a, j = *(const long *)b;
+    double xi = sort_x[3 * i + sort_axis], xj = sort_x[3 * j + sort_axis];
+    return xi < xj ? -1 : xi > xj ? 1 : (i > j) - (i < j);
+}
+
+/* Recursive bisection: ids[0..m) shared among ranks r0 .. r0 + np - 1, inside box (lo[3], hi[3]) */
+static void bisect(const double *x, long *ids, long m, int r0, int np, double box[6], int *owner, double (*boxes)[6])
+{
+    if (np == 1) {
+        for (long k = 0; k < m; k++)
+            owner[ids[k]] = r0;
+        memcpy(boxes[r0], box, sizeof(double) * 6);
+        return;
+    }
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (long k = 0; k < m; k++)
+        for (int d = 0; d < 3; d++) {
+            double v = x[3 * ids[k] + d];
+            lo[d] = v < lo[d] ? v : lo[d];
+            hi[d] = v > hi[d] ? v : hi[d];
+        }
+    int axis = 0;
+    for (int d = 1; d < 3; d++)
+        if (hi[d] - lo[d] > hi[axis] - lo[axis])
+            axis = d;
+    sort_x = x, sort_axis = axis;
+    qsort(ids, (size_t)m, sizeof(long), by_coord);
+    int nl = np / 2;
+    long cut = m * nl / np; /* the left ranks' share of the particles */
+    double c = 0.5 * (x[3 * ids[cut - 1] + axis] + x[3 * ids[cut] + axis]);
+    double left[6], right[6];
+    memcpy(left, box, sizeof left), memcpy(right, box, sizeof right);
+    left[3 + axis] = c, right[axis] = c;
+    bisect(x, ids, cut, r0, nl, left, owner, boxes);
+    bisect(x, ids + cut, m - cut, r0 + nl, np - nl, right, owner, boxes);
+}
+
+/* the distance from point p to box b (0 inside) */
+static double box_dist(const double *p, const double b[6])
+{
+    double s = 0;
+    for (int d = 0; d < 3; d++) {
+        double o = p[d] < b[d] ? b[d] - p[d] : p[d] > b[3 + d] ? p[d] - b[3 + d] : 0;
+        s += o * o;
+    }
+    return sqrt(s);
+}
+
+static void drop_part(rr *q)
+{
+    if (q->have_h)
+        dem_mpi_halo_free(&q->h);
+    q->have_h = 0;
+    dem_destroy(q->part);
+    q->part = NULL;
+    free(q->gid), free(q->owner), free(q->x0);
+    q->gid = NULL, q->owner = NULL, q->x0 = NULL;
+}
+
+/* This rank's part of the whole state g, started, with its halo. Collective; agreed. */
+static int split_from(rr *q, const dem_state *g, char *err, size_t len)
+{
+    int P = q->pub.size, me = q->pub.rank, e = 0;
+    long n = g->n;
+    err[0] = 0;
+    double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
+    long *ids = malloc(sizeof(long) * (size_t)(n ? n : 1));
+    int *owner = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    unsigned char *keep = calloc((size_t)(n ? n : 1), 1), *ghost = NULL;
+    double(*boxes)[6] = malloc(sizeof(double[6]) * (size_t)P);
+    const dem_state_array *xa = dem_state_find(g, "x");
+    if (!x || !ids || !owner || !keep || !boxes || !xa)
+        e = DEM_ERR_NOMEM, snprintf(err, len, "out of host memory splitting %ld particles", n);
+    else if (n < P)
+        e = DEM_ERR_ARG, snprintf(err, len, "%ld particles cannot be split over %d ranks: run it on %ld or fewer", n,
+                                  P, n);
+    if (!e) {
+        for (long k = 0; k < 3 * n; k++)
+            x[k] = g->real_size == 8 ? ((const double *)xa->data)[k] : (double)((const float *)xa->data)[k];
+        for (long k = 0; k < n; k++)
+            ids[k] = k;
+        double all[6] = {-INFINITY, -INFINITY, -INFINITY, INFINITY, INFINITY, INFINITY};
+        bisect(x, ids, n, 0, P, all, owner, boxes);
+        if (!q->last_owner)
+            q->last_owner = malloc(sizeof(int) * (size_t)(n ? n : 1));
+        else
+            for (long k = 0; k < n; k++)
+                q->moves += owner[k] != q->last_owner[k];
+        if (q->last_owner)
+            memcpy(q->last_owner, owner, sizeof(int) * (size_t)n);
+        double width = 2 * q->rmax + q->margin;
+        q->nloc = q->nown = 0;
+        for (long k = 0; k < n; k++) {
+            keep[k] = owner[k] == me || box_dist(x + 3 * k, boxes[me]) <= width;
+            q->nloc += keep[k];
+            q->nown += owner[k] == me;
+        }
+        q->gid = malloc(sizeof(long) * (size_t)(q->nloc ? q->nloc : 1));
+        q->owner = malloc(sizeof(int) * (size_t)(q->nloc ? q->nloc : 1));
+        q->x0 = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1));
+        ghost = malloc((size_t)(q->nloc ? q->nloc : 1));
+        if (!q->gid || !q->owner || !q->x0 || !ghost)
+            e = DEM_ERR_NOMEM, snprintf(err, len, "out of host memory");
+        for (long k = 0, m = 0; !e && k < n; k++)
+            if (keep[k]) {
+                q->gid[m] = k, q->owner[m] = owner[k], ghost[m] = owner[k] != me;
+                memcpy(q->x0 + 3 * m, x + 3 * k, sizeof(double) * 3);
+                m++;
+            }
+    }
+    if (!e && !(q->part = q->build(q->arg, err, len)))
+        e = DEM_ERR_ARG;
+    if (!e && sim_keep_particles(q->part, keep) < 0)
+        e = DEM_ERR_ARG;
+    if (!e && sim_set_ghosts(q->part, ghost))
+        e = DEM_ERR_NOMEM;
+    if (!e)
+        e = dem_start(q->part, &q->cfg);
+    dem_state ps;
+    memset(&ps, 0, sizeof ps);
+    if (!e && (e = dem_mpi_state_part(q->part, g, keep, &ps)) == 0)
+        e = dem_state_set(q->part, &ps);
+    dem_state_free(&ps);
+    free(x), free(ids), free(owner), free(keep), free(ghost), free(boxes);
+    if ((e = agreed_msg(q, e, q->part, err, len)))
+        return e;
+    e = dem_mpi_halo_init(&q->h, q->comm, q->part, q->nloc, q->gid, q->owner); /* agreed */
+    q->have_h = e == 0;
+    if (e) {
+        snprintf(err, len, "%s", dem_error(q->part));
+        return e;
+    }
+    long gh = q->nloc - q->nown;
+    MPI_Allreduce(&gh, &q->ghosts_sum, 1, MPI_LONG, MPI_SUM, q->comm);
+    q->splits++;
+    return 0;
+}
+
+static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(*build)(void *, char *, size_t),
+                 void *arg, char *err, size_t len)
+{
+    rr *q = of(r);
+    q->cfg = *cfg, q->build = build, q->arg = arg;
+    q->n = dem_count(whole), q->nw = dem_wall_count(whole);
+    q->rmax = 0;
+    for (int i = 0; i < q->n; i++)
+        q->rmax = dem_particle_radius(whole, i) > q->rmax ? dem_particle_radius(whole, i) : q->rmax;
+    q->margin = q->rmax; /* a split anew when a particle has moved r_max / 2 */
+    dem_state g;
+    int e = dem_state_get(whole, &g);
+    err[0] = 0;
+    if ((e = agreed_msg(q, e, whole, err, len)))
+        return e;
+    e = split_from(q, &g, err, len);
+    dem_state_free(&g);
+    return e;
+}
+
+/* the largest distance an own particle has moved since the split, over every rank */
+static int moved(rr *q, double *most)
+{
+    double *x = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1)), m = 0;
+    int e = x ? dem_get_field(q->part, DEM_FIELD_X, x) : DEM_ERR_NOMEM;
+    for (int k = 0; !e && k < q->nloc; k++)
+        if (q->owner[k] == q->pub.rank) {
+            double dx = x[3 * k] - q->x0[3 * k], dy = x[3 * k + 1] - q->x0[3 * k + 1],
+                   dz = x[3 * k + 2] - q->x0[3 * k + 2], d = sqrt(dx * dx + dy * dy + dz * dz);
+            m = d > m || d != d ? d : m; /* a NaN counts as far */
+        }
+    free(x);
+    if (m != m)
+        m = INFINITY;
+    MPI_Allreduce(&m, most, 1, MPI_DOUBLE, MPI_MAX, q->comm);
+    return e;
+}
+
+/* The exact sums of the last step merged over the ranks: the series row's (SE_*) and each wall's (WP_*), rounded
+ * as one process rounds them (common/series.h, host/physics/energy.c) */
+static int merged_sums(rr *q, int nw, exact_acc *acc)
+{
+    int e = 0;
+    sim_row_exact(q->part, acc);
+    for (int w = 0; !e && w < nw; w++)
+        e = sim_wall_sums_exact(q->part, w, acc + SE_STRIDE + WP_STRIDE * w);
+    int m = dem_mpi_exact_allreduce(q->comm, acc, SE_STRIDE + WP_STRIDE * nw);
+    return e ? e : m ? DEM_ERR_DEVICE : 0;
+}
+
+static double rounded(const rr *q, const exact_acc *a)
+{
+    return q->cfg.precision == DEM_FP64 ? exact_to_double(a) : (double)exact_to_float(a);
+}
+
+static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len)
+{
+    rr *q = of(r);
+    int walls = (q->part->effects & DEM_EFFECT_WALLS) && q->nw > 0;
+    exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
+    dem_sample *o = rows;
+    err[0] = 0;
+    for (long k = 0; k < nsteps; k++) {
+        double most = 0;
+        int e = moved(q, &most);
+        if ((e = agreed_msg(q, e, q->part, err, len)))
+            return e;
+        if (most > 0.5 * q->margin) { /* split anew: the whole state gathered, cut by the positions now */
+            dem_state g;
+            e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
+            if (e) {
+                snprintf(err, len, "%s", dem_error(q->part));
+                return e;
+            }
+            drop_part(q);
+            e = split_from(q, &g, err, len);
+            dem_state_free(&g);
+            if (e)
+                return e;
+        }
+        int wk = want && want[k];
+        dem_sample one;
+        e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
+        if (!e && q->fail_step == dem_step_index(q->part) && q->fail_rank == r->rank) { /* the test hook */
+            snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
+                     q->fail_step);
+            e = DEM_ERR_DEVICE;
+        }
+        if ((e = agreed_msg(q, e, q->part, err, len)))
+            return e;
+        if ((e = dem_mpi_halo_exchange(&q->h))) {
+            snprintf(err, len, "%s", dem_error(q->part));
+            return e;
+        }
+        if (!wk)
+            continue;
+        int nw = walls ? q->nw : 0;
+        for (int a = 0; a < SE_STRIDE + WP_STRIDE * nw; a++)
+            exact_clear(&acc[a]);
+        e = merged_sums(q, nw, acc);
+        if ((e = agreed_msg(q, e, q->part, err, len)))
+            return e;
+        dem_energy_t *en = &one.energy;
+        en->kinetic = exact_to_double(&acc[SE_KIN]);
+        en->potential = exact_to_double(&acc[SE_POT]);
+        en->elastic = exact_to_double(&acc[SE_ELA]);
+        en->contacts = (long)exact_to_double(&acc[SE_CON]);
+        en->wall_contacts = (long)exact_to_double(&acc[SE_WCON]);
+        en->total = en->kinetic + en->elastic + en->potential;
+        for (int w = 0; w < nw; w++) {
+            const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
+            for (int d = 0; d < 3; d++)
+                one.wall_force[3 * w + d] = rounded(q, &a[WP_FX + d]);
+            one.wall_normal[w] = rounded(q, &a[WP_FN]);
+        }
+        *o++ = one;
+    }
+    return 0;
+}
+
+static long step_index(run_ranks *r) { return dem_step_index(of(r)->part); }
+
+/* the whole run set to the parts' state: gathered, with the walls' sums merged from every rank's own particles */
+static int sync(run_ranks *r, dem_sim *whole, char *err, size_t len)
+{
+    rr *q = of(r);
+    dem_state g;
+    err[0] = 0;
+    int e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
+    if (e) {
+        snprintf(err, len, "%s", dem_error(q->part));
+        return e;
+    }
+    int nw = (q->part->effects & DEM_EFFECT_WALLS) ? q->nw : 0;
+    exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
+    for (int a = 0; a < SE_STRIDE + WP_STRIDE * nw; a++)
+        exact_clear(&acc[a]);
+    e = merged_sums(q, nw, acc);
+    dem_state_array *wf = dem_state_find(&g, "wall_force"), *wn = dem_state_find(&g, "wall_normal_force");
+    for (int w = 0; !e && w < nw; w++) {
+        const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
+        for (int d = 0; wf && d < 3; d++) {
+            if (g.real_size == 8)
+                ((double *)wf->data)[3 * w + d] = exact_to_double(&a[WP_FX + d]);
+            else
+                ((float *)wf->data)[3 * w + d] = exact_to_float(&a[WP_FX + d]);
+        }
+        if (wn && g.real_size == 8)
+            ((double *)wn->data)[w] = exact_to_double(&a[WP_FN]);
+        else if (wn)
+            ((float *)wn->data)[w] = exact_to_float(&a[WP_FN]);
+    }
+    if (!e && (e = dem_state_set(whole, &g)))
+        snprintf(err, len, "%s", dem_error(whole));
+    dem_state_free(&g);
+    return agreed_msg(q, e, NULL, err, len);
+}
+
+static void describe(run_ranks *r, char *buf, size_t len)
+{
+    rr *q = of(r);
+    snprintf(buf, len, "split over %d MPI ranks by recursive bisection: %ld particles, %ld ghosts (%.1f %% more held), "
+                       "halo 2 r_max + %.3g m, split anew when a particle has moved %.3g m (%ld split%s so far, %ld changes of rank)",
+             r->size, q->n, q->ghosts_sum, 100.0 * (double)q->ghosts_sum / (double)(q->n ? q->n : 1), q->margin,
+             0.5 * q->margin, q->splits, q->splits == 1 ? "" : "s", q->moves);
+}
+
+static void finish(run_ranks *r)
+{
+    rr *q = of(r);
+    if (q) {
+        drop_part(q);
+        free(q->last_owner);
+        q->last_owner = NULL;
+    }
+}
+
+int run_mpi_wanted(void)
+{
+    const char *n = getenv("OMPI_COMM_WORLD_SIZE"); /* Open MPI's mpirun sets it in every rank */
+    return n && atoi(n) > 1;
+}
+
+int run_mpi(const run_opts *o)
+{
+    int provided;
+    if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+        fprintf(stderr, "dem: MPI does not start\n");
+        return EXIT_DEVICE;
+    }
+    rr q;
+    memset(&q, 0, sizeof q);
+    q.comm = MPI_COMM_WORLD;
+    MPI_Comm_rank(q.comm, &q.pub.rank);
+    MPI_Comm_size(q.comm, &q.pub.size);
+    q.pub.ctx = &q;
+    q.pub.agree = agree, q.pub.agree_min = agree_min, q.pub.share = share, q.pub.start = start, q.pub.step = step;
+    q.pub.step_index = step_index, q.pub.sync = sync, q.pub.describe = describe, q.pub.finish = finish;
+    q.fail_step = -1;
+    const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */
+    if (tf && sscanf(tf, "%ld %d", &q.fail_step, &q.fail_rank) != 2)
+        q.fail_step = -1;
+    run_opts mine = *o;
+    const char *lr = getenv("OMPI_COMM_WORLD_LOCAL_RANK");
+    int ndev = dem_device_count();
+    if (mine.device < 0 && !getenv("DEM_DEVICE") && lr && ndev > 0) /* node-local rank k: device k modulo those seen */
+        mine.device = atoi(lr) % ndev;
+    int code = run_scene_ranks(&mine, &q.pub);
+    /* every rank here before any leaves: mpirun ends the whole job as soon as one rank exits non-zero, which would
+     * cut rank 0 short while it still prints the error or closes the output */
+    fflush(NULL);
+    MPI_Barrier(q.comm);
+    MPI_Finalize();
+    return code;
+}

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# mpi_run_check.sh - `mpirun -np N dem run` (app/run_mpi.c) against the one-process run, from the files alone
+# (tests/h5_same.py: every dataset's bits); run by tests/mpi_check.sh, so by make test.
+#  1. tests/scenes/restart_box.yaml (64 frictional spheres dropped into a box whose lid comes down: walls, gravity,
+#     friction, damping; split anew several times as they fall, particles changing rank), its whole 660 steps on 2 and
+#     3 ranks, PoCL fp32 and the reference fp64: output file (frames, series rows: energies, wall forces, stress)
+#     and checkpoint equal to the one-process run's.
+#  2. Restart across rank counts: stopped at step 300 on 2 ranks, continued on 3 ranks and in one process; stopped
+#     in one process, continued on 2 ranks: every continuation equals the one-process continuation.
+#  3. A rank that fails mid-run (DEM_TEST_RANK_FAIL: rank 1's step 200 fails as a lost device's would): every rank
+#     stops, non-zero, that rank's message once, no output file completed, nothing hangs.
+#  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks), a servo stage
+#     (tablet_3k); a scene error is said once.
+#  5. SIGTERM to mpirun: all ranks stop, the output completed and the checkpoint readable.
+set -u
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+DEM=$ROOT/build/dem
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 POCL_CPU_MAX_CU_COUNT=1 POCL_MAX_PTHREAD_COUNT=1
+PY=
+for p in python3 /usr/bin/python3; do
+    command -v "$p" >/dev/null && "$p" -c 'import h5py, numpy' 2>/dev/null && { PY=$p; break; }
+done
+[ -n "$PY" ] || { echo "mpi_run_check: no Python with h5py and numpy (scripts/install-deps.sh installs python3-h5py)" >&2; exit 1; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+S=$ROOT/tests/scenes/restart_box.yaml
+rc=0
+fail() { echo "mpi_run_check: FAILED: $*" >&2; rc=1; }
+mrun() { # ranks, then dem's arguments; under a time limit, so that a hang fails instead of stopping make test
+    local np=$1
+    shift
+    timeout 300 mpirun --oversubscribe --bind-to none -np "$np" "$DEM" "$@"
+}
+same() { "$PY" tests/h5_same.py "$1" "$2" >"$T/same.log" 2>&1 || { cat "$T/same.log" >&2; return 1; }; }
+
+echo "== 1. whole runs on 2 and 3 ranks against one process"
+for cfg in "opencl fp32" "reference fp64"; do
+    set -- $cfg
+    "$DEM" run "$S" -o "$T/one.h5" --quiet --backend "$1" --precision "$2" || fail "one-process run ($cfg)"
+    for np in 2 3; do
+        mrun "$np" run "$S" -o "$T/n$np.h5" --backend "$1" --precision "$2" >"$T/log" 2>&1 || { cat "$T/log" >&2; fail "run on $np ranks ($cfg)"; }
+        same "$T/one.h5" "$T/n$np.h5" && same "$T/one.ckpt.h5" "$T/n$np.ckpt.h5" || fail "$np ranks ($cfg) differ from one process"
+        moves=$(sed -n 's/.*splits so far, \([0-9]*\) changes of rank.*/\1/p' "$T/log" | tail -1)
+        [ "${moves:-0}" -gt 0 ] || fail "$np ranks ($cfg): no particle changed rank (the check of migration did not happen)"
+        echo "   $cfg, $np ranks: output and checkpoint equal; ${moves:-0} changes of rank"
+    done
+done
+
+echo "== 2. restart across rank counts"
+"$DEM" run "$S" -o "$T/a1.h5" --quiet --stop-after 300 || fail "one-process first part"
+"$DEM" run --restart "$T/a1.ckpt.h5" -o "$T/b1.h5" --quiet || fail "one-process continuation"
+mrun 2 run "$S" -o "$T/a2.h5" --quiet --stop-after 300 || fail "2-rank first part"
+same "$T/a1.ckpt.h5" "$T/a2.ckpt.h5" || fail "the checkpoint of 2 ranks differs from one process's"
+mrun 3 run --restart "$T/a2.ckpt.h5" -o "$T/b23.h5" --quiet || fail "2 -> 3 ranks"
+"$DEM" run --restart "$T/a2.ckpt.h5" -o "$T/b21.h5" --quiet || fail "2 ranks -> 1 process"
+mrun 2 run --restart "$T/a1.ckpt.h5" -o "$T/b12.h5" --quiet || fail "1 process -> 2 ranks"
+for b in b23 b21 b12; do
+    same "$T/b1.h5" "$T/$b.h5" && same "$T/b1.ckpt.h5" "$T/$b.ckpt.h5" || fail "continuation $b differs"
+done
+echo "   2 -> 3 ranks, 2 ranks -> 1 process, 1 process -> 2 ranks: equal to the one-process continuation"
+
+echo "== 3. a rank that fails mid-run"
+DEM_TEST_RANK_FAIL="200 1" mrun 2 run "$S" -o "$T/f.h5" --quiet >"$T/log" 2>&1
+frc=$?
+n=$(grep -c "rank 1: DEM_TEST_RANK_FAIL" "$T/log")
+[ "$frc" -ne 0 ] && [ "$frc" -ne 124 ] || fail "a failed rank: exit $frc (0: not seen; 124: it hung)"
+[ "$n" = 1 ] || { cat "$T/log" >&2; fail "a failed rank: its message $n times, not once"; }
+[ ! -e "$T/f.h5" ] && [ -e "$T/f.h5.part" ] || fail "a failed rank: the output should be left as f.h5.part"
+echo "   exit $frc, rank 1's message once, output left as .part"
+
+echo "== 4. refusals and errors, said once"
+mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
+trc=$?
+[ "$trc" = 65 ] && [ "$(grep -c 'cannot be split over 3 ranks' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "more ranks than particles: exit $trc"; }
+mrun 2 run "$ROOT/scenes/tablet_3k.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
+trc=$?
+[ "$trc" = 65 ] && [ "$(grep -c 'servo' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a servo on 2 ranks: exit $trc"; }
+sed 's/^effects:/effectz:/' "$S" >"$T/bad.yaml"
+mrun 2 run "$T/bad.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
+trc=$?
+[ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
+echo "   more ranks than particles, a servo, a misspelt key: exit 65, each said once"
+
+echo "== 5. SIGTERM to mpirun"
+sed 's/duration: 0.04}/duration: 5.0}/' "$S" >"$T/long.yaml"
+timeout 300 mpirun --oversubscribe --bind-to none -np 2 "$DEM" run "$T/long.yaml" -o "$T/l.h5" --quiet >"$T/log" 2>&1 &
+pid=$!
+for k in $(seq 1 600); do [ -e "$T/l.h5.part" ] && break; sleep 0.1; done
+sleep 2
+pkill -TERM -P $pid -x mpirun # to mpirun itself, which forwards it to the ranks (timeout's own TERM did not reach them)
+wait $pid
+grep -q "stopped by signal 15" "$T/log" && [ -e "$T/l.h5" ] && [ ! -e "$T/l.h5.part" ] && "$DEM" hash "$T/l.ckpt.h5" >/dev/null ||
+    { cat "$T/log" >&2; fail "SIGTERM: not stopped cleanly with a complete output and checkpoint"; }
+"$PY" -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f['series/time'].shape[0] > 1" "$T/l.h5" || fail "SIGTERM: the output has no rows"
+echo "   stopped cleanly: output complete, checkpoint readable"
+exit $rc
