@@ -799,17 +799,20 @@ static int phase_start(run_ctx *c)
     scene_run whole_run = *run;
     if (c->R) /* split over ranks: the whole run is only read (output, checkpoints), on the host */
         whole_run.cfg.backend = DEM_BACKEND_REFERENCE;
-    int se = start_with_note(c->s, &whole_run, o->progress != 0 && !c->R);
+    int se = start_with_note(c->s, &whole_run, o->progress != 0 && !c->R), who;
+    if (c->R) /* every rank goes on, or none */
+        se = c->R->agree(c->R, se, &who);
     if (se) {
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
     }
-    if (c->have_ck && dem_state_set(c->s, &c->ck.st)) {
+    int ce = c->have_ck && dem_state_set(c->s, &c->ck.st);
+    if (ce || (c->R && c->R->agree(c->R, ce, &who))) {
         snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
         return fail_with(EXIT_BAD_INPUT, c->err);
     }
     if (c->R) { /* the parts, from the whole run's state */
-        int who, e = c->R->start(c->R, c->s, &run->cfg, build_whole, c, c->err, sizeof c->err);
+        int e = c->R->start(c->R, c->s, &run->cfg, build_whole, c, c->err, sizeof c->err);
         if ((e = c->R->agree(c->R, e, &who))) {
             c->R->share(c->R, who, c->err, sizeof c->err);
             return fail_with(e == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
@@ -939,11 +942,12 @@ static int phase_steps(run_ctx *c)
     const run_opts *o = c->o;
     const scene_run *run = &c->run;
     dem_sim *s = c->s;
-    if (run_signal) { /* asked to stop while the run was being set up: nothing is written */
-        c->stopped = run_signal;
+    run_ranks *R = c->R;
+    int sig0 = R ? (int)-R->agree_min(R, -(long)run_signal) : run_signal; /* over ranks: any rank's */
+    if (sig0) { /* asked to stop while the run was being set up: nothing is written */
+        c->stopped = sig0;
         return 0;
     }
-    run_ranks *R = c->R;
     int writer = !R || R->rank == 0, who; /* a run over ranks: rank 0 writes */
     if (writer)
         c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
