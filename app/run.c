@@ -1170,7 +1170,8 @@ static void phase_report(run_ctx *c)
         const char **kn;
         const double *ks;
         int kc = 0;
-        dem_kernel_times(s, &kn, &ks, &kc); /* DEM_PROFILE set: where the device time went */
+        if (!c->R) /* split: the whole run's kernels are its start's, on the host */
+            dem_kernel_times(s, &kn, &ks, &kc); /* DEM_PROFILE set: where the device time went */
         long ksteps = dem_step_index(s) - c->step0;
         int first = 1; /* the start's rebuild and forces are in the sums too: a short run's rebuild kernels read high */
         for (int k = 0; k < kc && ksteps > 0; k++)
