@@ -799,18 +799,20 @@ static int phase_start(run_ctx *c)
     scene_run whole_run = *run;
     if (c->R) /* split over ranks: the whole run is only read (output, checkpoints), on the host */
         whole_run.cfg.backend = DEM_BACKEND_REFERENCE;
-    int se = start_with_note(c->s, &whole_run, o->progress != 0 && !c->R), who;
-    if (c->R) /* every rank goes on, or none */
-        se = c->R->agree(c->R, se, &who);
-    if (se) {
+    int se = start_with_note(c->s, &whole_run, o->progress != 0 && !c->R), who = -1;
+    if (se)
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
+    if (c->R && (se = c->R->agree(c->R, se, &who))) /* every rank goes on, or none; the failing rank's words */
+        c->R->share(c->R, who, c->err, sizeof c->err);
+    if (se)
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
-    }
     int ce = c->have_ck && dem_state_set(c->s, &c->ck.st);
-    if (ce || (c->R && c->R->agree(c->R, ce, &who))) {
+    if (ce)
         snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
+    if (c->R && (ce = c->R->agree(c->R, ce, &who)))
+        c->R->share(c->R, who, c->err, sizeof c->err);
+    if (ce)
         return fail_with(EXIT_BAD_INPUT, c->err);
-    }
     if (c->R) { /* the parts, from the whole run's state */
         int e = c->R->start(c->R, c->s, &run->cfg, build_whole, c, c->err, sizeof c->err);
         if ((e = c->R->agree(c->R, e, &who))) {
@@ -971,7 +973,9 @@ static int phase_steps(run_ctx *c)
     int nw = dem_wall_count(s);
     errno = 0;
     int bad = writer && (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row));
-    if (bad || (R && R->agree(R, bad, &who))) {
+    if (R) /* every rank, whatever rank 0's write gave: none may skip the collective */
+        bad = R->agree(R, bad, &who);
+    if (bad) {
         int e = errno;
         snprintf(c->err, sizeof c->err, "%s.part: cannot write the first frame to the output file: %s", c->outp,
                  h5_io_reason(e));
@@ -1077,7 +1081,9 @@ static int phase_steps(run_ctx *c)
                 io = output_series(c->out, &row);
             }
         }
-        if (io || (R && R->agree(R, io, &who))) {
+        if (R)
+            io = R->agree(R, io, &who);
+        if (io) {
             int e = errno;
             char cknote[4400];
             checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
@@ -1095,7 +1101,9 @@ static int phase_steps(run_ctx *c)
             } else if (writer && checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err)) {
                 io = 1;
             }
-            if (io || (R && R->agree(R, io, &who)))
+            if (R)
+                io = R->agree(R, io, &who);
+            if (io)
                 return fail_with(EXIT_IO, c->err);
             ck_step = st;
         }
@@ -1222,6 +1230,10 @@ int run_scene(const run_opts *o) { return run_scene_ranks(o, NULL); }
 int run_scene_ranks(const run_opts *o, run_ranks *R)
 {
     run_ctx *c = calloc(1, sizeof *c);
+    if (R && R->agree(R, c ? 0 : EXIT_IO, NULL)) { /* every rank goes on, or none */
+        free(c);
+        return fail_with(EXIT_IO, "out of memory");
+    }
     if (!c)
         return fail_with(EXIT_IO, "out of memory");
     c->ov.largest_i = c->ov.largest_j = -1; /* no overlap seen yet */
@@ -1272,7 +1284,8 @@ int run_scene_ranks(const run_opts *o, run_ranks *R)
     int stopped = c->stopped;
     free(c);
     run_catch_signals(0);
-    if (stopped == SIGINT) { /* everything written: die of it, so that a script or make running dem stops too */
+    if (stopped == SIGINT && !R) { /* everything written: die of it, so that a script or make running dem stops too
+                                     * (over ranks: run_mpi does, after MPI_Finalize) */
         fflush(NULL);
         signal(SIGINT, SIG_DFL);
         raise(SIGINT);

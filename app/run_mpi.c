@@ -13,6 +13,7 @@
 #include "sim.h"
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +38,9 @@ typedef struct {
     int *last_owner;                                  /* [n]: each particle's rank after the last split */
     long moves;                                       /* particles that changed rank at the splits anew */
     int nw;
+    double domain[6];                                 /* the whole run's binning domain, given to every part */
+    double *xprev, last_step;                         /* [3 nloc] positions before the last step; its longest move */
+    long step;                                        /* the step the parts are at (also while none is held) */
     long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK": that rank fails there */
     int fail_rank;
 } rr;
@@ -90,6 +94,19 @@ static int agreed_msg(rr *q, int e, dem_sim *s, char *err, size_t len)
     if (a)
         share(&q->pub, who, err, len);
     return a;
+}
+
+/* after a call that agreed on failure e itself (the halo's, the gather): the words of the first rank that has any */
+static int shared_error(rr *q, int e, char *err, size_t len)
+{
+    snprintf(err, len, "%s", q->part ? dem_error(q->part) : "");
+    int who;
+    agree(&q->pub, err[0] ? -1 : 0, &who);
+    if (who >= 0)
+        share(&q->pub, who, err, len);
+    else
+        snprintf(err, len, "a collective call failed (code %d)", e);
+    return e;
 }
 
 /* ---- the split ---- */
@@ -154,8 +171,8 @@ static void drop_part(rr *q)
     q->have_h = 0;
     dem_destroy(q->part);
     q->part = NULL;
-    free(q->gid), free(q->owner), free(q->x0);
-    q->gid = NULL, q->owner = NULL, q->x0 = NULL;
+    free(q->gid), free(q->owner), free(q->x0), free(q->xprev);
+    q->gid = NULL, q->owner = NULL, q->x0 = NULL, q->xprev = NULL;
 }
 
 /* This rank's part of the whole state g, started, with its halo. Collective; agreed. */
@@ -199,13 +216,15 @@ static int split_from(rr *q, const dem_state *g, char *err, size_t len)
         q->gid = malloc(sizeof(long) * (size_t)(q->nloc ? q->nloc : 1));
         q->owner = malloc(sizeof(int) * (size_t)(q->nloc ? q->nloc : 1));
         q->x0 = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1));
+        q->xprev = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1));
         ghost = malloc((size_t)(q->nloc ? q->nloc : 1));
-        if (!q->gid || !q->owner || !q->x0 || !ghost)
+        if (!q->gid || !q->owner || !q->x0 || !q->xprev || !ghost)
             e = DEM_ERR_NOMEM, snprintf(err, len, "out of host memory");
         for (long k = 0, m = 0; !e && k < n; k++)
             if (keep[k]) {
                 q->gid[m] = k, q->owner[m] = owner[k], ghost[m] = owner[k] != me;
                 memcpy(q->x0 + 3 * m, x + 3 * k, sizeof(double) * 3);
+                memcpy(q->xprev + 3 * m, x + 3 * k, sizeof(double) * 3);
                 m++;
             }
     }
@@ -215,6 +234,8 @@ static int split_from(rr *q, const dem_state *g, char *err, size_t len)
         e = DEM_ERR_ARG;
     if (!e && sim_set_ghosts(q->part, ghost))
         e = DEM_ERR_NOMEM;
+    if (!e) /* the whole run's domain: wherever its particles go, the part's go too */
+        e = dem_set_domain(q->part, q->domain, q->domain + 3);
     if (!e)
         e = dem_start(q->part, &q->cfg);
     dem_state ps;
@@ -228,8 +249,8 @@ static int split_from(rr *q, const dem_state *g, char *err, size_t len)
     e = dem_mpi_halo_init(&q->h, q->comm, q->part, q->nloc, q->gid, q->owner); /* agreed */
     q->have_h = e == 0;
     if (e) {
-        snprintf(err, len, "%s", dem_error(q->part));
-        return e;
+        dem_mpi_halo_free(&q->h);
+        return shared_error(q, e, err, len);
     }
     long gh = q->nloc - q->nown;
     MPI_Allreduce(&gh, &q->ghosts_sum, 1, MPI_LONG, MPI_SUM, q->comm);
@@ -247,31 +268,48 @@ static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(
     for (int i = 0; i < q->n; i++)
         q->rmax = dem_particle_radius(whole, i) > q->rmax ? dem_particle_radius(whole, i) : q->rmax;
     q->margin = q->rmax; /* a split anew when a particle has moved r_max / 2 */
+    for (int d = 0; d < 3; d++) /* the whole run's domain (given, or made at its start from all the particles) */
+        q->domain[d] = whole->domain.lo[d], q->domain[3 + d] = whole->domain.hi[d];
+    q->step = dem_step_index(whole);
     dem_state g;
-    int e = dem_state_get(whole, &g);
+    int got = dem_state_get(whole, &g), e;
     err[0] = 0;
-    if ((e = agreed_msg(q, e, whole, err, len)))
+    if ((e = agreed_msg(q, got, whole, err, len))) {
+        if (!got) /* this rank's was got: another rank's failed */
+            dem_state_free(&g);
         return e;
+    }
     e = split_from(q, &g, err, len);
     dem_state_free(&g);
     return e;
 }
 
-/* the largest distance an own particle has moved since the split, over every rank */
+static double dist3(const double *a, const double *b)
+{
+    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* Over every rank: the largest distance an own particle has moved since the split, plus twice the longest move of
+ * the last step (the step to come drifts the particles before their forces: by about that much). A NaN counts as
+ * far. */
 static int moved(rr *q, double *most)
 {
-    double *x = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1)), m = 0;
+    double *x = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1)), m[2] = {0, 0}, out[2];
     int e = x ? dem_get_field(q->part, DEM_FIELD_X, x) : DEM_ERR_NOMEM;
     for (int k = 0; !e && k < q->nloc; k++)
         if (q->owner[k] == q->pub.rank) {
-            double dx = x[3 * k] - q->x0[3 * k], dy = x[3 * k + 1] - q->x0[3 * k + 1],
-                   dz = x[3 * k + 2] - q->x0[3 * k + 2], d = sqrt(dx * dx + dy * dy + dz * dz);
-            m = d > m || d != d ? d : m; /* a NaN counts as far */
+            double d = dist3(x + 3 * k, q->x0 + 3 * k), st = dist3(x + 3 * k, q->xprev + 3 * k);
+            m[0] = d > m[0] || d != d ? d : m[0];
+            m[1] = st > m[1] || st != st ? st : m[1];
         }
+    if (!e)
+        memcpy(q->xprev, x, sizeof(double) * 3 * (size_t)q->nloc);
     free(x);
-    if (m != m)
-        m = INFINITY;
-    MPI_Allreduce(&m, most, 1, MPI_DOUBLE, MPI_MAX, q->comm);
+    for (int k = 0; k < 2; k++)
+        m[k] = m[k] != m[k] ? INFINITY : m[k];
+    MPI_Allreduce(m, out, 2, MPI_DOUBLE, MPI_MAX, q->comm);
+    *most = out[0] + 2 * out[1];
     return e;
 }
 
@@ -307,10 +345,8 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         if (most > 0.5 * q->margin) { /* split anew: the whole state gathered, cut by the positions now */
             dem_state g;
             e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
-            if (e) {
-                snprintf(err, len, "%s", dem_error(q->part));
-                return e;
-            }
+            if (e)
+                return shared_error(q, e, err, len);
             drop_part(q);
             e = split_from(q, &g, err, len);
             dem_state_free(&g);
@@ -325,12 +361,11 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
                      q->fail_step);
             e = DEM_ERR_DEVICE;
         }
+        q->step = dem_step_index(q->part);
         if ((e = agreed_msg(q, e, q->part, err, len)))
             return e;
-        if ((e = dem_mpi_halo_exchange(&q->h))) {
-            snprintf(err, len, "%s", dem_error(q->part));
-            return e;
-        }
+        if ((e = dem_mpi_halo_exchange(&q->h)))
+            return shared_error(q, e, err, len);
         if (!wk)
             continue;
         int nw = walls ? q->nw : 0;
@@ -357,19 +392,17 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
     return 0;
 }
 
-static long step_index(run_ranks *r) { return dem_step_index(of(r)->part); }
+static long step_index(run_ranks *r) { return of(r)->step; }
 
 /* the whole run set to the parts' state: gathered, with the walls' sums merged from every rank's own particles */
-static int sync(run_ranks *r, dem_sim *whole, char *err, size_t len)
+static int sync_whole(run_ranks *r, dem_sim *whole, char *err, size_t len)
 {
     rr *q = of(r);
     dem_state g;
     err[0] = 0;
     int e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
-    if (e) {
-        snprintf(err, len, "%s", dem_error(q->part));
-        return e;
-    }
+    if (e)
+        return shared_error(q, e, err, len);
     int nw = (q->part->effects & DEM_EFFECT_WALLS) ? q->nw : 0;
     exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
     for (int a = 0; a < SE_STRIDE + WP_STRIDE * nw; a++)
@@ -434,7 +467,7 @@ int run_mpi(const run_opts *o)
     MPI_Comm_size(q.comm, &q.pub.size);
     q.pub.ctx = &q;
     q.pub.agree = agree, q.pub.agree_min = agree_min, q.pub.share = share, q.pub.start = start, q.pub.step = step;
-    q.pub.step_index = step_index, q.pub.sync = sync, q.pub.describe = describe, q.pub.finish = finish;
+    q.pub.step_index = step_index, q.pub.sync = sync_whole, q.pub.describe = describe, q.pub.finish = finish;
     q.fail_step = -1;
     const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */
     if (tf && sscanf(tf, "%ld %d", &q.fail_step, &q.fail_rank) != 2)
@@ -450,5 +483,9 @@ int run_mpi(const run_opts *o)
     fflush(NULL);
     MPI_Barrier(q.comm);
     MPI_Finalize();
+    if (code == 128 + SIGINT) { /* everything written: die of it, as one process does (run.c) */
+        signal(SIGINT, SIG_DFL);
+        raise(SIGINT);
+    }
     return code;
 }
