@@ -446,10 +446,13 @@ test: $(TEST_BIN) $(MPI_TEST_BIN) python-lib
 test-examples: $(BUILD)/dem
 	@bash tests/examples_check.sh
 
+# DEM_BENCH_ONLY=mpi: only the table of dem run split over MPI ranks (bench/mpi.sh); it comes last otherwise.
 bench: $(BUILD)/dem-bench $(BUILD)/dem
 	bash bench/peer/run.sh --bed
-	mkdir -p out; ./$(BUILD)/dem conform --device $${DEM_DEVICE:-0} > out/conform.txt; tail -1 out/conform.txt
-	DEM_BENCH_CONFORM=out/conform.txt ./$(BUILD)/dem-bench
+	if [ "$${DEM_BENCH_ONLY:-}" != mpi ]; then \
+	  mkdir -p out; ./$(BUILD)/dem conform --device $${DEM_DEVICE:-0} > out/conform.txt; tail -1 out/conform.txt; \
+	  DEM_BENCH_CONFORM=out/conform.txt ./$(BUILD)/dem-bench; fi
+	if [ -z "$${DEM_BENCH_ONLY:-}" ] || [ "$${DEM_BENCH_ONLY}" = mpi ]; then bash bench/mpi.sh; fi
 
 # Against a peer code: Debian's LIGGGHTS (installed with Open MPI on first use) and dem run on one bed of
 # 100 000 spheres, poured once and cached in out/peer/bed.csv; 2000 steps each; the floor forces must agree within

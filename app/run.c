@@ -828,7 +828,7 @@ static int phase_start(run_ctx *c)
     fprintf(stderr, "dem: %s: %d particles, %d walls, dt %.4g s, %ld steps, %s\n", c->sc->path, dem_count(c->s),
             dem_wall_count(c->s), run->dt, run->steps, c->R ? "split over MPI ranks" : dem_describe(c->s));
     if (c->R) {
-        char line[512];
+        char line[1024];
         c->R->describe(c->R, line, sizeof line);
         fprintf(stderr, "dem: %s\n", line);
     }
@@ -1168,7 +1168,7 @@ static void phase_report(run_ctx *c)
         if (!c->o->verbose || !dem_kernel_sequence(s, 1, seq, sizeof seq))
             seq[0] = 0;
         if (c->R) { /* the whole run did not step: its rebuilds and kernels are not the run's */
-            char line[512];
+            char line[1024];
             c->R->describe(c->R, line, sizeof line);
             fprintf(stderr, "dem: %s\n", line);
         } else

@@ -41,6 +41,10 @@ typedef struct {
     double domain[6];                                 /* the whole run's binning domain, given to every part */
     double *xprev, last_step;                         /* [3 nloc] positions before the last step; its longest move */
     long step;                                        /* the step the parts are at (also while none is held) */
+    /* this rank's time per part of the steps [s] and what it sent to other ranks' ghosts: the report's and make
+     * bench's (bench/mpi.sh) account of where a split run's time goes */
+    double t_step, t_halo, t_check, t_split, t_sums, sent;
+    long nsteps;
     long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK": that rank fails there */
     int fail_rank;
 } rr;
@@ -338,10 +342,12 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
     dem_sample *o = rows;
     err[0] = 0;
     for (long k = 0; k < nsteps; k++) {
-        double most = 0;
+        double most = 0, t0 = MPI_Wtime();
         int e = moved(q, &most);
         if ((e = agreed_msg(q, e, q->part, err, len)))
             return e;
+        double t1 = MPI_Wtime();
+        q->t_check += t1 - t0;
         if (most > 0.5 * q->margin) { /* split anew: the whole state gathered, cut by the positions now */
             dem_state g;
             e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
@@ -353,6 +359,8 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             if (e)
                 return e;
         }
+        double t2 = MPI_Wtime();
+        q->t_split += t2 - t1;
         int wk = want && want[k];
         dem_sample one;
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
@@ -362,10 +370,16 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             e = DEM_ERR_DEVICE;
         }
         q->step = dem_step_index(q->part);
+        double t3 = MPI_Wtime();
+        q->t_step += t3 - t2;
         if ((e = agreed_msg(q, e, q->part, err, len)))
             return e;
         if ((e = dem_mpi_halo_exchange(&q->h)))
             return shared_error(q, e, err, len);
+        double t4 = MPI_Wtime();
+        q->t_halo += t4 - t3;
+        q->sent += 15.0 * sizeof(double) * (double)q->h.nsend; /* 5 fields of 3 doubles per ghost (halo.c) */
+        q->nsteps++;
         if (!wk)
             continue;
         int nw = walls ? q->nw : 0;
@@ -388,6 +402,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             one.wall_normal[w] = rounded(q, &a[WP_FN]);
         }
         *o++ = one;
+        q->t_sums += MPI_Wtime() - t4;
     }
     return 0;
 }
@@ -435,6 +450,13 @@ static void describe(run_ranks *r, char *buf, size_t len)
                        "halo 2 r_max + %.3g m, split anew when a particle has moved %.3g m (%ld split%s so far, %ld changes of rank)",
              r->size, q->n, q->ghosts_sum, 100.0 * (double)q->ghosts_sum / (double)(q->n ? q->n : 1), q->margin,
              0.5 * q->margin, q->splits, q->splits == 1 ? "" : "s", q->moves);
+    if (q->nsteps > 0) {
+        double k = 1e3 / (double)q->nsteps;
+        size_t at = strlen(buf);
+        snprintf(buf + at, len - at, "; rank 0 per step: its part's step %.3g ms, ghost exchange %.3g ms (%.4g kB "
+                 "sent), check of the moves %.3g ms, merged sums %.3g ms, splits anew %.3g ms", k * q->t_step,
+                 k * q->t_halo, q->sent / (double)q->nsteps / 1e3, k * q->t_check, k * q->t_sums, k * q->t_split);
+    }
 }
 
 static void finish(run_ranks *r)

@@ -17,11 +17,7 @@ cd "$(dirname "$0")/.."
 ROOT=$PWD
 DEM=$ROOT/build/dem
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 POCL_CPU_MAX_CU_COUNT=1 POCL_MAX_PTHREAD_COUNT=1
-PY=
-for p in python3 /usr/bin/python3; do
-    command -v "$p" >/dev/null && "$p" -c 'import h5py, numpy' 2>/dev/null && { PY=$p; break; }
-done
-[ -n "$PY" ] || { echo "mpi_run_check: no Python with h5py and numpy (scripts/install-deps.sh installs python3-h5py)" >&2; exit 1; }
+PY=$(scripts/find_python.sh h5py numpy) || exit 1 # the one rule of the tests (it says what is missing)
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 S=$ROOT/tests/scenes/restart_box.yaml
