@@ -299,8 +299,10 @@ static double dist3(const double *a, const double *b)
  * far. */
 static int moved(rr *q, double *most)
 {
-    double *x = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1)), m[2] = {0, 0}, out[2];
-    int e = x ? dem_get_field(q->part, DEM_FIELD_X, x) : DEM_ERR_NOMEM;
+    /* the positions as the last exchange left them (dem_mpi_halo: its field holds x first): no read of the device */
+    const double *x = q->h.field;
+    double m[2] = {0, 0}, out[2];
+    int e = x ? 0 : DEM_ERR_STATE;
     for (int k = 0; !e && k < q->nloc; k++)
         if (q->owner[k] == q->pub.rank) {
             double d = dist3(x + 3 * k, q->x0 + 3 * k), st = dist3(x + 3 * k, q->xprev + 3 * k);
@@ -309,7 +311,6 @@ static int moved(rr *q, double *most)
         }
     if (!e)
         memcpy(q->xprev, x, sizeof(double) * 3 * (size_t)q->nloc);
-    free(x);
     for (int k = 0; k < 2; k++)
         m[k] = m[k] != m[k] ? INFINITY : m[k];
     MPI_Allreduce(m, out, 2, MPI_DOUBLE, MPI_MAX, q->comm);

@@ -30,7 +30,9 @@ typedef struct {
     int nsend, nrecv;                       /* own particles other ranks hold as ghosts (with repeats), ghosts held */
     int *send_count, *send_displ, *send_id; /* per rank, its ghosts of ours, ascending global id: our local ids */
     int *recv_count, *recv_displ, *recv_id; /* per rank, our ghosts it owns, ascending global id: our local ids */
-    double *field, *sbuf, *rbuf;            /* scratch: one field, and the messages */
+    double *field, *sbuf, *rbuf;            /* the held particles' fields after the last exchange (3 n reals each:
+                                               position first, then velocity, spin, force, torque), and the
+                                               messages */
 } dem_mpi_halo;
 /* Sets up h for the started run s of n particles: gid[k] each one's global id (ascending in k, the order they were
  * added, so that the local stable ids keep the global order), owner[k] the rank that owns it. Collective over comm;
