@@ -137,7 +137,7 @@ static void checkpoint_note(char *buf, size_t len, const char *ckp, long ck_step
 }
 
 /* A rank other than 0 of a run over MPI ranks (run_scene_ranks) is quiet: its first message is held, and said
- * only where that rank alone failed (run_say_held). */
+ * only where that rank alone failed (run_scene_ranks). */
 static int run_quiet;
 static char run_held[8192];
 static int fail_with(int code, const char *msg)

@@ -6,8 +6,8 @@
  * (the walls' forces: sim_wall_sums_exact where a rank holds no ghosts, else the kept per-particle forces of its own
  * particles; the energies), the accumulators are merged, and every rank rounds the same integer to the same bits; a halo of ghost particles kept equal to their owners' after each step; and the
  * whole state gathered from the ranks' own particles and cut to a rank's part, which moves particles and their
- * contacts between ranks when the run is split anew. Not here yet: choosing the subdomains, the dem run driver
- * (docs/design.md "Runs over MPI"). */
+ * contacts between ranks when the run is split anew. `mpirun -np N dem run` (app/run_mpi.c) chooses the subdomains
+ * and drives these (docs/design.md "Runs over MPI"). */
 #ifndef DEM_MPI_H
 #define DEM_MPI_H
 #include <mpi.h>
