@@ -21,25 +21,17 @@ mkdir -p "$OUT"
 cp out/peer/bed.csv "$OUT/bed.csv"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 DT=2.0e-6
-ZHI=$(awk -F, '!/^#/ && NF >= 4 { z = $3 + $4; if (z > m) m = z } END { printf "%.6g", m + 0.01 }' "$OUT/bed.csv")
-cat >"$OUT/bed.yaml" <<EOF
-# make bench's MPI table (written by bench/mpi.sh): the poured bed of bed.csv (bench/peer/bed_pour.yaml), as poured
-name: bench mpi bed
-precision: fp64
-particle_order: input
-effects: [hertz, damping, friction, gravity, walls]
-materials:
-  - {name: grain, density: 2500, young: 5.0e6, poisson: 0.3, restitution: 0.3, friction: 0.5}
-particles:
-  - {material: grain, csv: bed.csv}
-gravity: [0, 0, -9.81]
-walls:
-  - {type: plane, name: floor, material: grain, point: [0, 0, 0], normal: [0, 0, 1]}
-  - {type: plane, name: x-, material: grain, point: [0, 0, 0], normal: [1, 0, 0]}
-  - {type: plane, name: x+, material: grain, point: [0.1, 0, 0], normal: [-1, 0, 0]}
-  - {type: plane, name: y-, material: grain, point: [0, 0, 0], normal: [0, 1, 0]}
-  - {type: plane, name: y+, material: grain, point: [0, 0.1, 0], normal: [0, -1, 0]}
-domain: {lo: [-0.005, -0.005, -0.005], hi: [0.105, 0.105, $ZHI]}
+# The scene: the pour's (bench/peer/bed_pour.yaml: materials, walls, domain) with the poured particles from bed.csv,
+# in their poured order, and this table's time and output
+{
+    echo "# written by bench/mpi.sh from bench/peer/bed_pour.yaml: its set-up, the poured particles, the table's steps"
+    awk '/^particles:/ { skip = 1; print "particles:"; print "  - {material: grain, csv: bed.csv}"; next }
+         /^time:/ { exit }
+         skip && /^[a-z]/ { skip = 0 }
+         !skip' bench/peer/bed_pour.yaml
+} >"$OUT/bed.yaml"
+cat >>"$OUT/bed.yaml" <<EOF
+# make bench's MPI table (bench/mpi.sh): the bed as poured, its grains overlapping by more than 1 % of a radius
 overlap_tolerance: 0.1
 time: {dt: $DT, duration: 1.0}
 output: {frame_every: 1.0, series_every: 1.0e-4, fields: [position, velocity]}
