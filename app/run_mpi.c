@@ -52,17 +52,8 @@ typedef struct {
 static rr *of(run_ranks *r) { return (rr *)r->ctx; }
 
 /* 0 when every code is 0, else the lowest of those that are not (dem_status codes are negative, exit statuses
- * positive: a rank's failure is never outvoted by another's 0) */
-static int agree(run_ranks *r, int code, int *who)
-{
-    int in = code ? code : INT_MAX, low = INT_MAX;
-    MPI_Allreduce(&in, &low, 1, MPI_INT, MPI_MIN, of(r)->comm);
-    int mine = code && code == low ? r->rank : r->size, first = r->size;
-    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, of(r)->comm);
-    if (who)
-        *who = low != INT_MAX ? first : -1;
-    return low != INT_MAX ? low : 0;
-}
+ * positive: a rank's failure is never outvoted by another's 0), and the first rank that had it */
+static int agree(run_ranks *r, int code, int *who) { return dem_mpi_agreed_who(of(r)->comm, code, who); }
 
 static long agree_min(run_ranks *r, long v)
 {
@@ -297,25 +288,23 @@ static double dist3(const double *a, const double *b)
 /* Over every rank: the largest distance an own particle has moved since the split, plus twice the longest move of
  * the last step (the step to come drifts the particles before their forces: by about that much). A NaN counts as
  * far. */
-static int moved(rr *q, double *most)
+static double moved(rr *q)
 {
-    /* the positions as the last exchange left them (dem_mpi_halo: its field holds x first): no read of the device */
+    /* the positions as the last exchange left them (dem_mpi_halo: its field holds x first; a halo set up has them):
+     * no read of the device, and nothing that can fail */
     const double *x = q->h.field;
     double m[2] = {0, 0}, out[2];
-    int e = x ? 0 : DEM_ERR_STATE;
-    for (int k = 0; !e && k < q->nloc; k++)
+    for (int k = 0; k < q->nloc; k++)
         if (q->owner[k] == q->pub.rank) {
             double d = dist3(x + 3 * k, q->x0 + 3 * k), st = dist3(x + 3 * k, q->xprev + 3 * k);
             m[0] = d > m[0] || d != d ? d : m[0];
             m[1] = st > m[1] || st != st ? st : m[1];
         }
-    if (!e)
-        memcpy(q->xprev, x, sizeof(double) * 3 * (size_t)q->nloc);
+    memcpy(q->xprev, x, sizeof(double) * 3 * (size_t)q->nloc);
     for (int k = 0; k < 2; k++)
         m[k] = m[k] != m[k] ? INFINITY : m[k];
     MPI_Allreduce(m, out, 2, MPI_DOUBLE, MPI_MAX, q->comm);
-    *most = out[0] + 2 * out[1];
-    return e;
+    return out[0] + 2 * out[1];
 }
 
 /* The exact sums of the last step merged over the ranks: the series row's (SE_*) and each wall's (WP_*), rounded
@@ -343,11 +332,8 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
     dem_sample *o = rows;
     err[0] = 0;
     for (long k = 0; k < nsteps; k++) {
-        double most = 0, t0 = MPI_Wtime();
-        int e = moved(q, &most);
-        if ((e = agreed_msg(q, e, q->part, err, len)))
-            return e;
-        double t1 = MPI_Wtime();
+        double t0 = MPI_Wtime(), most = moved(q), t1 = MPI_Wtime();
+        int e;
         q->t_check += t1 - t0;
         if (most > 0.5 * q->margin) { /* split anew: the whole state gathered, cut by the positions now */
             dem_state g;

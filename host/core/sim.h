@@ -194,8 +194,8 @@ int sim_set_field(dem_sim *s, dem_field f, const double *vals);
  * DEM_MOVE_G (groups of n items of per elements each: one per wall), DEM_MOVE_STAY (not by particle: the walls'
  * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */
 int sim_state_array_layout(const dem_sim *s, const char *name, int *per);
-/* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded, over every
- * particle the run holds: runs over MPI that hold disjoint particles merge them across ranks (host/mpi/dem_mpi.h) */
+/* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded, over the
+ * particles the run holds but its ghosts: the ranks of a split run merge them (host/mpi/dem_mpi.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
 /* part.c: a run of part of a scene (a rank's of a run split over MPI ranks), before dem_start: the particles kept
  * (keep[i] != 0, in their order; returns how many), and which of them are ghosts (copies of other ranks' particles:

@@ -154,9 +154,8 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
 
 /* Wall k's sums of the last step that made them (PARTIAL_MID is not saved: after dem_state_set, none until a step
  * makes them), before they are rounded: the merge of the tree's groups (common/wall_forces.h), acc[WP_FX..WP_FN],
- * over every particle the run holds. Runs that hold disjoint sets of particles merge these across ranks and round
- * once (host/mpi/dem_mpi.h) to the bits one process would give; a run that holds ghosts counts their walls too, so
- * its own particles' sums come from the kept per-particle forces for now (tests/test_mpi_halo.c). */
+ * over the particles the run holds but its ghosts (sim_set_ghosts). The ranks of a split run merge these and round
+ * once (host/mpi/dem_mpi.h) to the bits one process would give. */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
 {
     if (!s->run.started)

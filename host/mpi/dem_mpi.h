@@ -3,8 +3,8 @@
  *
  * What it holds so far: the exact sums (common/exact_sum.h) merged across the ranks of a communicator, the one
  * operation the run's global sums need whatever the decomposition - each rank sums its own particles' terms exactly
- * (the walls' forces: sim_wall_sums_exact where a rank holds no ghosts, else the kept per-particle forces of its own
- * particles; the energies), the accumulators are merged, and every rank rounds the same integer to the same bits; a halo of ghost particles kept equal to their owners' after each step; and the
+ * (the walls' forces: sim_wall_sums_exact, whose tree leaves a rank's ghosts out, sim_set_ghosts; the energies:
+ * sim_row_exact), the accumulators are merged, and every rank rounds the same integer to the same bits; a halo of ghost particles kept equal to their owners' after each step; and the
  * whole state gathered from the ranks' own particles and cut to a rank's part, which moves particles and their
  * contacts between ranks when the run is split anew. `mpirun -np N dem run` (app/run_mpi.c) chooses the subdomains
  * and drives these (docs/design.md "Runs over MPI"). */
@@ -49,12 +49,15 @@ void dem_mpi_halo_free(dem_mpi_halo *h);
 /* One verdict from every rank's code e (0 or a negative dem_status; an MPI error code counts as DEM_ERR_DEVICE): 0
  * when all are 0, else the lowest, on every rank, so that all ranks take the same branch. Collective. */
 int dem_mpi_agreed(MPI_Comm comm, int e);
+/* The same for codes of any sign (a dem_status, or `dem run`'s exit status): 0 when all are 0, else the lowest of
+ * those that are not, and *who (when not NULL) the lowest rank that had it, -1 when none failed. Collective. */
+int dem_mpi_agreed_who(MPI_Comm comm, int e, int *who);
 
 /* The whole state of a run split over the ranks of h, on every rank: what dem_state_get gives in one process whose
  * particles are those of global ids 0..nglobal-1 in that order (gid, owner: as given to dem_mpi_halo_init). Each
  * particle's arrays come from its owner, each contact from the owner of its lower id (whose rows held it since the
- * split: its history is right); the walls' sums (wall_force, wall_normal_force) are rank 0's, which counts its
- * ghosts' walls too. Not yet for MC-strain or patch contacts (DEM_ERR_ARG). Collective; frees nothing of h. */
+ * split: its history is right); the walls' sums (wall_force, wall_normal_force) are rank 0's (its own particles' where
+ * its ghosts are marked: the caller merges the ranks' and sets them, app/run_mpi.c). Not yet for MC-strain or patch contacts (DEM_ERR_ARG). Collective; frees nothing of h. */
 int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g);
 /* The part of a whole state g that keep[0..g->n) selects, its particles renumbered in ascending global id, with the
  * contacts of two kept particles: the state to dem_state_set into a rank's new run after a split (s: any started run

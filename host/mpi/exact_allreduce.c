@@ -1,5 +1,6 @@
 /* exact_allreduce.c - exact accumulators merged across MPI ranks (dem_mpi.h) */
 #include "dem_mpi.h"
+#include <limits.h>
 
 /* MPI's user operation: each accumulator of in merged into inout's, exactly */
 static void merge_op(void *in, void *inout, int *len, MPI_Datatype *type)
@@ -26,11 +27,23 @@ int dem_mpi_exact_allreduce(MPI_Comm comm, exact_acc *acc, int count)
     return e;
 }
 
+int dem_mpi_agreed_who(MPI_Comm comm, int e, int *who)
+{
+    /* one MPI_MINLOC over (code, rank), a 0 counted as the largest int: the lowest failing code and the lowest rank
+     * that had it */
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    struct {
+        int code, rank;
+    } in = {e ? e : INT_MAX, rank}, out = in;
+    MPI_Allreduce(&in, &out, 1, MPI_2INT, MPI_MINLOC, comm);
+    if (who)
+        *who = out.code != INT_MAX ? out.rank : -1;
+    return out.code != INT_MAX ? out.code : 0;
+}
+
 int dem_mpi_agreed(MPI_Comm comm, int e)
 {
-    /* a dem_status is negative, MPI's codes positive: an MPI failure counts as the device's (DEM_ERR_DEVICE); the
-     * lowest code wins, so any rank's failure is every rank's */
-    int mine = e > 0 ? DEM_ERR_DEVICE : e, all = mine;
-    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, comm);
-    return all;
+    /* a dem_status is negative, MPI's codes positive: an MPI failure counts as the device's (DEM_ERR_DEVICE) */
+    return dem_mpi_agreed_who(comm, e > 0 ? DEM_ERR_DEVICE : e, NULL);
 }
