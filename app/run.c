@@ -1062,7 +1062,7 @@ static int phase_steps(run_ctx *c)
         }
         if (st % run->frame_every == 0 || st == end) {
             io |= writer && output_frame(c->out, s);
-            if (!c->sc->f->membranes_count)
+            if (!c->sc->f->membranes_count && writer) /* over ranks: rank 0's whole run is the one brought up to date */
                 overlap_watch_sample(&c->ov, s);
         }
         for (long k = 0; writer && !io && k < nrows; k++) {

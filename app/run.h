@@ -27,7 +27,7 @@ int run_scene(const run_opts *o);
 /* A run split over MPI ranks (app/run_mpi.c, linked into dem with the MPI layer; docs/design.md "Runs over MPI"):
  * run.c drives it through these calls and needs no MPI itself. Every rank loads the scene and holds the whole run
  * as `whole`, started on the reference backend and never stepped: what the output, checkpoints and reports read,
- * brought up to date from the ranks' parts (sync) where they read it. The steps are the parts': each rank's dem_sim
+ * rank 0's brought up to date from the ranks' parts (sync) where they read it. The steps are the parts': each rank's dem_sim
  * holds the particles of its subdomain and, as ghosts, those of other ranks that can touch them. Rank 0 writes the
  * output and the checkpoints and prints; every other rank is quiet. Each call is collective. */
 typedef struct run_ranks run_ranks;
@@ -48,7 +48,7 @@ struct run_ranks {
     /* nsteps steps like dem_step_sampled, rows merged over the ranks (every rank gets them) */
     int (*step)(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len);
     long (*step_index)(run_ranks *r);
-    /* whole set to the parts' state */
+    /* rank 0's whole run set to the parts' state (the other ranks take part in the gather) */
     int (*sync)(run_ranks *r, dem_sim *whole, char *err, size_t len);
     /* a line on the split for the report (subdomains, ghosts, splits) */
     void (*describe)(run_ranks *r, char *buf, size_t len);

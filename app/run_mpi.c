@@ -396,7 +396,8 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
 
 static long step_index(run_ranks *r) { return of(r)->step; }
 
-/* the whole run set to the parts' state: gathered, with the walls' sums merged from every rank's own particles */
+/* the whole run set to the parts' state: gathered, with the walls' sums merged from every rank's own particles (on
+ * rank 0, the one that writes and reports; the others' whole run is not read) */
 static int sync_whole(run_ranks *r, dem_sim *whole, char *err, size_t len)
 {
     rr *q = of(r);
@@ -424,7 +425,7 @@ static int sync_whole(run_ranks *r, dem_sim *whole, char *err, size_t len)
         else if (wn)
             ((float *)wn->data)[w] = exact_to_float(&a[WP_FN]);
     }
-    if (!e && (e = dem_state_set(whole, &g)))
+    if (!e && r->rank == 0 && (e = dem_state_set(whole, &g))) /* rank 0 alone writes and reports from it */
         snprintf(err, len, "%s", dem_error(whole));
     dem_state_free(&g);
     return agreed_msg(q, e, NULL, err, len);
