@@ -911,11 +911,11 @@ static void stage_label(const scene *sc, int k, int st, char *buf, size_t len)
  * whose only stage is the settling pause are not logged. */
 static void stage_ends(run_ctx *c, int print)
 {
-    dem_sim *s = c->s;
-    long n = dem_stage_ends(s, 0, NULL);
+    dem_sim *s = c->s, *log = c->R ? c->R->stepped(c->R) : s; /* over ranks: the part's log (the same on each) */
+    long n = dem_stage_ends(log, 0, NULL);
     for (; c->stage_seen < n; c->stage_seen++) {
         dem_stage_end e;
-        dem_stage_ends(s, c->stage_seen, &e);
+        dem_stage_ends(log, c->stage_seen, &e);
         dem_wall w;
         if (!print || e.wall < 0 || dem_wall_get(s, e.wall, &w) || w.nstages <= (c->sc->f->time.settle > 0))
             continue;
@@ -1051,8 +1051,7 @@ static int phase_steps(run_ctx *c)
             return EXIT_RUN_FAILED;
         }
         st = run_step(c);
-        if (!R) /* split over ranks: the whole run does not step, and keeps no log of stage ends */
-            stage_ends(c, o->progress != 0);
+        stage_ends(c, o->progress != 0 && !run_quiet);
         int io = 0, ck_due = (run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end;
         errno = 0;
         if (R && (st % run->frame_every == 0 || ck_due) && R->sync(R, s, why, sizeof why)) {
@@ -1198,8 +1197,8 @@ static void phase_report(run_ctx *c)
                     mc.max, mc.unconverged, run->mc_cap);
     }
     for (int k = 0; k < dem_wall_count(s); k++) { /* servo stages: what force they held, and whether they chattered */
-        dem_servo_stats sv;
-        if (dem_servo_stats_get(s, k, &sv) || sv.stage < 0)
+        dem_servo_stats sv; /* over ranks: the part's record (the whole run did not step) */
+        if (dem_servo_stats_get(c->R ? c->R->stepped(c->R) : s, k, &sv) || sv.stage < 0)
             continue;
         char name[1100];
         scene_wall_label(c->sc, k, name, sizeof name);

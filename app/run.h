@@ -50,6 +50,9 @@ struct run_ranks {
     long (*step_index)(run_ranks *r);
     /* rank 0's whole run set to the parts' state (the other ranks take part in the gather) */
     int (*sync)(run_ranks *r, dem_sim *whole, char *err, size_t len);
+    /* this rank's part, the run that steps: what it records of the walls' stages (dem_stage_ends, from the start or
+     * restart on; dem_servo_stats_get) is the same on every rank and the one-process run's */
+    dem_sim *(*stepped)(run_ranks *r);
     /* a line on the split for the report (subdomains, ghosts, splits) */
     void (*describe)(run_ranks *r, char *buf, size_t len);
     void (*finish)(run_ranks *r);

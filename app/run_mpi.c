@@ -340,11 +340,14 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
             if (e)
                 return shared_error(q, e, err, len);
+            sim_wall_record rec; /* the servo stages' records and the stage ends go on in the next part */
+            sim_wall_record_get(q->part, &rec);
             drop_part(q);
             e = split_from(q, &g, err, len);
             dem_state_free(&g);
             if (e)
                 return e;
+            sim_wall_record_set(q->part, &rec);
         }
         double t2 = MPI_Wtime();
         q->t_split += t2 - t1;
@@ -395,6 +398,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
 }
 
 static long step_index(run_ranks *r) { return of(r)->step; }
+static dem_sim *stepped(run_ranks *r) { return of(r)->part; }
 
 /* the whole run set to the parts' state: gathered, with the walls' sums merged from every rank's own particles (on
  * rank 0, the one that writes and reports; the others' whole run is not read) */
@@ -477,7 +481,7 @@ int run_mpi(const run_opts *o)
     MPI_Comm_size(q.comm, &q.pub.size);
     q.pub.ctx = &q;
     q.pub.agree = agree, q.pub.agree_min = agree_min, q.pub.share = share, q.pub.start = start, q.pub.step = step;
-    q.pub.step_index = step_index, q.pub.sync = sync_whole, q.pub.describe = describe, q.pub.finish = finish;
+    q.pub.step_index = step_index, q.pub.stepped = stepped, q.pub.sync = sync_whole, q.pub.describe = describe, q.pub.finish = finish;
     q.fail_step = -1;
     const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */
     if (tf && sscanf(tf, "%ld %d", &q.fail_step, &q.fail_rank) != 2)

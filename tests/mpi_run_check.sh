@@ -9,8 +9,11 @@
 #     in one process, continued on 2 ranks: every continuation equals the one-process continuation.
 #  3. A rank that fails mid-run (DEM_TEST_RANK_FAIL: rank 1's step 200 fails as a lost device's would): every rank
 #     stops, non-zero, that rank's message once, no output file completed, nothing hangs.
-#  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks), a servo stage
-#     (tablet_3k); a scene error is said once.
+#  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks), a law whose
+#     per-particle state the halo does not carry yet (MC-stress on hydrogel_514); a scene error is said once.
+#  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
+#     and a servo): on 2 and 3 ranks, PoCL fp32 and the reference fp64, the output, the checkpoint and the report's
+#     stage ends and servo record equal to one process's.
 #  5. SIGTERM to mpirun: all ranks stop, the output completed and the checkpoint readable.
 set -u
 cd "$(dirname "$0")/.."
@@ -69,14 +72,15 @@ echo "== 4. refusals and errors, said once"
 mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'cannot be split over 3 ranks' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "more ranks than particles: exit $trc"; }
-mrun 2 run "$ROOT/scenes/tablet_3k.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
+mrun 2 run "$ROOT/scenes/hydrogel_514.yaml" -o "$T/t.h5" --quiet --model mc_stress --stop-after 5 >"$T/log" 2>&1
 trc=$?
-[ "$trc" = 65 ] && [ "$(grep -c 'servo' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a servo on 2 ranks: exit $trc"; }
+[ "$trc" = 65 ] && [ "$(grep -c 'does not take the effect mc_stress' "$T/log")" = 1 ] ||
+    { cat "$T/log" >&2; fail "MC-stress on 2 ranks: exit $trc, or not said once"; }
 sed 's/^effects:/effectz:/' "$S" >"$T/bad.yaml"
 mrun 2 run "$T/bad.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
-echo "   more ranks than particles, a servo, a misspelt key: exit 65, each said once"
+echo "   more ranks than particles, MC-stress, a misspelt key: exit 65, each said once"
 
 echo "== 5. SIGTERM to mpirun"
 sed 's/duration: 0.04}/duration: 5.0}/' "$S" >"$T/long.yaml"
@@ -96,4 +100,21 @@ grep -q "stopped by signal 15" "$T/log" && [ -e "$T/l.h5" ] && [ ! -e "$T/l.h5.p
 "$PY" -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f['series/time'].shape[0] > 1" "$T/l.h5" ||
     { fail "SIGTERM: the output has no rows"; ok=0; }
 [ $ok = 1 ] && echo "   stopped cleanly: output complete, checkpoint readable"
+
+echo "== 6. walls steered by their sums: until_force, until_density, a servo"
+L=$ROOT/tests/scenes/lid_stages.yaml
+report() { grep -E "ended at step|servo stage" "$1"; } # the stage ends and the servo's record
+for cfg in "opencl fp32" "reference fp64"; do
+    set -- $cfg
+    "$DEM" run "$L" -o "$T/one.h5" --progress --backend "$1" --precision "$2" >"$T/log1" 2>&1 || fail "one-process lid ($cfg)"
+    [ "$(report "$T/log1" | grep -c -E 'until_force|until_density|servo stage')" = 3 ] ||
+        { cat "$T/log1" >&2; fail "lid ($cfg): the stages did not end as the scene says"; }
+    for np in 2 3; do
+        mrun "$np" run "$L" -o "$T/n$np.h5" --progress --backend "$1" --precision "$2" >"$T/log" 2>&1 ||
+            { cat "$T/log" >&2; fail "lid on $np ranks ($cfg)"; }
+        same "$T/one.h5" "$T/n$np.h5" && same "$T/one.ckpt.h5" "$T/n$np.ckpt.h5" || fail "lid: $np ranks ($cfg) differ"
+        diff <(report "$T/log1") <(report "$T/log") >&2 || fail "lid: $np ranks ($cfg) report other stage ends"
+    done
+    echo "   $cfg, 2 and 3 ranks: output, checkpoint, stage ends and servo record equal"
+done
 exit $rc

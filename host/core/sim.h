@@ -140,6 +140,7 @@ struct dem_sim {
     int *mat;
     unsigned *pflags;
     unsigned char *ghost; /* per particle, 1: another rank's (sim_set_ghosts); NULL: none */
+    double whole_volume;  /* a part's (sim_keep_particles): the whole scene's spheres' volume [m^3]; 0: not a part */
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     double rmin, rmax;
@@ -197,6 +198,20 @@ int sim_state_array_layout(const dem_sim *s, const char *name, int *per);
 /* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded, over the
  * particles the run holds but its ghosts: the ranks of a split run merge them (host/mpi/dem_mpi.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
+/* walls.c: every wall's sums (DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE) set from exact ones,
+ * acc[WP_STRIDE * wall + WP_*], rounded as the device rounds them (common/wall_forces.h): what the ranks of a split
+ * run set after merging theirs, so that a servo or a stage's end reads the one-process force (host/mpi/halo.c) */
+int sim_wall_sums_set(dem_sim *s, const exact_acc *acc);
+/* part.c: what a run's walls record of the steps it took (each servo stage's record, the stage ends' log), carried
+ * from a rank's run to the run of its next part when a split run is split anew (app/run_mpi.c) */
+typedef struct {
+    dem_servo_stats servo[DEM_MAX_WALLS];
+    double servo_sum[DEM_MAX_WALLS], servo_err[DEM_MAX_WALLS];
+    dem_stage_end log[DEM_STAGE_LOG];
+    long log_n;
+} sim_wall_record;
+void sim_wall_record_get(const dem_sim *s, sim_wall_record *r);
+void sim_wall_record_set(dem_sim *s, const sim_wall_record *r);
 /* part.c: a run of part of a scene (a rank's of a run split over MPI ranks), before dem_start: the particles kept
  * (keep[i] != 0, in their order; returns how many), and which of them are ghosts (copies of other ranks' particles:
  * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */

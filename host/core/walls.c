@@ -171,6 +171,30 @@ int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
     return e;
 }
 
+int sim_wall_sums_set(dem_sim *s, const exact_acc *acc)
+{
+    if (!s->run.started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    int nw = s->nwalls, rs = s->setup.real_size;
+    unsigned char f[3 * DEM_MAX_WALLS * sizeof(double)], fn[DEM_MAX_WALLS * sizeof(double)];
+    for (int k = 0; k < nw; k++)
+        for (int q = 0; q < 4; q++) { /* WP_FX, WP_FY, WP_FZ into the force, WP_FN into the normal force */
+            const exact_acc *a = &acc[WP_STRIDE * k + (q < 3 ? WP_FX + q : WP_FN)];
+            unsigned char *to = q < 3 ? f + (size_t)(3 * k + q) * (size_t)rs : fn + (size_t)k * (size_t)rs;
+            if (rs == 8) {
+                double v = exact_to_double(a);
+                memcpy(to, &v, 8);
+            } else {
+                float v = exact_to_float(a);
+                memcpy(to, &v, 4);
+            }
+        }
+    if (nw && (dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_FORCE, f, (size_t)(3 * nw * rs)) ||
+               dem_stage_write_field(s->ops, s->be, DEM_FIELD_WALL_NORMAL_FORCE, fn, (size_t)(nw * rs))))
+        return sim_be_fail(s);
+    return 0;
+}
+
 int dem_wall_normal_force(dem_sim *s, int wall, double *fn)
 {
     if (wall < 0 || wall >= s->nwalls)
@@ -243,6 +267,8 @@ double sim_relative_density(const dem_sim *s, int k)
 
 double sim_particle_volume(const dem_sim *s)
 {
+    if (s->whole_volume > 0) /* a rank's part of a split run: the whole scene's (sim_keep_particles) */
+        return s->whole_volume;
     exact_acc sum; /* exact and rounded once: the same bits in any order or split of the spheres (exact_sum.h) */
     exact_clear(&sum);
     for (int i = 0; i < s->n; i++)

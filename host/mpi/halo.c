@@ -30,6 +30,8 @@ static int local_of(const long *gid, int n, long g)
     return lo < n && gid[lo] == g ? lo : -1;
 }
 
+static int exchange(dem_mpi_halo *h, int walls);
+
 /* a wall stage that ends at a relative density */
 static int until_density(const dem_sim *s)
 {
@@ -48,7 +50,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     MPI_Comm_size(comm, &h->size);
     int P = h->size, e = 0;
     /* what the halo does not carry yet: per-particle law state read by a ghost's partners (MDR's row, MC-stress's
-     * trace, MC-strain's displacements), membranes, and walls steered by their sums (each rank's would differ) */
+     * trace, MC-strain's displacements) and membranes */
     unsigned not_yet = DEM_EFFECT_MDR | DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
                        DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING | DEM_EFFECT_PATCHES;
     unsigned bad = s->effects & not_yet;
@@ -57,12 +59,9 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     else if (P > 1 && bad)
         e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take the effect %s yet (docs/design.md \"Runs over MPI\")",
                      P, dem_effect_name(__builtin_ctz(bad)));
-    else if (P > 1 && sim_has_servo(s))
-        e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take a servo or until_force stage yet (docs/design.md "
-                     "\"Runs over MPI\")", P);
-    else if (P > 1 && until_density(s)) /* the spheres' volume: each rank would count its own and its ghosts */
-        e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks does not take an until_density stage yet (docs/design.md "
-                     "\"Runs over MPI\")", P);
+    else if (P > 1 && until_density(s) && !(s->whole_volume > 0)) /* each rank would count its own spheres */
+        e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks takes an until_density stage only in a run cut with "
+                     "sim_keep_particles (the whole scene's volume)", P);
     if ((e = dem_mpi_agreed(comm, e)))
         return e;
     h->send_count = calloc((size_t)P, sizeof(int)), h->send_displ = calloc((size_t)P, sizeof(int));
@@ -123,12 +122,35 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     }
     if ((e = dem_mpi_agreed(comm, e)))
         dem_mpi_halo_free(h);
-    else /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step */
-        e = dem_mpi_halo_exchange(h);
+    else { /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step;
+            * the walls' sums are the state's (no step has made a rank's own since it was set) */
+        h->steer = P > 1 && sim_has_servo(s) && (s->effects & DEM_EFFECT_WALLS) && s->nwalls > 0;
+        e = exchange(h, 0);
+    }
     return e;
 }
 
-int dem_mpi_halo_exchange(dem_mpi_halo *h)
+/* Walls steered by their sums (a servo, a stage that ends at a force): each rank's exact sums of the step just taken
+ * (its own particles') merged, and the one-process force set in every rank's run before the next step reads it */
+static int walls_merged(dem_mpi_halo *h)
+{
+    dem_sim *s = h->s;
+    int nw = s->nwalls, e = 0;
+    exact_acc acc[WP_STRIDE * DEM_MAX_WALLS];
+    for (int k = 0; k < WP_STRIDE * nw; k++)
+        exact_clear(&acc[k]);
+    for (int k = 0; !e && k < nw; k++)
+        e = sim_wall_sums_exact(s, k, acc + WP_STRIDE * k);
+    if ((e = dem_mpi_agreed(h->comm, e)))
+        return e;
+    if (dem_mpi_exact_allreduce(h->comm, acc, WP_STRIDE * nw))
+        return dem_mpi_agreed(h->comm, DEM_ERR_DEVICE);
+    return dem_mpi_agreed(h->comm, sim_wall_sums_set(s, acc));
+}
+
+int dem_mpi_halo_exchange(dem_mpi_halo *h) { return exchange(h, h->steer); }
+
+static int exchange(dem_mpi_halo *h, int walls)
 {
     int P = h->size, e = 0, w = 3 * HALO_NF; /* reals per particle in the messages */
     size_t fw = 3 * (size_t)h->n;              /* reals of one field */
@@ -158,5 +180,7 @@ int dem_mpi_halo_exchange(dem_mpi_halo *h)
             memcpy(field + 3 * (size_t)h->recv_id[k], h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
         e = sim_set_field(h->s, halo_fields[f], field);
     }
-    return dem_mpi_agreed(h->comm, e);
+    if ((e = dem_mpi_agreed(h->comm, e)) || !walls)
+        return e;
+    return walls_merged(h);
 }
