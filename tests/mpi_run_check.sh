@@ -10,10 +10,12 @@
 #  3. A rank that fails mid-run (DEM_TEST_RANK_FAIL: rank 1's step 200 fails as a lost device's would): every rank
 #     stops, non-zero, that rank's message once, no output file completed, nothing hangs.
 #  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks), a law whose
-#     per-particle state the halo does not carry yet (MC-stress on hydrogel_514); a scene error is said once.
+#     per-particle state the halo does not carry yet (MC-strain on hydrogel_514); a scene error is said once.
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
 #     and a servo): on 2 and 3 ranks, PoCL fp32 and the reference fp64, the output, the checkpoint and the report's
 #     stage ends and servo record equal to one process's.
+#  7. MC-stress, whose pass 2 reads the traces of pass 1 at both ends of a contact (a ghost's from its owner, in the
+#     step): restart_box with beta 1.65, 2 and 3 ranks, PoCL fp32 and the reference fp64, equal to one process.
 #  5. SIGTERM to mpirun: all ranks stop, the output completed and the checkpoint readable.
 set -u
 cd "$(dirname "$0")/.."
@@ -72,25 +74,25 @@ echo "== 4. refusals and errors, said once"
 mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'cannot be split over 3 ranks' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "more ranks than particles: exit $trc"; }
-mrun 2 run "$ROOT/scenes/hydrogel_514.yaml" -o "$T/t.h5" --quiet --model mc_stress --stop-after 5 >"$T/log" 2>&1
+mrun 2 run "$ROOT/scenes/hydrogel_514.yaml" -o "$T/t.h5" --quiet --model mc_strain --stop-after 5 >"$T/log" 2>&1
 trc=$?
-[ "$trc" = 65 ] && [ "$(grep -c 'does not take the effect mc_stress' "$T/log")" = 1 ] ||
-    { cat "$T/log" >&2; fail "MC-stress on 2 ranks: exit $trc, or not said once"; }
+[ "$trc" = 65 ] && [ "$(grep -c 'does not take the effect mc_strain' "$T/log")" = 1 ] ||
+    { cat "$T/log" >&2; fail "MC-strain on 2 ranks: exit $trc, or not said once"; }
 sed 's/^effects:/effectz:/' "$S" >"$T/bad.yaml"
 mrun 2 run "$T/bad.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
-echo "   more ranks than particles, MC-stress, a misspelt key: exit 65, each said once"
+echo "   more ranks than particles, MC-strain, a misspelt key: exit 65, each said once"
 
 echo "== 5. SIGTERM to mpirun"
 sed 's/duration: 0.04}/duration: 5.0}/' "$S" >"$T/long.yaml"
-mpirun --oversubscribe --bind-to none -np 2 "$DEM" run "$T/long.yaml" -o "$T/l.h5" --quiet >"$T/log" 2>&1 &
+mpirun --oversubscribe --bind-to none -np 2 "$DEM" run "$T/long.yaml" -o "$T/l.h5" --progress >"$T/log" 2>&1 &
 pid=$! # mpirun itself, which forwards the signal to the ranks (no pkill: a bare root has no procps)
 # a hang ends the check; the guard ends soon after mpirun and holds none of our output
 (for k in $(seq 1 300); do sleep 1; kill -0 $pid 2>/dev/null || exit 0; done; kill -KILL $pid) >/dev/null 2>&1 &
 guard=$!
-for k in $(seq 1 600); do [ -e "$T/l.h5.part" ] && break; sleep 0.1; done
-sleep 2
+# stepping (its first progress line; a loaded machine can take seconds to start the parts), then the signal
+for k in $(seq 1 1200); do grep -q "^step [1-9]" "$T/log" && break; sleep 0.1; done
 kill -TERM $pid
 wait $pid
 kill $guard 2>/dev/null
@@ -116,5 +118,20 @@ for cfg in "opencl fp32" "reference fp64"; do
         diff <(report "$T/log1") <(report "$T/log") >&2 || fail "lid: $np ranks ($cfg) report other stage ends"
     done
     echo "   $cfg, 2 and 3 ranks: output, checkpoint, stage ends and servo record equal"
+done
+
+echo "== 7. MC-stress: the ghosts' traces from their owners within the step"
+sed 's/friction: 0.4}/friction: 0.4, beta: 1.65}/' "$S" >"$T/box_mcs.yaml"
+grep -q "beta: 1.65" "$T/box_mcs.yaml" || fail "MC-stress: restart_box.yaml's material line changed; give it a beta here"
+for cfg in "opencl fp32" "reference fp64"; do
+    set -- $cfg
+    "$DEM" run "$T/box_mcs.yaml" -o "$T/one.h5" --quiet --model mc_stress --backend "$1" --precision "$2" ||
+        fail "one-process MC-stress box ($cfg)"
+    for np in 2 3; do
+        mrun "$np" run "$T/box_mcs.yaml" -o "$T/n$np.h5" --quiet --model mc_stress --backend "$1" --precision "$2" ||
+            fail "MC-stress box on $np ranks ($cfg)"
+        same "$T/one.h5" "$T/n$np.h5" && same "$T/one.ckpt.h5" "$T/n$np.ckpt.h5" || fail "MC-stress: $np ranks ($cfg) differ"
+    done
+    echo "   $cfg, 2 and 3 ranks: output and checkpoint equal"
 done
 exit $rc

@@ -141,6 +141,11 @@ struct dem_sim {
     unsigned *pflags;
     unsigned char *ghost; /* per particle, 1: another rank's (sim_set_ghosts); NULL: none */
     double whole_volume;  /* a part's (sim_keep_particles): the whole scene's spheres' volume [m^3]; 0: not a part */
+    /* a part of a run split over ranks (host/mpi/halo.c): called after each force stage of an effect (gate) whose
+     * per-particle results the contacts read across the split (MC-stress's traces), to put the owners' values into
+     * the ghosts before the contacts read them. Collective on every rank; NULL in a run that is not split. */
+    int (*halo_hook)(dem_sim *s, void *ctx, unsigned gate);
+    void *halo_ctx;
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     double rmin, rmax;

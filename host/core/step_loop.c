@@ -132,6 +132,8 @@ static int forces(dem_sim *s)
     for (size_t k = 0; k < sizeof force_stages / sizeof force_stages[0]; k++)
         if (!force_stages[k].gate || (s->effects & force_stages[k].gate)) {
             int e = force_stages[k].run(s);
+            if (!e && s->halo_hook && force_stages[k].gate) /* split over ranks: the ghosts' values its owners' */
+                e = s->halo_hook(s, s->halo_ctx, force_stages[k].gate);
             if (e)
                 return e;
         }

@@ -10,6 +10,8 @@ static const dem_field halo_fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, D
 
 void dem_mpi_halo_free(dem_mpi_halo *h)
 {
+    if (h->s && h->s->halo_ctx == h)
+        h->s->halo_hook = NULL, h->s->halo_ctx = NULL;
     free(h->send_count), free(h->send_displ), free(h->send_id);
     free(h->recv_count), free(h->recv_displ), free(h->recv_id);
     free(h->field), free(h->sbuf), free(h->rbuf);
@@ -31,6 +33,7 @@ static int local_of(const long *gid, int n, long g)
 }
 
 static int exchange(dem_mpi_halo *h, int walls);
+static int mid_step(dem_sim *s, void *ctx, unsigned gate);
 
 /* a wall stage that ends at a relative density */
 static int until_density(const dem_sim *s)
@@ -51,7 +54,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     int P = h->size, e = 0;
     /* what the halo does not carry yet: per-particle law state read by a ghost's partners (MDR's row, MC-stress's
      * trace, MC-strain's displacements) and membranes */
-    unsigned not_yet = DEM_EFFECT_MDR | DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
+    unsigned not_yet = DEM_EFFECT_MDR | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
                        DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING | DEM_EFFECT_PATCHES;
     unsigned bad = s->effects & not_yet;
     if (!s->run.started)
@@ -126,8 +129,46 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
             * the walls' sums are the state's (no step has made a rank's own since it was set) */
         h->steer = P > 1 && sim_has_servo(s) && (s->effects & DEM_EFFECT_WALLS) && s->nwalls > 0;
         e = exchange(h, 0);
+        if (!e && P > 1 && (s->effects & DEM_EFFECT_MC_STRESS))
+            s->halo_hook = mid_step, s->halo_ctx = h;
     }
     return e;
+}
+
+/* The owners' values of one per-particle field of `width` reals into the ghosts, in the step (sim_set_field) */
+static int exchange_field(dem_mpi_halo *h, dem_field f, int width)
+{
+    int P = h->size, e = 0;
+    double *field = malloc(sizeof(double) * (size_t)width * ((size_t)h->n + 1));
+    int *sc = malloc(sizeof(int) * 4 * (size_t)P);
+    if (!field || !sc)
+        e = DEM_ERR_NOMEM;
+    if (!e && !(e = dem_get_field(h->s, f, field)))
+        for (int k = 0; k < h->nsend; k++)
+            memcpy(h->sbuf + (size_t)k * width, field + (size_t)width * h->send_id[k], sizeof(double) * width);
+    if ((e = dem_mpi_agreed(h->comm, e))) {
+        free(field), free(sc);
+        return e;
+    }
+    int *sd = sc + P, *rc = sd + P, *rd = rc + P;
+    for (int q = 0; q < P; q++)
+        sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
+        rd[q] = width * h->recv_displ[q];
+    e = MPI_Alltoallv(h->sbuf, sc, sd, MPI_DOUBLE, h->rbuf, rc, rd, MPI_DOUBLE, h->comm);
+    for (int k = 0; !e && k < h->nrecv; k++)
+        memcpy(field + (size_t)width * h->recv_id[k], h->rbuf + (size_t)k * width, sizeof(double) * width);
+    if (!e)
+        e = sim_set_field(h->s, f, field);
+    free(field), free(sc);
+    return dem_mpi_agreed(h->comm, e);
+}
+
+/* In the step, after a force stage (dem_sim.halo_hook): MC-stress's pass 1 gave each particle the trace of its
+ * contacts' stress, and a ghost's misses its partners outside the halo: its owner's, before pass 2 reads it */
+static int mid_step(dem_sim *s, void *ctx, unsigned gate)
+{
+    (void)s;
+    return gate == DEM_EFFECT_MC_STRESS ? exchange_field(ctx, DEM_FIELD_STRESS_TRACE, 1) : 0;
 }
 
 /* Walls steered by their sums (a servo, a stage that ends at a force): each rank's exact sums of the step just taken
