@@ -16,6 +16,11 @@
 #     stage ends and servo record equal to one process's.
 #  7. MC-stress, whose pass 2 reads the traces of pass 1 at both ends of a contact (a ghost's from its owner, in the
 #     step): restart_box with beta 1.65, 2 and 3 ranks, PoCL fp32 and the reference fp64, equal to one process.
+#  8. MDR, whose contacts read each particle's row (apparent radius, volumes, mean surface displacement: from the
+#     owner after mdr_surface and after each step): restart_box with 729 smaller spheres under MDR (yield 100 kPa,
+#     bulk_fraction 0.99 so that the bulk response, which reads the mean surface displacement, is on), the reference
+#     fp64 on 2 ranks and PoCL fp32 on 3 ranks with a thin halo (DEM_TEST_HALO_MARGIN=0.1: 2.1 r_max, hundreds of
+#     splits anew), equal to one process. Without either exchange of the rows it fails.
 #  5. SIGTERM to mpirun: all ranks stop, the output completed and the checkpoint readable.
 set -u
 cd "$(dirname "$0")/.."
@@ -133,5 +138,21 @@ for cfg in "opencl fp32" "reference fp64"; do
         same "$T/one.h5" "$T/n$np.h5" && same "$T/one.ckpt.h5" "$T/n$np.ckpt.h5" || fail "MC-stress: $np ranks ($cfg) differ"
     done
     echo "   $cfg, 2 and 3 ranks: output and checkpoint equal"
+done
+
+echo "== 8. MDR: the particles' rows from their owners, in the step and after it"
+sed -e 's/gravity, walls\]/gravity, walls, mdr]/' -e 's/radius_min: 0.0035,/radius_min: 0.0015,/' \
+    -e 's/radius_max: 0.0045,/radius_max: 0.002,/' \
+    -e 's/friction: 0.4}/friction: 0.4, yield_stress: 1.0e5, surface_energy: 0.5, bulk_fraction: 0.99, mdr_damping: 0.2}/' \
+    "$S" >"$T/box_mdr.yaml"
+[ "$(grep -c -E 'walls, mdr\]|radius_min: 0.0015|bulk_fraction: 0.99' "$T/box_mdr.yaml")" = 3 ] ||
+    fail "MDR: restart_box.yaml changed; set its MDR variant up here anew"
+for cfg in "reference fp64 2 1" "opencl fp32 3 0.1"; do
+    set -- $cfg
+    "$DEM" run "$T/box_mdr.yaml" -o "$T/one.h5" --quiet --backend "$1" --precision "$2" || fail "one-process MDR box ($cfg)"
+    DEM_TEST_HALO_MARGIN=$4 mrun "$3" run "$T/box_mdr.yaml" -o "$T/n.h5" --backend "$1" --precision "$2" >"$T/log" 2>&1 ||
+        { cat "$T/log" >&2; fail "MDR box on $3 ranks ($cfg)"; }
+    same "$T/one.h5" "$T/n.h5" && same "$T/one.ckpt.h5" "$T/n.ckpt.h5" || fail "MDR: $3 ranks ($cfg) differ"
+    echo "   $1 $2, $3 ranks, halo 2 r_max + $4 r_max: output and checkpoint equal; $(grep -o '[0-9]* splits so far, [0-9]* changes of rank' "$T/log" | tail -1)"
 done
 exit $rc

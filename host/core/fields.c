@@ -109,3 +109,62 @@ int sim_set_field(dem_sim *s, dem_field f, const double *vals)
     free(buf);
     return e;
 }
+
+/* A per-particle registry buffer of `width` reals per particle read whole (sim_rows_get) or written whole
+ * (sim_rows_set), as doubles in the callers' order: the rows of a buffer that has no public field (MDR's particle
+ * row), which a run split over ranks puts into its ghosts (host/mpi/halo.c) */
+static int rows_check(dem_sim *s, int id, int width)
+{
+    if (!s->run.started)
+        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+    size_t want = (size_t)width * (size_t)s->n * (size_t)s->setup.real_size;
+    if (DEM_CORE(s->be)->bytes[id] < want)
+        return sim_fail(s, DEM_ERR_ARG, "buffer %d holds %zu bytes, not %d reals per particle", id,
+                        DEM_CORE(s->be)->bytes[id], width);
+    return 0;
+}
+
+int sim_rows_get(dem_sim *s, int id, int width, double *dst)
+{
+    int e = rows_check(s, id, width), rs = s->setup.real_size;
+    if (e)
+        return e;
+    unsigned char *buf = sim_buffer_get(s, id, &e);
+    for (int i = 0; !e && i < s->n; i++)
+        for (int q = 0; q < width; q++) {
+            size_t at = (size_t)sim_dev(s, i) * (size_t)width + (size_t)q;
+            float f;
+            if (rs == 8)
+                memcpy(&dst[(size_t)i * width + q], buf + at * 8, 8);
+            else
+                memcpy(&f, buf + at * 4, 4), dst[(size_t)i * width + q] = f;
+        }
+    free(buf);
+    return e;
+}
+
+int sim_rows_set(dem_sim *s, int id, int width, const double *vals)
+{
+    int e = rows_check(s, id, width), rs = s->setup.real_size;
+    if (e)
+        return e;
+    size_t bytes = (size_t)width * (size_t)s->n * (size_t)rs;
+    unsigned char *buf = malloc(bytes ? bytes : 1);
+    if (!buf)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    for (int i = 0; i < s->n; i++)
+        for (int q = 0; q < width; q++) {
+            size_t at = (size_t)sim_dev(s, i) * (size_t)width + (size_t)q;
+            double v = vals[(size_t)i * width + q];
+            float f = (float)v; /* a value of an fp32 run, widened: the same number */
+            if (rs == 8)
+                memcpy(buf + at * 8, &v, 8);
+            else
+                memcpy(buf + at * 4, &f, 4);
+        }
+    e = bytes && s->ops->write(s->be, (dem_bufref){TABLE_ONE, id}, 0, buf, bytes, 1)
+            ? sim_fail(s, DEM_ERR_DEVICE, "%s", DEM_CORE(s->be)->err)
+            : 0;
+    free(buf);
+    return e;
+}

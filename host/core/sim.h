@@ -196,6 +196,11 @@ double sim_particle_volume(const dem_sim *s); /* walls.c: the spheres' volume, a
  * run's precision (a value of an fp32 run must be a float widened): what a run split over ranks writes back after
  * putting its owners' values into its ghosts' rows (host/mpi/halo.c) */
 int sim_set_field(dem_sim *s, dem_field f, const double *vals);
+/* fields.c: a per-particle registry buffer (BUF_*) of width reals per particle, whole, as doubles in the callers'
+ * order: read, or written (values of an fp32 run must be floats widened) - the rows without a public field that a
+ * run split over ranks puts into its ghosts (MDR's particle rows) */
+int sim_rows_get(dem_sim *s, int id, int width, double *dst);
+int sim_rows_set(dem_sim *s, int id, int width, const double *vals);
 /* state.c: how the saved array called name lies in a state of s's run: DEM_MOVE_P (per elements per particle),
  * DEM_MOVE_G (groups of n items of per elements each: one per wall), DEM_MOVE_STAY (not by particle: the walls'
  * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */

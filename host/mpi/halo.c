@@ -52,9 +52,9 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     MPI_Comm_rank(comm, &h->rank);
     MPI_Comm_size(comm, &h->size);
     int P = h->size, e = 0;
-    /* what the halo does not carry yet: per-particle law state read by a ghost's partners (MDR's row, MC-stress's
-     * trace, MC-strain's displacements) and membranes */
-    unsigned not_yet = DEM_EFFECT_MDR | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
+    /* what the halo does not carry yet: MC-strain's displacements (kept per contact, not per particle) and
+     * membranes */
+    unsigned not_yet = DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
                        DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING | DEM_EFFECT_PATCHES;
     unsigned bad = s->effects & not_yet;
     if (!s->run.started)
@@ -128,47 +128,56 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     else { /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step;
             * the walls' sums are the state's (no step has made a rank's own since it was set) */
         h->steer = P > 1 && sim_has_servo(s) && (s->effects & DEM_EFFECT_WALLS) && s->nwalls > 0;
+        h->mdr = P > 1 && (s->effects & DEM_EFFECT_MDR);
         e = exchange(h, 0);
-        if (!e && P > 1 && (s->effects & DEM_EFFECT_MC_STRESS))
+        if (!e && P > 1 && (s->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MDR)))
             s->halo_hook = mid_step, s->halo_ctx = h;
     }
     return e;
 }
 
-/* The owners' values of one per-particle field of `width` reals into the ghosts, in the step (sim_set_field) */
-static int exchange_field(dem_mpi_halo *h, dem_field f, int width)
+/* The owners' values of one per-particle field of `width` reals into the ghosts: a public field f (dem_get_field,
+ * sim_set_field), or with f < 0 the registry buffer buf (sim_rows_get, sim_rows_set). Collective. */
+static int exchange_field(dem_mpi_halo *h, int f, int buf, int width)
 {
     int P = h->size, e = 0;
     double *field = malloc(sizeof(double) * (size_t)width * ((size_t)h->n + 1));
+    double *sb = malloc(sizeof(double) * (size_t)width * ((size_t)h->nsend + 1));
+    double *rb = malloc(sizeof(double) * (size_t)width * ((size_t)h->nrecv + 1));
     int *sc = malloc(sizeof(int) * 4 * (size_t)P);
-    if (!field || !sc)
+    if (!field || !sb || !rb || !sc)
         e = DEM_ERR_NOMEM;
-    if (!e && !(e = dem_get_field(h->s, f, field)))
+    if (!e && !(e = f >= 0 ? dem_get_field(h->s, (dem_field)f, field) : sim_rows_get(h->s, buf, width, field)))
         for (int k = 0; k < h->nsend; k++)
-            memcpy(h->sbuf + (size_t)k * width, field + (size_t)width * h->send_id[k], sizeof(double) * width);
+            memcpy(sb + (size_t)k * width, field + (size_t)width * h->send_id[k], sizeof(double) * width);
     if ((e = dem_mpi_agreed(h->comm, e))) {
-        free(field), free(sc);
+        free(field), free(sb), free(rb), free(sc);
         return e;
     }
     int *sd = sc + P, *rc = sd + P, *rd = rc + P;
     for (int q = 0; q < P; q++)
         sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
         rd[q] = width * h->recv_displ[q];
-    e = MPI_Alltoallv(h->sbuf, sc, sd, MPI_DOUBLE, h->rbuf, rc, rd, MPI_DOUBLE, h->comm);
+    e = MPI_Alltoallv(sb, sc, sd, MPI_DOUBLE, rb, rc, rd, MPI_DOUBLE, h->comm);
     for (int k = 0; !e && k < h->nrecv; k++)
-        memcpy(field + (size_t)width * h->recv_id[k], h->rbuf + (size_t)k * width, sizeof(double) * width);
+        memcpy(field + (size_t)width * h->recv_id[k], rb + (size_t)k * width, sizeof(double) * width);
     if (!e)
-        e = sim_set_field(h->s, f, field);
-    free(field), free(sc);
+        e = f >= 0 ? sim_set_field(h->s, (dem_field)f, field) : sim_rows_set(h->s, buf, width, field);
+    free(field), free(sb), free(rb), free(sc);
     return dem_mpi_agreed(h->comm, e);
 }
 
-/* In the step, after a force stage (dem_sim.halo_hook): MC-stress's pass 1 gave each particle the trace of its
- * contacts' stress, and a ghost's misses its partners outside the halo: its owner's, before pass 2 reads it */
+/* In the step, after a force stage (dem_sim.halo_hook), what the contacts read of a ghost that its own stage got
+ * wrong (its partners outside the halo missing): its owner's. MC-stress's pass 1, each particle's stress trace; MDR's
+ * mdr_surface, each particle's row with its mean surface displacement (mdr_particle.h). */
 static int mid_step(dem_sim *s, void *ctx, unsigned gate)
 {
     (void)s;
-    return gate == DEM_EFFECT_MC_STRESS ? exchange_field(ctx, DEM_FIELD_STRESS_TRACE, 1) : 0;
+    if (gate == DEM_EFFECT_MC_STRESS)
+        return exchange_field(ctx, DEM_FIELD_STRESS_TRACE, -1, 1);
+    if (gate == DEM_EFFECT_MDR)
+        return exchange_field(ctx, -1, BUF_MDR_PART, MDR_P_STRIDE);
+    return 0;
 }
 
 /* Walls steered by their sums (a servo, a stage that ends at a force): each rank's exact sums of the step just taken
@@ -221,7 +230,10 @@ static int exchange(dem_mpi_halo *h, int walls)
             memcpy(field + 3 * (size_t)h->recv_id[k], h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
         e = sim_set_field(h->s, halo_fields[f], field);
     }
-    if ((e = dem_mpi_agreed(h->comm, e)) || !walls)
+    if ((e = dem_mpi_agreed(h->comm, e)))
         return e;
-    return walls_merged(h);
+    /* MDR: the row's sums the contacts left, which the next step's mdr_begin turns into volumes and a radius */
+    if (h->mdr && (e = exchange_field(h, -1, BUF_MDR_PART, MDR_P_STRIDE)))
+        return e;
+    return walls ? walls_merged(h) : 0;
 }
