@@ -201,7 +201,8 @@
     A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BIN, real, disp, MC_DISP)                   \
     A(BIN, real, wall_disp, MC_WALL_DISP) A(BOUT, real, fn, PAIR_MC_FN) A(BOUT, real, wall_fn, MC_WALL_FN)           \
     A(BOUT, int, flags, FLAGS) A(BIN, unsigned, ride, RIDE) A(BIN, int, nbr_lower, LOWER)                            \
-    A(BIN, int, own_start, OWN_START) A(BIN, int, in_start, IN_START) A(BIN, int, in_pair, IN_PAIR)
+    A(BIN, int, own_start, OWN_START) A(BIN, int, in_start, IN_START) A(BIN, int, in_pair, IN_PAIR)                  \
+    A(BIN, unsigned, ghost, GHOST)
 #define DEM_ITEMS_mc_strain_update n
 
 /* ---- springs.h ---- */

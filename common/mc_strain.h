@@ -212,7 +212,9 @@ DEM_ITEM(mc_strain_disp)
 /* The overlap the law sees (Eq. 8): mc_strain_overlap, laws/mc_strain.h */
 
 /* One iteration: the elastic normal force of every contact of particle i from the current displacements, into
- * fn (the pairs i owns) and wall_fn; raises FLAG_MC_PENDING if one moved by more than tol (relative). */
+ * fn (the pairs i owns) and wall_fn; raises FLAG_MC_PENDING if one moved by more than tol (relative). A run holding
+ * ghosts (DEM_HAS_GHOSTS: a rank's part of a split run) counts only the contacts of its own particles: a contact of
+ * two ghosts, or a ghost's wall, is its owners' to count (their ranks' flags are merged, host/mpi/halo.c). */
 DEM_INLINE int mc_changed(real fnew, real fold, real tol)
 {
     real d = fnew > fold ? fnew - fold : fold - fnew;
@@ -241,7 +243,8 @@ DEM_ITEM(mc_strain_update)
                 f = mc_strain_elastic(pairmat + PM_STRIDE * (mi * nmat + mat[j]), g.rstar,
                                       mc_strain_overlap(g.delta, disp[slot], disp[m]), (real)0);
             int p = row_pair(i, j, c, hc, own, in, in_pair);
-            changed |= mc_changed(f, fn[p], tol);
+            if (!((fx & DEM_HAS_GHOSTS) && ghost[i] && ghost[j]))
+                changed |= mc_changed(f, fn[p], tol);
             fn[p] = f;
         } else if (r.kind == CONTACT_WALL) {
             int k = r.partner;
@@ -249,7 +252,8 @@ DEM_ITEM(mc_strain_update)
             if (g.active)
                 f = mc_strain_elastic(pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]), ri,
                                       mc_strain_overlap(g.delta, wall_disp[r.slot], (real)0), (real)0);
-            changed |= mc_changed(f, wall_fn[r.slot], tol);
+            if (!((fx & DEM_HAS_GHOSTS) && ghost[i]))
+                changed |= mc_changed(f, wall_fn[r.slot], tol);
             wall_fn[r.slot] = f;
         }
     }

@@ -21,6 +21,12 @@
 #     bulk_fraction 0.99 so that the bulk response, which reads the mean surface displacement, is on), the reference
 #     fp64 on 2 ranks and PoCL fp32 on 3 ranks with a thin halo (DEM_TEST_HALO_MARGIN=0.1: 2.1 r_max, hundreds of
 #     splits anew), equal to one process. Without either exchange of the rows it fails.
+#  9. MC-strain, lagged and iterated: the induced displacements of a ghost's contacts with own particles from the
+#     ghost's owner after each evaluation, the convergence decided over every rank's own contacts (a run with ghosts
+#     counts no contact of two ghosts). restart_box with 729 smaller spheres and gamma 1.12: lagged on 2 ranks
+#     (reference fp64), iterated on 3 ranks (PoCL fp32), equal to one process with the same iteration count; the
+#     iterated run stopped at step 700 on 2 ranks continues in one process as the one-process run does. Without the
+#     exchange, or with ghost pairs counted in the test, it fails.
 #  5. SIGTERM to mpirun: all ranks stop, the output completed and the checkpoint readable.
 set -u
 cd "$(dirname "$0")/.."
@@ -155,4 +161,26 @@ for cfg in "reference fp64 2 1" "opencl fp32 3 0.1"; do
     same "$T/one.h5" "$T/n.h5" && same "$T/one.ckpt.h5" "$T/n.ckpt.h5" || fail "MDR: $3 ranks ($cfg) differ"
     echo "   $1 $2, $3 ranks, halo 2 r_max + $4 r_max: output and checkpoint equal; $(grep -o '[0-9]* splits so far, [0-9]* changes of rank' "$T/log" | tail -1)"
 done
+
+echo "== 9. MC-strain, lagged and iterated: the ghosts' displacements, the convergence over every rank"
+sed -e 's/friction: 0.4}/friction: 0.4, gamma: 1.12}/' -e 's/radius_min: 0.0035,/radius_min: 0.0015,/' \
+    -e 's/radius_max: 0.0045,/radius_max: 0.002,/' "$S" >"$T/box_mcs.yaml"
+iters() { grep -o "MC-strain iterations: [0-9]*" "$1"; }
+for cfg in "reference fp64 2 mc_strain" "opencl fp32 3 mc_strain_iterated"; do
+    set -- $cfg
+    "$DEM" run "$T/box_mcs.yaml" -o "$T/one.h5" --progress --backend "$1" --precision "$2" --model "$4" >"$T/log1" 2>&1 ||
+        fail "one-process MC-strain box ($cfg)"
+    mrun "$3" run "$T/box_mcs.yaml" -o "$T/n.h5" --progress --backend "$1" --precision "$2" --model "$4" >"$T/log" 2>&1 ||
+        { cat "$T/log" >&2; fail "MC-strain box on $3 ranks ($cfg)"; }
+    same "$T/one.h5" "$T/n.h5" && same "$T/one.ckpt.h5" "$T/n.ckpt.h5" || fail "MC-strain: $3 ranks ($cfg) differ"
+    [ "$(iters "$T/log1")" = "$(iters "$T/log")" ] || fail "MC-strain ($cfg): $(iters "$T/log1") in one process, $(iters "$T/log") on $3 ranks"
+    echo "   $4 $1 $2, $3 ranks: output and checkpoint equal; $(iters "$T/log" | sed 's/.*: \(.*\)/\1 iterations in both/'); $(grep -o '[0-9]* changes of rank' "$T/log" | tail -1)"
+done
+"$DEM" run "$T/box_mcs.yaml" -o "$T/a1.h5" --quiet --model mc_strain_iterated --stop-after 700 &&
+    "$DEM" run --restart "$T/a1.ckpt.h5" -o "$T/b1.h5" --quiet || fail "MC-strain: one-process stop and continuation"
+mrun 2 run "$T/box_mcs.yaml" -o "$T/a2.h5" --quiet --model mc_strain_iterated --stop-after 700 &&
+    "$DEM" run --restart "$T/a2.ckpt.h5" -o "$T/b21.h5" --quiet || fail "MC-strain: 2 ranks, then one process"
+same "$T/a1.ckpt.h5" "$T/a2.ckpt.h5" && same "$T/b1.h5" "$T/b21.h5" && same "$T/b1.ckpt.h5" "$T/b21.ckpt.h5" ||
+    fail "MC-strain: stopped on 2 ranks, continued in one process: not the one-process continuation"
+echo "   iterated, stopped at step 700 on 2 ranks and continued in one process: equal to one process's"
 exit $rc

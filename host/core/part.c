@@ -3,6 +3,7 @@
  * so that the walls' sums count its own particles only (common/wall_forces.h) and so do the series rows' sums
  * (host/physics/energy.c). Nothing here changes a run that does not call it. */
 #include "sim.h"
+#include "dem_layout.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,4 +72,86 @@ void sim_wall_record_set(dem_sim *s, const sim_wall_record *r)
     memcpy(s->motion.servo_err, r->servo_err, sizeof r->servo_err);
     memcpy(s->motion.stage_log, r->log, sizeof r->log);
     s->motion.stage_log_n = r->log_n;
+}
+
+/* a stored field read whole (storage order) */
+static void *stored(dem_sim *s, dem_field f, size_t *bytes, int *e)
+{
+    *bytes = sim_stored_bytes(s, f);
+    void *p = malloc(*bytes ? *bytes : 1);
+    if (!p && !*e)
+        *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    if (p && !*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
+        *e = sim_be_fail(s);
+    return p;
+}
+
+int sim_mc_disp_get(dem_sim *s, long *count, int **pi, int **pj, double **d)
+{
+    *count = 0, *pi = *pj = NULL, *d = NULL;
+    if (!s->run.started || !(s->setup.effects & DEM_EFFECT_MC_STRAIN))
+        return sim_fail(s, DEM_ERR_STATE, "sim_mc_disp_get: a started MC-strain run");
+    int e = 0, rs = s->setup.real_size;
+    size_t b;
+    int *cnt = stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *mcd = stored(s, DEM_FIELD_MC_DISP, &b, &e);
+    long m = 0;
+    for (int i = 0; !e && i < s->n; i++)
+        m += cnt[i];
+    if (!e) {
+        *pi = malloc(sizeof(int) * (size_t)(m + 1)), *pj = malloc(sizeof(int) * (size_t)(m + 1));
+        *d = malloc(sizeof(double) * (size_t)(m + 1));
+        if (!*pi || !*pj || !*d)
+            e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    for (int i = 0; !e && i < s->n; i++)
+        for (int k = 0; k < cnt[i]; k++) {
+            size_t slot = (size_t)start[i] + (size_t)k;
+            float f;
+            (*pi)[*count] = sim_api(s, i), (*pj)[*count] = sim_api(s, list[slot]);
+            if (rs == 8)
+                memcpy(&(*d)[*count], mcd + slot * 8, 8);
+            else
+                memcpy(&f, mcd + slot * 4, 4), (*d)[*count] = f;
+            (*count)++;
+        }
+    free(cnt), free(list), free(start), free(mcd);
+    if (e) {
+        free(*pi), free(*pj), free(*d);
+        *pi = *pj = NULL, *d = NULL, *count = 0;
+    }
+    return e;
+}
+
+int sim_mc_disp_set(dem_sim *s, long count, const int *pi, const int *pj, const double *d)
+{
+    if (!s->run.started || !(s->setup.effects & DEM_EFFECT_MC_STRAIN))
+        return sim_fail(s, DEM_ERR_STATE, "sim_mc_disp_set: a started MC-strain run");
+    int e = 0, rs = s->setup.real_size;
+    size_t b, bytes;
+    int *cnt = stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *mcd = stored(s, DEM_FIELD_MC_DISP, &bytes, &e);
+    for (long q = 0; !e && q < count; q++) {
+        if (pi[q] < 0 || pi[q] >= s->n || pj[q] < 0 || pj[q] >= s->n) {
+            e = sim_fail(s, DEM_ERR_ARG, "sim_mc_disp_set: no particle %d or %d", pi[q], pj[q]);
+            break;
+        }
+        int i = sim_dev(s, pi[q]), j = sim_dev(s, pj[q]);
+        for (int k = 0; k < cnt[i]; k++) /* its row is short: a scan */
+            if (list[start[i] + k] == j) {
+                size_t slot = (size_t)start[i] + (size_t)k;
+                float f = (float)d[q]; /* an fp32 run's value, widened: the same number */
+                if (rs == 8)
+                    memcpy(mcd + slot * 8, &d[q], 8);
+                else
+                    memcpy(mcd + slot * 4, &f, 4);
+                break;
+            }
+    }
+    if (!e && bytes && dem_stage_write_field(s->ops, s->be, DEM_FIELD_MC_DISP, mcd, bytes))
+        e = sim_be_fail(s);
+    free(cnt), free(list), free(start), free(mcd);
+    return e;
 }

@@ -141,10 +141,10 @@ struct dem_sim {
     unsigned *pflags;
     unsigned char *ghost; /* per particle, 1: another rank's (sim_set_ghosts); NULL: none */
     double whole_volume;  /* a part's (sim_keep_particles): the whole scene's spheres' volume [m^3]; 0: not a part */
-    /* a part of a run split over ranks (host/mpi/halo.c): called after each force stage of an effect (gate) whose
-     * per-particle results the contacts read across the split (MC-stress's traces), to put the owners' values into
-     * the ghosts before the contacts read them. Collective on every rank; NULL in a run that is not split. */
-    int (*halo_hook)(dem_sim *s, void *ctx, unsigned gate);
+    /* a part of a run split over ranks (host/mpi/halo.c): called within the step where a value its ghosts got wrong
+     * (their partners outside the halo missing) is about to be read, to put the owners' values into them, or where a
+     * decision needs every rank's view (sim_hook_event). Collective on every rank; NULL in a run that is not split. */
+    int (*halo_hook)(dem_sim *s, void *ctx, int event, int *value);
     void *halo_ctx;
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
@@ -201,6 +201,16 @@ int sim_set_field(dem_sim *s, dem_field f, const double *vals);
  * run split over ranks puts into its ghosts (MDR's particle rows) */
 int sim_rows_get(dem_sim *s, int id, int width, double *dst);
 int sim_rows_set(dem_sim *s, int id, int width, const double *vals);
+/* The points of a step where dem_sim.halo_hook is called: after a force stage of an effect (*value: its gate; MC-stress's
+ * traces, MDR's rows), after each evaluation of MC-strain's displacements, and at MC-strain's convergence test (*value:
+ * this rank's "a force still moved", replaced by the run's) */
+enum { SIM_HOOK_STAGE = 0, SIM_HOOK_MC_DISP = 1, SIM_HOOK_MC_PENDING = 2 };
+/* part.c: MC-strain's displacements, kept per row slot (D_i,c: particle i's at its contact with partner j, mc_strain.h),
+ * as a list in the callers' ids: sim_mc_disp_get gives every row slot's (i, j, D) (arrays malloc'd, *count long);
+ * sim_mc_disp_set writes the entries given, skipping a pair no row holds. What a run split over ranks puts into its
+ * ghosts' slots from their owners (host/mpi/halo.c). */
+int sim_mc_disp_get(dem_sim *s, long *count, int **pi, int **pj, double **d);
+int sim_mc_disp_set(dem_sim *s, long count, const int *pi, const int *pj, const double *d);
 /* state.c: how the saved array called name lies in a state of s's run: DEM_MOVE_P (per elements per particle),
  * DEM_MOVE_G (groups of n items of per elements each: one per wall), DEM_MOVE_STAY (not by particle: the walls'
  * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */

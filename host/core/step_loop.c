@@ -24,13 +24,21 @@ static double pressure_at(const dem_sim *s, double t)
     return from;
 }
 
+/* a run split over ranks (dem_sim.halo_hook): the ghosts' values, or a decision, made the run's */
+static int halo(dem_sim *s, int event, int *value)
+{
+    return s->halo_hook ? s->halo_hook(s, s->halo_ctx, event, value) : 0;
+}
+
 /* MC-strain before the contact pass: displacements from the stored forces (lagged), or iterated to the tolerance. */
 static int mc_strain(dem_sim *s)
 {
     long it = 0;
-    int converged = 0;
+    int converged = 0, e;
     if (dem_launch(s->ops, s->be, K_mc_strain_disp))
         return sim_be_fail(s);
+    if ((e = halo(s, SIM_HOOK_MC_DISP, NULL)))
+        return e;
     while (it < s->mc.max_iter) {
         int flags[FLAG_COUNT];
         if (sim_read_flags(s, flags))
@@ -39,9 +47,13 @@ static int mc_strain(dem_sim *s)
         if (dem_stage_write_field(s->ops, s->be, DEM_FIELD_FLAGS, flags, sizeof flags) || dem_stage_mc_strain_update(s->ops, s->be, s->mc.tol) ||
             dem_launch(s->ops, s->be, K_mc_strain_disp))
             return sim_be_fail(s);
+        if ((e = halo(s, SIM_HOOK_MC_DISP, NULL)))
+            return e;
         it++;
         if (sim_read_flags(s, flags))
             return DEM_ERR_DEVICE;
+        if ((e = halo(s, SIM_HOOK_MC_PENDING, &flags[FLAG_MC_PENDING])))
+            return e;
         if (!flags[FLAG_MC_PENDING]) {
             converged = 1;
             break;
@@ -131,9 +143,9 @@ static int forces(dem_sim *s)
 {
     for (size_t k = 0; k < sizeof force_stages / sizeof force_stages[0]; k++)
         if (!force_stages[k].gate || (s->effects & force_stages[k].gate)) {
-            int e = force_stages[k].run(s);
-            if (!e && s->halo_hook && force_stages[k].gate) /* split over ranks: the ghosts' values its owners' */
-                e = s->halo_hook(s, s->halo_ctx, force_stages[k].gate);
+            int e = force_stages[k].run(s), gate = (int)force_stages[k].gate;
+            if (!e && gate) /* split over ranks: the ghosts' values their owners' */
+                e = halo(s, SIM_HOOK_STAGE, &gate);
             if (e)
                 return e;
         }

@@ -36,6 +36,8 @@ typedef struct {
     int steer;                              /* walls steered by their sums (a servo, an until_force stage): the
                                                ranks' sums merged after each step (dem_mpi_halo_exchange) */
     int mdr;                                /* MDR: each particle's row (mdr_particle.h) exchanged too */
+    long *gid;                              /* [n]: each held particle's global id (as given to dem_mpi_halo_init) */
+    int *owner;                             /* [n]: its rank */
 } dem_mpi_halo;
 /* Sets up h for the started run s of n particles: gid[k] each one's global id (ascending in k, the order they were
  * added, so that the local stable ids keep the global order), owner[k] the rank that owns it. Collective over comm;
@@ -68,7 +70,7 @@ int dem_mpi_agreed_who(MPI_Comm comm, int e, int *who);
  * particles are those of global ids 0..nglobal-1 in that order (gid, owner: as given to dem_mpi_halo_init). Each
  * particle's arrays come from its owner, each contact from the owner of its lower id (whose rows held it since the
  * split: its history is right); the walls' sums (wall_force, wall_normal_force) are rank 0's (its own particles' where
- * its ghosts are marked: the caller merges the ranks' and sets them, app/run_mpi.c). Not yet for MC-strain or patch contacts (DEM_ERR_ARG). Collective; frees nothing of h. */
+ * its ghosts are marked: the caller merges the ranks' and sets them, app/run_mpi.c). Not yet for patch contacts (DEM_ERR_ARG). Collective; frees nothing of h. */
 int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g);
 /* The part of a whole state g that keep[0..g->n) selects, its particles renumbered in ascending global id, with the
  * contacts of two kept particles: the state to dem_state_set into a rank's new run after a split (s: any started run

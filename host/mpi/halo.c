@@ -15,6 +15,7 @@ void dem_mpi_halo_free(dem_mpi_halo *h)
     free(h->send_count), free(h->send_displ), free(h->send_id);
     free(h->recv_count), free(h->recv_displ), free(h->recv_id);
     free(h->field), free(h->sbuf), free(h->rbuf);
+    free(h->gid), free(h->owner);
     memset(h, 0, sizeof *h);
 }
 
@@ -33,7 +34,8 @@ static int local_of(const long *gid, int n, long g)
 }
 
 static int exchange(dem_mpi_halo *h, int walls);
-static int mid_step(dem_sim *s, void *ctx, unsigned gate);
+static int mid_step(dem_sim *s, void *ctx, int event, int *value);
+static int local_of(const long *gid, int n, long g);
 
 /* a wall stage that ends at a relative density */
 static int until_density(const dem_sim *s)
@@ -52,9 +54,8 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     MPI_Comm_rank(comm, &h->rank);
     MPI_Comm_size(comm, &h->size);
     int P = h->size, e = 0;
-    /* what the halo does not carry yet: MC-strain's displacements (kept per contact, not per particle) and
-     * membranes */
-    unsigned not_yet = DEM_EFFECT_MC_STRAIN | DEM_EFFECT_SPRINGS |
+    /* what the halo does not carry yet: membranes */
+    unsigned not_yet = DEM_EFFECT_SPRINGS |
                        DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING | DEM_EFFECT_PATCHES;
     unsigned bad = s->effects & not_yet;
     if (!s->run.started)
@@ -118,10 +119,13 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     }
     free(want), free(asked);
     if (!e) {
+        h->gid = malloc(sizeof(long) * ((size_t)n + 1)), h->owner = malloc(sizeof(int) * ((size_t)n + 1));
+        if (h->gid && h->owner)
+            memcpy(h->gid, gid, sizeof(long) * (size_t)n), memcpy(h->owner, owner, sizeof(int) * (size_t)n);
         h->field = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)n + 1));
         h->sbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nsend + 1));
         h->rbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nrecv + 1));
-        e = h->field && h->sbuf && h->rbuf ? 0 : DEM_ERR_NOMEM;
+        e = h->field && h->sbuf && h->rbuf && h->gid && h->owner ? 0 : DEM_ERR_NOMEM;
     }
     if ((e = dem_mpi_agreed(comm, e)))
         dem_mpi_halo_free(h);
@@ -130,7 +134,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         h->steer = P > 1 && sim_has_servo(s) && (s->effects & DEM_EFFECT_WALLS) && s->nwalls > 0;
         h->mdr = P > 1 && (s->effects & DEM_EFFECT_MDR);
         e = exchange(h, 0);
-        if (!e && P > 1 && (s->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MDR)))
+        if (!e && P > 1 && (s->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MDR | DEM_EFFECT_MC_STRAIN)))
             s->halo_hook = mid_step, s->halo_ctx = h;
     }
     return e;
@@ -167,16 +171,94 @@ static int exchange_field(dem_mpi_halo *h, int f, int buf, int width)
     return dem_mpi_agreed(h->comm, e);
 }
 
-/* In the step, after a force stage (dem_sim.halo_hook), what the contacts read of a ghost that its own stage got
- * wrong (its partners outside the halo missing): its owner's. MC-stress's pass 1, each particle's stress trace; MDR's
- * mdr_surface, each particle's row with its mean surface displacement (mdr_particle.h). */
-static int mid_step(dem_sim *s, void *ctx, unsigned gate)
+/* MC-strain's displacements of the ghosts' contacts with our own particles, from their owners. A rank sends, for
+ * each of its own particles i that another rank q holds as a ghost, D_i,c of i's contacts c with q's own particles
+ * (each touching one is in i's row here: it is in our halo), as (global i, global j, D); q writes them into its
+ * ghost i's row slots (sim_mc_disp_set). A contact of two ghosts is left as it is: no own particle reads it. */
+static int mc_disp_exchange(dem_mpi_halo *h)
+{
+    int P = h->size, e = 0, *pi = NULL, *pj = NULL, *ri = NULL, *rj = NULL;
+    long m = 0;
+    double *d = NULL, *sb = NULL, *rb = NULL;
+    int *cnt = calloc((size_t)(4 * P), sizeof(int)), *dsp = cnt + P, *rcnt = dsp + P, *rdsp = rcnt + P;
+    unsigned char *target = NULL; /* for each held particle: sent to rank q as a ghost (the rank q being built) */
+    if (!cnt)
+        e = DEM_ERR_NOMEM;
+    if (!e)
+        e = sim_mc_disp_get(h->s, &m, &pi, &pj, &d);
+    /* by rank q: the entries (i own here, a ghost on q; j owned by q) */
+    long nsend = 0;
+    if (!e && !(target = calloc((size_t)h->n + 1, 1)))
+        e = DEM_ERR_NOMEM;
+    for (int q = 0; !e && q < P; q++) {
+        memset(target, 0, (size_t)h->n);
+        for (int k = h->send_displ[q]; k < h->send_displ[q] + h->send_count[q]; k++)
+            target[h->send_id[k]] = 1;
+        for (long k = 0; k < m; k++)
+            cnt[q] += target[pi[k]] && h->owner[pj[k]] == q;
+        nsend += cnt[q];
+    }
+    if (!e && !(sb = malloc(sizeof(double) * 3 * (size_t)(nsend + 1))))
+        e = DEM_ERR_NOMEM;
+    for (int q = 0, at = 0; !e && q < P; q++) {
+        dsp[q] = at;
+        memset(target, 0, (size_t)h->n);
+        for (int k = h->send_displ[q]; k < h->send_displ[q] + h->send_count[q]; k++)
+            target[h->send_id[k]] = 1;
+        for (long k = 0; k < m; k++)
+            if (target[pi[k]] && h->owner[pj[k]] == q) {
+                sb[3 * at] = (double)h->gid[pi[k]], sb[3 * at + 1] = (double)h->gid[pj[k]], sb[3 * at + 2] = d[k];
+                at++;
+            }
+    }
+    free(pi), free(pj), free(d), free(target);
+    pi = pj = NULL, d = NULL;
+    if ((e = dem_mpi_agreed(h->comm, e)) || (e = MPI_Alltoall(cnt, 1, MPI_INT, rcnt, 1, MPI_INT, h->comm))) {
+        free(cnt), free(sb);
+        return e ? dem_mpi_agreed(h->comm, e < 0 ? e : DEM_ERR_DEVICE) : 0;
+    }
+    long nrecv = 0;
+    for (int q = 0; q < P; q++)
+        rdsp[q] = (int)(3 * nrecv), nrecv += rcnt[q], rcnt[q] *= 3, cnt[q] *= 3, dsp[q] *= 3;
+    rb = malloc(sizeof(double) * 3 * (size_t)(nrecv + 1));
+    ri = malloc(sizeof(int) * (size_t)(nrecv + 1)), rj = malloc(sizeof(int) * (size_t)(nrecv + 1));
+    d = malloc(sizeof(double) * (size_t)(nrecv + 1));
+    e = rb && ri && rj && d ? 0 : DEM_ERR_NOMEM;
+    if (!(e = dem_mpi_agreed(h->comm, e)))
+        e = MPI_Alltoallv(sb, cnt, dsp, MPI_DOUBLE, rb, rcnt, rdsp, MPI_DOUBLE, h->comm) ? DEM_ERR_DEVICE : 0;
+    for (long k = 0; !e && k < nrecv; k++) {
+        ri[k] = local_of(h->gid, h->n, (long)rb[3 * k]), rj[k] = local_of(h->gid, h->n, (long)rb[3 * k + 1]);
+        d[k] = rb[3 * k + 2];
+        if (ri[k] < 0 || rj[k] < 0)
+            e = DEM_ERR_ARG; /* a contact of a particle this rank does not hold */
+    }
+    if (!e)
+        e = sim_mc_disp_set(h->s, nrecv, ri, rj, d);
+    free(cnt), free(sb), free(rb), free(ri), free(rj), free(d);
+    return dem_mpi_agreed(h->comm, e);
+}
+
+/* In the step (dem_sim.halo_hook, sim_hook_event), what the contacts read of a ghost that its own evaluation got
+ * wrong (its partners outside the halo missing): its owner's. After MC-stress's pass 1, each particle's stress
+ * trace; after MDR's mdr_surface, each particle's row with its mean surface displacement (mdr_particle.h); after each
+ * evaluation of MC-strain's displacements, those of the ghosts' contacts with own particles. And MC-strain's
+ * convergence test: another iteration when any rank's own contacts still moved. */
+static int mid_step(dem_sim *s, void *ctx, int event, int *value)
 {
     (void)s;
-    if (gate == DEM_EFFECT_MC_STRESS)
-        return exchange_field(ctx, DEM_FIELD_STRESS_TRACE, -1, 1);
-    if (gate == DEM_EFFECT_MDR)
-        return exchange_field(ctx, -1, BUF_MDR_PART, MDR_P_STRIDE);
+    dem_mpi_halo *h = ctx;
+    if (event == SIM_HOOK_STAGE && *value == (int)DEM_EFFECT_MC_STRESS)
+        return exchange_field(h, DEM_FIELD_STRESS_TRACE, -1, 1);
+    if (event == SIM_HOOK_STAGE && *value == (int)DEM_EFFECT_MDR)
+        return exchange_field(h, -1, BUF_MDR_PART, MDR_P_STRIDE);
+    if (event == SIM_HOOK_MC_DISP)
+        return mc_disp_exchange(h);
+    if (event == SIM_HOOK_MC_PENDING) {
+        int mine = *value != 0, any = mine;
+        int e = MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, h->comm);
+        *value = any;
+        return dem_mpi_agreed(h->comm, e ? DEM_ERR_DEVICE : 0);
+    }
     return 0;
 }
 

@@ -84,8 +84,9 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
 {
     MPI_Comm comm = h->comm;
     int P = h->size, n = h->n, rs = loc->real_size, no = 0;
-    /* MC-strain's displacements and patch contacts do not travel yet; every rank holds a particle */
-    int e = loc->has_mc || loc->npatch || n == 0 ? DEM_ERR_ARG : 0;
+    /* patch contacts do not travel yet; every rank holds a particle. MC-strain's force and displacements travel with
+     * their pair: the owner of its lower id holds both ends' (the ghost end's from its owner, halo.c) */
+    int e = loc->npatch || n == 0 ? DEM_ERR_ARG : 0;
     int *own = malloc(sizeof(int) * ((size_t)n + 1)), *cnt = malloc(sizeof(int) * 4 * (size_t)P);
     int *dsp = cnt ? cnt + P : NULL, *bc = cnt ? cnt + 2 * P : NULL, *bd = cnt ? cnt + 3 * P : NULL;
     long *allgid = malloc(sizeof(long) * ((size_t)nglobal + 1)), *mine = malloc(sizeof(long) * ((size_t)n + 1));
