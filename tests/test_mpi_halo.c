@@ -291,10 +291,11 @@ static void test_split_anew(void **st)
     }
 }
 
-/* What the halo refuses, the same on every rank and without a hang: on more than one rank, a run whose lid stops at
- * a force (until_force: walls steered by sums each rank would make of its own particles), naming it; and a halo
- * whose ranks disagree on an owner (the last rank says one of its particles, far from rank 0's slab, belongs to
- * rank 0, which does not hold it): DEM_ERR_ARG on every rank. */
+/* What the halo takes and refuses, the same on every rank and without a hang: a run whose lid stops at a force
+ * (until_force: the walls' sums merged after each step) is taken; on more than one rank, a run with a spring (a
+ * membrane's, whose tables name particles by index) is refused, naming it; and a halo whose ranks disagree on an
+ * owner (the last rank says one of its particles, far from rank 0's slab, belongs to rank 0, which does not hold
+ * it): DEM_ERR_ARG on every rank. */
 static void test_refusals(void **st)
 {
     (void)st;
@@ -325,7 +326,19 @@ static void test_refusals(void **st)
     int e = dem_mpi_halo_init(&h, MPI_COMM_WORLD, s, n, gid, owner);
     if (rank == 0)
         printf("  %d ranks, a lid stopped by until_force: %d (%s)\n", size, e, e ? dem_error(s) : "taken");
-    assert_true(all_ok(size == 1 ? e == 0 : e == DEM_ERR_ARG && strstr(dem_error(s), "until_force") != NULL));
+    assert_true(all_ok(e == 0 && h.steer == (size > 1)));
+    if (!e)
+        dem_mpi_halo_free(&h);
+    dem_destroy(s);
+    s = build(keep, &dt);
+    REQUIRE0(dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_DAMPING | DEM_EFFECT_FRICTION | DEM_EFFECT_GRAVITY |
+                                    DEM_EFFECT_WALLS | DEM_EFFECT_SPRINGS));
+    REQUIRE(dem_add_spring(s, 0, 1, 1.0, 0.01, 0) >= 0);
+    REQUIRE_SIM(s, dem_start(s, &c));
+    e = dem_mpi_halo_init(&h, MPI_COMM_WORLD, s, n, gid, owner);
+    if (rank == 0)
+        printf("  %d ranks, a spring: %d (%s)\n", size, e, e ? dem_error(s) : "taken");
+    assert_true(all_ok(size == 1 ? e == 0 : e == DEM_ERR_ARG && strstr(dem_error(s), "springs") != NULL));
     if (!e)
         dem_mpi_halo_free(&h);
     dem_destroy(s);
