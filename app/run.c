@@ -609,14 +609,22 @@ static void membrane_left(const run_ctx *c)
     free(x);
 }
 
+/* The run that steps: c->s, or over ranks this rank's part, whose records (MC-strain's iterations, stage ends,
+ * servo stages) are every rank's and one process's; the whole run where no part is held (a split that failed) */
+static dem_sim *stepped(const run_ctx *c)
+{
+    dem_sim *p = c->R ? c->R->stepped(c->R) : NULL;
+    return p ? p : c->s;
+}
+
 /* What preceded a run's failure, said after its error (a hydrogel run can hit the MC-strain cap in 1777 steps before
  * it diverges, and the error alone would not say so): the steps of this run that hit the iteration cap, from the
  * first to the failure. */
 static void failure_preceded(const run_ctx *c)
 {
     dem_mc_stats mc;
-    dem_mc_stats_get(c->s, &mc);
-    long capped = mc.unconverged - c->mc0.unconverged, at = dem_step_index(c->s);
+    dem_mc_stats_get(stepped(c), &mc);
+    long capped = mc.unconverged - c->mc0.unconverged, at = dem_step_index(stepped(c));
     if (!(c->run.effects & DEM_EFFECT_MC_STRAIN) || c->run.mc_cap <= 0 || capped <= 0 || mc.first_capped < 0)
         return;
     long to = mc.last_capped > at ? mc.last_capped : at;
@@ -911,7 +919,7 @@ static void stage_label(const scene *sc, int k, int st, char *buf, size_t len)
  * whose only stage is the settling pause are not logged. */
 static void stage_ends(run_ctx *c, int print)
 {
-    dem_sim *s = c->s, *log = c->R ? c->R->stepped(c->R) : s; /* over ranks: the part's log (the same on each) */
+    dem_sim *s = c->s, *log = stepped(c); /* over ranks: the part's log (the same on each) */
     long n = dem_stage_ends(log, 0, NULL);
     for (; c->stage_seen < n; c->stage_seen++) {
         dem_stage_end e;
@@ -961,7 +969,7 @@ static int phase_steps(run_ctx *c)
     c->t0 = last = now();
     long step0 = run_step(c), end = run->steps;
     c->step0 = step0;
-    dem_mc_stats_get(s, &c->mc0);
+    dem_mc_stats_get(stepped(c), &c->mc0);
     membrane_watch(c);
     c->stage_seen = dem_stage_ends(s, 0, NULL); /* a restart logs the ends from its first step */
     if (o->stop_after > 0 && step0 + o->stop_after < end)
@@ -1110,7 +1118,7 @@ static int phase_steps(run_ctx *c)
         if (c->show && (tn - last > 1 || st == end)) {
             double rate = (double)(st - step0) / (tn - c->t0 + 1e-12);
             dem_mc_stats mc;
-            dem_mc_stats_get(s, &mc);
+            dem_mc_stats_get(stepped(c), &mc);
             progress_line(tty, st, run->steps, (double)st * run->dt, rate * dem_count(s), (double)(end - st) / (rate + 1e-12),
                           (double)mc.total / (double)(st > 0 ? st : 1), run->mc_cap > 0 ? mc.unconverged : -1);
             last = tn;
@@ -1156,7 +1164,7 @@ static void phase_report(run_ctx *c)
     const scene_run *run = &c->run;
     dem_sim *s = c->s;
     dem_mc_stats mc;
-    dem_mc_stats_get(s, &mc);
+    dem_mc_stats_get(stepped(c), &mc);
     int iterated = (run->effects & DEM_EFFECT_MC_STRAIN) && run->mc_cap > 0;
     if (c->o->progress != 0 || c->show) {
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", c->outp, c->ckp,
@@ -1198,7 +1206,7 @@ static void phase_report(run_ctx *c)
     }
     for (int k = 0; k < dem_wall_count(s); k++) { /* servo stages: what force they held, and whether they chattered */
         dem_servo_stats sv; /* over ranks: the part's record (the whole run did not step) */
-        if (dem_servo_stats_get(c->R ? c->R->stepped(c->R) : s, k, &sv) || sv.stage < 0)
+        if (dem_servo_stats_get(stepped(c), k, &sv) || sv.stage < 0)
             continue;
         char name[1100];
         scene_wall_label(c->sc, k, name, sizeof name);

@@ -45,8 +45,9 @@ typedef struct {
      * bench's (bench/mpi.sh) account of where a split run's time goes */
     double t_step, t_halo, t_check, t_split, t_sums, sent;
     long nsteps;
-    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK": that rank fails there */
-    int fail_rank;
+    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan]": that rank fails */
+    int fail_rank, fail_nan;                          /* there, after its step, or (nan) inside it: a particle's
+                                                         position made NaN before the step */
 } rr;
 
 static rr *of(run_ranks *r) { return (rr *)r->ctx; }
@@ -344,21 +345,32 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
             if (e)
                 return shared_error(q, e, err, len);
-            sim_wall_record rec; /* the servo stages' records and the stage ends go on in the next part */
-            sim_wall_record_get(q->part, &rec);
+            sim_run_record rec; /* the servo stages' records and the stage ends go on in the next part */
+            sim_run_record_get(q->part, &rec);
             drop_part(q);
             e = split_from(q, &g, err, len);
             dem_state_free(&g);
             if (e)
                 return e;
-            sim_wall_record_set(q->part, &rec);
+            sim_run_record_set(q->part, &rec);
         }
         double t2 = MPI_Wtime();
         q->t_split += t2 - t1;
         int wk = want && want[k];
         dem_sample one;
+        if (q->fail_nan && q->fail_step == q->step + 1 && q->fail_rank == r->rank && q->nown > 0) { /* test hook */
+            double *x = malloc(sizeof(double) * 3 * (size_t)q->nloc);
+            int own = 0;
+            while (own < q->nloc && q->owner[own] != r->rank)
+                own++;
+            if (x && !dem_get_field(q->part, DEM_FIELD_X, x)) {
+                x[3 * own] = NAN;
+                sim_set_field(q->part, DEM_FIELD_X, x);
+            }
+            free(x);
+        }
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
-        if (!e && q->fail_step == dem_step_index(q->part) && q->fail_rank == r->rank) { /* the test hook */
+        if (!e && !q->fail_nan && q->fail_step == dem_step_index(q->part) && q->fail_rank == r->rank) { /* the test hook */
             snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
                      q->fail_step);
             e = DEM_ERR_DEVICE;
@@ -366,7 +378,10 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         q->step = dem_step_index(q->part);
         double t3 = MPI_Wtime();
         q->t_step += t3 - t2;
-        if ((e = agreed_msg(q, e, q->part, err, len)))
+        /* a step that failed here only because another rank's did (a meeting inside the step, host/mpi/halo.c):
+         * that rank's code and words are the ones to agree on */
+        int mine = e && q->part->run.halo_learned ? 0 : e, a = agreed_msg(q, mine, q->part, err, len);
+        if ((e = a ? a : e)) /* a == 0 with e set cannot be: some rank's own step failed */
             return e;
         if ((e = dem_mpi_halo_exchange(&q->h)))
             return shared_error(q, e, err, len);
@@ -488,8 +503,10 @@ int run_mpi(const run_opts *o)
     q.pub.step_index = step_index, q.pub.stepped = stepped, q.pub.sync = sync_whole, q.pub.describe = describe, q.pub.finish = finish;
     q.fail_step = -1;
     const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */
-    if (tf && sscanf(tf, "%ld %d", &q.fail_step, &q.fail_rank) != 2)
+    char mode[8] = "";
+    if (tf && sscanf(tf, "%ld %d %7s", &q.fail_step, &q.fail_rank, mode) < 2)
         q.fail_step = -1;
+    q.fail_nan = !strcmp(mode, "nan");
     run_opts mine = *o;
     const char *lr = getenv("OMPI_COMM_WORLD_LOCAL_RANK");
     int ndev = dem_device_count();

@@ -8,9 +8,11 @@
 #  2. Restart across rank counts: stopped at step 300 on 2 ranks, continued on 3 ranks and in one process; stopped
 #     in one process, continued on 2 ranks: every continuation equals the one-process continuation.
 #  3. A rank that fails mid-run (DEM_TEST_RANK_FAIL: rank 1's step 200 fails as a lost device's would): every rank
-#     stops, non-zero, that rank's message once, no output file completed, nothing hangs.
-#  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks), a law whose
-#     per-particle state the halo does not carry yet (MC-strain on hydrogel_514); a scene error is said once.
+#     stops, non-zero, that rank's message once, no output file completed, nothing hangs. And a failure inside the
+#     step ("200 1 nan": a particle of rank 1 made NaN before its step 200) under MC-stress and iterated MC-strain,
+#     whose steps hold meetings of the ranks: every rank stops there with rank 1's words, nothing hangs.
+#  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks),
+#     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once.
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
 #     and a servo): on 2 and 3 ranks, PoCL fp32 and the reference fp64, the output, the checkpoint and the report's
 #     stage ends and servo record equal to one process's.
@@ -80,20 +82,29 @@ n=$(grep -c "rank 1: DEM_TEST_RANK_FAIL" "$T/log")
 [ "$n" = 1 ] || { cat "$T/log" >&2; fail "a failed rank: its message $n times, not once"; }
 [ ! -e "$T/f.h5" ] && [ -e "$T/f.h5.part" ] || fail "a failed rank: the output should be left as f.h5.part"
 echo "   exit $frc, rank 1's message once, output left as .part"
+sed 's/friction: 0.4}/friction: 0.4, beta: 1.65, gamma: 1.12}/' "$S" >"$T/box_bg.yaml"
+for m in mc_stress mc_strain_iterated; do
+    DEM_TEST_RANK_FAIL="200 1 nan" mrun 2 run "$T/box_bg.yaml" -o "$T/f.h5" --quiet --model $m >"$T/log" 2>&1
+    frc=$?
+    n=$(grep -c "rank 1: step 199: particle .*non-finite" "$T/log")
+    [ "$frc" -ne 0 ] && [ "$frc" -ne 124 ] && [ "$n" = 1 ] ||
+        { cat "$T/log" >&2; fail "a failure inside a step of $m on rank 1: exit $frc (124: it hung), its words $n times"; }
+done
+echo "   a failure inside the step (MC-stress, iterated MC-strain): every rank stopped, rank 1's words once"
 
 echo "== 4. refusals and errors, said once"
 mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'cannot be split over 3 ranks' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "more ranks than particles: exit $trc"; }
-mrun 2 run "$ROOT/scenes/hydrogel_514.yaml" -o "$T/t.h5" --quiet --model mc_strain --stop-after 5 >"$T/log" 2>&1
+mrun 2 run "$ROOT/tests/scenes/membrane_tube.yaml" -o "$T/t.h5" --quiet --stop-after 5 >"$T/log" 2>&1
 trc=$?
-[ "$trc" = 65 ] && [ "$(grep -c 'does not take the effect mc_strain' "$T/log")" = 1 ] ||
-    { cat "$T/log" >&2; fail "MC-strain on 2 ranks: exit $trc, or not said once"; }
+[ "$trc" = 65 ] && [ "$(grep -c 'membranes or riders cannot be split' "$T/log")" = 1 ] ||
+    { cat "$T/log" >&2; fail "a membrane on 2 ranks: exit $trc, or not said once"; }
 sed 's/^effects:/effectz:/' "$S" >"$T/bad.yaml"
 mrun 2 run "$T/bad.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
-echo "   more ranks than particles, MC-strain, a misspelt key: exit 65, each said once"
+echo "   more ranks than particles, a membrane, a misspelt key: exit 65, each said once"
 
 echo "== 5. SIGTERM to mpirun"
 sed 's/duration: 0.04}/duration: 5.0}/' "$S" >"$T/long.yaml"
@@ -174,7 +185,8 @@ for cfg in "reference fp64 2 mc_strain" "opencl fp32 3 mc_strain_iterated"; do
         { cat "$T/log" >&2; fail "MC-strain box on $3 ranks ($cfg)"; }
     same "$T/one.h5" "$T/n.h5" && same "$T/one.ckpt.h5" "$T/n.ckpt.h5" || fail "MC-strain: $3 ranks ($cfg) differ"
     [ "$(iters "$T/log1")" = "$(iters "$T/log")" ] || fail "MC-strain ($cfg): $(iters "$T/log1") in one process, $(iters "$T/log") on $3 ranks"
-    echo "   $4 $1 $2, $3 ranks: output and checkpoint equal; $(iters "$T/log" | sed 's/.*: \(.*\)/\1 iterations in both/'); $(grep -o '[0-9]* changes of rank' "$T/log" | tail -1)"
+    it=$(iters "$T/log" | sed 's/.*: \(.*\)/; \1 iterations in both/')
+    echo "   $4 $1 $2, $3 ranks: output and checkpoint equal$it; $(grep -o '[0-9]* changes of rank' "$T/log" | tail -1)"
 done
 "$DEM" run "$T/box_mcs.yaml" -o "$T/a1.h5" --quiet --model mc_strain_iterated --stop-after 700 &&
     "$DEM" run --restart "$T/a1.ckpt.h5" -o "$T/b1.h5" --quiet || fail "MC-strain: one-process stop and continuation"

@@ -15,7 +15,8 @@ int sim_keep_particles(dem_sim *s, const unsigned char *keep)
     if (sim_not_started(s))
         return DEM_ERR_STATE;
     if (s->mesh.nsprings || s->mesh.ntri || s->mesh.nhinges || s->mesh.npatch || s->mesh.natt)
-        return sim_fail(s, DEM_ERR_ARG, "a scene with membranes or riders cannot be split over ranks yet");
+        return sim_fail(s, DEM_ERR_ARG, "a scene with membranes or riders cannot be split over ranks yet: run it in "
+                        "one process (docs/design.md \"Runs over MPI\")");
     if (!(s->whole_volume > 0)) /* until_density's volume: the whole scene's spheres, not the part's */
         s->whole_volume = sim_particle_volume(s);
     int m = 0;
@@ -56,22 +57,24 @@ int sim_set_ghosts(dem_sim *s, const unsigned char *ghost)
     return 0;
 }
 
-void sim_wall_record_get(const dem_sim *s, sim_wall_record *r)
+void sim_run_record_get(const dem_sim *s, sim_run_record *r)
 {
     memcpy(r->servo, s->motion.servo, sizeof r->servo);
     memcpy(r->servo_sum, s->motion.servo_sum, sizeof r->servo_sum);
     memcpy(r->servo_err, s->motion.servo_err, sizeof r->servo_err);
     memcpy(r->log, s->motion.stage_log, sizeof r->log);
     r->log_n = s->motion.stage_log_n;
+    r->mc_first_capped = s->mc.stats.first_capped, r->mc_last_capped = s->mc.stats.last_capped;
 }
 
-void sim_wall_record_set(dem_sim *s, const sim_wall_record *r)
+void sim_run_record_set(dem_sim *s, const sim_run_record *r)
 {
     memcpy(s->motion.servo, r->servo, sizeof r->servo);
     memcpy(s->motion.servo_sum, r->servo_sum, sizeof r->servo_sum);
     memcpy(s->motion.servo_err, r->servo_err, sizeof r->servo_err);
     memcpy(s->motion.stage_log, r->log, sizeof r->log);
     s->motion.stage_log_n = r->log_n;
+    s->mc.stats.first_capped = r->mc_first_capped, s->mc.stats.last_capped = r->mc_last_capped;
 }
 
 /* a stored field read whole (storage order) */

@@ -117,6 +117,9 @@ struct sim_run {
     long force_step;   /* step index of the positions the forces are computed at (walls, pressure schedule) */
     int wall_sums_due; /* this step's force stages sum the force each wall received (dem_step) */
     int sample_row;    /* >= 0: this step is sampled into that row of the series ring (series.h) */
+    int halo_agreed;   /* a split run (halo_hook): this step's failure was agreed at a meeting of the ranks */
+    int halo_learned;  /* ... and this rank's own step had not failed: another rank's did (its caller reports that
+                          rank's words, app/run_mpi.c) */
 };
 
 /* The texts handed to the caller (diagnostics.c, sim_fail) */
@@ -143,7 +146,8 @@ struct dem_sim {
     double whole_volume;  /* a part's (sim_keep_particles): the whole scene's spheres' volume [m^3]; 0: not a part */
     /* a part of a run split over ranks (host/mpi/halo.c): called within the step where a value its ghosts got wrong
      * (their partners outside the halo missing) is about to be read, to put the owners' values into them, or where a
-     * decision needs every rank's view (sim_hook_event). Collective on every rank; NULL in a run that is not split. */
+     * decision needs every rank's view (SIM_HOOK_*). Each call is a meeting of every rank that first agrees on any
+     * rank's failure, so a step that fails on one rank ends on all. NULL in a run that is not split. */
     int (*halo_hook)(dem_sim *s, void *ctx, int event, int *value);
     void *halo_ctx;
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
@@ -202,9 +206,11 @@ int sim_set_field(dem_sim *s, dem_field f, const double *vals);
 int sim_rows_get(dem_sim *s, int id, int width, double *dst);
 int sim_rows_set(dem_sim *s, int id, int width, const double *vals);
 /* The points of a step where dem_sim.halo_hook is called: after a force stage of an effect (*value: its gate; MC-stress's
- * traces, MDR's rows), after each evaluation of MC-strain's displacements, and at MC-strain's convergence test (*value:
- * this rank's "a force still moved", replaced by the run's) */
-enum { SIM_HOOK_STAGE = 0, SIM_HOOK_MC_DISP = 1, SIM_HOOK_MC_PENDING = 2 };
+ * traces, MDR's rows), after each evaluation of MC-strain's displacements, at MC-strain's convergence test (*value:
+ * this rank's "a force still moved", replaced by the run's), and at the step's end. A rank whose own step fails
+ * calls it once more, SIM_HOOK_FAILED with *value its code, and returns: the other ranks meet it at their next point
+ * (the step's end at the latest) and fail too. A call that returns non-zero has agreed that code on every rank. */
+enum { SIM_HOOK_STAGE = 0, SIM_HOOK_MC_DISP = 1, SIM_HOOK_MC_PENDING = 2, SIM_HOOK_FAILED = 3, SIM_HOOK_STEP_END = 4 };
 /* part.c: MC-strain's displacements, kept per row slot (D_i,c: particle i's at its contact with partner j, mc_strain.h),
  * as a list in the callers' ids: sim_mc_disp_get gives every row slot's (i, j, D) (arrays malloc'd, *count long);
  * sim_mc_disp_set writes the entries given, skipping a pair no row holds. What a run split over ranks puts into its
@@ -222,16 +228,18 @@ int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
  * acc[WP_STRIDE * wall + WP_*], rounded as the device rounds them (common/wall_forces.h): what the ranks of a split
  * run set after merging theirs, so that a servo or a stage's end reads the one-process force (host/mpi/halo.c) */
 int sim_wall_sums_set(dem_sim *s, const exact_acc *acc);
-/* part.c: what a run's walls record of the steps it took (each servo stage's record, the stage ends' log), carried
- * from a rank's run to the run of its next part when a split run is split anew (app/run_mpi.c) */
+/* part.c: what a run records of the steps it took beyond its state (each servo stage's record, the stage ends' log,
+ * the first and last step MC-strain's iteration hit its cap), carried from a rank's run to the run of its next part
+ * when a split run is split anew (app/run_mpi.c) */
 typedef struct {
     dem_servo_stats servo[DEM_MAX_WALLS];
     double servo_sum[DEM_MAX_WALLS], servo_err[DEM_MAX_WALLS];
     dem_stage_end log[DEM_STAGE_LOG];
     long log_n;
-} sim_wall_record;
-void sim_wall_record_get(const dem_sim *s, sim_wall_record *r);
-void sim_wall_record_set(dem_sim *s, const sim_wall_record *r);
+    long mc_first_capped, mc_last_capped;
+} sim_run_record;
+void sim_run_record_get(const dem_sim *s, sim_run_record *r);
+void sim_run_record_set(dem_sim *s, const sim_run_record *r);
 /* part.c: a run of part of a scene (a rank's of a run split over MPI ranks), before dem_start: the particles kept
  * (keep[i] != 0, in their order; returns how many), and which of them are ghosts (copies of other ranks' particles:
  * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */

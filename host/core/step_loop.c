@@ -27,7 +27,10 @@ static double pressure_at(const dem_sim *s, double t)
 /* a run split over ranks (dem_sim.halo_hook): the ghosts' values, or a decision, made the run's */
 static int halo(dem_sim *s, int event, int *value)
 {
-    return s->halo_hook ? s->halo_hook(s, s->halo_ctx, event, value) : 0;
+    int e = s->halo_hook ? s->halo_hook(s, s->halo_ctx, event, value) : 0;
+    if (e) /* agreed: every rank fails the step here */
+        s->run.halo_agreed = 1;
+    return e;
 }
 
 /* MC-strain before the contact pass: displacements from the stored forces (lagged), or iterated to the tolerance. */
@@ -194,7 +197,25 @@ int dem_step(dem_sim *s, long nsteps)
     return 0;
 }
 
+static int step_body(dem_sim *s, int wall_sums, int sample_row);
+
+/* One step; in a part of a split run (halo_hook), with the ranks' meetings: a failure of this rank's own is told to
+ * the others at their next meeting, and the step ends with one, so that no rank goes on when another has failed */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
+{
+    s->run.halo_agreed = s->run.halo_learned = 0;
+    int e = step_body(s, wall_sums, sample_row);
+    if (!s->halo_hook)
+        return e;
+    if (e && !s->run.halo_agreed) {
+        int v = e;
+        s->halo_hook(s, s->halo_ctx, SIM_HOOK_FAILED, &v);
+        return e;
+    }
+    return e ? e : halo(s, SIM_HOOK_STEP_END, NULL);
+}
+
+static int step_body(dem_sim *s, int wall_sums, int sample_row)
 {
     int flags[FLAG_COUNT], e;
     dem_core *c = DEM_CORE(s->be);

@@ -43,13 +43,15 @@ typedef struct {
  * added, so that the local stable ids keep the global order), owner[k] the rank that owns it. Collective over comm;
  * every ghost must be owned, in the owner's run, by the rank named. Returns 0, or a dem_status, the same on every
  * rank (dem_mpi_agreed). Refused on more than one rank (DEM_ERR_ARG, dem_error(s) names it): what the halo does not
- * carry yet - MC-strain and membranes (springs, pressure, hinges, patches) - and an until_density
- * stage in a run not cut with sim_keep_particles (it needs the whole scene's volume). Ends with an exchange: the
- * start's forces of a ghost (whose partners outside the halo it does not see) replaced by its owner's before the
- * first step; the walls' sums are left as the state set them. Under MC-stress or MDR it also hooks the step
- * (dem_sim.halo_hook): after MC-stress's pass 1 the owners' stress traces go into the ghosts, before pass 2 reads
- * them at both ends of a contact; after MDR's mdr_surface the owners' particle rows - so every step of the run is
- * collective from then on (dem_mpi_halo_free unhooks it). */
+ * carry yet - membranes (springs, pressure, hinges, patches) - and an until_density stage in a run not cut with
+ * sim_keep_particles (it needs the whole scene's volume). Ends with an exchange: the start's forces of a ghost (whose
+ * partners outside the halo it does not see) replaced by its owner's before the first step; the walls' sums are left
+ * as the state set them. Under MC-stress, MDR or MC-strain it also hooks the step (dem_sim.halo_hook, SIM_HOOK_*):
+ * after MC-stress's pass 1 the owners' stress traces go into the ghosts, before pass 2 reads them at both ends of a
+ * contact; after MDR's mdr_surface the owners' particle rows; after each evaluation of MC-strain's displacements the
+ * owners' values of the ghosts' contacts with own particles, and its convergence test is merged over the ranks. Every
+ * such point, and the step's end, is a meeting that first agrees on any rank's failure, so every step of the run is
+ * collective from then on and a step that fails on one rank ends on all (dem_mpi_halo_free unhooks it). */
 int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner);
 /* After a step: the owners' position, velocity, spin, force and torque into every ghost (under MDR also its particle
  * row: the sums the step's contacts left, which the next step's mdr_begin reads); and where walls are

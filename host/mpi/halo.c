@@ -140,6 +140,17 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
     return e;
 }
 
+/* A meeting of the ranks (every agreement in and after a step goes through it): every rank's code e agreed; a rank
+ * that had none but learns of another's failure marks it (dem_sim.run.halo_learned), so that the step's caller
+ * reports the words of the rank that failed (app/run_mpi.c) */
+static int in_step(dem_mpi_halo *h, int e)
+{
+    int a = dem_mpi_agreed(h->comm, e);
+    if (a && !e)
+        h->s->run.halo_learned = 1;
+    return a;
+}
+
 /* The owners' values of one per-particle field of `width` reals into the ghosts: a public field f (dem_get_field,
  * sim_set_field), or with f < 0 the registry buffer buf (sim_rows_get, sim_rows_set). Collective. */
 static int exchange_field(dem_mpi_halo *h, int f, int buf, int width)
@@ -150,96 +161,105 @@ static int exchange_field(dem_mpi_halo *h, int f, int buf, int width)
     double *rb = malloc(sizeof(double) * (size_t)width * ((size_t)h->nrecv + 1));
     int *sc = malloc(sizeof(int) * 4 * (size_t)P);
     if (!field || !sb || !rb || !sc)
-        e = DEM_ERR_NOMEM;
+        e = sim_fail(h->s, DEM_ERR_NOMEM, "out of host memory for the ghosts' exchange");
     if (!e && !(e = f >= 0 ? dem_get_field(h->s, (dem_field)f, field) : sim_rows_get(h->s, buf, width, field)))
         for (int k = 0; k < h->nsend; k++)
             memcpy(sb + (size_t)k * width, field + (size_t)width * h->send_id[k], sizeof(double) * width);
-    if ((e = dem_mpi_agreed(h->comm, e))) {
-        free(field), free(sb), free(rb), free(sc);
-        return e;
+    if (!(e = in_step(h, e))) {
+        int *sd = sc + P, *rc = sd + P, *rd = rc + P;
+        for (int q = 0; q < P; q++)
+            sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
+            rd[q] = width * h->recv_displ[q];
+        if ((e = MPI_Alltoallv(sb, sc, sd, MPI_DOUBLE, rb, rc, rd, MPI_DOUBLE, h->comm)))
+            e = sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Alltoallv of the ghosts' values failed (%d)", e);
+        for (int k = 0; !e && k < h->nrecv; k++)
+            memcpy(field + (size_t)width * h->recv_id[k], rb + (size_t)k * width, sizeof(double) * width);
+        if (!e)
+            e = f >= 0 ? sim_set_field(h->s, (dem_field)f, field) : sim_rows_set(h->s, buf, width, field);
+        e = in_step(h, e);
     }
-    int *sd = sc + P, *rc = sd + P, *rd = rc + P;
-    for (int q = 0; q < P; q++)
-        sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
-        rd[q] = width * h->recv_displ[q];
-    e = MPI_Alltoallv(sb, sc, sd, MPI_DOUBLE, rb, rc, rd, MPI_DOUBLE, h->comm);
-    for (int k = 0; !e && k < h->nrecv; k++)
-        memcpy(field + (size_t)width * h->recv_id[k], rb + (size_t)k * width, sizeof(double) * width);
-    if (!e)
-        e = f >= 0 ? sim_set_field(h->s, (dem_field)f, field) : sim_rows_set(h->s, buf, width, field);
     free(field), free(sb), free(rb), free(sc);
-    return dem_mpi_agreed(h->comm, e);
+    return e;
+}
+
+/* this rank's entries (i own here, a ghost on rank q; j owned by q) of the list (pi, pj) of m row slots: counted
+ * (out NULL) or packed as (global i, global j, D) into out; mark: scratch of h->n bytes */
+static long mc_disp_pick(const dem_mpi_halo *h, int q, const int *pi, const int *pj, const double *d, long m,
+                         unsigned char *mark, double *out)
+{
+    long c = 0;
+    memset(mark, 0, (size_t)h->n);
+    for (int k = h->send_displ[q]; k < h->send_displ[q] + h->send_count[q]; k++)
+        mark[h->send_id[k]] = 1;
+    for (long k = 0; k < m; k++)
+        if (mark[pi[k]] && h->owner[pj[k]] == q) {
+            if (out)
+                out[3 * c] = (double)h->gid[pi[k]], out[3 * c + 1] = (double)h->gid[pj[k]], out[3 * c + 2] = d[k];
+            c++;
+        }
+    return c;
 }
 
 /* MC-strain's displacements of the ghosts' contacts with our own particles, from their owners. A rank sends, for
  * each of its own particles i that another rank q holds as a ghost, D_i,c of i's contacts c with q's own particles
  * (each touching one is in i's row here: it is in our halo), as (global i, global j, D); q writes them into its
- * ghost i's row slots (sim_mc_disp_set). A contact of two ghosts is left as it is: no own particle reads it. */
+ * ghost i's row slots (sim_mc_disp_set). A contact of two ghosts is left as it is: no own particle reads it.
+ * Collective. */
 static int mc_disp_exchange(dem_mpi_halo *h)
 {
     int P = h->size, e = 0, *pi = NULL, *pj = NULL, *ri = NULL, *rj = NULL;
-    long m = 0;
+    long m = 0, nsend = 0, nrecv = 0;
     double *d = NULL, *sb = NULL, *rb = NULL;
-    int *cnt = calloc((size_t)(4 * P), sizeof(int)), *dsp = cnt + P, *rcnt = dsp + P, *rdsp = rcnt + P;
-    unsigned char *target = NULL; /* for each held particle: sent to rank q as a ghost (the rank q being built) */
-    if (!cnt)
-        e = DEM_ERR_NOMEM;
+    int *cnt = calloc((size_t)(4 * P), sizeof(int));
+    unsigned char *mark = calloc((size_t)h->n + 1, 1);
+    if (!cnt || !mark)
+        e = sim_fail(h->s, DEM_ERR_NOMEM, "out of host memory for MC-strain's exchange");
     if (!e)
         e = sim_mc_disp_get(h->s, &m, &pi, &pj, &d);
-    /* by rank q: the entries (i own here, a ghost on q; j owned by q) */
-    long nsend = 0;
-    if (!e && !(target = calloc((size_t)h->n + 1, 1)))
-        e = DEM_ERR_NOMEM;
-    for (int q = 0; !e && q < P; q++) {
-        memset(target, 0, (size_t)h->n);
-        for (int k = h->send_displ[q]; k < h->send_displ[q] + h->send_count[q]; k++)
-            target[h->send_id[k]] = 1;
-        for (long k = 0; k < m; k++)
-            cnt[q] += target[pi[k]] && h->owner[pj[k]] == q;
-        nsend += cnt[q];
-    }
+    for (int q = 0; !e && q < P; q++)
+        nsend += cnt[q] = (int)mc_disp_pick(h, q, pi, pj, d, m, mark, NULL);
     if (!e && !(sb = malloc(sizeof(double) * 3 * (size_t)(nsend + 1))))
-        e = DEM_ERR_NOMEM;
-    for (int q = 0, at = 0; !e && q < P; q++) {
-        dsp[q] = at;
-        memset(target, 0, (size_t)h->n);
-        for (int k = h->send_displ[q]; k < h->send_displ[q] + h->send_count[q]; k++)
-            target[h->send_id[k]] = 1;
-        for (long k = 0; k < m; k++)
-            if (target[pi[k]] && h->owner[pj[k]] == q) {
-                sb[3 * at] = (double)h->gid[pi[k]], sb[3 * at + 1] = (double)h->gid[pj[k]], sb[3 * at + 2] = d[k];
-                at++;
-            }
-    }
-    free(pi), free(pj), free(d), free(target);
+        e = sim_fail(h->s, DEM_ERR_NOMEM, "out of host memory for MC-strain's exchange");
+    for (int q = 0, at = 0; !e && q < P; at += cnt[q], q++)
+        mc_disp_pick(h, q, pi, pj, d, m, mark, sb + 3 * (size_t)at);
+    free(pi), free(pj), free(d), free(mark);
     pi = pj = NULL, d = NULL;
-    if ((e = dem_mpi_agreed(h->comm, e)) || (e = MPI_Alltoall(cnt, 1, MPI_INT, rcnt, 1, MPI_INT, h->comm))) {
-        free(cnt), free(sb);
-        return e ? dem_mpi_agreed(h->comm, e < 0 ? e : DEM_ERR_DEVICE) : 0;
+    int *dsp = cnt + P, *rcnt = cnt + 2 * P, *rdsp = cnt + 3 * P;
+    if (!(e = in_step(h, e))) { /* every agreement below is entered by every rank */
+        if ((e = MPI_Alltoall(cnt, 1, MPI_INT, rcnt, 1, MPI_INT, h->comm)))
+            e = sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Alltoall of MC-strain's counts failed (%d)", e);
+        e = in_step(h, e);
     }
-    long nrecv = 0;
-    for (int q = 0; q < P; q++)
-        rdsp[q] = (int)(3 * nrecv), nrecv += rcnt[q], rcnt[q] *= 3, cnt[q] *= 3, dsp[q] *= 3;
-    rb = malloc(sizeof(double) * 3 * (size_t)(nrecv + 1));
-    ri = malloc(sizeof(int) * (size_t)(nrecv + 1)), rj = malloc(sizeof(int) * (size_t)(nrecv + 1));
-    d = malloc(sizeof(double) * (size_t)(nrecv + 1));
-    e = rb && ri && rj && d ? 0 : DEM_ERR_NOMEM;
-    if (!(e = dem_mpi_agreed(h->comm, e)))
-        e = MPI_Alltoallv(sb, cnt, dsp, MPI_DOUBLE, rb, rcnt, rdsp, MPI_DOUBLE, h->comm) ? DEM_ERR_DEVICE : 0;
-    for (long k = 0; !e && k < nrecv; k++) {
-        ri[k] = local_of(h->gid, h->n, (long)rb[3 * k]), rj[k] = local_of(h->gid, h->n, (long)rb[3 * k + 1]);
-        d[k] = rb[3 * k + 2];
-        if (ri[k] < 0 || rj[k] < 0)
-            e = DEM_ERR_ARG; /* a contact of a particle this rank does not hold */
+    if (!e) {
+        for (int q = 0, at = 0; q < P; q++) { /* in reals: 3 per entry */
+            dsp[q] = 3 * at, at += cnt[q], cnt[q] *= 3;
+            rdsp[q] = (int)(3 * nrecv), nrecv += rcnt[q], rcnt[q] *= 3;
+        }
+        rb = malloc(sizeof(double) * 3 * (size_t)(nrecv + 1));
+        ri = malloc(sizeof(int) * (size_t)(nrecv + 1)), rj = malloc(sizeof(int) * (size_t)(nrecv + 1));
+        d = malloc(sizeof(double) * (size_t)(nrecv + 1));
+        if (!rb || !ri || !rj || !d)
+            e = sim_fail(h->s, DEM_ERR_NOMEM, "out of host memory for MC-strain's exchange");
+        if (!(e = in_step(h, e)) && (e = MPI_Alltoallv(sb, cnt, dsp, MPI_DOUBLE, rb, rcnt, rdsp, MPI_DOUBLE, h->comm)))
+            e = sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Alltoallv of MC-strain's displacements failed (%d)", e);
+        for (long k = 0; !e && k < nrecv; k++) {
+            ri[k] = local_of(h->gid, h->n, (long)rb[3 * k]), rj[k] = local_of(h->gid, h->n, (long)rb[3 * k + 1]);
+            d[k] = rb[3 * k + 2];
+            if (ri[k] < 0 || rj[k] < 0)
+                e = sim_fail(h->s, DEM_ERR_ARG, "MC-strain's exchange: a contact of particle %ld or %ld, which this rank "
+                             "does not hold", (long)rb[3 * k], (long)rb[3 * k + 1]);
+        }
+        if (!e)
+            e = sim_mc_disp_set(h->s, nrecv, ri, rj, d);
+        e = in_step(h, e);
     }
-    if (!e)
-        e = sim_mc_disp_set(h->s, nrecv, ri, rj, d);
     free(cnt), free(sb), free(rb), free(ri), free(rj), free(d);
-    return dem_mpi_agreed(h->comm, e);
+    return e;
 }
 
-/* In the step (dem_sim.halo_hook, sim_hook_event), what the contacts read of a ghost that its own evaluation got
- * wrong (its partners outside the halo missing): its owner's. After MC-stress's pass 1, each particle's stress
+/* In the step (dem_sim.halo_hook, SIM_HOOK_*), each call a meeting of the ranks that first agrees on any rank's
+ * failure (SIM_HOOK_FAILED: this rank's; SIM_HOOK_STEP_END: nothing else to do), then what the contacts read of a
+ * ghost that its own evaluation got wrong (its partners outside the halo missing): its owner's. After MC-stress's pass 1, each particle's stress
  * trace; after MDR's mdr_surface, each particle's row with its mean surface displacement (mdr_particle.h); after each
  * evaluation of MC-strain's displacements, those of the ghosts' contacts with own particles. And MC-strain's
  * convergence test: another iteration when any rank's own contacts still moved. */
@@ -247,6 +267,11 @@ static int mid_step(dem_sim *s, void *ctx, int event, int *value)
 {
     (void)s;
     dem_mpi_halo *h = ctx;
+    if (event == SIM_HOOK_FAILED) /* this rank's step failed: the others meet it at their next point */
+        return in_step(h, *value);
+    int e = in_step(h, 0); /* the meeting: did any rank's step fail since the last one */
+    if (e || event == SIM_HOOK_STEP_END)
+        return e;
     if (event == SIM_HOOK_STAGE && *value == (int)DEM_EFFECT_MC_STRESS)
         return exchange_field(h, DEM_FIELD_STRESS_TRACE, -1, 1);
     if (event == SIM_HOOK_STAGE && *value == (int)DEM_EFFECT_MDR)
@@ -255,9 +280,9 @@ static int mid_step(dem_sim *s, void *ctx, int event, int *value)
         return mc_disp_exchange(h);
     if (event == SIM_HOOK_MC_PENDING) {
         int mine = *value != 0, any = mine;
-        int e = MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, h->comm);
+        e = MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, h->comm);
         *value = any;
-        return dem_mpi_agreed(h->comm, e ? DEM_ERR_DEVICE : 0);
+        return in_step(h, e ? sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Allreduce failed (%d)", e) : 0);
     }
     return 0;
 }
