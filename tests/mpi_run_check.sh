@@ -20,8 +20,8 @@
 #     step): restart_box with beta 1.65, 2 and 3 ranks, PoCL fp32 and the reference fp64, equal to one process.
 #  8. MDR, whose contacts read each particle's row (apparent radius, volumes, mean surface displacement: from the
 #     owner after mdr_surface and after each step): restart_box with 729 smaller spheres under MDR (yield 100 kPa,
-#     bulk_fraction 0.99 so that the bulk response, which reads the mean surface displacement, is on), the reference
-#     fp64 on 2 ranks and PoCL fp32 on 3 ranks with a thin halo (DEM_TEST_HALO_MARGIN=0.1: 2.1 r_max, hundreds of
+#     bulk_fraction 0.99 so that the bulk response, which reads the mean surface displacement, is on): PoCL fp32 on
+#     2 ranks, and the reference fp64 on 3 ranks with a thin halo (DEM_TEST_HALO_MARGIN=0.1: 2.1 r_max, hundreds of
 #     splits anew), equal to one process. Without either exchange of the rows it fails.
 #  9. MC-strain, lagged and iterated: the induced displacements of a ghost's contacts with own particles from the
 #     ghost's owner after each evaluation, the convergence decided over every rank's own contacts (a run with ghosts
@@ -164,7 +164,7 @@ sed -e 's/gravity, walls\]/gravity, walls, mdr]/' -e 's/radius_min: 0.0035,/radi
     "$S" >"$T/box_mdr.yaml"
 [ "$(grep -c -E 'walls, mdr\]|radius_min: 0.0015|bulk_fraction: 0.99' "$T/box_mdr.yaml")" = 3 ] ||
     fail "MDR: restart_box.yaml changed; set its MDR variant up here anew"
-for cfg in "reference fp64 2 1" "opencl fp32 3 0.1"; do
+for cfg in "opencl fp32 2 1" "reference fp64 3 0.1"; do
     set -- $cfg
     "$DEM" run "$T/box_mdr.yaml" -o "$T/one.h5" --quiet --backend "$1" --precision "$2" || fail "one-process MDR box ($cfg)"
     DEM_TEST_HALO_MARGIN=$4 mrun "$3" run "$T/box_mdr.yaml" -o "$T/n.h5" --backend "$1" --precision "$2" >"$T/log" 2>&1 ||
