@@ -1027,7 +1027,11 @@ static int phase_steps(run_ctx *c)
         { /* at most ~1 s between progress lines, and between looks at run_signal: a stretch as long as the last
              one's steps took a second (steps slow down as a powder is pressed); the first, 8 steps */
             double tn = now();
-            long cap = st + (prev_t > 0 && tn > prev_t ? (long)((double)(st - prev_st) / (tn - prev_t)) : 7) + 1;
+            long per_s = prev_t > 0 && tn > prev_t ? (long)((double)(st - prev_st) / (tn - prev_t)) : 7;
+            /* over ranks, a quarter second: mpirun gives its ranks one second after it forwards a SIGTERM before it
+             * kills them (Open MPI's odls_base_sigkill_timeout), and they must look, agree, step once more and
+             * write in that time */
+            long cap = st + (R ? per_s / 4 : per_s) + 1;
             prev_st = st;
             prev_t = tn;
             if (cap < next)
