@@ -77,18 +77,6 @@ void sim_run_record_set(dem_sim *s, const sim_run_record *r)
     s->mc.stats.first_capped = r->mc_first_capped, s->mc.stats.last_capped = r->mc_last_capped;
 }
 
-/* a stored field read whole (storage order) */
-static void *stored(dem_sim *s, dem_field f, size_t *bytes, int *e)
-{
-    *bytes = sim_stored_bytes(s, f);
-    void *p = malloc(*bytes ? *bytes : 1);
-    if (!p && !*e)
-        *e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-    if (p && !*e && *bytes && dem_stage_read_field(s->ops, s->be, f, p, *bytes))
-        *e = sim_be_fail(s);
-    return p;
-}
-
 int sim_mc_disp_get(dem_sim *s, long *count, int **pi, int **pj, double **d)
 {
     *count = 0, *pi = *pj = NULL, *d = NULL;
@@ -96,9 +84,10 @@ int sim_mc_disp_get(dem_sim *s, long *count, int **pi, int **pj, double **d)
         return sim_fail(s, DEM_ERR_STATE, "sim_mc_disp_get: a started MC-strain run");
     int e = 0, rs = s->setup.real_size;
     size_t b;
-    int *cnt = stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = stored(s, DEM_FIELD_NBR_LIST, &b, &e);
-    int *start = stored(s, DEM_FIELD_NBR_START, &b, &e);
-    unsigned char *mcd = stored(s, DEM_FIELD_MC_DISP, &b, &e);
+    int *cnt = sim_field_stored(s, DEM_FIELD_NBR_COUNT, &b, &e);
+    int *list = sim_field_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = sim_field_stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *mcd = sim_field_stored(s, DEM_FIELD_MC_DISP, &b, &e);
     long m = 0;
     for (int i = 0; !e && i < s->n; i++)
         m += cnt[i];
@@ -133,9 +122,10 @@ int sim_mc_disp_set(dem_sim *s, long count, const int *pi, const int *pj, const 
         return sim_fail(s, DEM_ERR_STATE, "sim_mc_disp_set: a started MC-strain run");
     int e = 0, rs = s->setup.real_size;
     size_t b, bytes;
-    int *cnt = stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = stored(s, DEM_FIELD_NBR_LIST, &b, &e);
-    int *start = stored(s, DEM_FIELD_NBR_START, &b, &e);
-    unsigned char *mcd = stored(s, DEM_FIELD_MC_DISP, &bytes, &e);
+    int *cnt = sim_field_stored(s, DEM_FIELD_NBR_COUNT, &b, &e);
+    int *list = sim_field_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = sim_field_stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *mcd = sim_field_stored(s, DEM_FIELD_MC_DISP, &bytes, &e);
     for (long q = 0; !e && q < count; q++) {
         if (pi[q] < 0 || pi[q] >= s->n || pj[q] < 0 || pj[q] >= s->n) {
             e = sim_fail(s, DEM_ERR_ARG, "sim_mc_disp_set: no particle %d or %d", pi[q], pj[q]);

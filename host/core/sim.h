@@ -200,6 +200,8 @@ double sim_particle_volume(const dem_sim *s); /* walls.c: the spheres' volume, a
  * run's precision (a value of an fp32 run must be a float widened): what a run split over ranks writes back after
  * putting its owners' values into its ghosts' rows (host/mpi/halo.c) */
 int sim_set_field(dem_sim *s, dem_field f, const double *vals);
+/* state.c: field f whole as stored (storage order), malloc'd, its size in *bytes; a failure into *e (0 before) */
+void *sim_field_stored(dem_sim *s, dem_field f, size_t *bytes, int *e);
 /* fields.c: a per-particle registry buffer (BUF_*) of width reals per particle, whole, as doubles in the callers'
  * order: read, or written (values of an fp32 run must be floats widened) - the rows without a public field that a
  * run split over ranks puts into its ghosts (MDR's particle rows) */

@@ -31,7 +31,7 @@ void dem_state_free(dem_state *st)
 }
 
 /* A whole field as stored (the rows and the pair-sized fields, read together in storage order; host/core/reorder.c) */
-static void *get_stored(dem_sim *s, dem_field f, size_t *bytes, int *e)
+void *sim_field_stored(dem_sim *s, dem_field f, size_t *bytes, int *e)
 {
     *bytes = sim_stored_bytes(s, f);
     void *p = malloc(*bytes ? *bytes : 1);
@@ -182,9 +182,9 @@ int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all)
     int n = s->n, rs = s->setup.real_size, e = 0;
     size_t b, pb;
     memset(buf, 0, all);
-    int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
-    int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
-    unsigned char *pf = get_stored(s, DEM_FIELD_MC_FORCE, &pb, &e);
+    int *cnt = sim_field_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = sim_field_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = sim_field_stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *pf = sim_field_stored(s, DEM_FIELD_MC_FORCE, &pb, &e);
     int *own = e ? NULL : sim_own_starts(cnt, list, start, n);
     if (!e && !own)
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
@@ -367,11 +367,11 @@ static int pairs_get(dem_sim *s, dem_state *st)
 {
     int e = 0, n = s->n, rs = s->setup.real_size;
     size_t b, hb, fb;
-    unsigned char *mcf = get_stored(s, DEM_FIELD_MC_FORCE, &fb, &e);
-    int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
-    int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
-    unsigned char *touch = get_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = get_stored(s, DEM_FIELD_HIST, &hb, &e);
-    unsigned char *rec = get_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = get_stored(s, DEM_FIELD_MC_DISP, &b, &e);
+    unsigned char *mcf = sim_field_stored(s, DEM_FIELD_MC_FORCE, &fb, &e);
+    int *cnt = sim_field_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = sim_field_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = sim_field_stored(s, DEM_FIELD_NBR_START, &b, &e);
+    unsigned char *touch = sim_field_stored(s, DEM_FIELD_TOUCH, &b, &e), *hist = sim_field_stored(s, DEM_FIELD_HIST, &hb, &e);
+    unsigned char *rec = sim_field_stored(s, DEM_FIELD_PAIR_RECORDS, &b, &e), *mcd = sim_field_stored(s, DEM_FIELD_MC_DISP, &b, &e);
     int law = (s->setup.effects & DEM_LAW_STATE_BITS) ? DEM_LAW_PAIR_W(s->setup.effects) : 0; /* reals per pair */
     unsigned char *lst = sim_buffer_get(s, BUF_PAIR_LAW, &e);
     int rsp = (s->setup.effects & DEM_EFFECT_ROLLING_SPRING) != 0;
@@ -540,8 +540,8 @@ static int pairs_set(dem_sim *s, const dem_state *st)
     size_t b, hb = sim_stored_bytes(s, DEM_FIELD_HIST), fb = sim_stored_bytes(s, DEM_FIELD_MC_FORCE),
               tb = sim_stored_bytes(s, DEM_FIELD_TOUCH), rb = sim_stored_bytes(s, DEM_FIELD_PAIR_RECORDS);
     size_t db = sim_stored_bytes(s, DEM_FIELD_MC_DISP);
-    int *cnt = get_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = get_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
-    int *start = get_stored(s, DEM_FIELD_NBR_START, &b, &e);
+    int *cnt = sim_field_stored(s, DEM_FIELD_NBR_COUNT, &b, &e), *list = sim_field_stored(s, DEM_FIELD_NBR_LIST, &b, &e);
+    int *start = sim_field_stored(s, DEM_FIELD_NBR_START, &b, &e);
     unsigned char *touch = calloc(tb + 1, 1), *hist = calloc(hb + 1, 1), *mcf = calloc(fb + 1, 1);
     unsigned char *rec = calloc(rb + 1, 1); /* the records too: the restore runs no force pass that would write them */
     unsigned char *disp = calloc(db + 1, 1); /* and MC-strain's displacements */
