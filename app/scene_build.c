@@ -123,6 +123,17 @@ static const char *yield_missing(const scene *sc)
     return "no material has a yield_stress > 0 (the limiting contact pressure p_y [Pa] at which it yields)";
 }
 
+/* adhesion is thornton_ning's (mdr has its own) and needs a surface that adheres; the library checks the pairs */
+static const char *adhesion_missing(const scene *sc, unsigned effects)
+{
+    if (!(effects & DEM_EFFECT_THORNTON_NING))
+        return "thornton_ning is not (adhesion is that law's JKR adhesion; mdr adheres by surface_energy alone)";
+    for (unsigned k = 0; k < sc->f->materials_count; k++)
+        if (sc->f->materials[k].surface_energy > 0)
+            return NULL;
+    return "no material has a surface_energy > 0 (the work of adhesion w [J/m^2] of JKR)";
+}
+
 /* mdr needs its parameters on every material particles use: a yield stress, and psi_b said (0.5 in Zunker et al.'s
  * MCC, 0 turns the bulk response off: no default hides that choice); the library checks that they are one material */
 static const char *mdr_missing(const scene *sc)
@@ -253,6 +264,7 @@ static int parse_effects(const scene *sc, scene_run *run, char *err, size_t errl
         const char *why = (law == DEM_EFFECT_MC_STRESS || law == DEM_EFFECT_MC_STRAIN) ? mc_prefactor_missing(sc, law)
                           : law == DEM_EFFECT_THORNTON_NING ? yield_missing(sc)
                           : law == DEM_EFFECT_MDR           ? mdr_missing(sc)
+                          : law == DEM_EFFECT_ADHESION      ? adhesion_missing(sc, run->effects)
                                                             : NULL;
         if (why) {
             char path[64];
@@ -374,8 +386,9 @@ int scene_apply_model(const scene *sc, dem_sim *s, scene_run *run, const char *m
                  "mdr)", model);
         return 1;
     }
+    /* adhesion goes with thornton_ning: another model drops it (mdr adheres by surface_energy alone) */
     unsigned fx = run->effects & ~(unsigned)(DEM_EFFECT_MC_STRESS | DEM_EFFECT_MC_STRAIN | DEM_EFFECT_THORNTON_NING |
-                                             DEM_EFFECT_MDR);
+                                             DEM_EFFECT_MDR | (k == 4 ? 0u : DEM_EFFECT_ADHESION));
     fx |= k == 1 ? DEM_EFFECT_MC_STRESS : k == 4 ? DEM_EFFECT_THORNTON_NING : k == 5 ? DEM_EFFECT_MDR
           : k >= 2 ? DEM_EFFECT_MC_STRAIN : 0;
     const char *why = k == 0 ? NULL

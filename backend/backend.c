@@ -31,7 +31,7 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 #define CHECK_ARG(kind, type, name, src) CHECK_##kind(type, src)
 #define CHECK_KERNEL(name) DEM_ARGS_##name(CHECK_ARG, CHECK_ARG)
 DEM_KERNEL_LIST(CHECK_KERNEL)
-_Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 25 && ST_STRIDE == 6 &&
+_Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 26 && ST_STRIDE == 6 &&
                    MDR_PAIR_STRIDE == 25 && MDR_WALL_STRIDE == 13 && MDR_P_STRIDE == 14,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
 _Static_assert(FLAG_COUNT == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/steps/binning.c resets the cell bounds");

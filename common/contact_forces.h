@@ -63,8 +63,9 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
      * whose bond did not break (state > 0) goes to the law, which ends it unless a whole bond of a yielded contact
      * pulls (the pair-table read only for such a pair: not on the path of every pair) */
     if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touching && law_st[hp] > (real)0 &&
-        pairmat[PM_STRIDE * (mat[a] * nmat + mat[b]) + PM_TN_SIGB] > (real)0)
-        g = pair_geometry_reach(v3_load(x, a), ra, v3_load(x, b), rb, (real)2);
+        (pairmat[PM_STRIDE * (mat[a] * nmat + mat[b]) + PM_TN_SIGB] > (real)0 ||
+         ((fx & DEM_EFFECT_ADHESION) && pairmat[PM_STRIDE * (mat[a] * nmat + mat[b]) + PM_TN_K] > (real)0)))
+        g = pair_geometry_reach(v3_load(x, a), ra, v3_load(x, b), rb, (real)2); /* (and JKR adhesion's, to release) */
     pc.active = g.active;
     pc.delta = (real)0;
     pc.fel = (real)0;
@@ -191,7 +192,8 @@ DEM_ITEM(contact_pairs)
         v3_store(pair_roll, i, pc.roll);
     if (fx & DEM_EFFECT_ROLLING_SPRING)
         v3_store(rspring, i, pc.rspring);
-    if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && pc.delta > (real)0) /* read by contact_forces for this step's row */
+    /* read by contact_forces for this step's row (a JKR contact's also across a gap: DEM_EFFECT_ADHESION) */
+    if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && (pc.delta > (real)0 || (fx & DEM_EFFECT_ADHESION)))
         pair_ela[i] = (fx & DEM_EFFECT_MDR) ? pc.ela : series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
                                               pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
 }
@@ -227,7 +229,8 @@ DEM_ITEM(contact_forces)
             macc[q] += pair_mdr_sum[2 * MDR_NSUM * p + MDR_NSUM + q];
         if (fx & DEM_EFFECT_ROLLING) /* i is the pair's a: its rolling torque */
             ti = v3_add(ti, v3_load(pair_roll, p));
-        if (sample && pr[PR_DELTA] > (real)0) { /* a sampled step: the pair's elastic energy, by its lower id */
+        if (sample && (pr[PR_DELTA] > (real)0 || (fx & DEM_EFFECT_ADHESION))) { /* a sampled step: the pair's
+                                                                                     elastic energy, by its lower id */
             if (fx & DEM_KEEP_PAIR_ENERGY) {
                 ela += pair_ela[p];
             } else {

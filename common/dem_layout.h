@@ -40,7 +40,11 @@ enum {
      * E/(1 - nu^2) of one sphere on a rigid flat, G, the bulk modulus, nu, the yield stress Y, the surface energy (a
      * wall material's own at a wall), psi_b and eta_d (host/core/sim_setup.c pack_pairs) */
     PM_MDR = 17,
-    PM_STRIDE = 25
+    /* Thornton-Ning's JKR adhesion (DEM_EFFECT_ADHESION, laws/thornton_ning.h): k = sqrt(2 pi w / E*), w the pair's
+     * work of adhesion (the geometric mean of its materials' surface_energy; 0: none), so that a contact of radius a
+     * sits k sqrt(a) below its non-adhesive overlap and pulls with 2 E* k a sqrt(a) (JKR) [m^(1/2)] */
+    PM_TN_K = 25,
+    PM_STRIDE = 26
 };
 
 /* MDR's state (common/laws/mdr.h, docs/laws/mdr.md (M37)). One side of a contact, mdr_side's order (laws/mdr_core.h):

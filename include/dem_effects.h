@@ -58,11 +58,17 @@ enum {
                                   bulk response of a confined sphere and the radius that keeps its volume):
                                   common/laws/mdr.h, docs/laws/mdr.md; needs each particle material's yield_stress;
                                   excludes mc_stress, mc_strain, thornton_ning and patches */
-    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304 | 8388608 | 16777216
+    DEM_EFFECT_ADHESION = 67108864, /* JKR adhesion of thornton_ning's contacts (Johnson, Kendall and Roberts 1971;
+                                       the flattened contact's as Thornton and Ning 1998): the pair's work of
+                                       adhesion from its materials' surface_energy; needs thornton_ning and a
+                                       material with surface_energy > 0; a pair may not also bond
+                                       (common/laws/thornton_ning.h). Above the host's bit 33554432 */
+    DEM_EFFECT_ALL = 127 | 4096 | 8192 | 16384 | 32768 | 65536 | 131072 | 2097152 | 4194304 | 8388608 | 16777216 |
+                     67108864
 };
-/* Bit positions an effect name can have (dem_effect_name): 0..24; 7..11 are the convention bits and 18..20 the
+/* Bit positions an effect name can have (dem_effect_name): 0..26; 7..11 are the convention bits and 18..20 and 25 the
  * host's and the test laws' bits, not effects. */
-#define DEM_EFFECT_COUNT 25
+#define DEM_EFFECT_COUNT 27
 /* The effects whose forces reach particles through the contribution channel (common/springs.h) */
 #define DEM_EFFECT_CHANNEL (DEM_EFFECT_SPRINGS | DEM_EFFECT_PRESSURE | DEM_EFFECT_BENDING)
 

@@ -78,6 +78,11 @@ static void test_errors(void **st)
         "material_pairs[0]: material pair 0-0: bond strength must be >= 0 Pa");
     bad("s/hertz, damping/hertz, damping, thornton_ning, mc_stress/; s/friction: 0.5}/friction: 0.5, yield_stress: "
         "1e6, beta: 1}/", "bad.yaml:5: effects: thornton_ning and the multi-contact laws are alternative normal laws");
+    /* JKR adhesion: thornton_ning's, with a surface that adheres */
+    bad("s/hertz, damping/hertz, damping, adhesion/; s/friction: 0.5}/friction: 0.5, surface_energy: 0.1}/",
+        "bad.yaml:5: effects[2]: adhesion is listed but thornton_ning is not");
+    bad("s/hertz, damping/hertz, damping, thornton_ning, adhesion/; s/friction: 0.5}/friction: 0.5, yield_stress: 1e6}/",
+        "bad.yaml:5: effects[3]: adhesion is listed but no material has a surface_energy > 0");
     /* MDR: its parameters said, one normal law */
     bad("s/hertz, damping/hertz, damping, mdr/; s/friction: 0.5}/friction: 0.5, yield_stress: 1e6}/",
         "bad.yaml:5: effects[2]: mdr is listed but material 'rubber' (used by particles) gives no bulk_fraction");

@@ -47,16 +47,41 @@
  * wall's cannot (its geometry ends the contact at zero overlap, so a wall given a bond strength lets go there,
  * unbroken, where the dent is shallower than the bond's stretch F_b / (2 E* a_p)): bonds are meant for powder on
  * powder, tools' steel bonds to nothing.
- * Not here: Thornton-Ning's JKR adhesion of surfaces that have not yielded (surface energy; its paper could not be
- * read here); the bond is this law's adhesion, the one a compact's strength needs.
+ * JKR adhesion (DEM_EFFECT_ADHESION, PM_TN_K; docs/laws/thornton_ning.md): the pair's work of adhesion w acts as in
+ * Johnson, Kendall and Roberts (1971): a contact of radius a sits k sqrt(a) below its non-adhesive overlap and pulls
+ * with 2 E* k a sqrt(a) more, k = sqrt(2 pi w / E*) (JKR's delta = a^2/R - sqrt(2 pi w a / E*), F = 4 E* a^3 / (3 R)
+ * - sqrt(8 pi w E* a^3)). Thornton and Ning's paper could not be read here; the reading taken, after their abstract's
+ * picture (a yielded contact unloads as a JKR contact of the flattened radius R_p, so its pull-off force grows with
+ * plastic deformation: F_cp = 3/2 pi w R_p), is that the adhesive terms act on top of the law above written in
+ * the contact radius a:
+ *   loading    delta = a^2 / r* - k sqrt(a)   (the non-adhesive law's a = sqrt(r* delta_H) on both of its
+ *              branches; it yields when a reaches a_y = sqrt(r* delta_y), the Hertzian pressure p_y),
+ *              F = F_H(a) - 2 E* k a sqrt(a), F_H = 4/3 E* a^3 / r* (a <= a_y), pi p_y a^2 - F_y / 2 (a > a_y: the
+ *              plastic line F_y + pi p_y r* (delta_H - delta_y) in a);
+ *   unloading  from the largest contact radius a_m (at the largest overlap delta_m): R_p = 4 E* a_m^3 / (3 F_H(a_m))
+ *              (r* if it never yielded), delta_p = a_m^2 / r* - a_m^2 / R_p, and
+ *              delta = delta_p + a^2 / R_p - k sqrt(a), F = 4/3 E* a^3 / R_p - 2 E* k a sqrt(a);
+ *   it lets go where the stable branch ends (d delta / da = 0): at a_c, a_c^(3/2) = k rho / 4, delta - delta_p =
+ *   -3/4 k sqrt(a_c) (rho = r* or R_p; JKR's -3 a_c^2 / rho with a_c^3 = pi w rho^2 / (8 E*), force -5/6 pi w rho);
+ *   a new contact forms at zero overlap (at JKR's force there, -4/3 pi w r*: no jump-in from a gap).
+ * Each branch is s^4 / rho - k s = delta' in s = sqrt(a): tn_jkr_root solves it by a fixed count of Newton steps from
+ * a fixed start above the root (the function is convex, so every step stays above it), the same in the reference and
+ * the kernels; a_c from laws/mdr_core.h's fixed-count cube root. The damping and tangential stiffness take the
+ * contact radius a; the Coulomb limit is mu (F + 3 pi w rho) (fn_min = -2 F_c: Thornton and Yin's mu (P + 2 P_c), the
+ * load friction resists raised by adhesion). A pair keeps its contact across a gap (contact_forces.h) down to the
+ * release; a wall's contact ends at zero overlap (its geometry), so a sphere lets go of a wall at JKR's force at
+ * touch, -4/3 pi w r* (elastic), not at its pull-off. The state is the largest overlap (>= 0), as without adhesion;
+ * a pair may not both adhere and bond (host/core/sim_setup.c).
  */
 #ifndef DEM_LAW_THORNTON_NING_H
 #define DEM_LAW_THORNTON_NING_H
 #include "law.h"
 #include "hertz_mindlin.h"
+#include "mdr_core.h" /* mdr_cbrt, the fixed-count cube root */
 
 #define LAW_COLUMNS_thornton_ning(C)                                                                                 \
-    C(PM_ESTAR) C(PM_GSTAR) C(PM_MU) C(PM_DAMP_N) C(PM_DAMP_T) C(PM_TN_PIPY) C(PM_TN_DY) C(PM_TN_FY) C(PM_TN_SIGB)
+    C(PM_ESTAR) C(PM_GSTAR) C(PM_MU) C(PM_DAMP_N) C(PM_DAMP_T) C(PM_TN_PIPY) C(PM_TN_DY) C(PM_TN_FY) C(PM_TN_SIGB)   \
+    C(PM_TN_K)
 
 /* A point of the law: the elastic normal force, the contact radius, and the lowest normal force the contact may carry
  * at this point (-F_b while a bond holds, else 0) */
@@ -154,11 +179,115 @@ DEM_INLINE tn_point tn_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, rea
     return tn_unloading(pm, rstar, delta, dmax, bonded, de);
 }
 
+/* ---- JKR adhesion (DEM_EFFECT_ADHESION) ---- */
+/* Newton steps of tn_jkr_root: from its start the error falls quadratically to rounding in at most 6
+ * (tests/test_tn_adhesion.c checks the force at every step against a bisection: 1e-13 of the pull-off force in fp64);
+ * the rest cover the linear convergence next to the release, where the root is double */
+#define TN_JKR_STEPS 12
+
+/* s = sqrt(a) >= s_c on the stable branch of s^4 / rho - k s = d (s_c^3 = k rho / 4, d >= -3/4 k s_c): Newton from
+ * s0 = (rho max(d, 0))^(1/4) + 2 s_c, above the root ((A + B)^4 >= A^4 + B^3 (A + B) with B^3 = 8 s_c^3 >= k rho),
+ * kept at s_c or above */
+DEM_INLINE real tn_jkr_root(real rho, real k, real d, real sc)
+{
+    real s = dem_sqrt(dem_sqrt(rho * (d > (real)0 ? d : (real)0))) + (real)2 * sc;
+    for (int it = 0; it < TN_JKR_STEPS; it++) {
+        real s3 = s * s * s;
+        real fp = (real)4 * s3 / rho - k;
+        real step = fp > (real)0 ? (s3 * s / rho - k * s - d) / fp : (real)0;
+        s = s - step;
+        if (s < sc)
+            s = sc;
+    }
+    return s;
+}
+
+/* s_c = sqrt(a_c) of a branch of radius rho: s_c^3 = k rho / 4 */
+DEM_INLINE real tn_jkr_sc(real rho, real k)
+{
+    return mdr_cbrt(k * rho / (real)4);
+}
+
+/* The non-adhesive law's force at contact radius a on loading (a^2 = r* delta_H): Hertz to a_y, then the plastic
+ * line pi p_y a^2 - F_y / 2 */
+DEM_INLINE real tn_hertzian_force(DEM_CONST_GLOBAL real *pm, real rstar, real a)
+{
+    if (pm[PM_TN_PIPY] > (real)0 && a * a > rstar * rstar * pm[PM_TN_DY])
+        return pm[PM_TN_PIPY] * a * a - pm[PM_TN_FY] * rstar * rstar / (real)2;
+    return (real)4 * pm[PM_ESTAR] * a * a * a / ((real)3 * rstar);
+}
+
+/* The unloading branch from the largest overlap dmax: its radius rho (R_p, or r* if the contact never yielded), its
+ * offset dp = delta_p and its s_c (sc: r*'s on entry) */
+DEM_INLINE void tn_jkr_branch(DEM_CONST_GLOBAL real *pm, real rstar, real dmax, real *rho, real *dp, real *sc)
+{
+    real k = pm[PM_TN_K], sm = tn_jkr_root(rstar, k, dmax, *sc), am = sm * sm;
+    *rho = rstar;
+    *dp = (real)0;
+    if (pm[PM_TN_PIPY] > (real)0 && am * am > rstar * rstar * pm[PM_TN_DY]) { /* it yielded */
+        *rho = (real)4 * pm[PM_ESTAR] * am * am * am / ((real)3 * tn_hertzian_force(pm, rstar, am));
+        *dp = am * am / rstar - am * am / *rho;
+        *sc = tn_jkr_sc(*rho, k);
+    }
+}
+
+/* The adhesive law at overlap delta given the largest overlap so far dmax (>= 0): the elastic force and contact
+ * radius, fmin = -3 pi w rho (the Coulomb limit's offset) and *rho_out the branch's radius; f = a = 0 and *on = 0
+ * where the contact has let go */
+DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real dmax, real *rho_out, int *on)
+{
+    tn_point p;
+    real es = pm[PM_ESTAR], k = pm[PM_TN_K];
+    real sc = tn_jkr_sc(rstar, k), rho = rstar, dp = (real)0;
+    p.broke = 0;
+    if (delta < dmax) /* unloading from the largest contact radius */
+        tn_jkr_branch(pm, rstar, dmax, &rho, &dp, &sc);
+    real d = delta - dp;
+    *rho_out = rho;
+    *on = !(d < (real)-0.75 * k * sc);
+    if (!*on) {
+        p.f = p.a = p.fmin = (real)0;
+        return p;
+    }
+    real s = tn_jkr_root(rho, k, d, sc);
+    p.a = s * s;
+    p.f = (delta < dmax ? (real)4 * es * p.a * p.a * p.a / ((real)3 * rho) : tn_hertzian_force(pm, rstar, p.a)) -
+          (real)2 * es * k * p.a * s;
+    p.fmin = (real)-1.5 * es * k * k * rho; /* -3 pi w rho = -2 F_c: pi w = E* k^2 / 2 */
+    return p;
+}
+
+/* What an adhesive contact gives back if pulled from overlap delta along the unloading branch from max(delta, dmax)
+ * to its release: G(a) - G(a_c), G(a) = 8/15 E* a^5 / rho^2 - 4/3 E* k a^(7/2) / rho + E* k^2 a^2 / 2 (the integral
+ * of F d delta along the branch), G(a_c) = 16/5 E* a_c^5 / rho^2; negative in the adhesive well, 0 once let go */
+DEM_INLINE real tn_jkr_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real dmax)
+{
+    real es = pm[PM_ESTAR], k = pm[PM_TN_K];
+    real sc = tn_jkr_sc(rstar, k), rho, dp;
+    tn_jkr_branch(pm, rstar, delta > dmax ? delta : dmax, &rho, &dp, &sc);
+    real d = delta - dp;
+    if (d < (real)-0.75 * k * sc)
+        return (real)0;
+    real s = tn_jkr_root(rho, k, d, sc), a = s * s, ac = sc * sc;
+    real g = (real)8 / (real)15 * es * a * a * a * a * a / (rho * rho) - (real)4 / (real)3 * es * k * a * a * a * s / rho +
+             es * k * k * a * a / (real)2;
+    return g - (real)16 / (real)5 * es * ac * ac * ac * ac * ac / (rho * rho);
+}
+
 /* ---- the law unit (law.h) ---- */
 DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
 {
     real de;
     int slid;
+    if ((fx & DEM_EFFECT_ADHESION) && c.pm[PM_TN_K] > (real)0) { /* JKR adhesion; no bond on such a pair */
+        real rho;
+        int on;
+        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rho, &on);
+        law_result r = hm_contact_bond(fx, c.n, q.f, q.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, q.fmin, &slid);
+        r.st = c.delta > c.st ? c.delta : c.st;
+        r.active = on;
+        return r;
+    }
     tn_point p = tn_at(c.pm, c.rstar, c.delta, c.st, &de);
     law_result r = hm_contact_bond(fx, c.n, p.f, p.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, p.fmin, &slid);
     real dmax = tn_dmax(c.st);
@@ -179,6 +308,11 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
 DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     real de;
+    if (pm[PM_TN_K] > (real)0) { /* JKR adhesion (0 unless DEM_EFFECT_ADHESION: sim_setup.c) */
+        real rho;
+        int on;
+        return tn_jkr_at(pm, rstar, delta, st, &rho, &on).f;
+    }
     return tn_at(pm, rstar, delta, st, &de).f;
 }
 /* What the contact gives back if unloaded from delta: 2/5 F (delta - delta_p), the Hertz energy of its elastic part
@@ -186,6 +320,8 @@ DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
 DEM_INLINE real thornton_ning_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     real de;
+    if (pm[PM_TN_K] > (real)0) /* JKR adhesion (0 unless DEM_EFFECT_ADHESION: sim_setup.c) */
+        return tn_jkr_energy(pm, rstar, delta, st);
     real dmax = tn_dmax(st);
     tn_point p = tn_unloading(pm, rstar, delta, delta > dmax ? delta : dmax, !(st < (real)0), &de);
     if (p.f < (real)0) /* a bond's tension: a linear spring's */

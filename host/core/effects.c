@@ -24,6 +24,9 @@ int dem_set_effects(dem_sim *s, unsigned effects)
     if ((effects & DEM_EFFECT_MDR) && (effects & DEM_EFFECT_PATCHES))
         return sim_fail(s, DEM_ERR_ARG, "mdr does not act at membrane patches (its contacts are spheres pressed on "
                                         "flats: pairs and walls)");
+    if ((effects & DEM_EFFECT_ADHESION) && !(effects & DEM_EFFECT_THORNTON_NING))
+        return sim_fail(s, DEM_ERR_ARG, "adhesion is thornton_ning's JKR adhesion: list thornton_ning too (mdr has its "
+                                        "own, from surface_energy)");
     if ((effects & DEM_EFFECT_ROLLING) && !(effects & DEM_EFFECT_FRICTION))
         return sim_fail(s, DEM_ERR_ARG, "rolling resistance acts on spins, which only friction gives: list friction too");
     if ((effects & DEM_EFFECT_ROLLING) && (effects & DEM_EFFECT_PATCHES))
@@ -83,12 +86,12 @@ int dem_set_mc_strain_reach(dem_sim *s, double factor)
 
 void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc.stats; }
 
-/* by bit position; the convention bits (7..11, dem_effects.h) and the host's bits (18..20) have no name */
+/* by bit position; the convention bits (7..11, dem_effects.h) and the host's bits (18..20, 25) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",
                                                            "mc_stress", "mc_strain", NULL, NULL, NULL, NULL, NULL,
                                                            "springs", "pressure", "bending", "patches", "riders", "constraints",
                                                            NULL, NULL, NULL, "thornton_ning", "rolling",
-                                                           "rolling_spring", "mdr"};
+                                                           "rolling_spring", "mdr", NULL, "adhesion"};
 
 const char *dem_effect_name(int bit) { return bit >= 0 && bit < DEM_EFFECT_COUNT ? effect_names[bit] : NULL; }
 

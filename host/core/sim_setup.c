@@ -256,6 +256,32 @@ static int validate_mdr(dem_sim *s)
     return 0;
 }
 
+/* Thornton-Ning's JKR adhesion (DEM_EFFECT_ADHESION): some pair of materials adheres (both give a surface_energy and
+ * one yields), and no pair both adheres and bonds: a bond is that law's other adhesion, over the yielded area, and
+ * the two are not combined (thornton_ning.h) */
+static int validate_adhesion(dem_sim *s)
+{
+    if (!(s->effects & DEM_EFFECT_ADHESION))
+        return 0;
+    int any = 0;
+    for (int a = 0; a < s->nmat; a++)
+        for (int b = a; b < s->nmat; b++) {
+            const dem_material *ma = &s->mats[a], *mb = &s->mats[b];
+            if (!(ma->surface_energy * mb->surface_energy > 0) || !(ma->yield_stress > 0 || mb->yield_stress > 0))
+                continue;
+            any = 1;
+            const dem_material_pair *pp = s->pair_set[a][b] ? &s->pair_props[a][b] : NULL;
+            double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
+            if (sb > 0)
+                return sim_fail(s, DEM_ERR_ARG, "materials %d and %d both adhere (surface_energy, the effect adhesion) "
+                                "and bond (bond_strength %g Pa): thornton_ning takes one adhesion per pair", a, b, sb);
+        }
+    if (!any)
+        return sim_fail(s, DEM_ERR_ARG, "the effect adhesion is on but no pair of materials adheres: it needs two "
+                        "surfaces with surface_energy > 0, one of which yields (yield_stress > 0)");
+    return 0;
+}
+
 int sim_validate(dem_sim *s)
 {
     int e;
@@ -297,7 +323,7 @@ int sim_validate(dem_sim *s)
     }
     if (s->nwalls && !(s->effects & DEM_EFFECT_WALLS))
         return sim_fail(s, DEM_ERR_ARG, "%d walls are defined but the effect 'walls' is off", s->nwalls);
-    if ((e = validate_mdr(s)))
+    if ((e = validate_mdr(s)) || (e = validate_adhesion(s)))
         return e;
     s->motion.particle_volume = sim_particle_volume(s); /* until_density's: the same bits as dem_relative_density's */
     for (int k = 0; k < s->nwalls; k++) { /* until_density: the die and the punch facing this one */
@@ -540,6 +566,10 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             /* a bond is as strong as the weaker of the two materials (a tool's steel, 0, bonds to nothing) */
             double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
             row[PM_TN_SIGB] = py > 0 ? M_PI * sb : 0;
+            /* JKR adhesion (DEM_EFFECT_ADHESION): the work of adhesion of two surfaces is the geometric mean of
+             * their own (Berthelot's rule for dispersion forces; a tool's steel left at 0 adheres to nothing) */
+            double wad = sqrt(ma->surface_energy * mb->surface_energy);
+            row[PM_TN_K] = (s->effects & DEM_EFFECT_ADHESION) && py > 0 && wad > 0 ? sqrt(2 * M_PI * wad / row[PM_ESTAR]) : 0;
             /* MDR: the sphere's material is the one that yields (sim_validate: an MDR run has one such); at a wall
              * (a material that does not yield) the wall's surface energy, as in LAMMPS */
             const dem_material *sp = mb->yield_stress > 0 && !(ma->yield_stress > 0) ? mb : ma;

@@ -318,13 +318,14 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         double rj = mdr ? hs->mdr[MDR_P_STRIDE * j + 1] : s->radius[j];
         double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
         double delta = r + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (delta > 0) {
+        /* a JKR contact (DEM_EFFECT_ADHESION) holds across a gap until it lets go: its state (the largest overlap, > 0)
+         * is kept while it touches, and cleared when it ends (contact_forces.h) */
+        int p = hs->pair_st && (delta > 0 || (fx & DEM_EFFECT_ADHESION))
+                    ? row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k) : -1;
+        double st = p >= 0 ? hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)] : 0;
+        if (delta > 0 || ((fx & DEM_EFFECT_ADHESION) && st > 0)) {
             double rs = r * rj / (r + rj), row[PM_STRIDE];
             pair_row(s, s->mat[i], s->mat[j], row);
-            double st = 0;
-            int p = hs->pair_st ? row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k) : -1;
-            if (p >= 0)
-                st = hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)];
             if (mdr && p >= 0) { /* side 0 is j, of the higher stable id (laws/mdr.h) */
                 mdr_material m = mdr_material_of(row);
                 mdr_particle p0 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * j);

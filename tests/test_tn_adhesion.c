@@ -1,0 +1,291 @@
+/* test_tn_adhesion.c - Thornton-Ning's law with JKR adhesion (DEM_EFFECT_ADHESION, common/laws/thornton_ning.h)
+ * against closed forms typed in here, not taken from the library:
+ *   JKR (Johnson, Kendall and Roberts 1971), a contact of radius a between spheres of effective radius rho:
+ *     delta = a^2 / rho - sqrt(2 pi w a / E*),  F = 4 E* a^3 / (3 rho) - sqrt(8 pi w E* a^3),
+ *     solved here for a by bisection on the stable branch a >= a_c = (pi w rho^2 / (8 E*))^(1/3), where a contact
+ *     held by its ends lets go: delta_c = -3/4 (pi^2 w^2 rho / E*^2)^(1/3); the least force on that branch is the
+ *     pull-off force -3/2 pi w rho;
+ *   Thornton-Ning's plastic line in the contact radius (the Hertzian overlap a^2 / R*): F_H = F_y + pi p_y R*
+ *     (a^2 / R* - delta_y) past a_y = pi p_y R* / (2 E*), and unloading as JKR of the flattened radius
+ *     R_p = 4 E* a_m^3 / (3 F_H(a_m)) through the largest contact (delta_m, a_m), so the pull-off force grows with
+ *     plastic deformation: -3/2 pi w R_p (F_cp = F_c R_p / R*);
+ *   the energy an elastic JKR impact loses (a contact forms at zero overlap and lets go at delta_c; the branch between
+ *     is conservative): the potential's work from delta = 0 to delta_c, computed here by quadrature, so two spheres
+ *     stick below V_s = sqrt(2 dW / m*) and part at sqrt(V_i^2 - V_s^2) above it.
+ * Cases, each on the reference and on OpenCL (PoCL) in fp64 and fp32, the OpenCL state equal to the reference's at
+ * every step: head-on impacts of two spheres below and above V_s (no yield), and far above yield; the force at every
+ * step against the closed form, the step where they let go, the least force, the rebound speed and the energy the host
+ * reports through the unloading. Refusals: adhesion without thornton_ning, without a surface energy, with bonds. */
+#include "test_util.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define RHO 1500.0
+#define YOUNG 5e9
+#define NU 0.3
+#define PY 1e8  /* p_y [Pa] */
+#define W 0.5   /* work of adhesion [J/m^2] */
+#define R 1e-4
+
+typedef struct {
+    double es, rs, w, ay, dy, fy;
+} jkr_closed;
+
+static jkr_closed jkr_of(double es, double rs)
+{
+    jkr_closed t = {es, rs, W, M_PI * PY * rs / (2 * es), 0, 0};
+    t.dy = t.ay * t.ay / rs;
+    t.fy = 4.0 / 3.0 * es * sqrt(rs) * pow(t.dy, 1.5);
+    return t;
+}
+
+static double jkr_ac(const jkr_closed *t, double rho) { return cbrt(M_PI * t->w * rho * rho / (8 * t->es)); }
+static double jkr_delta(const jkr_closed *t, double rho, double a) { return a * a / rho - sqrt(2 * M_PI * t->w * a / t->es); }
+static double jkr_release(const jkr_closed *t, double rho) /* delta_c, < 0 */
+{
+    return -0.75 * cbrt(M_PI * M_PI * t->w * t->w * rho / (t->es * t->es));
+}
+static double jkr_force_a(const jkr_closed *t, double rho, double a)
+{
+    return 4 * t->es * a * a * a / (3 * rho) - sqrt(8 * M_PI * t->w * t->es * a * a * a);
+}
+/* a on the stable branch at delta d (>= delta_c): bisection */
+static double jkr_a(const jkr_closed *t, double rho, double d)
+{
+    double lo = jkr_ac(t, rho), hi = lo;
+    while (jkr_delta(t, rho, hi) < d)
+        hi *= 2;
+    for (int k = 0; k < 200; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (jkr_delta(t, rho, mid) < d)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+static double hertzian(const jkr_closed *t, double a) /* Thornton-Ning without adhesion, at delta_H = a^2 / R* */
+{
+    double dh = a * a / t->rs;
+    return dh <= t->dy ? 4.0 / 3.0 * t->es * sqrt(t->rs) * pow(dh, 1.5) : t->fy + M_PI * PY * t->rs * (dh - t->dy);
+}
+/* The unloading branch from dmax: its radius and offset */
+static void branch(const jkr_closed *t, double dmax, double *rho, double *dp)
+{
+    double am = jkr_a(t, t->rs, dmax);
+    *rho = am <= t->ay ? t->rs : 4 * t->es * am * am * am / (3 * hertzian(t, am));
+    *dp = dmax - jkr_delta(t, *rho, am);
+}
+/* The force at d given the largest overlap dmax; *gone = 1 where the contact has let go */
+static double jkr_force(const jkr_closed *t, double d, double dmax, int *gone)
+{
+    *gone = 0;
+    if (d >= dmax) {
+        double a = jkr_a(t, t->rs, d);
+        return hertzian(t, a) - sqrt(8 * M_PI * t->w * t->es * a * a * a);
+    }
+    double rho, dp;
+    branch(t, dmax, &rho, &dp);
+    if (d - dp < jkr_release(t, rho)) {
+        *gone = 1;
+        return 0;
+    }
+    return jkr_force_a(t, rho, jkr_a(t, rho, d - dp));
+}
+/* The work of the contact's force from overlap d to the release, along the branch from dmax (Simpson in a) */
+static double jkr_potential(const jkr_closed *t, double d, double dmax)
+{
+    double rho, dp;
+    branch(t, fmax(d, dmax), &rho, &dp);
+    double a0 = jkr_ac(t, rho), a1 = jkr_a(t, rho, d - dp), sum = 0;
+    int n = 2000;
+    for (int k = 0; k <= n; k++) {
+        double a = a0 + (a1 - a0) * k / n, h = 1e-7 * a;
+        double dd = (jkr_delta(t, rho, a + h) - jkr_delta(t, rho, a - h)) / (2 * h); /* d delta / da */
+        sum += (k == 0 || k == n ? 1 : k % 2 ? 4 : 2) * jkr_force_a(t, rho, a) * dd;
+    }
+    return sum * (a1 - a0) / (3 * n);
+}
+
+static double sphere_mass(void) { return RHO * 4.0 / 3.0 * M_PI * R * R * R; }
+
+static dem_material powder(void)
+{
+    dem_material m = {RHO, YOUNG, NU, 1.0, 0.0, 0.0, 0.0, PY};
+    m.surface_energy = W;
+    return m;
+}
+
+#define FX_ADH (DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_ADHESION)
+
+typedef struct {
+    int stuck, released, yielded, steps_in;
+    double worst, v_out, f_min, d_release, energy_drift, worst_energy, dmax;
+} impact_result;
+
+/* Two spheres meeting head-on at relative speed vi; follows the contact until it lets go (or max_steps). The force on
+ * the sphere at +x, compared with the closed form at every step in contact */
+static impact_result impact(const jkr_closed *t, double vi, double dt, long max_steps, dem_precision prec)
+{
+    dem_material m = powder();
+    dem_sim *cl = head_on_build(&m, NULL, R, vi, FX_ADH, dt), *ref = head_on_build(&m, NULL, R, vi, FX_ADH, dt);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
+    start_or_fail(cl, &c);
+    start_or_fail(ref, &rc);
+    impact_result r;
+    memset(&r, 0, sizeof r);
+    double dmax = 0, e_unload = NAN, ms = sphere_mass() / 2;
+    double fscale = 1.5 * M_PI * t->w * t->rs; /* the pull-off force F_c */
+    double escale = -jkr_potential(t, 0, 0);   /* the energy an elastic contact holds at zero overlap */
+    int in = 0;
+    for (long k = 0; k < max_steps; k++) {
+        twins_step(cl, ref, 1, "adhesive impact, PoCL vs reference");
+        double x[6], f[6], v[6];
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+        assert_int_equal(dem_get_field(ref, DEM_FIELD_V, v), 0);
+        double d = 2 * R - (x[3] - x[0]);
+        if (prec == DEM_FP32) { /* the overlap as the kernels form it in fp32 (contact_geometry.h): near the release
+                                 * the force's slope is unbounded, and fp32 resolves these positions to 1e-11 m */
+            float dx = (float)x[0] - (float)x[3], dy = (float)x[1] - (float)x[4], dz = (float)x[2] - (float)x[5];
+            float dd = dx * dx + dy * dy;
+            dd = dd + dz * dz;
+            d = (double)((float)R + (float)R - sqrtf(dd));
+        }
+        if (!in && d <= 0)
+            continue;
+        in = 1;
+        dmax = fmax(dmax, d);
+        int gone;
+        double want = jkr_force(t, d, dmax, &gone), got = f[3];
+        if (gone) { /* the library lets go at the same step, unless d sits at the release to rounding */
+            double rho, dp;
+            branch(t, dmax, &rho, &dp);
+            if (fabs(d - dp - jkr_release(t, rho)) > 1e-6 * fabs(jkr_release(t, rho)))
+                assert_true(got == 0);
+            r.released = 1;
+            r.d_release = d - dp;
+            r.v_out = v[3] - v[0];
+            break;
+        }
+        assert_true(got != 0); /* still in contact */
+        r.steps_in++;
+        r.worst = fmax(r.worst, fabs(got - want) / fscale);
+        r.f_min = fmin(r.f_min, got);
+        r.yielded |= jkr_a(t, t->rs, dmax) > t->ay;
+        if (d < dmax) { /* unloading: kinetic + the contact's potential (the host's energy) stays constant */
+            dem_energy_t en;
+            assert_int_equal(dem_energy(ref, &en), 0);
+            double vrel = v[3] - v[0], e = 0.5 * ms * vrel * vrel + en.elastic;
+            if (isnan(e_unload))
+                e_unload = e;
+            r.energy_drift = fmax(r.energy_drift, fabs(e - e_unload));
+            /* the host's energy is the closed form's potential */
+            r.worst_energy = fmax(r.worst_energy, fabs(en.elastic - jkr_potential(t, d, dmax)) / escale);
+        }
+    }
+    r.stuck = !r.released;
+    r.dmax = dmax;
+    dem_destroy(cl);
+    dem_destroy(ref);
+    return r;
+}
+
+static void elastic_impacts(dem_precision prec)
+{
+    jkr_closed t = jkr_of(YOUNG / (2 * (1 - NU * NU)), R / 2);
+    double ms = sphere_mass() / 2;
+    /* the energy lost between forming at zero overlap and letting go: the potential's value at delta = 0 */
+    double dw = -jkr_potential(&t, 0, 0), vs = sqrt(2 * dw / ms);
+    double tc = 2.87 * pow(ms * ms / (t.rs * t.es * t.es * vs), 0.2), dt = tc / 3000;
+    double tol = prec == DEM_FP64 ? 1e-9 : 1e-4;
+    impact_result slow = impact(&t, 0.9 * vs, dt, 3 * 3000, prec); /* three contact times: it stays */
+    impact_result fast = impact(&t, 1.2 * vs, dt, 8 * 3000, prec);
+    double vout_want = sqrt(1.44 - 1) * vs, fc = 1.5 * M_PI * W * t.rs;
+    printf("  elastic, %s: V_s %.5g m/s; at 0.9 V_s %s after %d steps in contact (worst force %.2g F_c); at 1.2 V_s "
+           "parted after %d steps at delta - delta_c %.3g m, at %.6g m/s (energy balance: %.6g), least force %.6f F_c "
+           "(JKR: -1), worst force %.2g F_c, host's energy against the closed form %.2g dW, energy drift through the "
+           "unloading %.2g dW\n",
+           prec == DEM_FP64 ? "fp64" : "fp32", vs, slow.stuck ? "stuck" : "PARTED", slow.steps_in, slow.worst,
+           fast.steps_in, fast.d_release - jkr_release(&t, t.rs), fast.v_out, vout_want, fast.f_min / fc, fast.worst,
+           fast.worst_energy, fast.energy_drift / dw);
+    assert_true(slow.stuck && slow.steps_in > 8900 && !slow.yielded);
+    assert_true(fast.released && !fast.yielded);
+    assert_true(slow.worst < tol && fast.worst < tol);
+    assert_true(fabs(fast.f_min / fc + 1) < 2e-3); /* sampled near the pull-off force */
+    assert_true(fast.worst_energy < (prec == DEM_FP64 ? 1e-6 : 1e-2));
+    /* the rebound and the energy through the unloading, in fp64 only: a step moves these spheres 6e-12 m, less than
+     * fp32's spacing of their positions (7e-12 m at 1e-4 m), so an fp32 run's motion is rounded away (its rebound
+     * was 2.7 % fast) while its force at each step's overlap is the law's (above) */
+    if (prec == DEM_FP64) {
+        assert_true(fabs(fast.v_out / vout_want - 1) < 5e-3);
+        assert_true(fast.energy_drift < 1e-3 * dw);
+    }
+}
+
+static void plastic_impact(dem_precision prec)
+{
+    jkr_closed t = jkr_of(YOUNG / (2 * (1 - NU * NU)), R / 2);
+    double ms = sphere_mass() / 2;
+    double vy = sqrt(2 * 0.4 * t.fy * t.dy / ms), vi = 5 * vy; /* the speed that just yields, without adhesion */
+    double tc = 2.87 * pow(ms * ms / (t.rs * t.es * t.es * vi), 0.2), dt = tc / 3000;
+    impact_result r = impact(&t, vi, dt, 10 * 3000, prec);
+    /* the flattened radius of the largest contact, and its pull-off force -3/2 pi w R_p */
+    double rho, dp;
+    branch(&t, r.dmax, &rho, &dp);
+    double fcp = 1.5 * M_PI * W * rho;
+    printf("  plastic, %s: V_y %.4g m/s, V_i %.4g; delta_max %.4g m (delta_y %.4g), R_p / R* %.4f; %s after %d steps "
+           "at delta - delta_p - delta_c %.3g m; least force %.6f F_cp (-1: JKR of R_p), worst force %.2g F_c, "
+           "host's energy %.2g dW (%.2g of the kinetic energy in), energy drift through the unloading %.2g of the kinetic energy in\n",
+           prec == DEM_FP64 ? "fp64" : "fp32", vy, vi, r.dmax, t.dy, rho / t.rs, r.released ? "parted" : "STUCK",
+           r.steps_in, r.d_release - jkr_release(&t, rho), r.f_min / fcp, r.worst, r.worst_energy,
+           r.worst_energy * -jkr_potential(&t, 0, 0) / (0.25 * ms * vi * vi),
+           r.energy_drift / (0.25 * ms * vi * vi));
+    assert_true(r.yielded && r.released && rho > 1.5 * t.rs);
+    assert_true(r.worst < (prec == DEM_FP64 ? 1e-9 : 1e-3));
+    assert_true(fabs(r.f_min / fcp + 1) < 2e-3); /* Thornton and Ning's F_cp = F_c R_p / R* */
+    /* (dW is small beside this contact's energy: the host's energy against the kinetic energy in) */
+    double ein = 0.25 * ms * vi * vi, dw = -jkr_potential(&t, 0, 0);
+    assert_true(r.worst_energy * dw < (prec == DEM_FP64 ? 1e-9 : 1e-4) * ein);
+    if (prec == DEM_FP64)
+        assert_true(r.energy_drift < 1e-6 * 0.25 * ms * vi * vi);
+}
+
+static void test_elastic_fp64(void **st) { (void)st; elastic_impacts(DEM_FP64); }
+static void test_elastic_fp32(void **st) { (void)st; elastic_impacts(DEM_FP32); }
+static void test_plastic_fp64(void **st) { (void)st; plastic_impact(DEM_FP64); }
+static void test_plastic_fp32(void **st) { (void)st; plastic_impact(DEM_FP32); }
+
+static void test_refusals(void **st)
+{
+    (void)st;
+    dem_sim *s = dem_create();
+    assert_int_equal(dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_ADHESION), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "thornton_ning"));
+    dem_destroy(s);
+    /* no surface energy: refused at the start */
+    dem_material m = powder();
+    m.surface_energy = 0;
+    s = head_on_build(&m, NULL, R, 0.1, FX_ADH, 1e-9);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    assert_int_equal(dem_start(s, &c), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "no pair of materials adheres"));
+    dem_destroy(s);
+    /* adhesion and bonds on one pair */
+    m = powder();
+    m.bond_strength = 1e6;
+    s = head_on_build(&m, NULL, R, 0.1, FX_ADH, 1e-9);
+    assert_int_equal(dem_start(s, &c), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(s), "one adhesion per pair"));
+    dem_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_elastic_fp64), cmocka_unit_test(test_elastic_fp32), cmocka_unit_test(test_plastic_fp64),
+        cmocka_unit_test(test_plastic_fp32), cmocka_unit_test(test_refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
