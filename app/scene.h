@@ -16,7 +16,7 @@
 typedef struct {
     char **materials; /* the two names */
     unsigned materials_count;
-    double friction, restitution, rolling_friction, bond_strength; /* each only where the scene gives it */
+    double friction, restitution, rolling_friction, bond_strength, surface_energy; /* each only where given */
 } scene_material_pair;
 
 typedef struct {
@@ -27,7 +27,8 @@ typedef struct {
     double rolling_friction;      /* rolling resistance coefficient (effect rolling) */
     double bond_strength;         /* strength of a yielded contact's solid bridge (thornton_ning, mdr) [Pa]; 0: none */
     double rolling_damping;       /* viscous damping ratio of the rolling spring (effect rolling_spring) */
-    double surface_energy;        /* the mdr law's surface energy [J/m^2] (its yield stress: yield_stress) */
+    double surface_energy;        /* the mdr law's surface energy, thornton_ning's work of adhesion with the effect
+                                     adhesion [J/m^2] */
     double bulk_fraction;         /* the mdr law's psi_b (required with it) */
     double mdr_damping;           /* the mdr law's damping coefficient eta_d */
 } scene_material;

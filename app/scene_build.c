@@ -190,14 +190,15 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
             }
         }
         /* each value the scene gives replaces the rule's (NAN: keep it) */
-        dem_material_pair dp = {NAN, NAN, NAN, NAN};
+        dem_material_pair dp = {NAN, NAN, NAN, NAN, NAN};
         const struct {
             const char *key;
             double given, *to;
         } keys[] = {{"friction", mp->friction, &dp.friction},
                     {"restitution", mp->restitution, &dp.restitution},
                     {"rolling_friction", mp->rolling_friction, &dp.rolling_friction},
-                    {"bond_strength", mp->bond_strength, &dp.bond_strength}};
+                    {"bond_strength", mp->bond_strength, &dp.bond_strength},
+                    {"surface_energy", mp->surface_energy, &dp.surface_energy}};
         int any = 0;
         for (unsigned q = 0; q < sizeof keys / sizeof keys[0]; q++) {
             snprintf(p, sizeof p, "material_pairs[%u].%s", k, keys[q].key);
@@ -209,7 +210,8 @@ static int parse_material_pairs(const scene *sc, dem_sim *s, char *err, size_t e
         snprintf(p, sizeof p, "material_pairs[%u]", k);
         if (!any)
             return scene_fail(sc, err, errlen, p,
-                              "give the pair's friction, restitution, rolling_friction or bond_strength");
+                              "give the pair's friction, restitution, rolling_friction, bond_strength or "
+                              "surface_energy");
         if (dem_set_material_pair(s, id[0], id[1], &dp))
             return scene_fail(sc, err, errlen, p, "%s", dem_error(s));
     }

@@ -46,6 +46,7 @@ static const cyaml_schema_field_t material_pair_fields[] = {
     REAL("friction", scene_material_pair, friction), REAL("restitution", scene_material_pair, restitution),
     REAL("rolling_friction", scene_material_pair, rolling_friction),
     REAL("bond_strength", scene_material_pair, bond_strength),
+    REAL("surface_energy", scene_material_pair, surface_energy),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t material_pair_entry = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, scene_material_pair, material_pair_fields)};

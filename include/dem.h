@@ -104,6 +104,9 @@ typedef struct {
     double rolling_friction; /* rolling resistance coefficient of the pair, >= 0 (DEM_EFFECT_ROLLING) */
     double bond_strength; /* sigma_b of the pair's bonds [Pa], >= 0 (DEM_EFFECT_THORNTON_NING); NAN: the smaller of
                              the two materials'. Give every field: an initialiser that leaves it out sets 0, no bond */
+    double surface_energy; /* the pair's work of adhesion w [J/m^2], >= 0 (DEM_EFFECT_ADHESION); NAN: the geometric
+                              mean of the two materials' surface_energy. Left out of an initialiser: 0, no adhesion.
+                              Not under DEM_EFFECT_MDR (refused: MDR takes its materials') */
 } dem_material_pair;
 
 /* Most motion stages of one wall (a scene's settling pause counts as one; `repeat` multiplies a list): enough for

@@ -89,7 +89,7 @@ static dem_sim *pull_build(double sigb, int how, double mu, double dt, int nst, 
     pl.kind = DEM_WALL_PLANE;
     pl.material = dem_add_material(s, &w);
     if (how == BOND_PAIR)
-        assert_int_equal(dem_set_material_pair(s, id, pl.material, &(dem_material_pair){NAN, NAN, NAN, sigb}), 0);
+        assert_int_equal(dem_set_material_pair(s, id, pl.material, &(dem_material_pair){NAN, NAN, NAN, sigb, NAN}), 0);
     pl.point[0] = R;
     pl.normal[0] = -1;
     pl.nstages = nst;
@@ -389,7 +389,7 @@ static void test_refusals(void **st)
     m = powder(1e6);
     int a = dem_add_material(s, &m);
     assert_true(a >= 0);
-    assert_int_equal(dem_set_material_pair(s, a, a, &(dem_material_pair){NAN, NAN, NAN, INFINITY}), DEM_ERR_ARG);
+    assert_int_equal(dem_set_material_pair(s, a, a, &(dem_material_pair){NAN, NAN, NAN, INFINITY, NAN}), DEM_ERR_ARG);
     assert_non_null(strstr(dem_error(s), "bond strength"));
     dem_destroy(s);
 }

@@ -27,7 +27,7 @@ static slope_result slide(double theta, int rotate)
     int m = dem_add_material(s, &(dem_material){rho, E, nu, 0.5, pair_set_apart ? 0.7 : MU});
     int fm = pair_set_apart ? dem_add_material(s, &(dem_material){rho, E, nu, 0.5, 0.0}) : m;
     if (pair_set_apart)
-        assert_int_equal(dem_set_material_pair(s, fm, m, &(dem_material_pair){MU, NAN, NAN, NAN}), 0);
+        assert_int_equal(dem_set_material_pair(s, fm, m, &(dem_material_pair){MU, NAN, NAN, NAN, NAN}), 0);
     /* start at the static overlap under the normal load m g cos(theta) */
     double mass = rho * 4.0 / 3.0 * M_PI * r * r * r, es = E / (2 * (1 - nu * nu)); /* sphere on a wall of the same */
     double d = pow(mass * G * cos(theta) / (4.0 / 3.0 * es * sqrt(r)), 2.0 / 3.0);

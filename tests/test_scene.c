@@ -99,7 +99,9 @@ static void test_errors(void **st)
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, steel], friction: 0.1}\\nparticles:/",
         "material_pairs[0].materials[1]: no material is called 'steel'");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber]}\\nparticles:/",
-        "material_pairs[0]: give the pair's friction, restitution, rolling_friction or bond_strength");
+        "material_pairs[0]: give the pair's friction, restitution, rolling_friction, bond_strength or surface_energy");
+    bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], surface_energy: -1}\\nparticles:/",
+        "material_pairs[0]: material pair 0-0: the work of adhesion (surface_energy) must be >= 0 J/m^2");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: 0.1}\\n  - {materials: [rubber, "
         "rubber], restitution: 0.5}\\nparticles:/", "material_pairs[1].materials: the pair rubber-rubber is given twice");
     bad("s/^particles:/material_pairs:\\n  - {materials: [rubber, rubber], friction: -1}\\nparticles:/",

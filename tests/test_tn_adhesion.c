@@ -11,7 +11,9 @@
  *     plastic deformation: -3/2 pi w R_p (F_cp = F_c R_p / R*);
  *   the energy an elastic JKR impact loses (a contact forms at zero overlap and lets go at delta_c; the branch between
  *     is conservative): the potential's work from delta = 0 to delta_c, computed here by quadrature, so two spheres
- *     stick below V_s = sqrt(2 dW / m*) and part at sqrt(V_i^2 - V_s^2) above it.
+ *     stick below V_s = sqrt(2 dW / m*) and part at sqrt(V_i^2 - V_s^2) above it; V_s checked against Thornton and
+ *     Ning's Eq. 54 (quoted from a digest of the paper; an independent check of ours derived the same 0.9355 F_c
+ *     delta_c for dW).
  * Cases, each on the reference and on OpenCL (PoCL) in fp64 and fp32, the OpenCL state equal to the reference's at
  * every step: head-on impacts of two spheres below and above V_s (no yield), and far above yield; the force at every
  * step against the closed form, the step where they let go, the least force, the rebound speed and the energy the host
@@ -121,7 +123,7 @@ static dem_material powder(void)
 
 typedef struct {
     int stuck, released, yielded, steps_in;
-    double worst, v_out, f_min, d_release, energy_drift, worst_energy, dmax;
+    double worst, v_out, f_min, d_release, energy_drift, worst_energy, dmax, overlap_at_release;
 } impact_result;
 
 /* Two spheres meeting head-on at relative speed vi; follows the contact until it lets go (or max_steps). The force on
@@ -167,6 +169,21 @@ static impact_result impact(const jkr_closed *t, double vi, double dt, long max_
             r.released = 1;
             r.d_release = d - dp;
             r.v_out = v[3] - v[0];
+            r.overlap_at_release = d;
+            /* then nothing more: no force while the spheres part (a yielded pair lets go while they still overlap:
+             * its dent is deeper), and the speed it left with, to the bit, 500 steps after they no longer overlap */
+            long apart = -1;
+            for (long q = k + 1; q < max_steps && (apart < 0 || q < apart + 500); q++) {
+                twins_step(cl, ref, 1, "adhesive impact after the release, PoCL vs reference");
+                assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
+                assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
+                assert_int_equal(dem_get_field(ref, DEM_FIELD_V, v), 0);
+                assert_true(f[3] == 0 && f[0] == 0);
+                if (apart < 0 && x[3] - x[0] > 2 * R)
+                    apart = q;
+            }
+            assert_true(apart > 0);
+            assert_true(v[3] - v[0] == r.v_out);
             break;
         }
         assert_true(got != 0); /* still in contact */
@@ -198,6 +215,10 @@ static void elastic_impacts(dem_precision prec)
     double ms = sphere_mass() / 2;
     /* the energy lost between forming at zero overlap and letting go: the potential's value at delta = 0 */
     double dw = -jkr_potential(&t, 0, 0), vs = sqrt(2 * dw / ms);
+    /* Thornton and Ning's sticking speed for elastic adhesive spheres (their Eq. 54, as a digest of the paper quotes
+     * it: V_s = (14.18 / m*)^(1/2) (w^5 R*^4 / E*^2)^(1/6); our quadrature gives the same to its rounded 14.18) */
+    double vs_tn = sqrt(14.18 / ms) * pow(pow(W, 5) * pow(t.rs, 4) / (t.es * t.es), 1.0 / 6.0);
+    assert_true(fabs(vs / vs_tn - 1) < 1e-3);
     double tc = 2.87 * pow(ms * ms / (t.rs * t.es * t.es * vs), 0.2), dt = tc / 3000;
     double tol = prec == DEM_FP64 ? 1e-9 : 1e-4;
     impact_result slow = impact(&t, 0.9 * vs, dt, 3 * 3000, prec); /* three contact times: it stays */
@@ -236,10 +257,10 @@ static void plastic_impact(dem_precision prec)
     branch(&t, r.dmax, &rho, &dp);
     double fcp = 1.5 * M_PI * W * rho;
     printf("  plastic, %s: V_y %.4g m/s, V_i %.4g; delta_max %.4g m (delta_y %.4g), R_p / R* %.4f; %s after %d steps "
-           "at delta - delta_p - delta_c %.3g m; least force %.6f F_cp (-1: JKR of R_p), worst force %.2g F_c, "
+           "at overlap %.4g m (delta - delta_p - delta_c %.3g m) at %.6g m/s; least force %.6f F_cp (-1: JKR of R_p), worst force %.2g F_c, "
            "host's energy %.2g dW (%.2g of the kinetic energy in), energy drift through the unloading %.2g of the kinetic energy in\n",
            prec == DEM_FP64 ? "fp64" : "fp32", vy, vi, r.dmax, t.dy, rho / t.rs, r.released ? "parted" : "STUCK",
-           r.steps_in, r.d_release - jkr_release(&t, rho), r.f_min / fcp, r.worst, r.worst_energy,
+           r.steps_in, r.overlap_at_release, r.d_release - jkr_release(&t, rho), r.v_out, r.f_min / fcp, r.worst, r.worst_energy,
            r.worst_energy * -jkr_potential(&t, 0, 0) / (0.25 * ms * vi * vi),
            r.energy_drift / (0.25 * ms * vi * vi));
     assert_true(r.yielded && r.released && rho > 1.5 * t.rs);
@@ -256,6 +277,34 @@ static void test_elastic_fp64(void **st) { (void)st; elastic_impacts(DEM_FP64); 
 static void test_elastic_fp32(void **st) { (void)st; elastic_impacts(DEM_FP32); }
 static void test_plastic_fp64(void **st) { (void)st; plastic_impact(DEM_FP64); }
 static void test_plastic_fp32(void **st) { (void)st; plastic_impact(DEM_FP32); }
+
+/* A pair's own work of adhesion (dem_set_material_pair) acts as the materials' would: materials at 0 and the pair at
+ * W run bit for bit as materials at W (sqrt(W W) = W exactly), and a pair set to 0 does not adhere */
+static void test_pair_adhesion(void **st)
+{
+    (void)st;
+    jkr_closed t = jkr_of(YOUNG / (2 * (1 - NU * NU)), R / 2);
+    double ms = sphere_mass() / 2, vs = sqrt(-2 * jkr_potential(&t, 0, 0) / ms), dt = 1e-9;
+    dem_material m = powder(), bare = powder();
+    bare.surface_energy = 0;
+    dem_sim *a = head_on_build(&m, NULL, R, 0.9 * vs, FX_ADH, dt), *b = head_on_build(&bare, NULL, R, 0.9 * vs, FX_ADH, dt);
+    assert_int_equal(dem_set_material_pair(b, 0, 0, &(dem_material_pair){NAN, NAN, NAN, NAN, W}), 0);
+    dem_config c = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
+    start_or_fail(a, &c);
+    start_or_fail(b, &c);
+    twins_step(a, b, 3000, "a pair's work of adhesion against its materials'");
+    double v[6];
+    assert_int_equal(dem_get_field(b, DEM_FIELD_V, v), 0);
+    assert_true(v[3] - v[0] != 0.5 * 0.9 * vs * 2); /* it met the other sphere */
+    dem_destroy(a);
+    dem_destroy(b);
+    /* a pair set to 0 of materials that adhere: nothing else adheres, so the run is refused */
+    a = head_on_build(&m, NULL, R, 0.9 * vs, FX_ADH, dt);
+    assert_int_equal(dem_set_material_pair(a, 0, 0, &(dem_material_pair){NAN, NAN, NAN, NAN, 0}), 0);
+    assert_int_equal(dem_start(a, &c), DEM_ERR_ARG);
+    assert_non_null(strstr(dem_error(a), "no pair of materials adheres"));
+    dem_destroy(a);
+}
 
 static void test_refusals(void **st)
 {
@@ -285,7 +334,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_elastic_fp64), cmocka_unit_test(test_elastic_fp32), cmocka_unit_test(test_plastic_fp64),
-        cmocka_unit_test(test_plastic_fp32), cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_plastic_fp32), cmocka_unit_test(test_pair_adhesion), cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -70,8 +70,11 @@
  * contact radius a; the Coulomb limit is mu (F + 3 pi w rho) (fn_min = -2 F_c: Thornton and Yin's mu (P + 2 P_c), the
  * load friction resists raised by adhesion). A pair keeps its contact across a gap (contact_forces.h) down to the
  * release; a wall's contact ends at zero overlap (its geometry), so a sphere lets go of a wall at JKR's force at
- * touch, -4/3 pi w r* (elastic), not at its pull-off. The state is the largest overlap (>= 0), as without adhesion;
- * a pair may not both adhere and bond (host/core/sim_setup.c).
+ * touch, -4/3 pi w r* (elastic), not at its pull-off. The state is the largest overlap, as without adhesion, negated
+ * once the contact has let go (a pair may not both adhere and bond, so the bond's sign is free: host/core/sim_setup.c):
+ * a yielded contact lets go where its dent is still deeper than the overlap, and is kept with no force while the
+ * spheres overlap, as the non-adhesive law keeps it below delta_p; it adheres again if its surfaces meet again
+ * (delta >= delta_p, as a contact forming at zero overlap), and ends once the spheres part.
  */
 #ifndef DEM_LAW_THORNTON_NING_H
 #define DEM_LAW_THORNTON_NING_H
@@ -181,8 +184,10 @@ DEM_INLINE tn_point tn_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, rea
 
 /* ---- JKR adhesion (DEM_EFFECT_ADHESION) ---- */
 /* Newton steps of tn_jkr_root: from its start the error falls quadratically to rounding in at most 6
- * (tests/test_tn_adhesion.c checks the force at every step against a bisection: 1e-13 of the pull-off force in fp64);
- * the rest cover the linear convergence next to the release, where the root is double */
+ * (tests/test_tn_adhesion.c checks the force at every step against a bisection: 1e-13 of the pull-off force in fp64).
+ * Next to the release the root is double and Newton only halves the error per step: within 1e-6 of delta_c (relative)
+ * 12 steps leave up to 6e-4 F_c in the force (an outside review's measurement), within 1e-5 2e-7 F_c; there the
+ * force's slope is unbounded and a step's overlap is far less certain than that */
 #define TN_JKR_STEPS 12
 
 /* s = sqrt(a) >= s_c on the stable branch of s^4 / rho - k s = d (s_c^3 = k rho / 4, d >= -3/4 k s_c): Newton from
@@ -231,25 +236,29 @@ DEM_INLINE void tn_jkr_branch(DEM_CONST_GLOBAL real *pm, real rstar, real dmax, 
     }
 }
 
-/* The adhesive law at overlap delta given the largest overlap so far dmax (>= 0): the elastic force and contact
- * radius, fmin = -3 pi w rho (the Coulomb limit's offset) and *rho_out the branch's radius; f = a = 0 and *on = 0
- * where the contact has let go */
-DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real dmax, real *rho_out, int *on)
+/* The adhesive law at overlap delta given the contact's state st: its largest overlap, negated once it has let go
+ * (released: st < 0). The elastic force and contact radius, fmin = -3 pi w rho (the Coulomb limit's offset), *rho_out
+ * the branch's radius and *rel whether it is released after this point: a contact lets go below its release point,
+ * and a released one carries nothing until its surfaces meet again (delta - delta_p >= 0, where it adheres anew as a
+ * contact forming at zero overlap does); f = a = fmin = 0 while released */
+DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, real *rho_out, int *rel)
 {
     tn_point p;
-    real es = pm[PM_ESTAR], k = pm[PM_TN_K];
+    real es = pm[PM_ESTAR], k = pm[PM_TN_K], dmax = tn_dmax(st);
     real sc = tn_jkr_sc(rstar, k), rho = rstar, dp = (real)0;
+    int released = 0;
     p.broke = 0;
-    if (delta < dmax) /* unloading from the largest contact radius */
+    if (delta < dmax) { /* unloading from the largest contact radius */
         tn_jkr_branch(pm, rstar, dmax, &rho, &dp, &sc);
-    real d = delta - dp;
+        released = st < (real)0 ? delta - dp < (real)0 : delta - dp < (real)-0.75 * k * sc;
+    }
     *rho_out = rho;
-    *on = !(d < (real)-0.75 * k * sc);
-    if (!*on) {
+    *rel = released;
+    if (released) {
         p.f = p.a = p.fmin = (real)0;
         return p;
     }
-    real s = tn_jkr_root(rho, k, d, sc);
+    real s = tn_jkr_root(rho, k, delta - dp, sc);
     p.a = s * s;
     p.f = (delta < dmax ? (real)4 * es * p.a * p.a * p.a / ((real)3 * rho) : tn_hertzian_force(pm, rstar, p.a)) -
           (real)2 * es * k * p.a * s;
@@ -257,16 +266,16 @@ DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta,
     return p;
 }
 
-/* What an adhesive contact gives back if pulled from overlap delta along the unloading branch from max(delta, dmax)
- * to its release: G(a) - G(a_c), G(a) = 8/15 E* a^5 / rho^2 - 4/3 E* k a^(7/2) / rho + E* k^2 a^2 / 2 (the integral
- * of F d delta along the branch), G(a_c) = 16/5 E* a_c^5 / rho^2; negative in the adhesive well, 0 once let go */
-DEM_INLINE real tn_jkr_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real dmax)
+/* What an adhesive contact (state st) gives back if pulled from overlap delta along the unloading branch from
+ * max(delta, its largest overlap) to its release: G(a) - G(a_c), G(a) = 8/15 E* a^5 / rho^2 - 4/3 E* k a^(7/2) / rho + E* k^2 a^2 / 2 (the integral
+ * of F d delta along the branch), G(a_c) = 16/5 E* a_c^5 / rho^2; negative in the adhesive well, 0 once let go or while released */
+DEM_INLINE real tn_jkr_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    real es = pm[PM_ESTAR], k = pm[PM_TN_K];
+    real es = pm[PM_ESTAR], k = pm[PM_TN_K], dmax = tn_dmax(st);
     real sc = tn_jkr_sc(rstar, k), rho, dp;
     tn_jkr_branch(pm, rstar, delta > dmax ? delta : dmax, &rho, &dp, &sc);
     real d = delta - dp;
-    if (d < (real)-0.75 * k * sc)
+    if (d < (real)-0.75 * k * sc || (st < (real)0 && delta < dmax && d < (real)0)) /* let go, or released */
         return (real)0;
     real s = tn_jkr_root(rho, k, d, sc), a = s * s, ac = sc * sc;
     real g = (real)8 / (real)15 * es * a * a * a * a * a / (rho * rho) - (real)4 / (real)3 * es * k * a * a * a * s / rho +
@@ -280,12 +289,15 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
     real de;
     int slid;
     if ((fx & DEM_EFFECT_ADHESION) && c.pm[PM_TN_K] > (real)0) { /* JKR adhesion; no bond on such a pair */
-        real rho;
-        int on;
-        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rho, &on);
+        real rho, dmax = tn_dmax(c.st), st;
+        int rel;
+        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rho, &rel);
         law_result r = hm_contact_bond(fx, c.n, q.f, q.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, q.fmin, &slid);
-        r.st = c.delta > c.st ? c.delta : c.st;
-        r.active = on;
+        st = c.delta > dmax ? c.delta : dmax;
+        r.st = rel ? -st : st;
+        /* a released contact is kept, with no force, while the spheres overlap (its dent is remembered, as without
+         * adhesion); across a gap it ends */
+        r.active = !rel || c.delta > (real)0;
         return r;
     }
     tn_point p = tn_at(c.pm, c.rstar, c.delta, c.st, &de);
@@ -310,8 +322,8 @@ DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
     real de;
     if (pm[PM_TN_K] > (real)0) { /* JKR adhesion (0 unless DEM_EFFECT_ADHESION: sim_setup.c) */
         real rho;
-        int on;
-        return tn_jkr_at(pm, rstar, delta, st, &rho, &on).f;
+        int rel;
+        return tn_jkr_at(pm, rstar, delta, st, &rho, &rel).f;
     }
     return tn_at(pm, rstar, delta, st, &de).f;
 }

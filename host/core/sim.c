@@ -137,6 +137,9 @@ int dem_set_material_pair(dem_sim *s, int a, int b, const dem_material_pair *p)
     if (!isnan(p->bond_strength) && !(p->bond_strength >= 0 && isfinite(p->bond_strength)))
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: bond strength must be >= 0 Pa (got %g)", a, b,
                         p->bond_strength);
+    if (!isnan(p->surface_energy) && !(p->surface_energy >= 0 && isfinite(p->surface_energy)))
+        return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: the work of adhesion (surface_energy) must be >= 0 J/m^2 "
+                        "(got %g)", a, b, p->surface_energy);
     if (!isnan(p->restitution) && !(p->restitution > 0 && p->restitution <= 1))
         return sim_fail(s, DEM_ERR_ARG, "material pair %d-%d: restitution must be in (0, 1] (got %g)", a, b,
                         p->restitution);

@@ -230,6 +230,11 @@ static int validate_mdr(dem_sim *s)
 {
     if (!(s->effects & DEM_EFFECT_MDR))
         return 0;
+    for (int a = 0; a < s->nmat; a++)
+        for (int b = a; b < s->nmat; b++)
+            if (s->pair_set[a][b] && !isnan(s->pair_props[a][b].surface_energy))
+                return sim_fail(s, DEM_ERR_ARG, "materials %d and %d: a pair's own surface_energy is thornton_ning's "
+                                "adhesion; the mdr law takes its materials' (a wall's own at a wall)", a, b);
     int first = -1;
     for (int i = 0; i < s->n; i++) {
         int k = s->mat[i];
@@ -256,6 +261,17 @@ static int validate_mdr(dem_sim *s)
     return 0;
 }
 
+/* The work of adhesion of materials a and b (DEM_EFFECT_ADHESION): the pair's own (dem_set_material_pair), else the
+ * geometric mean of their surface energies (Berthelot's rule for dispersion forces; a tool's steel left at 0 adheres
+ * to nothing) */
+static double pair_adhesion(const dem_sim *s, int a, int b)
+{
+    const dem_material_pair *pp = s->pair_set[a][b] ? &s->pair_props[a][b] : NULL;
+    if (pp && !isnan(pp->surface_energy))
+        return pp->surface_energy;
+    return sqrt(s->mats[a].surface_energy * s->mats[b].surface_energy);
+}
+
 /* Thornton-Ning's JKR adhesion (DEM_EFFECT_ADHESION): some pair of materials adheres (both give a surface_energy and
  * one yields), and no pair both adheres and bonds: a bond is that law's other adhesion, over the yielded area, and
  * the two are not combined (thornton_ning.h) */
@@ -267,7 +283,7 @@ static int validate_adhesion(dem_sim *s)
     for (int a = 0; a < s->nmat; a++)
         for (int b = a; b < s->nmat; b++) {
             const dem_material *ma = &s->mats[a], *mb = &s->mats[b];
-            if (!(ma->surface_energy * mb->surface_energy > 0) || !(ma->yield_stress > 0 || mb->yield_stress > 0))
+            if (!(pair_adhesion(s, a, b) > 0) || !(ma->yield_stress > 0 || mb->yield_stress > 0))
                 continue;
             any = 1;
             const dem_material_pair *pp = s->pair_set[a][b] ? &s->pair_props[a][b] : NULL;
@@ -278,7 +294,7 @@ static int validate_adhesion(dem_sim *s)
         }
     if (!any)
         return sim_fail(s, DEM_ERR_ARG, "the effect adhesion is on but no pair of materials adheres: it needs two "
-                        "surfaces with surface_energy > 0, one of which yields (yield_stress > 0)");
+                        "surfaces with surface_energy > 0 (or a pair's own), one of which yields (yield_stress > 0)");
     return 0;
 }
 
@@ -566,9 +582,8 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             /* a bond is as strong as the weaker of the two materials (a tool's steel, 0, bonds to nothing) */
             double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
             row[PM_TN_SIGB] = py > 0 ? M_PI * sb : 0;
-            /* JKR adhesion (DEM_EFFECT_ADHESION): the work of adhesion of two surfaces is the geometric mean of
-             * their own (Berthelot's rule for dispersion forces; a tool's steel left at 0 adheres to nothing) */
-            double wad = sqrt(ma->surface_energy * mb->surface_energy);
+            /* JKR adhesion (DEM_EFFECT_ADHESION) */
+            double wad = pair_adhesion(s, a, b);
             row[PM_TN_K] = (s->effects & DEM_EFFECT_ADHESION) && py > 0 && wad > 0 ? sqrt(2 * M_PI * wad / row[PM_ESTAR]) : 0;
             /* MDR: the sphere's material is the one that yields (sim_validate: an MDR run has one such); at a wall
              * (a material that does not yield) the wall's surface energy, as in LAMMPS */

@@ -44,7 +44,8 @@ class Material(ctypes.Structure):
 
 class MaterialPair(ctypes.Structure):
     _fields_ = [("friction", ctypes.c_double), ("restitution", ctypes.c_double),
-                ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double)]
+                ("rolling_friction", ctypes.c_double), ("bond_strength", ctypes.c_double),
+                ("surface_energy", ctypes.c_double)]
 
 
 class Stage(ctypes.Structure):
@@ -298,10 +299,11 @@ class Sim:
         return self._check(self._lib.dem_add_material(self._s, ctypes.byref(m)))
 
     def set_material_pair(self, a, b, friction=float("nan"), restitution=float("nan"), rolling_friction=float("nan"),
-                          bond_strength=float("nan")):
-        """Materials a and b take this friction, restitution, rolling friction or bond strength instead of the rule's
-        (NaN: the mean; for the bond strength the smaller of the two)."""
-        p = MaterialPair(friction, restitution, rolling_friction, bond_strength)
+                          bond_strength=float("nan"), surface_energy=float("nan")):
+        """Materials a and b take this friction, restitution, rolling friction, bond strength or work of adhesion
+        (surface_energy [J/m^2], the adhesion effect) instead of the rule's (NaN: the mean; for the bond strength the
+        smaller of the two; for the work of adhesion the geometric mean)."""
+        p = MaterialPair(friction, restitution, rolling_friction, bond_strength, surface_energy)
         return self._check(self._lib.dem_set_material_pair(self._s, a, b, ctypes.byref(p)))
 
     def add_particles(self, x, radius, material, v=None):
