@@ -131,7 +131,13 @@ static const char *adhesion_missing(const scene *sc, unsigned effects)
     for (unsigned k = 0; k < sc->f->materials_count; k++)
         if (sc->f->materials[k].surface_energy > 0)
             return NULL;
-    return "no material has a surface_energy > 0 (the work of adhesion w [J/m^2] of JKR)";
+    for (unsigned k = 0; k < sc->f->material_pairs_count; k++) { /* a pair's own, where the scene gives it */
+        char key[96];
+        snprintf(key, sizeof key, "material_pairs[%u].surface_energy", k);
+        if (scene_has(sc->loc, key) && sc->f->material_pairs[k].surface_energy > 0)
+            return NULL;
+    }
+    return "no material or material pair has a surface_energy > 0 (the work of adhesion w [J/m^2] of JKR)";
 }
 
 /* mdr needs its parameters on every material particles use: a yield stress, and psi_b said (0.5 in Zunker et al.'s

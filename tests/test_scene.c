@@ -82,7 +82,7 @@ static void test_errors(void **st)
     bad("s/hertz, damping/hertz, damping, adhesion/; s/friction: 0.5}/friction: 0.5, surface_energy: 0.1}/",
         "bad.yaml:5: effects[2]: adhesion is listed but thornton_ning is not");
     bad("s/hertz, damping/hertz, damping, thornton_ning, adhesion/; s/friction: 0.5}/friction: 0.5, yield_stress: 1e6}/",
-        "bad.yaml:5: effects[3]: adhesion is listed but no material has a surface_energy > 0");
+        "bad.yaml:5: effects[3]: adhesion is listed but no material or material pair has a surface_energy > 0");
     /* MDR: its parameters said, one normal law */
     bad("s/hertz, damping/hertz, damping, mdr/; s/friction: 0.5}/friction: 0.5, yield_stress: 1e6}/",
         "bad.yaml:5: effects[2]: mdr is listed but material 'rubber' (used by particles) gives no bulk_fraction");
@@ -2272,6 +2272,23 @@ static void test_kernels_ignore_working_folder(void **st)
         fail_msg("a source folder with a space: status %d, message: %s", rc, err);
 }
 
+/* A scene's pair-only work of adhesion (material_pairs surface_energy, the materials at 0) is taken, and runs as the
+ * same value given by the materials: the same state hash as sticky_spheres after 150 steps (sqrt(w w) = w exactly) */
+static void test_pair_adhesion_scene(void **st)
+{
+    (void)st;
+    char err[8192];
+    int rc = sh(err, sizeof err,
+                "sed -e 's/surface_energy: 0.5}/surface_energy: 0.0}/' -e 's/^particles:/material_pairs:\\n  - "
+                "{materials: [mcc_like, mcc_like], surface_energy: 0.5}\\nparticles:/' %s/scenes/sticky_spheres.yaml > "
+                "%s/pa.yaml && grep -q 'surface_energy: 0.0}' %s/pa.yaml && %s run %s/pa.yaml -o %s/pa.h5 --quiet "
+                "--stop-after 150 --backend reference && %s run %s/scenes/sticky_spheres.yaml -o %s/sa.h5 --quiet "
+                "--stop-after 150 --backend reference && test \"$(%s hash %s/pa.ckpt.h5)\" = \"$(%s hash %s/sa.ckpt.h5)\"",
+                SRC, tmp, tmp, DEM, tmp, tmp, DEM, SRC, tmp, DEM, tmp, DEM, tmp);
+    if (rc != 0)
+        fail_msg("a pair's own work of adhesion: status %d: %s", rc, err);
+}
+
 /* dem conform and dem hash: the recorded table's runs reproduce it here (PoCL), a changed record or a run that went
  * otherwise is named as a difference with a non-zero exit, and the hash tells apart states one step apart. */
 static void test_conform(void **st)
@@ -2369,7 +2386,7 @@ int main(void)
         cmocka_unit_test(test_check_estimates),
         cmocka_unit_test(test_check_probe),
         cmocka_unit_test(test_compile_note),
-        cmocka_unit_test(test_conform),
+        cmocka_unit_test(test_conform), cmocka_unit_test(test_pair_adhesion_scene),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
