@@ -236,48 +236,57 @@ DEM_INLINE void tn_jkr_branch(DEM_CONST_GLOBAL real *pm, real rstar, real dmax, 
     }
 }
 
-/* The adhesive law at overlap delta given the contact's state st: its largest overlap, negated once it has let go
- * (released: st < 0). The elastic force and contact radius, fmin = -3 pi w rho (the Coulomb limit's offset), *rho_out
- * the branch's radius and *rel whether it is released after this point: a contact lets go below its release point,
- * and a released one carries nothing until its surfaces meet again (delta - delta_p >= 0, where it adheres anew as a
- * contact forming at zero overlap does); f = a = fmin = 0 while released */
-DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, real *rho_out, int *rel)
+/* Where an adhesive contact (state st: its largest overlap, negated once it has let go) is at overlap delta: its
+ * branch's radius *rho (r*, or R_p unloading from a yielded contact), that branch's *sc and s = sqrt(a) on it (*s).
+ * unload 0: the law's branch (loading at or past the largest overlap, else unloading from it); 1: the unloading
+ * branch from max(delta, the largest overlap), along which the energy is counted. Returns 1, solving nothing, where
+ * the contact has nothing to carry: below its release point, or released and its surfaces not met again (delta -
+ * delta_p < 0; where they meet it adheres anew, as a contact forming at zero overlap does) */
+DEM_INLINE int tn_jkr_solve(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, int unload, real *rho, real *sc,
+                            real *s)
+{
+    real k = pm[PM_TN_K], dmax = tn_dmax(st), dp = (real)0;
+    int released = 0;
+    *sc = tn_jkr_sc(rstar, k);
+    *rho = rstar;
+    if (unload || delta < dmax) {
+        tn_jkr_branch(pm, rstar, delta > dmax ? delta : dmax, rho, &dp, sc);
+        released = st < (real)0 && delta < dmax ? delta - dp < (real)0 : delta - dp < (real)-0.75 * k * *sc;
+    }
+    if (!released)
+        *s = tn_jkr_root(*rho, k, delta - dp, *sc);
+    return released;
+}
+
+/* The adhesive law at overlap delta given the contact's state st: the elastic force and contact radius, fmin = -3 pi
+ * w rho (the Coulomb limit's offset), and *rel whether it is released after this point (f = a = fmin = 0) */
+DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, int *rel)
 {
     tn_point p;
-    real es = pm[PM_ESTAR], k = pm[PM_TN_K], dmax = tn_dmax(st);
-    real sc = tn_jkr_sc(rstar, k), rho = rstar, dp = (real)0;
-    int released = 0;
+    real es = pm[PM_ESTAR], k = pm[PM_TN_K], rho, sc, s;
     p.broke = 0;
-    if (delta < dmax) { /* unloading from the largest contact radius */
-        tn_jkr_branch(pm, rstar, dmax, &rho, &dp, &sc);
-        released = st < (real)0 ? delta - dp < (real)0 : delta - dp < (real)-0.75 * k * sc;
-    }
-    *rho_out = rho;
-    *rel = released;
-    if (released) {
+    *rel = tn_jkr_solve(pm, rstar, delta, st, 0, &rho, &sc, &s);
+    if (*rel) {
         p.f = p.a = p.fmin = (real)0;
         return p;
     }
-    real s = tn_jkr_root(rho, k, delta - dp, sc);
     p.a = s * s;
-    p.f = (delta < dmax ? (real)4 * es * p.a * p.a * p.a / ((real)3 * rho) : tn_hertzian_force(pm, rstar, p.a)) -
+    p.f = (delta < tn_dmax(st) ? (real)4 * es * p.a * p.a * p.a / ((real)3 * rho) : tn_hertzian_force(pm, rstar, p.a)) -
           (real)2 * es * k * p.a * s;
     p.fmin = (real)-1.5 * es * k * k * rho; /* -3 pi w rho = -2 F_c: pi w = E* k^2 / 2 */
     return p;
 }
 
 /* What an adhesive contact (state st) gives back if pulled from overlap delta along the unloading branch from
- * max(delta, its largest overlap) to its release: G(a) - G(a_c), G(a) = 8/15 E* a^5 / rho^2 - 4/3 E* k a^(7/2) / rho + E* k^2 a^2 / 2 (the integral
- * of F d delta along the branch), G(a_c) = 16/5 E* a_c^5 / rho^2; negative in the adhesive well, 0 once let go or while released */
+ * max(delta, its largest overlap) to its release: G(a) - G(a_c), G(a) = 8/15 E* a^5 / rho^2 - 4/3 E* k a^(7/2) / rho +
+ * E* k^2 a^2 / 2 (the integral of F d delta along the branch), G(a_c) = 16/5 E* a_c^5 / rho^2; negative in the
+ * adhesive well, 0 once let go or while released */
 DEM_INLINE real tn_jkr_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
-    real es = pm[PM_ESTAR], k = pm[PM_TN_K], dmax = tn_dmax(st);
-    real sc = tn_jkr_sc(rstar, k), rho, dp;
-    tn_jkr_branch(pm, rstar, delta > dmax ? delta : dmax, &rho, &dp, &sc);
-    real d = delta - dp;
-    if (d < (real)-0.75 * k * sc || (st < (real)0 && delta < dmax && d < (real)0)) /* let go, or released */
+    real es = pm[PM_ESTAR], k = pm[PM_TN_K], rho, sc, s;
+    if (tn_jkr_solve(pm, rstar, delta, st, 1, &rho, &sc, &s))
         return (real)0;
-    real s = tn_jkr_root(rho, k, d, sc), a = s * s, ac = sc * sc;
+    real a = s * s, ac = sc * sc;
     real g = (real)8 / (real)15 * es * a * a * a * a * a / (rho * rho) - (real)4 / (real)3 * es * k * a * a * a * s / rho +
              es * k * k * a * a / (real)2;
     return g - (real)16 / (real)5 * es * ac * ac * ac * ac * ac / (rho * rho);
@@ -289,9 +298,9 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
     real de;
     int slid;
     if ((fx & DEM_EFFECT_ADHESION) && c.pm[PM_TN_K] > (real)0) { /* JKR adhesion; no bond on such a pair */
-        real rho, dmax = tn_dmax(c.st), st;
+        real dmax = tn_dmax(c.st), st;
         int rel;
-        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rho, &rel);
+        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rel);
         law_result r = hm_contact_bond(fx, c.n, q.f, q.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, q.fmin, &slid);
         st = c.delta > dmax ? c.delta : dmax;
         r.st = rel ? -st : st;
@@ -321,9 +330,8 @@ DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
 {
     real de;
     if (pm[PM_TN_K] > (real)0) { /* JKR adhesion (0 unless DEM_EFFECT_ADHESION: sim_setup.c) */
-        real rho;
         int rel;
-        return tn_jkr_at(pm, rstar, delta, st, &rho, &rel).f;
+        return tn_jkr_at(pm, rstar, delta, st, &rel).f;
     }
     return tn_at(pm, rstar, delta, st, &de).f;
 }

@@ -272,6 +272,14 @@ static double pair_adhesion(const dem_sim *s, int a, int b)
     return sqrt(s->mats[a].surface_energy * s->mats[b].surface_energy);
 }
 
+/* The bond strength of materials a and b: the pair's own (dem_set_material_pair), else the weaker of the two (a tool's
+ * steel, 0, bonds to nothing) */
+static double pair_bond(const dem_sim *s, int a, int b)
+{
+    const dem_material_pair *pp = s->pair_set[a][b] ? &s->pair_props[a][b] : NULL;
+    return pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(s->mats[a].bond_strength, s->mats[b].bond_strength);
+}
+
 /* Thornton-Ning's JKR adhesion (DEM_EFFECT_ADHESION): some pair of materials adheres (both give a surface_energy and
  * one yields), and no pair both adheres and bonds: a bond is that law's other adhesion, over the yielded area, and
  * the two are not combined (thornton_ning.h) */
@@ -286,8 +294,7 @@ static int validate_adhesion(dem_sim *s)
             if (!(pair_adhesion(s, a, b) > 0) || !(ma->yield_stress > 0 || mb->yield_stress > 0))
                 continue;
             any = 1;
-            const dem_material_pair *pp = s->pair_set[a][b] ? &s->pair_props[a][b] : NULL;
-            double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
+            double sb = pair_bond(s, a, b);
             if (sb > 0)
                 return sim_fail(s, DEM_ERR_ARG, "materials %d and %d both adhere (surface_energy, the effect adhesion) "
                                 "and bond (bond_strength %g Pa): thornton_ning takes one adhesion per pair", a, b, sb);
@@ -579,8 +586,7 @@ static void pack_pairs(const dem_sim *s, double *pm, double *damp)
             row[PM_MU_ROLL] = pp && !isnan(pp->rolling_friction) ? pp->rolling_friction
                                                                 : 0.5 * (ma->rolling_friction + mb->rolling_friction);
             row[PM_ROLL_DAMP] = 0.5 * (ma->rolling_damping + mb->rolling_damping);
-            /* a bond is as strong as the weaker of the two materials (a tool's steel, 0, bonds to nothing) */
-            double sb = pp && !isnan(pp->bond_strength) ? pp->bond_strength : fmin(ma->bond_strength, mb->bond_strength);
+            double sb = pair_bond(s, a, b);
             row[PM_TN_SIGB] = py > 0 ? M_PI * sb : 0;
             /* JKR adhesion (DEM_EFFECT_ADHESION) */
             double wad = pair_adhesion(s, a, b);
