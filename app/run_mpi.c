@@ -387,7 +387,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             return shared_error(q, e, err, len);
         double t4 = MPI_Wtime();
         q->t_halo += t4 - t3;
-        q->sent += 15.0 * sizeof(double) * (double)q->h.nsend; /* 5 fields of 3 doubles per ghost (halo.c) */
+        q->sent += (double)HALO_W * q->h.rs * (double)q->h.nsend; /* a row of HALO_W reals per ghost (halo.h) */
         q->nsteps++;
         if (!wk)
             continue;

@@ -100,10 +100,10 @@ size_t dem_elem_size(int elem, int rs)
            MAXN = (size_t)(maxn_), NS = (size_t)(c)->nsprings, NT = (size_t)(c)->ntriangles,                         \
            NH = (size_t)(c)->nhinges, NR = (size_t)(c)->nriders, MAXP = (size_t)(c)->maxp,                           \
            MAXPO = (size_t)(c)->maxp_old, MAXV = (size_t)(c)->maxv, NSR = (size_t)(c)->series_rows,                  \
-           MAXC = (size_t)(c)->maxn[(c)->cur], LAWP = (size_t)DEM_LAW_PAIR_W((c)->fx),                               \
+           MAXC = (size_t)(c)->maxn[(c)->cur], NHALO = (size_t)(c)->halo_cap, LAWP = (size_t)DEM_LAW_PAIR_W((c)->fx),                               \
            LAWW = (size_t)DEM_LAW_WALL_W((c)->fx);                                                                   \
     (void)N, (void)NMAT, (void)NW, (void)NC, (void)NBS, (void)NBR, (void)NMR, (void)PAIRS, (void)MAXN, (void)NS, (void)NT,      \
-        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR, (void)MAXC, (void)LAWP, (void)LAWW
+        (void)NH, (void)NR, (void)MAXP, (void)MAXPO, (void)MAXV, (void)NSR, (void)MAXC, (void)NHALO, (void)LAWP, (void)LAWW
 
 static int gate_open(unsigned fx, unsigned gate) { return gate == 0 || (gate != DEM_GATE_LAZY && (fx & gate)); }
 

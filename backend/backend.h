@@ -108,6 +108,7 @@ typedef struct {
     int maxn[2], cur;  /* slots of each row set (its rows packed together); the set in use (1 - cur is built into) */
     int maxp, maxp_old, maxv; /* patch rows' capacities (patch_contacts.h) */
     size_t pair_cap;   /* pair records allocated */
+    int halo_cap;      /* message rows of a split run's halo (halo.h: NSEND + NRECV; 0 in one process) */
     int si[SI__COUNT];
     double sr[SR__COUNT];
     dem_bufref alias[ALIAS__COUNT];        /* the buffer each alias names */

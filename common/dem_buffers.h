@@ -13,7 +13,8 @@
  * the current set), PAIRS (pair
  * records allocated), LAWP and LAWW (the reals of a contact's law state per pair and per particle-wall slot:
  * DEM_LAW_PAIR_W, DEM_LAW_WALL_W), NS (springs), NT (triangles), NH (hinges), NR (riders), MAXP, MAXPO and MAXV (capacity of the
- * sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows: patch_contacts.h), in
+ * sphere patch rows, of the old ones a rebuild carries history from, of the vertex rows: patch_contacts.h), NHALO
+ * (message rows of a run split over ranks: those it sends and those it receives, halo.h; 0 in one process), in
  * elements.
  * Gate: the effect bit (dem_effects.h) without which the buffer is empty; 0 for always; DEM_GATE_LAZY for a buffer
  * made when first needed (the output stress tensor).
@@ -151,6 +152,8 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(OLD_PTOUCH, BYTE, N * MAXPO, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                    \
     ENTRY(VCOUNT, INT, N, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                                 \
     ENTRY(VLIST, INT, N * MAXV, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                           \
+    ENTRY(HALO_IDX, INT, NHALO, 0, -1, NONE, PARTICLES, STAY, NO)                                                       \
+    ENTRY(HALO_BUF, REAL, HALO_W * NHALO, 0, -1, NONE, PARTICLES, STAY, NO)                                             \
     DEM_BUFFERS_TEST(ENTRY)
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built
@@ -172,7 +175,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(DCY) ENTRY(DCZ) ENTRY(CX0) ENTRY(CY0) ENTRY(CZ0) ENTRY(NSPRINGS)                                              \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                                \
     ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                                                                 \
-    ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE)
+    ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE) ENTRY(NSEND) ENTRY(NRECV)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)        \
     ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE) ENTRY(REACH) ENTRY(RMAX)

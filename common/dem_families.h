@@ -18,4 +18,5 @@
 #include "riders.h"
 #include "patch_contacts.h"
 #include "mdr_particle.h"
+#include "halo.h"
 #endif /* DEM_FAMILIES_H */

@@ -36,7 +36,7 @@
     K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
-    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface)
+    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_bounds(F, A)                                                                                    \
@@ -273,6 +273,18 @@
     A(BIN, real, wall_real, WALL_REAL) A(BIN, unsigned, ride, RIDE) A(BIN, unsigned, wall_mask, WALL_MASK)           \
     A(BIN, real, wall_law, WALL_LAW) A(BOUT, real, mdr_part, MDR_PART) A(BIN, int, sid, SID)
 #define DEM_ITEMS_mdr_surface n
+
+/* ---- halo.h ---- */
+#define DEM_ARGS_halo_pack(F, A)                                                                                     \
+    F(I, int, nsend, NSEND) A(BIN, int, halo_idx, HALO_IDX) A(BIN, real, x, X) A(BIN, real, v, V)                    \
+    A(BIN, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE) A(BOUT, real, halo_buf, HALO_BUF)     \
+    A(BIN, int, order, ORDER)
+#define DEM_ITEMS_halo_pack nsend
+#define DEM_ARGS_halo_unpack(F, A)                                                                                   \
+    F(I, int, nrecv, NRECV) A(I, int, nsend, NSEND) A(BIN, int, halo_idx, HALO_IDX) A(BIN, real, halo_buf, HALO_BUF) \
+    A(BOUT, real, x, X) A(BOUT, real, v, V) A(BOUT, real, w, W) A(BOUT, real, force, FORCE)                          \
+    A(BOUT, real, torque, TORQUE) A(BIN, int, order, ORDER)
+#define DEM_ITEMS_halo_unpack nrecv
 
 /* ---- what the lists become ---- */
 /* a parameter declaration of each kind */

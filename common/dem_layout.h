@@ -179,6 +179,9 @@ enum { SE_KIN = 0, SE_POT, SE_ELA, SE_CON, SE_WCON, SE_STRIDE };
  * DEM_SERIES_RING_BYTES of per-particle terms (at least one). */
 #define DEM_SERIES_RING 64
 #define DEM_SERIES_RING_BYTES (8 << 20)
+/* A message row of a run split over ranks (halo.h): what a step reads of a particle, 3 reals each: position [m],
+ * velocity [m/s], spin [rad/s], force [N], torque [N m]. */
+enum { HALO_X = 0, HALO_V = 3, HALO_WV = 6, HALO_F = 9, HALO_T = 12, HALO_W = 15 };
 /* Items per block of the integer exclusive scan (binning.h). */
 #define DEM_SCAN_BLOCK 1024
 

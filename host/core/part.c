@@ -4,6 +4,7 @@
  * (host/physics/energy.c). Nothing here changes a run that does not call it. */
 #include "sim.h"
 #include "dem_layout.h"
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -55,6 +56,57 @@ int sim_set_ghosts(dem_sim *s, const unsigned char *ghost)
         return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     memcpy(s->ghost, ghost, (size_t)s->n);
     return 0;
+}
+
+int sim_halo_set(dem_sim *s, int nsend, const int *send, int nrecv, const int *recv)
+{
+    if (!s->run.started)
+        return sim_fail(s, DEM_ERR_STATE, "sim_halo_set: dem_start first");
+    if (nsend < 0 || nrecv < 0 || nsend > INT_MAX - nrecv || (size_t)nsend + (size_t)nrecv > INT_MAX / HALO_W)
+        return sim_fail(s, DEM_ERR_ARG, "sim_halo_set: %d rows to send and %d to receive", nsend, nrecv);
+    int total = nsend + nrecv, *idx = malloc(sizeof(int) * ((size_t)total + 1));
+    if (!idx)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    int e = 0;
+    for (int k = 0; k < total && !e; k++) {
+        idx[k] = k < nsend ? send[k] : recv[k - nsend];
+        if (idx[k] < 0 || idx[k] >= s->n)
+            e = sim_fail(s, DEM_ERR_ARG, "sim_halo_set: particle %d of a run of %d", idx[k], s->n);
+    }
+    dem_core *c = DEM_CORE(s->be);
+    if (!e) {
+        c->halo_cap = total;
+        c->si[SI_NSEND] = nsend, c->si[SI_NRECV] = nrecv;
+        if (s->ops->alloc(s->be, TABLE_ONE, 0, BUF_HALO_IDX, dem_buffer_bytes(c, BUF_HALO_IDX), total ? idx : NULL) ||
+            s->ops->alloc(s->be, TABLE_ONE, 0, BUF_HALO_BUF, dem_buffer_bytes(c, BUF_HALO_BUF), NULL))
+            e = sim_be_fail(s);
+    }
+    free(idx);
+    return e;
+}
+
+int sim_halo_pack(dem_sim *s, void *out)
+{
+    dem_core *c = DEM_CORE(s->be);
+    size_t bytes = (size_t)HALO_W * (size_t)c->si[SI_NSEND] * (size_t)c->rs;
+    if (!bytes)
+        return 0;
+    return dem_launch(s->ops, s->be, K_halo_pack) ||
+                   s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, 0, out, bytes, 1)
+               ? sim_be_fail(s)
+               : 0;
+}
+
+int sim_halo_unpack(dem_sim *s, const void *in)
+{
+    dem_core *c = DEM_CORE(s->be);
+    size_t row = (size_t)HALO_W * (size_t)c->rs, bytes = row * (size_t)c->si[SI_NRECV];
+    if (!bytes)
+        return 0;
+    return s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, row * (size_t)c->si[SI_NSEND], in, bytes, 1) ||
+                   dem_launch(s->ops, s->be, K_halo_unpack)
+               ? sim_be_fail(s)
+               : 0;
 }
 
 void sim_run_record_get(const dem_sim *s, sim_run_record *r)

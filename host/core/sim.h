@@ -247,6 +247,14 @@ void sim_run_record_set(dem_sim *s, const sim_run_record *r);
  * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */
 int sim_keep_particles(dem_sim *s, const unsigned char *keep);
 int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
+/* part.c: a split run's messages made on the device (common/halo.h). sim_halo_set gives the particles this rank sends
+ * (send[0..nsend): the callers' ids, one message row each, repeats allowed) and its ghosts (recv[0..nrecv)), after
+ * dem_start; sim_halo_pack copies the sent particles' rows into out (nsend rows of HALO_W reals of the run's
+ * precision: real_size bytes each); sim_halo_unpack copies the rows in (nrecv rows, the same layout) into the
+ * ghosts. Plain copies: a ghost holds its owner's bits. */
+int sim_halo_set(dem_sim *s, int nsend, const int *send, int nrecv, const int *recv);
+int sim_halo_pack(dem_sim *s, void *out);
+int sim_halo_unpack(dem_sim *s, const void *in);
 /* energy.c: the exact sums (SE_* of dem_layout.h) behind the last series row made from the device's ring, before
  * they were rounded: over the run's own particles (its ghosts left out). Runs split over ranks merge them. */
 void sim_row_exact(const dem_sim *s, exact_acc acc[SE_STRIDE]);

@@ -30,9 +30,9 @@ typedef struct {
     int nsend, nrecv;                       /* own particles other ranks hold as ghosts (with repeats), ghosts held */
     int *send_count, *send_displ, *send_id; /* per rank, its ghosts of ours, ascending global id: our local ids */
     int *recv_count, *recv_displ, *recv_id; /* per rank, our ghosts it owns, ascending global id: our local ids */
-    double *field, *sbuf, *rbuf;            /* the held particles' fields after the last exchange (3 n reals each:
-                                               position first, then velocity, spin, force, torque), and the
-                                               messages */
+    double *field;                          /* the held particles' positions after the last exchange (3 n) */
+    void *sbuf, *rbuf;                      /* the messages: rows of HALO_W reals (common/halo.h) */
+    int rs;                                 /* bytes per real of the run (and of the messages) */
     int steer;                              /* walls steered by their sums (a servo, an until_force stage): the
                                                ranks' sums merged after each step (dem_mpi_halo_exchange) */
     int mdr;                                /* MDR: each particle's row (mdr_particle.h) exchanged too */

@@ -1,12 +1,9 @@
 /* halo.c - ghost particles kept equal to their owners' after each step (dem_mpi.h) */
 #include "dem_mpi.h"
 #include "sim.h"
+#include "dem_layout.h"
 #include <stdlib.h>
 #include <string.h>
-
-/* what a step reads of a particle, in the message's order: 3 reals each */
-static const dem_field halo_fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE};
-#define HALO_NF ((int)(sizeof halo_fields / sizeof halo_fields[0]))
 
 void dem_mpi_halo_free(dem_mpi_halo *h)
 {
@@ -122,11 +119,15 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         h->gid = malloc(sizeof(long) * ((size_t)n + 1)), h->owner = malloc(sizeof(int) * ((size_t)n + 1));
         if (h->gid && h->owner)
             memcpy(h->gid, gid, sizeof(long) * (size_t)n), memcpy(h->owner, owner, sizeof(int) * (size_t)n);
-        h->field = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)n + 1));
-        h->sbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nsend + 1));
-        h->rbuf = malloc(sizeof(double) * 3 * HALO_NF * ((size_t)h->nrecv + 1));
+        h->rs = s->setup.real_size;
+        h->field = malloc(sizeof(double) * 3 * ((size_t)n + 1));
+        h->sbuf = malloc((size_t)h->rs * HALO_W * ((size_t)h->nsend + 1));
+        h->rbuf = malloc((size_t)h->rs * HALO_W * ((size_t)h->nrecv + 1));
         e = h->field && h->sbuf && h->rbuf && h->gid && h->owner ? 0 : DEM_ERR_NOMEM;
     }
+    if (!dem_mpi_agreed(comm, e)) /* the device's message rows: the particles sent, then the ghosts, in the
+                                   * messages' order */
+        e = sim_halo_set(s, h->nsend, h->send_id, h->nrecv, h->recv_id);
     if ((e = dem_mpi_agreed(comm, e)))
         dem_mpi_halo_free(h);
     else { /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step;
@@ -309,17 +310,10 @@ int dem_mpi_halo_exchange(dem_mpi_halo *h) { return exchange(h, h->steer); }
 
 static int exchange(dem_mpi_halo *h, int walls)
 {
-    int P = h->size, e = 0, w = 3 * HALO_NF; /* reals per particle in the messages */
-    size_t fw = 3 * (size_t)h->n;              /* reals of one field */
-    for (int f = 0; !e && f < HALO_NF; f++) {  /* each field read once, its own rows packed */
-        double *field = h->field + f * fw;
-        if ((e = dem_get_field(h->s, halo_fields[f], field)))
-            break;
-        for (int k = 0; k < h->nsend; k++)
-            memcpy(h->sbuf + (size_t)k * w + 3 * f, field + 3 * (size_t)h->send_id[k], sizeof(double) * 3);
-    }
-    int *sc = malloc(sizeof(int) * 4 * (size_t)P);
-    if (!sc)
+    int P = h->size, w = HALO_W; /* reals per particle in the messages: halo.h's row */
+    /* the rows of the particles sent, packed on the device in the run's precision */
+    int e = sim_halo_pack(h->s, h->sbuf), *sc = malloc(sizeof(int) * 4 * (size_t)P);
+    if (!sc && !e)
         e = DEM_ERR_NOMEM;
     if ((e = dem_mpi_agreed(h->comm, e))) {
         free(sc);
@@ -329,14 +323,12 @@ static int exchange(dem_mpi_halo *h, int walls)
     for (int q = 0; q < P; q++)
         sc[q] = w * h->send_count[q], sd[q] = w * h->send_displ[q], rc[q] = w * h->recv_count[q],
         rd[q] = w * h->recv_displ[q];
-    e = MPI_Alltoallv(h->sbuf, sc, sd, MPI_DOUBLE, h->rbuf, rc, rd, MPI_DOUBLE, h->comm);
+    MPI_Datatype real = h->rs == 8 ? MPI_DOUBLE : MPI_FLOAT;
+    e = MPI_Alltoallv(h->sbuf, sc, sd, real, h->rbuf, rc, rd, real, h->comm);
     free(sc);
-    for (int f = 0; !e && f < HALO_NF; f++) { /* the owners' values into the ghosts' rows, each field written once */
-        double *field = h->field + f * fw;
-        for (int k = 0; k < h->nrecv; k++)
-            memcpy(field + 3 * (size_t)h->recv_id[k], h->rbuf + (size_t)k * w + 3 * f, sizeof(double) * 3);
-        e = sim_set_field(h->s, halo_fields[f], field);
-    }
+    /* the owners' rows into the ghosts, then the positions the split's check of the moves reads (app/run_mpi.c) */
+    if (!e && !(e = sim_halo_unpack(h->s, h->rbuf)))
+        e = dem_get_field(h->s, DEM_FIELD_X, h->field);
     if ((e = dem_mpi_agreed(h->comm, e)))
         return e;
     /* MDR: the row's sums the contacts left, which the next step's mdr_begin turns into volumes and a radius */
