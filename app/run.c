@@ -17,7 +17,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* A run asked to stop (SIGINT, SIGTERM, SIGHUP: Ctrl-C, `timeout`, a batch system's notice before it kills) ends
+/* A run asked to stop (SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2: Ctrl-C, `timeout`, a batch system's notice
+ * before it kills, a stop passed on by mpirun) ends
  * within about a second (the stretch of steps under way, capped at about a second, then one step) as if its scene
  * ended there: the last frame, series row and checkpoint at that step, the output file completed, and exit status
  * 128 + the signal - for SIGINT by dying of it once all is written, so that a shell script or make running dem stops
@@ -34,7 +35,11 @@ static void run_on_signal(int sig)
     if (!run_signal)
         run_signal = sig;
 }
-static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+/* SIGUSR1 and SIGUSR2 too: Open MPI's mpirun (4.1) passes a SIGUSR2 on to every rank at once ("Forwarding signal 12
+ * to job"), where a SIGTERM to mpirun reaches the ranks only after odls_base_sigkill_timeout (1 s) and is followed
+ * by SIGKILL as long again later - too short for rank 0 to write the output and checkpoint of a large run
+ * (docs/design.md "Runs over MPI"); SIGUSR1, which batch systems send as a notice, it does not pass on */
+static const int run_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGUSR2, SIGPIPE};
 #define RUN_NSIG (sizeof run_signals / sizeof run_signals[0])
 static struct sigaction run_signal_old[RUN_NSIG];
 /* The stop signals are taken by one thread, in sigwait, and blocked in every other: the main thread blocks them

@@ -29,7 +29,8 @@
 #     (reference fp64), iterated on 3 ranks (PoCL fp32), equal to one process with the same iteration count; the
 #     iterated run stopped at step 700 on 2 ranks continues in one process as the one-process run does. Without the
 #     exchange, or with ghost pairs counted in the test, it fails.
-#  5. SIGTERM to mpirun: all ranks stop, the output completed and the checkpoint readable.
+#  5. SIGTERM and SIGUSR2 to mpirun: all ranks stop, the output completed and the checkpoint readable; after
+#     SIGUSR2 (which mpirun passes on at once) mpirun exits with the ranks' 128 + 12.
 set -u
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -106,24 +107,32 @@ trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
 echo "   more ranks than particles, a membrane, a misspelt key: exit 65, each said once"
 
-echo "== 5. SIGTERM to mpirun"
+echo "== 5. SIGTERM and SIGUSR2 to mpirun"
 sed 's/duration: 0.04}/duration: 5.0}/' "$S" >"$T/long.yaml"
-mpirun --oversubscribe --bind-to none -np 2 "$DEM" run "$T/long.yaml" -o "$T/l.h5" --progress >"$T/log" 2>&1 &
-pid=$! # mpirun itself, which forwards the signal to the ranks (no pkill: a bare root has no procps)
-# a hang ends the check; the guard ends soon after mpirun and holds none of our output
-(for k in $(seq 1 300); do sleep 1; kill -0 $pid 2>/dev/null || exit 0; done; kill -KILL $pid) >/dev/null 2>&1 &
-guard=$!
-# stepping (its first progress line; a loaded machine can take seconds to start the parts), then the signal
-for k in $(seq 1 1200); do grep -q "^step [1-9]" "$T/log" && break; sleep 0.1; done
-kill -TERM $pid
-wait $pid
-kill $guard 2>/dev/null
-ok=1
-grep -q "stopped by signal 15" "$T/log" && [ -e "$T/l.h5" ] && [ ! -e "$T/l.h5.part" ] && "$DEM" hash "$T/l.ckpt.h5" >/dev/null ||
-    { cat "$T/log" >&2; fail "SIGTERM: not stopped cleanly with a complete output and checkpoint"; ok=0; }
-"$PY" -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f['series/time'].shape[0] > 1" "$T/l.h5" ||
-    { fail "SIGTERM: the output has no rows"; ok=0; }
-[ $ok = 1 ] && echo "   stopped cleanly: output complete, checkpoint readable"
+for sig in TERM USR2; do
+    rm -f "$T"/l.*
+    mpirun --oversubscribe --bind-to none -np 2 "$DEM" run "$T/long.yaml" -o "$T/l.h5" --progress >"$T/log" 2>&1 &
+    pid=$! # mpirun itself, which passes the signal on to the ranks (no pkill: a bare root has no procps)
+    # a hang ends the check; the guard ends soon after mpirun and holds none of our output
+    (for k in $(seq 1 300); do sleep 1; kill -0 $pid 2>/dev/null || exit 0; done; kill -KILL $pid) >/dev/null 2>&1 &
+    guard=$!
+    # stepping (its first progress line; a loaded machine can take seconds to start the parts), then the signal
+    for k in $(seq 1 1200); do grep -q "^step [1-9]" "$T/log" && break; sleep 0.1; done
+    kill -$sig $pid
+    wait $pid
+    src=$?
+    kill $guard 2>/dev/null
+    num=$(kill -l $sig)
+    ok=1
+    grep -q "stopped by signal $num" "$T/log" && [ -e "$T/l.h5" ] && [ ! -e "$T/l.h5.part" ] && "$DEM" hash "$T/l.ckpt.h5" >/dev/null ||
+        { cat "$T/log" >&2; fail "SIG$sig: not stopped cleanly with a complete output and checkpoint"; ok=0; }
+    "$PY" -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f['series/time'].shape[0] > 1" "$T/l.h5" ||
+        { fail "SIG$sig: the output has no rows"; ok=0; }
+    # mpirun passes SIGUSR2 on at once and exits with the ranks' status; a SIGTERM it answers by ending the job
+    # (SIGTERM to the ranks one second later, SIGKILL one more second later) and exits 1 whatever they did
+    [ $sig = TERM ] || [ $src = $((128 + num)) ] || { fail "SIG$sig: mpirun exit status $src, not $((128 + num))"; ok=0; }
+    [ $ok = 1 ] && echo "   SIG$sig: stopped cleanly, output complete, checkpoint readable; mpirun's exit status $src"
+done
 
 echo "== 6. walls steered by their sums: until_force, until_density, a servo"
 L=$ROOT/tests/scenes/lid_stages.yaml
