@@ -369,6 +369,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
             }
             free(x);
         }
+        long before = q->step;
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
         if (!e && !q->fail_nan && q->fail_step == dem_step_index(q->part) && q->fail_rank == r->rank) { /* the test hook */
             snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
@@ -381,8 +382,13 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         /* a step that failed here only because another rank's did (a meeting inside the step, host/mpi/halo.c):
          * that rank's code and words are the ones to agree on */
         int mine = e && q->part->run.halo_learned ? 0 : e, a = agreed_msg(q, mine, q->part, err, len);
-        if ((e = a ? a : e)) /* a == 0 with e set cannot be: some rank's own step failed */
+        if ((e = a ? a : e)) { /* a == 0 with e set cannot be: some rank's own step failed */
+            /* the run stopped where this step began, as one process's failed step counts nothing: a rank whose own
+             * step went through and learned of another's failure after it has counted it, one that learned at a
+             * meeting inside the step has not */
+            q->step = before;
             return e;
+        }
         if ((e = dem_mpi_halo_exchange(&q->h)))
             return shared_error(q, e, err, len);
         double t4 = MPI_Wtime();
