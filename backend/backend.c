@@ -18,6 +18,7 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 #define ALIASELEM_SCAN_COUNT DEM_ELEM_INT /* the scan's operands are integer buffers */
 #define ALIASELEM_SCAN_BLOCK_SUM DEM_ELEM_INT
 #define ALIASELEM_SCAN_START DEM_ELEM_INT
+#define ALIASELEM_HALO_ROWS DEM_ELEM_REAL /* a per-particle buffer of reals (halo.h) */
 #define CHECK_I(type, src) _Static_assert(SI_##src >= 0, "int scalar");
 #define CHECK_R(type, src) _Static_assert(SR_##src >= 0, "real scalar");
 #define CHECK_BIN(type, src) _Static_assert((int)BUFELEM_##src == (int)DEM_ELEM_OF_##type, #src ": element type");

@@ -165,8 +165,9 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(START, INT, N + 1, 0, DEM_FIELD_NBR_START)                                                                    \
     ENTRY(LIST, INT, MAXN, 0, DEM_FIELD_NBR_LIST)
 
-/* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands) */
-#define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START)
+/* ENTRY(ID) - a kernel argument whose buffer the driver chooses at each launch (the scan's operands, the per-particle
+ * buffer a split run's halo_pack_rows and halo_unpack_rows copy) */
+#define DEM_ALIASES(ENTRY) ENTRY(SCAN_COUNT) ENTRY(SCAN_BLOCK_SUM) ENTRY(SCAN_START) ENTRY(HALO_ROWS)
 
 /* ENTRY(ID) - scalar kernel arguments (the cells: NCELLS in use, NCX..NCZ in use per axis from the domain's cell
  * CX0..CZ0 on, DCX..DCZ the domain's per axis: binning.h) */
@@ -175,7 +176,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(DCY) ENTRY(DCZ) ENTRY(CX0) ENTRY(CY0) ENTRY(CZ0) ENTRY(NSPRINGS)                                              \
     ENTRY(NTRIANGLES) ENTRY(NHINGES) ENTRY(NRIDERS) ENTRY(MAXP) ENTRY(MAXPO) ENTRY(MAXV)                                \
     ENTRY(SCAN_ITEMS) ENTRY(SCAN_NBLOCKS) ENTRY(NPAIRS)                                                                 \
-    ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE) ENTRY(NSEND) ENTRY(NRECV)
+    ENTRY(SERIES_ROW) ENTRY(SERIES_SAMPLE) ENTRY(NSEND) ENTRY(NRECV) ENTRY(HALO_WIDTH)
 #define DEM_SCALARS_REAL(ENTRY)                                                                                      \
     ENTRY(DT) ENTRY(SKIN) ENTRY(HALF_SKIN2) ENTRY(INV_CELL) ENTRY(LOX) ENTRY(LOY) ENTRY(LOZ) ENTRY(GX) ENTRY(GY)        \
     ENTRY(GZ) ENTRY(MC_TOL) ENTRY(PRESSURE) ENTRY(REACH) ENTRY(RMAX)

@@ -36,7 +36,7 @@
     K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
-    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack)
+    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack) K(halo_pack_rows) K(halo_unpack_rows)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_bounds(F, A)                                                                                    \
@@ -285,6 +285,14 @@
     A(BOUT, real, x, X) A(BOUT, real, v, V) A(BOUT, real, w, W) A(BOUT, real, force, FORCE)                          \
     A(BOUT, real, torque, TORQUE) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_halo_unpack nrecv
+#define DEM_ARGS_halo_pack_rows(F, A)                                                                                \
+    F(I, int, nsend, NSEND) A(I, int, width, HALO_WIDTH) A(BIN, int, halo_idx, HALO_IDX) A(AIN, real, rows, HALO_ROWS) \
+    A(BOUT, real, halo_buf, HALO_BUF) A(BIN, int, order, ORDER)
+#define DEM_ITEMS_halo_pack_rows nsend
+#define DEM_ARGS_halo_unpack_rows(F, A)                                                                              \
+    F(I, int, nrecv, NRECV) A(I, int, nsend, NSEND) A(I, int, width, HALO_WIDTH) A(BIN, int, halo_idx, HALO_IDX)     \
+    A(BIN, real, halo_buf, HALO_BUF) A(AOUT, real, rows, HALO_ROWS) A(BIN, int, order, ORDER)
+#define DEM_ITEMS_halo_unpack_rows nrecv
 
 /* ---- what the lists become ---- */
 /* a parameter declaration of each kind */

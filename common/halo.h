@@ -34,4 +34,20 @@ DEM_ITEM(halo_unpack)
         torque[3 * p + q] = row[HALO_T + q];
     }
 }
+/* The same for one per-particle buffer of `width` <= HALO_W reals per particle, named by the alias HALO_ROWS, in
+ * message rows of `width` reals: what a step reads of a ghost within the step (MC-stress's stress trace after its
+ * pass 1, MDR's particle row after mdr_surface and after the step) */
+DEM_ITEM(halo_pack_rows)
+{
+    int p = order[halo_idx[i]];
+    for (int q = 0; q < width; q++)
+        halo_buf[width * i + q] = rows[width * p + q];
+}
+
+DEM_ITEM(halo_unpack_rows)
+{
+    int k = nsend + i, p = order[halo_idx[k]];
+    for (int q = 0; q < width; q++)
+        rows[width * p + q] = halo_buf[width * k + q];
+}
 #endif /* DEM_HALO_H */

@@ -109,6 +109,44 @@ int sim_halo_unpack(dem_sim *s, const void *in)
                : 0;
 }
 
+/* the alias of the row kernels set to buffer id, width reals per particle; 0, or a refusal */
+static int halo_rows(dem_sim *s, int id, int width)
+{
+    dem_core *c = DEM_CORE(s->be);
+    if (width < 1 || width > HALO_W || c->bytes[id] < (size_t)width * (size_t)s->n * (size_t)c->rs)
+        return sim_fail(s, DEM_ERR_ARG, "buffer %d: not %d reals per particle, or more than a message row's %d", id,
+                        width, (int)HALO_W);
+    c->alias[ALIAS_HALO_ROWS] = (dem_bufref){TABLE_ONE, id};
+    c->si[SI_HALO_WIDTH] = width;
+    return 0;
+}
+
+int sim_halo_pack_rows(dem_sim *s, int id, int width, void *out)
+{
+    dem_core *c = DEM_CORE(s->be);
+    size_t bytes = (size_t)width * (size_t)c->si[SI_NSEND] * (size_t)c->rs;
+    int e = halo_rows(s, id, width);
+    if (e || !bytes)
+        return e;
+    return dem_launch(s->ops, s->be, K_halo_pack_rows) ||
+                   s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, 0, out, bytes, 1)
+               ? sim_be_fail(s)
+               : 0;
+}
+
+int sim_halo_unpack_rows(dem_sim *s, int id, int width, const void *in)
+{
+    dem_core *c = DEM_CORE(s->be);
+    size_t row = (size_t)width * (size_t)c->rs, bytes = row * (size_t)c->si[SI_NRECV];
+    int e = halo_rows(s, id, width);
+    if (e || !bytes)
+        return e;
+    return s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, row * (size_t)c->si[SI_NSEND], in, bytes, 1) ||
+                   dem_launch(s->ops, s->be, K_halo_unpack_rows)
+               ? sim_be_fail(s)
+               : 0;
+}
+
 void sim_run_record_get(const dem_sim *s, sim_run_record *r)
 {
     memcpy(r->servo, s->motion.servo, sizeof r->servo);

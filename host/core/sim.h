@@ -197,16 +197,11 @@ int sim_stage_now(const dem_sim *s, int k, long *first);
 double sim_relative_density(const dem_sim *s, int k); /* walls.c: punch k's relative density now (until_density) */
 double sim_particle_volume(const dem_sim *s); /* walls.c: the spheres' volume, an exact sum rounded once [m^3] */
 /* fields.c: the per-particle field f set whole from vals, in the callers' order as dem_get_field gives it, in the
- * run's precision (a value of an fp32 run must be a float widened): what a run split over ranks writes back after
- * putting its owners' values into its ghosts' rows (host/mpi/halo.c) */
+ * run's precision (a value of an fp32 run must be a float widened): app/run_mpi.c's test hook that makes a rank's
+ * particle not a number */
 int sim_set_field(dem_sim *s, dem_field f, const double *vals);
 /* state.c: field f whole as stored (storage order), malloc'd, its size in *bytes; a failure into *e (0 before) */
 void *sim_field_stored(dem_sim *s, dem_field f, size_t *bytes, int *e);
-/* fields.c: a per-particle registry buffer (BUF_*) of width reals per particle, whole, as doubles in the callers'
- * order: read, or written (values of an fp32 run must be floats widened) - the rows without a public field that a
- * run split over ranks puts into its ghosts (MDR's particle rows) */
-int sim_rows_get(dem_sim *s, int id, int width, double *dst);
-int sim_rows_set(dem_sim *s, int id, int width, const double *vals);
 /* The points of a step where dem_sim.halo_hook is called: after a force stage of an effect (*value: its gate; MC-stress's
  * traces, MDR's rows), after each evaluation of MC-strain's displacements, at MC-strain's convergence test (*value:
  * this rank's "a force still moved", replaced by the run's), and at the step's end. A rank whose own step fails
@@ -255,6 +250,10 @@ int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
 int sim_halo_set(dem_sim *s, int nsend, const int *send, int nrecv, const int *recv);
 int sim_halo_pack(dem_sim *s, void *out);
 int sim_halo_unpack(dem_sim *s, const void *in);
+/* The same for the registry buffer id (BUF_*) of width <= HALO_W reals per particle, in rows of width reals:
+ * MC-stress's trace, MDR's particle row (host/mpi/halo.c) */
+int sim_halo_pack_rows(dem_sim *s, int id, int width, void *out);
+int sim_halo_unpack_rows(dem_sim *s, int id, int width, const void *in);
 /* energy.c: the exact sums (SE_* of dem_layout.h) behind the last series row made from the device's ring, before
  * they were rounded: over the run's own particles (its ghosts left out). Runs split over ranks merge them. */
 void sim_row_exact(const dem_sim *s, exact_acc acc[SE_STRIDE]);

@@ -53,8 +53,11 @@ typedef struct {
  * such point, and the step's end, is a meeting that first agrees on any rank's failure, so every step of the run is
  * collective from then on and a step that fails on one rank ends on all (dem_mpi_halo_free unhooks it). */
 int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner);
-/* After a step: the owners' position, velocity, spin, force and torque into every ghost (under MDR also its particle
- * row: the sums the step's contacts left, which the next step's mdr_begin reads); and where walls are
+/* After a step: the owners' position, velocity, spin, force and torque into every ghost, as rows of HALO_W reals
+ * packed and unpacked on the device (common/halo.h: only the rows sent and received cross to the host and MPI, in
+ * the run's precision), then the held particles' positions read into h->field for the split's check of the moves
+ * (under MDR also each particle's row through the host: the sums the step's contacts left, which the next step's
+ * mdr_begin reads); and where walls are
  * steered by their sums (h->steer: a servo, an until_force stage), every rank's sums of that step merged exactly
  * and set in every rank's run (sim_wall_sums_set), so that the next step's servo and stage ends read the force one
  * process reads. Collective. */

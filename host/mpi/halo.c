@@ -152,34 +152,30 @@ static int in_step(dem_mpi_halo *h, int e)
     return a;
 }
 
-/* The owners' values of one per-particle field of `width` reals into the ghosts: a public field f (dem_get_field,
- * sim_set_field), or with f < 0 the registry buffer buf (sim_rows_get, sim_rows_set). Collective. */
-static int exchange_field(dem_mpi_halo *h, int f, int buf, int width)
+/* The owners' values of the per-particle registry buffer `buf` of `width` <= HALO_W reals per particle into the
+ * ghosts: packed and unpacked on the device (common/halo.h: halo_pack_rows, halo_unpack_rows), width reals per
+ * particle through MPI. Collective. */
+static int exchange_rows(dem_mpi_halo *h, int buf, int width)
 {
     int P = h->size, e = 0;
-    double *field = malloc(sizeof(double) * (size_t)width * ((size_t)h->n + 1));
-    double *sb = malloc(sizeof(double) * (size_t)width * ((size_t)h->nsend + 1));
-    double *rb = malloc(sizeof(double) * (size_t)width * ((size_t)h->nrecv + 1));
     int *sc = malloc(sizeof(int) * 4 * (size_t)P);
-    if (!field || !sb || !rb || !sc)
+    if (!sc)
         e = sim_fail(h->s, DEM_ERR_NOMEM, "out of host memory for the ghosts' exchange");
-    if (!e && !(e = f >= 0 ? dem_get_field(h->s, (dem_field)f, field) : sim_rows_get(h->s, buf, width, field)))
-        for (int k = 0; k < h->nsend; k++)
-            memcpy(sb + (size_t)k * width, field + (size_t)width * h->send_id[k], sizeof(double) * width);
+    if (!e) /* sbuf and rbuf hold HALO_W reals a row: room for these */
+        e = sim_halo_pack_rows(h->s, buf, width, h->sbuf);
     if (!(e = in_step(h, e))) {
         int *sd = sc + P, *rc = sd + P, *rd = rc + P;
         for (int q = 0; q < P; q++)
             sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
             rd[q] = width * h->recv_displ[q];
-        if ((e = MPI_Alltoallv(sb, sc, sd, MPI_DOUBLE, rb, rc, rd, MPI_DOUBLE, h->comm)))
+        MPI_Datatype real = h->rs == 8 ? MPI_DOUBLE : MPI_FLOAT;
+        if ((e = MPI_Alltoallv(h->sbuf, sc, sd, real, h->rbuf, rc, rd, real, h->comm)))
             e = sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Alltoallv of the ghosts' values failed (%d)", e);
-        for (int k = 0; !e && k < h->nrecv; k++)
-            memcpy(field + (size_t)width * h->recv_id[k], rb + (size_t)k * width, sizeof(double) * width);
         if (!e)
-            e = f >= 0 ? sim_set_field(h->s, (dem_field)f, field) : sim_rows_set(h->s, buf, width, field);
+            e = sim_halo_unpack_rows(h->s, buf, width, h->rbuf);
         e = in_step(h, e);
     }
-    free(field), free(sb), free(rb), free(sc);
+    free(sc);
     return e;
 }
 
@@ -274,9 +270,9 @@ static int mid_step(dem_sim *s, void *ctx, int event, int *value)
     if (e || event == SIM_HOOK_STEP_END)
         return e;
     if (event == SIM_HOOK_STAGE && *value == (int)DEM_EFFECT_MC_STRESS)
-        return exchange_field(h, DEM_FIELD_STRESS_TRACE, -1, 1);
+        return exchange_rows(h, BUF_TRACE, 1);
     if (event == SIM_HOOK_STAGE && *value == (int)DEM_EFFECT_MDR)
-        return exchange_field(h, -1, BUF_MDR_PART, MDR_P_STRIDE);
+        return exchange_rows(h, BUF_MDR_PART, MDR_P_STRIDE);
     if (event == SIM_HOOK_MC_DISP)
         return mc_disp_exchange(h);
     if (event == SIM_HOOK_MC_PENDING) {
@@ -332,7 +328,7 @@ static int exchange(dem_mpi_halo *h, int walls)
     if ((e = dem_mpi_agreed(h->comm, e)))
         return e;
     /* MDR: the row's sums the contacts left, which the next step's mdr_begin turns into volumes and a radius */
-    if (h->mdr && (e = exchange_field(h, -1, BUF_MDR_PART, MDR_P_STRIDE)))
+    if (h->mdr && (e = exchange_rows(h, BUF_MDR_PART, MDR_P_STRIDE)))
         return e;
     return walls ? walls_merged(h) : 0;
 }
