@@ -364,8 +364,8 @@ static void test_tablet_report(void **st)
     /* a signal from outside (Ctrl-C) while PoCL compiles the kernels at their first launches (an empty PoCL
      * cache): libLLVM, which compiles them in-process, installs its own SIGINT and SIGTERM handlers - in CI a Ctrl-C
      * 3 s in killed the run and left i.h5.part and no checkpoint. dem takes the stop signals in one thread (sigwait)
-     * and blocks them in every other, the runtime's threads included: each thread's SIGHUP, SIGINT and SIGTERM mask
-     * bits are read while the run steps (the last four hex digits of SigBlk: dash's arithmetic stops at 2^63) - the
+     * and blocks them in every other, the runtime's threads included: each thread's SIGHUP, SIGINT, SIGUSR1, SIGUSR2
+     * and SIGTERM mask bits (0x4A03) are read while the run steps (the last four hex digits of SigBlk: dash's arithmetic stops at 2^63) - the
      * main thread, which took them before (PoCL's threads block them), must block them, and one thread at most, the
      * one in sigwait (which unblocks them while it waits), may take them - then SIGINT: exit status 130 and a
      * readable output and checkpoint at the step it stopped. The background job gets the signals' default actions
@@ -378,7 +378,7 @@ static void test_tablet_report(void **st)
                      "n=0; open=0; main=open; for t in /proc/$p/task/*; do "
                      "  m=$(awk '/^SigBlk/ { print $2 }' $t/status 2>/dev/null); [ -n \"$m\" ] || continue; "
                      "  m=${m#????????????}; n=$((n + 1)); "
-                     "  if [ $((0x$m & 0x4003)) -eq $((0x4003)) ]; then [ $t = /proc/$p/task/$p ] && main=blocked; "
+                     "  if [ $((0x$m & 0x4A03)) -eq $((0x4A03)) ]; then [ $t = /proc/$p/task/$p ] && main=blocked; "
                      "  else open=$((open + 1)); fi; done; "
                      "kill -INT $p; k=0; while kill -0 $p 2>/dev/null && [ $k -lt 600 ]; do sleep 0.1; "
                      "k=$((k + 1)); done; kill -KILL $p 2>/dev/null; wait $p; r=$?; cat i.txt >&2; "

@@ -56,8 +56,8 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
 /* After a step: the owners' position, velocity, spin, force and torque into every ghost, as rows of HALO_W reals
  * packed and unpacked on the device (common/halo.h: only the rows sent and received cross to the host and MPI, in
  * the run's precision), then the held particles' positions read into h->field for the split's check of the moves
- * (under MDR also each particle's row through the host: the sums the step's contacts left, which the next step's
- * mdr_begin reads); and where walls are
+ * (under MDR also each particle's row, packed the same way: the sums the step's contacts left, which the next
+ * step's mdr_begin reads); and where walls are
  * steered by their sums (h->steer: a servo, an until_force stage), every rank's sums of that step merged exactly
  * and set in every rank's run (sim_wall_sums_set), so that the next step's servo and stage ends read the force one
  * process reads. Collective. */
