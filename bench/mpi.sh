@@ -17,6 +17,7 @@ cd "$(dirname "$0")/.."
 STEPS=${MPI_STEPS:-500}
 STEPS_1E6=${MPI_STEPS_1E6:-100}
 SIZES=${MPI_SIZES:-1e5 1e6}
+[ "$STEPS" -ge 2 ] && [ "$STEPS_1E6" -ge 2 ] || { echo "bench/mpi.sh: MPI_STEPS and MPI_STEPS_1E6 must be 2 or more (a 1-step run is the baseline subtracted)" >&2; exit 2; }
 OUT=out/mpi
 DEM=build/dem
 PY=$(scripts/find_python.sh) || exit 1
@@ -50,7 +51,7 @@ scene() { # csv name, tx, ty: the scene on stdout
 scene bed.csv 1 1 >"$OUT/bed.yaml"
 case " $SIZES " in *" 1e6 "*)
     # the tiles: every sphere of the bed copied at x + 0.1 a, y + 0.1 c (the comment and header lines once)
-    awk -F, '/^#/ || /^x,/ { print; next } { line[++n] = $0 }
+    awk -F, '/^#/ || /^x,/ { print; next } /^[[:space:]]*$/ { next } { line[++n] = $0 }
              END { for (a = 0; a < 5; a++) for (c = 0; c < 2; c++) for (k = 1; k <= n; k++) {
                        m = split(line[k], f, ","); s = sprintf("%.17g,%.17g", f[1] + 0.1 * a, f[2] + 0.1 * c)
                        for (q = 3; q <= m; q++) s = s "," f[q]
