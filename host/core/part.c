@@ -85,29 +85,30 @@ int sim_halo_set(dem_sim *s, int nsend, const int *send, int nrecv, const int *r
     return e;
 }
 
-int sim_halo_pack(dem_sim *s, void *out)
+/* The rows of width reals a kernel k packs (out: read to the host) or unpacks (in: written from it first) */
+static int halo_out(dem_sim *s, dem_kernel_id k, int width, void *out)
 {
     dem_core *c = DEM_CORE(s->be);
-    size_t bytes = (size_t)HALO_W * (size_t)c->si[SI_NSEND] * (size_t)c->rs;
-    if (!bytes)
-        return 0;
-    return dem_launch(s->ops, s->be, K_halo_pack) ||
-                   s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, 0, out, bytes, 1)
+    size_t bytes = (size_t)width * (size_t)c->si[SI_NSEND] * (size_t)c->rs;
+    return bytes && (dem_launch(s->ops, s->be, k) ||
+                     s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, 0, out, bytes, 1))
                ? sim_be_fail(s)
                : 0;
 }
 
-int sim_halo_unpack(dem_sim *s, const void *in)
+static int halo_in(dem_sim *s, dem_kernel_id k, int width, const void *in)
 {
     dem_core *c = DEM_CORE(s->be);
-    size_t row = (size_t)HALO_W * (size_t)c->rs, bytes = row * (size_t)c->si[SI_NRECV];
-    if (!bytes)
-        return 0;
-    return s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, row * (size_t)c->si[SI_NSEND], in, bytes, 1) ||
-                   dem_launch(s->ops, s->be, K_halo_unpack)
+    size_t row = (size_t)width * (size_t)c->rs, bytes = row * (size_t)c->si[SI_NRECV];
+    return bytes && (s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, row * (size_t)c->si[SI_NSEND], in,
+                                   bytes, 1) ||
+                     dem_launch(s->ops, s->be, k))
                ? sim_be_fail(s)
                : 0;
 }
+
+int sim_halo_pack(dem_sim *s, void *out) { return halo_out(s, K_halo_pack, HALO_W, out); }
+int sim_halo_unpack(dem_sim *s, const void *in) { return halo_in(s, K_halo_unpack, HALO_W, in); }
 
 /* the alias of the row kernels set to buffer id, width reals per particle; 0, or a refusal */
 static int halo_rows(dem_sim *s, int id, int width)
@@ -123,28 +124,14 @@ static int halo_rows(dem_sim *s, int id, int width)
 
 int sim_halo_pack_rows(dem_sim *s, int id, int width, void *out)
 {
-    dem_core *c = DEM_CORE(s->be);
-    size_t bytes = (size_t)width * (size_t)c->si[SI_NSEND] * (size_t)c->rs;
     int e = halo_rows(s, id, width);
-    if (e || !bytes)
-        return e;
-    return dem_launch(s->ops, s->be, K_halo_pack_rows) ||
-                   s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, 0, out, bytes, 1)
-               ? sim_be_fail(s)
-               : 0;
+    return e ? e : halo_out(s, K_halo_pack_rows, width, out);
 }
 
 int sim_halo_unpack_rows(dem_sim *s, int id, int width, const void *in)
 {
-    dem_core *c = DEM_CORE(s->be);
-    size_t row = (size_t)width * (size_t)c->rs, bytes = row * (size_t)c->si[SI_NRECV];
     int e = halo_rows(s, id, width);
-    if (e || !bytes)
-        return e;
-    return s->ops->write(s->be, (dem_bufref){TABLE_ONE, BUF_HALO_BUF}, row * (size_t)c->si[SI_NSEND], in, bytes, 1) ||
-                   dem_launch(s->ops, s->be, K_halo_unpack_rows)
-               ? sim_be_fail(s)
-               : 0;
+    return e ? e : halo_in(s, K_halo_unpack_rows, width, in);
 }
 
 void sim_run_record_get(const dem_sim *s, sim_run_record *r)

@@ -33,6 +33,7 @@ typedef struct {
     double *field;                          /* the held particles' positions after the last exchange (3 n) */
     void *sbuf, *rbuf;                      /* the messages: rows of HALO_W reals (common/halo.h) */
     int rs;                                 /* bytes per real of the run (and of the messages) */
+    int *msg_count;                         /* [4 size]: a message's counts and displacements, sent and received */
     int steer;                              /* walls steered by their sums (a servo, an until_force stage): the
                                                ranks' sums merged after each step (dem_mpi_halo_exchange) */
     int mdr;                                /* MDR: each particle's row (mdr_particle.h) exchanged too */

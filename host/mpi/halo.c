@@ -11,7 +11,7 @@ void dem_mpi_halo_free(dem_mpi_halo *h)
         h->s->halo_hook = NULL, h->s->halo_ctx = NULL;
     free(h->send_count), free(h->send_displ), free(h->send_id);
     free(h->recv_count), free(h->recv_displ), free(h->recv_id);
-    free(h->field), free(h->sbuf), free(h->rbuf);
+    free(h->field), free(h->sbuf), free(h->rbuf), free(h->msg_count);
     free(h->gid), free(h->owner);
     memset(h, 0, sizeof *h);
 }
@@ -123,7 +123,8 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         h->field = malloc(sizeof(double) * 3 * ((size_t)n + 1));
         h->sbuf = malloc((size_t)h->rs * HALO_W * ((size_t)h->nsend + 1));
         h->rbuf = malloc((size_t)h->rs * HALO_W * ((size_t)h->nrecv + 1));
-        e = h->field && h->sbuf && h->rbuf && h->gid && h->owner ? 0 : DEM_ERR_NOMEM;
+        h->msg_count = malloc(sizeof(int) * 4 * (size_t)P);
+        e = h->field && h->sbuf && h->rbuf && h->gid && h->owner && h->msg_count ? 0 : DEM_ERR_NOMEM;
     }
     if (!dem_mpi_agreed(comm, e)) /* the device's message rows: the particles sent, then the ghosts, in the
                                    * messages' order */
@@ -152,30 +153,31 @@ static int in_step(dem_mpi_halo *h, int e)
     return a;
 }
 
+/* The packed rows of width reals each (h->sbuf, the particles sent in the halo's order) to the ranks that hold them
+ * as ghosts, theirs into h->rbuf: one MPI_Alltoallv in the run's precision. Returns MPI's code. Collective. */
+static int send_rows(dem_mpi_halo *h, int width)
+{
+    int P = h->size, *sc = h->msg_count, *sd = sc + P, *rc = sd + P, *rd = rc + P;
+    for (int q = 0; q < P; q++)
+        sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
+        rd[q] = width * h->recv_displ[q];
+    MPI_Datatype real = h->rs == 8 ? MPI_DOUBLE : MPI_FLOAT;
+    return MPI_Alltoallv(h->sbuf, sc, sd, real, h->rbuf, rc, rd, real, h->comm);
+}
+
 /* The owners' values of the per-particle registry buffer `buf` of `width` <= HALO_W reals per particle into the
  * ghosts: packed and unpacked on the device (common/halo.h: halo_pack_rows, halo_unpack_rows), width reals per
  * particle through MPI. Collective. */
 static int exchange_rows(dem_mpi_halo *h, int buf, int width)
 {
-    int P = h->size, e = 0;
-    int *sc = malloc(sizeof(int) * 4 * (size_t)P);
-    if (!sc)
-        e = sim_fail(h->s, DEM_ERR_NOMEM, "out of host memory for the ghosts' exchange");
-    if (!e) /* sbuf and rbuf hold HALO_W reals a row: room for these */
-        e = sim_halo_pack_rows(h->s, buf, width, h->sbuf);
+    int e = sim_halo_pack_rows(h->s, buf, width, h->sbuf); /* sbuf and rbuf hold HALO_W reals a row: room for these */
     if (!(e = in_step(h, e))) {
-        int *sd = sc + P, *rc = sd + P, *rd = rc + P;
-        for (int q = 0; q < P; q++)
-            sc[q] = width * h->send_count[q], sd[q] = width * h->send_displ[q], rc[q] = width * h->recv_count[q],
-            rd[q] = width * h->recv_displ[q];
-        MPI_Datatype real = h->rs == 8 ? MPI_DOUBLE : MPI_FLOAT;
-        if ((e = MPI_Alltoallv(h->sbuf, sc, sd, real, h->rbuf, rc, rd, real, h->comm)))
+        if ((e = send_rows(h, width)))
             e = sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Alltoallv of the ghosts' values failed (%d)", e);
         if (!e)
             e = sim_halo_unpack_rows(h->s, buf, width, h->rbuf);
         e = in_step(h, e);
     }
-    free(sc);
     return e;
 }
 
@@ -306,22 +308,11 @@ int dem_mpi_halo_exchange(dem_mpi_halo *h) { return exchange(h, h->steer); }
 
 static int exchange(dem_mpi_halo *h, int walls)
 {
-    int P = h->size, w = HALO_W; /* reals per particle in the messages: halo.h's row */
     /* the rows of the particles sent, packed on the device in the run's precision */
-    int e = sim_halo_pack(h->s, h->sbuf), *sc = malloc(sizeof(int) * 4 * (size_t)P);
-    if (!sc && !e)
-        e = DEM_ERR_NOMEM;
-    if ((e = dem_mpi_agreed(h->comm, e))) {
-        free(sc);
+    int e = dem_mpi_agreed(h->comm, sim_halo_pack(h->s, h->sbuf));
+    if (e)
         return e;
-    }
-    int *sd = sc + P, *rc = sd + P, *rd = rc + P;
-    for (int q = 0; q < P; q++)
-        sc[q] = w * h->send_count[q], sd[q] = w * h->send_displ[q], rc[q] = w * h->recv_count[q],
-        rd[q] = w * h->recv_displ[q];
-    MPI_Datatype real = h->rs == 8 ? MPI_DOUBLE : MPI_FLOAT;
-    e = MPI_Alltoallv(h->sbuf, sc, sd, real, h->rbuf, rc, rd, real, h->comm);
-    free(sc);
+    e = send_rows(h, HALO_W);
     /* the owners' rows into the ghosts, then the positions the split's check of the moves reads (app/run_mpi.c) */
     if (!e && !(e = sim_halo_unpack(h->s, h->rbuf)))
         e = dem_get_field(h->s, DEM_FIELD_X, h->field);
