@@ -56,11 +56,11 @@ typedef struct {
 } wall_geom;
 
 /* A circle about the wall's axis nw touched as an edge (a die's rim, a cup's rim): the centre lies q from it along the
- * outward radial radial / rho and a from it along the axis; n from the circle to the centre. */
-DEM_INLINE void wall_edge_contact(wall_geom *g, vec3 radial, real rho, vec3 nw, real q, real a, real ri)
+ * outward radial radial / rho and a from it along the axis; n from the circle to the centre. reach = ri + gap (below). */
+DEM_INLINE void wall_edge_contact(wall_geom *g, vec3 radial, real rho, vec3 nw, real q, real a, real ri, real reach)
 {
     real dist2 = a * a + q * q;
-    if (dist2 > (real)0 && dist2 < ri * ri) {
+    if (dist2 > (real)0 && dist2 < reach * reach) {
         real dist = dem_sqrt(dist2);
         g->delta = ri - dist;
         g->active = 1;
@@ -68,9 +68,13 @@ DEM_INLINE void wall_edge_contact(wall_geom *g, vec3 radial, real rho, vec3 nw, 
     }
 }
 
-DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri)
+/* gap >= 0: the contact is active while the overlap delta > -gap, so with gap > 0 delta is negative across a gap (a JKR
+ * contact held to its release: wall_forces.h, wall_contact_eval). gap 0 is the plain contact (delta > -0 is delta > 0,
+ * and ri + 0 is ri: the same bits). */
+DEM_INLINE wall_geom wall_geometry_gap(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri, real gap)
 {
     wall_geom g;
+    real lo = -gap, reach = ri + gap;
     vec3 p = v3(wr[W_PX], wr[W_PY], wr[W_PZ]);
     vec3 nw = v3(wr[W_NX], wr[W_NY], wr[W_NZ]);
     vec3 d = v3_sub(xi, p);
@@ -80,7 +84,7 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
     if (type == WALL_PLANE) {
         /* A centre behind the plane still gets pushed back out (d > r), rather than tunnelling silently. */
         g.delta = ri - v3_dot(d, nw);
-        g.active = g.delta > (real)0;
+        g.active = g.delta > lo;
     } else if (type == WALL_PLANE_CUP) {
         /* A concave punch: the plane (the land) with a spherical cup of radius rp at the face and depth c about the
          * normal through the point, recessed away from the particles; its sphere has radius rc = (rp^2 + c^2) / 2c and
@@ -94,7 +98,7 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
         real rho2 = v3_dot(radial, radial);
         if (!(rho2 < rp * rp)) { /* over the land */
             g.delta = ri - h;
-            g.active = g.delta > (real)0;
+            g.active = g.delta > lo;
         } else {
             real rc = (rp * rp + c * c) / ((real)2 * c), hc = rc - c;
             vec3 to_c = v3_sub(v3_scale(nw, hc), d); /* from the particle's centre to the sphere's */
@@ -105,15 +109,15 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
                  * rc - dc itself cancels (rc 10-40 mm against overlaps of 1e-7 m: a 2-20 % error in fp32) */
                 real e = h + c;
                 g.delta = ri - (e * ((real)2 * rc - e) - rho2) / (rc + dc);
-                g.active = g.delta > (real)0;
+                g.active = g.delta > lo;
                 g.n = v3_scale(to_c, (real)1 / dc);
             } else if (rho2 > (real)0) { /* the rim, touched as an edge (q < 0: inside its circle) */
                 real rho = dem_sqrt(rho2);
-                wall_edge_contact(&g, radial, rho, nw, rho - rp, h, ri);
+                wall_edge_contact(&g, radial, rho, nw, rho - rp, h, ri, reach);
             } else { /* on the axis, above the sphere's centre: every rim point as near; pushed along the normal */
                 real dist = dem_sqrt(rp * rp + h * h);
                 g.delta = ri - dist;
-                g.active = g.delta > (real)0;
+                g.active = g.delta > lo;
             }
         }
     } else { /* WALL_CYLINDER_INSIDE */
@@ -125,17 +129,17 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
             real q = rho - wr[W_RADIUS]; /* radial distance from the bore's surface (negative: inside the bore) */
             if (!(len > (real)0) || (h >= (real)0 && h <= len && q <= (real)0)) { /* the side, seen from inside */
                 g.delta = ri + rho - wr[W_RADIUS];
-                g.active = g.delta > (real)0;
+                g.active = g.delta > lo;
                 g.n = v3_scale(radial, (real)-1 / rho);
             } else if (q <= (real)0) { /* in the bore beyond an end: the rim, a circle, touched as an edge */
-                wall_edge_contact(&g, radial, rho, nw, q, h > len ? h - len : h, ri); /* a: the way past the end */
+                wall_edge_contact(&g, radial, rho, nw, q, h > len ? h - len : h, ri, reach); /* a: the way past the end */
             } else if (h > len) { /* outside the bore, above: the die's top face (the die table) */
                 g.delta = ri - (h - len);
-                g.active = g.delta > (real)0;
+                g.active = g.delta > lo;
                 g.n = nw;
             } else if (h < (real)0) { /* below: its bottom face */
                 g.delta = ri + h;
-                g.active = g.delta > (real)0;
+                g.active = g.delta > lo;
                 g.n = v3_scale(nw, (real)-1);
             } else { /* a centre inside the die's body: pushed back out the nearest way, like a plane's */
                 real top = len - h;
@@ -157,6 +161,11 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
     return g;
 }
 
+DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi, real ri)
+{
+    return wall_geometry_gap(type, wr, xi, ri, (real)0);
+}
+
 /* Particle i against wall k: wall_geometry, except that a particle riding on the wall (ride[i] bit k, with
  * DEM_EFFECT_RIDERS) does not touch it - a membrane's ring sits on its platen, and the platen's force is the
  * granulate's alone. Every wall loop (forces, stress, MC-strain) goes through here. */
@@ -164,6 +173,17 @@ DEM_INLINE wall_geom wall_met(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_C
                               DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri)
 {
     wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+    if ((fx & DEM_EFFECT_RIDERS) && ((ride[i] >> k) & 1u))
+        g.active = 0;
+    return g;
+}
+
+/* wall_met for a contact that may hold across a gap (JKR adhesion, DEM_EFFECT_ADHESION): active to a gap of r_i, far
+ * beyond any JKR release (nanometres), which the law decides (laws/thornton_ning.h) */
+DEM_INLINE wall_geom wall_met_gap(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                  DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri)
+{
+    wall_geom g = wall_geometry_gap(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri, ri);
     if ((fx & DEM_EFFECT_RIDERS) && ((ride[i] >> k) & 1u))
         g.active = 0;
     return g;

@@ -66,6 +66,11 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
     int slot = i * nwalls + k;
     wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
+    /* a JKR contact (DEM_EFFECT_ADHESION) that touched in the previous step and has not let go (state > 0) holds across
+     * a gap until the law releases it, as a pair's does (contact_forces.h); the pair table is read only for it */
+    if (!g.active && (fx & DEM_EFFECT_ADHESION) && old_touch && wall_law[slot] > (real)0 &&
+        pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_TN_K] > (real)0)
+        g = wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri);
     c.active = g.active;
     c.n = g.n;
     c.delta = g.delta;
@@ -94,6 +99,8 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     lc.pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
     lc.pmi = pairmat + PM_STRIDE * (mi * nmat + mi);
     c.r = law_force(fx, lc, ctx);
+    if (!c.r.active) /* a JKR contact across a gap that let go (laws/thornton_ning.h); every law is active at an overlap */
+        c.active = 0;
     return c;
 }
 
@@ -128,7 +135,9 @@ DEM_INLINE void wall_contacts_add(unsigned fx, int i, int n, int nwalls, DEM_CON
                 mc_wall_fn[slot] = c.r.fel;
             if (fx & DEM_KEEP_WALL_FORCES)
                 v3_store(wall_pf, k * n + i, c.r.force);
-            if (ela && c.delta > (real)0) { /* a sampled step (series.h): the law's energy, from the force at hand */
+            if (ela && (c.delta > (real)0 || (fx & DEM_EFFECT_ADHESION))) { /* a sampled step (series.h): the law's
+                                                                             energy, from the force at hand (a JKR
+                                                                             contact's also across a gap) */
                 *ela += (fx & DEM_EFFECT_MDR)
                             ? c.r.ela
                             : law_energy_kept(fx, pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]),
@@ -212,6 +221,8 @@ DEM_INLINE void wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOB
     for (int j = b * DEM_REDUCE_BLOCK; j < end; j++)
         if (((wall_mask[j] >> k) & 1u) && !((fx & DEM_HAS_GHOSTS) && ghost[j])) {
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
+            if (!g.active && (fx & DEM_EFFECT_ADHESION)) /* it touches across a gap: the normal the law saw */
+                g = wall_met_gap(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
             wall_part_take(p, v3_load(wall_pf, k * n + j), g.n);
         }
 }

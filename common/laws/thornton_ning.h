@@ -69,8 +69,8 @@
  * the kernels; a_c from laws/mdr_core.h's fixed-count cube root. The damping and tangential stiffness take the
  * contact radius a; the Coulomb limit is mu (F + 3 pi w rho) (fn_min = -2 F_c: Thornton and Yin's mu (P + 2 P_c), the
  * load friction resists raised by adhesion). A pair keeps its contact across a gap (contact_forces.h) down to the
- * release; a wall's contact ends at zero overlap (its geometry), so a sphere lets go of a wall at JKR's force at
- * touch, -4/3 pi w r* (elastic), not at its pull-off. The state is the largest overlap, as without adhesion, negated
+ * release, and so does a wall's (wall_forces.h, wall_contact_eval: r* = r_i). The state is the largest overlap, as
+ * without adhesion, negated
  * once the contact has let go (a pair may not both adhere and bond, so the bond's sign is free: host/core/sim_setup.c):
  * a yielded contact lets go where its dent is still deeper than the overlap, and is kept with no force while the
  * spheres overlap, as the non-adhesive law keeps it below delta_p; it adheres again if its surfaces meet again

@@ -266,6 +266,10 @@ int sim_step_once(dem_sim *s, int wall_sums, int sample_row);
 void sim_pack_walls(dem_sim *s);     /* wall positions and velocities of the current step into s->motion.table */
 /* The kernels' wall type of w (dem_layout.h WALL_*) and its W_RADIUS and W_HEIGHT (host/physics/wall_overlap.c) */
 int sim_wall_table(const dem_wall *w, double *radius, double *height);
+/* dem_wall_overlap for a contact that may hold across a gap of up to gap [m] (a JKR contact: contact_geometry.h,
+ * wall_geometry_gap); gap 0 is dem_wall_overlap */
+double sim_wall_overlap_gap(const dem_wall *w, const double point[3], const double x[3], double r, double gap,
+                            double n[3]);
 void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its stage of the current step [m/s] */
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
 /* sim.c: 0 while the set-up may change, else DEM_ERR_STATE (reported) */

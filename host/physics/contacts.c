@@ -124,8 +124,10 @@ static void wall_contact(const dem_sim *s, const net_fields *t, int i, int w, de
         xi[q] = sim_real_at(t->x, 3 * (size_t)i + q, rs);
         F[q] = sim_real_at(t->pf, 3 * ((size_t)w * n + i) + q, rs);
     }
-    /* the kernels' geometry: a plane, a cylinder's side, a finite die's rim or faces; n into the particle */
-    e->overlap = dem_wall_overlap(wl, p, xi, s->radius[i], nrm);
+    /* the kernels' geometry: a plane, a cylinder's side, a finite die's rim or faces; n into the particle (a JKR
+     * contact, DEM_EFFECT_ADHESION, may touch across a gap: wall_forces.h) */
+    double gap = (s->setup.effects & DEM_EFFECT_ADHESION) ? s->radius[i] : 0;
+    e->overlap = sim_wall_overlap_gap(wl, p, xi, s->radius[i], gap, nrm);
     e->i = i, e->j = -1 - w;
     split(F, nrm, e->fn, e->ft);
     for (int q = 0; q < 3; q++)

@@ -340,11 +340,14 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         if (sim_rides_on(s, i, k)) /* a rider does not touch its wall (contact_geometry.h, wall_met) */
             continue;
         const dem_wall *wl = &s->walls[k];
-        double delta = dem_wall_overlap(wl, s->motion.pos[k], x + 3 * i, r, NULL); /* the kernels' geometry */
-        if (delta > 0) {
+        size_t slot = ((size_t)i * s->nwalls + k) * DEM_LAW_WALL_W(fx);
+        /* a JKR contact (DEM_EFFECT_ADHESION) holds across a gap until it lets go, as a pair's: its state (the largest
+         * overlap) is > 0 while it touches and cleared when it ends (wall_forces.h) */
+        int held = (fx & DEM_EFFECT_ADHESION) && hs->wall_st && hs->wall_st[slot] > 0;
+        double delta = sim_wall_overlap_gap(wl, s->motion.pos[k], x + 3 * i, r, held ? r : 0, NULL); /* the kernels' */
+        if (delta > 0 || held) {
             double row[PM_STRIDE];
             pair_row(s, s->mat[i], wl->material, row);
-            size_t slot = ((size_t)i * s->nwalls + k) * DEM_LAW_WALL_W(fx);
             if (mdr) {
                 mdr_material m = mdr_material_of(row);
                 mdr_particle p = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);

@@ -19,6 +19,12 @@ int sim_wall_table(const dem_wall *w, double *radius, double *height)
 
 double dem_wall_overlap(const dem_wall *w, const double point[3], const double x[3], double r, double n[3])
 {
+    return sim_wall_overlap_gap(w, point, x, r, 0, n);
+}
+
+double sim_wall_overlap_gap(const dem_wall *w, const double point[3], const double x[3], double r, double gap,
+                            double n[3])
+{
     real wr[W_STRIDE] = {0};
     for (int d = 0; d < 3; d++) {
         wr[W_PX + d] = point[d];
@@ -28,7 +34,7 @@ double dem_wall_overlap(const dem_wall *w, const double point[3], const double x
     int type = sim_wall_table(w, &rad, &hgt);
     wr[W_RADIUS] = rad;
     wr[W_HEIGHT] = hgt;
-    wall_geom g = wall_geometry(type, wr, v3(x[0], x[1], x[2]), r);
+    wall_geom g = wall_geometry_gap(type, wr, v3(x[0], x[1], x[2]), r, gap);
     if (n) {
         n[0] = g.n.x;
         n[1] = g.n.y;
