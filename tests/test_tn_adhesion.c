@@ -18,6 +18,8 @@
  * every step: head-on impacts of two spheres below and above V_s (no yield), and far above yield; the force at every
  * step against the closed form, the step where they let go, the least force, the rebound speed and the energy the host
  * reports through the unloading. Refusals: adhesion without thornton_ning, without a surface energy, with bonds. */
+#define DEM_REAL_SIZE 8
+#include "laws/thornton_ning.h" /* tn_jkr_root, tn_jkr_sc: the solver alone, against a bisection (test_root) */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -383,7 +385,7 @@ static void damping_case(dem_precision prec)
     start_or_fail(ref, &rc);
     double dmax = 0, worst = 0, dmp_max = 0, tol = prec == DEM_FP64 ? 1e-9 : 1e-4;
     int in = 0, released = 0, steps_in = 0;
-    for (int k = 0; k < 8 * 3000 && !released; k++) {
+    for (int k = 0; k < 3 * 3000 && !released; k++) {
         twins_step(cl, ref, 1, "damped adhesive impact, PoCL vs reference");
         double x[6], f[6], v[6];
         assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
@@ -424,6 +426,49 @@ static void damping_case(dem_precision prec)
 }
 static void test_damping_fp64(void **st) { (void)st; damping_case(DEM_FP64); }
 static void test_damping_fp32(void **st) { (void)st; damping_case(DEM_FP32); }
+
+/* The solver alone (tn_jkr_root, in double as the reference runs it): s = sqrt(a) on JKR's stable branch at overlaps from
+ * 1e-14 |delta_c| past the release to 1e5 |delta_c|, against a bisection in long double. Next to the release the root
+ * is double in s; the solver's start and steps are about the release, so the force there is right to rounding (until
+ * 2026-12-06 12 Newton steps in s from far above left 5.7e-4 F_c at 1e-14 |delta_c|: this test failed) */
+static void test_root(void **st)
+{
+    (void)st;
+    double es = YOUNG / (2 * (1 - NU * NU)), k = sqrt(2 * M_PI * W / es), fc = 1.5 * M_PI * W * R / 2;
+    double rels[] = {1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 0.5, 1, 3, 10, 1e2, 1e3, 1e5};
+    double worst_s = 0, worst_f = 0;
+    for (int r = 0; r < 2; r++) {
+        double rho = r ? 1.57 * R / 2 : R / 2; /* r*, and a flattened R_p */
+        double sc = tn_jkr_sc(rho, k), dc = -0.75 * k * sc;
+        long double scl = cbrtl((long double)k * rho / 4);
+        for (unsigned q = 0; q < sizeof rels / sizeof *rels; q++) {
+            double d = dc + fabs(dc) * rels[q];
+            long double lo = scl, hi = 2 * scl;
+            while (hi * hi * hi * hi / rho - k * hi < d)
+                hi *= 2;
+            for (int it = 0; it < 300; it++) {
+                long double m = (lo + hi) / 2;
+                if (m * m * m * m / rho - k * m < d)
+                    lo = m;
+                else
+                    hi = m;
+            }
+            long double sr = (lo + hi) / 2, ar = sr * sr;
+            double s = tn_jkr_root(rho, k, d, sc), a = s * s;
+            long double fr = 4.0L / 3 * es * ar * ar * ar / rho - 2.0L * es * k * ar * sr;
+            double f = 4.0 / 3 * es * a * a * a / rho - 2 * es * k * a * s;
+            worst_s = fmax(worst_s, (double)fabsl((s - sr) / sr));
+            if (rels[q] <= 10)
+                worst_f = fmax(worst_f, (double)fabsl((f - fr) / fc));
+        }
+    }
+    printf("  the root alone: s to %.2g (relative), the force within 10 |delta_c| of the release to %.2g F_c\n", worst_s,
+           worst_f);
+    /* (at 1e-14 |delta_c| the overlap's own rounding, and s_c's, move D = rho (delta - delta_c) by about 1 %: the root
+     * is that ill-conditioned there: 5.8e-10 in s, 7.7e-10 F_c in the force at 1.57 r*, measured) */
+    assert_true(worst_s < 3e-9);
+    assert_true(worst_f < 3e-9);
+}
 
 /* A pair's own work of adhesion (dem_set_material_pair) acts as the materials' would: materials at 0 and the pair at
  * W run bit for bit as materials at W (sqrt(W W) = W exactly), and a pair set to 0 does not adhere */
@@ -483,7 +528,8 @@ int main(void)
         cmocka_unit_test(test_elastic_fp64), cmocka_unit_test(test_elastic_fp32), cmocka_unit_test(test_plastic_fp64),
         cmocka_unit_test(test_plastic_fp32), cmocka_unit_test(test_wall_fp64), cmocka_unit_test(test_wall_fp32),
         cmocka_unit_test(test_friction_fp64), cmocka_unit_test(test_friction_fp32), cmocka_unit_test(test_damping_fp64),
-        cmocka_unit_test(test_damping_fp32), cmocka_unit_test(test_pair_adhesion), cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_damping_fp32), cmocka_unit_test(test_root), cmocka_unit_test(test_pair_adhesion),
+        cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
