@@ -15,14 +15,18 @@
  *     Ning's Eq. 54 (quoted from a digest of the paper; an independent check of ours derived the same 0.9355 F_c
  *     delta_c for dW).
  * Cases, each on the reference and on OpenCL (PoCL) in fp64 and fp32, the OpenCL state equal to the reference's at
- * every step: head-on impacts of two spheres below and above V_s (no yield), and far above yield; the force at every
- * step against the closed form, the step where they let go, the least force, the rebound speed and the energy the host
- * reports through the unloading. Refusals: adhesion without thornton_ning, without a surface energy, with bonds. */
+ * every step: head-on impacts of two spheres below and above V_s (no yield), and far above yield; the same below and
+ * above V_s of a sphere on a plane wall (held across the gap to the release, the wall's force and the contact network
+ * checked there); the force at every step against the closed form, the step where they let go, the least force, the
+ * rebound speed and the energy the host reports through the unloading. Friction with adhesion against Thornton and
+ * Yin's mu (P + 2 P_c); damping on the JKR contact radius; the solver alone against a long-double bisection.
+ * Refusals: adhesion without thornton_ning, without a surface energy, with bonds. */
 #define DEM_REAL_SIZE 8
 #include "laws/thornton_ning.h" /* tn_jkr_root, tn_jkr_sc: the solver alone, against a bisection (test_root) */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define RHO 1500.0
@@ -128,6 +132,21 @@ typedef struct {
     double worst, v_out, f_min, d_release, energy_drift, worst_energy, dmax, overlap_at_release;
 } impact_result;
 
+/* The overlap of the head-on pair (x: both spheres' positions), or (wall 1) of the sphere at x[0..2] with the plane x = 0.
+ * In fp32 as the kernels form it (contact_geometry.h): near the release the force's slope is unbounded, and fp32
+ * resolves these positions to 1e-11 m */
+static double overlap_of(const double *x, dem_precision prec, int wall)
+{
+    if (wall) /* the plane's r - (x - p) . n */
+        return prec == DEM_FP32 ? (double)((float)R - (float)x[0]) : R - x[0];
+    if (prec == DEM_FP64)
+        return 2 * R - (x[3] - x[0]);
+    float dx = (float)x[0] - (float)x[3], dy = (float)x[1] - (float)x[4], dz = (float)x[2] - (float)x[5];
+    float dd = dx * dx + dy * dy;
+    dd = dd + dz * dz;
+    return (double)((float)R + (float)R - sqrtf(dd));
+}
+
 /* Two spheres meeting head-on at relative speed vi, or (wall 1) a sphere meeting a plane wall of the same material at
  * x = 0 (r* = R, m* = m); follows the contact until it lets go (or max_steps). The force on the sphere at +x (the
  * sphere, at the wall), compared with the closed form at every step in contact */
@@ -138,8 +157,11 @@ static impact_result impact(const jkr_closed *t, double vi, double dt, long max_
     unsigned fx = FX_ADH | (wall ? DEM_EFFECT_WALLS : 0u);
     dem_sim *cl = head_on_build(&m, wm, R, vi, fx, dt), *ref = head_on_build(&m, wm, R, vi, fx, dt);
     dem_config c = cfg_of(DEM_BACKEND_OPENCL, prec), rc = cfg_of(DEM_BACKEND_REFERENCE, prec);
+    c.contacts = wall; /* at a wall, the PoCL run keeps the wall forces (wall_block_kept) and the reference does not
+                        * (wall_reduce_block): both ways of summing the wall's force meet twins_step's comparison */
     start_or_fail(cl, &c);
     start_or_fail(ref, &rc);
+    int gap_seen = 0;
     impact_result r;
     memset(&r, 0, sizeof r);
     double dmax = 0, e_unload = NAN, ms = wall ? sphere_mass() : sphere_mass() / 2;
@@ -153,16 +175,7 @@ static impact_result impact(const jkr_closed *t, double vi, double dt, long max_
         assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_V, v), 0);
-        double d = wall ? R - x[0] : 2 * R - (x[3] - x[0]);
-        if (prec == DEM_FP32 && wall) /* the plane's overlap r - (x - p) . n as the kernels form it */
-            d = (double)((float)R - (float)x[0]);
-        else if (prec == DEM_FP32) { /* the overlap as the kernels form it in fp32 (contact_geometry.h): near the release
-                                 * the force's slope is unbounded, and fp32 resolves these positions to 1e-11 m */
-            float dx = (float)x[0] - (float)x[3], dy = (float)x[1] - (float)x[4], dz = (float)x[2] - (float)x[5];
-            float dd = dx * dx + dy * dy;
-            dd = dd + dz * dz;
-            d = (double)((float)R + (float)R - sqrtf(dd));
-        }
+        double d = overlap_of(x, prec, wall);
         if (!in && d <= 0)
             continue;
         in = 1;
@@ -195,6 +208,22 @@ static impact_result impact(const jkr_closed *t, double vi, double dt, long max_
             break;
         }
         assert_true(got != 0); /* still in contact */
+        if (wall) { /* the wall received minus the sphere's force, along its normal +x, across the gap too */
+            double fw[3], fwn;
+            assert_int_equal(dem_wall_force(cl, 0, fw), 0);
+            assert_int_equal(dem_wall_normal_force(cl, 0, &fwn), 0);
+            assert_true(fw[0] == -got && fwn == got);
+            if (d < 0 && !gap_seen) { /* the contact network lists it, with its negative overlap */
+                dem_contact *cs;
+                long count, npairs;
+                assert_int_equal(dem_contacts_get(cl, &cs, &count, &npairs), 0);
+                assert_true(count == 1 && npairs == 0 && cs[0].j == -1 && cs[0].overlap < 0);
+                /* (fp32: d is the kernels' float overlap, the network's is formed in double from float positions) */
+                assert_true(fabs(cs[0].overlap - d) < (prec == DEM_FP64 ? 1e-13 : 3e-11));
+                free(cs);
+                gap_seen = 1;
+            }
+        }
         r.steps_in++;
         r.worst = fmax(r.worst, fabs(got - want) / fscale);
         r.f_min = fmin(r.f_min, got);
@@ -211,6 +240,7 @@ static impact_result impact(const jkr_closed *t, double vi, double dt, long max_
         }
     }
     r.stuck = !r.released;
+    assert_true(!wall || !r.released || gap_seen); /* a wall contact that let go was held across the gap first */
     r.dmax = dmax;
     dem_destroy(cl);
     dem_destroy(ref);
@@ -391,13 +421,7 @@ static void damping_case(dem_precision prec)
         assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_V, v), 0);
-        double d = 2 * R - (x[3] - x[0]);
-        if (prec == DEM_FP32) { /* the overlap as the kernels form it (as in impact) */
-            float dx = (float)x[0] - (float)x[3], dy = (float)x[1] - (float)x[4], dz = (float)x[2] - (float)x[5];
-            float dd = dx * dx + dy * dy;
-            dd = dd + dz * dz;
-            d = (double)((float)R + (float)R - sqrtf(dd));
-        }
+        double d = overlap_of(x, prec, 0);
         if (!in && d <= 0)
             continue;
         in = 1;

@@ -2,6 +2,8 @@
  * each wall receives. 17 beads (seed 000 section 4.3 geometry: die 12 mm wide) settle under gravity on a floor
  * inside a cylinder: at rest, the floor and cylinder together carry the beads' weight; no bead leaves the die.
  * Then a piston comes down in two stages and its position follows the stages exactly. PoCL bitwise = reference. */
+#define DEM_REAL_SIZE 8
+#include "contact_geometry.h" /* wall_geometry_gap in double, as host/physics/wall_overlap.c compiles it (test_gap_geometry) */
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
@@ -773,6 +775,73 @@ static void test_cup_geometry(void **st)
     }
 }
 
+/* A wall's reach across a gap (wall_geometry_gap: a JKR contact held to its release, laws/thornton_ning.h), in double
+ * as the host compiles it, gap = r: at 6000 random centres over a concave punch face (its land, cup and rim) against
+ * the brute-force distance, a contact is found exactly where distance < r + gap, with the overlap r - distance
+ * (negative across the gap); where the sphere overlaps, the gap's result is the plain geometry's bit for bit. On a
+ * finite die (a cylinder of radius 6 mm and length 10 mm): its side from inside and its top rim as an edge against
+ * their closed-form distances. */
+static void test_gap_geometry(void **st)
+{
+    (void)st;
+    const double rp = 0.004, c = 0.0008, r = 0.0005, gap = r;
+    real cup[W_STRIDE] = {0};
+    cup[W_NZ] = 1, cup[W_RADIUS] = rp, cup[W_HEIGHT] = c;
+    unsigned seed = 11;
+    int across = 0, bad = 0, same = 0;
+    double worst = 0;
+    for (int k = 0; k < 6000; k++) {
+        double x[3];
+        for (int d = 0; d < 3; d++)
+            x[d] = d < 2 ? -0.006 + 0.012 * rand_r(&seed) / (double)RAND_MAX
+                         : -0.0009 + 0.0026 * rand_r(&seed) / (double)RAND_MAX;
+        double rho = hypot(x[0], x[1]), rc = (rp * rp + c * c) / (2 * c);
+        if (rho < rp ? hypot(rho, x[2] - (rc - c)) > rc : x[2] < 0)
+            continue; /* behind the face */
+        double dist = cup_distance_brute(x, rp, c), s = rc * asin(rp / rc) / 20000, tol = 1e-12 + s * s / (4 * dist);
+        wall_geom g = wall_geometry_gap(WALL_PLANE_CUP, cup, v3(x[0], x[1], x[2]), r, gap);
+        wall_geom g0 = wall_geometry(WALL_PLANE_CUP, cup, v3(x[0], x[1], x[2]), r);
+        if (fabs(dist - (r + gap)) > tol) /* away from the reach's edge: active exactly within it */
+            bad += g.active != (dist < r + gap);
+        if (!g.active)
+            continue;
+        across += !(g.delta > 0);
+        worst = fmax(worst, fabs((r - g.delta) - dist) / tol);
+        if (g0.active) {
+            assert_true(g.delta == g0.delta && g.n.x == g0.n.x && g.n.y == g0.n.y && g.n.z == g0.n.z);
+            same++;
+        }
+    }
+    /* the die: the side seen from inside (distance R - rho), and the top rim (an edge: distance to the circle) */
+    const double rd = 0.006, len = 0.01;
+    real die[W_STRIDE] = {0};
+    die[W_NZ] = 1, die[W_RADIUS] = rd, die[W_HEIGHT] = len;
+    double side_worst = 0, rim_worst = 0;
+    int side_found = 0, rim_found = 0;
+    for (int k = 1; k < 200; k++) {
+        double q = 2.2 * r * k / 200; /* the gap out to 2.2 r: found up to 2 r */
+        wall_geom gs = wall_geometry_gap(WALL_CYLINDER_INSIDE, die, v3(rd - q, 0, 0.5 * len), r, gap);
+        side_found += gs.active;
+        bad += gs.active != (q < r + gap);
+        if (gs.active)
+            side_worst = fmax(side_worst, fabs(gs.delta - (r - q)));
+        double a = 0.7 * q, b = sqrt(q * q - a * a); /* centre above the bore's end, inside: q from the rim circle */
+        wall_geom ge = wall_geometry_gap(WALL_CYLINDER_INSIDE, die, v3(rd - b, 0, len + a), r, gap);
+        rim_found += ge.active;
+        bad += ge.active != (q < r + gap);
+        if (ge.active)
+            rim_worst = fmax(rim_worst, fmax(fabs(ge.delta - (r - q)), /* n from the rim towards the centre */
+                                             fmax(fabs(ge.n.x * q + b), fabs(ge.n.z * q - a))));
+    }
+    printf("  a wall's reach across a gap of r: concave face %d contacts across the gap, %d overlapping (bitwise the "
+           "plain geometry's), largest |r - overlap - distance| %.2g of the sampling's bound; die side %d and rim %d "
+           "of 199 found, overlap off by %.2g and %.2g m; %d misjudged\n",
+           across, same, worst, side_found, rim_found, side_worst, rim_worst, bad);
+    assert_int_equal(bad, 0);
+    assert_true(across > 100 && same > 100 && worst < 1);
+    assert_true(side_worst < 1e-15 && rim_worst < 1e-15);
+}
+
 /* A sphere (r = 1 mm) at rest against a concave punch face (cup radius 4 mm, depth 0.8 mm, normal +z) with an overlap
  * of 2 um: on the axis at the cup's bottom, in the cup 0.2 rad off the axis (seen from the cup sphere's centre), and
  * over the land. One step on every backend and precision (backend_run: PoCL bitwise = reference): the wall receives
@@ -828,6 +897,7 @@ int main(void)
                                        cmocka_unit_test(test_wall_sum_any_order), cmocka_unit_test(test_servo), cmocka_unit_test(test_stage_ends),
                                        cmocka_unit_test(test_stage_ends_density), cmocka_unit_test(test_stage_ramp_after),
                                        cmocka_unit_test(test_kept_wall_forces), cmocka_unit_test(test_finite_die),
-                                       cmocka_unit_test(test_cup_geometry), cmocka_unit_test(test_cup_forces)};
+                                       cmocka_unit_test(test_cup_geometry), cmocka_unit_test(test_gap_geometry),
+                                       cmocka_unit_test(test_cup_forces)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -64,9 +64,9 @@
  *   it lets go where the stable branch ends (d delta / da = 0): at a_c, a_c^(3/2) = k rho / 4, delta - delta_p =
  *   -3/4 k sqrt(a_c) (rho = r* or R_p; JKR's -3 a_c^2 / rho with a_c^3 = pi w rho^2 / (8 E*), force -5/6 pi w rho);
  *   a new contact forms at zero overlap (at JKR's force there, -4/3 pi w r*: no jump-in from a gap).
- * Each branch is s^4 / rho - k s = delta' in s = sqrt(a): tn_jkr_root solves it by a fixed count of Newton steps from
- * a fixed start above the root (the function is convex, so every step stays above it), the same in the reference and
- * the kernels; a_c from laws/mdr_core.h's fixed-count cube root. The damping and tangential stiffness take the
+ * Each branch is s^4 / rho - k s = delta' in s = sqrt(a): tn_jkr_root solves it for u = s - s_c by a fixed count of
+ * Newton steps from a start above the root that depends on delta' (the function is convex in u, so every step stays
+ * above it), the same in the reference and the kernels; s_c from laws/mdr_core.h's fixed-count cube root. The damping and tangential stiffness take the
  * contact radius a; the Coulomb limit is mu (F + 3 pi w rho) (fn_min = -2 F_c: Thornton and Yin's mu (P + 2 P_c), the
  * load friction resists raised by adhesion). A pair keeps its contact across a gap (contact_forces.h) down to the
  * release, and so does a wall's (wall_forces.h, wall_contact_eval: r* = r_i). The state is the largest overlap, as
@@ -192,10 +192,13 @@ DEM_INLINE tn_point tn_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, rea
  * Solved for u = s - s_c, about the release, where the slope of s^4 / rho - k s vanishes: with D = rho (d + 3/4 k s_c)
  * (>= 0 on the branch) the equation is F(u) = u^2 (u^2 + 4 s_c u + 6 s_c^2) - D = 0, convex for u >= 0. Since
  * u^2 + 4 s_c u + 6 s_c^2 >= (u + 2 s_c)^2, u0 = sqrt(D) / (sqrt(s_c^2 + sqrt(D)) + s_c) (the root of u (u + 2 s_c) =
- * sqrt(D), written without cancellation) lies above the root, by at most sqrt(6)/2 (near the release, where F ~ 6 s_c^2
+ * sqrt(D), written without cancellation) lies above the root, at most sqrt(6)/2 times it (near the release, where F ~ 6 s_c^2
  * u^2); Newton from above stays above it. Near the release the root in s is double, and Newton in s from a start far
  * above it only halved the error per step (12 steps until 2026-12-06, each waiting on the last); in u from u0 the
- * error falls quadratically there too. */
+ * error falls quadratically there too. sc must be rho's own s_c (tn_jkr_sc(rho, k)): the expansion uses s_c^3 = k rho / 4.
+ * "To rounding" is in u for the D it is given: next to the release D = rho (d - delta_c) itself carries the rounding of
+ * d and of s_c, which moves the root there (7.7e-10 F_c in the force at 1e-14 |delta_c|: tests/test_tn_adhesion.c,
+ * test_root). */
 DEM_INLINE real tn_jkr_root(real rho, real k, real d, real sc)
 {
     real dd = rho * (d + (real)0.75 * k * sc);
