@@ -166,27 +166,24 @@ DEM_INLINE wall_geom wall_geometry(int type, DEM_CONST_GLOBAL real *wr, vec3 xi,
     return wall_geometry_gap(type, wr, xi, ri, (real)0);
 }
 
-/* Particle i against wall k: wall_geometry, except that a particle riding on the wall (ride[i] bit k, with
+/* Particle i against wall k: wall_geometry_gap, except that a particle riding on the wall (ride[i] bit k, with
  * DEM_EFFECT_RIDERS) does not touch it - a membrane's ring sits on its platen, and the platen's force is the
- * granulate's alone. Every wall loop (forces, stress, MC-strain) goes through here. */
-DEM_INLINE wall_geom wall_met(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                              DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri)
+ * granulate's alone. gap: 0, or r_i for a contact that may hold across a gap (JKR adhesion, DEM_EFFECT_ADHESION: far
+ * beyond any JKR release, nanometres, which the law decides: laws/thornton_ning.h). */
+DEM_INLINE wall_geom wall_met_gap(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                                  DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri, real gap)
 {
-    wall_geom g = wall_geometry(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri);
+    wall_geom g = wall_geometry_gap(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri, gap);
     if ((fx & DEM_EFFECT_RIDERS) && ((ride[i] >> k) & 1u))
         g.active = 0;
     return g;
 }
 
-/* wall_met for a contact that may hold across a gap (JKR adhesion, DEM_EFFECT_ADHESION): active to a gap of r_i, far
- * beyond any JKR release (nanometres), which the law decides (laws/thornton_ning.h) */
-DEM_INLINE wall_geom wall_met_gap(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
-                                  DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri)
+/* The plain contact: every wall loop (forces, stress, MC-strain) goes through here */
+DEM_INLINE wall_geom wall_met(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_CONST_GLOBAL real *wall_real,
+                              DEM_CONST_GLOBAL unsigned *ride, int i, int k, vec3 xi, real ri)
 {
-    wall_geom g = wall_geometry_gap(wall_int[k * WI_STRIDE + WI_TYPE], wall_real + k * W_STRIDE, xi, ri, ri);
-    if ((fx & DEM_EFFECT_RIDERS) && ((ride[i] >> k) & 1u))
-        g.active = 0;
-    return g;
+    return wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri, (real)0);
 }
 
 #endif /* DEM_CONTACT_GEOMETRY_H */

@@ -70,7 +70,7 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
      * a gap until the law releases it, as a pair's does (contact_forces.h); the pair table is read only for it */
     if (!g.active && (fx & DEM_EFFECT_ADHESION) && old_touch && wall_law[slot] > (real)0 &&
         pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_TN_K] > (real)0)
-        g = wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri);
+        g = wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri, ri);
     c.active = g.active;
     c.n = g.n;
     c.delta = g.delta;
@@ -222,7 +222,7 @@ DEM_INLINE void wall_block_kept(unsigned fx, int b, int k, int n, DEM_CONST_GLOB
         if (((wall_mask[j] >> k) & 1u) && !((fx & DEM_HAS_GHOSTS) && ghost[j])) {
             wall_geom g = wall_met(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
             if (!g.active && (fx & DEM_EFFECT_ADHESION)) /* it touches across a gap: the normal the law saw */
-                g = wall_met_gap(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j]);
+                g = wall_met_gap(fx, wall_int, wall_real, ride, j, k, v3_load(x, j), radius[j], radius[j]);
             wall_part_take(p, v3_load(wall_pf, k * n + j), g.n);
         }
 }
