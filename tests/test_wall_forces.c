@@ -696,6 +696,17 @@ static double cup_distance_brute(const double x[3], double rp, double c)
     return best;
 }
 
+/* A random centre over a 12 mm square and heights from -0.9 mm over a range zspan [m], about a concave face of cup
+ * radius rp and depth c at the origin (normal +z); *rho its distance from the axis, *rc the cup sphere's radius.
+ * 0 when it lies behind the face (inside the punch). */
+static int cup_random_centre(unsigned *seed, double rp, double c, double zspan, double x[3], double *rho, double *rc)
+{
+    for (int d = 0; d < 3; d++)
+        x[d] = d < 2 ? -0.006 + 0.012 * rand_r(seed) / (double)RAND_MAX : -0.0009 + zspan * rand_r(seed) / (double)RAND_MAX;
+    *rho = hypot(x[0], x[1]), *rc = (rp * rp + c * c) / (2 * c);
+    return !(*rho < rp ? hypot(*rho, x[2] - (*rc - c)) > *rc : x[2] < 0);
+}
+
 /* A concave punch's face (dem_wall.cup_radius, cup_depth) as the kernels see it (dem_wall_overlap compiles their
  * wall_geometry in double): against a brute-force distance at 6000 random centres over the cup, its rim and the land
  * (r = 0.5 mm, a cup of radius 4 mm and depth 0.8 mm with a land beyond it): every contact found has the overlap r -
@@ -712,12 +723,8 @@ static void test_cup_geometry(void **st)
     int hits[3] = {0, 0, 0}, missed = 0;
     double worst = 0, worst_n = 0;
     for (int k = 0; k < 6000; k++) {
-        double x[3];
-        for (int d = 0; d < 3; d++)
-            x[d] = d < 2 ? -0.006 + 0.012 * rand_r(&seed) / (double)RAND_MAX
-                         : -0.0009 + 0.0016 * rand_r(&seed) / (double)RAND_MAX;
-        double rho = hypot(x[0], x[1]), rc = (rp * rp + c * c) / (2 * c);
-        if (rho < rp ? hypot(rho, x[2] - (rc - c)) > rc : x[2] < 0)
+        double x[3], rho, rc;
+        if (!cup_random_centre(&seed, rp, c, 0.0016, x, &rho, &rc))
             continue; /* behind the face: inside the punch */
         double n[3], delta = dem_wall_overlap(&w, origin, x, r, n), dist = cup_distance_brute(x, rp, c);
         if (!(delta > 0)) {
@@ -791,12 +798,8 @@ static void test_gap_geometry(void **st)
     int across = 0, bad = 0, same = 0;
     double worst = 0;
     for (int k = 0; k < 6000; k++) {
-        double x[3];
-        for (int d = 0; d < 3; d++)
-            x[d] = d < 2 ? -0.006 + 0.012 * rand_r(&seed) / (double)RAND_MAX
-                         : -0.0009 + 0.0026 * rand_r(&seed) / (double)RAND_MAX;
-        double rho = hypot(x[0], x[1]), rc = (rp * rp + c * c) / (2 * c);
-        if (rho < rp ? hypot(rho, x[2] - (rc - c)) > rc : x[2] < 0)
+        double x[3], rho, rc;
+        if (!cup_random_centre(&seed, rp, c, 0.0026, x, &rho, &rc))
             continue; /* behind the face */
         double dist = cup_distance_brute(x, rp, c), s = rc * asin(rp / rc) / 20000, tol = 1e-12 + s * s / (4 * dist);
         wall_geom g = wall_geometry_gap(WALL_PLANE_CUP, cup, v3(x[0], x[1], x[2]), r, gap);
