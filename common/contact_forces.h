@@ -58,14 +58,11 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
+    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pairmat);
-    /* a bond (thornton_ning.h) whose dent is shallower than its stretch holds across a gap: a pair that touched and
-     * whose bond did not break (state > 0) goes to the law, which ends it unless a whole bond of a yielded contact
-     * pulls (the pair-table read only for such a pair: not on the path of every pair) */
-    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touching && law_st[hp] > (real)0 &&
-        (pairmat[PM_STRIDE * (mat[a] * nmat + mat[b]) + PM_TN_SIGB] > (real)0 ||
-         ((fx & DEM_EFFECT_ADHESION) && pairmat[PM_STRIDE * (mat[a] * nmat + mat[b]) + PM_TN_K] > (real)0)))
-        g = pair_geometry_reach(v3_load(x, a), ra, v3_load(x, b), rb, (real)2); /* (and JKR adhesion's, to release) */
+    /* a bond whose dent is shallower than its stretch, or a JKR contact before its release, holds across a gap
+     * (thornton_ning.h): a pair that touched with state > 0 goes to the law, which ends it unless it still pulls */
+    g = pair_geometry_held(fx, g, v3_load(x, a), ra, v3_load(x, b), rb, touching, law_st + hp * DEM_LAW_PAIR_W(fx), pm);
     pc.active = g.active;
     pc.delta = (real)0;
     pc.fel = (real)0;
@@ -84,7 +81,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     c.site = LAW_AT_PAIR;
     c.a = a, c.b = b, c.ra = ra, c.rb = rb;
     c.n = n, c.delta = delta, c.rstar = g.rstar, c.dt = dt;
-    c.pm = c.pmi = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
+    c.pm = c.pmi = pm;
     c.mstar = law_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */
@@ -192,8 +189,9 @@ DEM_ITEM(contact_pairs)
         v3_store(pair_roll, i, pc.roll);
     if (fx & DEM_EFFECT_ROLLING_SPRING)
         v3_store(rspring, i, pc.rspring);
-    /* read by contact_forces for this step's row (a JKR contact's also across a gap: DEM_EFFECT_ADHESION) */
-    if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && (pc.delta > (real)0 || (fx & DEM_EFFECT_ADHESION)))
+    /* read by contact_forces for this step's row (a bond's or a JKR contact's also across a gap: Thornton-Ning keeps a
+     * contact there only while it holds; MC-strain's reach does not count) */
+    if ((fx & DEM_KEEP_PAIR_ENERGY) && sample && (pc.delta > (real)0 || (fx & DEM_EFFECT_THORNTON_NING)))
         pair_ela[i] = (fx & DEM_EFFECT_MDR) ? pc.ela : series_pair_energy_kept(fx, pairmat + PM_STRIDE * (mat[a] * nmat + mat[j]), radius[a], radius[j],
                                               pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
 }

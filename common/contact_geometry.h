@@ -186,4 +186,37 @@ DEM_INLINE wall_geom wall_met(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_C
     return wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri, (real)0);
 }
 
+/* Contacts that hold across a gap (laws/thornton_ning.h): a pair's whole bond (PM_TN_SIGB) and JKR adhesion
+ * (DEM_EFFECT_ADHESION, PM_TN_K), a pair's or a wall's, pull until the law lets go, which it says by its state
+ * (negated) or by law_result.active. Every caller that meets such a contact - the forces (contact_forces.h,
+ * wall_forces.h), the wall sums (wall_block_kept), the stress (particle_stress.h) - extends the geometry through
+ * these two, for a contact that touched in the previous step (touched) and whose state is > 0; the state and the pair
+ * table are read only then (not on the path of every contact). pm: the pair table's row of the two materials. */
+DEM_INLINE int contact_held(unsigned fx, int pair, DEM_CONST_GLOBAL real *pm)
+{
+    return (fx & DEM_EFFECT_THORNTON_NING) &&
+           ((pair && pm[PM_TN_SIGB] > (real)0) || ((fx & DEM_EFFECT_ADHESION) && pm[PM_TN_K] > (real)0));
+}
+
+/* A pair out of reach of pair_geometry (g inactive) that holds: its geometry out to a gap of r_a + r_b (far beyond a
+ * bond's stretch or a JKR release: the law decides) */
+DEM_INLINE pair_geom pair_geometry_held(unsigned fx, pair_geom g, vec3 xa, real ra, vec3 xb, real rb, int touched,
+                                        DEM_CONST_GLOBAL real *st, DEM_CONST_GLOBAL real *pm)
+{
+    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touched && *st > (real)0 && contact_held(fx, 1, pm))
+        g = pair_geometry_reach(xa, ra, xb, rb, (real)2);
+    return g;
+}
+
+/* A wall contact out of reach of wall_met (g inactive) that holds (JKR adhesion; a wall keeps no bond across a gap,
+ * laws/thornton_ning.h): its geometry out to a gap of r_i */
+DEM_INLINE wall_geom wall_met_held(unsigned fx, wall_geom g, DEM_CONST_GLOBAL int *wall_int,
+                                   DEM_CONST_GLOBAL real *wall_real, DEM_CONST_GLOBAL unsigned *ride, int i, int k,
+                                   vec3 xi, real ri, int touched, DEM_CONST_GLOBAL real *st, DEM_CONST_GLOBAL real *pm)
+{
+    if (!g.active && (fx & DEM_EFFECT_ADHESION) && touched && *st > (real)0 && contact_held(fx, 0, pm))
+        g = wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri, ri);
+    return g;
+}
+
 #endif /* DEM_CONTACT_GEOMETRY_H */

@@ -11,6 +11,10 @@
  *   sigma_p = -(1/V_p) sum_c (r_p - a_c) f_H,c n_c (x) n_c,
  * negative (compressive) under load; its trace is -(1/V_p) sum_c (r_p - a_c) f_H,c.
  *
+ * Contacts that hold across a gap (a bond's or JKR adhesion's, laws/thornton_ning.h: contact_geometry.h's
+ * pair_geometry_held and wall_met_held) are summed with their overlap delta < 0 and their tension (f_H < 0), as the
+ * forces took them; before 2026-12-06 the stress left them out.
+ *
  * Canonical order: partners in ascending id (the whole sorted neighbour row), then walls in index order. Each term
  * is rounded as t_c = -((r_p - a_c) f_H,c) * (1/V_p) and added in that order, so every device gets the same bits.
  *
@@ -67,24 +71,34 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
             int j = r.partner, hk = h;
             if (fx & DEM_LAW_STATE_BITS) /* only a law's states need the pair number */
                 h += j > i;
+            other = mat[j];
             pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
-            if (!g.active)
-                continue;
-            delta = g.delta, rstar = g.rstar, n = g.n, other = mat[j];
-            arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
             if (fx & DEM_LAW_STATE_BITS) {
-                int p = row_pair(i, j, k, hk, own_start[i], in_start[i], in_pair);
-                lst = touch[p] ? law_st[p * DEM_LAW_PAIR_W(fx) + DEM_LAW_PAIR_ELASTIC(fx)] : (real)0;
+                int p = row_pair(i, j, k, hk, own_start[i], in_start[i], in_pair), t = touch[p];
+                DEM_CONST_GLOBAL real *ps = law_st + p * DEM_LAW_PAIR_W(fx);
+                /* a bond or a JKR contact that holds across a gap (contact_geometry.h), as the forces saw it */
+                g = pair_geometry_held(fx, g, xi, ri, v3_load(x, j), radius[j], t, ps,
+                                       pairmat + PM_STRIDE * (mi * nmat + other));
+                lst = t ? ps[DEM_LAW_PAIR_ELASTIC(fx)] : (real)0;
             }
-        } else {
-            int w = r.partner;
-            wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, w, xi, ri);
             if (!g.active)
                 continue;
-            delta = g.delta, rstar = ri, n = g.n, other = wall_int[w * WI_STRIDE + WI_MATERIAL];
+            delta = g.delta, rstar = g.rstar, n = g.n;
+            arm = tensor ? ri - (real)0.5 * g.delta : mcs_lever_pair(fx, ri, radius[j], g.delta);
+        } else {
+            int w = r.partner, t = (wall_mask[i] >> w) & 1u;
+            other = wall_int[w * WI_STRIDE + WI_MATERIAL];
+            wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, w, xi, ri);
+            if (fx & DEM_LAW_STATE_BITS) {
+                DEM_CONST_GLOBAL real *ws = wall_law + r.slot * DEM_LAW_WALL_W(fx);
+                g = wall_met_held(fx, g, wall_int, wall_real, ride, i, w, xi, ri, t, ws,
+                                  pairmat + PM_STRIDE * (mi * nmat + other)); /* (JKR adhesion across a gap) */
+                lst = t ? ws[DEM_LAW_WALL_ELASTIC(fx)] : (real)0;
+            }
+            if (!g.active)
+                continue;
+            delta = g.delta, rstar = ri, n = g.n;
             arm = tensor ? ri - g.delta : mcs_lever_wall(fx, ri, g.delta);
-            if ((fx & DEM_LAW_STATE_BITS) && ((wall_mask[i] >> w) & 1u))
-                lst = wall_law[r.slot * DEM_LAW_WALL_W(fx) + DEM_LAW_WALL_ELASTIC(fx)];
         }
         real c = stress_term(arm, law_elastic(fx, pairmat + PM_STRIDE * (mi * nmat + other), rstar, delta, lst), iv);
         if (tensor)

@@ -65,12 +65,11 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     wall_contact c;
     DEM_CONST_GLOBAL real *wr = wall_real + k * W_STRIDE;
     int slot = i * nwalls + k;
-    wall_geom g = wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri);
+    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
     /* a JKR contact (DEM_EFFECT_ADHESION) that touched in the previous step and has not let go (state > 0) holds across
-     * a gap until the law releases it, as a pair's does (contact_forces.h); the pair table is read only for it */
-    if (!g.active && (fx & DEM_EFFECT_ADHESION) && old_touch && wall_law[slot] > (real)0 &&
-        pairmat[PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]) + PM_TN_K] > (real)0)
-        g = wall_met_gap(fx, wall_int, wall_real, ride, i, k, xi, ri, ri);
+     * a gap until the law releases it, as a pair's does (contact_geometry.h: wall_met_held) */
+    wall_geom g = wall_met_held(fx, wall_met(fx, wall_int, wall_real, ride, i, k, xi, ri), wall_int, wall_real, ride, i,
+                                k, xi, ri, old_touch, wall_law + slot * DEM_LAW_WALL_W(fx), pm);
     c.active = g.active;
     c.n = g.n;
     c.delta = g.delta;
@@ -96,7 +95,7 @@ DEM_INLINE wall_contact wall_contact_eval(unsigned fx, int i, int k, int nwalls,
     lc.row_out = ((fx & DEM_EFFECT_MDR) && law_out) ? law_out + slot * DEM_LAW_WALL_W(fx) : 0;
     lc.sums = sums;
     lc.energy = energy;
-    lc.pm = pairmat + PM_STRIDE * (mi * nmat + wall_int[k * WI_STRIDE + WI_MATERIAL]);
+    lc.pm = pm;
     lc.pmi = pairmat + PM_STRIDE * (mi * nmat + mi);
     c.r = law_force(fx, lc, ctx);
     if (!c.r.active) /* a JKR contact across a gap that let go (laws/thornton_ning.h); every law is active at an overlap */

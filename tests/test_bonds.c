@@ -278,7 +278,7 @@ static void test_pull_pair_table(void **st)
  * friction); returns the separation speed after contact (or -1: still together at the end) and the largest overlap;
  * fails the test if a spin is not finite */
 static double collide_with(const dem_material *m, unsigned fx, double spin, double *dmax_out, int *gap_out,
-                           dem_precision prec)
+                           double *stress_out, dem_precision prec)
 {
     double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2;
     bond_closed t = bond_of(es, rs, m->bond_strength);
@@ -299,6 +299,8 @@ static double collide_with(const dem_material *m, unsigned fx, double spin, doub
     }
     double dmax = 0, vout = -1;
     int was = 0, gap = 0;
+    /* the worst stress across the gap against the closed form, in R F_b / V, and the worst energy, in F_b^2 / (2 k_b) */
+    stress_out[0] = stress_out[1] = 0;
     for (int k = 0; k < 20000; k++) {
         twins_step(cl, ref, 1, "bonded pair, PoCL vs reference");
         double x[6], v[6], f[6], w[6];
@@ -314,6 +316,22 @@ static double collide_with(const dem_material *m, unsigned fx, double spin, doub
             dmax = fmax(dmax, d);
         } else if (was && f[0] != 0) { /* the bond holds them across a gap */
             gap++;
+            if (gap > 400 && gap % 16) /* (a held pair: every 16th step after the first 400) */
+                continue;
+            /* the stress output (particle_stress.h) counts the bond's tension across the gap too: seed 000's
+             * -(r - d/2) F / V n (x) n, F the closed form's at this separation (0 before 2026-12-06) */
+            double sg[12], sr[12], vol = 4.0 / 3.0 * M_PI * R * R * R, fb = fb_of(&t, dmax);
+            assert_int_equal(dem_get_field(cl, DEM_FIELD_STRESS, sg), 0);
+            assert_int_equal(dem_get_field(ref, DEM_FIELD_STRESS, sr), 0);
+            assert_memory_equal(sg, sr, sizeof sg);
+            double sxx = -(R - 0.5 * d) * bond_force(&t, d, dmax, 0) / vol;
+            stress_out[0] = fmax(stress_out[0], fabs(sr[6] - sxx) / (R * fb / vol));
+            assert_true(sr[6] > 0 && sr[0] == sr[6]); /* tension, the same on both spheres */
+            /* and the host's elastic energy, the stretched bond's F^2 / (2 k_b) (0 before 2026-12-06) */
+            dem_energy_t en;
+            assert_int_equal(dem_energy(ref, &en), 0);
+            double fbd = bond_force(&t, d, dmax, 0), kb = kb_of(&t, dmax);
+            stress_out[1] = fmax(stress_out[1], fabs(en.elastic - fbd * fbd / (2 * kb)) / (fb * fb / (2 * kb)));
         } else if (was) { /* apart */
             assert_int_equal(dem_get_field(ref, DEM_FIELD_V, v), 0);
             vout = v[3] - v[0];
@@ -326,33 +344,37 @@ static double collide_with(const dem_material *m, unsigned fx, double spin, doub
     dem_destroy(ref);
     return vout;
 }
-static double collide(double sigb, double *dmax_out, int *gap_out, dem_precision prec)
+static double collide(double sigb, double *dmax_out, int *gap_out, double *stress_out, dem_precision prec)
 {
     dem_material m = powder(sigb);
-    return collide_with(&m, DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING, 0, dmax_out, gap_out, prec);
+    return collide_with(&m, DEM_EFFECT_HERTZ | DEM_EFFECT_THORNTON_NING, 0, dmax_out, gap_out, stress_out, prec);
 }
 
 static void bounce(dem_precision prec)
 {
     double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2, dm0, dm1, dm2;
     int gap0, gap1, gap2;
-    double v0 = collide(0, &dm0, &gap0, prec);
+    double sw0[2], sw1[2], sw2[2], v0 = collide(0, &dm0, &gap0, sw0, prec);
     assert_true(v0 > 0);
     /* a bond that takes half the rebound's energy: sigma_b from E_b = F_b^2 / (2 k_b) = 1/4 m* v0^2 */
     bond_closed unit = bond_of(es, rs, 1.0);
     double fb1 = fb_of(&unit, dm0), kb = kb_of(&unit, dm0);
     double sigb = sqrt(0.25 * ms * v0 * v0 * 2 * kb) / fb1;
     bond_closed t = bond_of(es, rs, sigb);
-    double v1 = collide(sigb, &dm1, &gap1, prec), fb = fb_of(&t, dm1);
+    double v1 = collide(sigb, &dm1, &gap1, sw1, prec), fb = fb_of(&t, dm1);
     double want = sqrt(v0 * v0 - fb * fb / (kb_of(&t, dm1) * ms));
     /* four times stronger: 16 times the energy, more than the rebound has */
-    double v2 = collide(4 * sigb, &dm2, &gap2, prec);
+    double v2 = collide(4 * sigb, &dm2, &gap2, sw2, prec);
     printf("  bonded pair at 5 V_y, %s: sigma_b %.4g Pa (%.3g p_y); rebound %.6g m/s without bond, %.6g with "
            "(closed form %.6g; dent %.4g m, bond's stretch %.4g m: %d steps bonded across a gap), %s with 4 sigma_b\n",
            prec == DEM_FP64 ? "fp64" : "fp32", sigb, sigb / PY, v0, v1, want, dp_of(&t, dm1),
            fb / kb_of(&t, dm1), gap1, v2 < 0 ? "together" : "apart");
     assert_true(dm1 == dm0 || fabs(dm1 / dm0 - 1) < 1e-6); /* the loading does not feel the bond */
     assert_true(gap0 == 0 && gap1 > 10); /* this dent is shallower than the stretch: the bond holds across a gap */
+    printf("  across the gap (%d and %d steps), against the closed form: stress output worst %.2g R F_b / V, host's "
+           "elastic energy worst %.2g F_b^2 / (2 k_b)\n", gap1, gap2, fmax(sw1[0], sw2[0]), fmax(sw1[1], sw2[1]));
+    assert_true(fmax(sw1[0], sw2[0]) < (prec == DEM_FP64 ? 1e-9 : 1e-3));
+    assert_true(fmax(sw1[1], sw2[1]) < (prec == DEM_FP64 ? 1e-9 : 1e-3));
     assert_true(v1 > 0 && fabs(v1 / want - 1) < 2e-3);
     assert_true(v2 < 0);
 }
@@ -369,12 +391,12 @@ static void test_bond_gap_rolling_spring(void **st)
     double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2, dm;
     bond_closed t = bond_of(es, rs, 1.0);
     int gap;
-    double v0 = collide(0, &dm, &gap, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
+    double sw[2], v0 = collide(0, &dm, &gap, sw, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
     dem_material m = powder(sqrt(0.25 * ms * v0 * v0 * 2 * kb_of(&t, dm)) / fb_of(&t, dm));
     m.friction = 0.5, m.rolling_friction = 0.1, m.rolling_damping = 0.3;
     unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_ROLLING |
                   DEM_EFFECT_ROLLING_SPRING;
-    collide_with(&m, fx, 10, &dm, &gap, DEM_FP64); /* a relative spin, so that the spring winds */
+    collide_with(&m, fx, 10, &dm, &gap, sw, DEM_FP64); /* a relative spin, so that the spring winds */
     printf("  bonded pair with rolling springs: %d steps held across a gap, every spin finite\n", gap);
     assert_true(gap > 10);
 }

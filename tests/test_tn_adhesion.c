@@ -130,6 +130,8 @@ static dem_material powder(void)
 typedef struct {
     int stuck, released, yielded, steps_in;
     double worst, v_out, f_min, d_release, energy_drift, worst_energy, dmax, overlap_at_release;
+    double worst_stress; /* the stress output against the closed form, in R F_c / V */
+    int stress_gap;      /* steps across the gap where it was checked */
 } impact_result;
 
 /* The overlap of the head-on pair (x: both spheres' positions), or (wall 1) of the sphere at x[0..2] with the plane x = 0.
@@ -208,6 +210,18 @@ static impact_result impact(const jkr_closed *t, double vi, double dt, long max_
             break;
         }
         assert_true(got != 0); /* still in contact */
+        if (d < 0 || k % 256 == 0) { /* the stress output (particle_stress.h), across the gap too: seed 000's
+                                     * -(r - a_c) F / V n (x) n with a_c = d/2 (a pair) or d (a wall), n along x */
+            double sg[12], sr[12], vol = 4.0 / 3.0 * M_PI * R * R * R;
+            assert_int_equal(dem_get_field(cl, DEM_FIELD_STRESS, sg), 0);
+            assert_int_equal(dem_get_field(ref, DEM_FIELD_STRESS, sr), 0);
+            assert_memory_equal(sg, sr, sizeof(double) * (wall ? 6 : 12));
+            double sxx = -(R - (wall ? d : 0.5 * d)) * want / vol;
+            r.worst_stress = fmax(r.worst_stress, fabs(sr[6 * (pi / 3)] - sxx) / (R * fscale / vol));
+            for (int q = 1; q < 6; q++)
+                assert_true(sr[6 * (pi / 3) + q] == 0);
+            r.stress_gap += d < 0;
+        }
         if (wall) { /* the wall received minus the sphere's force, along its normal +x, across the gap too */
             double fw[3], fwn;
             assert_int_equal(dem_wall_force(cl, 0, fw), 0);
@@ -274,6 +288,11 @@ static void elastic_impacts(dem_precision prec, int wall)
     assert_true(slow.stuck && slow.steps_in > 8900 && !slow.yielded);
     assert_true(fast.released && !fast.yielded);
     assert_true(slow.worst < tol && fast.worst < tol);
+    /* the stress output across the gap (before 2026-12-06 it left such contacts out: 0 where JKR pulls) */
+    printf("  stress output, %s: worst %.2g R F_c / V over the contact, %d steps across the gap checked\n",
+           prec == DEM_FP64 ? "fp64" : "fp32", fmax(slow.worst_stress, fast.worst_stress), fast.stress_gap);
+    assert_true(fast.stress_gap > 10);
+    assert_true(slow.worst_stress < tol && fast.worst_stress < tol);
     assert_true(fabs(fast.f_min / fc + 1) < 2e-3); /* sampled near the pull-off force */
     assert_true(fast.worst_energy < (prec == DEM_FP64 ? 1e-6 : 1e-2));
     /* the rebound and the energy through the unloading, in fp64 only: a step moves these spheres 6e-12 m, less than
@@ -305,6 +324,7 @@ static void plastic_impact(dem_precision prec)
            r.energy_drift / (0.25 * ms * vi * vi));
     assert_true(r.yielded && r.released && rho > 1.5 * t.rs);
     assert_true(r.worst < (prec == DEM_FP64 ? 1e-9 : 1e-3));
+    assert_true(r.worst_stress < (prec == DEM_FP64 ? 1e-9 : 1e-3)); /* the stress output on R_p's branch */
     assert_true(fabs(r.f_min / fcp + 1) < 2e-3); /* Thornton and Ning's F_cp = F_c R_p / R* */
     /* (dW is small beside this contact's energy: the host's energy against the kinetic energy in) */
     double ein = 0.25 * ms * vi * vi, dw = -jkr_potential(&t, 0, 0);

@@ -15,6 +15,7 @@ enum { EN_KIN, EN_POT, EN_ELA, EN_COUNT };
 #include "ref_kernels.h" /* the reference's patch overlaps */
 #include "exact_sum.h"   /* every sum over particles, contacts and springs: exact, rounded once */
 #include "sorted_row.h"  /* row_pair_of: a pair's number from its row slot */
+#include "contact_geometry.h" /* contact_held: which contacts hold across a gap */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -318,14 +319,15 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         double rj = mdr ? hs->mdr[MDR_P_STRIDE * j + 1] : s->radius[j];
         double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
         double delta = r + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        /* a JKR contact (DEM_EFFECT_ADHESION) holds across a gap until it lets go: its state (the largest overlap, > 0)
-         * is kept while it touches, and cleared when it ends (contact_forces.h) */
-        int p = hs->pair_st && (delta > 0 || (fx & DEM_EFFECT_ADHESION))
+        /* a bond or a JKR contact (laws/thornton_ning.h) holds across a gap until it lets go: its state (> 0) is kept
+         * while it touches, and cleared when it ends (contact_forces.h; contact_geometry.h, pair_geometry_held) */
+        int p = hs->pair_st && (delta > 0 || (fx & DEM_EFFECT_THORNTON_NING))
                     ? row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k) : -1;
-        double st = p >= 0 ? hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)] : 0;
-        if (delta > 0 || ((fx & DEM_EFFECT_ADHESION) && st > 0)) {
-            double rs = r * rj / (r + rj), row[PM_STRIDE];
+        double st = p >= 0 ? hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)] : 0, row[PM_STRIDE];
+        if (delta > 0 || st > 0) /* (the table only for a contact that may hold) */
             pair_row(s, s->mat[i], s->mat[j], row);
+        if (delta > 0 || (st > 0 && contact_held(fx, 1, row))) {
+            double rs = r * rj / (r + rj);
             if (mdr && p >= 0) { /* side 0 is j, of the higher stable id (laws/mdr.h) */
                 mdr_material m = mdr_material_of(row);
                 mdr_particle p0 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * j);
@@ -342,7 +344,7 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         const dem_wall *wl = &s->walls[k];
         size_t slot = ((size_t)i * s->nwalls + k) * DEM_LAW_WALL_W(fx);
         /* a JKR contact (DEM_EFFECT_ADHESION) holds across a gap until it lets go, as a pair's: its state (the largest
-         * overlap) is > 0 while it touches and cleared when it ends (wall_forces.h) */
+         * contact radius) is > 0 while it touches and cleared when it ends (wall_forces.h) */
         int held = (fx & DEM_EFFECT_ADHESION) && hs->wall_st && hs->wall_st[slot] > 0;
         double delta = sim_wall_overlap_gap(wl, s->motion.pos[k], x + 3 * i, r, held ? r : 0, NULL); /* the kernels' */
         if (delta > 0 || held) {
