@@ -90,6 +90,7 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
              h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
              h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
              h5_attr_long(g, "has_law", st.has_law) ||
+             ((dem_effects(s) & DEM_EFFECT_ADHESION) && h5_attr_string(g, "law_state", CHECKPOINT_JKR_STATE)) ||
              (st.has_law == 1 && h5_write(g, "pair_law", real_t, 1, p1, st.pair_law, "m")) ||
              (st.has_law > 1 && h5_write(g, "pair_law", real_t, 2, pl, st.pair_law, NULL)) ||
              (st.has_rspring && (h5_attr_long(g, "has_rspring", 1) ||
@@ -259,6 +260,10 @@ static int read_state(hid_t g, checkpoint *ck)
         h5_read_attr_long(g, "has_law", &hl); /* absent from checkpoints of runs before plastic laws: 0; the reals
                                                    per contact: 1 thornton_ning, 24 mdr */
         st->has_law = hl == 1 || hl == DEM_MDR_LAW_REALS ? (int)hl : 0;
+        /* written only by runs with JKR adhesion since their state is the largest contact radius */
+        char *ls = H5Aexists(g, "law_state") > 0 ? h5_read_attr_string(g, "law_state") : NULL;
+        snprintf(ck->law_state, sizeof ck->law_state, "%s", ls ? ls : "");
+        free(ls);
         h5_read_attr_long(g, "has_rspring", &hr); /* written only by runs with rolling springs */
         st->has_rspring = hr == 1;
         h5_read_attr_long(g, "mc_last", &st->mc.last);

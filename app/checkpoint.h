@@ -13,7 +13,14 @@ typedef struct {
     char order[16];    /* the particles' order the run was built in (scene_particle_order); "" in a checkpoint older
                           than that attribute, whose default order was "input" */
     double *radius;    /* [n], checked against the rebuilt scene */
+    char law_state[32]; /* what the law's state per contact is where a run's effects leave two readings: "" or
+                           CHECKPOINT_JKR_STATE (below) */
 } checkpoint;
+
+/* /state's law_state of a run with JKR adhesion (DEM_EFFECT_ADHESION): each contact's state is its largest contact
+ * radius (common/laws/thornton_ning.h). Until 2026-12-06 such runs kept the largest overlap, in the same dataset and
+ * unit, without the attribute: a restart with adhesion refuses a checkpoint without it (run.c) */
+#define CHECKPOINT_JKR_STATE "jkr_largest_contact_radius"
 
 /* A checkpoint is written to PATH CHECKPOINT_TMP_SUFFIX, flushed, then renamed over PATH. */
 #define CHECKPOINT_TMP_SUFFIX ".tmp"

@@ -703,6 +703,14 @@ static int phase_configure(run_ctx *c)
                  : "the end", run->steps, run->dt);
         return fail_with(EXIT_BAD_INPUT, c->err);
     }
+    if ((dem_effects(c->s) & DEM_EFFECT_ADHESION) && c->ck.st.has_law == 1 && c->ck.st.npairs + c->ck.st.nwalls > 0 &&
+        strcmp(c->ck.law_state, CHECKPOINT_JKR_STATE)) {
+        snprintf(c->err, sizeof c->err, "%s: /state: law_state: the checkpoint was written before 2026-12-06, when the "
+                 "adhesive contacts' state was their largest overlap; this libdem keeps their largest contact radius "
+                 "(common/laws/thornton_ning.h) and cannot continue it: run the scene again from its start",
+                 o->restart);
+        return fail_with(EXIT_BAD_INPUT, c->err);
+    }
     if (c->ck.st.n != dem_count(c->s) || c->ck.st.real_size != (int)run->cfg.precision) {
         snprintf(c->err, sizeof c->err, "%s: the checkpoint has %d particles in %s; the scene gives %d in %s",
                  o->restart, c->ck.st.n, c->ck.st.real_size == 8 ? "fp64" : "fp32", dem_count(c->s),

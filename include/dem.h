@@ -536,8 +536,9 @@ typedef struct {
                                          DEM_EFFECT_THORNTON_NING, DEM_MDR_LAW_REALS DEM_EFFECT_MDR (its row, dem_layout.h
                                          MDR_*); pair_law and the array wall_law (13 per slot with MDR) follow */
     void *pair_law;                   /* real[has_law npairs]: that state of each touching pair (Thornton-Ning: the
-                                         largest overlap so far [m], negated once the contact's bond broke or,
-                                         with DEM_EFFECT_ADHESION, once it let go while its dent still overlaps) */
+                                         largest overlap so far [m], negated once the contact's bond broke; with
+                                         DEM_EFFECT_ADHESION the largest contact radius so far [m], negated once it
+                                         let go; before 2026-12-06 that too was the largest overlap) */
     int has_rspring;                  /* 1 when the run has rolling springs (DEM_EFFECT_ROLLING_SPRING): pair_rspring
                                          and the array wall_rspring follow */
     void *pair_rspring;               /* real[3 npairs]: each touching pair's rolling spring, the torque on its lower

@@ -393,6 +393,29 @@ static void test_restart_bitwise(void **st)
                         "grep -q yield_stress %s", SRC, plastic, plastic, plastic), 0);
     restart_case(plastic, "fp64", 2);
     restart_case(plastic, "fp32", 2);
+    /* adhesive plastic grains (thornton_ning with JKR adhesion): their states, the largest contact radius, travel and
+     * are marked so (law_state); a checkpoint without the mark (written before 2026-12-06, when the state was the
+     * largest overlap) is refused with the reason, not continued on a misread state */
+    char adh[300];
+    snprintf(adh, sizeof adh, "%s/adhesive.yaml", tmp);
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, thornton_ning, adhesion]/' -e 's/friction: 0.4}/"
+                        "friction: 0.4, yield_stress: 2.0e5, surface_energy: 0.5}/' %s/tests/scenes/restart_box.yaml > %s "
+                        "&& grep -q adhesion %s && grep -q surface_energy %s", SRC, adh, adh, adh), 0);
+    restart_case(adh, "fp64", 2);
+    {
+        char h[300], ls[64] = "";
+        snprintf(h, sizeof h, "%s/half.ckpt.h5", tmp);
+        hid_t f = H5Fopen(h, H5F_ACC_RDWR, H5P_DEFAULT), g = H5Gopen2(f, "state", H5P_DEFAULT);
+        hid_t a = H5Aopen(g, "law_state", H5P_DEFAULT), t = H5Aget_type(a);
+        assert_true(a >= 0 && H5Tget_size(t) < sizeof ls && H5Aread(a, t, ls) >= 0);
+        assert_string_equal(ls, "jkr_largest_contact_radius");
+        H5Tclose(t), H5Aclose(a);
+        assert_true(H5Adelete(g, "law_state") >= 0);
+        H5Gclose(g), H5Fclose(f);
+        assert_int_equal(sh(err, sizeof err, "%s run --restart %s -o %s/old.h5 --quiet", DEM, h, tmp), 65);
+        assert_non_null(strstr(err, "half.ckpt.h5: /state: law_state: the checkpoint was written before 2026-12-06"));
+        assert_false(exists("%s/old.h5", tmp));
+    }
     /* and of adhesive plastic grains under MDR: its rows of pairs, wall slots and particles */
     char mdr[300];
     snprintf(mdr, sizeof mdr, "%s/mdr.yaml", tmp);

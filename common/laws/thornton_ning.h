@@ -66,11 +66,14 @@
  *   a new contact forms at zero overlap (at JKR's force there, -4/3 pi w r*: no jump-in from a gap).
  * Each branch is s^4 / rho - k s = delta' in s = sqrt(a): tn_jkr_root solves it for u = s - s_c by a fixed count of
  * Newton steps from a start above the root that depends on delta' (the function is convex in u, so every step stays
- * above it), the same in the reference and the kernels; s_c from laws/mdr_core.h's fixed-count cube root. The damping and tangential stiffness take the
+ * above it), the same in the reference and the kernels; s_c from laws/mdr_core.h's fixed-count cube root. One cube
+ * root and one solve per evaluation, loading or unloading. The damping and tangential stiffness take the
  * contact radius a; the Coulomb limit is mu (F + 3 pi w rho) (fn_min = -2 F_c: Thornton and Yin's mu (P + 2 P_c), the
  * load friction resists raised by adhesion). A pair keeps its contact across a gap (contact_forces.h) down to the
- * release, and so does a wall's (wall_forces.h, wall_contact_eval: r* = r_i). The state is the largest overlap, as
- * without adhesion, negated
+ * release, and so does a wall's (wall_forces.h, wall_contact_eval: r* = r_i); so does its stress (particle_stress.h).
+ * The state of an adhesive contact is its largest contact radius a_m (since 2026-12-06; before, the largest overlap,
+ * from which each unloading step solved for a_m again: the checkpoints say which, app/checkpoint.h), from which the
+ * largest overlap is a_m^2 / r* - k sqrt(a_m) on the loading curve; negated
  * once the contact has let go (a pair may not both adhere and bond, so the bond's sign is free: host/core/sim_setup.c):
  * a yielded contact lets go where its dent is still deeper than the overlap, and is kept with no force while the
  * spheres overlap, as the non-adhesive law keeps it below delta_p; it adheres again if its surfaces meet again
@@ -234,56 +237,72 @@ DEM_INLINE real tn_hertzian_force(DEM_CONST_GLOBAL real *pm, real rstar, real a)
     return (real)4 * pm[PM_ESTAR] * a * a * a / ((real)3 * rstar);
 }
 
-/* The unloading branch from the largest overlap dmax: its radius rho (R_p, or r* if the contact never yielded), its
- * offset dp = delta_p and its s_c (sc: r*'s on entry) */
-DEM_INLINE void tn_jkr_branch(DEM_CONST_GLOBAL real *pm, real rstar, real dmax, real *rho, real *dp, real *sc)
+/* The unloading branch from the largest contact radius am (> 0): its radius rho (R_p, or r* if the contact never
+ * yielded), its offset dp = delta_p and its s_c */
+DEM_INLINE void tn_jkr_branch(DEM_CONST_GLOBAL real *pm, real rstar, real am, real *rho, real *dp, real *sc)
 {
-    real k = pm[PM_TN_K], sm = tn_jkr_root(rstar, k, dmax, *sc), am = sm * sm;
     *rho = rstar;
     *dp = (real)0;
     if (pm[PM_TN_PIPY] > (real)0 && am * am > rstar * rstar * pm[PM_TN_DY]) { /* it yielded */
         *rho = (real)4 * pm[PM_ESTAR] * am * am * am / ((real)3 * tn_hertzian_force(pm, rstar, am));
         *dp = am * am / rstar - am * am / *rho;
-        *sc = tn_jkr_sc(*rho, k);
     }
+    *sc = tn_jkr_sc(*rho, pm[PM_TN_K]);
 }
 
-/* Where an adhesive contact (state st: its largest overlap, negated once it has let go) is at overlap delta: its
- * branch's radius *rho (r*, or R_p unloading from a yielded contact), that branch's *sc and s = sqrt(a) on it (*s).
- * unload 0: the law's branch (loading at or past the largest overlap, else unloading from it); 1: the unloading
- * branch from max(delta, the largest overlap), along which the energy is counted. Returns 1, solving nothing, where
- * the contact has nothing to carry: below its release point, or released and its surfaces not met again (delta -
- * delta_p < 0; where they meet it adheres anew, as a contact forming at zero overlap does) */
-DEM_INLINE int tn_jkr_solve(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, int unload, real *rho, real *sc,
-                            real *s)
+/* The largest overlap of an adhesive contact whose state is st (its largest contact radius a_m, negated once it let
+ * go; 0: a new contact): the loading curve's delta = a_m^2 / r* - k sqrt(a_m), 0 for a new contact */
+DEM_INLINE real tn_jkr_dmax(DEM_CONST_GLOBAL real *pm, real rstar, real st)
 {
-    real k = pm[PM_TN_K], dmax = tn_dmax(st), dp = (real)0;
+    real am = tn_dmax(st);
+    return am > (real)0 ? am * am / rstar - pm[PM_TN_K] * dem_sqrt(am) : (real)0;
+}
+
+/* Where an adhesive contact (state st: its largest contact radius, negated once it has let go) is at overlap delta:
+ * its branch's radius *rho (r*, or R_p unloading from a yielded contact), that branch's *sc and s = sqrt(a) on it
+ * (*s); *load whether that is the loading curve (delta at or past the largest overlap: the contact's largest radius
+ * is then s^2). unload 0: the law's branch (loading at or past the largest overlap, else unloading from it); 1: the
+ * unloading branch from max(delta, the largest overlap), along which the energy is counted. Returns 1, solving
+ * nothing, where the contact has nothing to carry: below its release point, or released and its surfaces not met
+ * again (delta - delta_p < 0; where they meet it adheres anew, as a contact forming at zero overlap does). Keeping
+ * a_m, not the largest overlap, spares the solve for it: unloading takes one cube root (its branch's s_c) and one
+ * solve, loading one of each (r*'s s_c) */
+DEM_INLINE int tn_jkr_solve(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, int unload, real *rho, real *sc,
+                            real *s, int *load)
+{
+    real k = pm[PM_TN_K], am = tn_dmax(st), dmax = tn_jkr_dmax(pm, rstar, st), dp = (real)0;
     int released = 0;
-    *sc = tn_jkr_sc(rstar, k);
     *rho = rstar;
-    if (unload || delta < dmax) {
-        tn_jkr_branch(pm, rstar, delta > dmax ? delta : dmax, rho, &dp, sc);
-        released = st < (real)0 && delta < dmax ? delta - dp < (real)0 : delta - dp < (real)-0.75 * k * *sc;
+    *load = !(delta < dmax);
+    if (*load) { /* on the loading curve (r*'s branch) */
+        *sc = tn_jkr_sc(rstar, k);
+        *s = tn_jkr_root(rstar, k, delta, *sc);
+        if (!unload)
+            return 0;
+        am = *s * *s > am ? *s * *s : am; /* the energy: unloading from here */
     }
+    tn_jkr_branch(pm, rstar, am, rho, &dp, sc);
+    released = st < (real)0 && delta < dmax ? delta - dp < (real)0 : delta - dp < (real)-0.75 * k * *sc;
     if (!released)
         *s = tn_jkr_root(*rho, k, delta - dp, *sc);
     return released;
 }
 
 /* The adhesive law at overlap delta given the contact's state st: the elastic force and contact radius, fmin = -3 pi
- * w rho (the Coulomb limit's offset), and *rel whether it is released after this point (f = a = fmin = 0) */
-DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, int *rel)
+ * w rho (the Coulomb limit's offset), *rel whether it is released after this point (f = a = fmin = 0), and *load
+ * whether it is on the loading curve (its largest contact radius is then p.a) */
+DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st, int *rel, int *load)
 {
     tn_point p;
     real es = pm[PM_ESTAR], k = pm[PM_TN_K], rho, sc, s;
     p.broke = 0;
-    *rel = tn_jkr_solve(pm, rstar, delta, st, 0, &rho, &sc, &s);
+    *rel = tn_jkr_solve(pm, rstar, delta, st, 0, &rho, &sc, &s, load);
     if (*rel) {
         p.f = p.a = p.fmin = (real)0;
         return p;
     }
     p.a = s * s;
-    p.f = (delta < tn_dmax(st) ? (real)4 * es * p.a * p.a * p.a / ((real)3 * rho) : tn_hertzian_force(pm, rstar, p.a)) -
+    p.f = (*load ? tn_hertzian_force(pm, rstar, p.a) : (real)4 * es * p.a * p.a * p.a / ((real)3 * rho)) -
           (real)2 * es * k * p.a * s;
     p.fmin = (real)-1.5 * es * k * k * rho; /* -3 pi w rho = -2 F_c: pi w = E* k^2 / 2 */
     return p;
@@ -296,7 +315,8 @@ DEM_INLINE tn_point tn_jkr_at(DEM_CONST_GLOBAL real *pm, real rstar, real delta,
 DEM_INLINE real tn_jkr_energy(DEM_CONST_GLOBAL real *pm, real rstar, real delta, real st)
 {
     real es = pm[PM_ESTAR], k = pm[PM_TN_K], rho, sc, s;
-    if (tn_jkr_solve(pm, rstar, delta, st, 1, &rho, &sc, &s))
+    int load;
+    if (tn_jkr_solve(pm, rstar, delta, st, 1, &rho, &sc, &s, &load))
         return (real)0;
     real a = s * s, ac = sc * sc;
     real g = (real)8 / (real)15 * es * a * a * a * a * a / (rho * rho) - (real)4 / (real)3 * es * k * a * a * a * s / rho +
@@ -310,11 +330,11 @@ DEM_INLINE law_result thornton_ning_force(unsigned fx, law_in c, law_ctx ctx)
     real de;
     int slid;
     if ((fx & DEM_EFFECT_ADHESION) && c.pm[PM_TN_K] > (real)0) { /* JKR adhesion; no bond on such a pair */
-        real dmax = tn_dmax(c.st), st;
-        int rel;
-        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rel);
+        real am = tn_dmax(c.st), st;
+        int rel, load;
+        tn_point q = tn_jkr_at(c.pm, c.rstar, c.delta, c.st, &rel, &load);
         law_result r = hm_contact_bond(fx, c.n, q.f, q.a, c.mstar, c.vrel, c.pm, c.dt, c.hist, q.fmin, &slid);
-        st = c.delta > dmax ? c.delta : dmax;
+        st = load && q.a > am ? q.a : am; /* the largest contact radius (a loading contact is never released) */
         r.st = rel ? -st : st;
         /* a released contact is kept, with no force, while the spheres overlap (its dent is remembered, as without
          * adhesion); across a gap it ends */
@@ -342,8 +362,8 @@ DEM_INLINE real thornton_ning_elastic(DEM_CONST_GLOBAL real *pm, real rstar, rea
 {
     real de;
     if (pm[PM_TN_K] > (real)0) { /* JKR adhesion (0 unless DEM_EFFECT_ADHESION: sim_setup.c) */
-        int rel;
-        return tn_jkr_at(pm, rstar, delta, st, &rel).f;
+        int rel, load;
+        return tn_jkr_at(pm, rstar, delta, st, &rel, &load).f;
     }
     return tn_at(pm, rstar, delta, st, &de).f;
 }
