@@ -58,11 +58,11 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
 {
     pair_contact pc;
     real ra = radius[a], rb = radius[b];
-    DEM_CONST_GLOBAL real *pm = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     pair_geom g = mc_pair_geometry(fx, v3_load(x, a), ra, v3_load(x, b), rb, pairmat);
     /* a bond whose dent is shallower than its stretch, or a JKR contact before its release, holds across a gap
      * (thornton_ning.h): a pair that touched with state > 0 goes to the law, which ends it unless it still pulls */
-    g = pair_geometry_held(fx, g, v3_load(x, a), ra, v3_load(x, b), rb, touching, law_st + hp * DEM_LAW_PAIR_W(fx), pm);
+    g = pair_geometry_held(fx, g, v3_load(x, a), ra, v3_load(x, b), rb, touching, law_st + hp * DEM_LAW_PAIR_W(fx),
+                           pairmat, mat, nmat, a, b);
     pc.active = g.active;
     pc.delta = (real)0;
     pc.fel = (real)0;
@@ -81,7 +81,7 @@ DEM_INLINE pair_contact pair_contact_eval(unsigned fx, int a, int b, DEM_CONST_G
     c.site = LAW_AT_PAIR;
     c.a = a, c.b = b, c.ra = ra, c.rb = rb;
     c.n = n, c.delta = delta, c.rstar = g.rstar, c.dt = dt;
-    c.pm = c.pmi = pm;
+    c.pm = c.pmi = pairmat + PM_STRIDE * (mat[a] * nmat + mat[b]);
     c.mstar = law_effective_mass(invmass[a], invmass[b]);
     real arm_a = ra - (real)0.5 * delta, arm_b = rb - (real)0.5 * delta;
     /* contact-point velocities: v + w x l with l_a = -arm_a n, l_b = +arm_b n (no rotation without friction) */
@@ -227,8 +227,9 @@ DEM_ITEM(contact_forces)
             macc[q] += pair_mdr_sum[2 * MDR_NSUM * p + MDR_NSUM + q];
         if (fx & DEM_EFFECT_ROLLING) /* i is the pair's a: its rolling torque */
             ti = v3_add(ti, v3_load(pair_roll, p));
-        if (sample && (pr[PR_DELTA] > (real)0 || (fx & DEM_EFFECT_ADHESION))) { /* a sampled step: the pair's
-                                                                                     elastic energy, by its lower id */
+        /* a sampled step: the pair's elastic energy, by its lower id (a Thornton-Ning contact also across a gap, where
+         * it is kept only while a bond or JKR adhesion holds it: contact_pairs' test, series.h) */
+        if (sample && (pr[PR_DELTA] > (real)0 || (fx & DEM_EFFECT_THORNTON_NING))) {
             if (fx & DEM_KEEP_PAIR_ENERGY) {
                 ela += pair_ela[p];
             } else {

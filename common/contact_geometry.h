@@ -189,8 +189,8 @@ DEM_INLINE wall_geom wall_met(unsigned fx, DEM_CONST_GLOBAL int *wall_int, DEM_C
 /* Contacts that hold across a gap (laws/thornton_ning.h): a pair's whole bond (PM_TN_SIGB) and JKR adhesion
  * (DEM_EFFECT_ADHESION, PM_TN_K), a pair's or a wall's, pull until the law lets go, which it says by its state
  * (negated) or by law_result.active. Every caller that meets such a contact - the forces (contact_forces.h,
- * wall_forces.h), the wall sums (wall_block_kept), the stress (particle_stress.h) - extends the geometry through
- * these two, for a contact that touched in the previous step (touched) and whose state is > 0; the state and the pair
+ * wall_forces.h), the stress (particle_stress.h), the host's energies (host/physics/energy.c, by contact_held) -
+ * extends the geometry through these two (the walls' sums, wall_block_kept, take a contact the forces kept), for a contact that touched in the previous step (touched) and whose state is > 0; the state and the pair
  * table are read only then (not on the path of every contact). pm: the pair table's row of the two materials. */
 DEM_INLINE int contact_held(unsigned fx, int pair, DEM_CONST_GLOBAL real *pm)
 {
@@ -199,11 +199,14 @@ DEM_INLINE int contact_held(unsigned fx, int pair, DEM_CONST_GLOBAL real *pm)
 }
 
 /* A pair out of reach of pair_geometry (g inactive) that holds: its geometry out to a gap of r_a + r_b (far beyond a
- * bond's stretch or a JKR release: the law decides) */
+ * bond's stretch or a JKR release: the law decides). The pair table's row of a's and b's materials (mat[a], mat[b] of
+ * nmat) is found only for such a pair. */
 DEM_INLINE pair_geom pair_geometry_held(unsigned fx, pair_geom g, vec3 xa, real ra, vec3 xb, real rb, int touched,
-                                        DEM_CONST_GLOBAL real *st, DEM_CONST_GLOBAL real *pm)
+                                        DEM_CONST_GLOBAL real *st, DEM_CONST_GLOBAL real *pairmat,
+                                        DEM_CONST_GLOBAL int *mat, int nmat, int a, int b)
 {
-    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touched && *st > (real)0 && contact_held(fx, 1, pm))
+    if (!g.active && (fx & DEM_EFFECT_THORNTON_NING) && touched && *st > (real)0 &&
+        contact_held(fx, 1, pairmat + PM_STRIDE * (mat[a] * nmat + mat[b])))
         g = pair_geometry_reach(xa, ra, xb, rb, (real)2);
     return g;
 }

@@ -42,7 +42,7 @@ enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
 
 /* The laws with memory (common/laws/law.h): a run with one of them keeps a law state per contact (PAIR_LAW,
  * WALL_LAW: common/dem_buffers.h), of DEM_LAW_PAIR_W reals per pair and DEM_LAW_WALL_W per particle-wall slot: one
- * (Thornton-Ning's largest overlap) or MDR's rows (dem_layout.h MDR_*) */
+ * (Thornton-Ning's largest overlap, or with JKR adhesion largest contact radius) or MDR's rows (dem_layout.h MDR_*) */
 #define DEM_LAW_STATE_BITS (DEM_EFFECT_THORNTON_NING | DEM_EFFECT_MDR)
 #define DEM_LAW_PAIR_W(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_PAIR_STRIDE : 1)
 #define DEM_LAW_WALL_W(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_WALL_STRIDE : 1)

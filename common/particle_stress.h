@@ -77,8 +77,7 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
                 int p = row_pair(i, j, k, hk, own_start[i], in_start[i], in_pair), t = touch[p];
                 DEM_CONST_GLOBAL real *ps = law_st + p * DEM_LAW_PAIR_W(fx);
                 /* a bond or a JKR contact that holds across a gap (contact_geometry.h), as the forces saw it */
-                g = pair_geometry_held(fx, g, xi, ri, v3_load(x, j), radius[j], t, ps,
-                                       pairmat + PM_STRIDE * (mi * nmat + other));
+                g = pair_geometry_held(fx, g, xi, ri, v3_load(x, j), radius[j], t, ps, pairmat, mat, nmat, i, j);
                 lst = t ? ps[DEM_LAW_PAIR_ELASTIC(fx)] : (real)0;
             }
             if (!g.active)

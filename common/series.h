@@ -9,9 +9,10 @@
  * in any particle order.
  *
  * A pair's contact is counted by its lower id when the overlap the contact law computed (PR_DELTA) is positive, or in a
- * run with DEM_EFFECT_ADHESION whenever it touches (a JKR contact holds across a gap: laws/thornton_ning.h), a wall
- * when the particle overlaps it or, with DEM_EFFECT_ADHESION, touches it across a gap (a rider never touches its
- * wall); host/physics/energy.c counts the same from whole rows. A
+ * run with DEM_EFFECT_THORNTON_NING whenever it touches (a bond or a JKR contact holds across a gap:
+ * laws/thornton_ning.h, contact_geometry.h pair_geometry_held), a wall when the particle overlaps it or, with
+ * DEM_EFFECT_ADHESION, touches it across a gap (a rider never touches its wall); host/physics/energy.c counts the
+ * same from whole rows. A
  * fixed particle has neither kinetic nor potential energy, one that does not rotate no rotational energy (its inverse
  * mass or inertia is 0: host/core/sim_setup.c). The membrane's springs and patches are not counted: a run with them samples
  * on the host.

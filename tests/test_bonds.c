@@ -300,9 +300,22 @@ static double collide_with(const dem_material *m, unsigned fx, double spin, doub
     double dmax = 0, vout = -1;
     int was = 0, gap = 0;
     /* the worst stress across the gap against the closed form, in R F_b / V, and the worst energy, in F_b^2 / (2 k_b) */
-    stress_out[0] = stress_out[1] = 0;
+    stress_out[0] = stress_out[1] = stress_out[2] = 0; /* [2]: the sampled series' energy, in F_b^2 / (2 k_b) */
+    long n_sampled[1] = {0};
     for (int k = 0; k < 20000; k++) {
-        twins_step(cl, ref, 1, "bonded pair, PoCL vs reference");
+        /* across the gap every 8th step is sampled (dem_step_sampled: the series' row, summed by the kernels) */
+        int sampled = gap > 0 && gap % 8 == 7;
+        dem_sample row[2];
+        if (sampled) {
+            unsigned char want = 1;
+            char msg[512];
+            assert_int_equal(dem_step_sampled(cl, 1, &want, &row[0]), 0);
+            assert_int_equal(dem_step_sampled(ref, 1, &want, &row[1]), 0);
+            if (state_diff(cl, ref, msg, sizeof msg))
+                fail_msg("bonded pair, PoCL vs reference, sampled step %ld: %s", dem_step_index(ref), msg);
+        } else {
+            twins_step(cl, ref, 1, "bonded pair, PoCL vs reference");
+        }
         double x[6], v[6], f[6], w[6];
         assert_int_equal(dem_get_field(ref, DEM_FIELD_X, x), 0);
         assert_int_equal(dem_get_field(ref, DEM_FIELD_FORCE, f), 0);
@@ -316,6 +329,13 @@ static double collide_with(const dem_material *m, unsigned fx, double spin, doub
             dmax = fmax(dmax, d);
         } else if (was && f[0] != 0) { /* the bond holds them across a gap */
             gap++;
+            if (sampled) { /* the series' row counts the bond: one contact, its energy the closed form's */
+                double fbd = bond_force(&t, d, dmax, 0), kb = kb_of(&t, dmax), fb = fb_of(&t, dmax);
+                assert_true(row[0].energy.elastic == row[1].energy.elastic);
+                assert_true(row[1].energy.contacts == 1);
+                stress_out[2] = fmax(stress_out[2], fabs(row[1].energy.elastic - fbd * fbd / (2 * kb)) / (fb * fb / (2 * kb)));
+                n_sampled[0]++;
+            }
             if (gap > 400 && gap % 16) /* (a held pair: every 16th step after the first 400) */
                 continue;
             /* the stress output (particle_stress.h) counts the bond's tension across the gap too: seed 000's
@@ -340,6 +360,7 @@ static double collide_with(const dem_material *m, unsigned fx, double spin, doub
     }
     *dmax_out = dmax;
     *gap_out = gap;
+    assert_true(gap < 8 || n_sampled[0] > 0); /* a gap held 8 steps was sampled */
     dem_destroy(cl);
     dem_destroy(ref);
     return vout;
@@ -354,7 +375,7 @@ static void bounce(dem_precision prec)
 {
     double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2, dm0, dm1, dm2;
     int gap0, gap1, gap2;
-    double sw0[2], sw1[2], sw2[2], v0 = collide(0, &dm0, &gap0, sw0, prec);
+    double sw0[3], sw1[3], sw2[3], v0 = collide(0, &dm0, &gap0, sw0, prec);
     assert_true(v0 > 0);
     /* a bond that takes half the rebound's energy: sigma_b from E_b = F_b^2 / (2 k_b) = 1/4 m* v0^2 */
     bond_closed unit = bond_of(es, rs, 1.0);
@@ -372,9 +393,11 @@ static void bounce(dem_precision prec)
     assert_true(dm1 == dm0 || fabs(dm1 / dm0 - 1) < 1e-6); /* the loading does not feel the bond */
     assert_true(gap0 == 0 && gap1 > 10); /* this dent is shallower than the stretch: the bond holds across a gap */
     printf("  across the gap (%d and %d steps), against the closed form: stress output worst %.2g R F_b / V, host's "
-           "elastic energy worst %.2g F_b^2 / (2 k_b)\n", gap1, gap2, fmax(sw1[0], sw2[0]), fmax(sw1[1], sw2[1]));
+           "elastic energy worst %.2g F_b^2 / (2 k_b), the sampled series' %.2g\n", gap1, gap2, fmax(sw1[0], sw2[0]),
+           fmax(sw1[1], sw2[1]), fmax(sw1[2], sw2[2]));
     assert_true(fmax(sw1[0], sw2[0]) < (prec == DEM_FP64 ? 1e-9 : 1e-3));
     assert_true(fmax(sw1[1], sw2[1]) < (prec == DEM_FP64 ? 1e-9 : 1e-3));
+    assert_true(fmax(sw1[2], sw2[2]) < (prec == DEM_FP64 ? 1e-9 : 1e-3));
     assert_true(v1 > 0 && fabs(v1 / want - 1) < 2e-3);
     assert_true(v2 < 0);
 }
@@ -391,7 +414,7 @@ static void test_bond_gap_rolling_spring(void **st)
     double es = YOUNG / (2 * (1 - NU * NU)), rs = R / 2, ms = RHO * 4.0 / 3.0 * M_PI * R * R * R / 2, dm;
     bond_closed t = bond_of(es, rs, 1.0);
     int gap;
-    double sw[2], v0 = collide(0, &dm, &gap, sw, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
+    double sw[3], v0 = collide(0, &dm, &gap, sw, DEM_FP64); /* the bond of test_bounce, which holds across a gap */
     dem_material m = powder(sqrt(0.25 * ms * v0 * v0 * 2 * kb_of(&t, dm)) / fb_of(&t, dm));
     m.friction = 0.5, m.rolling_friction = 0.1, m.rolling_damping = 0.3;
     unsigned fx = DEM_EFFECT_HERTZ | DEM_EFFECT_FRICTION | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_ROLLING |

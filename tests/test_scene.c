@@ -362,7 +362,8 @@ static void restart_case(const char *sc, const char *precision, int mc)
         H5Sclose(sp), H5Dclose(d), H5Fclose(f);
         return;
     }
-    if (mc == 2) { /* a law with memory (Thornton-Ning): each contact's largest overlap, and the walls' */
+    if (mc == 2) { /* a law with memory (Thornton-Ning): each contact's largest overlap (with adhesion its largest
+                    * contact radius), and the walls' */
         same_in_checkpoints(a, b, "pair_law", (size_t)np, rt, rs, 1);
         same_in_checkpoints(a, b, "wall_law", 7 * (size_t)n, rt, rs, 0); /* every particle's slot of every wall */
         return;

@@ -20,7 +20,7 @@
  * those entry points.
  *
  * A law with memory (a plastic one) keeps one real per contact, its state (law_in.st in, law_result.st out; e.g. the
- * largest overlap so far): its effect bit is in DEM_LAW_STATE_BITS (dem_internal_bits.h), and the run then holds
+ * largest overlap so far, or Thornton-Ning's with JKR adhesion the largest contact radius): its effect bit is in DEM_LAW_STATE_BITS (dem_internal_bits.h), and the run then holds
  * the state of every pair (PAIR_LAW, carried across rebuilds like the tangential history: neighbor.h) and of every
  * particle-wall slot (WALL_LAW), saved in checkpoints. A new contact starts from st = 0.
  *

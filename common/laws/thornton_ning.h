@@ -166,7 +166,8 @@ DEM_INLINE tn_point tn_unloading(DEM_CONST_GLOBAL real *pm, real rstar, real del
     return p;
 }
 
-/* The largest overlap in a stored state st (negated while the contact has no bond) */
+/* The magnitude of a stored state st: the largest overlap (negated while the contact has no bond), or with JKR
+ * adhesion the largest contact radius (negated once it let go) */
 DEM_INLINE real tn_dmax(real st)
 {
     return st < (real)0 ? -st : st;
