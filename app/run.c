@@ -649,12 +649,26 @@ static int phase_load(run_ctx *c)
         if (checkpoint_read(o->restart, &c->ck, c->err, sizeof c->err)) /* 66: cannot be opened; 65: damaged */
             return fail_with(strstr(c->err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, c->err);
         c->have_ck = 1;
-        c->sc = scene_load_text(o->scene_path ? o->scene_path : c->ck.scene_path, c->ck.scene_text,
-                                strlen(c->ck.scene_text), c->err, sizeof c->err);
+        /* `dem run SCENE --restart CK` continues CK under SCENE as it is now (a longer duration, a stage added or
+         * lengthened), checked against the checkpoint in phase_configure; `dem run --restart CK` under the text the
+         * checkpoint holds */
+        c->sc = o->scene_path ? scene_load(o->scene_path, c->err, sizeof c->err)
+                              : scene_load_text(c->ck.scene_path, c->ck.scene_text, strlen(c->ck.scene_text), c->err,
+                                                sizeof c->err);
         /* the order the checkpoint's run was built in, whatever the default is now (a checkpoint without it is
          * older than the spatial default: its run was in the scene's order) */
         if (c->sc)
             c->sc->order_default = !strcmp(c->ck.order, "spatial") ? "spatial" : "input";
+        /* a scene that orders its particles otherwise would give the checkpoint's state to other ids */
+        if (c->sc && o->scene_path && strcmp(scene_particle_order(c->sc), c->sc->order_default)) {
+            snprintf(c->err, sizeof c->err, "%s: particle_order: %s, but the run of %s was built in %s order; a "
+                     "continuation keeps it (remove the key or set it to %s)", o->scene_path,
+                     scene_particle_order(c->sc), o->restart, c->sc->order_default, c->sc->order_default);
+            return fail_with(EXIT_BAD_INPUT, c->err);
+        }
+        if (c->sc && o->scene_path && o->progress != 0 && !run_quiet)
+            fprintf(stderr, "dem: continuing %s at step %ld under %s as it is now (not the scene text the checkpoint "
+                            "holds)\n", o->restart, c->ck.st.step, o->scene_path);
     } else {
         c->sc = scene_load(o->scene_path, c->err, sizeof c->err);
     }
@@ -699,8 +713,8 @@ static int phase_configure(run_ctx *c)
     if (c->ck.st.step >= run->steps) {
         snprintf(c->err, sizeof c->err, "%s: the checkpoint is at step %ld, %s of the scene (%ld steps of %g s): "
                  "nothing is left to run (a restart continues a run stopped before its end, by --stop-after or a "
-                 "signal; to go on, raise time.duration in a copy of the scene)", o->restart, c->ck.st.step, c->ck.st.step > run->steps ? "past the end"
-                 : "the end", run->steps, run->dt);
+                 "signal; to go on, raise time.duration in a copy of the scene and run dem run COPY.yaml --restart %s)", o->restart, c->ck.st.step, c->ck.st.step > run->steps ? "past the end"
+                 : "the end", run->steps, run->dt, o->restart);
         return fail_with(EXIT_BAD_INPUT, c->err);
     }
     if ((dem_effects(c->s) & DEM_EFFECT_ADHESION) && c->ck.st.has_law == 1 && c->ck.st.npairs + c->ck.st.nwalls > 0 &&

@@ -429,6 +429,54 @@ static void test_restart_bitwise(void **st)
     restart_case(mdr, "fp32", 3);
 }
 
+/* dem run SCENE --restart CK continues CK under SCENE as the file is now: the box run to its end (0.04 s), then on
+ * to 0.05 s under a copy whose duration is raised, is bit for bit the box run to 0.05 s from the start (which
+ * `dem run --restart` alone refuses: nothing is left of the checkpoint's own scene; before 2026-12-06 the copy's
+ * text was not read, so the hint that said to raise the duration in a copy led nowhere). A copy that orders the
+ * particles otherwise is refused. */
+static void test_restart_longer(void **st)
+{
+    (void)st;
+    char err[8192], a[300], b[300];
+    assert_int_equal(sh(err, sizeof err, "cp %s/tests/scenes/restart_box.yaml %s/la.yaml && sed 's/duration: 0.04}/"
+                        "duration: 0.05}/' %s/la.yaml > %s/lb.yaml && ! cmp -s %s/la.yaml %s/lb.yaml", SRC, tmp, tmp,
+                        tmp, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/lb.yaml -o %s/lbs.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/la.yaml -o %s/la.h5 --quiet", DEM, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run --restart %s/la.ckpt.h5 -o %s/lx.h5 --quiet", DEM, tmp, tmp), 65);
+    assert_non_null(strstr(err, "nothing is left to run"));
+    assert_non_null(strstr(err, "run dem run COPY.yaml --restart"));
+    assert_int_equal(sh(err, sizeof err, "%s run %s/lb.yaml --restart %s/la.ckpt.h5 -o %s/lc.h5", DEM, tmp, tmp, tmp), 0);
+    assert_non_null(strstr(err, "la.ckpt.h5 at step 660 under"));
+    snprintf(a, sizeof a, "%s/lbs.ckpt.h5", tmp);
+    snprintf(b, sizeof b, "%s/lc.ckpt.h5", tmp);
+    long sa, sb;
+    hid_t f = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT), g = H5Gopen2(f, "state", H5P_DEFAULT);
+    assert_int_equal(h5_read_attr_long(g, "step", &sa), 0);
+    H5Gclose(g), H5Fclose(f);
+    f = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT), g = H5Gopen2(f, "state", H5P_DEFAULT);
+    assert_int_equal(h5_read_attr_long(g, "step", &sb), 0);
+    H5Gclose(g), H5Fclose(f);
+    assert_true(sa == sb && sa > 660); /* the continuation ran to the longer scene's end */
+    static const char *fields[] = {"x", "v", "w", "force", "torque"};
+    for (int k = 0; k < 5; k++) {
+        double pa[64 * 3], pb[64 * 3];
+        read_state(a, fields[k], pa, 3 * 64, H5T_NATIVE_DOUBLE);
+        read_state(b, fields[k], pb, 3 * 64, H5T_NATIVE_DOUBLE);
+        if (memcmp(pa, pb, sizeof pa))
+            fail_msg("state/%s differs between the run to 0.05 s and the run to 0.04 s continued to 0.05 s", fields[k]);
+    }
+    /* the continuation's files hold the scene it continued under */
+    assert_int_equal(sh(err, sizeof err, "%s %s/tests/h5_same.py %s/lbs.ckpt.h5 %s/lc.ckpt.h5", test_python(), SRC, tmp,
+                        tmp), 0);
+    /* another particle order: refused, nothing written */
+    assert_int_equal(sh(err, sizeof err, "sed 's/^precision: fp64/precision: fp64\\nparticle_order: input/' %s/lb.yaml > "
+                        "%s/ld.yaml && grep -q 'particle_order: input' %s/ld.yaml", tmp, tmp, tmp), 0);
+    assert_int_equal(sh(err, sizeof err, "%s run %s/ld.yaml --restart %s/la.ckpt.h5 -o %s/ld.h5", DEM, tmp, tmp, tmp), 65);
+    assert_non_null(strstr(err, "ld.yaml: particle_order: input, but the run of"));
+    assert_false(exists("%s/ld.h5", tmp) || exists("%s/ld.h5.part", tmp));
+}
+
 /* A membrane scene (tests/scenes/membrane_tube.yaml: a patch tube between platens, beads inside, a pressure ramp):
  * its refusals name file, line and field; the same tube read from an OBJ file runs to the same bits; a run writes
  * the triangles and a second XDMF grid; the beads stay inside the tube; a restart from the checkpoint halfway
@@ -2375,6 +2423,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_restart_bitwise),
+        cmocka_unit_test(test_restart_longer),
         cmocka_unit_test(test_output_and_xdmf),
         cmocka_unit_test(test_xdmf_walls),
         cmocka_unit_test(test_mc_cap_reported),
