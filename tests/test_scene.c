@@ -372,6 +372,16 @@ static void restart_case(const char *sc, const char *precision, int mc)
         same_in_checkpoints(a, b, "pair_mc_fn", (size_t)np, rt, rs, 1);
 }
 
+/* tests/scenes/restart_box.yaml with effects added after walls and keys added to its material: tmp/NAME.yaml */
+static void box_variant(char *path, size_t len, const char *name, const char *effects, const char *keys)
+{
+    char err[8192];
+    snprintf(path, len, "%s/%s.yaml", tmp, name);
+    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, %s]/' -e 's/friction: 0.4}/friction: 0.4, %s}/' "
+                        "%s/tests/scenes/restart_box.yaml > %s && grep -q '%s]' %s && grep -q '%s}' %s", effects, keys,
+                        SRC, path, effects, path, keys, path), 0);
+}
+
 static void test_restart_bitwise(void **st)
 {
     (void)st;
@@ -388,20 +398,14 @@ static void test_restart_bitwise(void **st)
     restart_case(until, "fp64", 0);
     /* the same box of plastic grains (thornton_ning): the law's states travel in the checkpoint */
     char plastic[300];
-    snprintf(plastic, sizeof plastic, "%s/plastic.yaml", tmp);
-    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, thornton_ning]/' -e 's/friction: 0.4}/friction: 0.4, "
-                        "yield_stress: 2.0e5}/' %s/tests/scenes/restart_box.yaml > %s && grep -q thornton_ning %s && "
-                        "grep -q yield_stress %s", SRC, plastic, plastic, plastic), 0);
+    box_variant(plastic, sizeof plastic, "plastic", "thornton_ning", "yield_stress: 2.0e5");
     restart_case(plastic, "fp64", 2);
     restart_case(plastic, "fp32", 2);
     /* adhesive plastic grains (thornton_ning with JKR adhesion): their states, the largest contact radius, travel and
      * are marked so (law_state); a checkpoint without the mark (written before 2026-12-06, when the state was the
      * largest overlap) is refused with the reason, not continued on a misread state */
     char adh[300];
-    snprintf(adh, sizeof adh, "%s/adhesive.yaml", tmp);
-    assert_int_equal(sh(err, sizeof err, "sed -e 's/walls\\]/walls, thornton_ning, adhesion]/' -e 's/friction: 0.4}/"
-                        "friction: 0.4, yield_stress: 2.0e5, surface_energy: 0.5}/' %s/tests/scenes/restart_box.yaml > %s "
-                        "&& grep -q adhesion %s && grep -q surface_energy %s", SRC, adh, adh, adh), 0);
+    box_variant(adh, sizeof adh, "adhesive", "thornton_ning, adhesion", "yield_stress: 2.0e5, surface_energy: 0.5");
     restart_case(adh, "fp64", 2);
     {
         char h[300], ls[64] = "";
