@@ -27,4 +27,8 @@ typedef struct {
 int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_run *run, char *err, size_t errlen);
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
 void checkpoint_free(checkpoint *ck);
+/* restart_scene.c: whether the scene now may continue the checkpoint ck (read from ck_path) - the scene ck was run
+ * with but for time.duration, the output section and the stages a wall has not finished; 1 with err naming the first
+ * field that differs otherwise, and its line */
+int restart_scene_check(const scene *now, const checkpoint *ck, const char *ck_path, char *err, size_t errlen);
 #endif

@@ -666,9 +666,7 @@ static int phase_load(run_ctx *c)
                      scene_particle_order(c->sc), o->restart, c->sc->order_default, c->sc->order_default);
             return fail_with(EXIT_BAD_INPUT, c->err);
         }
-        if (c->sc && o->scene_path && o->progress != 0 && !run_quiet)
-            fprintf(stderr, "dem: continuing %s at step %ld under %s as it is now (not the scene text the checkpoint "
-                            "holds)\n", o->restart, c->ck.st.step, o->scene_path);
+
     } else {
         c->sc = scene_load(o->scene_path, c->err, sizeof c->err);
     }
@@ -708,6 +706,12 @@ static int phase_configure(run_ctx *c)
         return fail_with(pc, c->err);
     if (!c->have_ck)
         return 0;
+    /* continued under a scene file: the checkpoint's scene but for what a continuation may change (restart_scene.c) */
+    if (o->scene_path && restart_scene_check(c->sc, &c->ck, o->restart, c->err, sizeof c->err))
+        return fail_with(EXIT_BAD_INPUT, c->err);
+    if (o->scene_path && o->progress != 0 && !run_quiet)
+        fprintf(stderr, "dem: continuing %s at step %ld under %s as it is now (not the scene text the checkpoint "
+                        "holds)\n", o->restart, c->ck.st.step, o->scene_path);
     /* a finished run's checkpoint has nothing left to run: refused, not a run of no steps that exits 0 and writes
      * neither output nor checkpoint */
     if (c->ck.st.step >= run->steps) {

@@ -473,6 +473,33 @@ static void test_restart_longer(void **st)
     /* the continuation's files hold the scene it continued under */
     assert_int_equal(sh(err, sizeof err, "%s %s/tests/h5_same.py %s/lbs.ckpt.h5 %s/lc.ckpt.h5", test_python(), SRC, tmp,
                         tmp), 0);
+    /* a continuation may lengthen the stage a wall is in: the lid stopped at step 330, in its stage of 0.03 s, and
+     * continued under a copy whose stage lasts 0.035 s is the copy run from the start, bit for bit */
+    assert_int_equal(sh(err, sizeof err, "sed 's/duration: 0.03}/duration: 0.035}/' %s/la.yaml > %s/lm.yaml && "
+                        "%s run %s/la.yaml -o %s/lh.h5 --stop-after 330 --quiet && %s run %s/lm.yaml -o %s/lms.h5 --quiet "
+                        "&& %s run %s/lm.yaml --restart %s/lh.ckpt.h5 -o %s/lmc.h5 --quiet && %s %s/tests/h5_same.py "
+                        "%s/lms.ckpt.h5 %s/lmc.ckpt.h5", tmp, tmp, DEM, tmp, tmp, DEM, tmp, tmp, DEM, tmp, tmp, tmp,
+                        test_python(), SRC, tmp, tmp), 0);
+    /* what would not continue the same run is refused, naming the field and its line: a material (line 6), a stage
+     * added to the lid once it has run its stages (at step 660), a wall's stage it has finished */
+    static const struct {
+        const char *sed, *said;
+    } refused[] = {
+        {"s/friction: 0.4}/friction: 0.5}/", "lr.yaml:6: materials[0].friction: not as in the scene"},
+        {"s/duration: 0.03}]/duration: 0.03}, {velocity: [0, 0, 0.3], duration: 0.005}]/",
+         "walls[1].motion[1]: not in the scene"},
+        {"s/velocity: \\[0, 0, -0.3\\], duration: 0.03}/velocity: [0, 0, -0.2], duration: 0.03}/",
+         "walls[1].motion[0].velocity[2]: not as in the scene"},
+    };
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        assert_int_equal(sh(err, sizeof err, "sed -e '%s' %s/lb.yaml > %s/lr.yaml && ! cmp -s %s/lb.yaml %s/lr.yaml",
+                            refused[k].sed, tmp, tmp, tmp, tmp), 0);
+        assert_int_equal(sh(err, sizeof err, "%s run %s/lr.yaml --restart %s/la.ckpt.h5 -o %s/lr.h5", DEM, tmp, tmp, tmp),
+                         65);
+        if (!strstr(err, refused[k].said))
+            fail_msg("case %zu: expected \"%s\" in: %s", k, refused[k].said, err);
+        assert_false(exists("%s/lr.h5", tmp) || exists("%s/lr.h5.part", tmp));
+    }
     /* another particle order: refused, nothing written */
     assert_int_equal(sh(err, sizeof err, "sed 's/^precision: fp64/precision: fp64\\nparticle_order: input/' %s/lb.yaml > "
                         "%s/ld.yaml && grep -q 'particle_order: input' %s/ld.yaml", tmp, tmp, tmp), 0);
