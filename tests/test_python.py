@@ -315,6 +315,25 @@ class TabletTest(unittest.TestCase):
         solid = 50 * 4 / 3 * math.pi * 0.0004**3
         self.assertAlmostEqual(c["dens"][14], solid / (self.area * self.gap[14]), places=12)
 
+    def test_recovery_not_let_go(self):
+        # the same cycle cut at row 22, the punch still pressing (6 MPa): no recovery, and its lower bound the gap's
+        # growth to the last row
+        with h5py.File(self.path, "r") as f:
+            keep = {k: f["series"][k][()] for k in f["series"] if f["series"][k].shape[:1] == (35,)}
+        c = tablet.analyse(self.path)
+        self.assertAlmostEqual(c["recovery_min"], c["recovery"], places=15)  # let go: the bound is the recovery
+        with h5py.File(self.path, "r+") as f:
+            for k, v in keep.items():
+                del f["series"][k]
+                f["series"].create_dataset(k, data=v[:22])
+        c = tablet.analyse(self.path)
+        self.assertTrue(math.isnan(c["recovery"]))
+        self.assertAlmostEqual(c["recovery_min"], (self.gap[21] - self.gap[14]) / self.gap[14], places=12)
+        self.assertGreater(c["recovery_min"], 0)
+        kv = dict(tablet.numbers(c))
+        self.assertTrue(math.isnan(kv["elastic_recovery"]))
+        self.assertEqual(kv["elastic_recovery_min"], c["recovery_min"])
+
     def test_report_line_mpa(self):
         png = os.path.join(self.tmp.name, "r.png")
         for cmd in ([PY, "-m", "libdem", "report", self.path, "-o", png],

@@ -70,6 +70,13 @@ def label_of(c, run):
     return c["model"] if c["model"] and c["model"] != "as in the scene" else os.path.basename(run[0])[:-3]
 
 
+def recovery_text(r):
+    """The elastic recovery for the table; where the run ended before the punch let go, its lower bound"""
+    if math.isfinite(r["recovery"]):
+        return f"{100 * r['recovery']:.1f} %"
+    return f">= {100 * r['recovery_min']:.1f} % (not let go)"
+
+
 def dwell_end(c):
     """the last row of the dwell: from the largest pressure on, the first row where the upper punch stands (the
     same travel as the next row's: the peak may come at the punch's last moving row) and the last it stands there"""
@@ -134,6 +141,7 @@ def main():
         lg = log_numbers(run)
         rows.append(dict(name=name, wall=times.get(name, math.nan), dens=c["dens"][k], p_max=c["p_max"],
                          yield_p=c["yield_p"], ratio=c["ratio"], radial=c["radial_ratio"], recovery=c["recovery"],
+                         recovery_min=c["recovery_min"],
                          heat=heat[d] if math.isfinite(heat[d]) else math.nan,
                          d_press=c["dens"][c["load"]] if len(c["load"]) else c["dens"][k: k + 1],
                          t_press=1e3 * (c["travel_up"][c["load"][0]] if len(c["load"]) else 0.0), **lg))
@@ -159,7 +167,7 @@ def main():
             "overlap / r | largest mean overlap / r | dt / stability bound (estimate) |\n|---|" + "---:|" * 12 + "\n")
     body = "".join(
         f"| {r['name']} | {r['wall']:.4g} | {r['wall'] / base:.2f} | {r['dens']:.4f} | {1e-6 * r['p_max']:.2f} | "
-        f"{1e-6 * r['yield_p']:.3g} | {r['ratio']:.3f} | {r['radial']:.3f} | {100 * r['recovery']:.1f} % | "
+        f"{1e-6 * r['yield_p']:.3g} | {r['ratio']:.3f} | {r['radial']:.3f} | {recovery_text(r)} | "
         f"{r['heat']:.1e} | {r['largest']:.3g} % | {r['mean']:.3g} % | {r['stability']:.3g} |\n" for r in rows)
     if a.table:
         with open(a.table, "w") as f:

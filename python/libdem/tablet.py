@@ -17,6 +17,9 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
     radial on a cylinder) over the bore's wall between the punches, 2 pi R gap; its ratio to the upper punch
     pressure at the largest pressure (the radial transmission, Janssen's coefficient);
   - elastic recovery: (gap where the upper punch lets go - gap at the largest pressure) / gap at the largest pressure;
+    nan where the run ends before the punch lets go (its pressure above 1e-3 of the largest), and then
+    elastic_recovery_min, the same with the gap of the last row: a lower bound (the compact still pushes on the
+    punch); where the punch let go, elastic_recovery_min is the recovery itself;
   - ejection (the lower punch rising after the upper punch let go): the die-wall friction is the die's axial force
     (the compact drags the die along as it slides out); the lower punch's force is that friction plus the compact's
     inertia and weight, reported apart: a velocity step of the punch accelerates the compact, and its inertia (mass
@@ -26,7 +29,8 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
     compact is held on it with.
 
 Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m3, max_upper_mpa, density_at_max,
-yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, max_ejection_friction_n, max_ejection_punch_n;
+yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, elastic_recovery_min, max_ejection_friction_n,
+max_ejection_punch_n;
 and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet):
 tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n (the failure load F: the platen
 force before it first falls by 20 %, from at least half its largest), tensile_mpa (2 F / (pi D t)), tablet_failed (1: the force fell so, 0: it never
@@ -116,6 +120,8 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     loading = np.nonzero(rising & (rows <= k_max) & (p_up > 0.1 * p_max))[0]
     ratio = float(np.median(p_lo[loading] / p_up[loading])) if len(loading) else float("nan")
     recovery = (gap[k_rel] - gap[k_max]) / gap[k_max] if k_rel is not None else float("nan")
+    # a run that ends with the compact still pushing on the punch: at least the gap's growth to its last row
+    recovery_min = recovery if k_rel is not None else float((gap[-1] - gap[k_max]) / gap[k_max])
     radial_ratio = float(p_rad[k_max] / p_max)
     # ejection: the lower punch rising after the upper one let go, or else the die drawn down off the compact (which
     # then rests on the lower punch); the travel is the moving wall's, counted positive
@@ -145,7 +151,7 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     return dict(dia=dia, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
                 gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
                 heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
-                recovery=recovery, radial_ratio=radial_ratio, ej=ej, eject_by_die=by_die, eject_travel=eject_travel,
+                recovery=recovery, recovery_min=recovery_min, radial_ratio=radial_ratio, ej=ej, eject_by_die=by_die, eject_travel=eject_travel,
                 eject_force=eject_force, eject_friction=eject_friction,
                 max_ejection_friction=float(np.max(eject_friction)) if len(ej) else nan,
                 max_ejection_punch=float(np.max(eject_force)) if len(ej) else nan, kinetic=kinetic, elastic=elastic)
@@ -215,7 +221,8 @@ def numbers(c):
     return [("bore_area_m2", c["area"]), ("solid_m3", c["solid"]), ("max_upper_mpa", MPA * c["p_max"]),
             ("density_at_max", c["dens"][k]), ("yield_mpa", MPA * c["yield_p"]), ("transmission", c["ratio"]),
             ("radial_mpa", MPA * c["p_rad"][k]), ("radial_ratio", c["radial_ratio"]),
-            ("elastic_recovery", c["recovery"]), ("max_ejection_friction_n", c["max_ejection_friction"]),
+            ("elastic_recovery", c["recovery"]), ("elastic_recovery_min", c["recovery_min"]),
+            ("max_ejection_friction_n", c["max_ejection_friction"]),
             ("max_ejection_punch_n", c["max_ejection_punch"])] + (
             [("tablet_diameter_m", c["dia"]["diameter"]), ("tablet_thickness_m", c["dia"]["thickness"]),
              ("tablet_density", c["dia"]["density"]), ("max_platen_n", c["dia"]["peak"]),
@@ -286,8 +293,10 @@ def plot(c, out, title):
                            f"mm, density {dia['density']:.3f}")
         ax[0, 2].legend(fontsize=8)
         ax[1, 2].axis("off")
+    rec = (f"{100 * c['recovery']:.2f} %" if c["k_rel"] is not None
+           else f">= {100 * c['recovery_min']:.2f} % (the punch had not let go)")
     fig.suptitle(f"{title}: transmission {c['ratio']:.3f} (loading), radial/axial {c['radial_ratio']:.3f}, elastic "
-                 f"recovery {100 * c['recovery']:.2f} %", fontsize=10)
+                 f"recovery {rec}", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     plt.close(fig)
