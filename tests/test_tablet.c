@@ -261,13 +261,14 @@ static void test_tablet_report(void **st)
     assert_non_null(fgets(line, sizeof line, fp));
     fclose(fp);
     printf("  %s", line);
-    double pmax, dens, ratio, prad, rrad, rec, yld, ejf, ejp; /* pressures in MPa */
+    double pmax, dens, ratio, prad, rrad, rec, recmin, yld, ejf, ejp; /* pressures in MPa */
     const char *at = strstr(line, "max_upper_mpa=");
     assert_non_null(at);
     assert_int_equal(sscanf(at, "max_upper_mpa=%lf density_at_max=%lf yield_mpa=%lf transmission=%lf radial_mpa=%lf "
-                                "radial_ratio=%lf elastic_recovery=%lf max_ejection_friction_n=%lf "
-                                "max_ejection_punch_n=%lf",
-                            &pmax, &dens, &yld, &ratio, &prad, &rrad, &rec, &ejf, &ejp), 9);
+                                "radial_ratio=%lf elastic_recovery=%lf elastic_recovery_min=%lf "
+                                "max_ejection_friction_n=%lf max_ejection_punch_n=%lf",
+                            &pmax, &dens, &yld, &ratio, &prad, &rrad, &rec, &recmin, &ejf, &ejp), 10);
+    assert_true(recmin == rec); /* the punch let go: the lower bound is the recovery itself */
     /* the die wall is pressed outwards, less than the punch presses down (friction carries part of the load) */
     assert_true(prad > 0 && rrad > 0.2 && rrad < 1);
     double target = 1e-6 / (M_PI * R_DIE * R_DIE);
