@@ -73,7 +73,8 @@ DEM_INLINE void stress_at(unsigned fx, int tensor, int i, DEM_CONST_GLOBAL int *
                 h += j > i;
             other = mat[j];
             pair_geom g = pair_geometry(xi, ri, v3_load(x, j), radius[j]);
-            if (fx & DEM_LAW_STATE_BITS) {
+            /* the pair's state: a touching pair's, and under Thornton-Ning any pair's (it may hold across a gap) */
+            if ((fx & DEM_LAW_STATE_BITS) && (g.active || (fx & DEM_EFFECT_THORNTON_NING))) {
                 int p = row_pair(i, j, k, hk, own_start[i], in_start[i], in_pair), t = touch[p];
                 DEM_CONST_GLOBAL real *ps = law_st + p * DEM_LAW_PAIR_W(fx);
                 /* a bond or a JKR contact that holds across a gap (contact_geometry.h), as the forces saw it */

@@ -346,15 +346,10 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
         /* a JKR contact (DEM_EFFECT_ADHESION) holds across a gap until it lets go, as a pair's: its state (the largest
          * contact radius) is > 0 while it touches and cleared when it ends (wall_forces.h) */
         double row[PM_STRIDE];
-        int held = 0, have_row = 0;
-        if ((fx & DEM_EFFECT_ADHESION) && hs->wall_st && hs->wall_st[slot] > 0) { /* wall_met_held's test */
-            pair_row(s, s->mat[i], wl->material, row);
-            held = contact_held(fx, 0, row), have_row = 1;
-        }
+        pair_row(s, s->mat[i], wl->material, row);
+        int held = hs->wall_st && hs->wall_st[slot] > 0 && contact_held(fx, 0, row); /* wall_met_held's test */
         double delta = sim_wall_overlap_gap(wl, s->motion.pos[k], x + 3 * i, r, held ? r : 0, NULL); /* the kernels' */
         if (delta > 0 || held) {
-            if (!have_row)
-                pair_row(s, s->mat[i], wl->material, row);
             if (mdr) {
                 mdr_material m = mdr_material_of(row);
                 mdr_particle p = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
