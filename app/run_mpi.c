@@ -24,6 +24,7 @@ typedef struct {
     dem_config cfg;                                   /* the parts' (the run's device, precision, backend) */
     dem_sim *(*build)(void *arg, char *err, size_t len); /* a new unstarted whole run of the scene */
     void *arg;
+    dem_sim *tmpl;                                    /* one, built once: what each part is copied from */
     dem_sim *part;                                    /* this rank's particles and ghosts, started */
     dem_mpi_halo h;
     int have_h;
@@ -171,26 +172,38 @@ static void drop_part(rr *q)
     q->gid = NULL, q->owner = NULL, q->x0 = NULL, q->xprev = NULL;
 }
 
-/* This rank's part of the whole state g, started, with its halo. Collective; agreed. */
-static int split_from(rr *q, const dem_state *g, char *err, size_t len)
+/* who keeps what in a split: a particle's owner, and every rank whose box it is within the halo's width of */
+typedef struct {
+    const double *x;        /* [3 n] the positions the split cuts by */
+    const int *owner;       /* [n] */
+    double (*boxes)[6];     /* [ranks] */
+    double width;
+} split_keep;
+static int keeps(void *arg, long id, int rank)
+{
+    const split_keep *k = arg;
+    return k->owner[id] == rank || box_dist(k->x + 3 * id, k->boxes[rank]) <= k->width;
+}
+
+/* This rank's part, started, with its halo, split by the positions x[3 n] (the same on every rank): its state cut
+ * from the whole state g (at the start), or, where g is NULL, moved from each rank's state loc of its last part (held
+ * particles of global ids lgid, ranks lowner: dem_mpi_state_move). Collective; agreed; frees nothing it is given. */
+static int split_from(rr *q, long n, const double *x, const dem_state *g, const dem_state *loc, const long *lgid,
+                      const int *lowner, char *err, size_t len)
 {
     int P = q->pub.size, me = q->pub.rank, e = 0;
-    long n = g->n;
     err[0] = 0;
-    double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
     long *ids = malloc(sizeof(long) * (size_t)(n ? n : 1));
     int *owner = malloc(sizeof(int) * (size_t)(n ? n : 1));
     unsigned char *keep = calloc((size_t)(n ? n : 1), 1), *ghost = NULL;
     double(*boxes)[6] = malloc(sizeof(double[6]) * (size_t)P);
-    const dem_state_array *xa = dem_state_find(g, "x");
-    if (!x || !ids || !owner || !keep || !boxes || !xa)
+    if (!ids || !owner || !keep || !boxes)
         e = DEM_ERR_NOMEM, snprintf(err, len, "out of host memory splitting %ld particles", n);
     else if (n < P)
         e = DEM_ERR_ARG, snprintf(err, len, "%ld particles cannot be split over %d ranks: run it on %ld or fewer", n,
                                   P, n);
+    split_keep sk = {x, owner, boxes, 2 * q->rmax + q->margin};
     if (!e) {
-        for (long k = 0; k < 3 * n; k++)
-            x[k] = g->real_size == 8 ? ((const double *)xa->data)[k] : (double)((const float *)xa->data)[k];
         for (long k = 0; k < n; k++)
             ids[k] = k;
         double all[6] = {-INFINITY, -INFINITY, -INFINITY, INFINITY, INFINITY, INFINITY};
@@ -202,10 +215,9 @@ static int split_from(rr *q, const dem_state *g, char *err, size_t len)
                 q->moves += owner[k] != q->last_owner[k];
         if (q->last_owner)
             memcpy(q->last_owner, owner, sizeof(int) * (size_t)n);
-        double width = 2 * q->rmax + q->margin;
         q->nloc = q->nown = 0;
         for (long k = 0; k < n; k++) {
-            keep[k] = owner[k] == me || box_dist(x + 3 * k, boxes[me]) <= width;
+            keep[k] = (unsigned char)keeps(&sk, k, me);
             q->nloc += keep[k];
             q->nown += owner[k] == me;
         }
@@ -224,10 +236,8 @@ static int split_from(rr *q, const dem_state *g, char *err, size_t len)
                 m++;
             }
     }
-    if (!e && !(q->part = q->build(q->arg, err, len)))
-        e = DEM_ERR_ARG;
-    if (!e && sim_keep_particles(q->part, keep) < 0)
-        e = DEM_ERR_ARG;
+    if (!e && !(q->part = sim_part_copy(q->tmpl, keep, err, len))) /* no scene file read again */
+        e = DEM_ERR_NOMEM;
     if (!e && sim_set_ghosts(q->part, ghost))
         e = DEM_ERR_NOMEM;
     if (!e) /* the whole run's domain: wherever its particles go, the part's go too */
@@ -236,10 +246,19 @@ static int split_from(rr *q, const dem_state *g, char *err, size_t len)
         e = dem_start(q->part, &q->cfg);
     dem_state ps;
     memset(&ps, 0, sizeof ps);
-    if (!e && (e = dem_mpi_state_part(q->part, g, keep, &ps)) == 0)
-        e = dem_state_set(q->part, &ps);
+    if (g) { /* the start: every rank holds the whole state */
+        if (!e && (e = dem_mpi_state_part(q->part, g, keep, &ps)) == 0)
+            e = dem_state_set(q->part, &ps);
+    } else if (!(e = agreed_msg(q, e, q->part, err, len))) { /* anew: the parts' states moved where they are kept */
+        e = dem_mpi_state_move(q->comm, q->part, loc, lgid, lowner, keeps, &sk, q->nloc, q->gid, &ps); /* agreed */
+        if (e)
+            snprintf(err, len, "the particles could not be moved to their new ranks (code %d: out of host memory, "
+                     "or a message past MPI's int counts)", e);
+        else
+            e = dem_state_set(q->part, &ps);
+    }
     dem_state_free(&ps);
-    free(x), free(ids), free(owner), free(keep), free(ghost), free(boxes);
+    free(ids), free(owner), free(keep), free(ghost), free(boxes);
     if ((e = agreed_msg(q, e, q->part, err, len)))
         return e;
     e = dem_mpi_halo_init(&q->h, q->comm, q->part, q->nloc, q->gid, q->owner); /* agreed */
@@ -271,16 +290,96 @@ static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(
     for (int d = 0; d < 3; d++) /* the whole run's domain (given, or made at its start from all the particles) */
         q->domain[d] = whole->domain.lo[d], q->domain[3 + d] = whole->domain.hi[d];
     q->step = dem_step_index(whole);
-    dem_state g;
-    int got = dem_state_get(whole, &g), e;
     err[0] = 0;
+    q->tmpl = build(arg, err, len);
+    int e = q->tmpl ? 0 : DEM_ERR_ARG;
+    if ((e = agreed_msg(q, e, NULL, err, len)))
+        return e;
+    dem_state g;
+    int got = dem_state_get(whole, &g);
     if ((e = agreed_msg(q, got, whole, err, len))) {
         if (!got) /* this rank's was got: another rank's failed */
             dem_state_free(&g);
         return e;
     }
-    e = split_from(q, &g, err, len);
+    long n = g.n;
+    double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
+    const dem_state_array *xa = dem_state_find(&g, "x");
+    e = x && xa ? 0 : DEM_ERR_NOMEM;
+    for (long k = 0; !e && k < 3 * n; k++)
+        x[k] = g.real_size == 8 ? ((const double *)xa->data)[k] : (double)((const float *)xa->data)[k];
+    if ((e = agreed_msg(q, e, NULL, err, len)))
+        snprintf(err, len, "out of host memory splitting %ld particles", n);
+    else
+        e = split_from(q, n, x, &g, NULL, NULL, NULL, err, len);
+    free(x);
     dem_state_free(&g);
+    return e;
+}
+
+/* Every rank's own particles' positions, by global id, into x[3 n] on every rank (the split cuts by them): 3 reals
+ * a particle, where a gather of the whole state moved every array and contact of every particle to every rank */
+static int positions_all(rr *q, double *x)
+{
+    int P = q->pub.size, no = 0, e = 0;
+    int *cnt = malloc(sizeof(int) * 2 * (size_t)P);
+    long *ids = malloc(sizeof(long) * ((size_t)q->nown + 1)), *allid = malloc(sizeof(long) * ((size_t)q->n + 1));
+    double *mine = malloc(sizeof(double) * 3 * ((size_t)q->nown + 1)),
+           *all = malloc(sizeof(double) * 3 * ((size_t)q->n + 1));
+    e = cnt && ids && allid && mine && all ? 0 : DEM_ERR_NOMEM;
+    for (int k = 0; !e && k < q->nloc; k++)
+        if (q->owner[k] == q->pub.rank) {
+            ids[no] = q->gid[k];
+            memcpy(mine + 3 * no, q->h.field + 3 * k, sizeof(double) * 3); /* the last exchange's (moved) */
+            no++;
+        }
+    long total = 0;
+    if (!(e = dem_mpi_agreed(q->comm, e))) {
+        MPI_Allgather(&no, 1, MPI_INT, cnt, 1, MPI_INT, q->comm);
+        for (int r = 0; r < P; r++)
+            cnt[P + r] = (int)total, total += cnt[r];
+        e = total == q->n && 3 * total <= INT_MAX ? 0 : DEM_ERR_ARG; /* the same verdict on every rank */
+    }
+    if (!e) {
+        MPI_Allgatherv(ids, no, MPI_LONG, allid, cnt, cnt + P, MPI_LONG, q->comm);
+        for (int r = 0; r < P; r++)
+            cnt[r] *= 3, cnt[P + r] *= 3;
+        MPI_Allgatherv(mine, 3 * no, MPI_DOUBLE, all, cnt, cnt + P, MPI_DOUBLE, q->comm);
+        for (long k = 0; k < total; k++)
+            memcpy(x + 3 * allid[k], all + 3 * k, sizeof(double) * 3);
+    }
+    free(cnt), free(ids), free(allid), free(mine), free(all);
+    return e;
+}
+
+/* The run split anew by the positions now: each rank's state moved to the ranks that keep it in the new split (no
+ * rank holds the whole state). Collective; agreed. */
+static int split_anew(rr *q, char *err, size_t len)
+{
+    long n = q->n;
+    double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
+    int e = dem_mpi_agreed(q->comm, x ? 0 : DEM_ERR_NOMEM);
+    e = e ? e : positions_all(q, x); /* agreed */
+    dem_state loc;
+    memset(&loc, 0, sizeof loc);
+    if (!e)
+        e = dem_mpi_agreed(q->comm, dem_state_get(q->part, &loc));
+    if (e) {
+        free(x);
+        dem_state_free(&loc);
+        return shared_error(q, e, err, len);
+    }
+    sim_run_record rec; /* the servo stages' records and the stage ends go on in the next part */
+    sim_run_record_get(q->part, &rec);
+    long *lgid = q->gid; /* the last part's, kept past its end for the move */
+    int *lowner = q->owner;
+    q->gid = NULL, q->owner = NULL;
+    drop_part(q);
+    e = split_from(q, n, x, NULL, &loc, lgid, lowner, err, len);
+    if (!e)
+        sim_run_record_set(q->part, &rec);
+    free(x), free(lgid), free(lowner);
+    dem_state_free(&loc);
     return e;
 }
 
@@ -340,20 +439,8 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         double t0 = MPI_Wtime(), most = moved(q), t1 = MPI_Wtime();
         int e;
         q->t_check += t1 - t0;
-        if (most > 0.5 * q->margin) { /* split anew: the whole state gathered, cut by the positions now */
-            dem_state g;
-            e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
-            if (e)
-                return shared_error(q, e, err, len);
-            sim_run_record rec; /* the servo stages' records and the stage ends go on in the next part */
-            sim_run_record_get(q->part, &rec);
-            drop_part(q);
-            e = split_from(q, &g, err, len);
-            dem_state_free(&g);
-            if (e)
-                return e;
-            sim_run_record_set(q->part, &rec);
-        }
+        if (most > 0.5 * q->margin && (e = split_anew(q, err, len))) /* cut by the positions now */
+            return e;
         double t2 = MPI_Wtime();
         q->t_split += t2 - t1;
         int wk = want && want[k];
@@ -432,7 +519,7 @@ static int sync_whole(run_ranks *r, dem_sim *whole, char *err, size_t len)
     rr *q = of(r);
     dem_state g;
     err[0] = 0;
-    int e = dem_mpi_state_gather(&q->h, q->gid, q->owner, q->n, &g); /* agreed */
+    int e = dem_mpi_state_gather_at(&q->h, q->gid, q->owner, q->n, 0, &g); /* agreed; on rank 0 alone */
     if (e)
         return shared_error(q, e, err, len);
     int nw = (q->part->effects & DEM_EFFECT_WALLS) ? q->nw : 0;
@@ -441,7 +528,7 @@ static int sync_whole(run_ranks *r, dem_sim *whole, char *err, size_t len)
         exact_clear(&acc[a]);
     e = merged_sums(q, nw, acc);
     dem_state_array *wf = dem_state_find(&g, "wall_force"), *wn = dem_state_find(&g, "wall_normal_force");
-    for (int w = 0; !e && w < nw; w++) {
+    for (int w = 0; !e && r->rank == 0 && w < nw; w++) {
         const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
         for (int d = 0; wf && d < 3; d++) {
             if (g.real_size == 8)
@@ -483,6 +570,8 @@ static void finish(run_ranks *r)
         drop_part(q);
         free(q->last_owner);
         q->last_owner = NULL;
+        dem_destroy(q->tmpl);
+        q->tmpl = NULL;
     }
 }
 

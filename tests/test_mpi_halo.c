@@ -6,7 +6,9 @@
  * (Hertz-Mindlin with friction, damping, gravity) released with random velocities in a box of six walls whose lid
  * comes down; the slabs cut across x, so contacts and their tangential histories cross the cuts. The halo is fixed
  * here: the test checks that no particle moved by half its margin (every 50 steps), else its premise would not hold;
- * test_split_anew splits the run anew twice, particles and contacts migrating; test_refusals, what the halo refuses.
+ * test_split_anew splits the run anew twice, particles and contacts migrating (moved from each rank's state,
+ * dem_mpi_state_move, against the whole state cut; the last part a copy of an unstarted whole run, sim_part_copy);
+ * test_refusals, what the halo refuses.
  * Reference and PoCL, fp64 and fp32. Every verdict is agreed by all ranks before it is asserted; a rank's own failing
  * call ends all ranks (tests/mpi_util.h). */
 #include "mpi_util.h"
@@ -183,6 +185,47 @@ static void test_split_run(void **st)
  * arrays and their contacts' histories move between ranks. After the 900 steps every own particle has the whole
  * run's bits, and the gathered state has the whole run's state's: every per-particle and per-wall array and every
  * contact with its history and force record (the walls' sums aside: rank 0's). The reference in fp64 and PoCL in fp32. */
+/* whether two states hold the same particles, arrays and contacts, bit for bit (b: whole; a: any) */
+static int states_equal(const dem_state *a, const dem_state *b)
+{
+    size_t rs = (size_t)a->real_size;
+    int ok = a->n == b->n && a->narrays == b->narrays && a->npairs == b->npairs && a->step == b->step &&
+             a->rebuilds == b->rebuilds && a->real_size == b->real_size && a->has_hist == b->has_hist &&
+             a->has_mc == b->has_mc && a->has_law == b->has_law && a->has_rspring == b->has_rspring;
+    for (int k = 0; ok && k < a->narrays; k++) {
+        const dem_state_array *x = &a->arrays[k], *y = &b->arrays[k];
+        size_t es = x->elem == DEM_STATE_REAL ? rs : sizeof(int);
+        ok = !strcmp(x->name, y->name) && x->count == y->count && !x->data == !y->data &&
+             (!x->data || !memcmp(x->data, y->data, x->count * es));
+    }
+    size_t m = (size_t)a->npairs;
+    ok = ok && (!m || (!memcmp(a->pair_i, b->pair_i, m * sizeof(int)) && !memcmp(a->pair_j, b->pair_j, m * sizeof(int))));
+    const void *pa[6] = {a->pair_hist, a->pair_rec, a->pair_mc_fn, a->pair_mc_disp, a->pair_law, a->pair_rspring};
+    const void *pb[6] = {b->pair_hist, b->pair_rec, b->pair_mc_fn, b->pair_mc_disp, b->pair_law, b->pair_rspring};
+    size_t w[6] = {3, DEM_PAIR_RECORD_REALS, 1, 2, (size_t)a->has_law, a->has_rspring ? 3 : 0};
+    for (int q = 0; ok && m && q < 6; q++)
+        ok = !pa[q] == !pb[q] && (!pa[q] || !w[q] || !memcmp(pa[q], pb[q], m * w[q] * rs));
+    return ok;
+}
+
+/* the slabs of a phase of test_split_anew: who keeps what (dem_mpi_state_move's question) */
+typedef struct {
+    const double (*pos)[3];
+    int axis;
+    double shift, layer;
+} slabs;
+static int slab_of(const slabs *sl, long k)
+{
+    int q = (int)floor((sl->pos[k][sl->axis] - sl->shift) / L * size);
+    return q < 0 ? 0 : q >= size ? size - 1 : q;
+}
+static int slab_keeps(void *arg, long k, int r)
+{
+    const slabs *sl = arg;
+    double lo = L * r / size + sl->shift, hi = L * (r + 1) / size + sl->shift, v = sl->pos[k][sl->axis];
+    return slab_of(sl, k) == r || (v > lo - sl->layer && v < hi + sl->layer);
+}
+
 static void test_split_anew(void **st)
 {
     (void)st;
@@ -197,7 +240,7 @@ static void test_split_anew(void **st)
             continue;
         dem_config c = cfg_of(bc->backend, bc->precision);
         double dt = 0;
-        dem_sim *whole = build(NULL, &dt), *part = NULL;
+        dem_sim *whole = build(NULL, &dt), *part = NULL, *tmpl = build(NULL, &dt);
         REQUIRE_SIM(whole, dem_start(whole, &c));
         static double pos[NTOT][3], xw[3 * NTOT];
         memcpy(pos, px, sizeof pos);
@@ -216,23 +259,44 @@ static void test_split_anew(void **st)
                 prev_owner[k] = -1;
             for (int i = 0; i < n; i++)
                 prev_owner[gid[i]] = owner[i];
+            static long prev_gid[NTOT];
+            static int prev_own[NTOT];
+            memcpy(prev_gid, gid, sizeof prev_gid), memcpy(prev_own, owner, sizeof prev_own);
+            slabs sl = {(const double(*)[3])pos, axis, shift, layer};
+            int prev_n = n;
             n = 0;
             for (int k = 0; k < NTOT; k++) {
-                int q = (int)floor((pos[k][axis] - shift) / L * size);
-                q = q < 0 ? 0 : q >= size ? size - 1 : q;
+                int q = slab_of(&sl, k);
                 keep[k] = q == rank || (pos[k][axis] > lo - layer && pos[k][axis] < hi + layer);
+                assert_int_equal(keep[k], slab_keeps(&sl, k, rank));
                 if (keep[k]) {
                     migrated += q == rank && phase > 0 && prev_owner[k] != rank;
                     gid[n] = k, owner[n++] = q;
                 }
             }
-            dem_sim *next = build(keep, &dt);
+            /* the last part copied from an unstarted whole run of the scene (what a split anew of dem run does:
+             * sim_part_copy), the others built with their particles alone */
+            char why[256];
+            dem_sim *next = phase == 2 ? sim_part_copy(tmpl, keep, why, sizeof why) : build(keep, &dt);
+            if (!next)
+                rank_fails(__FILE__, __LINE__, "sim_part_copy", why);
             REQUIRE_SIM(next, dem_start(next, &c));
             if (phase > 0) { /* the whole state, cut to this rank's particles */
-                dem_state ps;
+                dem_state ps, pm, loc;
                 REQUIRE0(dem_mpi_state_part(next, &g, keep, &ps));
-                REQUIRE_SIM(next, dem_state_set(next, &ps));
-                dem_state_free(&ps), dem_state_free(&g);
+                /* the same part moved from each rank's own state, no rank holding the whole: bit for bit */
+                REQUIRE_SIM(part, dem_state_get(part, &loc));
+                assert_int_equal(loc.n, prev_n);
+                REQUIRE0(dem_mpi_state_move(MPI_COMM_WORLD, next, &loc, prev_gid, prev_own, slab_keeps, &sl, n, gid,
+                                            &pm));
+                int same = states_equal(&pm, &ps);
+                if (rank == 0)
+                    printf("  %s, %d ranks, split %d: the part moved from the ranks' own states (%d particles, %ld "
+                           "contacts) %s the part cut from the whole\n", bc->name, size, phase, pm.n, pm.npairs,
+                           same ? "equals" : "DIFFERS from");
+                assert_true(all_ok(same && pm.npairs > 0));
+                REQUIRE_SIM(next, dem_state_set(next, &pm));
+                dem_state_free(&ps), dem_state_free(&pm), dem_state_free(&loc), dem_state_free(&g);
                 dem_mpi_halo_free(&h);
                 dem_destroy(part);
             }
@@ -250,6 +314,13 @@ static void test_split_anew(void **st)
                         moved_ok &= fabs(xw[3 * k + d] - pos[k][d]) < margin / 2;
             }
             REQUIRE0(dem_mpi_state_gather(&h, gid, owner, NTOT, &g));
+            { /* the gather on rank 0 alone: its copy the same, the others hold no arrays or contacts */
+                dem_state g0;
+                REQUIRE0(dem_mpi_state_gather_at(&h, gid, owner, NTOT, 0, &g0));
+                int same = rank == 0 ? states_equal(&g0, &g) : g0.narrays == 0 && g0.npairs == 0 && g0.n == NTOT;
+                assert_true(all_ok(same));
+                dem_state_free(&g0);
+            }
             const dem_state_array *x = dem_state_find(&g, "x");
             for (int k = 0; k < NTOT; k++) /* the positions the next split cuts by */
                 for (int d = 0; d < 3; d++)
@@ -288,6 +359,7 @@ static void test_split_anew(void **st)
         dem_mpi_halo_free(&h);
         dem_destroy(part);
         dem_destroy(whole);
+        dem_destroy(tmpl);
     }
 }
 

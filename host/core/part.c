@@ -5,8 +5,47 @@
 #include "sim.h"
 #include "dem_layout.h"
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The particles of src with keep[i] != 0, in their order, into s (s == src: in place, the arrays as they are; else
+ * s's arrays are allocated here for them, its set-up's other fields already src's). Returns the count kept. */
+static int keep_from(dem_sim *s, const dem_sim *src, const unsigned char *keep)
+{
+    int m = 0, in_place = s == src, src_n = src->n, src_srcn = src->order.source_n;
+    for (int i = 0; i < src_n; i++)
+        m += keep[i] != 0;
+    if (!in_place) {
+        size_t k = (size_t)(m ? m : 1);
+        s->x = malloc(sizeof(double) * 3 * k), s->v = malloc(sizeof(double) * 3 * k);
+        s->w = malloc(sizeof(double) * 3 * k), s->body = malloc(sizeof(double) * 2 * k);
+        s->radius = malloc(sizeof(double) * k), s->mat = malloc(sizeof(int) * k), s->pflags = malloc(sizeof(unsigned) * k);
+        s->order.source = src->order.source ? malloc(sizeof(int) * k) : NULL;
+        s->cap = m;
+        if (!s->x || !s->v || !s->w || !s->body || !s->radius || !s->mat || !s->pflags ||
+            (src->order.source && !s->order.source))
+            return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    }
+    m = 0;
+    for (int i = 0; i < src_n; i++) {
+        if (!keep[i])
+            continue;
+        memmove(s->x + 3 * m, src->x + 3 * i, sizeof(double) * 3);
+        memmove(s->v + 3 * m, src->v + 3 * i, sizeof(double) * 3);
+        memmove(s->w + 3 * m, src->w + 3 * i, sizeof(double) * 3);
+        memmove(s->body + 2 * m, src->body + 2 * i, sizeof(double) * 2);
+        s->radius[m] = src->radius[i];
+        s->mat[m] = src->mat[i];
+        s->pflags[m] = src->pflags[i];
+        if (src->order.source && i < src_srcn)
+            s->order.source[m] = src->order.source[i];
+        m++;
+    }
+    s->order.source_n = src->order.source && src_srcn > m ? m : src_srcn;
+    s->n = m;
+    return m;
+}
 
 /* Keeps the particles i with keep[i] != 0, in their order (so that ids keep the order of the whole scene's),
  * dropping the others. Before dem_start; refused for a scene with membranes or riders (their tables name particles
@@ -20,27 +59,45 @@ int sim_keep_particles(dem_sim *s, const unsigned char *keep)
                         "one process (docs/design.md \"Runs over MPI\")");
     if (!(s->whole_volume > 0)) /* until_density's volume: the whole scene's spheres, not the part's */
         s->whole_volume = sim_particle_volume(s);
-    int m = 0;
-    for (int i = 0; i < s->n; i++) {
-        if (!keep[i])
-            continue;
-        memmove(s->x + 3 * m, s->x + 3 * i, sizeof(double) * 3);
-        memmove(s->v + 3 * m, s->v + 3 * i, sizeof(double) * 3);
-        memmove(s->w + 3 * m, s->w + 3 * i, sizeof(double) * 3);
-        memmove(s->body + 2 * m, s->body + 2 * i, sizeof(double) * 2);
-        s->radius[m] = s->radius[i];
-        s->mat[m] = s->mat[i];
-        s->pflags[m] = s->pflags[i];
-        if (s->order.source && i < s->order.source_n)
-            s->order.source[m] = s->order.source[i];
-        m++;
-    }
-    if (s->order.source && s->order.source_n > m)
-        s->order.source_n = m;
-    s->n = m;
+    keep_from(s, s, keep);
     free(s->ghost);
     s->ghost = NULL;
-    return m;
+    return s->n;
+}
+
+dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err, size_t len)
+{
+    err[0] = 0;
+    if (src->run.started || src->be || src->nsetup_mem || src->motion.table || src->scratch.buf) {
+        snprintf(err, len, "sim_part_copy: the run to copy has started");
+        return NULL;
+    }
+    if (src->mesh.nsprings || src->mesh.ntri || src->mesh.nhinges || src->mesh.npatch || src->mesh.natt) {
+        snprintf(err, len, "a scene with membranes or riders cannot be split over ranks yet: run it in one process "
+                 "(docs/design.md \"Runs over MPI\")");
+        return NULL;
+    }
+    dem_sim *s = malloc(sizeof *s);
+    if (!s) {
+        snprintf(err, len, "out of host memory");
+        return NULL;
+    }
+    memcpy(s, src, sizeof *s); /* the set-up's values; the arrays it owns are its own below */
+    s->x = s->v = s->w = s->radius = s->body = NULL;
+    s->mat = NULL, s->pflags = NULL, s->ghost = NULL, s->order.source = NULL;
+    s->setup_mem = NULL, s->nsetup_mem = s->setup_mem_cap = 0;
+    s->mesh.spring_ij = NULL, s->mesh.spring_kr = NULL, s->mesh.tri = NULL, s->mesh.hinge = NULL;
+    s->mesh.hinge_k = NULL, s->mesh.patch = NULL, s->mesh.att = NULL; /* none (refused above); the pressure stays */
+    s->mesh.spring_cap = s->mesh.tri_cap = s->mesh.hinge_cap = s->mesh.patch_cap = s->mesh.att_cap = 0;
+    s->halo_hook = NULL, s->halo_ctx = NULL;
+    if (!(s->whole_volume > 0)) /* as sim_keep_particles sets it */
+        s->whole_volume = sim_particle_volume(src);
+    if (keep_from(s, src, keep) < 0) {
+        snprintf(err, len, "%s", s->report.err);
+        dem_destroy(s);
+        return NULL;
+    }
+    return s;
 }
 
 /* Marks particle i a ghost where ghost[i] != 0 (NULL: none). Before dem_start. */

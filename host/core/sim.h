@@ -242,6 +242,10 @@ void sim_run_record_set(dem_sim *s, const sim_run_record *r);
  * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */
 int sim_keep_particles(dem_sim *s, const unsigned char *keep);
 int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
+/* A new run, not started, with the set-up of src (not started either) and the particles of it that keep selects:
+ * what sim_keep_particles leaves of a run built anew from the scene, without building it (app/run_mpi.c: a split
+ * anew reads no scene file and holds no whole run); NULL with the reason in err */
+dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err, size_t len);
 /* part.c: a split run's messages made on the device (common/halo.h). sim_halo_set gives the particles this rank sends
  * (send[0..nsend): the callers' ids, one message row each, repeats allowed) and its ghosts (recv[0..nrecv)), after
  * dem_start; sim_halo_pack copies the sent particles' rows into out (nsend rows of HALO_W reals of the run's

@@ -21,7 +21,7 @@
  * force is its touching pairs' forces in the order of the partners' stable ids (docs/design.md "Every sum follows the
  * particle ids"), which ghosts do not change, so each own particle keeps the bits it has in one process.
  * The set of ghosts is fixed from dem_mpi_halo_init on: a run whose particles can leave it must be split anew
- * (dem_mpi_state_gather, dem_mpi_state_part, dem_state_set into a run of the new part). */
+ * (dem_mpi_state_move, or dem_mpi_state_gather and dem_mpi_state_part; dem_state_set into a run of the new part). */
 typedef struct {
     MPI_Comm comm;
     int rank, size;
@@ -78,6 +78,22 @@ int dem_mpi_agreed_who(MPI_Comm comm, int e, int *who);
  * split: its history is right); the walls' sums (wall_force, wall_normal_force) are rank 0's (its own particles' where
  * its ghosts are marked: the caller merges the ranks' and sets them, app/run_mpi.c). Not yet for patch contacts (DEM_ERR_ARG). Collective; frees nothing of h. */
 int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g);
+/* The same on rank root alone (root < 0: on every rank, dem_mpi_state_gather): the others receive nothing and their
+ * g holds the header only (no arrays, no contacts), so only one rank's memory holds the whole state (what the
+ * output and checkpoints of a split run are written from, app/run_mpi.c). Collective. */
+int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, int root,
+                            dem_state *g);
+/* A split anew without the whole state on any rank: loc, this rank's state (dem_state_get of its run, whose held
+ * particles have the ascending global ids gid[0..loc->n) and ranks owner[]), goes where the new split keeps it:
+ * each own particle's arrays to every rank r with keeps(arg, id, r), each contact whose lower id this rank owns to
+ * every rank that keeps both its ends; the walls' sums and the rebuild and iteration counts are rank 0's, as a
+ * gather takes them. part: this rank's new part, the nkeep particles of the ascending ids keep_id (those keeps
+ * names for this rank), what dem_mpi_state_part of the gathered whole state would give, bit for bit (tests/
+ * test_mpi_halo.c). keeps must answer the same on every rank; s: any started run of the scene (the arrays'
+ * layout). Not for patch contacts (DEM_ERR_ARG). Collective; returns 0 or a dem_status, the same on every rank. */
+int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, const long *gid, const int *owner,
+                       int (*keeps)(void *arg, long id, int rank), void *arg, int nkeep, const long *keep_id,
+                       dem_state *part);
 /* The part of a whole state g that keep[0..g->n) selects, its particles renumbered in ascending global id, with the
  * contacts of two kept particles: the state to dem_state_set into a rank's new run after a split (s: any started run
  * of the scene, for the arrays' layout). */

@@ -80,8 +80,11 @@ static int fits_int(size_t count, size_t bytes) { return bytes == 0 || count <= 
 
 /* Every collective below is entered by every rank or by none: each local failure is agreed (dem_mpi_agreed) before
  * the next collective, and all ranks leave together. */
-static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *loc, dem_state *g)
+/* root < 0: on every rank; else on rank root alone (the others' g: the header, no arrays or contacts) */
+static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *loc, dem_state *g,
+                        int root)
 {
+    int here = root < 0 || h->rank == root; /* this rank receives the whole state */
     MPI_Comm comm = h->comm;
     int P = h->size, n = h->n, rs = loc->real_size, no = 0;
     /* patch contacts do not travel yet; every rank holds a particle. MC-strain's force and displacements travel with
@@ -102,8 +105,10 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
             dsp[q] = (int)total, total += cnt[q];
         e = total == nglobal ? 0 : DEM_ERR_ARG; /* every particle owned once: the same verdict on every rank */
     }
-    if (!e)
+    if (!e && root < 0)
         MPI_Allgatherv(mine, no, MPI_LONG, allgid, cnt, dsp, MPI_LONG, comm);
+    else if (!e)
+        MPI_Gatherv(mine, no, MPI_LONG, allgid, cnt, dsp, MPI_LONG, root, comm);
     if (!e) { /* the header: rank 0's (the step and the walls are every rank's; the rebuild and iteration counts not) */
         header_copy(g, loc, (int)nglobal);
         MPI_Bcast(&g->rebuilds, 1, MPI_LONG, 0, comm);
@@ -119,11 +124,11 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
         if (!la->data || !la->count) /* the same on every rank: the run's set-up decides it */
             continue;
         if (kind == DEM_MOVE_STAY) { /* the walls' sums: rank 0's (docs/design.md "Runs over MPI") */
-            ga->data = malloc(la->count * es);
+            ga->data = here ? malloc(la->count * es) : NULL;
             if (ga->data)
                 memcpy(ga->data, la->data, la->count * es);
-            if (!(e = dem_mpi_agreed(comm, ga->data ? 0 : DEM_ERR_NOMEM)))
-                MPI_Bcast(ga->data, (int)(la->count * es), MPI_BYTE, 0, comm);
+            if (!(e = dem_mpi_agreed(comm, ga->data || !here ? 0 : DEM_ERR_NOMEM)) && root != 0)
+                MPI_Bcast(ga->data ? ga->data : la->data, (int)(la->count * es), MPI_BYTE, 0, comm);
             continue;
         }
         if (kind < 0 || per <= 0 || la->count % ((size_t)n * per))
@@ -131,9 +136,11 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
         else {
             groups = la->count / ((size_t)n * per), row = (size_t)per * es; /* groups: 1 for a per-particle array */
             ga->count = groups * (size_t)nglobal * per;
-            send = malloc(groups * (size_t)no * row + 1), recv = malloc(groups * (size_t)nglobal * row + 1);
-            ga->data = malloc(ga->count * es + 1);
-            e = !send || !recv || !ga->data ? DEM_ERR_NOMEM : fits_int(groups * (size_t)nglobal, row) ? 0 : DEM_ERR_ARG;
+            send = malloc(groups * (size_t)no * row + 1);
+            recv = here ? malloc(groups * (size_t)nglobal * row + 1) : NULL;
+            ga->data = here ? malloc(ga->count * es + 1) : NULL;
+            e = !send || (here && (!recv || !ga->data)) ? DEM_ERR_NOMEM
+                : fits_int(groups * (size_t)nglobal, row) ? 0 : DEM_ERR_ARG;
         }
         if (!(e = dem_mpi_agreed(comm, e))) {
             for (size_t gr = 0; gr < groups; gr++)
@@ -141,8 +148,11 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
                     memcpy(send + (gr * no + k) * row, (unsigned char *)la->data + (gr * n + own[k]) * row, row);
             for (int q = 0; q < P; q++)
                 bc[q] = (int)(groups * cnt[q] * row), bd[q] = (int)(groups * dsp[q] * row);
-            MPI_Allgatherv(send, (int)(groups * no * row), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
-            for (int q = 0; q < P; q++) /* rank q's block: its groups, each of its cnt[q] rows */
+            if (root < 0)
+                MPI_Allgatherv(send, (int)(groups * no * row), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
+            else
+                MPI_Gatherv(send, (int)(groups * no * row), MPI_BYTE, recv, bc, bd, MPI_BYTE, root, comm);
+            for (int q = 0; here && q < P; q++) /* rank q's block: its groups, each of its cnt[q] rows */
                 for (size_t gr = 0; gr < groups; gr++)
                     for (int k = 0; k < cnt[q]; k++)
                         memcpy((unsigned char *)ga->data + (gr * nglobal + allgid[dsp[q] + k]) * row,
@@ -178,13 +188,17 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
     if (!e) {
         for (int q = 0, at = 0; q < P; q++)
             bd[q] = (int)((size_t)at * rec), at += bc[q], bc[q] = (int)((size_t)bc[q] * rec);
-        recv = malloc((size_t)all * rec + 1);
-        e = dem_mpi_agreed(comm, recv && !pair_alloc(g, all) ? 0 : DEM_ERR_NOMEM);
+        recv = here ? malloc((size_t)all * rec + 1) : NULL;
+        e = dem_mpi_agreed(comm, !here || (recv && !pair_alloc(g, all)) ? 0 : DEM_ERR_NOMEM);
     }
     if (!e) {
-        MPI_Allgatherv(send, (int)((size_t)npo * rec), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
-        qsort(recv, (size_t)all, rec, by_pair); /* ascending i, then j: as a run's state lists them */
-        for (long p = 0; p < all; p++) {
+        if (root < 0)
+            MPI_Allgatherv(send, (int)((size_t)npo * rec), MPI_BYTE, recv, bc, bd, MPI_BYTE, comm);
+        else
+            MPI_Gatherv(send, (int)((size_t)npo * rec), MPI_BYTE, recv, bc, bd, MPI_BYTE, root, comm);
+        if (here) /* ascending i, then j: as a run's state lists them */
+            qsort(recv, (size_t)all, rec, by_pair);
+        for (long p = 0; here && p < all; p++) {
             long ij[2];
             memcpy(ij, recv + (size_t)p * rec, sizeof ij);
             g->pair_i[p] = (int)ij[0], g->pair_j[p] = (int)ij[1];
@@ -195,17 +209,28 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
     return e;
 }
 
-int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g)
+int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, int root,
+                            dem_state *g)
 {
     dem_state loc;
     memset(g, 0, sizeof *g);
     int e = dem_mpi_agreed(h->comm, dem_state_get(h->s, &loc));
     if (!e) /* (its verdict is every rank's already) */
-        e = gather_state(h, gid, owner, nglobal, &loc, g);
+        e = gather_state(h, gid, owner, nglobal, &loc, g, root);
     dem_state_free(&loc);
+    if (!e && root >= 0 && h->rank != root) { /* the header alone: no arrays or contacts were received here */
+        for (int a = 0; a < g->narrays; a++)
+            free(g->arrays[a].data);
+        g->narrays = 0;
+    }
     if (e)
         dem_state_free(g);
     return e;
+}
+
+int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g)
+{
+    return dem_mpi_state_gather_at(h, gid, owner, nglobal, -1, g);
 }
 
 int dem_mpi_state_part(const dem_sim *s, const dem_state *g, const unsigned char *keep, dem_state *part)
@@ -261,6 +286,187 @@ int dem_mpi_state_part(const dem_sim *s, const dem_state *g, const unsigned char
             q++;
         }
     free(one), free(local);
+    if (e)
+        dem_state_free(part);
+    return e;
+}
+
+/* ---- a split anew without the whole state: each rank's own particles and contacts go to the ranks that keep them ---- */
+
+static int by_id(const void *a, const void *b)
+{
+    long p, q; /* copied out: a record is not aligned for a long */
+    memcpy(&p, a, sizeof p), memcpy(&q, b, sizeof q);
+    return (p > q) - (p < q);
+}
+
+/* the place of global id v in the ascending ids[0..n), -1 where it is not there */
+static int find_id(const long *ids, int n, long v)
+{
+    int lo = 0, hi = n - 1;
+    while (lo <= hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (ids[mid] == v)
+            return mid;
+        if (ids[mid] < v)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return -1;
+}
+
+/* counts per rank to byte counts and displacements (of rec bytes each); 0, or DEM_ERR_ARG past MPI's int counts */
+static int byte_counts(int P, const int *cnt, size_t rec, int *bc, int *bd, size_t *total)
+{
+    size_t at = 0;
+    for (int q = 0; q < P; q++) {
+        if (!fits_int(at + (size_t)cnt[q], rec))
+            return DEM_ERR_ARG;
+        bd[q] = (int)(at * rec), bc[q] = (int)((size_t)cnt[q] * rec), at += (size_t)cnt[q];
+    }
+    *total = at;
+    return 0;
+}
+
+int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, const long *gid, const int *owner,
+                       int (*keeps)(void *arg, long id, int rank), void *arg, int nkeep, const long *keep_id,
+                       dem_state *part)
+{
+    int P, me, n = loc->n, rs = loc->real_size;
+    MPI_Comm_size(comm, &P), MPI_Comm_rank(comm, &me);
+    memset(part, 0, sizeof *part);
+    int e = loc->npatch ? DEM_ERR_ARG : 0; /* patch contacts do not travel yet */
+    /* a particle's record: its global id, then its rows of every array that moves with it, in the arrays' order */
+    size_t prec = sizeof(long), es[DEM_STATE_MAX_ARRAYS], row[DEM_STATE_MAX_ARRAYS], groups[DEM_STATE_MAX_ARRAYS];
+    int kind[DEM_STATE_MAX_ARRAYS];
+    for (int a = 0; !e && a < loc->narrays; a++) {
+        const dem_state_array *la = &loc->arrays[a];
+        int per;
+        kind[a] = sim_state_array_layout(s, la->name, &per);
+        es[a] = la->elem == DEM_STATE_REAL ? (size_t)rs : sizeof(int), row[a] = groups[a] = 0;
+        if (!la->data || !la->count || kind[a] == DEM_MOVE_STAY) /* the same on every rank: the run's set-up */
+            continue;
+        if (kind[a] < 0 || per <= 0 || n <= 0 || la->count % ((size_t)n * per))
+            e = DEM_ERR_ARG;
+        else
+            groups[a] = la->count / ((size_t)n * per), row[a] = (size_t)per * es[a], prec += groups[a] * row[a];
+    }
+    pair_bytes pb = pair_bytes_of(loc);
+    size_t qrec = 2 * sizeof(long) + pb.all;
+    int *cnt = calloc(8 * (size_t)P, sizeof(int)); /* particles and pairs per rank, sent and received, bytes, displs */
+    int *pc = cnt, *qc = cnt ? cnt + P : NULL, *pr = cnt ? cnt + 2 * P : NULL, *qr = cnt ? cnt + 3 * P : NULL;
+    int *bc = cnt ? cnt + 4 * P : NULL, *bd = cnt ? cnt + 5 * P : NULL, *rc = cnt ? cnt + 6 * P : NULL,
+        *rd = cnt ? cnt + 7 * P : NULL;
+    long *at = malloc(sizeof(long) * (size_t)P); /* per rank: the next record's place in the send buffer */
+    unsigned char *send = NULL, *recv = NULL;
+    e = e ? e : cnt && at ? 0 : DEM_ERR_NOMEM;
+    /* who keeps what: every own particle to each rank that keeps it, each contact whose lower id is ours to each rank
+     * that keeps both its ends (our copy of it is right: our rows held it since the last split) */
+    for (int k = 0; !e && k < n; k++)
+        for (int r = 0; owner[k] == me && r < P; r++)
+            pc[r] += keeps(arg, gid[k], r) != 0;
+    for (long p = 0; !e && p < loc->npairs; p++)
+        for (int r = 0; owner[loc->pair_i[p]] == me && r < P; r++)
+            qc[r] += keeps(arg, gid[loc->pair_i[p]], r) && keeps(arg, gid[loc->pair_j[p]], r);
+    size_t ptot = 0, qtot = 0, prtot = 0, qrtot = 0;
+    if (!(e = dem_mpi_agreed(comm, e))) {
+        MPI_Alltoall(pc, 1, MPI_INT, pr, 1, MPI_INT, comm);
+        MPI_Alltoall(qc, 1, MPI_INT, qr, 1, MPI_INT, comm);
+        e = byte_counts(P, pc, prec, bc, bd, &ptot) || byte_counts(P, pr, prec, rc, rd, &prtot) ? DEM_ERR_ARG : 0;
+        e = e ? e : prtot == (size_t)nkeep ? 0 : DEM_ERR_ARG; /* every kept particle came, once */
+        send = e ? NULL : malloc(ptot * prec + 1), recv = e ? NULL : malloc(prtot * prec + 1);
+        e = e ? e : send && recv ? 0 : DEM_ERR_NOMEM;
+    }
+    for (int r = 0; !e && r < P; r++)
+        at[r] = bd[r];
+    for (int k = 0; !e && k < n; k++)
+        for (int r = 0; owner[k] == me && r < P; r++)
+            if (keeps(arg, gid[k], r)) {
+                unsigned char *o = send + at[r];
+                memcpy(o, &gid[k], sizeof(long)), o += sizeof(long);
+                for (int a = 0; a < loc->narrays; a++)
+                    for (size_t g = 0; g < groups[a]; g++, o += row[a])
+                        memcpy(o, (const unsigned char *)loc->arrays[a].data + (g * (size_t)n + (size_t)k) * row[a],
+                               row[a]);
+                at[r] += (long)prec;
+            }
+    if (!(e = dem_mpi_agreed(comm, e))) {
+        MPI_Alltoallv(send, bc, bd, MPI_BYTE, recv, rc, rd, MPI_BYTE, comm);
+        qsort(recv, prtot, prec, by_id); /* ascending global id: the part's order */
+        for (int k = 0; k < nkeep; k++) {
+            long v;
+            memcpy(&v, recv + (size_t)k * prec, sizeof v);
+            e = e ? e : v == keep_id[k] ? 0 : DEM_ERR_ARG;
+        }
+    }
+    /* the part: the header (rank 0's rebuild and iteration counts, as a gather takes them), its arrays */
+    if (!(e = dem_mpi_agreed(comm, e))) {
+        header_copy(part, loc, nkeep);
+        MPI_Bcast(&part->rebuilds, 1, MPI_LONG, 0, comm);
+        MPI_Bcast(&part->mc, (int)sizeof part->mc, MPI_BYTE, 0, comm);
+    }
+    size_t off = sizeof(long);
+    for (int a = 0; !e && a < loc->narrays; a++) {
+        const dem_state_array *la = &loc->arrays[a];
+        dem_state_array *pa = &part->arrays[part->narrays++];
+        *pa = *la, pa->data = NULL;
+        if (!la->data || !la->count)
+            continue;
+        if (kind[a] == DEM_MOVE_STAY) { /* the walls' sums: rank 0's, as a gather takes them */
+            pa->data = malloc(la->count * es[a]);
+            if (pa->data)
+                memcpy(pa->data, la->data, la->count * es[a]);
+            if (!(e = dem_mpi_agreed(comm, pa->data ? 0 : DEM_ERR_NOMEM)))
+                MPI_Bcast(pa->data, (int)(la->count * es[a]), MPI_BYTE, 0, comm);
+            continue;
+        }
+        pa->count = la->count / (size_t)n * (size_t)nkeep;
+        pa->data = malloc(pa->count * es[a] + 1);
+        e = dem_mpi_agreed(comm, pa->data ? 0 : DEM_ERR_NOMEM); /* every rank at every meeting of this loop */
+        for (int k = 0; !e && k < nkeep; k++)
+            for (size_t g = 0; g < groups[a]; g++)
+                memcpy((unsigned char *)pa->data + (g * (size_t)nkeep + (size_t)k) * row[a],
+                       recv + (size_t)k * prec + off + g * row[a], row[a]);
+        off += groups[a] * row[a];
+    }
+    e = dem_mpi_agreed(comm, e);
+    free(send), free(recv);
+    send = recv = NULL;
+    /* the contacts */
+    if (!e) {
+        e = byte_counts(P, qc, qrec, bc, bd, &qtot) || byte_counts(P, qr, qrec, rc, rd, &qrtot) ? DEM_ERR_ARG : 0;
+        send = e ? NULL : malloc(qtot * qrec + 1), recv = e ? NULL : malloc(qrtot * qrec + 1);
+        e = e ? e : send && recv && !pair_alloc(part, (long)qrtot) ? 0 : DEM_ERR_NOMEM;
+    }
+    for (int r = 0; !e && r < P; r++)
+        at[r] = bd[r];
+    for (long p = 0; !e && p < loc->npairs; p++) {
+        long ij[2] = {gid[loc->pair_i[p]], gid[loc->pair_j[p]]};
+        for (int r = 0; owner[loc->pair_i[p]] == me && r < P; r++)
+            if (keeps(arg, ij[0], r) && keeps(arg, ij[1], r)) {
+                memcpy(send + at[r], ij, sizeof ij);
+                pair_copy((dem_state *)loc, p, send + at[r] + sizeof ij, &pb, 0);
+                at[r] += (long)qrec;
+            }
+    }
+    if (!(e = dem_mpi_agreed(comm, e))) {
+        MPI_Alltoallv(send, bc, bd, MPI_BYTE, recv, rc, rd, MPI_BYTE, comm);
+        qsort(recv, qrtot, qrec, by_pair); /* ascending i, then j: as a run's state lists them */
+        for (size_t p = 0; !e && p < qrtot; p++) {
+            long ij[2];
+            memcpy(ij, recv + p * qrec, sizeof ij);
+            int i = find_id(keep_id, nkeep, ij[0]), j = find_id(keep_id, nkeep, ij[1]);
+            if (i < 0 || j < 0) {
+                e = DEM_ERR_ARG;
+                break;
+            }
+            part->pair_i[p] = i, part->pair_j[p] = j;
+            pair_copy(part, (long)p, recv + p * qrec + sizeof ij, &pb, 1);
+        }
+        e = dem_mpi_agreed(comm, e);
+    }
+    free(send), free(recv), free(cnt), free(at);
     if (e)
         dem_state_free(part);
     return e;
