@@ -838,14 +838,17 @@ static int phase_start(run_ctx *c)
     scene_run whole_run = *run;
     if (c->R) /* split over ranks: the whole run is only read (output, checkpoints), on the host */
         whole_run.cfg.backend = DEM_BACKEND_REFERENCE;
-    int se = start_with_note(c->s, &whole_run, o->progress != 0 && !c->R), who = -1;
+    /* ... and by rank 0 alone, which writes: the other ranks' whole run is the scene's set-up, never started (its
+     * memory is its particles' description, not a run's buffers; the parts come from rank 0's, run_ranks.start) */
+    int whole_here = !c->R || c->R->rank == 0;
+    int se = whole_here ? start_with_note(c->s, &whole_run, o->progress != 0 && !c->R) : 0, who = -1;
     if (se)
         snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
     if (c->R && (se = c->R->agree(c->R, se, &who))) /* every rank goes on, or none; the failing rank's words */
         c->R->share(c->R, who, c->err, sizeof c->err);
     if (se)
         return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
-    int ce = c->have_ck && dem_state_set(c->s, &c->ck.st);
+    int ce = c->have_ck && whole_here && dem_state_set(c->s, &c->ck.st);
     if (ce)
         snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
     if (c->R && (ce = c->R->agree(c->R, ce, &who)))
@@ -859,6 +862,8 @@ static int phase_start(run_ctx *c)
             return fail_with(e == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
         }
     }
+    if (c->have_ck) /* the checkpoint's state is in the run (over ranks: in rank 0's whole run and the parts) */
+        dem_state_free(&c->ck.st);
     c->show = run_quiet ? 0 : o->progress < 0 ? isatty(2) : o->progress;
     if (run_quiet)
         return 0;

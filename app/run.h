@@ -25,9 +25,10 @@ typedef struct {
 int run_scene(const run_opts *o);
 
 /* A run split over MPI ranks (app/run_mpi.c, linked into dem with the MPI layer; docs/design.md "Runs over MPI"):
- * run.c drives it through these calls and needs no MPI itself. Every rank loads the scene and holds the whole run
- * as `whole`, started on the reference backend and never stepped: what the output, checkpoints and reports read,
- * rank 0's brought up to date from the ranks' parts (sync) where they read it. The steps are the parts': each rank's dem_sim
+ * run.c drives it through these calls and needs no MPI itself. Every rank loads the scene and builds the whole run
+ * as `whole`; rank 0 alone starts it (on the reference backend, never stepped, restored where the run restarts): what
+ * the output, checkpoints and reports read, brought up to date from the ranks' parts (sync) where they read it; the
+ * other ranks' is the set-up only. The steps are the parts': each rank's dem_sim
  * holds the particles of its subdomain and, as ghosts, those of other ranks that can touch them. Rank 0 writes the
  * output and the checkpoints and prints; every other rank is quiet. Each call is collective. */
 typedef struct run_ranks run_ranks;
@@ -40,8 +41,8 @@ struct run_ranks {
     long (*agree_min)(run_ranks *r, long v);
     /* message msg of rank who to every rank (msg of len bytes) */
     void (*share)(run_ranks *r, int who, char *msg, size_t len);
-    /* the parts made and started (cfg: the run's device, precision, backend) from whole's state (whole started,
-     * and restored where the run restarts), build
+    /* the parts made and started (cfg: the run's device, precision, backend) from rank 0's whole's state (started
+     * there, and restored where the run restarts; not started on the other ranks), build
      * making a new unstarted whole run of the scene each time a part is made; dem_status, message in err */
     int (*start)(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(*build)(void *arg, char *err,
                  size_t len), void *arg, char *err, size_t len);

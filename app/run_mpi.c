@@ -185,11 +185,12 @@ static int keeps(void *arg, long id, int rank)
     return k->owner[id] == rank || box_dist(k->x + 3 * id, k->boxes[rank]) <= k->width;
 }
 
-/* This rank's part, started, with its halo, split by the positions x[3 n] (the same on every rank): its state cut
- * from the whole state g (at the start), or, where g is NULL, moved from each rank's state loc of its last part (held
- * particles of global ids lgid, ranks lowner: dem_mpi_state_move). Collective; agreed; frees nothing it is given. */
-static int split_from(rr *q, long n, const double *x, const dem_state *g, const dem_state *loc, const long *lgid,
-                      const int *lowner, char *err, size_t len)
+/* This rank's part, started, with its halo, split by the positions x[3 n] (the same on every rank), its state moved
+ * from each rank's state loc (held particles of global ids lgid, ranks lowner: dem_mpi_state_move): the ranks' last
+ * parts, or at the start rank 0's whole run (every particle rank 0's; loc NULL on the other ranks). Collective;
+ * agreed; frees nothing it is given. */
+static int split_from(rr *q, long n, const double *x, const dem_state *loc, const long *lgid, const int *lowner,
+                      char *err, size_t len)
 {
     int P = q->pub.size, me = q->pub.rank, e = 0;
     err[0] = 0;
@@ -246,10 +247,7 @@ static int split_from(rr *q, long n, const double *x, const dem_state *g, const 
         e = dem_start(q->part, &q->cfg);
     dem_state ps;
     memset(&ps, 0, sizeof ps);
-    if (g) { /* the start: every rank holds the whole state */
-        if (!e && (e = dem_mpi_state_part(q->part, g, keep, &ps)) == 0)
-            e = dem_state_set(q->part, &ps);
-    } else if (!(e = agreed_msg(q, e, q->part, err, len))) { /* anew: the parts' states moved where they are kept */
+    if (!(e = agreed_msg(q, e, q->part, err, len))) { /* the states moved where they are kept */
         e = dem_mpi_state_move(q->comm, q->part, loc, lgid, lowner, keeps, &sk, q->nloc, q->gid, &ps); /* agreed */
         if (e)
             snprintf(err, len, "the particles could not be moved to their new ranks (code %d: out of host memory, "
@@ -287,32 +285,45 @@ static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(
                                                       * touching own particles miss partners of theirs */
     if (tm && atof(tm) > 0)
         q->margin = atof(tm) * q->rmax;
-    for (int d = 0; d < 3; d++) /* the whole run's domain (given, or made at its start from all the particles) */
-        q->domain[d] = whole->domain.lo[d], q->domain[3 + d] = whole->domain.hi[d];
-    q->step = dem_step_index(whole);
     err[0] = 0;
     q->tmpl = build(arg, err, len);
-    int e = q->tmpl ? 0 : DEM_ERR_ARG;
+    int e = q->tmpl ? 0 : DEM_ERR_ARG, me = r->rank;
     if ((e = agreed_msg(q, e, NULL, err, len)))
         return e;
+    /* rank 0 alone holds the whole run started (restored where the run restarts): its state is the parts' source, its
+     * domain (given, or made at its start from all the particles) every part's, its step theirs */
     dem_state g;
-    int got = dem_state_get(whole, &g);
-    if ((e = agreed_msg(q, got, whole, err, len))) {
+    memset(&g, 0, sizeof g);
+    int got = me == 0 ? dem_state_get(whole, &g) : 0;
+    if ((e = agreed_msg(q, got, me == 0 ? whole : NULL, err, len))) {
         if (!got) /* this rank's was got: another rank's failed */
             dem_state_free(&g);
         return e;
     }
-    long n = g.n;
+    for (int d = 0; me == 0 && d < 3; d++)
+        q->domain[d] = whole->domain.lo[d], q->domain[3 + d] = whole->domain.hi[d];
+    q->step = me == 0 ? dem_step_index(whole) : 0;
+    MPI_Bcast(q->domain, 6, MPI_DOUBLE, 0, q->comm);
+    MPI_Bcast(&q->step, 1, MPI_LONG, 0, q->comm);
+    long n = q->n;
     double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
-    const dem_state_array *xa = dem_state_find(&g, "x");
-    e = x && xa ? 0 : DEM_ERR_NOMEM;
-    for (long k = 0; !e && k < 3 * n; k++)
-        x[k] = g.real_size == 8 ? ((const double *)xa->data)[k] : (double)((const float *)xa->data)[k];
+    long *gid = me == 0 ? malloc(sizeof(long) * (size_t)(n ? n : 1)) : NULL;
+    int *owner = me == 0 ? calloc((size_t)(n ? n : 1), sizeof(int)) : NULL; /* every particle rank 0's */
+    const dem_state_array *xa = me == 0 ? dem_state_find(&g, "x") : NULL;
+    e = x && (me != 0 || (gid && owner && xa && g.n == n)) ? 0 : DEM_ERR_NOMEM;
+    for (long k = 0; !e && me == 0 && k < n; k++) {
+        gid[k] = k;
+        for (int d = 0; d < 3; d++)
+            x[3 * k + d] = sim_real_at(xa->data, (size_t)(3 * k + d), g.real_size);
+    }
+    e = e ? e : 3 * n <= INT_MAX ? 0 : DEM_ERR_ARG;
     if ((e = agreed_msg(q, e, NULL, err, len)))
-        snprintf(err, len, "out of host memory splitting %ld particles", n);
-    else
-        e = split_from(q, n, x, &g, NULL, NULL, NULL, err, len);
-    free(x);
+        snprintf(err, len, "%ld particles: out of host memory, or more than MPI's int counts take", n);
+    else {
+        MPI_Bcast(x, (int)(3 * n), MPI_DOUBLE, 0, q->comm); /* the split cuts by them, on every rank the same */
+        e = split_from(q, n, x, me == 0 ? &g : NULL, gid, owner, err, len);
+    }
+    free(x), free(gid), free(owner);
     dem_state_free(&g);
     return e;
 }
@@ -375,7 +386,7 @@ static int split_anew(rr *q, char *err, size_t len)
     int *lowner = q->owner;
     q->gid = NULL, q->owner = NULL;
     drop_part(q);
-    e = split_from(q, n, x, NULL, &loc, lgid, lowner, err, len);
+    e = split_from(q, n, x, &loc, lgid, lowner, err, len);
     if (!e)
         sim_run_record_set(q->part, &rec);
     free(x), free(lgid), free(lowner);

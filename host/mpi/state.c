@@ -5,6 +5,7 @@
 #include "dem_mpi.h"
 #include "sim.h"
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -329,31 +330,68 @@ static int byte_counts(int P, const int *cnt, size_t rec, int *bc, int *bd, size
     return 0;
 }
 
+/* one array of a state as rank 0 holds it: what every rank needs to send and receive its rows alike */
+typedef struct {
+    char name[64];
+    int kind, present; /* sim_state_array_layout's kind; whether rank 0 holds data for it */
+    size_t es, groups, row, count;
+} move_array;
+
 int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, const long *gid, const int *owner,
                        int (*keeps)(void *arg, long id, int rank), void *arg, int nkeep, const long *keep_id,
                        dem_state *part)
 {
-    int P, me, n = loc->n, rs = loc->real_size;
+    int P, me;
     MPI_Comm_size(comm, &P), MPI_Comm_rank(comm, &me);
     memset(part, 0, sizeof *part);
-    int e = loc->npatch ? DEM_ERR_ARG : 0; /* patch contacts do not travel yet */
-    /* a particle's record: its global id, then its rows of every array that moves with it, in the arrays' order */
-    size_t prec = sizeof(long), es[DEM_STATE_MAX_ARRAYS], row[DEM_STATE_MAX_ARRAYS], groups[DEM_STATE_MAX_ARRAYS];
-    int kind[DEM_STATE_MAX_ARRAYS];
-    for (int a = 0; !e && a < loc->narrays; a++) {
-        const dem_state_array *la = &loc->arrays[a];
-        int per;
-        kind[a] = sim_state_array_layout(s, la->name, &per);
-        es[a] = la->elem == DEM_STATE_REAL ? (size_t)rs : sizeof(int), row[a] = groups[a] = 0;
-        if (!la->data || !la->count || kind[a] == DEM_MOVE_STAY) /* the same on every rank: the run's set-up */
-            continue;
-        if (kind[a] < 0 || per <= 0 || n <= 0 || la->count % ((size_t)n * per))
-            e = DEM_ERR_ARG;
-        else
-            groups[a] = la->count / ((size_t)n * per), row[a] = (size_t)per * es[a], prec += groups[a] * row[a];
+    int n = loc ? loc->n : 0, e = (loc && loc->npatch) || (me == 0 && !loc) ? DEM_ERR_ARG : 0; /* no patch contacts */
+    /* the layout, rank 0's for every rank: its header (the step, the walls, what the run keeps; the rebuild and
+     * iteration counts, as a gather takes them) and its arrays. A rank that holds nothing (loc NULL) takes it whole. */
+    dem_state hdr;
+    static move_array lay[DEM_STATE_MAX_ARRAYS]; /* (1 rank per process: no second caller at a time) */
+    memset(&hdr, 0, sizeof hdr), memset(lay, 0, sizeof lay);
+    if (me == 0 && loc) {
+        hdr = *loc;
+        for (int a = 0; !e && a < loc->narrays; a++) {
+            const dem_state_array *la = &loc->arrays[a];
+            move_array *m = &lay[a];
+            int per;
+            snprintf(m->name, sizeof m->name, "%s", la->name);
+            m->kind = sim_state_array_layout(s, la->name, &per);
+            m->es = la->elem == DEM_STATE_REAL ? (size_t)loc->real_size : sizeof(int), m->count = la->count;
+            m->present = la->data && la->count;
+            if (!m->present || m->kind == DEM_MOVE_STAY) /* the walls' sums travel whole, from rank 0 */
+                continue;
+            if (m->kind < 0 || per <= 0 || n <= 0 || la->count % ((size_t)n * per))
+                e = DEM_ERR_ARG;
+            else
+                m->groups = la->count / ((size_t)n * per), m->row = (size_t)per * m->es;
+        }
     }
-    pair_bytes pb = pair_bytes_of(loc);
+    if ((e = dem_mpi_agreed(comm, e)))
+        return e;
+    MPI_Bcast(&hdr, (int)sizeof hdr, MPI_BYTE, 0, comm); /* its pointers are rank 0's: never read here */
+    MPI_Bcast(lay, (int)sizeof lay, MPI_BYTE, 0, comm);
+    /* each array's description in this process (its name's and unit's addresses): loc's, or the library's list */
+    dem_state names;
+    memset(&names, 0, sizeof names);
+    names.n = nkeep, names.nwalls = hdr.nwalls, names.real_size = hdr.real_size, names.has_hist = hdr.has_hist;
+    names.has_mc = hdr.has_mc, names.has_law = hdr.has_law, names.has_rspring = hdr.has_rspring;
+    dem_state_arrays(&names);
+    const dem_state_array *desc[DEM_STATE_MAX_ARRAYS] = {0};
+    for (int a = 0; !e && a < hdr.narrays; a++) {
+        const dem_state *from = loc ? loc : &names;
+        for (int b = 0; b < from->narrays && !desc[a]; b++)
+            if (!strcmp(from->arrays[b].name, lay[a].name))
+                desc[a] = &from->arrays[b];
+        e = desc[a] && (!loc || (loc->narrays == hdr.narrays && desc[a] == &loc->arrays[a])) ? 0 : DEM_ERR_ARG;
+    }
+    size_t prec = sizeof(long); /* a particle's record: its global id, then its rows of every array that moves */
+    for (int a = 0; a < hdr.narrays; a++)
+        prec += lay[a].groups * lay[a].row;
+    pair_bytes pb = pair_bytes_of(&hdr);
     size_t qrec = 2 * sizeof(long) + pb.all;
+    long npairs = loc ? loc->npairs : 0;
     int *cnt = calloc(8 * (size_t)P, sizeof(int)); /* particles and pairs per rank, sent and received, bytes, displs */
     int *pc = cnt, *qc = cnt ? cnt + P : NULL, *pr = cnt ? cnt + 2 * P : NULL, *qr = cnt ? cnt + 3 * P : NULL;
     int *bc = cnt ? cnt + 4 * P : NULL, *bd = cnt ? cnt + 5 * P : NULL, *rc = cnt ? cnt + 6 * P : NULL,
@@ -366,7 +404,7 @@ int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, co
     for (int k = 0; !e && k < n; k++)
         for (int r = 0; owner[k] == me && r < P; r++)
             pc[r] += keeps(arg, gid[k], r) != 0;
-    for (long p = 0; !e && p < loc->npairs; p++)
+    for (long p = 0; !e && p < npairs; p++)
         for (int r = 0; owner[loc->pair_i[p]] == me && r < P; r++)
             qc[r] += keeps(arg, gid[loc->pair_i[p]], r) && keeps(arg, gid[loc->pair_j[p]], r);
     size_t ptot = 0, qtot = 0, prtot = 0, qrtot = 0;
@@ -385,10 +423,10 @@ int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, co
             if (keeps(arg, gid[k], r)) {
                 unsigned char *o = send + at[r];
                 memcpy(o, &gid[k], sizeof(long)), o += sizeof(long);
-                for (int a = 0; a < loc->narrays; a++)
-                    for (size_t g = 0; g < groups[a]; g++, o += row[a])
-                        memcpy(o, (const unsigned char *)loc->arrays[a].data + (g * (size_t)n + (size_t)k) * row[a],
-                               row[a]);
+                for (int a = 0; a < hdr.narrays; a++)
+                    for (size_t g = 0; g < lay[a].groups; g++, o += lay[a].row)
+                        memcpy(o, (const unsigned char *)loc->arrays[a].data +
+                                      (g * (size_t)n + (size_t)k) * lay[a].row, lay[a].row);
                 at[r] += (long)prec;
             }
     if (!(e = dem_mpi_agreed(comm, e))) {
@@ -400,35 +438,32 @@ int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, co
             e = e ? e : v == keep_id[k] ? 0 : DEM_ERR_ARG;
         }
     }
-    /* the part: the header (rank 0's rebuild and iteration counts, as a gather takes them), its arrays */
-    if (!(e = dem_mpi_agreed(comm, e))) {
-        header_copy(part, loc, nkeep);
-        MPI_Bcast(&part->rebuilds, 1, MPI_LONG, 0, comm);
-        MPI_Bcast(&part->mc, (int)sizeof part->mc, MPI_BYTE, 0, comm);
-    }
+    /* the part: rank 0's header, its arrays */
+    if (!(e = dem_mpi_agreed(comm, e)))
+        header_copy(part, &hdr, nkeep);
     size_t off = sizeof(long);
-    for (int a = 0; !e && a < loc->narrays; a++) {
-        const dem_state_array *la = &loc->arrays[a];
+    for (int a = 0; !e && a < hdr.narrays; a++) {
+        const move_array *m = &lay[a];
         dem_state_array *pa = &part->arrays[part->narrays++];
-        *pa = *la, pa->data = NULL;
-        if (!la->data || !la->count)
+        *pa = *desc[a], pa->count = m->count, pa->data = NULL;
+        if (!m->present)
             continue;
-        if (kind[a] == DEM_MOVE_STAY) { /* the walls' sums: rank 0's, as a gather takes them */
-            pa->data = malloc(la->count * es[a]);
-            if (pa->data)
-                memcpy(pa->data, la->data, la->count * es[a]);
+        if (m->kind == DEM_MOVE_STAY) { /* the walls' sums: rank 0's, as a gather takes them */
+            pa->data = malloc(m->count * m->es + 1);
+            if (pa->data && me == 0)
+                memcpy(pa->data, loc->arrays[a].data, m->count * m->es);
             if (!(e = dem_mpi_agreed(comm, pa->data ? 0 : DEM_ERR_NOMEM)))
-                MPI_Bcast(pa->data, (int)(la->count * es[a]), MPI_BYTE, 0, comm);
+                MPI_Bcast(pa->data, (int)(m->count * m->es), MPI_BYTE, 0, comm);
             continue;
         }
-        pa->count = la->count / (size_t)n * (size_t)nkeep;
-        pa->data = malloc(pa->count * es[a] + 1);
+        pa->count = m->groups * (m->row / m->es) * (size_t)nkeep;
+        pa->data = malloc(pa->count * m->es + 1);
         e = dem_mpi_agreed(comm, pa->data ? 0 : DEM_ERR_NOMEM); /* every rank at every meeting of this loop */
         for (int k = 0; !e && k < nkeep; k++)
-            for (size_t g = 0; g < groups[a]; g++)
-                memcpy((unsigned char *)pa->data + (g * (size_t)nkeep + (size_t)k) * row[a],
-                       recv + (size_t)k * prec + off + g * row[a], row[a]);
-        off += groups[a] * row[a];
+            for (size_t g = 0; g < m->groups; g++)
+                memcpy((unsigned char *)pa->data + (g * (size_t)nkeep + (size_t)k) * m->row,
+                       recv + (size_t)k * prec + off + g * m->row, m->row);
+        off += m->groups * m->row;
     }
     e = dem_mpi_agreed(comm, e);
     free(send), free(recv);
@@ -441,7 +476,7 @@ int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, co
     }
     for (int r = 0; !e && r < P; r++)
         at[r] = bd[r];
-    for (long p = 0; !e && p < loc->npairs; p++) {
+    for (long p = 0; !e && p < npairs; p++) {
         long ij[2] = {gid[loc->pair_i[p]], gid[loc->pair_j[p]]};
         for (int r = 0; owner[loc->pair_i[p]] == me && r < P; r++)
             if (keeps(arg, ij[0], r) && keeps(arg, ij[1], r)) {
