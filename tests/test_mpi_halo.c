@@ -7,7 +7,8 @@
  * comes down; the slabs cut across x, so contacts and their tangential histories cross the cuts. The halo is fixed
  * here: the test checks that no particle moved by half its margin (every 50 steps), else its premise would not hold;
  * test_split_anew splits the run anew twice, particles and contacts migrating (moved from each rank's state,
- * dem_mpi_state_move, against the whole state cut; the last part a copy of an unstarted whole run, sim_part_copy);
+ * dem_mpi_state_move, against the whole state cut, from every rank and from rank 0 alone holding it; the last part
+ * a copy of an unstarted whole run, sim_part_copy);
  * test_refusals, what the halo refuses.
  * Reference and PoCL, fp64 and fp32. Every verdict is agreed by all ranks before it is asserted; a rank's own failing
  * call ends all ranks (tests/mpi_util.h). */
@@ -295,6 +296,20 @@ static void test_split_anew(void **st)
                            "contacts) %s the part cut from the whole\n", bc->name, size, phase, pm.n, pm.npairs,
                            same ? "equals" : "DIFFERS from");
                 assert_true(all_ok(same && pm.npairs > 0));
+                /* and moved from rank 0 alone holding the whole state, the others none (dem run's start) */
+                static long ident[NTOT];
+                static int all0[NTOT];
+                for (int k = 0; k < NTOT; k++)
+                    ident[k] = k, all0[k] = 0;
+                dem_state p0;
+                REQUIRE0(dem_mpi_state_move(MPI_COMM_WORLD, next, rank == 0 ? &g : NULL, ident, all0, slab_keeps, &sl,
+                                            n, gid, &p0));
+                int same0 = states_equal(&p0, &ps);
+                if (rank == 0)
+                    printf("  %s, %d ranks, split %d: moved from rank 0's whole state, the part %s the part cut\n",
+                           bc->name, size, phase, same0 ? "equals" : "DIFFERS from");
+                assert_true(all_ok(same0));
+                dem_state_free(&p0);
                 REQUIRE_SIM(next, dem_state_set(next, &pm));
                 dem_state_free(&ps), dem_state_free(&pm), dem_state_free(&loc), dem_state_free(&g);
                 dem_mpi_halo_free(&h);
