@@ -24,7 +24,9 @@ typedef struct {
     dem_config cfg;                                   /* the parts' (the run's device, precision, backend) */
     dem_sim *(*build)(void *arg, char *err, size_t len); /* a new unstarted whole run of the scene */
     void *arg;
-    dem_sim *tmpl;                                    /* one, built once: what each part is copied from */
+    dem_sim *tmpl;                                    /* rank 0's, built once: what each part is copied from */
+    const dem_sim *from;                              /* what each part is copied from: tmpl, or on the other ranks
+                                                         their whole run, which is not started */
     dem_sim *part;                                    /* this rank's particles and ghosts, started */
     dem_mpi_halo h;
     int have_h;
@@ -237,7 +239,7 @@ static int split_from(rr *q, long n, const double *x, const dem_state *loc, cons
                 m++;
             }
     }
-    if (!e && !(q->part = sim_part_copy(q->tmpl, keep, err, len))) /* no scene file read again */
+    if (!e && !(q->part = sim_part_copy(q->from, keep, err, len))) /* no scene file read again */
         e = DEM_ERR_NOMEM;
     if (!e && sim_set_ghosts(q->part, ghost))
         e = DEM_ERR_NOMEM;
@@ -286,8 +288,10 @@ static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(
     if (tm && atof(tm) > 0)
         q->margin = atof(tm) * q->rmax;
     err[0] = 0;
-    q->tmpl = build(arg, err, len);
-    int e = q->tmpl ? 0 : DEM_ERR_ARG, me = r->rank;
+    int me = r->rank;
+    q->tmpl = me == 0 ? build(arg, err, len) : NULL; /* rank 0's whole run is started: a copy of its set-up */
+    q->from = me == 0 ? q->tmpl : whole;
+    int e = q->from ? 0 : DEM_ERR_ARG;
     if ((e = agreed_msg(q, e, NULL, err, len)))
         return e;
     /* rank 0 alone holds the whole run started (restored where the run restarts): its state is the parts' source, its
