@@ -23,6 +23,7 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     /* frames: one frame per chunk, split along particles so that a chunk stays below ~4 MiB */
     while (rank > 1 && chunk[1] > 1 && chunk[1] * (rank > 2 ? d2 : 1) * 8 > ((hsize_t)4 << 20))
         chunk[1] = (chunk[1] + 1) / 2;
+    r->chunk1 = rank > 1 ? chunk[1] : 1;
     hid_t space = H5Screate_simple(rank, r->dims, maxd), dcpl = H5Pcreate(H5P_DATASET_CREATE);
     int ok = space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0 && H5Pset_shuffle(dcpl) >= 0 &&
              H5Pset_deflate(dcpl, (unsigned)level) >= 0;
@@ -71,6 +72,36 @@ int h5rows_append(h5rows *r, const void *row)
         return write_rows(r, row, 1);
     memcpy(r->buf + r->nbuf * r->row_bytes, row, r->row_bytes);
     return ++r->nbuf == r->cap ? h5rows_flush(r) : 0;
+}
+
+int h5rows_append_part(h5rows *r, hsize_t a, hsize_t b, const void *part)
+{
+    hsize_t d1 = r->rank > 1 ? r->dims[1] : 1, d2 = r->rank > 2 ? r->dims[2] : 1;
+    size_t el = r->row_bytes / (size_t)(d1 * d2) * (size_t)d2; /* bytes per element of the first dimension */
+    if (a >= b || b > d1)
+        return -1;
+    if (r->cap > 1) { /* into the gathered rows: the row counts once whole */
+        memcpy(r->buf + r->nbuf * r->row_bytes + a * el, part, (size_t)(b - a) * el);
+        return b < d1 ? 0 : ++r->nbuf == r->cap ? h5rows_flush(r) : 0;
+    }
+    hsize_t grown[3] = {r->dims[0] + 1, r->dims[1], r->dims[2]};
+    if (a == 0 && H5Dset_extent(r->id, grown) < 0)
+        return -1;
+    hsize_t start[3] = {r->dims[0], a, 0}, cnt[3] = {1, b - a, r->dims[2]};
+    if (r->rank == 1)
+        start[0] = r->dims[0], cnt[0] = 1;
+    hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, cnt, NULL);
+    int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
+                     H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, part) >= 0
+                 ? 0
+                 : -1;
+    if (fs >= 0)
+        H5Sclose(fs);
+    if (ms >= 0)
+        H5Sclose(ms);
+    if (!rc && b == d1)
+        r->dims[0]++;
+    return rc;
 }
 
 int h5rows_flush(h5rows *r)

@@ -16,11 +16,16 @@ typedef struct {
     size_t row_bytes;
     unsigned char *buf; /* rows not yet written */
     size_t nbuf, cap;
+    hsize_t chunk1;     /* the chunk's extent along d1 (frames: particles per chunk) */
 } h5rows;
 
 int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int rank, hsize_t d1, hsize_t d2,
                   const char *units);
 int h5rows_append(h5rows *r, const void *row);
+/* One row given in parts: elements [a, b) of its first dimension after the row (d1; a rank-1 dataset's row is one
+ * element), in order, the first from a = 0 and the last to b = d1 (a frame written from the ranks' parts slab by slab,
+ * app/run_mpi.c: best in slabs of chunk1, which a write covers whole). */
+int h5rows_append_part(h5rows *r, hsize_t a, hsize_t b, const void *part);
 int h5rows_flush(h5rows *r); /* writes the gathered rows */
 void h5rows_close(h5rows *r); /* without flushing: flush first to keep the rows */
 

@@ -44,6 +44,7 @@ struct output {
     h5rows ftime, fstep, fdata[NFF];
     h5rows s[S__N], wall_pos, wall_force, wall_normal;
     long nframes;
+    long slab; /* > 0: particles per slab of a frame from a source (DEM_TEST_FRAME_SLAB); 0: a chunk's */
     double *buf;
     /* the contact network per frame (field "contacts"): rows of ids and data, where each frame starts */
     hid_t contacts;
@@ -285,6 +286,8 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     snprintf(o->part, sizeof o->part, "%s.part", path);
     o->n = n;
     o->nwalls = nw;
+    const char *ts = getenv("DEM_TEST_FRAME_SLAB"); /* tests/mpi_run_check.sh: frames from the parts in small slabs */
+    o->slab = ts ? atol(ts) : 0;
     o->fields = run->fields;
     if ((run->fields & OUT_RADIUS) && (run->effects & DEM_EFFECT_MDR))
         o->fields |= OUT_APPARENT_RADIUS;
@@ -430,14 +433,10 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     return o;
 }
 
-static int output_contacts(output *o, dem_sim *s)
+/* the frame's contacts written: the rows, then where they start and how many are pairs */
+static int contacts_rows(output *o, const dem_contact *cs, long count)
 {
-    dem_contact *cs;
-    long count, npairs;
-    if (dem_contacts_get(s, &cs, &count, &npairs))
-        return -1;
-    long long start = o->c_total, np = npairs;
-    int rc = h5rows_append(&o->c_start, &start) || h5rows_append(&o->c_pairs, &np);
+    int rc = 0;
     for (long k = 0; !rc && k < count; k++) {
         const dem_contact *e = &cs[k];
         int ids[2] = {e->i, e->j};
@@ -446,8 +445,41 @@ static int output_contacts(output *o, dem_sim *s)
         double fn = sqrt(e->fn[0] * e->fn[0] + e->fn[1] * e->fn[1] + e->fn[2] * e->fn[2]);
         rc = h5rows_append(&o->c_ids, ids) || h5rows_append(&o->c_data, row) || h5rows_append(&o->c_fn, &fn);
     }
-    free(cs);
-    if (rc)
+    return rc;
+}
+
+/* Particles per slab of a frame's contacts gathered from a source: its contacts, a few per particle, in one buffer */
+#define OUTPUT_CONTACT_SLAB 65536L
+
+static int output_contacts(output *o, dem_sim *s, const frame_source *src)
+{
+    long long start = o->c_total, np = 0, total = 0;
+    if (!src) {
+        dem_contact *cs;
+        long count, npairs;
+        if (dem_contacts_get(s, &cs, &count, &npairs))
+            return -1;
+        int rc = contacts_rows(o, cs, count);
+        free(cs);
+        if (rc)
+            return -1;
+        np = npairs, total = count;
+    } else {
+        for (int walls = 0; walls < 2; walls++)
+            for (long a = 0, slab = o->slab > 0 ? o->slab : OUTPUT_CONTACT_SLAB; a < o->n; a += slab) {
+                long b = a + slab < o->n ? a + slab : o->n, count;
+                dem_contact *cs;
+                if (src->contacts(src->ctx, walls, a, b, &cs, &count))
+                    return -2;
+                int rc = contacts_rows(o, cs, count);
+                free(cs);
+                if (rc)
+                    return -1;
+                total += count;
+                np += walls ? 0 : count;
+            }
+    }
+    if (h5rows_append(&o->c_start, &start) || h5rows_append(&o->c_pairs, &np))
         return -1;
     if (o->nframes >= o->c_cap) {
         long cap = o->c_cap ? 2 * o->c_cap : 64;
@@ -457,26 +489,48 @@ static int output_contacts(output *o, dem_sim *s)
         o->c_frame = g, o->c_cap = cap;
     }
     o->c_frame[2 * o->nframes] = start, o->c_frame[2 * o->nframes + 1] = np;
-    o->c_total += count;
+    o->c_total += total;
     return 0;
 }
 
-int output_frame(output *o, dem_sim *s)
+/* field k of the frame from src, slab by slab: a slab of the dataset's chunks (its writes cover whole chunks) */
+static int field_slabs(output *o, size_t k, const frame_source *src)
+{
+    h5rows *r = &o->fdata[k];
+    int nc = frame_fields[k].ncomp;
+    long slab = o->slab > 0 ? o->slab : (long)r->chunk1;
+    for (long a = 0; a < o->n; a += slab) {
+        long b = a + slab < o->n ? a + slab : o->n;
+        if (src->field(src->ctx, frame_fields[k].field, nc, a, b, o->buf))
+            return -2;
+        if (h5rows_append_part(r, (hsize_t)a, (hsize_t)b, o->buf))
+            return -1;
+    }
+    return 0;
+}
+
+int output_frame_from(output *o, dem_sim *s, const frame_source *src)
 {
     double t = dem_time(s), st = (double)dem_step_index(s);
+    int rc;
     if (h5rows_append(&o->ftime, &t) || h5rows_append(&o->fstep, &st))
         return -1;
-    if ((o->fields & OUT_CONTACTS) && output_contacts(o, s))
-        return -1;
+    if ((o->fields & OUT_CONTACTS) && (rc = output_contacts(o, s, src)))
+        return rc;
     for (size_t k = 0; k < NFF; k++)
-        if (o->fields & frame_fields[k].bit)
-            if (dem_get_field(s, frame_fields[k].field, o->buf) || h5rows_append(&o->fdata[k], o->buf))
+        if (o->fields & frame_fields[k].bit) {
+            if (src && (rc = field_slabs(o, k, src)))
+                return rc;
+            if (!src && (dem_get_field(s, frame_fields[k].field, o->buf) || h5rows_append(&o->fdata[k], o->buf)))
                 return -1;
+        }
     if (o->nwalls && walls_frame(o, s))
         return -1;
     o->nframes++;
     return 0;
 }
+
+int output_frame(output *o, dem_sim *s) { return output_frame_from(o, s, NULL); }
 
 void output_row_of(const dem_sample *smp, const scene_run *run, int nwalls, series_row *r)
 {

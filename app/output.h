@@ -21,6 +21,22 @@ typedef struct output output;
 void output_xmf_path(const char *h5, char *buf, size_t len);
 output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen);
 int output_frame(output *o, dem_sim *s);
+/* Where a frame's particle values come from when not from the run s itself: over MPI ranks, the ranks' parts,
+ * gathered slab by slab (app/run_mpi.c), so that no rank holds a whole frame or the whole state. Each returns 0, or -1
+ * (the reason in err, err_len bytes):
+ *   field: rows [a, b) of field f (ncomp reals each) in particle id order, into rows;
+ *   contacts: the contacts whose particle id i is in [a, b) - the particle pairs (walls 0: i < j) or the
+ *   particle-wall pairs (walls 1) - in dem_contacts_get's order, *out malloc'd (free() it). */
+typedef struct {
+    void *ctx;
+    int (*field)(void *ctx, dem_field f, int ncomp, long a, long b, double *rows);
+    int (*contacts)(void *ctx, int walls, long a, long b, dem_contact **out, long *count);
+    char *err;
+    size_t err_len;
+} frame_source;
+/* A frame whose time, step and walls are s's and whose particle values are src's (NULL: s's, output_frame): the
+ * same datasets and values. A failure of src returns -2 (its reason in src->err), of the file -1. */
+int output_frame_from(output *o, dem_sim *s, const frame_source *src);
 
 /* One time-series row: the series' columns (time, step, energies, contact counts, strain and stress - NAN without a
  * sample -, MC-strain iterations and capped steps) and every wall's position and received force. */

@@ -1016,7 +1016,13 @@ static int phase_steps(run_ctx *c)
     memset(&sum, 0, sizeof sum);
     int nw = dem_wall_count(s);
     errno = 0;
-    int bad = writer && (output_frame(c->out, s) || output_sample(s, run, &row) || output_series(c->out, &row));
+    char why0[8192];
+    int bad = R ? R->frame(R, writer ? c->out : NULL, why0, sizeof why0) : output_frame(c->out, s);
+    if (bad == -2) {
+        snprintf(c->err, sizeof c->err, "%s: run stopped at its first frame: %s", c->sc->path, why0);
+        return fail_with(EXIT_RUN_FAILED, c->err);
+    }
+    bad = bad || (writer && (output_sample(s, run, &row) || output_series(c->out, &row)));
     if (R) /* every rank, whatever rank 0's write gave: none may skip the collective */
         bad = R->agree(R, bad, &who);
     if (bad) {
@@ -1102,14 +1108,22 @@ static int phase_steps(run_ctx *c)
         stage_ends(c, o->progress != 0 && !run_quiet);
         int io = 0, ck_due = (run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end;
         errno = 0;
-        if (R && (st % run->frame_every == 0 || ck_due) && R->sync(R, s, why, sizeof why)) {
+        if (R && ck_due && R->sync(R, s, why, sizeof why)) { /* the checkpoint is written from the whole state */
             snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part)", c->sc->path,
                      st, why, c->outp);
             return fail_with(EXIT_RUN_FAILED, c->err);
         }
         if (st % run->frame_every == 0 || st == end) {
-            io |= writer && output_frame(c->out, s);
-            if (!c->sc->f->membranes_count && writer) /* over ranks: rank 0's whole run is the one brought up to date */
+            int fr = R ? R->frame(R, writer ? c->out : NULL, why, sizeof why) : output_frame(c->out, s);
+            if (fr == -2) {
+                snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part)",
+                         c->sc->path, st, why, c->outp);
+                return fail_with(EXIT_RUN_FAILED, c->err);
+            }
+            io |= fr != 0;
+            if (!c->sc->f->membranes_count && R) /* over ranks: the parts' own pairs, merged into rank 0's watch */
+                R->overlaps(R, &c->ov);
+            else if (!c->sc->f->membranes_count)
                 overlap_watch_sample(&c->ov, s);
         }
         for (long k = 0; writer && !io && k < nrows; k++) {

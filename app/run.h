@@ -2,6 +2,7 @@
 #ifndef DEM_RUN_H
 #define DEM_RUN_H
 #include "scene.h"
+#include "exact_sum.h"
 #include <stdio.h>
 
 /* Exit statuses of the dem command (sysexits.h where one fits). */
@@ -31,6 +32,8 @@ int run_scene(const run_opts *o);
  * other ranks' is the set-up only. The steps are the parts': each rank's dem_sim
  * holds the particles of its subdomain and, as ghosts, those of other ranks that can touch them. Rank 0 writes the
  * output and the checkpoints and prints; every other rank is quiet. Each call is collective. */
+struct output;        /* output.h */
+struct overlap_watch; /* below */
 typedef struct run_ranks run_ranks;
 struct run_ranks {
     int rank, size;
@@ -51,6 +54,13 @@ struct run_ranks {
     long (*step_index)(run_ranks *r);
     /* rank 0's whole run set to the parts' state (the other ranks take part in the gather) */
     int (*sync)(run_ranks *r, dem_sim *whole, char *err, size_t len);
+    /* a frame of the output written from the parts' state, gathered slab by slab on rank 0, which writes it to o
+     * (the others pass NULL): no rank holds the whole state or a whole frame. 0, -1 (rank 0's file failed) or -2 (a
+     * part could not be read; the reason, that rank's, in err); the same on every rank */
+    int (*frame)(run_ranks *r, struct output *o, char *err, size_t len);
+    /* a frame's overlaps and stability, each part's own pairs and particles merged, into rank 0's w (the others
+     * pass theirs, unused): what overlap_watch_sample of the whole run gives */
+    void (*overlaps)(run_ranks *r, struct overlap_watch *w);
     /* this rank's part, the run that steps: what it records of the walls' stages (dem_stage_ends, from the start or
      * restart on; dem_servo_stats_get) is the same on every rank and the one-process run's */
     dem_sim *(*stepped)(run_ranks *r);
@@ -85,7 +95,7 @@ void run_dt_advice(const scene *sc, const scene_run *run);
  * largest mean over the touching pairs, with when; reported at the end with a warning where the contact model was
  * used beyond its range. With them the step's stability at those overlaps (dem_stability_get): the frame where it
  * came closest to the bound, warned about above DEM_STABILITY_LIMIT. */
-typedef struct {
+typedef struct overlap_watch {
     int sampled;
     double largest, largest_t, mean, mean_t;
     int largest_i, largest_j;
@@ -93,8 +103,21 @@ typedef struct {
     double stab_t;
     int *list, *count;
     double *x;
-    size_t cap;
+    size_t cap, ncap;
 } overlap_watch;
+/* One frame's overlaps: the largest pair overlap / smaller radius (ties: the lowest ids i < j), its pair, the exact
+ * sum of the touching pairs' overlaps and their count; over the pairs whose lower particle own selects (NULL: every
+ * pair), ids named by ids[] (NULL: the run's own). A run split over ranks merges its parts' (app/run_mpi.c): the same
+ * figures as one process. 0, or -1 where the frame could not be read (w's buffers kept). */
+typedef struct {
+    double worst;
+    long wi, wj;
+    exact_acc sum;
+    long touching;
+} overlap_frame;
+int overlap_frame_scan(overlap_watch *w, dem_sim *s, const long *ids, const unsigned char *own, overlap_frame *f);
+/* a frame at time t into the watch (st: its stability, NULL where it could not be had) */
+void overlap_watch_add(overlap_watch *w, const overlap_frame *f, const dem_stability *st, double t);
 void overlap_watch_sample(overlap_watch *w, dem_sim *s);
 void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_run *run, int info);
 void overlap_watch_free(overlap_watch *w);

@@ -5,11 +5,13 @@
  * at the count that gives each side its share of ranks), each rank a box. A rank's run holds its own particles and,
  * as ghosts, every particle within 2 r_max + margin of its box (margin = r_max), in ascending global id; after each
  * step the owners' values go to the ghosts (host/mpi/halo.c). Before a step, when some own particle has moved by
- * half the margin since the split, the whole state is gathered and split anew (particles and contacts migrate). The
- * walls' sums and the series rows are each rank's own particles', merged exactly (dem_mpi_exact_allreduce): the bits
- * of one process at any rank count. */
+ * half the margin since the split, the run is split anew: each rank's particles and contacts move to the ranks that
+ * keep them (dem_mpi_state_move). The walls' sums and the series rows are each rank's own particles', merged exactly
+ * (dem_mpi_exact_allreduce): the bits of one process at any rank count. Frames are gathered on rank 0 from the parts
+ * slab by slab (frame); the checkpoints from the whole state gathered on rank 0 (sync_whole). */
 #include "run.h"
 #include "dem_mpi.h"
+#include "output.h"
 #include "sim.h"
 #include <limits.h>
 #include <math.h>
@@ -48,6 +50,12 @@ typedef struct {
      * bench's (bench/mpi.sh) account of where a split run's time goes */
     double t_step, t_halo, t_check, t_split, t_sums, sent;
     long nsteps;
+    /* a frame written from the parts (frame): what this rank read of its part for it */
+    double *fval;                                     /* [nloc ncomp]: field fval_f of the held particles */
+    int fval_f;                                       /* -1: none read */
+    dem_contact *fcs;                                 /* own contacts (the lower id own), global ids: pairs, walls */
+    long fcs_n, fcs_np;
+    int fcs_have;
     long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan]": that rank fails */
     int fail_rank, fail_nan;                          /* there, after its step, or (nan) inside it: a particle's
                                                          position made NaN before the step */
@@ -524,6 +532,288 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
     return 0;
 }
 
+/* ---- a frame written from the parts: rank 0 asks for each slab (output_frame_from), every rank answers with its
+ * own particles' values or contacts in it, gathered on rank 0; the whole state is not gathered ---- */
+
+enum { FR_DONE, FR_FIELD, FR_PAIRS, FR_WALLS };
+
+static void frame_drop(rr *q)
+{
+    free(q->fval);
+    free(q->fcs);
+    q->fval = NULL, q->fcs = NULL;
+    q->fval_f = -1, q->fcs_have = 0, q->fcs_n = q->fcs_np = 0;
+}
+
+/* first held k with gid[k] >= v (gid ascending) */
+static int held_from(const rr *q, long v)
+{
+    int lo = 0, hi = q->nloc;
+    while (lo < hi) {
+        int m = lo + (hi - lo) / 2;
+        if (q->gid[m] < v)
+            lo = m + 1;
+        else
+            hi = m;
+    }
+    return lo;
+}
+
+/* first contact of cs[0..m) with i >= v (ascending i) */
+static long contact_from(const dem_contact *cs, long m, long v)
+{
+    long lo = 0, hi = m;
+    while (lo < hi) {
+        long k = lo + (hi - lo) / 2;
+        if (cs[k].i < v)
+            lo = k + 1;
+        else
+            hi = k;
+    }
+    return lo;
+}
+
+/* this rank's own contacts of its part, in global ids and dem_contacts_get's order (a contact is its lower id's
+ * owner's, whose rows hold its history: the state's rule, dem_mpi_state_gather) */
+static int own_contacts(rr *q)
+{
+    dem_contact *cs;
+    long count, np;
+    if (dem_contacts_get(q->part, &cs, &count, &np))
+        return -1;
+    long m = 0, mp = 0;
+    for (long k = 0; k < count; k++) {
+        int i = cs[k].i, j = cs[k].j;
+        if (q->owner[i] != q->pub.rank)
+            continue;
+        cs[m] = cs[k];
+        cs[m].i = (int)q->gid[i];
+        cs[m].j = j >= 0 ? (int)q->gid[j] : j;
+        mp += k < np;
+        m++;
+    }
+    q->fcs = cs, q->fcs_n = m, q->fcs_np = mp, q->fcs_have = 1;
+    return 0;
+}
+
+/* ascending i, then j (a wall's -1 - w: ascending w), as dem_contacts_get */
+static int by_ids(const void *a, const void *b)
+{
+    const dem_contact *p = a, *r = b;
+    if (p->i != r->i)
+        return (p->i > r->i) - (p->i < r->i);
+    return p->j < 0 ? (p->j < r->j) - (p->j > r->j) : (p->j > r->j) - (p->j < r->j);
+}
+
+/* This rank's answer to request rq (kind, field, ncomp, a, b), gathered on rank 0 into rows (a field: (b - a) ncomp
+ * reals in id order) or *cs, *count (contacts, malloc'd). A rank that cannot answer sends -1: rank 0 then fails the
+ * frame. Returns 0, or -1 where this rank failed (its words in err) or, on rank 0, any rank did. */
+static int frame_answer(rr *q, const long rq[5], double *rows, dem_contact **cs, long *count, char *err, size_t len)
+{
+    int me = q->pub.rank, size = q->pub.size, kind = (int)rq[0], nc = (int)rq[2], mine = 0, bad = 0;
+    long a = rq[3], b = rq[4];
+    void *out = NULL;
+    int m = 0, unit = kind == FR_FIELD ? (int)sizeof(double) * (1 + nc) : (int)sizeof(dem_contact);
+    if (kind == FR_FIELD) {
+        if (q->fval_f != (int)rq[1]) {
+            free(q->fval);
+            q->fval_f = -1;
+            q->fval = malloc(sizeof(double) * (size_t)nc * (size_t)(q->nloc ? q->nloc : 1));
+            if (!q->fval || dem_get_field(q->part, (dem_field)rq[1], q->fval))
+                mine = -1;
+            else
+                q->fval_f = (int)rq[1];
+        }
+        int k0 = held_from(q, a), k1 = held_from(q, b);
+        double *buf = mine ? NULL : malloc((size_t)unit * (size_t)(k1 - k0 + 1));
+        mine = mine || !buf;
+        for (int k = k0; !mine && k < k1; k++)
+            if (q->owner[k] == me) {
+                buf[(size_t)m * (1 + nc)] = (double)q->gid[k]; /* exact: ids below 2^53 */
+                memcpy(buf + (size_t)m * (1 + nc) + 1, q->fval + (size_t)k * nc, sizeof(double) * nc);
+                m++;
+            }
+        out = buf;
+    } else {
+        if (!q->fcs_have && own_contacts(q))
+            mine = -1;
+        long lo = 0, hi = 0;
+        if (!mine && kind == FR_PAIRS)
+            lo = contact_from(q->fcs, q->fcs_np, a), hi = contact_from(q->fcs, q->fcs_np, b);
+        else if (!mine)
+            lo = q->fcs_np + contact_from(q->fcs + q->fcs_np, q->fcs_n - q->fcs_np, a),
+            hi = q->fcs_np + contact_from(q->fcs + q->fcs_np, q->fcs_n - q->fcs_np, b);
+        if (hi - lo > INT_MAX / unit)
+            mine = -1;
+        m = (int)(hi - lo);
+        out = mine ? NULL : q->fcs + lo;
+    }
+    if (mine && !err[0])
+        snprintf(err, len, "%s", q->fval_f < 0 && kind == FR_FIELD && !q->fval ? "out of host memory"
+                                                                                 : dem_error(q->part));
+    int cnt = mine ? -1 : m * unit, *counts = NULL, *displs = NULL;
+    if (me == 0 && !(counts = malloc(sizeof(int) * 2 * (size_t)size)))
+        bad = 1; /* the gathers still run: counts of 0 */
+    int dummy[2];
+    MPI_Gather(&cnt, 1, MPI_INT, counts ? counts : dummy, 1, MPI_INT, 0, q->comm);
+    long total = 0;
+    for (int k = 0; me == 0 && counts && k < size; k++) {
+        bad |= counts[k] < 0;
+        if (counts[k] < 0 && !err[0])
+            snprintf(err, len, "rank %d could not read its part", k);
+        counts[k] = counts[k] < 0 ? 0 : counts[k];
+        total += counts[k];
+    }
+    if (total > INT_MAX)
+        bad = 1, snprintf(err, len, "a slab of the frame over 2 GiB");
+    displs = counts ? counts + size : NULL;
+    for (int k = 0; displs && k < size; k++)
+        displs[k] = k ? displs[k - 1] + counts[k - 1] : 0;
+    unsigned char *all = me == 0 && !bad ? malloc((size_t)total + 1) : NULL;
+    if (me == 0 && !bad && !all)
+        bad = 1, snprintf(err, len, "out of host memory");
+    if (me == 0 && bad && counts) /* nothing to receive */
+        memset(counts, 0, sizeof(int) * (size_t)size), memset(displs, 0, sizeof(int) * (size_t)size);
+    MPI_Gatherv(out, cnt < 0 ? 0 : cnt, MPI_BYTE, all, counts, displs, MPI_BYTE, 0, q->comm);
+    if (kind == FR_FIELD)
+        free(out);
+    free(counts);
+    if (me != 0)
+        return mine;
+    if (!bad && kind == FR_FIELD) { /* each row in its place; every id of the slab once */
+        long got = total / unit, filled = 0;
+        const double *v = (const double *)all;
+        for (long r = 0; r < got; r++) {
+            long id = (long)v[r * (1 + nc)];
+            if (id < a || id >= b)
+                continue;
+            memcpy(rows + (size_t)(id - a) * nc, v + r * (1 + nc) + 1, sizeof(double) * nc);
+            filled++;
+        }
+        if (filled != b - a || got != b - a)
+            bad = 1, snprintf(err, len, "the parts hold %ld of the %ld particles %ld..%ld", got, b - a, a, b - 1);
+        free(all);
+    } else if (!bad) {
+        *count = total / unit;
+        *cs = (dem_contact *)all;
+        qsort(*cs, (size_t)*count, sizeof **cs, by_ids);
+    } else {
+        free(all);
+    }
+    return bad || mine ? -1 : 0;
+}
+
+static int frame_ask(rr *q, long kind, long f, long nc, long a, long b, double *rows, dem_contact **cs, long *count,
+                     char *err, size_t len)
+{
+    long rq[5] = {kind, f, nc, a, b};
+    MPI_Bcast(rq, 5, MPI_LONG, 0, q->comm);
+    return frame_answer(q, rq, rows, cs, count, err, len);
+}
+
+typedef struct {
+    rr *q;
+    char *err;
+    size_t len;
+} frame_ctx;
+
+static int src_field(void *ctx, dem_field f, int ncomp, long a, long b, double *rows)
+{
+    frame_ctx *c = ctx;
+    return frame_ask(c->q, FR_FIELD, (long)f, ncomp, a, b, rows, NULL, NULL, c->err, c->len);
+}
+
+static int src_contacts(void *ctx, int walls, long a, long b, dem_contact **out, long *count)
+{
+    frame_ctx *c = ctx;
+    *out = NULL, *count = 0;
+    return frame_ask(c->q, walls ? FR_WALLS : FR_PAIRS, 0, 0, a, b, NULL, out, count, c->err, c->len);
+}
+
+/* the frame of the parts' state: rank 0 writes it to o slab by slab (time, step and walls its part's), the others
+ * answer until it is done. 0, -1 where rank 0's file failed, -2 where a part could not be read (the words of the
+ * rank that could not in err); the same on every rank */
+static int frame(run_ranks *r, output *o, char *err, size_t len)
+{
+    rr *q = of(r);
+    int rc = 0, mine = 0;
+    err[0] = 0;
+    if (r->rank == 0) {
+        frame_ctx c = {q, err, len};
+        frame_source src = {&c, src_field, src_contacts, err, len};
+        rc = output_frame_from(o, q->part, &src);
+        long done[5] = {FR_DONE, 0, 0, 0, 0};
+        MPI_Bcast(done, 5, MPI_LONG, 0, q->comm);
+    } else {
+        for (;;) {
+            long rq[5];
+            MPI_Bcast(rq, 5, MPI_LONG, 0, q->comm);
+            if (rq[0] == FR_DONE)
+                break;
+            mine |= frame_answer(q, rq, NULL, NULL, NULL, err, len) != 0; /* keeps answering: -1 */
+        }
+    }
+    frame_drop(q);
+    /* a rank's own failure (-3) before rank 0's account of it (-2), so that its words are the ones shared */
+    int who, a = agree(r, mine ? -3 : rc == -2 && r->rank == 0 && strncmp(err, "rank ", 5) ? -3 : rc, &who);
+    if (a == -3) {
+        share(r, who, err, len);
+        return -2;
+    }
+    return a;
+}
+
+/* the overlaps and stability of a frame: each rank's own pairs (the lower id its own) and own particles, merged so
+ * that rank 0's watch takes what one process's would (the largest overlap with the lowest ids on ties, the mean from
+ * the exact sum, the least stable particle with the lowest id on ties); a frame that cannot be read on some rank is
+ * not measured, as in one process */
+static void overlaps(run_ranks *r, overlap_watch *w)
+{
+    rr *q = of(r);
+    overlap_frame f;
+    dem_stability st;
+    unsigned char *own = malloc((size_t)(q->nloc ? q->nloc : 1));
+    int e = !own;
+    for (int k = 0; own && k < q->nloc; k++)
+        own[k] = q->owner[k] == r->rank;
+    e = e || overlap_frame_scan(w, q->part, q->gid, own, &f);
+    free(own);
+    int se = e || dem_stability_get(q->part, &st);
+    if (!se && st.particle >= 0)
+        st.particle = (int)q->gid[st.particle];
+    if (dem_mpi_agreed(q->comm, e ? DEM_ERR_NOMEM : 0))
+        return;
+    int bad_st = dem_mpi_agreed(q->comm, se ? DEM_ERR_NOMEM : 0) != 0;
+    struct {
+        double worst;
+        long wi, wj;
+    } mine = {f.worst, f.wi, f.wj}, *all = malloc(sizeof mine * (size_t)r->size);
+    dem_stability *sts = malloc(sizeof st * (size_t)r->size);
+    long touching = 0;
+    int ok = all && sts;
+    if (dem_mpi_agreed(q->comm, ok ? 0 : DEM_ERR_NOMEM)) {
+        free(all), free(sts);
+        return;
+    }
+    MPI_Allgather(&mine, (int)sizeof mine, MPI_BYTE, all, (int)sizeof mine, MPI_BYTE, q->comm);
+    MPI_Allgather(&st, (int)sizeof st, MPI_BYTE, sts, (int)sizeof st, MPI_BYTE, q->comm);
+    MPI_Allreduce(&f.touching, &touching, 1, MPI_LONG, MPI_SUM, q->comm);
+    dem_mpi_exact_allreduce(q->comm, &f.sum, 1);
+    f.touching = touching;
+    for (int k = 0; k < r->size; k++) {
+        if (all[k].worst > f.worst ||
+            (all[k].worst == f.worst && all[k].worst > 0 &&
+             (all[k].wi < f.wi || (all[k].wi == f.wi && all[k].wj < f.wj))))
+            f.worst = all[k].worst, f.wi = all[k].wi, f.wj = all[k].wj;
+        if (!bad_st && (sts[k].ratio > st.ratio ||
+                        (sts[k].ratio == st.ratio && st.ratio > 0 && sts[k].particle < st.particle)))
+            st = sts[k];
+    }
+    if (r->rank == 0)
+        overlap_watch_add(w, &f, bad_st ? NULL : &st, dem_time(q->part));
+    free(all), free(sts);
+}
+
 static long step_index(run_ranks *r) { return of(r)->step; }
 static dem_sim *stepped(run_ranks *r) { return of(r)->part; }
 
@@ -611,6 +901,8 @@ int run_mpi(const run_opts *o)
     q.pub.ctx = &q;
     q.pub.agree = agree, q.pub.agree_min = agree_min, q.pub.share = share, q.pub.start = start, q.pub.step = step;
     q.pub.step_index = step_index, q.pub.stepped = stepped, q.pub.sync = sync_whole, q.pub.describe = describe, q.pub.finish = finish;
+    q.pub.frame = frame, q.pub.overlaps = overlaps;
+    q.fval_f = -1;
     q.fail_step = -1;
     const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */
     char mode[8] = "";

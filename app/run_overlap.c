@@ -19,6 +19,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* app/run.c derives it ("Lagged MC-strain"): delta_1 / r = 2 (4 pi (1 - nu) / (2 (z - 1) gamma (3 - 2 nu)))^2 */
 double run_mc_lag_overlap(double gamma, double nu)
@@ -32,13 +33,16 @@ double run_mc_lag_overlap(double gamma, double nu)
 #define RUN_HERTZ_RANGE 0.10
 #define RUN_MC_RANGE 0.25
 
-void overlap_watch_sample(overlap_watch *w, dem_sim *s)
+int overlap_frame_scan(overlap_watch *w, dem_sim *s, const long *ids, const unsigned char *own, overlap_frame *f)
 {
+    memset(f, 0, sizeof *f);
+    f->wi = f->wj = -1;
+    exact_clear(&f->sum);
     int n = dem_count(s), slots = dem_neighbor_capacity(s);
     if (n < 2 || slots <= 0)
-        return;
+        return 0;
     size_t need = (size_t)slots; /* the rows packed: all of them together (DEM_FIELD_NBR_START) */
-    if (need > w->cap) {
+    if (need > w->cap || (size_t)n > w->ncap) {
         int *l = realloc(w->list, need * sizeof(int));
         double *x = realloc(w->x, 3 * (size_t)n * sizeof(double));
         int *c = realloc(w->count, (2 * (size_t)n + 1) * sizeof(int)); /* the counts, then the starts */
@@ -49,18 +53,18 @@ void overlap_watch_sample(overlap_watch *w, dem_sim *s)
         if (c)
             w->count = c;
         if (!l || !x || !c)
-            return; /* out of host memory: this frame is not measured */
-        w->cap = need;
+            return -1; /* out of host memory: this frame is not measured */
+        w->cap = need > w->cap ? need : w->cap;
+        w->ncap = (size_t)n > w->ncap ? (size_t)n : w->ncap;
     }
     int *start = w->count + n;
     if (dem_get_raw(s, DEM_FIELD_NBR_COUNT, w->count, (size_t)n * sizeof(int)) ||
         dem_get_raw(s, DEM_FIELD_NBR_START, start, ((size_t)n + 1) * sizeof(int)) ||
         dem_get_raw(s, DEM_FIELD_NBR_LIST, w->list, (size_t)slots * sizeof(int)) || dem_get_field(s, DEM_FIELD_X, w->x))
-        return;
-    double worst = 0, sum = 0;
-    long touching = 0;
-    int wi = -1, wj = -1;
+        return -1;
     for (int i = 0; i < n; i++) {
+        if (own && !own[i])
+            continue;
         double ri = dem_particle_radius(s, i);
         for (int k = 0; k < w->count[i] && start[i] + k < slots; k++) {
             int j = w->list[start[i] + k];
@@ -71,21 +75,36 @@ void overlap_watch_sample(overlap_watch *w, dem_sim *s)
                 d[q] = w->x[3 * j + q] - w->x[3 * i + q];
             double ov = (ri + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / (ri < rj ? ri : rj);
             if (ov > 0) {
-                sum += ov, touching++;
-                if (ov > worst)
-                    worst = ov, wi = i, wj = j;
+                exact_add_double(&f->sum, ov);
+                f->touching++;
+                long gi = ids ? ids[i] : i, gj = ids ? ids[j] : j;
+                if (ov > f->worst || (ov == f->worst && (gi < f->wi || (gi == f->wi && gj < f->wj))))
+                    f->worst = ov, f->wi = gi, f->wj = gj;
             }
         }
     }
-    double mean = touching ? sum / touching : 0;
+    return 0;
+}
+
+void overlap_watch_add(overlap_watch *w, const overlap_frame *f, const dem_stability *st, double t)
+{
+    double mean = f->touching ? exact_to_double(&f->sum) / (double)f->touching : 0;
     w->sampled = 1;
-    if (worst > w->largest)
-        w->largest = worst, w->largest_t = dem_time(s), w->largest_i = wi, w->largest_j = wj;
+    if (f->worst > w->largest)
+        w->largest = f->worst, w->largest_t = t, w->largest_i = (int)f->wi, w->largest_j = (int)f->wj;
     if (mean > w->mean)
-        w->mean = mean, w->mean_t = dem_time(s);
+        w->mean = mean, w->mean_t = t;
+    if (st && st->ratio > w->stab.ratio)
+        w->stab = *st, w->stab_t = t;
+}
+
+void overlap_watch_sample(overlap_watch *w, dem_sim *s)
+{
+    overlap_frame f;
     dem_stability st;
-    if (!dem_stability_get(s, &st) && st.ratio > w->stab.ratio)
-        w->stab = st, w->stab_t = dem_time(s);
+    if (overlap_frame_scan(w, s, NULL, NULL, &f))
+        return;
+    overlap_watch_add(w, &f, dem_stability_get(s, &st) ? NULL : &st, dem_time(s));
 }
 
 void overlap_watch_report(const overlap_watch *w, const scene *sc, const scene_run *run, int info)

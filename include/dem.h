@@ -381,7 +381,8 @@ DEM_API int dem_contact_advice_get(dem_sim *s, dem_contact_advice *a);
  * 1 at the bound if the estimate were exact. Measured on a 50 MPa compact and a pressed lattice (docs/design.md): at
  * restitution 0.1 stirred - the kinetic energy not decaying - from 1.2, creeping up at 1, at rest at 0.7; at 0.5
  * stirred from 1.35; at 0.7 and 0.9 at rest up to 1.17 and 1.5. Hence the warning above DEM_STABILITY_LIMIT, and
- * dt_advice for DEM_STABILITY_TARGET. Springs, patches and membranes are not counted. */
+ * dt_advice for DEM_STABILITY_TARGET. Springs, patches and membranes are not counted. Of particles whose ratios are
+ * equal, the lowest id. A rank's part of a split run counts its own particles only (its ghosts are their owners'). */
 #define DEM_STABILITY_LIMIT 1.2
 #define DEM_STABILITY_TARGET 0.7
 typedef struct {

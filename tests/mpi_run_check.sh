@@ -22,7 +22,8 @@
 #     owner after mdr_surface and after each step): restart_box with 729 smaller spheres under MDR (yield 100 kPa,
 #     bulk_fraction 0.99 so that the bulk response, which reads the mean surface displacement, is on): PoCL fp32 on
 #     2 ranks, and the reference fp64 on 3 ranks with a thin halo (DEM_TEST_HALO_MARGIN=0.1: 2.1 r_max, hundreds of
-#     splits anew), equal to one process. Without either exchange of the rows it fails.
+#     splits anew), equal to one process. Without either exchange of the rows it fails. Its frames (every field and
+#     the contact network) are gathered in slabs of 100 particles (DEM_TEST_FRAME_SLAB), 8 per frame.
 #  9. MC-strain, lagged and iterated: the induced displacements of a ghost's contacts with own particles from the
 #     ghost's owner after each evaluation, the convergence decided over every rank's own contacts (a run with ghosts
 #     counts no contact of two ghosts). restart_box with 729 smaller spheres and gamma 1.12: lagged on 2 ranks
@@ -39,9 +40,14 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 POCL_CPU_MAX_CU
 PY=$(scripts/find_python.sh h5py numpy) || exit 1 # the one rule of the tests (it says what is missing)
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-S=$ROOT/tests/scenes/restart_box.yaml
 rc=0
 fail() { echo "mpi_run_check: FAILED: $*" >&2; rc=1; }
+# every field a frame can hold, the contact network and the stress (the law's terms: MC-stress's traces, MC-strain's
+# displacements) and MDR's apparent radius included: each gathered from the ranks' parts slab by slab
+S=$T/restart_box.yaml
+sed 's/fields: \[position, velocity, angular_velocity, force, torque\]/fields: [position, velocity, angular_velocity, force, torque, radius, stress, contacts]/' \
+    "$ROOT/tests/scenes/restart_box.yaml" >"$S"
+grep -q "torque, radius, stress, contacts" "$S" || fail "restart_box.yaml's output line changed; ask for every field here anew"
 mrun() { # ranks, then dem's arguments; under a time limit, so that a hang fails instead of stopping make test
     local np=$1
     shift
@@ -188,7 +194,7 @@ sed -e 's/gravity, walls\]/gravity, walls, mdr]/' -e 's/radius_min: 0.0035,/radi
 for cfg in "opencl fp32 2 1" "reference fp64 3 0.1"; do
     set -- $cfg
     "$DEM" run "$T/box_mdr.yaml" -o "$T/one.h5" --quiet --backend "$1" --precision "$2" || fail "one-process MDR box ($cfg)"
-    DEM_TEST_HALO_MARGIN=$4 mrun "$3" run "$T/box_mdr.yaml" -o "$T/n.h5" --backend "$1" --precision "$2" >"$T/log" 2>&1 ||
+    DEM_TEST_FRAME_SLAB=100 DEM_TEST_HALO_MARGIN=$4 mrun "$3" run "$T/box_mdr.yaml" -o "$T/n.h5" --backend "$1" --precision "$2" >"$T/log" 2>&1 ||
         { cat "$T/log" >&2; fail "MDR box on $3 ranks ($cfg)"; }
     same "$T/one.h5" "$T/n.h5" && same "$T/one.ckpt.h5" "$T/n.ckpt.h5" || fail "MDR: $3 ranks ($cfg) differ"
     echo "   $1 $2, $3 ranks, halo 2 r_max + $4 r_max: output and checkpoint equal; $(grep -o '[0-9]* splits so far, [0-9]* changes of rank' "$T/log" | tail -1)"

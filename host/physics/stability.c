@@ -163,12 +163,13 @@ static void worst_particle(const dem_sim *s, const particle_modes *pm, dem_stabi
     int friction = (s->setup.effects & DEM_EFFECT_FRICTION) != 0;
     double dt = s->dt;
     for (int i = 0; i < s->n; i++) {
-        if (!pm[i].contacts)
+        if (!pm[i].contacts || (s->ghost && s->ghost[i])) /* a part's ghosts: their owners' (app/run_mpi.c) */
             continue;
         double rn = dt * sqrt(pm[i].wn2) / damped_bound(pm[i].zn);
         double rt = friction ? dt * sqrt(pm[i].wt2) / damped_bound(pm[i].zt) : 0;
         double r = rn > rt ? rn : rt;
-        if (r > st->ratio) {
+        if (r > st->ratio || (r == st->ratio && r > 0 && sim_api(s, i) < st->particle)) { /* ties: the lowest id,
+                                                                                             however stored */
             st->ratio = r;
             st->tangential = rt > rn;
             st->omega_dt = dt * sqrt(rt > rn ? pm[i].wt2 : pm[i].wn2);
