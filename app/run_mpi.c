@@ -13,6 +13,7 @@
 #include "dem_mpi.h"
 #include "output.h"
 #include "sim.h"
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
@@ -53,12 +54,14 @@ typedef struct {
     /* a frame written from the parts (frame): what this rank read of its part for it */
     double *fval;                                     /* [nloc ncomp]: field fval_f of the held particles */
     int fval_f;                                       /* -1: none read */
+    int *fcounts;                                     /* rank 0: [2 size], the gather's counts and displacements */
     dem_contact *fcs;                                 /* own contacts (the lower id own), global ids: pairs, walls */
     long fcs_n, fcs_np;
     int fcs_have;
-    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan]": that rank fails */
-    int fail_rank, fail_nan;                          /* there, after its step, or (nan) inside it: a particle's
-                                                         position made NaN before the step */
+    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan|frame]": that rank */
+    int fail_rank, fail_nan, fail_frame;              /* fails there, after its step, or (nan) inside it: a
+                                                         particle's position made NaN before the step, or (frame)
+                                                         answering the first frame from that step on */
 } rr;
 
 static rr *of(run_ranks *r) { return (rr *)r->ctx; }
@@ -481,7 +484,8 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         }
         long before = q->step;
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
-        if (!e && !q->fail_nan && q->fail_step == dem_step_index(q->part) && q->fail_rank == r->rank) { /* the test hook */
+        if (!e && !q->fail_nan && !q->fail_frame && q->fail_step == dem_step_index(q->part) &&
+            q->fail_rank == r->rank) { /* the test hook */
             snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
                      q->fail_step);
             e = DEM_ERR_DEVICE;
@@ -648,36 +652,34 @@ static int frame_answer(rr *q, const long rq[5], double *rows, dem_contact **cs,
         m = (int)(hi - lo);
         out = mine ? NULL : q->fcs + lo;
     }
+    if (q->fail_frame && q->fail_rank == me && dem_step_index(q->part) >= q->fail_step && !mine) /* test hook */
+        mine = -1, snprintf(err, len, "DEM_TEST_RANK_FAIL: rank %d cannot read its part for the frame at step %ld", me,
+                            dem_step_index(q->part));
     if (mine && !err[0])
-        snprintf(err, len, "%s", q->fval_f < 0 && kind == FR_FIELD && !q->fval ? "out of host memory"
-                                                                                 : dem_error(q->part));
-    int cnt = mine ? -1 : m * unit, *counts = NULL, *displs = NULL;
-    if (me == 0 && !(counts = malloc(sizeof(int) * 2 * (size_t)size)))
-        bad = 1; /* the gathers still run: counts of 0 */
-    int dummy[2];
-    MPI_Gather(&cnt, 1, MPI_INT, counts ? counts : dummy, 1, MPI_INT, 0, q->comm);
+        snprintf(err, len, "%s", dem_error(q->part)[0] ? dem_error(q->part) : "out of host memory");
+    /* the sizes to rank 0, its verdict to all: a rank that could not answer, a slab too large for MPI's int counts
+     * or no memory for it on rank 0 fails it on every rank, and then nothing more is sent */
+    int cnt = mine ? -1 : m * unit, *counts = q->fcounts, *displs = q->fcounts ? q->fcounts + size : NULL;
+    MPI_Gather(&cnt, 1, MPI_INT, counts, 1, MPI_INT, 0, q->comm);
     long total = 0;
-    for (int k = 0; me == 0 && counts && k < size; k++) {
+    for (int k = 0; me == 0 && k < size; k++) {
         bad |= counts[k] < 0;
         if (counts[k] < 0 && !err[0])
             snprintf(err, len, "rank %d could not read its part", k);
-        counts[k] = counts[k] < 0 ? 0 : counts[k];
-        total += counts[k];
+        total += counts[k] < 0 ? 0 : counts[k];
     }
-    if (total > INT_MAX)
+    if (me == 0 && !bad && total > INT_MAX)
         bad = 1, snprintf(err, len, "a slab of the frame over 2 GiB");
-    displs = counts ? counts + size : NULL;
-    for (int k = 0; displs && k < size; k++)
-        displs[k] = k ? displs[k - 1] + counts[k - 1] : 0;
     unsigned char *all = me == 0 && !bad ? malloc((size_t)total + 1) : NULL;
     if (me == 0 && !bad && !all)
         bad = 1, snprintf(err, len, "out of host memory");
-    if (me == 0 && bad && counts) /* nothing to receive */
-        memset(counts, 0, sizeof(int) * (size_t)size), memset(displs, 0, sizeof(int) * (size_t)size);
-    MPI_Gatherv(out, cnt < 0 ? 0 : cnt, MPI_BYTE, all, counts, displs, MPI_BYTE, 0, q->comm);
+    MPI_Bcast(&bad, 1, MPI_INT, 0, q->comm);
+    for (int k = 0; me == 0 && !bad && k < size; k++)
+        displs[k] = k ? displs[k - 1] + counts[k - 1] : 0;
+    if (!bad)
+        MPI_Gatherv(out, cnt, MPI_BYTE, all, counts, displs, MPI_BYTE, 0, q->comm);
     if (kind == FR_FIELD)
         free(out);
-    free(counts);
     if (me != 0)
         return mine;
     if (!bad && kind == FR_FIELD) { /* each row in its place; every id of the slab once */
@@ -736,12 +738,16 @@ static int src_contacts(void *ctx, int walls, long a, long b, dem_contact **out,
 static int frame(run_ranks *r, output *o, char *err, size_t len)
 {
     rr *q = of(r);
-    int rc = 0, mine = 0;
+    int rc = 0, mine = 0, saved_errno = 0;
     err[0] = 0;
     if (r->rank == 0) {
         frame_ctx c = {q, err, len};
         frame_source src = {&c, src_field, src_contacts, err, len};
-        rc = output_frame_from(o, q->part, &src);
+        if (!(q->fcounts = malloc(sizeof(int) * 2 * (size_t)r->size)))
+            rc = -2, snprintf(err, len, "out of host memory");
+        else
+            rc = output_frame_from(o, q->part, &src);
+        saved_errno = errno; /* the file's reason, for run.c's message: MPI's calls below may set errno */
         long done[5] = {FR_DONE, 0, 0, 0, 0};
         MPI_Bcast(done, 5, MPI_LONG, 0, q->comm);
     } else {
@@ -754,12 +760,15 @@ static int frame(run_ranks *r, output *o, char *err, size_t len)
         }
     }
     frame_drop(q);
+    free(q->fcounts);
+    q->fcounts = NULL;
     /* a rank's own failure (-3) before rank 0's account of it (-2), so that its words are the ones shared */
     int who, a = agree(r, mine ? -3 : rc == -2 && r->rank == 0 && strncmp(err, "rank ", 5) ? -3 : rc, &who);
     if (a == -3) {
         share(r, who, err, len);
         return -2;
     }
+    errno = saved_errno;
     return a;
 }
 
@@ -772,6 +781,13 @@ static void overlaps(run_ranks *r, overlap_watch *w)
     rr *q = of(r);
     overlap_frame f;
     dem_stability st;
+    memset(&st, 0, sizeof st);
+    st.particle = -1;
+    /* as one process: no frame measured while no particle has a neighbour slot */
+    long slots = dem_neighbor_capacity(q->part) > 0, any = 0;
+    MPI_Allreduce(&slots, &any, 1, MPI_LONG, MPI_MAX, q->comm);
+    if (!any)
+        return;
     unsigned char *own = malloc((size_t)(q->nloc ? q->nloc : 1));
     int e = !own;
     for (int k = 0; own && k < q->nloc; k++)
@@ -909,6 +925,7 @@ int run_mpi(const run_opts *o)
     if (tf && sscanf(tf, "%ld %d %7s", &q.fail_step, &q.fail_rank, mode) < 2)
         q.fail_step = -1;
     q.fail_nan = !strcmp(mode, "nan");
+    q.fail_frame = !strcmp(mode, "frame");
     run_opts mine = *o;
     const char *lr = getenv("OMPI_COMM_WORLD_LOCAL_RANK");
     int ndev = dem_device_count();

@@ -42,20 +42,20 @@ int overlap_frame_scan(overlap_watch *w, dem_sim *s, const long *ids, const unsi
     if (n < 2 || slots <= 0)
         return 0;
     size_t need = (size_t)slots; /* the rows packed: all of them together (DEM_FIELD_NBR_START) */
-    if (need > w->cap || (size_t)n > w->ncap) {
+    if (need > w->cap) { /* each buffer grown on its own: a split run's parts change both counts */
         int *l = realloc(w->list, need * sizeof(int));
+        if (!l)
+            return -1; /* out of host memory: this frame is not measured */
+        w->list = l, w->cap = need;
+    }
+    if ((size_t)n > w->ncap) {
         double *x = realloc(w->x, 3 * (size_t)n * sizeof(double));
-        int *c = realloc(w->count, (2 * (size_t)n + 1) * sizeof(int)); /* the counts, then the starts */
-        if (l)
-            w->list = l;
         if (x)
             w->x = x;
-        if (c)
-            w->count = c;
-        if (!l || !x || !c)
-            return -1; /* out of host memory: this frame is not measured */
-        w->cap = need > w->cap ? need : w->cap;
-        w->ncap = (size_t)n > w->ncap ? (size_t)n : w->ncap;
+        int *c = x ? realloc(w->count, (2 * (size_t)n + 1) * sizeof(int)) : NULL; /* the counts, then the starts */
+        if (!c)
+            return -1;
+        w->count = c, w->ncap = (size_t)n;
     }
     int *start = w->count + n;
     if (dem_get_raw(s, DEM_FIELD_NBR_COUNT, w->count, (size_t)n * sizeof(int)) ||
@@ -102,7 +102,7 @@ void overlap_watch_sample(overlap_watch *w, dem_sim *s)
 {
     overlap_frame f;
     dem_stability st;
-    if (overlap_frame_scan(w, s, NULL, NULL, &f))
+    if (dem_count(s) < 2 || dem_neighbor_capacity(s) <= 0 || overlap_frame_scan(w, s, NULL, NULL, &f))
         return;
     overlap_watch_add(w, &f, dem_stability_get(s, &st) ? NULL : &st, dem_time(s));
 }

@@ -10,7 +10,8 @@
 #  3. A rank that fails mid-run (DEM_TEST_RANK_FAIL: rank 1's step 200 fails as a lost device's would): every rank
 #     stops, non-zero, that rank's message once, no output file completed, nothing hangs. And a failure inside the
 #     step ("200 1 nan": a particle of rank 1 made NaN before its step 200) under MC-stress and iterated MC-strain,
-#     whose steps hold meetings of the ranks: every rank stops there with rank 1's words, nothing hangs.
+#     whose steps hold meetings of the ranks: every rank stops there with rank 1's words, nothing hangs. And a rank
+#     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same.
 #  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks),
 #     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once.
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
@@ -105,6 +106,14 @@ for m in classical mc_stress mc_strain_iterated; do
 done
 echo "   a failure inside the step (classical, MC-stress, iterated MC-strain): every rank stopped at step 199 as one"
 echo "   process does, rank 1's words once"
+# a rank that cannot read its part for a frame (gathered slab by slab on rank 0): on 3 ranks, in a slab of 20 particles
+# of the 64, while the others' answers are on their way
+DEM_TEST_FRAME_SLAB=20 DEM_TEST_RANK_FAIL="200 2 frame" mrun 3 run "$S" -o "$T/f.h5" --quiet >"$T/log" 2>&1
+frc=$?
+n=$(grep -c "run stopped at step [0-9]*: rank 2: DEM_TEST_RANK_FAIL: rank 2 cannot read its part" "$T/log")
+[ "$frc" = 1 ] && [ "$n" = 1 ] && [ ! -e "$T/f.h5" ] && [ -e "$T/f.h5.part" ] ||
+    { cat "$T/log" >&2; fail "a rank that cannot read its part for a frame: exit $frc (1 wanted; 124: it hung), its words $n times"; }
+echo "   a rank that cannot read its part for a frame: every rank stopped, exit 1, rank 2's words once, output .part"
 
 echo "== 4. refusals and errors, said once"
 mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
