@@ -45,13 +45,9 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     return 0;
 }
 
-/* rows [first, first + count) of the dataset from buf */
-static int write_rows(h5rows *r, const void *buf, hsize_t count)
+/* the block at start of extent cnt from buf, the dataset already as large */
+static int write_block(h5rows *r, const hsize_t start[3], const hsize_t cnt[3], const void *buf)
 {
-    hsize_t start[3] = {r->dims[0], 0, 0}, cnt[3] = {count, r->dims[1], r->dims[2]};
-    hsize_t grown[3] = {r->dims[0] + count, r->dims[1], r->dims[2]};
-    if (H5Dset_extent(r->id, grown) < 0)
-        return -1;
     hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, cnt, NULL);
     int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
                      H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, buf) >= 0
@@ -61,9 +57,18 @@ static int write_rows(h5rows *r, const void *buf, hsize_t count)
         H5Sclose(fs);
     if (ms >= 0)
         H5Sclose(ms);
-    if (!rc)
-        r->dims[0] += count;
     return rc;
+}
+
+/* rows [first, first + count) of the dataset from buf */
+static int write_rows(h5rows *r, const void *buf, hsize_t count)
+{
+    hsize_t start[3] = {r->dims[0], 0, 0}, cnt[3] = {count, r->dims[1], r->dims[2]};
+    hsize_t grown[3] = {r->dims[0] + count, r->dims[1], r->dims[2]};
+    if (H5Dset_extent(r->id, grown) < 0 || write_block(r, start, cnt, buf))
+        return -1;
+    r->dims[0] += count;
+    return 0;
 }
 
 int h5rows_append(h5rows *r, const void *row)
@@ -87,21 +92,12 @@ int h5rows_append_part(h5rows *r, hsize_t a, hsize_t b, const void *part)
     hsize_t grown[3] = {r->dims[0] + 1, r->dims[1], r->dims[2]};
     if (a == 0 && H5Dset_extent(r->id, grown) < 0)
         return -1;
-    hsize_t start[3] = {r->dims[0], a, 0}, cnt[3] = {1, b - a, r->dims[2]};
-    if (r->rank == 1)
-        start[0] = r->dims[0], cnt[0] = 1;
-    hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, cnt, NULL);
-    int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
-                     H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, part) >= 0
-                 ? 0
-                 : -1;
-    if (fs >= 0)
-        H5Sclose(fs);
-    if (ms >= 0)
-        H5Sclose(ms);
-    if (!rc && b == d1)
+    hsize_t start[3] = {r->dims[0], a, 0}, cnt[3] = {1, b - a, r->dims[2]}; /* a rank-1 row: a = 0, b = 1 */
+    if (write_block(r, start, cnt, part))
+        return -1;
+    if (b == d1)
         r->dims[0]++;
-    return rc;
+    return 0;
 }
 
 int h5rows_flush(h5rows *r)
