@@ -15,24 +15,6 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The walls a scene's wall k adds before it: a box adds 6 planes, any other wall 1 (scene_build.c parse_walls) */
-static int dem_wall_of(const scene_locator *l, int k)
-{
-    int id = 0;
-    for (int q = 0; q < k; q++) {
-        char p[64];
-        const char *path, *value;
-        int line;
-        snprintf(p, sizeof p, "walls[%d].type", q);
-        for (size_t e = 0; scene_scalar(l, e, &path, &value, &line); e++)
-            if (!strcmp(path, p)) {
-                id += value && !strcmp(value, "box") ? 6 : 1;
-                break;
-            }
-    }
-    return id;
-}
-
 /* The number of stages wall k has in scene l */
 static int stages_of(const scene_locator *l, int k)
 {
@@ -45,14 +27,16 @@ static int stages_of(const scene_locator *l, int k)
 }
 
 /* Whether the field at path may differ between the checkpoint's scene (old) and the continuation's (now) */
-static int may_change(const char *path, const scene_locator *old, const scene_locator *now, const dem_state *st)
+static int may_change(const char *path, const scene_locator *old, const scene *now, const dem_state *st)
 {
     int k, j;
     if (!strcmp(path, "time.duration") || !strcmp(path, "output") || !strncmp(path, "output.", 7))
         return 1;
     if (sscanf(path, "walls[%d].motion[%d]", &k, &j) != 2 || k < 0 || j < 0)
         return 0;
-    int d = dem_wall_of(now, k);
+    if ((unsigned)k >= now->f->walls_count)
+        return 0;
+    int d = scene_first_wall(now, (unsigned)k);
     if (d >= st->nwalls)
         return 0;
     int cur = st->wall_stage[d];
@@ -86,12 +70,12 @@ int restart_scene_check(const scene *now, const checkpoint *ck, const char *ck_p
     for (size_t e = 0; !why && scene_scalar(now->loc, e, &path, &value, &line); e++) {
         long o = find(old, path, &hint);
         if (o < 0 || (scene_scalar(old, (size_t)o, &p2, &v2, &l2) && (!value != !v2 || (value && strcmp(value, v2)))))
-            if (!may_change(path, old, now->loc, &ck->st))
+            if (!may_change(path, old, now, &ck->st))
                 why = o < 0 ? "not in" : "not as in";
     }
     hint = 0;
     for (size_t e = 0; !why && scene_scalar(old, e, &path, &value, &line); e++)
-        if (find(now->loc, path, &hint) < 0 && !may_change(path, old, now->loc, &ck->st))
+        if (find(now->loc, path, &hint) < 0 && !may_change(path, old, now, &ck->st))
             why = "missing, but in", line = 0;
     if (why) {
         char at[32] = "";

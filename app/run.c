@@ -666,7 +666,6 @@ static int phase_load(run_ctx *c)
                      scene_particle_order(c->sc), o->restart, c->sc->order_default, c->sc->order_default);
             return fail_with(EXIT_BAD_INPUT, c->err);
         }
-
     } else {
         c->sc = scene_load(o->scene_path, c->err, sizeof c->err);
     }

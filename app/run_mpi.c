@@ -549,20 +549,6 @@ static void frame_drop(rr *q)
     q->fval_f = -1, q->fcs_have = 0, q->fcs_n = q->fcs_np = 0;
 }
 
-/* first held k with gid[k] >= v (gid ascending) */
-static int held_from(const rr *q, long v)
-{
-    int lo = 0, hi = q->nloc;
-    while (lo < hi) {
-        int m = lo + (hi - lo) / 2;
-        if (q->gid[m] < v)
-            lo = m + 1;
-        else
-            hi = m;
-    }
-    return lo;
-}
-
 /* first contact of cs[0..m) with i >= v (ascending i) */
 static long contact_from(const dem_contact *cs, long m, long v)
 {
@@ -600,15 +586,6 @@ static int own_contacts(rr *q)
     return 0;
 }
 
-/* ascending i, then j (a wall's -1 - w: ascending w), as dem_contacts_get */
-static int by_ids(const void *a, const void *b)
-{
-    const dem_contact *p = a, *r = b;
-    if (p->i != r->i)
-        return (p->i > r->i) - (p->i < r->i);
-    return p->j < 0 ? (p->j < r->j) - (p->j > r->j) : (p->j > r->j) - (p->j < r->j);
-}
-
 /* This rank's answer to request rq (kind, field, ncomp, a, b), gathered on rank 0 into rows (a field: (b - a) ncomp
  * reals in id order) or *cs, *count (contacts, malloc'd). A rank that cannot answer sends -1: rank 0 then fails the
  * frame. Returns 0, or -1 where this rank failed (its words in err) or, on rank 0, any rank did. */
@@ -628,7 +605,7 @@ static int frame_answer(rr *q, const long rq[5], double *rows, dem_contact **cs,
             else
                 q->fval_f = (int)rq[1];
         }
-        int k0 = held_from(q, a), k1 = held_from(q, b);
+        int k0 = dem_mpi_id_from(q->gid, q->nloc, a), k1 = dem_mpi_id_from(q->gid, q->nloc, b);
         double *buf = mine ? NULL : malloc((size_t)unit * (size_t)(k1 - k0 + 1));
         mine = mine || !buf;
         for (int k = k0; !mine && k < k1; k++)
@@ -698,7 +675,7 @@ static int frame_answer(rr *q, const long rq[5], double *rows, dem_contact **cs,
     } else if (!bad) {
         *count = total / unit;
         *cs = (dem_contact *)all;
-        qsort(*cs, (size_t)*count, sizeof **cs, by_ids);
+        qsort(*cs, (size_t)*count, sizeof **cs, sim_contact_order); /* as dem_contacts_get */
     } else {
         free(all);
     }

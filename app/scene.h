@@ -284,6 +284,8 @@ const char *scene_wall_hint(const scene *sc, const char *word, int planes_only, 
 const char *scene_material_hint(const scene *sc, const char *word, char *buf, size_t len);
 /* Library wall k's name, as the output's wall_names lists it (a box's faces "NAME x-" ...) */
 void scene_wall_label(const scene *sc, int k, char *buf, size_t len);
+/* The library id of the first wall scene wall k adds (a box adds six planes, any other wall one) */
+int scene_first_wall(const scene *sc, unsigned k);
 /* Checks every value and builds the simulation (not started). Returns NULL with err set on failure. */
 dem_sim *scene_build(const scene *sc, scene_run *run, char *err, size_t errlen);
 /* time.mass_scale, or 1 where the scene gives none (scene_build has checked it: finite, >= 1) */

@@ -668,6 +668,17 @@ void scene_free(scene *sc)
     free(sc);
 }
 
+/* the library walls a scene wall adds: a box its six planes, any other wall one */
+static int walls_of(const scene_wall *w) { return w->type && !strcmp(w->type, "box") ? 6 : 1; }
+
+int scene_first_wall(const scene *sc, unsigned k)
+{
+    int at = 0;
+    for (unsigned i = 0; i < k && i < sc->f->walls_count; i++)
+        at += walls_of(&sc->f->walls[i]);
+    return at;
+}
+
 /* Library wall k's name: the scene's (or walls[i]); a box's six faces "NAME x-", "NAME x+", ... (dem_add_box's
  * order); "?" past the last */
 void scene_wall_label(const scene *sc, int k, char *buf, size_t len)
@@ -677,7 +688,7 @@ void scene_wall_label(const scene *sc, int k, char *buf, size_t len)
     snprintf(buf, len, "?");
     for (unsigned i = 0; i < sc->f->walls_count; i++) {
         const scene_wall *w = &sc->f->walls[i];
-        int box = w->type && !strcmp(w->type, "box"), nw = box ? 6 : 1;
+        int nw = walls_of(w), box = nw == 6;
         if (k < at + nw) {
             char own[32];
             snprintf(own, sizeof own, "walls[%u]", i);

@@ -47,6 +47,15 @@ static int keep_from(dem_sim *s, const dem_sim *src, const unsigned char *keep)
     return m;
 }
 
+/* Why s cannot be cut into parts (membranes and riders: their tables name particles by index), NULL where it can */
+static const char *split_refused(const dem_sim *s)
+{
+    if (s->mesh.nsprings || s->mesh.ntri || s->mesh.nhinges || s->mesh.npatch || s->mesh.natt)
+        return "a scene with membranes or riders cannot be split over ranks yet: run it in one process "
+               "(docs/design.md \"Runs over MPI\")";
+    return NULL;
+}
+
 /* Keeps the particles i with keep[i] != 0, in their order (so that ids keep the order of the whole scene's),
  * dropping the others. Before dem_start; refused for a scene with membranes or riders (their tables name particles
  * by index). Returns the particles kept, or a dem_status. */
@@ -54,9 +63,8 @@ int sim_keep_particles(dem_sim *s, const unsigned char *keep)
 {
     if (sim_not_started(s))
         return DEM_ERR_STATE;
-    if (s->mesh.nsprings || s->mesh.ntri || s->mesh.nhinges || s->mesh.npatch || s->mesh.natt)
-        return sim_fail(s, DEM_ERR_ARG, "a scene with membranes or riders cannot be split over ranks yet: run it in "
-                        "one process (docs/design.md \"Runs over MPI\")");
+    if (split_refused(s))
+        return sim_fail(s, DEM_ERR_ARG, "%s", split_refused(s));
     if (!(s->whole_volume > 0)) /* until_density's volume: the whole scene's spheres, not the part's */
         s->whole_volume = sim_particle_volume(s);
     keep_from(s, s, keep);
@@ -72,9 +80,8 @@ dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err,
         snprintf(err, len, "sim_part_copy: the run to copy has started");
         return NULL;
     }
-    if (src->mesh.nsprings || src->mesh.ntri || src->mesh.nhinges || src->mesh.npatch || src->mesh.natt) {
-        snprintf(err, len, "a scene with membranes or riders cannot be split over ranks yet: run it in one process "
-                 "(docs/design.md \"Runs over MPI\")");
+    if (split_refused(src)) {
+        snprintf(err, len, "%s", split_refused(src));
         return NULL;
     }
     dem_sim *s = malloc(sizeof *s);

@@ -246,6 +246,9 @@ int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
  * what sim_keep_particles leaves of a run built anew from the scene, without building it (app/run_mpi.c: a split
  * anew reads no scene file and holds no whole run); NULL with the reason in err */
 dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err, size_t len);
+/* contacts.c: dem_contacts_get's order of two dem_contact, a qsort comparator: ascending i, then j (a wall's -1 - w:
+ * ascending w among the walls, which are sorted apart from the pairs); app/run_mpi.c orders a gathered frame by it */
+int sim_contact_order(const void *a, const void *b);
 /* part.c: a split run's messages made on the device (common/halo.h). sim_halo_set gives the particles this rank sends
  * (send[0..nsend): the callers' ids, one message row each, repeats allowed) and its ghosts (recv[0..nrecv)), after
  * dem_start; sim_halo_pack copies the sent particles' rows into out (nsend rows of HALO_W reals of the run's

@@ -65,6 +65,11 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
 int dem_mpi_halo_exchange(dem_mpi_halo *h);
 void dem_mpi_halo_free(dem_mpi_halo *h);
 
+/* In the ascending global ids ids[0..n): the first place k with ids[k] >= v (n where none), and the place of v (-1
+ * where it is not there) - a held particle's local id from its global id (host/mpi/halo.c) */
+int dem_mpi_id_from(const long *ids, int n, long v);
+int dem_mpi_id_at(const long *ids, int n, long v);
+
 /* One verdict from every rank's code e (0 or a negative dem_status; an MPI error code counts as DEM_ERR_DEVICE): 0
  * when all are 0, else the lowest, on every rank, so that all ranks take the same branch. Collective. */
 int dem_mpi_agreed(MPI_Comm comm, int e);

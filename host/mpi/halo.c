@@ -16,23 +16,27 @@ void dem_mpi_halo_free(dem_mpi_halo *h)
     memset(h, 0, sizeof *h);
 }
 
-/* the local id of global id g among gid[0..n) (ascending), -1 if absent */
-static int local_of(const long *gid, int n, long g)
+int dem_mpi_id_from(const long *ids, int n, long v)
 {
     int lo = 0, hi = n;
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;
-        if (gid[mid] < g)
+        if (ids[mid] < v)
             lo = mid + 1;
         else
             hi = mid;
     }
-    return lo < n && gid[lo] == g ? lo : -1;
+    return lo;
+}
+
+int dem_mpi_id_at(const long *ids, int n, long v)
+{
+    int k = dem_mpi_id_from(ids, n, v);
+    return k < n && ids[k] == v ? k : -1;
 }
 
 static int exchange(dem_mpi_halo *h, int walls);
 static int mid_step(dem_sim *s, void *ctx, int event, int *value);
-static int local_of(const long *gid, int n, long g);
 
 /* a wall stage that ends at a relative density */
 static int until_density(const dem_sim *s)
@@ -108,7 +112,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
             e = e ? e : DEM_ERR_NOMEM;
     }
     for (int k = 0; !e && k < h->nsend; k++) {
-        int i = local_of(gid, n, asked[k]);
+        int i = dem_mpi_id_at(gid, n, asked[k]);
         if (i < 0 || owner[i] != h->rank)
             e = DEM_ERR_ARG; /* a rank holds as a ghost of ours a particle we do not own */
         else
@@ -242,7 +246,7 @@ static int mc_disp_exchange(dem_mpi_halo *h)
         if (!(e = in_step(h, e)) && (e = MPI_Alltoallv(sb, cnt, dsp, MPI_DOUBLE, rb, rcnt, rdsp, MPI_DOUBLE, h->comm)))
             e = sim_fail(h->s, DEM_ERR_DEVICE, "MPI_Alltoallv of MC-strain's displacements failed (%d)", e);
         for (long k = 0; !e && k < nrecv; k++) {
-            ri[k] = local_of(h->gid, h->n, (long)rb[3 * k]), rj[k] = local_of(h->gid, h->n, (long)rb[3 * k + 1]);
+            ri[k] = dem_mpi_id_at(h->gid, h->n, (long)rb[3 * k]), rj[k] = dem_mpi_id_at(h->gid, h->n, (long)rb[3 * k + 1]);
             d[k] = rb[3 * k + 2];
             if (ri[k] < 0 || rj[k] < 0)
                 e = sim_fail(h->s, DEM_ERR_ARG, "MC-strain's exchange: a contact of particle %ld or %ld, which this rank "

@@ -301,22 +301,6 @@ static int by_id(const void *a, const void *b)
     return (p > q) - (p < q);
 }
 
-/* the place of global id v in the ascending ids[0..n), -1 where it is not there */
-static int find_id(const long *ids, int n, long v)
-{
-    int lo = 0, hi = n - 1;
-    while (lo <= hi) {
-        int mid = lo + (hi - lo) / 2;
-        if (ids[mid] == v)
-            return mid;
-        if (ids[mid] < v)
-            lo = mid + 1;
-        else
-            hi = mid - 1;
-    }
-    return -1;
-}
-
 /* counts per rank to byte counts and displacements (of rec bytes each); 0, or DEM_ERR_ARG past MPI's int counts */
 static int byte_counts(int P, const int *cnt, size_t rec, int *bc, int *bd, size_t *total)
 {
@@ -491,7 +475,7 @@ int dem_mpi_state_move(MPI_Comm comm, const dem_sim *s, const dem_state *loc, co
         for (size_t p = 0; !e && p < qrtot; p++) {
             long ij[2];
             memcpy(ij, recv + p * qrec, sizeof ij);
-            int i = find_id(keep_id, nkeep, ij[0]), j = find_id(keep_id, nkeep, ij[1]);
+            int i = dem_mpi_id_at(keep_id, nkeep, ij[0]), j = dem_mpi_id_at(keep_id, nkeep, ij[1]);
             if (i < 0 || j < 0) {
                 e = DEM_ERR_ARG;
                 break;

@@ -22,8 +22,7 @@ static void split(const double *f, const double *n, double *fn, double *ft)
     }
 }
 
-/* ascending i, then j (a wall's -1 - w: ascending w among the walls, which are sorted apart) */
-static int by_particles(const void *a, const void *b)
+int sim_contact_order(const void *a, const void *b)
 {
     const dem_contact *p = a, *q = b;
     if (p->i != q->i)
@@ -192,8 +191,8 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
         if (cs[k].j >= 0)
             cs[k].j = sim_api(s, cs[k].j);
     }
-    qsort(cs, (size_t)np, sizeof *cs, by_particles); /* whatever the storage order */
-    qsort(cs + np, (size_t)nwc, sizeof *cs, by_particles);
+    qsort(cs, (size_t)np, sizeof *cs, sim_contact_order); /* whatever the storage order */
+    qsort(cs + np, (size_t)nwc, sizeof *cs, sim_contact_order);
     *out = cs, *count = np + nwc, *npairs = np;
     return 0;
 }
