@@ -9,6 +9,7 @@
 #define CHECKPOINT_MAX_PARTICLES 100000000L
 #define CHECKPOINT_MAX_STEP 1000000000000L
 #include "h5util.h"
+#include "sim.h"
 #include <fcntl.h>
 #include <stdio.h>
 #include <errno.h>
@@ -18,22 +19,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* The HDF5 type of a state array's elements */
+/* The HDF5 type of a state array's elements, and their bytes */
 static hid_t array_type(const dem_state_array *a, hid_t real_t)
 {
     return a->elem == DEM_STATE_REAL ? real_t : a->elem == DEM_STATE_UINT ? H5T_NATIVE_UINT : H5T_NATIVE_INT;
 }
-
-/* Every array of the state, as /state/<name>: rows of `width` elements */
-static int write_arrays(hid_t g, const dem_state *st, hid_t real_t)
+static size_t array_elem(const dem_state_array *a, int real_size)
 {
-    for (int k = 0; k < st->narrays; k++) {
-        const dem_state_array *a = &st->arrays[k];
-        hsize_t d[2] = {a->width > 1 ? a->count / (size_t)a->width : a->count, (hsize_t)a->width};
-        if (a->data && h5_write(g, a->name, array_type(a, real_t), a->width > 1 ? 2 : 1, d, a->data, a->unit))
-            return 1;
-    }
-    return 0;
+    return a->elem == DEM_STATE_REAL ? (size_t)real_size : sizeof(int);
 }
 
 static int sync_file(const char *path)
@@ -46,6 +39,200 @@ static int sync_file(const char *path)
     return rc;
 }
 
+/* The datasets of a checkpoint's particles and contacts, made at the whole run's size and written slab by slab */
+enum { D_RADIUS, D_PI, D_PJ, D_HIST, D_REC, D_MCF, D_LAW, D_RSP, D_MCD, D__N };
+typedef struct {
+    hid_t arr[DEM_STATE_MAX_ARRAYS]; /* each array's dataset where it is a particle's (0: the walls', written whole) */
+    int kind[DEM_STATE_MAX_ARRAYS];  /* its layout (sim_state_array_layout: DEM_MOVE_P or DEM_MOVE_G) */
+    int per[DEM_STATE_MAX_ARRAYS];   /* and its elements per particle (DEM_MOVE_G: per particle in a group) */
+    hid_t d[D__N];                   /* radius and the pairs' (0: not in this run) */
+    long at;                         /* contacts written so far */
+} slab_sets;
+
+/* slab p of particles [a, b) of the n of the run into the datasets: each array's rows (groups of n rows: every
+ * group's rows of the slab), the radii, and the contacts after those written so far; -1 where a write failed, -2
+ * where p does not fit them */
+static int write_slab(slab_sets *w, const dem_state *h, const dem_state *p, const double *radius, long a, long b,
+                      long n, long npairs, hid_t real_t)
+{
+    long m = b - a;
+    if (p->narrays != h->narrays || p->n != m || w->at + p->npairs > npairs)
+        return -2;
+    for (int k = 0; k < h->narrays; k++) {
+        const dem_state_array *ha = &h->arrays[k], *pa = &p->arrays[k];
+        if (!w->arr[k])
+            continue;
+        /* a particle's rows one after the other (DEM_MOVE_P), or groups of n items, one item of `each` rows of
+         * each particle in each group (DEM_MOVE_G: one group per wall): the slab's m items at each of groups places */
+        size_t wd = (size_t)(ha->width > 1 ? ha->width : 1), rows = pa->count / wd, whole = ha->count / wd;
+        size_t times = whole / (size_t)(n ? n : 1), row = wd * array_elem(ha, h->real_size);
+        size_t each = w->kind[k] == DEM_MOVE_G ? (size_t)w->per[k] / wd : times, groups = each ? times / each : 0;
+        if (strcmp(pa->name, ha->name) || pa->count % wd || rows != times * (size_t)m || (rows && !pa->data) ||
+            groups * each != times)
+            return -2;
+        for (size_t g = 0; g < groups; g++)
+            if (h5_write_rows(w->arr[k], array_type(ha, real_t), (g * (size_t)n + (size_t)a) * each, (hsize_t)m * each,
+                              (const unsigned char *)pa->data + g * (size_t)m * each * row))
+                return -1;
+    }
+    long q = p->npairs, at = w->at;
+    const void *src[D__N] = {radius, p->pair_i, p->pair_j, p->pair_hist, p->pair_rec, p->pair_mc_fn, p->pair_law,
+                             p->pair_rspring, p->pair_mc_disp};
+    for (int k = 0; k < D__N; k++) {
+        hid_t t = k == D_RADIUS ? H5T_NATIVE_DOUBLE : k == D_PI || k == D_PJ ? H5T_NATIVE_INT : real_t;
+        long first = k == D_RADIUS ? a : at, count = k == D_RADIUS ? m : q;
+        if (w->d[k] > 0 && count && (!src[k] || h5_write_rows(w->d[k], t, (hsize_t)first, (hsize_t)count, src[k])))
+            return -1;
+    }
+    w->at += q;
+    return 0;
+}
+
+/* /state of the checkpoint: the header's attributes, walls and patch contacts from h, the particles and contacts from
+ * src; 1 where a write failed, 2 where src did, 3 where what it gave does not fit h */
+static int write_state(hid_t g, dem_sim *s, const dem_state *h, const checkpoint_source *src)
+{
+    hid_t real_t = h->real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+    long n = src->n, np = src->npairs;
+    hsize_t w3[2] = {(hsize_t)h->nwalls, 3}, w1[1] = {(hsize_t)h->nwalls};
+    hsize_t q1[1] = {(hsize_t)h->npatch}, q3[2] = {(hsize_t)h->npatch, 3};
+    int rc = h5_attr_long(g, "step", h->step) || h5_attr_long(g, "n", n) || h5_attr_long(g, "nwalls", h->nwalls) ||
+             h5_attr_long(g, "real_size", h->real_size) || h5_attr_long(g, "has_hist", h->has_hist) ||
+             h5_attr_long(g, "rebuilds", h->rebuilds) || h5_attr_double(g, "time", dem_time(s));
+    slab_sets w;
+    memset(&w, 0, sizeof w);
+    /* the arrays: the walls' (DEM_MOVE_STAY) whole from h, the particles' made whole for the slabs */
+    for (int k = 0; !rc && k < h->narrays; k++) {
+        const dem_state_array *a = &h->arrays[k];
+        size_t wd = (size_t)(a->width > 1 ? a->width : 1);
+        hsize_t d[2] = {a->count / wd, wd};
+        if ((w.kind[k] = sim_state_array_layout(s, a->name, &w.per[k])) == DEM_MOVE_STAY)
+            rc = a->data && h5_write(g, a->name, array_type(a, real_t), a->width > 1 ? 2 : 1, d, a->data, a->unit);
+        else if (a->data || a->count) /* (an empty array with data: an empty dataset, as before) */
+            rc = (w.arr[k] = h5_create(g, a->name, array_type(a, real_t), a->width > 1 ? 2 : 1, d, a->unit)) < 0;
+    }
+    rc = rc || h5_write(g, "wall_pos", H5T_NATIVE_DOUBLE, 2, w3, h->wall_pos, "m") ||
+         h5_write(g, "wall_stage", H5T_NATIVE_INT, 1, w1, h->wall_stage, NULL) ||
+         h5_write(g, "wall_stage_first", H5T_NATIVE_LONG, 1, w1, h->wall_stage_first, NULL) ||
+         h5_write(g, "wall_stage_from", H5T_NATIVE_DOUBLE, 2, w3, h->wall_stage_from, "m");
+    /* the contacts' datasets, in the order h5_write made them before they were written in slabs */
+    struct {
+        int k, rank, on;
+        const char *name, *unit;
+        hsize_t d1;
+    } ds[] = {
+        {D_PI, 1, 1, "pair_i", NULL, 0},
+        {D_PJ, 1, 1, "pair_j", NULL, 0},
+        {D_HIST, 2, 1, "pair_hist", "N", 3},
+        {D_REC, 2, h->pair_rec != NULL, "pair_rec", "N (force, n x f_t), m (overlap)", DEM_PAIR_RECORD_REALS},
+        {D_RADIUS, 1, 1, "radius", "m", 0},
+        {D_MCF, 1, -1, "pair_mc_fn", "N", 0},
+        {D_LAW, h->has_law > 1 ? 2 : 1, h->has_law > 0, "pair_law", h->has_law == 1 ? "m" : NULL,
+         (hsize_t)h->has_law},
+        {D_RSP, 2, h->has_rspring, "pair_rspring", "N m", 3},
+        {D_MCD, 2, h->pair_mc_disp != NULL, "pair_mc_disp", "m", 2},
+    };
+    for (size_t k = 0; !rc && k < sizeof ds / sizeof ds[0]; k++) {
+        hsize_t d[2] = {ds[k].k == D_RADIUS ? (hsize_t)n : (hsize_t)np, ds[k].d1};
+        if (ds[k].k == D_MCF || ds[k].k == D_MCD) /* MC-strain's: empty without it */
+            d[0] = h->has_mc ? d[0] : 0;
+        if (ds[k].k == D_MCF)
+            rc = h5_attr_long(g, "has_mc", h->has_mc) || h5_attr_long(g, "mc_last", h->mc.last) ||
+                 h5_attr_long(g, "mc_max", h->mc.max) || h5_attr_long(g, "mc_total", h->mc.total) ||
+                 h5_attr_long(g, "mc_unconverged", h->mc.unconverged);
+        if (!rc && ds[k].k == D_LAW)
+            rc = h5_attr_long(g, "has_law", h->has_law) ||
+                 ((dem_effects(s) & DEM_EFFECT_ADHESION) && h5_attr_string(g, "law_state", CHECKPOINT_JKR_STATE));
+        if (!rc && ds[k].k == D_RSP && h->has_rspring)
+            rc = h5_attr_long(g, "has_rspring", 1);
+        if (!rc && ds[k].on)
+            rc = (w.d[ds[k].k] = h5_create(g, ds[k].name, ds[k].k == D_PI || ds[k].k == D_PJ ? H5T_NATIVE_INT
+                                                          : ds[k].k == D_RADIUS ? H5T_NATIVE_DOUBLE
+                                                                                 : real_t,
+                                           ds[k].rank, d, ds[k].unit)) < 0;
+        if (!rc && d[0] == 0) /* nothing to write: closed now */
+            H5Dclose(w.d[ds[k].k]), w.d[ds[k].k] = 0;
+    }
+    rc = rc || h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, h->patch_i, NULL) ||
+         h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, h->patch_t, NULL) ||
+         h5_write(g, "patch_hist", real_t, 2, q3, h->patch_hist, "N") ||
+         (h->patch_side && h5_write(g, "patch_side", H5T_NATIVE_INT, 1, q1, h->patch_side, NULL));
+    /* the particles and their contacts, slab by slab */
+    for (long a = 0; !rc && a < n; a += src->slab) {
+        long b = n - a > src->slab ? a + src->slab : n;
+        const dem_state *p;
+        const double *radius;
+        int e = src->slab_get(src->ctx, a, b, &p, &radius) ? -3 : (errno = 0, write_slab(&w, h, p, radius, a, b, n,
+                                                                                         np, real_t));
+        rc = e == -3 ? 2 : e == -2 ? 3 : e ? 1 : 0;
+    }
+    if (!rc && w.at != np)
+        rc = 3;
+    for (int k = 0; k < DEM_STATE_MAX_ARRAYS; k++)
+        if (w.arr[k] > 0 && H5Dclose(w.arr[k]) < 0)
+            rc = rc ? rc : 1;
+    for (int k = 0; k < D__N; k++)
+        if (w.d[k] > 0 && H5Dclose(w.d[k]) < 0)
+            rc = rc ? rc : 1;
+    return rc;
+}
+
+int checkpoint_write_from(const char *path, dem_sim *s, const dem_state *head, const checkpoint_source *src,
+                          const scene *sc, const scene_run *run, char *err, size_t errlen)
+{
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s" CHECKPOINT_TMP_SUFFIX, path);
+    errno = 0;
+    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = f < 0;
+    if (!rc) {
+        hid_t g = H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = g < 0 ? 1 : write_state(g, s, head, src);
+        if (g >= 0)
+            H5Gclose(g);
+        hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        rc = rc ? rc
+                : sg < 0 || h5_write_text(sg, "text", sc->text) || h5_write_text(sg, "path", sc->path) ||
+                  h5_attr_string(sg, "model", run->model) ||
+                  h5_attr_string(sg, "particle_order", scene_particle_order(sc)) ||
+                  h5_attr_string(f, "libdem_version", DEM_VERSION);
+        if (sg >= 0)
+            H5Gclose(sg);
+    }
+    int e = errno; /* the first failure's reason, before close and unlink add their own */
+    if (f >= 0 && H5Fclose(f) < 0)
+        rc = rc ? rc : 1, e = e ? e : errno;
+    if (!rc && (sync_file(tmp) || rename(tmp, path)))
+        rc = 1, e = errno;
+    if (rc) {
+        unlink(tmp);
+        if (rc == 2) /* the source's words are in err */
+            return -2;
+        if (rc == 3) {
+            snprintf(err, errlen, "%s: cannot write the checkpoint: the particles or contacts given do not fit the run's "
+                     "state (a bug; the previous one, if any, is kept)", path);
+            return -1;
+        }
+        snprintf(err, errlen, "%s: cannot write the checkpoint: %s (the previous one, if any, is kept)", path,
+                 h5_io_reason(e));
+        return -1;
+    }
+    return 0;
+}
+
+/* one process: the whole state is the one slab */
+typedef struct {
+    const dem_state *st;
+    const double *radius;
+} whole_source;
+static int whole_slab(void *ctx, long a, long b, const dem_state **part, const double **radius)
+{
+    const whole_source *w = ctx;
+    (void)a, (void)b;
+    *part = w->st, *radius = w->radius;
+    return 0;
+}
+
 int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_run *run, char *err, size_t errlen)
 {
     dem_state st;
@@ -53,76 +240,18 @@ int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_
         snprintf(err, errlen, "checkpoint: %s", dem_error(s));
         return 1;
     }
-    char tmp[4200];
-    snprintf(tmp, sizeof tmp, "%s" CHECKPOINT_TMP_SUFFIX, path);
-    errno = 0;
-    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    int rc = f < 0;
-    hid_t real_t = st.real_size == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
-    hsize_t w3[2] = {(hsize_t)st.nwalls, 3}, p3[2] = {(hsize_t)st.npairs, 3};
-    hsize_t p7[2] = {(hsize_t)st.npairs, DEM_PAIR_RECORD_REALS};
-    hsize_t n1[1] = {(hsize_t)st.n}, p1[1] = {(hsize_t)st.npairs}, w1[1] = {(hsize_t)st.nwalls};
-    hsize_t pl[2] = {(hsize_t)st.npairs, (hsize_t)st.has_law}; /* a law's row per pair (MDR) */
-    hsize_t pm[1] = {st.has_mc ? (hsize_t)st.npairs : 0}, pd[2] = {st.has_mc ? (hsize_t)st.npairs : 0, 2};
-    hsize_t q1[1] = {(hsize_t)st.npatch}, q3[2] = {(hsize_t)st.npatch, 3};
     double *radius = malloc(sizeof(double) * (size_t)(st.n ? st.n : 1));
-    if (!rc) {
-        hid_t g = H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        for (int i = 0; radius && i < st.n; i++)
-            radius[i] = dem_particle_radius(s, i);
-        rc = g < 0 || !radius || h5_attr_long(g, "step", st.step) || h5_attr_long(g, "n", st.n) ||
-             h5_attr_long(g, "nwalls", st.nwalls) || h5_attr_long(g, "real_size", st.real_size) ||
-             h5_attr_long(g, "has_hist", st.has_hist) || h5_attr_long(g, "rebuilds", st.rebuilds) ||
-             h5_attr_double(g, "time", dem_time(s)) ||
-             write_arrays(g, &st, real_t) ||
-             h5_write(g, "wall_pos", H5T_NATIVE_DOUBLE, 2, w3, st.wall_pos, "m") ||
-             h5_write(g, "wall_stage", H5T_NATIVE_INT, 1, w1, st.wall_stage, NULL) ||
-             h5_write(g, "wall_stage_first", H5T_NATIVE_LONG, 1, w1, st.wall_stage_first, NULL) ||
-             h5_write(g, "wall_stage_from", H5T_NATIVE_DOUBLE, 2, w3, st.wall_stage_from, "m") ||
-             h5_write(g, "pair_i", H5T_NATIVE_INT, 1, p1, st.pair_i, NULL) ||
-             h5_write(g, "pair_j", H5T_NATIVE_INT, 1, p1, st.pair_j, NULL) ||
-             h5_write(g, "pair_hist", real_t, 2, p3, st.pair_hist, "N") ||
-             (st.pair_rec &&
-              h5_write(g, "pair_rec", real_t, 2, p7, st.pair_rec, "N (force, n x f_t), m (overlap)")) ||
-             h5_write(g, "radius", H5T_NATIVE_DOUBLE, 1, n1, radius, "m") ||
-             h5_attr_long(g, "has_mc", st.has_mc) || h5_attr_long(g, "mc_last", st.mc.last) ||
-             h5_attr_long(g, "mc_max", st.mc.max) || h5_attr_long(g, "mc_total", st.mc.total) ||
-             h5_attr_long(g, "mc_unconverged", st.mc.unconverged) ||
-             h5_write(g, "pair_mc_fn", real_t, 1, pm, st.pair_mc_fn, "N") ||
-             h5_attr_long(g, "has_law", st.has_law) ||
-             ((dem_effects(s) & DEM_EFFECT_ADHESION) && h5_attr_string(g, "law_state", CHECKPOINT_JKR_STATE)) ||
-             (st.has_law == 1 && h5_write(g, "pair_law", real_t, 1, p1, st.pair_law, "m")) ||
-             (st.has_law > 1 && h5_write(g, "pair_law", real_t, 2, pl, st.pair_law, NULL)) ||
-             (st.has_rspring && (h5_attr_long(g, "has_rspring", 1) ||
-                                 h5_write(g, "pair_rspring", real_t, 2, p3, st.pair_rspring, "N m"))) ||
-             (st.pair_mc_disp && h5_write(g, "pair_mc_disp", real_t, 2, pd, st.pair_mc_disp, "m")) ||
-             h5_write(g, "patch_i", H5T_NATIVE_INT, 1, q1, st.patch_i, NULL) ||
-             h5_write(g, "patch_t", H5T_NATIVE_INT, 1, q1, st.patch_t, NULL) ||
-             h5_write(g, "patch_hist", real_t, 2, q3, st.patch_hist, "N") ||
-             (st.patch_side && h5_write(g, "patch_side", H5T_NATIVE_INT, 1, q1, st.patch_side, NULL));
-        if (g >= 0)
-            H5Gclose(g);
-        hid_t sg = rc ? -1 : H5Gcreate2(f, "scene", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        rc = rc || sg < 0 || h5_write_text(sg, "text", sc->text) || h5_write_text(sg, "path", sc->path) ||
-             h5_attr_string(sg, "model", run->model) || h5_attr_string(sg, "particle_order", scene_particle_order(sc)) ||
-             h5_attr_string(f, "libdem_version", DEM_VERSION);
-        if (sg >= 0)
-            H5Gclose(sg);
-    }
+    for (int i = 0; radius && i < st.n; i++)
+        radius[i] = dem_particle_radius(s, i);
+    whole_source w = {&st, radius};
+    checkpoint_source src = {&w, st.n, st.npairs, st.n > 0 ? st.n : 1, whole_slab};
+    int rc = radius ? checkpoint_write_from(path, s, &st, &src, sc, run, err, errlen) : -1;
+    if (!radius)
+        snprintf(err, errlen, "%s: cannot write the checkpoint: out of host memory (the previous one, if any, is kept)",
+                 path);
     free(radius);
     dem_state_free(&st);
-    int e = errno; /* the first failure's reason, before close and unlink add their own */
-    if (f >= 0 && H5Fclose(f) < 0)
-        rc = 1, e = e ? e : errno;
-    if (!rc && (sync_file(tmp) || rename(tmp, path)))
-        rc = 1, e = errno;
-    if (rc) {
-        unlink(tmp);
-        snprintf(err, errlen, "%s: cannot write the checkpoint: %s (the previous one, if any, is kept)", path,
-                 h5_io_reason(e));
-        return 1;
-    }
-    return 0;
+    return rc ? 1 : 0;
 }
 
 /* An optional dataset of `want` reals of rs bytes into *out: absent or empty, *out stays NULL; any other count than

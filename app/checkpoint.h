@@ -25,6 +25,25 @@ typedef struct {
 /* A checkpoint is written to PATH CHECKPOINT_TMP_SUFFIX, flushed, then renamed over PATH. */
 #define CHECKPOINT_TMP_SUFFIX ".tmp"
 int checkpoint_write(const char *path, dem_sim *s, const scene *sc, const scene_run *run, char *err, size_t errlen);
+/* Where a checkpoint's particles and contacts come from when no one state holds them (the ranks of a split run,
+ * app/run_mpi.c): slab by slab of particle ids, so that no process holds them all. */
+typedef struct {
+    void *ctx;
+    long n, npairs; /* the whole run's particles and contacts */
+    long slab;      /* particles per slab, >= 1 */
+    /* particles [a, b): *part a state of b - a particles (ids a.. as 0..) with each array's rows of them (an array
+     * of groups of n rows, one per wall: each group's rows of the slab, group after group), the contacts whose lower
+     * id is in [a, b) with the whole run's ids in ascending (i, j), and *radius their radii (dem_particle_radius);
+     * kept by the source until its next call. 0, or -1 (the source's words in the writer's err) */
+    int (*slab_get)(void *ctx, long a, long b, const dem_state **part, const double **radius);
+} checkpoint_source;
+/* The checkpoint of a run whose header is head (step, counts, walls, stages, MC-strain's counts, patch contacts,
+ * the walls' arrays - DEM_MOVE_STAY: their sums - and each particle array's whole count, an empty one written where
+ * its data is not NULL; its particle arrays' data and its contacts are not read otherwise) and whose particles and contacts are src's: the file checkpoint_write writes of
+ * the whole run. s: a started run of the scene (its time, the arrays' layout). 0; -1 where the file failed (err
+ * says so, the previous checkpoint kept), -2 where src did (its words in err). */
+int checkpoint_write_from(const char *path, dem_sim *s, const dem_state *head, const checkpoint_source *src,
+                          const scene *sc, const scene_run *run, char *err, size_t errlen);
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
 void checkpoint_free(checkpoint *ck);
 /* restart_scene.c: whether the scene now may continue the checkpoint ck (read from ck_path) - the scene ck was run

@@ -144,24 +144,52 @@ int h5_attr_string(hid_t obj, const char *name, const char *value)
 int h5_attr_double(hid_t obj, const char *name, double value) { return attr_write(obj, name, H5T_NATIVE_DOUBLE, &value); }
 int h5_attr_long(hid_t obj, const char *name, long value) { return attr_write(obj, name, H5T_NATIVE_LONG, &value); }
 
-int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const void *data,
-             const char *units)
+hid_t h5_create(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const char *units)
 {
-    hsize_t total = 1;
-    for (int k = 0; k < rank; k++)
-        total *= dims[k];
     hid_t sp = H5Screate_simple(rank, dims, NULL); /* zero-sized dimensions are allowed (HDF5 >= 1.8.7) */
     hid_t ftype = H5Tget_native_type(mem_type, H5T_DIR_DEFAULT);
-    hid_t d = sp >= 0 ? H5Dcreate2(parent, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
-    int rc = d >= 0 && (total == 0 || H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0) ? 0 : -1;
-    if (!rc && units)
-        rc = h5_attr_string(d, "units", units);
-    if (d >= 0)
+    hid_t d = sp >= 0 && ftype >= 0 ? H5Dcreate2(parent, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    if (d >= 0 && units && h5_attr_string(d, "units", units)) {
         H5Dclose(d);
+        d = -1;
+    }
     if (sp >= 0)
         H5Sclose(sp);
     if (ftype >= 0)
         H5Tclose(ftype);
+    return d;
+}
+
+int h5_write_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, const void *data)
+{
+    if (count == 0)
+        return 0;
+    hid_t fs = H5Dget_space(d);
+    int rank = fs >= 0 ? H5Sget_simple_extent_ndims(fs) : -1;
+    hsize_t dims[H5S_MAX_RANK], start[H5S_MAX_RANK] = {first}, cnt[H5S_MAX_RANK];
+    int ok = rank >= 1 && H5Sget_simple_extent_dims(fs, dims, NULL) >= 0 && first + count <= dims[0];
+    for (int k = 0; ok && k < rank; k++)
+        if (!(cnt[k] = k ? dims[k] : count)) /* an empty row: nothing to write */
+            ok = 2;
+    hid_t ms = ok == 1 ? H5Screate_simple(rank, cnt, NULL) : -1;
+    int rc = ok == 2 || (ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
+                         H5Dwrite(d, mem_type, ms, fs, H5P_DEFAULT, data) >= 0)
+                 ? 0
+                 : -1;
+    if (fs >= 0)
+        H5Sclose(fs);
+    if (ms >= 0)
+        H5Sclose(ms);
+    return rc;
+}
+
+int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const void *data,
+             const char *units)
+{
+    hid_t d = h5_create(parent, name, mem_type, rank, dims, units);
+    int rc = d >= 0 && !h5_write_rows(d, mem_type, 0, rank ? dims[0] : 1, data) ? 0 : -1;
+    if (d >= 0 && H5Dclose(d) < 0)
+        rc = -1;
     return rc;
 }
 

@@ -1107,11 +1107,6 @@ static int phase_steps(run_ctx *c)
         stage_ends(c, o->progress != 0 && !run_quiet);
         int io = 0, ck_due = (run->checkpoint_every > 0 && st % run->checkpoint_every == 0) || st == end;
         errno = 0;
-        if (R && ck_due && R->sync(R, s, why, sizeof why)) { /* the checkpoint is written from the whole state */
-            snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part)", c->sc->path,
-                     st, why, c->outp);
-            return fail_with(EXIT_RUN_FAILED, c->err);
-        }
         if (st % run->frame_every == 0 || st == end) {
             int fr = R ? R->frame(R, writer ? c->out : NULL, why, sizeof why) : output_frame(c->out, s);
             if (fr == -2) {
@@ -1158,11 +1153,22 @@ static int phase_steps(run_ctx *c)
                 snprintf(c->err, sizeof c->err, "%s.part: cannot write to the output file: %s", c->outp,
                          h5_io_reason(e));
                 io = 1;
-            } else if (writer && checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err)) {
+            } else if (!R && checkpoint_write(c->ckp, s, c->sc, run, c->err, sizeof c->err)) {
                 io = 1;
             }
-            if (R)
+            if (R) { /* over ranks: written from the parts, slab by slab (no rank holds the whole state) */
                 io = R->agree(R, io, &who);
+                int ck = io ? 0 : R->checkpoint(R, c->ckp, c->sc, run, why, sizeof why);
+                if (ck == -2) {
+                    char cknote[4400];
+                    checkpoint_note(cknote, sizeof cknote, c->ckp, ck_step, o->restart);
+                    snprintf(c->err, sizeof c->err, "%s: run stopped at step %ld: %s (output so far: %s.part; %s)",
+                             c->sc->path, st, why, c->outp, cknote);
+                    return fail_with(EXIT_RUN_FAILED, c->err);
+                }
+                if (ck)
+                    snprintf(c->err, sizeof c->err, "%s", why), io = 1;
+            }
             if (io)
                 return fail_with(EXIT_IO, c->err);
             ck_step = st;
@@ -1221,7 +1227,7 @@ static void phase_report(run_ctx *c)
     int iterated = (run->effects & DEM_EFFECT_MC_STRAIN) && run->mc_cap > 0;
     if (c->o->progress != 0 || c->show) {
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", c->outp, c->ckp,
-                dem_step_index(s), now() - c->t0);
+                run_step(c), now() - c->t0); /* over ranks: the parts' step (rank 0's whole run is not stepped) */
         char seq[2048];
         if (c->o->verbose && dem_kernel_sequence(s, 0, seq, sizeof seq)) /* the library's internals: on request */
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
@@ -1254,7 +1260,7 @@ static void phase_report(run_ctx *c)
             print_memory(s);
         if (iterated)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
-                            "of %d\n", mc.total, (double)mc.total / (double)(dem_step_index(s) > 0 ? dem_step_index(s) : 1),
+                            "of %d\n", mc.total, (double)mc.total / (double)(run_step(c) > 0 ? run_step(c) : 1),
                     mc.max, mc.unconverged, run->mc_cap);
     }
     for (int k = 0; k < dem_wall_count(s); k++) { /* servo stages: what force they held, and whether they chattered */
@@ -1282,7 +1288,7 @@ static void phase_report(run_ctx *c)
         fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "
                         "every contact force settled to mc_tolerance %g; the series mc_capped counts them. Raise "
                         "mc_iterations, or loosen mc_tolerance, if that matters here\n",
-                mc.unconverged, dem_step_index(s), run->mc_cap, run->mc_tol);
+                mc.unconverged, run_step(c), run->mc_cap, run->mc_tol);
 }
 
 int run_scene(const run_opts *o) { return run_scene_ranks(o, NULL); }
@@ -1326,7 +1332,7 @@ int run_scene_ranks(const run_opts *o, run_ranks *R)
             phase_report(c);
             fprintf(stderr, "dem: stopped by signal %d (%s) at step %ld of %ld (t = %.9g s): %s holds the run to "
                             "there and %s its state; continue with: dem run --restart %s -o MORE.h5\n", c->stopped,
-                    strsignal(c->stopped), dem_step_index(c->s), c->run.steps, dem_time(c->s), c->outp, c->ckp, c->ckp);
+                    strsignal(c->stopped), run_step(c), c->run.steps, dem_time(stepped(c)), c->outp, c->ckp, c->ckp);
         }
         code = 128 + c->stopped;
     } else if (!code && !run_quiet)

@@ -28,8 +28,9 @@ int run_scene(const run_opts *o);
 /* A run split over MPI ranks (app/run_mpi.c, linked into dem with the MPI layer; docs/design.md "Runs over MPI"):
  * run.c drives it through these calls and needs no MPI itself. Every rank loads the scene and builds the whole run
  * as `whole`; rank 0 alone starts it (on the reference backend, never stepped, restored where the run restarts): what
- * the output, checkpoints and reports read, brought up to date from the ranks' parts (sync) where they read it; the
- * other ranks' is the set-up only. The steps are the parts': each rank's dem_sim
+ * the output reads at its start (radii, materials, the first series row) and the parts start from; the frames and
+ * checkpoints are written from the parts, slab by slab, and the report reads the parts' step and time. The other
+ * ranks' whole run is the set-up only. The steps are the parts': each rank's dem_sim
  * holds the particles of its subdomain and, as ghosts, those of other ranks that can touch them. Rank 0 writes the
  * output and the checkpoints and prints; every other rank is quiet. Each call is collective. */
 struct output;        /* output.h */
@@ -52,8 +53,11 @@ struct run_ranks {
     /* nsteps steps like dem_step_sampled, rows merged over the ranks (every rank gets them) */
     int (*step)(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len);
     long (*step_index)(run_ranks *r);
-    /* rank 0's whole run set to the parts' state (the other ranks take part in the gather) */
-    int (*sync)(run_ranks *r, dem_sim *whole, char *err, size_t len);
+    /* the checkpoint of the parts' state written by rank 0 to path, gathered slab by slab of particle ids (no rank
+     * holds the whole state): the file of one process (checkpoint_write_from). 0, -1 (rank 0's file failed, its
+     * message in err there; the previous checkpoint kept) or -2 (a part could not be read: the words of the rank
+     * that could not, in err); the same on every rank */
+    int (*checkpoint)(run_ranks *r, const char *path, const scene *sc, const scene_run *run, char *err, size_t len);
     /* a frame of the output written from the parts' state, gathered slab by slab on rank 0, which writes it to o
      * (the others pass NULL): no rank holds the whole state or a whole frame. 0, -1 (rank 0's file failed) or -2 (a
      * part could not be read; the reason, that rank's, in err); the same on every rank */

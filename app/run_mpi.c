@@ -8,10 +8,11 @@
  * half the margin since the split, the run is split anew: each rank's particles and contacts move to the ranks that
  * keep them (dem_mpi_state_move). The walls' sums and the series rows are each rank's own particles', merged exactly
  * (dem_mpi_exact_allreduce): the bits of one process at any rank count. Frames are gathered on rank 0 from the parts
- * slab by slab (frame); the checkpoints from the whole state gathered on rank 0 (sync_whole). */
+ * slab by slab (frame), and so are the checkpoints (checkpoint_parts): no rank holds the whole state. */
 #include "run.h"
 #include "dem_mpi.h"
 #include "output.h"
+#include "checkpoint.h"
 #include "sim.h"
 #include <errno.h>
 #include <limits.h>
@@ -20,6 +21,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* particles per slab of a checkpoint written from the parts: each a few tens of MB on rank 0 (about 1.5 KB a
+ * particle with its contacts in a compact, fp64) */
+#define RUN_MPI_CK_SLAB 32768L
 
 typedef struct {
     run_ranks pub;
@@ -58,10 +63,12 @@ typedef struct {
     dem_contact *fcs;                                 /* own contacts (the lower id own), global ids: pairs, walls */
     long fcs_n, fcs_np;
     int fcs_have;
-    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan|frame]": that rank */
-    int fail_rank, fail_nan, fail_frame;              /* fails there, after its step, or (nan) inside it: a
-                                                         particle's position made NaN before the step, or (frame)
-                                                         answering the first frame from that step on */
+    long ck_slab;                                     /* particles per slab of a checkpoint */
+    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan|frame|checkpoint]": */
+    int fail_rank, fail_nan, fail_frame, fail_ck;     /* that rank fails there, after its step, or (nan) inside it:
+                                                         a particle's position made NaN before the step, or (frame,
+                                                         checkpoint) answering the first frame or checkpoint from
+                                                         that step on */
 } rr;
 
 static rr *of(run_ranks *r) { return (rr *)r->ctx; }
@@ -484,7 +491,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         }
         long before = q->step;
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
-        if (!e && !q->fail_nan && !q->fail_frame && q->fail_step == dem_step_index(q->part) &&
+        if (!e && !q->fail_nan && !q->fail_frame && !q->fail_ck && q->fail_step == dem_step_index(q->part) &&
             q->fail_rank == r->rank) { /* the test hook */
             snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
                      q->fail_step);
@@ -539,7 +546,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
 /* ---- a frame written from the parts: rank 0 asks for each slab (output_frame_from), every rank answers with its
  * own particles' values or contacts in it, gathered on rank 0; the whole state is not gathered ---- */
 
-enum { FR_DONE, FR_FIELD, FR_PAIRS, FR_WALLS };
+enum { FR_DONE, FR_FIELD, FR_PAIRS, FR_WALLS, FR_CKSLAB };
 
 static void frame_drop(rr *q)
 {
@@ -810,39 +817,134 @@ static void overlaps(run_ranks *r, overlap_watch *w)
 static long step_index(run_ranks *r) { return of(r)->step; }
 static dem_sim *stepped(run_ranks *r) { return of(r)->part; }
 
-/* the whole run set to the parts' state: gathered, with the walls' sums merged from every rank's own particles (on
- * rank 0, the one that writes and reports; the others' whole run is not read) */
-static int sync_whole(run_ranks *r, dem_sim *whole, char *err, size_t len)
+/* ---- a checkpoint written from the parts: rank 0 asks for each slab of particle ids, and the ranks' own particles'
+ * rows and contacts in it are gathered to it (dem_mpi_state_slab); no rank holds the whole state ---- */
+
+typedef struct {
+    rr *q;
+    dem_state *loc; /* this rank's state */
+    dem_state slab; /* rank 0: the last slab gathered */
+    int have;
+    double *radius; /* its radii */
+    char *err;
+    size_t len;
+} ck_ctx;
+
+/* this rank's part of slab [a, b), gathered into g on rank 0; 0, or -1 on every rank with the reason in err */
+static int ck_answer(rr *q, dem_state *loc, long a, long b, dem_state *g, char *err, size_t len)
+{
+    int me = q->pub.rank, mine = 0, who;
+    if (q->fail_ck && q->fail_rank == me && q->step >= q->fail_step) /* test hook */
+        mine = DEM_ERR_DEVICE, snprintf(err, len, "DEM_TEST_RANK_FAIL: rank %d cannot read its part for the "
+                                                  "checkpoint at step %ld", me, q->step);
+    if (agree(&q->pub, mine, &who)) {
+        share(&q->pub, who, err, len);
+        return -1;
+    }
+    int e = dem_mpi_state_slab(&q->h, q->gid, q->owner, q->n, loc, a, b, 0, g); /* agreed */
+    if (e)
+        snprintf(err, len, "the particles %ld..%ld of the checkpoint could not be gathered: %s", a, b - 1,
+                 e == DEM_ERR_NOMEM ? "out of host memory" : "the parts do not hold each of them once");
+    return e ? -1 : 0;
+}
+
+static int ck_slab(void *ctx, long a, long b, const dem_state **part, const double **radius)
+{
+    ck_ctx *c = ctx;
+    rr *q = c->q;
+    if (c->have)
+        dem_state_free(&c->slab);
+    c->have = 0;
+    long rq[5] = {FR_CKSLAB, 0, 0, a, b};
+    MPI_Bcast(rq, 5, MPI_LONG, 0, q->comm);
+    if (ck_answer(q, c->loc, a, b, &c->slab, c->err, c->len))
+        return -1;
+    c->have = 1;
+    double *r = realloc(c->radius, sizeof(double) * (size_t)(b - a + 1));
+    if (!r) {
+        snprintf(c->err, c->len, "out of host memory");
+        return -1;
+    }
+    c->radius = r;
+    for (long k = a; k < b; k++) /* the radii as set up (the scene's, which every rank holds) */
+        r[k - a] = dem_particle_radius(q->from, (int)k);
+    *part = &c->slab, *radius = r;
+    return 0;
+}
+
+/* The checkpoint of the parts' state, written by rank 0 slab by slab: its header is rank 0's part's (step, walls,
+ * stages, counts: every rank's; the rebuild and iteration counts rank 0's, as a gather takes them) with the walls'
+ * sums merged exactly from every rank's own particles, its particles and contacts the ranks' own (the contacts each
+ * from its lower id's owner). The file of one process (tests/mpi_run_check.sh). */
+static int checkpoint_parts(run_ranks *r, const char *path, const scene *sc, const scene_run *run, char *err, size_t len)
 {
     rr *q = of(r);
-    dem_state g;
+    dem_state loc;
     err[0] = 0;
-    int e = dem_mpi_state_gather_at(&q->h, q->gid, q->owner, q->n, 0, &g); /* agreed; on rank 0 alone */
-    if (e)
-        return shared_error(q, e, err, len);
+    int e = dem_mpi_agreed(q->comm, dem_state_get(q->part, &loc));
+    if (e) {
+        shared_error(q, e, err, len);
+        return -2;
+    }
+    long mine = 0, np = 0; /* the whole run's contacts: each rank's own */
+    for (long p = 0; p < loc.npairs; p++)
+        mine += q->owner[loc.pair_i[p]] == r->rank;
+    MPI_Allreduce(&mine, &np, 1, MPI_LONG, MPI_SUM, q->comm);
     int nw = (q->part->effects & DEM_EFFECT_WALLS) ? q->nw : 0;
     exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
     for (int a = 0; a < SE_STRIDE + WP_STRIDE * nw; a++)
         exact_clear(&acc[a]);
-    e = merged_sums(q, nw, acc);
-    dem_state_array *wf = dem_state_find(&g, "wall_force"), *wn = dem_state_find(&g, "wall_normal_force");
-    for (int w = 0; !e && r->rank == 0 && w < nw; w++) {
-        const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
-        for (int d = 0; wf && d < 3; d++) {
-            if (g.real_size == 8)
-                ((double *)wf->data)[3 * w + d] = exact_to_double(&a[WP_FX + d]);
-            else
-                ((float *)wf->data)[3 * w + d] = exact_to_float(&a[WP_FX + d]);
-        }
-        if (wn && g.real_size == 8)
-            ((double *)wn->data)[w] = exact_to_double(&a[WP_FN]);
-        else if (wn)
-            ((float *)wn->data)[w] = exact_to_float(&a[WP_FN]);
+    if (agreed_msg(q, merged_sums(q, nw, acc), q->part, err, len)) {
+        dem_state_free(&loc);
+        return -2;
     }
-    if (!e && r->rank == 0 && (e = dem_state_set(whole, &g))) /* rank 0 alone writes and reports from it */
-        snprintf(err, len, "%s", dem_error(whole));
-    dem_state_free(&g);
-    return agreed_msg(q, e, NULL, err, len);
+    int rc = 0, failed = 0;
+    if (r->rank == 0) {
+        dem_state head = loc; /* its arrays' pointers loc's: not freed through head */
+        for (int k = 0; k < head.narrays; k++) {
+            dem_state_array *ha = &head.arrays[k];
+            int per;
+            if (sim_state_array_layout(q->part, ha->name, &per) != DEM_MOVE_STAY) /* the whole run's count */
+                ha->count = loc.n ? ha->count / (size_t)loc.n * (size_t)q->n : 0,
+                ha->data = ha->count ? NULL : ha->data; /* (the data of an empty one: an empty dataset) */
+        }
+        dem_state_array *wf = dem_state_find(&head, "wall_force"), *wn = dem_state_find(&head, "wall_normal_force");
+        for (int w = 0; w < nw; w++) { /* the walls' sums: every rank's own particles', as one process rounds them */
+            const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
+            for (int d = 0; wf && wf->data && d < 3; d++) {
+                if (head.real_size == 8)
+                    ((double *)wf->data)[3 * w + d] = exact_to_double(&a[WP_FX + d]);
+                else
+                    ((float *)wf->data)[3 * w + d] = exact_to_float(&a[WP_FX + d]);
+            }
+            if (wn && wn->data && head.real_size == 8)
+                ((double *)wn->data)[w] = exact_to_double(&a[WP_FN]);
+            else if (wn && wn->data)
+                ((float *)wn->data)[w] = exact_to_float(&a[WP_FN]);
+        }
+        ck_ctx c = {q, &loc, {0}, 0, NULL, err, len};
+        checkpoint_source src = {&c, q->n, np, q->ck_slab, ck_slab};
+        rc = checkpoint_write_from(path, q->part, &head, &src, sc, run, err, len);
+        long done[5] = {FR_DONE, 0, 0, 0, 0};
+        MPI_Bcast(done, 5, MPI_LONG, 0, q->comm);
+        if (c.have)
+            dem_state_free(&c.slab);
+        free(c.radius);
+    } else {
+        for (;;) {
+            long rq[5];
+            MPI_Bcast(rq, 5, MPI_LONG, 0, q->comm);
+            if (rq[0] != FR_CKSLAB)
+                break;
+            dem_state g;
+            failed |= ck_answer(q, &loc, rq[3], rq[4], &g, err, len) != 0; /* -1 on every rank: rank 0 stops */
+            if (!failed)
+                dem_state_free(&g);
+        }
+    }
+    dem_state_free(&loc);
+    int who, a = agree(r, failed ? -2 : rc, &who); /* -2 where a part failed (its words on every rank), -1 the file */
+    return a;
 }
 
 static void describe(run_ranks *r, char *buf, size_t len)
@@ -893,16 +995,19 @@ int run_mpi(const run_opts *o)
     MPI_Comm_size(q.comm, &q.pub.size);
     q.pub.ctx = &q;
     q.pub.agree = agree, q.pub.agree_min = agree_min, q.pub.share = share, q.pub.start = start, q.pub.step = step;
-    q.pub.step_index = step_index, q.pub.stepped = stepped, q.pub.sync = sync_whole, q.pub.describe = describe, q.pub.finish = finish;
+    q.pub.step_index = step_index, q.pub.stepped = stepped, q.pub.checkpoint = checkpoint_parts, q.pub.describe = describe, q.pub.finish = finish;
     q.pub.frame = frame, q.pub.overlaps = overlaps;
     q.fval_f = -1;
     q.fail_step = -1;
     const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */
-    char mode[8] = "";
-    if (tf && sscanf(tf, "%ld %d %7s", &q.fail_step, &q.fail_rank, mode) < 2)
+    char mode[16] = "";
+    if (tf && sscanf(tf, "%ld %d %15s", &q.fail_step, &q.fail_rank, mode) < 2)
         q.fail_step = -1;
     q.fail_nan = !strcmp(mode, "nan");
     q.fail_frame = !strcmp(mode, "frame");
+    q.fail_ck = !strcmp(mode, "checkpoint");
+    const char *ts = getenv("DEM_TEST_FRAME_SLAB"); /* tests/mpi_run_check.sh: a checkpoint in small slabs too */
+    q.ck_slab = ts && atol(ts) > 0 ? atol(ts) : RUN_MPI_CK_SLAB;
     run_opts mine = *o;
     const char *lr = getenv("OMPI_COMM_WORLD_LOCAL_RANK");
     int ndev = dem_device_count();

@@ -11,7 +11,8 @@
 #     stops, non-zero, that rank's message once, no output file completed, nothing hangs. And a failure inside the
 #     step ("200 1 nan": a particle of rank 1 made NaN before its step 200) under MC-stress and iterated MC-strain,
 #     whose steps hold meetings of the ranks: every rank stops there with rank 1's words, nothing hangs. And a rank
-#     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same.
+#     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same; and for a checkpoint
+#     ("200 2 checkpoint", written in slabs): the same, the checkpoint before it kept (one process's) and no .tmp.
 #  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks),
 #     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once.
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
@@ -24,7 +25,8 @@
 #     bulk_fraction 0.99 so that the bulk response, which reads the mean surface displacement, is on): PoCL fp32 on
 #     2 ranks, and the reference fp64 on 3 ranks with a thin halo (DEM_TEST_HALO_MARGIN=0.1: 2.1 r_max, hundreds of
 #     splits anew), equal to one process. Without either exchange of the rows it fails. Its frames (every field and
-#     the contact network) are gathered in slabs of 100 particles (DEM_TEST_FRAME_SLAB), 8 per frame.
+#     the contact network) are gathered in slabs of 100 particles (DEM_TEST_FRAME_SLAB), 8 per frame, and so is its
+#     checkpoint (each slab's particles' arrays and the contacts whose lower id is in it).
 #  9. MC-strain, lagged and iterated: the induced displacements of a ghost's contacts with own particles from the
 #     ghost's owner after each evaluation, the convergence decided over every rank's own contacts (a run with ghosts
 #     counts no contact of two ghosts). restart_box with 729 smaller spheres and gamma 1.12: lagged on 2 ranks
@@ -114,6 +116,22 @@ n=$(grep -c "run stopped at step [0-9]*: rank 2: DEM_TEST_RANK_FAIL: rank 2 cann
 [ "$frc" = 1 ] && [ "$n" = 1 ] && [ ! -e "$T/f.h5" ] && [ -e "$T/f.h5.part" ] ||
     { cat "$T/log" >&2; fail "a rank that cannot read its part for a frame: exit $frc (1 wanted; 124: it hung), its words $n times"; }
 echo "   a rank that cannot read its part for a frame: every rank stopped, exit 1, rank 2's words once, output .part"
+# a rank that cannot read its part for a checkpoint (written slab by slab from the parts): the checkpoint before it is
+# kept, whole (equal to one process's at that step), and nothing of the failed one is left (checkpoints every
+# 0.005 s: every 82 steps, the one of step 246 fails)
+sed 's/output: {/output: {checkpoint_every: 0.005, /' "$S" >"$T/ck.yaml"
+rm -f "$T"/f.*
+DEM_TEST_FRAME_SLAB=20 DEM_TEST_RANK_FAIL="200 2 checkpoint" mrun 3 run "$T/ck.yaml" -o "$T/f.h5" --quiet >"$T/log" 2>&1
+frc=$?
+n=$(grep -c "run stopped at step [0-9]*: rank 2: DEM_TEST_RANK_FAIL: rank 2 cannot read its part for the checkpoint" "$T/log")
+ks=$(grep -o "f.ckpt.h5, step [0-9]*" "$T/log" | grep -o "[0-9]*$")
+[ -n "$ks" ] && [ "$ks" -gt 0 ] && [ "$ks" -lt 200 ] &&
+    "$DEM" run "$T/ck.yaml" -o "$T/k1.h5" --quiet --stop-after "$ks" >/dev/null 2>&1 || ks=
+[ "$frc" = 1 ] && [ "$n" = 1 ] && [ -n "$ks" ] && [ ! -e "$T/f.h5" ] && [ -e "$T/f.h5.part" ] &&
+    [ ! -e "$T/f.ckpt.h5.tmp" ] && same "$T/k1.ckpt.h5" "$T/f.ckpt.h5" ||
+    { cat "$T/log" >&2; fail "a rank that cannot read its part for a checkpoint: exit $frc (1 wanted; 124: it hung), its words $n times, or the checkpoint before it (step '$ks') not kept"; }
+echo "   a rank that cannot read its part for a checkpoint: every rank stopped, exit 1, rank 2's words once, the"
+echo "   checkpoint of step $ks kept (one process's), no .tmp left"
 
 echo "== 4. refusals and errors, said once"
 mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1

@@ -336,6 +336,43 @@ static void test_split_anew(void **st)
                 assert_true(all_ok(same));
                 dem_state_free(&g0);
             }
+            { /* the same state on rank 0 slab by slab of 97 ids (a checkpoint's, app/run_mpi.c): each slab's arrays
+                 * the whole's rows of its particles, its contacts the whole's whose lower id is in it, in order */
+                dem_state loc, sl;
+                REQUIRE_SIM(part, dem_state_get(part, &loc));
+                long pairs = 0;
+                int same = 1;
+                size_t rs = (size_t)g.real_size;
+                for (long a = 0; a < NTOT; a += 97) {
+                    long b = a + 97 < NTOT ? a + 97 : NTOT, m = b - a;
+                    REQUIRE0(dem_mpi_state_slab(&h, gid, owner, NTOT, &loc, a, b, 0, &sl));
+                    same &= rank != 0 || (sl.n == m && sl.narrays == g.narrays);
+                    for (int k = 0; rank == 0 && same && k < g.narrays; k++) {
+                        const dem_state_array *ga = &g.arrays[k], *sa = &sl.arrays[k];
+                        int per, kind = sim_state_array_layout(part, ga->name, &per);
+                        size_t es = ga->elem == DEM_STATE_REAL ? rs : sizeof(int), row = (size_t)per * es;
+                        size_t groups = per ? ga->count / ((size_t)NTOT * per) : 0;
+                        if (kind == DEM_MOVE_STAY || !ga->count)
+                            continue;
+                        for (size_t q = 0; same && q < groups; q++) /* one group (DEM_MOVE_P), one per wall (G) */
+                            same = sa->count == groups * (size_t)m * per &&
+                                   !memcmp((char *)sa->data + q * (size_t)m * row,
+                                           (char *)ga->data + (q * NTOT + (size_t)a) * row, (size_t)m * row);
+                    }
+                    for (long p = 0; rank == 0 && same && p < sl.npairs; p++, pairs++)
+                        same = pairs < g.npairs && sl.pair_i[p] == g.pair_i[pairs] && sl.pair_j[p] == g.pair_j[pairs] &&
+                               sl.pair_i[p] >= a && sl.pair_i[p] < b &&
+                               !memcmp((char *)sl.pair_hist + p * 3 * rs, (char *)g.pair_hist + pairs * 3 * rs, 3 * rs);
+                    same &= rank == 0 || (sl.narrays == 0 && sl.npairs == 0);
+                    dem_state_free(&sl);
+                }
+                same &= rank != 0 || pairs == g.npairs;
+                if (rank == 0)
+                    printf("  %s, %d ranks: the state gathered in slabs of 97 ids (%ld contacts) %s the whole gather\n",
+                           bc->name, size, pairs, same ? "equals" : "DIFFERS from");
+                assert_true(all_ok(same));
+                dem_state_free(&loc);
+            }
             const dem_state_array *x = dem_state_find(&g, "x");
             for (int k = 0; k < NTOT; k++) /* the positions the next split cuts by */
                 for (int d = 0; d < 3; d++)

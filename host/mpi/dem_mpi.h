@@ -88,6 +88,14 @@ int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, lon
  * output and checkpoints of a split run are written from, app/run_mpi.c). Collective. */
 int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, int root,
                             dem_state *g);
+/* A slab of the whole state on rank root alone (>= 0): the particles of global ids [a, b) of the nglobal (a state of
+ * b - a particles, in ascending id, with every array's rows of them) and the contacts whose lower id is among them,
+ * with their global ids, in ascending (i, j); taken from loc, this rank's state (dem_state_get of h's run), as
+ * dem_state_gather takes the whole (the walls' sums are rank 0's). The others' g holds the header only. What a
+ * checkpoint of a split run is written from, slab by slab, so that no rank holds the whole state (app/run_mpi.c).
+ * Collective; returns 0 or a dem_status, the same on every rank. */
+int dem_mpi_state_slab(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *loc, long a,
+                       long b, int root, dem_state *g);
 /* A split anew without the whole state on any rank: loc, this rank's state (dem_state_get of its run, whose held
  * particles have the ascending global ids gid[0..loc->n) and ranks owner[]), goes where the new split keeps it:
  * each own particle's arrays to every rank r with keeps(arg, id, r), each contact whose lower id this rank owns to

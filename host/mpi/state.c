@@ -81,37 +81,40 @@ static int fits_int(size_t count, size_t bytes) { return bytes == 0 || count <= 
 
 /* Every collective below is entered by every rank or by none: each local failure is agreed (dem_mpi_agreed) before
  * the next collective, and all ranks leave together. */
-/* root < 0: on every rank; else on rank root alone (the others' g: the header, no arrays or contacts) */
-static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *loc, dem_state *g,
-                        int root)
+/* root < 0: on every rank; else on rank root alone (the others' g: the header, no arrays or contacts). The particles
+ * of global ids [a, b) of the nglobal (a state of b - a particles: the whole state, or a slab of it) and the
+ * contacts whose lower id is among them. */
+static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, long a, long b,
+                        dem_state *loc, dem_state *g, int root)
 {
     int here = root < 0 || h->rank == root; /* this rank receives the whole state */
     MPI_Comm comm = h->comm;
     int P = h->size, n = h->n, rs = loc->real_size, no = 0;
     /* patch contacts do not travel yet; every rank holds a particle. MC-strain's force and displacements travel with
      * their pair: the owner of its lower id holds both ends' (the ghost end's from its owner, halo.c) */
-    int e = loc->npatch || n == 0 ? DEM_ERR_ARG : 0;
+    int e = loc->npatch || n == 0 || a < 0 || b < a || b > nglobal ? DEM_ERR_ARG : 0;
+    long m = e ? 0 : b - a; /* the particles gathered */
     int *own = malloc(sizeof(int) * ((size_t)n + 1)), *cnt = malloc(sizeof(int) * 4 * (size_t)P);
     int *dsp = cnt ? cnt + P : NULL, *bc = cnt ? cnt + 2 * P : NULL, *bd = cnt ? cnt + 3 * P : NULL;
-    long *allgid = malloc(sizeof(long) * ((size_t)nglobal + 1)), *mine = malloc(sizeof(long) * ((size_t)n + 1));
+    long *allgid = malloc(sizeof(long) * ((size_t)m + 1)), *mine = malloc(sizeof(long) * ((size_t)n + 1));
     unsigned char *send = NULL, *recv = NULL;
     e = e ? e : own && cnt && allgid && mine ? 0 : DEM_ERR_NOMEM;
     for (int i = 0; !e && i < n; i++)
-        if (owner[i] == h->rank)
-            mine[no] = gid[i], own[no++] = i;
+        if (owner[i] == h->rank && gid[i] >= a && gid[i] < b)
+            mine[no] = gid[i] - a, own[no++] = i;
     long total = 0;
     if (!(e = dem_mpi_agreed(comm, e))) {
         MPI_Allgather(&no, 1, MPI_INT, cnt, 1, MPI_INT, comm);
         for (int q = 0; q < P; q++)
             dsp[q] = (int)total, total += cnt[q];
-        e = total == nglobal ? 0 : DEM_ERR_ARG; /* every particle owned once: the same verdict on every rank */
+        e = total == m ? 0 : DEM_ERR_ARG; /* every particle owned once: the same verdict on every rank */
     }
     if (!e && root < 0)
         MPI_Allgatherv(mine, no, MPI_LONG, allgid, cnt, dsp, MPI_LONG, comm);
     else if (!e)
         MPI_Gatherv(mine, no, MPI_LONG, allgid, cnt, dsp, MPI_LONG, root, comm);
     if (!e) { /* the header: rank 0's (the step and the walls are every rank's; the rebuild and iteration counts not) */
-        header_copy(g, loc, (int)nglobal);
+        header_copy(g, loc, (int)m);
         MPI_Bcast(&g->rebuilds, 1, MPI_LONG, 0, comm);
         MPI_Bcast(&g->mc, (int)sizeof g->mc, MPI_BYTE, 0, comm);
     }
@@ -136,12 +139,12 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
             e = DEM_ERR_ARG;
         else {
             groups = la->count / ((size_t)n * per), row = (size_t)per * es; /* groups: 1 for a per-particle array */
-            ga->count = groups * (size_t)nglobal * per;
+            ga->count = groups * (size_t)m * per;
             send = malloc(groups * (size_t)no * row + 1);
-            recv = here ? malloc(groups * (size_t)nglobal * row + 1) : NULL;
+            recv = here ? malloc(groups * (size_t)m * row + 1) : NULL;
             ga->data = here ? malloc(ga->count * es + 1) : NULL;
             e = !send || (here && (!recv || !ga->data)) ? DEM_ERR_NOMEM
-                : fits_int(groups * (size_t)nglobal, row) ? 0 : DEM_ERR_ARG;
+                : fits_int(groups * (size_t)m, row) ? 0 : DEM_ERR_ARG;
         }
         if (!(e = dem_mpi_agreed(comm, e))) {
             for (size_t gr = 0; gr < groups; gr++)
@@ -156,7 +159,7 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
             for (int q = 0; here && q < P; q++) /* rank q's block: its groups, each of its cnt[q] rows */
                 for (size_t gr = 0; gr < groups; gr++)
                     for (int k = 0; k < cnt[q]; k++)
-                        memcpy((unsigned char *)ga->data + (gr * nglobal + allgid[dsp[q] + k]) * row,
+                        memcpy((unsigned char *)ga->data + (gr * m + allgid[dsp[q] + k]) * row,
                                recv + (size_t)bd[q] + (gr * cnt[q] + k) * row, row);
         }
         free(send), free(recv);
@@ -167,13 +170,13 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
     size_t rec = 2 * sizeof(long) + pb.all;
     long npo = 0, all = 0;
     for (long p = 0; !e && p < loc->npairs; p++)
-        npo += owner[loc->pair_i[p]] == h->rank;
+        npo += owner[loc->pair_i[p]] == h->rank && gid[loc->pair_i[p]] >= a && gid[loc->pair_i[p]] < b;
     if (!e) {
         send = malloc((size_t)npo * rec + 1);
         e = send ? 0 : DEM_ERR_NOMEM;
     }
     for (long p = 0, k = 0; !e && p < loc->npairs; p++)
-        if (owner[loc->pair_i[p]] == h->rank) {
+        if (owner[loc->pair_i[p]] == h->rank && gid[loc->pair_i[p]] >= a && gid[loc->pair_i[p]] < b) {
             long ij[2] = {gid[loc->pair_i[p]], gid[loc->pair_j[p]]};
             memcpy(send + (size_t)k * rec, ij, sizeof ij);
             pair_copy(loc, p, send + (size_t)k * rec + sizeof ij, &pb, 0);
@@ -217,7 +220,7 @@ int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, 
     memset(g, 0, sizeof *g);
     int e = dem_mpi_agreed(h->comm, dem_state_get(h->s, &loc));
     if (!e) /* (its verdict is every rank's already) */
-        e = gather_state(h, gid, owner, nglobal, &loc, g, root);
+        e = gather_state(h, gid, owner, nglobal, 0, nglobal, &loc, g, root);
     dem_state_free(&loc);
     if (!e && root >= 0 && h->rank != root) { /* the header alone: no arrays or contacts were received here */
         for (int a = 0; a < g->narrays; a++)
@@ -232,6 +235,21 @@ int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, 
 int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *g)
 {
     return dem_mpi_state_gather_at(h, gid, owner, nglobal, -1, g);
+}
+
+int dem_mpi_state_slab(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, dem_state *loc, long a,
+                       long b, int root, dem_state *g)
+{
+    memset(g, 0, sizeof *g);
+    int e = gather_state(h, gid, owner, nglobal, a, b, loc, g, root);
+    if (!e && h->rank != root) { /* the header alone */
+        for (int k = 0; k < g->narrays; k++)
+            free(g->arrays[k].data);
+        g->narrays = 0;
+    }
+    if (e)
+        dem_state_free(g);
+    return e;
 }
 
 int dem_mpi_state_part(const dem_sim *s, const dem_state *g, const unsigned char *keep, dem_state *part)
