@@ -45,12 +45,12 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
     return 0;
 }
 
-/* the block at start of extent cnt from buf, the dataset already as large */
-static int write_block(h5rows *r, const hsize_t start[3], const hsize_t cnt[3], const void *buf)
+/* the block at start of extent cnt of dataset d (of rank dimensions) from buf, the dataset already as large */
+static int write_hyperslab(hid_t d, hid_t mem_type, int rank, const hsize_t *start, const hsize_t *cnt, const void *buf)
 {
-    hid_t fs = H5Dget_space(r->id), ms = H5Screate_simple(r->rank, cnt, NULL);
+    hid_t fs = H5Dget_space(d), ms = H5Screate_simple(rank, cnt, NULL);
     int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
-                     H5Dwrite(r->id, r->mem_type, ms, fs, H5P_DEFAULT, buf) >= 0
+                     H5Dwrite(d, mem_type, ms, fs, H5P_DEFAULT, buf) >= 0
                  ? 0
                  : -1;
     if (fs >= 0)
@@ -58,6 +58,10 @@ static int write_block(h5rows *r, const hsize_t start[3], const hsize_t cnt[3], 
     if (ms >= 0)
         H5Sclose(ms);
     return rc;
+}
+static int write_block(h5rows *r, const hsize_t start[3], const hsize_t cnt[3], const void *buf)
+{
+    return write_hyperslab(r->id, r->mem_type, r->rank, start, cnt, buf);
 }
 
 /* rows [first, first + count) of the dataset from buf */
@@ -165,22 +169,14 @@ int h5_write_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, const v
     if (count == 0)
         return 0;
     hid_t fs = H5Dget_space(d);
-    int rank = fs >= 0 ? H5Sget_simple_extent_ndims(fs) : -1;
+    int rank = fs >= 0 ? H5Sget_simple_extent_ndims(fs) : -1, empty = 0;
     hsize_t dims[H5S_MAX_RANK], start[H5S_MAX_RANK] = {first}, cnt[H5S_MAX_RANK];
     int ok = rank >= 1 && H5Sget_simple_extent_dims(fs, dims, NULL) >= 0 && first + count <= dims[0];
-    for (int k = 0; ok && k < rank; k++)
-        if (!(cnt[k] = k ? dims[k] : count)) /* an empty row: nothing to write */
-            ok = 2;
-    hid_t ms = ok == 1 ? H5Screate_simple(rank, cnt, NULL) : -1;
-    int rc = ok == 2 || (ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
-                         H5Dwrite(d, mem_type, ms, fs, H5P_DEFAULT, data) >= 0)
-                 ? 0
-                 : -1;
     if (fs >= 0)
         H5Sclose(fs);
-    if (ms >= 0)
-        H5Sclose(ms);
-    return rc;
+    for (int k = 0; ok && k < rank; k++)
+        empty |= !(cnt[k] = k ? dims[k] : count); /* an empty row: nothing to write */
+    return !ok ? -1 : empty ? 0 : write_hyperslab(d, mem_type, rank, start, cnt, data);
 }
 
 int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const void *data,

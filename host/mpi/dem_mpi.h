@@ -88,7 +88,7 @@ int dem_mpi_state_gather(dem_mpi_halo *h, const long *gid, const int *owner, lon
  * output and checkpoints of a split run are written from, app/run_mpi.c). Collective. */
 int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, long nglobal, int root,
                             dem_state *g);
-/* A slab of the whole state on rank root alone (>= 0): the particles of global ids [a, b) of the nglobal (a state of
+/* A slab of the whole state on rank root alone (root < 0: on every rank): the particles of global ids [a, b) of the nglobal (a state of
  * b - a particles, in ascending id, with every array's rows of them) and the contacts whose lower id is among them,
  * with their global ids, in ascending (i, j); taken from loc, this rank's state (dem_state_get of h's run), as
  * dem_state_gather takes the whole (the walls' sums are rank 0's). The others' g holds the header only. What a

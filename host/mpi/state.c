@@ -220,15 +220,8 @@ int dem_mpi_state_gather_at(dem_mpi_halo *h, const long *gid, const int *owner, 
     memset(g, 0, sizeof *g);
     int e = dem_mpi_agreed(h->comm, dem_state_get(h->s, &loc));
     if (!e) /* (its verdict is every rank's already) */
-        e = gather_state(h, gid, owner, nglobal, 0, nglobal, &loc, g, root);
+        e = dem_mpi_state_slab(h, gid, owner, nglobal, &loc, 0, nglobal, root, g);
     dem_state_free(&loc);
-    if (!e && root >= 0 && h->rank != root) { /* the header alone: no arrays or contacts were received here */
-        for (int a = 0; a < g->narrays; a++)
-            free(g->arrays[a].data);
-        g->narrays = 0;
-    }
-    if (e)
-        dem_state_free(g);
     return e;
 }
 
@@ -242,7 +235,7 @@ int dem_mpi_state_slab(dem_mpi_halo *h, const long *gid, const int *owner, long 
 {
     memset(g, 0, sizeof *g);
     int e = gather_state(h, gid, owner, nglobal, a, b, loc, g, root);
-    if (!e && h->rank != root) { /* the header alone */
+    if (!e && root >= 0 && h->rank != root) { /* the header alone: no arrays or contacts were received here */
         for (int k = 0; k < g->narrays; k++)
             free(g->arrays[k].data);
         g->narrays = 0;
