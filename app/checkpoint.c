@@ -371,7 +371,9 @@ static int read_patches(hid_t g, dem_state *st, hid_t real_t)
 }
 
 /* /state: its attributes, arrays and contacts into ck (1: missing or damaged) */
-static int read_state(hid_t g, checkpoint *ck)
+/* /state into ck; head: its attributes, contact count, walls and stages alone (no particle arrays, radii, contacts or
+ * patch contacts: nothing of a size that grows with the run) */
+static int read_state(hid_t g, checkpoint *ck, int head)
 {
     dem_state *st = &ck->st;
     long n = 0, nw = 0, rs = 0, hh = 0, hm = 0, hl = 0, hr = 0;
@@ -408,6 +410,15 @@ static int read_state(hid_t g, checkpoint *ck)
             rc = 1, npairs = 0;
         if (npairs < 0)
             rc = 1, npairs = 0;
+        if (head) {
+            st->npairs = npairs;
+            st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
+            return rc || h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
+                   (st->has_stages &&
+                    (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
+                     h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first, (size_t)nw) ||
+                     h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from, 3 * (size_t)nw)));
+        }
         st->pair_i = malloc(sizeof(int) * (size_t)(npairs + 1));
         st->pair_j = malloc(sizeof(int) * (size_t)(npairs + 1));
         st->pair_hist = malloc(3 * (size_t)(npairs + 1) * rs);
@@ -445,7 +456,7 @@ static int read_state(hid_t g, checkpoint *ck)
     return rc;
 }
 
-int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
+static int read_file(const char *path, checkpoint *ck, int head, char *err, size_t errlen)
 {
     memset(ck, 0, sizeof *ck);
     if (access(path, R_OK) != 0) { /* missing or unreadable: exit 66, unlike a damaged file (65) */
@@ -470,7 +481,7 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         return 1;
     }
     hid_t g = H5Lexists(f, "state", H5P_DEFAULT) > 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
-    int rc = g < 0 || read_state(g, ck);
+    int rc = g < 0 || read_state(g, ck, head);
     if (g >= 0)
         H5Gclose(g);
     const char *what = NULL;
@@ -505,11 +516,21 @@ int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
         checkpoint_free(ck);
         return 1;
     }
-    if (check_finite(ck, path, err, errlen)) {
+    if (!head && check_finite(ck, path, err, errlen)) {
         checkpoint_free(ck);
         return 1;
     }
     return 0;
+}
+
+int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen)
+{
+    return read_file(path, ck, 0, err, errlen);
+}
+
+int checkpoint_read_head(const char *path, checkpoint *ck, char *err, size_t errlen)
+{
+    return read_file(path, ck, 1, err, errlen);
 }
 
 void checkpoint_free(checkpoint *ck)

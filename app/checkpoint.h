@@ -45,6 +45,10 @@ typedef struct {
 int checkpoint_write_from(const char *path, dem_sim *s, const dem_state *head, const checkpoint_source *src,
                           const scene *sc, const scene_run *run, char *err, size_t errlen);
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
+/* The same but for what grows with the run: the scene, the attributes (step, n, precision, has_*: ck->st.npairs the
+ * contacts' count), the walls' positions and stages; no particle arrays, radii (ck->radius NULL), contacts or patch
+ * contacts, and their values unchecked. What a split run's other ranks read on restart (rank 0 reads the whole). */
+int checkpoint_read_head(const char *path, checkpoint *ck, char *err, size_t errlen);
 void checkpoint_free(checkpoint *ck);
 /* restart_scene.c: whether the scene now may continue the checkpoint ck (read from ck_path) - the scene ck was run
  * with but for time.duration, the output section and the stages a wall has not finished; 1 with err naming the first

@@ -646,7 +646,11 @@ static int phase_load(run_ctx *c)
 {
     const run_opts *o = c->o;
     if (o->restart) {
-        if (checkpoint_read(o->restart, &c->ck, c->err, sizeof c->err)) /* 66: cannot be opened; 65: damaged */
+        /* over ranks rank 0 alone reads the state (its whole run is set to it and the parts start from it); the
+         * others read what the checks below read, and rank 0 says a damaged file once */
+        int head = c->R && c->R->rank != 0;
+        if ((head ? checkpoint_read_head : checkpoint_read)(o->restart, &c->ck, c->err, sizeof c->err)) /* 66: cannot
+                                                                                  be opened; 65: damaged */
             return fail_with(strstr(c->err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, c->err);
         c->have_ck = 1;
         /* `dem run SCENE --restart CK` continues CK under SCENE as it is now (a longer duration, a stage added or
@@ -734,7 +738,7 @@ static int phase_configure(run_ctx *c)
                  run->cfg.precision == DEM_FP64 ? "fp64" : "fp32");
         return fail_with(EXIT_BAD_INPUT, c->err);
     }
-    for (int i = 0; i < c->ck.st.n; i++)
+    for (int i = 0; c->ck.radius && i < c->ck.st.n; i++) /* (over ranks: rank 0's check) */
         if (c->ck.radius[i] != dem_particle_radius(c->s, i)) {
             snprintf(c->err, sizeof c->err, "%s: particle %d has radius %g m in the checkpoint and %g m in the scene "
                      "(did a CSV file change?)", o->restart, i, c->ck.radius[i], dem_particle_radius(c->s, i));

@@ -14,7 +14,8 @@
 #     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same; and for a checkpoint
 #     ("200 2 checkpoint", written in slabs): the same, the checkpoint before it kept (one process's) and no .tmp.
 #  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks),
-#     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once.
+#     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once, and a damaged checkpoint (which
+#     rank 0 alone reads whole: the other ranks read its header, checkpoint_read_head).
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
 #     and a servo): on 2 and 3 ranks, PoCL fp32 and the reference fp64, the output, the checkpoint and the report's
 #     stage ends and servo record equal to one process's.
@@ -145,7 +146,16 @@ sed 's/^effects:/effectz:/' "$S" >"$T/bad.yaml"
 mrun 2 run "$T/bad.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
-echo "   more ranks than particles, a membrane, a misspelt key: exit 65, each said once"
+# a damaged checkpoint (a velocity made NaN): rank 0 alone reads the state (the others its header), and says it once
+cp "$T/a1.ckpt.h5" "$T/bad.ckpt.h5"
+"$PY" -c "import h5py, sys
+with h5py.File(sys.argv[1], 'r+') as f:
+    v = f['state/v'][...]; v[5, 1] = float('nan'); f['state/v'][...] = v" "$T/bad.ckpt.h5" || fail "cannot damage a copy"
+mrun 2 run --restart "$T/bad.ckpt.h5" -o "$T/t.h5" --quiet >"$T/log" 2>&1
+trc=$?
+[ "$trc" = 65 ] && [ "$(grep -c 'bad.ckpt.h5: /state/v: element 16 is nan' "$T/log")" = 1 ] ||
+    { cat "$T/log" >&2; fail "a damaged checkpoint on 2 ranks: exit $trc, or not said once"; }
+echo "   more ranks than particles, a membrane, a misspelt key, a damaged checkpoint: exit 65, each said once"
 
 echo "== 5. SIGTERM and SIGUSR2 to mpirun"
 sed 's/duration: 0.04}/duration: 5.0}/' "$S" >"$T/long.yaml"
