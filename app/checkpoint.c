@@ -126,7 +126,7 @@ static int write_state(hid_t g, dem_sim *s, const dem_state *h, const checkpoint
         {D_HIST, 2, 1, "pair_hist", "N", 3},
         {D_REC, 2, h->pair_rec != NULL, "pair_rec", "N (force, n x f_t), m (overlap)", DEM_PAIR_RECORD_REALS},
         {D_RADIUS, 1, 1, "radius", "m", 0},
-        {D_MCF, 1, -1, "pair_mc_fn", "N", 0},
+        {D_MCF, 1, 1, "pair_mc_fn", "N", 0},
         {D_LAW, h->has_law > 1 ? 2 : 1, h->has_law > 0, "pair_law", h->has_law == 1 ? "m" : NULL,
          (hsize_t)h->has_law},
         {D_RSP, 2, h->has_rspring, "pair_rspring", "N m", 3},
@@ -371,6 +371,18 @@ static int read_patches(hid_t g, dem_state *st, hid_t real_t)
 }
 
 /* /state: its attributes, arrays and contacts into ck (1: missing or damaged) */
+/* the walls' positions, and each wall's motion stage (absent from checkpoints of libdem before stages could end
+ * early: derived from the step by dem_state_set) */
+static int read_walls(hid_t g, dem_state *st, long nw)
+{
+    st->has_stages = H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
+    return h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
+           (st->has_stages &&
+            (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
+             h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first, (size_t)nw) ||
+             h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from, 3 * (size_t)nw)));
+}
+
 /* /state into ck; head: its attributes, contact count, walls and stages alone (no particle arrays, radii, contacts or
  * patch contacts: nothing of a size that grows with the run) */
 static int read_state(hid_t g, checkpoint *ck, int head)
@@ -412,12 +424,7 @@ static int read_state(hid_t g, checkpoint *ck, int head)
             rc = 1, npairs = 0;
         if (head) {
             st->npairs = npairs;
-            st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
-            return rc || h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
-                   (st->has_stages &&
-                    (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
-                     h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first, (size_t)nw) ||
-                     h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from, 3 * (size_t)nw)));
+            return rc || read_walls(g, st, nw);
         }
         st->pair_i = malloc(sizeof(int) * (size_t)(npairs + 1));
         st->pair_j = malloc(sizeof(int) * (size_t)(npairs + 1));
@@ -428,7 +435,6 @@ static int read_state(hid_t g, checkpoint *ck, int head)
         st->pair_rspring = malloc(((hr ? 3 * (size_t)npairs : 0) + 1) * rs);
         ck->radius = malloc(sizeof(double) * (size_t)n);
         rc = rc || !st->pair_i || !st->pair_j || !st->pair_hist || !ck->radius || read_arrays(g, st, real_t) ||
-             h5_read(g, "wall_pos", H5T_NATIVE_DOUBLE, st->wall_pos, 3 * (size_t)nw) ||
              h5_read(g, "radius", H5T_NATIVE_DOUBLE, ck->radius, (size_t)n);
         st->npairs = npairs;
         rc = rc || h5_read(g, "pair_i", H5T_NATIVE_INT, st->pair_i, (size_t)npairs) ||
@@ -443,15 +449,7 @@ static int read_state(hid_t g, checkpoint *ck, int head)
          * per-particle ones are arrays of the state, read above) */
         rc = rc || read_optional(g, "pair_rec", real_t, DEM_PAIR_RECORD_REALS * (size_t)npairs, rs, &st->pair_rec) ||
              read_optional(g, "pair_mc_disp", real_t, 2 * (size_t)npairs, rs, &st->pair_mc_disp);
-        /* each wall's motion stage (absent from checkpoints of libdem before stages could end early: derived from
-         * the step by dem_state_set) */
-        st->has_stages = !rc && H5Lexists(g, "wall_stage", H5P_DEFAULT) > 0;
-        rc = rc || (st->has_stages && (h5_read(g, "wall_stage", H5T_NATIVE_INT, st->wall_stage, (size_t)nw) ||
-                                       h5_read(g, "wall_stage_first", H5T_NATIVE_LONG, st->wall_stage_first,
-                                               (size_t)nw) ||
-                                       h5_read(g, "wall_stage_from", H5T_NATIVE_DOUBLE, st->wall_stage_from,
-                                               3 * (size_t)nw)));
-        rc = rc || read_patches(g, st, real_t);
+        rc = rc || read_walls(g, st, nw) || read_patches(g, st, real_t);
     }
     return rc;
 }

@@ -59,17 +59,13 @@ static int write_hyperslab(hid_t d, hid_t mem_type, int rank, const hsize_t *sta
         H5Sclose(ms);
     return rc;
 }
-static int write_block(h5rows *r, const hsize_t start[3], const hsize_t cnt[3], const void *buf)
-{
-    return write_hyperslab(r->id, r->mem_type, r->rank, start, cnt, buf);
-}
 
 /* rows [first, first + count) of the dataset from buf */
 static int write_rows(h5rows *r, const void *buf, hsize_t count)
 {
     hsize_t start[3] = {r->dims[0], 0, 0}, cnt[3] = {count, r->dims[1], r->dims[2]};
     hsize_t grown[3] = {r->dims[0] + count, r->dims[1], r->dims[2]};
-    if (H5Dset_extent(r->id, grown) < 0 || write_block(r, start, cnt, buf))
+    if (H5Dset_extent(r->id, grown) < 0 || write_hyperslab(r->id, r->mem_type, r->rank, start, cnt, buf))
         return -1;
     r->dims[0] += count;
     return 0;
@@ -97,7 +93,7 @@ int h5rows_append_part(h5rows *r, hsize_t a, hsize_t b, const void *part)
     if (a == 0 && H5Dset_extent(r->id, grown) < 0)
         return -1;
     hsize_t start[3] = {r->dims[0], a, 0}, cnt[3] = {1, b - a, r->dims[2]}; /* a rank-1 row: a = 0, b = 1 */
-    if (write_block(r, start, cnt, part))
+    if (write_hyperslab(r->id, r->mem_type, r->rank, start, cnt, part))
         return -1;
     if (b == d1)
         r->dims[0]++;

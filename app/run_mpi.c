@@ -308,7 +308,10 @@ static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(
     err[0] = 0;
     int me = r->rank;
     q->tmpl = me == 0 ? build(arg, err, len) : NULL; /* rank 0's whole run is started: a copy of its set-up */
-    q->from = me == 0 ? q->tmpl : whole;
+    dem_sim *src = me == 0 ? q->tmpl : whole;
+    if (src) /* the whole scene's volume once (an exact sum over every particle), not at each split's copy */
+        src->whole_volume = sim_particle_volume(src);
+    q->from = src;
     int e = q->from ? 0 : DEM_ERR_ARG;
     if ((e = agreed_msg(q, e, NULL, err, len)))
         return e;
@@ -837,14 +840,15 @@ static int ck_answer(rr *q, dem_state *loc, long a, long b, dem_state *g, char *
     if (q->fail_ck && q->fail_rank == me && q->step >= q->fail_step) /* test hook */
         mine = DEM_ERR_DEVICE, snprintf(err, len, "DEM_TEST_RANK_FAIL: rank %d cannot read its part for the "
                                                   "checkpoint at step %ld", me, q->step);
-    if (agree(&q->pub, mine, &who)) {
+    if (q->fail_ck && agree(&q->pub, mine, &who)) { /* (the hook's setting is every rank's: mpirun's environment) */
         share(&q->pub, who, err, len);
         return -1;
     }
     int e = dem_mpi_state_slab(&q->h, q->gid, q->owner, q->n, loc, a, b, 0, g); /* agreed */
     if (e)
         snprintf(err, len, "the particles %ld..%ld of the checkpoint could not be gathered: %s", a, b - 1,
-                 e == DEM_ERR_NOMEM ? "out of host memory" : "the parts do not hold each of them once");
+                 e == DEM_ERR_NOMEM ? "out of host memory"
+                                    : "the parts do not hold each of them once, or a message past MPI's int counts");
     return e ? -1 : 0;
 }
 
@@ -911,16 +915,10 @@ static int checkpoint_parts(run_ranks *r, const char *path, const scene *sc, con
         dem_state_array *wf = dem_state_find(&head, "wall_force"), *wn = dem_state_find(&head, "wall_normal_force");
         for (int w = 0; w < nw; w++) { /* the walls' sums: every rank's own particles', as one process rounds them */
             const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
-            for (int d = 0; wf && wf->data && d < 3; d++) {
-                if (head.real_size == 8)
-                    ((double *)wf->data)[3 * w + d] = exact_to_double(&a[WP_FX + d]);
-                else
-                    ((float *)wf->data)[3 * w + d] = exact_to_float(&a[WP_FX + d]);
-            }
-            if (wn && wn->data && head.real_size == 8)
-                ((double *)wn->data)[w] = exact_to_double(&a[WP_FN]);
-            else if (wn && wn->data)
-                ((float *)wn->data)[w] = exact_to_float(&a[WP_FN]);
+            for (int d = 0; wf && wf->data && d < 3; d++)
+                sim_real_put(wf->data, (size_t)(3 * w + d), head.real_size, rounded(q, &a[WP_FX + d]));
+            if (wn && wn->data)
+                sim_real_put(wn->data, (size_t)w, head.real_size, rounded(q, &a[WP_FN]));
         }
         ck_ctx c = {q, &loc, {0}, 0, NULL, err, len};
         checkpoint_source src = {&c, q->n, np, q->ck_slab, ck_slab};

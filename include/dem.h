@@ -523,7 +523,7 @@ typedef struct {
     long wall_stage_first[DEM_MAX_WALLS]; /* the step it began */
     double wall_stage_from[DEM_MAX_WALLS][3]; /* where the wall was then [m] (dem_stage.until_distance) */
     long npairs;
-    int *pair_i, *pair_j;
+    int *pair_i, *pair_j;             /* each contact's particles, in ascending i, then j */
     void *pair_hist;                  /* real[3 npairs] */
     void *pair_rec;                   /* real[DEM_PAIR_RECORD_REALS npairs]: each pair's force record of the last step (dem_layout.h
                                          PR_*: the contact network's forces); NULL: not known (an older checkpoint),

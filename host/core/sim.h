@@ -312,6 +312,14 @@ static inline double sim_real_at(const void *raw, size_t k, int rs)
 {
     return rs == 8 ? ((const double *)raw)[k] : (double)((const float *)raw)[k];
 }
+/* v into element k of such an array (v a float's value where rs is 4: stored exactly) */
+static inline void sim_real_put(void *raw, size_t k, int rs, double v)
+{
+    if (rs == 8)
+        ((double *)raw)[k] = v;
+    else
+        ((float *)raw)[k] = (float)v;
+}
 static inline void sim_widen(const void *raw, double *dst, size_t count, int rs)
 {
     for (size_t k = 0; k < count; k++)

@@ -81,6 +81,20 @@ static int fits_int(size_t count, size_t bytes) { return bytes == 0 || count <= 
 
 /* Every collective below is entered by every rank or by none: each local failure is agreed (dem_mpi_agreed) before
  * the next collective, and all ranks leave together. */
+/* the first of st's contacts (ascending pair_i) with pair_i >= v */
+static long pair_from(const dem_state *st, int v)
+{
+    long lo = 0, hi = st->npairs;
+    while (lo < hi) {
+        long k = lo + (hi - lo) / 2;
+        if (st->pair_i[k] < v)
+            lo = k + 1;
+        else
+            hi = k;
+    }
+    return lo;
+}
+
 /* root < 0: on every rank; else on rank root alone (the others' g: the header, no arrays or contacts). The particles
  * of global ids [a, b) of the nglobal (a state of b - a particles: the whole state, or a slab of it) and the
  * contacts whose lower id is among them. */
@@ -94,13 +108,17 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
      * their pair: the owner of its lower id holds both ends' (the ghost end's from its owner, halo.c) */
     int e = loc->npatch || n == 0 || a < 0 || b < a || b > nglobal ? DEM_ERR_ARG : 0;
     long m = e ? 0 : b - a; /* the particles gathered */
-    int *own = malloc(sizeof(int) * ((size_t)n + 1)), *cnt = malloc(sizeof(int) * 4 * (size_t)P);
+    /* the held ones among them: local ids k0..k1 (gid ascends), and their contacts p0..p1 (pair_i ascends, as a
+     * state lists its contacts): a checkpoint's slabs do not each scan the whole part */
+    int k0 = e ? 0 : dem_mpi_id_from(gid, n, a), k1 = e ? 0 : dem_mpi_id_from(gid, n, b);
+    long p0 = pair_from(loc, k0), p1 = pair_from(loc, k1);
+    int *own = malloc(sizeof(int) * ((size_t)(k1 - k0) + 1)), *cnt = malloc(sizeof(int) * 4 * (size_t)P);
     int *dsp = cnt ? cnt + P : NULL, *bc = cnt ? cnt + 2 * P : NULL, *bd = cnt ? cnt + 3 * P : NULL;
-    long *allgid = malloc(sizeof(long) * ((size_t)m + 1)), *mine = malloc(sizeof(long) * ((size_t)n + 1));
+    long *allgid = malloc(sizeof(long) * ((size_t)m + 1)), *mine = malloc(sizeof(long) * ((size_t)(k1 - k0) + 1));
     unsigned char *send = NULL, *recv = NULL;
     e = e ? e : own && cnt && allgid && mine ? 0 : DEM_ERR_NOMEM;
-    for (int i = 0; !e && i < n; i++)
-        if (owner[i] == h->rank && gid[i] >= a && gid[i] < b)
+    for (int i = k0; !e && i < k1; i++)
+        if (owner[i] == h->rank)
             mine[no] = gid[i] - a, own[no++] = i;
     long total = 0;
     if (!(e = dem_mpi_agreed(comm, e))) {
@@ -169,14 +187,14 @@ static int gather_state(dem_mpi_halo *h, const long *gid, const int *owner, long
     pair_bytes pb = pair_bytes_of(loc);
     size_t rec = 2 * sizeof(long) + pb.all;
     long npo = 0, all = 0;
-    for (long p = 0; !e && p < loc->npairs; p++)
-        npo += owner[loc->pair_i[p]] == h->rank && gid[loc->pair_i[p]] >= a && gid[loc->pair_i[p]] < b;
+    for (long p = p0; !e && p < p1; p++)
+        npo += owner[loc->pair_i[p]] == h->rank;
     if (!e) {
         send = malloc((size_t)npo * rec + 1);
         e = send ? 0 : DEM_ERR_NOMEM;
     }
-    for (long p = 0, k = 0; !e && p < loc->npairs; p++)
-        if (owner[loc->pair_i[p]] == h->rank && gid[loc->pair_i[p]] >= a && gid[loc->pair_i[p]] < b) {
+    for (long p = p0, k = 0; !e && p < p1; p++)
+        if (owner[loc->pair_i[p]] == h->rank) {
             long ij[2] = {gid[loc->pair_i[p]], gid[loc->pair_j[p]]};
             memcpy(send + (size_t)k * rec, ij, sizeof ij);
             pair_copy(loc, p, send + (size_t)k * rec + sizeof ij, &pb, 0);
