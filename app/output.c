@@ -202,13 +202,17 @@ static void wall_mesh(const dem_wall *w, int k, const double lo[3], const double
 #undef WM_TRI
 }
 
-/* Builds the walls' meshes and creates /walls (triangles, wall of each triangle, points per frame) */
-static int walls_open(output *o, const scene *sc, dem_sim *s)
+/* Builds the walls' meshes and creates /walls (triangles, wall of each triangle, points per frame); box: the
+ * particles' bounding box at the start (NULL: s's) */
+static int walls_open(output *o, const scene *sc, dem_sim *s, const double *box)
 {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     if (scene_has(sc->loc, "domain")) {
         memcpy(lo, sc->f->domain_lo, sizeof lo);
         memcpy(hi, sc->f->domain_hi, sizeof hi);
+    } else if (o->n > 0 && box) {
+        memcpy(lo, box, sizeof lo);
+        memcpy(hi, box + 3, sizeof hi);
     } else if (o->n > 0) {
         if (dem_get_field(s, DEM_FIELD_X, o->buf))
             return -1;
@@ -273,7 +277,8 @@ static int walls_frame(output *o, dem_sim *s)
     return h5rows_append(&o->wpoints, o->wbuf);
 }
 
-output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen)
+output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, dem_sim *dev,
+                    const double *box, char *err, size_t errlen)
 {
     output *o = calloc(1, sizeof *o);
     int n = dem_count(s), nw = dem_wall_count(s);
@@ -303,8 +308,8 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
     dem_mc_stress_convention_string(run->mcs_conv, conv, sizeof conv);
     if (!rc)
         rc = h5_attr_string(o->file, "libdem_version", DEM_VERSION) ||
-             h5_attr_string(o->file, "device", dem_describe(s)) ||
-             h5_attr_string(o->file, "build", dem_build_info(s)) ||
+             h5_attr_string(o->file, "device", dem_describe(dev)) ||
+             h5_attr_string(o->file, "build", dem_build_info(dev)) ||
              h5_attr_string(o->file, "precision", run->cfg.precision == DEM_FP64 ? "fp64" : "fp32") ||
              h5_attr_string(o->file, "effects", fx) || h5_attr_double(o->file, "dt", run->dt) ||
              h5_attr_double(o->file, "mass_scale", scene_mass_scale(sc)) ||
@@ -419,7 +424,7 @@ output *output_open(const char *path, const scene *sc, const scene_run *run, dem
                                                          "(compression positive)");
     }
     if (!rc && nw)
-        rc = walls_open(o, sc, s);
+        rc = walls_open(o, sc, s, box);
     if (rc) {
         if (create_errno)
             snprintf(err, errlen, "%s: cannot create the output file: %s", o->part, strerror(create_errno));

@@ -19,7 +19,11 @@ typedef struct output output;
 
 /* The XDMF sidecar of an HDF5 output: OUT.h5 -> OUT.xmf (any other name gets .xmf appended). */
 void output_xmf_path(const char *h5, char *buf, size_t len);
-output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, char *err, size_t errlen);
+/* The output file OUT.part opened and its header written from s (particles, materials, walls: a run not started
+ * does), the device and build from dev (s itself in one process; a run split over ranks: rank 0's part), the walls'
+ * drawn planes over the scene's domain or the box lo[3], hi[3] of the particles (x +- r) at the start (NULL: s's) */
+output *output_open(const char *path, const scene *sc, const scene_run *run, dem_sim *s, dem_sim *dev,
+                    const double *box, char *err, size_t errlen);
 int output_frame(output *o, dem_sim *s);
 /* Where a frame's particle values come from when not from the run s itself: over MPI ranks, the ranks' parts,
  * gathered slab by slab (app/run_mpi.c), so that no rank holds a whole frame or the whole state. Each returns 0, or -1

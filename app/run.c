@@ -818,54 +818,33 @@ static int start_with_note(dem_sim *s, const scene_run *run, int note)
     return se;
 }
 
-/* A new whole run of the scene, not started, as phase_load and phase_configure built it: what a run split over
- * ranks cuts each rank's part from (run_ranks.start). */
-static dem_sim *build_whole(void *arg, char *err, size_t len)
-{
-    run_ctx *c = arg;
-    scene_run run;
-    dem_sim *s = scene_build(c->sc, &run, err, len);
-    if (s && c->model && scene_apply_model(c->sc, s, &run, c->model, err, len)) {
-        dem_destroy(s);
-        return NULL;
-    }
-    return s;
-}
-
 /* 3. The device started, the checkpoint's state restored, the run announced. */
 static int phase_start(run_ctx *c)
 {
     const run_opts *o = c->o;
     const scene_run *run = &c->run;
     /* run->cfg.contacts: set by scene_build when frames carry contacts */
-    scene_run whole_run = *run;
-    if (c->R) /* split over ranks: the whole run is only read (output, checkpoints), on the host */
-        whole_run.cfg.backend = DEM_BACKEND_REFERENCE;
-    /* ... and by rank 0 alone, which writes: the other ranks' whole run is the scene's set-up, never started (its
-     * memory is its particles' description, not a run's buffers; the parts come from rank 0's, run_ranks.start) */
-    int whole_here = !c->R || c->R->rank == 0;
-    int se = whole_here ? start_with_note(c->s, &whole_run, o->progress != 0 && !c->R) : 0, who = -1;
-    if (se)
-        snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
-    if (c->R && (se = c->R->agree(c->R, se, &who))) /* every rank goes on, or none; the failing rank's words */
-        c->R->share(c->R, who, c->err, sizeof c->err);
-    if (se)
-        return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
-    int ce = c->have_ck && whole_here && dem_state_set(c->s, &c->ck.st);
-    if (ce)
-        snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
-    if (c->R && (ce = c->R->agree(c->R, ce, &who)))
-        c->R->share(c->R, who, c->err, sizeof c->err);
-    if (ce)
-        return fail_with(EXIT_BAD_INPUT, c->err);
-    if (c->R) { /* the parts, from the whole run's state */
-        int e = c->R->start(c->R, c->s, &run->cfg, build_whole, c, c->err, sizeof c->err);
+    int who = -1;
+    if (c->R) { /* split over ranks: the parts, each cut from its rank's whole run, which no rank starts (the
+                 * scene's set-up: its memory is its particles' description, not a run's buffers) */
+        const dem_state *ck = c->have_ck && c->R->rank == 0 ? &c->ck.st : NULL; /* (the others read its head) */
+        int e = c->R->start(c->R, c->s, ck, &run->cfg, c->sc->path, c->err, sizeof c->err);
         if ((e = c->R->agree(c->R, e, &who))) {
             c->R->share(c->R, who, c->err, sizeof c->err);
             return fail_with(e == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
         }
+    } else {
+        int se = start_with_note(c->s, run, o->progress != 0);
+        if (se) {
+            snprintf(c->err, sizeof c->err, "%s: %s", c->sc->path, dem_error(c->s));
+            return fail_with(se == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
+        }
+        if (c->have_ck && dem_state_set(c->s, &c->ck.st)) {
+            snprintf(c->err, sizeof c->err, "%s: %s", o->restart, dem_error(c->s));
+            return fail_with(EXIT_BAD_INPUT, c->err);
+        }
     }
-    if (c->have_ck) /* the checkpoint's state is in the run (over ranks: in rank 0's whole run and the parts) */
+    if (c->have_ck) /* the checkpoint's state is in the run (over ranks: in the parts) */
         dem_state_free(&c->ck.st);
     c->show = run_quiet ? 0 : o->progress < 0 ? isatty(2) : o->progress;
     if (run_quiet)
@@ -998,8 +977,11 @@ static int phase_steps(run_ctx *c)
         return 0;
     }
     int writer = !R || R->rank == 0, who; /* a run over ranks: rank 0 writes */
-    if (writer)
-        c->out = output_open(c->outp, c->sc, run, s, c->err, sizeof c->err);
+    double box[6];
+    if (R) /* the particles' box at the start, for the walls' drawn planes: the parts' */
+        R->bounds(R, box);
+    if (writer) /* (over ranks: the header from the whole run's set-up, the device from rank 0's part) */
+        c->out = output_open(c->outp, c->sc, run, s, stepped(c), R ? box : NULL, c->err, sizeof c->err);
     if (R && R->agree(R, writer && !c->out ? EXIT_IO : 0, &who))
         return fail_with(EXIT_IO, c->err);
     if (!R && !c->out)
@@ -1010,7 +992,7 @@ static int phase_steps(run_ctx *c)
     c->step0 = step0;
     dem_mc_stats_get(stepped(c), &c->mc0);
     membrane_watch(c);
-    c->stage_seen = dem_stage_ends(s, 0, NULL); /* a restart logs the ends from its first step */
+    c->stage_seen = dem_stage_ends(stepped(c), 0, NULL); /* a restart logs the ends from its first step */
     if (o->stop_after > 0 && step0 + o->stop_after < end)
         end = step0 + o->stop_after;
     int tty = isatty(2);
@@ -1025,9 +1007,18 @@ static int phase_steps(run_ctx *c)
         snprintf(c->err, sizeof c->err, "%s: run stopped at its first frame: %s", c->sc->path, why0);
         return fail_with(EXIT_RUN_FAILED, c->err);
     }
-    bad = bad || (writer && (output_sample(s, run, &row) || output_series(c->out, &row)));
-    if (R) /* every rank, whatever rank 0's write gave: none may skip the collective */
-        bad = R->agree(R, bad, &who);
+    if (R) { /* the parts' own sums merged (every rank); rank 0 writes the row */
+        dem_sample smp;
+        int se = R->sample(R, &smp, why0, sizeof why0); /* collective: whatever rank 0's frame gave */
+        if (se) {
+            snprintf(c->err, sizeof c->err, "%s: run stopped at its first frame: %s", c->sc->path, why0);
+            return fail_with(EXIT_RUN_FAILED, c->err);
+        }
+        output_row_of(&smp, run, dem_wall_count(s), &row);
+        bad = bad || (writer && output_series(c->out, &row));
+        bad = R->agree(R, bad, &who); /* every rank, whatever rank 0's write gave: none may skip the collective */
+    } else
+        bad = bad || output_sample(s, run, &row) || output_series(c->out, &row);
     if (bad) {
         int e = errno;
         snprintf(c->err, sizeof c->err, "%s.part: cannot write the first frame to the output file: %s", c->outp,

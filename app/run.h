@@ -27,11 +27,10 @@ int run_scene(const run_opts *o);
 
 /* A run split over MPI ranks (app/run_mpi.c, linked into dem with the MPI layer; docs/design.md "Runs over MPI"):
  * run.c drives it through these calls and needs no MPI itself. Every rank loads the scene and builds the whole run
- * as `whole`; rank 0 alone starts it (on the reference backend, never stepped, restored where the run restarts): what
- * the output reads at its start (radii, materials, the first series row) and the parts start from; the frames and
- * checkpoints are written from the parts, slab by slab, and the report reads the parts' step and time. The other
- * ranks' whole run is the set-up only. The steps are the parts': each rank's dem_sim
- * holds the particles of its subdomain and, as ghosts, those of other ranks that can touch them. Rank 0 writes the
+ * as `whole`, which no rank starts: the scene's set-up, what the output's header reads (radii, materials, walls) and
+ * each rank's part is cut from. The steps are the parts': each rank's dem_sim holds the particles of its subdomain
+ * and, as ghosts, those of other ranks that can touch them; the first series row is merged from them, the frames
+ * and checkpoints are written from them, slab by slab, and the report reads their step and time. Rank 0 writes the
  * output and the checkpoints and prints; every other rank is quiet. Each call is collective. */
 struct output;        /* output.h */
 struct overlap_watch; /* below */
@@ -45,11 +44,17 @@ struct run_ranks {
     long (*agree_min)(run_ranks *r, long v);
     /* message msg of rank who to every rank (msg of len bytes) */
     void (*share)(run_ranks *r, int who, char *msg, size_t len);
-    /* the parts made and started (cfg: the run's device, precision, backend) from rank 0's whole's state (started
-     * there, and restored where the run restarts; not started on the other ranks), build
-     * making a new unstarted whole run of the scene each time a part is made; dem_status, message in err */
-    int (*start)(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(*build)(void *arg, char *err,
-                 size_t len), void *arg, char *err, size_t len);
+    /* the parts made and started (cfg: the run's device, precision, backend), each cut from its rank's whole run
+     * (not started), with the state of its set-up or, where the run restarts, of the checkpoint's state ck (read by
+     * rank 0, NULL on the others); what dem_start would refuse of the whole scene said with the words of `what` (the
+     * scene's path) first; dem_status, message in err */
+    int (*start)(run_ranks *r, dem_sim *whole, const dem_state *ck, const dem_config *cfg, const char *what,
+                 char *err, size_t len);
+    /* the series row of the state now (the run's first: dem_sample_get of one process), from the parts' own
+     * particles' exact sums, merged (every rank gets it); dem_status, message in err */
+    int (*sample)(run_ranks *r, dem_sample *row, char *err, size_t len);
+    /* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it) */
+    void (*bounds)(run_ranks *r, double box[6]);
     /* nsteps steps like dem_step_sampled, rows merged over the ranks (every rank gets them) */
     int (*step)(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len);
     long (*step_index)(run_ranks *r);

@@ -30,11 +30,8 @@ typedef struct {
     run_ranks pub;
     MPI_Comm comm;
     dem_config cfg;                                   /* the parts' (the run's device, precision, backend) */
-    dem_sim *(*build)(void *arg, char *err, size_t len); /* a new unstarted whole run of the scene */
-    void *arg;
-    dem_sim *tmpl;                                    /* rank 0's, built once: what each part is copied from */
-    const dem_sim *from;                              /* what each part is copied from: tmpl, or on the other ranks
-                                                         their whole run, which is not started */
+    const dem_sim *from;                              /* what each part is copied from: this rank's whole run, the
+                                                         scene's set-up, never started */
     dem_sim *part;                                    /* this rank's particles and ghosts, started */
     dem_mpi_halo h;
     int have_h;
@@ -205,12 +202,13 @@ static int keeps(void *arg, long id, int rank)
     return k->owner[id] == rank || box_dist(k->x + 3 * id, k->boxes[rank]) <= k->width;
 }
 
-/* This rank's part, started, with its halo, split by the positions x[3 n] (the same on every rank), its state moved
- * from each rank's state loc (held particles of global ids lgid, ranks lowner: dem_mpi_state_move): the ranks' last
- * parts, or at the start rank 0's whole run (every particle rank 0's; loc NULL on the other ranks). Collective;
- * agreed; frees nothing it is given. */
-static int split_from(rr *q, long n, const double *x, const dem_state *loc, const long *lgid, const int *lowner,
-                      char *err, size_t len)
+/* This rank's part, started, with its halo, split by the positions x[3 n] (the same on every rank). Fresh (a run's
+ * start): its state its set-up's, the start's forces made with the halo's meetings (dem_mpi_halo_init). Else its
+ * state moved from each rank's state loc (held particles of global ids lgid, ranks lowner: dem_mpi_state_move): the
+ * ranks' last parts, or at a restart the checkpoint's, read by rank 0 (every particle rank 0's; loc NULL on the other
+ * ranks). Collective; agreed; frees nothing it is given. */
+static int split_from(rr *q, int fresh, long n, const double *x, const dem_state *loc, const long *lgid,
+                      const int *lowner, char *err, size_t len)
 {
     int P = q->pub.size, me = q->pub.rank, e = 0;
     err[0] = 0;
@@ -264,10 +262,10 @@ static int split_from(rr *q, long n, const double *x, const dem_state *loc, cons
     if (!e) /* the whole run's domain: wherever its particles go, the part's go too */
         e = dem_set_domain(q->part, q->domain, q->domain + 3);
     if (!e)
-        e = dem_start(q->part, &q->cfg);
+        e = fresh ? sim_start_deferred(q->part, &q->cfg) : dem_start(q->part, &q->cfg);
     dem_state ps;
     memset(&ps, 0, sizeof ps);
-    if (!(e = agreed_msg(q, e, q->part, err, len))) { /* the states moved where they are kept */
+    if (!(e = agreed_msg(q, e, q->part, err, len)) && !fresh) { /* the states moved where they are kept */
         e = dem_mpi_state_move(q->comm, q->part, loc, lgid, lowner, keeps, &sk, q->nloc, q->gid, &ps); /* agreed */
         if (e)
             snprintf(err, len, "the particles could not be moved to their new ranks (code %d: out of host memory, "
@@ -279,7 +277,7 @@ static int split_from(rr *q, long n, const double *x, const dem_state *loc, cons
     free(ids), free(owner), free(keep), free(ghost), free(boxes);
     if ((e = agreed_msg(q, e, q->part, err, len)))
         return e;
-    e = dem_mpi_halo_init(&q->h, q->comm, q->part, q->nloc, q->gid, q->owner); /* agreed */
+    e = dem_mpi_halo_init(&q->h, q->comm, q->part, q->nloc, q->gid, q->owner); /* agreed; fresh: the forces */
     q->have_h = e == 0;
     if (e) {
         dem_mpi_halo_free(&q->h);
@@ -291,11 +289,15 @@ static int split_from(rr *q, long n, const double *x, const dem_state *loc, cons
     return 0;
 }
 
-static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(*build)(void *, char *, size_t),
-                 void *arg, char *err, size_t len)
+/* The parts made and started, each rank's cut from its own whole run (the scene's set-up, never started: no rank
+ * holds a whole run's buffers or state), split by the positions at the start: the set-up's, which every rank holds,
+ * or where the run restarts the checkpoint's, read by rank 0 (ck) and given to every rank. A fresh part's state is its
+ * set-up's, the start's forces made with the halo; a restarted part's is the checkpoint's, moved from rank 0. */
+static int start(run_ranks *r, dem_sim *whole, const dem_state *ck, const dem_config *cfg, const char *what,
+                 char *err, size_t len)
 {
     rr *q = of(r);
-    q->cfg = *cfg, q->build = build, q->arg = arg;
+    q->cfg = *cfg;
     q->n = dem_count(whole), q->nw = dem_wall_count(whole);
     q->rmax = 0;
     for (int i = 0; i < q->n; i++)
@@ -306,50 +308,46 @@ static int start(run_ranks *r, dem_sim *whole, const dem_config *cfg, dem_sim *(
     if (tm && atof(tm) > 0)
         q->margin = atof(tm) * q->rmax;
     err[0] = 0;
-    int me = r->rank;
-    q->tmpl = me == 0 ? build(arg, err, len) : NULL; /* rank 0's whole run is started: a copy of its set-up */
-    dem_sim *src = me == 0 ? q->tmpl : whole;
-    if (src) /* the whole scene's volume once (an exact sum over every particle), not at each split's copy */
-        src->whole_volume = sim_particle_volume(src);
-    q->from = src;
-    int e = q->from ? 0 : DEM_ERR_ARG;
+    int me = r->rank, restart = ck != NULL; /* (ck: rank 0's alone; the others learn it from it) */
+    MPI_Bcast(&restart, 1, MPI_INT, 0, q->comm);
+    /* what dem_start would refuse of the whole scene (a time step past its bound, a sphere wider than its die), said
+     * as one process says it; the part's own start checks only its particles */
+    whole->cfg = *cfg;
+    int e = sim_validate(whole);
+    if (e)
+        snprintf(err, len, "%s: %s", what, dem_error(whole));
     if ((e = agreed_msg(q, e, NULL, err, len)))
         return e;
-    /* rank 0 alone holds the whole run started (restored where the run restarts): its state is the parts' source, its
-     * domain (given, or made at its start from all the particles) every part's, its step theirs */
-    dem_state g;
-    memset(&g, 0, sizeof g);
-    int got = me == 0 ? dem_state_get(whole, &g) : 0;
-    if ((e = agreed_msg(q, got, me == 0 ? whole : NULL, err, len))) {
-        if (!got) /* this rank's was got: another rank's failed */
-            dem_state_free(&g);
-        return e;
-    }
-    for (int d = 0; me == 0 && d < 3; d++)
-        q->domain[d] = whole->domain.lo[d], q->domain[3 + d] = whole->domain.hi[d];
-    q->step = me == 0 ? dem_step_index(whole) : 0;
-    MPI_Bcast(q->domain, 6, MPI_DOUBLE, 0, q->comm);
+    /* the whole scene's volume once (an exact sum over every particle), not at each split's copy */
+    whole->whole_volume = sim_particle_volume(whole);
+    q->from = whole;
+    /* the binning domain of the whole run at its start (given, or its set-up's padded bounding box: what dem_start
+     * of the whole run makes, a restart's too), every part's: wherever the particles go, the parts' go too */
+    double pmin[3], pmax[3];
+    sim_domain_bounds(whole, q->rmax, q->domain, q->domain + 3, pmin, pmax);
+    q->step = restart && me == 0 ? ck->step : dem_step_index(whole);
     MPI_Bcast(&q->step, 1, MPI_LONG, 0, q->comm);
     long n = q->n;
     double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
-    long *gid = me == 0 ? malloc(sizeof(long) * (size_t)(n ? n : 1)) : NULL;
-    int *owner = me == 0 ? calloc((size_t)(n ? n : 1), sizeof(int)) : NULL; /* every particle rank 0's */
-    const dem_state_array *xa = me == 0 ? dem_state_find(&g, "x") : NULL;
-    e = x && (me != 0 || (gid && owner && xa && g.n == n)) ? 0 : DEM_ERR_NOMEM;
-    for (long k = 0; !e && me == 0 && k < n; k++) {
-        gid[k] = k;
+    long *gid = restart && me == 0 ? malloc(sizeof(long) * (size_t)(n ? n : 1)) : NULL;
+    int *owner = restart && me == 0 ? calloc((size_t)(n ? n : 1), sizeof(int)) : NULL; /* every particle rank 0's */
+    const dem_state_array *xa = restart && me == 0 ? dem_state_find(ck, "x") : NULL;
+    e = x && (!restart || me != 0 || (gid && owner && xa && ck->n == n)) ? 0 : DEM_ERR_NOMEM;
+    for (long k = 0; !e && k < n; k++)
         for (int d = 0; d < 3; d++)
-            x[3 * k + d] = sim_real_at(xa->data, (size_t)(3 * k + d), g.real_size);
-    }
+            x[3 * k + d] = restart ? me == 0 ? sim_real_at(xa->data, (size_t)(3 * k + d), ck->real_size) : 0
+                                   : whole->x[3 * k + d];
+    for (long k = 0; gid && k < n; k++)
+        gid[k] = k;
     e = e ? e : 3 * n <= INT_MAX ? 0 : DEM_ERR_ARG;
     if ((e = agreed_msg(q, e, NULL, err, len)))
         snprintf(err, len, "%ld particles: out of host memory, or more than MPI's int counts take", n);
     else {
-        MPI_Bcast(x, (int)(3 * n), MPI_DOUBLE, 0, q->comm); /* the split cuts by them, on every rank the same */
-        e = split_from(q, n, x, me == 0 ? &g : NULL, gid, owner, err, len);
+        if (restart) /* the split cuts by them, on every rank the same */
+            MPI_Bcast(x, (int)(3 * n), MPI_DOUBLE, 0, q->comm);
+        e = split_from(q, !restart, n, x, restart && me == 0 ? ck : NULL, gid, owner, err, len);
     }
     free(x), free(gid), free(owner);
-    dem_state_free(&g);
     return e;
 }
 
@@ -411,7 +409,7 @@ static int split_anew(rr *q, char *err, size_t len)
     int *lowner = q->owner;
     q->gid = NULL, q->owner = NULL;
     drop_part(q);
-    e = split_from(q, n, x, &loc, lgid, lowner, err, len);
+    e = split_from(q, 0, n, x, &loc, lgid, lowner, err, len);
     if (!e)
         sim_run_record_set(q->part, &rec);
     free(x), free(lgid), free(lowner);
@@ -544,6 +542,47 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         q->t_sums += MPI_Wtime() - t4;
     }
     return 0;
+}
+
+/* The series row of the state now (the run's first): each part's own particles' energies and contacts, exact,
+ * merged; its walls' sums are the run's (merged at a fresh start, the checkpoint's at a restart) */
+static int sample(run_ranks *r, dem_sample *row, char *err, size_t len)
+{
+    rr *q = of(r);
+    exact_acc acc[SE_STRIDE];
+    err[0] = 0;
+    int e = sim_sample_own(q->part, row, acc);
+    if ((e = agreed_msg(q, e, q->part, err, len)))
+        return e;
+    if ((e = agreed_msg(q, dem_mpi_exact_allreduce(q->comm, acc, SE_STRIDE) ? DEM_ERR_DEVICE : 0, NULL, err, len))) {
+        if (!err[0])
+            snprintf(err, len, "the ranks' energies could not be merged (MPI)");
+        return e;
+    }
+    dem_energy_t *en = &row->energy; /* as one process's dem_sample_get rounds them (host/physics/energy.c) */
+    en->kinetic = exact_to_double(&acc[SE_KIN]);
+    en->potential = exact_to_double(&acc[SE_POT]);
+    en->elastic = exact_to_double(&acc[SE_ELA]);
+    en->contacts = (long)exact_to_double(&acc[SE_CON]);
+    en->wall_contacts = (long)exact_to_double(&acc[SE_WCON]);
+    en->total = en->kinetic + en->elastic + en->potential;
+    return 0;
+}
+
+static void bounds(run_ranks *r, double box[6])
+{
+    rr *q = of(r);
+    double mine[6] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY}; /* lo, then -hi */
+    const double *x = q->h.field; /* the positions as the last exchange left them */
+    for (int k = 0; k < q->nloc; k++)
+        if (q->owner[k] == r->rank) {
+            double rad = dem_particle_radius(q->part, k);
+            for (int d = 0; d < 3; d++)
+                mine[d] = fmin(mine[d], x[3 * k + d] - rad), mine[3 + d] = fmin(mine[3 + d], -(x[3 * k + d] + rad));
+        }
+    MPI_Allreduce(mine, box, 6, MPI_DOUBLE, MPI_MIN, q->comm);
+    for (int d = 0; d < 3; d++)
+        box[3 + d] = -box[3 + d];
 }
 
 /* ---- a frame written from the parts: rank 0 asks for each slab (output_frame_from), every rank answers with its
@@ -968,8 +1007,6 @@ static void finish(run_ranks *r)
         drop_part(q);
         free(q->last_owner);
         q->last_owner = NULL;
-        dem_destroy(q->tmpl);
-        q->tmpl = NULL;
     }
 }
 
@@ -994,7 +1031,7 @@ int run_mpi(const run_opts *o)
     q.pub.ctx = &q;
     q.pub.agree = agree, q.pub.agree_min = agree_min, q.pub.share = share, q.pub.start = start, q.pub.step = step;
     q.pub.step_index = step_index, q.pub.stepped = stepped, q.pub.checkpoint = checkpoint_parts, q.pub.describe = describe, q.pub.finish = finish;
-    q.pub.frame = frame, q.pub.overlaps = overlaps;
+    q.pub.frame = frame, q.pub.overlaps = overlaps, q.pub.sample = sample, q.pub.bounds = bounds;
     q.fval_f = -1;
     q.fail_step = -1;
     const char *tf = getenv("DEM_TEST_RANK_FAIL"); /* tests/mpi_check.sh: a rank that fails mid-run */

@@ -117,6 +117,7 @@ struct sim_run {
     long force_step;   /* step index of the positions the forces are computed at (walls, pressure schedule) */
     int wall_sums_due; /* this step's force stages sum the force each wall received (dem_step) */
     int sample_row;    /* >= 0: this step is sampled into that row of the series ring (series.h) */
+    int forces_due;    /* started by sim_start_deferred: the start's forces not computed yet (sim_start_forces) */
     int halo_agreed;   /* a split run (halo_hook): this step's failure was agreed at a meeting of the ranks */
     int halo_learned;  /* ... and this rank's own step had not failed: another rank's did (its caller reports that
                           rank's words, app/run_mpi.c) */
@@ -187,10 +188,20 @@ struct dem_sim {
 double sim_mass(const dem_sim *s, int i);
 double sim_inertia(const dem_sim *s, int i);
 
+/* step_loop.c: dem_start in two: everything but the forces of the start (the run's buffers, its first rebuild), then
+ * those forces, once, before any step. A part of a run split over ranks is started so (host/mpi/halo.c), its halo
+ * made between the two, so that the start's forces hold the ranks' meetings as a step's do (MC-stress's traces,
+ * MDR's rows, MC-strain's iteration) and its own particles get one process's forces */
+int sim_start_deferred(dem_sim *s, const dem_config *c);
+int sim_start_forces(dem_sim *s);
 /* sim_setup.c */
 int sim_validate(dem_sim *s);
 int sim_pack(dem_sim *s);            /* fills s->setup and the host arrays it points to */
 void sim_setup_free(dem_sim *s);     /* frees those arrays */
+/* The binning domain of s's particles before it is cut into cells (given, or their padded bounding box with r_max
+ * rmax), their bounding box into pmin, pmax: what dem_start takes, from the set-up alone (app/run_mpi.c gives the
+ * whole scene's to every part without starting it) */
+void sim_domain_bounds(const dem_sim *s, double rmax, double lo[3], double hi[3], double pmin[3], double pmax[3]);
 int sim_has_servo(const dem_sim *s); /* a wall has a servo stage, or one that ends at a force (both read every step's) */
 /* The stage wall k is in at the current step (-1 after its last), its first step in *first. */
 int sim_stage_now(const dem_sim *s, int k, long *first);
@@ -264,6 +275,11 @@ int sim_halo_unpack_rows(dem_sim *s, int id, int width, const void *in);
 /* energy.c: the exact sums (SE_* of dem_layout.h) behind the last series row made from the device's ring, before
  * they were rounded: over the run's own particles (its ghosts left out). Runs split over ranks merge them. */
 void sim_row_exact(const dem_sim *s, exact_acc acc[SE_STRIDE]);
+/* energy.c: dem_sample_get of the state now, but its energies and contact counts as exact sums (SE_*) over the run's
+ * own particles (its ghosts left out; the pairs of their lower stable id): the first series row of a run split over
+ * ranks, merged (app/run_mpi.c), is one process's dem_sample_get. The walls' sums are the run's (merged at a split
+ * run's start, host/mpi/halo.c). */
+int sim_sample_own(dem_sim *s, dem_sample *out, exact_acc acc[SE_STRIDE]);
 /* Each wall's stage state from the step alone, as if every stage ran its full duration (a start at step 0, a
  * checkpoint written before stages could end early). */
 void sim_stages_from_step(dem_sim *s);

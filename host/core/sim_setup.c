@@ -709,6 +709,33 @@ static void pack_walls(dem_sim *s, int *wint)
     sim_pack_walls(s);
 }
 
+/* The binning domain before it is cut into cells: the given one, or the particles' bounding box padded by half its
+ * extent, 4 r_max and the deepest punch cup on each side (a fill settles into a concave punch's cup, below its land);
+ * the bounding box into pmin, pmax. */
+void sim_domain_bounds(const dem_sim *s, double rmax, double lo[3], double hi[3], double pmin[3], double pmax[3])
+{
+    for (int d = 0; d < 3; d++)
+        pmin[d] = INFINITY, pmax[d] = -INFINITY;
+    for (int i = 0; i < s->n; i++) /* the particles' bounding box */
+        for (int d = 0; d < 3; d++) {
+            pmin[d] = fmin(pmin[d], s->x[3 * i + d]);
+            pmax[d] = fmax(pmax[d], s->x[3 * i + d]);
+        }
+    if (s->domain.given) {
+        memcpy(lo, s->domain.lo, sizeof(double) * 3);
+        memcpy(hi, s->domain.hi, sizeof(double) * 3);
+        return;
+    }
+    double cup = 0;
+    for (int k = 0; k < s->nwalls; k++)
+        cup = fmax(cup, s->walls[k].cup_depth);
+    for (int d = 0; d < 3; d++) {
+        double pad = 0.5 * (pmax[d] - pmin[d]) + 4 * rmax + cup;
+        lo[d] = pmin[d] - pad;
+        hi[d] = pmax[d] + pad;
+    }
+}
+
 /* The binning grid: the domain (given, or the particles' padded bounding box) cut into cubic cells. Returns the
  * skin actually used; the cell size goes to u->inv_cell. */
 static double pack_grid(dem_sim *s, dem_setup *u)
@@ -726,26 +753,8 @@ static double pack_grid(dem_sim *s, dem_setup *u)
     double cell = 1.01 * (2 * s->rmax + skin + reach_extra);
     if (s->cfg.cell_size > cell)
         cell = s->cfg.cell_size;
-    double lo[3], hi[3], pmin[3] = {INFINITY, INFINITY, INFINITY}, pmax[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < n; i++) /* the particles' bounding box */
-        for (int d = 0; d < 3; d++) {
-            pmin[d] = fmin(pmin[d], s->x[3 * i + d]);
-            pmax[d] = fmax(pmax[d], s->x[3 * i + d]);
-        }
-    if (s->domain.given) {
-        memcpy(lo, s->domain.lo, sizeof lo);
-        memcpy(hi, s->domain.hi, sizeof hi);
-    } else { /* the particles' bounding box, padded by half its extent, 4 r_max and the deepest punch cup on each side
-                (a fill settles into a concave punch's cup, below its land) */
-        double cup = 0;
-        for (int k = 0; k < s->nwalls; k++)
-            cup = fmax(cup, s->walls[k].cup_depth);
-        for (int d = 0; d < 3; d++) {
-            double pad = 0.5 * (pmax[d] - pmin[d]) + 4 * s->rmax + cup;
-            lo[d] = pmin[d] - pad;
-            hi[d] = pmax[d] + pad;
-        }
-    }
+    double lo[3], hi[3], pmin[3], pmax[3];
+    sim_domain_bounds(s, s->rmax, lo, hi, pmin, pmax);
     for (;;) {
         double total = 1;
         for (int d = 0; d < 3; d++) {

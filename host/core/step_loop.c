@@ -157,6 +157,12 @@ static int forces(dem_sim *s)
 
 int dem_start(dem_sim *s, const dem_config *c)
 {
+    int e = sim_start_deferred(s, c);
+    return e ? e : sim_start_forces(s);
+}
+
+int sim_start_deferred(dem_sim *s, const dem_config *c)
+{
     if (sim_not_started(s))
         return DEM_ERR_STATE;
     s->cfg = *c;
@@ -180,9 +186,27 @@ int dem_start(dem_sim *s, const dem_config *c)
     s->run.force_step = s->run.step;
     s->run.wall_sums_due = 1;
     s->motion.servo_walls = sim_has_servo(s);
-    if ((e = sim_rebuild(s)) || (e = forces(s)))
+    if ((e = sim_rebuild(s)))
         return e;
+    s->run.forces_due = 1;
     return 0;
+}
+
+int sim_start_forces(dem_sim *s)
+{
+    if (!s->run.started || !s->run.forces_due)
+        return sim_fail(s, DEM_ERR_STATE, "sim_start_forces: after sim_start_deferred, once");
+    s->run.forces_due = 0;
+    s->run.halo_agreed = s->run.halo_learned = 0;
+    int e = forces(s);
+    if (!s->halo_hook)
+        return e;
+    if (e && !s->run.halo_agreed) { /* as a step's failure (sim_step_once): the other ranks meet it */
+        int v = e;
+        s->halo_hook(s, s->halo_ctx, SIM_HOOK_FAILED, &v);
+        return e;
+    }
+    return e ? e : halo(s, SIM_HOOK_STEP_END, NULL);
 }
 
 int dem_step(dem_sim *s, long nsteps)
@@ -203,6 +227,8 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row);
  * the others at their next meeting, and the step ends with one, so that no rank goes on when another has failed */
 int sim_step_once(dem_sim *s, int wall_sums, int sample_row)
 {
+    if (s->run.forces_due)
+        return sim_fail(s, DEM_ERR_STATE, "sim_start_forces first");
     s->run.halo_agreed = s->run.halo_learned = 0;
     int e = step_body(s, wall_sums, sample_row);
     if (!s->halo_hook)

@@ -135,13 +135,21 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
         e = sim_halo_set(s, h->nsend, h->send_id, h->nrecv, h->recv_id);
     if ((e = dem_mpi_agreed(comm, e)))
         dem_mpi_halo_free(h);
-    else { /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step;
-            * the walls' sums are the state's (no step has made a rank's own since it was set) */
+    else {
         h->steer = P > 1 && sim_has_servo(s) && (s->effects & DEM_EFFECT_WALLS) && s->nwalls > 0;
         h->mdr = P > 1 && (s->effects & DEM_EFFECT_MDR);
-        e = exchange(h, 0);
-        if (!e && P > 1 && (s->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MDR | DEM_EFFECT_MC_STRAIN)))
+        if (P > 1 && (s->effects & (DEM_EFFECT_MC_STRESS | DEM_EFFECT_MDR | DEM_EFFECT_MC_STRAIN)))
             s->halo_hook = mid_step, s->halo_ctx = h;
+        /* a run started by sim_start_deferred (its state its set-up's): the start's forces now, with the meetings
+         * of a step, then every rank's own walls' sums merged (one process's, in every rank's run: what a servo's
+         * first step and the first series row read) */
+        int fresh = s->run.forces_due;
+        if (fresh)
+            e = dem_mpi_agreed(comm, sim_start_forces(s));
+        /* the start's forces of a ghost miss its partners outside the halo: its owner's, before the first step;
+         * in a run whose state was set, the walls' sums are the state's (no step has made a rank's own since) */
+        if (!e)
+            e = exchange(h, fresh && (s->effects & DEM_EFFECT_WALLS) && s->nwalls > 0);
     }
     return e;
 }

@@ -38,6 +38,7 @@ static void pair_row(const dem_sim *s, int a, int b, double *row)
 /* Everything a series row needs in one device synchronisation (positions, velocities, spins, rows, wall forces):
  * each blocking read costs a wake-up of the device's threads, and a series every step made thirteen of them. */
 static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal);
+static int energy_acc(dem_sim *s, dem_energy_t *en, exact_acc *acc, double *wall_force, double *wall_normal, int own);
 
 /* The elastic energy of a patch contact of overlap d (radius r): the work of the force F(d) = law(barrier(d)) of
  * common/patch_contacts.h from 0 to d. The law's energy up to the barrier (0.8 r, as there), then Simpson's rule on
@@ -197,6 +198,19 @@ int dem_sample_get(dem_sim *s, dem_sample *out)
 {
     sample_begin(s, out);
     return energy_of(s, &out->energy, out->wall_force, out->wall_normal);
+}
+
+int sim_sample_own(dem_sim *s, dem_sample *out, exact_acc acc[SE_STRIDE])
+{
+    sample_begin(s, out);
+    exact_acc en[EN_COUNT];
+    int e = energy_acc(s, &out->energy, en, out->wall_force, out->wall_normal, 1);
+    for (int q = 0; q < SE_STRIDE; q++)
+        exact_clear(&acc[q]);
+    acc[SE_KIN] = en[EN_KIN], acc[SE_POT] = en[EN_POT], acc[SE_ELA] = en[EN_ELA];
+    exact_add_double(&acc[SE_CON], (double)out->energy.contacts);
+    exact_add_double(&acc[SE_WCON], (double)out->energy.wall_contacts);
+    return e;
 }
 
 /* The state energy_of reads, widened to double in the simulation's scratch block: positions, velocities, spins and
@@ -376,19 +390,23 @@ static void add_spring_energy(const dem_sim *s, const double *x, exact_acc *acc)
     }
 }
 
-static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal)
+/* The energies' exact sums into acc[EN_COUNT] and the contacts counted in en, over every particle, or (own) over
+ * those not ghosts of a rank's part: its own particles' motion, the pairs whose lower stable id is its own (held with
+ * their partners) and its own particles' walls. A part holds no membrane (part.c refuses them). */
+static int energy_acc(dem_sim *s, dem_energy_t *en, exact_acc *acc, double *wall_force, double *wall_normal, int own)
 {
     memset(en, 0, sizeof *en);
+    for (int q = 0; q < EN_COUNT; q++)
+        exact_clear(&acc[q]);
     if (!s->run.started)
         return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     host_state hs = {0}; /* set by read_state where it succeeds */
     int e = read_state(s, &hs, wall_force, wall_normal);
     if (!e && (s->setup.effects & DEM_LAW_STATE_BITS))
         e = read_law_states(s, &hs);
-    exact_acc acc[EN_COUNT];
-    for (int q = 0; q < EN_COUNT; q++)
-        exact_clear(&acc[q]);
     for (int i = 0; !e && i < s->n; i++) { /* storage order: exact sums, the same bits in any order */
+        if (own && s->ghost && s->ghost[i]) /* by place, as rows_from_ring's */
+            continue;
         add_motion_energy(s, &hs, i, acc);
         add_contact_energy(s, &hs, i, en, acc);
     }
@@ -396,10 +414,17 @@ static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *w
         add_spring_energy(s, hs.x, acc);
     if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
         e = patch_energy(s, hs.x, en, acc);
+    free(hs.pair_st), free(hs.wall_st), free(hs.own), free(hs.mdr);
+    return e;
+}
+
+static int energy_of(dem_sim *s, dem_energy_t *en, double *wall_force, double *wall_normal)
+{
+    exact_acc acc[EN_COUNT];
+    int e = energy_acc(s, en, acc, wall_force, wall_normal, 0);
     en->kinetic = exact_to_double(&acc[EN_KIN]);
     en->potential = exact_to_double(&acc[EN_POT]);
     en->elastic = exact_to_double(&acc[EN_ELA]);
     en->total = en->kinetic + en->elastic + en->potential;
-    free(hs.pair_st), free(hs.wall_st), free(hs.own), free(hs.mdr);
     return e;
 }
