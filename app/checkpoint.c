@@ -299,6 +299,14 @@ static long first_nonfinite(const void *a, size_t count, int rs, double *value)
     return -1;
 }
 
+/* err: /state/name's element at is v, not finite (checkpoint_read's words); returns 2 */
+static int not_finite(char *err, size_t errlen, const char *path, const char *name, long at, double v)
+{
+    snprintf(err, errlen, "%s: /state/%s: element %ld is %g: a checkpoint holds finite numbers only (damaged or "
+             "edited)", path, name, at, v);
+    return 2;
+}
+
 /* Every number restored is finite and every radius > 0: a nan wall position would silently stop the wall acting (and
  * be written to the next checkpoint), a nan velocity fail the run steps later, an infinite spin run on. Refused here
  * with the dataset's name (exit 65), before anything reaches the device. */
@@ -327,15 +335,13 @@ static int check_finite(const checkpoint *ck, const char *path, char *err, size_
         double v = 0;
         long at = a->elem == DEM_STATE_REAL ? first_nonfinite(a->data, a->count, st->real_size, &v) : -1;
         if (at >= 0)
-            return snprintf(err, errlen, "%s: /state/%s: element %ld is %g: a checkpoint holds finite numbers only "
-                            "(damaged or edited)", path, a->name, at, v), 1;
+            return not_finite(err, errlen, path, a->name, at, v);
     }
     for (size_t q = 0; q < sizeof arrays / sizeof arrays[0]; q++) {
         double v = 0;
         long k = first_nonfinite(arrays[q].a, arrays[q].count, arrays[q].size, &v);
         if (k >= 0)
-            return snprintf(err, errlen, "%s: /state/%s: element %ld is %g: a checkpoint holds finite numbers only "
-                            "(damaged or edited)", path, arrays[q].name, k, v), 1;
+            return not_finite(err, errlen, path, arrays[q].name, k, v);
     }
     for (size_t i = 0; i < n; i++)
         if (!(ck->radius[i] > 0))
@@ -538,4 +544,259 @@ void checkpoint_free(checkpoint *ck)
     free(ck->scene_path);
     free(ck->radius);
     memset(ck, 0, sizeof *ck);
+}
+
+/* ---- a rank's part of a checkpoint (a restart split over ranks): nothing of the whole run's size but its positions
+ * ---- */
+
+/* kept ids per slab of the file's ids: no read holds more than this many particles' rows; contacts per read of the
+ * pairs' datasets. DEM_TEST_FRAME_SLAB sets both (the tests: slabs of a few particles, as the writer's) */
+static long part_slab(long fallback)
+{
+    const char *t = getenv("DEM_TEST_FRAME_SLAB");
+    return t && atol(t) > 0 ? atol(t) : fallback;
+}
+#define PART_SLAB part_slab(32768L)
+#define PART_PAIRS part_slab(65536L)
+
+/* where v is in the ascending keep[0..m), or -1 */
+static long keep_at(const long *keep, long m, long v)
+{
+    long k = sim_id_from(keep, m, v);
+    return k < m && keep[k] == v ? k : -1;
+}
+
+
+/* A dataset of the whole run's rows read for the kept particles: n particles of `each` rows of `row` bytes in each
+ * of `groups` groups (row (g n + id) each + r of the file) into out (group g's kept particles' rows one after the
+ * other, in keep's order), slab by slab of ids; the reals checked finite as read (elements of `wd` per row: the
+ * file's element index said). 0; 1 a read failed; 2 a real is not finite (err says which). */
+static int read_kept(hid_t d, hid_t mem_t, long n, size_t groups, size_t each, size_t row, size_t wd, int real,
+                     int rs, const long *keep, long m, void *out, const char *path, const char *name, char *err,
+                     size_t errlen)
+{
+    unsigned char *buf = malloc(row * each * (size_t)PART_SLAB + 1);
+    int rc = buf ? 0 : 1;
+    for (size_t g = 0; !rc && g < groups; g++)
+        for (long k0 = 0; !rc && k0 < m;) {
+            long a = keep[k0], k1 = k0; /* the kept ids within [a, a + PART_SLAB) */
+            while (k1 < m && keep[k1] < a + PART_SLAB)
+                k1++;
+            long span = keep[k1 - 1] - a + 1;
+            rc = h5_read_rows(d, mem_t, (hsize_t)(g * (size_t)n + (size_t)a) * each, (hsize_t)span * each, buf) ? 1 : 0;
+            for (long k = k0; !rc && k < k1; k++) {
+                const unsigned char *src = buf + (size_t)(keep[k] - a) * each * row;
+                double v = 0;
+                long at = real ? first_nonfinite(src, each * wd, rs, &v) : -1;
+                if (at >= 0)
+                    rc = not_finite(err, errlen, path, name, (long)((g * (size_t)n + (size_t)keep[k]) * each * wd) + at,
+                                    v);
+                memcpy((unsigned char *)out + (g * (size_t)m + (size_t)k) * each * row, src, each * row);
+            }
+            k0 = k1;
+        }
+    free(buf);
+    return rc;
+}
+
+/* The contacts of the file with both ends kept, renumbered to their places in keep (ascending i, then j, as the file
+ * holds them): counted (part->npairs) when part->pair_i is NULL, else filled with every per-pair array the file has.
+ * 0; 1 a read failed or the file is damaged; 2 a real is not finite (err) */
+static int read_kept_pairs(hid_t g, const checkpoint *head, const long *keep, long m, dem_state *part,
+                           const char *path, char *err, size_t errlen)
+{
+    const dem_state *h = &head->st;
+    long np = h->npairs, rs = h->real_size, got = 0;
+    hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+    int fill = part->pair_i != NULL;
+    struct {
+        const char *name;
+        size_t width;
+        void **to;
+    } per[] = {{"pair_hist", 3, &part->pair_hist},
+               {"pair_rec", DEM_PAIR_RECORD_REALS, &part->pair_rec},
+               {"pair_mc_fn", 1, &part->pair_mc_fn},
+               {"pair_law", (size_t)h->has_law, &part->pair_law},
+               {"pair_rspring", 3, &part->pair_rspring},
+               {"pair_mc_disp", 2, &part->pair_mc_disp}};
+    enum { NPER = sizeof per / sizeof per[0] };
+    hid_t ds[NPER + 2] = {0};
+    int *pij = malloc(sizeof(int) * 2 * (size_t)PART_PAIRS);
+    long *at = malloc(sizeof(long) * (size_t)PART_PAIRS);
+    unsigned char *buf = malloc((size_t)PART_PAIRS * DEM_PAIR_RECORD_REALS * (size_t)rs + 1);
+    int rc = pij && at && buf ? 0 : 1;
+    if (!rc && np) {
+        ds[0] = H5Dopen2(g, "pair_i", H5P_DEFAULT), ds[1] = H5Dopen2(g, "pair_j", H5P_DEFAULT);
+        rc = ds[0] < 0 || ds[1] < 0;
+    }
+    for (int k = 0; fill && !rc && k < NPER; k++) /* those this part holds (allocated by the caller: the file has it) */
+        if (*per[k].to && per[k].width)
+            rc = (ds[k + 2] = H5Dopen2(g, per[k].name, H5P_DEFAULT)) < 0;
+    for (long c0 = 0; !rc && c0 < np; c0 += PART_PAIRS) {
+        long cn = np - c0 < PART_PAIRS ? np - c0 : PART_PAIRS, picked = 0;
+        rc = h5_read_rows(ds[0], H5T_NATIVE_INT, (hsize_t)c0, (hsize_t)cn, pij) ||
+             h5_read_rows(ds[1], H5T_NATIVE_INT, (hsize_t)c0, (hsize_t)cn, pij + PART_PAIRS);
+        for (long p = 0; !rc && p < cn; p++) {
+            long i = keep_at(keep, m, pij[p]), j = keep_at(keep, m, pij[PART_PAIRS + p]);
+            if (pij[p] < 0 || pij[p] >= h->n || pij[PART_PAIRS + p] < 0 || pij[PART_PAIRS + p] >= h->n ||
+                pij[p] == pij[PART_PAIRS + p])
+                rc = 1; /* not a pair of two of the run's particles */
+            else if (i >= 0 && j >= 0) {
+                if (fill)
+                    part->pair_i[got + picked] = (int)i, part->pair_j[got + picked] = (int)j;
+                at[picked++] = p;
+            }
+        }
+        for (int k = 0; fill && !rc && picked && k < NPER; k++) {
+            if (ds[k + 2] <= 0)
+                continue;
+            size_t row = per[k].width * (size_t)rs;
+            rc = h5_read_rows(ds[k + 2], real_t, (hsize_t)c0, (hsize_t)cn, buf) ? 1 : 0;
+            for (long q = 0; !rc && q < picked; q++) {
+                const unsigned char *src = buf + (size_t)at[q] * row;
+                double v = 0;
+                long bad = first_nonfinite(src, per[k].width, (int)rs, &v);
+                if (bad >= 0)
+                    rc = not_finite(err, errlen, path, per[k].name, (c0 + at[q]) * (long)per[k].width + bad, v);
+                memcpy((unsigned char *)*per[k].to + (size_t)(got + q) * row, src, row);
+            }
+        }
+        got += picked;
+    }
+    for (int k = 0; k < NPER + 2; k++)
+        if (ds[k] > 0)
+            H5Dclose(ds[k]);
+    free(pij), free(at), free(buf);
+    part->npairs = got;
+    return rc;
+}
+
+int checkpoint_read_x(const char *path, const checkpoint *head, double *x, char *err, size_t errlen)
+{
+    long n = head->st.n;
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t g = f >= 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
+    int rc = g < 0 || h5_read(g, "x", H5T_NATIVE_DOUBLE, x, 3 * (size_t)n); /* an fp32 run's floats, widened */
+    if (g >= 0)
+        H5Gclose(g);
+    if (f >= 0)
+        H5Fclose(f);
+    if (rc)
+        return snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path), 1;
+    for (long k = 0; k < 3 * n; k++)
+        if (!isfinite(x[k]))
+            return not_finite(err, errlen, path, "x", k, x[k]);
+    return 0;
+}
+
+int checkpoint_read_part(const char *path, const checkpoint *head, dem_sim *s, long m, const long *keep,
+                         dem_state *part, double *radius, char *err, size_t errlen)
+{
+    const dem_state *h = &head->st;
+    long n = h->n, rs = h->real_size;
+    hid_t real_t = rs == 8 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
+    err[0] = 0;
+    *part = *h; /* the header: step, counts, walls and their stages, what the run keeps (no arrays, no contacts) */
+    part->n = (int)m, part->narrays = 0, part->npairs = 0;
+    part->pair_i = part->pair_j = NULL;
+    part->pair_hist = part->pair_rec = part->pair_mc_fn = part->pair_mc_disp = part->pair_law = NULL;
+    part->pair_rspring = NULL;
+    part->npatch = 0, part->patch_i = part->patch_t = part->patch_side = NULL, part->patch_hist = NULL;
+    dem_state_arrays(part);
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t g = f >= 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
+    int rc = g < 0 || m < 1;
+    for (int w = 0; !rc && w < h->nwalls; w++) /* what checkpoint_read checks of the header, which the head reads */
+        for (int d = 0; d < 3; d++)
+            if (!isfinite(h->wall_pos[w][d]))
+                rc = not_finite(err, errlen, path, "wall_pos", 3 * w + d, h->wall_pos[w][d]);
+            else if (h->has_stages && !isfinite(h->wall_stage_from[w][d]))
+                rc = not_finite(err, errlen, path, "wall_stage_from", 3 * w + d, h->wall_stage_from[w][d]);
+    for (int k = 0; !rc && k < part->narrays; k++) {
+        dem_state_array *a = &part->arrays[k];
+        int per = 0, kind = sim_state_array_layout(s, a->name, &per);
+        size_t wd = (size_t)(a->width > 1 ? a->width : 1), es = array_elem(a, (int)rs);
+        size_t whole = kind == DEM_MOVE_STAY ? a->count : a->count / (size_t)m * (size_t)n;
+        long have = a->count && H5Lexists(g, a->name, H5P_DEFAULT) > 0 ? h5_count(g, a->name) : 0;
+        if (kind < 0 || have < 0 || (have == 0 && a->required && a->count) || (have > 0 && (size_t)have != whole)) {
+            rc = 1;
+            break;
+        }
+        if (have == 0) {
+            a->count = 0;
+            continue;
+        }
+        if (!(a->data = malloc(a->count * es + 1))) {
+            rc = 1;
+            break;
+        }
+        if (kind == DEM_MOVE_STAY) { /* the walls' sums: whole */
+            double v = 0;
+            long bad = -1;
+            rc = h5_read(g, a->name, array_type(a, real_t), a->data, a->count) ? 1 : 0;
+            if (!rc && a->elem == DEM_STATE_REAL && (bad = first_nonfinite(a->data, a->count, (int)rs, &v)) >= 0)
+                rc = not_finite(err, errlen, path, a->name, bad, v);
+            continue;
+        }
+        size_t times = a->count / wd / (size_t)m, each = kind == DEM_MOVE_G ? (size_t)per / wd : times;
+        size_t groups = each ? times / each : 0;
+        hid_t d = H5Dopen2(g, a->name, H5P_DEFAULT);
+        rc = d < 0 || groups * each != times ? 1
+                                             : read_kept(d, array_type(a, real_t), n, groups, each, wd * es, wd,
+                                                         a->elem == DEM_STATE_REAL, (int)rs, keep, m, a->data, path,
+                                                         a->name, err, errlen);
+        if (d >= 0)
+            H5Dclose(d);
+    }
+    hid_t dr = rc ? -1 : H5Dopen2(g, "radius", H5P_DEFAULT);
+    rc = rc ? rc : dr < 0 ? 1 : read_kept(dr, H5T_NATIVE_DOUBLE, n, 1, 1, sizeof(double), 1, 1, 8, keep, m, radius,
+                                          path, "radius", err, errlen);
+    if (dr >= 0)
+        H5Dclose(dr);
+    for (long k = 0; !rc && k < m; k++)
+        if (!(radius[k] > 0))
+            snprintf(err, errlen, "%s: /state/radius: element %ld is %g: radii are > 0 (damaged or edited)", path,
+                     keep[k], radius[k]), rc = 2;
+    if (!rc) /* the contacts: counted, then read */
+        rc = read_kept_pairs(g, head, keep, m, part, path, err, errlen);
+    long np = part->npairs;
+    if (!rc) {
+        part->pair_i = malloc(sizeof(int) * (size_t)(np + 1)), part->pair_j = malloc(sizeof(int) * (size_t)(np + 1));
+        part->pair_hist = malloc(3 * (size_t)(np + 1) * (size_t)rs);
+        part->pair_mc_fn = malloc(((h->has_mc ? (size_t)np : 0) + 1) * (size_t)rs);
+        part->pair_law = malloc(((size_t)h->has_law * (size_t)np + 1) * (size_t)rs);
+        part->pair_rspring = malloc(((h->has_rspring ? 3 * (size_t)np : 0) + 1) * (size_t)rs);
+        /* the optional ones where the file has them at their whole count (read_optional's rule) */
+        long rec = H5Lexists(g, "pair_rec", H5P_DEFAULT) > 0 ? h5_count(g, "pair_rec") : 0;
+        long mcd = H5Lexists(g, "pair_mc_disp", H5P_DEFAULT) > 0 ? h5_count(g, "pair_mc_disp") : 0;
+        rc = rec < 0 || mcd < 0 || (rec > 0 && rec != DEM_PAIR_RECORD_REALS * h->npairs) ||
+             (mcd > 0 && mcd != 2 * h->npairs) || h5_count(g, "pair_hist") != 3 * h->npairs ||
+             (h->has_mc && h5_count(g, "pair_mc_fn") != h->npairs) ||
+             (h->has_law && h5_count(g, "pair_law") != h->has_law * h->npairs) ||
+             (h->has_rspring && h5_count(g, "pair_rspring") != 3 * h->npairs);
+        part->pair_rec = rec > 0 ? malloc((size_t)(DEM_PAIR_RECORD_REALS * np + 1) * (size_t)rs) : NULL;
+        part->pair_mc_disp = mcd > 0 ? malloc((size_t)(2 * np + 1) * (size_t)rs) : NULL;
+        if (!part->pair_i || !part->pair_j || !part->pair_hist || !part->pair_mc_fn || !part->pair_law ||
+            !part->pair_rspring || (rec > 0 && !part->pair_rec) || (mcd > 0 && !part->pair_mc_disp))
+            rc = 1;
+        void *mcf = part->pair_mc_fn, *law = part->pair_law, *rsp = part->pair_rspring;
+        if (!h->has_mc) /* (not read: their datasets empty) */
+            part->pair_mc_fn = NULL;
+        if (!h->has_law)
+            part->pair_law = NULL;
+        if (!h->has_rspring)
+            part->pair_rspring = NULL;
+        rc = rc ? rc : read_kept_pairs(g, head, keep, m, part, path, err, errlen);
+        part->pair_mc_fn = mcf, part->pair_law = law, part->pair_rspring = rsp;
+        rc = rc ? rc : part->npairs == np ? 0 : 1;
+    }
+    if (g >= 0)
+        H5Gclose(g);
+    if (f >= 0)
+        H5Fclose(f);
+    if (rc && !err[0])
+        snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
+    if (rc)
+        dem_state_free(part);
+    return rc;
 }

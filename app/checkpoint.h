@@ -47,8 +47,18 @@ int checkpoint_write_from(const char *path, dem_sim *s, const dem_state *head, c
 int checkpoint_read(const char *path, checkpoint *ck, char *err, size_t errlen);
 /* The same but for what grows with the run: the scene, the attributes (step, n, precision, has_*: ck->st.npairs the
  * contacts' count), the walls' positions and stages; no particle arrays, radii (ck->radius NULL), contacts or patch
- * contacts, and their values unchecked. What a split run's other ranks read on restart (rank 0 reads the whole). */
+ * contacts, and their values unchecked. What every rank of a split run reads first on restart (then its part). */
 int checkpoint_read_head(const char *path, checkpoint *ck, char *err, size_t errlen);
+/* A restart split over ranks reads no more of the checkpoint than its part (app/run_mpi.c), after the head:
+ * checkpoint_read_x every particle's position (3 n doubles, an fp32 run's widened: what the split is cut by);
+ * checkpoint_read_part the state of the particles of ascending global ids keep[0..m): head's header, each array's
+ * rows of them, the contacts with both ends among them (renumbered to their places in keep, ascending i, then j),
+ * their radii into radius[m], read slab by slab of ids; s, a started run of the part, gives the arrays' layout. Each
+ * number read is checked finite as checkpoint_read checks it (the same words, the whole file's element). 0, or
+ * non-zero with err (and part freed). */
+int checkpoint_read_x(const char *path, const checkpoint *head, double *x, char *err, size_t errlen);
+int checkpoint_read_part(const char *path, const checkpoint *head, dem_sim *s, long m, const long *keep,
+                         dem_state *part, double *radius, char *err, size_t errlen);
 void checkpoint_free(checkpoint *ck);
 /* restart_scene.c: whether the scene now may continue the checkpoint ck (read from ck_path) - the scene ck was run
  * with but for time.duration, the output section and the stages a wall has not finished; 1 with err naming the first

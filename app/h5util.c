@@ -46,11 +46,13 @@ int h5rows_create(h5rows *r, hid_t parent, const char *name, hid_t mem_type, int
 }
 
 /* the block at start of extent cnt of dataset d (of rank dimensions) from buf, the dataset already as large */
-static int write_hyperslab(hid_t d, hid_t mem_type, int rank, const hsize_t *start, const hsize_t *cnt, const void *buf)
+/* the block start + cnt of the dataset written from buf, or (rd) read into it */
+static int hyperslab(hid_t d, hid_t mem_type, int rank, const hsize_t *start, const hsize_t *cnt, void *buf, int rd)
 {
     hid_t fs = H5Dget_space(d), ms = H5Screate_simple(rank, cnt, NULL);
     int rc = fs >= 0 && ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, cnt, NULL) >= 0 &&
-                     H5Dwrite(d, mem_type, ms, fs, H5P_DEFAULT, buf) >= 0
+                     (rd ? H5Dread(d, mem_type, ms, fs, H5P_DEFAULT, buf)
+                         : H5Dwrite(d, mem_type, ms, fs, H5P_DEFAULT, buf)) >= 0
                  ? 0
                  : -1;
     if (fs >= 0)
@@ -65,7 +67,7 @@ static int write_rows(h5rows *r, const void *buf, hsize_t count)
 {
     hsize_t start[3] = {r->dims[0], 0, 0}, cnt[3] = {count, r->dims[1], r->dims[2]};
     hsize_t grown[3] = {r->dims[0] + count, r->dims[1], r->dims[2]};
-    if (H5Dset_extent(r->id, grown) < 0 || write_hyperslab(r->id, r->mem_type, r->rank, start, cnt, buf))
+    if (H5Dset_extent(r->id, grown) < 0 || hyperslab(r->id, r->mem_type, r->rank, start, cnt, (void *)buf, 0))
         return -1;
     r->dims[0] += count;
     return 0;
@@ -93,7 +95,7 @@ int h5rows_append_part(h5rows *r, hsize_t a, hsize_t b, const void *part)
     if (a == 0 && H5Dset_extent(r->id, grown) < 0)
         return -1;
     hsize_t start[3] = {r->dims[0], a, 0}, cnt[3] = {1, b - a, r->dims[2]}; /* a rank-1 row: a = 0, b = 1 */
-    if (write_hyperslab(r->id, r->mem_type, r->rank, start, cnt, part))
+    if (hyperslab(r->id, r->mem_type, r->rank, start, cnt, (void *)part, 0))
         return -1;
     if (b == d1)
         r->dims[0]++;
@@ -160,7 +162,8 @@ hid_t h5_create(hid_t parent, const char *name, hid_t mem_type, int rank, const 
     return d;
 }
 
-int h5_write_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, const void *data)
+/* rows [first, first + count) of dataset d written from data, or (rd) read into it */
+static int rows_io(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, void *data, int rd)
 {
     if (count == 0)
         return 0;
@@ -172,7 +175,17 @@ int h5_write_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, const v
         H5Sclose(fs);
     for (int k = 0; ok && k < rank; k++)
         empty |= !(cnt[k] = k ? dims[k] : count); /* an empty row: nothing to write */
-    return !ok ? -1 : empty ? 0 : write_hyperslab(d, mem_type, rank, start, cnt, data);
+    return !ok ? -1 : empty ? 0 : hyperslab(d, mem_type, rank, start, cnt, data, rd);
+}
+
+int h5_write_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, const void *data)
+{
+    return rows_io(d, mem_type, first, count, (void *)data, 0);
+}
+
+int h5_read_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, void *data)
+{
+    return rows_io(d, mem_type, first, count, data, 1);
 }
 
 int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const void *data,

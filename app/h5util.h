@@ -39,6 +39,8 @@ int h5_write(hid_t parent, const char *name, hid_t mem_type, int rank, const hsi
  * + count) of its first dimension from data (a checkpoint written slab by slab, app/checkpoint.c) */
 hid_t h5_create(hid_t parent, const char *name, hid_t mem_type, int rank, const hsize_t *dims, const char *units);
 int h5_write_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, const void *data);
+/* the same rows read into data (a restart split over ranks reads its part of a checkpoint so, app/checkpoint.c) */
+int h5_read_rows(hid_t d, hid_t mem_type, hsize_t first, hsize_t count, void *data);
 /* Reads a whole dataset (or fails when its element count is not count). */
 int h5_read(hid_t parent, const char *name, hid_t mem_type, void *data, size_t count);
 long h5_count(hid_t parent, const char *name); /* elements of a dataset, -1 if absent */

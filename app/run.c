@@ -646,9 +646,9 @@ static int phase_load(run_ctx *c)
 {
     const run_opts *o = c->o;
     if (o->restart) {
-        /* over ranks rank 0 alone reads the state (its whole run is set to it and the parts start from it); the
-         * others read what the checks below read, and rank 0 says a damaged file once */
-        int head = c->R && c->R->rank != 0;
+        /* over ranks every rank reads what the checks below read (the head), then its own part of the state when
+         * the parts are made (run_ranks.start): no rank reads the whole */
+        int head = c->R != NULL;
         if ((head ? checkpoint_read_head : checkpoint_read)(o->restart, &c->ck, c->err, sizeof c->err)) /* 66: cannot
                                                                                   be opened; 65: damaged */
             return fail_with(strstr(c->err, "cannot open") ? EXIT_NO_INPUT : EXIT_BAD_INPUT, c->err);
@@ -738,7 +738,7 @@ static int phase_configure(run_ctx *c)
                  run->cfg.precision == DEM_FP64 ? "fp64" : "fp32");
         return fail_with(EXIT_BAD_INPUT, c->err);
     }
-    for (int i = 0; c->ck.radius && i < c->ck.st.n; i++) /* (over ranks: rank 0's check) */
+    for (int i = 0; c->ck.radius && i < c->ck.st.n; i++) /* (over ranks: each rank's of its part, run_mpi.c) */
         if (c->ck.radius[i] != dem_particle_radius(c->s, i)) {
             snprintf(c->err, sizeof c->err, "%s: particle %d has radius %g m in the checkpoint and %g m in the scene "
                      "(did a CSV file change?)", o->restart, i, c->ck.radius[i], dem_particle_radius(c->s, i));
@@ -827,8 +827,8 @@ static int phase_start(run_ctx *c)
     int who = -1;
     if (c->R) { /* split over ranks: the parts, each cut from its rank's whole run, which no rank starts (the
                  * scene's set-up: its memory is its particles' description, not a run's buffers) */
-        const dem_state *ck = c->have_ck && c->R->rank == 0 ? &c->ck.st : NULL; /* (the others read its head) */
-        int e = c->R->start(c->R, c->s, ck, &run->cfg, c->sc->path, c->err, sizeof c->err);
+        int e = c->R->start(c->R, c->s, c->have_ck ? &c->ck : NULL, o->restart, &run->cfg, c->sc->path, c->err,
+                            sizeof c->err);
         if ((e = c->R->agree(c->R, e, &who))) {
             c->R->share(c->R, who, c->err, sizeof c->err);
             return fail_with(e == DEM_ERR_DEVICE ? EXIT_DEVICE : EXIT_BAD_INPUT, c->err);
@@ -1222,13 +1222,13 @@ static void phase_report(run_ctx *c)
     int iterated = (run->effects & DEM_EFFECT_MC_STRAIN) && run->mc_cap > 0;
     if (c->o->progress != 0 || c->show) {
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", c->outp, c->ckp,
-                run_step(c), now() - c->t0); /* over ranks: the parts' step (rank 0's whole run is not stepped) */
+                run_step(c), now() - c->t0); /* over ranks: the parts' step (the whole run is not started) */
         char seq[2048];
         if (c->o->verbose && dem_kernel_sequence(s, 0, seq, sizeof seq)) /* the library's internals: on request */
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
         if (!c->o->verbose || !dem_kernel_sequence(s, 1, seq, sizeof seq))
             seq[0] = 0;
-        if (c->R) { /* the whole run did not step: its rebuilds and kernels are not the run's */
+        if (c->R) { /* the whole run is not started: the split's account instead */
             char line[1024];
             c->R->describe(c->R, line, sizeof line);
             fprintf(stderr, "dem: %s\n", line);
@@ -1239,7 +1239,7 @@ static void phase_report(run_ctx *c)
         const char **kn;
         const double *ks;
         int kc = 0;
-        if (!c->R) /* split: the whole run's kernels are its start's, on the host */
+        if (!c->R) /* split: the whole run has no kernels (the parts' are each rank's) */
             dem_kernel_times(s, &kn, &ks, &kc); /* DEM_PROFILE set: where the device time went */
         long ksteps = dem_step_index(s) - c->step0;
         int first = 1; /* the start's rebuild and forces are in the sums too: a short run's rebuild kernels read high */
@@ -1251,7 +1251,7 @@ static void phase_report(run_ctx *c)
             }
         if (!first)
             fprintf(stderr, "\n");
-        if (!c->R) /* split: the whole run's memory is the host's copy, not a device's */
+        if (!c->R) /* split: the whole run holds no device memory (the parts' are each rank's) */
             print_memory(s);
         if (iterated)
             fprintf(stderr, "dem: MC-strain iterations: %ld in all, %.2f per step, at most %ld; %ld steps hit the cap "
@@ -1259,7 +1259,7 @@ static void phase_report(run_ctx *c)
                     mc.max, mc.unconverged, run->mc_cap);
     }
     for (int k = 0; k < dem_wall_count(s); k++) { /* servo stages: what force they held, and whether they chattered */
-        dem_servo_stats sv; /* over ranks: the part's record (the whole run did not step) */
+        dem_servo_stats sv; /* over ranks: the part's record (the whole run is not started) */
         if (dem_servo_stats_get(stepped(c), k, &sv) || sv.stage < 0)
             continue;
         char name[1100];

@@ -2,6 +2,7 @@
 #ifndef DEM_RUN_H
 #define DEM_RUN_H
 #include "scene.h"
+#include "checkpoint.h"
 #include "exact_sum.h"
 #include <stdio.h>
 
@@ -45,11 +46,12 @@ struct run_ranks {
     /* message msg of rank who to every rank (msg of len bytes) */
     void (*share)(run_ranks *r, int who, char *msg, size_t len);
     /* the parts made and started (cfg: the run's device, precision, backend), each cut from its rank's whole run
-     * (not started), with the state of its set-up or, where the run restarts, of the checkpoint's state ck (read by
-     * rank 0, NULL on the others); what dem_start would refuse of the whole scene said with the words of `what` (the
+     * (not started), with the state of its set-up or, where the run restarts, its part of the checkpoint ck_path,
+     * whose head every rank has read into ck (NULL: a fresh start; checkpoint_read_head), each rank reading its own
+     * particles and contacts; what dem_start would refuse of the whole scene said with the words of `what` (the
      * scene's path) first; dem_status, message in err */
-    int (*start)(run_ranks *r, dem_sim *whole, const dem_state *ck, const dem_config *cfg, const char *what,
-                 char *err, size_t len);
+    int (*start)(run_ranks *r, dem_sim *whole, const checkpoint *ck, const char *ck_path, const dem_config *cfg,
+                 const char *what, char *err, size_t len);
     /* the series row of the state now (the run's first: dem_sample_get of one process), from the parts' own
      * particles' exact sums, merged (every rank gets it); dem_status, message in err */
     int (*sample)(run_ranks *r, dem_sample *row, char *err, size_t len);

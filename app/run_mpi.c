@@ -61,6 +61,8 @@ typedef struct {
     long fcs_n, fcs_np;
     int fcs_have;
     long ck_slab;                                     /* particles per slab of a checkpoint */
+    const checkpoint *ck;                             /* a restart's first split: the checkpoint's head, and */
+    const char *ck_path;                              /* its file, which each rank reads its part of */
     long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan|frame|checkpoint]": */
     int fail_rank, fail_nan, fail_frame, fail_ck;     /* that rank fails there, after its step, or (nan) inside it:
                                                          a particle's position made NaN before the step, or (frame,
@@ -202,11 +204,31 @@ static int keeps(void *arg, long id, int rank)
     return k->owner[id] == rank || box_dist(k->x + 3 * id, k->boxes[rank]) <= k->width;
 }
 
+/* This rank's part of the checkpoint q->ck_path, its radii checked against the scene's, into ps: 0, or a dem_status
+ * with the reason in err */
+static int part_from_checkpoint(rr *q, dem_state *ps, char *err, size_t len)
+{
+    double *rad = malloc(sizeof(double) * ((size_t)q->nloc + 1));
+    if (!rad)
+        return snprintf(err, len, "out of host memory reading %s", q->ck_path), DEM_ERR_NOMEM;
+    int e = checkpoint_read_part(q->ck_path, q->ck, q->part, q->nloc, q->gid, ps, rad, err, len) ? DEM_ERR_ARG : 0;
+    for (int k = 0; !e && k < q->nloc; k++) /* run.c's check of the whole, on each rank's part */
+        if (rad[k] != dem_particle_radius(q->from, (int)q->gid[k])) {
+            snprintf(err, len, "%s: particle %ld has radius %g m in the checkpoint and %g m in the scene (did a CSV "
+                     "file change?)", q->ck_path, q->gid[k], rad[k], dem_particle_radius(q->from, (int)q->gid[k]));
+            e = DEM_ERR_ARG;
+        }
+    free(rad);
+    if (e)
+        dem_state_free(ps);
+    return e;
+}
+
 /* This rank's part, started, with its halo, split by the positions x[3 n] (the same on every rank). Fresh (a run's
- * start): its state its set-up's, the start's forces made with the halo's meetings (dem_mpi_halo_init). Else its
- * state moved from each rank's state loc (held particles of global ids lgid, ranks lowner: dem_mpi_state_move): the
- * ranks' last parts, or at a restart the checkpoint's, read by rank 0 (every particle rank 0's; loc NULL on the other
- * ranks). Collective; agreed; frees nothing it is given. */
+ * start): its state its set-up's, the start's forces made with the halo's meetings (dem_mpi_halo_init). At a
+ * restart's first split (q->ck): its state its part of the checkpoint, which it reads itself. Else its state moved
+ * from each rank's state loc (held particles of global ids lgid, ranks lowner: dem_mpi_state_move): the ranks' last
+ * parts. Collective; agreed; frees nothing it is given. */
 static int split_from(rr *q, int fresh, long n, const double *x, const dem_state *loc, const long *lgid,
                       const int *lowner, char *err, size_t len)
 {
@@ -265,7 +287,11 @@ static int split_from(rr *q, int fresh, long n, const double *x, const dem_state
         e = fresh ? sim_start_deferred(q->part, &q->cfg) : dem_start(q->part, &q->cfg);
     dem_state ps;
     memset(&ps, 0, sizeof ps);
-    if (!(e = agreed_msg(q, e, q->part, err, len)) && !fresh) { /* the states moved where they are kept */
+    if (!(e = agreed_msg(q, e, q->part, err, len)) && !fresh && q->ck) { /* each rank's part of the checkpoint */
+        e = part_from_checkpoint(q, &ps, err, len);
+        if (!e && (e = dem_state_set(q->part, &ps)))
+            snprintf(err, len, "%s: %s", q->ck_path, dem_error(q->part));
+    } else if (!e && !fresh) { /* the states moved where they are kept */
         e = dem_mpi_state_move(q->comm, q->part, loc, lgid, lowner, keeps, &sk, q->nloc, q->gid, &ps); /* agreed */
         if (e)
             snprintf(err, len, "the particles could not be moved to their new ranks (code %d: out of host memory, "
@@ -291,10 +317,11 @@ static int split_from(rr *q, int fresh, long n, const double *x, const dem_state
 
 /* The parts made and started, each rank's cut from its own whole run (the scene's set-up, never started: no rank
  * holds a whole run's buffers or state), split by the positions at the start: the set-up's, which every rank holds,
- * or where the run restarts the checkpoint's, read by rank 0 (ck) and given to every rank. A fresh part's state is its
- * set-up's, the start's forces made with the halo; a restarted part's is the checkpoint's, moved from rank 0. */
-static int start(run_ranks *r, dem_sim *whole, const dem_state *ck, const dem_config *cfg, const char *what,
-                 char *err, size_t len)
+ * or where the run restarts the checkpoint's, which every rank reads. A fresh part's state is its set-up's, the
+ * start's forces made with the halo; a restarted part's is its own particles' and contacts' of the checkpoint, which
+ * each rank reads itself (checkpoint_read_part). */
+static int start(run_ranks *r, dem_sim *whole, const checkpoint *ck, const char *ck_path, const dem_config *cfg,
+                 const char *what, char *err, size_t len)
 {
     rr *q = of(r);
     q->cfg = *cfg;
@@ -308,8 +335,6 @@ static int start(run_ranks *r, dem_sim *whole, const dem_state *ck, const dem_co
     if (tm && atof(tm) > 0)
         q->margin = atof(tm) * q->rmax;
     err[0] = 0;
-    int me = r->rank, restart = ck != NULL; /* (ck: rank 0's alone; the others learn it from it) */
-    MPI_Bcast(&restart, 1, MPI_INT, 0, q->comm);
     /* what dem_start would refuse of the whole scene (a time step past its bound, a sphere wider than its die), said
      * as one process says it; the part's own start checks only its particles */
     whole->cfg = *cfg;
@@ -325,29 +350,22 @@ static int start(run_ranks *r, dem_sim *whole, const dem_state *ck, const dem_co
      * of the whole run makes, a restart's too), every part's: wherever the particles go, the parts' go too */
     double pmin[3], pmax[3];
     sim_domain_bounds(whole, q->rmax, q->domain, q->domain + 3, pmin, pmax);
-    q->step = restart && me == 0 ? ck->step : dem_step_index(whole);
-    MPI_Bcast(&q->step, 1, MPI_LONG, 0, q->comm);
+    q->step = ck ? ck->st.step : dem_step_index(whole);
     long n = q->n;
     double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
-    long *gid = restart && me == 0 ? malloc(sizeof(long) * (size_t)(n ? n : 1)) : NULL;
-    int *owner = restart && me == 0 ? calloc((size_t)(n ? n : 1), sizeof(int)) : NULL; /* every particle rank 0's */
-    const dem_state_array *xa = restart && me == 0 ? dem_state_find(ck, "x") : NULL;
-    e = x && (!restart || me != 0 || (gid && owner && xa && ck->n == n)) ? 0 : DEM_ERR_NOMEM;
-    for (long k = 0; !e && k < n; k++)
-        for (int d = 0; d < 3; d++)
-            x[3 * k + d] = restart ? me == 0 ? sim_real_at(xa->data, (size_t)(3 * k + d), ck->real_size) : 0
-                                   : whole->x[3 * k + d];
-    for (long k = 0; gid && k < n; k++)
-        gid[k] = k;
-    e = e ? e : 3 * n <= INT_MAX ? 0 : DEM_ERR_ARG;
-    if ((e = agreed_msg(q, e, NULL, err, len)))
-        snprintf(err, len, "%ld particles: out of host memory, or more than MPI's int counts take", n);
-    else {
-        if (restart) /* the split cuts by them, on every rank the same */
-            MPI_Bcast(x, (int)(3 * n), MPI_DOUBLE, 0, q->comm);
-        e = split_from(q, !restart, n, x, restart && me == 0 ? ck : NULL, gid, owner, err, len);
+    e = x ? 0 : DEM_ERR_NOMEM;
+    if (e)
+        snprintf(err, len, "%ld particles: out of host memory", n);
+    else if (ck && checkpoint_read_x(ck_path, ck, x, err, len)) /* the split cuts by them, on every rank the same */
+        e = DEM_ERR_ARG;
+    for (long k = 0; !e && !ck && k < 3 * n; k++)
+        x[k] = whole->x[k];
+    if (!(e = agreed_msg(q, e, NULL, err, len))) {
+        q->ck = ck, q->ck_path = ck_path;
+        e = split_from(q, !ck, n, x, NULL, NULL, NULL, err, len);
+        q->ck = NULL, q->ck_path = NULL; /* a split anew moves the parts' states */
     }
-    free(x), free(gid), free(owner);
+    free(x);
     return e;
 }
 
@@ -462,6 +480,18 @@ static double rounded(const rr *q, const exact_acc *a)
     return q->cfg.precision == DEM_FP64 ? exact_to_double(a) : (double)exact_to_float(a);
 }
 
+/* a series row's energies and contact counts from the merged exact sums (SE_*), each rounded once to double as one
+ * process rounds them (host/physics/energy.c) */
+static void energies_of(const exact_acc *acc, dem_energy_t *en)
+{
+    en->kinetic = exact_to_double(&acc[SE_KIN]);
+    en->potential = exact_to_double(&acc[SE_POT]);
+    en->elastic = exact_to_double(&acc[SE_ELA]);
+    en->contacts = (long)exact_to_double(&acc[SE_CON]);
+    en->wall_contacts = (long)exact_to_double(&acc[SE_WCON]);
+    en->total = en->kinetic + en->elastic + en->potential;
+}
+
 static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len)
 {
     rr *q = of(r);
@@ -525,13 +555,7 @@ static int step(run_ranks *r, long nsteps, const unsigned char *want, dem_sample
         e = merged_sums(q, nw, acc);
         if ((e = agreed_msg(q, e, q->part, err, len)))
             return e;
-        dem_energy_t *en = &one.energy;
-        en->kinetic = exact_to_double(&acc[SE_KIN]);
-        en->potential = exact_to_double(&acc[SE_POT]);
-        en->elastic = exact_to_double(&acc[SE_ELA]);
-        en->contacts = (long)exact_to_double(&acc[SE_CON]);
-        en->wall_contacts = (long)exact_to_double(&acc[SE_WCON]);
-        en->total = en->kinetic + en->elastic + en->potential;
+        energies_of(acc, &one.energy);
         for (int w = 0; w < nw; w++) {
             const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
             for (int d = 0; d < 3; d++)
@@ -559,13 +583,7 @@ static int sample(run_ranks *r, dem_sample *row, char *err, size_t len)
             snprintf(err, len, "the ranks' energies could not be merged (MPI)");
         return e;
     }
-    dem_energy_t *en = &row->energy; /* as one process's dem_sample_get rounds them (host/physics/energy.c) */
-    en->kinetic = exact_to_double(&acc[SE_KIN]);
-    en->potential = exact_to_double(&acc[SE_POT]);
-    en->elastic = exact_to_double(&acc[SE_ELA]);
-    en->contacts = (long)exact_to_double(&acc[SE_CON]);
-    en->wall_contacts = (long)exact_to_double(&acc[SE_WCON]);
-    en->total = en->kinetic + en->elastic + en->potential;
+    energies_of(acc, &row->energy);
     return 0;
 }
 

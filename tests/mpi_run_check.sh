@@ -14,8 +14,8 @@
 #     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same; and for a checkpoint
 #     ("200 2 checkpoint", written in slabs): the same, the checkpoint before it kept (one process's) and no .tmp.
 #  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks),
-#     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once, and a damaged checkpoint (which
-#     rank 0 alone reads whole: the other ranks read its header, checkpoint_read_head).
+#     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once, and a damaged checkpoint (each rank
+#     reads its own part of it, checkpoint_read_part: said once, by the lowest rank that holds the damage).
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
 #     and a servo): on 2 and 3 ranks, PoCL fp32 and the reference fp64, the output, the checkpoint and the report's
 #     stage ends and servo record equal to one process's.
@@ -146,7 +146,7 @@ sed 's/^effects:/effectz:/' "$S" >"$T/bad.yaml"
 mrun 2 run "$T/bad.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1
 trc=$?
 [ "$trc" = 65 ] && [ "$(grep -c 'bad.yaml:' "$T/log")" = 1 ] || { cat "$T/log" >&2; fail "a bad scene on 2 ranks: exit $trc, or not said once"; }
-# a damaged checkpoint (a velocity made NaN): rank 0 alone reads the state (the others its header), and says it once
+# a damaged checkpoint (a velocity made NaN): each rank reads its part; said once, with the file's element
 cp "$T/a1.ckpt.h5" "$T/bad.ckpt.h5"
 "$PY" -c "import h5py, sys
 with h5py.File(sys.argv[1], 'r+') as f:

@@ -289,3 +289,16 @@ int sim_mc_disp_set(dem_sim *s, long count, const int *pi, const int *pj, const 
     free(cnt), free(list), free(start), free(mcd);
     return e;
 }
+
+long sim_id_from(const long *ids, long n, long v)
+{
+    long lo = 0, hi = n;
+    while (lo < hi) {
+        long mid = lo + (hi - lo) / 2;
+        if (ids[mid] < v)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}

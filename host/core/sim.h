@@ -253,6 +253,9 @@ void sim_run_record_set(dem_sim *s, const sim_run_record *r);
  * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */
 int sim_keep_particles(dem_sim *s, const unsigned char *keep);
 int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
+/* part.c: where v is, or would go, in the ascending ids[0..n) (the first place whose id is >= v): a part's held
+ * global ids searched (host/mpi/, app/checkpoint.c) */
+long sim_id_from(const long *ids, long n, long v);
 /* A new run, not started, with the set-up of src (not started either) and the particles of it that keep selects:
  * what sim_keep_particles leaves of a run built anew from the scene, without building it (app/run_mpi.c: a split
  * anew reads no scene file and holds no whole run); NULL with the reason in err */

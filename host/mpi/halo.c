@@ -16,18 +16,7 @@ void dem_mpi_halo_free(dem_mpi_halo *h)
     memset(h, 0, sizeof *h);
 }
 
-int dem_mpi_id_from(const long *ids, int n, long v)
-{
-    int lo = 0, hi = n;
-    while (lo < hi) {
-        int mid = lo + (hi - lo) / 2;
-        if (ids[mid] < v)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
+int dem_mpi_id_from(const long *ids, int n, long v) { return (int)sim_id_from(ids, n, v); }
 
 int dem_mpi_id_at(const long *ids, int n, long v)
 {
