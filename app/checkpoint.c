@@ -550,14 +550,25 @@ void checkpoint_free(checkpoint *ck)
  * ---- */
 
 /* kept ids per slab of the file's ids: no read holds more than this many particles' rows; contacts per read of the
- * pairs' datasets. DEM_TEST_FRAME_SLAB sets both (the tests: slabs of a few particles, as the writer's) */
+ * pairs' datasets. DEM_TEST_FRAME_SLAB sets both (the tests: slabs of a few particles, as the writer's), read once
+ * per part */
 static long part_slab(long fallback)
 {
     const char *t = getenv("DEM_TEST_FRAME_SLAB");
     return t && atol(t) > 0 ? atol(t) : fallback;
 }
-#define PART_SLAB part_slab(32768L)
-#define PART_PAIRS part_slab(65536L)
+
+/* dataset d holds rows of wd elements (2-D, wd wide; 1-D where wd is 1): what the part's reads take it for (a
+ * checkpoint of an older libdem kept some arrays flat, which the whole read takes by their count) */
+static int rows_of(hid_t d, size_t wd)
+{
+    hid_t s = H5Dget_space(d);
+    hsize_t dims[H5S_MAX_RANK];
+    int r = s >= 0 ? H5Sget_simple_extent_dims(s, dims, NULL) : -1;
+    if (s >= 0)
+        H5Sclose(s);
+    return wd == 1 ? r == 1 || (r == 2 && dims[1] == 1) : r == 2 && dims[1] == wd;
+}
 
 /* where v is in the ascending keep[0..m), or -1 */
 static long keep_at(const long *keep, long m, long v)
@@ -575,12 +586,16 @@ static int read_kept(hid_t d, hid_t mem_t, long n, size_t groups, size_t each, s
                      int rs, const long *keep, long m, void *out, const char *path, const char *name, char *err,
                      size_t errlen)
 {
-    unsigned char *buf = malloc(row * each * (size_t)PART_SLAB + 1);
+    long slab = part_slab(32768L);
+    unsigned char *buf = rows_of(d, wd) ? malloc(row * each * (size_t)slab + 1) : NULL;
+    if (!buf && !rows_of(d, wd))
+        return snprintf(err, errlen, "%s: /state/%s is not in rows of %zu: a checkpoint of an older libdem, which a "
+                        "split run cannot read in parts (continue it in one process)", path, name, wd), 1;
     int rc = buf ? 0 : 1;
     for (size_t g = 0; !rc && g < groups; g++)
         for (long k0 = 0; !rc && k0 < m;) {
-            long a = keep[k0], k1 = k0; /* the kept ids within [a, a + PART_SLAB) */
-            while (k1 < m && keep[k1] < a + PART_SLAB)
+            long a = keep[k0], k1 = k0; /* the kept ids within [a, a + slab) */
+            while (k1 < m && keep[k1] < a + slab)
                 k1++;
             long span = keep[k1 - 1] - a + 1;
             rc = h5_read_rows(d, mem_t, (hsize_t)(g * (size_t)n + (size_t)a) * each, (hsize_t)span * each, buf) ? 1 : 0;
@@ -621,25 +636,34 @@ static int read_kept_pairs(hid_t g, const checkpoint *head, const long *keep, lo
                {"pair_mc_disp", 2, &part->pair_mc_disp}};
     enum { NPER = sizeof per / sizeof per[0] };
     hid_t ds[NPER + 2] = {0};
-    int *pij = malloc(sizeof(int) * 2 * (size_t)PART_PAIRS);
-    long *at = malloc(sizeof(long) * (size_t)PART_PAIRS);
-    unsigned char *buf = malloc((size_t)PART_PAIRS * DEM_PAIR_RECORD_REALS * (size_t)rs + 1);
+    long chunk = part_slab(65536L);
+    size_t widest = 3; /* the widest row of a contact's arrays: the record, or MDR's state (25 reals) */
+    for (int k = 0; k < NPER; k++)
+        widest = per[k].width > widest ? per[k].width : widest;
+    int *pij = malloc(sizeof(int) * 2 * (size_t)chunk);
+    long *at = malloc(sizeof(long) * (size_t)chunk);
+    unsigned char *buf = malloc((size_t)chunk * widest * (size_t)rs + 1);
     int rc = pij && at && buf ? 0 : 1;
     if (!rc && np) {
         ds[0] = H5Dopen2(g, "pair_i", H5P_DEFAULT), ds[1] = H5Dopen2(g, "pair_j", H5P_DEFAULT);
         rc = ds[0] < 0 || ds[1] < 0;
     }
     for (int k = 0; fill && !rc && k < NPER; k++) /* those this part holds (allocated by the caller: the file has it) */
-        if (*per[k].to && per[k].width)
+        if (*per[k].to && per[k].width) {
             rc = (ds[k + 2] = H5Dopen2(g, per[k].name, H5P_DEFAULT)) < 0;
-    for (long c0 = 0; !rc && c0 < np; c0 += PART_PAIRS) {
-        long cn = np - c0 < PART_PAIRS ? np - c0 : PART_PAIRS, picked = 0;
+            if (!rc && !rows_of(ds[k + 2], per[k].width))
+                rc = 1, snprintf(err, errlen, "%s: /state/%s is not in rows of %zu: a checkpoint of an older libdem, "
+                                 "which a split run cannot read in parts (continue it in one process)", path,
+                                 per[k].name, per[k].width);
+        }
+    for (long c0 = 0; !rc && c0 < np; c0 += chunk) {
+        long cn = np - c0 < chunk ? np - c0 : chunk, picked = 0;
         rc = h5_read_rows(ds[0], H5T_NATIVE_INT, (hsize_t)c0, (hsize_t)cn, pij) ||
-             h5_read_rows(ds[1], H5T_NATIVE_INT, (hsize_t)c0, (hsize_t)cn, pij + PART_PAIRS);
+             h5_read_rows(ds[1], H5T_NATIVE_INT, (hsize_t)c0, (hsize_t)cn, pij + chunk);
         for (long p = 0; !rc && p < cn; p++) {
-            long i = keep_at(keep, m, pij[p]), j = keep_at(keep, m, pij[PART_PAIRS + p]);
-            if (pij[p] < 0 || pij[p] >= h->n || pij[PART_PAIRS + p] < 0 || pij[PART_PAIRS + p] >= h->n ||
-                pij[p] == pij[PART_PAIRS + p])
+            long i = keep_at(keep, m, pij[p]), j = keep_at(keep, m, pij[chunk + p]);
+            if (pij[p] < 0 || pij[p] >= h->n || pij[chunk + p] < 0 || pij[chunk + p] >= h->n ||
+                pij[p] == pij[chunk + p])
                 rc = 1; /* not a pair of two of the run's particles */
             else if (i >= 0 && j >= 0) {
                 if (fill)
@@ -671,9 +695,22 @@ static int read_kept_pairs(hid_t g, const checkpoint *head, const long *keep, lo
     return rc;
 }
 
+/* HDF5's own error stack off while a part is read (what went wrong is said once, in err), and back */
+static void h5_quiet(int on)
+{
+    static H5E_auto2_t old;
+    static void *old_data;
+    if (on) {
+        H5Eget_auto2(H5E_DEFAULT, &old, &old_data);
+        H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    } else
+        H5Eset_auto2(H5E_DEFAULT, old, old_data);
+}
+
 int checkpoint_read_x(const char *path, const checkpoint *head, double *x, char *err, size_t errlen)
 {
     long n = head->st.n;
+    h5_quiet(1);
     hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     hid_t g = f >= 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
     int rc = g < 0 || h5_read(g, "x", H5T_NATIVE_DOUBLE, x, 3 * (size_t)n); /* an fp32 run's floats, widened */
@@ -681,6 +718,7 @@ int checkpoint_read_x(const char *path, const checkpoint *head, double *x, char 
         H5Gclose(g);
     if (f >= 0)
         H5Fclose(f);
+    h5_quiet(0);
     if (rc)
         return snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path), 1;
     for (long k = 0; k < 3 * n; k++)
@@ -703,6 +741,7 @@ int checkpoint_read_part(const char *path, const checkpoint *head, dem_sim *s, l
     part->pair_rspring = NULL;
     part->npatch = 0, part->patch_i = part->patch_t = part->patch_side = NULL, part->patch_hist = NULL;
     dem_state_arrays(part);
+    h5_quiet(1);
     hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     hid_t g = f >= 0 ? H5Gopen2(f, "state", H5P_DEFAULT) : -1;
     int rc = g < 0 || m < 1;
@@ -794,6 +833,7 @@ int checkpoint_read_part(const char *path, const checkpoint *head, dem_sim *s, l
         H5Gclose(g);
     if (f >= 0)
         H5Fclose(f);
+    h5_quiet(0);
     if (rc && !err[0])
         snprintf(err, errlen, "%s: incomplete or damaged checkpoint", path);
     if (rc)

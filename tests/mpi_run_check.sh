@@ -13,9 +13,9 @@
 #     whose steps hold meetings of the ranks: every rank stops there with rank 1's words, nothing hangs. And a rank
 #     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same; and for a checkpoint
 #     ("200 2 checkpoint", written in slabs): the same, the checkpoint before it kept (one process's) and no .tmp.
-#  4. What a split refuses, once, by rank 0: more ranks than particles (two_spheres on 3 ranks),
+#  4. What a split refuses, said once (by rank 0, in the words of the rank that found it): more ranks than particles (two_spheres on 3 ranks),
 #     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once, and a damaged checkpoint (each rank
-#     reads its own part of it, checkpoint_read_part: said once, by the lowest rank that holds the damage).
+#     reads its own part of it, checkpoint_read_part: a rank that holds the damage finds it).
 #  6. Walls steered by the sums over every rank's particles (tests/scenes/lid_stages.yaml: until_force, until_density
 #     and a servo): on 2 and 3 ranks, PoCL fp32 and the reference fp64, the output, the checkpoint and the report's
 #     stage ends and servo record equal to one process's.
@@ -236,6 +236,14 @@ for cfg in "opencl fp32 2 1" "reference fp64 3 0.1"; do
     same "$T/one.h5" "$T/n.h5" && same "$T/one.ckpt.h5" "$T/n.ckpt.h5" || fail "MDR: $3 ranks ($cfg) differ"
     echo "   $1 $2, $3 ranks, halo 2 r_max + $4 r_max: output and checkpoint equal; $(grep -o '[0-9]* splits so far, [0-9]* changes of rank' "$T/log" | tail -1)"
 done
+# restarted on 3 ranks from one process's checkpoint, each rank reading its part in slabs of 5 particles and 5
+# contacts (MDR's contacts carry 25 reals of state each: the widest rows a part reads)
+"$DEM" run "$T/box_mdr.yaml" -o "$T/m1.h5" --quiet --backend reference --stop-after 400 || fail "one-process MDR first part"
+"$DEM" run --restart "$T/m1.ckpt.h5" -o "$T/m11.h5" --quiet --backend reference || fail "one-process MDR continuation"
+DEM_TEST_FRAME_SLAB=5 mrun 3 run --restart "$T/m1.ckpt.h5" -o "$T/m13.h5" --quiet --backend reference >"$T/log" 2>&1 ||
+    { cat "$T/log" >&2; fail "MDR restarted on 3 ranks"; }
+same "$T/m11.h5" "$T/m13.h5" && same "$T/m11.ckpt.h5" "$T/m13.ckpt.h5" || fail "MDR: restarted on 3 ranks differs"
+echo "   reference fp64, stopped at step 400 in one process, restarted on 3 ranks (parts read in slabs of 5): equal to one process's continuation ($(h5ls "$T/m1.ckpt.h5/state/pair_i" | grep -o '{[0-9]*}') contacts)"
 
 echo "== 9. MC-strain, lagged and iterated: the ghosts' displacements, the convergence over every rank"
 sed -e 's/friction: 0.4}/friction: 0.4, gamma: 1.12}/' -e 's/radius_min: 0.0035,/radius_min: 0.0015,/' \
