@@ -586,11 +586,11 @@ static int read_kept(hid_t d, hid_t mem_t, long n, size_t groups, size_t each, s
                      int rs, const long *keep, long m, void *out, const char *path, const char *name, char *err,
                      size_t errlen)
 {
-    long slab = part_slab(32768L);
-    unsigned char *buf = rows_of(d, wd) ? malloc(row * each * (size_t)slab + 1) : NULL;
-    if (!buf && !rows_of(d, wd))
+    if (!rows_of(d, wd))
         return snprintf(err, errlen, "%s: /state/%s is not in rows of %zu: a checkpoint of an older libdem, which a "
                         "split run cannot read in parts (continue it in one process)", path, name, wd), 1;
+    long slab = part_slab(32768L);
+    unsigned char *buf = malloc(row * each * (size_t)slab + 1);
     int rc = buf ? 0 : 1;
     for (size_t g = 0; !rc && g < groups; g++)
         for (long k0 = 0; !rc && k0 < m;) {

@@ -352,17 +352,15 @@ static int start(run_ranks *r, dem_sim *whole, const checkpoint *ck, const char 
     sim_domain_bounds(whole, q->rmax, q->domain, q->domain + 3, pmin, pmax);
     q->step = ck ? ck->st.step : dem_step_index(whole);
     long n = q->n;
-    double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
-    e = x ? 0 : DEM_ERR_NOMEM;
-    if (e)
-        snprintf(err, len, "%ld particles: out of host memory", n);
-    else if (ck && checkpoint_read_x(ck_path, ck, x, err, len)) /* the split cuts by them, on every rank the same */
+    /* the positions the split cuts by, on every rank the same: the set-up's, or the checkpoint's */
+    double *x = ck ? malloc(sizeof(double) * 3 * (size_t)(n ? n : 1)) : NULL;
+    if (ck && !x)
+        e = DEM_ERR_NOMEM, snprintf(err, len, "%ld particles: out of host memory", n);
+    else if (ck && checkpoint_read_x(ck_path, ck, x, err, len))
         e = DEM_ERR_ARG;
-    for (long k = 0; !e && !ck && k < 3 * n; k++)
-        x[k] = whole->x[k];
     if (!(e = agreed_msg(q, e, NULL, err, len))) {
         q->ck = ck, q->ck_path = ck_path;
-        e = split_from(q, !ck, n, x, NULL, NULL, NULL, err, len);
+        e = split_from(q, !ck, n, ck ? x : whole->x, NULL, NULL, NULL, err, len);
         q->ck = NULL, q->ck_path = NULL; /* a split anew moves the parts' states */
     }
     free(x);
