@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# mpi_check.sh - the MPI layer's tests (build/tests/test_mpi_*: tests/test_mpi_sum.c, tests/test_mpi_halo.c) on 1, 2
+# mpi_check.sh - the MPI layer's tests (build/tests/test_mpi_*: tests/test_mpi_sum.c, tests/test_mpi_halo.c,
+# tests/test_mpi_api.c: dem_create_mpi through dem.h's calls) on 1, 2
 # and 3 ranks of Open MPI (mpirun --oversubscribe: more ranks than this machine's cores), each run under a time limit
 # so that a rank left waiting in a collective ends the check instead of hanging it; then `mpirun -np N dem run`
 # against the one-process run (tests/mpi_run_check.sh). Run by make test.
@@ -18,6 +19,12 @@ for bin in "${bins[@]}"; do
         timeout 600 mpirun -np "$np" --oversubscribe --bind-to none "$bin" || { echo "mpi_check: $bin on $np rank(s) failed" >&2; rc=1; }
     done
 done
+# a program that never calls dem_create_mpi links libdem.a alone, without MPI: the library needs none of its symbols
+if nm -u build/libdem.a | grep -Eq ' (MPI_|PMPI_|ompi_)'; then
+    echo "mpi_check: build/libdem.a needs MPI's symbols (only libdem_mpi.a may):" >&2
+    nm -u build/libdem.a | grep -E ' (MPI_|PMPI_|ompi_)' | sort -u | head >&2
+    rc=1
+fi
 # dem run under mpirun against the one-process run (output, checkpoints, restarts, failures, signals)
 bash tests/mpi_run_check.sh || rc=1
 exit $rc

@@ -1,5 +1,5 @@
 /* test_mpi_halo.c - a run split by space over the ranks (tests/mpi_check.sh: 1, 2 and 3), each rank holding its slab's
- * particles and a halo of ghosts kept equal to their owners after each step (host/mpi/dem_mpi.h): after 600 steps
+ * particles and a halo of ghosts kept equal to their owners after each step (host/mpi/mpi_layer.h): after 600 steps
  * every particle's position, velocity, spin, force and torque, on the rank that owns it, has the bits of the same
  * particle in the whole scene run in one process; and the force each wall receives, summed exactly over each rank's
  * own particles and merged across the ranks, has the whole run's bits. The scene: 855 polydisperse spheres
@@ -26,27 +26,7 @@
 #define L (SIDE * 2 * RMAX)
 static double px[NTOT][3], pv[NTOT][3], pr[NTOT];
 
-static void make_particles(void)
-{
-    unsigned long long z = 12345;
-    int k = 0;
-    for (int layer = 0; layer < 2; layer++) {
-        int m = SIDE - layer;
-        for (int i = 0; i < m * m * m; i++, k++) {
-            double off = layer ? 1.0 : 0.5;
-            px[k][0] = (i % m + off) * 2 * RMAX, px[k][1] = ((i / m) % m + off) * 2 * RMAX;
-            px[k][2] = (i / (m * m) + off) * 2 * RMAX;
-            for (int d = 0; d < 4; d++) {
-                z = z * 6364136223846793005ull + 1442695040888963407ull;
-                double u = (double)(z >> 11) / 9007199254740992.0;
-                if (d < 3)
-                    pv[k][d] = 0.2 * (2 * u - 1);
-                else
-                    pr[k] = RMAX * (layer ? 0.45 + 0.05 * u : 0.9 + 0.1 * u);
-            }
-        }
-    }
-}
+static void make_particles(void) { mixed_lattice(SIDE, RMAX, 0.2, 12345, px, pv, pr); }
 
 /* the scene with the particles k where keep[k] (NULL: all), in ascending k; dt given (0: the recommended one) */
 static dem_sim *build(const unsigned char *keep, double *dt)
@@ -186,28 +166,6 @@ static void test_split_run(void **st)
  * arrays and their contacts' histories move between ranks. After the 900 steps every own particle has the whole
  * run's bits, and the gathered state has the whole run's state's: every per-particle and per-wall array and every
  * contact with its history and force record (the walls' sums aside: rank 0's). The reference in fp64 and PoCL in fp32. */
-/* whether two states hold the same particles, arrays and contacts, bit for bit (b: whole; a: any) */
-static int states_equal(const dem_state *a, const dem_state *b)
-{
-    size_t rs = (size_t)a->real_size;
-    int ok = a->n == b->n && a->narrays == b->narrays && a->npairs == b->npairs && a->step == b->step &&
-             a->rebuilds == b->rebuilds && a->real_size == b->real_size && a->has_hist == b->has_hist &&
-             a->has_mc == b->has_mc && a->has_law == b->has_law && a->has_rspring == b->has_rspring;
-    for (int k = 0; ok && k < a->narrays; k++) {
-        const dem_state_array *x = &a->arrays[k], *y = &b->arrays[k];
-        size_t es = x->elem == DEM_STATE_REAL ? rs : sizeof(int);
-        ok = !strcmp(x->name, y->name) && x->count == y->count && !x->data == !y->data &&
-             (!x->data || !memcmp(x->data, y->data, x->count * es));
-    }
-    size_t m = (size_t)a->npairs;
-    ok = ok && (!m || (!memcmp(a->pair_i, b->pair_i, m * sizeof(int)) && !memcmp(a->pair_j, b->pair_j, m * sizeof(int))));
-    const void *pa[6] = {a->pair_hist, a->pair_rec, a->pair_mc_fn, a->pair_mc_disp, a->pair_law, a->pair_rspring};
-    const void *pb[6] = {b->pair_hist, b->pair_rec, b->pair_mc_fn, b->pair_mc_disp, b->pair_law, b->pair_rspring};
-    size_t w[6] = {3, DEM_PAIR_RECORD_REALS, 1, 2, (size_t)a->has_law, a->has_rspring ? 3 : 0};
-    for (int q = 0; ok && m && q < 6; q++)
-        ok = !pa[q] == !pb[q] && (!pa[q] || !w[q] || !memcmp(pa[q], pb[q], m * w[q] * rs));
-    return ok;
-}
 
 /* the slabs of a phase of test_split_anew: who keeps what (dem_mpi_state_move's question) */
 typedef struct {

@@ -1,4 +1,4 @@
-/* test_mpi_sum.c - the exact sums merged across MPI ranks (host/mpi/dem_mpi.h), run by tests/mpi_check.sh on 1, 2
+/* test_mpi_sum.c - the exact sums merged across MPI ranks (host/mpi/mpi_layer.h), run by tests/mpi_check.sh on 1, 2
  * and 3 ranks (mpirun --oversubscribe): the result may not depend on the number of ranks or on how the terms are cut.
  *
  * - 20 000 doubles over 240 binary orders of magnitude with cancelling pairs, cut among the ranks in a scattered way

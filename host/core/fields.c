@@ -42,7 +42,7 @@ size_t dem_field_bytes(const dem_sim *s, dem_field f)
 int dem_get_raw(dem_sim *s, dem_field f, void *dst, size_t bytes)
 {
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     if (f == DEM_FIELD_STRESS && dem_stage_stress_tensor(s->ops, s->be)) /* computed from the current positions when asked */
         return sim_be_fail(s);
     int slots = f == DEM_FIELD_MC_FORCE; /* kept per pair, handed out per row slot */
@@ -72,6 +72,8 @@ int dem_get_field(dem_sim *s, dem_field f, double *dst)
         f == DEM_FIELD_FLAGS || f == DEM_FIELD_TOUCH || f == DEM_FIELD_WALL_MASK || f == DEM_FIELD_IN_START ||
         f == DEM_FIELD_IN_PAIR)
         return sim_fail(s, DEM_ERR_ARG, "field %d holds integers: use dem_get_raw", (int)f);
+    if (!s->run.started) /* (before it, the precision is not set: no size to divide by) */
+        return sim_need_started(s);
     size_t bytes = dem_field_bytes(s, f), cnt = bytes / (size_t)s->setup.real_size;
     void *buf = malloc(bytes ? bytes : 1);
     if (!buf)
@@ -86,7 +88,7 @@ int dem_get_field(dem_sim *s, dem_field f, double *dst)
 int sim_set_field(dem_sim *s, dem_field f, const double *vals)
 {
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     size_t all = sim_stored_bytes(s, f), rs = (size_t)s->setup.real_size, cnt = all / rs;
     size_t width = s->n ? cnt / (size_t)s->n : 0;
     if (!width || width * (size_t)s->n != cnt)

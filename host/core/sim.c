@@ -29,6 +29,8 @@ void dem_destroy(dem_sim *s)
 {
     if (!s)
         return;
+    if (s->split_ops)
+        s->split_ops->destroy(s);
     if (s->be)
         s->ops->destroy(s->be);
     sim_setup_free(s);
@@ -71,7 +73,18 @@ void dem_config_default(dem_config *c)
 
 int sim_not_started(dem_sim *s)
 {
-    return s->run.started ? sim_fail(s, DEM_ERR_STATE, "the simulation has started: the set-up is fixed") : 0;
+    return s->run.started || s->split_started
+               ? sim_fail(s, DEM_ERR_STATE, "the simulation has started: the set-up is fixed")
+               : 0;
+}
+
+int sim_need_started(dem_sim *s)
+{
+    if (s->split_started)
+        return sim_fail(s, DEM_ERR_STATE, "not on a run split over MPI ranks (dem_create_mpi), whose particles are "
+                        "the ranks' parts: dem_step, dem_step_sampled, dem_sample_get and dem_state_get (the whole "
+                        "state, on every rank) work on it");
+    return sim_need_started(s);
 }
 
 int dem_add_material(dem_sim *s, const dem_material *m)

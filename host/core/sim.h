@@ -151,6 +151,12 @@ struct dem_sim {
      * rank's failure, so a step that fails on one rank ends on all. NULL in a run that is not split. */
     int (*halo_hook)(dem_sim *s, void *ctx, int event, int *value);
     void *halo_ctx;
+    /* a run split over the ranks of an MPI communicator by a program (dem_create_mpi, host/mpi/api.c): this dem_sim
+     * is the whole set-up, never started itself; from dem_start on, split_ops (the MPI layer's) do the run's work
+     * on this rank's part, split_started set. NULL in any other run: libdem.a calls through them, needing no MPI. */
+    const struct sim_split_ops *split_ops;
+    void *split_ctx;
+    int split_started;
     double *body;        /* per particle: explicit mass [kg] and moment of inertia [kg m^2]; 0 = from the material
                             (sim_mass, sim_inertia) */
     double rmin, rmax;
@@ -230,7 +236,7 @@ int sim_mc_disp_set(dem_sim *s, long count, const int *pi, const int *pj, const 
  * sums); -1 for no such array. What a run split over ranks needs to gather a state and cut it (host/mpi/state.c). */
 int sim_state_array_layout(const dem_sim *s, const char *name, int *per);
 /* walls.c: wall k's exact sums of the last step that made them (WP_* of dem_layout.h), not rounded, over the
- * particles the run holds but its ghosts: the ranks of a split run merge them (host/mpi/dem_mpi.h) */
+ * particles the run holds but its ghosts: the ranks of a split run merge them (host/mpi/mpi_layer.h) */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
 /* walls.c: every wall's sums (DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_NORMAL_FORCE) set from exact ones,
  * acc[WP_STRIDE * wall + WP_*], rounded as the device rounds them (common/wall_forces.h): what the ranks of a split
@@ -300,6 +306,19 @@ void sim_wall_velocity(const dem_sim *s, int k, double v[3]); /* wall k in its s
 int sim_fail(dem_sim *s, int code, const char *fmt, ...);
 /* sim.c: 0 while the set-up may change, else DEM_ERR_STATE (reported) */
 int sim_not_started(dem_sim *s);
+/* sim.c: DEM_ERR_STATE for a call that reads a started run, on a run not started ("dem_start first") or split over
+ * MPI ranks by dem_create_mpi (its parts are the ranks': the calls that work on it are named) */
+int sim_need_started(dem_sim *s);
+/* What a run split by dem_create_mpi does in the calls of dem.h that work on it (host/mpi/api.c): collective over
+ * its communicator, each 0 or a dem_status set with sim_fail (the same on every rank) */
+typedef struct sim_split_ops {
+    int (*start)(dem_sim *s, const dem_config *c);
+    int (*step)(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows);
+    int (*sample)(dem_sim *s, dem_sample *row);
+    int (*state_get)(dem_sim *s, dem_state *st);
+    dem_sim *(*part)(const dem_sim *s); /* this rank's part (started: its step, time and walls' places are the run's) */
+    void (*destroy)(dem_sim *s);
+} sim_split_ops;
 static inline int sim_finite3(const double *a) { return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]); }
 /* diagnostics.c: a backend failure reported as DEM_ERR_DEVICE with the backend's message; launches [a, z) of the
  * core's trace copied after the n already in dst (the new count) */

@@ -441,8 +441,10 @@ static int pairs_get(dem_sim *s, dem_state *st)
 int dem_state_get(dem_sim *s, dem_state *st)
 {
     memset(st, 0, sizeof *st);
+    if (s->split_started)
+        return s->split_ops->state_get(s, st);
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     st->step = s->run.step;
     st->n = s->n;
     st->nwalls = s->nwalls;
@@ -474,6 +476,8 @@ static int state_set(dem_sim *s, const dem_state *st, int keep);
 /* The rebuilds within keep the storage order (host/core/reorder.c). */
 int dem_state_set(dem_sim *s, const dem_state *st)
 {
+    if (s->split_started)
+        return sim_need_started(s);
     int hold = s->order.hold;
     s->order.hold = 1;
     int e = state_set(s, st, 1);
@@ -623,7 +627,7 @@ static void state_adopt(dem_sim *s, const dem_state *st)
 static int state_set(dem_sim *s, const dem_state *st, int keep)
 {
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     int e = state_check(s, st);
     dem_state mine;
     memset(&mine, 0, sizeof mine);

@@ -157,6 +157,8 @@ static int forces(dem_sim *s)
 
 int dem_start(dem_sim *s, const dem_config *c)
 {
+    if (s->split_ops) /* a run split over MPI ranks (dem_create_mpi): the split's start, collective */
+        return s->split_ops->start(s, c);
     int e = sim_start_deferred(s, c);
     return e ? e : sim_start_forces(s);
 }
@@ -211,8 +213,10 @@ int sim_start_forces(dem_sim *s)
 
 int dem_step(dem_sim *s, long nsteps)
 {
+    if (s->split_started)
+        return s->split_ops->step(s, nsteps, NULL, NULL);
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     for (long k = 0; k < nsteps; k++) {
         int e = sim_step_once(s, k == nsteps - 1, -1);
         if (e)
@@ -278,5 +282,5 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row)
     return 0;
 }
 
-long dem_step_index(const dem_sim *s) { return s->run.step; }
-double dem_time(const dem_sim *s) { return (double)s->run.step * s->dt; }
+long dem_step_index(const dem_sim *s) { return s->split_started ? dem_step_index(s->split_ops->part(s)) : s->run.step; }
+double dem_time(const dem_sim *s) { return s->split_started ? dem_time(s->split_ops->part(s)) : (double)s->run.step * s->dt; }

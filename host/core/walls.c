@@ -129,6 +129,8 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3])
 {
     if (wall < 0 || wall >= s->nwalls)
         return DEM_ERR_ARG;
+    if (s->split_started) /* a run split by dem_create_mpi: every rank's part moves the walls alike */
+        return dem_wall_position(s->split_ops->part(s), wall, p);
     memcpy(p, s->run.started ? s->motion.pos[wall] : s->walls[wall].point, sizeof(double) * 3);
     return 0;
 }
@@ -155,11 +157,11 @@ int dem_wall_force(dem_sim *s, int wall, double f[3])
 /* Wall k's sums of the last step that made them (PARTIAL_MID is not saved: after dem_state_set, none until a step
  * makes them), before they are rounded: the merge of the tree's groups (common/wall_forces.h), acc[WP_FX..WP_FN],
  * over the particles the run holds but its ghosts (sim_set_ghosts). The ranks of a split run merge these and round
- * once (host/mpi/dem_mpi.h) to the bits one process would give. */
+ * once (host/mpi/mpi_layer.h) to the bits one process would give. */
 int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
 {
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail(s, DEM_ERR_ARG, "no wall %d", wall);
     int e = 0, nmid = DEM_CORE(s->be)->nmid_red;
@@ -174,7 +176,7 @@ int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE])
 int sim_wall_sums_set(dem_sim *s, const exact_acc *acc)
 {
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     int nw = s->nwalls, rs = s->setup.real_size;
     unsigned char f[3 * DEM_MAX_WALLS * sizeof(double)], fn[DEM_MAX_WALLS * sizeof(double)];
     for (int k = 0; k < nw; k++)

@@ -1,5 +1,5 @@
-/* exact_allreduce.c - exact accumulators merged across MPI ranks (dem_mpi.h) */
-#include "dem_mpi.h"
+/* exact_allreduce.c - exact accumulators merged across MPI ranks (mpi_layer.h) */
+#include "mpi_layer.h"
 #include <limits.h>
 
 /* MPI's user operation: each accumulator of in merged into inout's, exactly */

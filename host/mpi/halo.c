@@ -1,5 +1,5 @@
-/* halo.c - ghost particles kept equal to their owners' after each step (dem_mpi.h) */
-#include "dem_mpi.h"
+/* halo.c - ghost particles kept equal to their owners' after each step (mpi_layer.h) */
+#include "mpi_layer.h"
 #include "sim.h"
 #include "dem_layout.h"
 #include <stdlib.h>

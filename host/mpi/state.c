@@ -1,8 +1,8 @@
-/* state.c - a run split over ranks (dem_mpi.h): its whole state gathered from each rank's own particles, and a whole
+/* state.c - a run split over ranks (mpi_layer.h): its whole state gathered from each rank's own particles, and a whole
  * state cut to the particles one rank keeps. Together they move particles, their per-particle and per-wall arrays and
  * their contacts' histories between ranks when the run is split anew (migration), and make a checkpoint that does
  * not depend on the rank count. */
-#include "dem_mpi.h"
+#include "mpi_layer.h"
 #include "sim.h"
 #include <limits.h>
 #include <stdio.h>

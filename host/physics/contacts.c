@@ -141,7 +141,7 @@ int dem_contacts_get(dem_sim *s, dem_contact **out, long *count, long *npairs)
 {
     *out = NULL, *count = 0, *npairs = 0;
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     if ((s->setup.effects & DEM_EFFECT_WALLS) && s->nwalls > 0 && !(s->setup.effects & DEM_KEEP_WALL_FORCES))
         return sim_fail(s, DEM_ERR_STATE, "the contact network of a run with walls needs dem_config.contacts = 1 at "
                                           "dem_start (the wall forces per particle are kept only then)");

@@ -160,14 +160,16 @@ static void rows_from_ring(dem_sim *s, int count, const unsigned char *terms, co
 
 int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
 {
-    if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
     long nrows = 0, last = -1;
     for (long k = 0; want && k < nsteps; k++)
         if (want[k])
             nrows++, last = k;
     if (nrows && !rows)
         return sim_fail(s, DEM_ERR_ARG, "dem_step_sampled: %ld samples and no rows to take them", nrows);
+    if (s->split_started)
+        return s->split_ops->step(s, nsteps, want, rows);
+    if (!s->run.started)
+        return sim_need_started(s);
     int dev = device_rows(s), cap = DEM_CORE(s->be)->series_rows, held = 0, e = 0;
     dem_sample *o = rows;
     for (long k = 0; !e && k < nsteps; k++) {
@@ -196,6 +198,8 @@ int dem_step_sampled(dem_sim *s, long nsteps, const unsigned char *want, dem_sam
 
 int dem_sample_get(dem_sim *s, dem_sample *out)
 {
+    if (s->split_started)
+        return s->split_ops->sample(s, out);
     sample_begin(s, out);
     return energy_of(s, &out->energy, out->wall_force, out->wall_normal);
 }
@@ -399,7 +403,7 @@ static int energy_acc(dem_sim *s, dem_energy_t *en, exact_acc *acc, double *wall
     for (int q = 0; q < EN_COUNT; q++)
         exact_clear(&acc[q]);
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     host_state hs = {0}; /* set by read_state where it succeeds */
     int e = read_state(s, &hs, wall_force, wall_normal);
     if (!e && (s->setup.effects & DEM_LAW_STATE_BITS))

@@ -186,7 +186,7 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     st->particle = -1;
     st->dt_advice = INFINITY;
     if (!s->run.started)
-        return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+        return sim_need_started(s);
     int n = s->n, rs = s->setup.real_size;
     size_t n3 = 3 * (size_t)n, lb = dem_field_bytes(s, DEM_FIELD_NBR_LIST);
     unsigned char *raw = malloc(n3 * (size_t)rs + sizeof(int) * (2 * (size_t)n + 1) + lb);

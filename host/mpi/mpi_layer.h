@@ -1,4 +1,4 @@
-/* dem_mpi.h - libdem's MPI layer, in its own archive (build/libdem_mpi.a): a program that never calls it links
+/* mpi_layer.h - libdem's MPI layer, in its own archive (build/libdem_mpi.a): a program that never calls it links
  * without MPI, and libdem.a is the same with or without it (docs/design.md "Runs over MPI").
  *
  * What it holds so far: the exact sums (common/exact_sum.h) merged across the ranks of a communicator, the one
@@ -8,8 +8,8 @@
  * whole state gathered from the ranks' own particles and cut to a rank's part, which moves particles and their
  * contacts between ranks when the run is split anew. `mpirun -np N dem run` (app/run_mpi.c) chooses the subdomains
  * and drives these (docs/design.md "Runs over MPI"). */
-#ifndef DEM_MPI_H
-#define DEM_MPI_H
+#ifndef DEM_MPI_LAYER_H
+#define DEM_MPI_LAYER_H
 #include <mpi.h>
 #include "dem.h"
 #include "exact_sum.h"
@@ -119,4 +119,83 @@ int dem_mpi_state_part(const dem_sim *s, const dem_state *g, const unsigned char
  * the byte order (every machine a run of ours meets: x86-64 and AArch64, little-endian). Returns MPI's error code
  * (MPI_SUCCESS: 0). Collective: every rank of comm calls it with the same count. */
 int dem_mpi_exact_allreduce(MPI_Comm comm, exact_acc *acc, int count);
-#endif /* DEM_MPI_H */
+
+/* ---- a run split by space over the ranks of a communicator (host/mpi/split.c): what `mpirun -np N dem run`
+ * (app/run_mpi.c) and a library program's dem_create_mpi (host/mpi/api.c) both drive ----
+ * The split: recursive bisection of the particles' positions (the cut across the longest side of a part's
+ * particles, at the count that gives each side its share of ranks), each rank a box. A rank's run (part) holds its
+ * own particles and, as ghosts, every particle within 2 r_max + margin of its box, in ascending global id; after each
+ * step the owners' values go to the ghosts (dem_mpi_halo_exchange). Before a step, when some own particle has moved
+ * by half the margin since the split, the run is split anew: each rank's particles and contacts move to the ranks
+ * that keep them (dem_mpi_state_move). The walls' sums and the series rows are each rank's own particles', merged
+ * exactly (dem_mpi_exact_allreduce): the bits of one process at any rank count (docs/design.md "Runs over MPI"). */
+typedef struct dem_mpi_split dem_mpi_split;
+struct dem_mpi_split {
+    MPI_Comm comm;
+    int rank, size;
+    dem_config cfg;       /* the parts' (the run's device, precision, backend) */
+    const dem_sim *from;  /* what each part is copied from: this rank's whole run, the set-up, never started */
+    dem_sim *part;        /* this rank's particles and ghosts, started */
+    dem_mpi_halo h;
+    int have_h;
+    long n;               /* particles of the whole run */
+    int nloc, nown;       /* held, and own of them */
+    long *gid;            /* [nloc]: each held particle's global id, ascending */
+    int *owner;           /* [nloc]: its rank */
+    double *x0, *xprev;   /* [3 nloc]: positions at the split, and before the last step */
+    double rmax, margin;  /* margin: r_max times margin_f (0: 1), the halo's width beyond 2 r_max */
+    double margin_f;
+    long splits;          /* the splits so far (the first included) */
+    long ghosts_sum;      /* ghosts over all ranks at the last split */
+    int *last_owner;      /* [n]: each particle's rank after the last split */
+    long moves;           /* particles that changed rank at the splits anew */
+    int nw;
+    double domain[6];     /* the whole run's binning domain, given to every part */
+    long step;            /* the step the parts are at (also while none is held) */
+    /* this rank's time per part of the steps [s] and what it sent to other ranks' ghosts: `dem run`'s report's and
+     * make bench's (bench/mpi.sh) account of where a split run's time goes */
+    double t_step, t_halo, t_check, t_split, t_sums, sent;
+    long nsteps;
+    /* a restart's first split (dem_mpi_split_start with positions x): this rank's part of the state, read by the
+     * caller (app/run_mpi.c: its part of a checkpoint) into ps once the part's particles are chosen (sp->gid); 0, or
+     * a dem_status with the reason in err. NULL: a fresh start (the set-up's state, the start's forces made). */
+    int (*load)(void *arg, dem_mpi_split *sp, dem_state *ps, char *err, size_t len);
+    void *load_arg;
+    /* tests (DEM_TEST_RANK_FAIL, app/run_mpi.c): rank fail_rank fails after its step fail_step (fail_mode 1, as a
+     * lost device would) or inside it (2: a particle's position made NaN before it); fail_step -1: never */
+    long fail_step;
+    int fail_rank, fail_mode;
+};
+/* The parts made and started from whole (this rank's whole run, the scene's set-up, which no rank starts and each
+ * part is copied from; every rank's the same), split by the positions x[3 n] (NULL: the set-up's; given: a
+ * restart's, with sp->load reading this rank's part of its state, at step step0). Fresh: each part's state its
+ * set-up's, the start's forces made with the halo's meetings. What dem_start would refuse of the whole scene is said
+ * with `what` (its file) first. sp: zeroed but for margin_f, load, load_arg and the fail_ hooks. Collective; 0, or a
+ * dem_status, the same on every rank, with the words of the first rank that failed in err on every rank. */
+int dem_mpi_split_start(dem_mpi_split *sp, MPI_Comm comm, dem_sim *whole, const dem_config *cfg, const double *x,
+                        long step0, const char *what, char *err, size_t len);
+/* nsteps steps like dem_step_sampled(want, rows) of one process, the rows merged over the ranks (every rank gets
+ * them); split anew before a step where a particle has moved far enough. Collective; agreed as above. */
+int dem_mpi_split_step(dem_mpi_split *sp, long nsteps, const unsigned char *want, dem_sample *rows, char *err,
+                       size_t len);
+/* the series row of the state now (dem_sample_get of one process), from the parts' own particles' exact sums,
+ * merged (every rank gets it). Collective; agreed. */
+int dem_mpi_split_sample(dem_mpi_split *sp, dem_sample *row, char *err, size_t len);
+/* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it). Collective. */
+void dem_mpi_split_bounds(dem_mpi_split *sp, double box[6]);
+/* the walls' sums of the state now, each rank's own particles', merged exactly (acc[SE_STRIDE + WP_STRIDE w + WP_*]
+ * of nw walls: the walls of a run with the walls effect, else 0), and put as one process rounds them into the
+ * arrays wall_force and wall_normal_force of st (NULL, or a state without them: not put). Collective; agreed. */
+int dem_mpi_split_walls(dem_mpi_split *sp, exact_acc *acc, int *nw, char *err, size_t len);
+void dem_mpi_split_walls_put(const dem_mpi_split *sp, const exact_acc *acc, int nw, dem_state *st);
+/* the same into a series row's wall_force and wall_normal */
+void dem_mpi_split_walls_row(const dem_mpi_split *sp, const exact_acc *acc, int nw, dem_sample *row);
+/* every rank's e agreed (dem_mpi_agreed_who); on failure the first failing rank's words (dem_error(s) where err is
+ * empty) in err on every rank */
+int dem_mpi_split_agreed(dem_mpi_split *sp, int e, dem_sim *s, char *err, size_t len);
+/* after a call that agreed on failure e itself (the halo's, the gather): the words of the first rank that has any */
+int dem_mpi_split_shared_error(dem_mpi_split *sp, int e, char *err, size_t len);
+/* msg of rank who to every rank (said as "rank WHO: ..." where who is not 0). Collective. */
+void dem_mpi_share(MPI_Comm comm, int who, char *msg, size_t len);
+void dem_mpi_split_free(dem_mpi_split *sp);
+#endif /* DEM_MPI_LAYER_H */

@@ -1,0 +1,102 @@
+/* api.c - dem_create_mpi (include/dem_mpi.h): the calls of dem.h on a run split over the ranks of a communicator.
+ * The dem_sim a program holds is the whole set-up, never started itself (each part is copied from it, as `dem run`
+ * under mpirun copies its parts from the scene's whole run); from dem_start on, libdem.a's calls that work on it
+ * come here through its split_ops (host/core/sim.h), and the split (host/mpi/split.c) does the work. */
+#include "dem_mpi.h"
+#include "mpi_layer.h"
+#include "sim.h"
+#include "dem_layout.h"
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    MPI_Comm comm; /* the program's communicator, duplicated */
+    dem_mpi_split sp;
+} split_run;
+
+static split_run *of(const dem_sim *s) { return s->split_ctx; }
+
+static int start(dem_sim *s, const dem_config *c)
+{
+    split_run *q = of(s);
+    if (sim_not_started(s))
+        return DEM_ERR_STATE;
+    char err[4096];
+    memset(&q->sp, 0, sizeof q->sp);
+    q->sp.comm = q->comm, q->sp.fail_step = -1;
+    int e = dem_mpi_split_start(&q->sp, q->comm, s, c, NULL, 0, "dem_start", err, sizeof err); /* agreed */
+    if (e) {
+        dem_mpi_split_free(&q->sp);
+        return sim_fail(s, e, "%s", err);
+    }
+    s->split_started = 1;
+    return 0;
+}
+
+static int step(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
+{
+    char err[4096];
+    int e = dem_mpi_split_step(&of(s)->sp, nsteps, want, rows, err, sizeof err); /* agreed */
+    return e ? sim_fail(s, e, "%s", err) : 0;
+}
+
+/* the row of the state now: its energies the parts' own, merged (dem_mpi_split_sample), and its walls' sums too, as
+ * after a step (the split's own row holds them merged only at the start, where `dem run` asks for it) */
+static int sample(dem_sim *s, dem_sample *row)
+{
+    dem_mpi_split *sp = &of(s)->sp;
+    char err[4096];
+    exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
+    int nw, e = dem_mpi_split_sample(sp, row, err, sizeof err); /* agreed */
+    if (!e && !(e = dem_mpi_split_walls(sp, acc, &nw, err, sizeof err))) /* agreed */
+        dem_mpi_split_walls_row(sp, acc, nw, row);
+    return e ? sim_fail(s, e, "%s", err) : 0;
+}
+
+/* the whole state gathered on every rank, its walls' sums every rank's own particles', merged */
+static int state_get(dem_sim *s, dem_state *st)
+{
+    dem_mpi_split *sp = &of(s)->sp;
+    char err[4096] = "";
+    int e = dem_mpi_state_gather(&sp->h, sp->gid, sp->owner, sp->n, st), nw; /* agreed */
+    if (e)
+        return sim_fail(s, dem_mpi_split_shared_error(sp, e, err, sizeof err), "%s", err);
+    exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
+    if ((e = dem_mpi_split_walls(sp, acc, &nw, err, sizeof err))) { /* agreed */
+        dem_state_free(st);
+        return sim_fail(s, e, "%s", err);
+    }
+    dem_mpi_split_walls_put(sp, acc, nw, st);
+    return 0;
+}
+
+static dem_sim *part(const dem_sim *s) { return of(s)->sp.part; }
+
+static void destroy(dem_sim *s)
+{
+    split_run *q = of(s);
+    dem_mpi_split_free(&q->sp);
+    int done = 0;
+    MPI_Finalized(&done);
+    if (!done)
+        MPI_Comm_free(&q->comm);
+    free(q);
+    s->split_ops = NULL, s->split_ctx = NULL, s->split_started = 0;
+}
+
+static const sim_split_ops ops = {start, step, sample, state_get, part, destroy};
+
+dem_sim *dem_create_mpi(MPI_Comm comm)
+{
+    int init = 0;
+    MPI_Initialized(&init);
+    dem_sim *s = init ? dem_create() : NULL;
+    split_run *q = s ? calloc(1, sizeof *q) : NULL;
+    if (!q || MPI_Comm_dup(comm, &q->comm) != MPI_SUCCESS) {
+        free(q);
+        dem_destroy(s);
+        return NULL;
+    }
+    s->split_ops = &ops, s->split_ctx = q;
+    return s;
+}
