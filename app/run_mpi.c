@@ -102,9 +102,9 @@ static int start(run_ranks *r, dem_sim *whole, const checkpoint *ck, const char 
     else if (ck && checkpoint_read_x(ck_path, ck, x, err, len))
         e = DEM_ERR_ARG;
     if (!(e = agreed_msg(q, e, NULL, err, len))) {
-        q->ck = ck, q->ck_path = ck_path;
+        q->ck = ck, q->ck_path = ck_path, q->sp.load_what = ck_path;
         e = dem_mpi_split_start(&q->sp, q->comm, whole, cfg, x, ck ? ck->st.step : 0, what, err, len);
-        q->ck = NULL, q->ck_path = NULL; /* a split anew moves the parts' states */
+        q->ck = NULL, q->ck_path = NULL, q->sp.load_what = NULL; /* a split anew moves the parts' states */
     }
     free(x);
     return e;

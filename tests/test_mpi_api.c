@@ -48,7 +48,8 @@ static double build(dem_sim *s)
 
 static int samples_equal(const dem_sample *a, const dem_sample *b, int nw)
 {
-    return !memcmp(&a->energy, &b->energy, sizeof a->energy) &&
+    return !memcmp(&a->energy, &b->energy, sizeof a->energy) && a->step == b->step && a->time == b->time &&
+           !memcmp(&a->mc, &b->mc, sizeof a->mc) && !memcmp(a->wall_pos, b->wall_pos, sizeof(double) * 3 * (size_t)nw) &&
            !memcmp(a->wall_force, b->wall_force, sizeof(double) * 3 * (size_t)nw) &&
            !memcmp(a->wall_normal, b->wall_normal, sizeof(double) * (size_t)nw);
 }
@@ -128,31 +129,79 @@ static void test_same_bits(void **st)
     }
 }
 
+/* whether s's words are rank 0's on every rank */
+static int same_words(const dem_sim *s)
+{
+    char w[4096];
+    snprintf(w, sizeof w, "%s", dem_error(s));
+    MPI_Bcast(w, (int)sizeof w, MPI_CHAR, 0, MPI_COMM_WORLD);
+    return all_ok(!strcmp(w, dem_error(s)));
+}
+
 static void test_refusals(void **st)
 {
     (void)st;
     make_particles();
     dem_config cfg = cfg_of(DEM_BACKEND_REFERENCE, DEM_FP64);
-    dem_sim *par = dem_create_mpi(MPI_COMM_WORLD);
-    build(par);
+    /* before the start: a step, as in one process; no estimate that would pack the set-up the parts copy */
+    dem_sim *one = dem_create(), *par = dem_create_mpi(MPI_COMM_WORLD);
+    build(one), build(par);
+    int e1 = dem_step(one, 1), e = dem_step(par, 1);
+    assert_true(all_ok(e1 == DEM_ERR_STATE && e == e1 && !strcmp(dem_error(one), "dem_start first") &&
+                       !strcmp(dem_error(par), "dem_start first")));
+    size_t bytes;
+    assert_true(all_ok(dem_memory_estimate(par, &cfg, &bytes) == DEM_ERR_STATE));
+    dem_destroy(one);
     REQUIRE_SIM(par, dem_start(par, &cfg));
     /* what reads the started run directly, and what changes the set-up, refused with words */
     dem_contact *cs = NULL;
     long count = 0, np = 0;
-    int e = dem_contacts_get(par, &cs, &count, &np);
+    e = dem_contacts_get(par, &cs, &count, &np);
     assert_true(all_ok(e == DEM_ERR_STATE && strstr(dem_error(par), "split over MPI ranks") != NULL));
+    assert_true(same_words(par));
     static double xs[3 * NTOT];
     assert_true(all_ok(dem_get_field(par, DEM_FIELD_X, xs) == DEM_ERR_STATE));
     assert_true(all_ok(dem_add_particle(par, px[0], pv[0], pr[0], 0) == DEM_ERR_STATE));
     assert_true(all_ok(dem_start(par, &cfg) == DEM_ERR_STATE));
+    assert_true(all_ok(dem_sort_particles(par) == DEM_ERR_STATE));
     assert_true(all_ok(dem_step(par, 3) == 0 && dem_step_index(par) == 3)); /* and it still steps */
+    /* this rank's part's device records: its rows built (the start's rebuild at least), its device described */
+    assert_true(all_ok(dem_rebuild_count(par) > 0 && dem_device_bytes(par) > 0 &&
+                       strcmp(dem_describe(par), "not started") != 0));
     dem_destroy(par);
+    /* a step that fails (a sphere flies out of the binning domain): the same code, words and step on every rank as
+     * one process's, and nothing more of the run afterwards, without a crash */
+    one = dem_create(), par = dem_create_mpi(MPI_COMM_WORLD);
+    for (int k = 0; k < 2; k++) {
+        dem_sim *s = k ? par : one;
+        int mat = dem_add_material(s, &(dem_material){2500, 1e7, 0.3, 0.5, 0.5});
+        for (int i = 0; i < 12; i++)
+            dem_add_particle(s, (double[3]){3 * RMAX * i, 0, 0}, (double[3]){i == 11 ? 40.0 : 0, 0, 0}, RMAX, mat);
+        REQUIRE_SIM(s, dem_set_domain(s, (double[3]){-2 * RMAX, -2 * RMAX, -2 * RMAX},
+                                      (double[3]){36 * RMAX, 2 * RMAX, 2 * RMAX}));
+        dem_set_dt(s, 1e-5);
+        REQUIRE_SIM(s, dem_start(s, &cfg));
+    }
+    e1 = dem_step(one, 50), e = dem_step(par, 50);
+    assert_true(all_ok(e1 == DEM_ERR_DOMAIN && e == e1 && dem_step_index(par) == dem_step_index(one) &&
+                       strstr(dem_error(par), dem_error(one)) != NULL && dem_error_particle(par) == 11 &&
+                       same_words(par)));
+    if (rank == 0)
+        printf("a failed step: at step %ld on every rank, as in one process: %s\n", dem_step_index(par),
+               dem_error(par));
+    dem_state gs;
+    double lid[3];
+    assert_true(all_ok(dem_step(par, 1) == DEM_ERR_STATE && dem_state_get(par, &gs) == DEM_ERR_STATE &&
+                       dem_sample_get(par, &(dem_sample){0}) == DEM_ERR_STATE && dem_rebuild_count(par) == 0 &&
+                       dem_wall_position(par, 0, lid) == DEM_ERR_ARG));
+    dem_destroy(one), dem_destroy(par);
     /* a scene dem_start refuses: the same code on every rank, with one process's words */
-    dem_sim *one = dem_create();
+    one = dem_create();
     par = dem_create_mpi(MPI_COMM_WORLD);
     build(one), build(par);
     dem_set_dt(one, 1e-3), dem_set_dt(par, 1e-3); /* far above the stability bound */
-    int e1 = dem_start(one, &cfg), e2 = dem_start(par, &cfg);
+    e1 = dem_start(one, &cfg);
+    int e2 = dem_start(par, &cfg);
     assert_true(all_ok(e1 == DEM_ERR_DT && e2 == e1 && strstr(dem_error(par), dem_error(one)) != NULL));
     if (rank == 0)
         printf("refused as one process refuses it: %s\n", dem_error(par));

@@ -24,6 +24,8 @@ int sim_copy_trace(const dem_core *c, int a, int z, unsigned char *dst, int n)
 
 const char *dem_describe(dem_sim *s)
 {
+    if (sim_stepped(s) != s) /* this rank's part's */
+        return dem_describe((dem_sim *)sim_stepped(s));
     if (!s->be)
         return "not started";
     char fx[128];
@@ -66,6 +68,7 @@ int dem_particle_added_position(const dem_sim *s, int i, double x[3])
 
 long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e)
 {
+    s = sim_stepped(s);
     long n = s->motion.stage_log_n;
     if (e && k >= 0 && k < n) {
         if (k >= n - DEM_STAGE_LOG)
@@ -102,6 +105,7 @@ int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 
 size_t dem_device_bytes(const dem_sim *s)
 {
+    s = sim_stepped(s);
     if (!s->be)
         return 0;
     const dem_core *c = DEM_CORE(s->be);
@@ -116,6 +120,7 @@ size_t dem_device_bytes(const dem_sim *s)
 
 size_t dem_device_bytes_part(const dem_sim *s, dem_memory_part part)
 {
+    s = sim_stepped(s);
     if (!s->be)
         return 0;
     const dem_core *c = DEM_CORE(s->be);
@@ -139,8 +144,11 @@ const char *dem_memory_part_name(dem_memory_part part)
 int dem_memory_estimate(dem_sim *s, const dem_config *c, size_t *bytes)
 {
     *bytes = 0;
-    if (s->run.started)
+    if (s->run.started || s->split_started)
         return sim_fail(s, DEM_ERR_STATE, "dem_memory_estimate is for a run not started (dem_device_bytes after)");
+    if (s->split_ops) /* (it would pack the set-up the parts are copied from) */
+        return sim_fail(s, DEM_ERR_STATE, "dem_memory_estimate: not on a run split over MPI ranks (dem_create_mpi): "
+                        "each rank's part is sized at dem_start; dem_device_bytes after it gives this rank's");
     s->cfg = *c;
     int e = sim_validate(s);
     if (e || (e = sim_pack(s)))

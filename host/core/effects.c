@@ -84,7 +84,7 @@ int dem_set_mc_strain_reach(dem_sim *s, double factor)
     return 0;
 }
 
-void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = s->mc.stats; }
+void dem_mc_stats_get(const dem_sim *s, dem_mc_stats *st) { *st = sim_stepped(s)->mc.stats; }
 
 /* by bit position; the convention bits (7..11, dem_effects.h) and the host's bits (18..20, 25) have no name */
 static const char *const effect_names[DEM_EFFECT_COUNT] = {"hertz", "damping", "friction", "gravity", "walls",

@@ -98,6 +98,7 @@ dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err,
     s->mesh.spring_cap = s->mesh.tri_cap = s->mesh.hinge_cap = s->mesh.patch_cap = s->mesh.att_cap = 0;
     s->halo_hook = NULL, s->halo_ctx = NULL;
     s->split_ops = NULL, s->split_ctx = NULL, s->split_started = 0; /* a part of a dem_create_mpi run steps alone */
+    s->said_ids = NULL;
     if (!(s->whole_volume > 0)) /* as sim_keep_particles sets it */
         s->whole_volume = sim_particle_volume(src);
     if (keep_from(s, src, keep) < 0) {

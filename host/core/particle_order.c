@@ -82,7 +82,7 @@ int sim_morton_order(const double *x, int n, int *perm)
 
 int dem_sort_particles(dem_sim *s)
 {
-    if (s->run.started)
+    if (s->run.started || s->split_started)
         return sim_fail(s, DEM_ERR_STATE, "dem_sort_particles: before dem_start");
     if (s->mesh.nsprings || s->mesh.ntri || s->mesh.nhinges || s->mesh.npatch || s->mesh.natt)
         return sim_fail(s, DEM_ERR_STATE, "dem_sort_particles: before any spring, triangle, hinge, patch or attachment "

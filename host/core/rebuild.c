@@ -13,6 +13,8 @@ static int sim_rebuild_traced(dem_sim *s);
 static int report_out_of_domain(dem_sim *s, int slot)
 {
     int id = sim_api(s, slot); /* the caller's id of the particle stored there (host/core/reorder.c) */
+    if (s->said_ids) /* a part of a split run: the whole run's id */
+        id = (int)s->said_ids[id];
     int rs = s->setup.real_size;
     double p[3] = {NAN, NAN, NAN};
     unsigned char *buf = malloc((size_t)3 * s->n * rs);
@@ -154,10 +156,10 @@ static int sim_rebuild_traced(dem_sim *s)
     return 0;
 }
 
-int dem_neighbor_capacity(const dem_sim *s) { return s->rows.maxn; }
-double dem_neighbor_skin(const dem_sim *s) { return s->rows.skin_now; }
-long dem_rebuild_count(const dem_sim *s) { return s->rows.rebuilds; }
-long dem_reorder_count(const dem_sim *s) { return s->order.count; }
+int dem_neighbor_capacity(const dem_sim *s) { return sim_stepped(s)->rows.maxn; }
+double dem_neighbor_skin(const dem_sim *s) { return sim_stepped(s)->rows.skin_now; }
+long dem_rebuild_count(const dem_sim *s) { return sim_stepped(s)->rows.rebuilds; }
+long dem_reorder_count(const dem_sim *s) { return sim_stepped(s)->order.count; }
 int dem_cell_count(const dem_sim *s)
 {
     return s->be ? DEM_CORE(s->be)->ncells : s->setup.cells[0] * s->setup.cells[1] * s->setup.cells[2];

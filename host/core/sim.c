@@ -84,7 +84,13 @@ int sim_need_started(dem_sim *s)
         return sim_fail(s, DEM_ERR_STATE, "not on a run split over MPI ranks (dem_create_mpi), whose particles are "
                         "the ranks' parts: dem_step, dem_step_sampled, dem_sample_get and dem_state_get (the whole "
                         "state, on every rank) work on it");
-    return sim_need_started(s);
+    return sim_fail(s, DEM_ERR_STATE, "dem_start first");
+}
+
+const dem_sim *sim_stepped(const dem_sim *s)
+{
+    const dem_sim *p = s->split_started ? s->split_ops->part(s) : NULL;
+    return p ? p : s;
 }
 
 int dem_add_material(dem_sim *s, const dem_material *m)

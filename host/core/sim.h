@@ -154,6 +154,8 @@ struct dem_sim {
     /* a run split over the ranks of an MPI communicator by a program (dem_create_mpi, host/mpi/api.c): this dem_sim
      * is the whole set-up, never started itself; from dem_start on, split_ops (the MPI layer's) do the run's work
      * on this rank's part, split_started set. NULL in any other run: libdem.a calls through them, needing no MPI. */
+    const long *said_ids; /* a part of a split run: each particle's id in the whole run, the one its step's messages
+                             and dem_error_particle name (host/mpi/split.c); NULL: its own */
     const struct sim_split_ops *split_ops;
     void *split_ctx;
     int split_started;
@@ -309,6 +311,10 @@ int sim_not_started(dem_sim *s);
 /* sim.c: DEM_ERR_STATE for a call that reads a started run, on a run not started ("dem_start first") or split over
  * MPI ranks by dem_create_mpi (its parts are the ranks': the calls that work on it are named) */
 int sim_need_started(dem_sim *s);
+/* The run whose records a getter reads: s, or on a started run split by dem_create_mpi this rank's part (while it
+ * holds one: not after a failed step) - the run's own for what every rank's part has alike (stages, servos, MC-strain
+ * counts), this rank's for its device (bytes, rebuilds, skin, description) */
+const dem_sim *sim_stepped(const dem_sim *s);
 /* What a run split by dem_create_mpi does in the calls of dem.h that work on it (host/mpi/api.c): collective over
  * its communicator, each 0 or a dem_status set with sim_fail (the same on every rank) */
 typedef struct sim_split_ops {
@@ -316,7 +322,8 @@ typedef struct sim_split_ops {
     int (*step)(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows);
     int (*sample)(dem_sim *s, dem_sample *row);
     int (*state_get)(dem_sim *s, dem_state *st);
-    dem_sim *(*part)(const dem_sim *s); /* this rank's part (started: its step, time and walls' places are the run's) */
+    dem_sim *(*part)(const dem_sim *s); /* this rank's part; NULL after a failed step (the run cannot go on) */
+    long (*step_index)(const dem_sim *s); /* the run's step, the same on every rank (after a failed step too) */
     void (*destroy)(dem_sim *s);
 } sim_split_ops;
 static inline int sim_finite3(const double *a) { return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]); }

@@ -282,5 +282,5 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row)
     return 0;
 }
 
-long dem_step_index(const dem_sim *s) { return s->split_started ? dem_step_index(s->split_ops->part(s)) : s->run.step; }
-double dem_time(const dem_sim *s) { return s->split_started ? dem_time(s->split_ops->part(s)) : (double)s->run.step * s->dt; }
+long dem_step_index(const dem_sim *s) { return s->split_started ? s->split_ops->step_index(s) : s->run.step; }
+double dem_time(const dem_sim *s) { return (double)dem_step_index(s) * s->dt; }

@@ -130,7 +130,7 @@ int dem_wall_position(const dem_sim *s, int wall, double p[3])
     if (wall < 0 || wall >= s->nwalls)
         return DEM_ERR_ARG;
     if (s->split_started) /* a run split by dem_create_mpi: every rank's part moves the walls alike */
-        return dem_wall_position(s->split_ops->part(s), wall, p);
+        return s->split_ops->part(s) ? dem_wall_position(s->split_ops->part(s), wall, p) : DEM_ERR_STATE;
     memcpy(p, s->run.started ? s->motion.pos[wall] : s->walls[wall].point, sizeof(double) * 3);
     return 0;
 }
@@ -402,6 +402,7 @@ int dem_servo_stats_get(const dem_sim *s, int wall, dem_servo_stats *st)
 {
     if (wall < 0 || wall >= s->nwalls)
         return sim_fail((dem_sim *)s, DEM_ERR_ARG, "wall %d: no such wall (%d)", wall, s->nwalls);
+    s = sim_stepped(s); /* a split run's: every rank's part steers its walls alike */
     *st = s->motion.servo[wall];
     if (!st->steps)
         st->stage = -1;

@@ -8,7 +8,7 @@
 
 int dem_attach_to_wall(dem_sim *s, int particle, int wall)
 {
-    if (s->run.started)
+    if (s->run.started || s->split_started)
         return sim_fail(s, DEM_ERR_STATE, "dem_attach_to_wall after dem_start");
     if (particle < 0 || particle >= s->n || wall < 0 || wall >= s->nwalls)
         return sim_fail(s, DEM_ERR_ARG, "attach: no particle %d or no wall %d (particles 0..%d, walls 0..%d)",

@@ -73,7 +73,7 @@ static double *vertex_masses(dem_sim *s, const dem_mesh *m, const dem_membrane *
 
 int dem_add_membrane(dem_sim *s, const dem_mesh *m, const dem_membrane *mm, dem_membrane_info *info)
 {
-    if (s->run.started)
+    if (s->run.started || s->split_started)
         return sim_fail(s, DEM_ERR_STATE, "dem_add_membrane after dem_start");
     if (!m || !mm || m->nv < 3 || m->nt < 1 || !m->x || !m->tri)
         return sim_fail(s, DEM_ERR_ARG, "membrane: a mesh of at least 3 vertices and one triangle is needed");

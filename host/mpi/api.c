@@ -6,12 +6,14 @@
 #include "mpi_layer.h"
 #include "sim.h"
 #include "dem_layout.h"
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
 typedef struct {
     MPI_Comm comm; /* the program's communicator, duplicated */
     dem_mpi_split sp;
+    int failed;    /* a step failed (on every rank, agreed): the parts may stand at different steps, or be gone */
 } split_run;
 
 static split_run *of(const dem_sim *s) { return s->split_ctx; }
@@ -33,11 +35,35 @@ static int start(dem_sim *s, const dem_config *c)
     return 0;
 }
 
+/* after a failed step, what reads or steps the parts is refused (the same on every rank: the failure was agreed) */
+static int gone(dem_sim *s)
+{
+    return of(s)->failed ? sim_fail(s, DEM_ERR_STATE, "a step of this run split over MPI ranks failed at step %ld: "
+                                    "it cannot go on (its parts may stand at different steps)", of(s)->sp.step)
+                         : 0;
+}
+
 static int step(dem_sim *s, long nsteps, const unsigned char *want, dem_sample *rows)
 {
     char err[4096];
-    int e = dem_mpi_split_step(&of(s)->sp, nsteps, want, rows, err, sizeof err); /* agreed */
-    return e ? sim_fail(s, e, "%s", err) : 0;
+    if (gone(s))
+        return DEM_ERR_STATE;
+    dem_mpi_split *sp = &of(s)->sp;
+    int e = dem_mpi_split_step(sp, nsteps, want, rows, err, sizeof err); /* agreed */
+    if (!e)
+        return 0;
+    of(s)->failed = 1;
+    /* the particle a failed step names (dem_error_particle; the part's own says the whole run's id): the lowest
+     * rank's that has one, on every rank */
+    int mine = sp->part ? dem_error_particle(sp->part) : -1, who = mine >= 0 ? sp->rank : INT_MAX, first = INT_MAX;
+    MPI_Allreduce(&who, &first, 1, MPI_INT, MPI_MIN, sp->comm);
+    if (first != INT_MAX)
+        MPI_Bcast(&mine, 1, MPI_INT, first, sp->comm);
+    else
+        mine = -1;
+    sim_fail(s, e, "%s", err);
+    s->report.err_particle = mine;
+    return e;
 }
 
 /* the row of the state now: its energies the parts' own, merged (dem_mpi_split_sample), and its walls' sums too, as
@@ -47,6 +73,8 @@ static int sample(dem_sim *s, dem_sample *row)
     dem_mpi_split *sp = &of(s)->sp;
     char err[4096];
     exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
+    if (gone(s))
+        return DEM_ERR_STATE;
     int nw, e = dem_mpi_split_sample(sp, row, err, sizeof err); /* agreed */
     if (!e && !(e = dem_mpi_split_walls(sp, acc, &nw, err, sizeof err))) /* agreed */
         dem_mpi_split_walls_row(sp, acc, nw, row);
@@ -58,6 +86,8 @@ static int state_get(dem_sim *s, dem_state *st)
 {
     dem_mpi_split *sp = &of(s)->sp;
     char err[4096] = "";
+    if (gone(s))
+        return DEM_ERR_STATE;
     int e = dem_mpi_state_gather(&sp->h, sp->gid, sp->owner, sp->n, st), nw; /* agreed */
     if (e)
         return sim_fail(s, dem_mpi_split_shared_error(sp, e, err, sizeof err), "%s", err);
@@ -70,7 +100,8 @@ static int state_get(dem_sim *s, dem_state *st)
     return 0;
 }
 
-static dem_sim *part(const dem_sim *s) { return of(s)->sp.part; }
+static dem_sim *part(const dem_sim *s) { return of(s)->failed ? NULL : of(s)->sp.part; }
+static long step_index(const dem_sim *s) { return of(s)->sp.step; }
 
 static void destroy(dem_sim *s)
 {
@@ -84,19 +115,26 @@ static void destroy(dem_sim *s)
     s->split_ops = NULL, s->split_ctx = NULL, s->split_started = 0;
 }
 
-static const sim_split_ops ops = {start, step, sample, state_get, part, destroy};
+static const sim_split_ops ops = {start, step, sample, state_get, part, step_index, destroy};
 
 dem_sim *dem_create_mpi(MPI_Comm comm)
 {
-    int init = 0;
+    int init = 0, fin = 0;
     MPI_Initialized(&init);
-    dem_sim *s = init ? dem_create() : NULL;
+    MPI_Finalized(&fin);
+    MPI_Comm dup;
+    if (!init || fin || MPI_Comm_dup(comm, &dup) != MPI_SUCCESS)
+        return NULL;
+    dem_sim *s = dem_create();
     split_run *q = s ? calloc(1, sizeof *q) : NULL;
-    if (!q || MPI_Comm_dup(comm, &q->comm) != MPI_SUCCESS) {
+    int ok = q != NULL, all = 0; /* every rank's verdict: none left alone with a run the others lack */
+    if (MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, dup) != MPI_SUCCESS || !all) {
         free(q);
         dem_destroy(s);
+        MPI_Comm_free(&dup);
         return NULL;
     }
+    q->comm = dup;
     s->split_ops = &ops, s->split_ctx = q;
     return s;
 }

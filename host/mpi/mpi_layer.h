@@ -161,6 +161,7 @@ struct dem_mpi_split {
      * a dem_status with the reason in err. NULL: a fresh start (the set-up's state, the start's forces made). */
     int (*load)(void *arg, dem_mpi_split *sp, dem_state *ps, char *err, size_t len);
     void *load_arg;
+    const char *load_what; /* what it reads (a file: the words of a state the part refuses begin with it) */
     /* tests (DEM_TEST_RANK_FAIL, app/run_mpi.c): rank fail_rank fails after its step fail_step (fail_mode 1, as a
      * lost device would) or inside it (2: a particle's position made NaN before it); fail_step -1: never */
     long fail_step;

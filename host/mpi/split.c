@@ -191,6 +191,8 @@ static int split_from(dem_mpi_split *q, int fresh, long n, const double *x, cons
         e = DEM_ERR_NOMEM;
     if (!e && sim_set_ghosts(q->part, ghost))
         e = DEM_ERR_NOMEM;
+    if (!e) /* its messages name the whole run's particles */
+        q->part->said_ids = q->gid;
     if (!e) /* the whole run's domain: wherever its particles go, the part's go too */
         e = dem_set_domain(q->part, q->domain, q->domain + 3);
     if (!e)
@@ -200,7 +202,8 @@ static int split_from(dem_mpi_split *q, int fresh, long n, const double *x, cons
     if (!(e = dem_mpi_split_agreed(q, e, q->part, err, len)) && !fresh && !loc) { /* the caller's part of it */
         e = q->load(q->load_arg, q, &ps, err, len);
         if (!e && (e = dem_state_set(q->part, &ps)))
-            snprintf(err, len, "%s", dem_error(q->part));
+            snprintf(err, len, "%s%s%s", q->load_what ? q->load_what : "", q->load_what ? ": " : "",
+                     dem_error(q->part));
     } else if (!e && !fresh) { /* the states moved where they are kept */
         e = dem_mpi_state_move(q->comm, q->part, loc, lgid, lowner, keeps, &sk, q->nloc, q->gid, &ps); /* agreed */
         if (e)
