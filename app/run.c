@@ -1224,9 +1224,10 @@ static void phase_report(run_ctx *c)
         fprintf(stderr, "dem: wrote %s (+ .xmf) and checkpoint %s at step %ld; %.2f s wall time\n", c->outp, c->ckp,
                 run_step(c), now() - c->t0); /* over ranks: the parts' step (the whole run is not started) */
         char seq[2048];
-        if (c->o->verbose && dem_kernel_sequence(s, 0, seq, sizeof seq)) /* the library's internals: on request */
+        /* the library's internals, on request: over ranks, rank 0's part's (the whole run is not started) */
+        if (c->o->verbose && dem_kernel_sequence(stepped(c), 0, seq, sizeof seq))
             fprintf(stderr, "dem: kernels of the last step: %s\n", seq);
-        if (!c->o->verbose || !dem_kernel_sequence(s, 1, seq, sizeof seq))
+        if (!c->o->verbose || !dem_kernel_sequence(stepped(c), 1, seq, sizeof seq))
             seq[0] = 0;
         if (c->R) { /* the whole run is not started: the split's account instead */
             char line[1024];

@@ -81,6 +81,7 @@ long dem_stage_ends(const dem_sim *s, long k, dem_stage_end *e)
 
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len)
 {
+    s = sim_stepped(s); /* a split run: this rank's part's */
     const unsigned char *q = rebuild ? s->trace.rebuild : s->trace.step;
     int n = rebuild ? s->trace.nrebuild : s->trace.nstep;
     size_t o = 0;
