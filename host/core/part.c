@@ -56,23 +56,6 @@ static const char *split_refused(const dem_sim *s)
     return NULL;
 }
 
-/* Keeps the particles i with keep[i] != 0, in their order (so that ids keep the order of the whole scene's),
- * dropping the others. Before dem_start; refused for a scene with membranes or riders (their tables name particles
- * by index). Returns the particles kept, or a dem_status. */
-int sim_keep_particles(dem_sim *s, const unsigned char *keep)
-{
-    if (sim_not_started(s))
-        return DEM_ERR_STATE;
-    if (split_refused(s))
-        return sim_fail(s, DEM_ERR_ARG, "%s", split_refused(s));
-    if (!(s->whole_volume > 0)) /* until_density's volume: the whole scene's spheres, not the part's */
-        s->whole_volume = sim_particle_volume(s);
-    keep_from(s, s, keep);
-    free(s->ghost);
-    s->ghost = NULL;
-    return s->n;
-}
-
 dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err, size_t len)
 {
     err[0] = 0;
@@ -99,7 +82,7 @@ dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err,
     s->halo_hook = NULL, s->halo_ctx = NULL;
     s->split_ops = NULL, s->split_ctx = NULL, s->split_started = 0; /* a part of a dem_create_mpi run steps alone */
     s->said_ids = NULL;
-    if (!(s->whole_volume > 0)) /* as sim_keep_particles sets it */
+    if (!(s->whole_volume > 0)) /* until_density's volume: the whole scene's spheres, not the part's */
         s->whole_volume = sim_particle_volume(src);
     if (keep_from(s, src, keep) < 0) {
         snprintf(err, len, "%s", s->report.err);

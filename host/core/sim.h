@@ -144,7 +144,7 @@ struct dem_sim {
     int *mat;
     unsigned *pflags;
     unsigned char *ghost; /* per particle, 1: another rank's (sim_set_ghosts); NULL: none */
-    double whole_volume;  /* a part's (sim_keep_particles): the whole scene's spheres' volume [m^3]; 0: not a part */
+    double whole_volume;  /* a part's (sim_part_copy): the whole scene's spheres' volume [m^3]; 0: not a part */
     /* a part of a run split over ranks (host/mpi/halo.c): called within the step where a value its ghosts got wrong
      * (their partners outside the halo missing) is about to be read, to put the owners' values into them, or where a
      * decision needs every rank's view (SIM_HOOK_*). Each call is a meeting of every rank that first agrees on any
@@ -256,17 +256,17 @@ typedef struct {
 } sim_run_record;
 void sim_run_record_get(const dem_sim *s, sim_run_record *r);
 void sim_run_record_set(dem_sim *s, const sim_run_record *r);
-/* part.c: a run of part of a scene (a rank's of a run split over MPI ranks), before dem_start: the particles kept
- * (keep[i] != 0, in their order; returns how many), and which of them are ghosts (copies of other ranks' particles:
- * left out of the walls' and the series rows' sums, DEM_HAS_GHOSTS) */
-int sim_keep_particles(dem_sim *s, const unsigned char *keep);
+/* part.c: in a run of part of a scene (a rank's of a run split over MPI ranks: sim_part_copy), before dem_start,
+ * which particles are ghosts (copies of other ranks' particles: left out of the walls' and the series rows' sums,
+ * DEM_HAS_GHOSTS) */
 int sim_set_ghosts(dem_sim *s, const unsigned char *ghost);
 /* part.c: where v is, or would go, in the ascending ids[0..n) (the first place whose id is >= v): a part's held
  * global ids searched (host/mpi/, app/checkpoint.c) */
 long sim_id_from(const long *ids, long n, long v);
-/* A new run, not started, with the set-up of src (not started either) and the particles of it that keep selects:
- * what sim_keep_particles leaves of a run built anew from the scene, without building it (app/run_mpi.c: a split
- * anew reads no scene file and holds no whole run); NULL with the reason in err */
+/* A new run, not started, with the set-up of src (not started either) and the particles of it that keep selects
+ * (keep[i] != 0, in their order, so that ids keep the whole scene's order), the whole scene's volume kept for
+ * until_density (host/mpi/split.c: a split anew reads no scene file and starts no whole run); refused for a scene
+ * with membranes or riders (their tables name particles by index); NULL with the reason in err */
 dem_sim *sim_part_copy(const dem_sim *src, const unsigned char *keep, char *err, size_t len);
 /* contacts.c: dem_contacts_get's order of two dem_contact, a qsort comparator: ascending i, then j (a wall's -1 - w:
  * ascending w among the walls, which are sorted apart from the pairs); app/run_mpi.c orders a gathered frame by it */

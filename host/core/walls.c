@@ -269,7 +269,7 @@ double sim_relative_density(const dem_sim *s, int k)
 
 double sim_particle_volume(const dem_sim *s)
 {
-    if (s->whole_volume > 0) /* a rank's part of a split run: the whole scene's (sim_keep_particles) */
+    if (s->whole_volume > 0) /* a rank's part of a split run: the whole scene's (sim_part_copy) */
         return s->whole_volume;
     exact_acc sum; /* exact and rounded once: the same bits in any order or split of the spheres (exact_sum.h) */
     exact_clear(&sum);

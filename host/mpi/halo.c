@@ -55,7 +55,7 @@ int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const l
                      P, dem_effect_name(__builtin_ctz(bad)));
     else if (P > 1 && until_density(s) && !(s->whole_volume > 0)) /* each rank would count its own spheres */
         e = sim_fail(s, DEM_ERR_ARG, "a run over %d ranks takes an until_density stage only in a run cut with "
-                     "sim_keep_particles (the whole scene's volume)", P);
+                     "sim_part_copy (the whole scene's volume)", P);
     if ((e = dem_mpi_agreed(comm, e)))
         return e;
     h->send_count = calloc((size_t)P, sizeof(int)), h->send_displ = calloc((size_t)P, sizeof(int));

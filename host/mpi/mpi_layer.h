@@ -45,7 +45,7 @@ typedef struct {
  * every ghost must be owned, in the owner's run, by the rank named. Returns 0, or a dem_status, the same on every
  * rank (dem_mpi_agreed). Refused on more than one rank (DEM_ERR_ARG, dem_error(s) names it): what the halo does not
  * carry yet - membranes (springs, pressure, hinges, patches) - and an until_density stage in a run not cut with
- * sim_keep_particles (it needs the whole scene's volume). A run started by sim_start_deferred (its state its
+ * sim_part_copy (it needs the whole scene's volume). A run started by sim_start_deferred (its state its
  * set-up's) gets the start's forces here, after the hook below is set, and its walls' sums merged over the ranks.
  * Ends with an exchange: the start's forces of a ghost (whose partners outside the halo it does not see) replaced by
  * its owner's before the first step; in a run whose state was set, the walls' sums are left as the state set them. Under MC-stress, MDR or MC-strain it also hooks the step (dem_sim.halo_hook, SIM_HOOK_*):
