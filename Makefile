@@ -405,7 +405,16 @@ $(BUILD)/install/libdem.a: $(INSTALL_OBJ) FORCE
 	$(Q)$(call msg,LD,$@)$(LD) -r $(filter-out FORCE,$^) -o $(BUILD)/install/libdem.o
 	$(Q)$(call msg,OBJCOPY,$@)objcopy --localize-hidden $(BUILD)/install/libdem.o
 	$(Q)$(call msg,AR,$@)ar rcs $@ $(BUILD)/install/libdem.o
-INSTALL_LIBS := $(BUILD)/pic/install/libdem.so.$(VERSION) $(BUILD)/pic/install/libdem.a
+# libdem_mpi.so: the same library with the MPI layer (host/mpi/, compiled -fPIC, linked with Open MPI), exporting
+# dem.h's functions and dem_mpi.h's dem_create_mpi: a program that splits a run over MPI ranks links it instead of
+# libdem (`pkg-config --libs libdem-mpi`), one that does not links libdem, which needs no MPI. Shared only: a static
+# one would need the same hiding as libdem.a's, and MPI programs link MPI's shared libraries anyway.
+MPI_SONAME := libdem_mpi.so.$(firstword $(subst ., ,$(VERSION)))
+$(BUILD)/install/libdem_mpi.so.$(VERSION): $(INSTALL_OBJ) $(MPI_OBJ) FORCE
+	$(Q)$(call msg,CC,$@)$(CC) -shared -Wl,-soname,$(MPI_SONAME) -Wl,--no-undefined $(filter-out FORCE,$^) $(LDLIBS) \
+	  $(MPI_LIBS) -o $@
+INSTALL_LIBS := $(BUILD)/pic/install/libdem.so.$(VERSION) $(BUILD)/pic/install/libdem.a \
+                $(BUILD)/pic/install/libdem_mpi.so.$(VERSION)
 install-libs:
 	+$(MAKE) --no-print-directory BUILD=$(BUILD)/pic PIC=1 DEPS_STAMP=$(DEPS_STAMP) PREFIX=$(PREFIX) $(INSTALL_LIBS)
 python-lib:
@@ -423,12 +432,16 @@ install: install-libs
 	install -m 755 $(BUILD)/pic/install/libdem.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/
 	ln -sf libdem.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libdem.so
-	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/
+	install -m 755 $(BUILD)/pic/install/libdem_mpi.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf libdem_mpi.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(MPI_SONAME)
+	ln -sf $(MPI_SONAME) $(DESTDIR)$(PREFIX)/lib/libdem_mpi.so
+	install -m 644 $(PUBLIC_HEADERS) include/dem_mpi.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 kernels/*.cl $(DESTDIR)$(DATADIR)/kernels/
 	install -m 644 common/*.h $(DESTDIR)$(DATADIR)/common/
 	install -m 644 common/laws/*.h $(DESTDIR)$(DATADIR)/common/laws/
 	install -m 644 include/dem_effects.h $(DESTDIR)$(DATADIR)/include/
 	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|$(VERSION)|' scripts/libdem.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem.pc
+	sed 's|@PREFIX@|$(PREFIX)|; s|@VERSION@|$(VERSION)|' scripts/libdem-mpi.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/libdem-mpi.pc
 	install -d $(DESTDIR)$(PYSITE)/libdem
 	install -m 644 python/libdem/*.py $(DESTDIR)$(PYSITE)/libdem/
 	ln -sf $(PREFIX)/lib/$(SONAME) $(DESTDIR)$(PYSITE)/libdem/libdem.so

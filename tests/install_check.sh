@@ -9,6 +9,9 @@
 #  - each library must define, as global symbols, exactly the functions the installed headers declare (the shared
 #    one as its dynamic symbols, nm -D); dem_debug.h and the internal bits' header must not be installed.
 #  - the Python package (python/libdem), copied beside them, loads the installed libdem.so and steps a run.
+#  - libdem_mpi.so (libdem with its MPI layer) exports exactly dem.h's and dem_mpi.h's functions, and
+#    tests/install_check_mpi.c, built with `pkg-config --cflags --libs libdem-mpi` alone, runs split over 2 ranks
+#    with one process's bits.
 # Also checks that DESTDIR stages every file under it. Run by `make test`.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -99,9 +102,33 @@ with m.Sim() as s:
     assert abs(s.get('x')[0, 2] - 1e-6) < 1e-18, s.get('x')
 " > "$T/py.log" 2>&1) || { cat "$T/py.log"; fail "the installed Python package does not run the installed library"; }
 
+# the MPI library: its files, its exports (dem.h's and dem_mpi.h's functions), a program split over 2 ranks
+MPI_SONAME=libdem_mpi.so.${VERSION%%.*}
+for f in "lib/libdem_mpi.so.$VERSION" lib/pkgconfig/libdem-mpi.pc include/dem_mpi.h; do
+    [ -f "$P/$f" ] || fail "the install lacks $f"
+done
+[ "$(readlink "$P/lib/$MPI_SONAME")" = "libdem_mpi.so.$VERSION" ] || fail "lib/$MPI_SONAME does not link to libdem_mpi.so.$VERSION"
+mcflags=$(pkg-config --cflags libdem-mpi) && mlibs=$(pkg-config --libs libdem-mpi) || fail "pkg-config knows no libdem-mpi"
+echo '#include <dem_mpi.h>' | cc -std=c11 -fsyntax-only -aux-info "$T/mdecl.txt" $mcflags -x c -
+grep -F "/* $P/include/" "$T/mdecl.txt" | sed -n 's/.*[ *]\(dem_[a-z0-9_]*\) (.*/\1/p' | sort -u > "$T/mdeclared.txt"
+grep -qx dem_create_mpi "$T/mdeclared.txt" || fail "dem_mpi.h declares no dem_create_mpi"
+nm -D --defined-only "$P/lib/libdem_mpi.so.$VERSION" | awk '{print $NF}' | sort -u > "$T/mpi.txt"
+if ! diff "$T/mdeclared.txt" "$T/mpi.txt" > "$T/mpi.diff"; then
+    sed -n 's/^> /  exported, not declared: /p; s/^< /  declared, not exported: /p' "$T/mpi.diff" | head -20
+    fail "libdem_mpi.so's global symbols are not the public headers' functions"
+fi
+cc -std=c11 -Wall -Wextra -Werror "$ROOT/tests/install_check_mpi.c" $mcflags $mlibs -Wl,-rpath,"$P/lib" \
+    -o "$T/mpi_prog" 2> "$T/mcc.log" || { cat "$T/mcc.log"; fail "the MPI program does not build with: $mcflags $mlibs"; }
+readelf -d "$T/mpi_prog" | grep -q "(NEEDED).*\[$MPI_SONAME\]" || fail "the MPI program does not need $MPI_SONAME"
+! readelf -d "$T/mpi_prog" | grep -q "(NEEDED).*\[$SONAME\]" || fail "the MPI program needs libdem as well as libdem_mpi"
+(cd "$T/elsewhere" && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 \
+    mpirun -np 2 --oversubscribe --bind-to none "$T/mpi_prog" > "$T/mpi.log" 2>&1) ||
+    { cat "$T/mpi.log"; fail "the MPI program failed against the installed libdem_mpi"; }
+
 # DESTDIR: everything under the staging root, nothing elsewhere
 make -s -C "$ROOT" install PREFIX=/opt/libdem-check DESTDIR="$T/stage" PYTHON="$python" > "$T/stage.log" 2>&1 || { cat "$T/stage.log"; exit 1; }
 for f in lib/libdem.a "lib/libdem.so.$VERSION" "lib/$SONAME" lib/libdem.so lib/pkgconfig/libdem.pc include/dem.h \
+         "lib/libdem_mpi.so.$VERSION" "lib/$MPI_SONAME" lib/libdem_mpi.so lib/pkgconfig/libdem-mpi.pc include/dem_mpi.h \
          include/dem_effects.h include/dem_membrane.h include/dem_press.h share/libdem/kernels/program.cl \
          share/libdem/common/dem_kernels.h share/libdem/common/laws/laws.h share/libdem/common/dem_internal_bits.h share/libdem/include/dem_effects.h; do
     [ -e "$T/stage/opt/libdem-check/$f" ] || fail "DESTDIR install lacks $f"
@@ -112,5 +139,6 @@ stsite=$(echo "$T"/stage/opt/libdem-check/lib/python3*/dist-packages)
 [ ! -e /opt/libdem-check ] || fail "DESTDIR install wrote outside the staging root"
 grep -q '^prefix=/opt/libdem-check$' "$T/stage/opt/libdem-check/lib/pkgconfig/libdem.pc"
 echo "install_check: the README example (C, shared) and a C++ program (shared and static) build with pkg-config and"
-echo "  run against the installed copy; both libraries export exactly the $nexp functions of the public headers"
-cat "$T/cpp_shared.log"
+echo "  run against the installed copy; both libraries export exactly the $nexp functions of the public headers;"
+echo "  libdem_mpi.so exports those and dem_create_mpi ($(wc -l < "$T/mpi.txt"))"
+cat "$T/cpp_shared.log" "$T/mpi.log"
