@@ -26,12 +26,15 @@
  *   - dem_start, dem_step, dem_step_sampled (rows merged over the ranks), dem_sample_get;
  *   - dem_state_get: the whole state gathered on every rank (its rebuild and iteration counts rank 0's part's; for
  *     runs whose state fits each rank's memory: `dem run` under mpirun writes output and checkpoints slab by slab);
+ *   - dem_get_field of the public fields (positions, velocities, spins, forces, torques, stresses, stress traces,
+ *     radii: each rank's own particles' rows gathered on every rank; the walls' forces merged), and dem_field_bytes
+ *     (the whole run's sizes, not collective);
  *   - not collective: dem_step_index, dem_time, dem_wall_position, dem_stage_ends, dem_servo_stats_get and
  *     dem_mc_stats_get (every rank's part has the run's); dem_device_bytes, dem_device_bytes_part,
  *     dem_rebuild_count, dem_reorder_count, dem_neighbor_skin, dem_neighbor_capacity and dem_describe (this rank's
  *     part's, on its device); dem_count, dem_particle_radius and the set-up's other getters (the set-up's);
  *   - dem_destroy (before MPI_Finalize: it frees the run's duplicate of the communicator).
- * Every other call that reads the started run (dem_get_field, dem_contacts_get, dem_energy, dem_state_set ...)
+ * Every other call that reads the started run (dem_get_raw, dem_contacts_get, dem_energy, dem_state_set ...)
  * returns DEM_ERR_STATE and says so, and so does dem_memory_estimate (each part is sized at dem_start). A step that
  * fails fails on every rank with the same code and words (those of the lowest rank that failed, "rank R: ..."),
  * dem_error_particle naming the whole run's particle; dem_step_index then says where the run stopped, and nothing

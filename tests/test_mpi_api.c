@@ -5,8 +5,9 @@
  * up to 1.5 m/s in a box of six walls whose lid comes down, so that particles move several radii and the run is
  * split anew, particles and contact histories migrating (asserted from the physics: some sphere moved further than
  * the half margin that calls for it). After 400 steps, sampled every 40, the split run's series rows, its
- * dem_sample_get, step, time and lid position, and the whole state it gathers (every array and every contact with
- * its history and force record) have the one-process run's bits; test_refusals: what a split run refuses, with the
+ * dem_sample_get, step, time and lid position, the whole state it gathers (every array and every contact with
+ * its history and force record) and every public field (dem_get_field, dem_field_bytes) have the one-process run's
+ * bits; test_refusals: what a split run refuses, with the
  * same code and words on every rank. Reference fp64 and PoCL fp32. */
 #include "mpi_util.h"
 #include "dem_mpi.h"
@@ -121,6 +122,24 @@ static void test_same_bits(void **st)
         if (!all_ok(same) && rank == 0)
             fprintf(stderr, "%s on %d ranks: the gathered state differs from one process's\n", cases[c]->name, size);
         assert_true(all_ok(same));
+        /* the fields a program reads, gathered: sized and valued as one process's */
+        const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE,
+                                    DEM_FIELD_STRESS, DEM_FIELD_STRESS_TRACE, DEM_FIELD_RADIUS, DEM_FIELD_WALL_FORCE,
+                                    DEM_FIELD_WALL_NORMAL_FORCE};
+        static double f1[6 * NTOT], f2[6 * NTOT];
+        int fields_ok = 1;
+        for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
+            size_t bytes = dem_field_bytes(one, fields[k]), m = bytes / (size_t)cases[c]->precision;
+            memset(f2, 0xff, sizeof f2);
+            REQUIRE_SIM(one, dem_get_field(one, fields[k], f1));
+            REQUIRE_SIM(par, dem_get_field(par, fields[k], f2));
+            int ok = dem_field_bytes(par, fields[k]) == bytes && !memcmp(f1, f2, sizeof(double) * m) &&
+                     (fields[k] != DEM_FIELD_STRESS || m == 6 * NTOT);
+            if (!ok && rank == 0)
+                fprintf(stderr, "field %d differs (%zu values)\n", (int)fields[k], m);
+            fields_ok &= ok;
+        }
+        assert_true(all_ok(fields_ok));
         if (rank == 0)
             printf("%s, %d rank(s): %d steps, %ld contacts, largest move %.2f r_max: the one-process bits\n",
                    cases[c]->name, size, STEPS, (long)a.npairs, most / RMAX);
@@ -160,7 +179,7 @@ static void test_refusals(void **st)
     assert_true(all_ok(e == DEM_ERR_STATE && strstr(dem_error(par), "split over MPI ranks") != NULL));
     assert_true(same_words(par));
     static double xs[3 * NTOT];
-    assert_true(all_ok(dem_get_field(par, DEM_FIELD_X, xs) == DEM_ERR_STATE));
+    assert_true(all_ok(dem_get_field(par, 5, xs) == DEM_ERR_ARG && same_words(par))); /* the library's own rows */
     assert_true(all_ok(dem_add_particle(par, px[0], pv[0], pr[0], 0) == DEM_ERR_STATE));
     assert_true(all_ok(dem_start(par, &cfg) == DEM_ERR_STATE));
     assert_true(all_ok(dem_sort_particles(par) == DEM_ERR_STATE));

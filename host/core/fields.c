@@ -27,8 +27,23 @@ size_t sim_stored_bytes(const dem_sim *s, dem_field f)
     return s->be && !dem_field_ref(DEM_CORE(s->be), f, &r, &bytes) ? bytes : 0;
 }
 
+int sim_field_per_particle(dem_field f)
+{
+    switch (f) {
+    case DEM_FIELD_X: case DEM_FIELD_V: case DEM_FIELD_W: case DEM_FIELD_FORCE: case DEM_FIELD_TORQUE: return 3;
+    case DEM_FIELD_STRESS: return 6;
+    case DEM_FIELD_STRESS_TRACE: case DEM_FIELD_RADIUS: return 1;
+    default: return 0;
+    }
+}
+
 size_t dem_field_bytes(const dem_sim *s, dem_field f)
 {
+    const dem_sim *p = sim_stepped(s);
+    if (p != s) { /* a run split by dem_create_mpi: the whole run's, from this rank's part's */
+        size_t b = dem_field_bytes(p, f);
+        return sim_field_per_particle(f) && p->n ? b / (size_t)p->n * (size_t)s->n : b;
+    }
     if (f == DEM_FIELD_MC_FORCE) /* kept per pair, handed out per row slot (dem_get_raw) */
         return (s->setup.effects & DEM_EFFECT_MC_STRAIN)
                    ? (size_t)s->setup.real_size * (size_t)(s->be ? DEM_CORE(s->be)->maxn[DEM_CORE(s->be)->cur] : s->rows.maxn)
@@ -72,6 +87,8 @@ int dem_get_field(dem_sim *s, dem_field f, double *dst)
         f == DEM_FIELD_FLAGS || f == DEM_FIELD_TOUCH || f == DEM_FIELD_WALL_MASK || f == DEM_FIELD_IN_START ||
         f == DEM_FIELD_IN_PAIR)
         return sim_fail(s, DEM_ERR_ARG, "field %d holds integers: use dem_get_raw", (int)f);
+    if (s->split_started) /* a run split by dem_create_mpi: gathered from the ranks' parts */
+        return s->split_ops->get_field(s, f, dst);
     if (!s->run.started) /* (before it, the precision is not set: no size to divide by) */
         return sim_need_started(s);
     size_t bytes = dem_field_bytes(s, f), cnt = bytes / (size_t)s->setup.real_size;

@@ -82,8 +82,8 @@ int sim_need_started(dem_sim *s)
 {
     if (s->split_started)
         return sim_fail(s, DEM_ERR_STATE, "not on a run split over MPI ranks (dem_create_mpi), whose particles are "
-                        "the ranks' parts: dem_step, dem_step_sampled, dem_sample_get and dem_state_get (the whole "
-                        "state, on every rank) work on it");
+                        "the ranks' parts: dem_step, dem_step_sampled, dem_sample_get, dem_get_field and dem_state_get "
+                        "(the whole state, on every rank) work on it");
     return sim_fail(s, DEM_ERR_STATE, "dem_start first");
 }
 

@@ -315,6 +315,9 @@ int sim_need_started(dem_sim *s);
  * holds one: not after a failed step) - the run's own for what every rank's part has alike (stages, servos, MC-strain
  * counts), this rank's for its device (bytes, rebuilds, skin, description) */
 const dem_sim *sim_stepped(const dem_sim *s);
+/* fields.c: the reals per particle of a public per-particle field (DEM_FIELD_X ... DEM_FIELD_RADIUS), 0 for any
+ * other (the walls', the library's own) */
+int sim_field_per_particle(dem_field f);
 /* What a run split by dem_create_mpi does in the calls of dem.h that work on it (host/mpi/api.c): collective over
  * its communicator, each 0 or a dem_status set with sim_fail (the same on every rank) */
 typedef struct sim_split_ops {
@@ -324,6 +327,7 @@ typedef struct sim_split_ops {
     int (*state_get)(dem_sim *s, dem_state *st);
     dem_sim *(*part)(const dem_sim *s); /* this rank's part; NULL after a failed step (the run cannot go on) */
     long (*step_index)(const dem_sim *s); /* the run's step, the same on every rank (after a failed step too) */
+    int (*get_field)(dem_sim *s, dem_field f, double *dst); /* dem_get_field of the whole run, on every rank */
     void (*destroy)(dem_sim *s);
 } sim_split_ops;
 static inline int sim_finite3(const double *a) { return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]); }

@@ -7,6 +7,7 @@
 #include "sim.h"
 #include "dem_layout.h"
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -100,6 +101,43 @@ static int state_get(dem_sim *s, dem_state *st)
     return 0;
 }
 
+/* A field of the whole run on every rank: a per-particle one from each rank's own particles (their rows in the
+ * part: an own particle's contacts are all in it, so its stress is one process's), the walls' merged */
+static int get_field(dem_sim *s, dem_field f, double *dst)
+{
+    dem_mpi_split *sp = &of(s)->sp;
+    char err[4096] = "";
+    int nc = sim_field_per_particle(f), e;
+    if (gone(s))
+        return DEM_ERR_STATE;
+    if (f == DEM_FIELD_WALL_FORCE || f == DEM_FIELD_WALL_NORMAL_FORCE) {
+        exact_acc acc[SE_STRIDE + WP_STRIDE * DEM_MAX_WALLS];
+        dem_sample row;
+        memset(&row, 0, sizeof row);
+        int nw;
+        if ((e = dem_mpi_split_walls(sp, acc, &nw, err, sizeof err))) /* agreed */
+            return sim_fail(s, e, "%s", err);
+        dem_mpi_split_walls_row(sp, acc, nw, &row);
+        size_t m = dem_field_bytes(sp->part, f) / (size_t)sp->part->setup.real_size; /* one process's count */
+        memcpy(dst, f == DEM_FIELD_WALL_FORCE ? row.wall_force : row.wall_normal, sizeof(double) * m);
+        return 0;
+    }
+    if (!nc) /* the same answer on every rank: f is every rank's */
+        return sim_fail(s, DEM_ERR_ARG, "field %d: not on a run split over MPI ranks (dem_create_mpi), whose "
+                        "per-particle fields and walls' forces are", (int)f);
+    if (!dem_field_bytes(sp->part, f)) /* a field the run does not keep (a stress trace without MC-stress) */
+        return 0;
+    double *v = malloc(sizeof(double) * (size_t)nc * ((size_t)sp->nloc + 1));
+    e = v ? dem_get_field(sp->part, f, v) : DEM_ERR_NOMEM;
+    if (e && !v)
+        snprintf(err, sizeof err, "out of host memory");
+    if (!(e = dem_mpi_split_agreed(sp, e, sp->part, err, sizeof err)) && (e = dem_mpi_split_rows(sp, v, nc, dst)))
+        snprintf(err, sizeof err, "field %d: the ranks' rows could not be gathered (out of host memory, or past "
+                 "MPI's int counts)", (int)f);
+    free(v);
+    return e ? sim_fail(s, e, "%s", err) : 0;
+}
+
 static dem_sim *part(const dem_sim *s) { return of(s)->failed ? NULL : of(s)->sp.part; }
 static long step_index(const dem_sim *s) { return of(s)->sp.step; }
 
@@ -115,7 +153,7 @@ static void destroy(dem_sim *s)
     s->split_ops = NULL, s->split_ctx = NULL, s->split_started = 0;
 }
 
-static const sim_split_ops ops = {start, step, sample, state_get, part, step_index, destroy};
+static const sim_split_ops ops = {start, step, sample, state_get, part, step_index, get_field, destroy};
 
 dem_sim *dem_create_mpi(MPI_Comm comm)
 {

@@ -184,6 +184,10 @@ int dem_mpi_split_step(dem_mpi_split *sp, long nsteps, const unsigned char *want
 int dem_mpi_split_sample(dem_mpi_split *sp, dem_sample *row, char *err, size_t len);
 /* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it). Collective. */
 void dem_mpi_split_bounds(dem_mpi_split *sp, double box[6]);
+/* Every rank's own particles' rows vals[nc k .. nc k + nc) (k: a held particle, its local id), by global id, into
+ * out[nc n] on every rank: what the split cuts by (the positions: 3 reals a particle), and a split run's fields
+ * (dem_get_field of dem_create_mpi's run). Collective; 0 or a dem_status, the same on every rank. */
+int dem_mpi_split_rows(dem_mpi_split *sp, const double *vals, int nc, double *out);
 /* the walls' sums of the state now, each rank's own particles', merged exactly (acc[SE_STRIDE + WP_STRIDE w + WP_*]
  * of nw walls: the walls of a run with the walls effect, else 0), and put as one process rounds them into the
  * arrays wall_force and wall_normal_force of st (NULL, or a state without them: not put). Collective; agreed. */

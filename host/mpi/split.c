@@ -267,20 +267,18 @@ int dem_mpi_split_start(dem_mpi_split *q, MPI_Comm comm, dem_sim *whole, const d
     return split_from(q, !x, q->n, x ? x : whole->x, NULL, NULL, NULL, err, len);
 }
 
-/* Every rank's own particles' positions, by global id, into x[3 n] on every rank (the split cuts by them): 3 reals
- * a particle, where a gather of the whole state moved every array and contact of every particle to every rank */
-static int positions_all(dem_mpi_split *q, double *x)
+int dem_mpi_split_rows(dem_mpi_split *q, const double *vals, int nc, double *out)
 {
     int P = q->size, no = 0, e = 0;
     int *cnt = malloc(sizeof(int) * 2 * (size_t)P);
     long *ids = malloc(sizeof(long) * ((size_t)q->nown + 1)), *allid = malloc(sizeof(long) * ((size_t)q->n + 1));
-    double *mine = malloc(sizeof(double) * 3 * ((size_t)q->nown + 1)),
-           *all = malloc(sizeof(double) * 3 * ((size_t)q->n + 1));
+    double *mine = malloc(sizeof(double) * (size_t)nc * ((size_t)q->nown + 1)),
+           *all = malloc(sizeof(double) * (size_t)nc * ((size_t)q->n + 1));
     e = cnt && ids && allid && mine && all ? 0 : DEM_ERR_NOMEM;
     for (int k = 0; !e && k < q->nloc; k++)
         if (q->owner[k] == q->rank) {
             ids[no] = q->gid[k];
-            memcpy(mine + 3 * no, q->h.field + 3 * k, sizeof(double) * 3); /* the last exchange's (moved) */
+            memcpy(mine + (size_t)nc * no, vals + (size_t)nc * k, sizeof(double) * nc);
             no++;
         }
     long total = 0;
@@ -288,15 +286,15 @@ static int positions_all(dem_mpi_split *q, double *x)
         MPI_Allgather(&no, 1, MPI_INT, cnt, 1, MPI_INT, q->comm);
         for (int r = 0; r < P; r++)
             cnt[P + r] = (int)total, total += cnt[r];
-        e = total == q->n && 3 * total <= INT_MAX ? 0 : DEM_ERR_ARG; /* the same verdict on every rank */
+        e = total == q->n && (long)nc * total <= INT_MAX ? 0 : DEM_ERR_ARG; /* the same verdict on every rank */
     }
     if (!e) {
         MPI_Allgatherv(ids, no, MPI_LONG, allid, cnt, cnt + P, MPI_LONG, q->comm);
         for (int r = 0; r < P; r++)
-            cnt[r] *= 3, cnt[P + r] *= 3;
-        MPI_Allgatherv(mine, 3 * no, MPI_DOUBLE, all, cnt, cnt + P, MPI_DOUBLE, q->comm);
+            cnt[r] *= nc, cnt[P + r] *= nc;
+        MPI_Allgatherv(mine, nc * no, MPI_DOUBLE, all, cnt, cnt + P, MPI_DOUBLE, q->comm);
         for (long k = 0; k < total; k++)
-            memcpy(x + 3 * allid[k], all + 3 * k, sizeof(double) * 3);
+            memcpy(out + (size_t)nc * allid[k], all + (size_t)nc * k, sizeof(double) * nc);
     }
     free(cnt), free(ids), free(allid), free(mine), free(all);
     return e;
@@ -309,7 +307,7 @@ static int split_anew(dem_mpi_split *q, char *err, size_t len)
     long n = q->n;
     double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
     int e = dem_mpi_agreed(q->comm, x ? 0 : DEM_ERR_NOMEM);
-    e = e ? e : positions_all(q, x); /* agreed */
+    e = e ? e : dem_mpi_split_rows(q, q->h.field, 3, x); /* agreed: the last exchange's (moved) positions */
     dem_state loc;
     memset(&loc, 0, sizeof loc);
     if (!e)
