@@ -451,12 +451,7 @@ int dem_mpi_split_step(dem_mpi_split *q, long nsteps, const unsigned char *want,
         if ((e = dem_mpi_split_agreed(q, e, q->part, err, len)))
             return e;
         energies_of(acc, &one.energy);
-        for (int w = 0; w < nw; w++) {
-            const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
-            for (int d = 0; d < 3; d++)
-                one.wall_force[3 * w + d] = rounded(q, &a[WP_FX + d]);
-            one.wall_normal[w] = rounded(q, &a[WP_FN]);
-        }
+        dem_mpi_split_walls_row(q, acc, nw, &one);
         *o++ = one;
         q->t_sums += MPI_Wtime() - t4;
     }
@@ -504,27 +499,26 @@ int dem_mpi_split_walls(dem_mpi_split *q, exact_acc *acc, int *nw, char *err, si
     return dem_mpi_split_agreed(q, merged_sums(q, *nw, acc), q->part, err, len);
 }
 
-void dem_mpi_split_walls_put(const dem_mpi_split *q, const exact_acc *acc, int nw, dem_state *st)
-{
-    dem_state_array *wf = st ? dem_state_find(st, "wall_force") : NULL;
-    dem_state_array *wn = st ? dem_state_find(st, "wall_normal_force") : NULL;
-    for (int w = 0; w < nw; w++) { /* every rank's own particles' sums, as one process rounds them */
-        const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
-        for (int d = 0; wf && wf->data && d < 3; d++)
-            sim_real_put(wf->data, (size_t)(3 * w + d), st->real_size, rounded(q, &a[WP_FX + d]));
-        if (wn && wn->data)
-            sim_real_put(wn->data, (size_t)w, st->real_size, rounded(q, &a[WP_FN]));
-    }
-}
-
 void dem_mpi_split_walls_row(const dem_mpi_split *q, const exact_acc *acc, int nw, dem_sample *row)
 {
-    for (int w = 0; w < nw; w++) {
+    for (int w = 0; w < nw; w++) { /* every rank's own particles' sums, each rounded once as one process rounds it */
         const exact_acc *a = acc + SE_STRIDE + WP_STRIDE * w;
         for (int d = 0; d < 3; d++)
             row->wall_force[3 * w + d] = rounded(q, &a[WP_FX + d]);
         row->wall_normal[w] = rounded(q, &a[WP_FN]);
     }
+}
+
+void dem_mpi_split_walls_put(const dem_mpi_split *q, const exact_acc *acc, int nw, dem_state *st)
+{
+    dem_state_array *wf = st ? dem_state_find(st, "wall_force") : NULL;
+    dem_state_array *wn = st ? dem_state_find(st, "wall_normal_force") : NULL;
+    dem_sample row;
+    dem_mpi_split_walls_row(q, acc, nw, &row);
+    for (int k = 0; wf && wf->data && k < 3 * nw; k++) /* (a run's real: the rounded value is one exactly) */
+        sim_real_put(wf->data, (size_t)k, st->real_size, row.wall_force[k]);
+    for (int w = 0; wn && wn->data && w < nw; w++)
+        sim_real_put(wn->data, (size_t)w, st->real_size, row.wall_normal[w]);
 }
 
 void dem_mpi_split_free(dem_mpi_split *q)
