@@ -37,7 +37,7 @@ times_file=${TEST_TIMES:-build/test-times.txt}
 # threads each on 2 cores wake and wait for each other's threads at every kernel launch, and a small scene's step is
 # mostly launches: tablet_small's cycle ran 1.8x faster with one thread each (3.5 s against 1.9 s for 20 000 steps,
 # two at a time, 2026-12-07), the whole suite about a fifth faster. Every kernel's bits are the same on any number
-# of threads (the claim test_determinism checks: it runs its own PoCL on several threads against a one-thread run,
+# of threads (the claim test_determinism checks: it runs its own PoCL on two threads against a one-thread run,
 # whatever this sets).
 if [ -z "${POCL_MAX_PTHREAD_COUNT+x}" ]; then
   cores=$(nproc)

@@ -350,85 +350,133 @@ void mesh_write_obj(const dem_mesh *m, const char *path)
     fclose(fp);
 }
 
+/* What state_diff compares of one run, read once: the fields below (those of a model the run has not, from
+ * DEM_FIELD_STRESS_TRACE on, empty) and dem_state_get's pairs with what each keeps */
+enum { SNAP_FIELDS = 12 };
+static const dem_field snap_fields[SNAP_FIELDS] = {
+    DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE, DEM_FIELD_WALL_HIST,
+    DEM_FIELD_STRESS, DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_FORCE, DEM_FIELD_MC_WALL_FORCE, DEM_FIELD_RADIUS};
+static const char *snap_names[SNAP_FIELDS] = {"position", "velocity", "angular velocity", "force", "torque", "wall force",
+                                               "wall history", "stress tensor", "stress trace", "MC-strain force",
+                                               "MC-strain wall force", "radius"};
+typedef struct {
+    unsigned char *field[SNAP_FIELDS];
+    size_t bytes[SNAP_FIELDS];
+    int has[SNAP_FIELDS]; /* the run has the field (a multi-contact model's only under that model) */
+    size_t rs;            /* bytes of a real */
+    dem_state st;
+} snapshot;
+
+static void snap_take(dem_sim *s, snapshot *p)
+{
+    p->rs = dem_field_bytes(s, DEM_FIELD_X) / (3 * (size_t)dem_count(s));
+    for (int k = 0; k < SNAP_FIELDS; k++) {
+        p->has[k] = snap_fields[k] < DEM_FIELD_STRESS_TRACE || dem_field_bytes(s, snap_fields[k]) != 0;
+        p->field[k] = p->has[k] ? get(s, snap_fields[k], &p->bytes[k]) : NULL;
+    }
+    if (dem_state_get(s, &p->st))
+        fail_msg("dem_state_get: %s", dem_error(s));
+}
+
+static void snap_free(snapshot *p)
+{
+    for (int k = 0; k < SNAP_FIELDS; k++)
+        free(p->field[k]);
+    dem_state_free(&p->st);
+}
+
 /* The touching pairs of a and b in the callers' ids (dem_state_get) and what each keeps: the same pairs, the same
  * bits; with MDR also every particle's and wall slot's row (laws/mdr.h) */
-static int pairs_state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
+static int pairs_state_diff(const dem_state *sa, const dem_state *sb, char *msg, size_t len)
 {
-    dem_state sa, sb;
-    if (dem_state_get(a, &sa) || dem_state_get(b, &sb))
-        fail_msg("dem_state_get: %s %s", dem_error(a), dem_error(b));
     int bad = 0;
-    size_t rs = (size_t)sa.real_size, np = (size_t)sa.npairs;
-    if (sa.npairs != sb.npairs || memcmp(sa.pair_i, sb.pair_i, sizeof(int) * np) ||
-        memcmp(sa.pair_j, sb.pair_j, sizeof(int) * np))
-        bad = 1, snprintf(msg, len, "the touching pairs differ (%ld and %ld of them)", sa.npairs, sb.npairs);
+    size_t rs = (size_t)sa->real_size, np = (size_t)sa->npairs;
+    if (sa->npairs != sb->npairs || memcmp(sa->pair_i, sb->pair_i, sizeof(int) * np) ||
+        memcmp(sa->pair_j, sb->pair_j, sizeof(int) * np))
+        bad = 1, snprintf(msg, len, "the touching pairs differ (%ld and %ld of them)", sa->npairs, sb->npairs);
     const struct {
         const char *what;
         void *pa, *pb;
         size_t reals;
-    } kept[] = {{"tangential history", sa.has_hist ? sa.pair_hist : NULL, sb.has_hist ? sb.pair_hist : NULL, 3},
-                {"MC-strain force", sa.has_mc ? sa.pair_mc_fn : NULL, sb.has_mc ? sb.pair_mc_fn : NULL, 1},
-                {"contact law state", sa.pair_law, sb.pair_law, (size_t)sa.has_law},
-                {"rolling spring", sa.pair_rspring, sb.pair_rspring, 3}};
+    } kept[] = {{"tangential history", sa->has_hist ? sa->pair_hist : NULL, sb->has_hist ? sb->pair_hist : NULL, 3},
+                {"MC-strain force", sa->has_mc ? sa->pair_mc_fn : NULL, sb->has_mc ? sb->pair_mc_fn : NULL, 1},
+                {"contact law state", sa->pair_law, sb->pair_law, (size_t)sa->has_law},
+                {"rolling spring", sa->pair_rspring, sb->pair_rspring, 3}};
     for (size_t k = 0; k < sizeof kept / sizeof kept[0] && !bad; k++) {
         /* the history in both or neither; what a model keeps of its own (MC-strain, a law, a rolling spring) only where
          * both runs have it, as the fields above */
         if (k == 0 && !kept[k].pa != !kept[k].pb)
             bad = 1, snprintf(msg, len, "one run keeps the pairs' %s and the other not", kept[k].what);
-        else if (kept[k].pa && kept[k].pb && np && (k != 2 || sa.has_law == sb.has_law) &&
+        else if (kept[k].pa && kept[k].pb && np && (k != 2 || sa->has_law == sb->has_law) &&
                  memcmp(kept[k].pa, kept[k].pb, np * kept[k].reals * rs)) {
             size_t at = 0;
             while (!memcmp((char *)kept[k].pa + at * kept[k].reals * rs, (char *)kept[k].pb + at * kept[k].reals * rs,
                            kept[k].reals * rs))
                 at++;
-            bad = 1, snprintf(msg, len, "%s of the pair %d-%d differs", kept[k].what, sa.pair_i[at], sa.pair_j[at]);
+            bad = 1, snprintf(msg, len, "%s of the pair %d-%d differs", kept[k].what, sa->pair_i[at], sa->pair_j[at]);
         }
     }
     const char *rows[] = {"mdr_particle", "wall_law"};
-    for (int k = 0; k < 2 && !bad && sa.has_law == DEM_MDR_LAW_REALS && sb.has_law == DEM_MDR_LAW_REALS; k++) {
-        dem_state_array *x = dem_state_find(&sa, rows[k]), *y = dem_state_find(&sb, rows[k]);
+    for (int k = 0; k < 2 && !bad && sa->has_law == DEM_MDR_LAW_REALS && sb->has_law == DEM_MDR_LAW_REALS; k++) {
+        dem_state_array *x = dem_state_find((dem_state *)sa, rows[k]), *y = dem_state_find((dem_state *)sb, rows[k]);
         bad = !x || !y || x->count != y->count || memcmp(x->data, y->data, x->count * rs);
         if (bad)
             snprintf(msg, len, "MDR's %s differs", rows[k]);
     }
-    dem_state_free(&sa);
-    dem_state_free(&sb);
     return bad;
 }
 
-int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
+static int snap_diff(const snapshot *a, const snapshot *b, char *msg, size_t len)
 {
-    static const dem_field fields[] = {DEM_FIELD_X, DEM_FIELD_V, DEM_FIELD_W, DEM_FIELD_FORCE, DEM_FIELD_TORQUE, DEM_FIELD_WALL_FORCE,
-                                       DEM_FIELD_WALL_HIST, DEM_FIELD_STRESS, DEM_FIELD_STRESS_TRACE, DEM_FIELD_MC_FORCE,
-                                       DEM_FIELD_MC_WALL_FORCE, DEM_FIELD_RADIUS};
-    static const char *names[] = {"position", "velocity", "angular velocity", "force", "torque", "wall force",
-                                  "wall history", "stress tensor", "stress trace", "MC-strain force",
-                                  "MC-strain wall force", "radius"};
-    size_t rs = dem_field_bytes(a, DEM_FIELD_X) / (3 * (size_t)dem_count(a));
-    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
-        size_t na, nb;
+    size_t rs = a->rs;
+    for (int k = 0; k < SNAP_FIELDS; k++) {
         /* fields of a model one run does not have (multi-contact) are compared only when both have them */
-        if (fields[k] >= DEM_FIELD_STRESS_TRACE && (!dem_field_bytes(a, fields[k]) || !dem_field_bytes(b, fields[k])))
+        if (!a->has[k] || !b->has[k])
             continue;
-        unsigned char *pa = get(a, fields[k], &na), *pb = get(b, fields[k], &nb);
-        int bad = na != nb || memcmp(pa, pb, na) != 0;
-        if (bad) {
+        const unsigned char *pa = a->field[k], *pb = b->field[k];
+        size_t na = a->bytes[k], nb = b->bytes[k];
+        if (na != nb || memcmp(pa, pb, na) != 0) {
             size_t at = 0;
             while (at < na && at < nb && pa[at] == pb[at])
                 at++;
             size_t idx = at / rs;
-            double va = rs == 8 ? ((double *)pa)[idx] : ((float *)pa)[idx];
-            double vb = rs == 8 ? ((double *)pb)[idx] : ((float *)pb)[idx];
-            snprintf(msg, len, "%s differs at component %zu (item %zu): %.17g vs %.17g", names[k], idx, idx / 3, va, vb);
-        }
-        free(pa);
-        free(pb);
-        if (bad)
+            double va = rs == 8 ? ((const double *)pa)[idx] : ((const float *)pa)[idx];
+            double vb = rs == 8 ? ((const double *)pb)[idx] : ((const float *)pb)[idx];
+            snprintf(msg, len, "%s differs at component %zu (item %zu): %.17g vs %.17g", snap_names[k], idx, idx / 3, va,
+                     vb);
             return 1;
+        }
     }
     /* what every touching pair keeps (tangential history, MC-strain's force, a law's state, a rolling spring), pair by
      * pair as dem_state_get lists them: by the callers' ids, whatever the storage order and the rows */
-    return pairs_state_diff(a, b, msg, len);
+    return pairs_state_diff(&a->st, &b->st, msg, len);
+}
+
+int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len)
+{
+    snapshot sa, sb;
+    snap_take(a, &sa);
+    snap_take(b, &sb);
+    int bad = snap_diff(&sa, &sb, msg, len);
+    snap_free(&sa);
+    snap_free(&sb);
+    return bad;
+}
+
+int state_diff_each(dem_sim *a, dem_sim *const *b, int nb, char *msg, size_t len)
+{
+    snapshot sa;
+    snap_take(a, &sa);
+    int bad = -1;
+    for (int k = 0; k < nb && bad < 0; k++) {
+        snapshot sb;
+        snap_take(b[k], &sb);
+        if (snap_diff(&sa, &sb, msg, len))
+            bad = k;
+        snap_free(&sb);
+    }
+    snap_free(&sa);
+    return bad;
 }
 
 uint64_t state_hash(dem_sim *s)

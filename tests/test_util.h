@@ -72,6 +72,9 @@ void step_or_fail(dem_sim *s, long n);
 /* Bitwise comparison of the dynamic state of two simulations (x, v, w, force, torque, wall force and the
  * tangential history of every pair in contact). Returns 0 when identical; else describes the first difference. */
 int state_diff(dem_sim *a, dem_sim *b, char *msg, size_t len);
+/* state_diff of a against each of b[0..nb-1], a's state read once (runs in lockstep with one reference): -1 when
+ * every one is bitwise equal to a, else the index of the first that is not, msg describing its first difference */
+int state_diff_each(dem_sim *a, dem_sim *const *b, int nb, char *msg, size_t len);
 /* Steps a and b by n each and fails the test (naming what and the step) unless their states are bitwise equal
  * (state_diff): twins on two backends, skins or storage orders */
 void twins_step(dem_sim *a, dem_sim *b, long n, const char *what);
