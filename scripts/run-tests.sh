@@ -3,9 +3,10 @@
 # CPUs), shows each one's whole output when it ends, with its wall time, and ends with one summary line
 # "N passed, N failed".
 #
-# Why more than one at a time: a test program alternates between PoCL (every core busy), the serial reference,
-# HDF5 files, Python reports and process start-up (one core or none), so one program alone leaves a core idle about
-# a third of the time; two keep both busy. The programs share nothing but the PoCL kernel cache (whose entries are
+# Why more than one at a time: a test program alternates between PoCL (its threads busy), PoCL compiling a kernel
+# program, the serial reference, HDF5 files, Python reports and process start-up (one core or none), so one program
+# alone leaves a core idle about a third of the time; two keep both busy. Three on 2 cores were slower: make test
+# with an empty PoCL cache took 907 s three at a time against 819 s two at a time (2026-12-07). The programs share nothing but the PoCL kernel cache (whose entries are
 # written whole and renamed into place) and the build, which make has finished before this runs; each one makes its
 # own temporary directory. TEST_JOBS=1 runs them one after the other.
 #
@@ -33,13 +34,14 @@ case "$jobs_max" in '' | *[!0-9]*) jobs_max=0 ;; *) jobs_max=$((10#$jobs_max)) ;
 times_file=${TEST_TIMES:-build/test-times.txt}
 
 # PoCL's worker threads: the cores shared out over the programs that run at once (one each on 2 cores, two at a
-# time), unless POCL_MAX_PTHREAD_COUNT is set already. PoCL starts one thread per core by default; two programs of two
-# threads each on 2 cores wake and wait for each other's threads at every kernel launch, and a small scene's step is
-# mostly launches: tablet_small's cycle ran 1.8x faster with one thread each (3.5 s against 1.9 s for 20 000 steps,
-# two at a time, 2026-12-07), the whole suite about a fifth faster. Every kernel's bits are the same on any number
-# of threads (the claim test_determinism checks: it runs its own PoCL on two threads against a one-thread run,
-# whatever this sets).
-if [ -z "${POCL_MAX_PTHREAD_COUNT+x}" ]; then
+# time), unless POCL_MAX_PTHREAD_COUNT or POCL_CPU_MAX_CU_COUNT (its newer name) is set already, even empty. PoCL
+# starts one thread per core by default; two programs of two threads each on 2 cores wake and wait for each other's
+# threads at every kernel launch, and a small scene's step is mostly launches: 20 000 steps of tablet_small took 3.5 s
+# with two threads each and 1.9 s with one, two runs at a time (2026-12-07). Every kernel's bits are the same on any
+# number of threads; the programs that check that for each family of laws (tests/test_util.h, test_pocl_threads:
+# classical, the multi-contact models, membranes, MDR, Thornton-Ning and adhesion) raise their own PoCL to
+# two threads whatever this sets, so a race between work-groups can still show in make test.
+if [ -z "${POCL_MAX_PTHREAD_COUNT+x}" ] && [ -z "${POCL_CPU_MAX_CU_COUNT+x}" ]; then
   cores=$(nproc)
   POCL_MAX_PTHREAD_COUNT=$((cores / jobs_max > 0 ? cores / jobs_max : 1))
   export POCL_MAX_PTHREAD_COUNT

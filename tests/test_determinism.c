@@ -92,7 +92,7 @@ static uint64_t run_hash(dem_precision prec, long steps)
 
 static char self_path[4096];
 
-/* The same OpenCL run twice in this process (its PoCL on two threads: main), then once in a fresh process (exec,
+/* The same OpenCL run twice in this process (its PoCL on two threads at least: main), then once in a fresh process (exec,
  * not fork: PoCL's worker threads do not survive a fork) whose PoCL runs a single thread. */
 static void test_repeat_and_threads(void **st)
 {
@@ -121,11 +121,9 @@ int main(int argc, char **argv)
         printf("%llx\n", (unsigned long long)run_hash(strcmp(argv[2], "fp64") ? DEM_FP32 : DEM_FP64, 300));
         return 0;
     }
-    /* this process's PoCL on two threads whatever its caller set (scripts/run-tests.sh gives each program one
-     * thread when programs share the cores): the lockstep runs and the default run of test_repeat_and_threads are the
-     * suite's runs with work-groups on more than one thread at once, and the child's one-thread run is compared
-     * with a many-thread one even on a one-core machine. Set before the first OpenCL call, which reads it. */
-    setenv("POCL_MAX_PTHREAD_COUNT", "2", 1);
+    /* this process's PoCL on two threads at least whatever its caller set (test_pocl_threads): the child's one-thread
+     * run is compared with a many-thread one even on a one-core machine */
+    test_pocl_threads();
     ssize_t len = readlink("/proc/self/exe", self_path, sizeof self_path - 1);
     if (len > 0)
         self_path[len] = 0;

@@ -1051,6 +1051,7 @@ static void test_refused(void **state)
 
 int main(void)
 {
+    test_pocl_threads(); /* the suite's multi-thread runs of these laws (test_util.h) */
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pair_path),
         cmocka_unit_test(test_unequal_adhesive_pair),

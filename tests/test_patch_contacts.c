@@ -786,6 +786,7 @@ static void test_patch_variants(void **st)
 
 int main(void)
 {
+    test_pocl_threads(); /* the suite's multi-thread runs of these laws (test_util.h) */
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_across_sheet),
         cmocka_unit_test(test_edge_points),

@@ -568,6 +568,7 @@ static void test_refusals(void **st)
 
 int main(void)
 {
+    test_pocl_threads(); /* the suite's multi-thread runs of these laws (test_util.h) */
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_elastic_fp64), cmocka_unit_test(test_elastic_fp32), cmocka_unit_test(test_plastic_fp64),
         cmocka_unit_test(test_plastic_fp32), cmocka_unit_test(test_wall_fp64), cmocka_unit_test(test_wall_fp32),

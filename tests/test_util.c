@@ -244,6 +244,13 @@ void start_or_fail(dem_sim *s, const dem_config *c)
         fail_msg("dem_start: %s", dem_error(s));
 }
 
+void test_pocl_threads(void)
+{
+    const char *v = getenv("POCL_MAX_PTHREAD_COUNT");
+    if (!v || atoi(v) < 2)
+        setenv("POCL_MAX_PTHREAD_COUNT", "2", 1);
+}
+
 void step_or_fail(dem_sim *s, long n)
 {
     if (dem_step(s, n) != DEM_OK)

@@ -68,6 +68,14 @@ void packing_pair(const packing_opts *o, const dem_config *rc, const dem_config 
 /* dem_start, failing the test with the library's message. */
 void start_or_fail(dem_sim *s, const dem_config *c);
 void step_or_fail(dem_sim *s, long n);
+/* This process's PoCL on at least two threads (POCL_MAX_PTHREAD_COUNT raised to 2 where unset or lower; called
+ * first in main, before any OpenCL call reads it). scripts/run-tests.sh gives each program one thread when the
+ * programs fill the cores; the programs that call this keep work-groups running on two threads at once, so a race
+ * between work-groups can still show as a difference from the reference: test_determinism (classical),
+ * test_multicontact (MC-stress, MC-strain), test_patch_contacts (membranes), test_mdr_run (MDR) and test_tn_adhesion
+ * (Thornton-Ning, JKR adhesion). Not test_bonds: its small scenes' thousands of launches took 88 s on two threads
+ * against 47 s on one (a bond is a per-pair term of contact_forces, whose loops classical runs on two threads). */
+void test_pocl_threads(void);
 
 /* Bitwise comparison of the dynamic state of two simulations (x, v, w, force, torque, wall force and the
  * tangential history of every pair in contact). Returns 0 when identical; else describes the first difference. */
