@@ -6,9 +6,10 @@
 # Why more than one at a time: a test program alternates between PoCL (its threads busy), PoCL compiling a kernel
 # program, the serial reference, HDF5 files, Python reports and process start-up (one core or none), so one program
 # alone leaves a core idle about a third of the time; two keep both busy. Three on 2 cores were slower: make test
-# with an empty PoCL cache took 907 s three at a time against 819 s two at a time (2026-12-07). The programs share nothing but the PoCL kernel cache (whose entries are
-# written whole and renamed into place) and the build, which make has finished before this runs; each one makes its
-# own temporary directory. TEST_JOBS=1 runs them one after the other.
+# with an empty PoCL cache took 907 s three at a time against 819 s two at a time (2026-12-07). The programs share
+# nothing but the PoCL kernel cache (whose entries are written whole and renamed into place) and the build, which make
+# has finished before this runs; each one makes its own temporary directory. TEST_JOBS=1 runs them one after the
+# other.
 #
 # Order: the longest first, by the wall times of the last run (build/test-times.txt, written at the end; TEST_TIMES
 # names another file), so that a long program does not start last and run alone; programs without a time keep their

@@ -92,8 +92,8 @@ static uint64_t run_hash(dem_precision prec, long steps)
 
 static char self_path[4096];
 
-/* The same OpenCL run twice in this process (its PoCL on two threads at least: main), then once in a fresh process (exec,
- * not fork: PoCL's worker threads do not survive a fork) whose PoCL runs a single thread. */
+/* The same OpenCL run twice in this process (its PoCL on two threads at least: main), then once in a fresh process
+ * (exec, not fork: PoCL's worker threads do not survive a fork) whose PoCL runs a single thread. */
 static void test_repeat_and_threads(void **st)
 {
     (void)st;
