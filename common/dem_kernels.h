@@ -34,7 +34,7 @@
 #define DEM_KERNEL_LIST(K)                                                                                           \
     K(bin_bounds) K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
     K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
-    K(integrate_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
+    K(integrate_kick_drift) K(integrate_kick_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
     K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack) K(halo_pack_rows) K(halo_unpack_rows)
 
@@ -159,6 +159,9 @@
     A(BIN, real, invinertia, INVINERTIA) A(BIN, real, x_build, X_BUILD) A(BOUT, int, flags, FLAGS)                  \
     A(BIN, unsigned, hold, HOLD)
 #define DEM_ITEMS_integrate_kick_drift n
+/* the last step's kick and this step's kick and drift in one pass over the particles (host/core/step_loop.c) */
+#define DEM_ARGS_integrate_kick_kick_drift(F, A) DEM_ARGS_integrate_kick_drift(F, A)
+#define DEM_ITEMS_integrate_kick_kick_drift n
 #define DEM_ARGS_integrate_kick(F, A)                                                                                \
     F(I, int, n, N) A(R, real, dt, DT) A(R, real, gx, GX) A(R, real, gy, GY) A(R, real, gz, GZ)                      \
     A(BOUT, real, v, V) A(BOUT, real, w, W) A(BIN, real, force, FORCE) A(BIN, real, torque, TORQUE)                  \

@@ -1,4 +1,5 @@
-/* test_integrate.c - the kernels integrate_kick_drift, integrate_kick and their reference twins, on every
+/* test_integrate.c - the kernels integrate_kick_drift, integrate_kick, integrate_kick_kick_drift (the two joined:
+ * test_joined_kicks) and their reference twins, on every
  * backend x precision: a free particle under gravity follows x0 + v0 t + g t^2 / 2 and v0 + g t (velocity Verlet
  * is exact for a constant force, so only rounding remains: checked to 4 eps per step of the motion's scale), spins
  * at its initial angular velocity (no torque), and a fixed particle stays exactly where it is. With the gravity
@@ -8,6 +9,8 @@
 #include "test_util.h"
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #define STEPS 1000
 #define DT 1e-5
@@ -153,6 +156,63 @@ static void test_hold(void **st)
     backend_run(bc, build_hold, STEPS, check_hold, NULL);
 }
 
+/* The second kick of a step joined to the next step's first (integrate_kick_kick_drift, host/core/step_loop.c): a
+ * dense, frictional packing under gravity with a moving lid stepped 300 times in one dem_step call (joined: every
+ * step but the last) has, on every backend and precision, the bits of the same run stepped one step per call (never
+ * joined: each call's last step kicks alone), and PoCL's have the reference's. The joined run's last step must have
+ * begun with the joined launch and the other's not, so that the comparison is of the two paths. */
+static int last_step_has(dem_sim *s, const char *kernel)
+{
+    char seq[2048] = "";
+    dem_kernel_sequence(s, 0, seq, sizeof seq);
+    size_t ln = strlen(kernel);
+    for (const char *at = strstr(seq, kernel); at; at = strstr(at + 1, kernel))
+        if ((at == seq || at[-1] == ' ') && (at[ln] == ',' || at[ln] == 0))
+            return 1;
+    return 0;
+}
+
+static void test_joined_kicks(void **st)
+{
+    (void)st;
+    packing_opts o;
+    packing_defaults(&o);
+    o.side = 6; /* 216 + 125 spheres */
+    for (int p = 0; p < 2; p++) {
+        dem_precision prec = p ? DEM_FP32 : DEM_FP64;
+        dem_sim *runs[4]; /* reference joined, PoCL joined, reference one step a call, PoCL one step a call */
+        for (int k = 0; k < 4; k++) {
+            runs[k] = packing_build(&o);
+            dem_config c = cfg_of(k % 2 ? DEM_BACKEND_OPENCL : DEM_BACKEND_REFERENCE, prec);
+            start_or_fail(runs[k], &c);
+        }
+        int n = dem_count(runs[0]);
+        double *xa = malloc(sizeof(double) * 3 * (size_t)n), *xb = malloc(sizeof(double) * 3 * (size_t)n);
+        assert_int_equal(dem_get_field(runs[0], DEM_FIELD_X, xa), 0);
+        for (int k = 0; k < 2; k++)
+            assert_int_equal(dem_step(runs[k], 300), 0);
+        for (int t = 0; t < 300; t++)
+            for (int k = 2; k < 4; k++)
+                assert_int_equal(dem_step(runs[k], 1), 0);
+        for (int k = 0; k < 4; k++) {
+            assert_int_equal(last_step_has(runs[k], "integrate_kick_kick_drift"), k < 2);
+            assert_int_equal(last_step_has(runs[k], "integrate_kick_drift"), k >= 2);
+        }
+        assert_int_equal(dem_get_field(runs[0], DEM_FIELD_X, xb), 0);
+        assert_true(memcmp(xa, xb, sizeof(double) * 3 * (size_t)n)); /* it moved */
+        free(xa), free(xb);
+        char msg[512];
+        dem_sim *others[3] = {runs[0], runs[1], runs[3]};
+        int d = state_diff_each(runs[2], others, 3, msg, sizeof msg);
+        if (d >= 0)
+            fail_msg("%s: joined kicks: %s", prec == DEM_FP32 ? "fp32" : "fp64", msg);
+        printf("  %s: 300 steps in one call (kicks joined) = 300 calls of one step, reference and PoCL\n",
+               prec == DEM_FP32 ? "fp32" : "fp64");
+        for (int k = 0; k < 4; k++)
+            dem_destroy(runs[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -160,6 +220,7 @@ int main(void)
         cmocka_unit_test(test_free_flight),
         cmocka_unit_test(test_gravity_off),
         cmocka_unit_test(test_explicit_mass),
+        cmocka_unit_test(test_joined_kicks),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

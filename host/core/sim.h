@@ -117,6 +117,9 @@ struct sim_run {
     long force_step;   /* step index of the positions the forces are computed at (walls, pressure schedule) */
     int wall_sums_due; /* this step's force stages sum the force each wall received (dem_step) */
     int sample_row;    /* >= 0: this step is sampled into that row of the series ring (series.h) */
+    int kick_pending;  /* the last step's second kick is left to the next step's first launch
+                          (integrate_kick_kick_drift): only inside a dem_step or dem_step_sampled call, never after
+                          its last step */
     int forces_due;    /* started by sim_start_deferred: the start's forces not computed yet (sim_start_forces) */
     int halo_agreed;   /* a split run (halo_hook): this step's failure was agreed at a meeting of the ranks */
     int halo_learned;  /* ... and this rank's own step had not failed: another rank's did (its caller reports that

@@ -1,6 +1,6 @@
 /* step_loop.c - the run: dem_start, and each step (dem_step, sim_step_once): kick and drift, the walls' move, a
  * rebuild when due (rebuild.c), the force stages in order (the pressure schedule, MC-strain's iteration), and the
- * second kick. Every decision is taken here the same way for every backend. */
+ * second kick (inside a dem_step call, joined to the next step's first). Every decision is taken here the same way for every backend. */
 #include "sim.h"
 #include "dem_layout.h"
 #include <math.h>
@@ -251,9 +251,12 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row)
     dem_core *c = DEM_CORE(s->be);
     c->ntrace = 0;
     s->trace.rebuild_at = s->trace.rebuild_len = 0;
-    if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, K_integrate_kick_drift) ||
-        ((s->effects & DEM_EFFECT_MDR) && dem_launch(s->ops, s->be, K_mdr_begin))) /* MDR's radii: before the
-                                                                                       rebuild test (mdr_particle.h) */
+    dem_kernel_id first = s->run.kick_pending ? K_integrate_kick_kick_drift : K_integrate_kick_drift;
+    if (dem_stage_reset_flags(s->ops, s->be) || dem_launch(s->ops, s->be, first))
+        return sim_be_fail(s); /* a kick still pending stays so: a step tried again still carries it */
+    s->run.kick_pending = 0;
+    if ((s->effects & DEM_EFFECT_MDR) && dem_launch(s->ops, s->be, K_mdr_begin)) /* MDR's radii: before the rebuild
+                                                                                   test (mdr_particle.h) */
         return sim_be_fail(s);
     /* walls move with the particles' drift: positions at t + dt, velocity of this step */
     if (s->nwalls && (e = sim_walls_move(s)))
@@ -272,7 +275,15 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row)
         dem_stage_series_arm(s->ops, s->be, 0, 0);
         return e;
     }
-    if (dem_launch(s->ops, s->be, K_integrate_kick) || (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
+    /* The second kick. Where nothing reads the velocities before the next step's first kick - a step that is not the
+     * last of its call (wall_sums: dem_step, dem_step_sampled; a host-sampled step is one) and not sampled on the
+     * device, in a run that is not a rank's part of a split run (whose halo exchanges read them; its parts step one
+     * step a call anyway) - it is left to that kick's launch (integrate_kick_kick_drift: the same bits, one pass
+     * over the particles fewer). */
+    if (!wall_sums && sample_row < 0 && !s->halo_hook && !s->said_ids)
+        s->run.kick_pending = 1;
+    else if (dem_launch(s->ops, s->be, K_integrate_kick) ||
+             (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 0, 0)))
         return sim_be_fail(s);
     s->run.sample_row = -1;
     s->trace.nstep = sim_copy_trace(c, 0, s->trace.rebuild_len ? s->trace.rebuild_at : c->ntrace, s->trace.step, 0);

@@ -1,5 +1,6 @@
 /* integrate.c - the flags each step starts from (the half steps themselves are one launch each: integrate_kick_drift,
- * integrate_kick of common/integrate.h). Written once for every backend. */
+ * integrate_kick, or the two joined, integrate_kick_kick_drift, of common/integrate.h; host/core/step_loop.c chooses).
+ * Written once for every backend. */
 #include "backend.h"
 
 /* Non-blocking: the source is static, and the driver's next flag read waits for the queue anyway. */
