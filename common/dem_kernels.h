@@ -34,8 +34,8 @@
 #define DEM_KERNEL_LIST(K)                                                                                           \
     K(bin_bounds) K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
     K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
-    K(integrate_kick_drift) K(integrate_kick_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor) K(mc_strain_disp)                     \
-    K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
+    K(integrate_kick_drift) K(integrate_kick_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor)          \
+    K(mc_strain_disp) K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack) K(halo_pack_rows) K(halo_unpack_rows)
 
 /* ---- binning.h ---- */

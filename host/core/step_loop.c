@@ -1,6 +1,7 @@
 /* step_loop.c - the run: dem_start, and each step (dem_step, sim_step_once): kick and drift, the walls' move, a
  * rebuild when due (rebuild.c), the force stages in order (the pressure schedule, MC-strain's iteration), and the
- * second kick (inside a dem_step call, joined to the next step's first). Every decision is taken here the same way for every backend. */
+ * second kick (inside a call, joined to the next step's first). Every decision is taken here the same way for every
+ * backend. */
 #include "sim.h"
 #include "dem_layout.h"
 #include <math.h>
