@@ -585,6 +585,17 @@ typedef struct {
     char narrow[512]; /* kernels of every step with fewer work-groups of BED_GROUP items than compute units */
 } bed_result;
 
+/* Whether a kernel sequence (dem_kernel_sequence: "a, b, c") names the kernel, whole (not integrate_kick inside
+ * integrate_kick_drift) */
+static int in_sequence(const char *seq, const char *name)
+{
+    size_t ln = strlen(name);
+    for (const char *at = strstr(seq, name); at; at = strstr(at + 1, name))
+        if ((at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' '))
+            return 1;
+    return 0;
+}
+
 /* The work-group size the bench counts groups in (a GPU's usual choice; the runtime picks its own) */
 #define BED_GROUP 64
 
@@ -646,10 +657,7 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     r->narrow[0] = 0;
     for (int k = 0; k < cnt && cu > 0; k++) { /* every kernel of the step's sequence, walls' sums included */
         const char *nm = names[k];
-        size_t ln = strlen(nm);
-        int in_step = 0;
-        for (const char *at = strstr(seq, nm); at && !in_step; at = strstr(at + 1, nm))
-            in_step = (at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' ');
+        int in_step = in_sequence(seq, nm);
         long items = dem_kernel_item_count(s, k);
         if (in_step && items > 0 && (items + BED_GROUP - 1) / BED_GROUP < cu)
             nl += (size_t)snprintf(r->narrow + nl, sizeof r->narrow - nl, "%s%s %ld", nl ? ", " : "", nm, items);
@@ -658,11 +666,8 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     }
     for (int k = 0; k < cnt && k < 64 && profile; k++) {
         double us = 1e6 * (secs[k] - before[k]) / steps;
-        size_t ln = strlen(names[k]);
-        int each_step = 0;
-        for (const char *at = strstr(seq, names[k]); at && !each_step; at = strstr(at + 1, names[k]))
-            each_step = (at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' ');
-        each_step = each_step && strncmp(names[k], "wall_reduce", 11) && strcmp(names[k], "integrate_kick");
+        int each_step = in_sequence(seq, names[k]) && strncmp(names[k], "wall_reduce", 11) &&
+                        strcmp(names[k], "integrate_kick");
         if (each_step)
             r->step_bytes += dem_kernel_bytes(s, k);
         if (us >= 1 && each_step)

@@ -74,7 +74,8 @@ void step_or_fail(dem_sim *s, long n);
  * between work-groups can still show as a difference from the reference: test_determinism (classical),
  * test_multicontact (MC-stress, MC-strain), test_patch_contacts (membranes), test_mdr_run (MDR) and test_tn_adhesion
  * (Thornton-Ning, JKR adhesion). Not test_bonds: its small scenes' thousands of launches took 88 s on two threads
- * against 34 s on one (warm kernel cache, beside another program) (a bond is a per-pair term of contact_forces, whose loops classical runs on two threads). */
+ * against 34 s on one (warm kernel cache, beside another program); a bond is a per-pair term of contact_forces, whose
+ * loops classical runs on two threads. */
 void test_pocl_threads(void);
 
 /* Bitwise comparison of the dynamic state of two simulations (x, v, w, force, torque, wall force and the
