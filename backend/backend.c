@@ -322,20 +322,28 @@ size_t dem_ref_bytes(const dem_core *c, dem_bufref r)
     return r.table == TABLE_ONE ? c->bytes[r.id] : c->row_bytes[r.table == TABLE_CUR ? c->cur : 1 - c->cur][r.id];
 }
 
-/* The bytes of every buffer kernel k is given (its argument list), as bound now: what it could move if it touched
- * each byte once - the traffic model of make bench's bandwidth column. */
-size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
+/* The buffers kernel k is given (its argument list), as bound now: up to max of them, each one's argument name and
+ * bytes, in argument order; returns how many it is given. */
+int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, size_t *bytes, int max)
 {
-    size_t total = 0;
+    int count = 0;
+#define BB_ADD(name, b)                                                                                              \
+    do {                                                                                                             \
+        if (count < max) {                                                                                           \
+            names[count] = #name;                                                                                    \
+            bytes[count] = (b);                                                                                      \
+        }                                                                                                            \
+        count++;                                                                                                     \
+    } while (0);
 #define BB_I(type, name, src)
 #define BB_R(type, name, src)
-#define BB_BIN(type, name, src) total += c->bytes[BUF_##src];
+#define BB_BIN(type, name, src) BB_ADD(name, c->bytes[BUF_##src])
 #define BB_BOUT BB_BIN
-#define BB_CIN(type, name, src) total += c->row_bytes[c->cur][ROW_##src];
+#define BB_CIN(type, name, src) BB_ADD(name, c->row_bytes[c->cur][ROW_##src])
 #define BB_COUT BB_CIN
-#define BB_NIN(type, name, src) total += c->row_bytes[1 - c->cur][ROW_##src];
+#define BB_NIN(type, name, src) BB_ADD(name, c->row_bytes[1 - c->cur][ROW_##src])
 #define BB_NOUT BB_NIN
-#define BB_AIN(type, name, src) total += dem_ref_bytes(c, c->alias[ALIAS_##src]);
+#define BB_AIN(type, name, src) BB_ADD(name, dem_ref_bytes(c, c->alias[ALIAS_##src]))
 #define BB_AOUT BB_AIN
 #define BB_ARG(kind, type, name, src) BB_##kind(type, name, src)
 #define BB_CASE(name)                                                                                                \
@@ -346,6 +354,18 @@ size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
     default:
         break;
     }
+    return count;
+}
+
+/* The bytes of every buffer kernel k is given, as bound now: what it could move if it touched each byte once - the
+ * traffic model of make bench's bandwidth column. */
+size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
+{
+    const char *names[DEM_KERNEL_ARGS_MAX];
+    size_t bytes[DEM_KERNEL_ARGS_MAX], total = 0;
+    int count = dem_kernel_bound_list(c, k, names, bytes, DEM_KERNEL_ARGS_MAX);
+    for (int a = 0; a < count && a < DEM_KERNEL_ARGS_MAX; a++)
+        total += bytes[a];
     return total;
 }
 

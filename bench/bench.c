@@ -583,7 +583,39 @@ typedef struct {
     unsigned long long hash;
     char kernels[1024];
     char narrow[512]; /* kernels of every step with fewer work-groups of BED_GROUP items than compute units */
+    char buffers[2048]; /* step_bytes buffer by buffer: "kernel: name B, name B, ...; kernel: ..." [bytes / n] */
 } bed_result;
+
+typedef struct {
+    const char *name;
+    double bytes;
+} buffer_bytes;
+
+static int by_bytes_down(const void *a, const void *b)
+{
+    double x = ((const buffer_bytes *)a)->bytes, y = ((const buffer_bytes *)b)->bytes;
+    return x < y ? 1 : x > y ? -1 : strcmp(((const buffer_bytes *)a)->name, ((const buffer_bytes *)b)->name);
+}
+
+/* kernel k's buffers of at least half a byte per particle, the largest first, as "kernel: name B, name B" after what
+ * buf holds (len of it) */
+static size_t buffer_list(dem_sim *s, int k, const char *kernel, long n, char *buf, size_t size, size_t len)
+{
+    const char *names[128];
+    double bytes[128];
+    int count = dem_kernel_buffers(s, k, names, bytes, 128);
+    buffer_bytes b[128];
+    int m = 0;
+    for (int a = 0; a < count && a < 128; a++)
+        if (bytes[a] / (double)n >= 0.5)
+            b[m++] = (buffer_bytes){names[a], bytes[a] / (double)n};
+    qsort(b, (size_t)m, sizeof *b, by_bytes_down);
+    if (len < size)
+        len += (size_t)snprintf(buf + len, size - len, "%s%s:", len ? "; " : "", kernel);
+    for (int a = 0; a < m && len < size; a++)
+        len += (size_t)snprintf(buf + len, size - len, "%s %s %.0f", a ? "," : "", b[a].name, b[a].bytes);
+    return len;
+}
 
 /* Whether a kernel sequence (dem_kernel_sequence: "a, b, c") names the kernel, whole (not integrate_kick inside
  * integrate_kick_drift) */
@@ -664,12 +696,15 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
         if (nl >= sizeof r->narrow)
             break;
     }
+    size_t blen = 0;
     for (int k = 0; k < cnt && k < 64 && profile; k++) {
         double us = 1e6 * (secs[k] - before[k]) / steps;
         int each_step = in_sequence(seq, names[k]) && strncmp(names[k], "wall_reduce", 11) &&
                         strcmp(names[k], "integrate_kick");
-        if (each_step)
+        if (each_step) {
             r->step_bytes += dem_kernel_bytes(s, k);
+            blen = buffer_list(s, k, names[k], r->n, r->buffers, sizeof r->buffers, blen);
+        }
         if (us >= 1 && each_step)
             len += (size_t)snprintf(r->kernels + len, sizeof r->kernels - len, "%s%s %.0f (%.1f GB/s)", len ? ", " : "",
                                     names[k], us, dem_kernel_bytes(s, k) / (us * 1e-6) / 1e9);
@@ -744,7 +779,7 @@ static void bed_table(int quick)
                 path, dev, gbs);
     double lnN[8], lnT[8];
     int nfit = 0, first = 1, narrow_said[4] = {0}, narrow_rows = 0;
-    char narrow[4][600] = {"", "", "", ""};
+    char narrow[4][600] = {"", "", "", ""}, buffers[2][2200] = {"", ""}; /* buffers: fp64, fp32 */
     const char *only_sizes = getenv("DEM_BENCH_BED_SIZES"); /* e.g. "3": the 1e6 rows only (0..3: 1e3 .. 1e6) */
     for (int z = 0; z < nsizes; z++)
         for (int q = 0; q < 4; q++) {
@@ -772,6 +807,8 @@ static void bed_table(int quick)
                 snprintf(narrow[z], sizeof narrow[z], "n = %ld: %s", ro.n, rp.narrow);
                 narrow_said[z] = 1;
             }
+            if (ro.n >= 50000 && sorted && rp.buffers[0]) /* the largest sorted rows' (the last seen) */
+                snprintf(buffers[p], sizeof buffers[p], "n = %ld, %s: %s", ro.n, p ? "fp32" : "fp64", rp.buffers);
             if (have_ref)
                 printf("| %ld | %s | | reference | %s | %.3g | | | | |\n", rr.n, order, p ? "fp32" : "fp64", rr.rate);
             fflush(stdout);
@@ -803,12 +840,20 @@ static void bed_table(int quick)
         if (narrow[z][0])
             printf("%s%s", any++ ? "; " : "", narrow[z]);
     printf("%s\n", any ? " (items per launch)" : narrow_rows ? "none" : "not measured (no row of 5e4 spheres or more)");
+    /* where bytes/particle-step comes from: the buffers of each kernel of every step (docs/design.md "Bytes per
+     * particle-step") */
+    printf("\nBytes per particle-step by buffer (sorted, the largest n of 5e4 or more; each kernel of every step, its "
+           "buffers of at least 0.5 byte a particle, largest first): ");
+    for (int p = 1; p >= 0; p--)
+        printf("%s%s", p == 0 && buffers[1][0] ? ". " : "", buffers[p]);
+    printf("%s\n", buffers[0][0] || buffers[1][0] ? "" : "not measured (no row of 5e4 spheres or more)");
     if (js) {
         fprintf(js, "\n  ],\n  \"narrow_kernels\": \"");
         for (int z = 0, a = 0; z < 4; z++)
             if (narrow[z][0])
                 fprintf(js, "%s%s", a++ ? "; " : "", narrow[z]);
-        fprintf(js, "\",\n  \"conform\": \"%s\",\n", conform_summary());
+        fprintf(js, "\",\n  \"step_buffers_fp32\": \"%s\",\n  \"step_buffers_fp64\": \"%s\",\n  \"conform\": \"%s\",\n",
+                buffers[1], buffers[0], conform_summary());
     }
     if (nfit >= 2) { /* least squares slope of ln(time per step) on ln n, fp64 OpenCL, n >= 5000 */
         double sx = 0, sy = 0, sxx = 0, sxy = 0;

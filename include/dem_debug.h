@@ -74,6 +74,10 @@ int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, in
  * would move if it touched each byte once (make bench divides it by the kernel's time: a bandwidth to set against
  * the device's copy rate). */
 double dem_kernel_bytes(const dem_sim *s, int k);
+/* dem_kernel_bytes buffer by buffer: the first max of kernel k's buffers, each one's argument name (as the kernel's
+ * source names it) and bytes as now allocated, in argument order; returns how many buffers it is given (0 before
+ * dem_start). */
+int dem_kernel_buffers(const dem_sim *s, int k, const char **names, double *bytes, int max);
 /* The work items kernel k (an index of dem_kernel_times' names) would be launched with now (its DEM_ITEMS_ rule at the
  * run's present sizes; make bench sets it against the device's compute units). 0 before dem_start. */
 long dem_kernel_item_count(const dem_sim *s, int k);

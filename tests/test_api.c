@@ -6,7 +6,9 @@
 #include "test_util.h"
 #include <stdio.h>
 #include "dem_internal_bits.h"
+#include "dem_layout.h" /* PR_STRIDE */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const dem_material glass = {2500, 1e7, 0.3, 0.5, 0.3};
@@ -195,11 +197,69 @@ static void test_devices(void **st)
     assert_int_equal(dem_device_describe(-1, what, sizeof what), DEM_ERR_DEVICE);
 }
 
+/* make bench's byte count of a kernel (dem_kernel_bytes) buffer by buffer (dem_kernel_buffers): the parts add up to
+ * the whole, the particle arrays are as long as their particles, a pair's record is PR_STRIDE reals beside its one
+ * index (fp32: four bytes each), and a short list says how many there are */
+static size_t buffer_of(const char *const *names, const double *bytes, int count, const char *name)
+{
+    for (int a = 0; a < count; a++)
+        if (!strcmp(names[a], name))
+            return (size_t)bytes[a];
+    fail_msg("no buffer %s", name);
+    return 0;
+}
+
+static void test_kernel_buffers(void **st)
+{
+    (void)st;
+    setenv("DEM_PROFILE", "1", 1); /* dem_kernel_times' names and count */
+    packing_opts o;
+    packing_defaults(&o);
+    dem_sim *s = packing_build(&o);
+    dem_config c = cfg_of(DEM_BACKEND_OPENCL, DEM_FP32);
+    start_or_fail(s, &c);
+    step_or_fail(s, 3);
+    unsetenv("DEM_PROFILE");
+    const char **kn;
+    const double *secs;
+    int kc = 0, seen = 0, n = dem_count(s);
+    assert_int_equal(dem_kernel_times(s, &kn, &secs, &kc), 0);
+    assert_true(kc > 0);
+    for (int k = 0; k < kc; k++) {
+        const char *names[128];
+        double bytes[128], sum = 0;
+        int count = dem_kernel_buffers(s, k, names, bytes, 128);
+        assert_true(count >= 0 && count <= 128);
+        for (int a = 0; a < count; a++)
+            sum += bytes[a];
+        assert_true(sum == dem_kernel_bytes(s, k));
+        if (!strcmp(kn[k], "contact_forces")) {
+            size_t x = buffer_of(names, bytes, count, "x");
+            assert_true(x >= (size_t)12 * (size_t)n);
+            assert_true(buffer_of(names, bytes, count, "force") == x);
+            const char *two[3] = {0, 0, "untouched"};
+            double b2[3] = {0, 0, -1};
+            assert_int_equal(dem_kernel_buffers(s, k, two, b2, 2), count);
+            assert_true(two[0] && !strcmp(two[2], "untouched") && b2[2] == -1);
+            seen++;
+        } else if (!strcmp(kn[k], "contact_pairs")) {
+            size_t host = buffer_of(names, bytes, count, "pair_host");
+            assert_true(host > 0 && buffer_of(names, bytes, count, "pair") == PR_STRIDE * host);
+            assert_true(buffer_of(names, bytes, count, "pair_guest") == host);
+            seen++;
+        }
+    }
+    assert_int_equal(seen, 2);
+    assert_int_equal(dem_kernel_buffers(s, kc, (const char *[1]){0}, (double[1]){0}, 1), 0);
+    dem_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_status_values), cmocka_unit_test(test_bad_arguments), cmocka_unit_test(test_after_start),
         cmocka_unit_test(test_meshes),        cmocka_unit_test(test_field_numbers), cmocka_unit_test(test_devices),
+        cmocka_unit_test(test_kernel_buffers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -52,6 +52,20 @@ double dem_kernel_bytes(const dem_sim *s, int k)
     return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
 }
 
+int dem_kernel_buffers(const dem_sim *s, int k, const char **names, double *bytes, int max)
+{
+    if (!s->be || k < 0 || k >= K__COUNT)
+        return 0;
+    const char *nm[DEM_KERNEL_ARGS_MAX];
+    size_t b[DEM_KERNEL_ARGS_MAX];
+    int count = dem_kernel_bound_list(DEM_CORE(s->be), (dem_kernel_id)k, nm, b, DEM_KERNEL_ARGS_MAX);
+    for (int a = 0; a < count && a < max && a < DEM_KERNEL_ARGS_MAX; a++) {
+        names[a] = nm[a];
+        bytes[a] = (double)b[a];
+    }
+    return count;
+}
+
 long dem_kernel_item_count(const dem_sim *s, int k)
 {
     return s->be && k >= 0 && k < K__COUNT ? (long)dem_kernel_items(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
