@@ -2,6 +2,7 @@
  * walked for every backend: sizes, creation, field lookup, work-item counts, and the compile-time check that each
  * kernel argument's element type is its buffer's. */
 #include "backend.h"
+#include "dem_debug.h" /* DEM_KERNEL_BUFFERS_MAX */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -32,6 +33,21 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 #define CHECK_ARG(kind, type, name, src) CHECK_##kind(type, src)
 #define CHECK_KERNEL(name) DEM_ARGS_##name(CHECK_ARG, CHECK_ARG)
 DEM_KERNEL_LIST(CHECK_KERNEL)
+/* every kernel's buffers fit dem_kernel_bound_list's callers' lists (dem_debug.h) */
+#define NBUF_I(type, src)
+#define NBUF_R(type, src)
+#define NBUF_BIN(type, src) +1
+#define NBUF_BOUT NBUF_BIN
+#define NBUF_CIN NBUF_BIN
+#define NBUF_COUT NBUF_BIN
+#define NBUF_NIN NBUF_BIN
+#define NBUF_NOUT NBUF_BIN
+#define NBUF_AIN NBUF_BIN
+#define NBUF_AOUT NBUF_BIN
+#define NBUF_ARG(kind, type, name, src) NBUF_##kind(type, src)
+#define NBUF_KERNEL(name)                                                                                            \
+    _Static_assert(0 DEM_ARGS_##name(NBUF_ARG, NBUF_ARG) <= DEM_KERNEL_BUFFERS_MAX, #name ": too many buffers");
+DEM_KERNEL_LIST(NBUF_KERNEL)
 _Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 26 && ST_STRIDE == 6 &&
                    MDR_PAIR_STRIDE == 25 && MDR_WALL_STRIDE == 13 && MDR_P_STRIDE == 14,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
@@ -327,6 +343,7 @@ size_t dem_ref_bytes(const dem_core *c, dem_bufref r)
 int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, size_t *bytes, int max)
 {
     int count = 0;
+/* a statement each (the argument lists have no separators between their entries) */
 #define BB_ADD(name, b)                                                                                              \
     do {                                                                                                             \
         if (count < max) {                                                                                           \
@@ -361,10 +378,10 @@ int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names
  * traffic model of make bench's bandwidth column. */
 size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
 {
-    const char *names[DEM_KERNEL_ARGS_MAX];
-    size_t bytes[DEM_KERNEL_ARGS_MAX], total = 0;
-    int count = dem_kernel_bound_list(c, k, names, bytes, DEM_KERNEL_ARGS_MAX);
-    for (int a = 0; a < count && a < DEM_KERNEL_ARGS_MAX; a++)
+    const char *names[DEM_KERNEL_BUFFERS_MAX];
+    size_t bytes[DEM_KERNEL_BUFFERS_MAX], total = 0;
+    int count = dem_kernel_bound_list(c, k, names, bytes, DEM_KERNEL_BUFFERS_MAX); /* all of them (asserted above) */
+    for (int a = 0; a < count; a++)
         total += bytes[a];
     return total;
 }

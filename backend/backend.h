@@ -201,8 +201,6 @@ size_t dem_ref_bytes(const dem_core *c, dem_bufref r);
 /* Number of work items of kernel k with the core's current scalars. */
 size_t dem_kernel_items(const dem_core *c, dem_kernel_id k);
 size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k);
-/* more than any kernel's argument count (contact_forces has about 50); dem_kernel_bound_list reports the true count */
-#define DEM_KERNEL_ARGS_MAX 128
 int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, size_t *bytes, int max);
 
 /* Launches kernel k (o->launch), recording it in the core's trace. The steps launch through it; a step that is one

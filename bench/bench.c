@@ -601,12 +601,12 @@ static int by_bytes_down(const void *a, const void *b)
  * buf holds (len of it) */
 static size_t buffer_list(dem_sim *s, int k, const char *kernel, long n, char *buf, size_t size, size_t len)
 {
-    const char *names[128];
-    double bytes[128];
-    int count = dem_kernel_buffers(s, k, names, bytes, 128);
-    buffer_bytes b[128];
+    const char *names[DEM_KERNEL_BUFFERS_MAX];
+    double bytes[DEM_KERNEL_BUFFERS_MAX];
+    int count = dem_kernel_buffers(s, k, names, bytes, DEM_KERNEL_BUFFERS_MAX);
+    buffer_bytes b[DEM_KERNEL_BUFFERS_MAX];
     int m = 0;
-    for (int a = 0; a < count && a < 128; a++)
+    for (int a = 0; a < count && a < DEM_KERNEL_BUFFERS_MAX; a++)
         if (bytes[a] / (double)n >= 0.5)
             b[m++] = (buffer_bytes){names[a], bytes[a] / (double)n};
     qsort(b, (size_t)m, sizeof *b, by_bytes_down);
@@ -845,7 +845,7 @@ static void bed_table(int quick)
     printf("\nBytes per particle-step by buffer (sorted, the largest n of 5e4 or more; each kernel of every step, its "
            "buffers of at least 0.5 byte a particle, largest first): ");
     for (int p = 1; p >= 0; p--)
-        printf("%s%s", p == 0 && buffers[1][0] ? ". " : "", buffers[p]);
+        printf("%s%s", p == 0 && buffers[1][0] && buffers[0][0] ? ". " : "", buffers[p]);
     printf("%s\n", buffers[0][0] || buffers[1][0] ? "" : "not measured (no row of 5e4 spheres or more)");
     if (js) {
         fprintf(js, "\n  ],\n  \"narrow_kernels\": \"");

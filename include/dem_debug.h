@@ -78,6 +78,8 @@ double dem_kernel_bytes(const dem_sim *s, int k);
  * source names it) and bytes as now allocated, in argument order; returns how many buffers it is given (0 before
  * dem_start). */
 int dem_kernel_buffers(const dem_sim *s, int k, const char **names, double *bytes, int max);
+/* no kernel is given more buffers (asserted where the kernels' argument lists are bound; contact_forces has 36) */
+#define DEM_KERNEL_BUFFERS_MAX 64
 /* The work items kernel k (an index of dem_kernel_times' names) would be launched with now (its DEM_ITEMS_ rule at the
  * run's present sizes; make bench sets it against the device's compute units). 0 before dem_start. */
 long dem_kernel_item_count(const dem_sim *s, int k);

@@ -56,10 +56,10 @@ int dem_kernel_buffers(const dem_sim *s, int k, const char **names, double *byte
 {
     if (!s->be || k < 0 || k >= K__COUNT)
         return 0;
-    const char *nm[DEM_KERNEL_ARGS_MAX];
-    size_t b[DEM_KERNEL_ARGS_MAX];
-    int count = dem_kernel_bound_list(DEM_CORE(s->be), (dem_kernel_id)k, nm, b, DEM_KERNEL_ARGS_MAX);
-    for (int a = 0; a < count && a < max && a < DEM_KERNEL_ARGS_MAX; a++) {
+    const char *nm[DEM_KERNEL_BUFFERS_MAX];
+    size_t b[DEM_KERNEL_BUFFERS_MAX];
+    int count = dem_kernel_bound_list(DEM_CORE(s->be), (dem_kernel_id)k, nm, b, DEM_KERNEL_BUFFERS_MAX);
+    for (int a = 0; a < count && a < max; a++) {
         names[a] = nm[a];
         bytes[a] = (double)b[a];
     }
