@@ -2,7 +2,6 @@
  * walked for every backend: sizes, creation, field lookup, work-item counts, and the compile-time check that each
  * kernel argument's element type is its buffer's. */
 #include "backend.h"
-#include "dem_debug.h" /* DEM_KERNEL_BUFFERS_MAX */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -33,21 +32,6 @@ enum { DEM_ROWS(ELEM_ROW) ROWELEM__END };
 #define CHECK_ARG(kind, type, name, src) CHECK_##kind(type, src)
 #define CHECK_KERNEL(name) DEM_ARGS_##name(CHECK_ARG, CHECK_ARG)
 DEM_KERNEL_LIST(CHECK_KERNEL)
-/* every kernel's buffers fit dem_kernel_bound_list's callers' lists (dem_debug.h) */
-#define NBUF_I(type, src)
-#define NBUF_R(type, src)
-#define NBUF_BIN(type, src) +1
-#define NBUF_BOUT NBUF_BIN
-#define NBUF_CIN NBUF_BIN
-#define NBUF_COUT NBUF_BIN
-#define NBUF_NIN NBUF_BIN
-#define NBUF_NOUT NBUF_BIN
-#define NBUF_AIN NBUF_BIN
-#define NBUF_AOUT NBUF_BIN
-#define NBUF_ARG(kind, type, name, src) NBUF_##kind(type, src)
-#define NBUF_KERNEL(name)                                                                                            \
-    _Static_assert(0 DEM_ARGS_##name(NBUF_ARG, NBUF_ARG) <= DEM_KERNEL_BUFFERS_MAX, #name ": too many buffers");
-DEM_KERNEL_LIST(NBUF_KERNEL)
 _Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 26 && ST_STRIDE == 6 &&
                    MDR_PAIR_STRIDE == 25 && MDR_WALL_STRIDE == 13 && MDR_P_STRIDE == 14,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
@@ -338,19 +322,24 @@ size_t dem_ref_bytes(const dem_core *c, dem_bufref r)
     return r.table == TABLE_ONE ? c->bytes[r.id] : c->row_bytes[r.table == TABLE_CUR ? c->cur : 1 - c->cur][r.id];
 }
 
-/* The buffers kernel k is given (its argument list), as bound now: up to max of them, each one's argument name and
- * bytes, in argument order; returns how many it is given. */
-int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, size_t *bytes, int max)
+/* The buffers kernel k is given (its argument list), as bound now: the first max of them, each one's argument name
+ * and bytes, in argument order (names and bytes may be NULL when max is 0); *count (if given) says how many it is
+ * given. Returns their bytes summed, all of them: what the kernel could move if it touched each byte once - the
+ * traffic model of make bench's bandwidth column. */
+size_t dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, double *bytes, int max, int *count)
 {
-    int count = 0;
+    size_t total = 0;
+    int m = 0;
 /* a statement each (the argument lists have no separators between their entries) */
 #define BB_ADD(name, b)                                                                                              \
     do {                                                                                                             \
-        if (count < max) {                                                                                           \
-            names[count] = #name;                                                                                    \
-            bytes[count] = (b);                                                                                      \
+        size_t nb = (b);                                                                                             \
+        if (m < max) {                                                                                               \
+            names[m] = #name;                                                                                        \
+            bytes[m] = (double)nb;                                                                                   \
         }                                                                                                            \
-        count++;                                                                                                     \
+        total += nb;                                                                                                 \
+        m++;                                                                                                         \
     } while (0);
 #define BB_I(type, name, src)
 #define BB_R(type, name, src)
@@ -371,18 +360,8 @@ int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names
     default:
         break;
     }
-    return count;
-}
-
-/* The bytes of every buffer kernel k is given, as bound now: what it could move if it touched each byte once - the
- * traffic model of make bench's bandwidth column. */
-size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k)
-{
-    const char *names[DEM_KERNEL_BUFFERS_MAX];
-    size_t bytes[DEM_KERNEL_BUFFERS_MAX], total = 0;
-    int count = dem_kernel_bound_list(c, k, names, bytes, DEM_KERNEL_BUFFERS_MAX); /* all of them (asserted above) */
-    for (int a = 0; a < count; a++)
-        total += bytes[a];
+    if (count)
+        *count = m;
     return total;
 }
 

@@ -200,8 +200,7 @@ int dem_core_fail(dem_core *c, const char *fmt, ...);
 size_t dem_ref_bytes(const dem_core *c, dem_bufref r);
 /* Number of work items of kernel k with the core's current scalars. */
 size_t dem_kernel_items(const dem_core *c, dem_kernel_id k);
-size_t dem_kernel_bound_bytes(const dem_core *c, dem_kernel_id k);
-int dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, size_t *bytes, int max);
+size_t dem_kernel_bound_list(const dem_core *c, dem_kernel_id k, const char **names, double *bytes, int max, int *count);
 
 /* Launches kernel k (o->launch), recording it in the core's trace. The steps launch through it; a step that is one
  * launch has no wrapper: the driver calls dem_launch(o, b, K_<kernel>) itself. */

@@ -606,7 +606,7 @@ static size_t buffer_list(dem_sim *s, int k, const char *kernel, long n, char *b
     int count = dem_kernel_buffers(s, k, names, bytes, DEM_KERNEL_BUFFERS_MAX);
     buffer_bytes b[DEM_KERNEL_BUFFERS_MAX];
     int m = 0;
-    for (int a = 0; a < count && a < DEM_KERNEL_BUFFERS_MAX; a++)
+    for (int a = 0; a < count && a < DEM_KERNEL_BUFFERS_MAX; a++) /* (count is all of them) */
         if (bytes[a] / (double)n >= 0.5)
             b[m++] = (buffer_bytes){names[a], bytes[a] / (double)n};
     qsort(b, (size_t)m, sizeof *b, by_bytes_down);
@@ -615,17 +615,6 @@ static size_t buffer_list(dem_sim *s, int k, const char *kernel, long n, char *b
     for (int a = 0; a < m && len < size; a++)
         len += (size_t)snprintf(buf + len, size - len, "%s %s %.0f", a ? "," : "", b[a].name, b[a].bytes);
     return len;
-}
-
-/* Whether a kernel sequence (dem_kernel_sequence: "a, b, c") names the kernel, whole (not integrate_kick inside
- * integrate_kick_drift) */
-static int in_sequence(const char *seq, const char *name)
-{
-    size_t ln = strlen(name);
-    for (const char *at = strstr(seq, name); at; at = strstr(at + 1, name))
-        if ((at[ln] == ',' || at[ln] == 0) && (at == seq || at[-1] == ' '))
-            return 1;
-    return 0;
 }
 
 /* The work-group size the bench counts groups in (a GPU's usual choice; the runtime picks its own) */
@@ -679,8 +668,6 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
      * integrate_kick are in the last step's sequence but run only on the last step of a dem_step call (the other
      * steps' second kick is joined to the next step's first: integrate_kick_kick_drift; host/core/step_loop.c): left
      * out */
-    char seq[2048] = "";
-    dem_kernel_sequence(s, 0, seq, sizeof seq);
     int cu = 0; /* the device's compute units, from its description */
     char what[512];
     if (kind == DEM_BACKEND_OPENCL && !dem_device_describe(0, what, sizeof what))
@@ -689,7 +676,7 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     r->narrow[0] = 0;
     for (int k = 0; k < cnt && cu > 0; k++) { /* every kernel of the step's sequence, walls' sums included */
         const char *nm = names[k];
-        int in_step = in_sequence(seq, nm);
+        int in_step = dem_kernel_launched(s, 0, nm);
         long items = dem_kernel_item_count(s, k);
         if (in_step && items > 0 && (items + BED_GROUP - 1) / BED_GROUP < cu)
             nl += (size_t)snprintf(r->narrow + nl, sizeof r->narrow - nl, "%s%s %ld", nl ? ", " : "", nm, items);
@@ -699,7 +686,7 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     size_t blen = 0;
     for (int k = 0; k < cnt && k < 64 && profile; k++) {
         double us = 1e6 * (secs[k] - before[k]) / steps;
-        int each_step = in_sequence(seq, names[k]) && strncmp(names[k], "wall_reduce", 11) &&
+        int each_step = dem_kernel_launched(s, 0, names[k]) && strncmp(names[k], "wall_reduce", 11) &&
                         strcmp(names[k], "integrate_kick");
         if (each_step) {
             r->step_bytes += dem_kernel_bytes(s, k);

@@ -78,7 +78,7 @@ double dem_kernel_bytes(const dem_sim *s, int k);
  * source names it) and bytes as now allocated, in argument order; returns how many buffers it is given (0 before
  * dem_start). */
 int dem_kernel_buffers(const dem_sim *s, int k, const char **names, double *bytes, int max);
-/* no kernel is given more buffers (asserted where the kernels' argument lists are bound; contact_forces has 36) */
+/* room for every kernel's buffers today (contact_forces has 36; tests/test_api.c checks each kernel's count) */
 #define DEM_KERNEL_BUFFERS_MAX 64
 /* The work items kernel k (an index of dem_kernel_times' names) would be launched with now (its DEM_ITEMS_ rule at the
  * run's present sizes; make bench sets it against the device's compute units). 0 before dem_start. */
@@ -87,6 +87,9 @@ long dem_kernel_item_count(const dem_sim *s, int k);
  * rebuild (rebuild = 1), as "name, name, N x (name, name), ..." (an iteration's pair once, with its count).
  * Returns the number of launches (0 before the first step). */
 int dem_kernel_sequence(const dem_sim *s, int rebuild, char *buf, size_t len);
+/* Whether the last step (rebuild = 0) or the last neighbour rebuild (rebuild = 1) launched the kernel of that name
+ * (the whole name: integrate_kick is not integrate_kick_drift). */
+int dem_kernel_launched(const dem_sim *s, int rebuild, const char *name);
 /* A motion stage's end (dem_stage_ends): which wall and stage (an index into its dem_wall.stages), the step at which
  * it ended (the first step of the next), and why: DEM_STAGE_END_DURATION (its duration ran out), _FORCE (until_force:
  * value is the normal force [N] the particles exerted in the step before), _DISTANCE (until_distance: value is the

@@ -49,21 +49,28 @@ int dem_kernel_times(dem_sim *s, const char ***names, const double **seconds, in
 
 double dem_kernel_bytes(const dem_sim *s, int k)
 {
-    return s->be && k >= 0 && k < K__COUNT ? (double)dem_kernel_bound_bytes(DEM_CORE(s->be), (dem_kernel_id)k) : 0;
+    return s->be && k >= 0 && k < K__COUNT
+               ? (double)dem_kernel_bound_list(DEM_CORE(s->be), (dem_kernel_id)k, NULL, NULL, 0, NULL)
+               : 0;
 }
 
 int dem_kernel_buffers(const dem_sim *s, int k, const char **names, double *bytes, int max)
 {
-    if (!s->be || k < 0 || k >= K__COUNT)
-        return 0;
-    const char *nm[DEM_KERNEL_BUFFERS_MAX];
-    size_t b[DEM_KERNEL_BUFFERS_MAX];
-    int count = dem_kernel_bound_list(DEM_CORE(s->be), (dem_kernel_id)k, nm, b, DEM_KERNEL_BUFFERS_MAX);
-    for (int a = 0; a < count && a < max; a++) {
-        names[a] = nm[a];
-        bytes[a] = (double)b[a];
-    }
+    int count = 0;
+    if (s->be && k >= 0 && k < K__COUNT)
+        dem_kernel_bound_list(DEM_CORE(s->be), (dem_kernel_id)k, names, bytes, max, &count);
     return count;
+}
+
+int dem_kernel_launched(const dem_sim *s, int rebuild, const char *name)
+{
+    s = sim_stepped(s); /* a split run: this rank's part's */
+    const unsigned char *q = rebuild ? s->trace.rebuild : s->trace.step;
+    int n = rebuild ? s->trace.nrebuild : s->trace.nstep;
+    for (int k = 0; k < n; k++)
+        if (!strcmp(dem_kernel_names[q[k]], name))
+            return 1;
+    return 0;
 }
 
 long dem_kernel_item_count(const dem_sim *s, int k)
