@@ -147,6 +147,9 @@ typedef struct {
      * queued work is done (a synchronisation); unmap hands it back, before anything is queued that writes it. */
     int (*map)(dem_backend *b, dem_bufref r, size_t bytes, const void **host);
     int (*unmap)(dem_backend *b, dem_bufref r, const void *host);
+    /* Exchanges two buffers of the one-of-a-kind table, contents and sizes (a double-buffered pair: the kernels and
+     * every reader find the current copy under its own id). Queued work already holds its buffers. */
+    void (*swap)(dem_backend *b, int id1, int id2);
 } dem_backend_ops;
 
 extern const dem_backend_ops dem_reference_ops_f32, dem_reference_ops_f64;

@@ -620,8 +620,8 @@ static size_t buffer_list(dem_sim *s, int k, const char *kernel, long n, char *b
 /* The work-group size the bench counts groups in (a GPU's usual choice; the runtime picks its own) */
 #define BED_GROUP 64
 
-static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_backend_kind kind, dem_precision prec,
-                   long steps, int profile, bed_result *r)
+static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, int one_pass, dem_backend_kind kind,
+                   dem_precision prec, long steps, int profile, bed_result *r)
 {
     if (profile)
         setenv("DEM_PROFILE", "1", 1);
@@ -632,6 +632,7 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
     dem_config_default(&c);
     c.backend = kind;
     c.precision = prec;
+    c.one_pass = one_pass; /* dem_config.one_pass: contact_rows on every step but the last of the call */
     if (getenv("DEM_BENCH_SKIN"))
         c.skin = atof(getenv("DEM_BENCH_SKIN"));
     memset(r, 0, sizeof *r);
@@ -688,6 +689,9 @@ static int bed_run(const bed_t *b, double side, int tx, int ty, int sorted, dem_
         double us = 1e6 * (secs[k] - before[k]) / steps;
         int each_step = dem_kernel_launched(s, 0, names[k]) && strncmp(names[k], "wall_reduce", 11) &&
                         strcmp(names[k], "integrate_kick");
+        if (one_pass) /* the two contact passes ran on the call's last step alone, contact_rows on every other */
+            each_step = (!strcmp(names[k], "contact_rows") && secs[k] > before[k]) ||
+                        (each_step && strcmp(names[k], "contact_pairs") && strcmp(names[k], "contact_forces"));
         if (each_step) {
             r->step_bytes += dem_kernel_bytes(s, k);
             blen = buffer_list(s, k, names[k], r->n, r->buffers, sizeof r->buffers, blen);
@@ -758,7 +762,9 @@ static void bed_table(int quick)
            "+ written); beside each kernel launched every step, the bytes of the buffers it is given over its time: the "
            "rate if it moved each of them once (gathers that hit the cache make it higher, rows and records it skips "
            "lower). bytes/particle-step: those bytes summed over the kernels of every step, over n - the traffic of a "
-           "step by that count, the same proxy on every device (goal: 400 in fp32).\n\n"
+           "step by that count, the same proxy on every device (goal: 400 in fp32). \"sorted, one pass\": the "
+           "contacts in one kernel (dem_config.one_pass) on every step of the timed call but its last (the two passes), "
+           "its hash against the two passes' row.\n\n"
            "| n | order | contacts/particle | backend | precision | particle-steps/s | device bytes/particle | bytes/particle-step | state hash = reference | us per step by kernel |\n"
            "|---|---|---|---|---|---|---|---|---|---|\n", path, b.n, dev, gbs);
     if (js)
@@ -766,40 +772,52 @@ static void bed_table(int quick)
                 path, dev, gbs);
     double lnN[8], lnT[8];
     int nfit = 0, first = 1, narrow_said[4] = {0}, narrow_rows = 0;
-    char narrow[4][600] = {"", "", "", ""}, buffers[2][2200] = {"", ""}; /* buffers: fp64, fp32 */
+    char narrow[4][600] = {"", "", "", ""}, buffers[2][2][2200] = {{"", ""}, {"", ""}}; /* [one pass][fp64, fp32] */
+    unsigned long long sorted_hash[2] = {0, 0}, sorted_ref[2] = {0, 0}; /* this size's two-pass sorted rows' */
     const char *only_sizes = getenv("DEM_BENCH_BED_SIZES"); /* e.g. "3": the 1e6 rows only (0..3: 1e3 .. 1e6) */
     for (int z = 0; z < nsizes; z++)
-        for (int q = 0; q < 4; q++) {
+        for (int q = 0; q < 6; q++) { /* as poured, sorted, sorted in one pass (dem_config.one_pass); fp64, fp32 */
             if (only_sizes && !strchr(only_sizes, '0' + z))
                 break;
-            int p = q & 1, sorted = q >> 1;
+            int p = q & 1, sorted = q >= 2, onep = q >= 4;
+            if (q == 0)
+                sorted_hash[0] = sorted_hash[1] = sorted_ref[0] = sorted_ref[1] = 0;
             dem_precision prec = p ? DEM_FP32 : DEM_FP64;
             bed_result ro, rp, rr;
             long n_est = z == 3 ? 10 * b.n : (long)(b.n * sizes[z].side * sizes[z].side / 0.01);
             long steps = (long)((quick ? 5e6 : 4e7) / (double)(n_est > 0 ? n_est : 1));
             steps = steps < 20 ? 20 : steps > 2000 ? 2000 : steps;
-            const char *order = sorted ? "sorted" : "as poured";
-            if (bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_OPENCL, prec, steps, 0, &ro) ||
-                bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_OPENCL, prec, steps, 1, &rp)) {
+            const char *order = onep ? "sorted, one pass" : sorted ? "sorted" : "as poured";
+            if (bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, onep, DEM_BACKEND_OPENCL, prec, steps, 0, &ro) ||
+                bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, onep, DEM_BACKEND_OPENCL, prec, steps, 1, &rp)) {
                 printf("| %ld | %s | | opencl | %s | failed | | | | |\n", n_est, order, p ? "fp32" : "fp64");
                 continue;
             }
-            int have_ref = z < 3 && !bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, DEM_BACKEND_REFERENCE,
-                                             prec, steps, 0, &rr);
+            /* one pass has the two passes' bits: its rows are checked against the sorted rows' hashes (the reference's
+             * where it ran), not run on the reference again */
+            int have_ref = z < 3 && !onep && !bed_run(&b, sizes[z].side, sizes[z].tx, sizes[z].ty, sorted, 0,
+                                                      DEM_BACKEND_REFERENCE, prec, steps, 0, &rr);
             const char *eq = !have_ref ? "not checked" : ro.hash && rr.hash == ro.hash && rp.hash == ro.hash ? "yes" : "NO";
+            if (sorted && !onep)
+                sorted_hash[p] = ro.hash, sorted_ref[p] = have_ref ? rr.hash : 0;
+            if (onep) /* "yes": the two passes' hash, which equalled the reference's */
+                eq = !sorted_hash[p] ? "not checked (no two-pass row)"
+                     : !ro.hash || ro.hash != sorted_hash[p] || rp.hash != ro.hash ? "NO (not the two passes')"
+                     : sorted_ref[p] == sorted_hash[p] ? "yes (= two passes)" : "= two passes";
             printf("| %ld | %s | %.2f | opencl | %s | %.3g | %.0f | %.0f | %s | %s |\n", ro.n, order, ro.contacts,
                    p ? "fp32" : "fp64", ro.rate, ro.bytes_per_particle, rp.step_bytes / (double)rp.n, eq, rp.kernels);
             narrow_rows += ro.n >= 50000;
-            if (ro.n >= 50000 && rp.narrow[0] && !narrow_said[z]) {
+            if (ro.n >= 50000 && rp.narrow[0] && !narrow_said[z] && !onep) { /* (one pass: its last step's two) */
                 snprintf(narrow[z], sizeof narrow[z], "n = %ld: %s", ro.n, rp.narrow);
                 narrow_said[z] = 1;
             }
             if (ro.n >= 50000 && sorted && rp.buffers[0]) /* the largest sorted rows' (the last seen) */
-                snprintf(buffers[p], sizeof buffers[p], "n = %ld, %s: %s", ro.n, p ? "fp32" : "fp64", rp.buffers);
+                snprintf(buffers[onep][p], sizeof buffers[onep][p], "n = %ld, %s%s: %s", ro.n, p ? "fp32" : "fp64",
+                         onep ? ", one pass" : "", rp.buffers);
             if (have_ref)
                 printf("| %ld | %s | | reference | %s | %.3g | | | | |\n", rr.n, order, p ? "fp32" : "fp64", rr.rate);
             fflush(stdout);
-            if (!p && sorted && ro.n >= 5000) {
+            if (!p && sorted && !onep && ro.n >= 5000) {
                 lnN[nfit] = log((double)ro.n);
                 lnT[nfit++] = log((double)ro.n / ro.rate);
             }
@@ -807,10 +825,11 @@ static void bed_table(int quick)
                 char refrate[32] = "null";
                 if (have_ref)
                     snprintf(refrate, sizeof refrate, "%.4g", rr.rate);
-                fprintf(js, "%s\n    {\"n\": %ld, \"order\": \"%s\", \"precision\": \"%s\", \"steps\": %ld, \"contacts_per_particle\": %.3f, "
+                fprintf(js, "%s\n    {\"n\": %ld, \"order\": \"%s\", \"one_pass\": %s, \"precision\": \"%s\", \"steps\": %ld, \"contacts_per_particle\": %.3f, "
                         "\"opencl_particle_steps_per_s\": %.4g, \"device_bytes_per_particle\": %.0f, \"bytes_per_particle_step\": %.0f, "
                         "\"reference_particle_steps_per_s\": %s, \"hash_opencl\": \"%016llx\", \"hash_equal\": \"%s\"}",
-                        first ? "" : ",", ro.n, order, p ? "fp32" : "fp64", steps, ro.contacts, ro.rate, ro.bytes_per_particle,
+                        first ? "" : ",", ro.n, sorted ? "sorted" : "as poured", onep ? "true" : "false", p ? "fp32" : "fp64",
+                        steps, ro.contacts, ro.rate, ro.bytes_per_particle,
                         rp.step_bytes / (double)rp.n,
                         refrate, ro.hash, eq);
                 first = 0;
@@ -831,16 +850,20 @@ static void bed_table(int quick)
      * particle-step") */
     printf("\nBytes per particle-step by buffer (sorted, the largest n of 5e4 or more; each kernel of every step, its "
            "buffers of at least 0.5 byte a particle, largest first): ");
-    for (int p = 1; p >= 0; p--)
-        printf("%s%s", p == 0 && buffers[1][0] && buffers[0][0] ? ". " : "", buffers[p]);
-    printf("%s\n", buffers[0][0] || buffers[1][0] ? "" : "not measured (no row of 5e4 spheres or more)");
+    int said = 0;
+    for (int o = 0; o < 2; o++)
+        for (int p = 1; p >= 0; p--)
+            if (buffers[o][p][0])
+                printf("%s%s", said++ ? ". " : "", buffers[o][p]);
+    printf("%s\n", said ? "" : "not measured (no row of 5e4 spheres or more)");
     if (js) {
         fprintf(js, "\n  ],\n  \"narrow_kernels\": \"");
         for (int z = 0, a = 0; z < 4; z++)
             if (narrow[z][0])
                 fprintf(js, "%s%s", a++ ? "; " : "", narrow[z]);
-        fprintf(js, "\",\n  \"step_buffers_fp32\": \"%s\",\n  \"step_buffers_fp64\": \"%s\",\n  \"conform\": \"%s\",\n",
-                buffers[1], buffers[0], conform_summary());
+        fprintf(js, "\",\n  \"step_buffers_fp32\": \"%s\",\n  \"step_buffers_fp64\": \"%s\",\n"
+                "  \"step_buffers_one_pass_fp32\": \"%s\",\n  \"step_buffers_one_pass_fp64\": \"%s\",\n  \"conform\": \"%s\",\n",
+                buffers[0][1], buffers[0][0], buffers[1][1], buffers[1][0], conform_summary());
     }
     if (nfit >= 2) { /* least squares slope of ln(time per step) on ln n, fp64 OpenCL, n >= 5000 */
         double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -111,10 +111,12 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(PAIR_MIRROR, INT, PAIRS, DEM_EFFECT_MC_STRAIN, -1, NONE, PAIRS, STAY, NO)                                     \
     ENTRY(TOUCH, BYTE, PAIRS, 0, DEM_FIELD_TOUCH, NONE, PAIRS, STAY, NO)                                                \
     ENTRY(TOUCH_OLD, BYTE, PAIRS, 0, -1, NONE, PAIRS, STAY, NO)                                                         \
+    ENTRY(TOUCH_NEXT, BYTE, PAIRS, DEM_ONE_PASS, -1, NONE, PAIRS, STAY, NO)                                             \
     ENTRY(PAIR, REAL, PR_STRIDE * PAIRS, 0, DEM_FIELD_PAIR_RECORDS, NONE, PAIRS, STAY, NO)                              \
     ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS, STAY, NO)                                       \
     ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS, STAY, NO)                     \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS, STAY, NO)                       \
+    ENTRY(PAIR_HIST_NEXT, REAL, 3 * PAIRS, DEM_ONE_PASS_HIST, -1, NONE, PAIRS, STAY, NO)                                     \
     ENTRY(PAIR_LAW, REAL, LAWP * PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                  \
     ENTRY(PAIR_MDR_SUM, REAL, 2 * MDR_NSUM * PAIRS, DEM_EFFECT_MDR, -1, NONE, PAIRS, STAY, NO)                          \
     ENTRY(PAIR_ROLL, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING, -1, NONE, PAIRS, STAY, NO)                                     \

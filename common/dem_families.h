@@ -8,6 +8,7 @@
 #include "binning.h"
 #include "neighbor.h"
 #include "contact_forces.h"
+#include "contact_rows.h"
 #include "wall_forces.h"
 #include "integrate.h"
 #include "particle_stress.h"

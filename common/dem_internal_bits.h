@@ -31,6 +31,15 @@ enum { DEM_KEEP_PAIR_ENERGY = 524288 };
  * particles' wall forces only, and the ranks' exact sums merge to the one-process bits. Set by the host. */
 enum { DEM_HAS_GHOSTS = 33554432 };
 
+/* A run that may join the two contact passes into one (dem_config.one_pass, common/contact_rows.h): it holds a second
+ * copy of the pairs' touching flags (TOUCH_NEXT) and, with friction (DEM_ONE_PASS_HIST), of their histories
+ * (PAIR_HIST_NEXT), which contact_rows writes and the host then swaps with the current ones. Set by the host only for
+ * the laws contact_rows takes, and not in a rank's part of a split run (whose every step takes the two passes). */
+enum { DEM_ONE_PASS = 134217728, DEM_ONE_PASS_HIST = 268435456 };
+/* the effects whose runs keep the two passes: per-pair results beside the force that other kernels read */
+#define DEM_ONE_PASS_REFUSED                                                                                            \
+    (DEM_EFFECT_MC_STRAIN | DEM_EFFECT_THORNTON_NING | DEM_EFFECT_ADHESION | DEM_EFFECT_MDR | DEM_EFFECT_ROLLING_SPRING)
+
 /* Test-only contact laws (common/laws/laws.h), compiled in a test build (-DDEM_TEST_LAWS: tests/test_law_toy.c) and
  * nowhere else: their effect bits, above every other. */
 #ifdef DEM_TEST_LAWS
@@ -52,7 +61,8 @@ enum { DEM_EFFECT_TEST_SPRING = 1048576 /* common/laws/linear_spring.h */ };
 #define DEM_LAW_WALL_ELASTIC(fx) (((fx) & DEM_EFFECT_MDR) ? MDR_FEL_WALL : 0)
 
 /* Every bit the host sets on its own: none of them is a caller's effect or convention bit. */
-#define DEM_INTERNAL_BITS (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY | DEM_HAS_GHOSTS)
+#define DEM_INTERNAL_BITS                                                                                               \
+    (DEM_MC_REACH | DEM_KEEP_WALL_FORCES | DEM_KEEP_PAIR_ENERGY | DEM_HAS_GHOSTS | DEM_ONE_PASS | DEM_ONE_PASS_HIST)
 #ifndef __OPENCL_VERSION__
 _Static_assert((DEM_INTERNAL_BITS & (DEM_EFFECT_ALL | DEM_MCS_MASK)) == 0,
                "a host-only bit of the effect mask overlaps a caller's effect or convention bit");

@@ -33,7 +33,7 @@
 /* ---- the kernels, in the order of their families ---- */
 #define DEM_KERNEL_LIST(K)                                                                                           \
     K(bin_bounds) K(bin_index) K(scan_block_sum) K(scan_block_sums) K(scan_apply) K(bin_scatter) K(bin_sort) K(nbr_count) K(nbr_build) K(nbr_sort)          \
-    K(pair_index) K(contact_pairs) K(contact_forces) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
+    K(pair_index) K(contact_pairs) K(contact_forces) K(contact_rows) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor)          \
     K(mc_strain_disp) K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
     K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack) K(halo_pack_rows) K(halo_unpack_rows)
@@ -118,19 +118,33 @@
     A(BOUT, real, pair_roll, PAIR_ROLL) A(BIN, real, roll_inertia, ROLL_INERTIA)                \
     A(BOUT, real, rspring, PAIR_RSPRING) A(BIN, real, mdr_part, MDR_PART) A(BOUT, real, pair_mdr_sum, PAIR_MDR_SUM)
 #define DEM_ITEMS_contact_pairs npairs
+/* what a particle's item reads to find its row's pairs (contact_forces, contact_rows) and to add its walls */
+#define DEM_ARGS_contact_row(F, A)                                                                                   \
+    A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT) A(CIN, int, nbr_list, LIST)                          \
+    A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START) A(BIN, int, in_pair, IN_PAIR)                     \
+    A(BIN, int, own_start, OWN_START)
+#define DEM_ARGS_contact_walls(F, A)                                                                                 \
+    A(I, int, nwalls, NWALLS) A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL)                     \
+    A(BOUT, real, wall_hist, WALL_HIST) A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK)     \
+    A(BIN, real, trace, TRACE) A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP)                 \
+    A(BOUT, real, mc_wall_fn, MC_WALL_FN) A(BIN, unsigned, ride, RIDE)
 #define DEM_ARGS_contact_forces(F, A)                                                                                \
-    DEM_ARGS_contact_head(F, A) A(CIN, int, nbr_start, START) A(CIN, int, nbr_count, COUNT)                          \
-    A(CIN, int, nbr_list, LIST) A(BIN, dem_byte, touch, TOUCH) A(BIN, int, in_start, IN_START)                       \
-    A(BIN, int, in_pair, IN_PAIR) A(BIN, int, own_start, OWN_START)                                                  \
-    A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) A(I, int, nwalls, NWALLS)     \
-    A(BIN, int, wall_int, WALL_INT) A(BIN, real, wall_real, WALL_REAL) A(BOUT, real, wall_hist, WALL_HIST)           \
-    A(BOUT, real, wall_pf, WALL_PF) A(BOUT, unsigned, wall_mask, WALL_MASK) A(BIN, real, trace, TRACE)               \
-    A(BIN, real, invvol, INVVOL) A(BIN, real, mc_wall_disp, MC_WALL_DISP) A(BOUT, real, mc_wall_fn, MC_WALL_FN)     \
-    A(BIN, unsigned, ride, RIDE) A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                         \
+    DEM_ARGS_contact_head(F, A) DEM_ARGS_contact_row(F, A)                                                           \
+    A(BIN, real, pair, PAIR) A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) DEM_ARGS_contact_walls(F, A)  \
+    A(I, int, sample, SERIES_SAMPLE) A(I, int, row, SERIES_ROW)                                                      \
     A(BOUT, real, ring, SERIES_RING) A(BIN, real, pair_ela, PAIR_ELA) A(BIN, int, nbr_lower, LOWER)                 \
     A(BOUT, real, wall_law, WALL_LAW) A(BIN, real, pair_roll, PAIR_ROLL) A(BIN, real, roll_inertia, ROLL_INERTIA)    \
     A(BOUT, real, wall_rspring, WALL_RSPRING) A(BOUT, real, mdr_part, MDR_PART) A(BIN, real, pair_mdr_sum, PAIR_MDR_SUM)
 #define DEM_ITEMS_contact_forces n
+/* contact_rows.h: the two passes in one, for the steps nothing reads the records of (no record, the history and
+ * touching flags read from one copy and written to the other) */
+#define DEM_ARGS_contact_rows(F, A)                                                                                  \
+    DEM_ARGS_contact_head(F, A) DEM_ARGS_contact_row(F, A) A(BIN, int, nbr_lower, LOWER)                             \
+    A(BOUT, dem_byte, touch_next, TOUCH_NEXT) A(BIN, real, hist, PAIR_HIST) A(BOUT, real, hist_next, PAIR_HIST_NEXT) \
+    A(BOUT, real, force, FORCE) A(BOUT, real, torque, TORQUE) DEM_ARGS_contact_walls(F, A)                           \
+    A(BOUT, real, law_st, PAIR_LAW) A(BOUT, real, wall_law, WALL_LAW) A(BIN, real, roll_inertia, ROLL_INERTIA)       \
+    A(BIN, real, rspring, PAIR_RSPRING) A(BOUT, real, wall_rspring, WALL_RSPRING) A(BIN, real, mdr_part, MDR_PART)
+#define DEM_ITEMS_contact_rows n
 
 /* ---- wall_forces.h ---- */
 #define DEM_ARGS_wall_reduce_block(F, A)                                                                             \

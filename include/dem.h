@@ -204,6 +204,14 @@ typedef struct {
     double reorder_gain; /* stored anew when the mean distance between particles stored next to each other has grown
                             this many times since the last look and is this many times the new order's; 0 =
                             DEM_REORDER_GAIN (2); at most 1: whenever the order changes */
+    int one_pass;        /* 1: on the steps whose pair records nothing reads (every step of a dem_step or
+                            dem_step_sampled call but its last, and not a sampled one), the particle contacts take
+                            one kernel (each particle evaluates its row's pairs itself; each pair's law runs twice)
+                            instead of two passes through the pair records: the same bits, fewer bytes moved per
+                            step, more arithmetic; for a device that memory bounds (a GPU), not a CPU (docs/design.md
+                            "One pass over the rows"). Taken with the classical law and MC-stress; runs of MC-strain,
+                            Thornton-Ning, MDR or the rolling spring keep the two passes. Default 0, or 1 when the
+                            environment has DEM_ONE_PASS=1. */
 } dem_config;
 /* The dem_config.reorder dem run uses with particle_order: spatial (docs/design.md "Every sum follows the particle
  * ids") */

@@ -140,6 +140,14 @@ static const char *ref_describe(dem_backend *b)
     return sizeof(real) == 8 ? "reference (serial C, fp64)" : "reference (serial C, fp32)";
 }
 
+static void ref_swap(dem_backend *b, int id1, int id2)
+{
+    void *m = b->mem[id1];
+    size_t n = b->core.bytes[id1];
+    b->mem[id1] = b->mem[id2], b->core.bytes[id1] = b->core.bytes[id2];
+    b->mem[id2] = m, b->core.bytes[id2] = n;
+}
+
 static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t errlen);
 
 const dem_backend_ops REF(dem_reference_ops) = {
@@ -156,6 +164,7 @@ const dem_backend_ops REF(dem_reference_ops) = {
     .finish = ref_finish,
     .map = ref_map,
     .unmap = ref_unmap,
+    .swap = ref_swap,
 };
 
 static int ref_create(dem_backend **out, const dem_setup *s, char *err, size_t errlen)

@@ -69,6 +69,8 @@ void dem_config_default(dem_config *c)
         long v = strtol(dev, &end, 10);
         c->device = (*dev < '0' || *dev > '9' || *end || errno || v > 65535) ? -1 : (int)v;
     }
+    const char *one = getenv("DEM_ONE_PASS"); /* the same bits: lets every scene and test run in one pass unchanged */
+    c->one_pass = one && !strcmp(one, "1");
 }
 
 int sim_not_started(dem_sim *s)

@@ -120,6 +120,8 @@ struct sim_run {
     int kick_pending;  /* the last step's second kick is left to the next step's first launch
                           (integrate_kick_kick_drift): only inside a dem_step or dem_step_sampled call, never after
                           its last step */
+    int one_pass;      /* this step's particle contacts in one pass (contact_rows, dem_config.one_pass): a step whose
+                          pair records nothing reads (step_loop.c) */
     int forces_due;    /* started by sim_start_deferred: the start's forces not computed yet (sim_start_forces) */
     int halo_agreed;   /* a split run (halo_hook): this step's failure was agreed at a meeting of the ranks */
     int halo_learned;  /* ... and this rank's own step had not failed: another rank's did (its caller reports that

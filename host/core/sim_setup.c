@@ -530,6 +530,9 @@ static void pack_effects(dem_sim *s, dem_setup *u)
     /* a law with memory keeps its pairs' energies, computed where the contact's state is at hand (series.h) */
     if (sampled || (s->effects & DEM_LAW_STATE_BITS))
         u->effects |= DEM_KEEP_PAIR_ENERGY;
+    /* one pass over the rows (common/contact_rows.h) where the law keeps nothing per pair but the history */
+    if (s->cfg.one_pass && !(s->effects & DEM_ONE_PASS_REFUSED) && !s->ghost)
+        u->effects |= DEM_ONE_PASS | ((s->effects & DEM_EFFECT_FRICTION) ? DEM_ONE_PASS_HIST : 0u);
     if (s->ghost) /* a rank's part of a split run: its ghosts left out of the walls' sums */
         u->effects |= DEM_HAS_GHOSTS;
     u->n = s->n;

@@ -93,6 +93,16 @@ static int stage_contacts(dem_sim *s)
     int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls;
     int sums = walls && (s->run.wall_sums_due || s->run.sample_row >= 0);
     int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
+    if (s->run.one_pass) { /* one kernel, the walls' sums where they stand in the two passes (they read no pair
+                              record; today only a servo sums on such a step, and it keeps the forces: after);
+                              its next touching flags and histories become the current ones */
+        if ((sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) || dem_launch(s->ops, s->be, K_contact_rows))
+            return sim_be_fail(s);
+        s->ops->swap(s->be, BUF_TOUCH, BUF_TOUCH_NEXT);
+        if (s->setup.effects & DEM_ONE_PASS_HIST)
+            s->ops->swap(s->be, BUF_PAIR_HIST, BUF_PAIR_HIST_NEXT);
+        return sums && kept && dem_stage_wall_reduce(s->ops, s->be) ? sim_be_fail(s) : 0;
+    }
     return dem_launch(s->ops, s->be, K_contact_pairs) ||
                    (sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) ||
                    dem_launch(s->ops, s->be, K_contact_forces) ||
@@ -269,9 +279,17 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row)
     s->run.force_step = s->run.step + 1; /* the drifted positions are those of t + dt */
     s->run.wall_sums_due = wall_sums || s->motion.servo_walls;
     s->run.sample_row = sample_row;
+    /* One pass over the rows (dem_config.one_pass) where nothing reads this step's pair records: not the last step
+     * of a call (the getters and output read them after it), not a sampled step (its energies are summed from
+     * them), not a part of a split run (its every step is the last of a call) - the steps whose second kick is left
+     * pending below. A servo's walls' sums every step read no record and stay. */
+    s->run.one_pass = (s->setup.effects & DEM_ONE_PASS) && !wall_sums && sample_row < 0 && !s->halo_hook &&
+                      !s->said_ids;
     if (sample_row >= 0 && dem_stage_series_arm(s->ops, s->be, 1, sample_row))
         return sim_be_fail(s);
-    if ((e = forces(s))) {
+    e = forces(s);
+    s->run.one_pass = 0; /* dem_start's forces and a failed step's retry take the two passes */
+    if (e) {
         s->run.sample_row = -1; /* a later step is not sampled into this row */
         dem_stage_series_arm(s->ops, s->be, 0, 0);
         return e;

@@ -407,6 +407,14 @@ static int cl_create(dem_backend **out, const dem_setup *s, char *err, size_t er
 
 static const char *cl_describe(dem_backend *b) { return b->desc; }
 
+static void cl_swap(dem_backend *b, int id1, int id2)
+{
+    cl_mem m = b->mem[id1];
+    size_t n = b->core.bytes[id1];
+    b->mem[id1] = b->mem[id2], b->core.bytes[id1] = b->core.bytes[id2];
+    b->mem[id2] = m, b->core.bytes[id2] = n;
+}
+
 const dem_backend_ops dem_opencl_ops = {
     .name = "opencl",
     .create = cl_create,
@@ -421,6 +429,7 @@ const dem_backend_ops dem_opencl_ops = {
     .finish = cl_finish,
     .map = cl_map,
     .unmap = cl_unmap,
+    .swap = cl_swap,
 };
 
 /* the public device queries (dem.h): OpenCL's, so they live here and the driver (host/core/) holds no OpenCL call */

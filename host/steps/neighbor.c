@@ -94,7 +94,8 @@ int dem_stage_nbr_commit(const dem_backend_ops *o, dem_backend *b)
          * copy from them, the flags' copy at the next commit (above) */
         static const int grown[] = {BUF_PAIR_HOST,   BUF_PAIR_GUEST, BUF_PAIR_SLOT, BUF_IN_PAIR, BUF_PAIR_MIRROR,
                                     BUF_TOUCH,       BUF_PAIR_HIST,  BUF_PAIR_ELA,  BUF_PAIR_MC_FN,
-                                    BUF_PAIR_LAW,    BUF_PAIR_ROLL,  BUF_PAIR_RSPRING, BUF_PAIR_MDR_SUM};
+                                    BUF_PAIR_LAW,    BUF_PAIR_ROLL,  BUF_PAIR_RSPRING, BUF_PAIR_MDR_SUM,
+                                    BUF_TOUCH_NEXT,  BUF_PAIR_HIST_NEXT};
         for (size_t k = 0; k < sizeof grown / sizeof grown[0]; k++)
             if (o->alloc(b, TABLE_ONE, 0, grown[k], dem_buffer_bytes(c, grown[k]), NULL))
                 return 1;

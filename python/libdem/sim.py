@@ -65,7 +65,8 @@ class Config(ctypes.Structure):
     _fields_ = [("backend", ctypes.c_int), ("precision", ctypes.c_int), ("device", ctypes.c_int),
                 ("local_size", ctypes.c_size_t), ("skin", ctypes.c_double), ("cell_size", ctypes.c_double),
                 ("force_dt", ctypes.c_int), ("source_dir", ctypes.c_char_p), ("contacts", ctypes.c_int),
-                ("sample_every", ctypes.c_long), ("reorder", ctypes.c_int), ("reorder_gain", ctypes.c_double)]
+                ("sample_every", ctypes.c_long), ("reorder", ctypes.c_int), ("reorder_gain", ctypes.c_double),
+                ("one_pass", ctypes.c_int)]
 
 
 class TimeScales(ctypes.Structure):
