@@ -116,7 +116,7 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(PAIR_ELA, REAL, PAIRS, DEM_KEEP_PAIR_ENERGY, -1, NONE, PAIRS, STAY, NO)                                       \
     ENTRY(PAIR_MC_FN, REAL, PAIRS, DEM_EFFECT_MC_STRAIN, DEM_FIELD_MC_FORCE, NONE, PAIRS, STAY, NO)                     \
     ENTRY(PAIR_HIST, REAL, 3 * PAIRS, DEM_EFFECT_FRICTION, DEM_FIELD_HIST, NONE, PAIRS, STAY, NO)                       \
-    ENTRY(PAIR_HIST_NEXT, REAL, 3 * PAIRS, DEM_ONE_PASS_HIST, -1, NONE, PAIRS, STAY, NO)                                     \
+    ENTRY(PAIR_HIST_NEXT, REAL, 3 * PAIRS, DEM_ONE_PASS_HIST, -1, NONE, PAIRS, STAY, NO)                                \
     ENTRY(PAIR_LAW, REAL, LAWP * PAIRS, DEM_LAW_STATE_BITS, -1, NONE, PAIRS, STAY, NO)                                  \
     ENTRY(PAIR_MDR_SUM, REAL, 2 * MDR_NSUM * PAIRS, DEM_EFFECT_MDR, -1, NONE, PAIRS, STAY, NO)                          \
     ENTRY(PAIR_ROLL, REAL, 3 * PAIRS, DEM_EFFECT_ROLLING, -1, NONE, PAIRS, STAY, NO)                                     \

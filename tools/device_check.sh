@@ -7,8 +7,9 @@
 # Stages, in order: devices (the OpenCL platforms and devices seen), conform (`dem conform --device 0`: every shipped
 # scene x model x precision against the reference's state hashes; at most 90 s: 24 s on PoCL with 2 cores, its
 # kernels cached), tests (every test program with DEM_DEVICE=0, the GPU's index when NVIDIA's is the one ICD; sixteen
-# at a time, each stopped after 170 s), bench (make bench's bed table at 1e5 and 1e6, fp64 and fp32, as poured and
-# sorted, the state hashes against the reference at 1e5; at most 180 s), tablet (tablet_1m, 2000 steps from its fill:
+# at a time, each stopped after 170 s), bench (make bench's bed table at 1e5 and 1e6, fp64 and fp32, as poured,
+# sorted and sorted in one pass (dem_config.one_pass: does joining the contact passes pay on this device?), the state
+# hashes against the reference at 1e5 and one pass's against the two passes'; at most 180 s), tablet (tablet_1m, 2000 steps from its fill:
 # particle-steps/s, device time per kernel and the device memory held; at most 60 s): at most 9 minutes (devices
 # 20 s). Everything goes to $OUT (the device tool's folder;
 # out/device here), seven files: check.log (all), conform.txt, tests.log, bench.txt, bench_bed.json, tablet.log,
