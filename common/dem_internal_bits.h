@@ -34,7 +34,8 @@ enum { DEM_HAS_GHOSTS = 33554432 };
 /* A run that may join the two contact passes into one (dem_config.one_pass, common/contact_rows.h): it holds a second
  * copy of the pairs' touching flags (TOUCH_NEXT) and, with friction (DEM_ONE_PASS_HIST), of their histories
  * (PAIR_HIST_NEXT), which contact_rows writes and the host then swaps with the current ones. Set by the host only for
- * the laws contact_rows takes, and not in a rank's part of a split run (whose every step takes the two passes). */
+ * the laws contact_rows takes, and not in a rank's part of a split run that holds ghosts (every step of a part takes
+ * the two passes: host/core/step_loop.c). */
 enum { DEM_ONE_PASS = 134217728, DEM_ONE_PASS_HIST = 268435456 };
 /* the effects whose runs keep the two passes: per-pair results beside the force that other kernels read */
 #define DEM_ONE_PASS_REFUSED                                                                                            \
