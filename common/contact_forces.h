@@ -196,11 +196,33 @@ DEM_ITEM(contact_pairs)
                                               pc.delta, pc.fel, pc.st); /* series_pair_energy's bits */
 }
 
+/* How contact_forces and contact_rows walk particle i's row (nrow; lower: its partners of lower stable id, the front;
+ * lv: nbr_lower, below 0 when the row's storage split is not its id split, the particles stored anew since the
+ * rebuild): the owned part (k = lower on, h from row_walk_start: the slots of the front whose partner is stored after
+ * i), then the front (k = 0 on, h = 0). row_walk_pair gives slot k's pair number (contacts.h row_pair, h counted on),
+ * reading the row only where the two splits differ. */
+DEM_INLINE int row_walk_start(int lv, int lower, DEM_CONST_GLOBAL int *nrow, int i)
+{
+    int h = 0;
+    for (int k = 0; lv < 0 && k < lower; k++) /* the records of the front come after the back's in the sum */
+        h += nrow[k] > i;
+    return h;
+}
+DEM_INLINE int row_walk_pair(int lv, int k, int lower, int i, DEM_CONST_GLOBAL int *nrow, int own, int in,
+                             DEM_CONST_GLOBAL int *in_pair, int *h)
+{
+    if (lv >= 0) /* the front stored before i, the rest after it */
+        return k >= lower ? own + k - lower : in_pair[in + k];
+    int j = nrow[k], p = row_pair(i, j, k, *h, own, in, in_pair);
+    *h += j > i;
+    return p;
+}
+
 /* Pass 2, contact_forces: particle i adds its touching pairs in the canonical order - the pairs it owns (partners
  * of higher stable id, ascending: the back of its row), then those owned by partners of lower stable id (ascending:
- * the front of its row, nbr_lower[i] of them, subtracted), then its walls. The records are found by storage order -
- * a pair i hosts (partner stored after i) is own + h, h counting the hosted slots before it; one its partner hosts is
- * in_pair[in + g], g counting the others - and added in the stable ids' order. */
+ * the front of its row, nbr_lower[i] of them, subtracted), then its walls. The records are found by storage order
+ * (row_walk_pair: a pair i hosts, its partner stored after i, is own + h, h counting the hosted slots before it; one
+ * its partner hosts is in_pair[in + g], g counting the others) and added in the stable ids' order. */
 DEM_ITEM(contact_forces)
 {
     vec3 fi = v3_zero(), ti = v3_zero();
@@ -209,14 +231,10 @@ DEM_ITEM(contact_forces)
     for (int k = 0; (fx & DEM_EFFECT_MDR) && k < MDR_NSUM; k++)
         macc[k] = (real)0;
     int cnt = nbr_count[i], lv = nbr_lower[i], lower = row_lower(lv), own = own_start[i], in = in_start[i];
-    int h = 0, g = 0;
     DEM_CONST_GLOBAL int *nrow = nbr_list + nbr_start[i]; /* the row (row: the series' row) */
-    for (int k = 0; lv < 0 && k < lower; k++) /* the records of the front come after the back's in the sum */
-        h += nrow[k] > i;
-    g = lower - h;
+    int h = row_walk_start(lv, lower, nrow, i);
     for (int k = lower; k < cnt; k++) { /* owned: partners of higher stable id */
-        /* the row read only when its storage split is not its id split (lv < 0: stored anew) */
-        int p = lv >= 0 ? own + k - lower : nrow[k] > i ? own + h++ : in_pair[in + g++];
+        int p = row_walk_pair(lv, k, lower, i, nrow, own, in, in_pair, &h);
         if (!touch[p])
             continue;
         DEM_CONST_GLOBAL real *pr = pair + p * PR_STRIDE;
@@ -240,9 +258,9 @@ DEM_ITEM(contact_forces)
             con += (real)1;
         }
     }
-    h = g = 0;
+    h = 0;
     for (int k = 0; k < lower; k++) { /* mirrored: partners of lower stable id */
-        int p = lv >= 0 ? in_pair[in + k] : nrow[k] > i ? own + h++ : in_pair[in + g++];
+        int p = row_walk_pair(lv, k, lower, i, nrow, own, in, in_pair, &h);
         if (!touch[p])
             continue;
         DEM_CONST_GLOBAL real *pr = pair + p * PR_STRIDE;

@@ -69,19 +69,16 @@ DEM_ITEM(contact_rows)
     real ri = radius[i], wcon = (real)0;
     real macc[MDR_NSUM]; /* (MDR's sums; not a law of this kernel) */
     int cnt = nbr_count[i], lv = nbr_lower[i], lower = row_lower(lv), own = own_start[i], in = in_start[i];
-    int h = 0, g = 0;
     DEM_CONST_GLOBAL int *nrow = nbr_list + nbr_start[i];
-    for (int k = 0; lv < 0 && k < lower; k++)
-        h += nrow[k] > i;
-    g = lower - h;
+    int h = row_walk_start(lv, lower, nrow, i);
     for (int k = lower; k < cnt; k++) { /* owned: partners of higher stable id */
-        int p = lv >= 0 ? own + k - lower : nrow[k] > i ? own + h++ : in_pair[in + g++];
+        int p = row_walk_pair(lv, k, lower, i, nrow, own, in, in_pair, &h);
         contact_row_pair(fx, i, nrow[k], p, 1, ri, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, hist_next,
                          touch, touch_next, trace, invvol, law_st, roll_inertia, rspring, mdr_part, &fi, &ti);
     }
-    h = g = 0;
+    h = 0;
     for (int k = 0; k < lower; k++) { /* mirrored: partners of lower stable id */
-        int p = lv >= 0 ? in_pair[in + k] : nrow[k] > i ? own + h++ : in_pair[in + g++];
+        int p = row_walk_pair(lv, k, lower, i, nrow, own, in, in_pair, &h);
         contact_row_pair(fx, i, nrow[k], p, 0, ri, x, v, w, radius, invmass, mat, pairmat, nmat, dt, hist, hist_next,
                          touch, touch_next, trace, invvol, law_st, roll_inertia, rspring, mdr_part, &fi, &ti);
     }

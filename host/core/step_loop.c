@@ -93,22 +93,17 @@ static int stage_contacts(dem_sim *s)
     int walls = (s->effects & DEM_EFFECT_WALLS) && s->nwalls;
     int sums = walls && (s->run.wall_sums_due || s->run.sample_row >= 0);
     int kept = (s->setup.effects & DEM_KEEP_WALL_FORCES) != 0; /* then the sums read what contact_forces kept */
-    if (s->run.one_pass) { /* one kernel, the walls' sums where they stand in the two passes (they read no pair
-                              record; today only a servo sums on such a step, and it keeps the forces: after);
-                              its next touching flags and histories become the current ones */
-        if ((sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) || dem_launch(s->ops, s->be, K_contact_rows))
-            return sim_be_fail(s);
+    int one = s->run.one_pass; /* contact_rows for both passes (the walls' sums read no pair record) */
+    if ((!one && dem_launch(s->ops, s->be, K_contact_pairs)) ||
+        (sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) ||
+        dem_launch(s->ops, s->be, one ? K_contact_rows : K_contact_forces))
+        return sim_be_fail(s);
+    if (one) { /* its next touching flags and histories become the current ones */
         s->ops->swap(s->be, BUF_TOUCH, BUF_TOUCH_NEXT);
         if (s->setup.effects & DEM_ONE_PASS_HIST)
             s->ops->swap(s->be, BUF_PAIR_HIST, BUF_PAIR_HIST_NEXT);
-        return sums && kept && dem_stage_wall_reduce(s->ops, s->be) ? sim_be_fail(s) : 0;
     }
-    return dem_launch(s->ops, s->be, K_contact_pairs) ||
-                   (sums && !kept && dem_stage_wall_reduce(s->ops, s->be)) ||
-                   dem_launch(s->ops, s->be, K_contact_forces) ||
-                   (sums && kept && dem_stage_wall_reduce(s->ops, s->be))
-               ? sim_be_fail(s)
-               : 0;
+    return sums && kept && dem_stage_wall_reduce(s->ops, s->be) ? sim_be_fail(s) : 0;
 }
 static int stage_mdr_surface(dem_sim *s)
 {
