@@ -156,6 +156,9 @@ enum { DEM_MOVE_STAY, DEM_MOVE_P, DEM_MOVE_G };
     ENTRY(VLIST, INT, N * MAXV, DEM_EFFECT_PATCHES, -1, NONE, MESH, STAY, NO)                                           \
     ENTRY(HALO_IDX, INT, NHALO, 0, -1, NONE, PARTICLES, STAY, NO)                                                       \
     ENTRY(HALO_BUF, REAL, HALO_W * NHALO, 0, -1, NONE, PARTICLES, STAY, NO)                                             \
+    ENTRY(MOVE_X0, REAL, 3 * N, DEM_HAS_GHOSTS, -1, NONE, PARTICLES, P(3), NO)                                          \
+    ENTRY(MOVE_PREV, REAL, 3 * N, DEM_HAS_GHOSTS, -1, NONE, PARTICLES, P(3), NO)                                        \
+    ENTRY(MOVE_MAX, REAL, 2 * NBR, DEM_HAS_GHOSTS, -1, NONE, PARTICLES, STAY, NO)                                       \
     DEM_BUFFERS_TEST(ENTRY)
 
 /* ENTRY(ID, element, count, gate, field) - neighbour-row buffers: two sets, the current rows and the rows being built

@@ -36,7 +36,8 @@
     K(pair_index) K(contact_pairs) K(contact_forces) K(contact_rows) K(wall_reduce_block) K(wall_reduce_mid) K(wall_reduce_final)                        \
     K(integrate_kick_drift) K(integrate_kick_kick_drift) K(integrate_kick) K(stress_trace) K(stress_tensor)          \
     K(mc_strain_disp) K(mc_strain_update) K(spring_forces) K(pressure_forces) K(hinge_forces) K(channel_gather) K(rider_place)  \
-    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack) K(halo_pack_rows) K(halo_unpack_rows)
+    K(patch_build) K(patch_forces) K(patch_gather) K(mdr_begin) K(mdr_surface) K(halo_pack) K(halo_unpack) K(halo_pack_rows) K(halo_unpack_rows)   \
+    K(move_mark) K(move_check)
 
 /* ---- binning.h ---- */
 #define DEM_ARGS_bin_bounds(F, A)                                                                                    \
@@ -310,6 +311,13 @@
     F(I, int, nrecv, NRECV) A(I, int, nsend, NSEND) A(I, int, width, HALO_WIDTH) A(BIN, int, halo_idx, HALO_IDX)     \
     A(BIN, real, halo_buf, HALO_BUF) A(AOUT, real, rows, HALO_ROWS) A(BIN, int, order, ORDER)
 #define DEM_ITEMS_halo_unpack_rows nrecv
+#define DEM_ARGS_move_mark(F, A)                                                                                     \
+    F(I, int, n, N) A(BIN, real, x, X) A(BOUT, real, move_x0, MOVE_X0) A(BOUT, real, move_prev, MOVE_PREV)
+#define DEM_ITEMS_move_mark n
+#define DEM_ARGS_move_check(F, A)                                                                                    \
+    F(I, int, n, N) A(I, int, nblocks, NBLOCKS_RED) A(BIN, real, x, X) A(BIN, unsigned, ghost, GHOST)                \
+    A(BIN, real, move_x0, MOVE_X0) A(BOUT, real, move_prev, MOVE_PREV) A(BOUT, real, move_max, MOVE_MAX)
+#define DEM_ITEMS_move_check nblocks
 
 /* ---- what the lists become ---- */
 /* a parameter declaration of each kind */

@@ -50,4 +50,42 @@ DEM_ITEM(halo_unpack_rows)
     for (int q = 0; q < width; q++)
         rows[width * p + q] = halo_buf[width * k + q];
 }
+
+/* The split's check of the moves (host/mpi/split.c; host/core/part.c sim_move_check), on the device so that a step
+ * reads back 2 reals per block of particles instead of every position. move_mark: the positions now into MOVE_X0
+ * (where the particles were at the split) and MOVE_PREV (before the next step). move_check: item b takes the
+ * particles stored at [b B, (b + 1) B), B = DEM_REDUCE_BLOCK, as wall_reduce_block does, leaves the ghosts out
+ * (their owners check them), and writes the largest distance one has moved since the mark and the largest move
+ * since the last check into MOVE_MAX[2b] and [2b + 1] (a NaN stays a NaN: the host counts it as far); then MOVE_PREV
+ * holds the positions now. A largest value is the same in any order: no sum is involved. (Taking the particles b,
+ * b + nblocks, ... instead, a GPU's coalesced order, ran 10.4 ms a step on PoCL at 5e5 particles a rank, against
+ * 3.2-3.9 ms.) */
+DEM_ITEM(move_mark)
+{
+    for (int q = 0; q < 3; q++) {
+        move_x0[3 * i + q] = x[3 * i + q];
+        move_prev[3 * i + q] = x[3 * i + q];
+    }
+}
+
+DEM_ITEM(move_check)
+{
+    real far = (real)0, last = (real)0;
+    int end = (i + 1) * DEM_REDUCE_BLOCK < n ? (i + 1) * DEM_REDUCE_BLOCK : n;
+    for (int p = i * DEM_REDUCE_BLOCK; p < end; p++) {
+        real dx = x[3 * p] - move_x0[3 * p], dy = x[3 * p + 1] - move_x0[3 * p + 1],
+             dz = x[3 * p + 2] - move_x0[3 * p + 2];
+        real sx = x[3 * p] - move_prev[3 * p], sy = x[3 * p + 1] - move_prev[3 * p + 1],
+             sz = x[3 * p + 2] - move_prev[3 * p + 2];
+        real d = sqrt(dx * dx + dy * dy + dz * dz), st = sqrt(sx * sx + sy * sy + sz * sz);
+        if (!ghost[p]) {
+            far = d > far || d != d ? d : far;
+            last = st > last || st != st ? st : last;
+        }
+        for (int q = 0; q < 3; q++)
+            move_prev[3 * p + q] = x[3 * p + q];
+    }
+    move_max[2 * i] = far;
+    move_max[2 * i + 1] = last;
+}
 #endif /* DEM_HALO_H */

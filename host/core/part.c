@@ -183,6 +183,32 @@ int sim_halo_unpack_rows(dem_sim *s, int id, int width, const void *in)
     return e ? e : halo_in(s, K_halo_unpack_rows, width, in);
 }
 
+/* The split's check of the moves on the device (common/halo.h): mark, or the largest distance an own particle has
+ * moved since the mark and the largest move of the last step, from the blocks' largest values (a NaN kept) */
+int sim_move_check(dem_sim *s, int mark, double out[2])
+{
+    dem_core *c = s->run.started ? DEM_CORE(s->be) : NULL;
+    out[0] = out[1] = 0;
+    if (!c || !(c->fx & DEM_HAS_GHOSTS))
+        return sim_fail(s, DEM_ERR_STATE, "sim_move_check: a started part of a split run only");
+    if (mark)
+        return dem_launch(s->ops, s->be, K_move_mark) ? sim_be_fail(s) : 0;
+    size_t nb = (size_t)c->si[SI_NBLOCKS_RED], bytes = 2 * nb * (size_t)c->rs;
+    unsigned char *buf = malloc(bytes ? bytes : 1);
+    if (!buf)
+        return sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
+    int e = bytes && (dem_launch(s->ops, s->be, K_move_check) ||
+                      s->ops->read(s->be, (dem_bufref){TABLE_ONE, BUF_MOVE_MAX}, 0, buf, bytes, 1))
+                ? sim_be_fail(s)
+                : 0;
+    for (size_t k = 0; !e && k < 2 * nb; k++) {
+        double m = c->rs == sizeof(double) ? ((const double *)buf)[k] : (double)((const float *)buf)[k];
+        out[k % 2] = m > out[k % 2] || m != m ? m : out[k % 2];
+    }
+    free(buf);
+    return e;
+}
+
 void sim_run_record_get(const dem_sim *s, sim_run_record *r)
 {
     memcpy(r->servo, s->motion.servo, sizeof r->servo);

@@ -288,6 +288,12 @@ int sim_halo_unpack(dem_sim *s, const void *in);
  * MC-stress's trace, MDR's particle row (host/mpi/halo.c) */
 int sim_halo_pack_rows(dem_sim *s, int id, int width, void *out);
 int sim_halo_unpack_rows(dem_sim *s, int id, int width, const void *in);
+/* part.c: the check of the moves of a started part (its ghosts marked: DEM_HAS_GHOSTS), on the device (common/halo.h
+ * move_mark, move_check). mark != 0: the positions now become where the particles were at the split and before the
+ * next step, out 0 0; else out[0] is the largest distance an own particle has moved since the mark and out[1] its
+ * largest move since the last call (a NaN, where a position is one), and the positions now are the next call's
+ * last. Reads 2 reals per block of DEM_REDUCE_BLOCK particles, not the positions. */
+int sim_move_check(dem_sim *s, int mark, double out[2]);
 /* energy.c: the exact sums (SE_* of dem_layout.h) behind the last series row made from the device's ring, before
  * they were rounded: over the run's own particles (its ghosts left out). Runs split over ranks merge them. */
 void sim_row_exact(const dem_sim *s, exact_acc acc[SE_STRIDE]);

@@ -314,9 +314,9 @@ static int exchange(dem_mpi_halo *h, int walls)
     if (e)
         return e;
     e = send_rows(h, HALO_W);
-    /* the owners' rows into the ghosts, then the positions the split's check of the moves reads (app/run_mpi.c) */
-    if (!e && !(e = sim_halo_unpack(h->s, h->rbuf)))
-        e = dem_get_field(h->s, DEM_FIELD_X, h->field);
+    /* the owners' rows into the ghosts (the split's check of the moves reads no positions: sim_move_check) */
+    if (!e)
+        e = sim_halo_unpack(h->s, h->rbuf);
     if ((e = dem_mpi_agreed(h->comm, e)))
         return e;
     /* MDR: the row's sums the contacts left, which the next step's mdr_begin turns into volumes and a radius */

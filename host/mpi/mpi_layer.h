@@ -30,7 +30,8 @@ typedef struct {
     int nsend, nrecv;                       /* own particles other ranks hold as ghosts (with repeats), ghosts held */
     int *send_count, *send_displ, *send_id; /* per rank, its ghosts of ours, ascending global id: our local ids */
     int *recv_count, *recv_displ, *recv_id; /* per rank, our ghosts it owns, ascending global id: our local ids */
-    double *field;                          /* the held particles' positions after the last exchange (3 n) */
+    double *field;                          /* room for the held particles' positions (3 n): read by a split
+                                               anew and the bounds, not by every step */
     void *sbuf, *rbuf;                      /* the messages: rows of HALO_W reals (common/halo.h) */
     int rs;                                 /* bytes per real of the run (and of the messages) */
     int *msg_count;                         /* [4 size]: a message's counts and displacements, sent and received */
@@ -57,9 +58,8 @@ typedef struct {
 int dem_mpi_halo_init(dem_mpi_halo *h, MPI_Comm comm, dem_sim *s, int n, const long *gid, const int *owner);
 /* After a step: the owners' position, velocity, spin, force and torque into every ghost, as rows of HALO_W reals
  * packed and unpacked on the device (common/halo.h: only the rows sent and received cross to the host and MPI, in
- * the run's precision), then the held particles' positions read into h->field for the split's check of the moves
- * (under MDR also each particle's row, packed the same way: the sums the step's contacts left, which the next
- * step's mdr_begin reads); and where walls are
+ * the run's precision; under MDR also each particle's row, packed the same way: the sums the step's contacts left,
+ * which the next step's mdr_begin reads); and where walls are
  * steered by their sums (h->steer: a servo, an until_force stage), every rank's sums of that step merged exactly
  * and set in every rank's run (sim_wall_sums_set), so that the next step's servo and stage ends read the force one
  * process reads. Collective. */
@@ -142,7 +142,6 @@ struct dem_mpi_split {
     int nloc, nown;       /* held, and own of them */
     long *gid;            /* [nloc]: each held particle's global id, ascending */
     int *owner;           /* [nloc]: its rank */
-    double *x0, *xprev;   /* [3 nloc]: positions at the split, and before the last step */
     double rmax, margin;  /* margin: r_max times margin_f (0: 1), the halo's width beyond 2 r_max */
     double margin_f;
     long splits;          /* the splits so far (the first included) */

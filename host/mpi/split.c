@@ -116,8 +116,8 @@ static void drop_part(dem_mpi_split *q)
     q->have_h = 0;
     dem_destroy(q->part);
     q->part = NULL;
-    free(q->gid), free(q->owner), free(q->x0), free(q->xprev);
-    q->gid = NULL, q->owner = NULL, q->x0 = NULL, q->xprev = NULL;
+    free(q->gid), free(q->owner);
+    q->gid = NULL, q->owner = NULL;
 }
 
 /* who keeps what in a split: a particle's owner, and every rank whose box it is within the halo's width of */
@@ -174,16 +174,12 @@ static int split_from(dem_mpi_split *q, int fresh, long n, const double *x, cons
         }
         q->gid = malloc(sizeof(long) * (size_t)(q->nloc ? q->nloc : 1));
         q->owner = malloc(sizeof(int) * (size_t)(q->nloc ? q->nloc : 1));
-        q->x0 = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1));
-        q->xprev = malloc(sizeof(double) * 3 * (size_t)(q->nloc ? q->nloc : 1));
         ghost = malloc((size_t)(q->nloc ? q->nloc : 1));
-        if (!q->gid || !q->owner || !q->x0 || !q->xprev || !ghost)
+        if (!q->gid || !q->owner || !ghost)
             e = DEM_ERR_NOMEM, snprintf(err, len, "out of host memory");
         for (long k = 0, m = 0; !e && k < n; k++)
             if (keep[k]) {
                 q->gid[m] = k, q->owner[m] = owner[k], ghost[m] = owner[k] != me;
-                memcpy(q->x0 + 3 * m, x + 3 * k, sizeof(double) * 3);
-                memcpy(q->xprev + 3 * m, x + 3 * k, sizeof(double) * 3);
                 m++;
             }
     }
@@ -222,6 +218,9 @@ static int split_from(dem_mpi_split *q, int fresh, long n, const double *x, cons
         dem_mpi_halo_free(&q->h);
         return dem_mpi_split_shared_error(q, e, err, len);
     }
+    double none[2]; /* the positions now, where the check of the moves measures from (on the device) */
+    if ((e = dem_mpi_agreed(q->comm, sim_move_check(q->part, 1, none))))
+        return dem_mpi_split_shared_error(q, e, err, len);
     long gh = q->nloc - q->nown;
     MPI_Allreduce(&gh, &q->ghosts_sum, 1, MPI_LONG, MPI_SUM, q->comm);
     q->splits++;
@@ -307,7 +306,9 @@ static int split_anew(dem_mpi_split *q, char *err, size_t len)
     long n = q->n;
     double *x = malloc(sizeof(double) * 3 * (size_t)(n ? n : 1));
     int e = dem_mpi_agreed(q->comm, x ? 0 : DEM_ERR_NOMEM);
-    e = e ? e : dem_mpi_split_rows(q, q->h.field, 3, x); /* agreed: the last exchange's (moved) positions */
+    if (!e) /* the positions now (the last exchange's: the own particles' are their owners') */
+        e = dem_mpi_agreed(q->comm, dem_get_field(q->part, DEM_FIELD_X, q->h.field));
+    e = e ? e : dem_mpi_split_rows(q, q->h.field, 3, x); /* agreed */
     dem_state loc;
     memset(&loc, 0, sizeof loc);
     if (!e)
@@ -331,28 +332,15 @@ static int split_anew(dem_mpi_split *q, char *err, size_t len)
     return e;
 }
 
-static double dist3(const double *a, const double *b)
-{
-    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    return sqrt(dx * dx + dy * dy + dz * dz);
-}
-
 /* Over every rank: the largest distance an own particle has moved since the split, plus twice the longest move of
- * the last step (the step to come drifts the particles before their forces: by about that much). A NaN counts as
- * far. */
+ * the last step (the step to come drifts the particles before their forces: by about that much). Measured on the
+ * device (sim_move_check: 2 reals a block of particles read, not the positions). A NaN counts as far, and so does a
+ * check that failed: the split anew it causes reads the positions and says why if that fails too. */
 static double moved(dem_mpi_split *q)
 {
-    /* the positions as the last exchange left them (dem_mpi_halo: its field holds x first; a halo set up has them):
-     * no read of the device, and nothing that can fail */
-    const double *x = q->h.field;
-    double m[2] = {0, 0}, out[2];
-    for (int k = 0; k < q->nloc; k++)
-        if (q->owner[k] == q->rank) {
-            double d = dist3(x + 3 * k, q->x0 + 3 * k), st = dist3(x + 3 * k, q->xprev + 3 * k);
-            m[0] = d > m[0] || d != d ? d : m[0];
-            m[1] = st > m[1] || st != st ? st : m[1];
-        }
-    memcpy(q->xprev, x, sizeof(double) * 3 * (size_t)q->nloc);
+    double m[2], out[2];
+    if (sim_move_check(q->part, 0, m))
+        m[0] = m[1] = INFINITY;
     for (int k = 0; k < 2; k++)
         m[k] = m[k] != m[k] ? INFINITY : m[k];
     MPI_Allreduce(m, out, 2, MPI_DOUBLE, MPI_MAX, q->comm);
@@ -479,8 +467,9 @@ int dem_mpi_split_sample(dem_mpi_split *q, dem_sample *row, char *err, size_t le
 void dem_mpi_split_bounds(dem_mpi_split *q, double box[6])
 {
     double mine[6] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY}; /* lo, then -hi */
-    const double *x = q->h.field; /* the positions as the last exchange left them */
-    for (int k = 0; k < q->nloc; k++)
+    const double *x = q->h.field; /* the positions now (a rank whose read fails adds nothing: its next step fails) */
+    int e = dem_get_field(q->part, DEM_FIELD_X, q->h.field);
+    for (int k = 0; !e && k < q->nloc; k++)
         if (q->owner[k] == q->rank) {
             double rad = dem_particle_radius(q->part, k);
             for (int d = 0; d < 3; d++)
