@@ -978,10 +978,11 @@ static int phase_steps(run_ctx *c)
     }
     int writer = !R || R->rank == 0, who; /* a run over ranks: rank 0 writes */
     double box[6];
-    if (R) /* the particles' box at the start, for the walls' drawn planes: the parts' */
-        R->bounds(R, box);
+    /* the particles' box at the start, for the walls' drawn planes: the parts' (where a rank could not read its
+     * positions, the set-up's: the drawn planes only, and a failing device stops the run at its first step) */
+    int parts_box = R && !R->bounds(R, box);
     if (writer) /* (over ranks: the header from the whole run's set-up, the device from rank 0's part) */
-        c->out = output_open(c->outp, c->sc, run, s, stepped(c), R ? box : NULL, c->err, sizeof c->err);
+        c->out = output_open(c->outp, c->sc, run, s, stepped(c), parts_box ? box : NULL, c->err, sizeof c->err);
     if (R && R->agree(R, writer && !c->out ? EXIT_IO : 0, &who))
         return fail_with(EXIT_IO, c->err);
     if (!R && !c->out)

@@ -55,8 +55,9 @@ struct run_ranks {
     /* the series row of the state now (the run's first: dem_sample_get of one process), from the parts' own
      * particles' exact sums, merged (every rank gets it); dem_status, message in err */
     int (*sample)(run_ranks *r, dem_sample *row, char *err, size_t len);
-    /* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it) */
-    void (*bounds)(run_ranks *r, double box[6]);
+    /* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it); 0, or non-zero
+     * on every rank where a rank could not read its positions */
+    int (*bounds)(run_ranks *r, double box[6]);
     /* nsteps steps like dem_step_sampled, rows merged over the ranks (every rank gets them) */
     int (*step)(run_ranks *r, long nsteps, const unsigned char *want, dem_sample *rows, char *err, size_t len);
     long (*step_index)(run_ranks *r);

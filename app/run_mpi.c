@@ -126,7 +126,7 @@ static int sample(run_ranks *r, dem_sample *row, char *err, size_t len)
     return dem_mpi_split_sample(&of(r)->sp, row, err, len);
 }
 
-static void bounds(run_ranks *r, double box[6]) { dem_mpi_split_bounds(&of(r)->sp, box); }
+static int bounds(run_ranks *r, double box[6]) { return dem_mpi_split_bounds(&of(r)->sp, box); }
 
 /* ---- a frame written from the parts: rank 0 asks for each slab (output_frame_from), every rank answers with its
  * own particles' values or contacts in it, gathered on rank 0; the whole state is not gathered ---- */

@@ -181,8 +181,9 @@ int dem_mpi_split_step(dem_mpi_split *sp, long nsteps, const unsigned char *want
 /* the series row of the state now (dem_sample_get of one process), from the parts' own particles' exact sums,
  * merged (every rank gets it). Collective; agreed. */
 int dem_mpi_split_sample(dem_mpi_split *sp, dem_sample *row, char *err, size_t len);
-/* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it). Collective. */
-void dem_mpi_split_bounds(dem_mpi_split *sp, double box[6]);
+/* the box lo[3], hi[3] of every particle (x +- r) now, over the parts' own (every rank gets it). Collective; 0, or
+ * DEM_ERR_DEVICE on every rank where any rank could not read its positions (box then not every particle's). */
+int dem_mpi_split_bounds(dem_mpi_split *sp, double box[6]);
 /* Every rank's own particles' rows vals[nc k .. nc k + nc) (k: a held particle, its local id), by global id, into
  * out[nc n] on every rank: what the split cuts by (the positions: 3 reals a particle), and a split run's fields
  * (dem_get_field of dem_create_mpi's run). Collective; 0 or a dem_status, the same on every rank. */

@@ -333,18 +333,19 @@ static int split_anew(dem_mpi_split *q, char *err, size_t len)
 }
 
 /* Over every rank: the largest distance an own particle has moved since the split, plus twice the longest move of
- * the last step (the step to come drifts the particles before their forces: by about that much). Measured on the
- * device (sim_move_check: 2 reals a block of particles read, not the positions). A NaN counts as far, and so does a
- * check that failed: the split anew it causes reads the positions and says why if that fails too. */
-static double moved(dem_mpi_split *q)
+ * the last step (the step to come drifts the particles before their forces: by about that much), into *most.
+ * Measured on the device (sim_move_check: 2 reals a block of particles read, not the positions). A NaN counts as
+ * far. Collective; agreed: a rank whose check failed makes every rank return its code, its words in err. */
+static int moved(dem_mpi_split *q, double *most, char *err, size_t len)
 {
-    double m[2], out[2];
-    if (sim_move_check(q->part, 0, m))
-        m[0] = m[1] = INFINITY;
+    double m[3], out[3];
+    int e = sim_move_check(q->part, 0, m);
     for (int k = 0; k < 2; k++)
-        m[k] = m[k] != m[k] ? INFINITY : m[k];
-    MPI_Allreduce(m, out, 2, MPI_DOUBLE, MPI_MAX, q->comm);
-    return out[0] + 2 * out[1];
+        m[k] = e || m[k] != m[k] ? INFINITY : m[k];
+    m[2] = e ? 1 : 0;
+    MPI_Allreduce(m, out, 3, MPI_DOUBLE, MPI_MAX, q->comm);
+    *most = out[0] + 2 * out[1];
+    return out[2] > 0 ? dem_mpi_split_agreed(q, e, q->part, err, len) : 0;
 }
 
 /* The exact sums of the last step merged over the ranks: the series row's (SE_*) and each wall's (WP_*), rounded
@@ -384,9 +385,12 @@ int dem_mpi_split_step(dem_mpi_split *q, long nsteps, const unsigned char *want,
     dem_sample *o = rows;
     err[0] = 0;
     for (long k = 0; k < nsteps; k++) {
-        double t0 = MPI_Wtime(), most = moved(q), t1 = MPI_Wtime();
-        int e;
+        double t0 = MPI_Wtime(), most;
+        int e = moved(q, &most, err, len);
+        double t1 = MPI_Wtime();
         q->t_check += t1 - t0;
+        if (e)
+            return e;
         if (most > 0.5 * q->margin && (e = split_anew(q, err, len))) /* cut by the positions now */
             return e;
         double t2 = MPI_Wtime();
@@ -464,20 +468,23 @@ int dem_mpi_split_sample(dem_mpi_split *q, dem_sample *row, char *err, size_t le
     return 0;
 }
 
-void dem_mpi_split_bounds(dem_mpi_split *q, double box[6])
+int dem_mpi_split_bounds(dem_mpi_split *q, double box[6])
 {
-    double mine[6] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY}; /* lo, then -hi */
-    const double *x = q->h.field; /* the positions now (a rank whose read fails adds nothing: its next step fails) */
+    /* lo, then -hi, then 1 where this rank could not read its positions (the largest over the ranks: any rank's) */
+    double mine[7] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, 0}, all[7];
+    const double *x = q->h.field; /* the positions now */
     int e = dem_get_field(q->part, DEM_FIELD_X, q->h.field);
+    mine[6] = e ? -1 : 0; /* MPI_MIN: -1 where any rank failed */
     for (int k = 0; !e && k < q->nloc; k++)
         if (q->owner[k] == q->rank) {
             double rad = dem_particle_radius(q->part, k);
             for (int d = 0; d < 3; d++)
                 mine[d] = fmin(mine[d], x[3 * k + d] - rad), mine[3 + d] = fmin(mine[3 + d], -(x[3 * k + d] + rad));
         }
-    MPI_Allreduce(mine, box, 6, MPI_DOUBLE, MPI_MIN, q->comm);
+    MPI_Allreduce(mine, all, 7, MPI_DOUBLE, MPI_MIN, q->comm);
     for (int d = 0; d < 3; d++)
-        box[3 + d] = -box[3 + d];
+        box[d] = all[d], box[3 + d] = -all[3 + d];
+    return all[6] < 0 ? DEM_ERR_DEVICE : 0;
 }
 
 int dem_mpi_split_walls(dem_mpi_split *q, exact_acc *acc, int *nw, char *err, size_t len)
