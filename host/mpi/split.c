@@ -470,11 +470,11 @@ int dem_mpi_split_sample(dem_mpi_split *q, dem_sample *row, char *err, size_t le
 
 int dem_mpi_split_bounds(dem_mpi_split *q, double box[6])
 {
-    /* lo, then -hi, then 1 where this rank could not read its positions (the largest over the ranks: any rank's) */
+    /* lo, then -hi, then -1 where this rank could not read its positions (the smallest over the ranks: any rank's) */
     double mine[7] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, 0}, all[7];
     const double *x = q->h.field; /* the positions now */
     int e = dem_get_field(q->part, DEM_FIELD_X, q->h.field);
-    mine[6] = e ? -1 : 0; /* MPI_MIN: -1 where any rank failed */
+    mine[6] = e ? -1 : 0;
     for (int k = 0; !e && k < q->nloc; k++)
         if (q->owner[k] == q->rank) {
             double rad = dem_particle_radius(q->part, k);
