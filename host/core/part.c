@@ -202,7 +202,7 @@ int sim_move_check(dem_sim *s, int mark, double out[2])
                 ? sim_be_fail(s)
                 : 0;
     for (size_t k = 0; !e && k < 2 * nb; k++) {
-        double m = c->rs == sizeof(double) ? ((const double *)buf)[k] : (double)((const float *)buf)[k];
+        double m = sim_real_at(buf, k, c->rs);
         out[k % 2] = m > out[k % 2] || m != m ? m : out[k % 2];
     }
     free(buf);
