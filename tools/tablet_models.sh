@@ -10,7 +10,7 @@
 #   TABLET_MODELS the models (default: classical mc_stress mc_strain mc_strain_iterated)
 #   DEM           the dem binary (default build/dem)
 #   TABLET_ARGS   more `dem run` options for every model, e.g. "--stop-after 201300" (tablet_100k to 41 ms: the
-#                 compaction, dwell and decompression, the first of the ejection)
+#                 compaction, dwell and decompression; its ejection starts at 45 ms)
 #   TABLET_TIME   a wall-time limit per model and sitting (`timeout`'s form: 90m, 2h): a run still going then is
 #                 stopped by SIGTERM (dem run ends it cleanly: output complete, checkpoint, exit status 143), and
 #                 the next `make tablet-models` with TABLET_TIME set continues it from its checkpoint into
