@@ -39,7 +39,7 @@ SINGLE = {
     "wall_adh50": dict(kind="wall", gamma=GAMMA_STRONG, path=(0.15 * R, 0.09 * R, 0.225 * R, -0.03 * R)),
     # two unequal spheres (0.5 and 0.3 mm): the flat sits off the middle (M3) and the two sides yield apart
     "pair_uneq": dict(kind="pair", gamma=GAMMA_ADH, R2=0.6 * R, path=(0.24 * R, 0.15 * R, 0.36 * R, -0.04 * R)),
-    # one sphere between six planes that close in together: past about 15 % of R the free-surface fraction psi
+    # one sphere between six planes that close in together: past about 19 % of R the free-surface fraction psi
     # falls below psi_b and Part II's bulk force takes over; no damping (the planes move, the sphere does not)
     "box_g0":   dict(kind="box", gamma=0.0, damp=0.0, path=(0.20 * R, 0.12 * R, 0.24 * R, -0.06 * R)),
 }
