@@ -361,7 +361,7 @@ static int parse_materials(const scene *sc, dem_sim *s, char *err, size_t errlen
         MCHECK("surface_energy", m->surface_energy >= 0 && isfinite(m->surface_energy),
                "the surface energy must be >= 0 J/m^2 (0: no adhesion)");
         MCHECK("bulk_fraction", m->bulk_fraction >= 0 && m->bulk_fraction < 1,
-               "the bulk fraction psi_b must be in [0, 1) (0: no bulk response)");
+               "the bulk fraction psi_b must be in [0, 1) (0: no bulk response while psi >= 0)");
         MCHECK("mdr_damping", m->mdr_damping >= 0 && isfinite(m->mdr_damping), "the MDR damping must be >= 0");
 #undef MCHECK
         for (unsigned j = 0; j < k; j++)
