@@ -1281,6 +1281,12 @@ static void phase_report(run_ctx *c)
                                     "< 1 (docs/scenes.md)");
     }
     overlap_watch_report(&c->ov, c->sc, run, c->o->progress != 0 || c->show);
+    long capped_id, capped_at = dem_mdr_capped(stepped(c), &capped_id);
+    if (capped_at >= 0)
+        fprintf(stderr, "dem: warning: MDR: from step %ld (t = %.9g s, particle %ld the first) a sphere's apparent "
+                        "radius met the law's cap of 1.5 times its own radius: past it the law no longer keeps the "
+                        "sphere's volume and the compact is past MDR's range (docs/laws/mdr.md \"Range\")\n",
+                capped_at, (double)capped_at * dem_dt(c->s), capped_id);
     if (iterated && mc.unconverged > 0)
         fprintf(stderr, "dem: warning: %ld of %ld steps hit the MC-strain iteration cap of %d (mc_iterations) before "
                         "every contact force settled to mc_tolerance %g; the series mc_capped counts them. Raise "

@@ -35,7 +35,7 @@ DEM_KERNEL_LIST(CHECK_KERNEL)
 _Static_assert(PR_STRIDE == 7 && W_STRIDE == 11 && WI_STRIDE == 2 && PM_STRIDE == 26 && ST_STRIDE == 6 &&
                    MDR_PAIR_STRIDE == 25 && MDR_WALL_STRIDE == 13 && MDR_P_STRIDE == 14,
                "record layouts (dem_layout.h) changed: checkpoints and kernels depend on them");
-_Static_assert(FLAG_COUNT == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/steps/binning.c resets the cell bounds");
+_Static_assert(FLAG_COUNT == 15 && FLAG_MDR_CAPPED == 14 && FLAG_CELL_HI == FLAG_CELL_LO + 3, "flags (dem_layout.h): host/steps/binning.c resets the cell bounds");
 _Static_assert(K__COUNT <= 256, "kernel ids fit the trace's bytes");
 _Static_assert(DEM_PAIR_RECORD_REALS == PR_STRIDE, "the pair records' size in dem.h (checkpoints)");
 _Static_assert(DEM_MDR_LAW_REALS == MDR_PAIR_STRIDE, "the mdr law's reals per pair in dem.h (checkpoints)");

@@ -149,7 +149,9 @@ enum {
     FLAG_CELL_LO = 8,       /* 8, 9, 10: the lowest cell along x, y, z of the domain's grid that holds a particle
                                (bin_bounds; INT_MAX when none) ... */
     FLAG_CELL_HI = 11,      /* 11, 12, 13: ... and the highest (-1 when none): the cells the binning uses */
-    FLAG_COUNT = 14
+    FLAG_MDR_CAPPED = 14,   /* MDR: smallest storage slot of a particle whose apparent radius met the law's cap of
+                               1.5 R_o this step (mdr_begin, laws/mdr_core.h mdr_particle_begin); INT_MAX if none */
+    FLAG_COUNT = 15
 };
 #define DEM_NO_PARTICLE 2147483647
 /* Per-particle symmetric stress tensor (DEM_FIELD_STRESS): 6 reals per particle in this order [Pa]. */

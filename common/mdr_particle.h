@@ -31,7 +31,8 @@ DEM_ITEM(mdr_begin)
     DEM_GLOBAL real *row = mdr_part + MDR_P_STRIDE * i;
     mdr_particle p = mdr_particle_load(row);
     mdr_material m = mdr_material_from(pairmat + PM_STRIDE * (mat[i] * nmat + mat[i]) + PM_MDR);
-    mdr_particle_begin(&p, &m);
+    if (mdr_particle_begin(&p, &m)) /* the radius held at its cap: the host says where (step_loop.c) */
+        DEM_ATOMIC_MIN(&flags[FLAG_MDR_CAPPED], i);
     mdr_particle_store(row, &p);
     radius[i] = p.r;
     real grown = p.r - r_build[i];

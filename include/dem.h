@@ -276,6 +276,12 @@ DEM_API const char *dem_error(const dem_sim *s);
  * or a negative value when the last error named none (`dem run` then says which closed membrane a grain left
  * through). */
 DEM_API int dem_error_particle(const dem_sim *s);
+/* MDR (DEM_EFFECT_MDR): the first step of this process (from dem_create; for an MPI rank, among its own particles) at
+ * which a particle's apparent radius met the law's cap of 1.5 times its own radius, its growth held there (common/
+ * laws/mdr_core.h mdr_particle_begin), and that particle (caller's id) into *particle if not NULL; -1 both when none.
+ * Past it the law no longer keeps the sphere's volume and a compact pressed on can leave the law's range (docs/laws/
+ * mdr.md "Range"; a step that then fails says so in its error). Not part of the state. */
+DEM_API long dem_mdr_capped(const dem_sim *s, long *particle);
 DEM_API void dem_config_default(dem_config *c);
 
 /* Returns the new material's id (0, 1, ... in the order added; at most 64), or a negative dem_status. */

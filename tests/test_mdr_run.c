@@ -340,6 +340,8 @@ static void test_box(void **state)
         if (!(psi_min < PSI_B))
             fail_msg("six planes, %s: psi stayed at %g or above: Part II's bulk response was not reached", bc->name,
                      psi_min);
+        if (dem_mdr_capped(s, NULL) != -1) /* the radius grew 1.0011-fold at most here: far from the cap */
+            fail_msg("six planes, %s: the run says a radius met MDR's cap (step %ld)", bc->name, dem_mdr_capped(s, NULL));
         if (!(fabs(r_end - out[m1 + n]) <= (bc->precision == DEM_FP64 ? 1e-12 : 1e-5) * R1))
             fail_msg("six planes, %s: apparent radius %.17g m, the walk's %.17g m", bc->name, r_end, out[m1 + n]);
         int pp = bc->precision == DEM_FP64 ? 0 : 1;
@@ -351,6 +353,83 @@ static void test_box(void **state)
         dem_destroy(s);
     }
     free(ref_bits[0]), free(ref_bits[1]);
+}
+
+/* The cap of (M34) (docs/laws/mdr.md "Range"): a fixed sphere between two planes closing in along z at 0.1 m/s each,
+ * with psi_b = 0 (no bulk response while psi >= 0: the radius alone keeps the volume) and no adhesion. Its volume
+ * needs an apparent radius of 1.5 R_o once the gap is about 0.6 R_o (caps of depth 1.2 R_o on R = 1.5 R_o hold
+ * 4/3 pi R_o^3): the radius must meet the cap before the planes have travelled 0.85 R_o each; dem_mdr_capped must say
+ * so at the step whose start first held the radius (unchanged from the step before, within 0.1 % below 1.5 R_o) and
+ * not before; and in the 200 steps after it the radius must not pass 1.5 R_o by more than its last growth step. The
+ * same step on every backend of a precision. */
+static void test_cap(void **state)
+{
+    (void)state;
+    double v = 0.1;
+    long nmax = lround(0.85 * R1 / (v * DT)), at_of[BACKEND_CASES];
+    int k_case = 0;
+    FOR_EACH_BACKEND(bc) {
+        dem_sim *s = dem_create();
+        dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
+        m.bulk_fraction = 0.0;
+        int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
+        dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
+        dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
+        for (int k = 0; k < 2; k++) { /* -z, +z: touching, normals inwards, closing in */
+            dem_wall w = {0};
+            int sg = k ? 1 : -1;
+            w.kind = DEM_WALL_PLANE, w.material = wmat;
+            w.point[2] = sg * R1, w.normal[2] = -sg;
+            dem_stage st = {0};
+            st.duration = 1.0, st.velocity[2] = -sg * v;
+            w.nstages = 1;
+            int id = dem_add_wall(s, &w);
+            if (id < 0 || dem_set_wall_motion(s, id, 1, &st))
+                fail_msg("%s", dem_error(s));
+        }
+        dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
+        if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS) || dem_set_dt(s, DT))
+            fail_msg("%s", dem_error(s));
+        dem_config c = cfg_of(bc->backend, bc->precision);
+        c.force_dt = 1;
+        start_or_fail(s, &c);
+        double r = R1, r_prev = R1, r_max = R1, grow = 0;
+        long at = -1, who = -2, k;
+        for (k = 1; k <= nmax && at < 0; k++) {
+            step_or_fail(s, 1);
+            r_prev = r;
+            if (dem_get_field(s, DEM_FIELD_RADIUS, &r))
+                fail_msg("%s", dem_error(s));
+            grow = r > r_prev ? r - r_prev : grow; /* the last step's growth that was not held */
+            at = dem_mdr_capped(s, &who);
+        }
+        for (long q = 0; at >= 0 && q < 200; q++) { /* held there */
+            step_or_fail(s, 1);
+            double rq;
+            if (dem_get_field(s, DEM_FIELD_RADIUS, &rq))
+                fail_msg("%s", dem_error(s));
+            r_max = fmax(r_max, rq);
+        }
+        printf("  cap, %s: met at step %ld (planes in by %.4g R_o each), radius then %.9g R_o (last growth %.3g R_o), "
+               "largest in the 200 steps after %.9g R_o\n", bc->name, at, (double)at * v * DT / R1, r / R1, grow / R1,
+               r_max / R1);
+        if (at < 0)
+            fail_msg("cap, %s: no radius met the cap in %ld steps (radius %.9g R_o)", bc->name, nmax, r / R1);
+        if (at != k - 1 || who != 0)
+            fail_msg("cap, %s: dem_mdr_capped says step %ld, particle %ld; the step taken was %ld, particle 0", bc->name,
+                     at, who, k - 1);
+        if (!(r == r_prev && r < 1.5 * R1 && r >= 1.499 * R1))
+            fail_msg("cap, %s: at step %ld the radius is %.17g R_o (the step before %.17g R_o): not held at the cap",
+                     bc->name, at, r / R1, r_prev / R1);
+        if (!(r_max <= 1.5 * R1 + grow))
+            fail_msg("cap, %s: the radius grew on to %.17g R_o past the cap", bc->name, r_max / R1);
+        at_of[k_case++] = at;
+        dem_destroy(s);
+    }
+    for (int q = 1; q < k_case; q++)
+        if (at_of[q] != at_of[0] && backend_cases[q].precision == backend_cases[0].precision)
+            fail_msg("cap: %s met it at step %ld, %s at %ld", backend_cases[q].name, at_of[q], backend_cases[0].name,
+                     at_of[0]);
 }
 
 /* Two spheres of MCC of surface energy gamma and yield stress y (bond strength sigb, friction mu), 0.5 mm and r2,
@@ -1057,6 +1136,7 @@ int main(void)
         cmocka_unit_test(test_unequal_adhesive_pair),
         cmocka_unit_test(test_wall_path),
         cmocka_unit_test(test_box),
+        cmocka_unit_test(test_cap),
         cmocka_unit_test(test_penalty),
         cmocka_unit_test(test_energy),
         cmocka_unit_test(test_bond),

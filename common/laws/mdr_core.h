@@ -253,9 +253,14 @@ DEM_INLINE mdr_particle mdr_particle_new(real radius)
 }
 
 /* (M31, M34, M36) a particle's step from the sums its contacts left in the last one: volumes, free-surface fraction,
- * the radius that keeps the volume; then the sums restart */
-DEM_INLINE void mdr_particle_begin(mdr_particle *p, const mdr_material *m)
+ * the radius that keeps the volume; then the sums restart. Returns 1 when the radius would have grown past 1.5 R_o
+ * and was held (the cap LAMMPS's implementation has too): from there the particle's volume is no longer kept, its
+ * contacts flatten on into overlaps (M16)-(M17) were not made for, and a compact that goes on being pressed can leave
+ * the law's range (a press at psi_b 0 went non-finite 205 steps after the sphere that failed met the cap: docs/laws/
+ * mdr.md "Range"); 0 otherwise */
+DEM_INLINE int mdr_particle_begin(mdr_particle *p, const mdr_material *m)
 {
+    int capped = 0;
     real r = p->r, four_pi_3 = (real)4 / (real)3 * MDR_PI;
     real vo = four_pi_3 * p->ro * p->ro * p->ro;
     real vgeo = four_pi_3 * r * r * r - p->vcaps;
@@ -271,11 +276,14 @@ DEM_INLINE void mdr_particle_begin(mdr_particle *p, const mdr_material *m)
             p->dr_avg += (dr - p->dr_avg) / (real)10;
             if (r + dr < (real)3 / (real)2 * p->ro)
                 p->r = r + p->dr_avg;
+            else
+                capped = 1;
         }
     }
     p->acon0 = p->acon1;
     mdr_particle_clear_sums(p);
     p->ddelta_bar = (real)0;
+    return capped;
 }
 
 /* (M33) one contact's share of the particle's mean surface displacement increment, at the step's start */

@@ -8,6 +8,12 @@
 
 const char *dem_error(const dem_sim *s) { return s ? s->report.err : "no simulation (out of memory?)"; }
 int dem_error_particle(const dem_sim *s) { return s ? s->report.err_particle : -1; }
+long dem_mdr_capped(const dem_sim *s, long *particle)
+{
+    if (particle)
+        *particle = s ? s->report.mdr_capped_particle : -1;
+    return s ? s->report.mdr_capped_step : -1;
+}
 
 int sim_be_fail(dem_sim *s)
 {

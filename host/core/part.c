@@ -217,6 +217,7 @@ void sim_run_record_get(const dem_sim *s, sim_run_record *r)
     memcpy(r->log, s->motion.stage_log, sizeof r->log);
     r->log_n = s->motion.stage_log_n;
     r->mc_first_capped = s->mc.stats.first_capped, r->mc_last_capped = s->mc.stats.last_capped;
+    r->mdr_capped_step = s->report.mdr_capped_step, r->mdr_capped_particle = s->report.mdr_capped_particle;
 }
 
 void sim_run_record_set(dem_sim *s, const sim_run_record *r)
@@ -227,6 +228,7 @@ void sim_run_record_set(dem_sim *s, const sim_run_record *r)
     memcpy(s->motion.stage_log, r->log, sizeof r->log);
     s->motion.stage_log_n = r->log_n;
     s->mc.stats.first_capped = r->mc_first_capped, s->mc.stats.last_capped = r->mc_last_capped;
+    s->report.mdr_capped_step = r->mdr_capped_step, s->report.mdr_capped_particle = r->mdr_capped_particle;
 }
 
 int sim_mc_disp_get(dem_sim *s, long *count, int **pi, int **pj, double **d)

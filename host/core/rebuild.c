@@ -5,6 +5,7 @@
 #include "dem_layout.h"
 #include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -23,17 +24,24 @@ static int report_out_of_domain(dem_sim *s, int slot)
             p[d] = rs == 8 ? ((double *)buf)[3 * slot + d] : ((float *)buf)[3 * slot + d];
     free(buf);
     s->report.err_particle = id;
+    /* under MDR, a radius held at the law's cap before it (step_loop.c): where a compact left the law's range */
+    char mdr[256] = "";
+    if (s->report.mdr_capped_step >= 0)
+        snprintf(mdr, sizeof mdr,
+                 "; before it, at step %ld, particle %ld's apparent radius had met MDR's cap of 1.5 times its own, "
+                 "past which the law no longer keeps a sphere's volume (docs/laws/mdr.md \"Range\")",
+                 s->report.mdr_capped_step, s->report.mdr_capped_particle);
     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) /* a value that overflowed or was never a number */
         return sim_fail(s, DEM_ERR_DOMAIN,
                         "step %ld: particle %d: its position became non-finite (%g, %g, %g): a velocity or force "
-                        "overflowed or was not a number (check the time step, overlaps and parameters)",
-                        s->run.step, id, p[0], p[1], p[2]);
+                        "overflowed or was not a number (check the time step, overlaps and parameters)%s",
+                        s->run.step, id, p[0], p[1], p[2], mdr);
     return sim_fail(s, DEM_ERR_DOMAIN,
                     "step %ld: particle %d at (%g, %g, %g) m is outside the binning domain [%g,%g]x[%g,%g]x[%g,%g] "
                     "(the domain rounded up to whole cells of %g m) or not finite; enlarge the domain or check the "
-                    "set-up (time step, overlaps)",
+                    "set-up (time step, overlaps)%s",
                     s->run.step, id, p[0], p[1], p[2], s->domain.lo[0], s->domain.grid_hi[0], s->domain.lo[1], s->domain.grid_hi[1], s->domain.lo[2],
-                    s->domain.grid_hi[2], s->domain.grid_cell);
+                    s->domain.grid_hi[2], s->domain.grid_cell, mdr);
 }
 
 int sim_rebuild(dem_sim *s)

@@ -21,6 +21,7 @@ dem_sim *dem_create(void)
         s->run.sample_row = -1; /* no step is sampled until dem_step_sampled says so */
         s->mc.stats.first_capped = s->mc.stats.last_capped = -1;
         s->report.err_particle = -1;
+        s->report.mdr_capped_step = s->report.mdr_capped_particle = -1;
     }
     return s;
 }

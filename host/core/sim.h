@@ -132,6 +132,9 @@ struct sim_run {
 struct sim_report {
     char err[4096];
     int err_particle; /* the particle a DEM_ERR_DOMAIN error named (dem_error_particle), -1 none */
+    long mdr_capped_step, mdr_capped_particle; /* MDR: the first step of this process at which a particle's apparent
+                                                  radius met the law's cap, and that particle (the whole run's id);
+                                                  -1 none (dem_mdr_capped; carried over a split: sim_run_record) */
     char desc[1024];
     char build[4096];
 };
@@ -250,7 +253,7 @@ int sim_wall_sums_exact(dem_sim *s, int wall, exact_acc acc[WP_STRIDE]);
  * run set after merging theirs, so that a servo or a stage's end reads the one-process force (host/mpi/halo.c) */
 int sim_wall_sums_set(dem_sim *s, const exact_acc *acc);
 /* part.c: what a run records of the steps it took beyond its state (each servo stage's record, the stage ends' log,
- * the first and last step MC-strain's iteration hit its cap), carried from a rank's run to the run of its next part
+ * the first and last step MC-strain's iteration hit its cap, the first MDR radius held at its cap), carried from a rank's run to the run of its next part
  * when a split run is split anew (app/run_mpi.c) */
 typedef struct {
     dem_servo_stats servo[DEM_MAX_WALLS];
@@ -258,6 +261,7 @@ typedef struct {
     dem_stage_end log[DEM_STAGE_LOG];
     long log_n;
     long mc_first_capped, mc_last_capped;
+    long mdr_capped_step, mdr_capped_particle;
 } sim_run_record;
 void sim_run_record_get(const dem_sim *s, sim_run_record *r);
 void sim_run_record_set(dem_sim *s, const sim_run_record *r);

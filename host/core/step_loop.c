@@ -269,6 +269,11 @@ static int step_body(dem_sim *s, int wall_sums, int sample_row)
         return e;
     if (sim_read_flags(s, flags))
         return DEM_ERR_DEVICE;
+    if (flags[FLAG_MDR_CAPPED] != DEM_NO_PARTICLE && s->report.mdr_capped_step < 0) { /* before a rebuild reorders */
+        long id = sim_api(s, flags[FLAG_MDR_CAPPED]);
+        s->report.mdr_capped_step = s->run.step + 1;
+        s->report.mdr_capped_particle = s->said_ids ? (long)s->said_ids[id] : id; /* a split run's part: the run's id */
+    }
     if ((flags[FLAG_REBUILD] || sim_skin_probe_due(s)) && (e = sim_rebuild(s)))
         return e;
     s->run.force_step = s->run.step + 1; /* the drifted positions are those of t + dt */

@@ -6,7 +6,7 @@
 /* Non-blocking: the source is static, and the driver's next flag read waits for the queue anyway. */
 int dem_stage_reset_flags(const dem_backend_ops *o, dem_backend *b)
 {
-    static const int init[FLAG_COUNT] = {0, DEM_NO_PARTICLE, 0, 0, 0, 0, 0, 0};
+    static const int init[FLAG_COUNT] = {[FLAG_OUT_OF_DOMAIN] = DEM_NO_PARTICLE, [FLAG_MDR_CAPPED] = DEM_NO_PARTICLE};
     dem_bufref r = {TABLE_ONE, BUF_FLAGS};
     return o->write(b, r, 0, init, sizeof init, 0);
 }
