@@ -7,6 +7,8 @@
  *   - a sphere on held velocity pressed on a plane wall, with adhesion, the same phases;
  *   - a fixed sphere between six planes closing in (Part II: the bulk response, the mean surface displacement and the
  *     radius update act), its first plane's force;
+ *   - a fixed sphere between two planes closing in at psi_b 0 until its radius meets (M34)'s cap of 1.5 R_o, and the
+ *     step dem_mdr_capped names (docs/laws/mdr.md "Range");
  *   - bonds (docs/laws/mdr.md "Bonds"): a bonded pair pulled, pressed further and pulled again, against the closed
  *     forms of F_b and the tension's slope; the same pair sheared until it slides at mu (F_n + F_b), then pulled
  *     without a bond; an unequal pair whose bridge breaks as a whole;
@@ -262,6 +264,18 @@ static void test_wall_path(void **state)
 /* A fixed sphere of 0.5 mm between six planes that close in together at 0.1 m/s: loaded to 20 % of R, unloaded to 12 %,
  * reloaded to 24 % and unloaded out of contact, without damping, as the walk's box (Part II's bulk response sets in
  * below psi_b = 0.5, near 19 %). The walk is fed the run's first plane's approach; its force is the first plane's. */
+/* Starts s, a sphere of radius R1 at the origin among plane walls, on bc's backend and precision: MDR with walls,
+ * no damping, dt DT */
+static void start_walled(dem_sim *s, const backend_case *bc)
+{
+    dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS) || dem_set_dt(s, DT))
+        fail_msg("%s", dem_error(s));
+    dem_config c = cfg_of(bc->backend, bc->precision);
+    c.force_dt = 1;
+    start_or_fail(s, &c);
+}
+
 static void test_box(void **state)
 {
     (void)state;
@@ -292,12 +306,7 @@ static void test_box(void **state)
             if (id < 0 || dem_set_wall_motion(s, id, 4, st))
                 fail_msg("%s", dem_error(s));
         }
-        dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
-        if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS) || dem_set_dt(s, DT))
-            fail_msg("%s", dem_error(s));
-        dem_config c = cfg_of(bc->backend, bc->precision);
-        c.force_dt = 1;
-        start_or_fail(s, &c);
+        start_walled(s, bc);
         long n = steps[0] + steps[1] + steps[2] + steps[3];
         double *u = calloc((size_t)n + 1, sizeof(double)), *f = calloc((size_t)n + 1, sizeof(double));
         size_t rs = (size_t)bc->precision;
@@ -387,12 +396,7 @@ static void test_cap(void **state)
             if (id < 0 || dem_set_wall_motion(s, id, 1, &st))
                 fail_msg("%s", dem_error(s));
         }
-        dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
-        if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS) || dem_set_dt(s, DT))
-            fail_msg("%s", dem_error(s));
-        dem_config c = cfg_of(bc->backend, bc->precision);
-        c.force_dt = 1;
-        start_or_fail(s, &c);
+        start_walled(s, bc);
         double r = R1, r_prev = R1, r_max = R1, grow = 0;
         long at = -1, who = -2, k;
         for (k = 1; k <= nmax && at < 0; k++) {
