@@ -261,12 +261,12 @@ static void test_wall_path(void **state)
     path_case(WALK_WALL, R1, R1, 50.0, &pa, "wall, 50 J/m^2");
 }
 
-/* Starts s, a sphere of radius R1 at the origin among plane walls, on bc's backend and precision: MDR with walls,
- * no damping, dt DT */
-static void start_walled(dem_sim *s, const backend_case *bc)
+/* Starts s, spheres of radius R1 near the origin, on bc's backend and precision: MDR with the effects extra (walls,
+ * damping), dt DT, in a domain of 4 R1 about the origin */
+static void start_mdr(dem_sim *s, const backend_case *bc, unsigned extra)
 {
     dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
-    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | DEM_EFFECT_WALLS) || dem_set_dt(s, DT))
+    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_MDR | extra) || dem_set_dt(s, DT))
         fail_msg("%s", dem_error(s));
     dem_config c = cfg_of(bc->backend, bc->precision);
     c.force_dt = 1;
@@ -306,7 +306,7 @@ static void test_box(void **state)
             if (id < 0 || dem_set_wall_motion(s, id, 4, st))
                 fail_msg("%s", dem_error(s));
         }
-        start_walled(s, bc);
+        start_mdr(s, bc, DEM_EFFECT_WALLS);
         long n = steps[0] + steps[1] + steps[2] + steps[3];
         double *u = calloc((size_t)n + 1, sizeof(double)), *f = calloc((size_t)n + 1, sizeof(double));
         size_t rs = (size_t)bc->precision;
@@ -396,7 +396,7 @@ static void test_cap(void **state)
             if (id < 0 || dem_set_wall_motion(s, id, 1, &st))
                 fail_msg("%s", dem_error(s));
         }
-        start_walled(s, bc);
+        start_mdr(s, bc, DEM_EFFECT_WALLS);
         double r = R1, r_prev = R1, r_max = R1, grow = 0;
         long at = -1, who = -2, k;
         for (k = 1; k <= nmax && at < 0; k++) {
@@ -996,12 +996,7 @@ static dem_sim *penalty_run(const backend_case *bc, int with_b, int with_c, doub
         dem_add_particle(s, xc, (double[3]){0, 0, 0}, R1, mat);
     for (id = 0; id < dem_count(s); id++)
         dem_set_particle_flags(s, id, DEM_PARTICLE_FIXED);
-    dem_set_domain(s, (double[3]){-4 * R1, -4 * R1, -4 * R1}, (double[3]){4 * R1, 4 * R1, 4 * R1});
-    if (dem_set_effects(s, DEM_EFFECT_HERTZ | DEM_EFFECT_DAMPING | DEM_EFFECT_MDR) || dem_set_dt(s, DT))
-        fail_msg("%s", dem_error(s));
-    dem_config c = cfg_of(bc->backend, bc->precision);
-    c.force_dt = 1;
-    start_or_fail(s, &c);
+    start_mdr(s, bc, DEM_EFFECT_DAMPING);
     double all[9];
     if (dem_get_field(s, DEM_FIELD_FORCE, all) || dem_state_get(s, st))
         fail_msg("%s", dem_error(s));
