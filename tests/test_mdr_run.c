@@ -364,6 +364,91 @@ static void test_box(void **state)
     free(ref_bits[0]), free(ref_bits[1]);
 }
 
+/* ---- work round a closed loop with the bulk response on (docs/laws/mdr.md "Energy") ----
+ * The fixed sphere between six planes, as test_box, at speed v: the planes close in together by U0 = 0.21 R (psi below
+ * psi_b from about 0.19 R), then walk LOOP_N square loops of side 0.01 R in (u_x, u_y): the x planes in, the y planes
+ * in, the x planes out, the y planes out. *w gets the work the planes put into the sphere over each loop (trapezoidal
+ * rule on each plane's inward travel and the normal force it receives). */
+enum { LOOP_N = 3 };
+static void box_loop(const backend_case *bc, double v, double w[LOOP_N])
+{
+    long n0 = lround(0.21 * R1 / (v * DT)), na = lround(0.01 * R1 / (v * DT));
+    dem_sim *s = dem_create();
+    dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
+    int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
+    dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
+    dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
+    for (int k = 0; k < 6; k++) { /* -x, +x, -y, +y, -z, +z */
+        dem_wall wl = {0};
+        int ax = k / 2, sg = k % 2 ? 1 : -1;
+        wl.kind = DEM_WALL_PLANE, wl.material = wmat;
+        wl.point[ax] = sg * R1, wl.normal[ax] = -sg;
+        dem_stage st[1 + 4 * LOOP_N];
+        memset(st, 0, sizeof st);
+        st[0].duration = ((double)n0 - 0.5) * DT, st[0].velocity[ax] = -sg * v;
+        int ns = 1;
+        for (int q = 0; ax < 2 && q < 4 * LOOP_N; q++, ns++) {
+            int leg = q % 4; /* 0: x in, 1: y in, 2: x out, 3: y out */
+            st[ns].duration = ((double)na - 0.5) * DT;
+            if (leg % 2 == ax)
+                st[ns].velocity[ax] = (leg < 2 ? -sg : sg) * v;
+        }
+        int id = dem_add_wall(s, &wl);
+        if (id < 0 || dem_set_wall_motion(s, id, ns, st))
+            fail_msg("%s", dem_error(s));
+    }
+    start_mdr(s, bc, DEM_EFFECT_WALLS);
+    double in_prev[6] = {0}, f_prev[6] = {0}, acc = 0;
+    for (long k = 1; k <= n0 + 4 * na * LOOP_N; k++) {
+        double wf[3 * 6];
+        step_or_fail(s, 1);
+        if (dem_get_field(s, DEM_FIELD_WALL_FORCE, wf))
+            fail_msg("%s", dem_error(s));
+        for (int q = 0; q < 6; q++) {
+            int ax = q / 2, sg = q % 2 ? 1 : -1;
+            double p[3];
+            if (dem_wall_position(s, q, p))
+                fail_msg("%s", dem_error(s));
+            double in = R1 - sg * p[ax], f = sg * wf[3 * q + ax]; /* its travel inwards; the force it gets outwards */
+            if (k > n0)
+                acc += 0.5 * (f + f_prev[q]) * (in - in_prev[q]);
+            in_prev[q] = in, f_prev[q] = f;
+        }
+        if (k > n0 && (k - n0) % (4 * na) == 0)
+            w[(k - n0) / (4 * na) - 1] = acc, acc = 0;
+    }
+    dem_destroy(s);
+}
+
+/* LAMMPS's figures for the loops (tools/peer_mdr/energy_loop.py, out/peer_mdr/energy_loop.txt; LAMMPS 22 Jul 2025
+ * Update 4, the same path at 1e-7 and 5e-8 m a step): the first loop yields the x and y sides further and takes work;
+ * every later loop walks the same states and gives work back, in proportion to the step: (M35)'s A_con and V_geo are
+ * the last step's (M36). The run must give LAMMPS's work to 1e-6 (fp64) or 1e-2 (fp32) of the first loop's, and the
+ * later loops' work must halve with the step. */
+static void test_box_loop(void **state)
+{
+    (void)state;
+    const double lmp[2][LOOP_N] = {{2.801284988e-04, -6.756004317e-06, -6.755662197e-06},
+                                   {2.838432342e-04, -3.439087915e-06, -3.439001824e-06}};
+    FOR_EACH_BACKEND(bc) {
+        double w[2][LOOP_N];
+        for (int h = 0; h < 2; h++) {
+            box_loop(bc, h ? 0.05 : 0.1, w[h]);
+            double tol = (bc->precision == DEM_FP64 ? 1e-6 : 1e-2) * lmp[h][0];
+            printf("  loops, %s, %g m a step: work %.9e, %.9e, %.9e J (LAMMPS %.9e, %.9e, %.9e)\n", bc->name,
+                   h ? 5e-8 : 1e-7, w[h][0], w[h][1], w[h][2], lmp[h][0], lmp[h][1], lmp[h][2]);
+            for (int q = 0; q < LOOP_N; q++)
+                if (!(fabs(w[h][q] - lmp[h][q]) <= tol))
+                    fail_msg("loops, %s: loop %d at %g m a step put %.9e J in, LAMMPS %.9e J", bc->name, q + 1,
+                             h ? 5e-8 : 1e-7, w[h][q], lmp[h][q]);
+        }
+        double ratio = w[0][2] / w[1][2];
+        if (!(w[0][2] < 0 && ratio > 1.9 && ratio < 2.1))
+            fail_msg("loops, %s: the third loop's work %g J at 1e-7 m a step, %g J at 5e-8: not a gain in proportion "
+                     "to the step", bc->name, w[0][2], w[1][2]);
+    }
+}
+
 /* The cap of (M34) (docs/laws/mdr.md "Range"): a fixed sphere between two planes closing in along z at 0.1 m/s each,
  * with psi_b = 0 (no bulk response while psi >= 0: the radius alone keeps the volume) and no adhesion. Its volume
  * needs an apparent radius of 1.5 R_o once the gap is about 0.6 R_o (caps of depth 1.2 R_o on R = 1.5 R_o hold
@@ -1136,6 +1221,7 @@ int main(void)
         cmocka_unit_test(test_unequal_adhesive_pair),
         cmocka_unit_test(test_wall_path),
         cmocka_unit_test(test_box),
+        cmocka_unit_test(test_box_loop),
         cmocka_unit_test(test_cap),
         cmocka_unit_test(test_penalty),
         cmocka_unit_test(test_energy),
