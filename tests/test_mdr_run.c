@@ -7,6 +7,8 @@
  *   - a sphere on held velocity pressed on a plane wall, with adhesion, the same phases;
  *   - a fixed sphere between six planes closing in (Part II: the bulk response, the mean surface displacement and the
  *     radius update act), its first plane's force;
+ *   - the same sphere walked round square loops by its x and y planes once the bulk response acts: each loop's work
+ *     against LAMMPS's figures (tools/peer_mdr/energy_loop.py; docs/laws/mdr.md "Energy");
  *   - a fixed sphere between two planes closing in at psi_b 0 until its radius meets (M34)'s cap of 1.5 R_o, and the
  *     step dem_mdr_capped names (docs/laws/mdr.md "Range");
  *   - bonds (docs/laws/mdr.md "Bonds"): a bonded pair pulled, pressed further and pulled again, against the closed
