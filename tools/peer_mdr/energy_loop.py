@@ -79,7 +79,7 @@ def reference_forces(path, current=False):
             for k, s in enumerate(sides):
                 if s.delta_bulk > 0.0:
                     f[k] += mat.kappa * s.delta_bulk * s.Ac * (p.Acon1 / vgeo - p.Acon0 / p.Vgeo)
-        # the wall magnifier (M39), as LAMMPS applies it (1 + 2e-4 here)
+        # the wall magnifier (M39), as LAMMPS applies it (about 1 + 5e-4 here)
         forces.append(tuple(f[2 * ax] * (1.0 + math.exp(10.7 * sides[2 * ax].deltao / p.Ro - 10.0))
                             for ax in range(3)))
     return forces
