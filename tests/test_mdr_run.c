@@ -367,41 +367,42 @@ static void test_box(void **state)
 }
 
 /* ---- work round a closed loop with the bulk response on (docs/laws/mdr.md "Energy") ----
- * The fixed sphere between six planes, as test_box, at speed v: the planes close in together by U0 = 0.21 R (psi below
- * psi_b from about 0.19 R), then walk LOOP_N square loops of side 0.01 R in (u_x, u_y): the x planes in, the y planes
- * in, the x planes out, the y planes out. *w gets the work the planes put into the sphere over each loop (trapezoidal
- * rule on each plane's inward travel and the normal force it receives). */
-enum { LOOP_N = 3 };
-static void box_loop(const backend_case *bc, double v, double w[LOOP_N])
+ * The fixed sphere between six planes, as test_box; plane k (-x, +x, -y, +y, -z, +z) moves by the velocities
+ * vel[k][q] of its stages, each q lasting n[q] steps: first the planes close in (stage 0, n0 = n[0] steps), then
+ * LOOP_N loops of 4 legs each. *w gets the work the planes put into the sphere over each loop (trapezoidal rule on
+ * each plane's inward travel and the normal force it receives). */
+enum { LOOP_N = 3, LOOP_STAGES = 1 + 4 * LOOP_N };
+static void planes_loop(const backend_case *bc, const double vel[6][LOOP_STAGES][3], const long n[LOOP_STAGES],
+                        double w[LOOP_N])
 {
-    long n0 = lround(0.21 * R1 / (v * DT)), na = lround(0.01 * R1 / (v * DT));
     dem_sim *s = dem_create();
     dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
     int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
     dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
     dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
-    for (int k = 0; k < 6; k++) { /* -x, +x, -y, +y, -z, +z */
+    long steps = 0;
+    for (int q = 0; q < LOOP_STAGES; q++)
+        steps += n[q];
+    for (int k = 0; k < 6; k++) {
         dem_wall wl = {0};
         int ax = k / 2, sg = k % 2 ? 1 : -1;
         wl.kind = DEM_WALL_PLANE, wl.material = wmat;
         wl.point[ax] = sg * R1, wl.normal[ax] = -sg;
-        dem_stage st[1 + 4 * LOOP_N];
+        dem_stage st[LOOP_STAGES];
         memset(st, 0, sizeof st);
-        st[0].duration = ((double)n0 - 0.5) * DT, st[0].velocity[ax] = -sg * v;
-        int ns = 1;
-        for (int q = 0; ax < 2 && q < 4 * LOOP_N; q++, ns++) {
-            int leg = q % 4; /* 0: x in, 1: y in, 2: x out, 3: y out */
-            st[ns].duration = ((double)na - 0.5) * DT;
-            if (leg % 2 == ax)
-                st[ns].velocity[ax] = (leg < 2 ? -sg : sg) * v;
+        for (int q = 0; q < LOOP_STAGES; q++) {
+            st[q].duration = ((double)n[q] - 0.5) * DT;
+            memcpy(st[q].velocity, vel[k][q], sizeof st[q].velocity);
         }
         int id = dem_add_wall(s, &wl);
-        if (id < 0 || dem_set_wall_motion(s, id, ns, st))
+        if (id < 0 || dem_set_wall_motion(s, id, LOOP_STAGES, st))
             fail_msg("%s", dem_error(s));
     }
     start_mdr(s, bc, DEM_EFFECT_WALLS);
     double in_prev[6] = {0}, f_prev[6] = {0}, acc = 0;
-    for (long k = 1; k <= n0 + 4 * na * LOOP_N; k++) {
+    long n0 = n[0], per = steps - n0;
+    per /= LOOP_N;
+    for (long k = 1; k <= steps; k++) {
         double wf[3 * 6];
         step_or_fail(s, 1);
         if (dem_get_field(s, DEM_FIELD_WALL_FORCE, wf))
@@ -416,10 +417,54 @@ static void box_loop(const backend_case *bc, double v, double w[LOOP_N])
                 acc += 0.5 * (f + f_prev[q]) * (in - in_prev[q]);
             in_prev[q] = in, f_prev[q] = f;
         }
-        if (k > n0 && (k - n0) % (4 * na) == 0)
-            w[(k - n0) / (4 * na) - 1] = acc, acc = 0;
+        if (k > n0 && (k - n0) % per == 0)
+            w[(k - n0) / per - 1] = acc, acc = 0;
     }
     dem_destroy(s);
+}
+
+/* The squeeze loops of tools/peer_mdr/energy_loop.py at speed v: the planes close in together by U0 = 0.21 R (psi
+ * below psi_b from about 0.19 R), then walk square loops of side 0.01 R in (u_x, u_y): the x planes in, the y planes
+ * in, the x planes out, the y planes out. */
+static void box_loop(const backend_case *bc, double v, double w[LOOP_N])
+{
+    long n[LOOP_STAGES];
+    double vel[6][LOOP_STAGES][3];
+    memset(vel, 0, sizeof vel);
+    n[0] = lround(0.21 * R1 / (v * DT));
+    for (int k = 0; k < 6; k++)
+        vel[k][0][k / 2] = (k % 2 ? -v : v); /* inwards */
+    for (int q = 1; q < LOOP_STAGES; q++) {
+        int leg = (q - 1) % 4; /* 0: x in, 1: y in, 2: x out, 3: y out */
+        n[q] = lround(0.01 * R1 / (v * DT));
+        for (int k = 0; k < 4; k++)
+            if (k / 2 == leg % 2)
+                vel[k][q][k / 2] = (k % 2 ? -v : v) * (leg < 2 ? 1 : -1);
+    }
+    planes_loop(bc, vel, n, w);
+}
+
+/* The translation loops of tools/peer_mdr/energy_loop.py at speed v: the planes close in to unequal depths (+x, -x,
+ * +y, -y, +z, -z: 0.25, 0.17, 0.22, 0.20, 0.23, 0.19 R) in 1250 steps, then the sphere moves round squares of side
+ * 0.01 R in (x, y) relative to them (all six planes move the other way): forward +x, +y, -x, -y; reverse +y, +x, -y,
+ * -x. */
+static void translate_loop(const backend_case *bc, double v, int reverse, double w[LOOP_N])
+{
+    static const double depth[6] = {0.17, 0.25, 0.20, 0.22, 0.19, 0.23}; /* -x, +x, -y, +y, -z, +z [R] */
+    long n[LOOP_STAGES];
+    double vel[6][LOOP_STAGES][3];
+    memset(vel, 0, sizeof vel);
+    n[0] = 1250;
+    for (int k = 0; k < 6; k++)
+        vel[k][0][k / 2] = (k % 2 ? -1 : 1) * depth[k] * R1 / (1250 * DT);
+    for (int q = 1; q < LOOP_STAGES; q++) {
+        int leg = (q - 1) % 4, ax = (leg % 2) ^ (reverse != 0), sg = leg < 2 ? 1 : -1;
+        n[q] = lround(0.01 * R1 / (v * DT));
+        for (int k = 0; k < 6; k++)
+            if (k / 2 == ax)
+                vel[k][q][ax] = -sg * v; /* the sphere moves by +sg along ax relative to them */
+    }
+    planes_loop(bc, vel, n, w);
 }
 
 /* LAMMPS's figures for the loops (tools/peer_mdr/energy_loop.py, out/peer_mdr/energy_loop.txt; LAMMPS 22 Jul 2025
@@ -448,6 +493,45 @@ static void test_box_loop(void **state)
         if (!(w[0][2] < 0 && ratio > 1.9 && ratio < 2.1))
             fail_msg("loops, %s: the third loop's work %g J at 1e-7 m a step, %g J at 5e-8: not a gain in proportion "
                      "to the step", bc->name, w[0][2], w[1][2]);
+    }
+}
+
+/* LAMMPS's figures for the translation loops (tools/peer_mdr/energy_loop.py, the same paths at 1e-7 and 5e-8 m a
+ * step). Walked in the two senses, a loop's work is the part in proportion to the step (the lag, as above) plus a part
+ * that does not shrink with the step and changes sign with the sense: about +-1.28e-7 J, from 2 W(h/2) - W(h) at
+ * 5e-8 and 2.5e-8 m in LAMMPS. The bulk response's stiffness is not symmetric (docs/laws/mdr.md "Energy"). The run
+ * must give LAMMPS's work to 1e-6 (fp64) or 1e-2 (fp32) of the first loop's, and the third loops' limits
+ * 2 W(5e-8) - W(1e-7) must have opposite signs (the forward sense takes work, the reverse gives it) and sizes within
+ * 10 % of each other (measured: 1.281e-7 and -1.274e-7 J in fp64, 1.279e-7 and -1.265e-7 J in fp32). */
+static void test_translate_loop(void **state)
+{
+    (void)state;
+    const double lmp[2][2][LOOP_N] = {{{1.846887762e-04, 2.992454504e-07, 2.992396703e-07},
+                                       {1.846775000e-04, 2.136716388e-07, 2.136668219e-07}},
+                                      {{1.790639319e-04, 4.401622444e-08, 4.403796414e-08},
+                                       {1.790462677e-04, -4.168102197e-08, -4.167220607e-08}}};
+    FOR_EACH_BACKEND(bc) {
+        double w[2][2][LOOP_N], lim[2];
+        for (int r = 0; r < 2; r++) {
+            for (int h = 0; h < 2; h++) {
+                translate_loop(bc, h ? 0.05 : 0.1, r, w[r][h]);
+                double tol = (bc->precision == DEM_FP64 ? 1e-6 : 1e-2) * lmp[r][h][0];
+                printf("  translation loops, %s, %s, %g m a step: work %.9e, %.9e, %.9e J (LAMMPS %.9e, %.9e, "
+                       "%.9e)\n", bc->name, r ? "reverse" : "forward", h ? 5e-8 : 1e-7, w[r][h][0], w[r][h][1],
+                       w[r][h][2], lmp[r][h][0], lmp[r][h][1], lmp[r][h][2]);
+                for (int q = 0; q < LOOP_N; q++)
+                    if (!(fabs(w[r][h][q] - lmp[r][h][q]) <= tol))
+                        fail_msg("translation loops, %s, %s: loop %d at %g m a step put %.9e J in, LAMMPS %.9e J",
+                                 bc->name, r ? "reverse" : "forward", q + 1, h ? 5e-8 : 1e-7, w[r][h][q],
+                                 lmp[r][h][q]);
+            }
+            lim[r] = 2 * w[r][1][2] - w[r][0][2];
+        }
+        printf("  translation loops, %s: third loop's work without the part in proportion to the step %.4e J "
+               "forward, %.4e J reverse\n", bc->name, lim[0], lim[1]);
+        if (!(lim[0] > 0 && lim[1] < 0 && fabs(lim[0] + lim[1]) < 0.1 * lim[0]))
+            fail_msg("translation loops, %s: limits %g J forward, %g J reverse: not the same work of opposite signs",
+                     bc->name, lim[0], lim[1]);
     }
 }
 
@@ -1224,6 +1308,7 @@ int main(void)
         cmocka_unit_test(test_wall_path),
         cmocka_unit_test(test_box),
         cmocka_unit_test(test_box_loop),
+        cmocka_unit_test(test_translate_loop),
         cmocka_unit_test(test_cap),
         cmocka_unit_test(test_penalty),
         cmocka_unit_test(test_energy),
