@@ -30,7 +30,8 @@ $PY tools/peer_mdr/fixed_count.py
 $PY tools/peer_mdr/mdr_reference.py --walk | build/dem-mdr-walk "$OUT"
 status=0
 $PY tools/peer_mdr/mdr_reference.py "$OUT" || status=1
-# a closed loop with the bulk response on: the work each loop puts in, LAMMPS against the reference (docs/laws/mdr.md "Energy")
+# closed loops with the bulk response on (squeezes, and translations in both senses): the work each loop puts in,
+# LAMMPS against the reference (docs/laws/mdr.md "Energy")
 $PY tools/peer_mdr/energy_loop.py "$LMP" "$OUT" || status=1
 t2=$(date +%s)
 if [ "${PEER_MDR_SKIP_DIE:-0}" != 1 ]; then
