@@ -139,13 +139,12 @@ def lammps_forces(lmp, wd, pieces):
     cols = " ".join(f"f_w{name}[{2 + k // 2}]" for k, name in enumerate(PLANES))
     lines += ["fix m1 all move linear 0 0 0", f"dump d all custom 1 dump.loop id {cols}",
               "dump_modify d format float %.17g", "thermo 100000"]
-    path = [(0.0,) * 6]
+    path, at = walk(pieces), 0  # each piece starts where walk() has the last one end
     for n, rate in pieces:
-        start = path[-1]
         for q, name in enumerate(PLANES):
-            lines.append(f"variable u{name} equal {start[q]!r}" + (f"+{rate[q]!r}*elapsed" if rate[q] else ""))
+            lines.append(f"variable u{name} equal {path[at][q]!r}" + (f"+{rate[q]!r}*elapsed" if rate[q] else ""))
         lines.append(f"run {n}")
-        path += [tuple(start[q] + rate[q] * j for q in range(6)) for j in range(1, n + 1)]
+        at += n
     with open(os.path.join(wd, "in.loop"), "w") as f:
         f.write("# written by tools/peer_mdr/energy_loop.py\n" + "\n".join(lines) + "\n")
     r = subprocess.run(shlex.split(lmp) + ["-in", "in.loop", "-log", "log.lammps", "-screen", "none"], cwd=wd)
