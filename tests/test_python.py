@@ -334,6 +334,43 @@ class TabletTest(unittest.TestCase):
         self.assertTrue(math.isnan(kv["elastic_recovery"]))
         self.assertEqual(kv["elastic_recovery_min"], c["recovery_min"])
 
+    def test_quasi_static(self):
+        # kinetic / elastic energy is checked only where the upper punch presses at half its largest or more while
+        # loading and 10 % or more after it: rows 2 (no pressure) and 7 (3 MPa, loading) move fast and do not count;
+        # row 22 (4 MPa, unloading) is the largest that counts
+        c = tablet.analyse(self.path)
+        self.assertTrue(math.isnan(c["max_kinetic_ratio"]))  # no elastic energy in the series: no ratio
+        self.assertIsNone(tablet.quasi_static_warning(c, "p"))
+        n = 35
+        kinetic, elastic = np.zeros(n), np.ones(n)
+        kinetic[2], kinetic[7], kinetic[10], kinetic[22] = 5.0, 4.0, 0.001, 0.3
+        with h5py.File(self.path, "r+") as f:
+            f["series"]["kinetic"][...] = kinetic
+            f["series"]["elastic"][...] = elastic
+        c = tablet.analyse(self.path)
+        self.assertEqual(c["k_ke"], 22)
+        self.assertEqual(c["max_kinetic_ratio"], 0.3)
+        self.assertEqual(dict(tablet.numbers(c))["max_kinetic_ratio"], 0.3)
+        w = tablet.quasi_static_warning(c, "p")
+        self.assertIn("not quasi-static", w)
+        self.assertIn("0.3 of the elastic energy", w)
+        self.assertIn("at 4 MPa (after the largest pressure)", w)
+        self.assertIn("the elastic recovery", w)
+        kinetic[22] = 0.5 * tablet.QUASI  # calm enough: the largest that counts is now below QUASI
+        with h5py.File(self.path, "r+") as f:
+            f["series"]["kinetic"][...] = kinetic
+        c = tablet.analyse(self.path)
+        self.assertEqual(c["max_kinetic_ratio"], 0.05)
+        self.assertIsNone(tablet.quasi_static_warning(c, "p"))
+        kinetic[12] = 0.2  # 8 MPa while loading: counts, and names the figures read over the loading
+        with h5py.File(self.path, "r+") as f:
+            f["series"]["kinetic"][...] = kinetic
+        c = tablet.analyse(self.path)
+        w = tablet.quasi_static_warning(c, "p")
+        self.assertIn("0.2 of the elastic energy", w)
+        self.assertIn("at 8 MPa (loading)", w)
+        self.assertIn("the density and Heckel fit", w)
+
     def test_report_line_mpa(self):
         png = os.path.join(self.tmp.name, "r.png")
         for cmd in ([PY, "-m", "libdem", "report", self.path, "-o", png],

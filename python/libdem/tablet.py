@@ -20,6 +20,11 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
     nan where the run ends before the punch lets go (its pressure above 1e-3 of the largest), and then
     elastic_recovery_min, the same with the gap of the last row: a lower bound (the compact still pushes on the
     punch); where the punch let go, elastic_recovery_min is the recovery itself;
+  - quasi-static: the largest kinetic over elastic energy (the series' energies) over the rows where the upper
+    punch presses at half its largest pressure or more while loading (the Heckel fit's rows) and at 10 % or more
+    after its largest (the dwell and the unloading, over which the recovery is read); above QUASI = 0.1 the report
+    warns that the compact moved: the figures read while it moved are not a quasi-static press's (a compact that
+    bursts, rings or is pressed faster than it can follow; docs/tableting.md "The tablet report");
   - ejection (the lower punch rising after the upper punch let go): the die-wall friction is the die's axial force
     (the compact drags the die along as it slides out); the lower punch's force is that friction plus the compact's
     inertia and weight, reported apart: a velocity step of the punch accelerates the compact, and its inertia (mass
@@ -30,7 +35,8 @@ is the cylinder wall (or `die`), the punches the planes named upper and lower (o
 
 Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m3, max_upper_mpa, density_at_max,
 yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, elastic_recovery_min, max_ejection_friction_n,
-max_ejection_punch_n;
+max_ejection_punch_n, max_kinetic_ratio (the quasi-static check's largest kinetic / elastic energy; nan without
+energies);
 and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet):
 tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n (the failure load F: the platen
 force before it first falls by 20 %, from at least half its largest), tensile_mpa (2 F / (pi D t)), tablet_failed (1: the force fell so, 0: it never
@@ -44,12 +50,14 @@ loading rows only (it was a median over every row above 10 % of the largest pres
 analyse() returns SI values (pressures in Pa).
 """
 import math
+import sys
 
 import numpy as np
 
 from .output import Run
 
 MPA = 1e-6
+QUASI = 0.1  # the largest kinetic / elastic energy of a compact still called quasi-static while pressed
 
 
 class TabletError(ValueError):
@@ -139,6 +147,13 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     # the die is dragged along the compact's way out (+n_lo) by the friction that holds the compact back
     eject_friction = force[ej, k_die, :] @ n_lo if len(ej) else np.array([])
     nan = float("nan")
+    # quasi-static: kinetic over elastic energy where the upper punch presses at half its largest pressure or more
+    # while loading, and at 10 % or more after its largest (the early loading, where the elastic energy is small and
+    # the fill is swept into place, is left out)
+    pressed = np.nonzero(p_up >= np.where(rows <= k_max, 0.5, 0.1) * p_max)[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ke_ratio = np.where(elastic[pressed] > 0, kinetic[pressed] / elastic[pressed], nan)
+    k_ke = int(pressed[np.nanargmax(ke_ratio)]) if np.isfinite(ke_ratio).any() else None
     dia = diametral(run, lo) if all(w in names for w in PLATENS) else None
     if dia is not None:
         # a tablet came out of the die only if it holds together: no thicker than WHOLE times the gap where the upper
@@ -154,7 +169,8 @@ def analyse(run, die=None, upper="upper", lower="lower"):
                 recovery=recovery, recovery_min=recovery_min, radial_ratio=radial_ratio, ej=ej, eject_by_die=by_die, eject_travel=eject_travel,
                 eject_force=eject_force, eject_friction=eject_friction,
                 max_ejection_friction=float(np.max(eject_friction)) if len(ej) else nan,
-                max_ejection_punch=float(np.max(eject_force)) if len(ej) else nan, kinetic=kinetic, elastic=elastic)
+                max_ejection_punch=float(np.max(eject_force)) if len(ej) else nan, kinetic=kinetic, elastic=elastic,
+                k_ke=k_ke, max_kinetic_ratio=float(kinetic[k_ke] / elastic[k_ke]) if k_ke is not None else nan)
 
 
 PLATENS = ("platen_a", "platen_b")
@@ -223,7 +239,8 @@ def numbers(c):
             ("radial_mpa", MPA * c["p_rad"][k]), ("radial_ratio", c["radial_ratio"]),
             ("elastic_recovery", c["recovery"]), ("elastic_recovery_min", c["recovery_min"]),
             ("max_ejection_friction_n", c["max_ejection_friction"]),
-            ("max_ejection_punch_n", c["max_ejection_punch"])] + (
+            ("max_ejection_punch_n", c["max_ejection_punch"]),
+            ("max_kinetic_ratio", c["max_kinetic_ratio"])] + (
             [("tablet_diameter_m", c["dia"]["diameter"]), ("tablet_thickness_m", c["dia"]["thickness"]),
              ("tablet_density", c["dia"]["density"]), ("max_platen_n", c["dia"]["peak"]),
              ("tensile_mpa", MPA * c["dia"]["tensile"]), ("tablet_failed", float(c["dia"]["failed"])),
@@ -302,11 +319,29 @@ def plot(c, out, title):
     plt.close(fig)
 
 
+def quasi_static_warning(c, name):
+    """The report's warning where the compact was not quasi-static while pressed (max_kinetic_ratio above QUASI), else
+    None."""
+    if not c["max_kinetic_ratio"] > QUASI:
+        return None
+    k = c["k_ke"]
+    return (f"{name}: warning: not quasi-static: the kinetic energy reached {c['max_kinetic_ratio']:.3g} of the "
+            f"elastic energy at t = {c['t'][k]:.6g} s, the upper punch at {MPA * c['p_up'][k]:.4g} MPa "
+            f"({'loading' if k <= c['k_max'] else 'after the largest pressure'}); above {QUASI:g} the compact moved, "
+            f"and {'the density and Heckel fit' if k <= c['k_max'] else 'the elastic recovery'} read while it moved "
+            "are not a quasi-static press's "
+            "(docs/tableting.md \"The tablet report\")")
+
+
 def report(paths, out=None, die=None, upper="upper", lower="lower"):
-    """analyse() the run, draw its PNG (default: the first file's name with _tablet.png) and return the printed line."""
+    """analyse() the run, draw its PNG (default: the first file's name with _tablet.png) and return the printed line;
+    the quasi-static warning, if any, goes to standard error."""
     paths = [paths] if isinstance(paths, str) else list(paths)
     first = paths[0]
     out = out or (first[:-3] if first.endswith(".h5") else first) + "_tablet.png"
     c = analyse(paths, die, upper, lower)
     plot(c, out, " + ".join(paths))
+    warning = quasi_static_warning(c, " + ".join(paths))
+    if warning:
+        print(warning, file=sys.stderr)
     return report_line(c, out)
