@@ -8,7 +8,8 @@
 # The copy is HEAD's (git archive), not the working tree's. About 15 minutes on 2 cores, 7 of them the first run.
 # usage: bash tools/mdr_held_bulk/run.sh [OUTDIR]   (default out/mdr_held_bulk)
 # The held copy's driver continues any checkpoint: OUTDIR/continue_held SCENE.yaml CKPT.h5 STEPS EVERY [WALL [P]]
-# (docs/laws/mdr.md "Energy" continued the 64-sphere box of tools/mdr_energy_box so, with P its sphere 23).
+# (docs/laws/mdr.md "Energy": the E 5 GPa tablet was continued so by hand from the end of its dwell; the 64-sphere
+# box of tools/mdr_energy_box was continued by hand with an earlier driver, before this script).
 set -e
 cd "$(dirname "$0")/../.."
 OUT=${1:-out/mdr_held_bulk}
@@ -39,7 +40,7 @@ sed -e 's/bulk_fraction: 0.5,/bulk_fraction: 0.7,/' -e 's/until_stress: 5.0e7,/u
 [ "$(grep -c 'bulk_fraction: 0.7,\|until_stress: 100.0e6,' "$OUT/tablet.yaml")" = 2 ] ||
     { echo "mdr_held_bulk: scenes/tablet_strength_mdr.yaml changed: update this script's sed" >&2; exit 1; }
 build/dem run "$OUT/tablet.yaml" -o "$OUT/tablet.h5" --backend reference --stop-after 390010 --quiet \
-    > "$OUT/tablet.log" 2>&1
+    > "$OUT/tablet.log" 2>&1 || { echo "mdr_held_bulk: the tablet's run failed (see $OUT/tablet.log)" >&2; exit 1; }
 # both continuations, 97510 steps (0.5 ms) with a line every 250 steps; wall 2 is the upper punch
 "$OUT/continue_law" "$OUT/tablet.yaml" "$OUT/tablet.ckpt.h5" 97510 250 2 > "$OUT/law.txt" &
 law=$!
