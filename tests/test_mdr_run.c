@@ -275,6 +275,36 @@ static void start_mdr(dem_sim *s, const backend_case *bc, unsigned extra)
     start_or_fail(s, &c);
 }
 
+/* A fixed sphere of radius R1 at the origin between six planes (-x, +x, -y, +y, -z, +z), each touching it with its
+ * normal inwards, started: plane k moves at vel[(k * nstages + q) * 3 ...] in its stage q, which lasts n[q] whole steps
+ * (the walk and the loops are fed positions, so the steps are what count). test_box and the loops' planes_loop. */
+static dem_sim *six_planes(const backend_case *bc, int nstages, const long *n, const double *vel)
+{
+    dem_sim *s = dem_create();
+    dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
+    int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
+    dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
+    dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
+    for (int k = 0; k < 6; k++) {
+        dem_wall w = {0};
+        int ax = k / 2, sg = k % 2 ? 1 : -1;
+        w.kind = DEM_WALL_PLANE, w.material = wmat;
+        w.point[ax] = sg * R1, w.normal[ax] = -sg;
+        dem_stage st[DEM_MAX_STAGES];
+        assert_true(nstages <= DEM_MAX_STAGES);
+        memset(st, 0, sizeof st);
+        for (int q = 0; q < nstages; q++) {
+            st[q].duration = ((double)n[q] - 0.5) * DT;
+            memcpy(st[q].velocity, vel + 3 * ((size_t)k * nstages + q), sizeof st[q].velocity);
+        }
+        int id = dem_add_wall(s, &w);
+        if (id < 0 || dem_set_wall_motion(s, id, nstages, st))
+            fail_msg("%s", dem_error(s));
+    }
+    start_mdr(s, bc, DEM_EFFECT_WALLS);
+    return s;
+}
+
 /* A fixed sphere of 0.5 mm between six planes that close in together at 0.1 m/s: loaded to 20 % of R, unloaded to 12 %,
  * reloaded to 24 % and unloaded out of contact, without damping, as the walk's box (Part II's bulk response sets in
  * below psi_b = 0.5, near 19 %). The walk is fed the run's first plane's approach; its force is the first plane's. */
@@ -283,32 +313,15 @@ static void test_box(void **state)
     (void)state;
     double v = 0.1, rt[4] = {0.2, 0.08, 0.12, 0.26}; /* each phase's travel, in R */
     long steps[4];
+    double vel[6][4][3] = {{{0}}};
     for (int k = 0; k < 4; k++)
         steps[k] = lround(rt[k] * R1 / (v * DT));
+    for (int k = 0; k < 6; k++) /* in, out, in, out */
+        for (int q = 0; q < 4; q++)
+            vel[k][q][k / 2] = (q % 2 ? 1 : -1) * (k % 2 ? 1 : -1) * v;
     unsigned char *ref_bits[2] = {NULL, NULL};
     FOR_EACH_BACKEND(bc) {
-        dem_sim *s = dem_create();
-        dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
-        int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
-        dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
-        dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
-        for (int k = 0; k < 6; k++) { /* -x, +x, -y, +y, -z, +z: each touching, its normal inwards */
-            dem_wall w = {0};
-            int ax = k / 2, sg = k % 2 ? 1 : -1;
-            w.kind = DEM_WALL_PLANE, w.material = wmat;
-            w.point[ax] = sg * R1, w.normal[ax] = -sg;
-            dem_stage st[4];
-            for (int q = 0; q < 4; q++) {
-                memset(&st[q], 0, sizeof st[q]);
-                st[q].duration = ((double)steps[q] - 0.5) * DT; /* whole steps: the walk is fed positions anyway */
-                st[q].velocity[ax] = (q % 2 ? 1 : -1) * sg * v;
-            }
-            w.nstages = 4;
-            int id = dem_add_wall(s, &w);
-            if (id < 0 || dem_set_wall_motion(s, id, 4, st))
-                fail_msg("%s", dem_error(s));
-        }
-        start_mdr(s, bc, DEM_EFFECT_WALLS);
+        dem_sim *s = six_planes(bc, 4, steps, &vel[0][0][0]);
         long n = steps[0] + steps[1] + steps[2] + steps[3];
         double *u = calloc((size_t)n + 1, sizeof(double)), *f = calloc((size_t)n + 1, sizeof(double));
         size_t rs = (size_t)bc->precision;
@@ -367,7 +380,7 @@ static void test_box(void **state)
 }
 
 /* ---- work round a closed loop with the bulk response on (docs/laws/mdr.md "Energy") ----
- * The fixed sphere between six planes, as test_box; plane k (-x, +x, -y, +y, -z, +z) moves by the velocities
+ * The fixed sphere between six planes (six_planes); plane k (-x, +x, -y, +y, -z, +z) moves by the velocities
  * vel[k][q] of its stages, each q lasting n[q] steps: first the planes close in (stage 0, n0 = n[0] steps), then
  * LOOP_N loops of 4 legs each. *w gets the work the planes put into the sphere over each loop (trapezoidal rule on
  * each plane's inward travel and the normal force it receives). */
@@ -375,30 +388,10 @@ enum { LOOP_N = 3, LOOP_STAGES = 1 + 4 * LOOP_N };
 static void planes_loop(const backend_case *bc, const double vel[6][LOOP_STAGES][3], const long n[LOOP_STAGES],
                         double w[LOOP_N])
 {
-    dem_sim *s = dem_create();
-    dem_material m = mcc(0.0), steel = {7800, INFINITY, 0.3, 1.0, 0.0};
-    int mat = dem_add_material(s, &m), wmat = dem_add_material(s, &steel);
-    dem_add_particle(s, (double[3]){0, 0, 0}, (double[3]){0, 0, 0}, R1, mat);
-    dem_set_particle_flags(s, 0, DEM_PARTICLE_FIXED);
+    dem_sim *s = six_planes(bc, LOOP_STAGES, n, &vel[0][0][0]);
     long steps = 0;
     for (int q = 0; q < LOOP_STAGES; q++)
         steps += n[q];
-    for (int k = 0; k < 6; k++) {
-        dem_wall wl = {0};
-        int ax = k / 2, sg = k % 2 ? 1 : -1;
-        wl.kind = DEM_WALL_PLANE, wl.material = wmat;
-        wl.point[ax] = sg * R1, wl.normal[ax] = -sg;
-        dem_stage st[LOOP_STAGES];
-        memset(st, 0, sizeof st);
-        for (int q = 0; q < LOOP_STAGES; q++) {
-            st[q].duration = ((double)n[q] - 0.5) * DT;
-            memcpy(st[q].velocity, vel[k][q], sizeof st[q].velocity);
-        }
-        int id = dem_add_wall(s, &wl);
-        if (id < 0 || dem_set_wall_motion(s, id, LOOP_STAGES, st))
-            fail_msg("%s", dem_error(s));
-    }
-    start_mdr(s, bc, DEM_EFFECT_WALLS);
     double in_prev[6] = {0}, f_prev[6] = {0}, acc = 0;
     long n0 = n[0], per = steps - n0;
     per /= LOOP_N;
