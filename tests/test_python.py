@@ -479,6 +479,21 @@ class DiametralTest(unittest.TestCase):
             dia = tablet.analyse(path)["dia"]
             self.assertFalse(dia["failed"])
             self.assertEqual(dia["peak"], 7.0)
+            # a run stopped before the platens touched (SIGTERM, --stop-after): the press part alone, with a note
+            force[:, 3:, :] = 0.0
+            write_run(path, 1e-3 * np.arange(n), walls, pos, force, radius, frames=frames)
+            c = tablet.analyse(path)
+            self.assertIsNone(c["dia"])
+            self.assertTrue(c["platens_untouched"])
+            self.assertAlmostEqual(c["p_max"] / (5.0 / (math.pi * 0.0011**2)), 1.0, places=12)  # the bore's area
+            rep = subprocess.run([PY, "-m", "libdem", "report", path, "-o", os.path.join(d, "c.png")],
+                                 cwd=os.path.join(ROOT, "python"), capture_output=True, text=True, check=True)
+            kv = dict(w.split("=", 1) for w in rep.stdout.split())
+            self.assertNotIn("tensile_mpa", kv)
+            self.assertNotIn("tablet_whole", kv)
+            self.assertAlmostEqual(float(kv["max_upper_mpa"]), 5.0 / (math.pi * 0.0011**2) * 1e-6, places=4)
+            self.assertIn("the platens (platen_a, platen_b) never touched the tablet", rep.stderr)
+            self.assertIn("the press part is reported alone", rep.stderr)
 
 
 SQUEEZE = """name: one sphere squeezed by a piston

@@ -37,7 +37,9 @@ Printed keys (`key=value`, SI with pressures in MPa): png, bore_area_m2, solid_m
 yield_mpa, transmission, radial_mpa, radial_ratio, elastic_recovery, elastic_recovery_min, max_ejection_friction_n,
 max_ejection_punch_n, max_kinetic_ratio (the quasi-static check's largest kinetic / elastic energy; nan without
 energies);
-and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet):
+and where a diametral compression follows (plane walls platen_a and platen_b closing on the ejected tablet; a run
+that has the platens but stopped before they touched the tablet is reported without these keys, with a note on
+standard error):
 tablet_diameter_m, tablet_thickness_m, tablet_density (out of die), max_platen_n (the failure load F: the platen
 force before it first falls by 20 %, from at least half its largest), tensile_mpa (2 F / (pi D t)), tablet_failed (1: the force fell so, 0: it never
 did and F is the largest force), platen_force_after_peak (the platen force at the end over F), tablet_whole (1: the
@@ -154,7 +156,8 @@ def analyse(run, die=None, upper="upper", lower="lower"):
     with np.errstate(divide="ignore", invalid="ignore"):
         ke_ratio = np.where(elastic[pressed] > 0, kinetic[pressed] / elastic[pressed], nan)
     k_ke = int(pressed[np.nanargmax(ke_ratio)]) if np.isfinite(ke_ratio).any() else None
-    dia = diametral(run, lo) if all(w in names for w in PLATENS) else None
+    has_platens = all(w in names for w in PLATENS)
+    dia = diametral(run, lo) if has_platens else None
     if dia is not None:
         # a tablet came out of the die only if it holds together: no thicker than WHOLE times the gap where the upper
         # punch let go (or at the largest pressure), no wider than WHOLE times the bore; a compact that came apart
@@ -163,7 +166,7 @@ def analyse(run, die=None, upper="upper", lower="lower"):
         dia["whole"] = bool(dia["thickness"] <= WHOLE * g_rel and dia["diameter"] <= WHOLE * 2 * radius[k_die])
         if not dia["whole"]:
             dia["tensile"] = float("nan")
-    return dict(dia=dia, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
+    return dict(dia=dia, platens_untouched=has_platens and dia is None, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
                 gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
                 heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
                 recovery=recovery, recovery_min=recovery_min, radial_ratio=radial_ratio, ej=ej, eject_by_die=by_die, eject_travel=eject_travel,
@@ -174,6 +177,8 @@ def analyse(run, die=None, upper="upper", lower="lower"):
 
 
 PLATENS = ("platen_a", "platen_b")
+UNTOUCHED = ("{name}: note: the platens (platen_a, platen_b) never touched the tablet in this run (stopped before its "
+             "diametral compression?); the press part is reported alone, with no tablet_* or tensile keys")
 TRIM = 0.005
 DROP = 0.2
 WHOLE = 2.0  # a tablet thicker than WHOLE times its gap at release, or wider than WHOLE bores, came apart
@@ -209,7 +214,7 @@ def diametral(run, lower):
     travel = ((pos[:, ka, :] - pos[0, ka, :]) @ n_a + (pos[:, kb, :] - pos[0, kb, :]) @ n_b)  # closing: > 0
     touched = np.nonzero(f > 0)[0]
     if not len(touched):
-        raise TabletError("the platens (platen_a, platen_b) never touched the tablet")
+        return None  # a run stopped before the diametral test (SIGTERM, --stop-after): its press part stands alone
     k0 = int(touched[0])
     frames = [k for k in range(len(run.frames)) if run.frames.time[k] <= t[k0]]
     if "position" not in run.frame_fields or not frames:
@@ -344,4 +349,6 @@ def report(paths, out=None, die=None, upper="upper", lower="lower"):
     warning = quasi_static_warning(c, " + ".join(paths))
     if warning:
         print(warning, file=sys.stderr)
+    if c["platens_untouched"]:
+        print(UNTOUCHED.format(name=" + ".join(paths)), file=sys.stderr)
     return report_line(c, out)
