@@ -258,4 +258,45 @@ DEM_INLINE void mdr_stiffness(DEM_CONST_GLOBAL real *pm, real rstar, real delta,
     *kn = (real)2 * pm[PM_MDR] * a;
     *kt = hm_tangential_stiffness(pm[PM_GSTAR], a);
 }
+/* The law's own normal slope at a contact (the host's stability estimate, host/physics/stability.c; mdr_stiffness's
+ * closed form is no bound past an overlap of about half a radius: docs/design.md "The time step under compaction"):
+ * the elastic force of the next step with the contact's overlap moved by +eps and by -eps from delta, every other
+ * contact held (its own share of the particles' mean surface displacement (M33) included), on copies of the row's
+ * sides and of the particles p0, p1 (a pair's, side 0 on p0; a wall's: p0 alone, its magnifier (M39) at the moved
+ * state), over eps; the larger of the loading and unloading slopes. pair: 1 a pair, 0 a wall; row: its law row. */
+DEM_INLINE real mdr_row_force_at(const mdr_material *m, DEM_CONST_GLOBAL real *row, int pair, const mdr_particle *q0,
+                                 const mdr_particle *q1, real delta)
+{
+    mdr_side s0 = mdr_side_load(row + MDR_S0), s1 = mdr_side_load(row + MDR_S0 + MDR_SIDE);
+    mdr_particle p0 = *q0, p1 = *q1;
+    real a0, a1;
+    mdr_particle_clear_sums(&p0);
+    mdr_particle_clear_sums(&p1);
+    p0.ddelta_bar = p1.ddelta_bar = (real)0;
+    if (!pair) {
+        mdr_surface_motion(&p0, &s0, delta);
+        real f0 = mdr_side_force(m, &s0, &p0, delta, (real)1, &a0);
+        return f0 * mdr_wall_magnifier(s0.deltao, p0.ro);
+    }
+    real cmax = row[MDR_CMAX] > delta ? row[MDR_CMAX] : delta;
+    real d0 = mdr_pair_share(0, delta, cmax, p0.r, p1.r, s0.deltap, s1.deltap);
+    real d1 = mdr_pair_share(1, delta, cmax, p0.r, p1.r, s0.deltap, s1.deltap);
+    real w = (real)1 - row[MDR_PEN];
+    if (!(w > (real)0))
+        w = (real)0;
+    mdr_surface_motion(&p0, &s0, d0);
+    mdr_surface_motion(&p1, &s1, d1);
+    real f0 = mdr_side_force(m, &s0, &p0, d0, w, &a0), f1 = mdr_side_force(m, &s1, &p1, d1, w, &a1);
+    return w * ((f0 + f1) / (real)2);
+}
+DEM_INLINE real mdr_row_slope(const mdr_material *m, DEM_CONST_GLOBAL real *row, int pair, const mdr_particle *p0,
+                              const mdr_particle *p1, real delta, real eps)
+{
+    real f = mdr_row_force_at(m, row, pair, p0, p1, delta);
+    real up = (mdr_row_force_at(m, row, pair, p0, p1, delta + eps) - f) / eps;
+    real down = (f - mdr_row_force_at(m, row, pair, p0, p1, delta - eps)) / eps;
+    up = up < (real)0 ? -up : up;
+    down = down < (real)0 ? -down : down;
+    return up > down ? up : down;
+}
 #endif /* DEM_MDR_H */

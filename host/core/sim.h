@@ -404,6 +404,15 @@ void sim_buffer_from_api(dem_sim *s, int id, const void *src, void *dst, size_t 
 /* state.c: where each particle's hosted pairs (partners stored after it) start in the pair list of rows cnt, list
  * (neighbor.h's own_start; malloc'd, n + 1 entries) */
 int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);
+/* energy.c: a law with memory's rows on the host, widened to double: the pairs' states by pair number (neighbor.h;
+ * row_pair_of finds one from a row slot, own the hosts' starts), the particle-wall slots' and MDR's particle rows
+ * (storage order); read once for the energies and the stability estimate (stability.c) */
+typedef struct {
+    double *pair_st, *wall_st, *mdr; /* DEM_LAW_PAIR_W reals per pair, DEM_LAW_WALL_W per wall slot, MDR_P_STRIDE */
+    int *own;
+} sim_law_rows;
+int sim_law_rows_read(dem_sim *s, const int *cnt, const int *list, const int *start, sim_law_rows *lr);
+void sim_law_rows_free(sim_law_rows *lr);
 int sim_mc_force_slots(dem_sim *s, unsigned char *buf, size_t all); /* state.c */
 size_t sim_stored_bytes(const dem_sim *s, dem_field f);          /* fields.c: a field's bytes as the device holds it */
 

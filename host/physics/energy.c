@@ -223,10 +223,8 @@ typedef struct {
     double *x, *v, *w;
     int *cnt, *start, *list;
     /* a law with memory (laws/law.h): the pairs' states by pair number (neighbor.h), where each particle's hosted
-     * pairs start in that numbering, and the particle-wall slots' states; NULL otherwise */
-    double *pair_st, *wall_st; /* DEM_LAW_PAIR_W reals per pair, DEM_LAW_WALL_W per wall slot */
-    double *mdr;               /* MDR: each particle's row (dem_layout.h MDR_P_*) */
-    int *own;
+     * pairs start in that numbering, the particle-wall slots' states and MDR's particle rows; zero otherwise */
+    sim_law_rows lr;
 } host_state;
 
 /* reads hs (and the walls' forces where asked) in one device synchronisation, into one scratch block kept in the
@@ -267,9 +265,9 @@ static int read_state(dem_sim *s, host_state *hs, double *wall_force, double *wa
     return 0;
 }
 
-/* The law states of a law with memory into hs (laws/law.h: PAIR_LAW, WALL_LAW), widened; the pairs' only where the
- * pair touched in the last step (a stale state of a pair that parted is not read by the law either) */
-static int read_law_states(dem_sim *s, host_state *hs)
+/* The law states of a law with memory, widened (sim.h sim_law_rows); the pairs' only where the pair touched in the
+ * last step (a stale state of a pair that parted is not read by the law either) */
+int sim_law_rows_read(dem_sim *s, const int *cnt, const int *list, const int *start, sim_law_rows *lr)
 {
     int e = 0, rs = s->setup.real_size;
     dem_core *c = DEM_CORE(s->be);
@@ -279,28 +277,35 @@ static int read_law_states(dem_sim *s, host_state *hs)
     unsigned char *ps = sim_buffer_get(s, BUF_PAIR_LAW, &e), *ws = sim_buffer_get(s, BUF_WALL_LAW, &e);
     unsigned char *touch = sim_buffer_get(s, BUF_TOUCH, &e);
     unsigned *mask = sim_buffer_get(s, BUF_WALL_MASK, &e);
-    hs->pair_st = calloc(np * pw + 1, sizeof(double));
-    hs->wall_st = calloc(nw * ww + 1, sizeof(double));
+    memset(lr, 0, sizeof *lr);
+    lr->pair_st = calloc(np * pw + 1, sizeof(double));
+    lr->wall_st = calloc(nw * ww + 1, sizeof(double));
     if (fx & DEM_EFFECT_MDR) { /* the particles' rows, in storage order like the rest */
         unsigned char *mp = sim_buffer_get(s, BUF_MDR_PART, &e);
-        hs->mdr = calloc((size_t)MDR_P_STRIDE * s->n + 1, sizeof(double));
-        if (!e && hs->mdr)
-            sim_widen(mp, hs->mdr, (size_t)MDR_P_STRIDE * s->n, rs);
+        lr->mdr = calloc((size_t)MDR_P_STRIDE * s->n + 1, sizeof(double));
+        if (!e && lr->mdr)
+            sim_widen(mp, lr->mdr, (size_t)MDR_P_STRIDE * s->n, rs);
         else if (!e)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         free(mp);
     }
-    hs->own = e ? NULL : sim_own_starts(hs->cnt, hs->list, hs->start, s->n);
-    if (!e && (!hs->pair_st || !hs->wall_st || !hs->own))
+    lr->own = e ? NULL : sim_own_starts(cnt, list, start, s->n);
+    if (!e && (!lr->pair_st || !lr->wall_st || !lr->own))
         e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
     for (size_t p = 0; !e && p < np; p++)
         if (touch[p])
-            sim_widen(ps + p * pw * rs, hs->pair_st + p * pw, pw, rs);
+            sim_widen(ps + p * pw * rs, lr->pair_st + p * pw, pw, rs);
     for (size_t q = 0; !e && s->nwalls && q < nw; q++)
         if ((mask[q / (size_t)s->nwalls] >> (q % (size_t)s->nwalls)) & 1u)
-            sim_widen(ws + q * ww * rs, hs->wall_st + q * ww, ww, rs);
+            sim_widen(ws + q * ww * rs, lr->wall_st + q * ww, ww, rs);
     free(ps), free(ws), free(touch), free(mask);
     return e;
+}
+
+void sim_law_rows_free(sim_law_rows *lr)
+{
+    free(lr->pair_st), free(lr->wall_st), free(lr->own), free(lr->mdr);
+    memset(lr, 0, sizeof *lr);
 }
 
 /* adds particle i's kinetic energy (translation, then rotation) and its potential energy in gravity to acc */
@@ -329,28 +334,28 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
     const int *sid = s->setup.sid; /* ascending stable id, each pair from its owner (neighbor.h): any storage order */
     unsigned fx = s->setup.effects;
     int mdr = (fx & DEM_EFFECT_MDR) != 0; /* MDR: the apparent radii, and each contact's energy from its row */
-    double r = mdr ? hs->mdr[MDR_P_STRIDE * i + 1] : s->radius[i];
+    double r = mdr ? hs->lr.mdr[MDR_P_STRIDE * i + 1] : s->radius[i];
     for (int k = 0; k < hs->cnt[i]; k++) {
         int j = hs->list[hs->start[i] + k];
         if (sid[j] < sid[i])
             continue;
-        double rj = mdr ? hs->mdr[MDR_P_STRIDE * j + 1] : s->radius[j];
+        double rj = mdr ? hs->lr.mdr[MDR_P_STRIDE * j + 1] : s->radius[j];
         double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
         double delta = r + rj - sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         /* a bond or a JKR contact (laws/thornton_ning.h) holds across a gap until it lets go: its state (> 0) is kept
          * while it touches, and cleared when it ends (contact_forces.h; contact_geometry.h, pair_geometry_held) */
-        int p = hs->pair_st && (delta > 0 || (fx & DEM_EFFECT_THORNTON_NING))
-                    ? row_pair_of(hs->cnt, hs->list, hs->start, hs->own, sid, i, k) : -1;
-        double st = p >= 0 ? hs->pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)] : 0, row[PM_STRIDE];
+        int p = hs->lr.pair_st && (delta > 0 || (fx & DEM_EFFECT_THORNTON_NING))
+                    ? row_pair_of(hs->cnt, hs->list, hs->start, hs->lr.own, sid, i, k) : -1;
+        double st = p >= 0 ? hs->lr.pair_st[(size_t)p * DEM_LAW_PAIR_W(fx)] : 0, row[PM_STRIDE];
         if (delta > 0 || st > 0) /* (the table only for a contact that may hold) */
             pair_row(s, s->mat[i], s->mat[j], row);
         if (delta > 0 || (st > 0 && contact_held(fx, 1, row))) {
             double rs = r * rj / (r + rj);
             if (mdr && p >= 0) { /* side 0 is j, of the higher stable id (laws/mdr.h) */
                 mdr_material m = mdr_material_of(row);
-                mdr_particle p0 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * j);
-                mdr_particle p1 = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
-                exact_add_double(&acc[EN_ELA], mdr_pair_row_energy(&m, hs->pair_st + (size_t)p * MDR_PAIR_STRIDE, &p0, &p1));
+                mdr_particle p0 = mdr_particle_load(hs->lr.mdr + MDR_P_STRIDE * j);
+                mdr_particle p1 = mdr_particle_load(hs->lr.mdr + MDR_P_STRIDE * i);
+                exact_add_double(&acc[EN_ELA], mdr_pair_row_energy(&m, hs->lr.pair_st + (size_t)p * MDR_PAIR_STRIDE, &p0, &p1));
             } else if (!mdr)
                 exact_add_double(&acc[EN_ELA], law_energy(fx, row, rs, delta, st));
             en->contacts++;
@@ -365,15 +370,15 @@ static void add_contact_energy(const dem_sim *s, const host_state *hs, int i, de
          * contact radius) is > 0 while it touches and cleared when it ends (wall_forces.h) */
         double row[PM_STRIDE];
         pair_row(s, s->mat[i], wl->material, row);
-        int held = hs->wall_st && hs->wall_st[slot] > 0 && contact_held(fx, 0, row); /* wall_met_held's test */
+        int held = hs->lr.wall_st && hs->lr.wall_st[slot] > 0 && contact_held(fx, 0, row); /* wall_met_held's test */
         double delta = sim_wall_overlap_gap(wl, s->motion.pos[k], x + 3 * i, r, held ? r : 0, NULL); /* the kernels' */
         if (delta > 0 || held) {
             if (mdr) {
                 mdr_material m = mdr_material_of(row);
-                mdr_particle p = mdr_particle_load(hs->mdr + MDR_P_STRIDE * i);
-                exact_add_double(&acc[EN_ELA], mdr_wall_row_energy(&m, hs->wall_st + slot, &p));
+                mdr_particle p = mdr_particle_load(hs->lr.mdr + MDR_P_STRIDE * i);
+                exact_add_double(&acc[EN_ELA], mdr_wall_row_energy(&m, hs->lr.wall_st + slot, &p));
             } else
-                exact_add_double(&acc[EN_ELA], law_energy(fx, row, r, delta, hs->wall_st ? hs->wall_st[slot] : 0));
+                exact_add_double(&acc[EN_ELA], law_energy(fx, row, r, delta, hs->lr.wall_st ? hs->lr.wall_st[slot] : 0));
             en->wall_contacts++;
         }
     }
@@ -407,7 +412,7 @@ static int energy_acc(dem_sim *s, dem_energy_t *en, exact_acc *acc, double *wall
     host_state hs = {0}; /* set by read_state where it succeeds */
     int e = read_state(s, &hs, wall_force, wall_normal);
     if (!e && (s->setup.effects & DEM_LAW_STATE_BITS))
-        e = read_law_states(s, &hs);
+        e = sim_law_rows_read(s, hs.cnt, hs.list, hs.start, &hs.lr);
     for (int i = 0; !e && i < s->n; i++) { /* storage order: exact sums, the same bits in any order */
         if (own && s->ghost && s->ghost[i]) /* by place, as rows_from_ring's */
             continue;
@@ -418,7 +423,7 @@ static int energy_acc(dem_sim *s, dem_energy_t *en, exact_acc *acc, double *wall
         add_spring_energy(s, hs.x, acc);
     if (!e && (s->setup.effects & DEM_EFFECT_PATCHES) && s->mesh.npatch)
         e = patch_energy(s, hs.x, en, acc);
-    free(hs.pair_st), free(hs.wall_st), free(hs.own), free(hs.mdr);
+    sim_law_rows_free(&hs.lr);
     return e;
 }
 

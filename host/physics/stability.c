@@ -41,9 +41,13 @@
 #include "laws/laws.h"
 #include "sim.h"
 #include "dem_layout.h"
+#include "sorted_row.h" /* row_pair_of: a pair's number from its row slot */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* MDR's slope is the law's own, a difference over +-MDR_SLOPE_EPS of the overlap (laws/mdr.h mdr_row_slope) */
+#define MDR_SLOPE_EPS 1e-6
 
 /* the bound on omega dt of an explicit step with damping ratio zeta */
 static double damped_bound(double zeta) { return 2 * (sqrt(1 + zeta * zeta) - zeta); }
@@ -107,7 +111,8 @@ static double damping_of(const dem_sim *s, int a, int b)
 /* adds to pm the sphere contacts of particle i (inverse mass mi, rotational term roti), each pair from both ends:
  * every particle sums all of its contacts; rad: the radii (MDR's apparent ones, or the particles' own) */
 static void add_sphere_contacts(const dem_sim *s, const double *x, const double *rad, const int *cnt, const int *start,
-                                const int *list, int i, double mi, double roti, particle_modes *pm)
+                                const int *list, const sim_law_rows *lr, int i, double mi, double roti,
+                                particle_modes *pm)
 {
     unsigned fx = s->setup.effects;
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
@@ -124,6 +129,16 @@ static void add_sphere_contacts(const dem_sim *s, const double *x, const double 
         double kn, kt;
         table_row(s, a, b, row);
         law_stiffness(fx, row, ri * rj / (ri + rj), delta, &kn, &kt);
+        int p = lr->mdr ? row_pair_of(cnt, list, start, lr->own, s->setup.sid, i, k) : -1;
+        if (p >= 0) { /* MDR: the law's own slope from the pair's row; side 0 is the higher stable id's (laws/mdr.h) */
+            int hi = s->setup.sid[j] > s->setup.sid[i] ? j : i, lo = hi == j ? i : j;
+            mdr_material m = mdr_material_of(row);
+            mdr_particle p0 = mdr_particle_load(lr->mdr + MDR_P_STRIDE * hi);
+            mdr_particle p1 = mdr_particle_load(lr->mdr + MDR_P_STRIDE * lo);
+            double slope = mdr_row_slope(&m, lr->pair_st + (size_t)p * DEM_LAW_PAIR_W(fx), 1, &p0, &p1, delta,
+                                         MDR_SLOPE_EPS * delta);
+            kn = slope > kn ? slope : kn;
+        }
         int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
         double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
         double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
@@ -134,8 +149,8 @@ static void add_sphere_contacts(const dem_sim *s, const double *x, const double 
 }
 
 /* adds to pm the wall contacts of particle i (inverse mass mi, rotational term roti): a wall is immovable */
-static void add_wall_contacts(const dem_sim *s, const double *x, const double *rad, int i, double mi, double roti,
-                              particle_modes *pm)
+static void add_wall_contacts(const dem_sim *s, const double *x, const double *rad, const sim_law_rows *lr, int i,
+                              double mi, double roti, particle_modes *pm)
 {
     unsigned fx = s->setup.effects;
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
@@ -151,6 +166,13 @@ static void add_wall_contacts(const dem_sim *s, const double *x, const double *r
         double kn, kt;
         table_row(s, a, b, row);
         law_stiffness(fx, row, ri, delta, &kn, &kt);
+        if (lr->mdr) { /* MDR: the law's own slope from the wall slot's row, its magnifier (M39) included */
+            mdr_material m = mdr_material_of(row);
+            mdr_particle p = mdr_particle_load(lr->mdr + MDR_P_STRIDE * i);
+            double slope = mdr_row_slope(&m, lr->wall_st + ((size_t)i * s->nwalls + w) * DEM_LAW_WALL_W(fx), 0, &p, &p,
+                                         delta, MDR_SLOPE_EPS * delta);
+            kn = slope > kn ? slope : kn;
+        }
         double ai = ri - delta; /* a wall contact's lever arm (wall_forces.h) */
         double c = damping ? damping_of(s, a, b) : 0;
         add_contact(pm, kn, friction ? kt : 0, mi, ai * ai * roti, c);
@@ -198,8 +220,10 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     }
     int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1;
     int e = read_positions(s, raw, x, cnt, start, list, lb);
-    /* MDR: the apparent radii its contacts see (RADIUS, which mdr_begin keeps), in storage order like x */
+    /* MDR: the apparent radii its contacts see (RADIUS, which mdr_begin keeps), in storage order like x, and the
+     * law's rows (each contact's slope from its own state) */
     double *rad = NULL;
+    sim_law_rows lr = {0};
     if (!e && (s->setup.effects & DEM_EFFECT_MDR)) {
         unsigned char *rb = sim_buffer_get(s, BUF_RADIUS, &e);
         rad = e ? NULL : malloc(sizeof(double) * (size_t)(n ? n : 1));
@@ -208,19 +232,22 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
         if (!e && !rad)
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
         free(rb);
+        if (!e)
+            e = sim_law_rows_read(s, cnt, list, start, &lr);
     }
     for (int i = 0; !e && i < n; i++) {
         if (s->pflags[i] & DEM_PARTICLE_FIXED)
             continue;
         double mi = inv_of(sim_mass(s, i));
         double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
-        add_sphere_contacts(s, x, rad ? rad : s->radius, cnt, start, list, i, mi, roti, &pm[i]);
-        add_wall_contacts(s, x, rad ? rad : s->radius, i, mi, roti, &pm[i]);
+        add_sphere_contacts(s, x, rad ? rad : s->radius, cnt, start, list, &lr, i, mi, roti, &pm[i]);
+        add_wall_contacts(s, x, rad ? rad : s->radius, &lr, i, mi, roti, &pm[i]);
     }
     if (!e)
         worst_particle(s, pm, st);
     if (!e && st->ratio > 0)
         st->dt_advice = s->dt * DEM_STABILITY_TARGET / st->ratio;
     free(raw), free(x), free(pm), free(rad);
+    sim_law_rows_free(&lr);
     return e;
 }
