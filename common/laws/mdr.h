@@ -35,8 +35,9 @@
  * its magnifier; the series rows and the host's energies (host/physics/energy.c) take it from there.
  * Stress output: each contact's elastic normal force of the last step, kept in its row (particle_stress.h reads it).
  * law_elastic returns that kept force (its state argument); law_energy has no row to read and gives 0 (no caller uses
- * it with MDR: the energies take each row, above); law_stiffness gives the stiffest slope MDR reaches at an overlap, a
- * flattened contact unloading (2 E* a per side with a^2 = 2 delta R), for the time-step bound.
+ * it with MDR: the energies take each row, above); law_stiffness gives the slope of a flattened contact unloading
+ * (2 E* a per side with a^2 = 2 delta R), and mdr_row_slope the law's own from a contact's row, which the host's
+ * time-step estimate takes where it is the larger (the closed form falls below it past about half a radius).
  */
 #ifndef DEM_MDR_H
 #define DEM_MDR_H
@@ -248,7 +249,8 @@ DEM_INLINE real mdr_energy_kept(DEM_CONST_GLOBAL real *pm, real rstar, real delt
 {
     return (real)0;
 }
-/* A bound on the normal slope at delta: both sides (delta/2 each on R = 2 r*) flattened and unloading, 2 E* a per
+/* The normal slope at delta of a contact flattened and unloading (meant as a bound; it is one only to about half a
+ * radius: mdr_row_slope below): both sides (delta/2 each on R = 2 r*) flattened and unloading, 2 E* a per
  * side with a = sqrt(2 (delta/2) R), the mean of the two: E* sqrt(2 r* delta); times 2 for (M17)'s map from the
  * apparent overlap to the indenter's depth, whose slope 1/(1 + 2 dR/A) grows as the contact flattens (to 2 where the
  * compliance dR of (M16) reaches -A/4); Mindlin's k_t = 8 G* a with the same a */

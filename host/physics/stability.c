@@ -36,6 +36,10 @@
  * little too kindly (one contact's damping ratio stands for the particle's, though a particle's contacts' damping
  * adds up; summing it instead spread the onsets over 1.5-5). Hence DEM_STABILITY_LIMIT 1.2 for the warning - a
  * heavily damped packing between 1 and 1.2 may creep up slowly - and DEM_STABILITY_TARGET 0.7 for the advice.
+ * MDR: each contact's normal slope is the law's own (laws/mdr.h mdr_row_slope, from the contact's row, read as the
+ * energies read it: sim_law_rows), where it is above the closed form; the closed form was 30 times low at a sphere
+ * pushed 1.1 R_o into a wall, and the held box of tools/mdr_stiffness/jacobian.py measured omega dt 1.480 against
+ * an estimate of 0.584 from it (1.546 now; docs/design.md "The time step under compaction").
  * Springs, patches and membranes are not counted. */
 #define DEM_REAL_SIZE 8
 #include "laws/laws.h"
