@@ -35,11 +35,13 @@ def state_array(st, name):
 def measure(psib, t_ms=1.0, h=1e-10, es=None, out=print):
     """Runs the box at bulk fraction psib to t_ms, prints the table through out and returns (the estimate's omega dt,
     the largest measured omega dt over +h, -h and their mean); es (E* of a sphere pair) adds the pairs' table."""
-    text = open(os.path.join(ROOT, "tools", "mdr_energy_box", "box.yaml")).read()
+    with open(os.path.join(ROOT, "tools", "mdr_energy_box", "box.yaml")) as f:
+        text = f.read()
     text = text.replace("PSIB", psib).replace("DAMP", "0.2").replace("DTR", "0.05")
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "box.yaml")
-        open(path, "w").write(text)
+        with open(path, "w") as f:
+            f.write(text)
         s = S.Sim.from_scene(path)
     s.start("reference", "fp64")
     lib = s._lib
