@@ -579,7 +579,7 @@ class SimTest(unittest.TestCase):
         structs = {sim.Material: "dem_material", sim.Stage: "dem_stage", sim.WallDesc: "dem_wall",
                    sim.Config: "dem_config", sim.TimeScales: "dem_time_scales", sim.Energy: "dem_energy_t",
                    sim.Contact: "dem_contact", sim.StateArray: "dem_state_array", sim.McStats: "dem_mc_stats",
-                   sim.State: "dem_state", sim.MaterialPair: "dem_material_pair"}
+                   sim.State: "dem_state", sim.MaterialPair: "dem_material_pair", sim.Stability: "dem_stability"}
         lines = ["#include <stdio.h>", "#include <stddef.h>", "#include <dem.h>", "int main(void) {"]
         want = []
         for py, c in structs.items():
@@ -622,7 +622,7 @@ class SimTest(unittest.TestCase):
                 "dem_sim *": ctypes.c_void_p, "char *": ctypes.c_char_p, "dem_contact **": P(P(sim.Contact))}
         structs = {"dem_material": sim.Material, "dem_wall": sim.WallDesc, "dem_config": sim.Config,
                    "dem_time_scales": sim.TimeScales, "dem_energy_t": sim.Energy, "dem_state": sim.State,
-                   "dem_material_pair": sim.MaterialPair}
+                   "dem_material_pair": sim.MaterialPair, "dem_stability": sim.Stability}
         for k, v in structs.items():
             base[k + " *"] = P(v)
         base.update({"double *": P(ctypes.c_double), "long int *": P(ctypes.c_long)})

@@ -410,6 +410,7 @@ int *sim_own_starts(const int *cnt, const int *list, const int *start, int n);
 typedef struct {
     double *pair_st, *wall_st, *mdr; /* DEM_LAW_PAIR_W reals per pair, DEM_LAW_WALL_W per wall slot, MDR_P_STRIDE */
     int *own;
+    size_t npairs; /* the pairs pair_st holds room for */
 } sim_law_rows;
 int sim_law_rows_read(dem_sim *s, const int *cnt, const int *list, const int *start, sim_law_rows *lr);
 void sim_law_rows_free(sim_law_rows *lr);

@@ -278,6 +278,7 @@ int sim_law_rows_read(dem_sim *s, const int *cnt, const int *list, const int *st
     unsigned char *touch = sim_buffer_get(s, BUF_TOUCH, &e);
     unsigned *mask = sim_buffer_get(s, BUF_WALL_MASK, &e);
     memset(lr, 0, sizeof *lr);
+    lr->npairs = np;
     lr->pair_st = calloc(np * pw + 1, sizeof(double));
     lr->wall_st = calloc(nw * ww + 1, sizeof(double));
     if (fx & DEM_EFFECT_MDR) { /* the particles' rows, in storage order like the rest */

@@ -115,8 +115,8 @@ static double damping_of(const dem_sim *s, int a, int b)
 /* adds to pm the sphere contacts of particle i (inverse mass mi, rotational term roti), each pair from both ends:
  * every particle sums all of its contacts; rad: the radii (MDR's apparent ones, or the particles' own) */
 static void add_sphere_contacts(const dem_sim *s, const double *x, const double *rad, const int *cnt, const int *start,
-                                const int *list, const sim_law_rows *lr, int i, double mi, double roti,
-                                particle_modes *pm)
+                                const int *list, const sim_law_rows *lr, double *pair_kn, int i, double mi,
+                                double roti, particle_modes *pm)
 {
     unsigned fx = s->setup.effects;
     int friction = (fx & DEM_EFFECT_FRICTION) != 0, damping = (fx & DEM_EFFECT_DAMPING) != 0;
@@ -134,15 +134,17 @@ static void add_sphere_contacts(const dem_sim *s, const double *x, const double 
         table_row(s, a, b, row);
         law_stiffness(fx, row, ri * rj / (ri + rj), delta, &kn, &kt);
         int p = lr->mdr ? row_pair_of(cnt, list, start, lr->own, s->setup.sid, i, k) : -1;
-        if (p >= 0) { /* MDR: the law's own slope from the pair's row; side 0 is the higher stable id's (laws/mdr.h) */
+        if (p >= 0 && pair_kn[p] < 0) { /* MDR: the law's own slope from the pair's row, once a pair (its first end);
+                                          side 0 is the higher stable id's (laws/mdr.h) */
             int hi = s->setup.sid[j] > s->setup.sid[i] ? j : i, lo = hi == j ? i : j;
             mdr_material m = mdr_material_of(row);
             mdr_particle p0 = mdr_particle_load(lr->mdr + MDR_P_STRIDE * hi);
             mdr_particle p1 = mdr_particle_load(lr->mdr + MDR_P_STRIDE * lo);
-            double slope = mdr_row_slope(&m, lr->pair_st + (size_t)p * DEM_LAW_PAIR_W(fx), 1, &p0, &p1, delta,
-                                         MDR_SLOPE_EPS * delta);
-            kn = slope > kn ? slope : kn;
+            pair_kn[p] = mdr_row_slope(&m, lr->pair_st + (size_t)p * DEM_LAW_PAIR_W(fx), 1, &p0, &p1, delta,
+                                       MDR_SLOPE_EPS * delta);
         }
+        if (p >= 0)
+            kn = pair_kn[p] > kn ? pair_kn[p] : kn;
         int fixed_j = (s->pflags[j] & DEM_PARTICLE_FIXED) != 0;
         double mj = fixed_j ? 0 : inv_of(sim_mass(s, j));
         double rotj = fixed_j || (s->pflags[j] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, j));
@@ -224,34 +226,35 @@ int dem_stability_get(dem_sim *s, dem_stability *st)
     }
     int *cnt = (int *)(raw + n3 * (size_t)rs), *start = cnt + n, *list = start + n + 1;
     int e = read_positions(s, raw, x, cnt, start, list, lb);
-    /* MDR: the apparent radii its contacts see (RADIUS, which mdr_begin keeps), in storage order like x, and the
-     * law's rows (each contact's slope from its own state) */
+    /* MDR: the law's rows (each contact's slope from its own state) and the apparent radii its contacts see, the
+     * particles' rows' R (which mdr_begin also copies to RADIUS), in storage order like x */
     double *rad = NULL;
     sim_law_rows lr = {0};
+    double *pair_kn = NULL; /* each pair's MDR slope, from the first of its ends to meet it */
     if (!e && (s->setup.effects & DEM_EFFECT_MDR)) {
-        unsigned char *rb = sim_buffer_get(s, BUF_RADIUS, &e);
+        e = sim_law_rows_read(s, cnt, list, start, &lr);
         rad = e ? NULL : malloc(sizeof(double) * (size_t)(n ? n : 1));
-        if (rad)
-            sim_widen(rb, rad, n, rs);
-        if (!e && !rad)
+        pair_kn = e ? NULL : malloc(sizeof(double) * (lr.npairs + 1));
+        for (int i = 0; rad && i < n; i++)
+            rad[i] = lr.mdr[MDR_P_STRIDE * (size_t)i + 1];
+        for (size_t p = 0; pair_kn && p < lr.npairs; p++)
+            pair_kn[p] = -1; /* not yet computed */
+        if (!e && (!rad || !pair_kn))
             e = sim_fail(s, DEM_ERR_NOMEM, "out of host memory");
-        free(rb);
-        if (!e)
-            e = sim_law_rows_read(s, cnt, list, start, &lr);
     }
     for (int i = 0; !e && i < n; i++) {
         if (s->pflags[i] & DEM_PARTICLE_FIXED)
             continue;
         double mi = inv_of(sim_mass(s, i));
         double roti = (s->pflags[i] & DEM_PARTICLE_NO_ROTATION) ? 0 : inv_of(sim_inertia(s, i));
-        add_sphere_contacts(s, x, rad ? rad : s->radius, cnt, start, list, &lr, i, mi, roti, &pm[i]);
+        add_sphere_contacts(s, x, rad ? rad : s->radius, cnt, start, list, &lr, pair_kn, i, mi, roti, &pm[i]);
         add_wall_contacts(s, x, rad ? rad : s->radius, &lr, i, mi, roti, &pm[i]);
     }
     if (!e)
         worst_particle(s, pm, st);
     if (!e && st->ratio > 0)
         st->dt_advice = s->dt * DEM_STABILITY_TARGET / st->ratio;
-    free(raw), free(x), free(pm), free(rad);
+    free(raw), free(x), free(pm), free(rad), free(pair_kn);
     sim_law_rows_free(&lr);
     return e;
 }

@@ -80,6 +80,12 @@ class Energy(ctypes.Structure):
                 ("patch_contacts", ctypes.c_long)]
 
 
+class Stability(ctypes.Structure):
+    _fields_ = [("ratio", ctypes.c_double), ("omega_dt", ctypes.c_double), ("zeta", ctypes.c_double),
+                ("tangential", ctypes.c_int), ("particle", ctypes.c_int), ("contacts", ctypes.c_int),
+                ("dt_advice", ctypes.c_double)]
+
+
 class Contact(ctypes.Structure):
     _fields_ = [("i", ctypes.c_int), ("j", ctypes.c_int), ("overlap", ctypes.c_double), ("fn", d3), ("ft", d3),
                 ("point", d3), ("extra", ctypes.c_double * 2)]
@@ -146,6 +152,7 @@ SIGNATURES = {
     "dem_wall_normal_force": (_i, [_sim, _i, P(_d)]),
     "dem_wall_position": (_i, [_sim, _i, P(_d)]),
     "dem_energy": (_i, [_sim, P(Energy)]),
+    "dem_stability_get": (_i, [_sim, P(Stability)]),
     "dem_contacts_get": (_i, [_sim, P(P(Contact)), P(_l), P(_l)]),
     "dem_state_get": (_i, [_sim, P(State)]),
     "dem_state_set": (_i, [_sim, P(State)]),
@@ -487,6 +494,13 @@ class Sim:
         e = Energy()
         self._check(self._lib.dem_energy(self._s, ctypes.byref(e)))
         return {k: getattr(e, k) for k, _ in Energy._fields_}
+
+    def stability(self):
+        """How close dt is to the explicit step's stability bound at the current overlaps (dem_stability_get), a dict:
+        ratio, omega_dt, zeta, tangential, particle, contacts, dt_advice [s]."""
+        st = Stability()
+        self._check(self._lib.dem_stability_get(self._s, ctypes.byref(st)))
+        return {k: getattr(st, k) for k, _ in Stability._fields_}
 
     def contacts(self):
         """The contact network now, with the keys of libdem.Run.contacts: i, j (j = -1 - wall for a wall
