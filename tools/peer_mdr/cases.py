@@ -24,7 +24,7 @@ DT = 1.0e-6        # time step of the prescribed path, s
 STEP = 7.5e-9      # approach per step while moving, m (speed STEP/DT = 7.5 mm/s)
 DUMP_EVERY = 1     # steps between rows of the CSVs (every step: the tensile branch is short)
 
-# Single-contact cases. 'path' lists the approach (centre displacement towards the partner or wall, m) at the
+# Single-contact cases (a case's 'Y' replaces the yield stress above). 'path' lists the approach (centre displacement towards the partner or wall, m) at the
 # ends of the four phases, each a straight run at STEP per step from first touch: loading beyond yield;
 # unloading past zero force while the spheres still overlap (the contact and its history stay); reloading past
 # the first maximum (elastic along the unloading line, then plastic again); unloading out of contact (with
@@ -42,6 +42,12 @@ SINGLE = {
     # one sphere between six planes that close in together: past about 19 % of R the free-surface fraction psi
     # falls below psi_b and Part II's bulk force takes over; no damping (the planes move, the sphere does not)
     "box_g0":   dict(kind="box", gamma=0.0, damp=0.0, path=(0.20 * R, 0.12 * R, 0.24 * R, -0.06 * R)),
+    # a sphere pressed almost its radius into a wall, as deep as spheres go in a compact at 100 MPa (the tablets of
+    # docs/tableting.md reach overlaps of 108-115 % of the radius as created): the apparent overlap reaches 1.24 R,
+    # the radius grows 25 %, psi falls to 0.67 (one contact: above psi_b, so no bulk response). Y 60 MPa, the yield
+    # stress of scenes/tablet_strength_mdr.yaml. No deeper: past an approach of R the centre crosses the plane and
+    # LAMMPS's region wall loses the contact
+    "wall_deep": dict(kind="wall", gamma=0.0, Y=6.0e7, path=(0.97 * R, 0.80 * R, 0.99 * R, -0.03 * R)),
 }
 
 

@@ -33,7 +33,7 @@ def write_input(case, spec, path):
     ends = C.phase_ends(spec["path"])
     R = C.R
     damp = spec.get("damp", C.DAMP)
-    mdr = f"mdr {C.E!r} {C.NU!r} {C.Y!r} {gamma!r} {C.PSI_B!r} {damp!r} damping mdr 1 " \
+    mdr = f"mdr {C.E!r} {C.NU!r} {spec.get('Y', C.Y)!r} {gamma!r} {C.PSI_B!r} {damp!r} damping mdr 1 " \
           f"tangential linear_nohistory 0 0"
     lines = [
         "units si", "atom_style sphere", "atom_modify map array", "newton off", "comm_modify vel yes",
@@ -154,7 +154,7 @@ def main():
         rows = parse_dump(os.path.join(wd, "dump.single"), spec["kind"])
         csv = os.path.join(outdir, f"single_{case}.csv")
         with open(csv, "w") as f:
-            f.write(HEADER.format(version=version, case=case, kind=spec["kind"], E=C.E, nu=C.NU, Y=C.Y,
+            f.write(HEADER.format(version=version, case=case, kind=spec["kind"], E=C.E, nu=C.NU, Y=spec.get("Y", C.Y),
                                   gamma=spec["gamma"], psi_b=C.PSI_B, damp=spec.get("damp", C.DAMP), R=C.R, rho=C.RHO, dt=C.DT))
             for step, overlap, radius, force, psi in rows:
                 u = C.approach_at(spec["path"], step)
