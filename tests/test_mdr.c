@@ -275,8 +275,9 @@ static void test_against_reference(void **st)
                 printf("       tensile branch (least force %.4g N): %.1e of it\n", least, wt);
             /* fp64: the two differ in exp (libm against F1), h's rounding and the tensile root (bisection against
              * F4's Newton steps): 3e-15 of the peak, 2e-13 of the pull-off measured; fp32 rounds the overlap
-             * R - u (5e-4 m to 3e-11 m): 3.4e-4 of the peak measured (7.2e-4 in wall_deep, 0.99 R deep), and 1e-4 to 2.3e-3 of the pull-off with
-             * adhesion - but for the unequal pair, which lets go a step apart (0.25 of the pull-off) */
+             * R - u (5e-4 m to 3e-11 m): 3.4e-4 of the peak measured (7.2e-4 in wall_deep, 0.99 R deep), and
+             * 1e-4 to 2.3e-3 of the pull-off with adhesion - but for the unequal pair, which lets go a step apart
+             * (0.25 of the pull-off) */
             assert_true(wf <= (rs == 8 ? 1e-13 : 1e-3));
             assert_true(wr <= (rs == 8 ? 1e-14 : 2e-4));
             assert_true(wp <= (rs == 8 ? 1e-14 : 5e-4));
@@ -291,8 +292,9 @@ static void test_against_reference(void **st)
 
 /* What the law must show whatever its numbers: a dent (zero force while the spheres still overlap) after a plastic
  * load without adhesion; a contact pressed deeper than ever before never pushes back less (down to 1.24 R of apparent
- * overlap in wall_deep: a falling force there would be a negative stiffness in a compact); with adhesion a pull many times the damping's (the only tension without it) before the
- * contact lets go; the bulk response (psi below psi_b) in the box */
+ * overlap in wall_deep: a falling force there would be a negative stiffness in a compact); with adhesion a pull many
+ * times the damping's (the only tension without it) before the contact lets go; the bulk response (psi below psi_b)
+ * in the box */
 static void test_dent_and_pull(void **st)
 {
     (void)st;

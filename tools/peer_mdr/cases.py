@@ -24,12 +24,13 @@ DT = 1.0e-6        # time step of the prescribed path, s
 STEP = 7.5e-9      # approach per step while moving, m (speed STEP/DT = 7.5 mm/s)
 DUMP_EVERY = 1     # steps between rows of the CSVs (every step: the tensile branch is short)
 
-# Single-contact cases (a case's 'Y' replaces the yield stress above). 'path' lists the approach (centre displacement towards the partner or wall, m) at the
-# ends of the four phases, each a straight run at STEP per step from first touch: loading beyond yield;
-# unloading past zero force while the spheres still overlap (the contact and its history stay); reloading past
-# the first maximum (elastic along the unloading line, then plastic again); unloading out of contact (with
-# adhesion: the tensile branch and the pull-off). A pair's overlap is shared by two spheres, so its path is twice
-# the wall's: each sphere sees about 15 % of its radius at the first maximum, 22.5 % at the second.
+# Single-contact cases (a case's 'Y' replaces the yield stress above). 'path' lists the approach (centre
+# displacement towards the partner or wall, m) at the ends of the four phases, each a straight run at STEP per
+# step from first touch: loading beyond yield; unloading past zero force while the spheres still overlap (the
+# contact and its history stay); reloading past the first maximum (elastic along the unloading line, then plastic
+# again); unloading out of contact (with adhesion: the tensile branch and the pull-off). A pair's overlap is shared
+# by two spheres, so its path is twice the wall's: each sphere sees about 15 % of its radius at the first maximum,
+# 22.5 % at the second.
 SINGLE = {
     "pair_g0":  dict(kind="pair", gamma=0.0,       path=(0.30 * R, 0.18 * R, 0.45 * R, -0.05 * R)),
     "pair_adh": dict(kind="pair", gamma=GAMMA_ADH, path=(0.30 * R, 0.18 * R, 0.45 * R, -0.05 * R)),

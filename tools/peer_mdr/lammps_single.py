@@ -154,8 +154,8 @@ def main():
         rows = parse_dump(os.path.join(wd, "dump.single"), spec["kind"])
         csv = os.path.join(outdir, f"single_{case}.csv")
         with open(csv, "w") as f:
-            f.write(HEADER.format(version=version, case=case, kind=spec["kind"], E=C.E, nu=C.NU, Y=spec.get("Y", C.Y),
-                                  gamma=spec["gamma"], psi_b=C.PSI_B, damp=spec.get("damp", C.DAMP), R=C.R, rho=C.RHO, dt=C.DT))
+            f.write(HEADER.format(version=version, case=case, kind=spec["kind"], E=C.E, nu=C.NU,
+                                  Y=spec.get("Y", C.Y), gamma=spec["gamma"], psi_b=C.PSI_B, damp=spec.get("damp", C.DAMP), R=C.R, rho=C.RHO, dt=C.DT))
             for step, overlap, radius, force, psi in rows:
                 u = C.approach_at(spec["path"], step)
                 if overlap is None:
