@@ -166,7 +166,8 @@ def analyse(run, die=None, upper="upper", lower="lower"):
         dia["whole"] = bool(dia["thickness"] <= WHOLE * g_rel and dia["diameter"] <= WHOLE * 2 * radius[k_die])
         if not dia["whole"]:
             dia["tensile"] = float("nan")
-    return dict(dia=dia, platens_untouched=has_platens and dia is None, t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
+    return dict(dia=dia, platens_untouched=has_platens and dia is None,
+                t=t, model=model, area=area, solid=solid, p_up=p_up, p_lo=p_lo, p_rad=p_rad, die_axial=die_axial,
                 gap=gap, dens=dens, travel_up=travel_up, k_max=k_max, p_max=p_max, k_rel=k_rel, load=load,
                 heckel=heckel, slope=slope, intercept=intercept, yield_p=yield_p, loading=loading, ratio=ratio,
                 recovery=recovery, recovery_min=recovery_min, radial_ratio=radial_ratio, ej=ej, eject_by_die=by_die, eject_travel=eject_travel,
