@@ -37,11 +37,11 @@ typedef struct {
     long ck_slab;                                     /* particles per slab of a checkpoint */
     const checkpoint *ck;                             /* a restart's first split: the checkpoint's head, and */
     const char *ck_path;                              /* its file, which each rank reads its part of */
-    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan|frame|checkpoint]": */
+    long fail_step;                                   /* DEM_TEST_RANK_FAIL="STEP RANK [nan|kill|frame|checkpoint]": */
     int fail_rank, fail_frame, fail_ck;               /* that rank fails there, after its step, or (nan) inside it:
                                                          a particle's position made NaN before the step (sp.fail_*),
-                                                         or (frame, checkpoint) answering the first frame or
-                                                         checkpoint from that step on */
+                                                         or (kill) dies of SIGKILL after it, or (frame, checkpoint)
+                                                         answering the first frame or checkpoint from that step on */
 } rr;
 
 static rr *of(run_ranks *r) { return (rr *)r->ctx; }
@@ -570,7 +570,10 @@ int run_mpi(const run_opts *o)
     if (tf && sscanf(tf, "%ld %d %15s", &q.fail_step, &q.fail_rank, mode) < 2)
         q.fail_step = -1;
     q.sp.fail_step = q.fail_step, q.sp.fail_rank = q.fail_rank;
-    q.sp.fail_mode = !strcmp(mode, "nan") ? 2 : strcmp(mode, "frame") && strcmp(mode, "checkpoint") ? 1 : 0;
+    q.sp.fail_mode = !strcmp(mode, "nan")    ? 2
+                     : !strcmp(mode, "kill") ? 3
+                     : strcmp(mode, "frame") && strcmp(mode, "checkpoint") ? 1
+                                                                            : 0;
     q.sp.load = load_part, q.sp.load_arg = &q;
     q.sp.comm = q.comm; /* (its calls before the split's start: the messages' sharing) */
     const char *tm = getenv("DEM_TEST_HALO_MARGIN"); /* tests/mpi_run_check.sh: a thin halo (f r_max), whose ghosts

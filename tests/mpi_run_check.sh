@@ -13,6 +13,8 @@
 #     whose steps hold meetings of the ranks: every rank stops there with rank 1's words, nothing hangs. And a rank
 #     that cannot read its part for a frame ("200 2 frame"), gathered in slabs: the same; and for a checkpoint
 #     ("200 2 checkpoint", written in slabs): the same, the checkpoint before it kept (one process's) and no .tmp.
+#     And a rank killed mid-run ("200 1 kill": SIGKILL, no word): mpirun ends the job, non-zero, output .part, the
+#     checkpoint before it kept with no .tmp, and continued in one process it ends as the one-process run does.
 #  4. What a split refuses, said once (by rank 0, in the words of the rank that found it): more ranks than particles (two_spheres on 3 ranks),
 #     a membrane (tests/scenes/membrane_tube.yaml); a scene error is said once, and a damaged checkpoint (each rank
 #     reads its own part of it, checkpoint_read_part: a rank that holds the damage finds it).
@@ -133,6 +135,21 @@ ks=$(grep -o "f.ckpt.h5, step [0-9]*" "$T/log" | grep -o "[0-9]*$")
     { cat "$T/log" >&2; fail "a rank that cannot read its part for a checkpoint: exit $frc (1 wanted; 124: it hung), its words $n times, or the checkpoint before it (step '$ks') not kept"; }
 echo "   a rank that cannot read its part for a checkpoint: every rank stopped, exit 1, rank 2's words once, the"
 echo "   checkpoint of step $ks kept (one process's), no .tmp left"
+# a rank killed mid-run: rank 1 sends itself SIGKILL after its step 200 (as the out-of-memory killer or a lost node
+# would end it: no word, nothing closed, its collectives never joined). mpirun ends the job; nothing may hang, the
+# output stays .part, the checkpoint before the death is kept whole with no .tmp, and continued in one process it
+# ends as the one-process run does
+rm -f "$T"/f.*
+DEM_TEST_RANK_FAIL="200 1 kill" mrun 2 run "$T/ck.yaml" -o "$T/f.h5" --quiet >"$T/log" 2>&1
+frc=$?
+"$DEM" run "$T/ck.yaml" -o "$T/k0.h5" --quiet >/dev/null 2>&1 || fail "the one-process run of the checkpointed box"
+"$DEM" run --restart "$T/f.ckpt.h5" -o "$T/kc.h5" --quiet >"$T/logc" 2>&1 || { cat "$T/logc" >&2; fail "continuing the kept checkpoint"; }
+ks=$("$PY" -c "import h5py, sys; print(int(h5py.File(sys.argv[1], 'r')['state'].attrs['step']))" "$T/f.ckpt.h5" 2>/dev/null)
+[ "$frc" -ne 0 ] && [ "$frc" -ne 124 ] && [ ! -e "$T/f.h5" ] && [ -e "$T/f.h5.part" ] && [ ! -e "$T/f.ckpt.h5.tmp" ] &&
+    [ -n "$ks" ] && [ "$ks" -gt 0 ] && [ "$ks" -le 200 ] && same "$T/k0.ckpt.h5" "$T/kc.ckpt.h5" ||
+    { cat "$T/log" >&2; fail "a rank killed mid-run: exit $frc (124: it hung), the output or the checkpoint (step '$ks') not as wanted"; }
+echo "   a rank killed mid-run (SIGKILL after its step 200): mpirun ended the job, exit $frc; output .part, the"
+echo "   checkpoint of step $ks kept with no .tmp, and continued in one process it ends as one process does"
 
 echo "== 4. refusals and errors, said once"
 mrun 3 run "$ROOT/scenes/two_spheres.yaml" -o "$T/t.h5" --quiet >"$T/log" 2>&1

@@ -162,7 +162,9 @@ struct dem_mpi_split {
     void *load_arg;
     const char *load_what; /* what it reads (a file: the words of a state the part refuses begin with it) */
     /* tests (DEM_TEST_RANK_FAIL, app/run_mpi.c): rank fail_rank fails after its step fail_step (fail_mode 1, as a
-     * lost device would) or inside it (2: a particle's position made NaN before it); fail_step -1: never */
+     * lost device would) or inside it (2: a particle's position made NaN before it), or dies after it (3: it sends
+     * itself SIGKILL, as the kernel's out-of-memory killer or a lost node would end it: no word, nothing closed);
+     * fail_step -1: never */
     long fail_step;
     int fail_rank, fail_mode;
 };

@@ -7,6 +7,7 @@
 #include "dem_layout.h"
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -410,6 +411,8 @@ int dem_mpi_split_step(dem_mpi_split *q, long nsteps, const unsigned char *want,
         }
         long before = q->step;
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
+        if (!e && q->fail_mode == 3 && q->fail_step == dem_step_index(q->part) && q->fail_rank == q->rank)
+            raise(SIGKILL); /* the test hook: a rank killed mid-run */
         if (!e && q->fail_mode == 1 && q->fail_step == dem_step_index(q->part) && q->fail_rank == q->rank) { /* the test hook */
             snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
                      q->fail_step);
