@@ -13,7 +13,7 @@ potential  the own split, and a bulk force that is the gradient of one energy pe
 
 The published law (lagged, as libdem and LAMMPS have it, and with this step's A_con and V_geo) is printed beside
 them. Work put into the sphere per loop [J]; a conservative law gives 0 on the later loops, whose states repeat, and
-0 in the translation loops' limit (2 W(h/2) - W(h)) in both senses. About 30 s.
+0 in the translation loops' limit (2 W(h/2) - W(h)) in both senses. About 5 s.
 usage: loops.py
 """
 import math
