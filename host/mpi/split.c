@@ -411,9 +411,10 @@ int dem_mpi_split_step(dem_mpi_split *q, long nsteps, const unsigned char *want,
         }
         long before = q->step;
         e = dem_step_sampled(q->part, 1, wk ? (const unsigned char[1]){1} : NULL, &one);
-        if (!e && q->fail_mode == 3 && q->fail_step == dem_step_index(q->part) && q->fail_rank == q->rank)
-            raise(SIGKILL); /* the test hook: a rank killed mid-run */
-        if (!e && q->fail_mode == 1 && q->fail_step == dem_step_index(q->part) && q->fail_rank == q->rank) { /* the test hook */
+        if (!e && (q->fail_mode == 1 || q->fail_mode == 3) && q->fail_step == dem_step_index(q->part) &&
+            q->fail_rank == q->rank) { /* the test hooks: a rank killed mid-run (3), or whose step fails (1) */
+            if (q->fail_mode == 3)
+                raise(SIGKILL);
             snprintf(err, len, "DEM_TEST_RANK_FAIL: this rank's step %ld fails as a lost device's would",
                      q->fail_step);
             e = DEM_ERR_DEVICE;

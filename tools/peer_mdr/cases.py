@@ -52,6 +52,11 @@ SINGLE = {
 }
 
 
+def material_of(spec):
+    """A single case's MDR parameters (E, nu, Y, gamma, psi_b, damping): the module's, but for the case's own
+    'Y' and 'damp' where it gives them. What LAMMPS, the Python reference and the C core's walk are each given."""
+    return E, NU, spec.get("Y", Y), spec["gamma"], PSI_B, spec.get("damp", DAMP)
+
 def phase_steps(path):
     """Steps of each phase: |change of approach| / STEP, rounded."""
     ends = [0.0]

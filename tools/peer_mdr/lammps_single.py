@@ -28,13 +28,12 @@ HEADER = ("# MDR single contact, LAMMPS {version}; case {case}: {kind}, E {E:g} 
 
 
 def write_input(case, spec, path):
-    kind, gamma = spec["kind"], spec["gamma"]
+    kind = spec["kind"]
     n = C.phase_steps(spec["path"])
     ends = C.phase_ends(spec["path"])
     R = C.R
-    damp = spec.get("damp", C.DAMP)
-    mdr = f"mdr {C.E!r} {C.NU!r} {spec.get('Y', C.Y)!r} {gamma!r} {C.PSI_B!r} {damp!r} damping mdr 1 " \
-          f"tangential linear_nohistory 0 0"
+    E, nu, Y, gamma, psi_b, damp = C.material_of(spec)
+    mdr = f"mdr {E!r} {nu!r} {Y!r} {gamma!r} {psi_b!r} {damp!r} damping mdr 1 tangential linear_nohistory 0 0"
     lines = [
         "units si", "atom_style sphere", "atom_modify map array", "newton off", "comm_modify vel yes",
         "boundary f f f",
@@ -154,8 +153,9 @@ def main():
         rows = parse_dump(os.path.join(wd, "dump.single"), spec["kind"])
         csv = os.path.join(outdir, f"single_{case}.csv")
         with open(csv, "w") as f:
-            f.write(HEADER.format(version=version, case=case, kind=spec["kind"], E=C.E, nu=C.NU,
-                                  Y=spec.get("Y", C.Y), gamma=spec["gamma"], psi_b=C.PSI_B, damp=spec.get("damp", C.DAMP), R=C.R, rho=C.RHO, dt=C.DT))
+            E, nu, Y, gamma, psi_b, damp = C.material_of(spec)
+            f.write(HEADER.format(version=version, case=case, kind=spec["kind"], E=E, nu=nu, Y=Y, gamma=gamma,
+                                  psi_b=psi_b, damp=damp, R=C.R, rho=C.RHO, dt=C.DT))
             for step, overlap, radius, force, psi in rows:
                 u = C.approach_at(spec["path"], step)
                 if overlap is None:

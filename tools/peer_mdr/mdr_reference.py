@@ -312,7 +312,7 @@ def run_box(spec, mat, mass):
 
 
 def run_case(case, spec):
-    mat = Material(C.E, C.NU, spec.get("Y", C.Y), spec["gamma"], C.PSI_B, spec.get("damp", C.DAMP))
+    mat = Material(*C.material_of(spec))
     if spec["kind"] == "box":
         return run_box(spec, mat, C.RHO * 4.0 / 3.0 * math.pi * C.R ** 3)
     mass = C.RHO * 4.0 / 3.0 * math.pi * C.R ** 3
@@ -455,7 +455,7 @@ def compare(outdir):
 def walk_all():
     """--walk: each case's inputs and the reference's walk, for the C law's test (tests/test_mdr.c)"""
     for case, spec in C.SINGLE.items():
-        mat = Material(C.E, C.NU, spec.get("Y", C.Y), spec["gamma"], C.PSI_B, spec.get("damp", C.DAMP))
+        mat = Material(*C.material_of(spec))
         rows = run_case(case, spec)
         R2 = spec.get("R2", C.R)
         m1 = C.RHO * 4.0 / 3.0 * math.pi * C.R ** 3
